@@ -1,0 +1,4 @@
+from app.main import main
+import sys
+
+sys.exit(main())

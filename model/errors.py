@@ -1,0 +1,53 @@
+"""Exceptions of the model layer.
+
+Every error a user can cause (bad file, bad geometry, absurd parameter) is an :class:`MRMError`; the CLI
+turns it into a one-line message and exit status 2, the GUI into a message box. Anything else is a bug.
+"""
+
+from __future__ import annotations
+
+
+class MRMError(Exception):
+    """Base class of every error caused by input (files, geometry, parameters)."""
+
+
+class InvalidGeometryError(MRMError, ValueError):
+    """A Euclidean geometry that cannot be used: invalid polygon, NaN or infinite coordinates."""
+
+
+class SizeLimitError(MRMError):
+    """A result would exceed the configured pixel limit; raised before any memory is allocated.
+
+    Parameters
+    ----------
+    estimated : int
+        The number of pixels the result would have had (or its bounding box holds).
+    limit : int
+        The limit in force.
+    what : str
+        A short description of what was being computed.
+    """
+
+    def __init__(self, estimated: int, limit: int, what: str = "result") -> None:
+        self.estimated = int(estimated)
+        self.limit = int(limit)
+        super().__init__(
+            f"{what} would cover {self.estimated:,} pixels, more than the limit of {self.limit:,}; "
+            "reduce the scale or raise the limit"
+        )
+
+
+class FileFormatError(MRMError):
+    """A file that cannot be read: corrupt, hostile, wrong type or from a newer version."""
+
+
+class ParameterError(MRMError, ValueError):
+    """An operation parameter out of its domain (non-finite, non-positive, out of bounds)."""
+
+
+class Cancelled(MRMError):  # noqa: N818 - the name reads as what happened
+    """Raised by a progress object's ``update()`` after the user cancelled the task."""
+
+
+#: Default maximum number of pixels of a discretization or operation result (DESIGN §2 / issue 2).
+DEFAULT_PIXEL_LIMIT = 200_000_000

@@ -1,0 +1,380 @@
+"""Immutable pixel sets and label maps that keep their place on the grid (DESIGN §1).
+
+A pixel p = (x, y) ∈ Z² is centred on the Euclidean point (x, y); y points up. In memory a pixel set is an
+integer origin (x0, y0) plus a boolean ``mask[row, col]`` with x = x0 + col and y = y0 + row. Two pixel sets
+are equal when they hold the same points, whatever the extent of their arrays; the canonical form is
+cropped to the bounding box (an empty set has origin (0, 0) and a 0×0 mask).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+BoolArray = npt.NDArray[np.bool_]
+IntArray = npt.NDArray[np.int64]
+
+#: A box of pixels (xmin, ymin, xmax, ymax), bounds included.
+Box = tuple[int, int, int, int]
+
+
+def _frozen(a: npt.NDArray[Any]) -> npt.NDArray[Any]:
+    if a.flags.writeable:
+        a = a.copy()
+        a.flags.writeable = False
+    return a
+
+
+def _crop_bounds(mask: BoolArray) -> tuple[int, int, int, int] | None:
+    """Return (row0, row1, col0, col1), half-open, of the True entries, or None if there are none."""
+    rows = np.flatnonzero(mask.any(axis=1))
+    if rows.size == 0:
+        return None
+    cols = np.flatnonzero(mask.any(axis=0))
+    return int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1
+
+
+class PixelSet:
+    """A finite set of pixels: an integer origin plus a read-only boolean mask, always canonical.
+
+    Parameters
+    ----------
+    mask : array_like of bool, shape (rows, cols)
+        ``mask[row, col]`` is True when pixel (x0 + col, y0 + row) belongs to the set.
+    origin : tuple of int
+        (x0, y0), the pixel of ``mask[0, 0]``.
+
+    Notes
+    -----
+    The constructor crops the mask to its bounding box, so ``origin`` and ``mask`` of an instance are
+    canonical and equality, hashing and serialisation never depend on how the set was built. Instances are
+    immutable: the mask is a read-only array and every operation returns a new set.
+    """
+
+    __slots__ = ("_hash", "_mask", "_origin")
+
+    def __init__(self, mask: npt.ArrayLike, origin: tuple[int, int] = (0, 0)) -> None:
+        m = np.asarray(mask)
+        if m.ndim != 2:
+            raise ValueError(f"a pixel mask must be 2-D, got shape {m.shape}")
+        if m.dtype != np.bool_:
+            m = m != 0
+        x0, y0 = (int(origin[0]), int(origin[1]))
+        b = _crop_bounds(m)
+        if b is None:
+            self._mask: BoolArray = _frozen(np.zeros((0, 0), dtype=bool))
+            self._origin = (0, 0)
+        else:
+            r0, r1, c0, c1 = b
+            if (r0, r1, c0, c1) != (0, m.shape[0], 0, m.shape[1]):
+                m = m[r0:r1, c0:c1]
+            self._mask = _frozen(np.ascontiguousarray(m))
+            self._origin = (x0 + c0, y0 + r0)
+        self._hash: int | None = None
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def empty(cls) -> PixelSet:
+        """Return the empty pixel set."""
+        return cls(np.zeros((0, 0), dtype=bool))
+
+    @classmethod
+    def from_points(cls, points: npt.ArrayLike | Iterable[tuple[int, int]]) -> PixelSet:
+        """Build a set from integer points, an (N, 2) array of (x, y)."""
+        pts = np.asarray(list(points) if not isinstance(points, np.ndarray) else points, dtype=np.int64)
+        if pts.size == 0:
+            return cls.empty()
+        pts = pts.reshape(-1, 2)
+        x0, y0 = int(pts[:, 0].min()), int(pts[:, 1].min())
+        w = int(pts[:, 0].max()) - x0 + 1
+        h = int(pts[:, 1].max()) - y0 + 1
+        m = np.zeros((h, w), dtype=bool)
+        m[pts[:, 1] - y0, pts[:, 0] - x0] = True
+        return cls(m, (x0, y0))
+
+    @classmethod
+    def box(cls, xmin: int, ymin: int, xmax: int, ymax: int) -> PixelSet:
+        """Return the full rectangle of pixels with the given inclusive bounds (empty if inverted)."""
+        if xmax < xmin or ymax < ymin:
+            return cls.empty()
+        return cls(np.ones((ymax - ymin + 1, xmax - xmin + 1), dtype=bool), (xmin, ymin))
+
+    # ------------------------------------------------------------------ basic properties
+    @property
+    def origin(self) -> tuple[int, int]:
+        """(x0, y0): the pixel of ``mask[0, 0]`` (the bottom-left of the bounding box)."""
+        return self._origin
+
+    @property
+    def mask(self) -> BoolArray:
+        """The read-only boolean mask, cropped to the bounding box, indexed ``[row, col]``."""
+        return self._mask
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(rows, cols) of the mask, i.e. (height, width) of the bounding box."""
+        return (int(self._mask.shape[0]), int(self._mask.shape[1]))
+
+    def __len__(self) -> int:
+        return int(np.count_nonzero(self._mask))
+
+    @property
+    def count(self) -> int:
+        """Number of pixels in the set."""
+        return len(self)
+
+    def is_empty(self) -> bool:
+        """True when the set holds no pixel."""
+        return self._mask.size == 0
+
+    def __bool__(self) -> bool:
+        return not self.is_empty()
+
+    @property
+    def bbox(self) -> Box | None:
+        """(xmin, ymin, xmax, ymax), bounds included, or None for the empty set."""
+        if self.is_empty():
+            return None
+        h, w = self.shape
+        x0, y0 = self._origin
+        return (x0, y0, x0 + w - 1, y0 + h - 1)
+
+    def points(self) -> IntArray:
+        """All pixels as an (N, 2) int64 array of (x, y), sorted by y then x."""
+        rows, cols = np.nonzero(self._mask)
+        out = np.empty((rows.size, 2), dtype=np.int64)
+        out[:, 0] = cols + self._origin[0]
+        out[:, 1] = rows + self._origin[1]
+        return out
+
+    def __iter__(self) -> Iterator[tuple[int, int]]:
+        for x, y in self.points():
+            yield (int(x), int(y))
+
+    def __contains__(self, p: object) -> bool:
+        if not isinstance(p, tuple) or len(p) != 2:
+            return False
+        x, y = p
+        if self.is_empty():
+            return False
+        c, r = int(x) - self._origin[0], int(y) - self._origin[1]  # type: ignore[call-overload]
+        return 0 <= r < self._mask.shape[0] and 0 <= c < self._mask.shape[1] and bool(self._mask[r, c])
+
+    def to_array(self, box: Box) -> BoolArray:
+        """Return a new writable mask over ``box`` = (xmin, ymin, xmax, ymax), indexed ``[row, col]``."""
+        xmin, ymin, xmax, ymax = box
+        out = np.zeros((max(0, ymax - ymin + 1), max(0, xmax - xmin + 1)), dtype=bool)
+        if self.is_empty() or out.size == 0:
+            return out
+        h, w = self.shape
+        x0, y0 = self._origin
+        # Overlap of [x0, x0+w) with [xmin, xmax+1) and likewise in y.
+        ox0, ox1 = max(x0, xmin), min(x0 + w, xmax + 1)
+        oy0, oy1 = max(y0, ymin), min(y0 + h, ymax + 1)
+        if ox0 < ox1 and oy0 < oy1:
+            out[oy0 - ymin : oy1 - ymin, ox0 - xmin : ox1 - xmin] = self._mask[
+                oy0 - y0 : oy1 - y0, ox0 - x0 : ox1 - x0
+            ]
+        return out
+
+    # ------------------------------------------------------------------ equality and hashing
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, PixelSet):
+            return NotImplemented
+        return self._origin == other._origin and np.array_equal(self._mask, other._mask)
+
+    def __hash__(self) -> int:
+        if self._hash is None:
+            self._hash = hash((self._origin, self._mask.shape, np.packbits(self._mask).tobytes()))
+        return self._hash
+
+    def __repr__(self) -> str:
+        return f"PixelSet({len(self)} pixels, bbox={self.bbox})"
+
+    # ------------------------------------------------------------------ set algebra
+    def _joint_box(self, other: PixelSet) -> Box | None:
+        boxes = [b for b in (self.bbox, other.bbox) if b is not None]
+        if not boxes:
+            return None
+        return (
+            min(b[0] for b in boxes),
+            min(b[1] for b in boxes),
+            max(b[2] for b in boxes),
+            max(b[3] for b in boxes),
+        )
+
+    def _binary(self, other: PixelSet, op: Any) -> PixelSet:
+        box = self._joint_box(other)
+        if box is None:
+            return PixelSet.empty()
+        return PixelSet(op(self.to_array(box), other.to_array(box)), (box[0], box[1]))
+
+    def union(self, other: PixelSet) -> PixelSet:
+        """Return the pixels in either set."""
+        return self._binary(other, np.logical_or)
+
+    def intersection(self, other: PixelSet) -> PixelSet:
+        """Return the pixels in both sets."""
+        return self._binary(other, np.logical_and)
+
+    def difference(self, other: PixelSet) -> PixelSet:
+        """Return the pixels of this set that are not in ``other``."""
+        return self._binary(other, lambda a, b: a & ~b)
+
+    def symmetric_difference(self, other: PixelSet) -> PixelSet:
+        """Return the pixels in exactly one of the two sets."""
+        return self._binary(other, np.logical_xor)
+
+    __or__ = union
+    __and__ = intersection
+    __sub__ = difference
+    __xor__ = symmetric_difference
+
+    def complement(self, box: Box) -> PixelSet:
+        """Return the pixels of ``box`` = (xmin, ymin, xmax, ymax) that are not in this set."""
+        return PixelSet(~self.to_array(box), (box[0], box[1]))
+
+    def issubset(self, other: PixelSet) -> bool:
+        """True when every pixel of this set is in ``other``."""
+        return self.difference(other).is_empty()
+
+    # ------------------------------------------------------------------ geometry
+    def translate(self, dx: int, dy: int) -> PixelSet:
+        """Return the set moved by the integer vector (dx, dy)."""
+        return PixelSet(self._mask, (self._origin[0] + int(dx), self._origin[1] + int(dy)))
+
+    def crop(self, box: Box) -> PixelSet:
+        """Return the pixels of this set inside ``box`` = (xmin, ymin, xmax, ymax)."""
+        return PixelSet(self.to_array(box), (box[0], box[1]))
+
+    def rotate90(self, k: int = 1, center: tuple[int, int] = (0, 0)) -> PixelSet:
+        """Rotate by k·90° counter-clockwise (y up) about the pixel centre ``center``.
+
+        The rotation (x, y) ↦ (cx − (y − cy), cy + (x − cx)) maps pixels to pixels exactly.
+        """
+        k %= 4
+        if k == 0 or self.is_empty():
+            return self
+        pts = self.points()
+        cx, cy = int(center[0]), int(center[1])
+        x, y = pts[:, 0] - cx, pts[:, 1] - cy
+        for _ in range(k):
+            x, y = -y, x
+        return PixelSet.from_points(np.stack([x + cx, y + cy], axis=1))
+
+    def flip_x(self, axis: int = 0) -> PixelSet:
+        """Mirror about the vertical line x = ``axis`` (a pixel column): (x, y) ↦ (2·axis − x, y)."""
+        if self.is_empty():
+            return self
+        x0, y0 = self._origin
+        w = self.shape[1]
+        return PixelSet(self._mask[:, ::-1], (2 * axis - (x0 + w - 1), y0))
+
+    def flip_y(self, axis: int = 0) -> PixelSet:
+        """Mirror about the horizontal line y = ``axis`` (a pixel row): (x, y) ↦ (x, 2·axis − y)."""
+        if self.is_empty():
+            return self
+        x0, y0 = self._origin
+        h = self.shape[0]
+        return PixelSet(self._mask[::-1, :], (x0, 2 * axis - (y0 + h - 1)))
+
+
+class LabelMap:
+    """An immutable integer label image with an origin (DESIGN §1); label 0 is the background.
+
+    Parameters
+    ----------
+    labels : array_like of int, shape (rows, cols)
+        ``labels[row, col]`` is the label of pixel (x0 + col, y0 + row).
+    origin : tuple of int
+        (x0, y0).
+
+    Notes
+    -----
+    Like :class:`PixelSet`, the array is cropped to the bounding box of the non-zero labels and stored
+    read-only as int32, so equality and hashing depend only on content.
+    """
+
+    __slots__ = ("_hash", "_labels", "_origin")
+
+    def __init__(self, labels: npt.ArrayLike, origin: tuple[int, int] = (0, 0)) -> None:
+        a = np.asarray(labels)
+        if a.ndim != 2:
+            raise ValueError(f"a label map must be 2-D, got shape {a.shape}")
+        if a.size and (a.min() < 0 or a.max() > np.iinfo(np.int32).max):
+            raise ValueError("labels must be non-negative 32-bit integers")
+        a = a.astype(np.int32, copy=False)
+        b = _crop_bounds(a != 0)
+        if b is None:
+            self._labels = _frozen(np.zeros((0, 0), dtype=np.int32))
+            self._origin = (0, 0)
+        else:
+            r0, r1, c0, c1 = b
+            self._labels = _frozen(np.ascontiguousarray(a[r0:r1, c0:c1]))
+            self._origin = (int(origin[0]) + c0, int(origin[1]) + r0)
+        self._hash: int | None = None
+
+    @classmethod
+    def from_pixel_sets(cls, parts: Iterable[PixelSet]) -> LabelMap:
+        """Label the i-th set with i + 1; the sets must be pairwise disjoint."""
+        parts = list(parts)
+        boxes = [p.bbox for p in parts if p.bbox is not None]
+        if not boxes:
+            return cls(np.zeros((0, 0), dtype=np.int32))
+        box = (
+            min(b[0] for b in boxes),
+            min(b[1] for b in boxes),
+            max(b[2] for b in boxes),
+            max(b[3] for b in boxes),
+        )
+        out = np.zeros((box[3] - box[1] + 1, box[2] - box[0] + 1), dtype=np.int32)
+        for i, p in enumerate(parts, start=1):
+            m = p.to_array(box)
+            if np.any(out[m] != 0):
+                raise ValueError("the pixel sets of a label map must be disjoint")
+            out[m] = i
+        return cls(out, (box[0], box[1]))
+
+    @property
+    def origin(self) -> tuple[int, int]:
+        """(x0, y0) of ``labels[0, 0]``."""
+        return self._origin
+
+    @property
+    def labels(self) -> npt.NDArray[np.int32]:
+        """The read-only int32 array, indexed ``[row, col]``."""
+        return self._labels
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(rows, cols) of the label array."""
+        return (int(self._labels.shape[0]), int(self._labels.shape[1]))
+
+    def label_values(self) -> list[int]:
+        """The distinct non-zero labels, sorted."""
+        v = np.unique(self._labels)
+        return [int(x) for x in v if x != 0]
+
+    def pixel_set(self, label: int) -> PixelSet:
+        """Return the pixels carrying ``label``."""
+        return PixelSet(self._labels == label, self._origin)
+
+    def support(self) -> PixelSet:
+        """Return the pixels with a non-zero label."""
+        return PixelSet(self._labels != 0, self._origin)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, LabelMap):
+            return NotImplemented
+        return self._origin == other._origin and np.array_equal(self._labels, other._labels)
+
+    def __hash__(self) -> int:
+        if self._hash is None:
+            self._hash = hash((self._origin, self._labels.shape, self._labels.tobytes()))
+        return self._hash
+
+    def __repr__(self) -> str:
+        return f"LabelMap(labels={self.label_values()}, origin={self._origin}, shape={self.shape})"
