@@ -45,7 +45,7 @@ class ParameterError(MRMError, ValueError):
     """An operation parameter out of its domain (non-finite, non-positive, out of bounds)."""
 
 
-class Cancelled(MRMError):  # noqa: N818 - the name reads as what happened
+class Cancelled(MRMError):
     """Raised by a progress object's ``update()`` after the user cancelled the task."""
 
 

@@ -41,7 +41,11 @@ def _command_modules() -> dict[str, ModuleType]:
 
 
 def _subcommand_names() -> tuple[str, ...]:
-    return tuple(info.name.replace("_", "-") for info in pkgutil.iter_modules(__path__) if not info.name.startswith("_"))
+    return tuple(
+        info.name.replace("_", "-")
+        for info in pkgutil.iter_modules(__path__)
+        if not info.name.startswith("_")
+    )
 
 
 #: Names of the subcommands (module names; a module's NAME matches its file name).

@@ -9,10 +9,12 @@ cropped to the bounding box (an empty set has origin (0, 0) and a 0×0 mask).
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import numpy.typing as npt
+
+from model.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
 
 BoolArray = npt.NDArray[np.bool_]
 IntArray = npt.NDArray[np.int64]
@@ -21,11 +23,18 @@ IntArray = npt.NDArray[np.int64]
 Box = tuple[int, int, int, int]
 
 
-def _frozen(a: npt.NDArray[Any]) -> npt.NDArray[Any]:
-    if a.flags.writeable:
-        a = a.copy()
-        a.flags.writeable = False
-    return a
+def _frozen(a: npt.NDArray[Any], *, fresh: bool = False) -> npt.NDArray[Any]:
+    """Return a read-only view of a private, C-contiguous copy of ``a``.
+
+    The copy means no caller keeps a writable alias of the data (a read-only *view* of a writable array can
+    still change under our feet); returning a view of a read-only base means the writeable flag cannot be
+    switched back on (numpy refuses for views of read-only arrays). ``fresh=True`` skips the copy for an
+    array the caller has just allocated and holds no other reference to.
+    """
+    if not (fresh and a.flags.owndata and a.flags.c_contiguous):
+        a = np.array(a, order="C", copy=True)
+    a.flags.writeable = False
+    return a.view()
 
 
 def _crop_bounds(mask: BoolArray) -> tuple[int, int, int, int] | None:
@@ -60,20 +69,35 @@ class PixelSet:
         m = np.asarray(mask)
         if m.ndim != 2:
             raise ValueError(f"a pixel mask must be 2-D, got shape {m.shape}")
-        if m.dtype != np.bool_:
+        fresh = m.dtype != np.bool_
+        if fresh:
             m = m != 0
         x0, y0 = (int(origin[0]), int(origin[1]))
         b = _crop_bounds(m)
         if b is None:
-            self._mask: BoolArray = _frozen(np.zeros((0, 0), dtype=bool))
+            self._mask: BoolArray = _frozen(np.zeros((0, 0), dtype=bool), fresh=True)
             self._origin = (0, 0)
         else:
             r0, r1, c0, c1 = b
             if (r0, r1, c0, c1) != (0, m.shape[0], 0, m.shape[1]):
                 m = m[r0:r1, c0:c1]
-            self._mask = _frozen(np.ascontiguousarray(m))
+            self._mask = _frozen(m, fresh=fresh)
             self._origin = (x0 + c0, y0 + r0)
         self._hash: int | None = None
+
+    @classmethod
+    def _canonical(cls, mask: BoolArray, origin: tuple[int, int]) -> PixelSet:
+        """Wrap an already canonical, frozen mask without cropping or copying it."""
+        ps = cls.__new__(cls)
+        ps._mask = mask
+        ps._origin = origin
+        ps._hash = None
+        return ps
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Rebuild through the constructor: the mask comes back frozen and the cached hash (which depends
+        # on the process's hash seed) is not carried over to another process.
+        return (PixelSet, (np.array(self._mask), self._origin))
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -84,10 +108,15 @@ class PixelSet:
     @classmethod
     def from_points(cls, points: npt.ArrayLike | Iterable[tuple[int, int]]) -> PixelSet:
         """Build a set from integer points, an (N, 2) array of (x, y)."""
-        pts = np.asarray(list(points) if not isinstance(points, np.ndarray) else points, dtype=np.int64)
-        if pts.size == 0:
+        raw = np.asarray(points if isinstance(points, np.ndarray) else list(cast("Iterable[Any]", points)))
+        if raw.size == 0:
             return cls.empty()
-        pts = pts.reshape(-1, 2)
+        if raw.dtype.kind not in "iu" and not (
+            raw.dtype.kind == "f" and bool(np.all(np.isfinite(raw))) and np.array_equal(raw, np.floor(raw))
+        ):
+            # Casting would silently truncate 1.5 to 1: a pixel is an integer point or nothing.
+            raise ValueError(f"pixel coordinates must be integers, got dtype {raw.dtype}")
+        pts = raw.astype(np.int64).reshape(-1, 2)
         x0, y0 = int(pts[:, 0].min()), int(pts[:, 1].min())
         w = int(pts[:, 0].max()) - x0 + 1
         h = int(pts[:, 1].max()) - y0 + 1
@@ -155,12 +184,17 @@ class PixelSet:
             yield (int(x), int(y))
 
     def __contains__(self, p: object) -> bool:
-        if not isinstance(p, tuple) or len(p) != 2:
+        if not isinstance(p, tuple) or len(p) != 2 or self.is_empty():
             return False
         x, y = p
-        if self.is_empty():
+        try:
+            xi, yi = int(x), int(y)
+            # Like a Python set of integer tuples: (1.0, 2) is (1, 2), but (1.5, 2) is no pixel.
+            if xi != x or yi != y:
+                return False
+        except (TypeError, ValueError, OverflowError):
             return False
-        c, r = int(x) - self._origin[0], int(y) - self._origin[1]  # type: ignore[call-overload]
+        c, r = xi - self._origin[0], yi - self._origin[1]
         return 0 <= r < self._mask.shape[0] and 0 <= c < self._mask.shape[1] and bool(self._mask[r, c])
 
     def to_array(self, box: Box) -> BoolArray:
@@ -206,27 +240,46 @@ class PixelSet:
             max(b[3] for b in boxes),
         )
 
-    def _binary(self, other: PixelSet, op: Any) -> PixelSet:
-        box = self._joint_box(other)
-        if box is None:
+    def _binary(self, other: PixelSet, op: Any, box: Box | None) -> PixelSet:
+        """Apply the element-wise ``op`` over ``box``, which must hold every pixel of the result."""
+        if box is None or box[2] < box[0] or box[3] < box[1]:
             return PixelSet.empty()
         return PixelSet(op(self.to_array(box), other.to_array(box)), (box[0], box[1]))
 
+    def _checked_joint_box(self, other: PixelSet) -> Box | None:
+        box = self._joint_box(other)
+        if box is not None:
+            area = (box[2] - box[0] + 1) * (box[3] - box[1] + 1)
+            if area > DEFAULT_PIXEL_LIMIT:
+                # Two small sets far apart would need a huge mask: refuse before allocating it.
+                raise SizeLimitError(area, DEFAULT_PIXEL_LIMIT, "the joint bounding box of these pixel sets")
+        return box
+
     def union(self, other: PixelSet) -> PixelSet:
-        """Return the pixels in either set."""
-        return self._binary(other, np.logical_or)
+        """Return the pixels in either set.
+
+        Raises
+        ------
+        SizeLimitError
+            When the joint bounding box of the two sets exceeds ``DEFAULT_PIXEL_LIMIT`` pixels.
+        """
+        return self._binary(other, np.logical_or, self._checked_joint_box(other))
 
     def intersection(self, other: PixelSet) -> PixelSet:
         """Return the pixels in both sets."""
-        return self._binary(other, np.logical_and)
+        a, b = self.bbox, other.bbox
+        if a is None or b is None:
+            return PixelSet.empty()
+        box = (max(a[0], b[0]), max(a[1], b[1]), min(a[2], b[2]), min(a[3], b[3]))
+        return self._binary(other, np.logical_and, box)
 
     def difference(self, other: PixelSet) -> PixelSet:
         """Return the pixels of this set that are not in ``other``."""
-        return self._binary(other, lambda a, b: a & ~b)
+        return self._binary(other, lambda a, b: a & ~b, self.bbox)
 
     def symmetric_difference(self, other: PixelSet) -> PixelSet:
-        """Return the pixels in exactly one of the two sets."""
-        return self._binary(other, np.logical_xor)
+        """Return the pixels in exactly one of the two sets (``SizeLimitError`` as for :meth:`union`)."""
+        return self._binary(other, np.logical_xor, self._checked_joint_box(other))
 
     __or__ = union
     __and__ = intersection
@@ -244,10 +297,19 @@ class PixelSet:
     # ------------------------------------------------------------------ geometry
     def translate(self, dx: int, dy: int) -> PixelSet:
         """Return the set moved by the integer vector (dx, dy)."""
-        return PixelSet(self._mask, (self._origin[0] + int(dx), self._origin[1] + int(dy)))
+        if self.is_empty():
+            return self
+        return PixelSet._canonical(self._mask, (self._origin[0] + int(dx), self._origin[1] + int(dy)))
 
     def crop(self, box: Box) -> PixelSet:
         """Return the pixels of this set inside ``box`` = (xmin, ymin, xmax, ymax)."""
+        b = self.bbox
+        if b is None:
+            return PixelSet.empty()
+        # Only the overlap with the bounding box can hold pixels (and a huge box costs nothing).
+        box = (max(box[0], b[0]), max(box[1], b[1]), min(box[2], b[2]), min(box[3], b[3]))
+        if box[2] < box[0] or box[3] < box[1]:
+            return PixelSet.empty()
         return PixelSet(self.to_array(box), (box[0], box[1]))
 
     def rotate90(self, k: int = 1, center: tuple[int, int] = (0, 0)) -> PixelSet:
@@ -304,18 +366,26 @@ class LabelMap:
         a = np.asarray(labels)
         if a.ndim != 2:
             raise ValueError(f"a label map must be 2-D, got shape {a.shape}")
+        if a.dtype.kind not in "biu":
+            raise ValueError(f"labels must be integers, got dtype {a.dtype}")
         if a.size and (a.min() < 0 or a.max() > np.iinfo(np.int32).max):
             raise ValueError("labels must be non-negative 32-bit integers")
-        a = a.astype(np.int32, copy=False)
-        b = _crop_bounds(a != 0)
+        converted = a.astype(np.int32, copy=False)
+        fresh = converted is not a
+        b = _crop_bounds(converted != 0)
         if b is None:
-            self._labels = _frozen(np.zeros((0, 0), dtype=np.int32))
+            self._labels = _frozen(np.zeros((0, 0), dtype=np.int32), fresh=True)
             self._origin = (0, 0)
         else:
             r0, r1, c0, c1 = b
-            self._labels = _frozen(np.ascontiguousarray(a[r0:r1, c0:c1]))
+            if (r0, r1, c0, c1) != (0, converted.shape[0], 0, converted.shape[1]):
+                converted = converted[r0:r1, c0:c1]
+            self._labels = _frozen(converted, fresh=fresh)
             self._origin = (int(origin[0]) + c0, int(origin[1]) + r0)
         self._hash: int | None = None
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (LabelMap, (np.array(self._labels), self._origin))
 
     @classmethod
     def from_pixel_sets(cls, parts: Iterable[PixelSet]) -> LabelMap:

@@ -1,0 +1,111 @@
+"""Atomic file writes: a file is either left as it was or replaced by the complete new content.
+
+The data goes to a temporary file in the destination's directory (so the final rename never crosses file
+systems), is flushed and fsynced, and then ``os.replace``s the destination in one step; the directory is
+fsynced too so the rename survives a crash. If anything fails before the rename the temporary file is
+removed and the destination is untouched — no half-written file is ever left under the real name.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import secrets
+from collections.abc import Iterator
+from pathlib import Path
+from typing import IO, Any
+
+#: Open modes accepted by :func:`atomic_open`.
+_MODES = ("wb", "w")
+
+
+def _temp_path(target: Path) -> tuple[Path, int]:
+    """Create and open a fresh temporary file beside ``target``; return its path and descriptor."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        tmp = target.with_name(f".{target.name}.{secrets.token_hex(4)}.tmp")
+        try:
+            # 0o666 filtered by the umask, like a file created by open(): a new file gets the usual mode.
+            return tmp, os.open(tmp, flags, 0o666)
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"cannot create a temporary file beside {target}")
+
+
+def _fsync_directory(directory: Path) -> None:
+    if os.name != "posix":
+        return
+    with contextlib.suppress(OSError):
+        fd = os.open(directory, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
+@contextlib.contextmanager
+def atomic_open(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO[Any]]:
+    """Open ``path`` for writing so that it is replaced atomically when the ``with`` block succeeds.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The destination. A symbolic link is followed: its target is replaced, the link stays.
+    mode : {"wb", "w"}
+        Binary, or text in UTF-8 with Unix line ends.
+
+    Yields
+    ------
+    file object
+        Write to it inside the block. If the block raises, the destination is left untouched.
+
+    Notes
+    -----
+    When the destination exists its permission bits are kept.
+    """
+    if mode not in _MODES:
+        raise ValueError(f"atomic_open mode must be one of {_MODES}, got {mode!r}")
+    target = Path(os.path.realpath(os.fspath(path)))
+    # Check here so the error names the user's path, not the temporary file.
+    if target.is_dir():
+        raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), os.fspath(path))
+    if not target.parent.is_dir():
+        raise FileNotFoundError(errno.ENOENT, "No such directory", os.fspath(target.parent))
+    tmp, fd = _temp_path(target)
+    try:
+        with contextlib.suppress(FileNotFoundError):
+            mode_bits = os.stat(target).st_mode & 0o7777
+            if hasattr(os, "fchmod"):
+                os.fchmod(fd, mode_bits)
+        fh: IO[Any] = (
+            os.fdopen(fd, mode, encoding="utf-8", newline="\n") if mode == "w" else os.fdopen(fd, mode)
+        )
+    except BaseException:
+        os.close(fd)
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    try:
+        with fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    _fsync_directory(target.parent)
+
+
+def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically (see :func:`atomic_open`)."""
+    with atomic_open(path, "wb") as fh:
+        fh.write(data)
+
+
+def atomic_write_text(path: str | os.PathLike[str], text: str) -> None:
+    """Write ``text`` to ``path`` atomically, in UTF-8 (see :func:`atomic_open`)."""
+    with atomic_open(path, "w") as fh:
+        fh.write(text)

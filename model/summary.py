@@ -1,0 +1,125 @@
+"""A summary of the four representations of an object, as ``mrm info --json`` prints it (DESIGN §9).
+
+:func:`summarize` gives the fixed keys ``model``, ``pixels``, ``components``, ``holes``, ``euler``,
+``boundary_chains``, ``segments`` and ``vertices`` (plus ``bbox``). Parts of the model that are not built yet
+give ``null``: the region keys need :mod:`model.reps.region`, ``segments`` the analytical representation
+(:func:`model.reps.analytical.analytical_of`, or else a greedy DSS segmentation of every boundary chain with
+:mod:`model.geometry.segmentation`), and ``vertices`` of a discrete object its continuation
+(:func:`model.geometry.reconstruct.reconstruct`). They are looked up at call time, so the summary fills in
+by itself as those modules land.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from typing import Any
+
+from model.reps.pixels import PixelSet
+
+
+def optional_function(module: str, name: str) -> Callable[..., Any] | None:
+    """Return ``module.name`` if that module exists and defines it, else None.
+
+    Only the absence of ``module`` itself counts as "not built yet": an import error *inside* an existing
+    module is a bug and propagates.
+    """
+    try:
+        mod = importlib.import_module(module)
+    except ModuleNotFoundError as e:
+        if e.name is not None and (module == e.name or module.startswith(e.name + ".")):
+            return None
+        raise
+    fn = getattr(mod, name, None)
+    return fn if callable(fn) else None
+
+
+def count_vertices(geom: Any) -> int:
+    """Return the number of vertices of a shapely geometry (0 when empty).
+
+    Ring points (without the closing repeat), line points and points, summed over the parts.
+    """
+    if geom is None or geom.is_empty:
+        return 0
+    kind = geom.geom_type
+    if kind == "Polygon":
+        return sum(len(r.coords) - 1 for r in (geom.exterior, *geom.interiors))
+    if kind == "LinearRing":
+        return len(geom.coords) - 1
+    if kind == "LineString":
+        return len(geom.coords)
+    if kind == "Point":
+        return 1
+    if hasattr(geom, "geoms"):
+        return sum(count_vertices(g) for g in geom.geoms)
+    raise TypeError(f"cannot count the vertices of a {kind}")
+
+
+def _count_segments(region: Any) -> int | None:
+    analytical_of = optional_function("model.reps.analytical", "analytical_of")
+    if analytical_of is not None:
+        rep = analytical_of(region)
+        n = getattr(rep, "n_segments", None)
+        if n is not None:
+            return int(n)
+        segments = getattr(rep, "segments", None)
+        if segments is not None:
+            return len(segments)
+    greedy = optional_function("model.geometry.segmentation", "greedy_segmentation")
+    points_of = optional_function("model.geometry.segmentation", "chain_points")
+    if greedy is None or points_of is None:
+        return None
+    # The default analytical representation: greedy standard (4-connected) DSS around each closed chain.
+    return sum(len(greedy(points_of(ch.start, ch.codes), closed=True)) for ch in region.boundary_chains)
+
+
+def summarize(ps: PixelSet, model: str, geom: Any = None) -> dict[str, Any]:
+    """Summarise an object's four representations.
+
+    Parameters
+    ----------
+    ps : PixelSet
+        The discrete representation.
+    model : str
+        The discretization model it was made with (or is read under).
+    geom : shapely geometry, optional
+        The Euclidean representation when it is the source (then ``ps`` = D(geom)); if None, the Euclidean
+        representation is the continuation R(ps), when that module exists.
+
+    Returns
+    -------
+    dict
+        ``model``; ``pixels`` (count); ``bbox`` ([xmin, ymin, xmax, ymax] or None); ``components``,
+        ``holes``, ``euler`` and ``boundary_chains`` (the number of crack chains); ``segments`` (DSS over
+        all chains); ``vertices`` (of the Euclidean representation). A value whose module is not available
+        yet is None.
+    """
+    bbox = ps.bbox
+    out: dict[str, Any] = {
+        "model": model,
+        "pixels": len(ps),
+        "bbox": None if bbox is None else list(bbox),
+        "components": None,
+        "holes": None,
+        "euler": None,
+        "boundary_chains": None,
+        "segments": None,
+        "vertices": None,
+    }
+    region_of = optional_function("model.reps.region", "region_of")
+    if region_of is not None:
+        region = region_of(ps)
+        out["components"] = int(region.n_components)
+        out["holes"] = int(region.n_holes)
+        out["euler"] = int(region.euler)
+        out["boundary_chains"] = len(region.boundary_chains)
+        out["segments"] = _count_segments(region)
+    if geom is not None:
+        out["vertices"] = count_vertices(geom)
+    elif ps.is_empty():
+        out["vertices"] = 0
+    else:
+        reconstruct = optional_function("model.geometry.reconstruct", "reconstruct")
+        if reconstruct is not None:
+            out["vertices"] = count_vertices(reconstruct(ps, model))
+    return out
