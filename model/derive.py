@@ -1,0 +1,350 @@
+"""Derived representations: a lazy cache per (source, model) and a small thread-pool derivation service.
+
+For an object whose source is a Euclidean geometry E, the discrete representation is D(E); for a discrete
+source A, the Euclidean one is R(A) (DESIGN §7). Region and analytical representations always come from the
+discrete one. Sources are immutable values, so a :class:`Derived` entry can be keyed by the identity of its
+source and shared between threads: whatever it computes stays true for that source forever.
+
+The algorithms are looked up when first needed (not at import time), so this module works while parts of the
+geometry package are still missing and never creates import cycles.
+
+:class:`DerivationService` computes slow derivations on worker threads (no Qt: the GUI passes a ``deliver``
+function that posts the result to its own thread). Each request remembers the object's revision; a result
+that arrives after the object changed is dropped, and a new request for the same object and representation
+cancels the one still queued ("latest request wins").
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+from collections.abc import Callable, Iterable
+from concurrent.futures import Future, ThreadPoolExecutor
+from typing import TYPE_CHECKING, Any, Literal
+
+from model.errors import MRMError
+from model.reps.pixels import PixelSet
+
+if TYPE_CHECKING:
+    from model.document import Document
+
+Rep = Literal["discrete", "euclidean", "region", "analytical"]
+#: The four representations, in the order they are usually derived.
+REPS: tuple[Rep, ...] = ("discrete", "euclidean", "region", "analytical")
+
+#: Derivations estimated below this cost (roughly, pixels touched) run in the caller's thread.
+SYNC_COST = 250_000
+
+
+# ---------------------------------------------------------------------------------------------- algorithms
+def discretize_source(geom: Any, model: str) -> PixelSet:
+    """D(geom) under ``model`` (:func:`model.geometry.discretize.discretize`)."""
+    from model.geometry.discretize import discretize
+
+    return discretize(geom, model)
+
+
+def reconstruct_source(ps: PixelSet, model: str) -> Any:
+    """R(ps) under ``model`` (:func:`model.geometry.reconstruct.reconstruct`)."""
+    from model.geometry.reconstruct import reconstruct
+
+    return reconstruct(ps, model)
+
+
+def region_from_pixels(ps: PixelSet) -> Any:
+    """The region representation of a pixel set (:func:`model.reps.region.region_of`)."""
+    from model.reps.region import region_of
+
+    return region_of(ps)
+
+
+def analytical_from_region(region: Any) -> Any:
+    """The analytical representation of a region (:func:`model.reps.analytical.analytical_of`)."""
+    from model.reps.analytical import analytical_of
+
+    return analytical_of(region)
+
+
+# ---------------------------------------------------------------------------------------------- one entry
+class Derived:
+    """The four representations of one source under one model, each computed on first use and kept.
+
+    Parameters
+    ----------
+    source : PixelSet or shapely Polygon / MultiPolygon
+        The object's source representation (immutable).
+    model : str
+        The discretization model.
+
+    Notes
+    -----
+    Thread-safe: each representation has its own lock, so a worker computing R(A) never blocks a caller
+    asking for the discrete representation. An :class:`~model.errors.MRMError` raised by a derivation (e.g.
+    a result over the pixel limit) is remembered and raised again on every request.
+    """
+
+    def __init__(self, source: Any, model: str) -> None:
+        self.source = source
+        self.model = model
+        self.kind: Literal["discrete", "euclidean"] = (
+            "discrete" if isinstance(source, PixelSet) else "euclidean"
+        )
+        self._values: dict[str, Any] = {self.kind: source}
+        self._errors: dict[str, MRMError] = {}
+        self._locks = {r: threading.Lock() for r in REPS}
+
+    def is_ready(self, what: Rep) -> bool:
+        """True when ``what`` has been computed (or failed) already."""
+        return what in self._values or what in self._errors
+
+    def peek(self, what: Rep) -> Any | None:
+        """The value of ``what`` if computed, else None (never computes)."""
+        return self._values.get(what)
+
+    def get(self, what: Rep) -> Any:
+        """Return ``what``, computing it (and what it depends on) in the calling thread if needed."""
+        if what in self._values:
+            return self._values[what]
+        if what not in REPS:
+            raise ValueError(f"unknown representation {what!r}; expected one of {REPS}")
+        with self._locks[what]:
+            if what in self._values:
+                return self._values[what]
+            if what in self._errors:
+                raise self._errors[what]
+            try:
+                value = self._compute(what)
+            except MRMError as e:
+                self._errors[what] = e
+                raise
+            self._values[what] = value
+            return value
+
+    def _compute(self, what: Rep) -> Any:
+        if what == "discrete":
+            return discretize_source(self.source, self.model)
+        if what == "euclidean":
+            return reconstruct_source(self.source, self.model)
+        if what == "region":
+            return region_from_pixels(self.get("discrete"))
+        return analytical_from_region(self.get("region"))
+
+    def estimated_cost(self, what: Rep) -> float:
+        """A rough cost of computing ``what`` now, in pixels touched (0 when ready)."""
+        if self.is_ready(what):
+            return 0.0
+        disc = self.peek("discrete")
+        if disc is not None:
+            area = float(disc.shape[0] * disc.shape[1])
+        else:
+            xmin, ymin, xmax, ymax = self.source.bounds if not self.source.is_empty else (0, 0, 0, 0)
+            area = (xmax - xmin + 2.0) * (ymax - ymin + 2.0)
+        own = {"discrete": area, "euclidean": 30.0 * area, "region": 2.0 * area, "analytical": 4.0 * area}[
+            what
+        ]
+        if what in ("region", "analytical") and not self.is_ready("discrete"):
+            own += area
+        if what == "analytical" and not self.is_ready("region"):
+            own += 2.0 * area
+        return own
+
+    def nbytes(self) -> int:
+        """Approximate memory of the computed values (for cache accounting)."""
+        total = 0
+        values = dict(self._values)  # a snapshot: a worker may be adding a value
+        for v in values.values():
+            total += int(v.mask.nbytes) if isinstance(v, PixelSet) else 4096
+        disc = values.get("discrete")
+        if "region" in values and isinstance(disc, PixelSet):
+            # A region may hold an int32 label image over the mask; never touch it here (it can be lazy).
+            total += 4 * int(disc.mask.nbytes)
+        return total
+
+
+class DerivationCache:
+    """The :class:`Derived` entries of a document: those of its current objects plus a few recent ones.
+
+    Parameters
+    ----------
+    keep_recent : int
+        How many entries of sources no longer in the document are kept (so that undoing a recent edit finds
+        R(A) already computed). Entries of current objects are always kept.
+    recent_bytes : int
+        The kept entries of old sources hold at most about this much memory (painting on a large object
+        replaces its source at every dab; its old versions must not pile up here).
+    """
+
+    def __init__(self, keep_recent: int = 16, recent_bytes: int = 64 * 2**20) -> None:
+        self.keep_recent = int(keep_recent)
+        self.recent_bytes = int(recent_bytes)
+        self._live: dict[tuple[int, str], Derived] = {}
+        self._recent: OrderedDict[tuple[int, str], Derived] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def __len__(self) -> int:
+        return len(self._live) + len(self._recent)
+
+    def entry(self, source: Any, model: str) -> Derived:
+        """Return the entry of ``source`` under ``model``, creating it if needed."""
+        key = (id(source), model)
+        with self._lock:
+            e = self._live.get(key)
+            if e is None or e.source is not source:
+                e = self._recent.pop(key, None)
+                if e is None or e.source is not source:
+                    e = Derived(source, model)
+                self._live[key] = e
+            return e
+
+    def retain(self, live: Iterable[tuple[Any, str]]) -> None:
+        """Declare the (source, model) pairs in use; other entries move to the bounded recent list."""
+        with self._lock:
+            keep: dict[tuple[int, str], Derived] = {}
+            for source, model in live:
+                key = (id(source), model)
+                e = self._live.pop(key, None) or self._recent.pop(key, None)
+                if e is not None and e.source is source:
+                    keep[key] = e
+            for key, e in self._live.items():
+                self._recent[key] = e
+                self._recent.move_to_end(key)
+            while len(self._recent) > self.keep_recent:
+                self._recent.popitem(last=False)
+            total = sum(e.nbytes() for e in self._recent.values())
+            while self._recent and total > self.recent_bytes:
+                _, e = self._recent.popitem(last=False)
+                total -= e.nbytes()
+            self._live = keep
+
+    def clear(self) -> None:
+        """Forget every entry."""
+        with self._lock:
+            self._live.clear()
+            self._recent.clear()
+
+
+# ---------------------------------------------------------------------------------------------- service
+class DerivationService:
+    """Compute derived representations off the caller's thread, dropping stale results.
+
+    Parameters
+    ----------
+    doc : Document
+        The document whose objects are derived.
+    workers : int
+        Worker threads.
+    deliver : callable, optional
+        ``deliver(fn)`` must arrange for ``fn()`` to run on the thread that owns the document (the GUI posts
+        it to its event loop). The default runs ``fn`` at once on the worker thread, which suits scripts.
+    sync_cost : float
+        Requests whose :meth:`Derived.estimated_cost` is below this run at once in the caller's thread.
+
+    Notes
+    -----
+    The staleness check runs inside ``deliver``'d code, i.e. on the document's thread, so a result is
+    delivered only if the object's revision is still the one the request saw.
+    """
+
+    def __init__(
+        self,
+        doc: Document,
+        *,
+        workers: int = 2,
+        deliver: Callable[[Callable[[], None]], None] | None = None,
+        sync_cost: float = SYNC_COST,
+    ) -> None:
+        self._doc = doc
+        self._pool = ThreadPoolExecutor(max_workers=max(1, int(workers)), thread_name_prefix="mrm-derive")
+        self._deliver = deliver or (lambda fn: fn())
+        self.sync_cost = float(sync_cost)
+        self._slots: dict[tuple[int, str], Future[Any]] = {}
+        self._lock = threading.Lock()
+        self._idle = threading.Condition(self._lock)
+        self._in_flight = 0
+        #: Number of results dropped because the object changed (or vanished) while they were computed.
+        self.dropped = 0
+
+    def request(
+        self,
+        obj_id: int,
+        what: Rep,
+        callback: Callable[[Any], None],
+        on_error: Callable[[BaseException], None] | None = None,
+    ) -> bool:
+        """Ask for representation ``what`` of object ``obj_id``; ``callback(value)`` gets it when fresh.
+
+        Returns True if the callback already ran (value cached or cheap), False if it was queued.
+        Errors of the derivation go to ``on_error`` (if given) under the same staleness rule.
+        """
+        entry = self._doc.derived(obj_id)
+        rev = self._doc.object_revision(obj_id)
+        slot = (obj_id, what)
+        with self._lock:
+            old = self._slots.pop(slot, None)
+        if old is not None:
+            old.cancel()
+        if entry.is_ready(what) or entry.estimated_cost(what) < self.sync_cost:
+            try:
+                value = entry.get(what)
+            except MRMError as e:
+                if on_error is None:
+                    raise
+                on_error(e)
+                return True
+            callback(value)
+            return True
+        with self._lock:
+            self._in_flight += 1
+        fut = self._pool.submit(entry.get, what)
+        with self._lock:
+            self._slots[slot] = fut
+
+        def done(f: Future[Any]) -> None:
+            self._deliver(lambda: self._finish(slot, f, obj_id, rev, callback, on_error))
+
+        fut.add_done_callback(done)
+        return False
+
+    def _finish(
+        self,
+        slot: tuple[int, str],
+        f: Future[Any],
+        obj_id: int,
+        rev: int,
+        callback: Callable[[Any], None],
+        on_error: Callable[[BaseException], None] | None,
+    ) -> None:
+        try:
+            with self._lock:
+                if self._slots.get(slot) is f:
+                    del self._slots[slot]
+            if f.cancelled():
+                return
+            if self._doc.object_revision(obj_id) != rev:
+                with self._lock:
+                    self.dropped += 1
+                return
+            exc = f.exception()
+            if exc is not None:
+                if on_error is not None:
+                    on_error(exc)
+                return
+            callback(f.result())
+        finally:
+            with self._lock:
+                self._in_flight -= 1
+                self._idle.notify_all()
+
+    def wait_idle(self, timeout: float | None = None) -> bool:
+        """Block until every queued request has been delivered or dropped (for scripts and tests)."""
+        with self._lock:
+            return self._idle.wait_for(lambda: self._in_flight == 0, timeout)
+
+    def shutdown(self, wait: bool = True) -> None:
+        """Cancel queued work and stop the workers."""
+        with self._lock:
+            slots = list(self._slots.values())
+            self._slots.clear()
+        for f in slots:
+            f.cancel()
+        self._pool.shutdown(wait=wait, cancel_futures=True)

@@ -1,0 +1,648 @@
+"""The shared model: an ordered list of objects, each with one source representation (DESIGN §7).
+
+An object (:class:`DocObject`) is an immutable value: an id, a name, a :class:`Style`, an optional
+:class:`Provenance`, and its **source** — either a Euclidean geometry (shapely Polygon / MultiPolygon, always
+valid) or a discrete :class:`~model.reps.pixels.PixelSet`. The other representations are *derived* from the
+source under the document's discretization model and cached by :mod:`model.derive`:
+
+* Euclidean source E: discrete = D(E), Euclidean = E;
+* discrete source A: discrete = A, Euclidean = R(A);
+
+so D(Euclidean) = discrete holds for every object at every moment (D(R(A)) = A is R's contract).
+
+The :class:`Document` is changed only through the commands of :mod:`model.commands`, pushed on its single
+:class:`~model.history.History`. Views subscribe to coarse, batched :class:`Changes` and never mutate the
+model themselves. Nothing here imports Qt.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import threading
+import weakref
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Literal, TypeAlias
+
+import numpy as np
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+from model.derive import DerivationCache, Derived
+from model.errors import InvalidGeometryError, ParameterError
+from model.history import Command, History
+from model.reps.pixels import PixelSet
+
+#: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
+Geometry: TypeAlias = Polygon | MultiPolygon
+#: What an object's source can be.
+Source: TypeAlias = PixelSet | Polygon | MultiPolygon
+SourceKind = Literal["euclidean", "discrete"]
+
+#: The discretization models (DESIGN §2).
+MODELS = ("standard", "supercover", "gauss")
+
+#: Largest absolute coordinate accepted in a Euclidean source. Beyond it pixel indices leave the int32 range
+#: the kernels use, and float64 spacing there exceeds a millionth of a pixel, so nothing exact could follow.
+COORDINATE_LIMIT = float(2**31)
+
+#: Largest nesting depth and size accepted for provenance parameters (they are free-form JSON data).
+PARAMS_MAX_DEPTH = 16
+PARAMS_MAX_CHARS = 1_000_000
+
+_COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?$")
+
+#: Fill colours given to new objects in turn (a colour-blind-safe palette).
+PALETTE = ("#4c72b0", "#dd8452", "#55a868", "#c44e52", "#8172b3", "#937860", "#da8bc3", "#8c8c8c")
+
+
+# ---------------------------------------------------------------------------------------------- geometry
+_VALIDATED: weakref.WeakValueDictionary[int, Any] = weakref.WeakValueDictionary()
+_VALIDATED_LOCK = threading.Lock()
+
+
+def validate_geometry(geom: object) -> Geometry:
+    """Return ``geom`` if it can be a Euclidean source, else raise :class:`InvalidGeometryError`.
+
+    A Euclidean source is a 2-D shapely Polygon or MultiPolygon, valid in the OGC sense (DESIGN §6), with
+    finite coordinates of magnitude at most :data:`COORDINATE_LIMIT`. An empty geometry of any type becomes
+    the empty Polygon. Coordinates are never altered.
+    """
+    if not isinstance(geom, shapely.Geometry):
+        raise InvalidGeometryError(f"expected a polygon, got {type(geom).__name__}")
+    with _VALIDATED_LOCK:
+        if _VALIDATED.get(id(geom)) is geom:
+            return geom
+    if geom.is_empty:
+        return Polygon()
+    if not isinstance(geom, Polygon | MultiPolygon):
+        raise InvalidGeometryError(f"an object's Euclidean shape must be a polygon, got a {geom.geom_type}")
+    if shapely.has_z(geom):
+        raise InvalidGeometryError("the polygon has 3-D coordinates; only plane (x, y) coordinates are used")
+    coords = shapely.get_coordinates(geom)
+    if not np.isfinite(coords).all():
+        raise InvalidGeometryError("the polygon has NaN or infinite coordinates")
+    if coords.size and float(np.abs(coords).max()) > COORDINATE_LIMIT:
+        raise InvalidGeometryError(
+            f"the polygon has a coordinate of magnitude {float(np.abs(coords).max()):.3g}, "
+            f"beyond the limit of {COORDINATE_LIMIT:.0f}"
+        )
+    if not shapely.is_valid(geom):
+        raise InvalidGeometryError(f"invalid polygon: {shapely.is_valid_reason(geom)}")
+    with _VALIDATED_LOCK:
+        _VALIDATED[id(geom)] = geom
+    return geom
+
+
+def source_kind(source: Source) -> SourceKind:
+    """'discrete' for a pixel set, 'euclidean' for a geometry."""
+    return "discrete" if isinstance(source, PixelSet) else "euclidean"
+
+
+def validate_source(source: object) -> Source:
+    """Return ``source`` checked: a :class:`PixelSet`, or a geometry passing :func:`validate_geometry`."""
+    if isinstance(source, PixelSet):
+        return source
+    return validate_geometry(source)
+
+
+# ---------------------------------------------------------------------------------------------- values
+def _check_color(value: object, what: str) -> str:
+    if not isinstance(value, str) or not _COLOR_RE.match(value):
+        raise ParameterError(f"{what} must be a colour '#rrggbb' or '#rrggbbaa', got {value!r}")
+    return value.lower()
+
+
+@dataclass(frozen=True)
+class Style:
+    """How an object is drawn in every view.
+
+    Parameters
+    ----------
+    fill : str
+        Fill colour, ``'#rrggbb'`` or ``'#rrggbbaa'``.
+    stroke : str
+        Outline colour, same form.
+    opacity : float
+        Fill opacity in [0, 1].
+    stroke_width : float
+        Outline width in screen pixels, ≥ 0.
+    visible : bool
+        Whether the object is drawn at all.
+    """
+
+    fill: str = PALETTE[0]
+    stroke: str = "#1f2a44"
+    opacity: float = 0.6
+    stroke_width: float = 1.5
+    visible: bool = True
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "fill", _check_color(self.fill, "fill"))
+        object.__setattr__(self, "stroke", _check_color(self.stroke, "stroke"))
+        for name, hi in (("opacity", 1.0), ("stroke_width", 100.0)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int | float) or not (0.0 <= float(v) <= hi):
+                raise ParameterError(f"{name} must be a number in [0, {hi:g}], got {v!r}")
+            object.__setattr__(self, name, float(v) + 0.0)  # + 0.0 turns -0.0 into 0.0
+        if not isinstance(self.visible, bool):
+            raise ParameterError(f"visible must be true or false, got {self.visible!r}")
+
+    @classmethod
+    def for_index(cls, i: int) -> Style:
+        """A default style whose fill colour cycles through :data:`PALETTE`."""
+        return cls(fill=PALETTE[i % len(PALETTE)])
+
+
+def _freeze_json(value: Any, depth: int = 0) -> Any:
+    """Return a checked deep copy of a JSON value (dict/list/str/int/float/bool/None); tuples become lists."""
+    if depth > PARAMS_MAX_DEPTH:
+        raise ParameterError(f"provenance parameters are nested deeper than {PARAMS_MAX_DEPTH} levels")
+    if value is None or isinstance(value, bool | str):
+        return value
+    if isinstance(value, int):
+        return int(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ParameterError("provenance parameters must be finite numbers")
+        return float(value)
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.floating):
+        return _freeze_json(float(value), depth)
+    if isinstance(value, list | tuple):
+        return [_freeze_json(v, depth + 1) for v in value]
+    if isinstance(value, Mapping):
+        out = {}
+        for k, v in value.items():
+            if not isinstance(k, str):
+                raise ParameterError(f"provenance parameter names must be strings, got {k!r}")
+            out[k] = _freeze_json(v, depth + 1)
+        return out
+    raise ParameterError(f"provenance parameters must be JSON data, got {type(value).__name__}")
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """How an object was produced: the operation, its parameters and the ids of its inputs.
+
+    Parameters
+    ----------
+    operation : str
+        The operation's name (as in :mod:`model.ops`).
+    params : Mapping
+        Its parameters as JSON data (copied and checked; treat as read-only).
+    inputs : sequence of int
+        Ids of the objects it read (they may since have been removed).
+    """
+
+    operation: str
+    params: Mapping[str, Any] = field(default_factory=dict)
+    inputs: tuple[int, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.operation, str) or not self.operation:
+            raise ParameterError("a provenance needs an operation name")
+        if not isinstance(self.params, Mapping):
+            raise ParameterError("provenance parameters must be a mapping of names to values")
+        params = _freeze_json(self.params)
+        if len(json.dumps(params)) > PARAMS_MAX_CHARS:
+            raise ParameterError("provenance parameters are too large")
+        object.__setattr__(self, "params", params)
+        ins = tuple(self.inputs)
+        if not all(isinstance(i, int) and not isinstance(i, bool) for i in ins):
+            raise ParameterError("provenance inputs must be object ids (integers)")
+        object.__setattr__(self, "inputs", ins)
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> Provenance:
+        """Build from ``{"operation": name, "params": {...}, "inputs": [ids]}`` (what operations produce)."""
+        if not isinstance(data, Mapping) or "operation" not in data:
+            raise ParameterError("a provenance is a mapping with 'operation', 'params' and 'inputs'")
+        return cls(str(data["operation"]), data.get("params", {}), tuple(data.get("inputs", ())))
+
+    def to_json(self) -> dict[str, Any]:
+        """The provenance as the project file stores it."""
+        return {"operation": self.operation, "params": _freeze_json(self.params), "inputs": list(self.inputs)}
+
+
+@dataclass(frozen=True, eq=True)
+class DocObject:
+    """One object of a document: an immutable value (edits make new objects).
+
+    Parameters
+    ----------
+    id : int
+        Unique within the document, never reused (an undo may bring a removed object back).
+    name : str
+        Shown in the object list; need not be unique.
+    source : PixelSet or Polygon or MultiPolygon
+        The source representation (DESIGN §7).
+    style : Style
+        How it is drawn.
+    provenance : Provenance or None
+        The operation that produced it, if any.
+    """
+
+    id: int
+    name: str
+    source: Source
+    style: Style = field(default_factory=Style)
+    provenance: Provenance | None = None
+
+    __hash__ = None  # type: ignore[assignment]  # a value with a dict inside; compare, don't hash
+
+    def __post_init__(self) -> None:
+        if isinstance(self.id, bool) or not isinstance(self.id, int) or self.id < 1:
+            raise ParameterError(f"object ids are positive integers, got {self.id!r}")
+        if not isinstance(self.name, str):
+            raise ParameterError(f"an object name must be text, got {type(self.name).__name__}")
+        object.__setattr__(self, "source", validate_source(self.source))
+        if not isinstance(self.style, Style):
+            raise ParameterError("style must be a Style")
+
+    @property
+    def kind(self) -> SourceKind:
+        """'discrete' or 'euclidean': which representation is the source."""
+        return source_kind(self.source)
+
+    def with_(self, **changes: Any) -> DocObject:
+        """Return a copy with some fields replaced."""
+        return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Document-wide settings saved in the project file.
+
+    Parameters
+    ----------
+    model : str
+        The discretization model D (and its associated continuation R): 'standard', 'supercover' or 'gauss'.
+    """
+
+    model: str = "standard"
+
+    def __post_init__(self) -> None:
+        if self.model not in MODELS:
+            raise ParameterError(
+                f"unknown discretization model {self.model!r}; choose one of {', '.join(MODELS)}"
+            )
+
+
+# ---------------------------------------------------------------------------------------------- events
+@dataclass(frozen=True)
+class Changes:
+    """What changed in one batch of edits; delivered to every subscriber once per batch.
+
+    Attributes
+    ----------
+    revision : int
+        The document revision after the batch.
+    inserted, removed : tuple of int
+        Ids of objects that appeared / disappeared (net over the batch).
+    changed : Mapping[int, frozenset[str]]
+        For objects present before and after: which aspects changed, among 'source', 'name', 'style',
+        'provenance' and 'derived' (the derived representations changed although the source did not, e.g.
+        after a change of the discretization model).
+    reordered : bool
+        The order of the objects present before and after changed.
+    selection, settings, reset : bool
+        The selection changed / the settings changed / the whole document was replaced (views rebuild).
+    """
+
+    revision: int
+    inserted: tuple[int, ...] = ()
+    removed: tuple[int, ...] = ()
+    changed: Mapping[int, frozenset[str]] = field(default_factory=dict)
+    reordered: bool = False
+    selection: bool = False
+    settings: bool = False
+    reset: bool = False
+
+
+class _Pending:
+    def __init__(self, order: list[int], selection: tuple[int, ...], settings: Settings) -> None:
+        self.order = order
+        self.selection = selection
+        self.settings = settings
+        self.changed: dict[int, set[str]] = {}
+        self.reset = False
+        self.touched = False
+
+
+# ---------------------------------------------------------------------------------------------- document
+class Document:
+    """An ordered collection of objects with settings, a selection, one history and change events.
+
+    Parameters
+    ----------
+    settings : Settings, optional
+        Initial settings (default model 'standard').
+    max_undo_steps, max_undo_bytes : int
+        Limits of the history.
+
+    Notes
+    -----
+    Views read the document and push commands (``doc.push(cmd)``); they never call the low-level mutation
+    methods, which exist for the commands. Every mutation bumps :attr:`revision`; a mutation that changes an
+    object's derived representations also bumps that object's :meth:`object_revision`, which the derivation
+    service compares to drop stale results.
+    """
+
+    def __init__(
+        self,
+        settings: Settings | None = None,
+        *,
+        max_undo_steps: int = 1000,
+        max_undo_bytes: int = 512 * 2**20,
+    ) -> None:
+        self._objects: list[DocObject] = []
+        self._by_id: dict[int, DocObject] = {}
+        self._settings = settings or Settings()
+        self._selection: tuple[int, ...] = ()
+        self._revision = 0
+        self._obj_rev: dict[int, int] = {}
+        self._next_id = 1
+        self._subscribers: list[Callable[[Changes], None]] = []
+        self._batch_depth = 0
+        self._pending: _Pending | None = None
+        self.cache = DerivationCache()
+        self.history = History(self, max_steps=max_undo_steps, max_bytes=max_undo_bytes)
+        #: The project file this document was loaded from / last saved to (None for a new document).
+        self.path: Path | None = None
+
+    # ------------------------------------------------------------------ reading
+    @property
+    def objects(self) -> tuple[DocObject, ...]:
+        """The objects in order (first = bottom of the drawing order)."""
+        return tuple(self._objects)
+
+    @property
+    def ids(self) -> tuple[int, ...]:
+        """The object ids in order."""
+        return tuple(o.id for o in self._objects)
+
+    def __len__(self) -> int:
+        return len(self._objects)
+
+    def __iter__(self) -> Iterator[DocObject]:
+        return iter(tuple(self._objects))
+
+    def __contains__(self, obj_id: object) -> bool:
+        return obj_id in self._by_id
+
+    def get(self, obj_id: int) -> DocObject:
+        """Return the object with id ``obj_id`` (KeyError if absent)."""
+        try:
+            return self._by_id[obj_id]
+        except KeyError:
+            raise KeyError(f"no object with id {obj_id}") from None
+
+    def index_of(self, obj_id: int) -> int:
+        """Position of the object in the order."""
+        for i, o in enumerate(self._objects):
+            if o.id == obj_id:
+                return i
+        raise KeyError(f"no object with id {obj_id}")
+
+    def find(self, name: str) -> list[DocObject]:
+        """The objects called ``name``, in order."""
+        return [o for o in self._objects if o.name == name]
+
+    @property
+    def settings(self) -> Settings:
+        """The document settings."""
+        return self._settings
+
+    @property
+    def model(self) -> str:
+        """The discretization model in force."""
+        return self._settings.model
+
+    @property
+    def selection(self) -> tuple[int, ...]:
+        """Ids of the selected objects, in selection order."""
+        return self._selection
+
+    @property
+    def revision(self) -> int:
+        """Counter bumped by every mutation."""
+        return self._revision
+
+    def object_revision(self, obj_id: int) -> int:
+        """Counter bumped whenever the derived representations of ``obj_id`` change (-1 if absent)."""
+        return self._obj_rev.get(obj_id, -1) if obj_id in self._by_id else -1
+
+    @property
+    def is_modified(self) -> bool:
+        """True when the document differs from its last saved (or loaded) state."""
+        return not self.history.is_clean
+
+    def derived(self, obj_id: int) -> Derived:
+        """The representations of object ``obj_id`` under the current model, computed lazily and cached.
+
+        ``doc.derived(i).get('euclidean')`` computes in the calling thread; use
+        :class:`model.derive.DerivationService` to compute slow ones off the GUI thread.
+        """
+        return self.cache.entry(self.get(obj_id).source, self._settings.model)
+
+    # ------------------------------------------------------------------ events
+    def subscribe(self, callback: Callable[[Changes], None]) -> Callable[[], None]:
+        """Call ``callback(changes)`` after every batch of edits; returns a function that unsubscribes."""
+        self._subscribers.append(callback)
+
+        def unsubscribe() -> None:
+            if callback in self._subscribers:
+                self._subscribers.remove(callback)
+
+        return unsubscribe
+
+    @contextmanager
+    def batch(self) -> Iterator[None]:
+        """Group mutations so that subscribers get one :class:`Changes` at the end (batches nest)."""
+        if self._batch_depth == 0:
+            self._pending = _Pending(list(self.ids), self._selection, self._settings)
+        self._batch_depth += 1
+        try:
+            yield
+        finally:
+            self._batch_depth -= 1
+            if self._batch_depth == 0:
+                pending, self._pending = self._pending, None
+                if pending is not None and pending.touched:
+                    self._emit(pending)
+
+    def _touch(self) -> _Pending:
+        assert self._pending is not None, "mutations run inside batch()"
+        self._pending.touched = True
+        self._revision += 1
+        return self._pending
+
+    def _emit(self, p: _Pending) -> None:
+        now = self.ids
+        before = set(p.order)
+        after = set(now)
+        inserted = tuple(i for i in now if i not in before)
+        removed = tuple(i for i in p.order if i not in after)
+        changed = {i: frozenset(w) for i, w in p.changed.items() if i in before and i in after and w}
+        reordered = [i for i in p.order if i in after] != [i for i in now if i in before]
+        changes = Changes(
+            revision=self._revision,
+            inserted=inserted,
+            removed=removed,
+            changed=changed,
+            reordered=reordered,
+            selection=p.selection != self._selection,
+            settings=p.settings != self._settings,
+            reset=p.reset,
+        )
+        self.cache.retain((o.source, self._settings.model) for o in self._objects)
+        errors: list[BaseException] = []
+        for cb in list(self._subscribers):
+            try:
+                cb(changes)
+            except Exception as e:  # one faulty view must not starve the others of the event
+                errors.append(e)
+        if errors:
+            raise errors[0]
+
+    # ------------------------------------------------------------------ editing (through the history)
+    def push(self, cmd: Command) -> None:
+        """Apply ``cmd`` and record it in the history (shortcut for ``doc.history.push``)."""
+        self.history.push(cmd)
+
+    def undo(self) -> None:
+        """Undo the last step."""
+        self.history.undo()
+
+    def redo(self) -> None:
+        """Redo the next step."""
+        self.history.redo()
+
+    def set_selection(self, ids: Iterable[int]) -> None:
+        """Select the given objects (unknown ids are ignored). Selection is not an undoable edit."""
+        sel = tuple(dict.fromkeys(i for i in ids if i in self._by_id))
+        if sel == self._selection:
+            return
+        with self.batch():
+            self._touch()
+            self._selection = sel
+
+    def new_id(self) -> int:
+        """Reserve a fresh object id (ids are never reused, so undo can bring any object back)."""
+        i = self._next_id
+        self._next_id += 1
+        return i
+
+    def make_object(
+        self,
+        source: Source,
+        name: str | None = None,
+        *,
+        style: Style | None = None,
+        provenance: Provenance | None = None,
+    ) -> DocObject:
+        """Build a new object with a fresh id (not yet inserted: push an ``AddObject`` with it)."""
+        i = self.new_id()
+        return DocObject(
+            id=i,
+            name=name if name is not None else f"Object {i}",
+            source=source,
+            style=style if style is not None else Style.for_index(i - 1),
+            provenance=provenance,
+        )
+
+    # ------------------------------------------------------------------ low-level mutations (commands only)
+    def insert_object(self, obj: DocObject, index: int | None = None) -> None:
+        """Insert ``obj`` at ``index`` (default: on top). For commands; views push commands."""
+        if obj.id in self._by_id:
+            raise ValueError(f"an object with id {obj.id} already exists")
+        with self.batch():
+            p = self._touch()
+            n = len(self._objects)
+            idx = n if index is None else max(0, min(int(index), n))
+            self._objects.insert(idx, obj)
+            self._by_id[obj.id] = obj
+            self._obj_rev[obj.id] = self._obj_rev.get(obj.id, 0) + 1
+            self._next_id = max(self._next_id, obj.id + 1)
+            if obj.id in p.order:  # removed and re-inserted in one batch: it may differ in every aspect
+                p.changed.setdefault(obj.id, set()).update(("source", "name", "style", "provenance"))
+
+    def remove_object(self, obj_id: int) -> tuple[DocObject, int]:
+        """Remove an object; returns it and the position it had. For commands."""
+        idx = self.index_of(obj_id)
+        with self.batch():
+            self._touch()
+            obj = self._objects.pop(idx)
+            del self._by_id[obj_id]
+            self._obj_rev[obj_id] = self._obj_rev.get(obj_id, 0) + 1
+            if obj_id in self._selection:
+                self._selection = tuple(i for i in self._selection if i != obj_id)
+        return obj, idx
+
+    def replace_object(self, obj: DocObject) -> DocObject:
+        """Replace the object with the same id by ``obj``; returns the old one. For commands."""
+        old = self.get(obj.id)
+        idx = self.index_of(obj.id)
+        with self.batch():
+            p = self._touch()
+            self._objects[idx] = obj
+            self._by_id[obj.id] = obj
+            what = p.changed.setdefault(obj.id, set())
+            if old.source is not obj.source:
+                what.add("source")
+                self._obj_rev[obj.id] = self._obj_rev.get(obj.id, 0) + 1
+            for name in ("name", "style", "provenance"):
+                if getattr(old, name) != getattr(obj, name):
+                    what.add(name)
+        return old
+
+    def set_order(self, ids: Sequence[int]) -> None:
+        """Reorder the objects; ``ids`` must be a permutation of :attr:`ids`. For commands."""
+        if sorted(ids) != sorted(self._by_id):
+            raise ValueError("the new order must list every object exactly once")
+        with self.batch():
+            self._touch()
+            self._objects = [self._by_id[i] for i in ids]
+
+    def set_settings(self, settings: Settings) -> None:
+        """Change the settings; a new model re-derives every object. For commands."""
+        with self.batch():
+            p = self._touch()
+            if settings.model != self._settings.model:
+                for o in self._objects:
+                    p.changed.setdefault(o.id, set()).add("derived")
+                    self._obj_rev[o.id] = self._obj_rev.get(o.id, 0) + 1
+            self._settings = settings
+
+    def reset(
+        self,
+        objects: Iterable[DocObject],
+        settings: Settings | None = None,
+        selection: Iterable[int] = (),
+        *,
+        clean: bool = True,
+    ) -> None:
+        """Replace the whole content (open/revert/new), clearing the history; subscribers get ``reset``."""
+        objs = list(objects)
+        ids = [o.id for o in objs]
+        if len(set(ids)) != len(ids):
+            raise ValueError("object ids must be unique")
+        with self.batch():
+            p = self._touch()
+            p.reset = True
+            for o in self._objects:
+                self._obj_rev[o.id] = self._obj_rev.get(o.id, 0) + 1
+            self._objects = objs
+            self._by_id = {o.id: o for o in objs}
+            for o in objs:
+                self._obj_rev[o.id] = self._obj_rev.get(o.id, 0) + 1
+            self._settings = settings or Settings()
+            self._selection = tuple(dict.fromkeys(i for i in selection if i in self._by_id))
+            self._next_id = max([self._next_id, *[i + 1 for i in ids]])
+            self.history.clear(clean=clean)

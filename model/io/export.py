@@ -1,0 +1,170 @@
+"""Export of document objects and label maps to interchange files (never the lossless project format).
+
+The representation written follows the file type:
+
+* ``.png`` ``.pbm`` ``.pgm`` ``.npz`` — the **discrete** representation (the source, or D(E)), keeping its
+  place on the grid (:func:`model.io.pixel_files.write_pixels`);
+* ``.geojson`` ``.json`` ``.wkt`` — the **Euclidean** representation (the source, or R(A)), coordinates exact
+  (:mod:`model.io.vector_files`);
+* ``.svg`` — a picture with y up: the Euclidean shape by default, or the pixels (``rep="discrete"``).
+
+A **label map** gives every chosen object its own label — its rank in the list, 1, 2, … — in one PNG or NPZ;
+where objects overlap, the later one (higher in the drawing order) wins, as on screen.
+All writes are atomic.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+from model.document import Document
+from model.errors import FileFormatError, ParameterError
+from model.reps.pixels import LabelMap, PixelSet
+
+PathLike = str | os.PathLike[str]
+
+PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz")
+VECTOR_EXTENSIONS = (".geojson", ".json", ".wkt")
+PICTURE_EXTENSIONS = (".svg",)
+LABEL_EXTENSIONS = (".png", ".npz")
+
+
+def _ext(path: PathLike) -> str:
+    return Path(path).suffix.lower()
+
+
+def export_object(
+    doc: Document,
+    obj_id: int,
+    path: PathLike,
+    *,
+    rep: Literal["discrete", "euclidean"] | None = None,
+) -> str:
+    """Write one object to ``path``; the extension chooses the format (see the module notes).
+
+    Parameters
+    ----------
+    doc : Document
+        The document.
+    obj_id : int
+        The object.
+    path : str or path-like
+        Destination.
+    rep : {'discrete', 'euclidean'}, optional
+        For SVG, which representation to draw (default Euclidean); for other types it must match the type.
+
+    Returns
+    -------
+    str
+        The representation written, 'discrete' or 'euclidean'.
+    """
+    ext = _ext(path)
+    obj = doc.get(obj_id)
+    if ext in PIXEL_EXTENSIONS:
+        chosen = "discrete"
+    elif ext in VECTOR_EXTENSIONS:
+        chosen = "euclidean"
+    elif ext in PICTURE_EXTENSIONS:
+        chosen = rep or "euclidean"
+    else:
+        shown = f"'{ext}'" if ext else "no extension"
+        raise FileFormatError(
+            f"{os.fspath(path)}: cannot export to {shown}; use "
+            + ", ".join(PIXEL_EXTENSIONS + VECTOR_EXTENSIONS + PICTURE_EXTENSIONS)
+        )
+    if rep is not None and rep != chosen:
+        raise ParameterError(f"a {ext} file holds the {chosen} representation, not the {rep} one")
+    value = doc.derived(obj.id).get("discrete" if chosen == "discrete" else "euclidean")
+    if ext in PIXEL_EXTENSIONS:
+        from model.io.pixel_files import write_pixels
+
+        write_pixels(value, path)
+    elif ext == ".wkt":
+        from model.io.vector_files import write_wkt
+
+        write_wkt(value, path)
+    elif ext in VECTOR_EXTENSIONS:
+        from model.io.vector_files import write_geojson
+
+        write_geojson(value, path, properties=_properties(doc, obj_id))
+    else:
+        from model.io.vector_files import write_svg
+
+        write_svg(value, path)
+    return chosen
+
+
+def _properties(doc: Document, obj_id: int) -> dict[str, Any]:
+    obj = doc.get(obj_id)
+    props: dict[str, Any] = {"name": obj.name, "id": obj.id, "model": doc.model, "source": obj.kind}
+    if obj.provenance is not None:
+        props["provenance"] = obj.provenance.to_json()
+    return props
+
+
+def export_objects_geojson(doc: Document, ids: Sequence[int], path: PathLike) -> None:
+    """Write several objects' Euclidean shapes to one GeoJSON file, a Feature each (``part`` = its name)."""
+    from model.io.vector_files import write_geojson
+
+    if _ext(path) not in (".geojson", ".json"):
+        raise FileFormatError(f"{os.fspath(path)}: several objects go to a .geojson file")
+    parts = [(doc.get(i).name, doc.derived(i).get("euclidean")) for i in ids]
+    write_geojson(parts, path, properties={"model": doc.model})
+
+
+def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[LabelMap, dict[int, int]]:
+    """The label map of objects' discrete representations.
+
+    Parameters
+    ----------
+    doc : Document
+        The document.
+    ids : sequence of int, optional
+        The objects, in drawing order (default: every object, in document order).
+
+    Returns
+    -------
+    LabelMap
+        Object ``ids[k]`` has label ``k + 1`` on its pixels, except where a later object covers them.
+    dict
+        label → object id.
+    """
+    chosen = list(doc.ids if ids is None else ids)
+    if len(chosen) > np.iinfo(np.int32).max:
+        raise ParameterError("too many objects for a label map")
+    parts: list[PixelSet] = [doc.derived(i).get("discrete") for i in chosen]
+    boxes = [p.bbox for p in parts if p.bbox is not None]
+    mapping = {k + 1: i for k, i in enumerate(chosen)}
+    if not boxes:
+        return LabelMap(np.zeros((0, 0), dtype=np.int32)), mapping
+    x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
+    x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
+    from model.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
+
+    area = (x1 - x0 + 1) * (y1 - y0 + 1)
+    if area > DEFAULT_PIXEL_LIMIT:
+        raise SizeLimitError(area, DEFAULT_PIXEL_LIMIT, "the label map")
+    out = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=np.int32)
+    for k, p in enumerate(parts, start=1):
+        if p.is_empty():
+            continue
+        px, py = p.origin
+        h, w = p.shape
+        out[py - y0 : py - y0 + h, px - x0 : px - x0 + w][p.mask] = k
+    return LabelMap(out, (x0, y0)), mapping
+
+
+def export_label_map(doc: Document, path: PathLike, ids: Sequence[int] | None = None) -> dict[int, int]:
+    """Write the label map of objects (see :func:`label_map_of`) to a .png or .npz; returns label → id."""
+    from model.io.pixel_files import write_label_map
+
+    if _ext(path) not in LABEL_EXTENSIONS:
+        raise FileFormatError(f"{os.fspath(path)}: a label map goes to a .png or .npz file")
+    lm, mapping = label_map_of(doc, ids)
+    write_label_map(lm, path)
+    return mapping

@@ -1,0 +1,648 @@
+"""Project files (``*.mrm``): one versioned JSON document, validated on load, written atomically.
+
+Schema version 1::
+
+    {
+     "format": "mrm-project",
+     "schema_version": 1,
+     "generator": "MR Modeler 0.1.0",                      (optional, informative)
+     "settings": {"model": "standard"},
+     "selection": [2],                                      (optional; ids of selected objects)
+     "autosave": {"project": "/path/x.mrm", "saved_at": "2026-..."},   (only in autosave side files)
+     "objects": [
+      {"id": 1, "name": "diamond",
+       "style": {"fill": "#4c72b0", "stroke": "#1f2a44", "opacity": 0.6, "stroke_width": 1.5,
+                 "visible": true},
+       "provenance": null,
+       "source": {"kind": "discrete", "origin": [-3, -3], "shape": [7, 7], "bits": "<base64>"}},
+      {"id": 2, ..., "provenance": {"operation": "scale", "params": {"alpha": 2.5}, "inputs": [1]},
+       "source": {"kind": "euclidean",
+                  "geometry": {"type": "Polygon", "coordinates": [[[0.0, 0.0], [4.5, 0.0], ...]]}}}
+     ]
+    }
+
+* Only each object's **source** representation is stored (DESIGN §7); the others are derived on load.
+* A discrete source is its canonical (cropped) mask, ``np.packbits`` row-major (row 0 = lowest y, big-endian
+  bit order) in base64, with its origin and shape: compact, and valid JSON.
+* A Euclidean source is GeoJSON-like: Polygon or MultiPolygon coordinates, rings closed, float coordinates
+  written with ``repr`` so that every float64 comes back bit for bit. Integers (ids, origins, shapes) stay
+  integers.
+* Loading validates everything and names the JSON path of the first problem
+  (``$.objects[3].source.shape``); files from older schema versions are upgraded by :data:`MIGRATIONS`, in
+  order; a file from a newer version is refused with a message saying so.
+* Saving writes a temporary file, fsyncs it and renames it over the destination
+  (:func:`model.io.atomic.atomic_write_bytes`); the document is marked clean only then.
+"""
+
+from __future__ import annotations
+
+import base64
+import binascii
+import functools
+import json
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, NoReturn
+
+import numpy as np
+from shapely.geometry import MultiPolygon, Polygon
+
+from model.document import (
+    COORDINATE_LIMIT,
+    MODELS,
+    PARAMS_MAX_DEPTH,
+    DocObject,
+    Document,
+    Geometry,
+    Provenance,
+    Settings,
+    Source,
+    Style,
+    validate_geometry,
+)
+from model.errors import DEFAULT_PIXEL_LIMIT, MRMError
+from model.errors import FileFormatError as FileFormatError
+from model.reps.pixels import PixelSet
+
+#: The value of the "format" key.
+FORMAT = "mrm-project"
+#: The schema version this code writes (and the newest it reads).
+SCHEMA_VERSION = 1
+#: Files larger than this are refused before being read.
+MAX_FILE_BYTES = 1 << 30
+#: A discrete source's bounding box may hold at most this many pixels.
+MAX_MASK_PIXELS = DEFAULT_PIXEL_LIMIT
+#: All the discrete sources of a file together hold at most this many pixels (their bounding boxes): a file
+#: cannot make us allocate more than about 1 GB of masks, whatever it claims.
+MAX_TOTAL_MASK_PIXELS = 1_000_000_000
+#: Largest magnitude of an integer coordinate (origins, shapes).
+MAX_INT_COORD = 2**31
+#: Longest object name accepted.
+MAX_NAME_CHARS = 10_000
+
+
+@dataclass(frozen=True)
+class Migration:
+    """Upgrade of the JSON data of a project file by one schema version.
+
+    Parameters
+    ----------
+    from_version : int
+        The version it reads; it produces ``from_version + 1``.
+    description : str
+        What changed, for the changelog and error messages.
+    apply : callable
+        ``apply(data) -> data``; it may assume the input validates against ``from_version``.
+    """
+
+    from_version: int
+    description: str
+    apply: Callable[[dict[str, Any]], dict[str, Any]]
+
+
+#: The migrations, oldest first; version ``k`` is upgraded by the entry with ``from_version == k``.
+#: Schema 1 is the first version, so there is none yet. When the format changes: bump SCHEMA_VERSION, append
+#: a Migration from the previous version, and add a golden file of the new version to tests/model/golden/.
+MIGRATIONS: tuple[Migration, ...] = ()
+
+
+@dataclass
+class Project:
+    """The content of a project file, validated (what :func:`read_project` returns)."""
+
+    objects: list[DocObject]
+    settings: Settings
+    selection: list[int] = field(default_factory=list)
+    #: The "autosave" record of an autosave side file, else None.
+    autosave: dict[str, Any] | None = None
+    #: The schema version the file had before migration.
+    file_version: int = SCHEMA_VERSION
+
+    def to_document(self, path: Path | None = None, *, clean: bool = True) -> Document:
+        """A new document holding this content, with an empty history."""
+        doc = Document(self.settings)
+        doc.reset(self.objects, self.settings, self.selection, clean=clean)
+        doc.path = path
+        return doc
+
+
+# ============================================================================================== writing
+def _encode_pixels(ps: PixelSet) -> dict[str, Any]:
+    h, w = ps.shape
+    bits = np.packbits(ps.mask, axis=None).tobytes() if ps.count else b""
+    return {
+        "kind": "discrete",
+        "origin": [int(ps.origin[0]), int(ps.origin[1])],
+        "shape": [h, w],
+        "bits": base64.b64encode(bits).decode("ascii"),
+    }
+
+
+def _ring_list(coords: Any) -> list[list[float]]:
+    a = np.asarray(coords, dtype=np.float64)[:, :2]
+    return a.tolist()  # type: ignore[no-any-return]  # Python floats: json writes their repr
+
+
+def _encode_geometry(geom: Geometry) -> dict[str, Any]:
+    if geom.is_empty:
+        return {"type": "Polygon", "coordinates": []}
+
+    def poly(p: Polygon) -> list[list[list[float]]]:
+        return [_ring_list(p.exterior.coords), *(_ring_list(r.coords) for r in p.interiors)]
+
+    if isinstance(geom, MultiPolygon):
+        return {"type": "MultiPolygon", "coordinates": [poly(p) for p in geom.geoms]}
+    return {"type": "Polygon", "coordinates": poly(geom)}
+
+
+def _encode_source(source: Source) -> dict[str, Any]:
+    if isinstance(source, PixelSet):
+        return _encode_pixels(source)
+    return {"kind": "euclidean", "geometry": _encode_geometry(source)}
+
+
+def _encode_style(s: Style) -> dict[str, Any]:
+    return {
+        "fill": s.fill,
+        "stroke": s.stroke,
+        "opacity": s.opacity,
+        "stroke_width": s.stroke_width,
+        "visible": s.visible,
+    }
+
+
+def object_to_json(obj: DocObject) -> dict[str, Any]:
+    """One object as the project file stores it."""
+    return {
+        "id": obj.id,
+        "name": obj.name,
+        "style": _encode_style(obj.style),
+        "provenance": obj.provenance.to_json() if obj.provenance is not None else None,
+        "source": _encode_source(obj.source),
+    }
+
+
+def _dump(value: Any) -> str:
+    return json.dumps(value, ensure_ascii=False, allow_nan=False, separators=(", ", ": "))
+
+
+@functools.lru_cache(maxsize=1)
+def _generator() -> str:
+    try:
+        from importlib.metadata import version
+
+        return f"MR Modeler {version('mr-modeler')}"
+    except Exception:  # not installed as a distribution (running from a checkout)
+        return "MR Modeler"
+
+
+def dumps(doc: Document, *, autosave: dict[str, Any] | None = None) -> bytes:
+    """Serialise a document to the bytes of a project file (deterministic: same document, same bytes).
+
+    The layout puts one object per line, so files diff well and stay compact.
+    """
+    head: list[tuple[str, Any]] = [
+        ("format", FORMAT),
+        ("schema_version", SCHEMA_VERSION),
+        ("generator", _generator()),
+        ("settings", {"model": doc.settings.model}),
+        ("selection", list(doc.selection)),
+    ]
+    if autosave is not None:
+        head.append(("autosave", autosave))
+    lines = ["{"]
+    lines += [f" {_dump(k)}: {_dump(v)}," for k, v in head]
+    objs = [f"  {_dump(object_to_json(o))}" for o in doc.objects]
+    if objs:
+        lines.append(' "objects": [')
+        lines.append(",\n".join(objs))
+        lines.append(" ]")
+    else:
+        lines.append(' "objects": []')
+    lines.append("}")
+    return ("\n".join(lines) + "\n").encode("utf-8")
+
+
+def save_project(doc: Document, path: str | os.PathLike[str], *, mark_clean: bool = True) -> None:
+    """Write ``doc`` to ``path`` atomically; then (only then) set its path and mark it clean.
+
+    If writing fails (disk full, permission, a crash) the previous file is left intact and the document stays
+    modified. ``OSError`` propagates for the caller to report.
+    """
+    from model.io.atomic import atomic_write_bytes
+
+    data = dumps(doc)
+    atomic_write_bytes(path, data)
+    doc.path = Path(path)
+    if mark_clean:
+        doc.history.set_clean()
+
+
+# ============================================================================================== reading
+_MAGIC: tuple[tuple[bytes, str], ...] = (
+    (b"\x89PNG\r\n\x1a\n", "a PNG image"),
+    (b"\xff\xd8\xff", "a JPEG image"),
+    (b"GIF8", "a GIF image"),
+    (b"II*\x00", "a TIFF image"),
+    (b"MM\x00*", "a TIFF image"),
+    (b"BM", "a BMP image"),
+    (b"PK\x03\x04", "a ZIP archive (an .npz array file?)"),
+    (b"\x93NUMPY", "a NumPy array file"),
+    (b"%PDF", "a PDF document"),
+    (b"\x1f\x8b", "a gzip-compressed file"),
+)
+
+
+def _sniff(data: bytes) -> str | None:
+    for magic, what in _MAGIC:
+        if data.startswith(magic):
+            return what
+    if len(data) >= 3 and data[:1] == b"P" and data[1:2] in b"123456" and data[2:3] in b" \t\r\n#":
+        return "a Netpbm image (PBM/PGM/PPM)"
+    if data.lstrip()[:5].lower() in (b"<?xml", b"<svg "):
+        return "an XML/SVG document"
+    return None
+
+
+class _Checker:
+    """Validation helpers that raise FileFormatError naming the file and the JSON path."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.mask_pixels = 0  # running total of the discrete sources' bounding boxes
+
+    def fail(self, path: str, msg: str) -> NoReturn:
+        raise FileFormatError(f"{self.name}: invalid project at {path}: {msg}")
+
+    @staticmethod
+    def show(v: Any) -> str:
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if v is None:
+            return "null"
+        if isinstance(v, dict):
+            return "an object"
+        if isinstance(v, list):
+            return f"a list of {len(v)}"
+        if isinstance(v, str):
+            return repr(v if len(v) <= 40 else v[:37] + "...")
+        if isinstance(v, int) and abs(v) >= 10**15:
+            return f"an integer of {len(str(abs(v)))} digits"
+        return repr(v)
+
+    def obj(self, v: Any, path: str, required: Sequence[str], optional: Sequence[str] = ()) -> dict[str, Any]:
+        if not isinstance(v, dict):
+            self.fail(path, f"expected an object, got {self.show(v)}")
+        for k in required:
+            if k not in v:
+                self.fail(path, f"missing key {k!r}")
+        unknown = [k for k in v if k not in required and k not in optional]
+        if unknown:
+            self.fail(path, f"unknown key {unknown[0]!r}")
+        return v
+
+    def list_(self, v: Any, path: str) -> list[Any]:
+        if not isinstance(v, list):
+            self.fail(path, f"expected a list, got {self.show(v)}")
+        return v
+
+    def int_(self, v: Any, path: str, lo: int, hi: int) -> int:
+        if isinstance(v, bool) or not isinstance(v, int):
+            self.fail(path, f"expected an integer, got {self.show(v)}")
+        if not lo <= v <= hi:
+            self.fail(path, f"integer {self.show(v)} out of range [{lo}, {hi}]")
+        return v
+
+    def num(self, v: Any, path: str, lo: float, hi: float) -> float:
+        if isinstance(v, bool) or not isinstance(v, int | float):
+            self.fail(path, f"expected a number, got {self.show(v)}")
+        if isinstance(v, int) and abs(v) > 2**53:
+            self.fail(path, f"number {self.show(v)} is too large")
+        f = float(v)
+        if not (math.isfinite(f) and lo <= f <= hi):
+            self.fail(path, f"number {self.show(v)} out of range [{lo:g}, {hi:g}]")
+        return f
+
+    def str_(self, v: Any, path: str, max_len: int = MAX_NAME_CHARS) -> str:
+        if not isinstance(v, str):
+            self.fail(path, f"expected a string, got {self.show(v)}")
+        if len(v) > max_len:
+            self.fail(path, f"string of {len(v)} characters is longer than {max_len}")
+        return v
+
+    def json_value(self, v: Any, path: str) -> None:
+        """Check free-form JSON data iteratively (no recursion, whatever the nesting)."""
+        stack: list[tuple[Any, str, int]] = [(v, path, 0)]
+        while stack:
+            x, p, d = stack.pop()
+            if d > PARAMS_MAX_DEPTH:
+                self.fail(p, f"nested deeper than {PARAMS_MAX_DEPTH} levels")
+            if isinstance(x, dict):
+                stack.extend((val, f"{p}.{k}", d + 1) for k, val in x.items())
+            elif isinstance(x, list):
+                stack.extend((val, f"{p}[{i}]", d + 1) for i, val in enumerate(x))
+            elif isinstance(x, float) and not math.isfinite(x):
+                self.fail(p, "numbers must be finite")
+            elif isinstance(x, int) and not isinstance(x, bool) and abs(x) > 2**63:
+                self.fail(p, f"number {self.show(x)} is too large")
+
+
+def _decode_bits(c: _Checker, src: dict[str, Any], path: str) -> PixelSet:
+    c.obj(src, path, ("kind", "origin", "shape", "bits"))
+    origin = c.list_(src["origin"], f"{path}.origin")
+    if len(origin) != 2:
+        c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
+    x0 = c.int_(origin[0], f"{path}.origin[0]", -MAX_INT_COORD, MAX_INT_COORD)
+    y0 = c.int_(origin[1], f"{path}.origin[1]", -MAX_INT_COORD, MAX_INT_COORD)
+    shape = c.list_(src["shape"], f"{path}.shape")
+    if len(shape) != 2:
+        c.fail(f"{path}.shape", f"expected [rows, cols], got {c.show(shape)}")
+    h = c.int_(shape[0], f"{path}.shape[0]", 0, MAX_INT_COORD)
+    w = c.int_(shape[1], f"{path}.shape[1]", 0, MAX_INT_COORD)
+    if h * w > MAX_MASK_PIXELS:
+        c.fail(f"{path}.shape", f"a {h} x {w} mask holds more than the limit of {MAX_MASK_PIXELS:,} pixels")
+    c.mask_pixels += h * w
+    if c.mask_pixels > MAX_TOTAL_MASK_PIXELS:
+        c.fail(
+            f"{path}.shape", f"the masks of the file hold more than {MAX_TOTAL_MASK_PIXELS:,} pixels in all"
+        )
+    bits = c.str_(src["bits"], f"{path}.bits", max_len=MAX_FILE_BYTES)
+    n = h * w
+    nbytes = (n + 7) // 8
+    if len(bits) != 4 * ((nbytes + 2) // 3):
+        c.fail(
+            f"{path}.bits",
+            f"expected {nbytes} bytes of base64 for a {h} x {w} mask, got {len(bits)} characters",
+        )
+    try:
+        raw = base64.b64decode(bits, validate=True)
+    except (binascii.Error, ValueError):
+        c.fail(f"{path}.bits", "not valid base64")
+    if len(raw) != nbytes:
+        c.fail(f"{path}.bits", f"expected {nbytes} bytes for a {h} x {w} mask, got {len(raw)}")
+    if n == 0:
+        return PixelSet.empty()
+    mask = np.unpackbits(np.frombuffer(raw, dtype=np.uint8), count=n).reshape(h, w).view(bool)
+    return PixelSet(mask, (x0, y0))
+
+
+def _decode_ring(c: _Checker, ring: Any, path: str) -> np.ndarray[Any, np.dtype[np.float64]]:
+    c.list_(ring, path)
+    if len(ring) < 4:
+        c.fail(path, f"a ring needs at least 4 positions (closed), got {len(ring)}")
+    for k, pt in enumerate(ring):
+        if type(pt) is not list or len(pt) != 2:
+            c.fail(f"{path}[{k}]", f"expected a position [x, y], got {c.show(pt)}")
+        for j in (0, 1):
+            v = pt[j]
+            tv = type(v)
+            if tv is float:
+                if not (-COORDINATE_LIMIT <= v <= COORDINATE_LIMIT):  # also catches NaN and infinities
+                    c.fail(f"{path}[{k}][{j}]", f"coordinate {c.show(v)} outside ±{COORDINATE_LIMIT:.0f}")
+            elif tv is int:
+                if not -COORDINATE_LIMIT <= v <= COORDINATE_LIMIT:
+                    c.fail(f"{path}[{k}][{j}]", f"coordinate {c.show(v)} outside ±{COORDINATE_LIMIT:.0f}")
+            else:
+                c.fail(f"{path}[{k}][{j}]", f"expected a number, got {c.show(v)}")
+    a = np.array(ring, dtype=np.float64)
+    if not np.array_equal(a[0], a[-1]):
+        c.fail(path, "the ring is not closed (its last position must repeat the first)")
+    return a
+
+
+def _decode_geometry(c: _Checker, g: Any, path: str) -> Geometry:
+    c.obj(g, path, ("type", "coordinates"))
+    kind = g["type"]
+    coords = c.list_(g["coordinates"], f"{path}.coordinates")
+    if kind == "Polygon":
+        if not coords:
+            return Polygon()
+        polys = [coords]
+        cpaths = [f"{path}.coordinates"]
+    elif kind == "MultiPolygon":
+        polys = coords
+        cpaths = [f"{path}.coordinates[{i}]" for i in range(len(coords))]
+        if not polys:
+            return Polygon()
+    else:
+        c.fail(f"{path}.type", f"expected 'Polygon' or 'MultiPolygon', got {c.show(kind)}")
+    built = []
+    for rings, p in zip(polys, cpaths, strict=True):
+        c.list_(rings, p)
+        if not rings:
+            c.fail(p, "a polygon needs an exterior ring")
+        rs = [_decode_ring(c, r, f"{p}[{i}]") for i, r in enumerate(rings)]
+        built.append(Polygon(rs[0], rs[1:]))
+    geom: Geometry = MultiPolygon(built) if kind == "MultiPolygon" else built[0]
+    try:
+        return validate_geometry(geom)
+    except MRMError as e:
+        c.fail(path, str(e))
+
+
+def _decode_source(c: _Checker, src: Any, path: str) -> Source:
+    c.obj(src, path, ("kind",), ("origin", "shape", "bits", "geometry"))
+    kind = src["kind"]
+    if kind == "discrete":
+        return _decode_bits(c, src, path)
+    if kind == "euclidean":
+        c.obj(src, path, ("kind", "geometry"))
+        return _decode_geometry(c, src["geometry"], f"{path}.geometry")
+    c.fail(f"{path}.kind", f"expected 'discrete' or 'euclidean', got {c.show(kind)}")
+
+
+def _decode_style(c: _Checker, s: Any, path: str) -> Style:
+    c.obj(s, path, ("fill", "stroke", "opacity", "stroke_width", "visible"))
+    fill = c.str_(s["fill"], f"{path}.fill", 9)
+    stroke = c.str_(s["stroke"], f"{path}.stroke", 9)
+    opacity = c.num(s["opacity"], f"{path}.opacity", 0.0, 1.0)
+    width = c.num(s["stroke_width"], f"{path}.stroke_width", 0.0, 100.0)
+    if not isinstance(s["visible"], bool):
+        c.fail(f"{path}.visible", f"expected true or false, got {c.show(s['visible'])}")
+    try:
+        return Style(fill=fill, stroke=stroke, opacity=opacity, stroke_width=width, visible=s["visible"])
+    except MRMError as e:
+        c.fail(path, str(e))
+
+
+def _decode_provenance(c: _Checker, p: Any, path: str) -> Provenance | None:
+    if p is None:
+        return None
+    c.obj(p, path, ("operation", "params", "inputs"))
+    op = c.str_(p["operation"], f"{path}.operation", 200)
+    if not op:
+        c.fail(f"{path}.operation", "empty operation name")
+    params = c.obj(
+        p["params"], f"{path}.params", (), tuple(p["params"]) if isinstance(p["params"], dict) else ()
+    )
+    c.json_value(params, f"{path}.params")
+    inputs = c.list_(p["inputs"], f"{path}.inputs")
+    ids = [c.int_(v, f"{path}.inputs[{i}]", 1, 2**53) for i, v in enumerate(inputs)]
+    try:
+        return Provenance(op, params, tuple(ids))
+    except MRMError as e:
+        c.fail(path, str(e))
+
+
+def _decode_object(c: _Checker, o: Any, path: str) -> DocObject:
+    c.obj(o, path, ("id", "name", "style", "provenance", "source"))
+    oid = c.int_(o["id"], f"{path}.id", 1, 2**53)
+    name = c.str_(o["name"], f"{path}.name")
+    style = _decode_style(c, o["style"], f"{path}.style")
+    prov = _decode_provenance(c, o["provenance"], f"{path}.provenance")
+    source = _decode_source(c, o["source"], f"{path}.source")
+    return DocObject(id=oid, name=name, source=source, style=style, provenance=prov)
+
+
+def migrate(
+    data: dict[str, Any],
+    name: str = "project",
+    migrations: Sequence[Migration] = MIGRATIONS,
+    current: int = SCHEMA_VERSION,
+) -> dict[str, Any]:
+    """Upgrade the JSON data of a project file to schema ``current``, applying ``migrations`` in order."""
+    c = _Checker(name)
+    version = (
+        c.int_(data.get("schema_version"), "$.schema_version", 1, 2**31) if "schema_version" in data else 0
+    )
+    if version == 0:
+        c.fail("$", "missing key 'schema_version'")
+    if version > current:
+        raise FileFormatError(
+            f"{name}: this project was written by a newer version of MR Modeler (schema {version}); "
+            f"this version reads schema {current} and older. Update MR Modeler to open it."
+        )
+    for m in migrations:
+        if m.from_version == version and version < current:
+            data = m.apply(data)
+            version += 1
+            data["schema_version"] = version
+    if version != current:
+        raise FileFormatError(f"{name}: no migration from project schema {version} to {current}")
+    return data
+
+
+def parse_project(
+    data: bytes,
+    name: str = "project",
+    *,
+    migrations: Sequence[Migration] = MIGRATIONS,
+    current: int = SCHEMA_VERSION,
+) -> Project:
+    """Parse and validate the bytes of a project file.
+
+    Raises
+    ------
+    FileFormatError
+        With a message naming the file and, for content errors, the JSON path of the problem.
+    """
+    if not data.strip():
+        raise FileFormatError(f"{name}: the file is empty")
+    what = _sniff(data)
+    if what is not None:
+        raise FileFormatError(
+            f"{name}: this is {what}, not an MR Modeler project; import it as a file instead of opening it"
+        )
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise FileFormatError(
+            f"{name}: not an MR Modeler project (not UTF-8 text: invalid byte at offset {e.start})"
+        ) from None
+
+    def refuse_constant(s: str) -> Any:
+        raise ValueError(f"{s} is not a valid number in a project file")
+
+    try:
+        raw = json.loads(text, parse_constant=refuse_constant)
+    except json.JSONDecodeError as e:
+        # An error at the very end, or a string that never closes, means the text stops mid-document.
+        if e.pos >= len(text.rstrip()) - 1 or e.msg.startswith("Unterminated string"):
+            raise FileFormatError(
+                f"{name}: the file ends unexpectedly at line {e.lineno} (truncated or incompletely written)"
+            ) from None
+        raise FileFormatError(
+            f"{name}: not valid JSON: {e.msg} (line {e.lineno}, column {e.colno})"
+        ) from None
+    except RecursionError:
+        raise FileFormatError(f"{name}: the JSON is nested too deeply to be a project file") from None
+    except ValueError as e:  # NaN/Infinity literals; integers with thousands of digits
+        raise FileFormatError(f"{name}: unreadable number: {e}") from None
+    c = _Checker(name)
+    if not isinstance(raw, dict):
+        raise FileFormatError(f"{name}: not an MR Modeler project (the JSON is {c.show(raw)}, not an object)")
+    if raw.get("format") != FORMAT:
+        if "format" not in raw:
+            raise FileFormatError(f"{name}: not an MR Modeler project (no 'format' key)")
+        raise FileFormatError(
+            f"{name}: not an MR Modeler project (format is {c.show(raw['format'])}, expected {FORMAT!r})"
+        )
+    file_version = (
+        c.int_(raw["schema_version"], "$.schema_version", 1, 2**31) if "schema_version" in raw else 0
+    )
+    raw = migrate(raw, name, migrations, current)
+    c.obj(
+        raw, "$", ("format", "schema_version", "settings", "objects"), ("generator", "selection", "autosave")
+    )
+    if "generator" in raw:
+        c.str_(raw["generator"], "$.generator", 200)
+    st = c.obj(raw["settings"], "$.settings", ("model",))
+    model = c.str_(st["model"], "$.settings.model", 40)
+    if model not in MODELS:
+        c.fail("$.settings.model", f"unknown model {c.show(model)}; expected one of {', '.join(MODELS)}")
+    settings = Settings(model=model)
+    objs_raw = c.list_(raw["objects"], "$.objects")
+    objects: list[DocObject] = []
+    seen: dict[int, int] = {}
+    for i, o in enumerate(objs_raw):
+        obj = _decode_object(c, o, f"$.objects[{i}]")
+        if obj.id in seen:
+            c.fail(f"$.objects[{i}].id", f"id {obj.id} is already used by $.objects[{seen[obj.id]}]")
+        seen[obj.id] = i
+        objects.append(obj)
+    selection: list[int] = []
+    if "selection" in raw:
+        sel = c.list_(raw["selection"], "$.selection")
+        for i, v in enumerate(sel):
+            sid = c.int_(v, f"$.selection[{i}]", 1, 2**53)
+            if sid not in seen:
+                c.fail(f"$.selection[{i}]", f"no object has id {sid}")
+            selection.append(sid)
+    autosave = None
+    if "autosave" in raw:
+        a = c.obj(raw["autosave"], "$.autosave", ("project", "saved_at"))
+        if a["project"] is not None:
+            c.str_(a["project"], "$.autosave.project", 4096)
+        c.str_(a["saved_at"], "$.autosave.saved_at", 100)
+        autosave = dict(a)
+    return Project(objects, settings, selection, autosave, file_version)
+
+
+def read_project(path: str | os.PathLike[str], **kw: Any) -> Project:
+    """Read and validate a project file (see :func:`parse_project`)."""
+    p = Path(path)
+    name = p.name
+    size = p.stat().st_size
+    if size > MAX_FILE_BYTES:
+        raise FileFormatError(
+            f"{name}: the file is {size:,} bytes, larger than the limit of {MAX_FILE_BYTES:,}"
+        )
+    with open(p, "rb") as fh:
+        data = fh.read(MAX_FILE_BYTES + 1)
+    return parse_project(data, name, **kw)
+
+
+def load_project(path: str | os.PathLike[str]) -> Document:
+    """Open a project file as a new document (clean, empty history, ``doc.path`` set).
+
+    An open document is never touched: on any error nothing is created and the caller keeps what it had.
+    """
+    return read_project(path).to_document(Path(path))
+
+
+def loads(data: bytes, name: str = "project") -> Document:
+    """Build a document from the bytes of a project file."""
+    return parse_project(data, name).to_document()
