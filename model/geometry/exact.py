@@ -1,0 +1,104 @@
+"""Exact helpers for float64 geometry on the pixel grid (DESIGN §2, ALGORITHMS §1.6).
+
+Every float64 is a dyadic rational, so every decision here is made exactly: either with float comparisons
+that cannot round (comparing a float with a half-integer that is itself a float), or with an argument that
+a given float computation is free of rounding. Nothing here uses an epsilon.
+
+The pixel p = (i, j) is centred on (i, j). Its *standard cell* is the half-open square
+(i − ½, i + ½] × (j − ½, j + ½]: the cells partition the plane and a point belongs to exactly one of them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+#: Largest supported |coordinate|. Beyond it pixel indices and half-integers stop being exact floats
+#: (2^53 is the last integer with a unit gap), and the exact predicates need a little headroom.
+MAX_ABS_COORD = 2.0**51
+
+#: Smallest supported non-zero |coordinate|. The exact fallback multiplies differences of coordinates;
+#: below this bound those products could underflow and lose bits (see _discretize_kernels).
+MIN_ABS_COORD = 2.0**-400
+
+#: Half-width, in units of the coarsest common dyadic step, under which products of coordinate
+#: differences are exact in float64 (see :func:`float_predicates_are_exact`).
+_EXACT_UNITS = 2.0**25
+
+
+def cell_index(u: float) -> int:
+    """Return the integer k with u ∈ (k − ½, k + ½], exactly.
+
+    Parameters
+    ----------
+    u : float
+        A finite coordinate with |u| ≤ :data:`MAX_ABS_COORD`.
+
+    Returns
+    -------
+    int
+        The index of the standard cell that holds ``u`` (a point on a cell side goes to the cell on its left
+        or below, the side being that cell's right or top side).
+    """
+    k = math.floor(u + 0.5)  # may be off by one after rounding; fixed below with exact comparisons
+    while u > k + 0.5:
+        k += 1
+    while u <= k - 0.5:
+        k -= 1
+    return k
+
+
+def closed_cell_range(u: float) -> tuple[int, int]:
+    """Return (lo, hi): the indices k whose closed interval [k − ½, k + ½] holds ``u`` (one or two)."""
+    k = cell_index(u)
+    return (k, k + 1) if u == k + 0.5 else (k, k)
+
+
+def standard_cell(x: float, y: float) -> tuple[int, int]:
+    """Return the pixel whose standard cell (x−½, x+½] × (y−½, y+½] holds the point (x, y)."""
+    return cell_index(x), cell_index(y)
+
+
+def check_coordinate_range(values: npt.NDArray[np.float64]) -> tuple[int, float] | None:
+    """Return (index, value) of the first coordinate outside the supported range, or None.
+
+    Supported: finite, |v| ≤ :data:`MAX_ABS_COORD`, and v = 0 or |v| ≥ :data:`MIN_ABS_COORD`.
+    """
+    a = np.abs(values)
+    bad = ~np.isfinite(values) | (a > MAX_ABS_COORD) | ((a < MIN_ABS_COORD) & (a != 0.0))
+    if not bad.any():
+        return None
+    i = int(np.flatnonzero(bad)[0])
+    return i, float(values[i])
+
+
+def float_predicates_are_exact(values: npt.NDArray[np.float64]) -> bool:
+    """True when plain float64 evaluation of the grid predicates is free of rounding.
+
+    Let 2^-K be the coarsest dyadic step that every value (and the half-integers of the grid) is a multiple
+    of, u = 2^-(K+1), and L = (max |v| + 2) / u. Grid points used by the kernels (integers and
+    half-integers within one pixel of the data) are multiples of u below L·u in magnitude. When
+    L ≤ 2^25, differences of such numbers are integers below 2^26 in units of u, products of two
+    differences are below 2^52 in units of u², and a difference of two products is below 2^53 u²: all of
+    them are exact float64 values. Orientation signs computed in plain float arithmetic are then exact,
+    including the zero (tie) cases. Typical for snapped input (integers, half-integers, 2^-k grids).
+
+    Parameters
+    ----------
+    values : ndarray of float64
+        All coordinates of a geometry (already checked finite and in range).
+    """
+    v = values[values != 0.0]
+    if v.size == 0:
+        return True
+    mant, expo = np.frexp(np.abs(v))  # |v| = mant · 2^expo, mant ∈ [0.5, 1)
+    m = (mant * 2.0**53).astype(np.int64)  # exact: a 53-bit integer
+    low_bit = m & -m  # the lowest set bit of each mantissa
+    tz = np.log2(low_bit.astype(np.float64)).astype(np.int64)  # exact for powers of two
+    # |v| = (m >> tz) · 2^(expo − 53 + tz): the number of fractional bits is 53 − expo − tz.
+    k = max(0, int((53 - expo.astype(np.int64) - tz).max()))
+    if k > 60:
+        return False
+    return (float(np.abs(v).max()) + 2.0) * 2.0 ** (k + 1) <= _EXACT_UNITS

@@ -1,0 +1,1 @@
+"""Slow, independent, obviously-correct reference implementations used as test oracles."""
