@@ -1,4 +1,5 @@
-from app.main import main
 import sys
+
+from app.main import main
 
 sys.exit(main())

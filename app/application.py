@@ -1,0 +1,188 @@
+"""QApplication set-up: offscreen-safe start, HiDPI, a palette following the system's light or dark theme.
+
+Everything here runs before the first widget exists. The palette is rebuilt when the system switches
+between light and dark (``QStyleHints.colorSchemeChanged``) unless the user picked a theme in the
+preferences; the views listen to the application's palette change and recolour their backgrounds.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from PySide6 import QtCore, QtGui, QtWidgets
+
+ORGANIZATION = "MR Modeler"
+APPLICATION = "mrm"
+DISPLAY_NAME = "MR Modeler"
+
+#: Themes a user can pick in the preferences.
+THEMES = ("system", "light", "dark")
+
+
+def has_display() -> bool:
+    """True when a window can be shown: a platform was forced, or an X11/Wayland display exists."""
+    if os.environ.get("QT_QPA_PLATFORM"):
+        return True
+    if sys.platform.startswith("linux") or "bsd" in sys.platform:
+        return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+    return True
+
+
+def create_application(argv: list[str] | None = None, *, offscreen: bool = False) -> QtWidgets.QApplication:
+    """Return the process's QApplication, creating and configuring it on the first call.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments for Qt (the program name first); ``sys.argv[:1]`` by default.
+    offscreen : bool
+        Render without a display (``--screenshot`` on a headless machine); ignored once Qt is running.
+    """
+    existing = QtWidgets.QApplication.instance()
+    if isinstance(existing, QtWidgets.QApplication):
+        configure(existing)
+        return existing
+    if offscreen and not os.environ.get("QT_QPA_PLATFORM"):
+        os.environ["QT_QPA_PLATFORM"] = "offscreen"
+    # Fractional scale factors (150 %) render crisply only without rounding; set before the app exists.
+    QtGui.QGuiApplication.setHighDpiScaleFactorRoundingPolicy(
+        QtCore.Qt.HighDpiScaleFactorRoundingPolicy.PassThrough
+    )
+    app = QtWidgets.QApplication(list(argv) if argv else sys.argv[:1])
+    configure(app)
+    return app
+
+
+def _guard_refcount_leak() -> bool:
+    """Protect the process from Qt bindings that drop references to None, True and False.
+
+    PySide6 6.12.0 on Python 3.11 releases a reference to None on every Qt call returning ``void``; None's
+    count starts near 4,500, so a session aborts ("deallocating None") after a few thousand calls. Python 3.12
+    made these objects immortal; on older Pythons we measure the leak and, if there is one, give the three
+    objects a count no leak can exhaust — the same thing 3.12 does. Returns True when the guard was needed.
+    """
+    if sys.version_info >= (3, 12):
+        return False
+    probe = QtCore.QObject()
+    before = sys.getrefcount(None)
+    for _ in range(64):
+        probe.setObjectName("probe")
+    if before - sys.getrefcount(None) < 32:
+        return False
+    import ctypes
+
+    for obj in (None, True, False):
+        ctypes.c_ssize_t.from_address(id(obj)).value += 1 << 40  # ob_refcnt is the first field
+    return True
+
+
+def configure(app: QtWidgets.QApplication) -> None:
+    """Set names, style, palette and pyqtgraph defaults on ``app`` (idempotent)."""
+    if app.property("mrm_configured"):
+        return
+    app.setProperty("mrm_configured", True)
+    _guard_refcount_leak()
+    app.setOrganizationName(ORGANIZATION)
+    app.setApplicationName(APPLICATION)
+    app.setApplicationDisplayName(DISPLAY_NAME)
+    app.setDesktopFileName("mr-modeler")
+    # Fusion draws the same on every platform and honours a custom palette fully (the native styles do not).
+    app.setStyle("Fusion")
+    import pyqtgraph as pg
+
+    # Keep pyqtgraph's QPainter path (no OpenGL: it needs a display) and its default image axis order:
+    # the views pass axisOrder per item so nothing global changes behind another library's back.
+    pg.setConfigOptions(useOpenGL=False, antialias=True)
+    ThemeController(app).apply()  # parented to the app, which keeps it alive
+
+
+def theme_controller() -> ThemeController:
+    """Return the controller that owns the palette of the running application."""
+    app = QtWidgets.QApplication.instance()
+    assert isinstance(app, QtWidgets.QApplication)
+    ctl = app.findChild(ThemeController, "mrm_theme_controller")
+    if ctl is None:
+        configure(app)
+        ctl = app.findChild(ThemeController, "mrm_theme_controller")
+    assert ctl is not None
+    return ctl
+
+
+class ThemeController(QtCore.QObject):
+    """Builds the light or dark palette and follows the system's colour scheme."""
+
+    themeChanged = QtCore.Signal(bool)  # dark?
+
+    def __init__(self, app: QtWidgets.QApplication) -> None:
+        super().__init__(app)
+        self.setObjectName("mrm_theme_controller")
+        self._app = app
+        self._preference = "system"
+        self._light_palette = QtGui.QPalette(app.style().standardPalette())
+        hints = QtGui.QGuiApplication.styleHints()
+        hints.colorSchemeChanged.connect(self._system_changed)
+
+    @property
+    def preference(self) -> str:
+        """'system', 'light' or 'dark'."""
+        return self._preference
+
+    def set_preference(self, theme: str) -> None:
+        """Fix the theme ('light', 'dark') or follow the system ('system')."""
+        if theme not in THEMES:
+            theme = "system"
+        self._preference = theme
+        self.apply()
+
+    def is_dark(self) -> bool:
+        """True when the dark palette is (or would be) in force."""
+        if self._preference == "dark":
+            return True
+        if self._preference == "light":
+            return False
+        scheme = QtGui.QGuiApplication.styleHints().colorScheme()
+        return scheme == QtCore.Qt.ColorScheme.Dark
+
+    def apply(self) -> None:
+        """Install the palette that matches the preference and the system's scheme."""
+        dark = self.is_dark()
+        self._app.setPalette(dark_palette() if dark else QtGui.QPalette(self._light_palette))
+        self.themeChanged.emit(dark)
+
+    def _system_changed(self, _scheme: QtCore.Qt.ColorScheme) -> None:
+        if self._preference == "system":
+            self.apply()
+
+
+def dark_palette() -> QtGui.QPalette:
+    """A dark Fusion palette with enough contrast for text, selections and disabled items."""
+    c = QtGui.QColor
+    roles = QtGui.QPalette.ColorRole
+    group = QtGui.QPalette.ColorGroup
+    p = QtGui.QPalette()
+    base, window, text = c(32, 33, 36), c(45, 47, 51), c(222, 224, 227)
+    p.setColor(roles.Window, window)
+    p.setColor(roles.WindowText, text)
+    p.setColor(roles.Base, base)
+    p.setColor(roles.AlternateBase, c(40, 42, 46))
+    p.setColor(roles.ToolTipBase, c(55, 58, 63))
+    p.setColor(roles.ToolTipText, text)
+    p.setColor(roles.PlaceholderText, c(140, 143, 148))
+    p.setColor(roles.Text, text)
+    p.setColor(roles.Button, window)
+    p.setColor(roles.ButtonText, text)
+    p.setColor(roles.BrightText, c(255, 90, 90))
+    p.setColor(roles.Light, c(70, 72, 77))
+    p.setColor(roles.Midlight, c(58, 60, 65))
+    p.setColor(roles.Mid, c(38, 39, 43))
+    p.setColor(roles.Dark, c(22, 23, 25))
+    p.setColor(roles.Shadow, c(0, 0, 0))
+    p.setColor(roles.Highlight, c(61, 126, 214))
+    p.setColor(roles.HighlightedText, c(255, 255, 255))
+    p.setColor(roles.Link, c(110, 168, 254))
+    p.setColor(roles.LinkVisited, c(170, 140, 250))
+    for r in (roles.WindowText, roles.Text, roles.ButtonText):
+        p.setColor(group.Disabled, r, c(120, 122, 126))
+    p.setColor(group.Disabled, roles.Highlight, c(70, 72, 77))
+    return p

@@ -1,0 +1,382 @@
+"""Files: New, Open, Save, Save As, recent files, import, export, drag-and-drop, autosave and recovery.
+
+The window keeps one :class:`~model.document.Document` for its whole life; opening a project resets it
+with the file's content, so every view stays subscribed. Nothing is touched until a file has been read and
+validated completely: a corrupt or hostile file leaves the open document exactly as it was and says why.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from PySide6 import QtCore, QtWidgets
+
+from model.commands import AddObject
+from model.document import Document, Settings
+from model.errors import MRMError
+
+if TYPE_CHECKING:
+    from app.main_window import MainWindow
+
+PROJECT_EXT = ".mrm"
+IMAGE_EXTS = (".png", ".pbm", ".pgm", ".npz")
+VECTOR_EXTS = (".geojson", ".json", ".wkt")
+EXPORT_FILTERS = {
+    ".png": "PNG image — pixels (*.png)",
+    ".svg": "SVG picture — polygons (*.svg)",
+    ".geojson": "GeoJSON — polygons (*.geojson)",
+    ".wkt": "WKT — polygons (*.wkt)",
+    ".npz": "NumPy mask — pixels (*.npz)",
+    ".pbm": "PBM bitmap — pixels (*.pbm)",
+}
+
+
+def describe_error(e: BaseException) -> str:
+    """A one-line message for a user error (file problems included), never a traceback."""
+    if isinstance(e, FileNotFoundError):
+        return f"{e.filename}: no such file"
+    if isinstance(e, IsADirectoryError):
+        return f"{e.filename}: is a folder, not a file"
+    if isinstance(e, PermissionError):
+        return f"{e.filename}: permission denied"
+    if isinstance(e, OSError):
+        return f"{getattr(e, 'filename', '') or ''}: {e.strerror or e}".lstrip(": ")
+    return str(e)
+
+
+class FileController(QtCore.QObject):
+    """The window's file commands; dialogs are shown only when no path is given."""
+
+    documentOpened = QtCore.Signal(str)  # path ('' for a new document)
+    saved = QtCore.Signal(str)
+
+    def __init__(self, window: MainWindow, autosave_dir: str | os.PathLike[str] | None = None) -> None:
+        super().__init__(window)
+        self.win = window
+        self.doc: Document = window.doc
+        self.prefs = window.prefs
+        from model.io.autosave import Autosaver
+
+        seconds = self.prefs.autosave_seconds
+        self.autosave_dir = Path(autosave_dir) if autosave_dir is not None else None
+        self.autosaver = Autosaver(
+            self.doc, interval=float(seconds or 60), every_edits=50, directory=self.autosave_dir
+        )
+        self._timer = QtCore.QTimer(self)
+        self._timer.setInterval(2000)
+        self._timer.timeout.connect(self.autosave_tick)
+        if seconds > 0:
+            self._timer.start()
+
+    # ------------------------------------------------------------------ helpers
+    def _error(self, title: str, text: str) -> None:
+        self.win.show_error(title, text)
+
+    def maybe_save(self) -> bool:
+        """Ask what to do with unsaved changes; False means the user cancelled."""
+        if not self.doc.is_modified:
+            return True
+        name = self.doc.path.name if self.doc.path else "Untitled"
+        box = QtWidgets.QMessageBox(self.win)
+        box.setObjectName("unsavedDialog")
+        box.setIcon(QtWidgets.QMessageBox.Icon.Warning)
+        box.setWindowTitle("Unsaved changes")
+        box.setText(f"Save the changes to {name}?")
+        box.setInformativeText("Your changes will be lost if you don't save them.")
+        SB = QtWidgets.QMessageBox.StandardButton
+        box.setStandardButtons(SB.Save | SB.Discard | SB.Cancel)
+        box.setDefaultButton(SB.Save)
+        answer = box.exec()
+        if answer == SB.Save:
+            return self.save()
+        if answer == SB.Discard:
+            self.autosaver.discard()
+            return True
+        return False
+
+    def _reset(self, doc: Document, path: Path | None, *, clean: bool = True) -> None:
+        self.win.tools.cancel()
+        self.doc.reset(doc.objects, doc.settings, doc.selection, clean=clean)
+        self.doc.path = path
+        self.autosaver.discard()
+        self.autosaver.edits = 0 if clean else 1
+        self.win.update_title()
+        self.documentOpened.emit(str(path) if path else "")
+        QtCore.QTimer.singleShot(0, self.win.fit_all)
+
+    def _directory(self) -> str:
+        d = self.prefs.last_directory
+        return d if Path(d).is_dir() else str(Path.home())
+
+    # ------------------------------------------------------------------ new / open
+    def new(self) -> bool:
+        if not self.maybe_save():
+            return False
+        self._reset(Document(Settings(model=self.prefs.default_model)), None)
+        return True
+
+    def open(self, path: str | os.PathLike[str] | None = None, *, ask: bool = True) -> bool:
+        """Open a project (a dialog when ``path`` is None); False when nothing was opened."""
+        if ask and not self.maybe_save():
+            return False
+        if path is None:
+            fn, _ = QtWidgets.QFileDialog.getOpenFileName(
+                self.win, "Open project", self._directory(), "MR Modeler projects (*.mrm);;All files (*)"
+            )
+            if not fn:
+                return False
+            path = fn
+        p = Path(path)
+        if p.suffix.lower() != PROJECT_EXT and p.suffix.lower() in IMAGE_EXTS + VECTOR_EXTS:
+            return self.import_files([p])
+        from model.io.autosave import find_recovery
+        from model.io.project import read_project
+
+        rec = None
+        try:
+            rec = find_recovery(p)
+        except OSError:
+            rec = None
+        if rec is not None and self.offer_recovery(rec):
+            return True
+        try:
+            project = read_project(p)
+        except (MRMError, OSError, ValueError) as e:
+            self._error("Cannot open the project", describe_error(e))
+            return False
+        self._reset(project.to_document(p), p.resolve())
+        self.prefs.add_recent_file(p)
+        self.prefs.last_directory = str(p.resolve().parent)
+        self.win.update_recent_menu()
+        return True
+
+    def offer_recovery(self, rec: Any) -> bool:
+        """Ask whether to restore an autosave; True if it was restored."""
+        what = rec.project.name if rec.project is not None else "an untitled document"
+        when = rec.saved_at.replace("T", " ").replace("+00:00", " UTC") if rec.saved_at else "an unknown time"
+        box = QtWidgets.QMessageBox(self.win)
+        box.setObjectName("recoveryDialog")
+        box.setIcon(QtWidgets.QMessageBox.Icon.Question)
+        box.setWindowTitle("Recover unsaved work?")
+        box.setText(f"MR Modeler was not closed properly. An autosave of {what} from {when} was found.")
+        box.setInformativeText("Recover it? Discarding deletes the autosave.")
+        recover = box.addButton("Recover", QtWidgets.QMessageBox.ButtonRole.AcceptRole)
+        discard = box.addButton("Discard", QtWidgets.QMessageBox.ButtonRole.DestructiveRole)
+        box.addButton("Later", QtWidgets.QMessageBox.ButtonRole.RejectRole)
+        box.setDefaultButton(recover)
+        box.exec()
+        clicked = box.clickedButton()
+        if clicked is discard:
+            rec.discard()
+            return False
+        if clicked is not recover:
+            return False
+        try:
+            doc = rec.restore()
+        except (MRMError, OSError, ValueError) as e:
+            self._error("Cannot recover the autosave", describe_error(e))
+            return False
+        path = rec.project
+        self._reset(doc, path, clean=False)
+        rec.discard()
+        self.autosaver.write_now()  # the recovered edits are safe again until saved
+        if path is not None:
+            self.prefs.add_recent_file(path)
+            self.win.update_recent_menu()
+        return True
+
+    def check_orphans(self) -> bool:
+        """On start-up: offer the autosave of an untitled document left by a crashed session."""
+        from model.io.autosave import find_orphans
+
+        try:
+            found = find_orphans(self.autosave_dir)
+        except OSError:
+            return False
+        for rec in found[:1]:
+            return self.offer_recovery(rec)
+        return False
+
+    # ------------------------------------------------------------------ save
+    def save(self) -> bool:
+        if self.doc.path is None:
+            return self.save_as()
+        return self._write(Path(self.doc.path))
+
+    def save_as(self, path: str | os.PathLike[str] | None = None) -> bool:
+        if path is None:
+            start = str(self.doc.path) if self.doc.path else str(Path(self._directory()) / "untitled.mrm")
+            fn, _ = QtWidgets.QFileDialog.getSaveFileName(
+                self.win, "Save project", start, "MR Modeler projects (*.mrm)"
+            )
+            if not fn:
+                return False
+            path = fn
+        p = Path(path)
+        if p.suffix.lower() != PROJECT_EXT:
+            p = p.with_name(p.name + PROJECT_EXT)
+        return self._write(p)
+
+    def _write(self, p: Path) -> bool:
+        from model.io.project import save_project
+
+        old_side = self.autosaver.path
+        try:
+            save_project(self.doc, p)
+        except (MRMError, OSError, ValueError) as e:
+            self._error("Cannot save the project", describe_error(e))
+            return False
+        self.autosaver.discard()
+        if old_side.exists() and old_side != self.autosaver.path:
+            old_side.unlink(missing_ok=True)
+        self.autosaver.edits = 0
+        self.doc.path = p.resolve()
+        self.prefs.add_recent_file(p)
+        self.prefs.last_directory = str(p.resolve().parent)
+        self.win.update_recent_menu()
+        self.win.update_title()
+        self.win.show_message(f"Saved {p.name}", 3000)
+        self.saved.emit(str(p))
+        return True
+
+    def autosave_tick(self) -> None:
+        try:
+            self.autosaver.tick()
+        except (OSError, MRMError) as e:
+            self.win.show_message(f"autosave failed: {describe_error(e)}", 5000)
+
+    # ------------------------------------------------------------------ import / export
+    def import_dialog(self) -> bool:
+        files, _ = QtWidgets.QFileDialog.getOpenFileNames(
+            self.win,
+            "Import",
+            self._directory(),
+            "Images and geometry (*.png *.pbm *.pgm *.npz *.geojson *.json *.wkt);;"
+            "Images — pixels (*.png *.pbm *.pgm *.npz);;"
+            "Geometry — polygons (*.geojson *.json *.wkt);;All files (*)",
+        )
+        return self.import_files([Path(f) for f in files]) if files else False
+
+    def read_objects(self, path: Path) -> list[tuple[str, Any]]:
+        """The (name, source) pairs a file brings in; raises on a bad file (nothing is added then)."""
+        from model.document import validate_geometry
+
+        ext = path.suffix.lower()
+        if ext in IMAGE_EXTS:
+            from model.io.pixel_files import read_pixels
+
+            return [(path.stem, read_pixels(path))]
+        if ext in VECTOR_EXTS:
+            from model.io.vector_files import read_geometries
+
+            out: list[tuple[str, Any]] = []
+            named = read_geometries(path)
+            for k, (name, g) in enumerate(named):
+                label = name or (path.stem if len(named) == 1 else f"{path.stem} {k + 1}")
+                if g.geom_type in ("Polygon", "MultiPolygon"):
+                    out.append((str(label), validate_geometry(g)))
+                elif not g.is_empty:
+                    # Lines and points cannot be polygon sources; their discretization is a pixel object.
+                    from model.geometry.discretize import discretize
+
+                    out.append((str(label), discretize(g, self.doc.model)))
+            return out
+        from model.errors import FileFormatError
+
+        raise FileFormatError(
+            f"{path.name}: cannot import '{ext or 'no extension'}' files; "
+            "use PNG, PBM, PGM, NPZ, GeoJSON or WKT"
+        )
+
+    def import_files(self, paths: Iterable[str | os.PathLike[str]]) -> bool:
+        """Import every file as new objects, in one undo step; a bad file is reported and skipped."""
+        items: list[tuple[str, Any]] = []
+        errors = []
+        for p in map(Path, paths):
+            try:
+                items += self.read_objects(p)
+            except (MRMError, OSError, ValueError) as e:
+                errors.append(describe_error(e))
+        if items:
+            objs = []
+            for k, (name, src) in enumerate(items):
+                objs.append(self.doc.make_object(src, name=name, style=self.win.host.new_style(k)))
+            try:
+                with self.doc.history.macro("Import" if len(objs) > 1 else f"Import {objs[0].name}"):
+                    for o in objs:
+                        self.doc.push(AddObject(o))
+                self.doc.set_selection([objs[-1].id])
+            except MRMError as e:
+                errors.append(str(e))
+            else:
+                QtCore.QTimer.singleShot(0, self.win.fit_all)
+            first = Path(next(iter(map(Path, paths))))
+            self.prefs.last_directory = str(first.resolve().parent)
+        if errors:
+            self._error("Cannot import", "\n".join(errors))
+        return bool(items) and not errors
+
+    def export_dialog(self) -> bool:
+        obj = self.win.scene.primary()
+        if obj is None:
+            self._error("Nothing to export", "Select the object to export first.")
+            return False
+        filters = ";;".join(EXPORT_FILTERS.values())
+        start = str(Path(self._directory()) / f"{obj.name}.png")
+        fn, flt = QtWidgets.QFileDialog.getSaveFileName(self.win, f"Export {obj.name}", start, filters)
+        if not fn:
+            return False
+        p = Path(fn)
+        if p.suffix.lower() not in EXPORT_FILTERS:
+            ext = next((e for e, f in EXPORT_FILTERS.items() if f == flt), ".png")
+            p = p.with_name(p.name + ext)
+        return self.export(obj.id, p)
+
+    def export(self, obj_id: int, path: str | os.PathLike[str]) -> bool:
+        """Write an object's pixels (.png/.pbm/.npz) or polygons (.svg/.geojson/.wkt), from the model."""
+        p = Path(path)
+        ext = p.suffix.lower()
+        entry = self.doc.derived(obj_id)
+        try:
+            if ext in (".png", ".pbm", ".npz"):
+                from model.io.pixel_files import write_pixels
+
+                write_pixels(entry.get("discrete"), p)
+            elif ext == ".svg":
+                from model.io.vector_files import write_svg
+
+                write_svg(entry.get("euclidean"), p)
+            elif ext in (".geojson", ".json"):
+                from model.io.vector_files import write_geojson
+
+                write_geojson(entry.get("euclidean"), p, {"name": self.doc.get(obj_id).name})
+            elif ext == ".wkt":
+                from model.io.vector_files import write_wkt
+
+                write_wkt(entry.get("euclidean"), p)
+            else:
+                raise ValueError(f"{p.name}: cannot export '{ext}'; use " + ", ".join(EXPORT_FILTERS))
+        except (MRMError, OSError, ValueError) as e:
+            self._error("Cannot export", describe_error(e))
+            return False
+        self.prefs.last_directory = str(p.resolve().parent)
+        self.win.show_message(f"Exported {p.name}", 3000)
+        return True
+
+    # ------------------------------------------------------------------ drag and drop
+    def drop(self, paths: list[Path]) -> None:
+        projects = [p for p in paths if p.suffix.lower() == PROJECT_EXT]
+        others = [p for p in paths if p.suffix.lower() != PROJECT_EXT]
+        if projects:
+            self.open(projects[0])
+        if others:
+            self.import_files(others)
+
+    def close(self, *, discard_autosave: bool) -> None:
+        self._timer.stop()
+        if discard_autosave:
+            self.autosaver.discard()
+        self.autosaver.close()

@@ -1,0 +1,152 @@
+"""The status bar: cursor position (plane and pixel), the selected object's figures, progress with Cancel."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from PySide6 import QtCore, QtWidgets
+
+from views.geometry_edit import pixel_at, vertex_table
+from views.scene import Scene
+
+
+def _fmt(v: float) -> str:
+    return f"{v:.2f}".replace("-", "−")
+
+
+def _int(v: int) -> str:
+    return f"{v:,}".replace(",", "\u2009").replace("-", "−")
+
+
+class StatusBar(QtWidgets.QStatusBar):
+    """Shows messages on the left and three permanent fields on the right."""
+
+    cancelRequested = QtCore.Signal()
+
+    def __init__(self, scene: Scene, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("statusBar")
+        self.scene = scene
+        self.figures = QtWidgets.QLabel("", self)
+        self.figures.setObjectName("figuresLabel")
+        self.figures.setTextFormat(QtCore.Qt.TextFormat.RichText)
+        self.cursor_label = QtWidgets.QLabel("", self)
+        self.cursor_label.setObjectName("cursorLabel")
+        self.cursor_label.setMinimumWidth(
+            self.fontMetrics().horizontalAdvance("x −00000.00  y −00000.00 · pixel (−00000, −00000)")
+        )
+        self.model_label = QtWidgets.QLabel("", self)
+        self.model_label.setObjectName("modelLabel")
+        self.progress_box = QtWidgets.QWidget(self)
+        pl = QtWidgets.QHBoxLayout(self.progress_box)
+        pl.setContentsMargins(0, 0, 0, 0)
+        pl.setSpacing(4)
+        self.progress_label = QtWidgets.QLabel("", self.progress_box)
+        self.progress = QtWidgets.QProgressBar(self.progress_box)
+        self.progress.setObjectName("taskProgress")
+        self.progress.setRange(0, 1000)
+        self.progress.setMaximumWidth(160)
+        self.progress.setTextVisible(False)
+        self.cancel_button = QtWidgets.QPushButton("Cancel", self.progress_box)
+        self.cancel_button.setObjectName("cancelTask")
+        self.cancel_button.clicked.connect(self.cancelRequested)
+        pl.addWidget(self.progress_label)
+        pl.addWidget(self.progress)
+        pl.addWidget(self.cancel_button)
+        self.progress_box.hide()
+        self.addPermanentWidget(self.progress_box)
+        self.addPermanentWidget(self.figures)
+        self.addPermanentWidget(self.cursor_label)
+        self.addPermanentWidget(self.model_label)
+        self._timer = QtCore.QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(0)
+        self._timer.timeout.connect(self.update_figures)
+        scene.documentChanged.connect(lambda _c: self.schedule())
+        scene.derivedReady.connect(lambda _i: self.schedule())
+        scene.previewChanged.connect(lambda _i: self.schedule())
+        self.schedule()
+
+    def schedule(self) -> None:
+        self._timer.start()
+
+    # ------------------------------------------------------------------ cursor
+    def set_cursor(self, x: float, y: float) -> None:
+        if math.isnan(x) or math.isnan(y):
+            self.cursor_label.setText("")
+            return
+        px, py = pixel_at(x, y)
+        self.cursor_label.setText(f"x {_fmt(x)}  y {_fmt(y)} · pixel ({_int(px)}, {_int(py)})")
+
+    # ------------------------------------------------------------------ figures
+    def figures_of(self, obj_id: int) -> dict[str, Any]:
+        """The selected object's counts; None for the ones still being computed."""
+        s = self.scene
+        out: dict[str, Any] = {
+            "pixels": None,
+            "components": None,
+            "holes": None,
+            "segments": None,
+            "vertices": None,
+        }
+        ps = s.get(obj_id, "discrete")
+        if ps is not None:
+            out["pixels"] = ps.count
+        region = s.get(obj_id, "region")
+        if region is not None:
+            out["components"] = region.n_components
+            out["holes"] = region.n_holes
+        ana = s.get(obj_id, "analytical")
+        if ana is not None:
+            out["segments"] = segment_count(ana)
+        geom = s.get(obj_id, "euclidean")
+        if geom is not None:
+            out["vertices"] = len(vertex_table(geom)[1])
+        return out
+
+    def update_figures(self) -> None:
+        doc = self.scene.doc
+        self.model_label.setText(f"model: {doc.model}")
+        obj = self.scene.primary()
+        if obj is None:
+            n = len(doc)
+            self.figures.setText(f"{n} object{'s' if n != 1 else ''}" if n else "")
+            return
+        f = self.figures_of(obj.id)
+
+        def v(key: str, unit: str, plural: str | None = None) -> str:
+            val = f[key]
+            if val is None:
+                return f"… {plural or unit + 's'}"
+            return f"{_int(val)} {unit if val == 1 else (plural or unit + 's')}"
+
+        self.figures.setText(
+            f"<b>{obj.name}</b>: {v('pixels', 'pixel')} · {v('components', 'component')} · "
+            f"{v('holes', 'hole')} · {v('segments', 'segment')} · {v('vertices', 'vertex', 'vertices')}"
+        )
+
+    # ------------------------------------------------------------------ progress
+    def set_busy(self, busy: bool) -> None:
+        self.progress_box.setVisible(busy)
+        if busy:
+            self.progress.setValue(0)
+            self.progress.setRange(0, 0)  # indeterminate until the first report
+
+    def set_progress(self, label: str, fraction: float, message: str) -> None:
+        self.progress.setRange(0, 1000)
+        self.progress.setValue(round(1000 * fraction))
+        self.progress_label.setText(message or label)
+
+
+def segment_count(ana: Any) -> int:
+    """Number of digital straight segments of an analytical representation (whatever its container)."""
+    for attr in ("n_segments", "segment_count"):
+        n = getattr(ana, attr, None)
+        if n is not None:
+            return int(n() if callable(n) else n)
+    segs = getattr(ana, "segments", None)
+    if segs is not None:
+        return len(segs)
+    chains = getattr(ana, "chains", ())
+    return sum(len(getattr(c, "segments", ())) for c in chains)

@@ -1,0 +1,297 @@
+"""Run slow work off the GUI thread: progress, cancel, "latest request wins", stale results dropped.
+
+A task is a callable ``fn(progress) -> result`` submitted into a named *slot* ("derive:3:region", "preview",
+"operation"). A new request in the same slot cancels the previous one; a result is delivered on the GUI thread
+only if its task is still the newest of its slot and, when a document revision was given, the document has not
+changed since. The callable reports progress with ``progress.update(fraction, message)``, which raises
+:class:`model.errors.Cancelled` once the task is cancelled — the contract of the model's operations.
+
+:class:`SynchronousTaskRunner` runs every task at once in the calling thread: tests use it to make the GUI
+deterministic, and it shows that nothing in the GUI depends on the threading.
+"""
+
+from __future__ import annotations
+
+import itertools
+import threading
+import time
+import traceback
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from PySide6 import QtCore
+
+from model.errors import Cancelled
+
+Fn = Callable[["TaskProgress"], Any]
+
+
+class TaskProgress:
+    """What a task's callable sees: ``update(fraction, message)`` reports and checks for a cancel.
+
+    It duck-types the model's progress object (``update`` raises :class:`Cancelled` once cancelled;
+    ``cancelled`` tells without raising), so operations take it unchanged.
+    """
+
+    #: Progress signals are throttled to this interval (seconds); the last one always goes through.
+    MIN_INTERVAL = 0.05
+
+    def __init__(self, report: Callable[[float, str], None] | None = None) -> None:
+        self._event = threading.Event()
+        self._report = report
+        self._last = 0.0
+        self.fraction = 0.0
+        self.message = ""
+
+    def cancel(self) -> None:
+        """Ask the task to stop at its next ``update``."""
+        self._event.set()
+
+    @property
+    def cancelled(self) -> bool:
+        """True once :meth:`cancel` was called."""
+        return self._event.is_set()
+
+    def check(self) -> None:
+        """Raise :class:`Cancelled` if the task was cancelled."""
+        if self._event.is_set():
+            raise Cancelled("cancelled")
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        """Report ``fraction`` in [0, 1] and an optional message; raise :class:`Cancelled` after a cancel."""
+        self.check()
+        if fraction is not None:
+            self.fraction = min(1.0, max(0.0, float(fraction)))
+        if message is not None:
+            self.message = str(message)
+        if self._report is not None:
+            now = time.monotonic()
+            if now - self._last >= self.MIN_INTERVAL or self.fraction >= 1.0:
+                self._last = now
+                self._report(self.fraction, self.message)
+
+    # model.ops.base may name it differently; accept the common spellings.
+    __call__ = update
+    report = update
+
+
+@dataclass(eq=False)
+class Task:
+    """One submitted piece of work and what to do with its outcome."""
+
+    slot: str
+    fn: Fn
+    on_result: Callable[[Any], None] | None = None
+    on_error: Callable[[BaseException], None] | None = None
+    on_cancel: Callable[[], None] | None = None
+    label: str = ""
+    revision: int | None = None
+    show_progress: bool = False
+    serial: int = 0
+    progress: TaskProgress = field(default_factory=TaskProgress)
+    done: bool = False
+
+    def cancel(self) -> None:
+        self.progress.cancel()
+
+
+class _Signals(QtCore.QObject):
+    """Carries outcomes from worker threads; created in the GUI thread, so its slots run there."""
+
+    finished = QtCore.Signal(object, object)  # task, result
+    failed = QtCore.Signal(object, object)  # task, exception
+    progressed = QtCore.Signal(object, float, str)  # task, fraction, message
+
+
+class _Worker(QtCore.QRunnable):
+    def __init__(self, task: Task, signals: _Signals) -> None:
+        super().__init__()
+        self.task = task
+        self.signals = signals
+        self.setAutoDelete(True)
+
+    def run(self) -> None:
+        task = self.task
+        try:
+            task.progress.check()
+            result = task.fn(task.progress)
+        except BaseException as exc:  # everything goes back to the GUI thread, never lost in a thread
+            exc.__traceback_text__ = traceback.format_exc()  # type: ignore[attr-defined]
+            self.signals.failed.emit(task, exc)
+        else:
+            self.signals.finished.emit(task, result)
+
+
+class TaskRunner(QtCore.QObject):
+    """Owns background tasks; see the module docstring for the delivery rules.
+
+    Signals
+    -------
+    busyChanged(bool)
+        Some task with ``show_progress`` is running (the status bar shows progress and Cancel).
+    progressChanged(str label, float fraction, str message)
+        Progress of the newest task with ``show_progress``.
+    taskDone(str slot, str outcome)
+        Any task ended: outcome is 'result', 'error', 'cancelled' or 'dropped'.
+    idle()
+        No task is pending any more.
+    """
+
+    busyChanged = QtCore.Signal(bool)
+    progressChanged = QtCore.Signal(str, float, str)
+    taskDone = QtCore.Signal(str, str)
+    idle = QtCore.Signal()
+
+    def __init__(self, parent: QtCore.QObject | None = None, *, threads: int | None = None) -> None:
+        super().__init__(parent)
+        self._pool = QtCore.QThreadPool(self)
+        if threads is not None:
+            self._pool.setMaxThreadCount(max(1, threads))
+        self._signals = _Signals(self)
+        self._signals.finished.connect(self._on_finished)
+        self._signals.failed.connect(self._on_failed)
+        self._signals.progressed.connect(self._on_progress)
+        self._current: dict[str, Task] = {}  # newest task per slot
+        self._running: set[Task] = set()  # every task not yet delivered
+        self._serial = itertools.count(1)
+        self.revision_getter: Callable[[], int] | None = None
+        self._busy = False
+        self._closed = False
+
+    # ------------------------------------------------------------------ public API
+    def submit(
+        self,
+        slot: str,
+        fn: Fn,
+        *,
+        on_result: Callable[[Any], None] | None = None,
+        on_error: Callable[[BaseException], None] | None = None,
+        on_cancel: Callable[[], None] | None = None,
+        label: str = "",
+        revision: int | None = None,
+        show_progress: bool = False,
+    ) -> Task:
+        """Run ``fn(progress)``; cancel whatever ran in ``slot`` before. See the module docstring."""
+        old = self._current.get(slot)
+        if old is not None and not old.done:
+            old.cancel()
+        task = Task(
+            slot,
+            fn,
+            on_result,
+            on_error,
+            on_cancel,
+            label,
+            revision,
+            show_progress,
+            next(self._serial),
+        )
+        if show_progress:
+            task.progress = TaskProgress(lambda f, m, t=task: self._signals.progressed.emit(t, f, m))
+        self._current[slot] = task
+        self._running.add(task)
+        self._update_busy()
+        if self._closed:
+            self._deliver(task, "cancelled", None)
+        else:
+            self._start(task)
+        return task
+
+    def cancel(self, slot: str | None = None) -> None:
+        """Cancel the task of ``slot`` (every task when None)."""
+        for task in list(self._running):
+            if slot is None or task.slot == slot:
+                task.cancel()
+
+    def cancel_prefix(self, prefix: str) -> None:
+        """Cancel every task whose slot starts with ``prefix``."""
+        for task in list(self._running):
+            if task.slot.startswith(prefix):
+                task.cancel()
+
+    def is_busy(self, slot: str | None = None) -> bool:
+        """True while a task (of ``slot``) has not been delivered."""
+        return any(slot is None or t.slot == slot for t in self._running)
+
+    def pending(self) -> int:
+        return len(self._running)
+
+    def shutdown(self, timeout_ms: int = 10_000) -> None:
+        """Cancel everything and wait for the threads (window closing)."""
+        self._closed = True
+        self.cancel()
+        self._pool.waitForDone(timeout_ms)
+        # Outcomes already queued are dropped: their receivers are going away.
+        for task in list(self._running):
+            task.done = True
+        self._running.clear()
+        self._update_busy()
+
+    # ------------------------------------------------------------------ internals
+    def _start(self, task: Task) -> None:
+        self._pool.start(_Worker(task, self._signals))
+
+    def _on_finished(self, task: Task, result: Any) -> None:
+        self._deliver(task, "result", result)
+
+    def _on_failed(self, task: Task, exc: BaseException) -> None:
+        self._deliver(task, "cancelled" if isinstance(exc, Cancelled) else "error", exc)
+
+    def _on_progress(self, task: Task, fraction: float, message: str) -> None:
+        if not task.done and self._current.get(task.slot) is task:
+            self.progressChanged.emit(task.label, fraction, message)
+
+    def _deliver(self, task: Task, outcome: str, payload: Any) -> None:
+        if task.done:
+            return
+        task.done = True
+        self._running.discard(task)
+        if self._current.get(task.slot) is task:
+            del self._current[task.slot]
+        else:
+            outcome = "dropped" if outcome != "cancelled" else outcome
+        if outcome in ("result", "error") and task.revision is not None and self._stale_revision(task):
+            outcome = "dropped"
+        try:
+            if outcome == "result" and task.on_result is not None:
+                task.on_result(payload)
+            elif outcome == "error" and task.on_error is not None:
+                task.on_error(payload)
+            elif outcome == "error":
+                raise payload
+            elif outcome == "cancelled" and task.on_cancel is not None:
+                task.on_cancel()
+        finally:
+            self._update_busy()
+            self.taskDone.emit(task.slot, outcome)
+            if not self._running:
+                self.idle.emit()
+
+    def _stale_revision(self, task: Task) -> bool:
+        return self.revision_getter is not None and self.revision_getter() != task.revision
+
+    def _update_busy(self) -> None:
+        busy = any(t.show_progress for t in self._running)
+        if busy != self._busy:
+            self._busy = busy
+            self.busyChanged.emit(busy)
+
+
+class SynchronousTaskRunner(TaskRunner):
+    """Runs each task immediately in the calling thread (tests); the delivery rules are the same."""
+
+    def _start(self, task: Task) -> None:
+        try:
+            task.progress.check()
+            result = task.fn(task.progress)
+        except Cancelled:
+            self._deliver(task, "cancelled", None)
+        except Exception as exc:
+            self._deliver(task, "error", exc)
+        else:
+            self._deliver(task, "result", result)
+
+    def shutdown(self, timeout_ms: int = 0) -> None:
+        self._closed = True
+        self._running.clear()

@@ -1,0 +1,76 @@
+"""GUI test fixtures: a main-window factory that owns cleanup, settings isolated per test, task runners.
+
+Every window gets its own INI settings file and autosave folder under the test's tmp_path, so no test reads
+or writes the user's preferences or leaves files behind. The default runner is synchronous: derived
+representations and operations finish before the triggering call returns, which makes the GUI
+deterministic; tests of threading and cancelling ask for the real runner.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+from PySide6 import QtCore, QtWidgets
+
+from app.application import configure
+from app.main_window import MainWindow
+from app.settings import Preferences, make_settings
+from app.tasks import SynchronousTaskRunner, TaskRunner
+
+
+@pytest.fixture(autouse=True)
+def _configured_app(qapp: QtWidgets.QApplication) -> QtWidgets.QApplication:
+    configure(qapp)
+    return qapp
+
+
+@pytest.fixture
+def prefs(tmp_path: Path) -> Preferences:
+    """Preferences backed by an INI file of this test only."""
+    return Preferences(make_settings(tmp_path / "settings" / "mrm.ini"))
+
+
+@pytest.fixture
+def sync_runner() -> SynchronousTaskRunner:
+    return SynchronousTaskRunner()
+
+
+@pytest.fixture
+def autosave_dir(tmp_path: Path) -> Path:
+    d = tmp_path / "autosave"
+    d.mkdir()
+    return d
+
+
+WindowFactory = Callable[..., MainWindow]
+
+
+@pytest.fixture
+def make_window(qtbot, prefs: Preferences, autosave_dir: Path) -> Iterator[WindowFactory]:  # type: ignore[no-untyped-def]
+    """``make_window(threaded=False, size=(1200, 800))`` → a shown main window, closed at teardown."""
+    windows: list[MainWindow] = []
+
+    def factory(
+        *, threaded: bool = False, size: tuple[int, int] = (1200, 800), prefs_: Preferences | None = None
+    ) -> MainWindow:
+        runner = TaskRunner() if threaded else SynchronousTaskRunner()
+        w = MainWindow(prefs_ or prefs, runner=runner, autosave_dir=autosave_dir)
+        w.resize(*size)
+        w.show()
+        qtbot.waitExposed(w)
+        w.activateWindow()  # window shortcuts only reach the active window
+        qtbot.waitUntil(lambda: QtWidgets.QApplication.activeWindow() is w, timeout=5000)
+        windows.append(w)
+        return w
+
+    yield factory
+    for w in windows:
+        w.close_now(discard_autosave=True)
+        w.deleteLater()
+    QtWidgets.QApplication.processEvents()
+    QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.Type.DeferredDelete)
+    import gc
+
+    gc.collect()

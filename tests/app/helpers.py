@@ -1,0 +1,105 @@
+"""Helpers for driving the real views with the mouse and keyboard, and for reading back what they drew."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from app.main_window import MainWindow
+from views.base_view import RepresentationView
+
+Qt = QtCore.Qt
+
+
+def widget_pos(view: RepresentationView, x: float, y: float) -> QtCore.QPoint:
+    """Viewport position of the plane point (x, y) in ``view``."""
+    return view.plane.map_from_plane(x, y)
+
+
+def click(
+    qtbot,
+    view: RepresentationView,
+    x: float,
+    y: float,
+    button=Qt.MouseButton.LeftButton,
+    modifiers=Qt.KeyboardModifier.NoModifier,
+) -> None:  # type: ignore[no-untyped-def]
+    vp = view.plane.viewport()
+    pos = widget_pos(view, x, y)
+    qtbot.mouseMove(vp, pos)
+    qtbot.mouseClick(vp, button, modifiers, pos)
+
+
+def drag(
+    qtbot,
+    view: RepresentationView,
+    points: Iterable[tuple[float, float]],
+    modifiers=Qt.KeyboardModifier.NoModifier,
+) -> None:  # type: ignore[no-untyped-def]
+    """Press at the first point, move through the others, release at the last (left button)."""
+    vp = view.plane.viewport()
+    pts = [widget_pos(view, x, y) for x, y in points]
+    qtbot.mouseMove(vp, pts[0])
+    qtbot.mousePress(vp, Qt.MouseButton.LeftButton, modifiers, pts[0])
+    for p in pts[1:]:
+        qtbot.mouseMove(vp, p)
+    qtbot.mouseRelease(vp, Qt.MouseButton.LeftButton, modifiers, pts[-1])
+
+
+def press_key(qtbot, view: RepresentationView, key, modifiers=Qt.KeyboardModifier.NoModifier) -> None:  # type: ignore[no-untyped-def]
+    view.plane.setFocus()
+    qtbot.keyClick(view.plane, key, modifiers)
+
+
+def grab(view: RepresentationView) -> QtGui.QImage:
+    """What the view's plot area shows now (device pixels)."""
+    view.refresh()
+    return view.plane.viewport().grab().toImage()
+
+
+def colour_at(
+    view: RepresentationView, x: float, y: float, image: QtGui.QImage | None = None
+) -> QtGui.QColor:
+    """Colour drawn at the plane point (x, y)."""
+    img = image if image is not None else grab(view)
+    p = widget_pos(view, x, y)
+    dpr = img.devicePixelRatio()
+    return img.pixelColor(int(p.x() * dpr), int(p.y() * dpr))
+
+
+def is_background(view: RepresentationView, c: QtGui.QColor) -> bool:
+    base = view.plane.backgroundBrush().color()
+    return abs(c.red() - base.red()) + abs(c.green() - base.green()) + abs(c.blue() - base.blue()) < 40
+
+
+def wait_drawn(qtbot, win: MainWindow, timeout: int = 10_000) -> None:  # type: ignore[no-untyped-def]
+    qtbot.waitUntil(win.is_drawn, timeout=timeout)
+
+
+def zoom_to(win: MainWindow, xmin: float, ymin: float, xmax: float, ymax: float) -> None:
+    win.views.camera.fit((xmin, ymin, xmax, ymax), margin=0.0)
+    QtWidgets.QApplication.processEvents()
+
+
+def answer_dialog(qtbot, object_name: str, button_text: str) -> list[str]:  # type: ignore[no-untyped-def]
+    """Click ``button_text`` in the next modal QMessageBox named ``object_name``; returns its texts."""
+    seen: list[str] = []
+    tries = [0]
+
+    def poll() -> None:
+        tries[0] += 1
+        if tries[0] > 1000:  # ~10 s: give up rather than poll into the next test
+            return
+        w = QtWidgets.QApplication.activeModalWidget()
+        if isinstance(w, QtWidgets.QMessageBox) and w.objectName() == object_name:
+            seen.extend([w.text(), w.informativeText()])
+            for b in w.buttons():
+                if b.text().replace("&", "") == button_text:
+                    b.click()
+                    return
+            raise AssertionError(f"no button {button_text!r} in {[b.text() for b in w.buttons()]}")
+        QtCore.QTimer.singleShot(10, poll)
+
+    QtCore.QTimer.singleShot(0, poll)
+    return seen

@@ -1,0 +1,235 @@
+"""Files through the window: save, close, reopen; prompts; hostile files; recovery; import/export; drops."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import shapely
+from PySide6 import QtCore, QtGui, QtWidgets
+from shapely.geometry import Polygon
+
+from model.commands import AddObject, RenameObject
+from model.reps.pixels import PixelSet
+from tests.app.helpers import answer_dialog, colour_at, is_background, wait_drawn
+
+SQUARE = Polygon([(0, 0), (12, 0), (12, 9), (0, 9)], [[(3, 3), (6, 3), (6, 6), (3, 6)]])
+
+
+def _populate(win) -> None:  # type: ignore[no-untyped-def]
+    doc = win.doc
+    doc.push(AddObject(doc.make_object(SQUARE, name="square"), select=True))
+    m = np.zeros((5, 7), bool)
+    m[1:4, 1:6] = True
+    m[0, 0] = True
+    doc.push(AddObject(doc.make_object(PixelSet(m, (20, -3)), name="blob")))
+
+
+def _error_boxes(win) -> list[QtWidgets.QMessageBox]:  # type: ignore[no-untyped-def]
+    return [b for b in win.findChildren(QtWidgets.QMessageBox, "errorDialog") if b.isVisible()]
+
+
+def test_save_close_reopen(make_window, qtbot, tmp_path):
+    win = make_window()
+    _populate(win)
+    assert win.isWindowModified()
+    path = tmp_path / "p.mrm"
+    assert win.files.save_as(path)
+    assert path.is_file()
+    assert not win.isWindowModified() and not win.doc.is_modified
+    assert "p.mrm" in win.windowTitle()
+    before = [(o.name, o.kind, o.style) for o in win.doc.objects]
+    sources = [o.source for o in win.doc.objects]
+    win.close_now()
+    win2 = make_window()
+    assert win2.files.open(path, ask=False)
+    after = win2.doc.objects
+    assert [(o.name, o.kind, o.style) for o in after] == before
+    assert after[0].source.equals_exact(sources[0], 0) and after[1].source == sources[1]
+    assert not win2.doc.is_modified
+    wait_drawn(qtbot, win2)
+    assert not is_background(win2.views.discrete, colour_at(win2.views.discrete, 1, 1))
+    assert str(path.resolve()) in win2.prefs.recent_files()
+    assert any("p.mrm" in a.text() for a in win2.recent_menu.actions())
+
+
+def test_unsaved_changes_prompt(make_window, qtbot):
+    win = make_window()
+    _populate(win)
+    answer_dialog(qtbot, "unsavedDialog", "Cancel")
+    win.actions["file.new"].trigger()
+    assert len(win.doc) == 2  # cancelled: nothing lost
+    texts = answer_dialog(qtbot, "unsavedDialog", "Discard")
+    win.actions["file.new"].trigger()
+    assert len(win.doc) == 0 and not win.doc.is_modified
+    assert "Untitled" in texts[0]
+
+
+def test_hostile_files_show_an_error_and_keep_the_document(make_window, qtbot, tmp_path):
+    win = make_window()
+    _populate(win)
+    win.doc.push(RenameObject(win.doc.objects[0].id, "kept"))
+    state = [(o.id, o.name) for o in win.doc.objects]
+    rev = win.doc.revision
+    hostile = {
+        "garbage.mrm": b"\x00\xff not json at all",
+        "png.mrm": b"\x89PNG\r\n\x1a\n" + b"\x00" * 64,
+        "nested.mrm": b"[" * 100_000 + b"]" * 100_000,
+        "wrong.mrm": b'{"format": "mrm-project", "schema_version": 1, "settings": {"model": "standard"}, '
+        b'"objects": [{"id": 1, "name": "x", "source": {"kind": "discrete", "origin": [0, 0], '
+        b'"shape": [100000, 100000], "bits": "AAAA"}}]}',
+        "future.mrm": b'{"format": "mrm-project", "schema_version": 999, "settings": {}, "objects": []}',
+    }
+    for name, data in hostile.items():
+        p = tmp_path / name
+        p.write_bytes(data)
+        assert not win.files.open(p, ask=False), name
+        boxes = _error_boxes(win)
+        assert boxes, name
+        assert name in boxes[-1].informativeText() or "project" in boxes[-1].informativeText().lower()
+        for b in boxes:
+            b.close()
+        assert [(o.id, o.name) for o in win.doc.objects] == state
+        assert win.doc.revision == rev
+    assert not win.files.open(tmp_path / "missing.mrm", ask=False)
+    assert "no such file" in _error_boxes(win)[-1].informativeText()
+
+
+def test_recovery_after_a_crash_of_a_saved_project(make_window, qtbot, tmp_path):
+    win = make_window()
+    _populate(win)
+    path = tmp_path / "r.mrm"
+    assert win.files.save_as(path)
+    win.doc.push(RenameObject(win.doc.objects[0].id, "edited after saving"))
+    win.files.autosaver.interval = 0.0  # due at once: the next timer tick writes the side file
+    win.files.autosave_tick()
+    side = win.files.autosaver.path
+    assert side.is_file()
+    win.close_now(discard_autosave=False)  # the "crash": the side file stays
+    assert side.is_file()
+
+    win2 = make_window()
+    texts = answer_dialog(qtbot, "recoveryDialog", "Recover")
+    assert win2.files.open(path, ask=False)
+    assert "r.mrm" in texts[0]
+    assert win2.doc.objects[0].name == "edited after saving"
+    assert win2.doc.is_modified and win2.isWindowModified()
+    assert win2.doc.path == path.resolve()
+    assert win2.files.save()
+    assert not win2.doc.is_modified
+    assert not side.exists()
+
+
+def test_recovery_of_an_untitled_document_from_a_dead_process(make_window, qtbot, autosave_dir):
+    win = make_window()
+    _populate(win)
+    win.files.autosaver.write_now()
+    side = win.files.autosaver.path
+    win.close_now(discard_autosave=False)
+    # The crashed session's process is gone: give the file the pid of a process that has exited.
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    )
+    orphan = side.with_name(f"untitled-{int(dead.stdout)}-deadbeef.mrm.autosave")
+    side.rename(orphan)
+    win2 = make_window()
+    answer_dialog(qtbot, "recoveryDialog", "Recover")
+    assert win2.files.check_orphans()
+    assert [o.name for o in win2.doc.objects] == ["square", "blob"]
+    assert win2.doc.is_modified and win2.doc.path is None
+    assert not orphan.exists()
+    # Discarding deletes the autosave and keeps the current document.
+    win2.files.autosaver.write_now()
+    moved = win2.files.autosaver.path.rename(orphan)
+    win3 = make_window()
+    answer_dialog(qtbot, "recoveryDialog", "Discard")
+    assert not win3.files.check_orphans()
+    assert len(win3.doc) == 0 and not Path(moved).exists()
+
+
+def test_export_and_import_round_trip(make_window, qtbot, tmp_path):
+    win = make_window()
+    _populate(win)
+    square, blob = win.doc.objects
+    for ext in (".png", ".npz", ".geojson", ".wkt", ".svg"):
+        assert win.files.export(square.id, tmp_path / f"sq{ext}"), ext
+    assert win.files.export(blob.id, tmp_path / "blob.png")
+    win2 = make_window()
+    assert win2.files.import_files(
+        [tmp_path / "sq.png", tmp_path / "sq.geojson", tmp_path / "sq.wkt", tmp_path / "blob.png"]
+    )
+    objs = win2.doc.objects
+    assert len(objs) == 4
+    assert win2.doc.history.index == 1  # one undo step for the whole import
+    disc = win.doc.derived(square.id).get("discrete")
+    assert objs[0].source == disc  # pixels come back on their place on the grid
+    # GeoJSON orients rings as RFC 7946 asks; the coordinates themselves come back bit for bit.
+    for o in objs[1:3]:
+        assert shapely.normalize(o.source).equals_exact(shapely.normalize(SQUARE), 0)
+    assert objs[3].source == blob.source
+    assert "<svg" in (tmp_path / "sq.svg").read_text()
+    win2.actions["edit.undo"].trigger()
+    assert len(win2.doc) == 0
+
+
+def test_a_bad_import_is_reported_and_adds_nothing(make_window, tmp_path):
+    win = make_window()
+    (tmp_path / "bad.geojson").write_text(
+        '{"type": "Polygon", "coordinates": [[[0, 0], [1, 1], [0, 1], [1, 0], [0, 0]]]}'
+    )
+    (tmp_path / "bad.png").write_bytes(b"not a png")
+    assert not win.files.import_files([tmp_path / "bad.geojson", tmp_path / "bad.png"])
+    assert len(win.doc) == 0
+    text = _error_boxes(win)[-1].informativeText()
+    assert "bad.geojson" in text and "bad.png" in text
+
+
+def _drag_enter(pos: QtCore.QPointF, mime: QtCore.QMimeData) -> QtGui.QDragEnterEvent:
+    args = (
+        QtCore.Qt.DropAction.CopyAction,
+        mime,
+        QtCore.Qt.MouseButton.LeftButton,
+        QtCore.Qt.KeyboardModifier.NoModifier,
+    )
+    try:  # PySide6 ≥ 6.12 takes a QPointF (the QPoint form is deprecated there)
+        return QtGui.QDragEnterEvent(pos, *args)
+    except TypeError:
+        return QtGui.QDragEnterEvent(pos.toPoint(), *args)
+
+
+def _drop(win, paths) -> bool:  # type: ignore[no-untyped-def]
+    """Drag files over the window and drop them, as a file manager does."""
+    mime = QtCore.QMimeData()
+    mime.setUrls([QtCore.QUrl.fromLocalFile(str(p)) for p in paths])
+    pos = QtCore.QPointF(win.width() / 2, win.height() / 2)
+    buttons, mods = QtCore.Qt.MouseButton.LeftButton, QtCore.Qt.KeyboardModifier.NoModifier
+    enter = _drag_enter(pos, mime)
+    QtWidgets.QApplication.sendEvent(win, enter)
+    if not enter.isAccepted():
+        return False
+    drop = QtGui.QDropEvent(pos, QtCore.Qt.DropAction.CopyAction, mime, buttons, mods)
+    QtWidgets.QApplication.sendEvent(win, drop)
+    return drop.isAccepted()
+
+
+def test_dropping_files_on_the_window(make_window, qtbot, tmp_path):
+    src = make_window()
+    _populate(src)
+    assert src.files.export(src.doc.objects[1].id, tmp_path / "blob.png")
+    assert src.files.save_as(tmp_path / "d.mrm")
+    win = make_window()
+    assert _drop(win, [tmp_path / "blob.png"])
+    qtbot.waitUntil(lambda: len(win.doc) == 1)
+    assert win.doc.objects[0].name == "blob"
+    answer_dialog(qtbot, "unsavedDialog", "Discard")
+    assert _drop(win, [tmp_path / "d.mrm"])
+    qtbot.waitUntil(lambda: win.doc.path is not None)
+    assert [o.name for o in win.doc.objects] == ["square", "blob"]
+    # Something that is not a file (text from another application) is refused.
+    mime = QtCore.QMimeData()
+    mime.setText("hello")
+    enter = _drag_enter(QtCore.QPointF(5, 5), mime)
+    QtWidgets.QApplication.sendEvent(win, enter)
+    assert not enter.isAccepted()

@@ -1,0 +1,204 @@
+"""The frame shared by the four representation views: a header, a :class:`PlaneView`, one layer per object.
+
+A view never mutates the model. It marks objects dirty when the document, a preview or a background
+derivation changes them, and redraws once per event-loop turn (a 0 ms single-shot timer), so a burst of
+events costs one repaint.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pyqtgraph as pg
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from model.derive import Rep
+from model.document import Changes, DocObject
+from views.canvas import PlaneView
+from views.scene import Phantom, Scene
+
+
+class Layer(pg.ItemGroup):
+    """The items drawing one object in one view."""
+
+    def __init__(self, obj_id: int) -> None:
+        super().__init__()
+        self.obj_id = obj_id
+        self.waiting = False  # True while a representation it needs is being computed
+
+    def clear_items(self) -> None:
+        for it in list(self.childItems()):
+            it.setParentItem(None)
+            if it.scene() is not None:
+                it.scene().removeItem(it)
+
+
+class RepresentationView(QtWidgets.QFrame):
+    """Base class of the discrete, region, analytical and Euclidean views."""
+
+    #: Short name (object names, tests), title and what the view shows.
+    name = "base"
+    title = ""
+    subtitle = ""
+    #: The representation the view draws (used for error and "computing" messages).
+    rep: Rep = "discrete"
+
+    #: Emitted after each refresh (tests and the screenshot wait for it).
+    refreshed = QtCore.Signal()
+
+    def __init__(self, scene: Scene, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName(f"repview_{self.name}")
+        self.scene = scene
+        self.setFrameShape(QtWidgets.QFrame.Shape.StyledPanel)
+        lay = QtWidgets.QVBoxLayout(self)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.setSpacing(0)
+        self.header = QtWidgets.QWidget(self)
+        self.header.setObjectName("viewHeader")
+        hl = QtWidgets.QHBoxLayout(self.header)
+        hl.setContentsMargins(8, 3, 6, 3)
+        hl.setSpacing(6)
+        self.title_label = QtWidgets.QLabel(f"<b>{self.title}</b>", self.header)
+        self.subtitle_label = QtWidgets.QLabel(self.subtitle, self.header)
+        self.subtitle_label.setObjectName("viewSubtitle")
+        self.status_label = QtWidgets.QLabel("", self.header)
+        self.status_label.setObjectName("viewStatus")
+        for lab in (self.subtitle_label, self.status_label):
+            # Long texts are cut, never allowed to widen the view (the four views share the space evenly).
+            lab.setSizePolicy(QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Preferred)
+        self.status_label.setAlignment(
+            QtCore.Qt.AlignmentFlag.AlignRight | QtCore.Qt.AlignmentFlag.AlignVCenter
+        )
+        hl.addWidget(self.title_label)
+        hl.addWidget(self.subtitle_label, 2)
+        hl.addWidget(self.status_label, 3)
+        self.header_layout = hl
+        lay.addWidget(self.header)
+        self.plane = PlaneView(self.name, self)
+        lay.addWidget(self.plane, 1)
+        self._layers: dict[int, Layer] = {}
+        self._dirty: set[int] = set()
+        self._all_dirty = True
+        self._timer = QtCore.QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(0)
+        self._timer.timeout.connect(self.refresh)
+        scene.documentChanged.connect(self._on_changes)
+        scene.previewChanged.connect(self.mark_dirty)
+        scene.derivedReady.connect(self.mark_dirty)
+        scene.phantomsChanged.connect(self.mark_all_dirty)
+        self._style_header()
+        self.mark_all_dirty()
+
+    # ------------------------------------------------------------------ scheduling
+    def _on_changes(self, changes: Changes) -> None:
+        if changes.reset or changes.reordered or changes.settings or changes.selection:
+            self.mark_all_dirty()
+            return
+        for i in (*changes.inserted, *changes.removed, *changes.changed):
+            self.mark_dirty(i)
+
+    def mark_dirty(self, obj_id: int) -> None:
+        self._dirty.add(obj_id)
+        self._timer.start()
+
+    def mark_all_dirty(self) -> None:
+        self._all_dirty = True
+        self._timer.start()
+
+    def is_drawn(self) -> bool:
+        """True when nothing is waiting to be drawn or computed."""
+        return (
+            not self._timer.isActive()
+            and not self._all_dirty
+            and not self._dirty
+            and not any(layer.waiting for layer in self._layers.values())
+        )
+
+    def refresh(self) -> None:
+        """Bring the layers of dirty objects up to date with the scene."""
+        self._timer.stop()
+        doc = self.scene.doc
+        objects = self.scene.objects()
+        present = {o.id for o in objects}
+        for i in [i for i in self._layers if i not in present]:
+            self._remove_layer(i)
+        todo = present if self._all_dirty else (self._dirty & present)
+        self._all_dirty = False
+        self._dirty.clear()
+        selected = set(doc.selection)
+        order = {obj.id: k for k, obj in enumerate(objects)}
+        for obj in objects:
+            if obj.id not in todo:
+                continue
+            layer = self._layers.get(obj.id)
+            if layer is None:
+                layer = self._layers[obj.id] = self.make_layer(obj.id)
+                self.plane.vb.addItem(layer)
+            layer.setZValue(order[obj.id] * 2 + (1 if obj.id in selected else 0))
+            layer.setVisible(obj.style.visible and not self.hidden_while_editing(obj.id))
+            if obj.style.visible:
+                layer.waiting = not self.update_layer(layer, obj, obj.id in selected)
+            else:
+                layer.waiting = False
+        self._update_status()
+        self.after_refresh()
+        self.refreshed.emit()
+
+    def _remove_layer(self, obj_id: int) -> None:
+        layer = self._layers.pop(obj_id)
+        self.plane.vb.removeItem(layer)
+
+    def _update_status(self) -> None:
+        errors = []
+        for obj in self.scene.objects():
+            e = self.scene.error(obj.id, self.rep) or self.scene.error(obj.id, "discrete")
+            if e and obj.style.visible:
+                errors.append(f"{obj.name}: {e}")
+        if errors:
+            self.status_label.setText(f"<span style='color:#c0392b'>{errors[0]}</span>")
+            self.status_label.setToolTip("\n".join(errors))
+        elif any(layer.waiting for layer in self._layers.values()):
+            self.status_label.setText("computing…")
+            self.status_label.setToolTip("")
+        else:
+            self.status_label.setText("")
+            self.status_label.setToolTip("")
+
+    def layer(self, obj_id: int) -> Layer | None:
+        return self._layers.get(obj_id)
+
+    # ------------------------------------------------------------------ for subclasses
+    def make_layer(self, obj_id: int) -> Layer:
+        return Layer(obj_id)
+
+    def update_layer(self, layer: Layer, obj: DocObject | Phantom, selected: bool) -> bool:
+        """Redraw ``layer`` for ``obj``; return False when a representation is still being computed."""
+        raise NotImplementedError
+
+    def hidden_while_editing(self, obj_id: int) -> bool:
+        """True when a tool draws the object itself for now (the brush's stroke in progress)."""
+        return False
+
+    def after_refresh(self) -> None:
+        """Hook run after the layers were updated (e.g. the selected segment's overlay)."""
+
+    def get(self, obj_id: int, rep: Rep) -> Any | None:
+        return self.scene.get(obj_id, rep)
+
+    # ------------------------------------------------------------------ appearance
+    def _style_header(self) -> None:
+        pal = self.palette()
+        mid = pal.color(QtGui.QPalette.ColorRole.PlaceholderText).name()
+        self.subtitle_label.setStyleSheet(f"color: {mid};")
+        self.status_label.setStyleSheet(f"color: {mid};")
+
+    def changeEvent(self, ev: QtCore.QEvent) -> None:
+        if ev.type() in (QtCore.QEvent.Type.PaletteChange, QtCore.QEvent.Type.ApplicationPaletteChange):
+            self._style_header()
+            self.mark_all_dirty()
+        super().changeEvent(ev)
+
+    def is_dark(self) -> bool:
+        return self.plane.is_dark()

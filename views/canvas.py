@@ -1,0 +1,374 @@
+"""The plane canvas shared by the four representation views.
+
+A :class:`PlaneView` is a pyqtgraph PlotWidget whose ViewBox shows the plane with y up and a locked 1:1
+aspect. Views are tied together by a :class:`Camera` (centre and screen pixels per plane unit) instead of
+pyqtgraph's axis links, which fight the aspect lock when the views have different shapes: panning or zooming
+one view moves the camera and every other view follows with its own size.
+
+Pixel p = (x, y) covers the voxel [x−½, x+½]×[y−½, y+½]. :class:`MaskItem` draws a boolean ``mask[row, col]``
+with origin (x0, y0) by placing the image at (x0−½, y0−½) with row-major axis order: image row r is drawn at
+y0 + r, so a y-up view shows it the right way up without flipping any array.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6 import QtCore, QtGui, QtWidgets
+
+#: Screen pixels per plane unit allowed by zooming.
+MIN_SCALE = 1e-3
+MAX_SCALE = 400.0
+
+
+def qcolor(c: str | QtGui.QColor | tuple[int, ...], alpha: int | None = None) -> QtGui.QColor:
+    """A QColor from '#rrggbb', a QColor or a tuple, with an optional alpha override."""
+    col = QtGui.QColor(c) if not isinstance(c, tuple) else QtGui.QColor(*c)
+    if alpha is not None:
+        col.setAlpha(alpha)
+    return col
+
+
+def rgba(c: str | QtGui.QColor, alpha: int = 255) -> tuple[int, int, int, int]:
+    """(r, g, b, alpha) of a colour."""
+    q = qcolor(c)
+    return (q.red(), q.green(), q.blue(), alpha)
+
+
+# ---------------------------------------------------------------------------------------------- camera
+class Camera(QtCore.QObject):
+    """Centre (plane coordinates) and scale (screen pixels per plane unit) shared by linked views."""
+
+    changed = QtCore.Signal()
+
+    def __init__(self, parent: QtCore.QObject | None = None) -> None:
+        super().__init__(parent)
+        self.cx = 0.0
+        self.cy = 0.0
+        self.scale = 8.0
+        self._views: list[PlaneView] = []
+        self._applying = False
+
+    def add_view(self, view: PlaneView) -> None:
+        self._views.append(view)
+        view.vb.sigRangeChangedManually.connect(lambda *_a, v=view: self._from_view(v))
+        view.vb.sigResized.connect(lambda *_a, v=view: self._apply_to(v))
+        self._apply_to(view)
+
+    def views(self) -> list[PlaneView]:
+        return list(self._views)
+
+    def set(self, cx: float, cy: float, scale: float) -> None:
+        """Move every view to centre (cx, cy) at ``scale`` screen pixels per unit."""
+        if not (math.isfinite(cx) and math.isfinite(cy) and math.isfinite(scale)) or scale <= 0:
+            return
+        self.cx, self.cy = float(cx), float(cy)
+        self.scale = min(MAX_SCALE, max(MIN_SCALE, float(scale)))
+        for v in self._views:
+            self._apply_to(v)
+        self.changed.emit()
+
+    def zoom(self, factor: float, about: tuple[float, float] | None = None) -> None:
+        """Multiply the scale by ``factor``, keeping the plane point ``about`` (default the centre) fixed."""
+        new = min(MAX_SCALE, max(MIN_SCALE, self.scale * factor))
+        if about is None:
+            self.set(self.cx, self.cy, new)
+            return
+        ax, ay = about
+        k = self.scale / new
+        self.set(ax + (self.cx - ax) * k, ay + (self.cy - ay) * k, new)
+
+    def fit(self, rect: tuple[float, float, float, float], margin: float = 0.06) -> None:
+        """Show the plane rectangle (xmin, ymin, xmax, ymax) whole in every view."""
+        xmin, ymin, xmax, ymax = rect
+        w, h = max(xmax - xmin, 1.0), max(ymax - ymin, 1.0)
+        scales = []
+        for v in self._views:
+            if not v.isVisible() and any(o.isVisible() for o in self._views):
+                continue
+            vw, vh = v.viewport_size()
+            if vw > 4 and vh > 4:
+                scales.append(min(vw / w, vh / h))
+        scale = min(scales) if scales else 8.0
+        self.set((xmin + xmax) / 2, (ymin + ymax) / 2, scale * (1 - 2 * margin))
+
+    def _from_view(self, view: PlaneView) -> None:
+        if self._applying:
+            return
+        r = view.vb.viewRect()
+        vw, _vh = view.viewport_size()
+        if r.width() <= 0 or vw <= 0:
+            return
+        self.cx, self.cy = r.center().x(), r.center().y()
+        self.scale = min(MAX_SCALE, max(MIN_SCALE, vw / r.width()))
+        for v in self._views:
+            if v is not view:
+                self._apply_to(v)
+        self.changed.emit()
+
+    def _apply_to(self, view: PlaneView) -> None:
+        vw, vh = view.viewport_size()
+        if vw <= 0 or vh <= 0:
+            return
+        hw, hh = vw / (2 * self.scale), vh / (2 * self.scale)
+        self._applying = True
+        try:
+            view.vb.setRange(
+                xRange=(self.cx - hw, self.cx + hw), yRange=(self.cy - hh, self.cy + hh), padding=0
+            )
+        finally:
+            self._applying = False
+
+
+# ---------------------------------------------------------------------------------------------- items
+class PixelGridItem(pg.GraphicsObject):
+    """Lines along the pixel sides (half-integers), drawn only when zoomed in far enough."""
+
+    def __init__(self, threshold: float = 8.0) -> None:
+        super().__init__()
+        self.threshold = threshold
+        self.enabled = True
+        self._rect = QtCore.QRectF()
+        self._colour = QtGui.QColor(128, 128, 128)
+        self.setZValue(50)
+
+    def set_colour(self, c: QtGui.QColor) -> None:
+        self._colour = QtGui.QColor(c)
+        self.update()
+
+    def view_changed(self, rect: QtCore.QRectF) -> None:
+        self.prepareGeometryChange()
+        self._rect = QtCore.QRectF(rect)
+        self.update()
+
+    def boundingRect(self) -> QtCore.QRectF:
+        return self._rect
+
+    def screen_scale(self) -> float:
+        """Screen pixels per plane unit (not ``scale``: that is QGraphicsItem's own)."""
+        vb = self.getViewBox()
+        if vb is None or self._rect.width() <= 0:
+            return 0.0
+        return float(vb.width()) / self._rect.width()
+
+    def is_drawn(self) -> bool:
+        """True when the grid is visible at the current zoom."""
+        return self.enabled and self.isVisible() and self.screen_scale() >= self.threshold
+
+    def paint(self, p: QtGui.QPainter, *_args: object) -> None:
+        s = self.screen_scale()
+        if not self.enabled or s < self.threshold:
+            return
+        r = self._rect
+        # Fade in over one doubling of the zoom so the grid does not pop.
+        fade = min(1.0, (s - self.threshold) / self.threshold + 0.35)
+        col = QtGui.QColor(self._colour)
+        col.setAlphaF(col.alphaF() * fade)
+        pen = QtGui.QPen(col)
+        pen.setCosmetic(True)
+        pen.setWidthF(1.0)
+        p.setPen(pen)
+        p.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, False)
+        x0 = math.floor(r.left() - 0.5) + 0.5
+        y0 = math.floor(r.top() - 0.5) + 0.5
+        nx = int(r.width()) + 2
+        ny = int(r.height()) + 2
+        lines = [QtCore.QLineF(x0 + i, r.top(), x0 + i, r.bottom()) for i in range(nx)]
+        lines += [QtCore.QLineF(r.left(), y0 + j, r.right(), y0 + j) for j in range(ny)]
+        p.drawLines(lines)
+
+
+def full_lut(lut: np.ndarray) -> np.ndarray:
+    """Pad an RGBA lookup table to 256 entries (transparent), so that value k is drawn with ``lut[k]``.
+
+    pyqtgraph spreads a shorter table over the whole uint8 range when no levels are given.
+    """
+    lut = np.asarray(lut, dtype=np.uint8).reshape(-1, 4)[:256]
+    out = np.zeros((256, 4), dtype=np.uint8)
+    out[: lut.shape[0]] = lut
+    return out
+
+
+class MaskItem(pg.ImageItem):
+    """A label or boolean image placed on the pixel grid; label k is drawn with ``lut[k]`` (RGBA)."""
+
+    def __init__(self) -> None:
+        super().__init__(axisOrder="row-major")
+        self._origin = (0, 0)
+        self._lut: np.ndarray = full_lut(np.array([[0, 0, 0, 0], [0, 0, 0, 255]]))
+        # Pixels must stay sharp squares at every zoom.
+        self.setAutoDownsample(False)
+
+    def set_pixels(
+        self, data: np.ndarray | None, origin: tuple[int, int], lut: np.ndarray | None = None
+    ) -> None:
+        """Show ``data[row, col]`` (bool or small ints) with pixel (x0 + col, y0 + row) on its voxel."""
+        if lut is not None:
+            self._lut = full_lut(lut)
+        if data is None or data.size == 0:
+            self.clear()
+            self.setVisible(False)
+            return
+        self.setVisible(True)
+        img = data.view(np.uint8) if data.dtype == np.bool_ else data
+        if img.dtype != np.uint8:
+            img = img.astype(np.uint8)
+        self._origin = (int(origin[0]), int(origin[1]))
+        self.setImage(img, autoLevels=False, levels=None, lut=self._lut)
+        h, w = img.shape
+        self.setRect(QtCore.QRectF(self._origin[0] - 0.5, self._origin[1] - 0.5, w, h))
+
+    def update_pixels(self, data: np.ndarray) -> None:
+        """Replace the image data in place (same shape and origin): the brush's fast path."""
+        img = data.view(np.uint8) if data.dtype == np.bool_ else data
+        self.updateImage(img)
+
+    def set_lut(self, lut: np.ndarray) -> None:
+        self._lut = full_lut(lut)
+        if self.image is not None:
+            self.setLookupTable(self._lut)
+
+
+# ---------------------------------------------------------------------------------------------- view
+class PlaneViewBox(pg.ViewBox):
+    """A ViewBox with y up, 1:1 aspect, no pyqtgraph context menu, and zoom limits."""
+
+    def __init__(self) -> None:
+        super().__init__(invertY=False, lockAspect=True, enableMenu=False)
+        self.setMouseMode(pg.ViewBox.PanMode)
+        self.setDefaultPadding(0.0)
+        self.disableAutoRange()
+
+    def wheelEvent(self, ev: object, axis: int | None = None) -> None:
+        # Zoom about the cursor on both axes only (an axis-only zoom would break the 1:1 aspect).
+        super().wheelEvent(ev, None)
+
+
+class PlaneView(pg.PlotWidget):
+    """One view of the plane; forwards mouse and key events in plane coordinates to the active tool.
+
+    Signals
+    -------
+    cursorMoved(float, float)
+        The cursor's plane coordinates (NaN, NaN when it leaves the view).
+    """
+
+    cursorMoved = QtCore.Signal(float, float)
+
+    def __init__(self, name: str, parent: QtWidgets.QWidget | None = None) -> None:
+        vb = PlaneViewBox()
+        super().__init__(parent=parent, viewBox=vb)
+        self.vb = vb
+        self.setObjectName(f"view_{name}")
+        self.name = name
+        pi = self.getPlotItem()
+        pi.hideButtons()
+        pi.setMenuEnabled(False)
+        for side in ("left", "bottom"):
+            ax = pi.getAxis(side)
+            # Fixed axis sizes: an axis that widened with its tick labels would shift the plot area, and the
+            # whole picture with it, under the cursor.
+            ax.setStyle(tickTextOffset=3, autoExpandTextSpace=False, autoReduceTextSpace=False)
+        pi.getAxis("left").setWidth(44)
+        pi.getAxis("bottom").setHeight(24)
+        pi.showAxis("left")
+        pi.showAxis("bottom")
+        pi.layout.setContentsMargins(2, 2, 6, 2)
+        self.grid = PixelGridItem()
+        self.vb.addItem(self.grid, ignoreBounds=True)
+        self.vb.sigRangeChanged.connect(lambda *_a: self.grid.view_changed(self.vb.viewRect()))
+        self.setMouseTracking(True)
+        self.viewport().setMouseTracking(True)
+        self.viewport().installEventFilter(self)
+        self.tool_handler: Callable[[PlaneView, QtCore.QEvent], bool] | None = None
+        self.setFocusPolicy(QtCore.Qt.FocusPolicy.StrongFocus)
+        self.apply_palette()
+
+    # ------------------------------------------------------------------ geometry
+    def viewport_size(self) -> tuple[float, float]:
+        """Width and height, in screen pixels, of the ViewBox (the plot area)."""
+        return float(self.vb.width()), float(self.vb.height())
+
+    def pixels_per_unit(self) -> float:
+        """Screen pixels per plane unit (not ``scale``: that is QGraphicsView's own)."""
+        r = self.vb.viewRect()
+        return float(self.vb.width()) / r.width() if r.width() > 0 else 0.0
+
+    def map_to_plane(self, pos: QtCore.QPointF | QtCore.QPoint) -> tuple[float, float]:
+        """Viewport widget coordinates → plane coordinates."""
+        sp = self.mapToScene(pos.toPoint() if isinstance(pos, QtCore.QPointF) else pos)
+        p = self.vb.mapSceneToView(QtCore.QPointF(sp))
+        return float(p.x()), float(p.y())
+
+    def map_from_plane(self, x: float, y: float) -> QtCore.QPoint:
+        """Plane coordinates → viewport widget coordinates (rounded to the nearest pixel)."""
+        sp = self.vb.mapViewToScene(QtCore.QPointF(x, y))
+        return self.mapFromScene(sp)
+
+    # ------------------------------------------------------------------ appearance
+    def apply_palette(self) -> None:
+        pal = self.palette()
+        base = pal.color(QtGui.QPalette.ColorRole.Base)
+        text = pal.color(QtGui.QPalette.ColorRole.Text)
+        self.setBackground(base)
+        for side in ("left", "bottom"):
+            ax = self.getPlotItem().getAxis(side)
+            ax.setPen(pg.mkPen(qcolor(text, 110)))
+            ax.setTextPen(pg.mkPen(qcolor(text, 170)))
+        dark = base.lightness() < 128
+        self.grid.set_colour(QtGui.QColor(255, 255, 255, 60) if dark else QtGui.QColor(0, 0, 0, 45))
+
+    def changeEvent(self, ev: QtCore.QEvent) -> None:
+        if getattr(self, "grid", None) is not None and ev.type() in (
+            QtCore.QEvent.Type.PaletteChange,
+            QtCore.QEvent.Type.ApplicationPaletteChange,
+        ):
+            self.apply_palette()
+        super().changeEvent(ev)
+
+    def is_dark(self) -> bool:
+        return self.palette().color(QtGui.QPalette.ColorRole.Base).lightness() < 128
+
+    # ------------------------------------------------------------------ events
+    def eventFilter(self, obj: QtCore.QObject, ev: QtCore.QEvent) -> bool:
+        t = ev.type()
+        if t == QtCore.QEvent.Type.MouseMove:
+            assert isinstance(ev, QtGui.QMouseEvent)
+            x, y = self.map_to_plane(ev.position())
+            self.cursorMoved.emit(x, y)
+        elif t == QtCore.QEvent.Type.Leave:
+            self.cursorMoved.emit(math.nan, math.nan)
+        if self.tool_handler is not None and t in (
+            QtCore.QEvent.Type.MouseButtonPress,
+            QtCore.QEvent.Type.MouseButtonRelease,
+            QtCore.QEvent.Type.MouseMove,
+            QtCore.QEvent.Type.MouseButtonDblClick,
+            QtCore.QEvent.Type.Leave,
+        ):
+            return self.tool_handler(self, ev)
+        return False
+
+    def event(self, ev: QtCore.QEvent) -> bool:
+        # Keys a tool is using (Enter, Esc, Backspace, Delete) must reach it before window shortcuts.
+        if (
+            ev.type() == QtCore.QEvent.Type.ShortcutOverride
+            and getattr(self, "tool_handler", None) is not None
+        ) and self.tool_handler(self, ev):
+            ev.accept()
+            return True
+        return super().event(ev)
+
+    def keyPressEvent(self, ev: QtGui.QKeyEvent) -> None:
+        if self.tool_handler is not None and self.tool_handler(self, ev):
+            ev.accept()
+            return
+        super().keyPressEvent(ev)
+
+    def keyReleaseEvent(self, ev: QtGui.QKeyEvent) -> None:
+        if self.tool_handler is not None and self.tool_handler(self, ev):
+            ev.accept()
+            return
+        super().keyReleaseEvent(ev)

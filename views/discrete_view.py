@@ -1,0 +1,110 @@
+"""The discrete view: every object's pixels, the selected one outlined along its crack boundary."""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6 import QtGui
+
+from model.document import DocObject
+from model.reps.pixels import PixelSet
+from views.base_view import Layer, RepresentationView
+from views.canvas import MaskItem, qcolor
+from views.items import PathItem, crack_segments, segments_path
+
+
+class DiscreteLayer(Layer):
+    def __init__(self, obj_id: int) -> None:
+        super().__init__(obj_id)
+        self.mask = MaskItem()
+        self.mask.setParentItem(self)
+        self.outline = PathItem()
+        self.outline.setParentItem(self)
+        self.outline.setZValue(1)
+        self.pixels: PixelSet | None = None
+        self.outlined: PixelSet | None = None
+
+
+class DiscreteView(RepresentationView):
+    name = "discrete"
+    title = "Discrete"
+    subtitle = "pixels"
+    rep = "discrete"
+
+    _stroke_item: MaskItem | None = None
+    _stroke_obj: int | None = None
+
+    def make_layer(self, obj_id: int) -> Layer:
+        return DiscreteLayer(obj_id)
+
+    def update_layer(self, layer: Layer, obj: DocObject, selected: bool) -> bool:
+        assert isinstance(layer, DiscreteLayer)
+        ps = self.get(obj.id, "discrete")
+        if ps is None:
+            return self.scene.error(obj.id, "discrete") is not None
+        alpha = round(255 * (min(1.0, obj.style.opacity + 0.25) if selected else obj.style.opacity))
+        lut = np.array([[0, 0, 0, 0], [*list(qcolor(obj.style.fill).getRgb()[:3]), alpha]])
+        if ps is not layer.pixels or not np.array_equal(layer.mask._lut[:2], lut):
+            layer.mask.set_pixels(ps.mask, ps.origin, lut)
+            layer.pixels = ps
+        if selected:
+            if layer.outlined is not ps:
+                layer.outline.setPath(segments_path(crack_segments(ps.mask, ps.origin)))
+                layer.outlined = ps
+            layer.outline.set_style(None, self.highlight_colour(), 2.0)
+            layer.outline.setVisible(True)
+        else:
+            layer.outline.setVisible(False)
+        return True
+
+    # ------------------------------------------------------------------ brush fast path
+    def show_stroke(
+        self, obj_id: int | None, canvas: np.ndarray, origin: tuple[int, int], reshaped: bool
+    ) -> None:
+        """Show a stroke in progress: ``canvas`` replaces the object's pixels until :meth:`end_stroke`.
+
+        The brush calls this on every dab; when the canvas keeps its shape only the image data is swapped,
+        which is what keeps a dab on a 2048² object within a frame.
+        """
+        item = self._stroke_item
+        if item is None or item.scene() is None:
+            item = self._stroke_item = MaskItem()
+            self.plane.vb.addItem(item)
+            item.setZValue(10_000)
+            reshaped = True
+        if reshaped or self._stroke_obj != obj_id or item.image is None:
+            colour = "#808080"
+            alpha = 200
+            if obj_id is not None and obj_id in self.scene.doc:
+                o = self.scene.doc.get(obj_id)
+                colour = o.style.fill
+                alpha = round(255 * min(1.0, o.style.opacity + 0.25))
+            lut = np.array([[0, 0, 0, 0], [*list(qcolor(colour).getRgb()[:3]), alpha]])
+            item.set_pixels(canvas, origin, lut)
+            self._stroke_obj = obj_id
+            layer = self.layer(obj_id) if obj_id is not None else None
+            if layer is not None:
+                layer.setVisible(False)
+        else:
+            item.update_pixels(canvas)
+
+    def hidden_while_editing(self, obj_id: int) -> bool:
+        return obj_id == self._stroke_obj and self._stroke_item is not None
+
+    def end_stroke(self) -> None:
+        item = self._stroke_item
+        if item is not None:
+            self.plane.vb.removeItem(item)
+            self._stroke_item = None
+        if self._stroke_obj is not None and self._stroke_obj in self.scene.doc:
+            self.mark_dirty(self._stroke_obj)
+            layer = self.layer(self._stroke_obj)
+            if layer is not None:
+                layer.setVisible(self.scene.doc.get(self._stroke_obj).style.visible)
+        self._stroke_obj = None
+
+    def highlight_colour(self) -> QtGui.QColor:
+        return QtGui.QColor("#ffb000") if self.is_dark() else QtGui.QColor("#d35400")
+
+    def mask_item(self, obj_id: int) -> MaskItem | None:
+        layer = self.layer(obj_id)
+        return layer.mask if isinstance(layer, DiscreteLayer) else None

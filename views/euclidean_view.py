@@ -1,0 +1,74 @@
+"""The Euclidean view: every object's polygons; the selected one shows its vertices as handles."""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+from PySide6 import QtGui
+
+from model.document import DocObject
+from views.base_view import Layer, RepresentationView
+from views.canvas import qcolor
+from views.items import MarkersItem, PathItem, geometry_path, polygon_rings
+
+
+class EuclideanLayer(Layer):
+    def __init__(self, obj_id: int) -> None:
+        super().__init__(obj_id)
+        self.polygon = PathItem()
+        self.polygon.setParentItem(self)
+        self.handles = MarkersItem(7.0, "square")
+        self.handles.setParentItem(self)
+        self.handles.setZValue(2)
+        self.geometry: shapely.Geometry | None = None
+        self.vertices = np.zeros((0, 2))
+
+
+def ring_vertices(geom: shapely.Geometry) -> np.ndarray:
+    """Every distinct vertex of the polygon rings (closing points left out), ring after ring."""
+    rings = polygon_rings(geom)
+    if not rings:
+        return np.zeros((0, 2))
+    return np.concatenate([r[:-1] if len(r) > 1 and (r[0] == r[-1]).all() else r for r in rings])
+
+
+class EuclideanView(RepresentationView):
+    name = "euclidean"
+    title = "Euclidean"
+    subtitle = "polygons"
+    rep = "euclidean"
+
+    def make_layer(self, obj_id: int) -> Layer:
+        return EuclideanLayer(obj_id)
+
+    def update_layer(self, layer: Layer, obj: DocObject, selected: bool) -> bool:
+        assert isinstance(layer, EuclideanLayer)
+        geom = self.get(obj.id, "euclidean")
+        if geom is None:
+            return self.scene.error(obj.id, "euclidean") is not None
+        if geom is not layer.geometry:
+            layer.polygon.setPath(geometry_path(geom))
+            layer.geometry = geom
+            layer.vertices = ring_vertices(geom)
+        fill = qcolor(obj.style.fill)
+        fill.setAlphaF(obj.style.opacity * (0.8 if selected else 0.6))
+        stroke = (
+            qcolor(obj.style.fill).darker(160) if not self.is_dark() else qcolor(obj.style.fill).lighter(140)
+        )
+        layer.polygon.set_style(fill, stroke, obj.style.stroke_width + (0.8 if selected else 0.0))
+        if selected:
+            layer.handles.set_points(layer.vertices)
+            dark = self.is_dark()
+            layer.handles.set_colours(
+                QtGui.QColor("#f0f0f0") if dark else QtGui.QColor("#202020"),
+                QtGui.QColor("#303030") if dark else QtGui.QColor("#ffffff"),
+                QtGui.QColor("#ffb000"),
+            )
+            layer.handles.setVisible(True)
+        else:
+            layer.handles.setVisible(False)
+        return True
+
+    def euclidean_layer(self, obj_id: int) -> EuclideanLayer | None:
+        layer = self.layer(obj_id)
+        return layer if isinstance(layer, EuclideanLayer) else None

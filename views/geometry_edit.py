@@ -1,0 +1,171 @@
+"""Pure helpers for the editing tools: vertex references, hit tests, the preview of a vertex edit, brush dabs.
+
+Vertex references follow :mod:`model.commands` (``VertexRef`` = (polygon, ring, index), closing point not
+counted, polygons in MultiPolygon order, ring 0 the exterior), so a preview computed here and the command
+pushed on release describe the same edit.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+from shapely.geometry.polygon import orient
+
+from model.document import validate_geometry
+
+VertexRef = tuple[int, int, int]
+
+
+def rings_of(geom: shapely.Geometry) -> tuple[bool, list[list[np.ndarray]]]:
+    """(is_multi, polygons as lists of rings without the closing point)."""
+    if geom is None or geom.is_empty:
+        return False, []
+    polys = list(geom.geoms) if isinstance(geom, MultiPolygon) else [geom]
+    out = []
+    for p in polys:
+        rings = [np.asarray(p.exterior.coords, dtype=float)[:-1, :2]]
+        rings += [np.asarray(r.coords, dtype=float)[:-1, :2] for r in p.interiors]
+        out.append(rings)
+    return isinstance(geom, MultiPolygon), out
+
+
+def build(multi: bool, polys: list[list[np.ndarray]]) -> shapely.Geometry:
+    """Rebuild a geometry from rings and validate it (raises InvalidGeometryError)."""
+    built = []
+    for rings in polys:
+        if any(len(r) < 3 for r in rings):
+            from model.errors import InvalidGeometryError
+
+            raise InvalidGeometryError("a polygon ring needs at least 3 vertices")
+        built.append(Polygon(np.vstack([rings[0], rings[0][:1]]), [np.vstack([h, h[:1]]) for h in rings[1:]]))
+    geom = MultiPolygon(built) if multi else built[0]
+    return validate_geometry(geom)
+
+
+def vertex_table(geom: shapely.Geometry) -> tuple[np.ndarray, list[VertexRef]]:
+    """All vertices as an (n, 2) array and their references, in ring order."""
+    _multi, polys = rings_of(geom)
+    xy: list[np.ndarray] = []
+    refs: list[VertexRef] = []
+    for p, rings in enumerate(polys):
+        for r, ring in enumerate(rings):
+            xy.append(ring)
+            refs.extend((p, r, i) for i in range(len(ring)))
+    return (np.concatenate(xy) if xy else np.zeros((0, 2))), refs
+
+
+def nearest_vertex(geom: shapely.Geometry, x: float, y: float, radius: float) -> VertexRef | None:
+    """The vertex closest to (x, y) within ``radius`` (plane units), if any."""
+    xy, refs = vertex_table(geom)
+    if not len(xy):
+        return None
+    d = np.hypot(xy[:, 0] - x, xy[:, 1] - y)
+    k = int(np.argmin(d))
+    return refs[k] if d[k] <= radius else None
+
+
+def nearest_edge(
+    geom: shapely.Geometry, x: float, y: float, radius: float
+) -> tuple[VertexRef, tuple[float, float]] | None:
+    """The edge closest to (x, y) within ``radius``: (reference of the insertion place, foot point)."""
+    _multi, polys = rings_of(geom)
+    best: tuple[float, VertexRef, tuple[float, float]] | None = None
+    for p, rings in enumerate(polys):
+        for r, ring in enumerate(rings):
+            a = ring
+            b = np.roll(ring, -1, axis=0)
+            ab = b - a
+            ap = np.array([x, y]) - a
+            den = np.einsum("ij,ij->i", ab, ab)
+            t = np.clip(np.einsum("ij,ij->i", ap, ab) / np.where(den > 0, den, 1.0), 0.0, 1.0)
+            foot = a + ab * t[:, None]
+            d = np.hypot(foot[:, 0] - x, foot[:, 1] - y)
+            k = int(np.argmin(d))
+            if d[k] <= radius and (best is None or d[k] < best[0]):
+                best = (float(d[k]), (p, r, k + 1), (float(foot[k, 0]), float(foot[k, 1])))
+    return None if best is None else (best[1], best[2])
+
+
+def moved_vertex(geom: shapely.Geometry, ref: VertexRef, xy: tuple[float, float]) -> shapely.Geometry:
+    """``geom`` with vertex ``ref`` at ``xy`` (validated)."""
+    multi, polys = rings_of(geom)
+    p, r, i = ref
+    polys[p][r] = polys[p][r].copy()
+    polys[p][r][i] = xy
+    return build(multi, polys)
+
+
+def inserted_vertex(geom: shapely.Geometry, ref: VertexRef, xy: tuple[float, float]) -> shapely.Geometry:
+    """``geom`` with a vertex at ``xy`` inserted before ``ref`` (validated)."""
+    multi, polys = rings_of(geom)
+    p, r, i = ref
+    polys[p][r] = np.insert(polys[p][r], i, xy, axis=0)
+    return build(multi, polys)
+
+
+def deleted_vertex(geom: shapely.Geometry, ref: VertexRef) -> shapely.Geometry:
+    """``geom`` without vertex ``ref`` (validated; a ring keeps at least 3 vertices)."""
+    multi, polys = rings_of(geom)
+    p, r, i = ref
+    polys[p][r] = np.delete(polys[p][r], i, axis=0)
+    return build(multi, polys)
+
+
+def with_hole(geom: shapely.Geometry, ring: np.ndarray) -> shapely.Geometry | None:
+    """``geom`` with ``ring`` added as a hole of the polygon that contains it (None if none does)."""
+    hole = Polygon(ring)
+    multi, polys = rings_of(geom)
+    for _p, rings in enumerate(polys):
+        outer = Polygon(rings[0])
+        if outer.contains(hole):
+            rings.append(np.asarray(ring, dtype=float))
+            return build(multi, polys)
+    return None
+
+
+def new_polygon(ring: np.ndarray) -> shapely.Geometry:
+    """A validated polygon from a drawn ring, oriented counter-clockwise."""
+    return validate_geometry(orient(Polygon(np.asarray(ring, dtype=float)), 1.0))
+
+
+# ---------------------------------------------------------------------------------------------- snapping
+def snap(x: float, y: float, mode: str | None) -> tuple[float, float]:
+    """'centre': nearest pixel centre (integers); 'corner': nearest pixel corner (half-integers)."""
+    if mode == "centre":
+        return float(math.floor(x + 0.5)), float(math.floor(y + 0.5))
+    if mode == "corner":
+        return math.floor(x) + 0.5, math.floor(y) + 0.5
+    return x, y
+
+
+def pixel_at(x: float, y: float) -> tuple[int, int]:
+    """The pixel whose voxel holds the plane point (x, y) (a point on a side goes to the upper/right one)."""
+    return math.floor(x + 0.5), math.floor(y + 0.5)
+
+
+# ---------------------------------------------------------------------------------------------- brush
+def dab_offsets(size: int, shape: str = "round") -> np.ndarray:
+    """Boolean footprint (size × size) of a brush; its centre is at ((size−1)/2, (size−1)/2)."""
+    size = max(1, int(size))
+    if shape == "square" or size <= 2:
+        return np.ones((size, size), dtype=bool)
+    c = (size - 1) / 2.0
+    yy, xx = np.mgrid[0:size, 0:size]
+    return (xx - c) ** 2 + (yy - c) ** 2 <= (size / 2.0) ** 2
+
+
+def dab_origin(x: float, y: float, size: int) -> tuple[int, int]:
+    """Pixel of footprint[0, 0] for a dab centred on the plane point (x, y)."""
+    c = (max(1, int(size)) - 1) / 2.0
+    return math.floor(x - c + 0.5), math.floor(y - c + 0.5)
+
+
+def stroke_centres(a: tuple[float, float], b: tuple[float, float], size: int) -> list[tuple[float, float]]:
+    """Dab centres from a (excluded) to b (included), close enough that the stroke has no gaps."""
+    step = max(0.5, size / 4.0)
+    dist = math.hypot(b[0] - a[0], b[1] - a[1])
+    n = max(1, math.ceil(dist / step))
+    return [(a[0] + (b[0] - a[0]) * k / n, a[1] + (b[1] - a[1]) * k / n) for k in range(1, n + 1)]

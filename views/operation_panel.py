@@ -1,0 +1,460 @@
+"""Operation panels generated from the operations' parameter specs.
+
+Pick the operation and its inputs, set the parameters with sliders and fields; while a slider moves the
+result is previewed in every view (a new request cancels the one still running). Apply runs the operation
+with progress and Cancel in the status bar — never on the GUI thread — and adds the results as new objects,
+one undo step, each remembering its provenance (operation, parameters, inputs).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+from PySide6 import QtCore, QtWidgets
+
+from model.commands import ApplyResults
+from model.document import Provenance
+from model.errors import MRMError
+from views.op_adapter import OpInfo, ParamInfo, json_params, operations
+from views.scene import Scene
+
+SLIDER_STEPS = 1000
+
+
+class ParamControl(QtWidgets.QWidget):
+    """The control of one parameter: a slider with a field for numbers, a box, a choice, a point."""
+
+    changed = QtCore.Signal()
+    #: The slider is being dragged (True) or was released (False).
+    dragging = QtCore.Signal(bool)
+
+    def __init__(self, info: ParamInfo, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.info = info
+        self.setObjectName(f"param_{info.name}")
+        lay = QtWidgets.QHBoxLayout(self)
+        lay.setContentsMargins(0, 0, 0, 0)
+        self.slider: QtWidgets.QSlider | None = None
+        self.field: Any = None
+        tip = info.help + (f" ({info.unit})" if info.unit else "")
+        self.setToolTip(tip)
+        k = info.kind
+        if k in ("float", "int"):
+            lo = info.minimum if info.minimum is not None else (0.0 if k == "int" else -1000.0)
+            hi = info.maximum if info.maximum is not None else (lo + 100.0)
+            self._lo, self._hi = float(lo), float(hi)
+            self._log = info.log or (self._lo > 0 and self._hi / self._lo >= 100)
+            if k == "float":
+                f = QtWidgets.QDoubleSpinBox(self)
+                f.setDecimals(4)
+                f.setRange(self._lo, self._hi)
+                f.setSingleStep(info.step or (self._hi - self._lo) / 100 or 0.1)
+            else:
+                f = QtWidgets.QSpinBox(self)
+                f.setRange(int(self._lo), int(self._hi))
+                f.setSingleStep(int(info.step or 1))
+            if info.unit:
+                f.setSuffix(f" {info.unit}")
+            f.setKeyboardTracking(False)
+            f.setObjectName(f"field_{info.name}")
+            self.field = f
+            s = QtWidgets.QSlider(QtCore.Qt.Orientation.Horizontal, self)
+            s.setObjectName(f"slider_{info.name}")
+            s.setRange(0, SLIDER_STEPS)
+            self.slider = s
+            lay.addWidget(s, 3)
+            lay.addWidget(f, 2)
+            s.valueChanged.connect(self._slider_moved)
+            s.sliderPressed.connect(lambda: self.dragging.emit(True))
+            s.sliderReleased.connect(lambda: self.dragging.emit(False))
+            f.valueChanged.connect(self._field_changed)
+        elif k == "bool":
+            self.field = QtWidgets.QCheckBox(self)
+            self.field.toggled.connect(lambda _v: self.changed.emit())
+            lay.addWidget(self.field)
+        elif k == "choice":
+            self.field = QtWidgets.QComboBox(self)
+            for c in info.choices:
+                self.field.addItem(str(c), c)
+            self.field.currentIndexChanged.connect(lambda _i: self.changed.emit())
+            lay.addWidget(self.field)
+        elif k == "point":
+            self.xs = QtWidgets.QDoubleSpinBox(self)
+            self.ys = QtWidgets.QDoubleSpinBox(self)
+            for w, label in ((self.xs, "x "), (self.ys, "y ")):
+                w.setRange(-1e9, 1e9)
+                w.setDecimals(4)
+                w.setPrefix(label)
+                w.setKeyboardTracking(False)
+                w.valueChanged.connect(lambda _v: self.changed.emit())
+                lay.addWidget(w)
+        else:
+            self.field = QtWidgets.QLineEdit(self)
+            self.field.editingFinished.connect(self.changed.emit)
+            lay.addWidget(self.field)
+        self._syncing = False
+        self.set_value(info.default)
+
+    # ------------------------------------------------------------------ slider ↔ field
+    def _to_slider(self, v: float) -> int:
+        lo, hi = self._lo, self._hi
+        if hi <= lo:
+            return 0
+        if self._log:
+            t = (math.log(max(v, lo)) - math.log(lo)) / (math.log(hi) - math.log(lo))
+        else:
+            t = (v - lo) / (hi - lo)
+        return round(min(1.0, max(0.0, t)) * SLIDER_STEPS)
+
+    def _from_slider(self, i: int) -> float:
+        t = i / SLIDER_STEPS
+        lo, hi = self._lo, self._hi
+        v = math.exp(math.log(lo) + t * (math.log(hi) - math.log(lo))) if self._log else lo + t * (hi - lo)
+        # Round to a readable value: the parameter becomes exactly what the field shows.
+        digits = max(0, 3 - math.floor(math.log10(abs(v)))) if v else 0
+        return round(v, digits) if self.info.kind == "float" else float(round(v))
+
+    def _slider_moved(self, i: int) -> None:
+        if self._syncing:
+            return
+        self._syncing = True
+        try:
+            self.field.setValue(self._from_slider(i))
+        finally:
+            self._syncing = False
+        self.changed.emit()
+
+    def _field_changed(self, v: float) -> None:
+        if self._syncing:
+            return
+        self._syncing = True
+        try:
+            if self.slider is not None:
+                self.slider.setValue(self._to_slider(float(v)))
+        finally:
+            self._syncing = False
+        self.changed.emit()
+
+    # ------------------------------------------------------------------ value
+    def value(self) -> Any:
+        k = self.info.kind
+        if k == "float":
+            return float(self.field.value())
+        if k == "int":
+            return int(self.field.value())
+        if k == "bool":
+            return bool(self.field.isChecked())
+        if k == "choice":
+            return self.field.currentData()
+        if k == "point":
+            return (float(self.xs.value()), float(self.ys.value()))
+        return self.field.text()
+
+    def set_value(self, v: Any) -> None:
+        k = self.info.kind
+        self._syncing = True
+        try:
+            if k in ("float", "int") and v is not None:
+                self.field.setValue(v)
+                if self.slider is not None:
+                    self.slider.setValue(self._to_slider(float(v)))
+            elif k == "bool":
+                self.field.setChecked(bool(v))
+            elif k == "choice":
+                i = self.field.findData(v)
+                self.field.setCurrentIndex(max(0, i))
+            elif k == "point":
+                x, y = v if v is not None else (0.0, 0.0)
+                self.xs.setValue(float(x))
+                self.ys.setValue(float(y))
+            elif k == "text":
+                self.field.setText("" if v is None else str(v))
+        finally:
+            self._syncing = False
+
+
+class OperationPanel(QtWidgets.QWidget):
+    """The Operations dock."""
+
+    applied = QtCore.Signal(list)  # ids of the new objects
+    previewed = QtCore.Signal()
+
+    def __init__(self, scene: Scene, runner: Any, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("operationPanel")
+        self.scene = scene
+        self.runner = runner
+        self.ops = operations()
+        self.op: OpInfo | None = None
+        self.controls: list[ParamControl] = []
+        self.inputs: list[QtWidgets.QComboBox] = []
+        lay = QtWidgets.QVBoxLayout(self)
+        lay.setContentsMargins(6, 6, 6, 6)
+        self.combo = QtWidgets.QComboBox(self)
+        self.combo.setObjectName("operationCombo")
+        for op in self.ops:
+            self.combo.addItem(op.title, op.name)
+        lay.addWidget(self.combo)
+        self.help = QtWidgets.QLabel("", self)
+        self.help.setWordWrap(True)
+        self.help.setObjectName("operationHelp")
+        lay.addWidget(self.help)
+        self.form_box = QtWidgets.QWidget(self)
+        self.form = QtWidgets.QFormLayout(self.form_box)
+        self.form.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(self.form_box)
+        self.live = QtWidgets.QCheckBox("Live preview", self)
+        self.live.setObjectName("livePreview")
+        self.live.setChecked(True)
+        self.live.setToolTip("Show the result in every view while the parameters change")
+        self.live.toggled.connect(lambda on: self.request_preview() if on else self.clear_preview())
+        lay.addWidget(self.live)
+        row = QtWidgets.QHBoxLayout()
+        self.apply_button = QtWidgets.QPushButton("Apply", self)
+        self.apply_button.setObjectName("applyOperation")
+        self.apply_button.setDefault(True)
+        self.apply_button.clicked.connect(self.apply)
+        self.cancel_button = QtWidgets.QPushButton("Cancel", self)
+        self.cancel_button.setObjectName("cancelOperation")
+        self.cancel_button.clicked.connect(self.cancel)
+        self.cancel_button.setEnabled(False)
+        row.addStretch(1)
+        row.addWidget(self.cancel_button)
+        row.addWidget(self.apply_button)
+        lay.addLayout(row)
+        self.status = QtWidgets.QLabel("", self)
+        self.status.setObjectName("operationStatus")
+        self.status.setWordWrap(True)
+        lay.addWidget(self.status)
+        lay.addStretch(1)
+        self._preview_timer = QtCore.QTimer(self)
+        self._preview_timer.setSingleShot(True)
+        self._preview_timer.setInterval(30)
+        self._preview_timer.timeout.connect(self._run_preview)
+        self.combo.currentIndexChanged.connect(self._op_changed)
+        scene.documentChanged.connect(self._doc_changed)
+        if not self.ops:
+            self.combo.hide()
+            self.live.hide()
+            self.apply_button.setEnabled(False)
+            self.help.setText("No operations are available in this build (model.ops is missing).")
+        else:
+            self._op_changed(0)
+
+    # ------------------------------------------------------------------ building
+    def fill_menu(self, menu: QtWidgets.QMenu) -> None:
+        if self.ops:
+            menu.addSeparator()
+        for k, op in enumerate(self.ops):
+            act = menu.addAction(f"{op.title}…")
+            act.setObjectName(f"op.{op.name}")
+            act.triggered.connect(lambda _c=False, i=k: self.choose(i))
+
+    def choose(self, index: int) -> None:
+        self.combo.setCurrentIndex(index)
+        w = self.window()
+        if hasattr(w, "show_operations"):
+            w.show_operations()
+
+    def select_operation(self, name: str) -> None:
+        i = self.combo.findData(name)
+        if i < 0:
+            raise KeyError(f"no operation {name!r}; have {[o.name for o in self.ops]}")
+        self.combo.setCurrentIndex(i)
+
+    def _op_changed(self, index: int) -> None:
+        self.clear_preview()
+        self.op = self.ops[index] if 0 <= index < len(self.ops) else None
+        while self.form.rowCount():
+            self.form.removeRow(0)
+        self.controls = []
+        self.inputs = []
+        if self.op is None:
+            return
+        self.help.setText(self.op.help.strip().split("\n\n")[0])
+        for k in range(self.op.arity):
+            cb = QtWidgets.QComboBox(self.form_box)
+            cb.setObjectName(f"input_{k}")
+            cb.currentIndexChanged.connect(lambda _i: self.request_preview())
+            self.inputs.append(cb)
+            self.form.addRow("Input" if self.op.arity == 1 else f"Input {'AB'[k] if k < 2 else k + 1}", cb)
+        for p in self.op.params:
+            c = ParamControl(p, self.form_box)
+            c.changed.connect(self.request_preview)
+            self.controls.append(c)
+            label = QtWidgets.QLabel(p.label, self.form_box)
+            label.setToolTip(c.toolTip())
+            self.form.addRow(label, c)
+        self._fill_inputs()
+        self.request_preview()
+
+    def _fill_inputs(self) -> None:
+        doc = self.scene.doc
+        sel = list(doc.selection)
+        for k, cb in enumerate(self.inputs):
+            current = cb.currentData()
+            cb.blockSignals(True)
+            cb.clear()
+            for o in reversed(doc.objects):
+                cb.addItem(o.name, o.id)
+            want = sel[k] if k < len(sel) else current
+            if want is None and cb.count() > k:
+                want = cb.itemData(k)
+            i = cb.findData(want)
+            cb.setCurrentIndex(i if i >= 0 else (0 if cb.count() else -1))
+            cb.blockSignals(False)
+
+    def _doc_changed(self, ch: Any) -> None:
+        if (
+            ch.inserted
+            or ch.removed
+            or ch.reset
+            or ch.selection
+            or any("name" in w for w in ch.changed.values())
+        ):
+            self._fill_inputs()
+        if ch.changed or ch.removed or ch.reset or ch.settings:
+            self.request_preview()
+
+    # ------------------------------------------------------------------ values
+    def values(self) -> dict[str, Any]:
+        return {c.info.name: c.value() for c in self.controls}
+
+    def control(self, name: str) -> ParamControl:
+        for c in self.controls:
+            if c.info.name == name:
+                return c
+        raise KeyError(name)
+
+    def input_ids(self) -> list[int]:
+        return [int(cb.currentData()) for cb in self.inputs if cb.currentData() is not None]
+
+    def _job(self) -> tuple[OpInfo, Any, list[int], list[Any]] | None:
+        op = self.op
+        if op is None:
+            return None
+        ids = self.input_ids()
+        if len(ids) < op.arity:
+            self.status.setText(f"{op.title} needs {op.arity} input object{'s' if op.arity > 1 else ''}.")
+            return None
+        try:
+            params = op.make_params(self.values())
+        except (MRMError, TypeError, ValueError) as e:
+            self.status.setText(f"<span style='color:#c0392b'>{e}</span>")
+            return None
+        sources = [self.scene.doc.get(i).source for i in ids]
+        return op, params, ids, sources
+
+    # ------------------------------------------------------------------ preview
+    def request_preview(self) -> None:
+        if self.live.isChecked() and self.op is not None:
+            self._preview_timer.start()
+
+    def _run_preview(self) -> None:
+        job = self._job()
+        if job is None:
+            self.clear_preview()
+            return
+        op, params, _ids, sources = job
+        t0 = time.perf_counter()
+
+        def done(results: list[tuple[str | None, Any]]) -> None:
+            items = [(name or f"{op.title} preview", src) for name, src in results]
+            self.scene.set_phantoms(items)
+            self.status.setText(f"preview: {len(items)} result{'s' if len(items) != 1 else ''}, "
+                                f"{time.perf_counter() - t0:.2f} s")  # fmt: skip
+            self.previewed.emit()
+
+        def failed(exc: BaseException) -> None:
+            if not isinstance(exc, MRMError):
+                raise exc
+            self.scene.set_phantoms([])
+            self.status.setText(f"<span style='color:#c0392b'>{exc}</span>")
+
+        self.runner.submit(
+            "preview",
+            lambda progress: op.run(sources, params, progress),
+            on_result=done,
+            on_error=failed,
+            label=f"Preview {op.title}",
+            revision=self.scene.doc.revision,
+        )
+
+    def clear_preview(self) -> None:
+        self._preview_timer.stop()
+        self.runner.cancel("preview")
+        if self.scene.phantoms():
+            self.scene.set_phantoms([])
+
+    # ------------------------------------------------------------------ apply / cancel
+    def apply(self) -> None:
+        job = self._job()
+        if job is None:
+            return
+        op, params, ids, sources = job
+        self._preview_timer.stop()
+        self.runner.cancel("preview")
+        doc = self.scene.doc
+        prov = Provenance(op.name, json_params(params), tuple(ids))
+        names = [doc.get(i).name for i in ids]
+        self.apply_button.setEnabled(False)
+        self.cancel_button.setEnabled(True)
+        self.status.setText(f"running {op.title}…")
+        t0 = time.perf_counter()
+
+        def done(results: list[tuple[str | None, Any]]) -> None:
+            self._finished()
+            if not results:
+                self.status.setText(f"{op.title}: no result")
+                return
+            base = f"{op.title} of {' and '.join(names)}"
+            objs = []
+            for k, (part, src) in enumerate(results):
+                name = f"{base} ({part})" if part else (base if len(results) == 1 else f"{base} {k + 1}")
+                style = None
+                w = self.window()
+                if hasattr(w, "host"):
+                    style = w.host.new_style(k)
+                objs.append(doc.make_object(src, name=name, style=style, provenance=prov))
+            try:
+                doc.push(ApplyResults(op.title, add=objs))
+            except MRMError as e:
+                self.status.setText(f"<span style='color:#c0392b'>{e}</span>")
+                return
+            self.scene.set_phantoms([])
+            self.status.setText(f"{op.title}: {len(objs)} object{'s' if len(objs) != 1 else ''} added "
+                                f"in {time.perf_counter() - t0:.2f} s")  # fmt: skip
+            self.applied.emit([o.id for o in objs])
+
+        def failed(exc: BaseException) -> None:
+            self._finished()
+            if not isinstance(exc, MRMError):
+                raise exc
+            self.status.setText(f"<span style='color:#c0392b'>{op.title}: {exc}</span>")
+
+        def cancelled() -> None:
+            self._finished()
+            self.status.setText(f"{op.title} cancelled; nothing was changed")
+
+        self.runner.submit(
+            "operation",
+            lambda progress: op.run(sources, params, progress),
+            on_result=done,
+            on_error=failed,
+            on_cancel=cancelled,
+            label=op.title,
+            show_progress=True,
+        )
+
+    def _finished(self) -> None:
+        self.apply_button.setEnabled(True)
+        self.cancel_button.setEnabled(False)
+
+    def cancel(self) -> None:
+        self.runner.cancel("operation")
+        self.runner.cancel("preview")
+
+    def is_running(self) -> bool:
+        return bool(self.runner.is_busy("operation"))

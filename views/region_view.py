@@ -1,0 +1,130 @@
+"""The region view: components in distinct colours, holes hatched, crack boundaries, junction pointels.
+
+Outer boundaries are drawn solid and hole boundaries dashed, along the pixel sides (pointel (i, j) is the
+Euclidean point (i − ½, j − ½)). Junctions are the pointels a boundary passes twice: where two pixels of the
+object, or two pixels of a hole, touch only at a corner — the places where the (4, 8) topology decides.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from PySide6 import QtCore, QtGui
+
+from model.document import DocObject
+from views.base_view import Layer, RepresentationView
+from views.canvas import MaskItem, qcolor
+from views.items import MarkersItem, PathItem, rings_path
+
+#: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
+COMPONENT_COLOURS = (
+    "#4e79a7",
+    "#f28e2b",
+    "#59a14f",
+    "#e15759",
+    "#b07aa1",
+    "#76b7b2",
+    "#edc948",
+    "#9c755f",
+    "#ff9da7",
+    "#bab0ac",
+)
+
+
+def hole_mask(mask: np.ndarray) -> np.ndarray:
+    """Pixels of the bounded 8-components of the complement of ``mask`` (same shape as ``mask``)."""
+    if mask.size == 0:
+        return np.zeros_like(mask, dtype=bool)
+    from model.geometry.labeling import label  # numba: loaded on first use, not at start-up
+
+    outside = np.pad(~mask.astype(bool), 1, constant_values=True)
+    lab, _n = label(outside, connectivity=8)
+    unbounded = lab[0, 0]
+    return ((lab != unbounded) & (lab > 0))[1:-1, 1:-1]
+
+
+def chain_xy(chain: Any) -> np.ndarray:
+    """The plane coordinates of a crack chain's pointels (pointel (i, j) is (i − ½, j − ½))."""
+    return np.asarray(chain.points(), dtype=float) - 0.5
+
+
+def junctions(chains: list[Any]) -> np.ndarray:
+    """Pointels visited more than once by the boundary chains (closing points not counted)."""
+    pts = [np.asarray(c.points())[:-1] for c in chains if len(c)]
+    if not pts:
+        return np.zeros((0, 2))
+    allp = np.concatenate(pts)
+    uniq, counts = np.unique(allp, axis=0, return_counts=True)
+    return uniq[counts > 1].astype(float) - 0.5
+
+
+class RegionLayer(Layer):
+    def __init__(self, obj_id: int) -> None:
+        super().__init__(obj_id)
+        self.components = MaskItem()
+        self.components.setParentItem(self)
+        self.holes = MaskItem()
+        self.holes.setParentItem(self)
+        self.outer = PathItem()
+        self.outer.setParentItem(self)
+        self.outer.setZValue(2)
+        self.inner = PathItem()
+        self.inner.setParentItem(self)
+        self.inner.setZValue(2)
+        self.junctions = MarkersItem(6.0, "circle")
+        self.junctions.setParentItem(self)
+        self.junctions.setZValue(3)
+        self.region: Any = None
+        self.key: Any = None
+
+
+class RegionView(RepresentationView):
+    name = "region"
+    title = "Region"
+    subtitle = "components, holes, cracks"
+    rep = "region"
+
+    def make_layer(self, obj_id: int) -> Layer:
+        return RegionLayer(obj_id)
+
+    def component_lut(self, fill: str, alpha: int) -> np.ndarray:
+        cols = [fill, *[c for c in COMPONENT_COLOURS if c.lower() != fill.lower()]]
+        lut = np.zeros((256, 4), dtype=np.uint8)
+        for k in range(1, 256):
+            lut[k] = [*list(qcolor(cols[(k - 1) % len(cols)]).getRgb()[:3]), alpha]
+        return lut
+
+    def update_layer(self, layer: Layer, obj: DocObject, selected: bool) -> bool:
+        assert isinstance(layer, RegionLayer)
+        region = self.get(obj.id, "region")
+        if region is None:
+            return self.scene.error(obj.id, "region") is not None
+        dark = self.is_dark()
+        alpha = round(255 * min(1.0, obj.style.opacity + (0.25 if selected else 0.0)))
+        key = (region, obj.style.fill, alpha, dark, selected)
+        if key == layer.key:
+            return True
+        if region is not layer.region:
+            lab = region.labels
+            data = lab.labels
+            # Labels beyond 255 cycle through the palette: colour, not identity, is what is shown.
+            img = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8) if data.size else data
+            layer.components.set_pixels(img, lab.origin)
+            holes = hole_mask(data > 0) if data.size else data
+            hl = np.array([[0, 0, 0, 0], [150, 150, 150, 90] if not dark else [200, 200, 200, 70]])
+            layer.holes.set_pixels(holes.astype(np.uint8), lab.origin, hl)
+            outer = [chain_xy(c.outer) for c in region.components]
+            inner = [chain_xy(h.boundary) for c in region.components for h in c.holes]
+            layer.outer.setPath(rings_path(outer, close=False))
+            layer.inner.setPath(rings_path(inner, close=False))
+            layer.junctions.set_points(junctions(list(region.boundary_chains)))
+            layer.region = region
+        layer.components.set_lut(self.component_lut(obj.style.fill, alpha))
+        line = QtGui.QColor("#e8e8e8") if dark else QtGui.QColor("#1d1d1d")
+        width = 2.0 if selected else 1.2
+        layer.outer.set_style(None, line, width)
+        layer.inner.set_style(None, line, width, QtCore.Qt.PenStyle.DashLine)
+        layer.junctions.set_colours(line, QtGui.QColor("#e15759"))
+        layer.key = key
+        return True

@@ -1,0 +1,207 @@
+"""What the four views show: the document, live previews of edits in progress, derived representations.
+
+The :class:`Scene` turns the document's plain-Python change events into Qt signals, keeps the *preview*
+source of an object while a tool drags or paints it (the document itself changes only when the edit is
+committed as one undo step), and hands out derived representations: at once when they are cached or cheap,
+otherwise computed by the task runner off the GUI thread, the newest request winning.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from PySide6 import QtCore
+
+from model.derive import SYNC_COST, Derived, Rep
+from model.document import Changes, DocObject, Document, Source, Style
+from model.errors import MRMError
+
+
+@dataclass(frozen=True)
+class Phantom:
+    """A result previewed but not yet in the document (an operation's live preview); ids are negative."""
+
+    id: int
+    name: str
+    source: Source
+    style: Style = field(default_factory=lambda: Style(fill="#ff7f0e", opacity=0.45))
+
+    @property
+    def kind(self) -> str:
+        from model.reps.pixels import PixelSet
+
+        return "discrete" if isinstance(self.source, PixelSet) else "euclidean"
+
+
+class Scene(QtCore.QObject):
+    """The views' shared state.
+
+    Signals
+    -------
+    documentChanged(Changes)
+        After every batch of document edits.
+    previewChanged(int)
+        The preview source of an object was set or cleared.
+    derivedReady(int)
+        A representation of that object computed in the background is now available.
+    segmentSelected(int, int, int)
+        The analytical segment (object id, chain index, segment index) chosen in the table or a view; -1s
+        when none.
+    """
+
+    documentChanged = QtCore.Signal(object)
+    previewChanged = QtCore.Signal(int)
+    phantomsChanged = QtCore.Signal()
+    derivedReady = QtCore.Signal(int)
+    segmentSelected = QtCore.Signal(int, int, int)
+
+    def __init__(self, doc: Document, runner: Any, parent: QtCore.QObject | None = None) -> None:
+        super().__init__(parent)
+        self.doc = doc
+        self.runner = runner
+        self._previews: dict[int, Derived] = {}
+        self._errors: dict[tuple[int, str], str] = {}
+        self.sync_cost = float(SYNC_COST)
+        self.segment: tuple[int, int, int] = (-1, -1, -1)
+        self._wanted: dict[str, Derived] = {}  # slot -> the entry being computed there
+        self._phantoms: dict[int, tuple[Phantom, Derived]] = {}
+        self._unsubscribe = doc.subscribe(self._on_changes)
+
+    def close(self) -> None:
+        self._unsubscribe()
+
+    # ------------------------------------------------------------------ document
+    def _on_changes(self, changes: Changes) -> None:
+        if changes.reset:
+            self._previews.clear()
+        for i in changes.removed:
+            self._previews.pop(i, None)
+        self._errors = {k: v for k, v in self._errors.items() if self.has(k[0])}
+        if self.segment[0] != -1 and (self.segment[0] not in self.doc or self.segment[0] in changes.changed):
+            self.select_segment(-1, -1, -1)
+        self.documentChanged.emit(changes)
+
+    def objects(self) -> tuple[DocObject | Phantom, ...]:
+        """What the views draw, bottom first: the document's objects, then the previewed results."""
+        return (*self.doc.objects, *(p for p, _ in self._phantoms.values()))
+
+    def has(self, obj_id: int) -> bool:
+        return obj_id in self.doc or obj_id in self._phantoms
+
+    # ------------------------------------------------------------------ phantoms (operation previews)
+    def set_phantoms(self, items: list[tuple[str, Source]], style: Style | None = None) -> None:
+        """Show ``(name, source)`` results as temporary objects drawn above the document ([] clears)."""
+        self._phantoms = {}
+        for k, (name, src) in enumerate(items):
+            ph = Phantom(-(k + 1), name, src, style or Phantom(0, "", src).style)
+            self._phantoms[ph.id] = (ph, Derived(src, self.doc.model))
+        self.phantomsChanged.emit()
+
+    def phantoms(self) -> list[Phantom]:
+        return [p for p, _ in self._phantoms.values()]
+
+    def primary(self) -> DocObject | None:
+        """The selected object shown in detail (first of the selection)."""
+        sel = self.doc.selection
+        return self.doc.get(sel[0]) if sel and sel[0] in self.doc else None
+
+    # ------------------------------------------------------------------ previews
+    def set_preview(self, obj_id: int, source: Source | None) -> None:
+        """Show ``source`` in place of the object's source in every view (None: back to the document)."""
+        if source is None:
+            if self._previews.pop(obj_id, None) is None:
+                return
+        else:
+            cur = self._previews.get(obj_id)
+            if cur is not None and cur.source is source:
+                return
+            self._previews[obj_id] = Derived(source, self.doc.model)
+        self.previewChanged.emit(obj_id)
+
+    def preview(self, obj_id: int) -> Derived | None:
+        return self._previews.get(obj_id)
+
+    def has_preview(self, obj_id: int) -> bool:
+        return obj_id in self._previews
+
+    def source(self, obj_id: int) -> Source:
+        p = self._previews.get(obj_id)
+        return p.source if p is not None else self.doc.get(obj_id).source
+
+    def entry(self, obj_id: int) -> Derived:
+        """The derived representations of what is shown for the object (its preview, else its source)."""
+        if obj_id < 0:
+            return self._phantoms[obj_id][1]
+        p = self._previews.get(obj_id)
+        return p if p is not None else self.doc.derived(obj_id)
+
+    # ------------------------------------------------------------------ derived representations
+    def get(self, obj_id: int, rep: Rep) -> Any | None:
+        """Return representation ``rep`` of the object if available now; otherwise start computing it.
+
+        When the computation ends, :attr:`derivedReady` is emitted for the object (if what it was computed
+        for is still what is shown) and the next call returns the value. Returns None while computing or
+        after an error (see :meth:`error`).
+        """
+        entry = self.entry(obj_id)
+        value = entry.peek(rep)
+        if value is not None:
+            return value
+        key = (obj_id, rep)
+        if entry.is_ready(rep) or entry.estimated_cost(rep) < self.sync_cost:
+            try:
+                value = entry.get(rep)
+            except (MRMError, ImportError) as e:
+                self._errors[key] = _message(e)
+                return None
+            self._errors.pop(key, None)
+            return value
+        slot = f"derive:{obj_id}:{rep}"
+        if self.runner.is_busy(slot) and self._wanted.get(slot) is entry:
+            return None  # already computing exactly this
+        self._wanted[slot] = entry
+
+        def compute(_progress: Any, e: Derived = entry) -> Any:
+            return e.get(rep)
+
+        def done(_value: Any, e: Derived = entry) -> None:
+            self._wanted.pop(slot, None)
+            self._errors.pop(key, None)
+            if self._still_shown(obj_id, e):
+                self.derivedReady.emit(obj_id)
+
+        def failed(exc: BaseException, e: Derived = entry) -> None:
+            self._wanted.pop(slot, None)
+            if not isinstance(exc, MRMError | ImportError):
+                raise exc
+            self._errors[key] = _message(exc)
+            if self._still_shown(obj_id, e):
+                self.derivedReady.emit(obj_id)
+
+        self.runner.submit(slot, compute, on_result=done, on_error=failed, label=f"Computing {rep}")
+        return None
+
+    def _still_shown(self, obj_id: int, entry: Derived) -> bool:
+        return self.has(obj_id) and self.entry(obj_id) is entry
+
+    def error(self, obj_id: int, rep: str) -> str | None:
+        """The message of the last failed derivation of ``rep`` for the object, if any."""
+        return self._errors.get((obj_id, rep))
+
+    def is_computing(self) -> bool:
+        return any(self.runner.is_busy(s) for s in self._wanted)
+
+    # ------------------------------------------------------------------ analytical selection
+    def select_segment(self, obj_id: int, chain: int, index: int) -> None:
+        seg = (obj_id, chain, index)
+        if seg != self.segment:
+            self.segment = seg
+            self.segmentSelected.emit(*seg)
+
+
+def _message(e: BaseException) -> str:
+    if isinstance(e, ImportError):
+        # A part of the model not installed in this build: say what is missing, not a traceback.
+        return f"not available ({e.name or e})"
+    return str(e)
