@@ -102,7 +102,14 @@ def run_cli(argv: list[str]) -> int:
         print(f"mrm {args.command}: error: {e.strerror}: {e.filename}", file=sys.stderr)
         return 2
     if args.json and summary is not None:
-        print(json.dumps(summary, default=_json_default))
+        try:
+            print(json.dumps(summary, default=_json_default), flush=True)
+        except BrokenPipeError:
+            # `mrm ... --json | head` closed the pipe early: not an error of the command. Point stdout at
+            # devnull so the interpreter's final flush does not print a traceback either.
+            import os
+
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return 0
 
 

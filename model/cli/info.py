@@ -1,9 +1,13 @@
-"""``mrm info IN``: the four representations of a pixel file, a geometry or a project, summarised."""
+"""``mrm info IN``: the four representations of a pixel file, a geometry or a project, summarised.
+
+For a project (.mrm) the summary is that of one object with ``--object NAME``; without it, that of the
+union of every object's pixels, with one summary per object under ``objects``. The model is ``--model``,
+else the project's, else 'standard'.
+"""
 
 from __future__ import annotations
 
 import argparse
-import math
 from typing import Any
 
 from model.cli._common import (
@@ -11,9 +15,12 @@ from model.cli._common import (
     add_limit_argument,
     discretize_geometry,
     extension_of,
+    finite_float,
+    load_object,
     print_table,
-    read_input,
+    project_objects,
 )
+from model.cli._project_input import add_object_argument
 from model.errors import ParameterError
 from model.io.pixel_files import PIXEL_EXTENSIONS
 from model.io.vector_files import VECTOR_EXTENSIONS
@@ -26,22 +33,13 @@ HELP = "summarise the four representations of a pixel, vector or project file"
 INPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, PROJECT_EXTENSION)
 
 
-def _threshold(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
-    return value
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the input, ``--threshold`` and ``--limit``."""
+    """Add the input, ``--object``, ``--threshold`` and ``--limit``."""
     parser.add_argument("input", metavar="IN", help="a pixel (.png .pbm .pgm .npz), vector or project file")
+    add_object_argument(parser)
     parser.add_argument(
         "--threshold",
-        type=_threshold,
+        type=finite_float,
         default=None,
         metavar="T",
         help="grey images: pixels brighter than T are in the set (default: binary images as they are, "
@@ -55,19 +53,27 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     ext = extension_of(args.input, INPUTS, "supported input file")
     if args.threshold is not None and ext not in PIXEL_EXTENSIONS:
         raise ParameterError(f"{args.input}: --threshold applies to image inputs only")
-    src = read_input(args.input, INPUTS, threshold=args.threshold, limit=args.limit)
-    model = args.model or src.model or "standard"
-    if src.kind == "discrete":
-        assert src.pixels is not None
-        summary = summarize(src.pixels, model)
-    elif src.kind == "euclidean":
-        summary = summarize(discretize_geometry(src.geometry, model, args.limit), model, geom=src.geometry)
+    if ext == PROJECT_EXTENSION and args.object is None:
+        objects, project_model = project_objects(args.input)
+        summary = _project_summary(objects, args.model or project_model, args.limit)
     else:
-        summary = _project_summary(src.objects, model, args.limit)
+        kind, value, model = load_object(
+            args.input, args.object, args.model, threshold=args.threshold, limit=args.limit
+        )
+        summary = _summary(value, model, args.limit)
+        if args.object is not None:
+            summary = {"object": args.object, "source": kind, **summary}
     summary = {"input": str(args.input), **summary}
     if not args.json:
         print_table(summary)
     return summary
+
+
+def _summary(source: Any, model: str, limit: int) -> dict[str, Any]:
+    """The summary of one object given by its source: pixels, or a geometry (discretized under ``model``)."""
+    if isinstance(source, PixelSet):
+        return summarize(source, model)
+    return summarize(discretize_geometry(source, model, limit), model, geom=source)
 
 
 def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, Any]:
@@ -84,11 +90,10 @@ def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, An
             {"id": obj.id, "name": obj.name, "source": obj.kind, **summarize(ps, model, geom=geom)}
         )
     all_euclidean = bool(objects) and all(not isinstance(o.source, PixelSet) for o in objects)
-    geoms = [o.source for o in objects] if all_euclidean else None
-    if geoms is not None:
+    if all_euclidean:
         from model.io.vector_files import combine
 
-        summary = summarize(union, model, geom=combine(geoms))
+        summary = summarize(union, model, geom=combine([o.source for o in objects]))
     else:
         summary = summarize(union, model)
     summary["objects"] = per_object

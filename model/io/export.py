@@ -6,7 +6,10 @@ The representation written follows the file type:
   place on the grid (:func:`model.io.pixel_files.write_pixels`);
 * ``.geojson`` ``.json`` ``.wkt`` — the **Euclidean** representation (the source, or R(A)), coordinates exact
   (:mod:`model.io.vector_files`);
-* ``.svg`` — a picture with y up: the Euclidean shape by default, or the pixels (``rep="discrete"``).
+* ``.svg`` — a picture with y up: the Euclidean shape by default (SVG is a vector format, so a plain export
+  gives the shape alone, ready for an SVG editor or a publication figure), the pixels (``rep="discrete"``), or
+  both (``rep="both"``: the pixels as light squares with the Euclidean shape outlined on top, the picture
+  of how the two representations match).
 
 A **label map** gives every chosen object its own label — its rank in the list, 1, 2, … — in one PNG or NPZ;
 where objects overlap, the later one (higher in the drawing order) wins, as on screen.
@@ -43,7 +46,7 @@ def export_object(
     obj_id: int,
     path: PathLike,
     *,
-    rep: Literal["discrete", "euclidean"] | None = None,
+    rep: Literal["discrete", "euclidean", "both"] | None = None,
 ) -> str:
     """Write one object to ``path``; the extension chooses the format (see the module notes).
 
@@ -55,13 +58,14 @@ def export_object(
         The object.
     path : str or path-like
         Destination.
-    rep : {'discrete', 'euclidean'}, optional
-        For SVG, which representation to draw (default Euclidean); for other types it must match the type.
+    rep : {'discrete', 'euclidean', 'both'}, optional
+        For SVG, which representation to draw (default Euclidean; 'both' draws the discrete one under the
+        Euclidean one); for other types it must match the type.
 
     Returns
     -------
     str
-        The representation written, 'discrete' or 'euclidean'.
+        The representation written, 'discrete', 'euclidean' or 'both'.
     """
     ext = _ext(path)
     obj = doc.get(obj_id)
@@ -79,6 +83,12 @@ def export_object(
         )
     if rep is not None and rep != chosen:
         raise ParameterError(f"a {ext} file holds the {chosen} representation, not the {rep} one")
+    if rep == "both" and ext in PICTURE_EXTENSIONS:
+        from model.io.vector_files import write_svg
+
+        derived = doc.derived(obj.id)
+        write_svg(derived.get("euclidean"), path, pixels=derived.get("discrete"))
+        return "both"
     value = doc.derived(obj.id).get("discrete" if chosen == "discrete" else "euclidean")
     if ext in PIXEL_EXTENSIONS:
         from model.io.pixel_files import write_pixels

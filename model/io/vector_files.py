@@ -470,7 +470,12 @@ def write_wkt(geom: BaseGeometry | Iterable[BaseGeometry], path: PathLike) -> No
 
 
 # ---------------------------------------------------------------------------------------------- SVG
-_FILL = 'fill="#4a90d9" fill-opacity="0.55" stroke="#1f4e79"'
+# Colours: a geometry alone is filled; over pixels it is only outlined, in a colour that stands out from
+# the light pixel squares, so that both representations stay readable.
+_DARK = "#1f4e79"
+_OUTLINE = "#c2410c"
+_LIGHT_PIXELS = "#bcd6f0"
+_FILL = f'fill="#4a90d9" fill-opacity="0.55" stroke="{_DARK}"'
 
 
 def _svg_path(coords: Any, close: bool) -> str:
@@ -480,21 +485,24 @@ def _svg_path(coords: Any, close: bool) -> str:
     return "M " + " L ".join(pts) + (" Z" if close else "")
 
 
-def _svg_elements(g: BaseGeometry, r: float) -> list[str]:
+def _svg_elements(g: BaseGeometry, r: float, outline: bool = False) -> list[str]:
+    """SVG elements of a geometry: polygons filled (or only outlined), lines stroked, points as dots."""
     if g.is_empty:
         return []
+    color = _OUTLINE if outline else _DARK
     if isinstance(g, Polygon):
         d = " ".join(_svg_path(ring.coords, True) for ring in [g.exterior, *g.interiors])
-        return [f'<path d="{d}" fill-rule="evenodd" {_FILL} vector-effect="non-scaling-stroke"/>']
+        paint = f'fill="none" stroke="{color}" stroke-width="2" stroke-linejoin="round"' if outline else _FILL
+        return [f'<path d="{d}" fill-rule="evenodd" {paint} vector-effect="non-scaling-stroke"/>']
     if isinstance(g, LineString):
         return [
-            f'<path d="{_svg_path(g.coords, False)}" fill="none" stroke="#1f4e79" stroke-width="2" '
+            f'<path d="{_svg_path(g.coords, False)}" fill="none" stroke="{color}" stroke-width="2" '
             'vector-effect="non-scaling-stroke"/>'
         ]
     if isinstance(g, Point):
-        return [f'<circle cx="{_num(g.x)}" cy="{_num(-g.y)}" r="{_num(r)}" fill="#1f4e79"/>']
+        return [f'<circle cx="{_num(g.x)}" cy="{_num(-g.y)}" r="{_num(r)}" fill="{color}"/>']
     if isinstance(g, MultiPolygon | MultiLineString | MultiPoint | GeometryCollection):
-        return [e for part in g.geoms for e in _svg_elements(part, r)]
+        return [e for part in g.geoms for e in _svg_elements(part, r, outline)]
     raise InvalidGeometryError(f"cannot draw a {g.geom_type} in SVG")
 
 
@@ -516,28 +524,71 @@ def _pixel_rects(ps: PixelSet) -> list[str]:
     return out
 
 
-def write_svg(geom_or_pixels: BaseGeometry | PixelSet, path: PathLike) -> None:
-    """Draw a geometry or a pixel set as an SVG picture, upright (y up), atomically.
+def _union_bounds(
+    boxes: list[tuple[float, float, float, float]],
+) -> tuple[float, float, float, float] | None:
+    if not boxes:
+        return None
+    return (
+        min(b[0] for b in boxes),
+        min(b[1] for b in boxes),
+        max(b[2] for b in boxes),
+        max(b[3] for b in boxes),
+    )
 
-    Polygons with holes are filled with the even-odd rule; a pixel set is drawn as its voxels, merged into
-    one rectangle per horizontal run. SVG's y axis points down, so every y is written negated: the
-    coordinates in the file are (x, −y), exact.
+
+def write_svg(
+    geom_or_pixels: BaseGeometry | PixelSet | None,
+    path: PathLike,
+    *,
+    pixels: PixelSet | None = None,
+) -> None:
+    """Draw a geometry, a pixel set, or a geometry over a pixel set as an SVG picture, upright, atomically.
+
+    Parameters
+    ----------
+    geom_or_pixels : shapely geometry or PixelSet or None
+        What to draw. A geometry alone is filled (polygons with holes by the even-odd rule); a pixel set
+        alone is drawn dark, as its voxels merged into one rectangle per horizontal run.
+    path : str or path-like
+        The .svg file to write.
+    pixels : PixelSet, optional
+        With a geometry (or None) as first argument: a pixel set drawn underneath as light squares, the
+        geometry then only outlined on top of them — a picture of a discretization or a reconstruction.
+
+    Notes
+    -----
+    Plane coordinates are written as they are, exactly, except y, which is negated: SVG's y axis points
+    down, so the point (x, y) is written (x, −y) and the picture is upright (y up). The viewBox holds
+    everything drawn (voxels and geometry) with a small margin. The pixels are in ``<g id="pixels">``;
+    the geometry's elements follow, at the top level, so they are drawn on top.
     """
     if isinstance(geom_or_pixels, PixelSet):
-        bbox = geom_or_pixels.bbox
-        bounds = (
-            (0.0, 0.0, 1.0, 1.0)
-            if bbox is None
-            else (bbox[0] - 0.5, bbox[1] - 0.5, bbox[2] + 0.5, bbox[3] + 0.5)
-        )
-        size = max(bounds[2] - bounds[0], bounds[3] - bounds[1])
-        body = ['<g fill="#1f4e79" shape-rendering="crispEdges">', *_pixel_rects(geom_or_pixels), "</g>"]
+        if pixels is not None:
+            raise TypeError("write_svg: give the pixels once (a geometry first, or pixels= alone)")
+        geom, pixels = None, geom_or_pixels
+        pixel_fill = _DARK
     else:
-        g = geom_or_pixels
-        bx0, by0, bx1, by1 = (0.0, 0.0, 1.0, 1.0) if g.is_empty else (float(b) for b in g.bounds)
-        bounds = (bx0, by0, bx1, by1)
-        size = max(bounds[2] - bounds[0], bounds[3] - bounds[1], 1.0)
-        body = _svg_elements(g, size / 200)
+        geom = geom_or_pixels
+        pixel_fill = _LIGHT_PIXELS
+    boxes: list[tuple[float, float, float, float]] = []
+    if pixels is not None and pixels.bbox is not None:
+        x0, y0, x1, y1 = pixels.bbox
+        boxes.append((x0 - 0.5, y0 - 0.5, x1 + 0.5, y1 + 0.5))
+    if geom is not None and not geom.is_empty:
+        gx0, gy0, gx1, gy1 = (float(b) for b in geom.bounds)
+        boxes.append((gx0, gy0, gx1, gy1))
+    bounds = _union_bounds(boxes) or (0.0, 0.0, 1.0, 1.0)
+    size = max(bounds[2] - bounds[0], bounds[3] - bounds[1], 1.0)
+    body: list[str] = []
+    if pixels is not None:
+        body += [
+            f'<g id="pixels" fill="{pixel_fill}" shape-rendering="crispEdges">',
+            *_pixel_rects(pixels),
+            "</g>",
+        ]
+    if geom is not None:
+        body += _svg_elements(geom, size / 200, outline=pixels is not None)
     margin = max(size * 0.02, 0.5)
     xmin, ymin, xmax, ymax = bounds[0] - margin, bounds[1] - margin, bounds[2] + margin, bounds[3] + margin
     w, h = xmax - xmin, ymax - ymin

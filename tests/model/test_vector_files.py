@@ -416,3 +416,119 @@ def test_svg_coordinates_are_exact(tmp_path):
     c = ET.parse(tmp_path / "x.svg").getroot().find(f"{SVG}circle")
     assert float(c.get("cx")) == 0.1 and float(c.get("cy")) == -(1 / 3)
     assert math.isfinite(float(c.get("r")))
+
+
+# ---------------------------------------------------------------------------------------------- SVG: both
+def drawn_pixels(group) -> list[tuple[int, int]]:
+    """The pixels covered by the <rect> runs of an SVG group (y flipped back), each as often as drawn."""
+    out = []
+    for r in group.iter(f"{SVG}rect"):
+        x, y, w, h = (float(r.get(k)) for k in ("x", "y", "width", "height"))
+        assert h == 1 and w == int(w) >= 1
+        px, py = x + 0.5, -y - 0.5  # the rect's left side is x − ½, its top (SVG y) −(y + ½)
+        assert px == int(px) and py == int(py)
+        out.extend((int(px) + k, int(py)) for k in range(int(w)))
+    return out
+
+
+def view_box(root) -> tuple[float, float, float, float]:
+    """The viewBox as plane bounds (xmin, ymin, xmax, ymax), y flipped back."""
+    vx, vy, vw, vh = (float(v) for v in root.get("viewBox").split())
+    return vx, -(vy + vh), vx + vw, -vy
+
+
+def test_svg_of_a_geometry_over_pixels(tmp_path):
+    # A right triangle with a vertex on a pixel corner and its legs along pixel sides, over the pixels
+    # whose open square meets its interior (3x + 4y < 12 with x, y ≥ 0), written out by hand.
+    tri = Polygon([(-0.5, -0.5), (3.5, -0.5), (-0.5, 2.5)])
+    pts = {(0, 0), (1, 0), (2, 0), (3, 0), (0, 1), (1, 1), (2, 1), (0, 2), (1, 2)}
+    write_svg(tri, tmp_path / "both.svg", pixels=PixelSet.from_points(sorted(pts)))
+    root = ET.parse(tmp_path / "both.svg").getroot()
+    children = list(root)
+    # the pixels first (underneath), then the outline on top
+    assert [c.tag for c in children] == [f"{SVG}g", f"{SVG}path"]
+    group, outline = children
+    assert group.get("id") == "pixels"
+    assert sorted(drawn_pixels(group)) == sorted(pts)
+    assert outline.get("fill") == "none" and outline.get("stroke") not in (None, "none")
+    assert group.get("fill") != outline.get("stroke")  # the outline stands out from the squares
+    assert parse_path(outline.get("d")) == [[(x, -y) for x, y in tri.exterior.coords]]
+    # the viewBox holds every voxel and the triangle, with a margin of at most a couple of pixels
+    x0, y0, x1, y1 = view_box(root)
+    assert x0 < -0.5 and y0 < -0.5 and x1 > 3.5 and y1 > 2.5
+    assert x0 >= -0.5 - 2 and y0 >= -0.5 - 2 and x1 <= 3.5 + 2 and y1 <= 2.5 + 2
+
+
+def test_svg_view_box_is_fitted_to_both(tmp_path):
+    far = box(100, 50, 101, 52)
+    write_svg(far, tmp_path / "far.svg", pixels=PixelSet.from_points([(0, 0)]))
+    x0, y0, x1, y1 = view_box(ET.parse(tmp_path / "far.svg").getroot())
+    assert x0 < -0.5 and y0 < -0.5 and x1 > 101 and y1 > 52  # the pixel's voxel and the far box
+    assert x1 - x0 < 101.5 * 1.1 and y1 - y0 < 52.5 * 1.1  # and not much more
+
+
+def test_svg_of_empty_geometry_over_pixels_and_lines_over_pixels(tmp_path):
+    write_svg(Polygon(), tmp_path / "e.svg", pixels=PixelSet.box(5, 5, 6, 5))
+    root = ET.parse(tmp_path / "e.svg").getroot()
+    assert sorted(drawn_pixels(root)) == [(5, 5), (6, 5)]
+    assert root.find(f"{SVG}path") is None
+    x0, y0, x1, y1 = view_box(root)
+    assert x0 < 4.5 and x1 > 6.5 and y0 < 4.5 and y1 > 5.5 and x1 - x0 < 5
+    # a segment and a point over their pixels: the segment stroked, the point a dot, both on top
+    g = GeometryCollection([LineString([(0, 0), (2, 1)]), Point(4, 4)])
+    write_svg(g, tmp_path / "l.svg", pixels=PixelSet.from_points([(0, 0), (1, 0), (1, 1), (2, 1), (4, 4)]))
+    root = ET.parse(tmp_path / "l.svg").getroot()
+    assert [c.tag for c in root] == [f"{SVG}g", f"{SVG}path", f"{SVG}circle"]
+    assert parse_path(root[1].get("d")) == [[(0.0, 0.0), (2.0, -1.0)]]
+    assert (float(root[2].get("cx")), float(root[2].get("cy"))) == (4.0, -4.0)
+
+
+def test_svg_pixels_are_given_once(tmp_path):
+    with pytest.raises(TypeError):
+        write_svg(PixelSet.from_points([(0, 0)]), tmp_path / "x.svg", pixels=PixelSet.from_points([(1, 1)]))
+    assert not (tmp_path / "x.svg").exists()
+
+
+@settings(max_examples=40)
+@given(
+    pixel_sets,
+    st.tuples(*[st.integers(-40, 40).map(lambda v: v / 4) for _ in range(4)]).filter(
+        lambda t: t[0] < t[2] and t[1] < t[3]
+    ),
+)
+def test_svg_both_draws_every_pixel_once_and_the_polygon_exactly(pts, corners):
+    poly = box(*corners)
+    ps = PixelSet.from_points(sorted(pts))
+    with tempfile.TemporaryDirectory() as d:
+        write_svg(poly, Path(d) / "b.svg", pixels=ps)
+        root = ET.parse(Path(d) / "b.svg").getroot()
+    assert sorted(drawn_pixels(root)) == sorted(pts)
+    (path,) = root.findall(f"{SVG}path")
+    assert parse_path(path.get("d")) == [[(x, -y) for x, y in poly.exterior.coords]]
+    x0, y0, x1, y1 = view_box(root)
+    inner = [(x - 0.5, y - 0.5) for x, y in pts] + [(x + 0.5, y + 0.5) for x, y in pts]
+    inner += [(corners[0], corners[1]), (corners[2], corners[3])]
+    assert all(x0 < x < x1 and y0 < y < y1 for x, y in inner)
+
+
+def test_export_of_both_representations_to_svg(tmp_path):
+    from model.commands import AddObject
+    from model.document import Document, Settings
+    from model.errors import ParameterError
+    from model.io.export import export_object
+
+    square = Polygon([(0.5, -0.5), (2.5, -0.5), (2.5, 1.5), (0.5, 1.5)])  # the voxels of x = 1, 2; y = 0, 1
+    doc = Document(Settings("supercover"))
+    doc.push(AddObject(doc.make_object(square, "square")))
+    assert export_object(doc, doc.ids[0], tmp_path / "b.svg", rep="both") == "both"
+    root = ET.parse(tmp_path / "b.svg").getroot()
+    # supercover: every pixel whose closed square the square touches — its 4 voxels and the 12 around them
+    assert sorted(drawn_pixels(root)) == sorted((x, y) for x in range(0, 4) for y in range(-1, 3))
+    (outline,) = root.findall(f"{SVG}path")
+    assert outline.get("fill") == "none"
+    assert parse_path(outline.get("d")) == [[(x, -y) for x, y in square.exterior.coords]]
+    # the default for .svg stays the shape alone (a vector format: ready for an SVG editor)
+    assert export_object(doc, doc.ids[0], tmp_path / "e.svg") == "euclidean"
+    assert list(ET.parse(tmp_path / "e.svg").getroot().iter(f"{SVG}rect")) == []
+    with pytest.raises(ParameterError):
+        export_object(doc, doc.ids[0], tmp_path / "b.png", rep="both")
