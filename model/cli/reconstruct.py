@@ -60,15 +60,20 @@ def _jobs(text: str) -> int:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the inputs, ``-o OUT``, ``--jobs``, ``--threshold`` and ``--limit``."""
-    parser.add_argument("inputs", nargs="+", metavar="IN", help="pixel files (.png .pbm .pgm .npz) or projects (.mrm)")
+    parser.add_argument(
+        "inputs", nargs="+", metavar="IN", help="pixel files (.png .pbm .pgm .npz) or projects (.mrm)"
+    )
     parser.add_argument(
         "-o",
         "--output",
         required=True,
         metavar="OUT",
-        help="the vector file (.geojson .json .wkt .svg); for several inputs a directory or a pattern with {stem}",
+        help="the vector file (.geojson .json .wkt .svg); for several inputs a directory or a pattern "
+        "holding {stem}",
     )
-    parser.add_argument("--jobs", type=_jobs, default=1, metavar="N", help="worker processes for several inputs")
+    parser.add_argument(
+        "--jobs", type=_jobs, default=1, metavar="N", help="worker processes for several inputs"
+    )
     parser.add_argument(
         "--threshold",
         type=_threshold,
@@ -92,9 +97,13 @@ def _outputs(inputs: list[str], output: str) -> list[str]:
     else:
         p = Path(output)
         if p.exists() and not p.is_dir():
-            raise ParameterError(f"{output}: several inputs need a directory or a pattern with {{stem}} for -o")
+            raise ParameterError(
+                f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
+            )
         if not p.exists() and p.suffix and not output.endswith(os.sep):
-            raise ParameterError(f"{output}: several inputs need a directory or a pattern with {{stem}} for -o")
+            raise ParameterError(
+                f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
+            )
         outs = [str(p / (Path(i).stem + ".geojson")) for i in inputs]
     if len(set(outs)) != len(outs):
         raise ParameterError("two inputs would write the same output file; use a pattern with {stem}")
@@ -113,7 +122,9 @@ def _pixels_of(path: str, threshold: float | None, limit: int, model: str | None
 
     union = PixelSet.empty()
     for obj in src.objects:
-        union = union | (obj.source if isinstance(obj.source, PixelSet) else discretize_geometry(obj.source, chosen, limit))
+        union = union | (
+            obj.source if isinstance(obj.source, PixelSet) else discretize_geometry(obj.source, chosen, limit)
+        )
     return union, chosen
 
 
@@ -172,7 +183,10 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         results = [_one(j) for j in jobs]
     files = [r for r, _ in results if r is not None]
     errors = [e for _, e in results if e is not None]
-    total: dict[str, Any] = {"model": args.model or (files[0]["model"] if files else "standard"), "inputs": len(jobs)}
+    total: dict[str, Any] = {
+        "model": args.model or (files[0]["model"] if files else "standard"),
+        "inputs": len(jobs),
+    }
     for k in _SUM_KEYS:
         values = [f.get(k) for f in files]
         total[k] = None if any(v is None for v in values) else sum(values)

@@ -1,0 +1,284 @@
+"""Benchmark of the reversible continuation R against its peers: vertices, pixels wrong, speed.
+
+Shapes: the horse silhouette, Otsu-thresholded camera and coins (scikit-image data), and disks of radius 10 to
+1000 centred at (1/7, 2/9). For each: the greedy standard-DSS count of the crack chains (the yardstick),
+R's vertices under each model, and three peers — potrace's polygon (``potracer``, alphamax=0), OpenCV's
+approxPolyDP at 0.5 on its contours, GDAL's staircase (rasterio.features.shapes) — with the number of pixels
+each one gets wrong when discretized back with our exact D (|D(P) Δ A|) under every model.
+
+Speed: R on the horse, on the horse upscaled 6×5 (1968 × 2000, padded to 2048²) against
+rasterio.features.shapes on the same mask (medians of several runs, same process), and the first-call cost
+of the kernels in a fresh process: cold (empty numba cache) and warm (cache on disk).
+
+Run: ``.venv/bin/python benchmarks/reconstruct.py`` (``--quick`` skips the two largest disks and potrace on
+big inputs).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from model.geometry.discretize import discretize
+from model.geometry.reconstruct import MODELS, reconstruct
+from model.geometry.segmentation import chain_points, greedy_segmentation
+from model.reps.pixels import PixelSet
+from model.reps.region import region_of
+from model.summary import count_vertices
+
+QUICK = "--quick" in sys.argv
+
+
+def median_ms(f: Any, repeats: int = 7) -> float:
+    f()
+    ts = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        f()
+        ts.append(time.perf_counter() - t)
+    return float(np.median(ts)) * 1e3
+
+
+# ---------------------------------------------------------------------------------------------- shapes
+
+
+def disk(r: float) -> PixelSet:
+    n = int(r) + 3
+    yy, xx = np.mgrid[-n : n + 1, -n : n + 1]
+    return PixelSet((xx - 1 / 7) ** 2 + (yy - 2 / 9) ** 2 <= r * r, (-n, -n))
+
+
+def shapes() -> list[tuple[str, PixelSet]]:
+    import skimage.data
+    from skimage.filters import threshold_otsu
+
+    def otsu(img: np.ndarray) -> np.ndarray:
+        return np.asarray(img > threshold_otsu(img))
+
+    out = [
+        ("horse", PixelSet(~skimage.data.horse()[::-1])),
+        ("camera", PixelSet(otsu(skimage.data.camera())[::-1])),
+        ("coins", PixelSet(otsu(skimage.data.coins())[::-1])),
+    ]
+    radii = (10, 20, 50, 100, 200) if QUICK else (10, 20, 50, 100, 200, 500, 1000)
+    out += [(f"disk {r}", disk(r)) for r in radii]
+    return out
+
+
+def corner_count(ps: PixelSet) -> int:
+    """Vertices of the staircase V(A): the turns of the crack rings (the gauss safety net)."""
+    total = 0
+    for ch in region_of(ps).boundary_chains:
+        c = ch.code_array()
+        total += int(np.count_nonzero(c != np.roll(c, 1)))
+    return total
+
+
+def greedy_count(ps: PixelSet) -> int:
+    return sum(
+        len(greedy_segmentation(chain_points(ch.start, ch.codes), closed=True))
+        for ch in region_of(ps).boundary_chains
+    )
+
+
+# ---------------------------------------------------------------------------------------------- peers
+# Every peer returns (geometry in plane coordinates, vertex count). Potrace's polygon is counted by its
+# corners (one per curve segment); drawn as a polyline through its segments' end points too (edge midpoints)
+# it has twice as many points.
+
+
+def _polys_of(parts: list[Any]) -> Any:
+    polys: list[Polygon] = []
+    for g in parts:
+        if g.is_empty:
+            continue
+        if isinstance(g, Polygon):
+            polys.append(g)
+        elif isinstance(g, MultiPolygon):
+            polys.extend(g.geoms)
+        elif hasattr(g, "geoms"):
+            polys.extend(p for p in g.geoms if isinstance(p, Polygon))
+    return MultiPolygon(polys) if polys else Polygon()
+
+
+def peer_potrace(ps: PixelSet) -> tuple[Any, int]:
+    import potrace
+
+    # potracer traces the values below its black level: hand it the complement.
+    bm = potrace.Bitmap(~np.asarray(ps.mask))
+    curves = bm.trace(turdsize=0, alphamax=0.0, opticurve=False)
+    x0, y0 = ps.origin
+    rings = []
+    n = 0
+    for c in curves:
+        pts = [(s.c.x, s.c.y) for s in c.segments]
+        n += len(pts)
+        if len(pts) >= 3:
+            rings.append(Polygon([(x0 - 0.5 + u, y0 - 0.5 + v) for u, v in pts]))
+    # nesting by parity (even-odd), as potrace's own renderers do
+    geom = shapely.symmetric_difference_all([shapely.make_valid(r) for r in rings]) if rings else Polygon()
+    return geom, n
+
+
+def peer_opencv(ps: PixelSet, eps: float = 0.5) -> tuple[Any, int]:
+    import cv2
+
+    m = np.ascontiguousarray(ps.mask.astype(np.uint8))
+    contours, hier = cv2.findContours(m, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+    x0, y0 = ps.origin
+    approx = [
+        cv2.approxPolyDP(c, eps, True)[:, 0, :].astype(np.float64) + np.array([x0, y0]) for c in contours
+    ]
+    n = sum(a.shape[0] for a in approx)
+    polys = []
+    if hier is not None:
+        for i, h in enumerate(hier[0]):
+            if h[3] != -1 or approx[i].shape[0] < 3:
+                continue
+            holes = []
+            j = h[2]
+            while j != -1:
+                if approx[j].shape[0] >= 3:
+                    holes.append(approx[j])
+                j = hier[0][j][0]
+            polys.append(shapely.make_valid(Polygon(approx[i], holes)))
+    return _polys_of(polys), n
+
+
+def peer_rasterio(ps: PixelSet) -> tuple[Any, int]:
+    import rasterio.features
+
+    m = ps.mask.astype(np.uint8)
+    x0, y0 = ps.origin
+    polys = []
+    n = 0
+    for geo, _v in rasterio.features.shapes(m, mask=ps.mask, connectivity=4):
+        rings = [np.asarray(r, dtype=np.float64) + np.array([x0 - 0.5, y0 - 0.5]) for r in geo["coordinates"]]
+        n += sum(r.shape[0] - 1 for r in rings)
+        polys.append(shapely.make_valid(Polygon(rings[0], rings[1:])))
+    return _polys_of(polys), n
+
+
+def wrong(geom: Any, ps: PixelSet, model: str) -> int:
+    if geom.is_empty:
+        return len(ps)
+    return len(discretize(geom, model) ^ ps)
+
+
+# ---------------------------------------------------------------------------------------------- tables
+
+
+def table(title: str, header: list[str], rows: list[list[Any]]) -> None:
+    print(f"\n{title}")
+    cells = [header] + [[f"{v:.3f}" if isinstance(v, float) else str(v) for v in r] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(header))]
+    for k, c in enumerate(cells):
+        print("  ".join(v.rjust(w) for v, w in zip(c, widths, strict=True)))
+        if k == 0:
+            print("  ".join("-" * w for w in widths))
+
+
+def compactness(items: list[tuple[str, PixelSet]]) -> None:
+    rows = []
+    ratios: dict[str, list[float]] = {m: [] for m in MODELS}
+    peer_rows = []
+    for name, ps in items:
+        g = greedy_count(ps)
+        row: list[Any] = [name, len(ps), g]
+        for model in MODELS:
+            r = reconstruct(ps, model)
+            v = count_vertices(r)
+            assert discretize(r, model) == ps, (name, model)
+            ratios[model].append(v / g)
+            row += [v, v / g]
+        row.append(row[-2] / corner_count(ps))
+        rows.append(row)
+        big = len(ps) > 400_000
+        peers = [("approxPolyDP 0.5", peer_opencv), ("rasterio/GDAL", peer_rasterio)]
+        if not (QUICK and big) and len(ps) < 2_000_000:
+            peers.insert(0, ("potrace alphamax=0", peer_potrace))
+        for pname, fn in peers:
+            geom, nv = fn(ps)
+            peer_rows.append([name, pname, nv, nv / g, *[wrong(geom, ps, m) for m in MODELS]])
+    table(
+        "R: vertices per model against the greedy DSS count of the crack chains (0 pixels wrong, checked)",
+        ["shape", "pixels", "greedy", *[c for m in MODELS for c in (m, "ratio")], "gauss/staircase"],
+        rows,
+    )
+    print("median ratio to greedy: " + ", ".join(f"{m} {np.median(ratios[m]):.3f}" for m in MODELS))
+    table(
+        "peers: vertices and pixels wrong when discretized back with the exact D",
+        ["shape", "peer", "vertices", "ratio", *[f"wrong {m}" for m in MODELS]],
+        peer_rows,
+    )
+
+
+def speed() -> None:
+    import rasterio.features
+    import skimage.data
+
+    horse = PixelSet(~skimage.data.horse()[::-1])
+    big_mask = np.zeros((2048, 2048), dtype=bool)
+    up = np.kron(~skimage.data.horse()[::-1], np.ones((6, 5), dtype=bool))
+    big_mask[: up.shape[0], : up.shape[1]] = up
+    big = PixelSet(big_mask)
+    rows = []
+    for name, ps, m in (("horse 328x400", horse, horse.mask), ("horse x6x5 in 2048^2", big, big_mask)):
+        m8 = np.ascontiguousarray(m.astype(np.uint8))
+        t_gdal = median_ms(lambda m8=m8, m=m: list(rasterio.features.shapes(m8, mask=m, connectivity=4)))
+        for model in MODELS:
+            t = median_ms(lambda ps=ps, model=model: reconstruct(ps, model))
+            rows.append([name, model, t, t_gdal, t / t_gdal])
+    table(
+        "speed (median ms, same process)",
+        ["input", "model", "R ms", "rasterio.shapes ms", "R / rasterio"],
+        rows,
+    )
+
+
+def first_call() -> None:
+    code = (
+        "import time; t = time.perf_counter();"
+        "import numpy as np;"
+        "from model.geometry.reconstruct import reconstruct;"
+        "from model.reps.pixels import PixelSet;"
+        "ps = PixelSet(np.eye(7, dtype=bool) | np.eye(7, dtype=bool)[::-1]);"
+        "[reconstruct(ps, m) for m in ('standard', 'gauss')];"
+        "print(time.perf_counter() - t)"
+    )
+    root = Path(__file__).resolve().parents[1]
+    rows = []
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache, PYTHONPATH=str(root))
+        for label in ("cold (empty numba cache: compile)", "warm (cache on disk: load)"):
+            out = subprocess.run(
+                [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
+            )
+            rows.append([label, float(out.stdout.strip().splitlines()[-1])])
+    table(
+        "first call in a fresh process (import + first reconstruct under two models), seconds",
+        ["case", "s"],
+        rows,
+    )
+
+
+def main() -> None:
+    print(f"load average at start: {os.getloadavg()[0]:.2f} (2-core machine shared with others)")
+    compactness(shapes())
+    speed()
+    first_call()
+
+
+if __name__ == "__main__":
+    main()

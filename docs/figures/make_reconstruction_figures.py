@@ -1,0 +1,379 @@
+"""Draw the pictures of docs/reconstruction.md from the project's own reconstruction.
+
+Run from the repository root::
+
+    .venv/bin/python docs/figures/make_reconstruction_figures.py
+
+It writes ``docs/img/reconstruction-*.png``. Every pixel, chain, segment, piece, line and vertex shown comes
+from MR Modeler (:mod:`model.geometry.reconstruct`, :mod:`model.geometry.border`,
+:mod:`model.geometry.segmentation`, :mod:`model.geometry.discretize`); only the drawing is done here, with
+Pillow's ImageDraw (drawn at 4× and scaled down). The plane has y up, as in MR Modeler.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from PIL import Image, ImageDraw, ImageFont
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+from model.geometry.border import border_paths, corridors  # noqa: E402
+from model.geometry.discretize import discretize  # noqa: E402
+from model.geometry.reconstruct import reconstruct_detailed  # noqa: E402
+from model.geometry.safety_net import eroded_net  # noqa: E402
+from model.geometry.segmentation import chain_points, greedy_segmentation  # noqa: E402
+from model.reps.pixels import PixelSet  # noqa: E402
+from model.reps.region import region_of  # noqa: E402
+from model.summary import count_vertices  # noqa: E402
+
+OUT = ROOT / "docs" / "img"
+SS = 4
+WHITE = (255, 255, 255)
+GRID = (214, 219, 226)
+TEXT = (40, 44, 52)
+SUBTEXT = (96, 104, 116)
+BLUE, BLUE_EDGE = (188, 214, 240), (118, 160, 206)
+PIECE, PIECE_EDGE = (226, 236, 248), (150, 178, 214)
+SPLIT, SPLIT_EDGE = (250, 222, 170), (214, 150, 40)
+CRACK = (40, 44, 52)
+SEG = [(31, 119, 180), (44, 160, 44), (148, 103, 189), (23, 190, 207)]
+LINE = (150, 150, 150)
+POLY = (194, 65, 12)
+SRC_COLOURS = {
+    "lines": (194, 65, 12),
+    "patch": (148, 103, 189),
+    "splice": (44, 160, 44),
+    "net": (44, 160, 44),
+    "single": (31, 119, 180),
+}
+
+
+def font(size: int, bold: bool = False) -> Any:
+    """DejaVu Sans at ``size`` final-picture pixels (Pillow's own font where DejaVu is missing)."""
+    name = "DejaVuSans-Bold.ttf" if bold else "DejaVuSans.ttf"
+    for folder in ("/usr/share/fonts/truetype/dejavu", "/usr/share/fonts/dejavu", "/Library/Fonts"):
+        path = Path(folder) / name
+        if path.exists():
+            return ImageFont.truetype(str(path), size * SS)
+    return ImageFont.load_default(size=size * SS)
+
+
+class Canvas:
+    """A supersampled picture of the plane window [x0, x1] × [y0, y1] (pixel indices), y up."""
+
+    def __init__(self, window: tuple[int, int, int, int], unit: int, title: str, subtitle: str) -> None:
+        self.x0, self.y0, self.x1, self.y1 = window
+        self.u = unit * SS
+        self.left = 14 * SS
+        self.top = 58 * SS
+        w = (self.x1 - self.x0 + 1) * self.u + 2 * self.left
+        h = (self.y1 - self.y0 + 1) * self.u + self.top + 14 * SS
+        self.img = Image.new("RGB", (w, h), WHITE)
+        self.d = ImageDraw.Draw(self.img)
+        self.d.text((self.left, 8 * SS), title, fill=TEXT, font=font(17, bold=True))
+        self.d.text((self.left, 32 * SS), subtitle, fill=SUBTEXT, font=font(13))
+
+    def xy(self, x: float, y: float) -> tuple[float, float]:
+        """Picture coordinates of the plane point (x, y)."""
+        return (self.left + (x - self.x0 + 0.5) * self.u, self.top + (self.y1 - y + 0.5) * self.u)
+
+    def pixels(
+        self, ps: PixelSet, fill: tuple[int, int, int], edge: tuple[int, int, int] | None = None
+    ) -> None:
+        """Fill the squares of a pixel set."""
+        for x, y in ps.points().tolist():
+            self.rect(x - 0.5, x + 0.5, y - 0.5, y + 0.5, fill, edge)
+
+    def rect(
+        self, x0: float, x1: float, y0: float, y1: float, fill: Any, edge: Any = None, width: int = 1
+    ) -> None:
+        """Draw the rectangle [x0, x1] × [y0, y1] of the plane."""
+        a = self.xy(x0, y1)
+        b = self.xy(x1, y0)
+        self.d.rectangle([a, b], fill=fill, outline=edge, width=width * SS if edge else 0)
+
+    def grid(self) -> None:
+        """Draw the pixel sides."""
+        for x in range(self.x0, self.x1 + 2):
+            self.d.line(
+                [self.xy(x - 0.5, self.y0 - 0.5), self.xy(x - 0.5, self.y1 + 0.5)], fill=GRID, width=SS
+            )
+        for y in range(self.y0, self.y1 + 2):
+            self.d.line(
+                [self.xy(self.x0 - 0.5, y - 0.5), self.xy(self.x1 + 0.5, y - 0.5)], fill=GRID, width=SS
+            )
+
+    def polyline(self, pts: Any, colour: Any, width: float, closed: bool = False) -> None:
+        """Draw a polyline through plane points."""
+        p = [self.xy(float(x), float(y)) for x, y in pts]
+        if closed:
+            p.append(p[0])
+        self.d.line(p, fill=colour, width=max(1, int(width * SS)), joint="curve")
+
+    def dot(self, x: float, y: float, r: float, colour: Any) -> None:
+        """Draw a dot of radius r (final-picture pixels) at a plane point."""
+        cx, cy = self.xy(x, y)
+        self.d.ellipse([cx - r * SS, cy - r * SS, cx + r * SS, cy + r * SS], fill=colour)
+
+    def line_through(self, px: float, py: float, dx: float, dy: float, colour: Any, width: float) -> None:
+        """Draw the line through (px, py) with direction (dx, dy), clipped to the window."""
+        # clip the infinite line to the window
+        a, b = -1e9, 1e9
+        for o, d, lo, hi in ((px, dx, self.x0 - 0.5, self.x1 + 0.5), (py, dy, self.y0 - 0.5, self.y1 + 0.5)):
+            if abs(d) > 1e-12:
+                t0, t1 = sorted(((lo - o) / d, (hi - o) / d))
+                a, b = max(a, t0), min(b, t1)
+        if b <= a:
+            return
+        self.polyline([(px + a * dx, py + a * dy), (px + b * dx, py + b * dy)], colour, width)
+
+    def save(self, name: str) -> None:
+        """Scale down and write ``docs/img/NAME``."""
+        w, h = self.img.size
+        self.img.resize((w // SS, h // SS), Image.LANCZOS).save(OUT / name, optimize=True)
+
+
+def from_rows(rows: list[str], origin: tuple[int, int] = (0, 0)) -> PixelSet:
+    """A pixel set drawn as text, top row first ('#' = in the set)."""
+    return PixelSet(np.array([[c == "#" for c in r] for r in rows[::-1]], dtype=bool), origin)
+
+
+SHAPE = from_rows(
+    [
+        "..............................",
+        "..........########............",
+        ".......#############..........",
+        ".....#################........",
+        "....###################.......",
+        "...#########....#######.......",
+        "...########......#######......",
+        "..#########......#######......",
+        "..##########....########......",
+        "..#######################.....",
+        "...######################.....",
+        "...#####################......",
+        "....###################.......",
+        ".....################.........",
+        "........##########............",
+        "..........###.................",
+        "..........#...................",
+        "..........#...................",
+        "..........######..............",
+        "..............................",
+    ],
+    (0, 0),
+)
+
+
+def crack_polyline(chain: Any) -> np.ndarray:
+    """The pointels of a crack chain in plane coordinates."""
+    return chain.points().astype(float) - 0.5
+
+
+def figure_pipeline() -> None:
+    """The four steps on one shape: segments, corridor, lines and polygon, check."""
+    ps = SHAPE
+    x0, y0, x1, y1 = ps.bbox
+    window = (x0 - 1, y0 - 1, x1 + 1, y1 + 1)
+    unit = 26
+    region = region_of(ps)
+    chains = region.boundary_chains
+    d = reconstruct_detailed(ps, "standard")
+    greedy = sum(len(greedy_segmentation(chain_points(c.start, c.codes), closed=True)) for c in chains)
+
+    # 1. pixels, crack boundary and its greedy digital straight segments
+    c = Canvas(
+        window,
+        unit,
+        "1. The crack boundary and its digital straight segments",
+        f"{len(ps)} pixels, {len(chains)} crack rings, {greedy} greedy standard DSS (coloured by segment)",
+    )
+    c.pixels(ps, BLUE, BLUE_EDGE)
+    c.grid()
+    for ch in chains:
+        pts = crack_polyline(ch)
+        segs = greedy_segmentation(chain_points(ch.start, ch.codes), closed=True)
+        for k, s in enumerate(segs):
+            idx = [i % (len(pts) - 1) for i in range(s.first, s.last + 1)]
+            c.polyline(pts[idx], SEG[k % len(SEG)], 3.5)
+    c.save("reconstruction-segments.png")
+
+    # 2. border path and corridor: full pieces, split pieces of pixels visited twice, gates
+    cors = corridors(chains, "standard")
+    paths = border_paths(chains)
+    c = Canvas(
+        window,
+        unit,
+        "2. Border path and corridor",
+        "pieces: open squares (blue), outer parts of pixels visited twice (amber); gates: dark",
+    )
+    c.grid()
+    for cor in cors:
+        for p in cor.pieces.tolist():
+            split = (p[1] - p[0]) < 1 or (p[3] - p[2]) < 1
+            c.rect(p[0], p[1], p[2], p[3], SPLIT if split else PIECE, SPLIT_EDGE if split else PIECE_EDGE)
+        for a, b in zip(cor.gate_left.tolist(), cor.gate_right.tolist(), strict=True):
+            c.polyline([a, b], (40, 44, 52), 2.5)
+    for path in paths:
+        c.polyline(path.pixels.astype(float), (31, 119, 180), 1.5, closed=True)
+    c.save("reconstruction-corridor.png")
+
+    # 3. chosen lines and the polygon
+    c = Canvas(
+        window,
+        unit,
+        "3. Chosen lines and R(A)",
+        f"{d.n_vertices} vertices for {greedy} greedy segments; grey: the lines used; violet: a patch",
+    )
+    c.pixels(ps, BLUE, BLUE_EDGE)
+    c.grid()
+    for r in d.rings:
+        for w in sorted({int(v) for v in r.edge_window.tolist() if v >= 0}):
+            px, py, dx, dy = r.lines[w].tolist()
+            c.line_through(px, py, dx, dy, LINE, 1.0)
+        c.polyline(r.vertices, POLY, 3.0, closed=True)
+        for (x, y), s in zip(r.vertices.tolist(), r.sources, strict=True):
+            c.dot(x, y, 4.0, SRC_COLOURS[s])
+    c.save("reconstruction-polygon.png")
+
+    # 4. the check: D(R(A)) = A, and the safety net for comparison
+    geom = d.geometry
+    back = discretize(geom, "standard")
+    net = eroded_net(ps)
+    c = Canvas(
+        window,
+        unit,
+        "4. D(R(A)) = A exactly; the safety net R0 for comparison",
+        f"R(A): {count_vertices(geom)} vertices, D(R(A)) = A: {back == ps}; "
+        f"R0 (green): {count_vertices(net)} vertices",
+    )
+    c.pixels(back, BLUE, BLUE_EDGE)
+    c.grid()
+    for poly in getattr(net, "geoms", [net]):
+        for ring in (poly.exterior, *poly.interiors):
+            c.polyline(np.asarray(ring.coords), (44, 160, 44), 1.6)
+    for poly in getattr(geom, "geoms", [geom]):
+        for ring in (poly.exterior, *poly.interiors):
+            c.polyline(np.asarray(ring.coords), POLY, 3.0)
+    c.save("reconstruction-check.png")
+
+
+def figure_preimage() -> None:
+    """One window, its gates and a fan of lines of its preimage."""
+    # One window of a digital straight path: its gates and a fan of lines crossing them all, in order.
+    ps = from_rows(["..........#####", ".....######....", "######.........", "###############"])
+    chains = region_of(ps).boundary_chains
+    cor = corridors(chains, "standard")[0]
+    d = reconstruct_detailed(ps, "standard")
+    r = d.rings[0]
+    n = len(cor)
+
+    def turns(i: int) -> int:
+        """Number of crossing directions among the gates of the window from piece i."""
+        dirs = {int(cor.gate_dir[k % n]) for k in range(i + 1, i + int(r.reach[i]) + 1)}
+        return len(dirs)
+
+    # the longest window that climbs the staircase (gates crossed in two directions)
+    i = max(range(n), key=lambda k: (turns(k), int(r.reach[k])))
+    j = i + int(r.reach[i])
+    gates = [((k % n), cor.gate_left[k % n], cor.gate_right[k % n]) for k in range(i + 1, j + 1)]
+    x0, y0, x1, y1 = ps.bbox
+    c = Canvas(
+        (x0 - 1, y0 - 1, x1 + 1, y1 + 1),
+        40,
+        "The preimage of a window",
+        f"gates {i + 1}…{j} (black): the lines crossing them all in order (light) and the one chosen (red)",
+    )
+    c.pixels(ps, BLUE, BLUE_EDGE)
+    c.grid()
+    for p in cor.pieces[[k % n for k in range(i, j + 1)]].tolist():
+        c.rect(p[0], p[1], p[2], p[3], None, PIECE_EDGE, 2)
+    rng = np.random.default_rng(1)
+    first, last = gates[0], gates[-1]
+    for _ in range(4000):
+        a = first[1] + rng.random() * (first[2] - first[1])
+        b = last[1] + rng.random() * (last[2] - last[1])
+        dx, dy = b - a
+        ok = True
+        for _k, gl, gr in gates:
+            # crossing parameter of the line a + t (b - a) with the gate's supporting line, inside the gate
+            if gl[0] == gr[0]:
+                if dx == 0:
+                    ok = False
+                    break
+                t = (gl[0] - a[0]) / dx
+                y = a[1] + t * dy
+                ok = min(gl[1], gr[1]) < y < max(gl[1], gr[1])
+            else:
+                if dy == 0:
+                    ok = False
+                    break
+                t = (gl[1] - a[1]) / dy
+                x = a[0] + t * dx
+                ok = min(gl[0], gr[0]) < x < max(gl[0], gr[0])
+            if not ok:
+                break
+        if ok and rng.random() < 0.06:
+            c.line_through(a[0], a[1], dx, dy, (246, 178, 150), 0.8)
+    for _k, gl, gr in gates:
+        c.polyline([gl, gr], (20, 20, 20), 3.0)
+    px, py, dx, dy = r.lines[i].tolist()
+    c.line_through(px, py, dx, dy, POLY, 2.5)
+    c.save("reconstruction-preimage.png")
+
+
+def figure_models() -> None:
+    """The same shape under the cover models and under gauss."""
+    ps = from_rows(
+        [
+            ".########.",
+            "##########",
+            "###....###",
+            "##......##",
+            "###....###",
+            "#########.",
+            "....#.....",
+            "....####..",
+        ]
+    )
+    x0, y0, x1, y1 = ps.bbox
+    for model, label in (("standard", "cover models (standard, supercover)"), ("gauss", "gauss")):
+        d = reconstruct_detailed(ps, model)
+        cors = corridors(region_of(ps).boundary_chains, model)
+        c = Canvas(
+            (x0 - 1, y0 - 1, x1 + 1, y1 + 1),
+            40,
+            f"Corridor and R(A), {label}",
+            f"{d.n_vertices} vertices; centres of A must stay inside"
+            if model == "gauss"
+            else f"{d.n_vertices} vertices; every pixel of A crossed or inside, no outside centre inside",
+        )
+        c.grid()
+        for cor in cors:
+            for p in cor.pieces.tolist():
+                split = (p[1] - p[0]) < 1 or (p[3] - p[2]) < 1
+                c.rect(p[0], p[1], p[2], p[3], SPLIT if split else PIECE, SPLIT_EDGE if split else PIECE_EDGE)
+        for x, y in ps.points().tolist():
+            c.dot(x, y, 2.5, (90, 110, 140))
+        for r in d.rings:
+            c.polyline(r.vertices, POLY, 3.0, closed=True)
+            for x, y in r.vertices.tolist():
+                c.dot(x, y, 3.5, POLY)
+        c.save(f"reconstruction-{model}.png")
+
+
+def main() -> None:
+    """Draw every picture."""
+    OUT.mkdir(parents=True, exist_ok=True)
+    figure_pipeline()
+    figure_preimage()
+    figure_models()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,317 @@
+"""The reversible continuation R: pixel set → polygons with D(R(A)) = A exactly (DESIGN §3).
+
+For every finite pixel set A, :func:`reconstruct` returns a valid shapely Polygon or MultiPolygon (an
+empty Polygon for ∅) with dyadic float64 coordinates such that
+
+1. R(A) ⊂ V(A), its polygons are the 4-connected components of A and its holes the bounded 8-connected
+   components of the complement;
+2. D(R(A)) = A exactly for the chosen model; under ``standard`` and ``supercover`` the same polygons serve
+   both (∂R(A) crosses between pixels only through open sides shared by two pixels of A, crosses every
+   border pixel through its open square and keeps every outside centre out); under ``gauss`` every centre
+   of A is strictly inside and every other centre strictly outside;
+3. no vertex or edge sits where a tie rule of the model decides (pixel corners and sides under the cover
+   models, pixel centres under ``gauss``), so a rotation by a multiple of 90° about a pixel centre is exact;
+4. R(A + t) = R(A) + t for t ∈ Z², and the same A always gives the same output;
+5. few vertices: about one per greedy digital straight segment of the boundary under the cover models.
+
+How (ALGORITHMS §3.5, "V4"): each crack ring gives a corridor of pieces and gates (:mod:`.border`); the
+reach of one straight line from every piece is computed exactly (arithmetic standard-DSS recognition on
+full pixels, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet
+inside a piece of their overlap, or a two-vertex patch joins them; every vertex is snapped to the coarsest
+dyadic grid that keeps all constraints, and every ring is verified exactly. A failing stretch is replaced
+locally by the safety net (the crack ring offset inward by ¼, :mod:`.safety_net`), never the whole result.
+
+Under ``gauss`` the polygon must stay inside V(A) while keeping the border centres inside: every corner of
+the crack boundary is then the midpoint of two such centres (reflex corners) or cuts one off (convex
+corners), so a vertex is needed near each corner and R has about as many vertices as the staircase — that
+is the price of R(A) ⊂ V(A) under that model, not a fallback.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+from model.errors import ParameterError
+from model.geometry import _reconstruct_kernels as _k
+from model.geometry.cracks import trace_mask
+from model.reps.pixels import PixelSet
+from model.reps.region import CrackChain
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+
+#: The models R is associated with.
+MODELS = ("standard", "supercover", "gauss")
+
+#: Names of the vertex sources in :class:`RingDetail`.
+SOURCE_NAMES = {
+    _k.SRC_LINES: "lines",
+    _k.SRC_PATCH: "patch",
+    _k.SRC_SPLICE: "splice",
+    _k.SRC_NET: "net",
+    _k.SRC_SINGLE: "single",
+}
+
+#: Names of the ring statuses in :class:`RingDetail`.
+STATUS_NAMES = {
+    _k.RING_V4: "v4",
+    _k.RING_PARTIAL: "partial",
+    _k.RING_NET: "net",
+    _k.RING_SINGLE: "single",
+}
+
+
+def _check_model(model: str) -> None:
+    if model not in MODELS:
+        raise ParameterError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
+
+
+@dataclass(frozen=True)
+class _Run:
+    # Everything the four kernel phases produce for one pixel set (array coordinates, Q-units).
+    rings: Any
+    corridor: tuple[Any, ...]
+    reach: IntArray
+    lines: FloatArray
+    xy: FloatArray
+    roff: IntArray
+    status: IntArray
+    src: IntArray
+    win: IntArray
+
+
+def _scale_cap(ps: PixelSet) -> int:
+    # Output coordinates are origin + k / 2^(K+2): they stay exact float64 numbers (53 bits) when
+    # max |coordinate| * 2^(K+2) < 2^52. K = 2 (sixteenths of a pixel) is the least the pipeline needs.
+    box = ps.bbox
+    assert box is not None
+    big = int(max(abs(v) for v in box)) + 2
+    cap = 50 - big.bit_length()
+    if cap < 2:
+        raise ParameterError(
+            f"pixel coordinates up to {big - 2:,} are too large for an exact reconstruction in float64 "
+            f"(the limit is {2**47:,})"
+        )
+    return cap
+
+
+def _run(ps: PixelSet, model: str) -> _Run:
+    m = np.ascontiguousarray(ps.mask.view(np.uint8))
+    kcap = _scale_cap(ps)
+    rings = trace_mask(m)
+    x0, y0 = ps.origin
+    cor = _k.corridors_all(
+        rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], model == "gauss", kcap
+    )
+    (
+        eoff,
+        ec,
+        er,
+        _edin,
+        _edout,
+        _enl,
+        cnt,
+        r0off,
+        r0,
+        r0t,
+        poff,
+        rect,
+        pel,
+        gp,
+        gq,
+        gdir,
+        kmax,
+        special,
+        full,
+    ) = cor
+    reach, lines = _k.reach_all(
+        eoff, ec, er, cnt, model == "gauss", poff, pel, rect, gp, gq, gdir, special, full
+    )
+    ga = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, True)
+    gb = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, False)
+    xy, roff, status, src, win = _k.finish_all(
+        eoff, ec, er, reach, poff, rect, gp, gq, gdir, kmax, special, r0off, r0, r0t, *ga, *gb, x0, y0
+    )
+    return _Run(rings, cor, reach, lines, xy, roff, status, src, win)
+
+
+def _ring_order(
+    comp: npt.NDArray[np.int32], hole: npt.NDArray[np.bool_], sx: IntArray, sy: IntArray
+) -> IntArray:
+    # Components in label order (canonical), each with its outer ring first, then its holes by start (y, x).
+    return np.lexsort((sx, sy, hole, comp)).astype(np.int64)
+
+
+def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon:
+    """Return R(A), the reversible continuation of a pixel set (see the module docstring).
+
+    Parameters
+    ----------
+    ps : PixelSet
+        The pixel set A.
+    model : {"standard", "supercover", "gauss"}
+        The discretization model D that R inverts: D(R(A)) = A exactly.
+
+    Returns
+    -------
+    Polygon or MultiPolygon
+        One polygon per 4-connected component (a Polygon when there is one, an empty Polygon for ∅), in
+        the canonical order of the components (by their lowest-leftmost pixel), holes ordered the same way.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown model, or pixel coordinates beyond ±2⁴⁷ (where sixteenths of a pixel are no longer
+        exact float64 numbers).
+    """
+    _check_model(model)
+    if ps.is_empty():
+        return Polygon()
+    run = _run(ps, model)
+    rings = run.rings
+    return _assemble(run.xy, run.roff, rings.comp, rings.area2 < 0, rings.sx, rings.sy)
+
+
+def _assemble(
+    xy: FloatArray,
+    roff: IntArray,
+    comp: npt.NDArray[np.int32],
+    hole: npt.NDArray[np.bool_],
+    sx: IntArray,
+    sy: IntArray,
+) -> Polygon | MultiPolygon:
+    order = _ring_order(comp, hole, sx, sy)
+    lengths = np.diff(roff)[order]
+    starts = roff[:-1][order]
+    ring_off = np.zeros(order.size + 1, dtype=np.int64)
+    np.cumsum(lengths, out=ring_off[1:])
+    # gather the vertex rows ring by ring in the new order
+    idx = np.repeat(starts - ring_off[:-1], lengths) + np.arange(ring_off[-1], dtype=np.int64)
+    coords = xy[idx]
+    # polygon k holds the rings of component k+1: outer ring, then holes
+    counts = np.bincount(comp, minlength=int(comp.max()) + 1)[1:]
+    poly_off = np.zeros(counts.size + 1, dtype=np.int64)
+    np.cumsum(counts, out=poly_off[1:])
+    multi_off = np.array([0, counts.size], dtype=np.int64)
+    geom = shapely.from_ragged_array(
+        shapely.GeometryType.MULTIPOLYGON, coords, (ring_off, poly_off, multi_off)
+    )[0]
+    if counts.size == 1:
+        poly: Polygon = geom.geoms[0]
+        return poly
+    mp: MultiPolygon = geom
+    return mp
+
+
+# ---------------------------------------------------------------------------------------------- details
+
+
+@dataclass(frozen=True)
+class RingDetail:
+    """How one ring of R(A) was built (for the analytical view and the documentation).
+
+    Attributes
+    ----------
+    component : int
+        The label (1..n, canonical order) of the 4-component the ring bounds.
+    hole : bool
+        True for a hole ring.
+    chain : CrackChain
+        The crack chain the ring follows.
+    vertices : ndarray of float64, shape (k, 2)
+        The ring's vertices in plane coordinates (not repeated at the end).
+    sources : tuple of str
+        Where each vertex comes from: ``"lines"`` (two chosen lines meet), ``"patch"`` (a two-vertex
+        patch), ``"splice"`` / ``"net"`` (a stretch replaced by the safety net), ``"single"`` (an isolated
+        pixel's triangle or two pixels' triangle).
+    status : str
+        ``"v4"``, ``"partial"`` (some stretch from the safety net), ``"net"`` (all of it) or ``"single"``.
+    pieces : ndarray of float64, shape (n, 4)
+        The corridor's pieces [xmin, xmax, ymin, ymax].
+    reach : ndarray of int64, shape (n,)
+        For each piece i, how many gates one line crosses from it (window i … i + reach[i]).
+    lines : ndarray of float64, shape (n, 4)
+        The central line of each window: a point (x, y) and a unit direction (dx, dy).
+    edge_window : ndarray of int64, shape (k,)
+        For each vertex, the window whose line carries the edge leaving it (−1: a patch or net edge).
+    """
+
+    component: int
+    hole: bool
+    chain: CrackChain
+    vertices: FloatArray
+    sources: tuple[str, ...]
+    status: str
+    pieces: FloatArray
+    reach: IntArray
+    lines: FloatArray
+    edge_window: IntArray
+
+
+@dataclass(frozen=True)
+class Reconstruction:
+    """R(A) with how each ring was built (:func:`reconstruct_detailed`)."""
+
+    geometry: Polygon | MultiPolygon
+    model: str
+    rings: tuple[RingDetail, ...]
+
+    @property
+    def n_vertices(self) -> int:
+        """Total number of vertices of the rings."""
+        return sum(r.vertices.shape[0] for r in self.rings)
+
+    @property
+    def n_fallback(self) -> int:
+        """Number of rings that use the safety net, in part or whole."""
+        return sum(r.status in ("partial", "net") for r in self.rings)
+
+
+def reconstruct_detailed(ps: PixelSet, model: str = "standard") -> Reconstruction:
+    """Like :func:`reconstruct`, with per-ring information: chosen lines, windows, vertex sources, fallbacks.
+
+    The geometry is the same as :func:`reconstruct` returns.
+    """
+    _check_model(model)
+    if ps.is_empty():
+        return Reconstruction(Polygon(), model, ())
+    run = _run(ps, model)
+    rings = run.rings
+    x0, y0 = ps.origin
+    poff = run.corridor[10]
+    rect = run.corridor[11]
+    text = (rings.codes + np.uint8(48)).tobytes().decode("ascii")
+    shift = np.array([4 * x0, 4 * x0, 4 * y0, 4 * y0], dtype=np.int64)
+    details: list[RingDetail] = []
+    for k in range(rings.off.size - 1):
+        a, b = int(poff[k]), int(poff[k + 1])
+        r0_, r1_ = int(run.roff[k]), int(run.roff[k + 1]) - 1  # without the closing repeat
+        lines = run.lines[a:b].copy()
+        lines[:, 0] = lines[:, 0] / 4.0 + x0
+        lines[:, 1] = lines[:, 1] / 4.0 + y0
+        chain = CrackChain._trusted(
+            (int(rings.sx[k]) + x0, int(rings.sy[k]) + y0), text[int(rings.off[k]) : int(rings.off[k + 1])]
+        )
+        details.append(
+            RingDetail(
+                component=int(rings.comp[k]),
+                hole=bool(rings.area2[k] < 0),
+                chain=chain,
+                vertices=run.xy[r0_:r1_].copy(),
+                sources=tuple(SOURCE_NAMES[int(v)] for v in run.src[r0_:r1_]),
+                status=STATUS_NAMES[int(run.status[k])],
+                pieces=(rect[a:b] + shift) / 4.0,
+                reach=run.reach[a:b].copy(),
+                lines=lines,
+                edge_window=run.win[r0_:r1_].copy(),
+            )
+        )
+    geom = _assemble(run.xy, run.roff, rings.comp, rings.area2 < 0, rings.sx, rings.sy)
+    order = _ring_order(rings.comp, rings.area2 < 0, rings.sx, rings.sy)
+    return Reconstruction(geom, model, tuple(details[i] for i in order.tolist()))

@@ -1,0 +1,590 @@
+"""R on hand-made cases: exact outcomes, topology, the corridor, the safety nets and the exact verifier."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+from model.errors import ParameterError
+from model.geometry.border import KIND_NAMES, border_path, border_paths, corridors, visit_counts
+from model.geometry.discretize import discretize
+from model.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
+from model.geometry.safety_net import eroded_net, net_ring, safety_net, staircase
+from model.geometry.segmentation import chain_points, greedy_segmentation
+from model.geometry.verify import verify
+from model.reps.pixels import PixelSet
+from model.reps.region import CrackChain, region_of
+from model.summary import count_vertices
+
+
+def ps_of(rows: list[str], origin: tuple[int, int] = (0, 0)) -> PixelSet:
+    """A pixel set drawn as text, top row first ('#' = in the set)."""
+    m = np.array([[ch == "#" for ch in r] for r in rows[::-1]], dtype=bool)
+    return PixelSet(m, origin)
+
+
+def polygons(g: Polygon | MultiPolygon) -> list[Polygon]:
+    if g.is_empty:
+        return []
+    return list(g.geoms) if isinstance(g, MultiPolygon) else [g]
+
+
+def disk(r: float, c: tuple[float, float] = (1 / 7, 2 / 9)) -> PixelSet:
+    n = int(2 * r + 6)
+    yy, xx = np.mgrid[-n:n, -n:n]
+    return PixelSet((xx - c[0]) ** 2 + (yy - c[1]) ** 2 <= r * r, (-n, -n))
+
+
+def greedy_count(ps: PixelSet) -> int:
+    return sum(
+        len(greedy_segmentation(chain_points(ch.start, ch.codes), closed=True))
+        for ch in region_of(ps).boundary_chains
+    )
+
+
+def assert_exact(ps: PixelSet, model: str) -> Polygon | MultiPolygon:
+    g = reconstruct(ps, model)
+    assert g.is_valid, shapely.is_valid_reason(g)
+    assert discretize(g, model) == ps
+    assert discretize(g, "supercover") == ps  # ⊂ V(A)
+    report = verify(g, ps, model)
+    assert report.ok, report.problems
+    return g
+
+
+CASES = {
+    "pixel": ["#"],
+    "domino": ["##"],
+    "tall domino": ["#", "#"],
+    "row": ["##########"],
+    "diagonal pair": ["#.", ".#"],
+    "L": ["#.", "##"],
+    "plus": [".#.", "###", ".#."],
+    "ring": ["###", "#.#", "###"],
+    "thin ring": ["#####", "#...#", "#...#", "#####"],
+    "hole at a corner": ["###.", "#.#.", "##.#"],
+    "checker": ["#.#.#", ".#.#.", "#.#.#"],
+    "staircase": ["#...", "##..", ".##.", "..##"],
+    "arm": ["....#######", "###.#......", "#####......", "###........"],
+    "nested": ["#######", "#.....#", "#.###.#", "#.#.#.#", "#.###.#", "#.....#", "#######"],
+}
+
+
+@pytest.mark.parametrize("model", MODELS)
+@pytest.mark.parametrize("name", list(CASES))
+def test_hand_made_cases_are_exact(name: str, model: str) -> None:
+    ps = ps_of(CASES[name], (3, -7))
+    g = assert_exact(ps, model)
+    region = region_of(ps)
+    assert len(polygons(g)) == region.n_components
+    assert [len(p.interiors) for p in polygons(g)] == [len(c.holes) for c in region.components]
+
+
+def test_empty_set_gives_an_empty_polygon() -> None:
+    for model in MODELS:
+        g = reconstruct(PixelSet.empty(), model)
+        assert isinstance(g, Polygon) and g.is_empty
+        assert verify(g, PixelSet.empty(), model).ok
+
+
+def test_unknown_model_is_a_parameter_error() -> None:
+    with pytest.raises(ParameterError, match="unknown model"):
+        reconstruct(ps_of(["#"]), "nearest")
+
+
+def test_an_isolated_pixel_is_a_triangle_around_its_centre() -> None:
+    g = reconstruct(ps_of(["#"], (5, 9)))
+    assert isinstance(g, Polygon)
+    assert count_vertices(g) == 3
+    assert g.contains(shapely.Point(5, 9))
+    minx, miny, maxx, maxy = g.bounds
+    assert minx > 4.5 and maxx < 5.5 and miny > 8.5 and maxy < 9.5
+
+
+def test_two_side_by_side_pixels_are_a_triangle() -> None:
+    for rows in (["##"], ["#", "#"]):
+        for model in ("standard", "supercover"):
+            assert count_vertices(assert_exact(ps_of(rows), model)) == 3
+
+
+def test_diagonal_contact_gives_two_polygons() -> None:
+    # Under the cover models two pixels sharing only a corner can never come from one connected polygon.
+    for model in MODELS:
+        g = assert_exact(ps_of(["#.", ".#"]), model)
+        assert isinstance(g, MultiPolygon) and len(g.geoms) == 2
+        assert g.geoms[0].distance(g.geoms[1]) > 0
+
+
+def test_a_hole_touching_the_outside_at_a_corner_is_no_hole() -> None:
+    # The gap at (2, 0) meets the outside through a diagonal: the complement is 8-connected there.
+    ps = ps_of(["###", "#.#", "##."])
+    for model in MODELS:
+        g = assert_exact(ps, model)
+        assert isinstance(g, Polygon) and len(g.interiors) == 0
+    closed = ps_of(["###", "#.#", "###"])
+    assert len(reconstruct(closed).interiors) == 1
+
+
+def test_rectangle_is_a_quadrilateral_inside_its_pixels() -> None:
+    ps = PixelSet.box(0, 0, 9, 4)
+    for model in MODELS:
+        g = assert_exact(ps, model)
+        assert count_vertices(g) == 4
+
+
+def test_translation_is_exact_and_output_deterministic() -> None:
+    ps = disk(7.3)
+    g = reconstruct(ps)
+    assert shapely.get_coordinates(reconstruct(ps)).tolist() == shapely.get_coordinates(g).tolist()
+    for t in ((1, 0), (-13, 7), (1000, -999)):
+        g2 = reconstruct(ps.translate(*t))
+        assert np.array_equal(shapely.get_coordinates(g2), shapely.get_coordinates(g) + np.array(t, float))
+
+
+def test_far_from_the_origin_coordinates_stay_exact() -> None:
+    ps = disk(9.3)
+    g = reconstruct(ps)
+    for t in ((2**26, -(2**26)), (3 * 2**30, 5), (-(2**40), 2**44)):
+        moved = ps.translate(*t)
+        gm = reconstruct(moved)
+        assert discretize(gm, "standard") == moved
+        assert verify(gm, moved).ok
+        if max(abs(v) for v in t) < 2**27:
+            shift = np.array(t, dtype=float)
+            assert np.array_equal(shapely.get_coordinates(gm), shapely.get_coordinates(g) + shift)
+    with pytest.raises(ParameterError, match="too large"):
+        reconstruct(ps.translate(2**48, 0))
+
+
+def test_coordinates_are_coarse_dyadic_rationals() -> None:
+    g = reconstruct(disk(30.5))
+    c = shapely.get_coordinates(g).ravel()
+    denominators = [v.as_integer_ratio()[1] for v in c.tolist()]
+    assert all(d & (d - 1) == 0 for d in denominators)  # powers of two
+    assert max(denominators) <= 2**22
+
+
+@pytest.mark.parametrize(
+    ("r", "limit"), [(5, 1.0), (10, 1.15), (20, 1.1), (50, 1.15), (100, 1.1), (200, 1.1), (500, 1.05)]
+)
+def test_disks_need_about_one_vertex_per_greedy_segment(r: float, limit: float) -> None:
+    # ALGORITHMS §5.2: V4 stays within a few percent of the greedy DSS count, far below MLP (~3.46 r^2/3).
+    ps = disk(r)
+    for model in ("standard", "supercover"):
+        g = reconstruct(ps, model)
+        assert discretize(g, model) == ps
+        assert count_vertices(g) <= limit * greedy_count(ps)
+
+
+def test_gauss_keeps_every_centre_strictly_inside() -> None:
+    ps = disk(12.4) - disk(4.1)
+    g = reconstruct(ps, "gauss")
+    assert discretize(g, "gauss") == ps
+    inside = shapely.contains_xy(g, ps.points()[:, 0].astype(float), ps.points()[:, 1].astype(float))
+    assert inside.all()
+    boundary = g.boundary
+    assert not shapely.intersects(boundary, shapely.points(ps.points().astype(float))).any()
+
+
+def test_one_pixel_wide_shapes_are_simple_rings() -> None:
+    # A one-pixel arm makes the border path visit pixels twice: each visit gets its own part of the pixel.
+    for ps in (ps_of(["###########"]), ps_of(["#....", ".##..", "..##.", "...##"])):
+        for model in MODELS:
+            g = assert_exact(ps, model)
+            assert g.area > 0
+
+
+# ---------------------------------------------------------------------------------------------- border paths
+
+
+def test_border_path_is_the_4_connected_8_border() -> None:
+    ps = disk(9.2) | ps_of(["#########"], (3, 0))
+    region = region_of(ps)
+    for ch in region.boundary_chains:
+        path = border_path(ch)
+        steps = np.abs(np.diff(np.vstack([path.pixels, path.pixels[:1]]), axis=0)).sum(axis=1)
+        assert (steps == 1).all()
+        assert set(KIND_NAMES) >= set(path.kinds.tolist())
+    pts = {tuple(p) for path in border_paths(region.boundary_chains) for p in path.pixels.tolist()}
+    m = ps.to_array((ps.bbox[0] - 1, ps.bbox[1] - 1, ps.bbox[2] + 1, ps.bbox[3] + 1))
+    x0, y0 = ps.bbox[0] - 1, ps.bbox[1] - 1
+    eight_border = set()
+    for x, y in ps.points().tolist():
+        r, c = y - y0, x - x0
+        if not m[r - 1 : r + 2, c - 1 : c + 2].all():
+            eight_border.add((x, y))
+    assert pts == eight_border
+
+
+def test_pieces_of_different_visits_are_disjoint() -> None:
+    rng = np.random.default_rng(3)
+    for _ in range(30):
+        ps = PixelSet(rng.random((12, 12)) < 0.6)
+        chains = region_of(ps).boundary_chains
+        counts = visit_counts(border_paths(chains))
+        for model in MODELS:
+            rects = np.vstack([c.pieces for c in corridors(chains, model)])
+            for i in range(rects.shape[0]):
+                a = rects[i]
+                overlap = (np.minimum(a[1], rects[:, 1]) > np.maximum(a[0], rects[:, 0])) & (
+                    np.minimum(a[3], rects[:, 3]) > np.maximum(a[2], rects[:, 2])
+                )
+                assert overlap.sum() == 1  # itself only
+        assert all(v >= 1 for v in counts.values())
+
+
+def test_gate_ends_lie_on_the_pieces_they_join() -> None:
+    chains = region_of(ps_of(CASES["arm"])).boundary_chains
+    for cor in corridors(chains, "gauss") + corridors(chains, "standard"):
+        for k in range(len(cor)):
+            for end in (cor.gate_left[k], cor.gate_right[k]):
+                for piece in (cor.pieces[k - 1], cor.pieces[k]):
+                    assert piece[0] <= end[0] <= piece[1] and piece[2] <= end[1] <= piece[3]
+
+
+# ---------------------------------------------------------------------------------------------- safety nets
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_safety_nets_are_exact(model: str) -> None:
+    rng = np.random.default_rng(11)
+    for _ in range(40):
+        ps = PixelSet(rng.random((10, 13)) < rng.uniform(0.2, 0.9), (-4, 6))
+        net = safety_net(ps, model)
+        assert net.is_valid
+        assert discretize(net, model) == ps
+        assert len(polygons(net)) == region_of(ps).n_components
+
+
+def test_eroded_net_is_a_quarter_inside_the_crack() -> None:
+    ch = CrackChain((0, 0), "00121233")  # the L of pixels (0, 0), (1, 0), (0, 1)
+    assert region_of(ps_of(["#.", "##"])).components[0].outer == ch
+    ring = net_ring(ch)
+    assert ring.tolist() == [
+        [-0.25, -0.25],
+        [1.25, -0.25],
+        [1.25, 0.25],
+        [0.25, 0.25],
+        [0.25, 1.25],
+        [-0.25, 1.25],
+    ]
+    assert eroded_net(ps_of(["#.", "##"])).equals(shapely.Polygon(ring))
+
+
+def test_staircase_cuts_pinched_corners_under_gauss() -> None:
+    ps = ps_of(["##.", "#.#", ".##"])  # one component? no: the diagonal pair splits it
+    g = staircase(ps)
+    assert g.is_valid
+    assert discretize(g, "gauss") == ps
+
+
+def test_reconstruction_is_not_the_safety_net() -> None:
+    ps = disk(40.3)
+    for model in MODELS:
+        d = reconstruct_detailed(ps, model)
+        assert d.n_fallback == 0
+        assert not d.geometry.equals(safety_net(ps, model))
+    assert count_vertices(reconstruct(ps)) < count_vertices(eroded_net(ps)) / 4
+
+
+# ---------------------------------------------------------------------------------------------- verify
+
+
+def test_verify_rejects_what_is_not_reversible() -> None:
+    ps = disk(6.2)
+    g = reconstruct(ps)
+    assert verify(g, ps).ok
+    # a vertex pushed onto a pixel corner, out of its pixel
+    shell = np.asarray(g.exterior.coords)
+    moved = shell.copy()
+    moved[0] = np.round(moved[0] - 0.5) + 0.5
+    moved[-1] = moved[0]
+    bad = Polygon(moved)
+    assert not verify(bad, ps).ok
+    # one pixel more than the geometry covers
+    assert not verify(g, ps | PixelSet.from_points([(20, 20)])).ok
+    # the safety net of another set
+    assert not verify(eroded_net(disk(6.0)), ps).ok or eroded_net(disk(6.0)).equals(eroded_net(ps))
+    # wrong type
+    assert not verify(shapely.LineString([(0, 0), (1, 1)]), ps).ok
+
+
+def jittered(g: Polygon | MultiPolygon, rng: np.random.Generator, sigma: float) -> Polygon | MultiPolygon:
+    """Every vertex moved by a random multiple of 1/64 (rings stay closed)."""
+
+    def ring(coords: object) -> np.ndarray:
+        xy = np.asarray(coords)[:-1]
+        return xy + np.round(rng.normal(0, sigma, xy.shape) * 64) / 64
+
+    parts = [Polygon(ring(p.exterior.coords), [ring(h.coords) for h in p.interiors]) for p in polygons(g)]
+    return parts[0] if len(parts) == 1 else MultiPolygon(parts)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_what_verify_accepts_discretizes_exactly(model: str) -> None:
+    # Soundness of the exact checker against the independent oracle: perturbed reconstructions.
+    rng = np.random.default_rng(7)
+    accepted = rejected = 0
+    for _ in range(60):
+        ps = PixelSet(rng.random((9, 9)) < 0.7)
+        g = reconstruct(ps, model)
+        jitter = jittered(g, rng, float(rng.choice([0.004, 0.02, 0.1])))
+        if not jitter.is_valid:
+            continue
+        if verify(jitter, ps, model).ok:
+            accepted += 1
+            assert discretize(jitter, model) == ps
+        else:
+            rejected += 1
+    assert accepted > 0 and rejected > 0
+
+
+# ---------------------------------------------------------------------------------------------- details
+
+
+def test_detailed_reconstruction_explains_each_ring() -> None:
+    ps = disk(15.7) - disk(5.2)
+    d = reconstruct_detailed(ps)
+    assert d.geometry.equals_exact(reconstruct(ps), 0)
+    assert [r.hole for r in d.rings] == [False, True]
+    for r in d.rings:
+        assert r.status == "v4"
+        assert len(r.sources) == r.vertices.shape[0] == r.edge_window.size
+        assert set(r.sources) <= {"lines", "patch"}
+        assert r.lines.shape == (len(r.pieces), 4) and r.reach.shape == (len(r.pieces),)
+        # every vertex made by two lines lies strictly inside a piece of the ring's corridor
+        for v in r.vertices.tolist():
+            assert any(p[0] < v[0] < p[1] and p[2] < v[1] < p[3] for p in r.pieces.tolist())
+    assert d.n_vertices == count_vertices(d.geometry)
+
+
+# ------------------------------------------------------------------------------------------ mrm reconstruct
+
+INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}
+
+
+def mrm(capsys: pytest.CaptureFixture[str], *argv: object) -> tuple[int, str, str]:
+    from model.cli import run_cli
+
+    code = run_cli([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cli_reconstruct_writes_geojson_that_discretizes_back(capsys, tmp_path) -> None:
+    import json
+
+    from model.io.pixel_files import write_pixels
+    from model.io.vector_files import read_geometry
+
+    ps = disk(8.3) - disk(2.2)
+    ps = ps.translate(40, -3)
+    write_pixels(ps, tmp_path / "a.png")
+    for model in MODELS:
+        out = tmp_path / f"a-{model}.geojson"
+        code, text, err = mrm(
+            capsys, "reconstruct", tmp_path / "a.png", "-o", out, "--model", model, "--json"
+        )
+        assert code == 0, err
+        summary = json.loads(text)
+        assert INFO_KEYS | {"seconds"} <= set(summary)
+        assert summary["model"] == model and summary["holes"] == 1 and summary["components"] == 1
+        geom = read_geometry(out)
+        assert discretize(geom, model) == ps
+        assert summary["vertices"] == count_vertices(geom) == count_vertices(reconstruct(ps, model))
+
+
+def test_cli_reconstruct_many_inputs_into_a_directory_or_pattern(capsys, tmp_path) -> None:
+    import json
+
+    from model.io.pixel_files import write_pixels
+    from model.io.vector_files import read_geometry
+
+    sets = {"one": disk(4.4), "two": ps_of(CASES["checker"]), "three": ps_of(CASES["nested"])}
+    for name, ps in sets.items():
+        write_pixels(ps, tmp_path / f"{name}.npz")
+    inputs = [tmp_path / f"{n}.npz" for n in sets]
+    code, text, err = mrm(capsys, "reconstruct", *inputs, "-o", tmp_path / "out", "--jobs", "2", "--json")
+    assert code == 0, err
+    summary = json.loads(text)
+    assert summary["inputs"] == 3 and len(summary["files"]) == 3
+    assert summary["components"] == sum(region_of(p).n_components for p in sets.values())
+    for name, ps in sets.items():
+        assert discretize(read_geometry(tmp_path / "out" / f"{name}.geojson"), "standard") == ps
+    code, _, err = mrm(capsys, "reconstruct", *inputs, "-o", tmp_path / "pat" / "{stem}-R.wkt")
+    assert code == 0, err
+    assert discretize(read_geometry(tmp_path / "pat" / "two-R.wkt"), "standard") == sets["two"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["missing.png", "-o", "x.geojson"], "No such file"),
+        (["a.png", "-o", "x.txt"], "not a vector output file"),
+        (["a.txt", "-o", "x.geojson"], "not a supported input file"),
+        (["a.png", "a.png", "-o", "x.geojson"], "directory or a pattern"),
+        (["bad.png", "-o", "x.geojson"], ""),
+    ],
+)
+def test_cli_reconstruct_bad_input_is_a_clear_error(capsys, tmp_path, monkeypatch, argv, message) -> None:
+    from model.io.pixel_files import write_pixels
+
+    monkeypatch.chdir(tmp_path)
+    write_pixels(ps_of(["#"]), tmp_path / "a.png")
+    (tmp_path / "bad.png").write_bytes(b"not a png at all")
+    code, _out, err = mrm(capsys, "reconstruct", *argv)
+    assert code == 2
+    assert err.startswith("mrm reconstruct: error: ") and message in err
+    assert "Traceback" not in err
+    assert not (tmp_path / "x.geojson").exists()
+
+
+# ---------------------------------------------------------------------------------------------- reach kernels
+
+
+def _corridor_arrays(ps: PixelSet, gauss: bool) -> tuple:
+    from model.geometry import _reconstruct_kernels as k
+    from model.geometry.cracks import trace_mask
+
+    m = np.ascontiguousarray(ps.mask.view(np.uint8))
+    rings = trace_mask(m)
+    return k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], gauss, 20)
+
+
+def _stabbable(gates: list[tuple[tuple[int, int], tuple[int, int]]]) -> bool:
+    """Independent oracle: is there a line with every left end P strictly left and right end Q strictly right?
+
+    A linear program in Fractions: lines n(t)·X + c = 0 with n = (−σy t, σx (1 − t)), t ∈ [0, 1], in each
+    direction quadrant (σx, σy); maximise the margin m subject to f(P) ≥ m, −f(Q) ≥ m; the optimum is at a
+    vertex where three constraints are tight, so every triple is solved and the best feasible one kept.
+    """
+    from fractions import Fraction
+    from itertools import combinations
+
+    best = None
+    (px, py), (qx, qy) = gates[0]
+    # the two quadrants of directions that cross the first gate (P on the left)
+    quadrants = [(sx, sy) for sx in (1, -1) for sy in (1, -1) if sx * (py - qy) > 0 or -sy * (px - qx) > 0]
+    for sx, sy in quadrants:
+        rows = []  # a·(t, c, m) >= b
+        for p, q in gates:
+            for (x, y), sign in ((p, 1), (q, -1)):
+                # sign * (t (−sy x − sx y) + sx y + c) − m >= 0
+                rows.append(((sign * (-sy * x - sx * y), sign, -1), -sign * sx * y))
+        rows.append(((1, 0, 0), 0))  # t >= 0
+        rows.append(((-1, 0, 0), -1))  # t <= 1
+        for tri in combinations(rows, 3):
+            a = [[Fraction(v) for v in r[0]] for r in tri]
+            b = [Fraction(r[1]) for r in tri]
+            det = (
+                a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+                - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+                + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
+            )
+            if det == 0:
+                continue
+            sol = []
+            for col in range(3):
+                mm = [row[:] for row in a]
+                for r in range(3):
+                    mm[r][col] = b[r]
+                sol.append(
+                    (
+                        mm[0][0] * (mm[1][1] * mm[2][2] - mm[1][2] * mm[2][1])
+                        - mm[0][1] * (mm[1][0] * mm[2][2] - mm[1][2] * mm[2][0])
+                        + mm[0][2] * (mm[1][0] * mm[2][1] - mm[1][1] * mm[2][0])
+                    )
+                    / det
+                )
+            if all(sum(c * v for c, v in zip(r[0], sol, strict=True)) >= r[1] for r in rows):
+                best = sol[2] if best is None else max(best, sol[2])
+    return best is not None and best > 0
+
+
+def test_exact_preimage_reach_against_a_fraction_linear_program() -> None:
+    from model.geometry import _reconstruct_kernels as k
+
+    rng = np.random.default_rng(5)
+    checked = 0
+    for _ in range(12):
+        ps = PixelSet(rng.random((6, 6)) < 0.75)
+        for gauss in (False, True):
+            cor = _corridor_arrays(ps, gauss)
+            poff, gp, gq, gdir, special = cor[10], cor[13], cor[14], cor[15], cor[17]
+            for r in range(poff.size - 1):
+                a, b = int(poff[r]), int(poff[r + 1])
+                n = b - a
+                if special[r] == 1 or n < 3:
+                    continue
+                reach = np.zeros(n, np.int64)
+                lines = np.zeros((n, 4))
+                k.general_reach(gp[a:b], gq[a:b], gdir[a:b], np.ones(n, bool), reach, lines)
+                for i in rng.choice(n, size=min(n, 3), replace=False).tolist():
+                    j = i + int(reach[i])
+                    if j - i > 4:
+                        continue
+                    window = [(tuple(gp[a + g % n]), tuple(gq[a + g % n])) for g in range(i + 1, j + 1)]
+                    assert _stabbable(window)
+                    if j + 1 < i + n - 1:
+                        g = (j + 1) % n
+                        assert not _stabbable([*window, (tuple(gp[a + g]), tuple(gq[a + g]))])
+                    checked += 1
+    assert checked > 25
+
+
+@pytest.mark.parametrize("gauss", [False, True])
+def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
+    # Cover models on whole pixels: the O(n) standard DSS reach; gauss: the DSS of half-pixel cells.
+    from model.geometry import _reconstruct_kernels as k
+
+    rng = np.random.default_rng(9)
+    sets = [disk(r) for r in (3.3, 7.8, 15.1, 30.2, 45.7)]
+    sets += [PixelSet(rng.random((20, 20)) < 0.7) for _ in range(15)]
+    compared = 0
+    for ps in sets:
+        cor = _corridor_arrays(ps, gauss)
+        eoff, ec, er = cor[0], cor[1], cor[2]
+        poff, rect, gp, gq, gdir = cor[10], cor[11], cor[13], cor[14], cor[15]
+        special, full = cor[17], cor[18]
+        for r in range(poff.size - 1):
+            a, b = int(poff[r]), int(poff[r + 1])
+            n = b - a
+            if special[r] == 1 or n < 2:
+                continue
+            exact = np.zeros(n, np.int64)
+            fast = np.zeros(n, np.int64)
+            k.general_reach(gp[a:b], gq[a:b], gdir[a:b], np.ones(n, bool), exact, np.zeros((n, 4)))
+            if gauss:
+                assert k.cell_reach(rect[a:b], gp[a:b], gq[a:b], fast, np.zeros((n, 4)))
+            elif full[r]:
+                k.dss_reach(int(eoff[r]), ec, er, n, fast, np.zeros((n, 4)))
+            else:
+                continue
+            assert np.array_equal(exact, fast)
+            compared += n
+    assert compared > 500
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_safety_net_rings_pass_the_exact_corridor_check(model: str) -> None:
+    from model.geometry import _reconstruct_kernels as k
+
+    rng = np.random.default_rng(13)
+    for _ in range(40):
+        ps = PixelSet(rng.random((16, 16)) < rng.uniform(0.2, 0.9))
+        cor = _corridor_arrays(ps, model == "gauss")
+        r0off, r0, r0t, poff, rect, gp, gq, gdir, kmax, special = (
+            cor[7],
+            cor[8],
+            cor[9],
+            cor[10],
+            cor[11],
+            cor[13],
+            cor[14],
+            cor[15],
+            cor[16],
+            cor[17],
+        )
+        assert k.check_nets(poff, rect, gp, gq, gdir, kmax, special, r0off, r0, r0t).all()
