@@ -239,7 +239,8 @@ class RingDetail:
     lines : ndarray of float64, shape (n, 4)
         The central line of each window: a point (x, y) and a unit direction (dx, dy).
     edge_window : ndarray of int64, shape (k,)
-        For each vertex, the window whose line carries the edge leaving it (−1: a patch or net edge).
+        For each vertex, the window whose line carries the edge leaving it (−1: a patch or net edge, or an
+        edge moved onto the simplest line of the pieces it crosses).
     """
 
     component: int

@@ -588,3 +588,90 @@ def test_safety_net_rings_pass_the_exact_corridor_check(model: str) -> None:
             cor[17],
         )
         assert k.check_nets(poff, rect, gp, gq, gdir, kmax, special, r0off, r0, r0t).all()
+
+
+# --------------------------------------------------------------------------------------------- straight edges
+
+
+def _edges(g: Polygon) -> np.ndarray:
+    return np.diff(np.asarray(g.exterior.coords), axis=0)
+
+
+@pytest.mark.parametrize("box", [(0, 0, 9, 9), (3, -2, 20, 5), (-7, 4, -4, 30)])
+@pytest.mark.parametrize("model", MODELS)
+def test_a_box_of_pixels_is_an_axis_aligned_rectangle(box: tuple[int, int, int, int], model: str) -> None:
+    ps = PixelSet.box(*box)
+    g = assert_exact(ps, model)
+    assert isinstance(g, Polygon) and count_vertices(g) == 4
+    e = _edges(g)
+    assert np.all((e[:, 0] == 0) != (e[:, 1] == 0))  # every edge horizontal or vertical
+    xmin, ymin, xmax, ymax = box
+    assert xmin - 0.5 < g.bounds[0] and g.bounds[2] < xmax + 0.5  # ... inside the pixels
+    assert ymin - 0.5 < g.bounds[1] and g.bounds[3] < ymax + 0.5
+
+
+def test_digitized_squares_come_back_with_their_edge_slopes() -> None:
+    axis = Polygon([(0.3, 0.2), (20.3, 0.2), (20.3, 15.2), (0.3, 15.2)])
+    diamond = Polygon([(10.1, 0.3), (20.1, 10.3), (10.1, 20.3), (0.1, 10.3)])
+    for model in ("standard", "supercover"):
+        for shape, slope_ok in (
+            (axis, lambda e: (e[:, 0] == 0) != (e[:, 1] == 0)),
+            (diamond, lambda e: np.abs(e[:, 0]) == np.abs(e[:, 1])),
+        ):
+            ps = discretize(shape, model)
+            g = assert_exact(ps, model)
+            assert count_vertices(g) == 4
+            assert np.all(slope_ok(_edges(g))), _edges(g)
+
+
+def test_simplest_line_is_the_simplest_direction_crossing_the_gates() -> None:
+    # Oracle: the definition — a line dx·Y − dy·X = c crosses the open gate [P, Q] (P its left end) iff
+    # P is strictly on its left and Q strictly on its right; try every primitive direction up to the answer.
+    from math import gcd
+
+    from model.geometry import _reconstruct_kernels as k
+
+    def offsets(d: tuple[int, int], window: list) -> tuple[int, int]:
+        lo = max(d[0] * q[1] - d[1] * q[0] for _p, q in window)
+        hi = min(d[0] * p[1] - d[1] * p[0] for p, _q in window)
+        return lo, hi
+
+    rng = np.random.default_rng(11)
+    checked = 0
+    for _ in range(10):
+        ps = PixelSet(rng.random((7, 7)) < 0.7)
+        for gauss in (False, True):
+            cor = _corridor_arrays(ps, gauss)
+            poff, gp, gq, special = cor[10], cor[13], cor[14], cor[17]
+            for r in range(poff.size - 1):
+                a, b = int(poff[r]), int(poff[r + 1])
+                n = b - a
+                if special[r] == 1 or n < 4:
+                    continue
+                for i in rng.choice(n, size=min(n, 3), replace=False).tolist():
+                    for length in (1, 2, 4, 7):
+                        window = [
+                            (tuple(gp[a + g % n].tolist()), tuple(gq[a + g % n].tolist()))
+                            for g in range(i, i + length)
+                        ]
+                        # a known direction: from the first gate's midpoint to the last one's, if it stabs
+                        (p0, q0), (p1, q1) = window[0], window[-1]
+                        ex, ey = p1[0] + q1[0] - p0[0] - q0[0], p1[1] + q1[1] - p0[1] - q0[1]
+                        if length == 1:
+                            ex, ey = {0: (1, 0), 1: (0, 1), 2: (-1, 0), 3: (0, -1)}[int(cor[15][a + i % n])]
+                        if (ex, ey) == (0, 0) or offsets((ex, ey), window)[0] >= offsets((ex, ey), window)[1]:
+                            continue
+                        ok, dx, dy, c2 = k.simplest_line(gp[a:b], gq[a:b], i, i + length - 1, n, ex, ey, 200)
+                        assert ok
+                        lo, hi = offsets((dx, dy), window)
+                        assert 2 * lo < c2 < 2 * hi and c2 == lo + hi  # inside, centred
+                        size = abs(dx) + abs(dy)
+                        assert gcd(dx, dy) == 1
+                        for s in range(1, size):
+                            for u in range(-s, s + 1):
+                                for v in (s - abs(u), abs(u) - s):
+                                    if gcd(u, v) == 1:
+                                        lo2, hi2 = offsets((u, v), window)
+                                        assert lo2 >= hi2, ((u, v), (dx, dy), window)
+                        checked += 1
+    assert checked > 100
