@@ -1,0 +1,760 @@
+"""The operation framework: declarative operations, parameters with metadata, progress and cancel, guards.
+
+An operation is an :class:`OperationSpec`: a name, a title, an arity, a *parameters dataclass* whose fields
+carry their metadata (default, bounds, unit, help — see :func:`param`), and a
+``run(inputs, params, progress)`` function returning an :class:`OperationResult`. Views build their panels
+from :func:`param_specs`; scripts and the CLI call :func:`run_operation`, which validates the parameters
+(:func:`validate_params`), estimates the result's size and refuses it beyond the pixel limit *before* any work
+(:func:`check_pixel_limit`), runs the operation and stamps the result with its provenance (operation,
+parameters, inputs) so that any chain can be replayed and bounded.
+
+Long work reports through a progress object: ``update(fraction, message)`` raises
+:class:`model.errors.Cancelled` once ``cancel()`` was called (from any thread), so an operation stops at its
+next report. :class:`Progress` is the thread-safe implementation, :data:`NO_PROGRESS` the no-op one for
+scripts; the GUI's task runner passes its own object with the same two methods.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import threading
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any, Literal, Protocol, TypeAlias, runtime_checkable
+
+from shapely.geometry.base import BaseGeometry
+
+from model.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
+from model.geometry.bounds import BoundResult, ChainStep, bound_of_chain
+from model.reps.pixels import PixelSet
+
+__all__ = [
+    "NO_PROGRESS",
+    "REGISTRY",
+    "ChainResult",
+    "NullProgress",
+    "OperationResult",
+    "OperationSpec",
+    "ParamSpec",
+    "Progress",
+    "ProgressLike",
+    "SubProgress",
+    "bounds_of",
+    "check_pixel_limit",
+    "estimate_result_pixels",
+    "get_operation",
+    "operations",
+    "param",
+    "param_specs",
+    "params_from_dict",
+    "params_to_dict",
+    "register",
+    "run_chain",
+    "run_operation",
+    "validate_params",
+]
+
+
+# ============================================================================================================
+# Progress and cancel
+# ============================================================================================================
+
+
+@runtime_checkable
+class ProgressLike(Protocol):
+    """What an operation needs from a progress object."""
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        """Report ``fraction`` in [0, 1] and a message; raise Cancelled after a cancel."""
+
+    @property
+    def cancelled(self) -> bool:
+        """True once the work was cancelled."""
+
+
+class Progress:
+    """Thread-safe progress with prompt cancellation.
+
+    Parameters
+    ----------
+    callback : callable, optional
+        ``callback(fraction, message)``, called on every update (from the working thread).
+
+    Notes
+    -----
+    ``cancel()`` may be called from any thread; the next ``update()`` (or ``check()``) in the working thread
+    raises :class:`model.errors.Cancelled`. Fractions are clamped to [0, 1] and never go backwards.
+    """
+
+    def __init__(self, callback: Callable[[float, str], None] | None = None) -> None:
+        self._lock = threading.Lock()
+        self._event = threading.Event()
+        self._callback = callback
+        self._fraction = 0.0
+        self._message = ""
+
+    @property
+    def fraction(self) -> float:
+        """The last reported fraction, in [0, 1]."""
+        with self._lock:
+            return self._fraction
+
+    @property
+    def message(self) -> str:
+        """The last reported message."""
+        with self._lock:
+            return self._message
+
+    @property
+    def cancelled(self) -> bool:
+        """True once :meth:`cancel` was called."""
+        return self._event.is_set()
+
+    def cancel(self) -> None:
+        """Ask the work to stop at its next report (any thread)."""
+        self._event.set()
+
+    def check(self) -> None:
+        """Raise :class:`Cancelled` if the work was cancelled."""
+        if self._event.is_set():
+            raise Cancelled("cancelled")
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        """Report progress; raise :class:`Cancelled` after a cancel.
+
+        Parameters
+        ----------
+        fraction : float, optional
+            Done so far, in [0, 1] (clamped; NaN ignored).
+        message : str, optional
+            What is being done.
+        """
+        self.check()
+        with self._lock:
+            if fraction is not None and fraction == fraction:
+                self._fraction = max(self._fraction, min(1.0, max(0.0, float(fraction))))
+            if message is not None:
+                self._message = str(message)
+            snapshot = (self._fraction, self._message)
+        if self._callback is not None:
+            self._callback(*snapshot)
+
+    def sub(self, start: float, stop: float) -> SubProgress:
+        """A progress for a part of the work that maps its [0, 1] onto [start, stop] of this one."""
+        return SubProgress(self, start, stop)
+
+
+class SubProgress:
+    """The part [start, stop] of a parent progress (cancellation is the parent's)."""
+
+    def __init__(self, parent: ProgressLike, start: float, stop: float) -> None:
+        self._parent = parent
+        self._start = float(start)
+        self._stop = float(stop)
+
+    @property
+    def cancelled(self) -> bool:
+        """True once the parent was cancelled."""
+        return bool(self._parent.cancelled)
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        """Report ``fraction`` of this part to the parent; raise Cancelled after a cancel."""
+        mapped = None
+        if fraction is not None and fraction == fraction:
+            f = min(1.0, max(0.0, float(fraction)))
+            mapped = self._start + f * (self._stop - self._start)
+        self._parent.update(mapped, message)
+
+    def sub(self, start: float, stop: float) -> SubProgress:
+        """A nested part."""
+        span = self._stop - self._start
+        return SubProgress(self._parent, self._start + start * span, self._start + stop * span)
+
+
+class NullProgress:
+    """A progress that records nothing and is never cancelled: for scripts and tests."""
+
+    cancelled = False
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        """Do nothing."""
+
+    def sub(self, start: float, stop: float) -> NullProgress:
+        """Itself."""
+        return self
+
+
+#: The shared no-op progress.
+NO_PROGRESS = NullProgress()
+
+
+# ============================================================================================================
+# Parameters
+# ============================================================================================================
+
+ParamKind = Literal["float", "int", "bool", "point", "choice", "str"]
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """The metadata of one parameter (from the field's ``metadata["mrm"]``).
+
+    Attributes
+    ----------
+    name : str
+        The field name.
+    label : str
+        A short label for a form (defaults to the name).
+    kind : str
+        ``float``, ``int``, ``bool``, ``point`` (a pair of floats), ``choice`` or ``str``.
+    default : object
+        The default value.
+    unit : str
+        The unit shown after the value (``px``, ``°``, …).
+    help : str
+        One or two sentences for a tooltip.
+    minimum, maximum : float or None
+        Bounds of a number (``min_inclusive``/``max_inclusive`` tell whether they are allowed).
+    choices : tuple
+        The allowed values of a ``choice``.
+    optional : bool
+        Whether None is allowed (e.g. "no centre: the origin").
+    """
+
+    name: str
+    label: str
+    kind: ParamKind
+    default: Any
+    unit: str = ""
+    help: str = ""
+    minimum: float | None = None
+    maximum: float | None = None
+    min_inclusive: bool = True
+    max_inclusive: bool = True
+    choices: tuple[Any, ...] = ()
+    optional: bool = False
+
+    def as_dict(self) -> dict[str, Any]:
+        """A JSON-ready description (for forms and documentation)."""
+        d = dataclasses.asdict(self)
+        d["choices"] = list(self.choices)
+        if isinstance(self.default, tuple):
+            d["default"] = list(self.default)
+        return d
+
+
+def param(
+    default: Any,
+    *,
+    label: str = "",
+    unit: str = "",
+    help: str = "",
+    minimum: float | None = None,
+    maximum: float | None = None,
+    min_inclusive: bool = True,
+    max_inclusive: bool = True,
+    positive: bool = False,
+    choices: Sequence[Any] | None = None,
+    optional: bool = False,
+    kind: ParamKind | None = None,
+) -> Any:
+    """A dataclass field carrying a parameter's metadata.
+
+    ``positive=True`` means ``minimum=0`` excluded. The kind is inferred from the default (a float, an int,
+    a bool, a pair, one of ``choices``) unless given; give it when the default is None.
+
+    Examples
+    --------
+    >>> @dataclass(frozen=True)
+    ... class ScaleParams:
+    ...     alpha: float = param(2.0, label="α", positive=True, help="scale factor")
+    """
+    if positive:
+        minimum, min_inclusive = 0.0, False
+    if kind is None:
+        if choices is not None:
+            kind = "choice"
+        elif isinstance(default, bool):
+            kind = "bool"
+        elif isinstance(default, int):
+            kind = "int"
+        elif isinstance(default, float):
+            kind = "float"
+        elif isinstance(default, tuple) and len(default) == 2:
+            kind = "point"
+        elif isinstance(default, str):
+            kind = "str"
+        else:
+            raise TypeError(f"cannot infer the kind of a parameter with default {default!r}; give kind=")
+    meta = {
+        "label": label,
+        "kind": kind,
+        "unit": unit,
+        "help": help,
+        "minimum": minimum,
+        "maximum": maximum,
+        "min_inclusive": min_inclusive,
+        "max_inclusive": max_inclusive,
+        "choices": tuple(choices or ()),
+        "optional": optional,
+    }
+    return field(default=default, metadata={"mrm": meta})
+
+
+def param_specs(params: Any) -> list[ParamSpec]:
+    """The :class:`ParamSpec` of every field of a parameters dataclass (or instance), in order."""
+    if not dataclasses.is_dataclass(params):
+        raise TypeError(f"{params!r} is not a parameters dataclass")
+    specs = []
+    for f in dataclasses.fields(params):
+        meta = f.metadata.get("mrm")
+        if meta is None:
+            raise TypeError(f"field {f.name!r} has no parameter metadata (declare it with param())")
+        default = f.default if f.default is not dataclasses.MISSING else None
+        specs.append(
+            ParamSpec(name=f.name, label=meta["label"] or f.name, default=default, **_meta_rest(meta))
+        )
+    return specs
+
+
+def _meta_rest(meta: dict[str, Any]) -> dict[str, Any]:
+    return {k: v for k, v in meta.items() if k != "label"}
+
+
+def _fmt(v: float) -> str:
+    return f"{v:g}"
+
+
+def _check_number(spec: ParamSpec, value: Any) -> float:
+    what = f"parameter {spec.name!r}" + (f" ({spec.label})" if spec.label != spec.name else "")
+    if isinstance(value, bool) or not isinstance(value, (int, float, Fraction)):
+        raise ParameterError(f"{what} must be a number, got {value!r}")
+    if spec.kind == "int" and not isinstance(value, int):
+        raise ParameterError(f"{what} must be an integer, got {value!r}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ParameterError(f"{what} must be finite, got {value!r}")
+    lo, hi = spec.minimum, spec.maximum
+    if lo is not None and (v < lo or (v == lo and not spec.min_inclusive)):
+        if lo == 0 and not spec.min_inclusive:
+            raise ParameterError(f"{what} must be positive, got {_fmt(v)}")
+        rel = "≥" if spec.min_inclusive else ">"
+        raise ParameterError(f"{what} must be {rel} {_fmt(lo)}, got {_fmt(v)}")
+    if hi is not None and (v > hi or (v == hi and not spec.max_inclusive)):
+        rel = "≤" if spec.max_inclusive else "<"
+        raise ParameterError(f"{what} must be {rel} {_fmt(hi)}, got {_fmt(v)}")
+    return v
+
+
+def validate_params(params: Any) -> None:
+    """Check every parameter against its metadata.
+
+    Raises
+    ------
+    ParameterError
+        Naming the parameter: a non-number, a non-finite value, a value outside its bounds (a non-positive
+        one where ``positive=True``), a point that is not a pair of finite numbers, a value not among the
+        choices.
+    """
+    for spec in param_specs(params):
+        value = getattr(params, spec.name)
+        what = f"parameter {spec.name!r}"
+        if value is None:
+            if spec.optional:
+                continue
+            raise ParameterError(f"{what} is required")
+        if spec.kind in ("float", "int"):
+            _check_number(spec, value)
+        elif spec.kind == "point":
+            if not isinstance(value, (tuple, list)) or len(value) != 2:
+                raise ParameterError(f"{what} must be a pair of numbers (x, y), got {value!r}")
+            for v in value:
+                if (
+                    isinstance(v, bool)
+                    or not isinstance(v, (int, float, Fraction))
+                    or not math.isfinite(float(v))
+                ):
+                    raise ParameterError(f"{what} must be a pair of finite numbers, got {value!r}")
+        elif spec.kind == "bool":
+            if not isinstance(value, bool):
+                raise ParameterError(f"{what} must be true or false, got {value!r}")
+        elif spec.kind == "choice":
+            if value not in spec.choices:
+                opts = ", ".join(map(str, spec.choices))
+                raise ParameterError(f"{what} must be one of {opts}, got {value!r}")
+        elif spec.kind == "str" and not isinstance(value, str):
+            raise ParameterError(f"{what} must be text, got {value!r}")
+
+
+def params_to_dict(params: Any) -> dict[str, Any]:
+    """The parameters as JSON-ready values (points become lists, floats stay floats)."""
+    out: dict[str, Any] = {}
+    for spec in param_specs(params):
+        v = getattr(params, spec.name)
+        out[spec.name] = list(v) if isinstance(v, tuple) else v
+    return out
+
+
+def params_from_dict(cls: type, data: dict[str, Any]) -> Any:
+    """Build and validate a parameters dataclass from a dict (unknown keys are refused)."""
+    names = {s.name: s for s in param_specs(cls)}
+    unknown = set(data) - set(names)
+    if unknown:
+        raise ParameterError(
+            f"unknown parameter(s) {', '.join(sorted(unknown))} (expected {', '.join(names)})"
+        )
+    kwargs = {}
+    for k, v in data.items():
+        kwargs[k] = tuple(v) if names[k].kind == "point" and isinstance(v, list) else v
+    params = cls(**kwargs)
+    validate_params(params)
+    return params
+
+
+# ============================================================================================================
+# Size guard
+# ============================================================================================================
+
+Bounds = tuple[float, float, float, float]
+
+
+def bounds_of(obj: PixelSet | BaseGeometry) -> Bounds | None:
+    """The Euclidean bounding box of an object: ``V(A)``'s for a pixel set, the geometry's own otherwise."""
+    if isinstance(obj, PixelSet):
+        bb = obj.bbox
+        if bb is None:
+            return None
+        return (bb[0] - 0.5, bb[1] - 0.5, bb[2] + 0.5, bb[3] + 0.5)
+    if obj.is_empty:
+        return None
+    b = obj.bounds
+    return (float(b[0]), float(b[1]), float(b[2]), float(b[3]))
+
+
+def estimate_result_pixels(
+    bounds: Bounds | None,
+    *,
+    scale: float = 1.0,
+    angle_deg: float = 0.0,
+    center: tuple[float, float] = (0.0, 0.0),
+    offset: tuple[float, float] = (0.0, 0.0),
+) -> int:
+    """How many pixels the bounding box of the transformed object covers (an upper bound of the result).
+
+    The box is mapped by ``x ↦ center + scale·rot(angle)·(x − center) + offset``; the count is the number of
+    pixels whose voxel meets the image's bounding box, computed with exact integers (no overflow, so an
+    absurd scale reports the absurd size it would have had).
+    """
+    if bounds is None:
+        return 0
+    c = math.cos(math.radians(angle_deg)) if angle_deg % 90 else [1, 0, -1, 0][int(angle_deg // 90) % 4]
+    s = math.sin(math.radians(angle_deg)) if angle_deg % 90 else [0, 1, 0, -1][int(angle_deg // 90) % 4]
+    fc, fs, k = Fraction(c), Fraction(s), Fraction(scale)
+    cx, cy = Fraction(center[0]), Fraction(center[1])
+    ox, oy = Fraction(offset[0]), Fraction(offset[1])
+    xs, ys = [], []
+    for x in (bounds[0], bounds[2]):
+        for y in (bounds[1], bounds[3]):
+            dx, dy = Fraction(x) - cx, Fraction(y) - cy
+            xs.append(cx + k * (fc * dx - fs * dy) + ox)
+            ys.append(cy + k * (fs * dx + fc * dy) + oy)
+    half = Fraction(1, 2)
+    nx = math.floor(max(xs) + half) - math.ceil(min(xs) - half) + 1
+    ny = math.floor(max(ys) + half) - math.ceil(min(ys) - half) + 1
+    return max(nx, 0) * max(ny, 0)
+
+
+def check_pixel_limit(
+    estimated: int, limit: int | None = DEFAULT_PIXEL_LIMIT, what: str = "the result"
+) -> None:
+    """Raise :class:`SizeLimitError` (with the size it would have had) when ``estimated > limit``."""
+    if limit is not None and estimated > limit:
+        raise SizeLimitError(estimated, limit, what)
+
+
+# ============================================================================================================
+# Operations
+# ============================================================================================================
+
+Output: TypeAlias = "PixelSet | BaseGeometry"
+Kind = Literal["discrete", "euclidean", "any"]
+
+
+@dataclass(frozen=True)
+class OperationResult:
+    """What an operation produced.
+
+    Attributes
+    ----------
+    outputs : list of (str, PixelSet or shapely geometry)
+        Named results (one for most operations, three parts for a co-refinement).
+    provenance : dict
+        ``{"operation": name, "params": {...}, "inputs": [...]}``: each input is the provenance of that input
+        when the caller gave it, else ``{"input": index}``. Replaying it reproduces the result.
+    bound : BoundResult or None
+        The error bound of the operation (of the chain, when run by :func:`run_chain`).
+    measured : float or None
+        The measured Hausdorff distance between the composite Euclidean transform of A_first and A_last.
+    """
+
+    outputs: list[tuple[str, Output]]
+    provenance: dict[str, Any] = field(default_factory=dict)
+    bound: BoundResult | None = None
+    measured: float | None = None
+
+    @property
+    def output(self) -> Output:
+        """The first (usually only) output."""
+        return self.outputs[0][1]
+
+
+RunFn = Callable[[Sequence[Output], Any, ProgressLike], OperationResult]
+EstimateFn = Callable[[Sequence[Output], Any], int]
+
+
+@dataclass(frozen=True)
+class OperationSpec:
+    """A declarative operation.
+
+    Attributes
+    ----------
+    name : str
+        The identifier (registry key, provenance, CLI).
+    title : str
+        What a menu shows.
+    arity : int
+        How many inputs it takes.
+    params : type
+        Its parameters dataclass (fields declared with :func:`param`).
+    run : callable
+        ``run(inputs, params, progress) -> OperationResult``; checks ``progress`` now and then.
+    input_kind, output_kind : str
+        ``discrete`` (PixelSet), ``euclidean`` (shapely geometry) or ``any``.
+    help : str
+        A sentence for tooltips and ``--help``.
+    estimate : callable, optional
+        ``estimate(inputs, params) -> pixels``: the result's size, computed before running for the guard.
+    chain_step : callable, optional
+        ``chain_step(params) -> ChainStep``: the step in the bound model (DESIGN §8).
+    """
+
+    name: str
+    title: str
+    arity: int
+    params: type
+    run: RunFn
+    input_kind: Kind = "any"
+    output_kind: Kind = "any"
+    help: str = ""
+    estimate: EstimateFn | None = None
+    chain_step: Callable[[Any], ChainStep] | None = None
+
+    def default_params(self) -> Any:
+        """The parameters with their defaults."""
+        return self.params()
+
+    def param_specs(self) -> list[ParamSpec]:
+        """The metadata of the parameters, for forms."""
+        return param_specs(self.params)
+
+
+#: Every registered operation, by name.
+REGISTRY: dict[str, OperationSpec] = {}
+
+
+def register(spec: OperationSpec) -> OperationSpec:
+    """Add ``spec`` to the registry (a name can be registered once) and return it."""
+    if spec.name in REGISTRY and REGISTRY[spec.name] is not spec:
+        raise ValueError(f"an operation named {spec.name!r} is already registered")
+    REGISTRY[spec.name] = spec
+    return spec
+
+
+_loaded = False
+
+
+def _load_builtin() -> None:
+    # Operation modules register their specs when imported. Importing every public module of the package on
+    # first use keeps the registry complete for whoever asks it (a new operation needs no edit here) without
+    # the framework importing them at its own import time (they import the framework).
+    global _loaded
+    if _loaded:
+        return
+    import importlib
+    import pkgutil
+
+    import model.ops as package
+
+    for info in pkgutil.iter_modules(package.__path__):
+        if not info.name.startswith("_") and info.name != "base":
+            importlib.import_module(f"{package.__name__}.{info.name}")
+    _loaded = True
+
+
+def get_operation(name: str) -> OperationSpec:
+    """The registered operation ``name``."""
+    _load_builtin()
+    try:
+        return REGISTRY[name]
+    except KeyError:
+        raise ParameterError(f"unknown operation {name!r} (known: {', '.join(sorted(REGISTRY))})") from None
+
+
+def operations() -> list[OperationSpec]:
+    """Every registered operation, sorted by name."""
+    _load_builtin()
+    return [REGISTRY[k] for k in sorted(REGISTRY)]
+
+
+def _check_inputs(spec: OperationSpec, inputs: Sequence[Output]) -> None:
+    if len(inputs) != spec.arity:
+        raise ParameterError(f"{spec.name} takes {spec.arity} input(s), got {len(inputs)}")
+    for i, obj in enumerate(inputs):
+        if spec.input_kind == "discrete" and not isinstance(obj, PixelSet):
+            raise ParameterError(f"{spec.name}: input {i + 1} must be a pixel set, got {type(obj).__name__}")
+        if spec.input_kind == "euclidean" and not isinstance(obj, BaseGeometry):
+            raise ParameterError(
+                f"{spec.name}: input {i + 1} must be a Euclidean geometry, got {type(obj).__name__}"
+            )
+
+
+def run_operation(
+    spec: OperationSpec | str,
+    inputs: Sequence[Output],
+    params: Any = None,
+    *,
+    progress: ProgressLike | None = None,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+    input_provenance: Sequence[dict[str, Any] | None] | None = None,
+    model: str = "standard",
+) -> OperationResult:
+    """Validate, guard, run ``spec`` and stamp the result with its provenance.
+
+    Parameters
+    ----------
+    spec : OperationSpec or str
+        The operation (or its registered name).
+    inputs : sequence
+        ``spec.arity`` pixel sets or geometries.
+    params : parameters dataclass, optional
+        Defaults when omitted.
+    progress : progress object, optional
+        Receives ``update(fraction, message)``; cancelling it stops the work with :class:`Cancelled`.
+    limit : int or None
+        The largest result allowed, in pixels (None: no limit).
+    input_provenance : sequence of dict, optional
+        The provenance of each input, nested into the result's.
+    model : str
+        The discretization model, for the operation's own bound when it does not set one.
+
+    Raises
+    ------
+    ParameterError, SizeLimitError, Cancelled
+        Bad parameters or inputs; a result beyond ``limit`` (raised before running); a cancel.
+    """
+    if isinstance(spec, str):
+        spec = get_operation(spec)
+    if params is None:
+        params = spec.default_params()
+    if not isinstance(params, spec.params):
+        raise ParameterError(f"{spec.name} takes {spec.params.__name__}, got {type(params).__name__}")
+    validate_params(params)
+    _check_inputs(spec, inputs)
+    if spec.estimate is not None:
+        check_pixel_limit(spec.estimate(inputs, params), limit, f"{spec.title} result")
+    progress = NO_PROGRESS if progress is None else progress
+    progress.update(0.0, spec.title)
+    result = spec.run(inputs, params, progress)
+    progress.update(1.0, spec.title)
+    prov_inputs: list[dict[str, Any]] = []
+    for i in range(len(inputs)):
+        given = input_provenance[i] if input_provenance is not None and i < len(input_provenance) else None
+        prov_inputs.append(given if given is not None else {"input": i})
+    provenance = {"operation": spec.name, "params": params_to_dict(params), "inputs": prov_inputs}
+    bound = result.bound
+    if bound is None and spec.chain_step is not None:
+        bound = bound_of_chain([spec.chain_step(params)], model)
+    return dataclasses.replace(result, provenance=provenance, bound=bound)
+
+
+@dataclass(frozen=True)
+class ChainResult:
+    """The results of a chain, step by step, and the chain's error bound (None if a step has no model)."""
+
+    results: list[OperationResult]
+    bound: BoundResult | None
+
+    @property
+    def output(self) -> Output:
+        """The last step's first output."""
+        return self.results[-1].output
+
+    @property
+    def provenance(self) -> dict[str, Any]:
+        """The last step's provenance (it nests every earlier step)."""
+        return self.results[-1].provenance
+
+
+ChainItem = tuple[OperationSpec | str, Any] | tuple[OperationSpec | str, Any, Sequence[Output]]
+
+
+def run_chain(
+    steps: Sequence[ChainItem],
+    first: Output,
+    *,
+    model: str = "standard",
+    progress: ProgressLike | None = None,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+    first_provenance: dict[str, Any] | None = None,
+) -> ChainResult:
+    """Run operations one after the other, each on the first output of the previous one.
+
+    Parameters
+    ----------
+    steps : sequence of (spec, params) or (spec, params, other_inputs)
+        ``other_inputs`` are the extra operands of a binary operation (the chain's object comes first).
+    first : PixelSet or geometry
+        The chain's input.
+    model : str
+        The discretization model, for the chain's bound.
+    progress : progress object, optional
+        Split evenly between the steps; a cancel stops the chain at the current step.
+
+    Returns
+    -------
+    ChainResult
+        Every step's result (provenance nested: the last one names the whole chain) and the bound of the
+        chain when every step has a place in the bound model.
+    """
+    if not steps:
+        raise ParameterError("the chain is empty")
+    progress = NO_PROGRESS if progress is None else progress
+    results: list[OperationResult] = []
+    current: Output = first
+    prov: dict[str, Any] | None = first_provenance
+    chain_steps: list[ChainStep] = []
+    modelled = True  # every step so far has a place in the bound model
+    for i, item in enumerate(steps):
+        spec = get_operation(item[0]) if isinstance(item[0], str) else item[0]
+        params = item[1] if item[1] is not None else spec.default_params()
+        others: Sequence[Output] = item[2] if len(item) > 2 else ()
+        part = SubProgress(progress, i / len(steps), (i + 1) / len(steps))
+        res = run_operation(
+            spec,
+            [current, *others],
+            params,
+            progress=part,
+            limit=limit,
+            input_provenance=[prov] + [None] * len(others),
+            model=model,
+        )
+        results.append(res)
+        current, prov = res.output, res.provenance
+        if spec.chain_step is not None:
+            chain_steps.append(spec.chain_step(params))
+        else:
+            modelled = False
+    bound = bound_of_chain(chain_steps, model) if modelled else None
+    return ChainResult(results, bound)
