@@ -16,14 +16,21 @@ of the per-input summaries.
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-from model.cli._common import PROJECT_EXTENSION, add_limit_argument, extension_of, print_table, read_input
+from model.cli._common import (
+    PROJECT_EXTENSION,
+    add_limit_argument,
+    extension_of,
+    finite_float,
+    positive_int,
+    print_table,
+    read_input,
+)
 from model.errors import FileFormatError, MRMError, ParameterError
 from model.io.pixel_files import PIXEL_EXTENSIONS
 from model.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
@@ -36,26 +43,6 @@ HELP = "reversible continuation of pixel files (.png .pbm .pgm .npz .mrm) into p
 INPUTS = (*PIXEL_EXTENSIONS, PROJECT_EXTENSION)
 OUTPUTS = (*VECTOR_EXTENSIONS, ".svg")
 _SUM_KEYS = ("pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices", "seconds")
-
-
-def _threshold(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
-    return value
-
-
-def _jobs(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
-    return value
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -72,11 +59,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "holding {stem}",
     )
     parser.add_argument(
-        "--jobs", type=_jobs, default=1, metavar="N", help="worker processes for several inputs"
+        "--jobs", type=positive_int, default=1, metavar="N", help="worker processes for several inputs"
     )
     parser.add_argument(
         "--threshold",
-        type=_threshold,
+        type=finite_float,
         default=None,
         metavar="T",
         help="grey images: pixels brighter than T are in the set (default: binary images as they are, "
