@@ -111,7 +111,9 @@ def test_pixel_grid_appears_when_zoomed_in(make_window, qtbot):
     win.actions["view.pixel_grid"].trigger()  # G toggles it off
     assert not view.plane.grid.is_drawn()
     img = view.plane.viewport().grab().toImage()
-    assert all(is_background(view, img.pixelColor(int(p.x() * dpr) + d, int(p.y() * dpr))) for d in (-1, 0, 1))
+    assert all(
+        is_background(view, img.pixelColor(int(p.x() * dpr) + d, int(p.y() * dpr))) for d in (-1, 0, 1)
+    )
 
 
 def test_status_bar_shows_cursor_and_figures(make_window, qtbot):
