@@ -382,9 +382,7 @@ class _Map:
 
     def commutes_with_round_trips(self) -> bool:
         """The identity or an integer translation: then ``R∘D∘T∘R∘D = T∘R∘D`` (D(R(A)) = A, covariance)."""
-        return (
-            self.ar == 1 and self.ai == 0 and self.br.denominator == 1 and self.bi.denominator == 1
-        )
+        return self.ar == 1 and self.ai == 0 and self.br.denominator == 1 and self.bi.denominator == 1
 
 
 _IDENTITY = _Map(Fraction(1), Fraction(0), Fraction(0), Fraction(0))
@@ -414,8 +412,11 @@ _R = ("R",)
 
 
 def _primitives(step: ChainStep, index: int) -> list[tuple[object, ...]]:
-    """The primitives of ``step``: ("D",), ("R",), ("S", ratio, exact map or None) and the markers of
-    unions ("U",) and co-refinements ("C", part)."""
+    """Expand ``step`` into primitives, in application order.
+
+    ("D",), ("R",), ("S", ratio, exact map or None), and the markers of unions ("U",) and co-refinements
+    ("C", part).
+    """
     k = step.kind
     if k == "DSS":
         return [_R, ("S", step.ratio(), _scaling(step.ratio(), step.center)), _D]
@@ -436,16 +437,24 @@ def _primitives(step: ChainStep, index: int) -> list[tuple[object, ...]]:
         return [("U",), _D, _R]
     # COREFINE: Sc_α, then D of both inputs, the discrete Boolean part, R, Sc_1/α.
     alpha = step.value if step.value is not None else Fraction(1)
-    return [("S", alpha, _scaling(alpha, None)), ("C", step.part), _D, _R, ("S", 1 / alpha, _scaling(1 / alpha, None))]
+    return [
+        ("S", alpha, _scaling(alpha, None)),
+        ("C", step.part),
+        _D,
+        _R,
+        ("S", 1 / alpha, _scaling(1 / alpha, None)),
+    ]
 
 
 def _merge_exact_round_trips(
     atoms: list[tuple[str, object, int]], discrete_start: bool
 ) -> list[tuple[str, object, int]]:
-    """Drop a round trip when the similarities since the previous one compose to the identity or to an
-    integer translation T: ``R∘D∘T∘R∘D = T∘R∘D`` because ``D(R(A)) = A`` and ``R(A + t) = R(A) + t``.
+    """Drop the round trips that exact identities make free.
 
-    A discrete start counts as a round trip: ``A_first = R(A)`` is already a continuation."""
+    A round trip is dropped when the similarities since the previous one compose to the identity or to an
+    integer translation T: ``R∘D∘T∘R∘D = T∘R∘D`` because ``D(R(A)) = A`` and ``R(A + t) = R(A) + t``. A
+    discrete start counts as a round trip: ``A_first = R(A)`` is already a continuation.
+    """
     out: list[tuple[str, object, int]] = []
     # The composite since the last round trip kept (None: unknown, or no round trip yet).
     since: _Map | None = _IDENTITY if discrete_start else None

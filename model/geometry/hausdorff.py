@@ -39,13 +39,26 @@ solved symbolically (circumcentre; a bisector line meeting a parabola; angle bis
 ``Q(√(N₁N₂))`` meeting a parabola; three lines), which needs nested square roots. All of these numbers live
 in one *tower of quadratic extensions* ``Q(√δ₁)(√δ₂)…`` in which every comparison is decided exactly (the sign
 of ``a + b·√δ`` follows from the signs of ``a``, ``b`` and ``a² − b²δ``), after a float interval filter with
-outward rounding settles the easy cases. Spatial indexes (GEOS STRtree) and float intervals only ever select
-*supersets* of the features or edges that matter, with outward-rounded boxes, and a branch-and-bound over
-boxes finds the cells where case 3 may improve on the best value; every pruning rule is an exact rational
-inequality (Lipschitz: ``f(c) + r ≤ L``; a single feature's convex upper bound; a box inside ``B`` or outside
-``A``). So the result is the exact maximum: ``squared`` compares exactly (:meth:`HausdorffDistance.compare`,
-:meth:`HausdorffDistance.exceeds_sqrt_multiple`), and ``value`` is the float nearest to it (computed from a
-2⁻²⁰⁰-wide enclosure).
+outward rounding settles the easy cases.
+
+The search is a branch-and-bound that never needs to be lucky:
+
+- case 2 splits each edge of A into pieces, drops a piece when an exact rational bound shows it cannot beat
+  the best value (Lipschitz ``f(c) + r ≤ L``; the largest distance to one edge of ∂B, convex, at the piece's
+  ends; the piece lies inside B), and examines the exact candidates of the remaining pieces;
+- case 3 covers A with boxes, first in floats (vectorized; every float inequality carries a proven rounding
+  allowance and whatever the floats cannot settle is kept), then in rationals (the convex bound taken over the
+  vertices of ``box ∩ A``), and solves the triples of features that can be nearest in a small box — after an
+  interval shadow of the solver has discarded the triples that certainly cannot win;
+- a feature is dropped only where it cannot be the nearest one of a point outside B (an edge whose line
+  leaves the box on B's side, a reflex vertex, a point outside a vertex's normal cone);
+- spatial indexes (GEOS STRtree) only select *supersets* of the edges that matter, with outward-rounded boxes.
+
+Guarantee: the result is the exact maximum. ``squared`` (a Fraction when rational) and the comparisons
+(:meth:`HausdorffDistance.compare`, :meth:`HausdorffDistance.exceeds_sqrt_multiple`) are exact; ``value`` is
+the float nearest to it, computed from a 2⁻²⁰⁰-wide enclosure. Typical reconstructions of a few hundred
+vertices take a fraction of a second; a hole shaped like a regular polygon (many edges almost equidistant
+from its centre) costs a few seconds, and the cost grows with the number of edges near the farthest points.
 """
 
 from __future__ import annotations
@@ -1002,17 +1015,15 @@ def _box_orig(q: Box, k: int, pad: float = 0.0) -> tuple[float, float, float, fl
 def _interior(run: _Run) -> None:
     """Branch-and-bound over boxes for the points of int A equidistant from three features of ∂B.
 
-    A first stage works on batches of float boxes (dyadic, so exact) with vectorized float tests whose rounding
-    is bounded: a box is dropped when ``f(c) + r ≤ best`` (Lipschitz, with an upper bound of ``d(c, ∂B)``), or
-    when it certainly misses ∂A with its centre certainly outside A, or certainly misses ∂B with its centre
-    certainly inside B; whatever the floats cannot settle is kept. Boxes that are small enough (few edges
-    nearby, or below float resolution) go to the exact stage (:func:`_exact_boxes`).
+    A first stage works on batches of float boxes (dyadic, so exact) with vectorized float tests whose
+    rounding is bounded: a box is dropped when ``f(c) + r ≤ best`` (Lipschitz, with an upper bound of
+    ``d(c, ∂B)``), or when it certainly misses ∂A with its centre certainly outside A, or certainly misses ∂B
+    with its centre certainly inside B; whatever the floats cannot settle is kept. Boxes with few edges of ∂B
+    nearby, or below float resolution, go to the exact stage (:func:`_exact_boxes`).
     """
     a, b, k = run.a, run.b, run.k
     if not a.edges or b.tree is None:
         return
-    # Rounding allowance of the float distance bounds: a few ulps of the largest coordinate (_fl_nearest_up).
-    slack = math.ldexp(max(a.mag, b.mag) + 1.0, -44)
     x0, y0 = float(a.fe[:, [0, 2]].min()), float(a.fe[:, [1, 3]].min())
     x1, y1 = float(a.fe[:, [0, 2]].max()), float(a.fe[:, [1, 3]].max())
     # A root square whose corner is on a power-of-two grid and whose side is a power of two: every sub-box
@@ -1020,6 +1031,10 @@ def _interior(run: _Run) -> None:
     grid = math.ldexp(1.0, math.frexp(max(x1 - x0, y1 - y0, 1e-300))[1] - 1)
     rx, ry = math.floor(x0 / grid) * grid, math.floor(y0 / grid) * grid
     side = math.ldexp(1.0, math.frexp(max(x1 - rx, y1 - ry))[1])
+    # Rounding allowance of the float distance bounds: a few ulps of the largest coordinate in play, the
+    # boxes' included (see _fl_nearest_up).
+    mag = max(a.mag, b.mag, abs(rx) + side, abs(ry) + side)
+    slack = math.ldexp(mag + 1.0, -44)
     counter = itertools.count()
     heap: list[tuple[float, int, float, float, float, int]] = [(0.0, next(counter), rx, ry, side, 0)]
     while heap:
@@ -1065,7 +1080,14 @@ def _interior(run: _Run) -> None:
             if sp:
                 h = float(sz[i]) / 2
                 for ox, oy in ((0.0, 0.0), (h, 0.0), (0.0, h), (h, h)):
-                    item = (-float(upper[i]), next(counter), float(bx0[i]) + ox, float(by0[i]) + oy, h, int(depth[i]) + 1)
+                    item = (
+                        -float(upper[i]),
+                        next(counter),
+                        float(bx0[i]) + ox,
+                        float(by0[i]) + oy,
+                        h,
+                        int(depth[i]) + 1,
+                    )
                     heapq.heappush(heap, item)
             else:
                 scale = 1 << k
@@ -1110,15 +1132,22 @@ def _exact_boxes(run: _Run, root: Box, depth0: int) -> None:
         verts, edges = _features_near_box(run, q, u2)
         if len(verts) + len(edges) > _LEAF_FEATURES and depth < _MAX_DEPTH:
             key = -math.ldexp(math.sqrt(float(u2)), -k)
-            for child in ((q[0], q[1], cx, cy), (cx, q[1], q[2], cy), (q[0], cy, cx, q[3]), (cx, cy, q[2], q[3])):
+            for child in (
+                (q[0], q[1], cx, cy),
+                (cx, q[1], q[2], cy),
+                (q[0], cy, cx, q[3]),
+                (cx, cy, q[2], q[3]),
+            ):
                 heapq.heappush(heap, (key, next(counter), child, depth + 1))
             continue
         _leaf(run, q, u2, verts, edges)
 
 
 def _clip_vertices(run: _Run, q: Box, a_edges: list[int]) -> list[tuple[Rat, Rat]]:
-    """The vertices of the polygon Q ∩ A (a superset): Q's corners in A, A's vertices in Q, and the points
-    where the edges of A meeting Q cross Q's sides (all rational)."""
+    """A superset of the vertices of the polygon Q ∩ A, all rational.
+
+    Q's corners in A, A's vertices in Q, and the points where the edges of A meeting Q cross Q's sides.
+    """
     a, k = run.a, run.k
     if not a_edges:
         return list(_corners(q))
@@ -1205,7 +1234,8 @@ def _fl_misses(s: _Shape, x0: F64, y0: F64, x1: F64, y1: F64) -> Bools:
         pos &= v > err
         neg &= v < -err
     meets = ~(apart | pos | neg)
-    return np.bincount(i[meets], minlength=n) == 0
+    misses: Bools = np.bincount(i[meets], minlength=n) == 0
+    return misses
 
 
 def _fl_inside(s: _Shape, px: F64, py: F64) -> tuple[Bools, Bools]:

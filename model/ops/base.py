@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -329,9 +330,9 @@ def _fmt(v: float) -> str:
 
 def _check_number(spec: ParamSpec, value: Any) -> float:
     what = f"parameter {spec.name!r}" + (f" ({spec.label})" if spec.label != spec.name else "")
-    if isinstance(value, bool) or not isinstance(value, (int, float, Fraction)):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):  # numpy scalars are Real too
         raise ParameterError(f"{what} must be a number, got {value!r}")
-    if spec.kind == "int" and not isinstance(value, int):
+    if spec.kind == "int" and not isinstance(value, numbers.Integral):
         raise ParameterError(f"{what} must be an integer, got {value!r}")
     v = float(value)
     if not math.isfinite(v):
@@ -371,11 +372,7 @@ def validate_params(params: Any) -> None:
             if not isinstance(value, (tuple, list)) or len(value) != 2:
                 raise ParameterError(f"{what} must be a pair of numbers (x, y), got {value!r}")
             for v in value:
-                if (
-                    isinstance(v, bool)
-                    or not isinstance(v, (int, float, Fraction))
-                    or not math.isfinite(float(v))
-                ):
+                if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(float(v)):
                     raise ParameterError(f"{what} must be a pair of finite numbers, got {value!r}")
         elif spec.kind == "bool":
             if not isinstance(value, bool):

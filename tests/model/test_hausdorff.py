@@ -116,6 +116,9 @@ def test_identical_sets_and_multipolygons() -> None:
     assert hausdorff_distance(a, b).squared == 1
 
 
+@pytest.mark.filterwarnings(
+    "ignore:invalid value encountered:RuntimeWarning"
+)  # shapely building the NaN ring
 def test_bad_input_is_refused() -> None:
     bowtie = Polygon([(0, 0), (2, 2), (2, 0), (0, 2)])
     with pytest.raises(InvalidGeometryError, match="invalid"):
@@ -421,3 +424,49 @@ def test_a_larger_pair_of_near_copies() -> None:
         for p, q in ((a, b), (b, a))
     )
     assert lower <= ours.value + 1e-9 <= lower + 0.01
+
+
+# ----------------------------------------------------------------------------------------------------------
+# The exact arithmetic underneath: a tower of quadratic extensions
+# ----------------------------------------------------------------------------------------------------------
+
+
+def test_tower_decides_exact_zeros() -> None:
+    t = H._Tower()
+    r2, r3, r6 = t.sqrt(2), t.sqrt(3), t.sqrt(6)
+    assert H._sign(r2 * r3 - r6) == 0  # three independent generators, yet √2·√3 = √6
+    assert H._sign((1 + r2) * (1 + r2) - (3 + 2 * r2)) == 0
+    assert H._sign(t.sqrt(3 + 2 * r2) - (1 + r2)) == 0  # a nested root: √(3 + 2√2) = 1 + √2
+    assert H._sign(r2 + r3 - t.sqrt(10)) < 0  # 3.1462… < 3.1623…
+    assert H._sign(H._mul(r2 + r3, H._inv(r2 + r3)) - 1) == 0
+    assert t.sqrt(Fraction(9, 4)) == Fraction(3, 2) and t.sqrt(0) == 0
+    with pytest.raises(ZeroDivisionError):
+        H._inv(r2 * r3 - r6)
+
+
+@settings(max_examples=80)
+@given(
+    st.lists(st.integers(-30, 30), min_size=4, max_size=4),
+    st.lists(st.integers(-30, 30), min_size=4, max_size=4),
+    st.sampled_from([(2, 3), (2, 5), (3, 7), (5, 6)]),
+)
+def test_tower_signs_match_high_precision(c1: list[int], c2: list[int], pq: tuple[int, int]) -> None:
+    p, q = pq
+    t = H._Tower()
+    rp, rq = t.sqrt(p), t.sqrt(q)
+    rpq = t.sqrt(p * q)
+    x = c1[0] + c1[1] * rp + c1[2] * rq + c1[3] * rpq
+    y = c2[0] + c2[1] * rp + c2[2] * rq + c2[3] * rpq
+    with localcontext() as ctx:
+        ctx.prec = 60
+        dp, dq = Decimal(p).sqrt(), Decimal(q).sqrt()
+        dx = c1[0] + c1[1] * dp + c1[2] * dq + c1[3] * dp * dq
+        dy = c2[0] + c2[1] * dp + c2[2] * dq + c2[3] * dp * dq
+        prod = dx * dy
+        nested = (dx * dx + 1).sqrt()
+    for value, expected in ((x * y, prod), (t.sqrt(x * x + 1) - x, nested - dx)):
+        s = H._sign(value)
+        if abs(expected) < Decimal("1e-40"):
+            assert s == 0
+        else:
+            assert s == (1 if expected > 0 else -1)

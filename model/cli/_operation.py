@@ -1,0 +1,152 @@
+"""What the operation subcommands share (``mrm scale | rotate | simplify | union | corefine``, DESIGN §9).
+
+Inputs are pixel files (.png .pbm .pgm .npz), vector files (.geojson .json .wkt) or projects (.mrm) with
+``--object NAME``. An operation reads the representation it needs: DSS and dR the discrete one (D(E) of a
+vector input), Sp the Euclidean one (R(A) of a pixel input), EDu and EDco either (a pixel set stands for
+itself as D(E)).
+
+Outputs: a pixel result goes to .png/.pbm/.pgm/.npz, a Euclidean result to .geojson/.json/.wkt/.svg; asking
+for the other kind writes the result's other representation (R of a pixel result, D of a Euclidean one —
+exact both ways, since D(R(A)) = A). Files are written atomically: a failure leaves no half-written file.
+
+``--json`` prints the info keys of the result (:func:`model.summary.summarize`) plus ``bound`` (the error
+bound of the operation as a chain, null where the model gives none) and ``measured`` (the exact Hausdorff
+distance between the composite Euclidean transform of A_first and A_last; null with ``--no-measure``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+from typing import Any
+
+from model.cli._common import add_limit_argument, extension_of, load_object, print_table
+from model.cli._project_input import add_object_argument
+from model.errors import ParameterError
+from model.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
+from model.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
+from model.reps.pixels import PixelSet
+from model.summary import summarize
+
+#: Input file types.
+INPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".mrm")
+#: Output file types of a single result.
+OUTPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".svg")
+
+
+def add_input(parser: argparse.ArgumentParser) -> None:
+    """One input IN with ``--object``."""
+    parser.add_argument("input", metavar="IN", help="a pixel file, a vector file or a project (.mrm)")
+    add_object_argument(parser)
+
+
+def add_two_inputs(parser: argparse.ArgumentParser) -> None:
+    """Two inputs A B; ``--object`` may be given twice (for A, then for B)."""
+    parser.add_argument("first", metavar="A", help="a pixel file, a vector file or a project (.mrm)")
+    parser.add_argument("second", metavar="B", help="a pixel file, a vector file or a project (.mrm)")
+    parser.add_argument(
+        "--object",
+        metavar="NAME",
+        action="append",
+        default=None,
+        help="for project inputs: the object to use; give it twice for A and B (once: every project input)",
+    )
+
+
+def add_common(parser: argparse.ArgumentParser, output_help: str) -> None:
+    """``-o OUT``, ``--limit`` and ``--no-measure``."""
+    parser.add_argument("-o", "--output", required=True, metavar="OUT", help=output_help)
+    add_limit_argument(parser)
+    parser.add_argument(
+        "--no-measure",
+        action="store_true",
+        help="skip the exact Hausdorff distance (measured: null); it can take seconds on large objects",
+    )
+
+
+def parse_point(text: str) -> tuple[str, str]:
+    """Argparse type: ``X,Y`` (kept as text, read exactly by the operation)."""
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) != 2 or not all(parts):
+        raise argparse.ArgumentTypeError(f"expected X,Y (two numbers), got {text!r}")
+    return parts[0], parts[1]
+
+
+def read_one(path: str, object_name: str | None, model: str | None, limit: int) -> tuple[Any, str]:
+    """Read one input: (PixelSet or geometry, model)."""
+    extension_of(path, INPUTS, "supported input file")
+    _, value, chosen = load_object(path, object_name, model, limit=limit)
+    return value, chosen
+
+
+def read_two(args: argparse.Namespace) -> tuple[Any, Any, str]:
+    """Read A and B with their ``--object`` names; the model is --model, else A's project's, else B's."""
+    names = list(args.object or [])
+    if len(names) > 2:
+        raise ParameterError("--object is given at most twice (for A, then for B)")
+    project = [Path(p).suffix.lower() == ".mrm" for p in (args.first, args.second)]
+    if len(names) == 2:
+        name_a, name_b = names
+    elif len(names) == 1:
+        if project[0] and project[1]:
+            name_a = name_b = names[0]
+        elif project[0] or project[1]:
+            name_a, name_b = (names[0], None) if project[0] else (None, names[0])
+        else:
+            raise ParameterError("--object applies to project (.mrm) inputs only")
+    else:
+        name_a = name_b = None
+    a, model_a = read_one(args.first, name_a, args.model, args.limit)
+    b, model_b = read_one(args.second, name_b, args.model, args.limit)
+    model = args.model or (model_a if project[0] else model_b if project[1] else model_a)
+    return a, b, model
+
+
+def write_result(result: Any, path: str, model: str, properties: dict[str, Any] | None = None) -> None:
+    """Write a pixel set or a polygon to ``path``, converting to the representation the extension asks for."""
+    ext = extension_of(path, OUTPUTS, "output file")
+    if ext in PIXEL_EXTENSIONS:
+        if not isinstance(result, PixelSet):
+            from model.geometry.discretize import discretize
+
+            result = discretize(result, model)
+        write_pixels(result, path)
+        return
+    if ext == ".svg":
+        write_svg(result, path)
+        return
+    if isinstance(result, PixelSet):
+        from model.geometry.reconstruct import reconstruct
+
+        result = reconstruct(result, model)
+    if ext == ".wkt":
+        write_wkt(result, path)
+    else:
+        write_geojson(result, path, properties={"model": model, **(properties or {})})
+
+
+def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
+    """The info keys of a result (its discrete representation, and the polygon when it is Euclidean)."""
+    return summarize(pixels, model, geom=None if isinstance(result, PixelSet) else result)
+
+
+def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) -> dict[str, Any]:
+    """Run one unary operation as a one-step chain, write its result, return the --json summary."""
+    from model.ops.chain import run_chain
+
+    extension_of(args.output, OUTPUTS, "output file")  # fail before any work
+    source, model = read_one(args.input, args.object, args.model, args.limit)
+    t0 = time.perf_counter()
+    chain = run_chain(source, [(operation, params)], model, limit=args.limit, measure=not args.no_measure)
+    seconds = time.perf_counter() - t0
+    write_result(chain.result, args.output, model, {"operation": operation})
+    summary: dict[str, Any] = {"input": str(args.input), "output": str(args.output), "operation": operation}
+    summary["params"] = chain.steps[0].params
+    summary.update(result_summary(chain.result, chain.pixels, model))
+    summary.update(chain.summary())
+    summary.pop("chain", None)
+    summary["seconds"] = seconds
+    if not args.json:
+        print_table(summary)
+    return summary

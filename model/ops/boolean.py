@@ -1,0 +1,377 @@
+"""Euclidean-discrete union and co-refinement (the paper's Definitions 17–19, DESIGN §8).
+
+* ``EDu(E, E′) = R(D(E) ∪ D(E′))``;
+* ``EDco(E, E′) = { R(D(E) ∖ D(E′)), R(D(E) ∩ D(E′)), R(D(E′) ∖ D(E)) }``, given as three polygons and as
+  one label map of the three discrete parts (1 = E ∖ E′, 2 = E ∩ E′, 3 = E′ ∖ E; 0 = neither);
+* ``EDco_α``: the same on ``Sc_α(E)`` and ``Sc_α(E′)`` (exact rationals, discretized exactly), each part
+  mapped back by ``Sc_1/α`` exactly and rounded once to float64. Its label map lives on the scaled grid.
+
+An input may be a polygon E or a pixel set A; for a pixel set, D(E) is A itself (an object's discrete
+representation is always D of its Euclidean one) and, for EDco_α, E is R(A).
+
+The discrete parts partition D(E) ∪ D(E′). Under the cover models each R(part) lies in V(part), so the three
+polygons have disjoint interiors. Under ``gauss`` the joint reconstruction of the label map
+(``model.geometry.subdivision.reconstruct_label_map``), when it is available, makes them a watertight
+subdivision: neighbouring parts share their boundaries exactly.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from model.geometry import bounds
+from model.geometry.bounds import ChainStep, CorefinePart
+from model.ops.base import OperationResult, OperationSpec, param, register
+from model.ops.exact_geometry import (
+    ExactShape,
+    Similarity,
+    box_area,
+    mapped_bounds,
+    number_to_json,
+    pixel_box,
+    positive_number,
+    voxel_bounds,
+)
+from model.ops.outcome import (
+    MODELS,
+    StepOutcome,
+    check_limit,
+    check_model,
+    check_size,
+    joint_box,
+    provenance,
+    source_box,
+    sub_progress,
+)
+from model.ops.rational_discretize import ProgressLike, discretize_exact
+from model.ops.simplify import euclidean_input
+from model.reps.pixels import LabelMap, PixelSet
+from model.summary import optional_function
+
+#: The parts of a co-refinement, in label order (label = index + 1), as files and properties name them.
+PARTS = ("a_minus_b", "a_and_b", "b_minus_a")
+#: The part of each in :mod:`model.geometry.bounds` terms.
+BOUND_PART: dict[str, CorefinePart] = {"a_minus_b": "first", "a_and_b": "common", "b_minus_a": "second"}
+#: What each part is.
+PART_TITLES = {"a_minus_b": "A ∖ B", "a_and_b": "A ∩ B", "b_minus_a": "B ∖ A"}
+
+
+def discrete_input(
+    source: Any, model: str, sim: Similarity | None, limit: int | None, progress: ProgressLike | None
+) -> PixelSet:
+    """D(T(E)) for a polygon E, or A itself for a pixel set A when T is the identity (None)."""
+    if isinstance(source, PixelSet) and sim is None:
+        return source
+    shape = ExactShape.from_geometry(euclidean_input(source, model))
+    if sim is not None:
+        shape = shape.map(sim)
+    return discretize_exact(
+        shape, model, limit=limit, progress=progress, what="the discretization of an input"
+    )
+
+
+def euclidean_discrete_union(
+    first: Any,
+    second: Any,
+    model: str = "standard",
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+    progress: ProgressLike | None = None,
+) -> StepOutcome:
+    """Return EDu(E, E′) = R(D(E) ∪ D(E′)).
+
+    Parameters
+    ----------
+    first, second : shapely Polygon / MultiPolygon, or PixelSet
+        E and E′ (a pixel set stands for itself as D(E)).
+    model : {"standard", "supercover", "gauss"}
+    limit : int or None
+        Largest discretization of an input and largest union (pixels of their bounding boxes).
+    progress : object with ``update(fraction, message)``, optional
+
+    Returns
+    -------
+    StepOutcome
+        ``result`` (the polygon), ``discrete`` (D(E) ∪ D(E′)), ``euclidean`` (the result, exact).
+    """
+    check_model(model)
+    check_limit(limit)
+    a = discrete_input(first, model, None, limit, sub_progress(progress, 0.0, 0.2))
+    b = discrete_input(second, model, None, limit, sub_progress(progress, 0.2, 0.4))
+    check_size(box_area(joint_box([a.bbox, b.bbox])), limit, "the union")
+    union = a | b
+    if progress is not None:
+        progress.update(0.5, "continuing the union")
+    from model.geometry.reconstruct import reconstruct
+
+    geom = reconstruct(union, model)
+    if progress is not None:
+        progress.update(1.0, "done")
+    return StepOutcome(geom, Similarity.identity(), ExactShape.from_geometry(geom), union)
+
+
+def euclidean_discrete_corefinement(
+    first: Any,
+    second: Any,
+    model: str = "standard",
+    alpha: object = None,
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+    progress: ProgressLike | None = None,
+) -> StepOutcome:
+    """Return EDco(E, E′), or EDco_α(E, E′) when ``alpha`` is given.
+
+    Parameters
+    ----------
+    first, second : shapely Polygon / MultiPolygon, or PixelSet
+        E and E′.
+    model : {"standard", "supercover", "gauss"}
+    alpha : number, optional
+        The precision factor α > 0 of the precise co-refinement (None: plain EDco, α = 1).
+    limit : int or None
+        Largest discretization (pixels of its bounding box), at scale α; checked before it is computed.
+    progress : object with ``update(fraction, message)``, optional
+
+    Returns
+    -------
+    StepOutcome
+        ``result``: a dict part name → polygon (float64), in :data:`PARTS` order; ``discrete``: the support
+        D(E) ∪ D(E′) (at scale α); ``extra``: ``label_map`` (LabelMap, label i+1 = ``PARTS[i]``),
+        ``pixels`` (part → PixelSet), ``exact`` (part → ExactShape before rounding), ``alpha`` and
+        ``watertight`` (whether the joint gauss reconstruction was used).
+    """
+    check_model(model)
+    check_limit(limit)
+    sim = None
+    if alpha is not None:
+        a_q = positive_number(alpha, "alpha")
+        sim = Similarity.scaling(a_q)
+        what = f"the discretization at scale α = {number_to_json(a_q)}"
+        for src in (first, second):
+            if isinstance(src, PixelSet):  # R(A) ⊂ V(bbox(A)): estimate before continuing
+                bounds = mapped_bounds(voxel_bounds(src.bbox), sim)
+            else:
+                bounds = ExactShape.from_geometry(src).map(sim).bounds()
+            check_size(box_area(pixel_box(bounds, model)), limit, what)
+    a = discrete_input(first, model, sim, limit, sub_progress(progress, 0.0, 0.2))
+    b = discrete_input(second, model, sim, limit, sub_progress(progress, 0.2, 0.4))
+    check_size(box_area(joint_box([a.bbox, b.bbox])), limit, "the co-refinement")
+    pixels = {"a_minus_b": a - b, "a_and_b": a & b, "b_minus_a": b - a}
+    label_map = LabelMap.from_pixel_sets([pixels[p] for p in PARTS])
+    if progress is not None:
+        progress.update(0.45, "continuing the parts")
+    geoms, watertight = _reconstruct_parts(pixels, label_map, model, progress)
+    back = sim.inverse() if sim is not None else Similarity.identity()
+    exact = {p: ExactShape.from_geometry(g).map(back) for p, g in geoms.items()}
+    result = {p: exact[p].to_geometry() for p in PARTS}
+    if progress is not None:
+        progress.update(1.0, "done")
+    extra = {
+        "label_map": label_map,
+        "pixels": pixels,
+        "exact": exact,
+        "alpha": None if sim is None else sim.ratio,
+        "watertight": watertight,
+    }
+    union = ExactShape(tuple(poly for p in PARTS for poly in exact[p].polygons))
+    return StepOutcome(result, Similarity.identity(), union, a | b, extra)
+
+
+def _reconstruct_parts(
+    pixels: dict[str, PixelSet], label_map: LabelMap, model: str, progress: ProgressLike | None
+) -> tuple[dict[str, Any], bool]:
+    """R of each part; under gauss the joint (watertight) reconstruction of the label map when available."""
+    if model == "gauss":
+        joint = optional_function("model.geometry.subdivision", "reconstruct_label_map")
+        if joint is not None:
+            by_label = joint(label_map, model)
+            from shapely.geometry import Polygon
+
+            return {p: by_label.get(i + 1, Polygon()) for i, p in enumerate(PARTS)}, True
+    from model.geometry.reconstruct import reconstruct
+
+    out = {}
+    for i, p in enumerate(PARTS):
+        out[p] = reconstruct(pixels[p], model)
+        if progress is not None:
+            progress.update(0.45 + 0.45 * (i + 1) / len(PARTS), f"continued {PART_TITLES[p]}")
+    return out, False
+
+
+# ---------------------------------------------------------------------------------------------- the specs
+@dataclass(frozen=True)
+class UnionParams:
+    """Parameters of EDu."""
+
+    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+
+
+@dataclass(frozen=True)
+class CorefineParams:
+    """Parameters of EDco and EDco_α."""
+
+    alpha: float | None = param(
+        None,
+        kind="float",
+        optional=True,
+        positive=True,
+        label="α",
+        unit="×",
+        help="Precision factor α > 0 of the precise co-refinement (error ≤ √2/α); empty: plain EDco.",
+    )
+    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+
+
+@dataclass(frozen=True)
+class CorefineResult(OperationResult):
+    """The three parts of a co-refinement, plus the label map of their pixels and each part's bound.
+
+    Attributes
+    ----------
+    label_map : LabelMap or None
+        The discrete parts (label i + 1 = ``PARTS[i]``; on the grid scaled by α for EDco_α).
+    part_bounds : dict
+        Part name → :class:`model.geometry.bounds.BoundResult` (one-sided: see that module).
+    watertight : bool
+        Whether the parts come from the joint gauss reconstruction (shared boundaries).
+    """
+
+    label_map: LabelMap | None = None
+    part_bounds: dict[str, Any] = field(default_factory=dict)
+    watertight: bool = False
+
+
+def _estimate_pair(inputs: Sequence[Any], sim: Similarity | None, model: str) -> int:
+    """The size of the joint box of the (scaled) discretizations, from bounding boxes alone."""
+    return box_area(joint_box([source_box(src, sim or Similarity.identity(), model) for src in inputs]))
+
+
+def estimate_union(inputs: Sequence[Any], params: UnionParams) -> int:
+    """An upper bound of the pixels of D(E) ∪ D(E′)."""
+    return _estimate_pair(inputs, None, params.model)
+
+
+def estimate_corefine(inputs: Sequence[Any], params: CorefineParams) -> int:
+    """An upper bound of the pixels of the (scaled) discretizations."""
+    sim = None if params.alpha is None else Similarity.scaling(positive_number(params.alpha, "alpha"))
+    return _estimate_pair(inputs, sim, params.model)
+
+
+def union_chain_step(params: UnionParams) -> ChainStep:
+    """EDu in the bound model of DESIGN §8."""
+    return bounds.union()
+
+
+def corefine_chain_step(params: CorefineParams, part: str = "a_minus_b") -> ChainStep:
+    """EDco(_α) in the bound model; a chain continues with the first output, A ∖ B."""
+    alpha = None if params.alpha is None else positive_number(params.alpha, "alpha")
+    return bounds.corefine(alpha, BOUND_PART[part])
+
+
+def run_union(
+    inputs: Sequence[Any], params: UnionParams, progress: ProgressLike | None = None
+) -> OperationResult:
+    """Run EDu on two objects."""
+    if len(inputs) != 2:
+        raise ParameterError(f"the union takes two objects, got {len(inputs)}")
+    out = euclidean_discrete_union(inputs[0], inputs[1], params.model, progress=progress)
+    return OperationResult(
+        outputs=[("EDu", out.result)],
+        provenance=provenance(UNION, params),
+        bound=bounds.bound_of_chain([union_chain_step(params)], params.model),
+    )
+
+
+def run_corefine(
+    inputs: Sequence[Any], params: CorefineParams, progress: ProgressLike | None = None
+) -> CorefineResult:
+    """Run EDco (or EDco_α) on two objects: three outputs, one per part (empty parts included)."""
+    if len(inputs) != 2:
+        raise ParameterError(f"the co-refinement takes two objects, got {len(inputs)}")
+    out = euclidean_discrete_corefinement(inputs[0], inputs[1], params.model, params.alpha, progress=progress)
+    part_bounds = {p: bounds.bound_of_chain([corefine_chain_step(params, p)], params.model) for p in PARTS}
+    return CorefineResult(
+        outputs=[(p, out.result[p]) for p in PARTS],
+        provenance=provenance(COREFINE, params),
+        bound=part_bounds[PARTS[0]],
+        label_map=out.extra["label_map"],
+        part_bounds=part_bounds,
+        watertight=bool(out.extra["watertight"]),
+    )
+
+
+UNION = "union"
+COREFINE = "corefine"
+UNION_SPEC = register(
+    OperationSpec(
+        name=UNION,
+        title="Euclidean-discrete union EDu",
+        arity=2,
+        params=UnionParams,
+        run=run_union,
+        input_kind="any",
+        output_kind="euclidean",
+        help="EDu(E, E′) = R(D(E) ∪ D(E′)): a robust union made in the discrete space (paper, Def. 17).",
+        estimate=estimate_union,
+        chain_step=union_chain_step,
+    )
+)
+COREFINE_SPEC = register(
+    OperationSpec(
+        name=COREFINE,
+        title="Euclidean-discrete co-refinement EDco",
+        arity=2,
+        params=CorefineParams,
+        run=run_corefine,
+        input_kind="any",
+        output_kind="euclidean",
+        help="EDco(E, E′): the parts A ∖ B, A ∩ B, B ∖ A made in the discrete space (paper, Defs. 18–19).",
+        estimate=estimate_corefine,
+        chain_step=corefine_chain_step,
+    )
+)
+
+
+# ---------------------------------------------------------------------------------------------- measuring
+def _polygonal(geom: Any) -> Any:
+    """The polygonal part of an overlay result, as a valid Polygon / MultiPolygon."""
+    import shapely
+    from shapely.geometry import MultiPolygon, Polygon
+
+    if not geom.is_valid:
+        geom = shapely.make_valid(geom)
+    polys = [g for g in shapely.get_parts(geom) if isinstance(g, Polygon) and not g.is_empty]
+    for g in list(shapely.get_parts(geom)):
+        if isinstance(g, MultiPolygon):
+            polys.extend(g.geoms)
+    if not polys:
+        return Polygon()
+    return polys[0] if len(polys) == 1 else MultiPolygon(polys)
+
+
+def reference_parts(first: Any, second: Any, model: str) -> tuple[dict[str, Any], bool]:
+    """The Euclidean parts E ∖ E′, E ∩ E′, E′ ∖ E and E ∪ E′ (keys of :data:`PARTS` and ``union``).
+
+    A pixel set A stands for R(A). The overlays are GEOS's, which round the new vertices where boundaries
+    cross; the flag says whether the reference is exact (the inputs' interiors and boundaries are disjoint:
+    then no new vertex is made).
+    """
+    import shapely
+    from shapely.geometry import MultiPolygon, Polygon
+
+    e1, e2 = euclidean_input(first, model), euclidean_input(second, model)
+    if shapely.disjoint(e1, e2):
+        parts1 = list(e1.geoms) if isinstance(e1, MultiPolygon) else [e1] if not e1.is_empty else []
+        parts2 = list(e2.geoms) if isinstance(e2, MultiPolygon) else [e2] if not e2.is_empty else []
+        both = parts1 + parts2
+        union = Polygon() if not both else both[0] if len(both) == 1 else MultiPolygon(both)
+        return {"a_minus_b": e1, "a_and_b": Polygon(), "b_minus_a": e2, "union": union}, True
+    return {
+        "a_minus_b": _polygonal(shapely.difference(e1, e2)),
+        "a_and_b": _polygonal(shapely.intersection(e1, e2)),
+        "b_minus_a": _polygonal(shapely.difference(e2, e1)),
+        "union": _polygonal(shapely.union(e1, e2)),
+    }, False

@@ -1,0 +1,204 @@
+"""What an operation hands back besides its result, the guards every one runs first, and the D∘T∘R core.
+
+Each operation is ``D∘T∘R`` (discrete → discrete), ``T⁻¹∘R∘D∘T`` (Euclidean → Euclidean) or a Boolean
+combination of discretizations. To replay a chain and measure its error (DESIGN §8) the chain runner needs,
+for every step, the Euclidean similarity ``T`` it applies and the Euclidean object just before its final
+discretization (or its exact Euclidean result): :class:`StepOutcome` carries them, exactly.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from model.errors import ParameterError, SizeLimitError
+from model.ops.exact_geometry import (
+    ExactShape,
+    Similarity,
+    box_area,
+    mapped_bounds,
+    pixel_box,
+    voxel_bounds,
+)
+from model.ops.rational_discretize import ProgressLike, discretize_exact
+from model.reps.pixels import Box, PixelSet
+
+#: The discretization models an operation accepts.
+MODELS = ("standard", "supercover", "gauss")
+
+
+@dataclass(frozen=True)
+class StepOutcome:
+    """The result of one operation, with what a chain needs to bound and measure it.
+
+    Attributes
+    ----------
+    result : PixelSet or shapely Polygon / MultiPolygon
+        What the operation produces (a pixel set for DSS and dR, a polygon for Sp, EDu).
+    transform : Similarity
+        The Euclidean similarity the operation applies (identity for Sp, EDu, EDco).
+    euclidean : ExactShape
+        The exact Euclidean object just before the final discretization (DSS, dR: ``T(R(A))``), or the exact
+        Euclidean result (Sp: ``Sc_1/α(R(D(Sc_α(E))))`` before rounding to float64; EDu: ``R(·)``).
+    discrete : PixelSet
+        The discrete result (DSS, dR), or the pixel set the Euclidean result was continued from (on the
+        scaled grid for Sp and EDco_α).
+    extra : dict
+        Operation-specific values (e.g. the parts of a co-refinement).
+    """
+
+    result: Any
+    transform: Similarity
+    euclidean: ExactShape
+    discrete: PixelSet
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+def check_model(model: str) -> str:
+    """Return ``model`` if it is a discretization model, else raise ParameterError."""
+    if model not in MODELS:
+        raise ParameterError(f"unknown discretization model {model!r}; choose one of {', '.join(MODELS)}")
+    return model
+
+
+def check_limit(limit: int | None) -> None:
+    """Refuse a pixel limit that is not a non-negative integer (None = no limit)."""
+    if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int) or limit < 0):
+        raise ParameterError(f"the pixel limit must be a non-negative integer or None, got {limit!r}")
+
+
+def check_size(estimated: int, limit: int | None, what: str) -> None:
+    """Raise SizeLimitError when ``estimated`` pixels exceed ``limit`` (before anything is computed)."""
+    if limit is not None and estimated > limit:
+        raise SizeLimitError(estimated, int(limit), what)
+
+
+def estimated_pixels(ps: PixelSet, sim: Similarity, model: str) -> int:
+    """An upper bound of the pixels of D(T(R(A))), from A's bounding box alone (nothing is computed).
+
+    R(A) ⊂ V(A) ⊂ V(bbox(A)), so T(R(A)) lies in the box of T's image of that rectangle.
+    """
+    return box_area(pixel_box(mapped_bounds(voxel_bounds(ps.bbox), sim), model))
+
+
+def discrete_similarity(
+    ps: PixelSet,
+    sim: Similarity,
+    model: str,
+    *,
+    limit: int | None,
+    progress: ProgressLike | None,
+    what: str,
+) -> StepOutcome:
+    """``D(T(R(A)))`` with ``T`` applied exactly: the core of DSS_α and dR_θ,C.
+
+    The size of the result is estimated from A's bounding box first and refused beyond ``limit``.
+    """
+    check_model(model)
+    check_limit(limit)
+    check_size(estimated_pixels(ps, sim, model), limit, what)
+    if progress is not None:
+        progress.update(0.0, "continuing R(A)")
+    from model.geometry.reconstruct import reconstruct
+
+    euclid = reconstruct(ps, model)
+    if progress is not None:
+        progress.update(0.3, "applying the similarity")
+    image = ExactShape.from_geometry(euclid).map(sim)
+    result = discretize_exact(image, model, limit=limit, progress=_Scaled(progress, 0.3, 1.0), what=what)
+    if progress is not None:
+        progress.update(1.0, "done")
+    return StepOutcome(result, sim, image, result)
+
+
+class _Scaled:
+    """A progress that maps [0, 1] into [lo, hi] of another one."""
+
+    def __init__(self, inner: ProgressLike | None, lo: float, hi: float) -> None:
+        self.inner, self.lo, self.hi = inner, lo, hi
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        if self.inner is not None:
+            f = None if fraction is None else self.lo + (self.hi - self.lo) * max(0.0, min(1.0, fraction))
+            self.inner.update(f, message)
+
+
+def sub_progress(inner: ProgressLike | None, lo: float, hi: float) -> ProgressLike:
+    """A progress for a sub-task that reports into [lo, hi] of ``inner`` (and checks its cancel)."""
+    return _Scaled(inner, lo, hi)
+
+
+def discrete_of(source: Any, model: str, limit: int | None) -> PixelSet:
+    """The discrete representation of an object's source: A itself, or D(E) for a polygon E."""
+    if isinstance(source, PixelSet):
+        return source
+    from model.geometry.discretize import discretize
+
+    return discretize(source, model, limit=limit)
+
+
+def params_json(params: Any) -> dict[str, Any]:
+    """A parameter dataclass (or mapping) as JSON data: tuples become lists, Fractions exact numbers."""
+    from fractions import Fraction
+
+    from model.ops.exact_geometry import number_to_json
+
+    raw = (
+        {k: getattr(params, k) for k in params.__dataclass_fields__}
+        if hasattr(params, "__dataclass_fields__")
+        else dict(params)
+    )
+
+    def conv(v: Any) -> Any:
+        if isinstance(v, Fraction):
+            return number_to_json(v)
+        if isinstance(v, tuple | list):
+            return [conv(x) for x in v]
+        return v
+
+    return {k: conv(v) for k, v in raw.items()}
+
+
+def provenance(operation: str, params: Any, inputs: tuple[int, ...] = ()) -> dict[str, Any]:
+    """``{"operation", "params", "inputs"}`` as :meth:`model.document.Provenance.from_json` reads it."""
+    return {"operation": operation, "params": params_json(params), "inputs": list(inputs)}
+
+
+def source_box(source: Any, sim: Similarity, model: str) -> Box | None:
+    """A pixel box holding D(T(X)) for an object X (a pixel set: from its voxels; a polygon: its bounds)."""
+    if isinstance(source, PixelSet):
+        return pixel_box(mapped_bounds(voxel_bounds(source.bbox), sim), model)
+    if source is None or source.is_empty:
+        return None
+    from fractions import Fraction
+
+    x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
+    return pixel_box(mapped_bounds((x0, y0, x1, y1), sim), model)
+
+
+def estimate_source(source: Any, sim: Similarity, model: str) -> int:
+    """An upper bound of the pixels of D(T(X)) for an object X, before anything is computed."""
+    return box_area(source_box(source, sim, model))
+
+
+def estimate_through_pixels(source: Any, sim: Similarity, model: str) -> int:
+    """An upper bound of the pixels of D(T(R(A))) where A is the object's discrete representation.
+
+    For a polygon E, A = D(E) lies in the closed cells of E's bounding box (the supercover box), so R(A)
+    lies in the voxels of that box.
+    """
+    if isinstance(source, PixelSet) or source is None or source.is_empty:
+        return estimate_source(source, sim, model) if source is not None else 0
+    from fractions import Fraction
+
+    x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
+    cells = pixel_box((x0, y0, x1, y1), "supercover")
+    return box_area(pixel_box(mapped_bounds(voxel_bounds(cells), sim), model))
+
+
+def joint_box(boxes: list[Box | None]) -> Box | None:
+    """The smallest box holding every given box (None when there is none)."""
+    real = [b for b in boxes if b is not None]
+    if not real:
+        return None
+    return min(b[0] for b in real), min(b[1] for b in real), max(b[2] for b in real), max(b[3] for b in real)

@@ -1,0 +1,181 @@
+"""Discrete-based simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))) (the paper's Definition 14, DESIGN §8).
+
+``Sc_α(E)`` is computed exactly with rationals and discretized exactly (:mod:`model.ops.rational_discretize`);
+R gives float64 vertices; ``Sc_1/α`` maps them back exactly, and the result is rounded once to float64 (a
+Euclidean object is a shapely polygon). For α a power of two — or any α with ``v/α`` a float64 for every
+vertex v — nothing is rounded at all.
+
+Idempotence: ``Sp_α ∘ Sp_α = Sp_α`` because ``D(Sc_α(Sp_α(E))) = D(R(D(Sc_α(E)))) = D(Sc_α(E))``. When the
+final rounding is exact this holds exactly. When it is not, each vertex moves by at most half a float64
+spacing, and R keeps its boundary strictly away from every tie of the model (DESIGN §3.6), so the
+discretization at scale α — and therefore the result — does not change; the tests check it for non-dyadic
+factors.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from model.geometry import bounds
+from model.geometry.bounds import ChainStep
+from model.ops.base import OperationResult, OperationSpec, param, register
+from model.ops.exact_geometry import (
+    ExactShape,
+    Similarity,
+    box_area,
+    exact_point,
+    number_to_json,
+    pixel_box,
+    positive_number,
+)
+from model.ops.outcome import (
+    MODELS,
+    StepOutcome,
+    check_limit,
+    check_model,
+    check_size,
+    estimate_source,
+    provenance,
+    sub_progress,
+)
+from model.ops.rational_discretize import ProgressLike, discretize_exact
+from model.reps.pixels import PixelSet
+
+
+def euclidean_input(source: Any, model: str) -> Any:
+    """The Euclidean representation of an object's source: E itself, or R(A) for a pixel set A.
+
+    E may be a shapely polygon or an exact :class:`~model.ops.exact_geometry.ExactShape` (kept as it is).
+    """
+    if isinstance(source, PixelSet):
+        from model.geometry.reconstruct import reconstruct
+
+        return reconstruct(source, model)
+    return source
+
+
+def simplification(
+    source: Any,
+    alpha: object,
+    center: object = None,
+    model: str = "standard",
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+    progress: ProgressLike | None = None,
+) -> StepOutcome:
+    """Return Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))).
+
+    Parameters
+    ----------
+    source : shapely Polygon / MultiPolygon, ExactShape, or PixelSet
+        The Euclidean object E (for a pixel set A, its Euclidean representation R(A)).
+    alpha : number
+        α > 0: the voxel size of the simplification is 1/α.
+    center : pair of numbers, optional
+        The centre of both scalings (the origin by default; it changes where the grid falls).
+    model : {"standard", "supercover", "gauss"}
+    limit : int or None
+        Largest discretization D(Sc_α(E)) (pixels of its bounding box), checked before it is computed.
+    progress : object with ``update(fraction, message)``, optional
+
+    Returns
+    -------
+    StepOutcome
+        ``result`` (the polygon, float64), ``euclidean`` (the exact result before rounding), ``discrete``
+        (D(Sc_α(E)), on the scaled grid), ``transform`` (the identity: Sc_1/α ∘ Sc_α).
+
+    Raises
+    ------
+    ParameterError, SizeLimitError, InvalidGeometryError
+    """
+    check_model(model)
+    check_limit(limit)
+    a = positive_number(alpha, "alpha")
+    sc = Similarity.scaling(a, exact_point(center, "center"))
+    geom = euclidean_input(source, model)
+    shape = ExactShape.from_geometry(geom).map(sc)
+    what = f"Sp with α = {number_to_json(a)} (the discretization at scale α)"
+    check_size(box_area(pixel_box(shape.bounds(), model)), limit, what)
+    scaled = discretize_exact(shape, model, limit=limit, progress=sub_progress(progress, 0.0, 0.4), what=what)
+    if progress is not None:
+        progress.update(0.4, "continuing")
+    from model.geometry.reconstruct import reconstruct
+
+    back = sc.inverse()
+    exact = ExactShape.from_geometry(reconstruct(scaled, model)).map(back)
+    if progress is not None:
+        progress.update(0.9, "scaling back")
+    result = exact.to_geometry()
+    if progress is not None:
+        progress.update(1.0, "done")
+    return StepOutcome(result, Similarity.identity(), exact, scaled, {"scaled_pixels": scaled})
+
+
+# ---------------------------------------------------------------------------------------------- the spec
+@dataclass(frozen=True)
+class SimplifyParams:
+    """Parameters of Sp_α."""
+
+    alpha: float = param(
+        0.5,
+        label="α",
+        unit="×",
+        positive=True,
+        help="α > 0: the grid spacing is 1/α, details below it are simplified away (error ≤ √2/α).",
+    )
+    center: tuple[float, float] | None = param(
+        None,
+        kind="point",
+        optional=True,
+        label="centre",
+        unit="px",
+        help="Centre of the scalings (default: origin).",
+    )
+    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+
+
+def chain_step(params: SimplifyParams) -> ChainStep:
+    """Sp_α in the bound model of DESIGN §8."""
+    return bounds.sp(positive_number(params.alpha, "alpha"), exact_point(params.center, "center"))
+
+
+def estimate(inputs: Sequence[Any], params: SimplifyParams) -> int:
+    """The size of the discretization D(Sc_α(E)) from the input's bounding box alone."""
+    sim = Similarity.scaling(positive_number(params.alpha, "alpha"), exact_point(params.center, "center"))
+    return estimate_source(inputs[0], sim, params.model)
+
+
+def run(
+    inputs: Sequence[Any], params: SimplifyParams, progress: ProgressLike | None = None
+) -> OperationResult:
+    """Run Sp_α on one object (a pixel set A is read as its Euclidean representation R(A))."""
+    if len(inputs) != 1:
+        raise ParameterError(f"the simplification takes one object, got {len(inputs)}")
+    check_model(params.model)
+    a = positive_number(params.alpha, "alpha")
+    out = simplification(inputs[0], a, params.center, params.model, progress=progress)
+    return OperationResult(
+        outputs=[(f"Sp {number_to_json(a)}", out.result)],
+        provenance=provenance(NAME, params),
+        bound=bounds.bound_of_chain([chain_step(params)], params.model),
+    )
+
+
+NAME = "simplify"
+SPEC = register(
+    OperationSpec(
+        name=NAME,
+        title="Discrete-based simplification Sp_α",
+        arity=1,
+        params=SimplifyParams,
+        run=run,
+        input_kind="any",
+        output_kind="euclidean",
+        help="Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): simplify on a grid of spacing 1/α (paper, Def. 14).",
+        estimate=estimate,
+        chain_step=chain_step,
+    )
+)

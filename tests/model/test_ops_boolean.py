@@ -1,0 +1,161 @@
+"""EDu, EDco and EDco_α: what the parts are, that they partition the pixels, and that their polygons tile."""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from model.errors import ParameterError
+from model.geometry.discretize import discretize
+from model.geometry.reconstruct import reconstruct
+from model.ops.apply import load_paper_operations
+from model.ops.base import run_operation
+from model.ops.boolean import (
+    PARTS,
+    CorefineParams,
+    CorefineResult,
+    UnionParams,
+    euclidean_discrete_corefinement,
+    euclidean_discrete_union,
+    run_corefine,
+    run_union,
+)
+from model.reps.pixels import PixelSet
+from model.reps.region import region_of
+from tests.oracles.geometry_strategies import star_polygons
+from tests.oracles.ops_reference import MODELS, polygons_of, reference_discretize_rings, scaled
+
+pairs = st.tuples(
+    star_polygons(max_vertices=6, max_radius=4.0), star_polygons(max_vertices=6, max_radius=4.0)
+)
+
+
+def interiors_disjoint(a, b) -> bool:
+    # DE-9IM: the interiors do not meet (GEOS's predicates are exact on float input)
+    return a.is_empty or b.is_empty or a.relate_pattern(b, "F********")
+
+
+@settings(max_examples=40)
+@given(pairs, st.sampled_from(MODELS))
+def test_union_is_the_continuation_of_the_union_of_the_discretizations(ab, model):
+    e1, e2 = ab
+    out = euclidean_discrete_union(e1, e2, model)
+    d = discretize(e1, model) | discretize(e2, model)
+    assert out.discrete == d
+    assert discretize(out.result, model) == d  # D(EDu(E, E′)) = D(E) ∪ D(E′), the object's discrete rep
+
+
+@settings(max_examples=40)
+@given(pairs, st.sampled_from(MODELS))
+def test_corefinement_parts_partition_the_pixels_and_their_polygons_do_not_overlap(ab, model):
+    e1, e2 = ab
+    out = euclidean_discrete_corefinement(e1, e2, model)
+    d1, d2 = discretize(e1, model), discretize(e2, model)
+    px = out.extra["pixels"]
+    assert px["a_minus_b"] == d1 - d2
+    assert px["a_and_b"] == d1 & d2
+    assert px["b_minus_a"] == d2 - d1
+    assert (px["a_minus_b"] | px["a_and_b"] | px["b_minus_a"]) == d1 | d2
+    for p, q in itertools.combinations(PARTS, 2):
+        assert not (px[p] & px[q])
+        assert interiors_disjoint(out.result[p], out.result[q])
+    for i, p in enumerate(PARTS, start=1):
+        assert out.extra["label_map"].pixel_set(i) == px[p]
+        assert discretize(out.result[p], model) == px[p]  # each part reconstructs its pixels exactly
+
+
+@settings(max_examples=25)
+@given(pairs)
+def test_under_gauss_the_parts_are_a_watertight_subdivision(ab):
+    e1, e2 = ab
+    out = euclidean_discrete_corefinement(e1, e2, "gauss")
+    assert out.extra["watertight"]
+    px = out.extra["pixels"]
+    for p, q in itertools.combinations(PARTS, 2):
+        a, b = out.result[p], out.result[q]
+        assert interiors_disjoint(a, b)
+        neighbours = any(px[p].translate(dx, dy) & px[q] for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1)))
+        if neighbours:  # 4-adjacent parts share a stretch of boundary: no gap between them
+            assert a.boundary.intersection(b.boundary).length > 0
+    # and no sliver of a gap anywhere: the parts together have the holes and components of their pixels
+    parts = [out.result[p] for p in PARTS if not out.result[p].is_empty]
+    if parts:
+        whole = shapely.union_all(parts)
+        support = region_of(px["a_minus_b"] | px["a_and_b"] | px["b_minus_a"])
+        polys = list(getattr(whole, "geoms", [whole]))
+        assert len(polys) == support.n_components
+        assert sum(len(g.interiors) for g in polys) == support.n_holes
+
+
+@settings(max_examples=25)
+@given(pairs, st.sampled_from([2, 0.5, 3, "3/2"]), st.sampled_from(MODELS))
+def test_precise_corefinement_works_on_the_scaled_objects(ab, alpha, model):
+    e1, e2 = ab
+    a = Fraction(alpha) if isinstance(alpha, str) else Fraction(repr(float(alpha)))
+    out = euclidean_discrete_corefinement(e1, e2, model, alpha)
+    d1 = reference_discretize_rings(scaled(polygons_of(e1), a), model)
+    d2 = reference_discretize_rings(scaled(polygons_of(e2), a), model)
+    assert out.extra["pixels"]["a_and_b"] == d1 & d2
+    assert out.extra["pixels"]["a_minus_b"] == d1 - d2
+    for p in PARTS:
+        back = scaled(polygons_of(out.result[p]), a)  # Sc_α of the result is R(part) (up to rounding)
+        assert reference_discretize_rings(back, model) == out.extra["pixels"][p]
+
+
+def test_pixel_inputs_stand_for_themselves():
+    a = PixelSet.box(0, 0, 5, 3)
+    b = PixelSet.box(3, 2, 8, 6)
+    u = euclidean_discrete_union(a, b)
+    assert u.discrete == a | b
+    co = euclidean_discrete_corefinement(a, b)
+    assert co.extra["pixels"]["a_and_b"] == PixelSet.box(3, 2, 5, 3)
+    assert discretize(co.result["a_and_b"]) == PixelSet.box(3, 2, 5, 3)
+
+
+def test_disjoint_objects_give_an_empty_common_part():
+    e1 = shapely.box(0, 0, 3, 3)
+    e2 = shapely.box(10, 0, 13, 3)
+    out = euclidean_discrete_corefinement(e1, e2)
+    assert out.result["a_and_b"].is_empty
+    assert discretize(out.result["a_minus_b"]) == discretize(e1)
+
+
+def test_specs_give_named_parts_with_provenance():
+    e1 = shapely.box(0, 0, 4, 4)
+    e2 = shapely.box(2, 2, 6, 6)
+    res = run_corefine([e1, e2], CorefineParams(alpha=2.0, model="supercover"))
+    assert [name for name, _ in res.outputs] == list(PARTS)
+    assert res.provenance == {
+        "operation": "corefine",
+        "params": {"alpha": 2.0, "model": "supercover"},
+        "inputs": [],
+    }
+    expected = euclidean_discrete_corefinement(e1, e2, "supercover", 2.0)
+    assert res.label_map == expected.extra["label_map"]
+    assert res.part_bounds["a_and_b"].directions == ("source_within",)
+    assert res.part_bounds["a_minus_b"].directions == ("result_within",)
+    u = run_union([e1, e2], UnionParams())
+    assert discretize(u.output) == discretize(e1) | discretize(e2)
+    assert u.provenance["operation"] == "union"
+    with pytest.raises(ParameterError, match="two objects"):
+        run_union([e1], UnionParams())
+    with pytest.raises(ParameterError, match="alpha"):
+        run_corefine([e1, e2], CorefineParams(alpha=float("nan")))
+    load_paper_operations()
+    with pytest.raises(ParameterError, match="alpha"):
+        run_operation("corefine", [e1, e2], CorefineParams(alpha=-1.0))
+    # a chain of the framework continues with the first part, A ∖ B
+    r = run_operation("corefine", [e1, e2], CorefineParams())
+    assert isinstance(r, CorefineResult) and r.output.equals_exact(r.outputs[0][1], 0)
+
+
+def test_the_reconstruction_of_a_union_is_the_continuation_of_the_pixels():
+    e1 = shapely.Polygon([(0, 0), (7, 1), (2, 6)])
+    e2 = shapely.Polygon([(4, 3), (9, 2), (8, 8)])
+    out = euclidean_discrete_union(e1, e2)
+    assert out.result.equals_exact(reconstruct(discretize(e1) | discretize(e2)), 0)

@@ -1,0 +1,134 @@
+"""DSS_α(A) = D(Sc_α(R(A))) exactly, the exact rational discretization behind it, DSS as a user runs it."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from model.document import Provenance
+from model.errors import ParameterError
+from model.geometry.discretize import discretize
+from model.geometry.reconstruct import reconstruct
+from model.ops.apply import load_paper_operations
+from model.ops.base import run_operation
+from model.ops.exact_geometry import ExactShape
+from model.ops.rational_discretize import discretize_exact
+from model.ops.scaling import DSSParams, discrete_smooth_scaling, run
+from model.reps.pixels import PixelSet
+from tests.oracles.geometry_strategies import star_polygons
+from tests.oracles.ops_reference import MODELS, objects, polygons_of, reference_discretize_rings, scaled
+
+# Scale factors as a user types them; each is read as the exact rational it prints as.
+ALPHAS = [
+    (5, Fraction(5)),
+    (0.2, Fraction(1, 5)),
+    (1.25, Fraction(5, 4)),
+    (0.8, Fraction(4, 5)),
+    (3, Fraction(3)),
+    ("2/3", Fraction(2, 3)),
+    (2.5, Fraction(5, 2)),
+    (0.5, Fraction(1, 2)),
+    (1.7, Fraction(17, 10)),
+]
+
+
+centres = st.one_of(
+    st.none(),
+    st.tuples(st.integers(-3, 3), st.integers(-3, 3)),
+    st.tuples(st.sampled_from([-1.5, 0.5, 2.5]), st.sampled_from([-0.5, 1.5])),
+    st.tuples(st.sampled_from([0.1, 1.3]), st.sampled_from([-0.7, 2.2])),
+)
+
+
+# ---------------------------------------------------------------------------------------------- the contract
+@settings(max_examples=120)
+@given(objects(), st.sampled_from(ALPHAS), centres, st.sampled_from(MODELS))
+def test_dss_is_exactly_D_of_the_scaled_continuation(a, alpha, center, model):
+    typed, exact = alpha
+    out = discrete_smooth_scaling(a, typed, center, model)
+    c = (Fraction(0), Fraction(0)) if center is None else tuple(Fraction(repr(v)) for v in center)
+    reference = reference_discretize_rings(scaled(polygons_of(reconstruct(a, model)), exact, c), model)
+    assert out.result == reference
+
+
+def test_dss_by_a_power_of_two_matches_plain_discretization():
+    # Scaling by 2 is exact in floats, so D of the float-scaled continuation is the reference too.
+    a = PixelSet.from_points([(0, 0), (1, 0), (1, 1), (3, 2), (4, 2), (4, 3)])
+    for model in MODELS:
+        r = reconstruct(a, model)
+        doubled = shapely.transform(r, lambda xy: xy * 2.0)
+        assert discrete_smooth_scaling(a, 2, None, model).result == discretize(doubled, model)
+
+
+def test_the_centre_moves_the_result_by_the_centre_times_one_minus_alpha():
+    a = PixelSet.from_points([(0, 0), (1, 0), (2, 0), (2, 1), (2, 2), (0, 1)])
+    for model in MODELS:
+        base = discrete_smooth_scaling(a, 3, None, model).result
+        # Sc_3 about (1, 2) is Sc_3 about the origin followed by the integer translation (1−3)·(1, 2).
+        moved = discrete_smooth_scaling(a, 3, (1, 2), model).result
+        assert moved == base.translate(-2, -4)
+
+
+# ---------------------------------------------------------------------------------------------- the exact D
+RATIONALS = [Fraction(1, 3), Fraction(2, 5), Fraction(7, 3), Fraction(5, 6), Fraction(3, 7)]
+
+
+@st.composite
+def rational_shapes(draw):
+    """Star polygons scaled by a non-dyadic rational: vertices that are not float64 values."""
+    poly = draw(star_polygons(max_vertices=7, max_radius=4.0))
+    q = draw(st.sampled_from(RATIONALS))
+    return poly, q
+
+
+@settings(max_examples=200)
+@given(rational_shapes(), st.sampled_from(MODELS))
+def test_rational_discretization_follows_the_definitions(shape_and_q, model):
+    poly, q = shape_and_q
+    exact = ExactShape.from_geometry(poly)
+    polys = scaled(polygons_of(poly), q)
+    from model.ops.exact_geometry import Similarity
+
+    got = discretize_exact(exact.map(Similarity.scaling(q)), model)
+    assert got == reference_discretize_rings(polys, model)
+
+
+@settings(max_examples=300)
+@given(star_polygons(max_vertices=8, max_radius=6.0), st.sampled_from(MODELS))
+def test_integer_path_agrees_with_the_compiled_discretization(poly, model):
+    # On float64 input both paths apply; the snapped lattices make them face every tie.
+    exact = ExactShape.from_geometry(poly)
+    assert discretize_exact(exact, model, force_integer=True) == discretize(poly, model)
+
+
+# ---------------------------------------------------------------------------------------------- the operation
+def test_the_registered_operation_gives_one_result_with_its_provenance():
+    load_paper_operations()
+    a = PixelSet.box(0, 0, 3, 2)
+    res = run_operation("dss", [a], DSSParams(alpha=0.5, center=(1.0, 1.0), model="supercover"))
+    assert res.outputs == [("DSS 0.5", discrete_smooth_scaling(a, 0.5, (1, 1), "supercover").result)]
+    assert res.provenance["operation"] == "dss"
+    assert res.provenance["params"] == {"alpha": 0.5, "center": [1.0, 1.0], "model": "supercover"}
+    # one DSS alone is exact in the paper's sense: A_last = Sc_α(R(A)) = T(A_first)
+    assert res.bound is not None and res.bound.bound == 0.0
+    # run alone (as the GUI calls it) stamps the same provenance, fit for the document
+    direct = run([a], DSSParams(alpha=0.5, center=(1.0, 1.0), model="supercover"))
+    assert Provenance.from_json(direct.provenance).params == res.provenance["params"]
+
+
+def test_a_polygon_input_is_scaled_through_its_discretization():
+    tri = shapely.Polygon([(0, 0), (6, 0), (0, 4)])
+    assert run([tri], DSSParams(alpha=2.0)).output == discrete_smooth_scaling(discretize(tri), 2).result
+
+
+def test_scale_factor_errors_name_the_parameter():
+    a = PixelSet.box(0, 0, 2, 2)
+    for bad in (0, -1.5, float("nan"), float("inf"), "abc", True, None):
+        with pytest.raises(ParameterError, match="alpha"):
+            discrete_smooth_scaling(a, bad)
+    with pytest.raises(ParameterError, match="model"):
+        discrete_smooth_scaling(a, 2, None, "nearest")
