@@ -1,18 +1,17 @@
 """How the GUI reads the model's operations: one place that knows the shape of :mod:`model.ops`.
 
-The panels are generated from each operation's parameter dataclass: every field gives a control, its
-metadata the range, unit and help (``min``, ``max``, ``unit``, ``help``, optionally ``step``, ``log`` and
-``choices``). An operation spec offers ``name``, ``title`` (or ``label``), ``arity`` (inputs), ``params`` (the
-dataclass) and ``run(inputs, params, progress)``; its results are sources (pixel sets or polygons), or objects
-carrying one as ``source`` with an optional ``name``/``part``.
+The panels are generated from the registry (:func:`model.ops.base.operations`): every field of an operation's
+parameters dataclass gives a control, its ``metadata["mrm"]`` (written by :func:`model.ops.base.param`, read
+through :func:`model.ops.base.param_specs`) the kind, range, unit and help. Apply goes through
+:func:`model.ops.apply.apply_operation` in a worker thread against a *staging* document (:func:`stage_apply`):
+the operation reads the inputs and builds its results with their provenance there, and the GUI thread pushes
+the one undo step it staged — so a cancel or an error leaves the real document untouched.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import importlib
 import math
-import typing
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -33,6 +32,7 @@ class ParamInfo:
     step: float | None = None
     log: bool = False
     choices: tuple[Any, ...] = ()
+    optional: bool = False  # None is allowed (shown as "default" at the field's minimum / a cleared point)
 
 
 @dataclass(frozen=True)
@@ -47,11 +47,12 @@ class OpInfo:
     spec: Any
 
     def make_params(self, values: Mapping[str, Any]) -> Any:
-        """The operation's parameter object from control values (raises the model's ParameterError)."""
-        cls = _params_class(self.spec)
-        if cls is None:
-            return dict(values)
-        return cls(**values)
+        """The operation's parameter object from control values, validated (raises ParameterError)."""
+        from model.ops.base import validate_params
+
+        params = self.spec.params(**values)
+        validate_params(params)
+        return params
 
     def run(self, inputs: Sequence[Any], params: Any, progress: Any) -> list[tuple[str | None, Any]]:
         """Run the operation; returns (part name or None, source) pairs."""
@@ -59,68 +60,55 @@ class OpInfo:
         return normalise_results(out)
 
 
-def _params_class(spec: Any) -> type | None:
-    for attr in ("params", "Params", "params_type", "parameters"):
-        cls = getattr(spec, attr, None)
-        if isinstance(cls, type) and dataclasses.is_dataclass(cls):
-            return cls
-    return None
+#: Slider ranges for numbers whose metadata leaves a side open (the field still takes any valid value).
+_POSITIVE_RANGE = (1 / 64, 64.0)
+_ANGLE_RANGE = (-360.0, 360.0)
+_OPEN_RANGE = (-1000.0, 1000.0)
 
 
-def _kind_of(tp: Any, default: Any, meta: Mapping[str, Any]) -> tuple[str, tuple[Any, ...]]:
-    if "choices" in meta:
-        return "choice", tuple(meta["choices"])
-    origin = typing.get_origin(tp)
-    if origin is typing.Literal:
-        return "choice", typing.get_args(tp)
-    if tp in (bool, "bool") or isinstance(default, bool):
-        return "bool", ()
-    if tp in (int, "int") or (isinstance(default, int) and not isinstance(default, bool)):
-        return "int", ()
-    if tp in (float, "float") or isinstance(default, float):
-        return "float", ()
-    if isinstance(default, tuple) and len(default) == 2:
-        return "point", ()
-    text = str(tp)
-    if "tuple" in text or "Point" in text:
-        return "point", ()
-    if default is None and "float" in text:
-        return "float", ()
-    return "text", ()
+def _range_of(spec: Any) -> tuple[float | None, float | None, bool]:
+    """Control bounds (minimum, maximum, logarithmic) from the model's bounds, closed where they are open."""
+    lo, hi = _num(spec.minimum), _num(spec.maximum)
+    if lo == 0.0 and not spec.min_inclusive and hi is None:
+        # A positive factor: a logarithmic slider over [1/64, 64]; exclusive 0 cannot be a slider end.
+        return _POSITIVE_RANGE[0], _POSITIVE_RANGE[1], True
+    if lo is not None and not spec.min_inclusive and lo == 0.0:
+        lo = _POSITIVE_RANGE[0]
+    if lo is None and hi is None:
+        return (*(_ANGLE_RANGE if spec.unit == "°" else _OPEN_RANGE), False)
+    if lo is None:
+        lo = (hi or 0.0) - 1000.0
+    if hi is None:
+        hi = lo + 1000.0
+    return lo, hi, lo > 0 and hi / lo >= 100
 
 
 def param_infos(cls: type | None) -> tuple[ParamInfo, ...]:
-    """The controls of a parameter dataclass, in field order."""
+    """The controls of a parameters dataclass, in field order, from ``metadata["mrm"]`` (:func:`param`)."""
+    from model.ops.base import param_specs
+
     if cls is None:
         return ()
-    hints = {}
-    try:
-        hints = typing.get_type_hints(cls)
-    except Exception:  # unresolvable annotations: fall back to the defaults' types
-        hints = {}
     out = []
-    for f in dataclasses.fields(cls):
-        meta = dict(f.metadata or {})
-        if f.default is not dataclasses.MISSING:
-            default = f.default
-        elif f.default_factory is not dataclasses.MISSING:
-            default = f.default_factory()
-        else:
-            default = meta.get("default")
-        kind, choices = _kind_of(hints.get(f.name, f.type), default, meta)
+    for spec in param_specs(cls):
+        kind = "text" if spec.kind == "str" else str(spec.kind)
+        lo = hi = None
+        log = False
+        if kind in ("float", "int"):
+            lo, hi, log = _range_of(spec)
         out.append(
             ParamInfo(
-                name=f.name,
-                label=str(meta.get("label", f.name.replace("_", " "))),
+                name=spec.name,
+                label=spec.label,
                 kind=kind,
-                default=default,
-                minimum=_num(meta.get("min")),
-                maximum=_num(meta.get("max")),
-                unit=str(meta.get("unit", "")),
-                help=str(meta.get("help", "")),
-                step=_num(meta.get("step")),
-                log=bool(meta.get("log", False)),
-                choices=choices,
+                default=spec.default,
+                minimum=lo,
+                maximum=hi,
+                unit=spec.unit,
+                help=spec.help,
+                log=log,
+                choices=tuple(spec.choices),
+                optional=spec.optional,
             )
         )
     return tuple(out)
@@ -134,47 +122,26 @@ def _num(v: Any) -> float | None:
     return f if math.isfinite(f) else None
 
 
-def _registry_mapping() -> Mapping[str, Any]:
-    for modname in ("model.ops", "model.ops.base", "model.ops.registry"):
-        try:
-            mod = importlib.import_module(modname)
-        except ImportError:
-            continue
-        for attr in ("registry", "REGISTRY", "OPERATIONS", "operations", "all_operations"):
-            r = getattr(mod, attr, None)
-            if r is None:
-                continue
-            if callable(r) and not isinstance(r, Mapping):
-                try:
-                    r = r()
-                except TypeError:
-                    continue
-            if isinstance(r, Mapping) and r:
-                return r
-            if isinstance(r, Sequence) and r:
-                return {getattr(s, "name", str(k)): s for k, s in enumerate(r)}
-    return {}
-
-
 def operations() -> list[OpInfo]:
-    """Every operation the model offers, in registry order (empty when model.ops is not there)."""
-    out = []
-    for name, spec in _registry_mapping().items():
-        if not callable(getattr(spec, "run", None)):
-            continue
-        out.append(
-            OpInfo(
-                name=str(getattr(spec, "name", name)),
-                title=str(getattr(spec, "title", None) or getattr(spec, "label", None) or name),
-                arity=int(getattr(spec, "arity", None) or getattr(spec, "n_inputs", None) or 1),
-                params=param_infos(_params_class(spec)),
-                help=str(
-                    getattr(spec, "help", None) or getattr(spec, "description", None) or (spec.__doc__ or "")
-                ),
-                spec=spec,
-            )
+    """Every operation of the model's registry (:func:`model.ops.base.operations`), the paper's first."""
+    from model.ops.apply import load_paper_operations
+    from model.ops.base import operations as registry
+
+    load_paper_operations()
+    specs = registry()
+    paper = ("dss", "discrete_rotation", "simplify", "union", "corefine")
+    specs.sort(key=lambda s: (paper.index(s.name) if s.name in paper else len(paper), s.name))
+    return [
+        OpInfo(
+            name=spec.name,
+            title=spec.title,
+            arity=spec.arity,
+            params=param_infos(spec.params),
+            help=spec.help or (spec.__doc__ or ""),
+            spec=spec,
         )
-    return out
+        for spec in specs
+    ]
 
 
 def normalise_results(out: Any) -> list[tuple[str | None, Any]]:
@@ -224,6 +191,53 @@ def json_params(params: Any) -> dict[str, Any]:
         return str(v)
 
     return {k: conv(v) for k, v in d.items()}
+
+
+@dataclass(frozen=True)
+class StagedObject:
+    """A result :func:`model.ops.apply.apply_operation` made, before it enters the real document."""
+
+    source: Any
+    name: str | None
+    provenance: Any
+    id: int = -1  # no id is reserved off the GUI thread; the real object gets one when it is pushed
+
+
+class _StagingDocument:
+    """The part of a Document that apply_operation uses, safe to use off the GUI thread.
+
+    ``get`` reads a snapshot of the input objects (immutable values), ``make_object`` reserves no id and
+    ``push`` records the command instead of changing anything.
+    """
+
+    def __init__(self, objects: Mapping[int, Any], model: str) -> None:
+        self._objects = dict(objects)
+        self.model = model
+        self.label = ""
+        self.staged: list[StagedObject] = []
+
+    def get(self, obj_id: int) -> Any:
+        return self._objects[obj_id]
+
+    def make_object(
+        self, source: Any, name: str | None = None, *, style: Any = None, provenance: Any = None
+    ) -> StagedObject:
+        return StagedObject(source, name, provenance)
+
+    def push(self, command: Any) -> None:
+        self.label = str(command.label)
+        self.staged = list(command.add)
+
+
+def stage_apply(
+    objects: Mapping[int, Any], model: str, operation: str, ids: Sequence[int], params: Any, progress: Any
+) -> tuple[str, list[StagedObject]]:
+    """Run :func:`model.ops.apply.apply_operation` on a snapshot of the inputs; (undo label, results)."""
+    from model.ops.apply import apply_operation
+
+    staging = _StagingDocument(objects, model)
+    apply_operation(staging, operation, ids, params, progress)
+    return staging.label, staging.staged
 
 
 Runner = Callable[[Sequence[Any], Any, Any], Any]

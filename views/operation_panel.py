@@ -15,9 +15,8 @@ from typing import Any
 from PySide6 import QtCore, QtWidgets
 
 from model.commands import ApplyResults
-from model.document import Provenance
 from model.errors import MRMError
-from views.op_adapter import OpInfo, ParamInfo, json_params, operations
+from views.op_adapter import OpInfo, ParamInfo, normalise_results, operations, stage_apply
 from views.scene import Scene
 
 SLIDER_STEPS = 1000
@@ -57,6 +56,10 @@ class ParamControl(QtWidgets.QWidget):
                 f.setSingleStep(int(info.step or 1))
             if info.unit:
                 f.setSuffix(f" {info.unit}")
+            if info.optional and k == "float":
+                # None ("the operation's default") sits just below the range, shown as text.
+                f.setMinimum(0.0 if self._lo > 0 else self._lo - 1.0)
+                f.setSpecialValueText("default")
             f.setKeyboardTracking(False)
             f.setObjectName(f"field_{info.name}")
             self.field = f
@@ -141,6 +144,8 @@ class ParamControl(QtWidgets.QWidget):
     def value(self) -> Any:
         k = self.info.kind
         if k == "float":
+            if self.info.optional and self.field.value() == self.field.minimum():
+                return None
             return float(self.field.value())
         if k == "int":
             return int(self.field.value())
@@ -149,14 +154,20 @@ class ParamControl(QtWidgets.QWidget):
         if k == "choice":
             return self.field.currentData()
         if k == "point":
-            return (float(self.xs.value()), float(self.ys.value()))
+            p = (float(self.xs.value()), float(self.ys.value()))
+            # An optional centre left at the origin is "no centre" (the origin), as the model's default says.
+            return None if self.info.optional and self.info.default is None and p == (0.0, 0.0) else p
         return self.field.text()
 
     def set_value(self, v: Any) -> None:
         k = self.info.kind
         self._syncing = True
         try:
-            if k in ("float", "int") and v is not None:
+            if k == "float" and v is None and self.info.optional:
+                self.field.setValue(self.field.minimum())
+                if self.slider is not None:
+                    self.slider.setValue(0)
+            elif k in ("float", "int") and v is not None:
                 self.field.setValue(v)
                 if self.slider is not None:
                     self.slider.setValue(self._to_slider(float(v)))
@@ -188,6 +199,7 @@ class OperationPanel(QtWidgets.QWidget):
         self.runner = runner
         self.ops = operations()
         self.op: OpInfo | None = None
+        self._cancel_requested = False
         self.controls: list[ParamControl] = []
         self.inputs: list[QtWidgets.QComboBox] = []
         lay = QtWidgets.QVBoxLayout(self)
@@ -282,6 +294,9 @@ class OperationPanel(QtWidgets.QWidget):
             self.form.addRow("Input" if self.op.arity == 1 else f"Input {'AB'[k] if k < 2 else k + 1}", cb)
         for p in self.op.params:
             c = ParamControl(p, self.form_box)
+            if p.name == "model" and self.scene.doc.model in p.choices:
+                # Results keep D(Euclidean) = discrete under the document's model.
+                c.set_value(self.scene.doc.model)
             c.changed.connect(self.request_preview)
             self.controls.append(c)
             label = QtWidgets.QLabel(p.label, self.form_box)
@@ -373,9 +388,14 @@ class OperationPanel(QtWidgets.QWidget):
             self.scene.set_phantoms([])
             self.status.setText(f"<span style='color:#c0392b'>{exc}</span>")
 
+        def work(progress: Any) -> list[tuple[str | None, Any]]:
+            from model.ops.base import run_operation
+
+            return normalise_results(run_operation(op.spec, sources, params, progress=progress))
+
         self.runner.submit(
             "preview",
-            lambda progress: op.run(sources, params, progress),
+            work,
             on_result=done,
             on_error=failed,
             label=f"Preview {op.title}",
@@ -393,33 +413,44 @@ class OperationPanel(QtWidgets.QWidget):
         job = self._job()
         if job is None:
             return
-        op, params, ids, sources = job
+        op, params, ids, _sources = job
         self._preview_timer.stop()
         self.runner.cancel("preview")
         doc = self.scene.doc
-        prov = Provenance(op.name, json_params(params), tuple(ids))
-        names = [doc.get(i).name for i in ids]
+        inputs = {i: doc.get(i) for i in ids}  # immutable snapshot read by the worker
+        model = doc.model
         self.apply_button.setEnabled(False)
         self.cancel_button.setEnabled(True)
         self.status.setText(f"running {op.title}…")
         t0 = time.perf_counter()
 
-        def done(results: list[tuple[str | None, Any]]) -> None:
+        self._cancel_requested = False
+
+        def done(staged: tuple[str, list[Any]]) -> None:
+            if self._cancel_requested:
+                # Cancel was pressed after the work's last report: the user still gets "nothing changed".
+                cancelled()
+                return
             self._finished()
+            label, results = staged
             if not results:
                 self.status.setText(f"{op.title}: no result")
                 return
-            base = f"{op.title} of {' and '.join(names)}"
-            objs = []
-            for k, (part, src) in enumerate(results):
-                name = f"{base} ({part})" if part else (base if len(results) == 1 else f"{base} {k + 1}")
-                style = None
-                w = self.window()
-                if hasattr(w, "host"):
-                    style = w.host.new_style(k)
-                objs.append(doc.make_object(src, name=name, style=style, provenance=prov))
+            if any(i not in doc for i in ids):
+                self.status.setText(f"{op.title}: an input was deleted meanwhile; nothing was changed")
+                return
+            w = self.window()
+            objs = [
+                doc.make_object(
+                    r.source,
+                    name=r.name,
+                    style=w.host.new_style(k) if hasattr(w, "host") else None,
+                    provenance=r.provenance,
+                )
+                for k, r in enumerate(results)
+            ]
             try:
-                doc.push(ApplyResults(op.title, add=objs))
+                doc.push(ApplyResults(label, add=objs))  # the one undo step apply_operation staged
             except MRMError as e:
                 self.status.setText(f"<span style='color:#c0392b'>{e}</span>")
                 return
@@ -440,7 +471,7 @@ class OperationPanel(QtWidgets.QWidget):
 
         self.runner.submit(
             "operation",
-            lambda progress: op.run(sources, params, progress),
+            lambda progress: stage_apply(inputs, model, op.name, ids, params, progress),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,
@@ -453,6 +484,7 @@ class OperationPanel(QtWidgets.QWidget):
         self.cancel_button.setEnabled(False)
 
     def cancel(self) -> None:
+        self._cancel_requested = self.is_running()
         self.runner.cancel("operation")
         self.runner.cancel("preview")
 
