@@ -36,12 +36,12 @@ from model.ops.exact_geometry import (
     voxel_bounds,
 )
 from model.ops.outcome import (
-    MODELS,
     StepOutcome,
     check_limit,
     check_model,
     check_size,
     joint_box,
+    model_param,
     provenance,
     source_box,
     sub_progress,
@@ -206,7 +206,7 @@ def _reconstruct_parts(
 class UnionParams:
     """Parameters of EDu."""
 
-    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+    model: str = model_param()
 
 
 @dataclass(frozen=True)
@@ -222,7 +222,7 @@ class CorefineParams:
         unit="×",
         help="Precision factor α > 0 of the precise co-refinement (error ≤ √2/α); empty: plain EDco.",
     )
-    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+    model: str = model_param()
 
 
 @dataclass(frozen=True)

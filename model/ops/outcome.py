@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from model.errors import ParameterError, SizeLimitError
+from model.ops.base import param
 from model.ops.exact_geometry import (
     ExactShape,
     Similarity,
@@ -25,6 +26,16 @@ from model.reps.pixels import Box, PixelSet
 
 #: The discretization models an operation accepts.
 MODELS = ("standard", "supercover", "gauss")
+
+
+def model_param() -> Any:
+    """The ``model`` field every operation's parameters carry: the discretization model of D and R."""
+    return param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+
+
+def center_param(help: str) -> Any:
+    """An optional centre (a point; None means the origin), as DSS_α, dR_θ,C and Sp_α take."""
+    return param(None, kind="point", optional=True, label="centre", unit="px", help=help)
 
 
 @dataclass(frozen=True)

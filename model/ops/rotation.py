@@ -27,12 +27,13 @@ from model.geometry.bounds import ChainStep
 from model.ops.base import OperationResult, OperationSpec, param, register
 from model.ops.exact_geometry import Similarity, exact_number, exact_point, number_to_json
 from model.ops.outcome import (
-    MODELS,
     StepOutcome,
+    center_param,
     check_model,
     discrete_of,
     discrete_similarity,
     estimate_through_pixels,
+    model_param,
     provenance,
 )
 from model.ops.rational_discretize import ProgressLike
@@ -98,15 +99,8 @@ class RotationParams:
         unit="°",
         help="Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact.",
     )
-    center: tuple[float, float] | None = param(
-        None,
-        kind="point",
-        optional=True,
-        label="centre",
-        unit="px",
-        help="Centre C of the rotation (default: origin).",
-    )
-    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+    center: tuple[float, float] | None = center_param("Centre C of the rotation (default: origin).")
+    model: str = model_param()
 
 
 def chain_step(params: RotationParams) -> ChainStep:

@@ -22,12 +22,13 @@ from model.geometry.bounds import ChainStep
 from model.ops.base import OperationResult, OperationSpec, param, register
 from model.ops.exact_geometry import Similarity, exact_point, number_to_json, positive_number
 from model.ops.outcome import (
-    MODELS,
     StepOutcome,
+    center_param,
     check_model,
     discrete_of,
     discrete_similarity,
     estimate_through_pixels,
+    model_param,
     provenance,
 )
 from model.ops.rational_discretize import ProgressLike
@@ -95,15 +96,8 @@ class DSSParams:
         positive=True,
         help="Scale factor α > 0, read exactly (0.2 is 1/5); the result's size is checked before running.",
     )
-    center: tuple[float, float] | None = param(
-        None,
-        kind="point",
-        optional=True,
-        label="centre",
-        unit="px",
-        help="Centre of the scaling (default: origin).",
-    )
-    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+    center: tuple[float, float] | None = center_param("Centre of the scaling (default: origin).")
+    model: str = model_param()
 
 
 def chain_step(params: DSSParams) -> ChainStep:

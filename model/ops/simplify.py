@@ -32,12 +32,13 @@ from model.ops.exact_geometry import (
     positive_number,
 )
 from model.ops.outcome import (
-    MODELS,
     StepOutcome,
+    center_param,
     check_limit,
     check_model,
     check_size,
     estimate_source,
+    model_param,
     provenance,
     sub_progress,
 )
@@ -126,15 +127,8 @@ class SimplifyParams:
         positive=True,
         help="α > 0: the grid spacing is 1/α, details below it are simplified away (error ≤ √2/α).",
     )
-    center: tuple[float, float] | None = param(
-        None,
-        kind="point",
-        optional=True,
-        label="centre",
-        unit="px",
-        help="Centre of the scalings (default: origin).",
-    )
-    model: str = param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
+    center: tuple[float, float] | None = center_param("Centre of the scalings (default: origin).")
+    model: str = model_param()
 
 
 def chain_step(params: SimplifyParams) -> ChainStep:
