@@ -1,6 +1,6 @@
 """Files: New, Open, Save, Save As, recent files, import, export, drag-and-drop, autosave and recovery.
 
-The window keeps one :class:`~model.document.Document` for its whole life; opening a project resets it
+The window keeps one :class:`~mrm.document.Document` for its whole life; opening a project resets it
 with the file's content, so every view stays subscribed. Nothing is touched until a file has been read and
 validated completely: a corrupt or hostile file leaves the open document exactly as it was and says why.
 """
@@ -14,12 +14,12 @@ from typing import TYPE_CHECKING, Any
 
 from PySide6 import QtCore, QtWidgets
 
-from model.commands import AddObject
-from model.document import Document, Settings
-from model.errors import MRMError
+from mrm.commands import AddObject
+from mrm.document import Document, Settings
+from mrm.errors import MRMError
 
 if TYPE_CHECKING:
-    from app.main_window import MainWindow
+    from mrm.app.main_window import MainWindow
 
 PROJECT_EXT = ".mrm"
 IMAGE_EXTS = (".png", ".pbm", ".pgm", ".npz")
@@ -58,7 +58,7 @@ class FileController(QtCore.QObject):
         self.win = window
         self.doc: Document = window.doc
         self.prefs = window.prefs
-        from model.io.autosave import Autosaver
+        from mrm.io.autosave import Autosaver
 
         seconds = self.prefs.autosave_seconds
         self.autosave_dir = Path(autosave_dir) if autosave_dir is not None else None
@@ -132,8 +132,8 @@ class FileController(QtCore.QObject):
         p = Path(path)
         if p.suffix.lower() != PROJECT_EXT and p.suffix.lower() in IMAGE_EXTS + VECTOR_EXTS:
             return self.import_files([p])
-        from model.io.autosave import find_recovery
-        from model.io.project import read_project
+        from mrm.io.autosave import find_recovery
+        from mrm.io.project import read_project
 
         rec = None
         try:
@@ -190,7 +190,7 @@ class FileController(QtCore.QObject):
 
     def check_orphans(self) -> bool:
         """On start-up: offer the autosave of an untitled document left by a crashed session."""
-        from model.io.autosave import find_orphans
+        from mrm.io.autosave import find_orphans
 
         try:
             found = find_orphans(self.autosave_dir)
@@ -221,7 +221,7 @@ class FileController(QtCore.QObject):
         return self._write(p)
 
     def _write(self, p: Path) -> bool:
-        from model.io.project import save_project
+        from mrm.io.project import save_project
 
         old_side = self.autosaver.path
         try:
@@ -262,15 +262,15 @@ class FileController(QtCore.QObject):
 
     def read_objects(self, path: Path) -> list[tuple[str, Any]]:
         """The (name, source) pairs a file brings in; raises on a bad file (nothing is added then)."""
-        from model.document import validate_geometry
+        from mrm.document import validate_geometry
 
         ext = path.suffix.lower()
         if ext in IMAGE_EXTS:
-            from model.io.pixel_files import read_pixels
+            from mrm.io.pixel_files import read_pixels
 
             return [(path.stem, read_pixels(path))]
         if ext in VECTOR_EXTS:
-            from model.io.vector_files import read_geometries
+            from mrm.io.vector_files import read_geometries
 
             out: list[tuple[str, Any]] = []
             named = read_geometries(path)
@@ -280,11 +280,11 @@ class FileController(QtCore.QObject):
                     out.append((str(label), validate_geometry(g)))
                 elif not g.is_empty:
                     # Lines and points cannot be polygon sources; their discretization is a pixel object.
-                    from model.geometry.discretize import discretize
+                    from mrm.geometry.discretize import discretize
 
                     out.append((str(label), discretize(g, self.doc.model)))
             return out
-        from model.errors import FileFormatError
+        from mrm.errors import FileFormatError
 
         raise FileFormatError(
             f"{path.name}: cannot import '{ext or 'no extension'}' files; "
@@ -342,19 +342,19 @@ class FileController(QtCore.QObject):
         entry = self.doc.derived(obj_id)
         try:
             if ext in (".png", ".pbm", ".npz"):
-                from model.io.pixel_files import write_pixels
+                from mrm.io.pixel_files import write_pixels
 
                 write_pixels(entry.get("discrete"), p)
             elif ext == ".svg":
-                from model.io.vector_files import write_svg
+                from mrm.io.vector_files import write_svg
 
                 write_svg(entry.get("euclidean"), p)
             elif ext in (".geojson", ".json"):
-                from model.io.vector_files import write_geojson
+                from mrm.io.vector_files import write_geojson
 
                 write_geojson(entry.get("euclidean"), p, {"name": self.doc.get(obj_id).name})
             elif ext == ".wkt":
-                from model.io.vector_files import write_wkt
+                from mrm.io.vector_files import write_wkt
 
                 write_wkt(entry.get("euclidean"), p)
             else:

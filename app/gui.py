@@ -60,12 +60,12 @@ def build_parser() -> argparse.ArgumentParser:
 def run_gui(args: list[str]) -> int:
     """Start the desktop application; returns the exit status."""
     if args and args[0] in ("--help-commands",):
-        from model.cli import build_parser as cli_parser
+        from mrm.cli import build_parser as cli_parser
 
         cli_parser().print_help()
         return 0
     if "-h" in args or "--help" in args:
-        from model.cli import build_parser as cli_parser
+        from mrm.cli import build_parser as cli_parser
 
         print(build_parser().format_help())
         print("Headless subcommands (mrm COMMAND --help for each):\n")
@@ -73,7 +73,7 @@ def run_gui(args: list[str]) -> int:
         return 0
     opts = build_parser().parse_args(args)
     if opts.screenshot is None:
-        from app.application import has_display
+        from mrm.app.application import has_display
 
         if not has_display():
             print(
@@ -89,13 +89,13 @@ def run_gui(args: list[str]) -> int:
         print(f"mrm: error: {project}: no such file", file=sys.stderr)
         return 2
     t0 = time.perf_counter()
-    from app.application import create_application, has_display, theme_controller
+    from mrm.app.application import create_application, has_display, theme_controller
 
     app = create_application([sys.argv[0]], offscreen=opts.screenshot is not None and not has_display())
     from PySide6 import QtCore
 
-    from app.main_window import MainWindow
-    from app.settings import Preferences, make_settings
+    from mrm.app.main_window import MainWindow
+    from mrm.app.settings import Preferences, make_settings
 
     if opts.screenshot is not None:
         # Pictures must not depend on this user's preferences (or change them): fresh settings.

@@ -6,13 +6,13 @@ import sys
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run ``mrm``; subcommands are handled by :mod:`model.cli` without importing Qt."""
+    """Run ``mrm``; subcommands are handled by :mod:`mrm.cli` without importing Qt."""
     args = list(sys.argv[1:] if argv is None else argv)
-    from model.cli import SUBCOMMANDS, run_cli
+    from mrm.cli import SUBCOMMANDS, run_cli
 
     if args and args[0] in SUBCOMMANDS:
         return run_cli(args)
-    from app.gui import run_gui
+    from mrm.app.gui import run_gui
 
     return run_gui(args)
 

@@ -8,18 +8,18 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from app.actions import ActionRegistry
-from app.files import FileController
-from app.settings import Preferences
-from app.status import StatusBar
-from app.tasks import TaskRunner
-from app.undo import UndoAdapter
-from model.document import Changes, Document, Settings
-from views.object_list import ObjectList
-from views.scene import Scene
-from views.tool_controller import ToolController
-from views.tools import ToolHost
-from views.view_area import ViewArea
+from mrm.app.actions import ActionRegistry
+from mrm.app.files import FileController
+from mrm.app.settings import Preferences
+from mrm.app.status import StatusBar
+from mrm.app.tasks import TaskRunner
+from mrm.app.undo import UndoAdapter
+from mrm.document import Changes, Document, Settings
+from mrm.views.object_list import ObjectList
+from mrm.views.scene import Scene
+from mrm.views.tool_controller import ToolController
+from mrm.views.tools import ToolHost
+from mrm.views.view_area import ViewArea
 
 TOOL_ACTIONS = {
     "tool.select": "select",
@@ -87,9 +87,9 @@ class MainWindow(QtWidgets.QMainWindow):
         self.objects_dock = self._dock(
             "Objects", self.object_list, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
-        from views.inspector import ErrorInspector
-        from views.operation_panel import OperationPanel
-        from views.segment_table import SegmentTable
+        from mrm.views.inspector import ErrorInspector
+        from mrm.views.operation_panel import OperationPanel
+        from mrm.views.segment_table import SegmentTable
 
         self.operations = OperationPanel(self.scene, self.runner, self)
         self.operations_dock = self._dock(
@@ -325,7 +325,7 @@ class MainWindow(QtWidgets.QMainWindow):
 
     # ------------------------------------------------------------------ commands
     def set_model(self, name: str) -> None:
-        from model.commands import ChangeSettings
+        from mrm.commands import ChangeSettings
 
         if name != self.doc.model:
             self.doc.push(ChangeSettings.model(self.doc, name))
@@ -357,13 +357,13 @@ class MainWindow(QtWidgets.QMainWindow):
         self.runner.cancel("operation")
 
     def delete_selection(self) -> None:
-        from model.commands import RemoveObjects
+        from mrm.commands import RemoveObjects
 
         if self.doc.selection:
             self.doc.push(RemoveObjects(list(self.doc.selection)))
 
     def duplicate_selection(self) -> None:
-        from model.commands import AddObject
+        from mrm.commands import AddObject
 
         obj = self.scene.primary()
         if obj is None:
@@ -424,7 +424,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.inspector_dock.raise_()
 
     def show_preferences(self) -> None:
-        from app.preferences_dialog import PreferencesDialog
+        from mrm.app.preferences_dialog import PreferencesDialog
 
         dlg = PreferencesDialog(self.prefs, self.actions, self)
         dlg.open()

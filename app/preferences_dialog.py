@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from app.actions import ActionRegistry
-from app.application import theme_controller
-from app.settings import MODELS, Preferences
+from mrm.app.actions import ActionRegistry
+from mrm.app.application import theme_controller
+from mrm.app.settings import MODELS, Preferences
 
 
 class PreferencesDialog(QtWidgets.QDialog):

@@ -14,7 +14,7 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui
 
-from app.application import APPLICATION, ORGANIZATION
+from mrm.app.application import APPLICATION, ORGANIZATION
 
 MODELS = ("standard", "supercover", "gauss")
 

@@ -7,8 +7,8 @@ from typing import Any
 
 from PySide6 import QtCore, QtWidgets
 
-from views.geometry_edit import pixel_at, vertex_table
-from views.scene import Scene
+from mrm.views.geometry_edit import pixel_at, vertex_table
+from mrm.views.scene import Scene
 
 
 def _fmt(v: float) -> str:

@@ -4,7 +4,7 @@ A task is a callable ``fn(progress) -> result`` submitted into a named *slot* ("
 "operation"). A new request in the same slot cancels the previous one; a result is delivered on the GUI thread
 only if its task is still the newest of its slot and, when a document revision was given, the document has not
 changed since. The callable reports progress with ``progress.update(fraction, message)``, which raises
-:class:`model.errors.Cancelled` once the task is cancelled — the contract of the model's operations.
+:class:`mrm.errors.Cancelled` once the task is cancelled — the contract of the model's operations.
 
 :class:`SynchronousTaskRunner` runs every task at once in the calling thread: tests use it to make the GUI
 deterministic, and it shows that nothing in the GUI depends on the threading.
@@ -22,7 +22,7 @@ from typing import Any
 
 from PySide6 import QtCore
 
-from model.errors import Cancelled
+from mrm.errors import Cancelled
 
 Fn = Callable[["TaskProgress"], Any]
 
@@ -71,7 +71,7 @@ class TaskProgress:
                 self._last = now
                 self._report(self.fraction, self.message)
 
-    # model.ops.base may name it differently; accept the common spellings.
+    # mrm.ops.base may name it differently; accept the common spellings.
     __call__ = update
     report = update
 

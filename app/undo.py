@@ -6,11 +6,11 @@ from collections.abc import Callable
 
 from PySide6 import QtCore, QtGui
 
-from model.document import Document
+from mrm.document import Document
 
 
 class UndoAdapter(QtCore.QObject):
-    """Keeps the actions' enabled state and text ("Undo Paint") in step with :class:`model.history.History`.
+    """Keeps the actions' enabled state and text ("Undo Paint") in step with :class:`mrm.history.History`.
 
     Signals
     -------

@@ -30,8 +30,8 @@ from rasterio.transform import Affine
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from model.geometry.discretize import MODELS, discretize
-from model.reps.pixels import PixelSet
+from mrm.geometry.discretize import MODELS, discretize
+from mrm.reps.pixels import PixelSet
 
 PEER_OF = {"standard": False, "supercover": True, "gauss": False}  # GDAL all_touched closest to each model
 
@@ -96,7 +96,7 @@ def as_image(ps: PixelSet, size: int) -> np.ndarray:
 COLD_SNIPPET = """
 import time, numpy as np, shapely
 t0 = time.perf_counter()
-from model.geometry.discretize import discretize
+from mrm.geometry.discretize import discretize
 t1 = time.perf_counter()
 out = []
 a = np.linspace(0, 6.28, 100, endpoint=False)

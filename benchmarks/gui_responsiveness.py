@@ -40,11 +40,11 @@ def summary(ts: list[float]) -> str:
 
 
 def make_window():  # type: ignore[no-untyped-def]
-    from app.application import create_application
+    from mrm.app.application import create_application
 
     app = create_application()
-    from app.main_window import MainWindow
-    from app.settings import Preferences, make_settings
+    from mrm.app.main_window import MainWindow
+    from mrm.app.settings import Preferences, make_settings
 
     win = MainWindow(Preferences(make_settings()), autosave_dir=Path("/tmp") / "mrm-bench-autosave")
     win.resize(1400, 900)
@@ -83,7 +83,7 @@ def bench_vertex_drag(moves: int = 60) -> tuple[list[float], list[float]]:
     from PySide6 import QtCore
     from shapely.geometry import Polygon
 
-    from model.commands import AddObject
+    from mrm.commands import AddObject
 
     app, win = make_window()
     k = np.arange(500)
@@ -123,8 +123,8 @@ def bench_vertex_drag(moves: int = 60) -> tuple[list[float], list[float]]:
 def bench_brush(dabs: int = 80) -> list[float]:
     from PySide6 import QtCore
 
-    from model.commands import AddObject
-    from model.reps.pixels import PixelSet
+    from mrm.commands import AddObject
+    from mrm.reps.pixels import PixelSet
 
     app, win = make_window()
     yy, xx = np.mgrid[0:2048, 0:2048]
@@ -159,7 +159,7 @@ def bench_peer(repeats: int = 60) -> tuple[list[float], list[float]]:
     import pyqtgraph as pg
     from PySide6 import QtWidgets
 
-    from app.application import create_application
+    from mrm.app.application import create_application
 
     app = create_application()
     w = pg.PlotWidget()
@@ -203,11 +203,11 @@ import os, sys, time
 t0 = float(sys.argv[1])
 sys.path.insert(0, sys.argv[2])
 from PySide6 import QtCore
-from app.application import create_application
+from mrm.app.application import create_application
 app = create_application()
-from app.main_window import MainWindow
-from app.settings import Preferences, make_settings
-from app.gui import default_example
+from mrm.app.main_window import MainWindow
+from mrm.app.settings import Preferences, make_settings
+from mrm.app.gui import default_example
 win = MainWindow(Preferences(make_settings()))
 win.resize(1400, 900)
 class Probe(QtCore.QObject):

@@ -9,7 +9,7 @@ Speed (medians of ≥ 5 repeats, peers measured in the same run, first call repo
 * EDco_8 (co-refinement at α = 8) of two 500-vertex polygons — target ≤ 500 ms; peer: shapely (GEOS OverlayNG)
   intersection + the two differences. EDu (α = 1, as the paper defines it) against shapely.union.
 
-"ours (model.ops)" rows call the operations as the application does (exact rational similarities, exact
+"ours (mrm.ops)" rows call the operations as the application does (exact rational similarities, exact
 discretization). "ours (composition)" rows chain the same pieces directly — discretize ∘ shapely.affinity ∘
 reconstruct — which is exact for α = 4 and 8 (power-of-two factors keep float64 vertices exact) but rounds the
 rotated vertices once (shapely's float rotation).
@@ -48,18 +48,18 @@ from skimage import transform as sktransform
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import reconstruct
-from model.reps.pixels import PixelSet
-from model.summary import optional_function
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.reps.pixels import PixelSet
+from mrm.summary import optional_function
 
 # The operations are looked up, not imported, so the script also runs while they are being written; a row
 # whose operation is missing is reported as such and the composition rows still run.
-DSS = optional_function("model.ops.scaling", "discrete_smooth_scaling")
-ROTATE = optional_function("model.ops.rotation", "discrete_rotation")
-UNION = optional_function("model.ops.boolean", "euclidean_discrete_union")
-COREFINE = optional_function("model.ops.boolean", "euclidean_discrete_corefinement")
-WATERTIGHT = optional_function("model.geometry.subdivision", "watertight_parts")
+DSS = optional_function("mrm.ops.scaling", "discrete_smooth_scaling")
+ROTATE = optional_function("mrm.ops.rotation", "discrete_rotation")
+UNION = optional_function("mrm.ops.boolean", "euclidean_discrete_union")
+COREFINE = optional_function("mrm.ops.boolean", "euclidean_discrete_corefinement")
+WATERTIGHT = optional_function("mrm.geometry.subdivision", "watertight_parts")
 
 SLIVER = 1e-6
 
@@ -165,15 +165,15 @@ def bench_scaling(repeats: int) -> None:
         for model in ("standard", "gauss"):
             f, m, out = timed(lambda model=model: DSS(ps, alpha, None, model), repeats)  # type: ignore[misc]
             results[model] = out.result
-            t.add(f"ours (model.ops) DSS_4, {model}", f, m, f"{len(out.result)} px")
+            t.add(f"ours (mrm.ops) DSS_4, {model}", f, m, f"{len(out.result)} px")
     else:
-        t.add("ours (model.ops) DSS_4", None, None, "model.ops.scaling not available yet")
+        t.add("ours (mrm.ops) DSS_4", None, None, "mrm.ops.scaling not available yet")
 
     def composition() -> PixelSet:
         return discretize(shapely.affinity.scale(reconstruct(ps), alpha, alpha, origin=(0, 0)), "standard")
 
     f, m, comp = timed(composition, repeats)
-    same = "= model.ops result" if results.get("standard") == comp else "differs from model.ops"
+    same = "= mrm.ops result" if results.get("standard") == comp else "differs from mrm.ops"
     t.add("ours (composition) D∘Sc_4∘R, standard", f, m, f"{len(comp)} px, {same}")
     t.add("peer cv2.resize INTER_NEAREST (blocky)", None, t_near, f"{int(np.count_nonzero(near))} px")
     _, m, lin = timed(
@@ -196,11 +196,9 @@ def bench_rotation(repeats: int) -> None:
     if ROTATE is not None:
         for model in ("standard", "gauss"):
             f, m, out = timed(lambda model=model: ROTATE(ps, angle, centre, model), repeats)  # type: ignore[misc]
-            t.add(
-                f"ours (model.ops) dR_30°, {model}", f, m, f"{len(out.result)} px (exact rational rotation)"
-            )
+            t.add(f"ours (mrm.ops) dR_30°, {model}", f, m, f"{len(out.result)} px (exact rational rotation)")
     else:
-        t.add("ours (model.ops) dR_30°", None, None, "model.ops.rotation not available yet")
+        t.add("ours (mrm.ops) dR_30°", None, None, "mrm.ops.rotation not available yet")
 
     def composition() -> PixelSet:
         return discretize(shapely.affinity.rotate(reconstruct(ps), angle, origin=centre), "standard")
@@ -245,9 +243,9 @@ def bench_boolean(repeats: int) -> None:
             fc, m, out = timed(lambda model=model: COREFINE(e, f, model, alpha), repeats)  # type: ignore[misc]
             nv = sum(shapely.get_num_coordinates(g) for g in out.result.values())
             wt = " watertight" if out.extra.get("watertight") else ""
-            t.add(f"ours (model.ops) EDco_8, {model}", fc, m, f"{nv} vertices{wt}")
+            t.add(f"ours (mrm.ops) EDco_8, {model}", fc, m, f"{nv} vertices{wt}")
     else:
-        t.add("ours (model.ops) EDco_8", None, None, "model.ops.boolean not available yet")
+        t.add("ours (mrm.ops) EDco_8", None, None, "mrm.ops.boolean not available yet")
     for model in ("standard", "gauss"):
         fc, m, polys = timed(lambda model=model: corefine_composition(e, f, alpha, model), repeats)  # type: ignore[misc]
         nv = sum(shapely.get_num_coordinates(g) for g in polys)
@@ -261,7 +259,7 @@ def bench_boolean(repeats: int) -> None:
     t.peer = t_u
     if UNION is not None:
         fc, m, out = timed(lambda: UNION(e, f, "standard"), repeats)
-        t.add("ours (model.ops) EDu, standard", fc, m, f"{shapely.get_num_coordinates(out.result)} vertices")
+        t.add("ours (mrm.ops) EDu, standard", fc, m, f"{shapely.get_num_coordinates(out.result)} vertices")
     fc, m, g = timed(lambda: reconstruct(discretize(e) | discretize(f)), repeats)
     t.add("ours (composition) R(D(E) ∪ D(F)), standard", fc, m, f"{shapely.get_num_coordinates(g)} vertices")
     t.add("peer shapely.union", None, t_u, "")
@@ -339,7 +337,7 @@ def robustness_cases() -> list[tuple[str, Polygon, Polygon]]:
 
 
 def ours_parts(a: Polygon, b: Polygon, alpha: int, model: str) -> tuple[list[Any], float]:
-    """The three co-refinement parts (A ∖ B, A ∩ B, B ∖ A) and the union, by model.ops when available."""
+    """The three co-refinement parts (A ∖ B, A ∩ B, B ∖ A) and the union, by mrm.ops when available."""
     t0 = time.perf_counter()
     if COREFINE is not None:
         out = COREFINE(a, b, model, alpha)
@@ -357,7 +355,7 @@ def bench_robustness(alpha: int) -> None:
     geos = ".".join(map(str, shapely.geos_version))
     print(
         f"\nRobustness: GEOS overlay (shapely {shapely.__version__}, GEOS {geos}) vs ours at α = {alpha}:"
-        " co-refinement EDco_α (model.ops) and the union R(D(Sc_α A) ∪ D(Sc_α B)) mapped back."
+        " co-refinement EDco_α (mrm.ops) and the union R(D(Sc_α A) ∪ D(Sc_α B)) mapped back."
         "\n  'slivers' = polygons of area < 1e-6; 'v' = vertices; H = filled Hausdorff distance between ours"
         " and GEOS's result (sampled estimate)."
         f"\n  Under the cover models H(union, A ∪ B) ≤ √2/α = {bound:.3f} (D is union-stable); their"
@@ -394,10 +392,10 @@ COLD = """
 import time
 t0 = time.perf_counter()
 import numpy as np, shapely
-from model.reps.pixels import PixelSet
-from model.ops.scaling import discrete_smooth_scaling
-from model.ops.rotation import discrete_rotation
-from model.ops.boolean import euclidean_discrete_corefinement
+from mrm.reps.pixels import PixelSet
+from mrm.ops.scaling import discrete_smooth_scaling
+from mrm.ops.rotation import discrete_rotation
+from mrm.ops.boolean import euclidean_discrete_corefinement
 t1 = time.perf_counter()
 a = np.zeros((40, 40), bool); a[5:30, 8:33] = True; a[12:20, 15:22] = False
 ps = PixelSet(a)

@@ -30,12 +30,12 @@ from shapely.geometry import MultiPolygon, Polygon
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import MODELS, reconstruct
-from model.geometry.segmentation import chain_points, greedy_segmentation
-from model.reps.pixels import PixelSet
-from model.reps.region import region_of
-from model.summary import count_vertices
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import MODELS, reconstruct
+from mrm.geometry.segmentation import chain_points, greedy_segmentation
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import region_of
+from mrm.summary import count_vertices
 
 QUICK = "--quick" in sys.argv
 
@@ -251,8 +251,8 @@ def first_call() -> None:
     code = (
         "import time; t = time.perf_counter();"
         "import numpy as np;"
-        "from model.geometry.reconstruct import reconstruct;"
-        "from model.reps.pixels import PixelSet;"
+        "from mrm.geometry.reconstruct import reconstruct;"
+        "from mrm.reps.pixels import PixelSet;"
         "ps = PixelSet(np.eye(7, dtype=bool) | np.eye(7, dtype=bool)[::-1]);"
         "[reconstruct(ps, m) for m in ('standard', 'gauss')];"
         "print(time.perf_counter() - t)"

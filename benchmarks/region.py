@@ -2,7 +2,7 @@
 
 Compares, on the same binary masks up to 4096²:
 
-- ours:     ``model.reps.region.region_of(PixelSet(mask))`` — 4-components with pixel counts and boxes,
+- ours:     ``mrm.reps.region.region_of(PixelSet(mask))`` — 4-components with pixel counts and boxes,
             holes with theirs, every crack ring as a Freeman chain;
 - ours+lab: the same, then ``.labels``, the component label image (painted lazily from the chains);
 - rasterio: ``rasterio.features.shapes(mask)`` (GDAL polygonize, 4-connected), generator fully consumed;
@@ -80,13 +80,13 @@ def make_masks(n: int) -> dict[str, np.ndarray]:
 def method(name: str) -> tuple[Callable[[np.ndarray], object], Callable[[np.ndarray], object]]:
     """Return (prepare, run) for a method: prepare converts the mask outside the timing."""
     if name == "ours":
-        from model.reps.pixels import PixelSet
-        from model.reps.region import region_of
+        from mrm.reps.pixels import PixelSet
+        from mrm.reps.region import region_of
 
         return PixelSet, region_of  # type: ignore[return-value]
     if name == "ours+lab":
-        from model.reps.pixels import PixelSet
-        from model.reps.region import region_of
+        from mrm.reps.pixels import PixelSet
+        from mrm.reps.region import region_of
 
         return PixelSet, lambda ps: region_of(ps).labels  # type: ignore[return-value]
     if name == "rasterio":
@@ -177,8 +177,8 @@ def main() -> None:
         child(*args.child)
         return
 
-    from model.reps.pixels import PixelSet
-    from model.reps.region import region_of
+    from mrm.reps.pixels import PixelSet
+    from mrm.reps.region import region_of
 
     print(f"first call of region_of + labels (numba compile or cache load): {warm_up() * 1000:.0f} ms")
     print(f"times: median of {args.repeat} runs; memory: peak RSS growth in a fresh process (MiB)\n")

@@ -1,6 +1,6 @@
 """The concrete undoable edits of a document.
 
-Every edit of a :class:`~model.document.Document` is one of these commands pushed on its history
+Every edit of a :class:`~mrm.document.Document` is one of these commands pushed on its history
 (``doc.push(cmd)``). They keep as little as possible:
 
 * object-level edits (rename, restyle, replace geometry, vertex edits, change of source) keep the object
@@ -28,10 +28,10 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
-from model.errors import InvalidGeometryError, ParameterError
-from model.history import COMMAND_OVERHEAD, Command
-from model.reps.pixels import PixelSet
+from mrm.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.history import COMMAND_OVERHEAD, Command
+from mrm.reps.pixels import PixelSet
 
 #: A vertex of a Euclidean source: (polygon index in a MultiPolygon (0 for a Polygon), ring (0 = exterior,
 #: k = k-th hole), vertex index in the ring, the closing point not counted).
@@ -313,7 +313,7 @@ class SetSource(_Swap):
     obj_id : int
         The object.
     source : PixelSet or Polygon or MultiPolygon
-        The new source; a geometry must be valid (:func:`~model.document.validate_geometry`).
+        The new source; a geometry must be valid (:func:`~mrm.document.validate_geometry`).
     label : str
         Text of the undo step.
     drag_id : object, optional
@@ -541,7 +541,7 @@ def component_pixels(ps: PixelSet, at: tuple[int, int]) -> PixelSet:
     ParameterError
         When ``at`` is not a pixel of the set.
     """
-    from model.reps.region import region_of
+    from mrm.reps.region import region_of
 
     region = region_of(ps)
     comp = region.component_of(at[0], at[1])
@@ -563,8 +563,8 @@ def hole_pixels(ps: PixelSet, at: tuple[int, int] | None = None) -> PixelSet:
     ParameterError
         When ``at`` is given and is not in a hole.
     """
-    from model.geometry.labeling import label
-    from model.reps.region import fill_chains, region_of
+    from mrm.geometry.labeling import label
+    from mrm.reps.region import fill_chains, region_of
 
     region = region_of(ps)
     if region.n_holes == 0:
@@ -711,7 +711,7 @@ class MergeObjects(Command):
     def do(self, doc: Document) -> None:
         """Build the merged object (first call) and apply it."""
         if self._inner is None:
-            from model.document import Provenance
+            from mrm.document import Provenance
 
             objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
             union = PixelSet.empty()

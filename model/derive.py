@@ -22,11 +22,11 @@ from collections.abc import Callable, Iterable
 from concurrent.futures import Future, ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any, Literal
 
-from model.errors import MRMError
-from model.reps.pixels import PixelSet
+from mrm.errors import MRMError
+from mrm.reps.pixels import PixelSet
 
 if TYPE_CHECKING:
-    from model.document import Document
+    from mrm.document import Document
 
 Rep = Literal["discrete", "euclidean", "region", "analytical"]
 #: The four representations, in the order they are usually derived.
@@ -38,29 +38,29 @@ SYNC_COST = 250_000
 
 # ---------------------------------------------------------------------------------------------- algorithms
 def discretize_source(geom: Any, model: str) -> PixelSet:
-    """D(geom) under ``model`` (:func:`model.geometry.discretize.discretize`)."""
-    from model.geometry.discretize import discretize
+    """D(geom) under ``model`` (:func:`mrm.geometry.discretize.discretize`)."""
+    from mrm.geometry.discretize import discretize
 
     return discretize(geom, model)
 
 
 def reconstruct_source(ps: PixelSet, model: str) -> Any:
-    """R(ps) under ``model`` (:func:`model.geometry.reconstruct.reconstruct`)."""
-    from model.geometry.reconstruct import reconstruct
+    """R(ps) under ``model`` (:func:`mrm.geometry.reconstruct.reconstruct`)."""
+    from mrm.geometry.reconstruct import reconstruct
 
     return reconstruct(ps, model)
 
 
 def region_from_pixels(ps: PixelSet) -> Any:
-    """The region representation of a pixel set (:func:`model.reps.region.region_of`)."""
-    from model.reps.region import region_of
+    """The region representation of a pixel set (:func:`mrm.reps.region.region_of`)."""
+    from mrm.reps.region import region_of
 
     return region_of(ps)
 
 
 def analytical_from_region(region: Any) -> Any:
-    """The analytical representation of a region (:func:`model.reps.analytical.analytical_of`)."""
-    from model.reps.analytical import analytical_of
+    """The analytical representation of a region (:func:`mrm.reps.analytical.analytical_of`)."""
+    from mrm.reps.analytical import analytical_of
 
     return analytical_of(region)
 
@@ -79,7 +79,7 @@ class Derived:
     Notes
     -----
     Thread-safe: each representation has its own lock, so a worker computing R(A) never blocks a caller
-    asking for the discrete representation. An :class:`~model.errors.MRMError` raised by a derivation (e.g.
+    asking for the discrete representation. An :class:`~mrm.errors.MRMError` raised by a derivation (e.g.
     a result over the pixel limit) is remembered and raised again on every request.
     """
 

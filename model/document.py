@@ -2,16 +2,16 @@
 
 An object (:class:`DocObject`) is an immutable value: an id, a name, a :class:`Style`, an optional
 :class:`Provenance`, and its **source** — either a Euclidean geometry (shapely Polygon / MultiPolygon, always
-valid) or a discrete :class:`~model.reps.pixels.PixelSet`. The other representations are *derived* from the
-source under the document's discretization model and cached by :mod:`model.derive`:
+valid) or a discrete :class:`~mrm.reps.pixels.PixelSet`. The other representations are *derived* from the
+source under the document's discretization model and cached by :mod:`mrm.derive`:
 
 * Euclidean source E: discrete = D(E), Euclidean = E;
 * discrete source A: discrete = A, Euclidean = R(A);
 
 so D(Euclidean) = discrete holds for every object at every moment (D(R(A)) = A is R's contract).
 
-The :class:`Document` is changed only through the commands of :mod:`model.commands`, pushed on its single
-:class:`~model.history.History`. Views subscribe to coarse, batched :class:`Changes` and never mutate the
+The :class:`Document` is changed only through the commands of :mod:`mrm.commands`, pushed on its single
+:class:`~mrm.history.History`. Views subscribe to coarse, batched :class:`Changes` and never mutate the
 model themselves. Nothing here imports Qt.
 """
 
@@ -32,10 +32,10 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.derive import DerivationCache, Derived
-from model.errors import InvalidGeometryError, ParameterError
-from model.history import Command, History
-from model.reps.pixels import PixelSet
+from mrm.derive import DerivationCache, Derived
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.history import Command, History
+from mrm.reps.pixels import PixelSet
 
 #: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
 Geometry: TypeAlias = Polygon | MultiPolygon
@@ -193,7 +193,7 @@ class Provenance:
     Parameters
     ----------
     operation : str
-        The operation's name (as in :mod:`model.ops`).
+        The operation's name (as in :mod:`mrm.ops`).
     params : Mapping
         Its parameters as JSON data (copied and checked; treat as read-only).
     inputs : sequence of int
@@ -447,7 +447,7 @@ class Document:
         """The representations of object ``obj_id`` under the current model, computed lazily and cached.
 
         ``doc.derived(i).get('euclidean')`` computes in the calling thread; use
-        :class:`model.derive.DerivationService` to compute slow ones off the GUI thread.
+        :class:`mrm.derive.DerivationService` to compute slow ones off the GUI thread.
         """
         return self.cache.entry(self.get(obj_id).source, self._settings.model)
 

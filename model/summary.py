@@ -2,10 +2,10 @@
 
 :func:`summarize` gives the fixed keys ``model``, ``pixels``, ``components``, ``holes``, ``euler``,
 ``boundary_chains``, ``segments`` and ``vertices`` (plus ``bbox``). Parts of the model that are not built yet
-give ``null``: the region keys need :mod:`model.reps.region`, ``segments`` the analytical representation
-(:func:`model.reps.analytical.analytical_of`, or else a greedy DSS segmentation of every boundary chain with
-:mod:`model.geometry.segmentation`), and ``vertices`` of a discrete object its continuation
-(:func:`model.geometry.reconstruct.reconstruct`). They are looked up at call time, so the summary fills in
+give ``null``: the region keys need :mod:`mrm.reps.region`, ``segments`` the analytical representation
+(:func:`mrm.reps.analytical.analytical_of`, or else a greedy DSS segmentation of every boundary chain with
+:mod:`mrm.geometry.segmentation`), and ``vertices`` of a discrete object its continuation
+(:func:`mrm.geometry.reconstruct.reconstruct`). They are looked up at call time, so the summary fills in
 by itself as those modules land.
 """
 
@@ -15,7 +15,7 @@ import importlib
 from collections.abc import Callable
 from typing import Any
 
-from model.reps.pixels import PixelSet
+from mrm.reps.pixels import PixelSet
 
 
 def optional_function(module: str, name: str) -> Callable[..., Any] | None:
@@ -56,7 +56,7 @@ def count_vertices(geom: Any) -> int:
 
 
 def _count_segments(region: Any) -> int | None:
-    analytical_of = optional_function("model.reps.analytical", "analytical_of")
+    analytical_of = optional_function("mrm.reps.analytical", "analytical_of")
     if analytical_of is not None:
         rep = analytical_of(region)
         n = getattr(rep, "n_segments", None)
@@ -65,8 +65,8 @@ def _count_segments(region: Any) -> int | None:
         segments = getattr(rep, "segments", None)
         if segments is not None:
             return len(segments)
-    greedy = optional_function("model.geometry.segmentation", "greedy_segmentation")
-    points_of = optional_function("model.geometry.segmentation", "chain_points")
+    greedy = optional_function("mrm.geometry.segmentation", "greedy_segmentation")
+    points_of = optional_function("mrm.geometry.segmentation", "chain_points")
     if greedy is None or points_of is None:
         return None
     # The default analytical representation: greedy standard (4-connected) DSS around each closed chain.
@@ -106,7 +106,7 @@ def summarize(ps: PixelSet, model: str, geom: Any = None) -> dict[str, Any]:
         "segments": None,
         "vertices": None,
     }
-    region_of = optional_function("model.reps.region", "region_of")
+    region_of = optional_function("mrm.reps.region", "region_of")
     if region_of is not None:
         region = region_of(ps)
         out["components"] = int(region.n_components)
@@ -119,7 +119,7 @@ def summarize(ps: PixelSet, model: str, geom: Any = None) -> dict[str, Any]:
     elif ps.is_empty():
         out["vertices"] = 0
     else:
-        reconstruct = optional_function("model.geometry.reconstruct", "reconstruct")
+        reconstruct = optional_function("mrm.geometry.reconstruct", "reconstruct")
         if reconstruct is not None:
             out["vertices"] = count_vertices(reconstruct(ps, model))
     return out

@@ -15,10 +15,10 @@ from typing import Any
 import numpy as np
 from PySide6 import QtCore, QtGui
 
-from model.document import DocObject
-from views.base_view import Layer, RepresentationView
-from views.canvas import MaskItem, qcolor
-from views.items import MarkersItem, PathItem, cosmetic_pen, segments_path
+from mrm.document import DocObject
+from mrm.views.base_view import Layer, RepresentationView
+from mrm.views.canvas import MaskItem, qcolor
+from mrm.views.items import MarkersItem, PathItem, cosmetic_pen, segments_path
 
 #: Alternating segment colours (and a third for the odd one out of a closed chain).
 SEGMENT_COLOURS = ("#e15759", "#4e79a7", "#59a14f")

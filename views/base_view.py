@@ -12,10 +12,10 @@ from typing import Any
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from model.derive import Rep
-from model.document import Changes, DocObject
-from views.canvas import PlaneView
-from views.scene import Phantom, Scene
+from mrm.derive import Rep
+from mrm.document import Changes, DocObject
+from mrm.views.canvas import PlaneView
+from mrm.views.scene import Phantom, Scene
 
 
 class Layer(pg.ItemGroup):

@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 from PySide6 import QtGui
 
-from model.document import DocObject
-from model.reps.pixels import PixelSet
-from views.base_view import Layer, RepresentationView
-from views.canvas import MaskItem, qcolor
-from views.items import PathItem, crack_segments, segments_path
+from mrm.document import DocObject
+from mrm.reps.pixels import PixelSet
+from mrm.views.base_view import Layer, RepresentationView
+from mrm.views.canvas import MaskItem, qcolor
+from mrm.views.items import PathItem, crack_segments, segments_path
 
 
 class DiscreteLayer(Layer):

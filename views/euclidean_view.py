@@ -6,10 +6,10 @@ import numpy as np
 import shapely
 from PySide6 import QtGui
 
-from model.document import DocObject
-from views.base_view import Layer, RepresentationView
-from views.canvas import qcolor
-from views.items import MarkersItem, PathItem, geometry_path, polygon_rings
+from mrm.document import DocObject
+from mrm.views.base_view import Layer, RepresentationView
+from mrm.views.canvas import qcolor
+from mrm.views.items import MarkersItem, PathItem, geometry_path, polygon_rings
 
 
 class EuclideanLayer(Layer):

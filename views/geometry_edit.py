@@ -1,6 +1,6 @@
 """Pure helpers for the editing tools: vertex references, hit tests, the preview of a vertex edit, brush dabs.
 
-Vertex references follow :mod:`model.commands` (``VertexRef`` = (polygon, ring, index), closing point not
+Vertex references follow :mod:`mrm.commands` (``VertexRef`` = (polygon, ring, index), closing point not
 counted, polygons in MultiPolygon order, ring 0 the exterior), so a preview computed here and the command
 pushed on release describe the same edit.
 """
@@ -14,7 +14,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.polygon import orient
 
-from model.document import validate_geometry
+from mrm.document import validate_geometry
 
 VertexRef = tuple[int, int, int]
 
@@ -37,7 +37,7 @@ def build(multi: bool, polys: list[list[np.ndarray]]) -> shapely.Geometry:
     built = []
     for rings in polys:
         if any(len(r) < 3 for r in rings):
-            from model.errors import InvalidGeometryError
+            from mrm.errors import InvalidGeometryError
 
             raise InvalidGeometryError("a polygon ring needs at least 3 vertices")
         built.append(Polygon(np.vstack([rings[0], rings[0][:1]]), [np.vstack([h, h[:1]]) for h in rings[1:]]))

@@ -11,10 +11,10 @@ from typing import Any
 import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from model.errors import MRMError
-from views.canvas import Camera, MaskItem, PlaneView, qcolor
-from views.provenance import Account, Measurement, account_of, measure
-from views.scene import Scene
+from mrm.errors import MRMError
+from mrm.views.canvas import Camera, MaskItem, PlaneView, qcolor
+from mrm.views.provenance import Account, Measurement, account_of, measure
+from mrm.views.scene import Scene
 
 LIGHT_GREY = (200, 200, 200)
 DARK_GREY = (95, 95, 95)

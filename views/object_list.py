@@ -11,9 +11,9 @@ from dataclasses import replace
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from model.commands import RemoveObjects, RenameObject, ReorderObjects, RestyleObject
-from model.document import Changes, DocObject, Document
-from model.errors import MRMError
+from mrm.commands import RemoveObjects, RenameObject, ReorderObjects, RestyleObject
+from mrm.document import Changes, DocObject, Document
+from mrm.errors import MRMError
 
 MIME = "application/x-mrm-object-ids"
 

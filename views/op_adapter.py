@@ -1,9 +1,9 @@
-"""How the GUI reads the model's operations: one place that knows the shape of :mod:`model.ops`.
+"""How the GUI reads the model's operations: one place that knows the shape of :mod:`mrm.ops`.
 
-The panels are generated from the registry (:func:`model.ops.base.operations`): every field of an operation's
-parameters dataclass gives a control, its ``metadata["mrm"]`` (written by :func:`model.ops.base.param`, read
-through :func:`model.ops.base.param_specs`) the kind, range, unit and help. Apply goes through
-:func:`model.ops.apply.apply_operation` in a worker thread against a *staging* document (:func:`stage_apply`):
+The panels are generated from the registry (:func:`mrm.ops.base.operations`): every field of an operation's
+parameters dataclass gives a control, its ``metadata["mrm"]`` (written by :func:`mrm.ops.base.param`, read
+through :func:`mrm.ops.base.param_specs`) the kind, range, unit and help. Apply goes through
+:func:`mrm.ops.apply.apply_operation` in a worker thread against a *staging* document (:func:`stage_apply`):
 the operation reads the inputs and builds its results with their provenance there, and the GUI thread pushes
 the one undo step it staged — so a cancel or an error leaves the real document untouched.
 """
@@ -48,7 +48,7 @@ class OpInfo:
 
     def make_params(self, values: Mapping[str, Any]) -> Any:
         """The operation's parameter object from control values, validated (raises ParameterError)."""
-        from model.ops.base import validate_params
+        from mrm.ops.base import validate_params
 
         params = self.spec.params(**values)
         validate_params(params)
@@ -85,7 +85,7 @@ def _range_of(spec: Any) -> tuple[float | None, float | None, bool]:
 
 def param_infos(cls: type | None) -> tuple[ParamInfo, ...]:
     """The controls of a parameters dataclass, in field order, from ``metadata["mrm"]`` (:func:`param`)."""
-    from model.ops.base import param_specs
+    from mrm.ops.base import param_specs
 
     if cls is None:
         return ()
@@ -123,9 +123,9 @@ def _num(v: Any) -> float | None:
 
 
 def operations() -> list[OpInfo]:
-    """Every operation of the model's registry (:func:`model.ops.base.operations`), the paper's first."""
-    from model.ops.apply import load_paper_operations
-    from model.ops.base import operations as registry
+    """Every operation of the model's registry (:func:`mrm.ops.base.operations`), the paper's first."""
+    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.base import operations as registry
 
     load_paper_operations()
     specs = registry()
@@ -146,7 +146,7 @@ def operations() -> list[OpInfo]:
 
 def normalise_results(out: Any) -> list[tuple[str | None, Any]]:
     """(part, source) pairs from whatever an operation returns."""
-    from model.reps.pixels import PixelSet
+    from mrm.reps.pixels import PixelSet
 
     def source_of(r: Any) -> Any:
         for attr in ("source", "result", "value", "geometry", "pixels"):
@@ -195,7 +195,7 @@ def json_params(params: Any) -> dict[str, Any]:
 
 @dataclass(frozen=True)
 class StagedObject:
-    """A result :func:`model.ops.apply.apply_operation` made, before it enters the real document."""
+    """A result :func:`mrm.ops.apply.apply_operation` made, before it enters the real document."""
 
     source: Any
     name: str | None
@@ -232,8 +232,8 @@ class _StagingDocument:
 def stage_apply(
     objects: Mapping[int, Any], model: str, operation: str, ids: Sequence[int], params: Any, progress: Any
 ) -> tuple[str, list[StagedObject]]:
-    """Run :func:`model.ops.apply.apply_operation` on a snapshot of the inputs; (undo label, results)."""
-    from model.ops.apply import apply_operation
+    """Run :func:`mrm.ops.apply.apply_operation` on a snapshot of the inputs; (undo label, results)."""
+    from mrm.ops.apply import apply_operation
 
     staging = _StagingDocument(objects, model)
     apply_operation(staging, operation, ids, params, progress)

@@ -14,10 +14,10 @@ from typing import Any
 
 from PySide6 import QtCore, QtWidgets
 
-from model.commands import ApplyResults
-from model.errors import MRMError
-from views.op_adapter import OpInfo, ParamInfo, normalise_results, operations, stage_apply
-from views.scene import Scene
+from mrm.commands import ApplyResults
+from mrm.errors import MRMError
+from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations, stage_apply
+from mrm.views.scene import Scene
 
 SLIDER_STEPS = 1000
 
@@ -251,7 +251,7 @@ class OperationPanel(QtWidgets.QWidget):
             self.combo.hide()
             self.live.hide()
             self.apply_button.setEnabled(False)
-            self.help.setText("No operations are available in this build (model.ops is missing).")
+            self.help.setText("No operations are available in this build (mrm.ops is missing).")
         else:
             self._op_changed(0)
 
@@ -389,7 +389,7 @@ class OperationPanel(QtWidgets.QWidget):
             self.status.setText(f"<span style='color:#c0392b'>{exc}</span>")
 
         def work(progress: Any) -> list[tuple[str | None, Any]]:
-            from model.ops.base import run_operation
+            from mrm.ops.base import run_operation
 
             return normalise_results(run_operation(op.spec, sources, params, progress=progress))
 

@@ -9,7 +9,7 @@ discrete operations D∘T_i∘R with similarities T_i (smooth scaling, rotation)
 * ``T`` = T_k∘…∘T_1, the composite similarity;
 * ``A_last`` = T_k(R(A_{k−1})), the Euclidean object just before the final discretization;
 * the *measured* error is the exact Hausdorff distance H(T(A_first), A_last), to set beside the paper's bound
-  (:func:`model.geometry.bounds.bound_of_chain`);
+  (:func:`mrm.geometry.bounds.bound_of_chain`);
 * the *direct result* is D(T(A_first)), the one-step discretization; the result's pixels that it lacks are
   drawn light grey, the ones it has that the result lost dark grey.
 """
@@ -23,9 +23,9 @@ from typing import Any
 
 import numpy as np
 
-from model.document import DocObject, Document
-from model.errors import MRMError, ParameterError
-from model.reps.pixels import PixelSet
+from mrm.document import DocObject, Document
+from mrm.errors import MRMError, ParameterError
+from mrm.reps.pixels import PixelSet
 
 #: Parameter names the operations may use, per meaning.
 _ALPHA = ("alpha", "factor", "ratio", "scale", "s")
@@ -41,7 +41,7 @@ class ChainLink:
     operation: str
     params: dict[str, Any]
     inputs: tuple[int, ...]
-    step: Any = None  # model.geometry.bounds.ChainStep, or None when the operation has no bound rule
+    step: Any = None  # mrm.geometry.bounds.ChainStep, or None when the operation has no bound rule
 
     def label(self) -> str:
         """The step as the paper writes it (``DSS 0.1``), or the operation's name."""
@@ -91,7 +91,7 @@ def chain_step(operation: str, params: dict[str, Any], *, decimal: bool = False)
     """
     from functools import partial
 
-    from model.geometry import bounds as B
+    from mrm.geometry import bounds as B
 
     _exact_ = partial(_exact, decimal=decimal)
     op = operation.lower()
@@ -135,7 +135,7 @@ def account_of(doc: Document, obj_id: int) -> Account:
     acc.origin = cur
     steps = [link.step for link in acc.links]
     if acc.links and all(s is not None for s in steps):
-        from model.geometry.bounds import bound_of_chain
+        from mrm.geometry.bounds import bound_of_chain
 
         try:
             acc.bound = bound_of_chain(steps, doc.model)
@@ -194,9 +194,9 @@ class Measurement:
 
 def measure(doc: Document, acc: Account, progress: Any = None) -> Measurement:
     """Measured Hausdorff distance and the direct result of a similarity chain (see the module docstring)."""
-    from model.geometry.discretize import discretize
-    from model.geometry.hausdorff import hausdorff_distance
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.discretize import discretize
+    from mrm.geometry.hausdorff import hausdorff_distance
+    from mrm.geometry.reconstruct import reconstruct
 
     if not acc.similarity_chain or acc.origin is None:
         raise ParameterError("the measured error is computed for chains of smooth scalings and rotations")

@@ -12,10 +12,10 @@ from typing import Any
 import numpy as np
 from PySide6 import QtCore, QtGui
 
-from model.document import DocObject
-from views.base_view import Layer, RepresentationView
-from views.canvas import MaskItem, qcolor
-from views.items import MarkersItem, PathItem, rings_path
+from mrm.document import DocObject
+from mrm.views.base_view import Layer, RepresentationView
+from mrm.views.canvas import MaskItem, qcolor
+from mrm.views.items import MarkersItem, PathItem, rings_path
 
 #: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
 COMPONENT_COLOURS = (
@@ -36,7 +36,7 @@ def hole_mask(mask: np.ndarray) -> np.ndarray:
     """Pixels of the bounded 8-components of the complement of ``mask`` (same shape as ``mask``)."""
     if mask.size == 0:
         return np.zeros_like(mask, dtype=bool)
-    from model.geometry.labeling import label  # numba: loaded on first use, not at start-up
+    from mrm.geometry.labeling import label  # numba: loaded on first use, not at start-up
 
     outside = np.pad(~mask.astype(bool), 1, constant_values=True)
     lab, _n = label(outside, connectivity=8)

@@ -13,9 +13,9 @@ from typing import Any
 
 from PySide6 import QtCore
 
-from model.derive import SYNC_COST, Derived, Rep
-from model.document import Changes, DocObject, Document, Source, Style
-from model.errors import MRMError
+from mrm.derive import SYNC_COST, Derived, Rep
+from mrm.document import Changes, DocObject, Document, Source, Style
+from mrm.errors import MRMError
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,7 @@ class Phantom:
 
     @property
     def kind(self) -> str:
-        from model.reps.pixels import PixelSet
+        from mrm.reps.pixels import PixelSet
 
         return "discrete" if isinstance(self.source, PixelSet) else "euclidean"
 

@@ -15,9 +15,9 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from model.document import Changes
-from views.items import PathItem, rings_path
-from views.scene import Scene
+from mrm.document import Changes
+from mrm.views.items import PathItem, rings_path
+from mrm.views.scene import Scene
 
 _ROOT = QtCore.QModelIndex()  # the invalid index: the model's root
 COLUMNS = ("chain", "#", "first", "last", "a", "b", "μ", "ω", "points")
@@ -228,7 +228,7 @@ class SegmentTable(QtWidgets.QWidget):
             f"pointels {seg.first}–{seg.last}. Preimage in frame {pre.frame}: {len(pre.vertices)} vertices."
         )
         if seg.a or seg.b:
-            from model.geometry.preimage import median_parameters
+            from mrm.geometry.preimage import median_parameters
 
             u, w = median_parameters(seg)
             self.median_item.setData(

@@ -5,8 +5,8 @@ from __future__ import annotations
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
-from views.canvas import PlaneView
-from views.tools import Tool, ToolHost, make_tools
+from mrm.views.canvas import PlaneView
+from mrm.views.tools import Tool, ToolHost, make_tools
 
 
 class ToolOverlay(pg.GraphicsObject):

@@ -16,7 +16,7 @@ import numpy as np
 import shapely
 from PySide6 import QtCore, QtGui
 
-from model.commands import (
+from mrm.commands import (
     AddObject,
     DeleteVertex,
     InsertVertex,
@@ -24,12 +24,12 @@ from model.commands import (
     PaintPixels,
     SetSource,
 )
-from model.document import DocObject, Style
-from model.errors import MRMError
-from model.reps.pixels import PixelSet
-from views import geometry_edit as ge
-from views.canvas import PlaneView
-from views.scene import Scene
+from mrm.document import DocObject, Style
+from mrm.errors import MRMError
+from mrm.reps.pixels import PixelSet
+from mrm.views import geometry_edit as ge
+from mrm.views.canvas import PlaneView
+from mrm.views.scene import Scene
 
 Qt = QtCore.Qt
 E = QtCore.QEvent.Type
@@ -862,7 +862,7 @@ def hole_pixels_at(ps: PixelSet, px: tuple[int, int]) -> PixelSet | None:
     b = ps.bbox
     if b is None or px in ps or not (b[0] < px[0] < b[2] and b[1] < px[1] < b[3]):
         return None
-    from model.geometry.labeling import label
+    from mrm.geometry.labeling import label
 
     outside = np.pad(~ps.mask, 1, constant_values=True)
     lab, _n = label(outside, connectivity=8)

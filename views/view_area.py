@@ -4,13 +4,13 @@ from __future__ import annotations
 
 from PySide6 import QtCore, QtWidgets
 
-from views.analytical_view import AnalyticalView
-from views.base_view import RepresentationView
-from views.canvas import Camera
-from views.discrete_view import DiscreteView
-from views.euclidean_view import EuclideanView
-from views.region_view import RegionView
-from views.scene import Scene
+from mrm.views.analytical_view import AnalyticalView
+from mrm.views.base_view import RepresentationView
+from mrm.views.canvas import Camera
+from mrm.views.discrete_view import DiscreteView
+from mrm.views.euclidean_view import EuclideanView
+from mrm.views.region_view import RegionView
+from mrm.views.scene import Scene
 
 
 class ViewArea(QtWidgets.QWidget):

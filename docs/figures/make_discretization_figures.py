@@ -5,7 +5,7 @@ Run from the repository root::
     .venv/bin/python docs/figures/make_discretization_figures.py
 
 It writes ``docs/img/discretization-polygon.png``, ``-segment.png`` and ``-partition.png``. Every pixel shown
-comes from :func:`model.geometry.discretize.discretize`; only the drawing is done here, with Pillow's
+comes from :func:`mrm.geometry.discretize.discretize`; only the drawing is done here, with Pillow's
 ImageDraw (drawn at 4× and scaled down, for smooth lines). The plane has y up, as in MR Modeler.
 """
 
@@ -23,8 +23,8 @@ from shapely.geometry import LineString, Polygon
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from model.geometry.discretize import discretize  # noqa: E402
-from model.reps.pixels import PixelSet  # noqa: E402
+from mrm.geometry.discretize import discretize  # noqa: E402
+from mrm.reps.pixels import PixelSet  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
 

@@ -8,7 +8,7 @@ Each subcommand lives in its own module of this package and defines::
     def run(args) -> dict | None:   # does the work; returns the --json summary (or None)
 
 Modules are discovered automatically, so adding a subcommand never edits this file. Every input error is
-an :class:`model.errors.MRMError`: it is printed as ``mrm NAME: error: message`` on stderr with exit status 2,
+an :class:`mrm.errors.MRMError`: it is printed as ``mrm NAME: error: message`` on stderr with exit status 2,
 never as a traceback.
 """
 
@@ -22,7 +22,7 @@ import sys
 from types import ModuleType
 from typing import Any
 
-from model.errors import MRMError
+from mrm.errors import MRMError
 
 #: The discretization models, in the order the CLI lists them.
 MODEL_CHOICES = ("standard", "supercover", "gauss")

@@ -1,7 +1,7 @@
 """Helpers shared by the ``mrm`` subcommands: argument types, reading inputs, the text table.
 
 Subcommands that take one object read it with :func:`load_object` (a thin layer over
-:func:`model.cli._project_input.load_input`, which picks a project's object with ``--object NAME``);
+:func:`mrm.cli._project_input.load_input`, which picks a project's object with ``--object NAME``);
 :func:`project_objects` gives every object of a project, for the commands that can take them all.
 :func:`read_input` is the older all-objects reader, kept for the commands that still use it.
 
@@ -18,11 +18,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from model.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
-from model.errors import DEFAULT_PIXEL_LIMIT, FileFormatError
-from model.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
-from model.io.vector_files import VECTOR_EXTENSIONS, combine, read_geometry
-from model.reps.pixels import PixelSet
+from mrm.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
+from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError
+from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
+from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, read_geometry
+from mrm.reps.pixels import PixelSet
 
 PROJECT_EXTENSION = PROJECT_EXTENSIONS[0]
 
@@ -41,7 +41,7 @@ class Input:
     model : str or None
         The project's model, else None.
     objects : list
-        A project's objects (``model.document.DocObject``), else empty.
+        A project's objects (``mrm.document.DocObject``), else empty.
     """
 
     kind: str
@@ -94,8 +94,8 @@ def extension_of(path: str | os.PathLike[str], allowed: tuple[str, ...], what: s
 
 
 def project_objects(path: str | os.PathLike[str]) -> tuple[list[Any], str]:
-    """Every object of a project file (``model.document.DocObject``, in document order) and its model."""
-    from model.io.project import read_project
+    """Every object of a project file (``mrm.document.DocObject``, in document order) and its model."""
+    from mrm.io.project import read_project
 
     proj = read_project(path)
     return list(proj.objects), str(proj.settings.model)
@@ -111,7 +111,7 @@ def load_object(
 ) -> tuple[Kind, Any, str]:
     """Read one object: a pixel file, a vector file, or the object ``object_name`` of a project.
 
-    Returns ``(kind, value, model)`` as :func:`model.cli._project_input.load_input` does (value in its
+    Returns ``(kind, value, model)`` as :func:`mrm.cli._project_input.load_input` does (value in its
     source representation; model the one asked for, else the project's, else 'standard'), with ``limit``
     also bounding the size of an image read from a pixel file.
     """
@@ -148,8 +148,8 @@ def read_input(
 
 
 def discretize_geometry(geom: Any, model: str, limit: int) -> PixelSet:
-    """D(geom) under ``model`` with :func:`model.geometry.discretize.discretize`."""
-    from model.geometry.discretize import discretize
+    """D(geom) under ``model`` with :func:`mrm.geometry.discretize.discretize`."""
+    from mrm.geometry.discretize import discretize
 
     return discretize(geom, model, limit=limit)
 

@@ -9,7 +9,7 @@ Outputs: a pixel result goes to .png/.pbm/.pgm/.npz, a Euclidean result to .geoj
 for the other kind writes the result's other representation (R of a pixel result, D of a Euclidean one —
 exact both ways, since D(R(A)) = A). Files are written atomically: a failure leaves no half-written file.
 
-``--json`` prints the info keys of the result (:func:`model.summary.summarize`) plus ``bound`` (the error
+``--json`` prints the info keys of the result (:func:`mrm.summary.summarize`) plus ``bound`` (the error
 bound of the operation as a chain, null where the model gives none) and ``measured`` (the exact Hausdorff
 distance between the composite Euclidean transform of A_first and A_last; null with ``--no-measure``).
 """
@@ -21,13 +21,13 @@ import time
 from pathlib import Path
 from typing import Any
 
-from model.cli._common import add_limit_argument, extension_of, load_object, print_table
-from model.cli._project_input import add_object_argument
-from model.errors import ParameterError
-from model.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
-from model.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
-from model.reps.pixels import PixelSet
-from model.summary import summarize
+from mrm.cli._common import add_limit_argument, extension_of, load_object, print_table
+from mrm.cli._project_input import add_object_argument
+from mrm.errors import ParameterError
+from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
+from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
+from mrm.reps.pixels import PixelSet
+from mrm.summary import summarize
 
 #: Input file types.
 INPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".mrm")
@@ -108,7 +108,7 @@ def write_result(result: Any, path: str, model: str, properties: dict[str, Any] 
     ext = extension_of(path, OUTPUTS, "output file")
     if ext in PIXEL_EXTENSIONS:
         if not isinstance(result, PixelSet):
-            from model.geometry.discretize import discretize
+            from mrm.geometry.discretize import discretize
 
             result = discretize(result, model)
         write_pixels(result, path)
@@ -117,7 +117,7 @@ def write_result(result: Any, path: str, model: str, properties: dict[str, Any] 
         write_svg(result, path)
         return
     if isinstance(result, PixelSet):
-        from model.geometry.reconstruct import reconstruct
+        from mrm.geometry.reconstruct import reconstruct
 
         result = reconstruct(result, model)
     if ext == ".wkt":
@@ -133,7 +133,7 @@ def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
 
 def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) -> dict[str, Any]:
     """Run one unary operation as a one-step chain, write its result, return the --json summary."""
-    from model.ops.chain import run_chain
+    from mrm.ops.chain import run_chain
 
     extension_of(args.output, OUTPUTS, "output file")  # fail before any work
     source, model = read_one(args.input, args.object, args.model, args.limit)

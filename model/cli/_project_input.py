@@ -17,7 +17,7 @@ import os
 from pathlib import Path
 from typing import Any, Literal
 
-from model.errors import FileFormatError, ParameterError
+from mrm.errors import FileFormatError, ParameterError
 
 Kind = Literal["discrete", "euclidean"]
 
@@ -85,7 +85,7 @@ def load_input(
     want : {'discrete', 'euclidean'}, optional
         Convert to this representation: D(geometry) or R(pixels) under the model.
     threshold : float, optional
-        Threshold for grey images (see :func:`model.io.pixel_files.read_pixels`).
+        Threshold for grey images (see :func:`mrm.io.pixel_files.read_pixels`).
 
     Returns
     -------
@@ -108,7 +108,7 @@ def load_input(
     kind: Kind
     value: Any
     if ext in PROJECT_EXTENSIONS:
-        from model.io.project import read_project
+        from mrm.io.project import read_project
 
         proj = read_project(p)
         obj = _pick(proj.objects, object_name, p.name)
@@ -119,11 +119,11 @@ def load_input(
             raise ParameterError(f"{p.name}: --object applies to project (.mrm) files only")
         model = model or "standard"
         if ext in PIXEL_EXTENSIONS:
-            from model.io.pixel_files import read_pixels
+            from mrm.io.pixel_files import read_pixels
 
             kind, value = "discrete", read_pixels(p, threshold=threshold)
         elif ext in VECTOR_EXTENSIONS:
-            from model.io.vector_files import read_geometry
+            from mrm.io.vector_files import read_geometry
 
             kind, value = "euclidean", read_geometry(p)
         else:
@@ -133,7 +133,7 @@ def load_input(
                 + ", ".join(PIXEL_EXTENSIONS + VECTOR_EXTENSIONS + PROJECT_EXTENSIONS)
             )
     if want is not None and want != kind:
-        from model.derive import discretize_source, reconstruct_source
+        from mrm.derive import discretize_source, reconstruct_source
 
         value = discretize_source(value, model) if want == "discrete" else reconstruct_source(value, model)
         kind = want

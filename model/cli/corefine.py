@@ -24,12 +24,12 @@ from typing import Any
 
 from shapely.geometry import Polygon
 
-from model.cli._common import print_table
-from model.cli._operation import add_common, add_two_inputs, read_two, result_summary
-from model.io.pixel_files import write_label_map
-from model.io.vector_files import write_geojson, write_svg, write_wkt
-from model.ops.exact_geometry import number_to_json, positive_number
-from model.summary import count_vertices, summarize
+from mrm.cli._common import print_table
+from mrm.cli._operation import add_common, add_two_inputs, read_two, result_summary
+from mrm.io.pixel_files import write_label_map
+from mrm.io.vector_files import write_geojson, write_svg, write_wkt
+from mrm.ops.exact_geometry import number_to_json, positive_number
+from mrm.summary import count_vertices, summarize
 
 NAME = "corefine"
 HELP = "Euclidean-discrete co-refinement EDco(_α) of two objects: the parts A∖B, A∩B, B∖A"
@@ -48,7 +48,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _targets(output: str) -> tuple[str, dict[str, str]]:
     """('collection' | 'labels' | 'files', part → path)."""
-    from model.ops.boolean import PARTS
+    from mrm.ops.boolean import PARTS
 
     p = Path(output)
     ext = p.suffix.lower()
@@ -65,7 +65,7 @@ def _targets(output: str) -> tuple[str, dict[str, str]]:
 def _write(
     kind: str, files: dict[str, str], output: str, result: dict[str, Any], labels: Any, model: str
 ) -> None:
-    from model.ops.boolean import PARTS
+    from mrm.ops.boolean import PARTS
 
     if kind == "collection":
         write_geojson([(part, result[part]) for part in PARTS], output, properties={"model": model})
@@ -83,9 +83,9 @@ def _write(
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Co-refine, write the parts, return the summary."""
-    from model.geometry.bounds import bound_of_chain, corefine
-    from model.ops.boolean import BOUND_PART, PARTS, euclidean_discrete_corefinement, reference_parts
-    from model.ops.measure import measured_error
+    from mrm.geometry.bounds import bound_of_chain, corefine
+    from mrm.ops.boolean import BOUND_PART, PARTS, euclidean_discrete_corefinement, reference_parts
+    from mrm.ops.measure import measured_error
 
     alpha = None if args.alpha is None else positive_number(args.alpha, "alpha")
     kind, files = _targets(str(args.output))
@@ -100,7 +100,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         summary["files"] = files
     pixels = dict(out.extra["pixels"])
     if alpha is not None:  # the parts' own discretizations, on the unscaled grid
-        from model.geometry.discretize import discretize
+        from mrm.geometry.discretize import discretize
 
         pixels = {p: discretize(out.result[p], model, limit=args.limit) for p in PARTS}
     support = pixels["a_minus_b"] | pixels["a_and_b"] | pixels["b_minus_a"]

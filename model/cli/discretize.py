@@ -14,7 +14,7 @@ import argparse
 import time
 from typing import Any
 
-from model.cli._common import (
+from mrm.cli._common import (
     PROJECT_EXTENSION,
     add_limit_argument,
     discretize_geometry,
@@ -23,12 +23,12 @@ from model.cli._common import (
     print_table,
     project_objects,
 )
-from model.cli._project_input import add_object_argument
-from model.errors import FileFormatError
-from model.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
-from model.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
-from model.reps.pixels import PixelSet
-from model.summary import summarize
+from mrm.cli._project_input import add_object_argument
+from mrm.errors import FileFormatError
+from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
+from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
+from mrm.reps.pixels import PixelSet
+from mrm.summary import summarize
 
 NAME = "discretize"
 HELP = (

@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from model.cli._common import (
+from mrm.cli._common import (
     PROJECT_EXTENSION,
     add_limit_argument,
     discretize_geometry,
@@ -20,12 +20,12 @@ from model.cli._common import (
     print_table,
     project_objects,
 )
-from model.cli._project_input import add_object_argument
-from model.errors import ParameterError
-from model.io.pixel_files import PIXEL_EXTENSIONS
-from model.io.vector_files import VECTOR_EXTENSIONS
-from model.reps.pixels import PixelSet
-from model.summary import summarize
+from mrm.cli._project_input import add_object_argument
+from mrm.errors import ParameterError
+from mrm.io.pixel_files import PIXEL_EXTENSIONS
+from mrm.io.vector_files import VECTOR_EXTENSIONS
+from mrm.reps.pixels import PixelSet
+from mrm.summary import summarize
 
 NAME = "info"
 HELP = "summarise the four representations of a pixel, vector or project file"
@@ -49,7 +49,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Read the input and return its summary (see :func:`model.summary.summarize`)."""
+    """Read the input and return its summary (see :func:`mrm.summary.summarize`)."""
     ext = extension_of(args.input, INPUTS, "supported input file")
     if args.threshold is not None and ext not in PIXEL_EXTENSIONS:
         raise ParameterError(f"{args.input}: --threshold applies to image inputs only")
@@ -91,7 +91,7 @@ def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, An
         )
     all_euclidean = bool(objects) and all(not isinstance(o.source, PixelSet) for o in objects)
     if all_euclidean:
-        from model.io.vector_files import combine
+        from mrm.io.vector_files import combine
 
         summary = summarize(union, model, geom=combine([o.source for o in objects]))
     else:

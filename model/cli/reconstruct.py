@@ -22,7 +22,7 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-from model.cli._common import (
+from mrm.cli._common import (
     PROJECT_EXTENSION,
     add_limit_argument,
     extension_of,
@@ -31,11 +31,11 @@ from model.cli._common import (
     print_table,
     read_input,
 )
-from model.errors import FileFormatError, MRMError, ParameterError
-from model.io.pixel_files import PIXEL_EXTENSIONS
-from model.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
-from model.reps.pixels import PixelSet
-from model.summary import summarize
+from mrm.errors import FileFormatError, MRMError, ParameterError
+from mrm.io.pixel_files import PIXEL_EXTENSIONS
+from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
+from mrm.reps.pixels import PixelSet
+from mrm.summary import summarize
 
 NAME = "reconstruct"
 HELP = "reversible continuation of pixel files (.png .pbm .pgm .npz .mrm) into polygons (.geojson .wkt .svg)"
@@ -105,7 +105,7 @@ def _pixels_of(path: str, threshold: float | None, limit: int, model: str | None
         return src.pixels, chosen
     if threshold is not None:
         raise ParameterError("--threshold applies to image inputs only")
-    from model.cli._common import discretize_geometry
+    from mrm.cli._common import discretize_geometry
 
     union = PixelSet.empty()
     for obj in src.objects:
@@ -129,7 +129,7 @@ def reconstruct_file(
     path: str, output: str, model: str | None, threshold: float | None, limit: int
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.reconstruct import reconstruct
 
     ps, chosen = _pixels_of(path, threshold, limit, model)
     t0 = time.perf_counter()

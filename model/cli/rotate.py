@@ -2,7 +2,7 @@
 
 The angle is in degrees, counter-clockwise (y up); the centre defaults to the origin. Multiples of 90° about
 a pixel centre are exact pixel rotations. A vector input is read as its discretization D(E). See
-:mod:`model.ops.rotation` for what the rotation is exactly and :mod:`model.cli._operation` for ``--json``.
+:mod:`mrm.ops.rotation` for what the rotation is exactly and :mod:`mrm.cli._operation` for ``--json``.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from model.cli._operation import add_common, add_input, parse_point, run_unary
+from mrm.cli._operation import add_common, add_input, parse_point, run_unary
 
 NAME = "rotate"
 HELP = "discrete-Euclidean rotation dR_θ,C (D of the continuation rotated by θ about C) of an input"

@@ -2,7 +2,7 @@
 
 A vector input is read as its discretization D(E). α is read exactly (``0.2`` is 1/5; ``1/3`` is accepted);
 the result's size is estimated before anything runs and refused beyond ``--limit``. The output is a pixel
-file (or, for .geojson/.wkt/.svg, the result's continuation). See :mod:`model.cli._operation` for ``--json``.
+file (or, for .geojson/.wkt/.svg, the result's continuation). See :mod:`mrm.cli._operation` for ``--json``.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from model.cli._operation import add_common, add_input, parse_point, run_unary
+from mrm.cli._operation import add_common, add_input, parse_point, run_unary
 
 NAME = "scale"
 HELP = "discrete smooth scaling DSS_α (D of the continuation scaled by α) of a pixel, vector or project input"

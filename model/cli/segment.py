@@ -12,8 +12,8 @@ import argparse
 import sys
 from typing import Any
 
-from model.errors import InvalidGeometryError, ParameterError
-from model.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
 
 NAME = "segment"
 HELP = "segment a Freeman chain into digital straight segments (greedy or maximal)"

@@ -2,7 +2,7 @@
 
 Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): details smaller than about 1/α are simplified away, and the result lies
 within √2/α of E (cover models). A pixel input is read as its continuation R(A). The output is a vector file
-(or, for a pixel file, the result's discretization). See :mod:`model.cli._operation` for ``--json``.
+(or, for a pixel file, the result's discretization). See :mod:`mrm.cli._operation` for ``--json``.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from model.cli._operation import add_common, add_input, parse_point, run_unary
+from mrm.cli._operation import add_common, add_input, parse_point, run_unary
 
 NAME = "simplify"
 HELP = "discrete-based simplification Sp_α of a Euclidean object (vector, pixel or project input)"

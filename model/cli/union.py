@@ -11,8 +11,8 @@ import argparse
 import time
 from typing import Any
 
-from model.cli._common import extension_of, print_table
-from model.cli._operation import OUTPUTS, add_common, add_two_inputs, read_two, result_summary, write_result
+from mrm.cli._common import extension_of, print_table
+from mrm.cli._operation import OUTPUTS, add_common, add_two_inputs, read_two, result_summary, write_result
 
 NAME = "union"
 HELP = "Euclidean-discrete union EDu of two objects: R(D(A) ∪ D(B))"
@@ -28,9 +28,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Unite, write the result, return the summary."""
-    from model.geometry.bounds import bound_of_chain, union
-    from model.ops.boolean import euclidean_discrete_union, reference_parts
-    from model.ops.measure import measured_error
+    from mrm.geometry.bounds import bound_of_chain, union
+    from mrm.ops.boolean import euclidean_discrete_union, reference_parts
+    from mrm.ops.measure import measured_error
 
     extension_of(args.output, OUTPUTS, "output file")
     a, b, model = read_two(args)

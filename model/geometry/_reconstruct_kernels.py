@@ -1,4 +1,4 @@
-"""Numba kernels of the reversible continuation R (see :mod:`model.geometry.reconstruct`).
+"""Numba kernels of the reversible continuation R (see :mod:`mrm.geometry.reconstruct`).
 
 Everything here works in *array* coordinates (pixel (c, r) is ``mask[r, c]``) and in **Q-units**, a
 quarter of a pixel: the centre of pixel (c, r) is (4c, 4r) and pointel (i, j), the lower-left corner of pixel
@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from model.geometry._dss_kernels import reach_kernel
+from mrm.geometry._dss_kernels import reach_kernel
 
 # Freeman directions 0 = E, 1 = N, 2 = W, 3 = S.
 _DX = np.array([1, 0, -1, 0], dtype=np.int64)

@@ -18,7 +18,7 @@ through, in path order, and of the open segments (*gates*) between consecutive p
 
 A ring that enters every piece through its gate and leaves through the next one, with every vertex strictly
 inside a piece, is simple, disjoint from the rings of the other visits, and D(polygon) = A
-(:mod:`model.geometry.reconstruct` builds such rings, :mod:`model.geometry.verify` checks them exactly).
+(:mod:`mrm.geometry.reconstruct` builds such rings, :mod:`mrm.geometry.verify` checks them exactly).
 
 Coordinates are plane coordinates: pixel (x, y) is centred on (x, y); pointel (i, j) is (i − ½, j − ½).
 """
@@ -31,8 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from model.geometry import _reconstruct_kernels as _k
-from model.reps.region import CrackChain
+from mrm.geometry import _reconstruct_kernels as _k
+from mrm.reps.region import CrackChain
 
 IntArray = npt.NDArray[np.int64]
 FloatArray = npt.NDArray[np.float64]

@@ -68,7 +68,7 @@ from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Literal
 
-from model.errors import ParameterError
+from mrm.errors import ParameterError
 
 #: The dimension of the space: every round trip adds √N_DIM.
 N_DIM = 2

@@ -1,7 +1,7 @@
 """Crack (inter-pixel) boundary tracing into Freeman chains, and the fill back (DESIGN §4, ALGORITHMS §2.5).
 
 Coordinates here are *array* coordinates: pixel (c, r) is ``mask[r, c]`` and pointel (c, r) is its lower-left
-corner (row 0 is the lowest y). :mod:`model.reps.region` adds the origin.
+corner (row 0 is the lowest y). :mod:`mrm.reps.region` adds the origin.
 
 Freeman codes: 0 = E (+1, 0), 1 = N (0, +1), 2 = W (−1, 0), 3 = S (0, −1). The pixel on the left of code ``d``
 leaving pointel (i, j) is (i + LX[d], j + LY[d]) and the one on its right (i + RX[d], j + RY[d]).
@@ -21,7 +21,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from model.geometry.labeling import Runs, as_u8, label_runs
+from mrm.geometry.labeling import Runs, as_u8, label_runs
 
 U8Array = npt.NDArray[np.uint8]
 I32Array = npt.NDArray[np.int32]

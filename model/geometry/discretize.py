@@ -43,9 +43,9 @@ import numpy as np
 import numpy.typing as npt
 import shapely
 
-from model.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, ParameterError, SizeLimitError
-from model.geometry import _discretize_kernels as _k
-from model.geometry.exact import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.geometry import _discretize_kernels as _k
+from mrm.geometry.exact import (
     MAX_ABS_COORD,
     MIN_ABS_COORD,
     cell_index,
@@ -53,7 +53,7 @@ from model.geometry.exact import (
     closed_cell_range,
     float_predicates_are_exact,
 )
-from model.reps.pixels import Box, PixelSet
+from mrm.reps.pixels import Box, PixelSet
 
 #: The discretization models, the default first.
 MODELS = ("standard", "supercover", "gauss")

@@ -77,7 +77,7 @@ from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.geometry.polygon import orient
 
-from model.errors import InvalidGeometryError
+from mrm.errors import InvalidGeometryError
 
 __all__ = ["HausdorffDistance", "directed_hausdorff", "hausdorff_distance"]
 

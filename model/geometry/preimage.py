@@ -37,7 +37,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from fractions import Fraction
 
-from model.geometry.dss import Segment
+from mrm.geometry.dss import Segment
 
 Vertex = tuple[Fraction, Fraction]
 _HALF = Fraction(1, 2)

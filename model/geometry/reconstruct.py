@@ -37,11 +37,11 @@ import numpy.typing as npt
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.errors import ParameterError
-from model.geometry import _reconstruct_kernels as _k
-from model.geometry.cracks import trace_mask
-from model.reps.pixels import PixelSet
-from model.reps.region import CrackChain
+from mrm.errors import ParameterError
+from mrm.geometry import _reconstruct_kernels as _k
+from mrm.geometry.cracks import trace_mask
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import CrackChain
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]

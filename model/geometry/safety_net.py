@@ -10,7 +10,7 @@
   stay simple and the parts keep the (4, 8) topology.
 
 Both are built directly from the crack chains with integer arithmetic (coordinates are multiples of ¼).
-:mod:`model.geometry.reconstruct` never returns them whole: it splices R0 into a ring only where its own
+:mod:`mrm.geometry.reconstruct` never returns them whole: it splices R0 into a ring only where its own
 ring fails the exact check.
 """
 
@@ -23,8 +23,8 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.reps.pixels import PixelSet
-from model.reps.region import CrackChain, region_of
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import CrackChain, region_of
 
 FloatArray = npt.NDArray[np.float64]
 

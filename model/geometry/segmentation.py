@@ -25,9 +25,9 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from model.errors import InvalidGeometryError, ParameterError
-from model.geometry import _dss_kernels as K
-from model.geometry.dss import Segment
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.geometry import _dss_kernels as K
+from mrm.geometry.dss import Segment
 
 IntArray = npt.NDArray[np.int64]
 

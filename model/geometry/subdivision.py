@@ -21,7 +21,7 @@ the pixels its boundary crosses, so two parts sharing an edge would both claim t
 How: cells and corridors
 ------------------------
 The boundaries of a label map split into 0-cells (pointels where three or more labels meet, or two
-diagonally) and 1-cells (maximal chains of linels between the same two labels; :mod:`model.reps.cells`).
+diagonally) and 1-cells (maximal chains of linels between the same two labels; :mod:`mrm.reps.cells`).
 Each 1-cell c is reconstructed **once**, as an open polyline γ_c between its two 0-cells (which stay where
 they are: a pixel corner is never a pixel centre, so it decides nothing under ``gauss``), or as a ring when
 it meets no 0-cell. Every part is then assembled from the polylines of its 1-cells, reversed where the label
@@ -94,7 +94,7 @@ How the polylines are chosen (a "V4" on the dual grid)
 Shifted by (½, ½), the pointels become pixel centres and the pieces their open squares: γ_c must cross
 a 4-connected path of squares through their open shared sides, from the centre of the first to the centre
 of the last. For every window of pointels that is a standard digital straight segment (a, b, μ, ω) (the
-reach table of :func:`model.geometry.segmentation.standard_dss_reach_table`), the left centres of its linels
+reach table of :func:`mrm.geometry.segmentation.standard_dss_reach_table`), the left centres of its linels
 have a·x − b·y ≤ μ + ω/2 − 1 and the right ones ≥ μ + ω/2 (pointel coordinates), so every line in the open
 strip between (around the median line a·x − b·y = μ + (ω − 1)/2) separates them: it crosses every gate of the
 window. From the current vertex A (a 0-cell to begin with) the cone of directions through the following
@@ -119,12 +119,12 @@ import numpy.typing as npt
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.errors import ParameterError
-from model.geometry.discretize import discretize
-from model.geometry.labeling import group_by_label
-from model.geometry.segmentation import standard_dss_reach_table
-from model.reps.cells import Cells, cells_of
-from model.reps.pixels import LabelMap, PixelSet
+from mrm.errors import ParameterError
+from mrm.geometry.discretize import discretize
+from mrm.geometry.labeling import group_by_label
+from mrm.geometry.segmentation import standard_dss_reach_table
+from mrm.reps.cells import Cells, cells_of
+from mrm.reps.pixels import LabelMap, PixelSet
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]

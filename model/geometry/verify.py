@@ -3,7 +3,7 @@
 The check is the corridor condition of ALGORITHMS §3.4, made exact with integers: every float64 coordinate
 is a dyadic rational, so the coordinates of a ring are scaled by a power of two to integers and every test
 is a sign of a sum of products that fits in 64 bits. For a geometry P and a pixel set A, with the corridors
-of :mod:`model.geometry.border`:
+of :mod:`mrm.geometry.border`:
 
 * each polygon ring is matched to one crack ring of A (outer ring ↔ shell, hole ring ↔ hole of the same
   4-component, each used once), so the polygons are the 4-components and the holes the bounded
@@ -33,10 +33,10 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.geometry import _reconstruct_kernels as _k
-from model.geometry.border import Corridor, corridors
-from model.reps.pixels import PixelSet
-from model.reps.region import region_of
+from mrm.geometry import _reconstruct_kernels as _k
+from mrm.geometry.border import Corridor, corridors
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import region_of
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]

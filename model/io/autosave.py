@@ -25,8 +25,8 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
-from model.document import Changes, Document
-from model.io.project import dumps, read_project
+from mrm.document import Changes, Document
+from mrm.io.project import dumps, read_project
 
 SUFFIX = ".autosave"
 
@@ -68,7 +68,7 @@ class Recovery:
     def restore(self) -> Document:
         """Load the autosaved document: its path is the original project's, and it is marked modified.
 
-        Raises :class:`~model.errors.FileFormatError` if the side file is damaged (offer :meth:`discard`).
+        Raises :class:`~mrm.errors.FileFormatError` if the side file is damaged (offer :meth:`discard`).
         """
         return read_project(self.path).to_document(self.project, clean=False)
 
@@ -207,7 +207,7 @@ class Autosaver:
 
     def write_now(self) -> Path:
         """Write the side file at once (atomically) and reset the counters."""
-        from model.io.atomic import atomic_write_bytes
+        from mrm.io.atomic import atomic_write_bytes
 
         target = self.path
         if self._written is not None and self._written != target:

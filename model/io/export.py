@@ -3,9 +3,9 @@
 The representation written follows the file type:
 
 * ``.png`` ``.pbm`` ``.pgm`` ``.npz`` — the **discrete** representation (the source, or D(E)), keeping its
-  place on the grid (:func:`model.io.pixel_files.write_pixels`);
+  place on the grid (:func:`mrm.io.pixel_files.write_pixels`);
 * ``.geojson`` ``.json`` ``.wkt`` — the **Euclidean** representation (the source, or R(A)), coordinates exact
-  (:mod:`model.io.vector_files`);
+  (:mod:`mrm.io.vector_files`);
 * ``.svg`` — a picture with y up: the Euclidean shape by default (SVG is a vector format, so a plain export
   gives the shape alone, ready for an SVG editor or a publication figure), the pixels (``rep="discrete"``), or
   both (``rep="both"``: the pixels as light squares with the Euclidean shape outlined on top, the picture
@@ -25,9 +25,9 @@ from typing import Any, Literal
 
 import numpy as np
 
-from model.document import Document
-from model.errors import FileFormatError, ParameterError
-from model.reps.pixels import LabelMap, PixelSet
+from mrm.document import Document
+from mrm.errors import FileFormatError, ParameterError
+from mrm.reps.pixels import LabelMap, PixelSet
 
 PathLike = str | os.PathLike[str]
 
@@ -84,26 +84,26 @@ def export_object(
     if rep is not None and rep != chosen:
         raise ParameterError(f"a {ext} file holds the {chosen} representation, not the {rep} one")
     if rep == "both" and ext in PICTURE_EXTENSIONS:
-        from model.io.vector_files import write_svg
+        from mrm.io.vector_files import write_svg
 
         derived = doc.derived(obj.id)
         write_svg(derived.get("euclidean"), path, pixels=derived.get("discrete"))
         return "both"
     value = doc.derived(obj.id).get("discrete" if chosen == "discrete" else "euclidean")
     if ext in PIXEL_EXTENSIONS:
-        from model.io.pixel_files import write_pixels
+        from mrm.io.pixel_files import write_pixels
 
         write_pixels(value, path)
     elif ext == ".wkt":
-        from model.io.vector_files import write_wkt
+        from mrm.io.vector_files import write_wkt
 
         write_wkt(value, path)
     elif ext in VECTOR_EXTENSIONS:
-        from model.io.vector_files import write_geojson
+        from mrm.io.vector_files import write_geojson
 
         write_geojson(value, path, properties=_properties(doc, obj_id))
     else:
-        from model.io.vector_files import write_svg
+        from mrm.io.vector_files import write_svg
 
         write_svg(value, path)
     return chosen
@@ -119,7 +119,7 @@ def _properties(doc: Document, obj_id: int) -> dict[str, Any]:
 
 def export_objects_geojson(doc: Document, ids: Sequence[int], path: PathLike) -> None:
     """Write several objects' Euclidean shapes to one GeoJSON file, a Feature each (``part`` = its name)."""
-    from model.io.vector_files import write_geojson
+    from mrm.io.vector_files import write_geojson
 
     if _ext(path) not in (".geojson", ".json"):
         raise FileFormatError(f"{os.fspath(path)}: several objects go to a .geojson file")
@@ -154,7 +154,7 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
         return LabelMap(np.zeros((0, 0), dtype=np.int32)), mapping
     x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
     x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
-    from model.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
+    from mrm.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
 
     area = (x1 - x0 + 1) * (y1 - y0 + 1)
     if area > DEFAULT_PIXEL_LIMIT:
@@ -171,7 +171,7 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
 
 def export_label_map(doc: Document, path: PathLike, ids: Sequence[int] | None = None) -> dict[int, int]:
     """Write the label map of objects (see :func:`label_map_of`) to a .png or .npz; returns label → id."""
-    from model.io.pixel_files import write_label_map
+    from mrm.io.pixel_files import write_label_map
 
     if _ext(path) not in LABEL_EXTENSIONS:
         raise FileFormatError(f"{os.fspath(path)}: a label map goes to a .png or .npz file")

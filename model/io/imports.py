@@ -13,9 +13,9 @@ from pathlib import Path
 
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.commands import ApplyResults
-from model.document import DocObject, Document, Provenance, validate_geometry
-from model.errors import FileFormatError
+from mrm.commands import ApplyResults
+from mrm.document import DocObject, Document, Provenance, validate_geometry
+from mrm.errors import FileFormatError
 
 PathLike = str | os.PathLike[str]
 
@@ -32,7 +32,7 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
     ext = p.suffix.lower()
     stem = p.stem or p.name
     if ext == ".mrm":
-        from model.io.project import read_project
+        from mrm.io.project import read_project
 
         proj = read_project(p)
         new_ids = {o.id: doc.new_id() for o in proj.objects}
@@ -43,13 +43,13 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
                 prov = Provenance(prov.operation, prov.params, tuple(new_ids.get(i, i) for i in prov.inputs))
             out.append(o.with_(id=new_ids[o.id], provenance=prov))
         return out
-    from model.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
-    from model.io.vector_files import VECTOR_EXTENSIONS, read_geometries
+    from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
+    from mrm.io.vector_files import VECTOR_EXTENSIONS, read_geometries
 
     if ext in PIXEL_EXTENSIONS:
         return [doc.make_object(read_pixels(p, threshold=threshold), stem)]
     if ext in VECTOR_EXTENSIONS:
-        from model.derive import discretize_source
+        from mrm.derive import discretize_source
 
         geoms = read_geometries(p)
         out = []

@@ -17,10 +17,10 @@ Formats, chosen by the file extension:
     ``mask`` (bool, [row, col], y growing with the row — the in-memory layout) and ``origin`` (int64 x0, y0);
     label maps store ``labels`` (int32) instead of ``mask``. Nothing is ever unpickled.
 
-Grey and colour images are thresholded on import as :mod:`model.io.threshold` describes (pixels **brighter
+Grey and colour images are thresholded on import as :mod:`mrm.io.threshold` describes (pixels **brighter
 than** the threshold are in the set; Otsu's threshold by default; binary images and 1-bit images keep their
 non-zero pixels). Every file this module writes reads back as an equal object, and a PNG written here gives
-the same bytes when read and written again. Writes are atomic (:mod:`model.io.atomic`).
+the same bytes when read and written again. Writes are atomic (:mod:`mrm.io.atomic`).
 """
 
 from __future__ import annotations
@@ -38,11 +38,11 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, PngImagePlugin, UnidentifiedImageError
 
-from model.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError
-from model.io.atomic import atomic_write_bytes
-from model.io.netpbm import encode_pbm, encode_pgm, read_netpbm
-from model.io.threshold import binarize, grey_of
-from model.reps.pixels import LabelMap, PixelSet
+from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError
+from mrm.io.atomic import atomic_write_bytes
+from mrm.io.netpbm import encode_pbm, encode_pgm, read_netpbm
+from mrm.io.threshold import binarize, grey_of
+from mrm.reps.pixels import LabelMap, PixelSet
 
 PathLike = str | os.PathLike[str]
 

@@ -31,7 +31,7 @@ Schema version 1::
   (``$.objects[3].source.shape``); files from older schema versions are upgraded by :data:`MIGRATIONS`, in
   order; a file from a newer version is refused with a message saying so.
 * Saving writes a temporary file, fsyncs it and renames it over the destination
-  (:func:`model.io.atomic.atomic_write_bytes`); the document is marked clean only then.
+  (:func:`mrm.io.atomic.atomic_write_bytes`); the document is marked clean only then.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ from typing import Any, NoReturn
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.document import (
+from mrm.document import (
     COORDINATE_LIMIT,
     MODELS,
     PARAMS_MAX_DEPTH,
@@ -63,9 +63,9 @@ from model.document import (
     Style,
     validate_geometry,
 )
-from model.errors import DEFAULT_PIXEL_LIMIT, MRMError
-from model.errors import FileFormatError as FileFormatError
-from model.reps.pixels import PixelSet
+from mrm.errors import DEFAULT_PIXEL_LIMIT, MRMError
+from mrm.errors import FileFormatError as FileFormatError
+from mrm.reps.pixels import PixelSet
 
 #: The value of the "format" key.
 FORMAT = "mrm-project"
@@ -232,7 +232,7 @@ def save_project(doc: Document, path: str | os.PathLike[str], *, mark_clean: boo
     If writing fails (disk full, permission, a crash) the previous file is left intact and the document stays
     modified. ``OSError`` propagates for the caller to report.
     """
-    from model.io.atomic import atomic_write_bytes
+    from mrm.io.atomic import atomic_write_bytes
 
     data = dumps(doc)
     atomic_write_bytes(path, data)

@@ -5,7 +5,7 @@ geometry is then checked (:func:`check_geometry`): finite coordinates, a support
 sense with the reason and a way to repair it. Z values are dropped (the plane is 2-D).
 
 Writing uses ``repr`` for every coordinate, so a float64 read back is the same float64. All writes are
-atomic (:mod:`model.io.atomic`).
+atomic (:mod:`mrm.io.atomic`).
 """
 
 from __future__ import annotations
@@ -34,9 +34,9 @@ from shapely.geometry import (
 from shapely.geometry.base import BaseGeometry
 from shapely.geometry.polygon import orient
 
-from model.errors import FileFormatError, InvalidGeometryError
-from model.io.atomic import atomic_open
-from model.reps.pixels import PixelSet
+from mrm.errors import FileFormatError, InvalidGeometryError
+from mrm.io.atomic import atomic_open
+from mrm.reps.pixels import PixelSet
 
 PathLike = str | os.PathLike[str]
 NamedGeometry = tuple[str | None, BaseGeometry]

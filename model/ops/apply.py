@@ -1,7 +1,7 @@
 """Running an operation on a document's objects: all results in one undo step, or nothing at all.
 
 :func:`apply_operation` reads the sources of the input objects, runs the operation (which never touches the
-document), and only when it has finished pushes one :class:`~model.commands.ApplyResults` command that adds
+document), and only when it has finished pushes one :class:`~mrm.commands.ApplyResults` command that adds
 the results with their provenance — the operation's name, its parameters and the ids of its inputs. A
 failure (bad parameter, size limit, invalid geometry) or a cancel raises before that push, so the document,
 its history and its selection are exactly as they were: nothing is lost.
@@ -13,12 +13,12 @@ import importlib
 from collections.abc import Sequence
 from typing import Any
 
-from model.errors import DEFAULT_PIXEL_LIMIT
-from model.ops.base import ProgressLike, get_operation, params_to_dict, run_operation
+from mrm.errors import DEFAULT_PIXEL_LIMIT
+from mrm.ops.base import ProgressLike, get_operation, params_to_dict, run_operation
 
 #: The modules that register the paper's operations (``dss``, ``discrete_rotation``, ``simplify``, ``union``,
 #: ``corefine``) when imported.
-PAPER_OPERATIONS = ("model.ops.scaling", "model.ops.rotation", "model.ops.simplify", "model.ops.boolean")
+PAPER_OPERATIONS = ("mrm.ops.scaling", "mrm.ops.rotation", "mrm.ops.simplify", "mrm.ops.boolean")
 
 
 def load_paper_operations() -> None:
@@ -40,7 +40,7 @@ def apply_operation(
 
     Parameters
     ----------
-    doc : model.document.Document
+    doc : mrm.document.Document
     operation : str
         A registered operation's name (``dss``, ``discrete_rotation``, ``simplify``, ``union``, ``corefine``).
     input_ids : sequence of int
@@ -62,8 +62,8 @@ def apply_operation(
     ParameterError, SizeLimitError, InvalidGeometryError, Cancelled
         Before anything is changed.
     """
-    from model.commands import ApplyResults
-    from model.document import Provenance
+    from mrm.commands import ApplyResults
+    from mrm.document import Provenance
 
     load_paper_operations()
     spec = get_operation(operation)

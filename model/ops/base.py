@@ -9,7 +9,7 @@ from :func:`param_specs`; scripts and the CLI call :func:`run_operation`, which 
 parameters, inputs) so that any chain can be replayed and bounded.
 
 Long work reports through a progress object: ``update(fraction, message)`` raises
-:class:`model.errors.Cancelled` once ``cancel()`` was called (from any thread), so an operation stops at its
+:class:`mrm.errors.Cancelled` once ``cancel()`` was called (from any thread), so an operation stops at its
 next report. :class:`Progress` is the thread-safe implementation, :data:`NO_PROGRESS` the no-op one for
 scripts; the GUI's task runner passes its own object with the same two methods.
 """
@@ -27,9 +27,9 @@ from typing import Any, Literal, Protocol, TypeAlias, runtime_checkable
 
 from shapely.geometry.base import BaseGeometry
 
-from model.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
-from model.geometry.bounds import BoundResult, ChainStep, bound_of_chain
-from model.reps.pixels import PixelSet
+from mrm.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
+from mrm.geometry.bounds import BoundResult, ChainStep, bound_of_chain
+from mrm.reps.pixels import PixelSet
 
 __all__ = [
     "NO_PROGRESS",
@@ -86,7 +86,7 @@ class Progress:
     Notes
     -----
     ``cancel()`` may be called from any thread; the next ``update()`` (or ``check()``) in the working thread
-    raises :class:`model.errors.Cancelled`. Fractions are clamped to [0, 1] and never go backwards.
+    raises :class:`mrm.errors.Cancelled`. Fractions are clamped to [0, 1] and never go backwards.
     """
 
     def __init__(self, callback: Callable[[float, str], None] | None = None) -> None:
@@ -582,7 +582,7 @@ def _load_builtin() -> None:
     import importlib
     import pkgutil
 
-    import model.ops as package
+    import mrm.ops as package
 
     for info in pkgutil.iter_modules(package.__path__):
         if not info.name.startswith("_") and info.name != "base":

@@ -11,7 +11,7 @@ representation is always D of its Euclidean one) and, for EDco_α, E is R(A).
 
 The discrete parts partition D(E) ∪ D(E′). Under the cover models each R(part) lies in V(part), so the three
 polygons have disjoint interiors. Under ``gauss`` the joint reconstruction of the label map
-(``model.geometry.subdivision.reconstruct_label_map``), when it is available, makes them a watertight
+(``mrm.geometry.subdivision.reconstruct_label_map``), when it is available, makes them a watertight
 subdivision: neighbouring parts share their boundaries exactly.
 """
 
@@ -21,11 +21,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from model.geometry import bounds
-from model.geometry.bounds import ChainStep, CorefinePart
-from model.ops.base import OperationResult, OperationSpec, param, register
-from model.ops.exact_geometry import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.geometry import bounds
+from mrm.geometry.bounds import ChainStep, CorefinePart
+from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.exact_geometry import (
     ExactShape,
     Similarity,
     box_area,
@@ -35,7 +35,7 @@ from model.ops.exact_geometry import (
     positive_number,
     voxel_bounds,
 )
-from model.ops.outcome import (
+from mrm.ops.outcome import (
     StepOutcome,
     check_limit,
     check_model,
@@ -46,14 +46,14 @@ from model.ops.outcome import (
     source_box,
     sub_progress,
 )
-from model.ops.rational_discretize import ProgressLike, discretize_exact
-from model.ops.simplify import euclidean_input
-from model.reps.pixels import LabelMap, PixelSet
-from model.summary import optional_function
+from mrm.ops.rational_discretize import ProgressLike, discretize_exact
+from mrm.ops.simplify import euclidean_input
+from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.summary import optional_function
 
 #: The parts of a co-refinement, in label order (label = index + 1), as files and properties name them.
 PARTS = ("a_minus_b", "a_and_b", "b_minus_a")
-#: The part of each in :mod:`model.geometry.bounds` terms.
+#: The part of each in :mod:`mrm.geometry.bounds` terms.
 BOUND_PART: dict[str, CorefinePart] = {"a_minus_b": "first", "a_and_b": "common", "b_minus_a": "second"}
 #: What each part is.
 PART_TITLES = {"a_minus_b": "A ∖ B", "a_and_b": "A ∩ B", "b_minus_a": "B ∖ A"}
@@ -105,7 +105,7 @@ def euclidean_discrete_union(
     union = a | b
     if progress is not None:
         progress.update(0.5, "continuing the union")
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.reconstruct import reconstruct
 
     geom = reconstruct(union, model)
     if progress is not None:
@@ -185,13 +185,13 @@ def _reconstruct_parts(
 ) -> tuple[dict[str, Any], bool]:
     """R of each part; under gauss the joint (watertight) reconstruction of the label map when available."""
     if model == "gauss":
-        joint = optional_function("model.geometry.subdivision", "reconstruct_label_map")
+        joint = optional_function("mrm.geometry.subdivision", "reconstruct_label_map")
         if joint is not None:
             by_label = joint(label_map, model)
             from shapely.geometry import Polygon
 
             return {p: by_label.get(i + 1, Polygon()) for i, p in enumerate(PARTS)}, True
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.reconstruct import reconstruct
 
     out = {}
     for i, p in enumerate(PARTS):
@@ -234,7 +234,7 @@ class CorefineResult(OperationResult):
     label_map : LabelMap or None
         The discrete parts (label i + 1 = ``PARTS[i]``; on the grid scaled by α for EDco_α).
     part_bounds : dict
-        Part name → :class:`model.geometry.bounds.BoundResult` (one-sided: see that module).
+        Part name → :class:`mrm.geometry.bounds.BoundResult` (one-sided: see that module).
     watertight : bool
         Whether the parts come from the joint gauss reconstruction (shared boundaries).
     """

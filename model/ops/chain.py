@@ -13,10 +13,10 @@ operation                    reads       params
 ``translate``                Euclidean   ``dx``, ``dy`` — an exact Euclidean translation
 ============================ =========== ===================================================================
 
-The names are those of the operation registry (:mod:`model.ops.base`); ``DSS``, ``ROT``/``dR`` (the
+The names are those of the operation registry (:mod:`mrm.ops.base`); ``DSS``, ``ROT``/``dR`` (the
 discrete-Euclidean rotation), ``SP``, ``EROT`` are accepted too, as in a chain's text (``mrm bounds``). The
 Euclidean similarities are applied exactly and rounded once to float64 (the rotation is the exact rational
-rotation of :mod:`model.ops.exact_geometry`).
+rotation of :mod:`mrm.ops.exact_geometry`).
 
 When a step reads the other representation than the previous one produced, the runner converts as the
 document does: D(E) for a Euclidean object, R(A) for a discrete one (free, since D(R(A)) = A). A Euclidean
@@ -24,13 +24,13 @@ result goes on to the next step exactly (rational coordinates); only the results
 float64, so a chain is exactly the composition of the paper's definitions — a chain of Euclidean
 similarities alone measures 0, as its bound says.
 
-What is reported (the paper's Theorems 4–16 as one rule, :mod:`model.geometry.bounds`):
+What is reported (the paper's Theorems 4–16 as one rule, :mod:`mrm.geometry.bounds`):
 
 * ``A_first``: the Euclidean representation of the first step's input (R(A) for a discrete input);
 * ``T``: the composite of the steps' similarities (Sc_α for DSS, the exact rotation for dR, the identity for
   Sp), exact;
 * ``A_last``: the Euclidean object just before the final discretization (or the final Euclidean result);
-* ``bound``: the chain's error bound; ``measured``: H(T(A_first), A_last) (:mod:`model.ops.measure`);
+* ``bound``: the chain's error bound; ``measured``: H(T(A_first), A_last) (:mod:`mrm.ops.measure`);
 * ``direct``: D(T(A_first)), the result of applying the composite transform in one step, and the pixels of
   the result that differ from it (light grey: in the result only; dark grey: in the direct result only).
 """
@@ -41,8 +41,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from model.ops.exact_geometry import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.ops.exact_geometry import (
     ExactShape,
     Similarity,
     exact_number,
@@ -50,10 +50,10 @@ from model.ops.exact_geometry import (
     number_to_json,
     positive_number,
 )
-from model.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
-from model.ops.outcome import StepOutcome, check_limit, check_model, sub_progress
-from model.ops.rational_discretize import ProgressLike, discretize_exact
-from model.reps.pixels import PixelSet
+from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
+from mrm.ops.outcome import StepOutcome, check_limit, check_model, sub_progress
+from mrm.ops.rational_discretize import ProgressLike, discretize_exact
+from mrm.reps.pixels import PixelSet
 
 #: The operations a chain may hold, and the representation each reads.
 CHAIN_OPERATIONS = {
@@ -92,7 +92,7 @@ class ChainStepResult:
     params : dict
         Its parameters as JSON data (exact: reading them back gives the same numbers).
     provenance : dict
-        ``{"operation", "params", "inputs"}``, fit for :class:`model.document.Provenance`; the inputs of
+        ``{"operation", "params", "inputs"}``, fit for :class:`mrm.document.Provenance`; the inputs of
         step 1 are the chain's input ids, those of later steps are empty (their input is the previous step).
     outcome : StepOutcome
         The result and what the chain needs from it.
@@ -124,7 +124,7 @@ class ChainResult:
         A_first, A_last and T(A_first), exact.
     transform : Similarity
         The composite transform T.
-    bound : model.geometry.bounds.BoundResult
+    bound : mrm.geometry.bounds.BoundResult
         The chain's bound (``bound.bound`` is None where the model gives no two-sided bound).
     measured : MeasuredError or None
         H(T(A_first), A_last) and its two directions (None when not asked for).
@@ -189,7 +189,7 @@ def _params_dict(params: Any) -> dict[str, Any]:
 
 def step_params(operation: str, params: Any) -> tuple[dict[str, Any], Any]:
     """Validate a step's parameters: (JSON parameters, the bounds module's ChainStep)."""
-    from model.geometry import bounds
+    from mrm.geometry import bounds
 
     p = _params_dict(params)
     center = exact_point(p.get("center"), "center")
@@ -223,9 +223,9 @@ def run_step(
     progress: ProgressLike | None = None,
 ) -> StepOutcome:
     """Apply one chain operation to a source of the representation it reads (already converted)."""
-    from model.ops.rotation import discrete_rotation
-    from model.ops.scaling import discrete_smooth_scaling
-    from model.ops.simplify import simplification
+    from mrm.ops.rotation import discrete_rotation
+    from mrm.ops.scaling import discrete_smooth_scaling
+    from mrm.ops.simplify import simplification
 
     center = params.get("center")
     if operation == "dss":
@@ -245,7 +245,7 @@ def run_step(
 
 def euclidean_similarity(source: Any, sim: Similarity, model: str, *, limit: int | None) -> StepOutcome:
     """An exact Euclidean similarity of a polygon, rounded once to float64 (no discretization)."""
-    from model.ops.simplify import euclidean_input
+    from mrm.ops.simplify import euclidean_input
 
     exact = ExactShape.from_geometry(euclidean_input(source, model)).map(sim)
     geom = exact.to_geometry()
@@ -256,11 +256,11 @@ def _convert(current: Any, wanted: str, model: str, limit: int | None) -> Any:
     if wanted == "discrete" and isinstance(current, ExactShape):
         return discretize_exact(current, model, limit=limit)
     if wanted == "discrete" and not isinstance(current, PixelSet):
-        from model.geometry.discretize import discretize
+        from mrm.geometry.discretize import discretize
 
         return discretize(current, model, limit=limit)
     if wanted == "euclidean" and isinstance(current, PixelSet):
-        from model.geometry.reconstruct import reconstruct
+        from mrm.geometry.reconstruct import reconstruct
 
         return reconstruct(current, model)
     return current
@@ -303,7 +303,7 @@ def run_chain(
     SizeLimitError
         A step's result would exceed ``limit`` pixels.
     """
-    from model.geometry.bounds import bound_of_chain
+    from mrm.geometry.bounds import bound_of_chain
 
     check_model(model)
     check_limit(limit)
@@ -375,7 +375,7 @@ def run_chain(
 
 def parse_steps(text: str) -> list[tuple[str, dict[str, Any]]]:
     """Read a chain written as for ``mrm bounds`` (``"DSS 5, ROT 30 about 1,2, SP 0.5"``) into steps."""
-    from model.geometry.bounds import parse_chain
+    from mrm.geometry.bounds import parse_chain
 
     out: list[tuple[str, dict[str, Any]]] = []
     for st in parse_chain(text):

@@ -4,8 +4,8 @@ Measured error (DESIGN §8)
 --------------------------
 The paper bounds ``H(T(A_first), A_last)``: the Hausdorff distance between the composite Euclidean transform
 of the first Euclidean object and the Euclidean object just before the last discretization. Both are exact
-rational polygons here (:class:`~model.ops.exact_geometry.ExactShape`); the distance is computed by the exact
-:mod:`model.geometry.hausdorff` on float64 input, so both shapes are first scaled by the odd part ``L`` of the
+rational polygons here (:class:`~mrm.ops.exact_geometry.ExactShape`); the distance is computed by the exact
+:mod:`mrm.geometry.hausdorff` on float64 input, so both shapes are first scaled by the odd part ``L`` of the
 common denominator of their coordinates, which makes every coordinate dyadic. When the scaled coordinates are
 float64 values (always, unless the denominators are huge, e.g. after non-right-angle rotations) the distance
 and its comparison with a bound are exact (:attr:`MeasuredError.exact`); otherwise the coordinates are
@@ -28,9 +28,9 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Literal
 
-from model.ops.exact_geometry import ExactShape, Similarity
-from model.ops.rational_discretize import ProgressLike
-from model.reps.pixels import PixelSet
+from mrm.ops.exact_geometry import ExactShape, Similarity
+from mrm.ops.rational_discretize import ProgressLike
+from mrm.reps.pixels import PixelSet
 
 Direction = Literal["both", "result_within", "source_within"]
 
@@ -111,7 +111,7 @@ def measured_error(
     progress : object with ``update(fraction, message)``, optional
         Passed to the Hausdorff computation; its ``Cancelled`` propagates.
     """
-    from model.geometry.hausdorff import directed_hausdorff
+    from mrm.geometry.hausdorff import directed_hausdorff
 
     ref = reference if isinstance(reference, ExactShape) else ExactShape.from_geometry(reference)
     res = result if isinstance(result, ExactShape) else ExactShape.from_geometry(result)

@@ -11,9 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from model.errors import ParameterError, SizeLimitError
-from model.ops.base import param
-from model.ops.exact_geometry import (
+from mrm.errors import ParameterError, SizeLimitError
+from mrm.ops.base import param
+from mrm.ops.exact_geometry import (
     ExactShape,
     Similarity,
     box_area,
@@ -21,8 +21,8 @@ from model.ops.exact_geometry import (
     pixel_box,
     voxel_bounds,
 )
-from model.ops.rational_discretize import ProgressLike, discretize_exact
-from model.reps.pixels import Box, PixelSet
+from mrm.ops.rational_discretize import ProgressLike, discretize_exact
+from mrm.reps.pixels import Box, PixelSet
 
 #: The discretization models an operation accepts.
 MODELS = ("standard", "supercover", "gauss")
@@ -110,7 +110,7 @@ def discrete_similarity(
     check_size(estimated_pixels(ps, sim, model), limit, what)
     if progress is not None:
         progress.update(0.0, "continuing R(A)")
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.reconstruct import reconstruct
 
     euclid = reconstruct(ps, model)
     if progress is not None:
@@ -143,7 +143,7 @@ def discrete_of(source: Any, model: str, limit: int | None) -> PixelSet:
     """The discrete representation of an object's source: A itself, or D(E) for a polygon E."""
     if isinstance(source, PixelSet):
         return source
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     return discretize(source, model, limit=limit)
 
@@ -152,7 +152,7 @@ def params_json(params: Any) -> dict[str, Any]:
     """A parameter dataclass (or mapping) as JSON data: tuples become lists, Fractions exact numbers."""
     from fractions import Fraction
 
-    from model.ops.exact_geometry import number_to_json
+    from mrm.ops.exact_geometry import number_to_json
 
     raw = (
         {k: getattr(params, k) for k in params.__dataclass_fields__}
@@ -171,7 +171,7 @@ def params_json(params: Any) -> dict[str, Any]:
 
 
 def provenance(operation: str, params: Any, inputs: tuple[int, ...] = ()) -> dict[str, Any]:
-    """``{"operation", "params", "inputs"}`` as :meth:`model.document.Provenance.from_json` reads it."""
+    """``{"operation", "params", "inputs"}`` as :meth:`mrm.document.Provenance.from_json` reads it."""
     return {"operation": operation, "params": params_json(params), "inputs": list(inputs)}
 
 

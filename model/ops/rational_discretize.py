@@ -1,9 +1,9 @@
 """Exact discretization D of polygons with rational vertices (the image of a similarity, DESIGN §2 and §8).
 
-:func:`model.geometry.discretize.discretize` is exact for float64 input. The image of a polygon under an
+:func:`mrm.geometry.discretize.discretize` is exact for float64 input. The image of a polygon under an
 exact similarity (``Sc_1/5``, a rational rotation) has rational vertices that are not float64 values; rounding
 them first could move a vertex across a pixel side. :func:`discretize_exact` takes an
-:class:`~model.ops.exact_geometry.ExactShape` and
+:class:`~mrm.ops.exact_geometry.ExactShape` and
 
 * hands it to ``discretize`` unchanged when every coordinate is a float64 (the fast, compiled path);
 * otherwise scales every coordinate by ``2L`` (L the common denominator) so that vertices, pixel centres
@@ -31,9 +31,9 @@ from typing import Protocol
 
 import numpy as np
 
-from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
-from model.ops.exact_geometry import ExactShape, box_area, pixel_box
-from model.reps.pixels import Box, PixelSet
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
+from mrm.ops.exact_geometry import ExactShape, box_area, pixel_box
+from mrm.reps.pixels import Box, PixelSet
 
 MODELS = ("standard", "supercover", "gauss")
 
@@ -102,7 +102,7 @@ def discretize_exact(
         raise SizeLimitError(estimated, int(limit), what)
     _tick(progress, None, "discretizing")
     if not force_integer and shape.is_float_exact():
-        from model.geometry.discretize import discretize
+        from mrm.geometry.discretize import discretize
 
         result = discretize(shape.to_geometry(), model, limit=limit)
         _tick(progress, None)

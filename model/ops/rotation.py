@@ -4,7 +4,7 @@ What "rotation" means for float input
 -------------------------------------
 cos θ and sin θ are irrational for almost every angle, so no implementation applies the exact rot_θ,C to
 float vertices. Here rot_θ,C is the **exact rational rotation** of
-:func:`model.ops.exact_geometry.rotation_cos_sin`: θ is reduced to (−45°, 45°] by exact quarter turns, and
+:func:`mrm.ops.exact_geometry.rotation_cos_sin`: θ is reduced to (−45°, 45°] by exact quarter turns, and
 ``c = (1 − t²)/(1 + t²)``, ``s = 2t/(1 + t²)`` with ``t`` the float64 value of tan(θ/2) read exactly. It is an
 exact isometry (c² + s² = 1) whose angle is θ up to one float64 rounding (< 10⁻¹⁵ radian). The rotated
 vertices are rational and discretized exactly — nothing is rounded between R and D — so the error bounds of
@@ -21,12 +21,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from model.geometry import bounds
-from model.geometry.bounds import ChainStep
-from model.ops.base import OperationResult, OperationSpec, param, register
-from model.ops.exact_geometry import Similarity, exact_number, exact_point, number_to_json
-from model.ops.outcome import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.geometry import bounds
+from mrm.geometry.bounds import ChainStep
+from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.exact_geometry import Similarity, exact_number, exact_point, number_to_json
+from mrm.ops.outcome import (
     StepOutcome,
     center_param,
     check_model,
@@ -36,8 +36,8 @@ from model.ops.outcome import (
     model_param,
     provenance,
 )
-from model.ops.rational_discretize import ProgressLike
-from model.reps.pixels import PixelSet
+from mrm.ops.rational_discretize import ProgressLike
+from mrm.reps.pixels import PixelSet
 
 
 def rotation_similarity(angle: object, center: object = None) -> Similarity:

@@ -2,8 +2,8 @@
 
 The continuation R(A) has float64 (dyadic) vertices; ``Sc_α`` about the centre C (the origin by default, as
 in the paper) maps a vertex v to ``C + α·(v − C)``, computed exactly with rationals
-(:mod:`model.ops.exact_geometry`: α = 0.2 means 1/5), and the image is discretized exactly
-(:mod:`model.ops.rational_discretize`). So ``DSS_α(A) = D(Sc_α(R(A)))`` holds exactly, for every α > 0 —
+(:mod:`mrm.ops.exact_geometry`: α = 0.2 means 1/5), and the image is discretized exactly
+(:mod:`mrm.ops.rational_discretize`). So ``DSS_α(A) = D(Sc_α(R(A)))`` holds exactly, for every α > 0 —
 not only for the powers of two whose products happen to be float64 values.
 
 The size of the result is estimated from A's bounding box before anything is computed: α = 10⁶ on a large
@@ -16,12 +16,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from model.geometry import bounds
-from model.geometry.bounds import ChainStep
-from model.ops.base import OperationResult, OperationSpec, param, register
-from model.ops.exact_geometry import Similarity, exact_point, number_to_json, positive_number
-from model.ops.outcome import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.geometry import bounds
+from mrm.geometry.bounds import ChainStep
+from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.exact_geometry import Similarity, exact_point, number_to_json, positive_number
+from mrm.ops.outcome import (
     StepOutcome,
     center_param,
     check_model,
@@ -31,8 +31,8 @@ from model.ops.outcome import (
     model_param,
     provenance,
 )
-from model.ops.rational_discretize import ProgressLike
-from model.reps.pixels import PixelSet
+from mrm.ops.rational_discretize import ProgressLike
+from mrm.reps.pixels import PixelSet
 
 
 def scaling_similarity(alpha: object, center: object = None) -> Similarity:

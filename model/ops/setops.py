@@ -11,8 +11,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from model.ops.base import OperationResult, OperationSpec, Output, ProgressLike, register
-from model.reps.pixels import PixelSet
+from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, register
+from mrm.reps.pixels import PixelSet
 
 __all__ = ["DIFFERENCE", "INTERSECTION", "UNION", "SetOpParams"]
 

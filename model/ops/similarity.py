@@ -26,9 +26,9 @@ import numpy.typing as npt
 import shapely
 from shapely.geometry.base import BaseGeometry
 
-from model.errors import InvalidGeometryError, ParameterError
-from model.geometry import bounds as chain
-from model.ops.base import OperationResult, OperationSpec, Output, ProgressLike, param, register
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.geometry import bounds as chain
+from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, param, register
 
 F64 = npt.NDArray[np.float64]
 

@@ -1,6 +1,6 @@
 """Discrete-based simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))) (the paper's Definition 14, DESIGN §8).
 
-``Sc_α(E)`` is computed exactly with rationals and discretized exactly (:mod:`model.ops.rational_discretize`);
+``Sc_α(E)`` is computed exactly with rationals and discretized exactly (:mod:`mrm.ops.rational_discretize`);
 R gives float64 vertices; ``Sc_1/α`` maps them back exactly, and the result is rounded once to float64 (a
 Euclidean object is a shapely polygon). For α a power of two — or any α with ``v/α`` a float64 for every
 vertex v — nothing is rounded at all.
@@ -18,11 +18,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from model.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from model.geometry import bounds
-from model.geometry.bounds import ChainStep
-from model.ops.base import OperationResult, OperationSpec, param, register
-from model.ops.exact_geometry import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.geometry import bounds
+from mrm.geometry.bounds import ChainStep
+from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.exact_geometry import (
     ExactShape,
     Similarity,
     box_area,
@@ -31,7 +31,7 @@ from model.ops.exact_geometry import (
     pixel_box,
     positive_number,
 )
-from model.ops.outcome import (
+from mrm.ops.outcome import (
     StepOutcome,
     center_param,
     check_limit,
@@ -42,17 +42,17 @@ from model.ops.outcome import (
     provenance,
     sub_progress,
 )
-from model.ops.rational_discretize import ProgressLike, discretize_exact
-from model.reps.pixels import PixelSet
+from mrm.ops.rational_discretize import ProgressLike, discretize_exact
+from mrm.reps.pixels import PixelSet
 
 
 def euclidean_input(source: Any, model: str) -> Any:
     """The Euclidean representation of an object's source: E itself, or R(A) for a pixel set A.
 
-    E may be a shapely polygon or an exact :class:`~model.ops.exact_geometry.ExactShape` (kept as it is).
+    E may be a shapely polygon or an exact :class:`~mrm.ops.exact_geometry.ExactShape` (kept as it is).
     """
     if isinstance(source, PixelSet):
-        from model.geometry.reconstruct import reconstruct
+        from mrm.geometry.reconstruct import reconstruct
 
         return reconstruct(source, model)
     return source
@@ -103,7 +103,7 @@ def simplification(
     scaled = discretize_exact(shape, model, limit=limit, progress=sub_progress(progress, 0.0, 0.4), what=what)
     if progress is not None:
         progress.update(0.4, "continuing")
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.reconstruct import reconstruct
 
     back = sc.inverse()
     exact = ExactShape.from_geometry(reconstruct(scaled, model)).map(back)

@@ -22,10 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from model.geometry.cracks import trace_cells
-from model.geometry.labeling import group_by_label
-from model.reps.pixels import LabelMap, PixelSet
-from model.reps.region import CrackChain, Region, paused_gc, region_of
+from mrm.geometry.cracks import trace_cells
+from mrm.geometry.labeling import group_by_label
+from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.reps.region import CrackChain, Region, paused_gc, region_of
 
 
 @dataclass(frozen=True, slots=True)

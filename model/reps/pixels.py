@@ -14,7 +14,7 @@ from typing import Any, cast
 import numpy as np
 import numpy.typing as npt
 
-from model.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
+from mrm.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
 
 BoolArray = npt.NDArray[np.bool_]
 IntArray = npt.NDArray[np.int64]

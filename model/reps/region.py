@@ -26,9 +26,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from model.errors import InvalidGeometryError, ParameterError
-from model.geometry.cracks import DX, DY, LX, LY, RX, RY, fill_rings, paint_rings, ring_extent, trace_mask
-from model.reps.pixels import Box, LabelMap, PixelSet
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.geometry.cracks import DX, DY, LX, LY, RX, RY, fill_rings, paint_rings, ring_extent, trace_mask
+from mrm.reps.pixels import Box, LabelMap, PixelSet
 
 IntArray = npt.NDArray[np.int64]
 

@@ -1,6 +1,6 @@
-"""Write the example projects that reproduce the paper's figures, by running the operations of ``model.ops``.
+"""Write the example projects that reproduce the paper's figures, by running the operations of ``mrm.ops``.
 
-Every derived object is made by :func:`model.ops.apply.apply_operation`, so it carries its provenance
+Every derived object is made by :func:`mrm.ops.apply.apply_operation`, so it carries its provenance
 (operation, parameters, inputs) and the error inspector shows the paper's bound for its chain.
 
 * ``fig12-dss-combinations.mrm``: a digital diamond A, then DSS 1.25 → DSS 5 → DSS 0.2 → DSS 0.8 (Fig. 12);
@@ -21,12 +21,12 @@ from pathlib import Path
 import numpy as np
 from shapely.geometry import Polygon
 
-from model.commands import AddObject
-from model.document import Document
-from model.io.project import save_project
-from model.ops.apply import apply_operation, load_paper_operations
-from model.ops.base import get_operation
-from model.reps.pixels import PixelSet
+from mrm.commands import AddObject
+from mrm.document import Document
+from mrm.io.project import save_project
+from mrm.ops.apply import apply_operation, load_paper_operations
+from mrm.ops.base import get_operation
+from mrm.reps.pixels import PixelSet
 
 HERE = Path(__file__).parent
 
@@ -42,7 +42,7 @@ def _add(doc: Document, source: object, name: str) -> int:
 
 
 def _rename_last(doc: Document, ids: list[int], name: str) -> int:
-    from model.commands import RenameObject
+    from mrm.commands import RenameObject
 
     doc.push(RenameObject(ids[0], name))
     return ids[0]

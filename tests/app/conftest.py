@@ -14,10 +14,10 @@ from pathlib import Path
 import pytest
 from PySide6 import QtCore, QtWidgets
 
-from app.application import configure
-from app.main_window import MainWindow
-from app.settings import Preferences, make_settings
-from app.tasks import SynchronousTaskRunner, TaskRunner
+from mrm.app.application import configure
+from mrm.app.main_window import MainWindow
+from mrm.app.settings import Preferences, make_settings
+from mrm.app.tasks import SynchronousTaskRunner, TaskRunner
 
 
 @pytest.fixture(autouse=True)

@@ -6,8 +6,8 @@ from collections.abc import Iterable
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from app.main_window import MainWindow
-from views.base_view import RepresentationView
+from mrm.app.main_window import MainWindow
+from mrm.views.base_view import RepresentationView
 
 Qt = QtCore.Qt
 

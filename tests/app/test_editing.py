@@ -6,9 +6,9 @@ import numpy as np
 from PySide6 import QtCore
 from shapely.geometry import Polygon
 
-from model.commands import AddObject
-from model.geometry.discretize import discretize
-from model.reps.pixels import PixelSet
+from mrm.commands import AddObject
+from mrm.geometry.discretize import discretize
+from mrm.reps.pixels import PixelSet
 from tests.app.helpers import click, colour_at, drag, is_background, press_key, wait_drawn, zoom_to
 
 Qt = QtCore.Qt

@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from model.geometry.discretize import discretize
-from model.io.project import dumps, load_project
-from views.provenance import account_of, measure
+from mrm.geometry.discretize import discretize
+from mrm.io.project import dumps, load_project
+from mrm.views.provenance import account_of, measure
 
 EXAMPLES = Path(__file__).parents[2] / "resources" / "examples"
 FILES = sorted(EXAMPLES.glob("*.mrm"))
@@ -94,7 +94,7 @@ def test_fig09_10_union_and_corefinement_are_the_pixel_set_operations():
 def test_fig08_simplification_is_its_definition_at_each_alpha():
     from shapely import affinity
 
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.reconstruct import reconstruct
 
     doc = load_project(EXAMPLES / "fig08-simplification.mrm")
     objs = _by_name(doc)

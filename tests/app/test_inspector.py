@@ -12,11 +12,11 @@ from fractions import Fraction
 import numpy as np
 from shapely import affinity
 
-from model.commands import AddObject
-from model.document import Provenance
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import reconstruct
-from model.reps.pixels import PixelSet
+from mrm.commands import AddObject
+from mrm.document import Provenance
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.reps.pixels import PixelSet
 from tests.app.helpers import colour_at, wait_drawn
 
 

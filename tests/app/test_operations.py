@@ -12,10 +12,10 @@ import math
 import numpy as np
 from PySide6 import QtCore
 
-from model.commands import AddObject
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import reconstruct
-from model.reps.pixels import PixelSet
+from mrm.commands import AddObject
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.reps.pixels import PixelSet
 
 Qt = QtCore.Qt
 

@@ -7,8 +7,8 @@ import threading
 import pytest
 from PySide6 import QtCore
 
-from app.tasks import SynchronousTaskRunner, TaskRunner
-from model.errors import Cancelled
+from mrm.app.tasks import SynchronousTaskRunner, TaskRunner
+from mrm.errors import Cancelled
 
 
 def _spin(progress, steps=10_000, gate=None):  # type: ignore[no-untyped-def]

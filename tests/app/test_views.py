@@ -7,9 +7,9 @@ import numpy as np
 from PySide6 import QtCore, QtGui
 from shapely.geometry import Polygon
 
-from model.commands import AddObject
-from model.reps.pixels import PixelSet
-from model.reps.region import region_of
+from mrm.commands import AddObject
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import region_of
 from tests.app.helpers import click, colour_at, is_background, wait_drawn, widget_pos, zoom_to
 
 Qt = QtCore.Qt
@@ -179,7 +179,7 @@ def test_object_list_visibility_colour_rename_reorder(make_window, qtbot):
 
 
 def test_dark_theme_follows_preference(make_window, qtbot):
-    from app.application import theme_controller
+    from mrm.app.application import theme_controller
 
     win = make_window()
     ctl = theme_controller()

@@ -9,12 +9,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.errors import InvalidGeometryError, ParameterError
-from model.geometry.preimage import median_parameters
-from model.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
-from model.reps.analytical import Analytical, analytical_of
-from model.reps.pixels import PixelSet
-from model.reps.region import CrackChain, region_of
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.geometry.preimage import median_parameters
+from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
+from mrm.reps.analytical import Analytical, analytical_of
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import CrackChain, region_of
 
 
 def pixel_sets(max_side=9):

@@ -12,9 +12,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.cli import run_cli
-from model.errors import ParameterError
-from model.geometry.bounds import (
+from mrm.cli import run_cli
+from mrm.errors import ParameterError
+from mrm.geometry.bounds import (
     bound_of_chain,
     corefine,
     dss,

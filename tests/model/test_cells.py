@@ -7,9 +7,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from model.reps.cells import Cells, OneCell, ZeroCell, cells_of, region_of_labels
-from model.reps.pixels import LabelMap, PixelSet
-from model.reps.region import CrackChain, fill, region_of
+from mrm.reps.cells import Cells, OneCell, ZeroCell, cells_of, region_of_labels
+from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.reps.region import CrackChain, fill, region_of
 
 
 def padded(lm: LabelMap) -> tuple[np.ndarray, int, int]:

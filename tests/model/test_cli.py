@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 from PIL import Image, PngImagePlugin
 
-from model.cli import run_cli
-from model.io.pixel_files import read_pixels, write_pixels
-from model.reps.pixels import PixelSet
+from mrm.cli import run_cli
+from mrm.io.pixel_files import read_pixels, write_pixels
+from mrm.reps.pixels import PixelSet
 
 INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}
 
@@ -281,12 +281,15 @@ def test_entry_points_in_a_subprocess(tmp_path, box_file):
     assert done.returncode == 0, done.stderr
     assert as_set(read_pixels(out)) == BOX_STANDARD
     info = subprocess.run(
-        [sys.executable, "-m", "app", "info", str(out), "--json"], capture_output=True, text=True, timeout=300
+        [sys.executable, "-m", "mrm", "info", str(out), "--json"],
+        capture_output=True,
+        text=True,
+        timeout=300,
     )
     assert info.returncode == 0, info.stderr
     assert json.loads(info.stdout)["pixels"] == 6
     bad = subprocess.run(
-        [sys.executable, "-m", "app", "info", str(tmp_path / "nope.png")],
+        [sys.executable, "-m", "mrm", "info", str(tmp_path / "nope.png")],
         capture_output=True,
         text=True,
         timeout=300,
@@ -299,8 +302,8 @@ def test_entry_points_in_a_subprocess(tmp_path, box_file):
 def test_project_files(capsys, tmp_path):
     from shapely.geometry import box
 
-    from model.document import Document, Settings
-    from model.io.project import save_project
+    from mrm.document import Document, Settings
+    from mrm.io.project import save_project
 
     doc = Document(Settings(model="gauss"))
     a = doc.make_object(box(0, 0, 2, 1), "a box")

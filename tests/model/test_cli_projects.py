@@ -9,12 +9,12 @@ from pathlib import Path
 import pytest
 from shapely.geometry import Polygon, box
 
-from model.cli import run_cli
-from model.document import Document, Settings
-from model.geometry.discretize import discretize
-from model.io.pixel_files import read_pixels
-from model.io.project import read_project, save_project
-from model.reps.pixels import PixelSet
+from mrm.cli import run_cli
+from mrm.document import Document, Settings
+from mrm.geometry.discretize import discretize
+from mrm.io.pixel_files import read_pixels
+from mrm.io.project import read_project, save_project
+from mrm.reps.pixels import PixelSet
 
 EXAMPLES = sorted((Path(__file__).parents[2] / "resources" / "examples").glob("*.mrm"))
 INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}

@@ -1,4 +1,4 @@
-"""Bad input, empty input, size limits and the box helpers of model.geometry.discretize."""
+"""Bad input, empty input, size limits and the box helpers of mrm.geometry.discretize."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, MRMError, ParameterError, SizeLimitError
-from model.geometry.discretize import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, MRMError, ParameterError, SizeLimitError
+from mrm.geometry.discretize import (
     MODELS,
     _ring_proved_simple,
     discretization_box,

@@ -11,8 +11,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from scipy import ndimage
 
-from model.geometry.discretize import MODELS, discretize, discretize_segment
-from model.reps.pixels import PixelSet
+from mrm.geometry.discretize import MODELS, discretize, discretize_segment
+from mrm.reps.pixels import PixelSet
 from tests.oracles.discretize_reference import reference_discretize, standard_line_inequality
 from tests.oracles.geometry_strategies import (
     floats,

@@ -13,8 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, MultiPolygon, Point, Polygon
 
-import model.derive as derive
-from model.commands import (
+import mrm.derive as derive
+from mrm.commands import (
     AddObject,
     ChangeSettings,
     MoveVertex,
@@ -25,10 +25,10 @@ from model.commands import (
     RestyleObject,
     SetSource,
 )
-from model.derive import DerivationCache, DerivationService
-from model.document import Changes, DocObject, Document, Provenance, Settings, Style, validate_geometry
-from model.errors import InvalidGeometryError, ParameterError, SizeLimitError
-from model.reps.pixels import PixelSet
+from mrm.derive import DerivationCache, DerivationService
+from mrm.document import Changes, DocObject, Document, Provenance, Settings, Style, validate_geometry
+from mrm.errors import InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.reps.pixels import PixelSet
 
 
 def tri(x: float = 0.0, y: float = 0.0) -> Polygon:
@@ -187,7 +187,7 @@ def test_selection_ignores_unknown_ids_and_follows_removal():
 
 # ---------------------------------------------------------------------------------------------- derivations
 def test_euclidean_source_derives_its_discrete_representation_with_the_document_model():
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     doc = Document()
     # A square whose sides lie on pixel sides: the models disagree there.
@@ -233,7 +233,7 @@ def test_analytical_representation_is_derived_once_from_the_region(monkeypatch):
 
 
 def test_discrete_source_derives_a_euclidean_representation_whose_discretization_is_the_source():
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     rng = np.random.default_rng(7)
     doc = Document()
@@ -293,7 +293,7 @@ class Gate:
         self.started = threading.Event()
 
     def __call__(self, geom, model):
-        from model.geometry.discretize import discretize
+        from mrm.geometry.discretize import discretize
 
         self.started.set()
         assert self.release.wait(10)
@@ -382,7 +382,7 @@ def test_cheap_requests_run_in_the_callers_thread():
     st.sampled_from(["standard", "supercover", "gauss"]),
 )
 def test_invariant_after_painting_a_polygon(points, model):
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     doc = Document(Settings(model))
     o = doc.make_object(MultiPolygon([tri(), tri(10, 0)]))

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.geometry.dss import ArithmeticalDSS, Segment, recognize
+from mrm.geometry.dss import ArithmeticalDSS, Segment, recognize
 
 STEPS4 = [(1, 0), (0, 1), (-1, 0), (0, -1)]
 STEPS8 = [*STEPS4, (1, 1), (-1, 1), (-1, -1), (1, -1)]

@@ -20,10 +20,10 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, MultiPolygon, Point, Polygon, box
 
-from model.errors import Cancelled, InvalidGeometryError
-from model.geometry import hausdorff as H
-from model.geometry.hausdorff import directed_hausdorff, hausdorff_distance
-from model.ops.similarity import rotate_geometry, scale_geometry, translate_geometry
+from mrm.errors import Cancelled, InvalidGeometryError
+from mrm.geometry import hausdorff as H
+from mrm.geometry.hausdorff import directed_hausdorff, hausdorff_distance
+from mrm.ops.similarity import rotate_geometry, scale_geometry, translate_geometry
 
 # ----------------------------------------------------------------------------------------------------------
 # Hand-computed values

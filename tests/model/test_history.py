@@ -9,7 +9,7 @@ from hypothesis import event, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.commands import (
+from mrm.commands import (
     AddObject,
     ApplyResults,
     ChangeSettings,
@@ -28,11 +28,11 @@ from model.commands import (
     RestyleObject,
     SetSource,
 )
-from model.document import Document, Provenance, Style
-from model.errors import InvalidGeometryError, ParameterError
-from model.history import Command
-from model.io.project import dumps
-from model.reps.pixels import PixelSet
+from mrm.document import Document, Provenance, Style
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.history import Command
+from mrm.io.project import dumps
+from mrm.reps.pixels import PixelSet
 
 
 def state(doc: Document) -> bytes:
@@ -325,7 +325,7 @@ def test_delete_component_removes_one_4_component():
 
 
 def test_painting_a_euclidean_object_makes_its_pixels_the_source_and_undo_restores_the_polygon():
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     doc, _, e = make_doc()
     poly = doc.get(e).source
@@ -337,7 +337,7 @@ def test_painting_a_euclidean_object_makes_its_pixels_the_source_and_undo_restor
 
 
 def test_merge_is_the_union_of_the_discrete_representations():
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     doc, a, e = make_doc()
     poly = doc.get(e).source

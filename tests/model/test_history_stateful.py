@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, invariant, precondition, rule
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.commands import (
+from mrm.commands import (
     AddObject,
     ChangeSettings,
     DeleteComponent,
@@ -33,11 +33,11 @@ from model.commands import (
     RestyleObject,
     SetSource,
 )
-from model.document import Document, Style
-from model.errors import InvalidGeometryError, ParameterError
-from model.history import Command
-from model.io.project import dumps, loads
-from model.reps.pixels import PixelSet
+from mrm.document import Document, Style
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.history import Command
+from mrm.io.project import dumps, loads
+from mrm.reps.pixels import PixelSet
 
 half = st.integers(-16, 16).map(lambda v: v / 2)  # centres and sides of pixels: where ties are decided
 anywhere = st.floats(-8, 8, allow_nan=False).map(lambda v: round(v, 3))
@@ -258,7 +258,7 @@ class DocumentMachine(RuleBasedStateMachine):
 
     @invariant()
     def discretization_of_the_euclidean_representation_is_the_discrete_one(self) -> None:
-        from model.geometry.discretize import discretize
+        from mrm.geometry.discretize import discretize
 
         for o in self.doc:
             d = self.doc.derived(o.id)

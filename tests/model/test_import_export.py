@@ -10,16 +10,16 @@ import numpy as np
 import pytest
 from shapely.geometry import LineString, Polygon
 
-from model.cli._project_input import load_input
-from model.commands import AddObject
-from model.document import Document, Provenance, Settings
-from model.errors import FileFormatError, MRMError, ParameterError
-from model.io.export import export_label_map, export_object, export_objects_geojson, label_map_of
-from model.io.imports import import_file
-from model.io.pixel_files import read_label_map, read_pixels, write_pixels
-from model.io.project import save_project
-from model.io.vector_files import read_geometry, write_geojson, write_wkt
-from model.reps.pixels import PixelSet
+from mrm.cli._project_input import load_input
+from mrm.commands import AddObject
+from mrm.document import Document, Provenance, Settings
+from mrm.errors import FileFormatError, MRMError, ParameterError
+from mrm.io.export import export_label_map, export_object, export_objects_geojson, label_map_of
+from mrm.io.imports import import_file
+from mrm.io.pixel_files import read_label_map, read_pixels, write_pixels
+from mrm.io.project import save_project
+from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
+from mrm.reps.pixels import PixelSet
 
 POLY = Polygon([(0.25, 0.5), (9.75, 1.125), (4.0, 7.5)], [[(3.0, 2.0), (4.5, 3.5), (5.0, 2.0)]])
 PIXELS = PixelSet.box(-3, 10, 2, 14) - PixelSet.from_points([(0, 12)])
@@ -36,7 +36,7 @@ def doc() -> Document:
 # ---------------------------------------------------------------------------------------------- export
 @pytest.mark.parametrize("ext", [".png", ".pbm", ".pgm", ".npz"])
 def test_pixel_exports_hold_the_discrete_representation_in_place(doc, tmp_path, ext):
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     for oid, expected in zip(doc.ids, (discretize(POLY, "supercover"), PIXELS), strict=True):
         path = tmp_path / f"o{oid}{ext}"
@@ -59,7 +59,7 @@ def test_geojson_export_names_the_object_and_model(doc, tmp_path):
 
 
 def test_a_discrete_object_exports_its_continuation(doc, tmp_path):
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     export_object(doc, doc.ids[1], tmp_path / "p.wkt")
     assert discretize(read_geometry(tmp_path / "p.wkt"), "supercover") == PIXELS
@@ -107,7 +107,7 @@ def test_label_map_gives_each_object_its_rank_and_the_top_one_wins():
 
 @pytest.mark.parametrize("ext", [".png", ".npz"])
 def test_label_map_files_read_back(doc, tmp_path, ext):
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     path = tmp_path / f"labels{ext}"
     mapping = export_label_map(doc, path)
@@ -127,7 +127,7 @@ def test_import_of_pixel_and_vector_files_is_one_undo_step(tmp_path):
     ids = import_file(d, tmp_path / "v.geojson")
     assert [d.get(i).name for i in ids] == ["tri", "line"]
     assert d.get(ids[0]).kind == "euclidean" and d.get(ids[0]).source.normalize() == POLY.normalize()
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     # A line is no shape: it comes in as its discretization.
     assert d.get(ids[1]).source == discretize(LineString([(0.0, 0.0), (5.5, 2.0)]), "standard")
@@ -184,7 +184,7 @@ def test_load_input_picks_an_object_of_a_project(project):
 
 
 def test_load_input_converts_on_request(project):
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     kind, ps, model = load_input(project, "tri", want="discrete")
     assert (kind, model) == ("discrete", "gauss") and ps == discretize(POLY, "gauss")

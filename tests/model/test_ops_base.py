@@ -15,10 +15,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import box
 
-from model.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
-from model.geometry.bounds import dss
-from model.ops import setops, similarity
-from model.ops.base import (
+from mrm.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
+from mrm.geometry.bounds import dss
+from mrm.ops import setops, similarity
+from mrm.ops.base import (
     NO_PROGRESS,
     REGISTRY,
     OperationResult,
@@ -39,7 +39,7 @@ from model.ops.base import (
     run_operation,
     validate_params,
 )
-from model.reps.pixels import PixelSet
+from mrm.reps.pixels import PixelSet
 
 # ----------------------------------------------------------------------------------------------------------
 # Progress and cancel

@@ -10,12 +10,12 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.errors import ParameterError
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import reconstruct
-from model.ops.apply import load_paper_operations
-from model.ops.base import run_operation
-from model.ops.boolean import (
+from mrm.errors import ParameterError
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.apply import load_paper_operations
+from mrm.ops.base import run_operation
+from mrm.ops.boolean import (
     PARTS,
     CorefineParams,
     CorefineResult,
@@ -25,8 +25,8 @@ from model.ops.boolean import (
     run_corefine,
     run_union,
 )
-from model.reps.pixels import PixelSet
-from model.reps.region import region_of
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import region_of
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, polygons_of, reference_discretize_rings, scaled
 

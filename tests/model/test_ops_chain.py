@@ -11,12 +11,12 @@ import shapely
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from model.document import Provenance
-from model.errors import Cancelled, ParameterError
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import reconstruct
-from model.ops.chain import parse_steps, run_chain
-from model.reps.pixels import PixelSet
+from mrm.document import Provenance
+from mrm.errors import Cancelled, ParameterError
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.chain import parse_steps, run_chain
+from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import COVERS, objects, polygons_of, reference_discretize_rings, scaled
 
 SQRT2 = math.sqrt(2)

@@ -12,16 +12,16 @@ import pytest
 import shapely
 from shapely.geometry import box
 
-from model.cli import run_cli
-from model.document import Document, Settings
-from model.geometry.discretize import discretize
-from model.io.pixel_files import read_label_map, read_pixels, write_pixels
-from model.io.project import save_project
-from model.io.vector_files import read_geometries, read_geometry
-from model.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
-from model.ops.rotation import discrete_rotation
-from model.ops.scaling import discrete_smooth_scaling
-from model.reps.pixels import PixelSet
+from mrm.cli import run_cli
+from mrm.document import Document, Settings
+from mrm.geometry.discretize import discretize
+from mrm.io.pixel_files import read_label_map, read_pixels, write_pixels
+from mrm.io.project import save_project
+from mrm.io.vector_files import read_geometries, read_geometry
+from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
+from mrm.ops.rotation import discrete_rotation
+from mrm.ops.scaling import discrete_smooth_scaling
+from mrm.reps.pixels import PixelSet
 
 INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}
 OP_KEYS = INFO_KEYS | {"bound", "measured"}
@@ -214,7 +214,18 @@ def test_bad_input_gets_a_message_and_writes_nothing(capsys, files, argv, messag
 def test_the_real_entry_point(files):
     out = files["dir"] / "e.png"
     proc = subprocess.run(
-        [sys.executable, "-m", "app", "scale", str(files["png"]), "--alpha", "2", "-o", str(out), "--json"],
+        [
+            sys.executable,
+            "-m",
+            "mrm.app",
+            "scale",
+            str(files["png"]),
+            "--alpha",
+            "2",
+            "-o",
+            str(out),
+            "--json",
+        ],
         capture_output=True,
         text=True,
         timeout=300,

@@ -9,22 +9,22 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import model.geometry.reconstruct as reconstruct_module
-from model.document import Document
-from model.errors import Cancelled, ParameterError, SizeLimitError
-from model.geometry.discretize import discretize
-from model.ops.apply import apply_operation
-from model.ops.boolean import (
+import mrm.geometry.reconstruct as reconstruct_module
+from mrm.document import Document
+from mrm.errors import Cancelled, ParameterError, SizeLimitError
+from mrm.geometry.discretize import discretize
+from mrm.ops.apply import apply_operation
+from mrm.ops.boolean import (
     CorefineParams,
     euclidean_discrete_corefinement,
     euclidean_discrete_union,
 )
-from model.ops.exact_geometry import Similarity
-from model.ops.outcome import estimated_pixels
-from model.ops.rotation import RotationParams, discrete_rotation
-from model.ops.scaling import DSSParams, discrete_smooth_scaling
-from model.ops.simplify import SimplifyParams, simplification
-from model.reps.pixels import PixelSet
+from mrm.ops.exact_geometry import Similarity
+from mrm.ops.outcome import estimated_pixels
+from mrm.ops.rotation import RotationParams, discrete_rotation
+from mrm.ops.scaling import DSSParams, discrete_smooth_scaling
+from mrm.ops.simplify import SimplifyParams, simplification
+from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, objects
 
@@ -136,7 +136,7 @@ class Cancelling:
 
 def make_doc() -> tuple[Document, int, int]:
     doc = Document()
-    from model.commands import AddObject
+    from mrm.commands import AddObject
 
     a = doc.make_object(PixelSet.box(0, 0, 19, 14), "rect")
     doc.push(AddObject(a))
@@ -160,7 +160,7 @@ def snapshot(doc: Document):
     ],
 )
 def test_a_cancelled_operation_leaves_the_document_as_it_was(op, inputs, params):
-    from model.ops.boolean import UnionParams
+    from mrm.ops.boolean import UnionParams
 
     params = params or UnionParams()
     doc, a, b = make_doc()
@@ -199,7 +199,7 @@ def test_a_refused_operation_leaves_the_document_as_it_was_and_a_success_is_one_
 @settings(max_examples=40)
 @given(star_polygons(max_vertices=6), st.sampled_from([0.3, 1.0, 2.5]), st.sampled_from(MODELS))
 def test_the_registered_estimates_bound_the_results_of_polygon_inputs(poly, alpha, model):
-    from model.ops import rotation, scaling, simplify
+    from mrm.ops import rotation, scaling, simplify
 
     p = DSSParams(alpha=alpha, model=model)
     assert box_area(scaling.run([poly], p).output) <= scaling.estimate([poly], p)

@@ -9,11 +9,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.errors import ParameterError
-from model.geometry.reconstruct import reconstruct
-from model.ops.exact_geometry import rotation_cos_sin
-from model.ops.rotation import RotationParams, discrete_rotation, rotation_similarity, run
-from model.reps.pixels import PixelSet
+from mrm.errors import ParameterError
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.exact_geometry import rotation_cos_sin
+from mrm.ops.rotation import RotationParams, discrete_rotation, rotation_similarity, run
+from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import (
     MODELS,
     objects,

@@ -9,16 +9,16 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.document import Provenance
-from model.errors import ParameterError
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import reconstruct
-from model.ops.apply import load_paper_operations
-from model.ops.base import run_operation
-from model.ops.exact_geometry import ExactShape
-from model.ops.rational_discretize import discretize_exact
-from model.ops.scaling import DSSParams, discrete_smooth_scaling, run
-from model.reps.pixels import PixelSet
+from mrm.document import Provenance
+from mrm.errors import ParameterError
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.apply import load_paper_operations
+from mrm.ops.base import run_operation
+from mrm.ops.exact_geometry import ExactShape
+from mrm.ops.rational_discretize import discretize_exact
+from mrm.ops.scaling import DSSParams, discrete_smooth_scaling, run
+from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, objects, polygons_of, reference_discretize_rings, scaled
 
@@ -91,7 +91,7 @@ def test_rational_discretization_follows_the_definitions(shape_and_q, model):
     poly, q = shape_and_q
     exact = ExactShape.from_geometry(poly)
     polys = scaled(polygons_of(poly), q)
-    from model.ops.exact_geometry import Similarity
+    from mrm.ops.exact_geometry import Similarity
 
     got = discretize_exact(exact.map(Similarity.scaling(q)), model)
     assert got == reference_discretize_rings(polys, model)

@@ -11,12 +11,12 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.errors import ParameterError
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import reconstruct
-from model.ops.measure import measured_error
-from model.ops.simplify import SimplifyParams, run, simplification
-from model.reps.pixels import PixelSet
+from mrm.errors import ParameterError
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.measure import measured_error
+from mrm.ops.simplify import SimplifyParams, run, simplification
+from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import COVERS, MODELS, polygons_of, reference_discretize_rings, scaled
 

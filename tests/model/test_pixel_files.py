@@ -19,11 +19,11 @@ from hypothesis import strategies as st
 from PIL import Image, PngImagePlugin
 from skimage.filters import threshold_otsu
 
-from model.errors import FileFormatError, ParameterError
-from model.io.atomic import atomic_open, atomic_write_bytes
-from model.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
-from model.io.threshold import luminance, otsu_threshold
-from model.reps.pixels import LabelMap, PixelSet
+from mrm.errors import FileFormatError, ParameterError
+from mrm.io.atomic import atomic_open, atomic_write_bytes
+from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
+from mrm.io.threshold import luminance, otsu_threshold
+from mrm.reps.pixels import LabelMap, PixelSet
 
 PIXEL_EXTS = [".png", ".pbm", ".pgm", ".npz"]
 

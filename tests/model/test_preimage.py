@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.geometry.dss import recognize
-from model.geometry.preimage import (
+from mrm.geometry.dss import recognize
+from mrm.geometry.preimage import (
     Preimage,
     frame_of,
     median_parameters,
@@ -17,7 +17,7 @@ from model.geometry.preimage import (
     segment_preimage,
     standard_contains,
 )
-from model.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
+from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
 
 HALF = Fraction(1, 2)
 

@@ -14,11 +14,11 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.commands import AddObject, PaintPixels, RenameObject
-from model.document import Document, Provenance, Settings, Style
-from model.errors import FileFormatError, MRMError
-from model.io import autosave
-from model.io.project import (
+from mrm.commands import AddObject, PaintPixels, RenameObject
+from mrm.document import Document, Provenance, Settings, Style
+from mrm.errors import FileFormatError, MRMError
+from mrm.io import autosave
+from mrm.io.project import (
     SCHEMA_VERSION,
     Migration,
     dumps,
@@ -28,7 +28,7 @@ from model.io.project import (
     read_project,
     save_project,
 )
-from model.reps.pixels import PixelSet
+from mrm.reps.pixels import PixelSet
 
 GOLDEN = Path(__file__).parent / "golden"
 EXAMPLES = Path(__file__).parents[2] / "resources" / "examples"
@@ -348,7 +348,7 @@ def test_hostile_files_get_a_clear_message_naming_the_problem(case, tmp_path, op
 
 @pytest.mark.parametrize("case", sorted(HOSTILE), ids=str)
 def test_the_cli_reports_hostile_projects_with_exit_status_2(case, tmp_path, capsys):
-    from model.cli import run_cli
+    from mrm.cli import run_cli
 
     path = tmp_path / "bad.mrm"
     path.write_bytes(HOSTILE[case][0])
@@ -359,7 +359,7 @@ def test_the_cli_reports_hostile_projects_with_exit_status_2(case, tmp_path, cap
 
 
 def test_the_masks_of_a_file_have_a_total_budget(monkeypatch):
-    import model.io.project as project
+    import mrm.io.project as project
 
     monkeypatch.setattr(project, "MAX_TOTAL_MASK_PIXELS", 30)  # the golden masks hold 25 + 0 + 6 pixels
     with pytest.raises(
@@ -369,7 +369,7 @@ def test_the_masks_of_a_file_have_a_total_budget(monkeypatch):
 
 
 def test_an_image_renamed_to_mrm_is_recognised(tmp_path):
-    from model.io.pixel_files import write_pixels
+    from mrm.io.pixel_files import write_pixels
 
     write_pixels(PixelSet.box(0, 0, 3, 3), tmp_path / "mask.png")
     os.replace(tmp_path / "mask.png", tmp_path / "mask.mrm")
@@ -471,7 +471,7 @@ def test_save_marks_clean_and_sets_the_path(tmp_path):
 
 @pytest.mark.parametrize("failure", ["fsync", "replace", "write"])
 def test_an_interrupted_save_leaves_the_previous_file_intact(tmp_path, monkeypatch, failure):
-    import model.io.atomic as atomic
+    import mrm.io.atomic as atomic
 
     path = tmp_path / "p.mrm"
     doc = load_project(EXAMPLES / "two-polygons.mrm")
@@ -618,7 +618,7 @@ def test_a_damaged_side_file_is_offered_but_reports_on_restore(tmp_path):
 # ---------------------------------------------------------------------------------------------- examples
 @pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.mrm")), ids=lambda p: p.name)
 def test_example_projects_load_and_satisfy_the_invariant(path):
-    from model.geometry.discretize import discretize
+    from mrm.geometry.discretize import discretize
 
     doc = load_project(path)
     assert len(doc) >= 1

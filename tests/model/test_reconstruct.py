@@ -7,16 +7,16 @@ import pytest
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.errors import ParameterError
-from model.geometry.border import KIND_NAMES, border_path, border_paths, corridors, visit_counts
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
-from model.geometry.safety_net import eroded_net, net_ring, safety_net, staircase
-from model.geometry.segmentation import chain_points, greedy_segmentation
-from model.geometry.verify import verify
-from model.reps.pixels import PixelSet
-from model.reps.region import CrackChain, region_of
-from model.summary import count_vertices
+from mrm.errors import ParameterError
+from mrm.geometry.border import KIND_NAMES, border_path, border_paths, corridors, visit_counts
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
+from mrm.geometry.safety_net import eroded_net, net_ring, safety_net, staircase
+from mrm.geometry.segmentation import chain_points, greedy_segmentation
+from mrm.geometry.verify import verify
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import CrackChain, region_of
+from mrm.summary import count_vertices
 
 
 def ps_of(rows: list[str], origin: tuple[int, int] = (0, 0)) -> PixelSet:
@@ -366,7 +366,7 @@ INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains
 
 
 def mrm(capsys: pytest.CaptureFixture[str], *argv: object) -> tuple[int, str, str]:
-    from model.cli import run_cli
+    from mrm.cli import run_cli
 
     code = run_cli([str(a) for a in argv])
     out, err = capsys.readouterr()
@@ -376,8 +376,8 @@ def mrm(capsys: pytest.CaptureFixture[str], *argv: object) -> tuple[int, str, st
 def test_cli_reconstruct_writes_geojson_that_discretizes_back(capsys, tmp_path) -> None:
     import json
 
-    from model.io.pixel_files import write_pixels
-    from model.io.vector_files import read_geometry
+    from mrm.io.pixel_files import write_pixels
+    from mrm.io.vector_files import read_geometry
 
     ps = disk(8.3) - disk(2.2)
     ps = ps.translate(40, -3)
@@ -399,8 +399,8 @@ def test_cli_reconstruct_writes_geojson_that_discretizes_back(capsys, tmp_path) 
 def test_cli_reconstruct_many_inputs_into_a_directory_or_pattern(capsys, tmp_path) -> None:
     import json
 
-    from model.io.pixel_files import write_pixels
-    from model.io.vector_files import read_geometry
+    from mrm.io.pixel_files import write_pixels
+    from mrm.io.vector_files import read_geometry
 
     sets = {"one": disk(4.4), "two": ps_of(CASES["checker"]), "three": ps_of(CASES["nested"])}
     for name, ps in sets.items():
@@ -429,7 +429,7 @@ def test_cli_reconstruct_many_inputs_into_a_directory_or_pattern(capsys, tmp_pat
     ],
 )
 def test_cli_reconstruct_bad_input_is_a_clear_error(capsys, tmp_path, monkeypatch, argv, message) -> None:
-    from model.io.pixel_files import write_pixels
+    from mrm.io.pixel_files import write_pixels
 
     monkeypatch.chdir(tmp_path)
     write_pixels(ps_of(["#"]), tmp_path / "a.png")
@@ -445,8 +445,8 @@ def test_cli_reconstruct_bad_input_is_a_clear_error(capsys, tmp_path, monkeypatc
 
 
 def _corridor_arrays(ps: PixelSet, gauss: bool) -> tuple:
-    from model.geometry import _reconstruct_kernels as k
-    from model.geometry.cracks import trace_mask
+    from mrm.geometry import _reconstruct_kernels as k
+    from mrm.geometry.cracks import trace_mask
 
     m = np.ascontiguousarray(ps.mask.view(np.uint8))
     rings = trace_mask(m)
@@ -504,7 +504,7 @@ def _stabbable(gates: list[tuple[tuple[int, int], tuple[int, int]]]) -> bool:
 
 
 def test_exact_preimage_reach_against_a_fraction_linear_program() -> None:
-    from model.geometry import _reconstruct_kernels as k
+    from mrm.geometry import _reconstruct_kernels as k
 
     rng = np.random.default_rng(5)
     checked = 0
@@ -537,7 +537,7 @@ def test_exact_preimage_reach_against_a_fraction_linear_program() -> None:
 @pytest.mark.parametrize("gauss", [False, True])
 def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
     # Cover models on whole pixels: the O(n) standard DSS reach; gauss: the DSS of half-pixel cells.
-    from model.geometry import _reconstruct_kernels as k
+    from mrm.geometry import _reconstruct_kernels as k
 
     rng = np.random.default_rng(9)
     sets = [disk(r) for r in (3.3, 7.8, 15.1, 30.2, 45.7)]
@@ -569,7 +569,7 @@ def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
 
 @pytest.mark.parametrize("model", MODELS)
 def test_safety_net_rings_pass_the_exact_corridor_check(model: str) -> None:
-    from model.geometry import _reconstruct_kernels as k
+    from mrm.geometry import _reconstruct_kernels as k
 
     rng = np.random.default_rng(13)
     for _ in range(40):
@@ -629,7 +629,7 @@ def test_simplest_line_is_the_simplest_direction_crossing_the_gates() -> None:
     # P is strictly on its left and Q strictly on its right; try every primitive direction up to the answer.
     from math import gcd
 
-    from model.geometry import _reconstruct_kernels as k
+    from mrm.geometry import _reconstruct_kernels as k
 
     def offsets(d: tuple[int, int], window: list) -> tuple[int, int]:
         lo = max(d[0] * q[1] - d[1] * q[0] for _p, q in window)

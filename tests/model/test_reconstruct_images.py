@@ -16,14 +16,14 @@ import skimage.data
 from shapely.geometry import MultiPolygon
 from skimage.filters import threshold_otsu
 
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
-from model.geometry.safety_net import eroded_net
-from model.geometry.segmentation import chain_points, greedy_segmentation
-from model.geometry.verify import verify
-from model.reps.pixels import PixelSet
-from model.reps.region import region_of
-from model.summary import count_vertices
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
+from mrm.geometry.safety_net import eroded_net
+from mrm.geometry.segmentation import chain_points, greedy_segmentation
+from mrm.geometry.verify import verify
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import region_of
+from mrm.summary import count_vertices
 
 
 def _otsu(img: np.ndarray) -> np.ndarray:

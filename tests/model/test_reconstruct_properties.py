@@ -20,11 +20,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.geometry.discretize import discretize
-from model.geometry.reconstruct import MODELS, reconstruct
-from model.reps.pixels import PixelSet
-from model.reps.region import region_of
-from model.summary import count_vertices
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import MODELS, reconstruct
+from mrm.reps.pixels import PixelSet
+from mrm.reps.region import region_of
+from mrm.summary import count_vertices
 from tests.oracles.discretize_reference import reference_discretize
 
 # ---------------------------------------------------------------------------------------------- generators

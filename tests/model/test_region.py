@@ -12,9 +12,9 @@ from skimage.filters import threshold_otsu
 from skimage.measure import euler_number
 from skimage.measure import label as sk_label
 
-from model.errors import InvalidGeometryError, ParameterError
-from model.reps.pixels import LabelMap, PixelSet
-from model.reps.region import CrackChain, Region, fill, fill_chains, region_of
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.reps.region import CrackChain, Region, fill, fill_chains, region_of
 
 # ---------------------------------------------------------------------------------------------- helpers
 

@@ -11,9 +11,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.errors import InvalidGeometryError
-from model.geometry.dss import recognize
-from model.geometry.segmentation import (
+from mrm.errors import InvalidGeometryError
+from mrm.geometry.dss import recognize
+from mrm.geometry.segmentation import (
     chain_points,
     dss_of_window,
     greedy_segmentation,
@@ -401,7 +401,7 @@ def test_dgtal_disk_counts(r, centre, n_linels, dgtal_greedy, dgtal_maximal):
 def _cli(capsys, *argv):
     import json
 
-    from model.cli import run_cli
+    from mrm.cli import run_cli
 
     code = run_cli(["segment", *argv])
     out, err = capsys.readouterr()
@@ -457,7 +457,7 @@ def test_cli_segment_bad_chain(capsys, chain, extra, message):
 
 
 def test_cli_segment_bad_options(capsys):
-    from model.cli import run_cli
+    from mrm.cli import run_cli
 
     for argv in (
         ["segment", "--chain", "0,0,01", "--adjacency", "6"],

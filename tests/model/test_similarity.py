@@ -13,10 +13,10 @@ from hypothesis import strategies as st
 from shapely import affinity
 from shapely.geometry import MultiPolygon, Polygon, box
 
-from model.errors import InvalidGeometryError, ParameterError
-from model.ops import similarity
-from model.ops.base import run_operation
-from model.ops.similarity import rotate_geometry, scale_geometry, translate_geometry
+from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.ops import similarity
+from mrm.ops.base import run_operation
+from mrm.ops.similarity import rotate_geometry, scale_geometry, translate_geometry
 
 finite = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False, allow_infinity=False)
 dyadic = st.integers(-4000, 4000).map(lambda n: n / 8)

@@ -29,12 +29,12 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from shapely.geometry import MultiPolygon, Polygon
 
-from model.errors import ParameterError
-from model.geometry.discretize import discretize
-from model.geometry.segmentation import greedy_segmentation
-from model.geometry.subdivision import reconstruct_label_map, subdivide, watertight_parts
-from model.reps.pixels import LabelMap, PixelSet
-from model.reps.region import region_of
+from mrm.errors import ParameterError
+from mrm.geometry.discretize import discretize
+from mrm.geometry.segmentation import greedy_segmentation
+from mrm.geometry.subdivision import reconstruct_label_map, subdivide, watertight_parts
+from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.reps.region import region_of
 from tests.oracles.discretize_reference import reference_discretize
 from tests.oracles.geometry_strategies import star_polygons
 
@@ -463,7 +463,7 @@ def test_any_polyline_the_verifier_accepts_keeps_the_subdivision_exact(
     # Replace the construction by random polylines (staircase vertices dropped at random, the others
     # jittered inside their pieces): the exact per-1-cell verifier must accept only polylines that keep every
     # part exact and valid, so the final per-part check never has to step in.
-    import model.geometry.subdivision as sub
+    import mrm.geometry.subdivision as sub
 
     rng = np.random.default_rng(7)
 
@@ -525,7 +525,7 @@ def test_staircase_vertex_counter_on_a_known_map() -> None:
 def test_the_checker_catches_independent_reconstructions_and_moved_vertices() -> None:
     # The checks above must be able to fail: parts reconstructed one by one do not share their edges, and
     # one shared vertex moved by 2^-10 in a single part opens a sliver.
-    from model.geometry.reconstruct import reconstruct
+    from mrm.geometry.reconstruct import reconstruct
 
     lab = np.zeros((20, 20), dtype=np.int32)
     lab[2:15, 3:12] = 1

@@ -15,7 +15,7 @@ does, or a point of K(p) lies inside it; when no edge meets K(p) every point of 
 itself for the open and closed squares) has the same status, decided by a ray test from p + τ, whose
 horizontal line y = p_y + ε² never passes through a vertex.
 
-Nothing here is shared with model.geometry: no float filter, no walk, no scanline.
+Nothing here is shared with mrm.geometry: no float filter, no walk, no scanline.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """References for the operations' tests: exact similarities and D of rational polygons, by the definitions.
 
-Nothing here uses model.ops: the rings of a shapely polygon are read into Fractions, scaled or rotated with
+Nothing here uses mrm.ops: the rings of a shapely polygon are read into Fractions, scaled or rotated with
 plain Fraction arithmetic, and discretized with the kernels of tests/oracles/discretize_reference.py
 (D(E) = { p : E ∩ K(p) ≠ ∅ }, Liang–Barsky with (v0, v1, v2) triples, a ray test from p + τ).
 """
@@ -16,8 +16,8 @@ import numpy as np
 import shapely
 from hypothesis import strategies as st
 
-from model.geometry.discretize import discretize
-from model.reps.pixels import PixelSet
+from mrm.geometry.discretize import discretize
+from mrm.reps.pixels import PixelSet
 from tests.oracles.discretize_reference import inside_tau, kernel_box, segment_meets
 from tests.oracles.geometry_strategies import star_polygons
 

@@ -1,0 +1,7 @@
+"""``python -m mrm``: the same as the ``mrm`` command (headless subcommands, or the GUI without one)."""
+
+import sys
+
+from mrm.app.main import main
+
+sys.exit(main())
