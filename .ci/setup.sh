@@ -27,6 +27,6 @@ stamp=.venv/.mrm-installed
 if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
   echo "setup: installing the project and its extras into .venv"
   .venv/bin/python -m pip install -q --upgrade pip
-  .venv/bin/python -m pip install -q -e '.[test,bench,dev]'
+  .venv/bin/python -m pip install -q -e '.[gui,geo,test,docs,bench,dev]'
   touch "$stamp"
 fi

@@ -12,21 +12,11 @@ import sys
 import time
 from pathlib import Path
 
-RESOURCES = Path(__file__).resolve().parent.parent / "resources"
-EXAMPLES = RESOURCES / "examples"
+from mrm.resources import default_example, examples_dir
 
-#: The example opened by a bare ``mrm`` (the first existing one).
-DEFAULT_EXAMPLES = ("fig12-dss-combinations.mrm", "fig12.mrm", "four-representations.mrm")
-
-
-def default_example() -> Path | None:
-    """The bundled example project ``mrm`` opens without arguments (None when there is none)."""
-    for name in DEFAULT_EXAMPLES:
-        p = EXAMPLES / name
-        if p.is_file():
-            return p
-    found = sorted(EXAMPLES.glob("*.mrm")) if EXAMPLES.is_dir() else []
-    return found[0] if found else None
+#: The bundled example projects (package data of mrm.resources, also in an installed wheel).
+EXAMPLES = examples_dir()
+RESOURCES = EXAMPLES.parent
 
 
 def build_parser() -> argparse.ArgumentParser:

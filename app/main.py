@@ -1,21 +1,15 @@
-"""Entry point of the ``mrm`` command: the GUI without arguments, headless subcommands otherwise."""
+"""Entry point of the ``mrm`` command: the GUI without arguments, headless subcommands otherwise.
+
+The dispatch lives in :func:`mrm.cli.main` so that the command works without the ``gui`` extra (Qt).
+"""
 
 from __future__ import annotations
 
 import sys
 
+from mrm.cli import main
 
-def main(argv: list[str] | None = None) -> int:
-    """Run ``mrm``; subcommands are handled by :mod:`mrm.cli` without importing Qt."""
-    args = list(sys.argv[1:] if argv is None else argv)
-    from mrm.cli import SUBCOMMANDS, run_cli
-
-    if args and args[0] in SUBCOMMANDS:
-        return run_cli(args)
-    from mrm.app.gui import run_gui
-
-    return run_gui(args)
-
+__all__ = ["main"]
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -1,0 +1,118 @@
+"""MR Modeler's library: exact 2D discrete geometry with four representations (DESIGN §1–§8).
+
+``import mrm`` is Qt-free and cheap: the names below are loaded on first use (PEP 562), so ``mrm --version``
+and the command line start fast. numpy arrays, pixel sets and shapely geometries go in and come out::
+
+    import mrm
+    ps = mrm.read_pixels("shape.png")            # or mrm.PixelSet.from_image(array), row 0 at the top
+    poly = mrm.reconstruct(ps, "gauss")           # the polygon whose discretization is exactly ps
+    big = mrm.scale(ps, 2, model="gauss")         # DSS_2
+    mrm.hausdorff(mrm.reconstruct(big, "gauss"), ...)
+
+Pixel (x, y) is centred on the point (x, y) and y points **up** (DESIGN §1); image arrays are converted by
+:meth:`PixelSet.from_image` / :meth:`PixelSet.to_image`, never by hand. The desktop application is
+``mrm.app`` (needs the ``gui`` extra); the command line is ``mrm.cli``.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
+    from mrm.api import (
+        bound,
+        corefine,
+        discretize,
+        hausdorff,
+        polygonize,
+        reconstruct,
+        rotate,
+        scale,
+        segment,
+        simplify,
+        union,
+    )
+    from mrm.errors import MRMError
+    from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
+    from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
+    from mrm.reps.pixels import LabelMap, PixelSet
+
+#: public name → the module that defines it (imported when the name is first used).
+_LAZY = {
+    "PixelSet": "mrm.reps.pixels",
+    "LabelMap": "mrm.reps.pixels",
+    "read_pixels": "mrm.io.pixel_files",
+    "write_pixels": "mrm.io.pixel_files",
+    "read_label_map": "mrm.io.pixel_files",
+    "write_label_map": "mrm.io.pixel_files",
+    "read_geometry": "mrm.io.vector_files",
+    "write_geojson": "mrm.io.vector_files",
+    "write_wkt": "mrm.io.vector_files",
+    "MRMError": "mrm.errors",
+    **{
+        name: "mrm.api"
+        for name in (
+            "discretize",
+            "reconstruct",
+            "polygonize",
+            "segment",
+            "scale",
+            "rotate",
+            "simplify",
+            "union",
+            "corefine",
+            "bound",
+            "hausdorff",
+        )
+    },
+}
+
+__all__ = [
+    "LabelMap",
+    "MRMError",
+    "PixelSet",
+    "__version__",
+    "bound",
+    "corefine",
+    "discretize",
+    "hausdorff",
+    "polygonize",
+    "read_geometry",
+    "read_label_map",
+    "read_pixels",
+    "reconstruct",
+    "rotate",
+    "scale",
+    "segment",
+    "simplify",
+    "union",
+    "write_geojson",
+    "write_label_map",
+    "write_pixels",
+    "write_wkt",
+]
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("mr-modeler")
+    except PackageNotFoundError:  # running from a source tree that was never installed
+        return "0+unknown"
+
+
+def __getattr__(name: str) -> Any:
+    if name == "__version__":
+        value: Any = _version()
+    elif name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+    else:
+        raise AttributeError(f"module 'mrm' has no attribute {name!r}")
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})

@@ -2,6 +2,6 @@
 
 import sys
 
-from mrm.app.main import main
+from mrm.cli import main
 
 sys.exit(main())

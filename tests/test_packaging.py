@@ -7,6 +7,8 @@ import tomllib
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 FOLDERS = {"model": "mrm", "app": "mrm.app", "views": "mrm.views"}
+#: Data folders shipped as packages (docs/adr/0011): the example projects and the user guide.
+DATA = {"resources": "mrm.resources", "docs": "mrm.docs"}
 
 
 def _declared() -> tuple[set[str], dict[str, str]]:
@@ -17,8 +19,8 @@ def _declared() -> tuple[set[str], dict[str, str]]:
 def test_every_source_package_is_listed_for_the_wheel():
     """A sub-package left out of the list would be missing from an installed `mrm` (ModuleNotFoundError)."""
     packages, package_dir = _declared()
-    assert package_dir == {name: folder for folder, name in FOLDERS.items()}
-    found = set()
+    assert package_dir == {name: folder for folder, name in {**FOLDERS, **DATA}.items()}
+    found = set(DATA.values())
     for folder, name in FOLDERS.items():
         for init in (ROOT / folder).rglob("__init__.py"):
             rel = init.parent.relative_to(ROOT / folder).parts

@@ -1,4 +1,4 @@
-"""The headless ``mrm`` subcommands (DESIGN §9).
+"""The headless ``mrm`` subcommands (DESIGN §9) and the ``mrm`` entry point.
 
 Each subcommand lives in its own module of this package and defines::
 
@@ -7,18 +7,35 @@ Each subcommand lives in its own module of this package and defines::
     def add_arguments(parser): ...  # its own options (the common ones are added here)
     def run(args) -> dict | None:   # does the work; returns the --json summary (or None)
 
-Modules are discovered automatically, so adding a subcommand never edits this file. Every input error is
-an :class:`mrm.errors.MRMError`: it is printed as ``mrm NAME: error: message`` on stderr with exit status 2,
-never as a traceback.
+Modules are discovered automatically, so adding a subcommand never edits this file.
+
+Conventions every subcommand gets from this layer (docs/adr/0011):
+
+* ``--model``, ``--json`` and ``--quiet`` on every subcommand; ``mrm --version``.
+* ``-`` as an input reads standard input (the format is recognised from its first bytes) and ``-o -`` writes
+  the result on standard output (``--format`` chooses its type; the text summary then goes to stderr).
+* The folder an output file goes into is created when missing, by every subcommand alike.
+* Errors are one line ``mrm NAME: error: message`` on stderr with exit status 2, never a traceback: every
+  :class:`mrm.errors.MRMError`, every ``OSError`` (read-only file system, full disk, symlink loop, name too
+  long, a path through a regular file, …) and every number out of range.
+* A closed standard output (``mrm … | head``) ends the command quietly with status 141 (128 + SIGPIPE, what a
+  shell reports for a program killed by the closed pipe).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import errno
 import importlib
 import json
+import os
 import pkgutil
+import shutil
 import sys
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
 from types import ModuleType
 from typing import Any
 
@@ -26,6 +43,24 @@ from mrm.errors import MRMError
 
 #: The discretization models, in the order the CLI lists them.
 MODEL_CHOICES = ("standard", "supercover", "gauss")
+
+#: Exit status after a closed standard output.
+EXIT_BROKEN_PIPE = 141
+
+#: What ``-o -`` writes when ``--format`` is not given (a subcommand may set ``STDOUT_FORMAT``).
+_STDOUT_FORMATS = {
+    "reconstruct": ".geojson",
+    "polygonize": ".geojson",
+    "discretize": ".png",
+    "scale": ".png",
+    "rotate": ".png",
+    "simplify": ".geojson",
+    "union": ".geojson",
+    "corefine": ".geojson",
+}
+
+#: Largest standard input read for ``-`` (the same order as the largest input files the readers take).
+MAX_STDIN_BYTES = 1 << 30
 
 
 def _command_modules() -> dict[str, ModuleType]:
@@ -56,9 +91,17 @@ class _Parser(argparse.ArgumentParser):
     """An ArgumentParser whose usage errors exit with status 2 and a one-line message (argparse's default)."""
 
 
+def version_text() -> str:
+    """``mrm X.Y.Z`` (the installed distribution's version)."""
+    import mrm
+
+    return f"mrm {mrm.__version__}"
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """Return the parser of every subcommand, each with ``--model`` and ``--json``."""
+    """Return the parser of every subcommand, each with ``--model``, ``--json`` and ``--quiet``."""
     parser = _Parser(prog="mrm", description="MR Modeler: multi-representation 2D discrete geometry.")
+    parser.add_argument("--version", action="version", version=version_text())
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, mod in _command_modules().items():
         p = sub.add_parser(name, help=getattr(mod, "HELP", ""), description=getattr(mod, "HELP", ""))
@@ -69,7 +112,18 @@ def build_parser() -> argparse.ArgumentParser:
             help="discretization model (default: the project's, or 'standard')",
         )
         p.add_argument("--json", action="store_true", help="print a machine-readable summary on stdout")
+        p.add_argument(
+            "-q", "--quiet", action="store_true", help="no progress bar and no per-file lines on stderr"
+        )
         mod.add_arguments(p)
+        if any(a.dest == "output" for a in p._actions):
+            p.add_argument(
+                "--format",
+                metavar="EXT",
+                default=None,
+                help="with -o -: the type written on stdout, e.g. .geojson, .wkt, .png "
+                f"(default {getattr(mod, 'STDOUT_FORMAT', _STDOUT_FORMATS.get(name, '.geojson'))})",
+            )
         p.set_defaults(_module=mod)
     return parser
 
@@ -86,33 +140,191 @@ def _json_default(o: Any) -> Any:
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
+def _silence_stdout() -> None:
+    """Point stdout at devnull so that the interpreter's final flush prints no BrokenPipeError either."""
+    with contextlib.suppress(OSError, ValueError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+
+
+def os_error_text(e: OSError) -> str:
+    """One line for an OSError: its reason and the file(s) it names (``errno`` wording, no traceback)."""
+    reason = e.strerror or (errno.errorcode.get(e.errno, "") if e.errno else "") or str(e) or type(e).__name__
+    if e.filename is not None:
+        names = os.fsdecode(e.filename)
+        if getattr(e, "filename2", None) is not None:
+            names += f" -> {os.fsdecode(e.filename2)}"
+        return f"{reason}: {names}"
+    return reason
+
+
+def _sniff(head: bytes) -> str:
+    """The file extension of standard input's content, from its first bytes."""
+    if head.startswith(b"\x89PNG"):
+        return ".png"
+    if head[:2] in (b"P1", b"P2", b"P3", b"P4", b"P5", b"P6"):
+        return ".pgm"  # the Netpbm reader reads P1-P6 whatever the extension
+    if head.startswith(b"PK"):
+        return ".npz"
+    if head[:4] in (b"II*\x00", b"MM\x00*"):
+        return ".tif"
+    text = head.lstrip()
+    if text[:1] in (b"{", b"["):
+        return ".geojson"
+    return ".wkt"
+
+
+class _Streams:
+    """Temporary files standing for ``-`` (standard input, standard output) during one command."""
+
+    def __init__(self) -> None:
+        self.tmp: str | None = None
+        self.stdin_path: str | None = None
+        self.stdout_path: str | None = None
+
+    def _dir(self) -> str:
+        if self.tmp is None:
+            self.tmp = tempfile.mkdtemp(prefix="mrm-")
+        return self.tmp
+
+    def stdin(self) -> str:
+        if self.stdin_path is None:
+            data = sys.stdin.buffer.read(MAX_STDIN_BYTES + 1)
+            if len(data) > MAX_STDIN_BYTES:
+                raise MRMError(f"standard input holds more than {MAX_STDIN_BYTES >> 20} MB")
+            if not data:
+                raise MRMError("standard input is empty")
+            self.stdin_path = os.path.join(self._dir(), "stdin" + _sniff(data[:64]))
+            Path(self.stdin_path).write_bytes(data)
+        return self.stdin_path
+
+    def stdout(self, ext: str) -> str:
+        self.stdout_path = os.path.join(self._dir(), "stdout" + ext)
+        return self.stdout_path
+
+    def close(self) -> None:
+        if self.tmp is not None:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+def _bind_streams(args: argparse.Namespace, streams: _Streams) -> None:
+    """Replace ``-`` in the inputs by standard input's content and ``-o -`` by a temporary file."""
+    for key in ("input", "first", "second"):
+        if getattr(args, key, None) == "-":
+            setattr(args, key, streams.stdin())
+    if isinstance(getattr(args, "inputs", None), list) and "-" in args.inputs:
+        args.inputs = [streams.stdin() if i == "-" else i for i in args.inputs]
+    if getattr(args, "output", None) == "-":
+        if args.json:
+            raise MRMError("-o - and --json would both write on stdout; choose one")
+        ext = args.format or getattr(
+            args._module, "STDOUT_FORMAT", _STDOUT_FORMATS.get(args.command, ".geojson")
+        )
+        ext = ext if ext.startswith(".") else "." + ext
+        args.output = streams.stdout(ext.lower())
+    elif getattr(args, "format", None) is not None:
+        raise MRMError("--format applies to -o - only (a file's extension gives its type)")
+
+
+def _make_output_folder(args: argparse.Namespace) -> None:
+    """Create the folder the output goes into (every subcommand alike; ADR 0011)."""
+    out = getattr(args, "output", None)
+    if not isinstance(out, str) or not out:
+        return
+    if "{stem}" in out:
+        out = out.split("{stem}", 1)[0] + "x"
+    target = Path(out)
+    if out.endswith(("/", os.sep)) or (not target.suffix and getattr(args, "inputs", None)):
+        return  # a batch's output directory: the subcommand creates it
+    target.parent.mkdir(parents=True, exist_ok=True)
+
+
+@contextlib.contextmanager
+def _stdout_to_stderr(active: bool) -> Iterator[None]:
+    if not active:
+        yield
+        return
+    with contextlib.redirect_stdout(sys.stderr):
+        yield
+
+
 def run_cli(argv: list[str]) -> int:
     """Parse ``argv`` (without the program name), run the subcommand, return the exit status."""
+    try:
+        return _run_cli(argv)
+    except BrokenPipeError:
+        _silence_stdout()
+        return EXIT_BROKEN_PIPE
+
+
+def _run_cli(argv: list[str]) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if getattr(args, "_module", None) is None:
         parser.print_help()
         return 2
+    streams = _Streams()
     try:
-        summary = args._module.run(args)
+        _bind_streams(args, streams)
+        _make_output_folder(args)
+        with _stdout_to_stderr(streams.stdout_path is not None):
+            summary = args._module.run(args)
+        if streams.stdout_path is not None:
+            with open(streams.stdout_path, "rb") as fh:
+                shutil.copyfileobj(fh, sys.stdout.buffer)
+            sys.stdout.buffer.flush()
     except MRMError as e:
-        print(f"mrm {args.command}: error: {e}", file=sys.stderr)
-        return 2
-    except (FileNotFoundError, IsADirectoryError, PermissionError) as e:
-        print(f"mrm {args.command}: error: {e.strerror}: {e.filename}", file=sys.stderr)
-        return 2
+        return _fail(args.command, str(e))
+    except BrokenPipeError:
+        raise
+    except OSError as e:
+        return _fail(args.command, os_error_text(e))
+    except (OverflowError, ZeroDivisionError) as e:
+        return _fail(args.command, f"number out of range: {e}")
+    except MemoryError:
+        return _fail(args.command, "not enough memory for this input (try a smaller --limit)")
+    finally:
+        streams.close()
     if args.json and summary is not None:
-        try:
-            print(json.dumps(summary, default=_json_default), flush=True)
-        except BrokenPipeError:
-            # `mrm ... --json | head` closed the pipe early: not an error of the command. Point stdout at
-            # devnull so the interpreter's final flush does not print a traceback either.
-            import os
-
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        print(json.dumps(summary, default=_json_default), flush=True)
     return 0
 
 
-def main() -> int:
-    """Console entry for running the subcommands without the GUI package."""
-    return run_cli(sys.argv[1:])
+def _fail(command: str, message: str) -> int:
+    print(f"mrm {command}: error: {message}", file=sys.stderr)
+    return 2
+
+
+def _gui_available() -> bool:
+    import importlib.util
+
+    return all(importlib.util.find_spec(m) is not None for m in ("PySide6", "pyqtgraph"))
+
+
+def main(argv: list[str] | None = None) -> int:
+    """The ``mrm`` command: a subcommand, ``--version``, or the desktop application (``gui`` extra)."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        if args and args[0] in SUBCOMMANDS:
+            return run_cli(args)
+        if args[:1] in (["--version"], ["-V"]):
+            print(version_text(), flush=True)
+            return 0
+        if not _gui_available():
+            if args[:1] in (["-h"], ["--help"], ["--help-commands"]):
+                build_parser().print_help()
+                sys.stdout.flush()
+                return 0
+            print(
+                "mrm: the desktop application needs the gui extra: pip install 'mr-modeler[gui]'. "
+                "The headless subcommands work without it: mrm --help",
+                file=sys.stderr,
+            )
+            return 2
+        from mrm.app.gui import run_gui
+
+        status: int = run_gui(args)
+        sys.stdout.flush()
+        return status
+    except BrokenPipeError:
+        _silence_stdout()
+        return EXIT_BROKEN_PIPE

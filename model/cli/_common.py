@@ -5,21 +5,33 @@ Subcommands that take one object read it with :func:`load_object` (a thin layer 
 :func:`project_objects` gives every object of a project, for the commands that can take them all.
 :func:`read_input` is the older all-objects reader, kept for the commands that still use it.
 
+The command-line conventions every subcommand shares (docs/adr/0011) are argument helpers here:
+:func:`add_inputs_argument` + :func:`expand_inputs` (files, directories, quoted globs, ``-``),
+:func:`add_jobs_argument` (``--jobs``, capped at the CPU count), :func:`add_image_arguments`
+(``--threshold``, ``--invert``), :func:`progress` (a bar on stderr for work over a second) and
+:func:`run_batch` (several inputs over worker processes, each result reported as soon as it is done).
+
 (A module whose name starts with "_" is not a subcommand.)
 """
 
 from __future__ import annotations
 
 import argparse
+import glob
 import math
 import os
+import re
 import sys
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from mrm.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
-from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError
+from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, MRMError, ParameterError
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, read_geometry
 from mrm.reps.pixels import PixelSet
@@ -60,6 +72,252 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
     return value
+
+
+def cpu_count() -> int:
+    """The CPUs this process may run on (its affinity mask where the system has one)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def jobs_count(text: str) -> int:
+    """Argparse type of ``--jobs``: a positive integer, capped at the CPU count (more would only thrash)."""
+    return min(positive_int(text), cpu_count())
+
+
+def add_jobs_argument(parser: argparse.ArgumentParser) -> None:
+    """Add ``--jobs N``: worker processes for several inputs (at most the CPU count)."""
+    parser.add_argument(
+        "-j",
+        "--jobs",
+        type=jobs_count,
+        default=1,
+        metavar="N",
+        help=f"worker processes for several inputs (capped at the CPU count, {cpu_count()} here)",
+    )
+
+
+def add_image_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add ``--threshold T`` and ``--invert`` (how a grey or colour image becomes a pixel set)."""
+    parser.add_argument(
+        "--threshold",
+        type=finite_float,
+        default=None,
+        metavar="T",
+        help="grey images: pixels brighter than T are in the set (default: binary images as they are, "
+        "others at Otsu's threshold)",
+    )
+    parser.add_argument(
+        "--invert",
+        action="store_true",
+        help="take the dark pixels instead (black-on-white drawings, potrace's convention)",
+    )
+
+
+def add_inputs_argument(parser: argparse.ArgumentParser, help: str) -> None:
+    """Add the positional ``IN...``: files, directories, quoted globs (``'scans/*.png'``) or ``-``."""
+    parser.add_argument(
+        "inputs",
+        nargs="+",
+        metavar="IN",
+        help=help + "; a directory stands for its files of those types, a quoted glob for its matches "
+        "(also on shells that do not expand them), - for standard input",
+    )
+
+
+def expand_inputs(items: Sequence[str], allowed: tuple[str, ...]) -> list[str]:
+    """The input files named by ``items``: files as they are, directories and globs expanded.
+
+    A directory gives its regular files (not recursive) whose extension is in ``allowed``, sorted by name;
+    a pattern holding ``*``, ``?`` or ``[`` that names no existing file gives its matches (``**`` recurses),
+    sorted. ``-`` (standard input) is kept as it is. Nothing matched is an error naming the item.
+    """
+    out: list[str] = []
+    for item in items:
+        p = Path(item)
+        if item == "-" or p.is_file():
+            out.append(item)
+        elif p.is_dir():
+            found = sorted(str(c) for c in p.iterdir() if c.suffix.lower() in allowed and c.is_file())
+            if not found:
+                raise ParameterError(f"{item}: the directory holds no {' '.join(allowed)} file")
+            out.extend(found)
+        elif any(ch in item for ch in "*?[") and not p.exists():
+            matches = sorted(m for m in glob.glob(item, recursive=True) if Path(m).is_file())
+            if not matches:
+                raise ParameterError(f"{item}: no file matches this pattern")
+            out.extend(matches)
+        else:
+            out.append(item)  # the reader reports it (no such file, a FIFO, …) with its own message
+    return out
+
+
+class _Bar:
+    """A progress bar (tqdm) that redraws itself while work without progress reports runs."""
+
+    def __init__(self, bar: Any) -> None:
+        self.bar = bar
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        if bar.total is None or bar.total == 1:
+            self._thread = threading.Thread(target=self._tick, daemon=True)
+            self._thread.start()
+
+    def _tick(self) -> None:
+        while not self._stop.wait(0.5):
+            self.bar.refresh()
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        """``ProgressLike``: move to ``fraction`` (of a one-unit bar) and show ``message``."""
+        if fraction is not None and self.bar.total:
+            self.bar.n = min(self.bar.total, fraction * self.bar.total)
+        if message:
+            self.bar.set_postfix_str(message, refresh=False)
+        self.bar.refresh()
+
+    def advance(self, n: int = 1) -> None:
+        """One more unit (a file) done."""
+        self.bar.update(n)
+
+    def write(self, line: str) -> None:
+        """Print a line on stdout without breaking the bar."""
+        self.bar.write(line, file=sys.stdout)
+
+    def close(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join()
+        self.bar.close()
+
+
+class _NoBar:
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        pass
+
+    def advance(self, n: int = 1) -> None:
+        pass
+
+    def write(self, line: str) -> None:
+        print(line, file=sys.stdout, flush=True)
+
+    def close(self) -> None:
+        pass
+
+
+def progress_enabled(args: argparse.Namespace) -> bool:
+    """Whether to draw a progress bar: stderr is a terminal and ``--quiet`` was not given."""
+    if getattr(args, "quiet", False):
+        return False
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+@contextmanager
+def progress(args: argparse.Namespace, total: int | None = None, desc: str = "") -> Iterator[Any]:
+    """A progress bar on stderr, shown only once the work has taken a second (tqdm's ``delay``).
+
+    Yields an object with ``update(fraction, message)`` (the ``ProgressLike`` of :mod:`mrm.ops`),
+    ``advance()`` (one of ``total`` units done) and ``write(line)`` (a result line on stdout). Without a
+    terminal on stderr, or with ``--quiet``, nothing is drawn and ``write`` just prints.
+    """
+    if not progress_enabled(args):
+        bar: Any = _NoBar()
+    else:
+        from tqdm import tqdm
+
+        bar = _Bar(
+            tqdm(total=total if total is not None else 1, desc=desc, delay=1.0, file=sys.stderr, leave=False)
+        )
+    try:
+        yield bar
+    finally:
+        bar.close()
+
+
+def _call(
+    job: tuple[Callable[..., dict[str, Any]], tuple[Any, ...]],
+) -> tuple[dict[str, Any] | None, str | None]:
+    """Run one batch job in a worker; an input's error comes back as one line, never as a traceback."""
+    func, job_args = job
+    from mrm.cli import os_error_text
+
+    try:
+        return func(*job_args), None
+    except MRMError as e:
+        return None, str(e)
+    except OSError as e:
+        return None, os_error_text(e)
+    except (OverflowError, ZeroDivisionError) as e:
+        return None, f"number out of range: {e}"
+    except MemoryError:
+        return None, "not enough memory"
+
+
+def run_batch(
+    args: argparse.Namespace,
+    func: Callable[..., dict[str, Any]],
+    jobs: Sequence[tuple[Any, ...]],
+    line: Callable[[dict[str, Any]], str],
+    *,
+    desc: str = "",
+) -> tuple[list[dict[str, Any]], list[str]]:
+    """Run ``func(*job)`` for every job (one input each) and report each result as soon as it finishes.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        For ``--jobs`` (worker processes), ``--quiet`` and ``--json`` (no per-file lines with ``--json``).
+    func : callable
+        A module-level function (it is sent to worker processes) returning the input's summary.
+    jobs : sequence of tuple
+        The arguments of each call; ``job[0]`` names the input in error messages.
+    line : callable
+        The line printed on stdout for a finished input.
+
+    Returns
+    -------
+    summaries : list of dict
+        The finished inputs' summaries, in input order.
+    errors : list of str
+        ``"INPUT: message"`` for each input that failed (each also printed on stderr when it happens).
+    """
+    results: dict[int, dict[str, Any]] = {}
+    errors: list[tuple[int, str]] = []
+    n_workers = min(getattr(args, "jobs", 1), len(jobs), cpu_count())
+
+    def report(i: int, outcome: tuple[dict[str, Any] | None, str | None], bar: Any) -> None:
+        summary, error = outcome
+        bar.advance()
+        if summary is not None:
+            results[i] = summary
+            if not args.json and not getattr(args, "quiet", False):
+                bar.write(line(summary))
+        else:
+            errors.append((i, f"{jobs[i][0]}: {error}"))
+            print(f"mrm {args.command}: error: {jobs[i][0]}: {error}", file=sys.stderr, flush=True)
+
+    with progress(args, total=len(jobs), desc=desc) as bar:
+        if n_workers <= 1:
+            for i, job in enumerate(jobs):
+                report(i, _call((func, tuple(job))), bar)
+        else:
+            pool = ProcessPoolExecutor(max_workers=n_workers)
+            try:
+                pending: dict[Future[Any], int] = {
+                    pool.submit(_call, (func, tuple(job))): i for i, job in enumerate(jobs)
+                }
+                while pending:
+                    done, _ = wait(pending, return_when=FIRST_COMPLETED)
+                    for fut in done:
+                        report(pending.pop(fut), fut.result(), bar)
+            finally:
+                # On a closed stdout (BrokenPipeError) or Ctrl+C: do not start the inputs still queued.
+                pool.shutdown(wait=True, cancel_futures=True)
+    return [results[i] for i in sorted(results)], [e for _, e in sorted(errors)]
 
 
 def finite_float(text: str) -> float:
@@ -107,18 +365,65 @@ def load_object(
     model: str | None = None,
     *,
     threshold: float | None = None,
+    invert: bool = False,
     limit: int = DEFAULT_PIXEL_LIMIT,
 ) -> tuple[Kind, Any, str]:
     """Read one object: a pixel file, a vector file, or the object ``object_name`` of a project.
 
     Returns ``(kind, value, model)`` as :func:`mrm.cli._project_input.load_input` does (value in its
     source representation; model the one asked for, else the project's, else 'standard'), with ``limit``
-    also bounding the size of an image read from a pixel file.
+    also bounding the size of an image read from a pixel file and ``invert`` taking an image's dark pixels.
     """
     if object_name is None and Path(path).suffix.lower() in PIXEL_EXTENSIONS:
         # load_input reads images under the default limit only; read them here so that --limit applies.
-        return "discrete", read_pixels(path, threshold=threshold, limit=limit), model or "standard"
+        ps = read_image(path, threshold=threshold, invert=invert, limit=limit)
+        return "discrete", ps, model or "standard"
+    if invert:
+        raise ParameterError(f"{os.fspath(path)}: --invert applies to image inputs only")
     return load_input(path, object_name, model, threshold=threshold)
+
+
+def read_image(
+    path: str | os.PathLike[str],
+    *,
+    threshold: float | None = None,
+    invert: bool = False,
+    limit: int = DEFAULT_PIXEL_LIMIT,
+) -> PixelSet:
+    """Read a pixel file; ``invert`` takes the pixels *not* in the set, within the image's frame."""
+    ps = read_pixels(path, threshold=threshold, limit=limit)
+    if not invert:
+        return ps
+    return ps.complement(image_frame(path))
+
+
+_NETPBM_ORIGIN = re.compile(rb"#\s*mrm:origin\s+(-?\d+)\s+(-?\d+)")
+
+
+def image_frame(path: str | os.PathLike[str]) -> tuple[int, int, int, int]:
+    """The box (xmin, ymin, xmax, ymax) of every pixel of an image file, from its header.
+
+    A picture's background is everything in its frame that is not in the set; ``--invert`` needs that
+    frame, which the (cropped) pixel set has lost. NPZ files hold sets, not pictures: refused.
+    """
+    from PIL import Image
+
+    from mrm.io.pixel_files import ORIGIN_KEY, parse_origin
+
+    ext = Path(path).suffix.lower()
+    if ext not in (".png", ".pbm", ".pgm"):
+        raise ParameterError(f"{os.fspath(path)}: --invert applies to PNG and Netpbm images only")
+    name = Path(path).name
+    with Image.open(path) as im:  # reads the header only
+        width, height = im.size
+        text = getattr(im, "text", {}) if ext == ".png" else {}
+        origin = parse_origin(text[ORIGIN_KEY], name) if ORIGIN_KEY in text else (0, 0)
+    if ext != ".png":
+        with open(path, "rb") as fh:
+            m = _NETPBM_ORIGIN.search(fh.read(4096))
+        if m is not None:
+            origin = (int(m.group(1)), int(m.group(2)))
+    return origin[0], origin[1], origin[0] + width - 1, origin[1] + height - 1
 
 
 def read_project_input(path: str | os.PathLike[str]) -> Input:
@@ -134,6 +439,7 @@ def read_input(
     allowed: tuple[str, ...],
     *,
     threshold: float | None = None,
+    invert: bool = False,
     limit: int = DEFAULT_PIXEL_LIMIT,
 ) -> Input:
     """Read a pixel file, a vector file or a project, chosen by the extension (one of ``allowed``)."""
@@ -141,7 +447,7 @@ def read_input(
     if ext == PROJECT_EXTENSION:
         return read_project_input(path)
     if ext in PIXEL_EXTENSIONS:
-        return Input("discrete", pixels=read_pixels(path, threshold=threshold, limit=limit))
+        return Input("discrete", pixels=read_image(path, threshold=threshold, invert=invert, limit=limit))
     if ext in VECTOR_EXTENSIONS:
         return Input("euclidean", geometry=read_geometry(path))
     raise FileFormatError(f"{os.fspath(path)}: cannot read {ext} files")  # unreachable with sane ``allowed``

@@ -3,10 +3,13 @@
 One input: ``OUT`` is the file to write (.geojson, .json, .wkt or .svg). Several inputs: ``OUT`` is either a
 directory (existing, or a path ending with a separator or without an extension: it is created), where each
 input ``NAME.png`` gives ``NAME.geojson``, or a pattern holding ``{stem}`` (the input's name without its
-extension), e.g. ``out/{stem}-R.wkt``. ``--jobs N`` spreads the inputs over N worker processes.
+extension), e.g. ``out/{stem}-R.wkt``. Inputs may be directories (their pixel files) and quoted globs;
+``--jobs N`` spreads them over N worker processes (at most the CPU count) and each input's line is printed
+as soon as it is done. ``-`` reads standard input and ``-o -`` writes on standard output.
 
 Inputs are pixel files (.png .pbm .pgm .npz: grey images are cut at Otsu's threshold unless
-``--threshold`` is given) or projects (.mrm: the union of their objects' pixels under the model).
+``--threshold`` is given; ``--invert`` takes the dark pixels) or projects (.mrm: the union of their
+objects' pixels under the model).
 ``--json`` prints, for one input, the info keys of the result (``model``, ``pixels``, ``components``,
 ``holes``, ``euler``, ``boundary_chains``, ``segments``, ``vertices``) plus ``seconds`` (the time R took),
 ``input`` and ``output``; for several inputs, the same keys summed over the inputs plus ``files``, the list
@@ -18,24 +21,33 @@ from __future__ import annotations
 import argparse
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
 from mrm.cli._common import (
     PROJECT_EXTENSION,
+    add_image_arguments,
+    add_inputs_argument,
+    add_jobs_argument,
     add_limit_argument,
+    expand_inputs,
     extension_of,
-    finite_float,
-    positive_int,
     print_table,
+    progress,
     read_input,
+    run_batch,
 )
-from mrm.errors import FileFormatError, MRMError, ParameterError
+from mrm.errors import FileFormatError, ParameterError
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
-from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
+from mrm.io.vector_files import (
+    MAX_VECTOR_FILE_BYTES,
+    VECTOR_EXTENSIONS,
+    write_geojson,
+    write_svg,
+    write_wkt,
+)
 from mrm.reps.pixels import PixelSet
-from mrm.summary import summarize
+from mrm.summary import count_vertices, summarize
 
 NAME = "reconstruct"
 HELP = "reversible continuation of pixel files (.png .pbm .pgm .npz .mrm) into polygons (.geojson .wkt .svg)"
@@ -46,10 +58,8 @@ _SUM_KEYS = ("pixels", "components", "holes", "euler", "boundary_chains", "segme
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the inputs, ``-o OUT``, ``--jobs``, ``--threshold`` and ``--limit``."""
-    parser.add_argument(
-        "inputs", nargs="+", metavar="IN", help="pixel files (.png .pbm .pgm .npz) or projects (.mrm)"
-    )
+    """Add the inputs, ``-o OUT``, ``--jobs``, ``--threshold``, ``--invert`` and ``--limit``."""
+    add_inputs_argument(parser, "pixel files (.png .pbm .pgm .npz) or projects (.mrm)")
     parser.add_argument(
         "-o",
         "--output",
@@ -58,17 +68,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="the vector file (.geojson .json .wkt .svg); for several inputs a directory or a pattern "
         "holding {stem}",
     )
-    parser.add_argument(
-        "--jobs", type=positive_int, default=1, metavar="N", help="worker processes for several inputs"
-    )
-    parser.add_argument(
-        "--threshold",
-        type=finite_float,
-        default=None,
-        metavar="T",
-        help="grey images: pixels brighter than T are in the set (default: binary images as they are, "
-        "others at Otsu's threshold)",
-    )
+    add_jobs_argument(parser)
+    add_image_arguments(parser)
     add_limit_argument(parser)
 
 
@@ -97,14 +98,16 @@ def _outputs(inputs: list[str], output: str) -> list[str]:
     return outs
 
 
-def _pixels_of(path: str, threshold: float | None, limit: int, model: str | None) -> tuple[PixelSet, str]:
-    src = read_input(path, INPUTS, threshold=threshold, limit=limit)
+def _pixels_of(
+    path: str, threshold: float | None, limit: int, model: str | None, invert: bool = False
+) -> tuple[PixelSet, str]:
+    src = read_input(path, INPUTS, threshold=threshold, invert=invert, limit=limit)
     chosen = model or src.model or "standard"
     if src.kind == "discrete":
         assert src.pixels is not None
         return src.pixels, chosen
-    if threshold is not None:
-        raise ParameterError("--threshold applies to image inputs only")
+    if threshold is not None or invert:
+        raise ParameterError("--threshold and --invert apply to image inputs only")
     from mrm.cli._common import discretize_geometry
 
     union = PixelSet.empty()
@@ -115,8 +118,22 @@ def _pixels_of(path: str, threshold: float | None, limit: int, model: str | None
     return union, chosen
 
 
+#: Bytes per vertex of a GeoJSON polygon at most: two 17-significant-digit coordinates, ``[``, ``,``, ``]``
+#: and a separator, each coordinate up to 24 characters (``-1.2345678901234567e+300``).
+_GEOJSON_BYTES_PER_VERTEX = 2 * 24 + 4
+
+
 def _write(geom: Any, path: str, model: str, source: str) -> None:
     ext = Path(path).suffix.lower()
+    if ext in (".geojson", ".json"):
+        # What we write must read back: refuse, before writing, a file the vector reader would refuse.
+        size = count_vertices(geom) * _GEOJSON_BYTES_PER_VERTEX
+        if size > MAX_VECTOR_FILE_BYTES:
+            raise FileFormatError(
+                f"{path}: the result has {count_vertices(geom):_} vertices, up to {size / 2**20:.0f} MB of "
+                f"GeoJSON, more than the {MAX_VECTOR_FILE_BYTES >> 20} MB a vector file may hold to be read "
+                "back; write .wkt or .svg, or reconstruct a part of the image"
+            )
     if ext == ".svg":
         write_svg(geom, path)
     elif ext == ".wkt":
@@ -126,50 +143,53 @@ def _write(geom: Any, path: str, model: str, source: str) -> None:
 
 
 def reconstruct_file(
-    path: str, output: str, model: str | None, threshold: float | None, limit: int
+    path: str,
+    output: str,
+    model: str | None,
+    threshold: float | None,
+    limit: int,
+    invert: bool = False,
+    bar: Any = None,
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
     from mrm.geometry.reconstruct import reconstruct
 
-    ps, chosen = _pixels_of(path, threshold, limit, model)
+    ps, chosen = _pixels_of(path, threshold, limit, model, invert)
+    if bar is not None:
+        bar.update(None, f"{len(ps):_} pixels")
     t0 = time.perf_counter()
     geom = reconstruct(ps, chosen)
     seconds = time.perf_counter() - t0
     Path(output).parent.mkdir(parents=True, exist_ok=True)
+    if bar is not None:
+        bar.update(None, "writing")
     _write(geom, output, chosen, path)
     summary = {"input": str(path), "output": str(output), **summarize(ps, chosen, geom=geom)}
     summary["seconds"] = seconds
     return summary
 
 
-def _one(job: tuple[str, str, str | None, float | None, int]) -> tuple[dict[str, Any] | None, str | None]:
-    try:
-        return reconstruct_file(*job), None
-    except MRMError as e:
-        return None, f"{job[0]}: {e}"
-    except OSError as e:
-        return None, f"{job[0]}: {e.strerror or e}"
+def _line(f: dict[str, Any]) -> str:
+    return f"{f['input']} -> {f['output']}: {f['vertices']} vertices, {f['seconds']:.3f} s"
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Reconstruct every input and write it; return the summary (see the module docstring)."""
-    inputs = [str(i) for i in args.inputs]
+    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
     for i in inputs:
         extension_of(i, INPUTS, "supported input file")
     outputs = _outputs(inputs, str(args.output))
-    jobs = [(i, o, args.model, args.threshold, args.limit) for i, o in zip(inputs, outputs, strict=True)]
+    jobs = [
+        (i, o, args.model, args.threshold, args.limit, args.invert)
+        for i, o in zip(inputs, outputs, strict=True)
+    ]
     if len(jobs) == 1:
-        summary = reconstruct_file(*jobs[0])
+        with progress(args, desc=f"reconstruct {Path(inputs[0]).name}") as bar:
+            summary = reconstruct_file(*jobs[0], bar=bar)
         if not args.json:
             print_table(summary)
         return summary
-    if args.jobs > 1:
-        with ProcessPoolExecutor(max_workers=min(args.jobs, len(jobs))) as pool:
-            results = list(pool.map(_one, jobs))
-    else:
-        results = [_one(j) for j in jobs]
-    files = [r for r, _ in results if r is not None]
-    errors = [e for _, e in results if e is not None]
+    files, errors = run_batch(args, reconstruct_file, jobs, _line, desc="reconstruct")
     total: dict[str, Any] = {
         "model": args.model or (files[0]["model"] if files else "standard"),
         "inputs": len(jobs),
@@ -179,8 +199,6 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         total[k] = None if any(v is None for v in values) else sum(values)
     total["files"] = files
     if not args.json:
-        for f in files:
-            print(f"{f['input']} -> {f['output']}: {f['vertices']} vertices, {f['seconds']:.3f} s")
         print_table(total)
     if errors:
         raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))

@@ -106,6 +106,79 @@ class PixelSet:
         return cls(np.zeros((0, 0), dtype=bool))
 
     @classmethod
+    def from_image(
+        cls,
+        image: npt.ArrayLike,
+        origin: tuple[int, int] = (0, 0),
+        *,
+        threshold: float | None = None,
+        invert: bool = False,
+    ) -> PixelSet:
+        """Build a set from an image array as numpy, Pillow and matplotlib hold it: **row 0 at the top**.
+
+        Parameters
+        ----------
+        image : array_like, shape (H, W) or (H, W, 3|4)
+            A boolean mask, a grey image or a colour image (colour is read as its luminance).
+        origin : tuple of int
+            The pixel (x0, y0) of the image's **bottom-left** sample (last row, column 0), as the
+            ``mrm:origin`` of an image file: image row r is y = y0 + H − 1 − r, column c is x = x0 + c.
+        threshold : float, optional
+            Grey and colour images: samples brighter than it are in the set (default: Otsu's threshold;
+            boolean images and images holding only 0 and one other value keep their non-zero samples; float
+            images, read as values in [0, 1], are cut at 0.5).
+        invert : bool
+            Take the dark samples instead (black-on-white drawings, potrace's convention).
+
+        Returns
+        -------
+        PixelSet
+            The same set :func:`mrm.io.pixel_files.read_pixels` gives for that image saved as a PNG.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> img = np.array([[1, 0],
+        ...                 [1, 1]], dtype=bool)   # an L: the top row holds one pixel
+        >>> ps = PixelSet.from_image(img)
+        >>> sorted(ps)
+        [(0, 0), (0, 1), (1, 0)]
+        >>> bool((ps.to_image() == img).all())
+        True
+        """
+        from mrm.io.threshold import binarize, grey_of
+
+        a = np.asarray(image)
+        if a.ndim == 3 and a.shape[2] in (3, 4):
+            a = grey_of(a)
+        if a.ndim != 2:
+            raise ValueError(f"an image must be 2-D (or H×W×3, H×W×4 for colour), got shape {a.shape}")
+        if a.dtype == np.bool_:
+            rows = a
+        elif a.dtype.kind == "f":
+            # Float images (matplotlib's imread, skimage) hold values in [0, 1]: cut at the middle.
+            rows = a > (0.5 if threshold is None else threshold)
+        else:
+            rows = binarize(a, threshold)
+        if invert:
+            rows = ~rows
+        return cls(rows[::-1], origin)
+
+    def to_image(self, box: Box | None = None) -> BoolArray:
+        """Return the set as a boolean image with **row 0 at the top** (the inverse of :meth:`from_image`).
+
+        Parameters
+        ----------
+        box : (xmin, ymin, xmax, ymax), optional
+            The pixels the image covers (default: the bounding box; the empty set gives a 0×0 image). Its
+            bottom-left pixel (xmin, ymin) is the ``origin`` that gives the set back through
+            :meth:`from_image`.
+        """
+        if box is None:
+            return np.ascontiguousarray(self._mask[::-1])
+        return np.ascontiguousarray(self.to_array(box)[::-1])
+
+    @classmethod
     def from_points(cls, points: npt.ArrayLike | Iterable[tuple[int, int]]) -> PixelSet:
         """Build a set from integer points, an (N, 2) array of (x, y)."""
         raw = np.asarray(points if isinstance(points, np.ndarray) else list(cast("Iterable[Any]", points)))

@@ -1,0 +1,1 @@
+"""The user guide and its pictures, shipped as package data of ``mrm.docs`` (see ``mrm.resources``)."""

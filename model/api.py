@@ -1,0 +1,431 @@
+"""The functions of the curated library API (``import mrm``), as thin, documented wrappers.
+
+Each function takes numpy arrays, :class:`~mrm.reps.pixels.PixelSet` / :class:`~mrm.reps.pixels.LabelMap`
+objects and shapely geometries, and returns the same kinds: no Qt, no project, no file. Arrays given where a
+pixel set is expected are **images** (row 0 at the top, as numpy, Pillow and matplotlib hold them) and go
+through :meth:`PixelSet.from_image`, so a picture never comes out upside down.
+
+The operations are the paper's (DESIGN §5–§8); each wrapper calls the one implementation in
+:mod:`mrm.ops` or :mod:`mrm.geometry` and adds nothing but the conversion of its inputs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.errors import DEFAULT_PIXEL_LIMIT
+from mrm.reps.pixels import LabelMap, PixelSet
+
+__all__ = [
+    "bound",
+    "corefine",
+    "discretize",
+    "hausdorff",
+    "polygonize",
+    "reconstruct",
+    "rotate",
+    "scale",
+    "segment",
+    "simplify",
+    "union",
+]
+
+
+def as_pixels(obj: PixelSet | npt.ArrayLike) -> PixelSet:
+    """A pixel set as it is; an array as an image (row 0 at the top, :meth:`PixelSet.from_image`)."""
+    if isinstance(obj, PixelSet):
+        return obj
+    return PixelSet.from_image(obj)
+
+
+def _as_object(obj: Any) -> Any:
+    """A shapely geometry or pixel set as it is; an array as an image."""
+    if isinstance(obj, PixelSet) or hasattr(obj, "geom_type"):
+        return obj
+    return PixelSet.from_image(obj)
+
+
+def discretize(geom: Any, model: str = "standard", *, limit: int | None = DEFAULT_PIXEL_LIMIT) -> PixelSet:
+    """Return the exact discretization D(E) of a shapely geometry under ``model`` (DESIGN §2).
+
+    Parameters
+    ----------
+    geom : shapely geometry
+        Polygons, lines and points (any mix); coordinates are pixel units, pixel (x, y) is centred on (x, y).
+    model : {"standard", "supercover", "gauss"}
+    limit : int or None
+        Largest bounding box (in pixels) of the result, checked before any work.
+
+    Returns
+    -------
+    PixelSet
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> import mrm
+    >>> # gauss takes the centres of [0, 3) × [0, 2): the crossing test is half-open (DESIGN §2)
+    >>> sorted(mrm.discretize(box(0, 0, 3, 2), "gauss"))
+    [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)]
+    """
+    from mrm.geometry.discretize import discretize as _discretize
+
+    return _discretize(geom, model, limit=limit)
+
+
+def reconstruct(pixels: PixelSet | npt.ArrayLike, model: str = "standard") -> Any:
+    """Return the reversible continuation R(A): a polygon whose discretization is exactly A (DESIGN §3).
+
+    Parameters
+    ----------
+    pixels : PixelSet or array_like
+        The pixel set, or an image (row 0 at the top; see :meth:`PixelSet.from_image`).
+    model : {"standard", "supercover", "gauss"}
+
+    Returns
+    -------
+    shapely Polygon or MultiPolygon
+        ``discretize(reconstruct(A, m), m) == A`` for every A and model m.
+
+    Examples
+    --------
+    >>> import numpy as np, mrm
+    >>> img = np.zeros((5, 5), bool); img[1:4, 1:4] = True
+    >>> poly = mrm.reconstruct(img, "gauss")
+    >>> mrm.discretize(poly, "gauss") == mrm.PixelSet.from_image(img)
+    True
+    """
+    from mrm.geometry.reconstruct import reconstruct as _reconstruct
+
+    return _reconstruct(as_pixels(pixels), model)
+
+
+def polygonize(
+    labels: LabelMap | npt.ArrayLike, model: str = "gauss", *, origin: tuple[int, int] = (0, 0)
+) -> dict[int, Any]:
+    """Reconstruct every label of a label map as a watertight subdivision: one polygon per label.
+
+    Parameters
+    ----------
+    labels : LabelMap or array_like of int
+        A label map, or an integer image (row 0 at the top); label 0 is the background.
+    model : {"gauss"}
+        The discretization every part reconstructs exactly under.
+    origin : tuple of int
+        For an image: the pixel of its bottom-left sample.
+
+    Returns
+    -------
+    dict of int to Polygon or MultiPolygon
+        ``{label: polygon}``; neighbouring parts share their edges exactly (no gap, no overlap).
+
+    Examples
+    --------
+    >>> import numpy as np, mrm
+    >>> parts = mrm.polygonize(np.array([[1, 1, 2], [1, 2, 2]]))
+    >>> sorted(parts), parts[1].intersection(parts[2]).area
+    ([1, 2], 0.0)
+    """
+    from mrm.geometry.subdivision import reconstruct_label_map
+
+    if not isinstance(labels, LabelMap):
+        a = np.asarray(labels)
+        if a.ndim != 2 or a.dtype.kind not in "iub":
+            raise ValueError(f"a label image must be a 2-D integer array, got {a.dtype} {a.shape}")
+        labels = LabelMap(a[::-1].astype(np.int32), origin)
+    return reconstruct_label_map(labels, model)
+
+
+def segment(
+    chain: str | Sequence[int] | npt.ArrayLike,
+    *,
+    start: tuple[int, int] = (0, 0),
+    mode: str = "greedy",
+    closed: bool = False,
+    adjacency: int = 4,
+) -> list[Any]:
+    """Cut a digital curve into digital straight segments (DGtal's greedy or maximal segmentation).
+
+    Parameters
+    ----------
+    chain : str of Freeman codes, or array_like of int, shape (n, 2)
+        Freeman codes (0 = E, 1 = N, 2 = W, 3 = S) from ``start``, or the points of the curve.
+    start : tuple of int
+        The first point, for Freeman codes.
+    mode : {"greedy", "maximal"}
+    closed : bool
+        Read the curve as closed.
+    adjacency : {4, 8}
+        4: standard (4-connected) segments; 8: naive (8-connected) ones.
+
+    Returns
+    -------
+    list of Segment
+        ``first``, ``last`` (indices of points), ``a``, ``b``, ``mu``, ``omega``: μ ≤ a·x − b·y < μ + ω.
+
+    Examples
+    --------
+    >>> import mrm
+    >>> # E E N repeated: one segment of direction (2, 1), 0 ≤ x − 2y < 3 on its nine points
+    >>> [s.as_list() for s in mrm.segment("00100100")]
+    [[0, 8, 1, 2, 0, 3]]
+    """
+    from mrm.errors import ParameterError
+    from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
+
+    if isinstance(chain, str):
+        bad = chain.translate(str.maketrans("", "", "0123"))
+        if bad:
+            raise ParameterError(f"Freeman codes are 0-3 (0=E 1=N 2=W 3=S), got {bad[0]!r}")
+        pts = chain_points(start, chain)
+    else:
+        pts = np.asarray(chain, dtype=np.int64)
+    if mode == "greedy":
+        return list(greedy_segmentation(pts, closed=closed, adjacency=adjacency))
+    if mode == "maximal":
+        return list(maximal_segments(pts, closed=closed, adjacency=adjacency))
+    raise ParameterError(f"mode must be 'greedy' or 'maximal', got {mode!r}")
+
+
+def scale(
+    obj: Any,
+    alpha: object,
+    center: object = None,
+    model: str = "standard",
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+) -> PixelSet:
+    """Discrete smooth scaling DSS_α(A) = D(Sc_α(R(A))), computed exactly (paper §4).
+
+    Parameters
+    ----------
+    obj : PixelSet, array_like image or shapely geometry
+        A (a geometry E stands for D(E)).
+    alpha : number
+        α > 0; a float is read as the decimal it prints as (``0.2`` is 1/5), ``"1/3"`` and Fractions too.
+    center : pair of numbers, optional
+        The centre of the scaling (the origin by default).
+    model : {"standard", "supercover", "gauss"}
+    limit : int or None
+        Largest result (pixels of its bounding box), estimated before the work.
+
+    Returns
+    -------
+    PixelSet
+
+    Examples
+    --------
+    >>> import mrm
+    >>> # R_gauss of the 2×2 block is [-1/4, 5/4]²; doubled, [-1/2, 5/2]² holds the centres 0, 1, 2
+    >>> mrm.scale(mrm.PixelSet.box(0, 0, 1, 1), 2, model="gauss") == mrm.PixelSet.box(0, 0, 2, 2)
+    True
+    """
+    from mrm.ops.outcome import discrete_of
+    from mrm.ops.scaling import discrete_smooth_scaling
+
+    ps = discrete_of(_as_object(obj), model, limit)
+    out: PixelSet = discrete_smooth_scaling(ps, alpha, center, model, limit=limit).result
+    return out
+
+
+def rotate(
+    obj: Any,
+    angle: object,
+    center: object = None,
+    model: str = "standard",
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+) -> PixelSet:
+    """Discrete rotation dR_θ,C(A) = D(rot_θ,C(R(A))) with an exact rational rotation (paper §4).
+
+    Parameters
+    ----------
+    obj : PixelSet, array_like image or shapely geometry
+    angle : number
+        Degrees, counter-clockwise (y up).
+    center : pair of numbers, optional
+    model : {"standard", "supercover", "gauss"}
+    limit : int or None
+
+    Returns
+    -------
+    PixelSet
+
+    Examples
+    --------
+    >>> import mrm
+    >>> sorted(mrm.rotate(mrm.PixelSet.box(0, 0, 2, 0), 90, model="gauss"))
+    [(0, 0), (0, 1), (0, 2)]
+    """
+    from mrm.ops.outcome import discrete_of
+    from mrm.ops.rotation import discrete_rotation
+
+    ps = discrete_of(_as_object(obj), model, limit)
+    out: PixelSet = discrete_rotation(ps, angle, center, model, limit=limit).result
+    return out
+
+
+def simplify(
+    obj: Any,
+    alpha: object,
+    center: object = None,
+    model: str = "standard",
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+) -> Any:
+    """Simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): E redrawn on a grid of voxel size 1/α (paper §5).
+
+    Parameters
+    ----------
+    obj : shapely geometry, PixelSet or array_like image
+        E (a pixel set A stands for R(A)).
+    alpha : number
+        α > 0.
+    center : pair of numbers, optional
+    model : {"standard", "supercover", "gauss"}
+    limit : int or None
+
+    Returns
+    -------
+    shapely Polygon or MultiPolygon
+
+    Examples
+    --------
+    >>> from shapely.geometry import Point
+    >>> import mrm
+    >>> disc = Point(0, 0).buffer(10, 64)
+    >>> len(mrm.simplify(disc, 0.25).exterior.coords) < len(disc.exterior.coords)
+    True
+    """
+    from mrm.ops.simplify import simplification
+
+    return simplification(_as_object(obj), alpha, center, model, limit=limit).result
+
+
+def union(
+    first: Any, second: Any, model: str = "standard", *, limit: int | None = DEFAULT_PIXEL_LIMIT
+) -> Any:
+    """Euclidean-discrete union EDu(E, E′) = R(D(E) ∪ D(E′)) (paper §6).
+
+    Parameters
+    ----------
+    first, second : shapely geometry, PixelSet or array_like image
+    model : {"standard", "supercover", "gauss"}
+    limit : int or None
+
+    Returns
+    -------
+    shapely Polygon or MultiPolygon
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> import mrm
+    >>> u = mrm.union(box(0, 0, 2, 2), box(1, 1, 3, 3), "gauss")   # 2×2 blocks sharing pixel (1, 1)
+    >>> len(mrm.discretize(u, "gauss"))
+    7
+    """
+    from mrm.ops.boolean import euclidean_discrete_union
+
+    return euclidean_discrete_union(_as_object(first), _as_object(second), model, limit=limit).result
+
+
+def corefine(
+    first: Any,
+    second: Any,
+    model: str = "standard",
+    alpha: object = None,
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+) -> dict[str, Any]:
+    """Euclidean-discrete co-refinement EDco(E, E′), or EDco_α with ``alpha`` (paper §6).
+
+    Parameters
+    ----------
+    first, second : shapely geometry, PixelSet or array_like image
+    model : {"standard", "supercover", "gauss"}
+    alpha : number, optional
+        The precision factor α > 0.
+    limit : int or None
+
+    Returns
+    -------
+    dict
+        ``{"a_minus_b": …, "a_and_b": …, "b_minus_a": …}``, each a Polygon or MultiPolygon.
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> import mrm
+    >>> parts = mrm.corefine(box(0, 0, 2, 2), box(1, 1, 3, 3), "gauss")
+    >>> sorted(parts)
+    ['a_and_b', 'a_minus_b', 'b_minus_a']
+    """
+    from mrm.ops.boolean import euclidean_discrete_corefinement
+
+    out = euclidean_discrete_corefinement(_as_object(first), _as_object(second), model, alpha, limit=limit)
+    return dict(out.result)
+
+
+def bound(chain: str | Sequence[Any], model: str = "standard", *, exact_identities: bool = False) -> Any:
+    """Return the error bound of a chain of operations (DESIGN §8), exactly.
+
+    Parameters
+    ----------
+    chain : str or sequence of ChainStep
+        E.g. ``"DSS 5, DSS 2, DSS 0.5, DSS 0.2"`` (applied left to right), or steps from
+        :mod:`mrm.geometry.bounds`.
+    model : {"standard", "supercover", "gauss"}
+    exact_identities : bool
+        Merge round trips separated by an exact identity.
+
+    Returns
+    -------
+    BoundResult
+        ``bound`` (float or None), ``coefficient`` (Fraction, of √n), ``formula``, ``guarantee``.
+
+    Examples
+    --------
+    >>> import mrm
+    >>> b = mrm.bound("DSS 5, DSS 2, DSS 0.5, DSS 0.2")
+    >>> b.coefficient, round(b.bound, 4)
+    (Fraction(1, 2), 0.7071)
+    """
+    from mrm.geometry.bounds import bound_of_chain, parse_chain
+
+    steps = parse_chain(chain) if isinstance(chain, str) else list(chain)
+    return bound_of_chain(steps, model, exact_identities=exact_identities)
+
+
+def hausdorff(first: Any, second: Any, model: str = "standard") -> Any:
+    """Return the exact Hausdorff distance between two filled polygonal sets.
+
+    Parameters
+    ----------
+    first, second : shapely Polygon / MultiPolygon, PixelSet or array_like image
+        A pixel set (or image) stands for its continuation R(A) under ``model``.
+    model : {"standard", "supercover", "gauss"}
+        Only used for pixel inputs.
+
+    Returns
+    -------
+    HausdorffDistance
+        ``value`` (float nearest to the exact distance), ``squared`` (exact Fraction when rational),
+        ``witness`` (a point where it is reached).
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> import mrm
+    >>> mrm.hausdorff(box(0, 0, 1, 1), box(0, 0, 4, 1)).value
+    3.0
+    """
+    from mrm.geometry.hausdorff import hausdorff_distance
+
+    a, b = (_as_object(x) for x in (first, second))
+    a, b = (reconstruct(x, model) if isinstance(x, PixelSet) else x for x in (a, b))
+    return hausdorff_distance(a, b)
