@@ -156,15 +156,19 @@ def _flatten(g: BaseGeometry) -> list[BaseGeometry]:
 
 # ---------------------------------------------------------------------------------------------- reading
 def _read_text(path: PathLike) -> str:
+    from mrm.io.reading import open_regular
+
     name = os.fspath(path)
-    size = os.stat(path).st_size
-    if size > MAX_VECTOR_FILE_BYTES:
-        raise FileFormatError(
-            f"{name}: the file is {size / 2**20:.0f} MB, more than the {MAX_VECTOR_FILE_BYTES // 2**20} MB "
-            "accepted for vector files"
-        )
-    with open(path, "rb") as fh:
+    with open_regular(path, name) as fh:  # a FIFO or device is refused, never waited on
+        size = os.fstat(fh.fileno()).st_size
+        if size > MAX_VECTOR_FILE_BYTES:
+            raise FileFormatError(
+                f"{name}: the file is {size / 2**20:.0f} MB, more than the "
+                f"{MAX_VECTOR_FILE_BYTES // 2**20} MB accepted for vector files"
+            )
         data = fh.read(MAX_VECTOR_FILE_BYTES + 1)
+    if len(data) > MAX_VECTOR_FILE_BYTES:
+        raise FileFormatError(f"{name}: more than the {MAX_VECTOR_FILE_BYTES // 2**20} MB accepted")
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as e:
