@@ -36,6 +36,7 @@ from mrm import limits
 from mrm.derive import DerivationCache, Derived
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.history import Command, History
+
 # Declared once in mrm.limits; re-exported here for the modules that imported them from this one.
 from mrm.limits import COORDINATE_LIMIT as COORDINATE_LIMIT
 from mrm.limits import PARAMS_MAX_CHARS as PARAMS_MAX_CHARS
@@ -299,7 +300,7 @@ class DocObject:
 
     @property
     def mask_pixels(self) -> int:
-        """Pixels of the bounding box of a discrete source (0 for a Euclidean one), as the file counts them."""
+        """Pixels of the bounding box of a discrete source (0 for a Euclidean one), as files count them."""
         return int(self.__dict__["_mask_pixels"])
 
     @property

@@ -68,9 +68,9 @@ _POSITION_BYTES = 56
 
 # ---------------------------------------------------------------------------------------------- text
 def clean_text(text: str) -> str:
-    """``text`` with lone surrogates (which no UTF-8 file can hold) replaced by U+FFFD.
+    r"""``text`` with lone surrogates (which no UTF-8 file can hold) replaced by U+FFFD.
 
-    Text read from files goes through this on the way in (JSON's ``"\\ud800"`` escape gives a lone
+    Text read from files goes through this on the way in (JSON's ``"\ud800"`` escape gives a lone
     surrogate), so that a document never holds text it could not save.
     """
     try:
@@ -87,7 +87,8 @@ def check_text(text: str, what: str) -> str:
         text.encode("utf-8")
     except UnicodeEncodeError as e:
         raise LimitError(
-            f"{what} holds a character that cannot be saved (U+{ord(text[e.start]):04X} at position {e.start})"
+            f"{what} holds a character that cannot be saved "
+            f"(U+{ord(text[e.start]):04X} at position {e.start})"
         ) from None
     return text
 
@@ -191,7 +192,8 @@ def check_reconstruct(ps: Any, what: str = "the pixel set") -> int:
     if steps > MAX_CRACK_STEPS:
         raise LimitError(
             f"{what} has a boundary of {steps:,} pixel edges, more than the {MAX_CRACK_STEPS:,} its polygon "
-            "may have (a checkerboard-like or noisy image?); simplify or smooth it first, or keep it as pixels"
+            "may have (a checkerboard-like or noisy image?); simplify or smooth it first, or keep it as "
+            "pixels"
         )
     return steps
 

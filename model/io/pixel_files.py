@@ -41,8 +41,8 @@ from PIL import Image, PngImagePlugin, UnidentifiedImageError
 from mrm import limits
 from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError
 from mrm.io.atomic import atomic_write_bytes
-from mrm.io.reading import open_regular
 from mrm.io.netpbm import encode_pbm, encode_pgm, read_netpbm
+from mrm.io.reading import open_regular
 from mrm.io.threshold import binarize, grey_of
 from mrm.reps.pixels import LabelMap, PixelSet
 

@@ -257,7 +257,7 @@ def _strips(fh: BinaryIO, info: PngInfo, name: str, text: dict[str, str] | None)
             try:
                 pending += d.decompress(chunk, need - len(pending) + 65536)
             except zlib.error as e:
-                raise FileFormatError(f"{name}: corrupt PNG: the image data cannot be inflated: {e}") from None
+                raise FileFormatError(f"{name}: corrupt PNG: cannot inflate the image data: {e}") from None
             if d.eof:
                 exhausted = True
         if len(pending) < need:

@@ -50,6 +50,7 @@ from typing import Any, NoReturn
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
 
+from mrm import limits
 from mrm.document import (
     COORDINATE_LIMIT,
     MODELS,
@@ -63,9 +64,8 @@ from mrm.document import (
     Style,
     validate_geometry,
 )
-from mrm import limits
-from mrm.errors import MRMError
 from mrm.errors import FileFormatError as FileFormatError
+from mrm.errors import MRMError
 from mrm.reps.pixels import PixelSet
 
 #: The value of the "format" key.

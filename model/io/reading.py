@@ -7,7 +7,6 @@ rename can slip in between) and refuses anything but a regular file with a :clas
 
 from __future__ import annotations
 
-
 import errno
 import os
 import stat
@@ -42,7 +41,8 @@ def open_regular(path: PathLike, name: str | None = None) -> BinaryIO:
         As ``open`` does (missing file, permission, …).
     """
     shown = os.fspath(path) if name is None else name
-    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0) | getattr(os, "O_CLOEXEC", 0)
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
+    flags |= getattr(os, "O_CLOEXEC", 0)
     fd = os.open(path, flags)
     try:
         st = os.fstat(fd)
@@ -75,4 +75,3 @@ def read_regular(path: PathLike, max_bytes: int, what: str, name: str | None = N
 
 
 __all__ = ["open_regular", "read_regular"]
-
