@@ -36,6 +36,7 @@ from shapely.geometry.polygon import orient
 
 from mrm.errors import FileFormatError, InvalidGeometryError
 from mrm.io.atomic import atomic_open
+from mrm.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, clean_name
 from mrm.reps.pixels import PixelSet
 
 PathLike = str | os.PathLike[str]
@@ -108,7 +109,7 @@ def check_geometry(geom: BaseGeometry, where: str) -> BaseGeometry:
     if coords.size and not np.isfinite(coords).all():
         bad = coords[~np.isfinite(coords).all(axis=1)][0]
         raise InvalidGeometryError(
-            f"{where}: coordinates must be finite numbers, found ({bad[0]!r}, {bad[1]!r})"
+            f"{where}: coordinates must be finite numbers, found ({float(bad[0])!r}, {float(bad[1])!r})"
         )
     if not shapely.is_valid(geom):
         reason = str(shapely.is_valid_reason(geom))
@@ -198,22 +199,37 @@ def _clean_coordinates(coords: Any, depth: int, where: str) -> Any:
     return [_clean_coordinates(c, depth - 1, where) for c in coords]
 
 
-def _geojson_geometry(obj: Any, where: str, name: str) -> BaseGeometry:
+def _count_positions(coords: Any, depth: int) -> int:
+    if depth == 0:
+        return 1
+    if depth == 1:
+        return len(coords)
+    return sum(_count_positions(c, depth - 1) for c in coords)
+
+
+def _geojson_geometry(obj: Any, where: str, name: str, depth: int = 1) -> BaseGeometry:
     if not isinstance(obj, dict):
         raise FileFormatError(f"{where}: a geometry must be a JSON object")
     gtype = obj.get("type")
     if gtype == "GeometryCollection":
+        if depth > MAX_GEOMETRY_NESTING:
+            raise FileFormatError(
+                f"{where}: geometry collections nested more than {MAX_GEOMETRY_NESTING} deep"
+            )
         members = obj.get("geometries")
         if not isinstance(members, list):
             raise FileFormatError(f"{where}: a GeometryCollection needs a 'geometries' array")
         return GeometryCollection(
-            [_geojson_geometry(g, f"{where}, geometry {i}", name) for i, g in enumerate(members)]
+            [_geojson_geometry(g, f"{where}, geometry {i}", name, depth + 1) for i, g in enumerate(members)]
         )
     if gtype not in _GEOJSON_DEPTH:
         raise FileFormatError(f"{where}: unsupported GeoJSON geometry type {gtype!r}")
     if "coordinates" not in obj:
         raise FileFormatError(f"{where}: the {gtype} has no 'coordinates'")
     coords = _clean_coordinates(obj["coordinates"], _GEOJSON_DEPTH[str(gtype)], where)
+    n = _count_positions(coords, _GEOJSON_DEPTH[str(gtype)])
+    if n > MAX_OBJECT_VERTICES:
+        raise FileFormatError(f"{where}: {n:,} positions, more than the limit of {MAX_OBJECT_VERTICES:,}")
     try:
         geom = shape({"type": gtype, "coordinates": coords})
     except Exception as e:  # shapely's constructors raise ValueError, GEOSException, …
@@ -230,6 +246,11 @@ def _feature_name(feature: dict[str, Any]) -> str | None:
     if feature.get("id") is not None:
         return str(feature["id"])
     return None
+
+
+def _clean_label(label: str | None) -> str | None:
+    """A feature name made storable: no lone surrogate, at most the name limit (mrm.limits)."""
+    return None if label is None else clean_name(label)
 
 
 def _read_geojson(path: PathLike) -> list[NamedGeometry]:
@@ -261,7 +282,7 @@ def _read_geojson(path: PathLike) -> list[NamedGeometry]:
         where = f"{name}: feature {i}"
         if not isinstance(feature, dict) or feature.get("type") != "Feature":
             raise FileFormatError(f"{where} is not a GeoJSON Feature")
-        label = _feature_name(feature)
+        label = _clean_label(_feature_name(feature))
         if label is not None:
             where += f" ({label!r})"
         if "geometry" not in feature:
@@ -276,6 +297,13 @@ def _read_wkt(path: PathLike) -> list[NamedGeometry]:
     """One geometry per statement; a statement may span lines (it ends when its parentheses balance)."""
     name = os.fspath(path)
     text = _read_text(path)
+    deepest = max_nesting(text)
+    if deepest > MAX_GEOMETRY_NESTING:
+        # GEOS parses nesting by recursion: 20,000 levels crash the process, 1,000 overflow Python's stack.
+        raise FileFormatError(
+            f"{name}: the WKT nests parentheses {deepest:,} deep, more than the {MAX_GEOMETRY_NESTING} "
+            "a geometry can need"
+        )
     out: list[NamedGeometry] = []
     buf: list[str] = []
     depth = 0
@@ -298,9 +326,35 @@ def _read_wkt(path: PathLike) -> list[NamedGeometry]:
     return out
 
 
+def max_nesting(text: str, open_: str = "(", close: str = ")", chunk: int = 1 << 22) -> int:
+    """The deepest nesting of ``open_``/``close`` in ``text`` (linear, a few MB of memory at most)."""
+    if open_ not in text:
+        return 0
+    o, c = ord(open_), ord(close)
+    deepest = 0
+    level = 0
+    for start in range(0, len(text), chunk):
+        b = np.frombuffer(text[start : start + chunk].encode("utf-8", "replace"), dtype=np.uint8)
+        steps = (b == o).astype(np.int32) - (b == c).astype(np.int32)
+        if not steps.any():
+            continue
+        run = np.cumsum(steps, dtype=np.int64) + level
+        deepest = max(deepest, int(run.max()))
+        level = int(run[-1])
+    return deepest
+
+
 def _parse_wkt(text: str, where: str) -> BaseGeometry:
+    positions = text.count(",") + 1
+    if positions > MAX_OBJECT_VERTICES:
+        raise FileFormatError(
+            f"{where}: about {positions:,} positions, more than the limit of {MAX_OBJECT_VERTICES:,}"
+        )
     try:
-        geom = shapely.from_wkt(text)
+        # NaN coordinates make GEOS's parser raise a floating-point warning; the check below gives the
+        # message, so the warning (printed above it) is silenced here, for this thread only.
+        with np.errstate(invalid="ignore"):
+            geom = shapely.from_wkt(text)
     except GEOSException as e:
         raise FileFormatError(f"{where}: malformed WKT: {str(e).removeprefix('ParseException: ')}") from None
     except NotImplementedError as e:  # curved types
@@ -334,10 +388,15 @@ def read_geometries(path: PathLike) -> list[NamedGeometry]:
         See :func:`check_geometry`.
     """
     ext = Path(path).suffix.lower()
-    if ext in (".geojson", ".json"):
-        return _read_geojson(path)
-    if ext == ".wkt":
-        return _read_wkt(path)
+    try:
+        if ext in (".geojson", ".json"):
+            return _read_geojson(path)
+        if ext == ".wkt":
+            return _read_wkt(path)
+    except RecursionError:  # every import error is a message, never an escaping exception
+        raise FileFormatError(f"{os.fspath(path)}: the geometry is nested too deeply") from None
+    except MemoryError:
+        raise FileFormatError(f"{os.fspath(path)}: not enough memory to read the geometry") from None
     shown = f"'{ext}'" if ext else "no extension"
     raise FileFormatError(
         f"{os.fspath(path)}: {shown} is not a vector file type; use .geojson, .json or .wkt"
