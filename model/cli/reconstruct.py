@@ -130,8 +130,10 @@ def reconstruct_file(
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
     from mrm.geometry.reconstruct import reconstruct
+    from mrm.limits import check_reconstruct
 
     ps, chosen = _pixels_of(path, threshold, limit, model)
+    check_reconstruct(ps, f"{path}")  # boundary length bounded before any work (mrm.limits)
     t0 = time.perf_counter()
     geom = reconstruct(ps, chosen)
     seconds = time.perf_counter() - t0

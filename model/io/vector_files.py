@@ -36,7 +36,7 @@ from shapely.geometry.polygon import orient
 
 from mrm.errors import FileFormatError, InvalidGeometryError
 from mrm.io.atomic import atomic_open
-from mrm.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, clean_name
+from mrm.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, check_output_bytes, clean_name
 from mrm.reps.pixels import PixelSet
 
 PathLike = str | os.PathLike[str]
@@ -443,6 +443,17 @@ def _geojson_of(g: BaseGeometry) -> dict[str, Any]:
     raise InvalidGeometryError(f"cannot write a {g.geom_type} as GeoJSON")
 
 
+#: Upper bounds of the bytes written per coordinate pair (two float reprs and punctuation) and per SVG run.
+_BYTES_PER_POSITION = 52
+_BYTES_PER_RUN = 80
+
+
+def _check_geometry_output(geoms: Iterable[BaseGeometry], path: PathLike) -> None:
+    """Refuse, before building any text, a vector file larger than :data:`mrm.limits.MAX_OUTPUT_BYTES`."""
+    n = sum(int(shapely.get_num_coordinates(g)) for g in geoms)
+    check_output_bytes(n * _BYTES_PER_POSITION, f"{os.fspath(path)} ({n:,} positions)")
+
+
 def _parts(geom_or_parts: Any) -> list[tuple[Any, BaseGeometry]] | None:
     """None for a single geometry, else [(part name, geometry)]."""
     if isinstance(geom_or_parts, BaseGeometry):
@@ -481,6 +492,7 @@ def write_geojson(
     ``repr`` and read back identical.
     """
     parts = _parts(geom_or_parts)
+    _check_geometry_output([geom_or_parts] if parts is None else [g for _, g in parts], path)
     base = dict(properties or {})
     if parts is None:
         assert isinstance(geom_or_parts, BaseGeometry)
@@ -527,6 +539,7 @@ def wkt_of(g: BaseGeometry) -> str:
 def write_wkt(geom: BaseGeometry | Iterable[BaseGeometry], path: PathLike) -> None:
     """Write one geometry, or several (one per line), as WKT, atomically and exactly."""
     geoms = [geom] if isinstance(geom, BaseGeometry) else list(geom)
+    _check_geometry_output(geoms, path)
     text = "".join(wkt_of(g) + "\n" for g in geoms)
     with atomic_open(path, "w") as fh:
         fh.write(text)
@@ -567,6 +580,16 @@ def _svg_elements(g: BaseGeometry, r: float, outline: bool = False) -> list[str]
     if isinstance(g, MultiPolygon | MultiLineString | MultiPoint | GeometryCollection):
         return [e for part in g.geoms for e in _svg_elements(part, r, outline)]
     raise InvalidGeometryError(f"cannot draw a {g.geom_type} in SVG")
+
+
+def _run_count(ps: PixelSet) -> int:
+    """The number of maximal horizontal runs of pixels (one SVG rectangle each), a strip at a time."""
+    m = ps.mask
+    runs = 0
+    for r0 in range(0, m.shape[0], 1024):
+        s = m[r0 : r0 + 1024]
+        runs += int(np.count_nonzero(s[:, 0])) + int(np.count_nonzero(s[:, 1:] & ~s[:, :-1]))
+    return runs
 
 
 def _pixel_rects(ps: PixelSet) -> list[str]:
@@ -641,6 +664,12 @@ def write_svg(
     if geom is not None and not geom.is_empty:
         gx0, gy0, gx1, gy1 = (float(b) for b in geom.bounds)
         boxes.append((gx0, gy0, gx1, gy1))
+    estimate = 0
+    if pixels is not None and not pixels.is_empty():
+        estimate += _run_count(pixels) * _BYTES_PER_RUN
+    if geom is not None:
+        estimate += int(shapely.get_num_coordinates(geom)) * _BYTES_PER_POSITION
+    check_output_bytes(estimate, f"{os.fspath(path)} (an SVG picture)")  # before any text is built
     bounds = _union_bounds(boxes) or (0.0, 0.0, 1.0, 1.0)
     size = max(bounds[2] - bounds[0], bounds[3] - bounds[1], 1.0)
     body: list[str] = []
