@@ -63,7 +63,11 @@ class FileController(QtCore.QObject):
         seconds = self.prefs.autosave_seconds
         self.autosave_dir = Path(autosave_dir) if autosave_dir is not None else None
         self.autosaver = Autosaver(
-            self.doc, interval=float(seconds or 60), every_edits=50, directory=self.autosave_dir
+            self.doc,
+            interval=float(seconds or 60),
+            every_edits=50,
+            directory=self.autosave_dir,
+            on_error=self._autosave_failed,  # shown, and retried by the autosaver (never fatal)
         )
         self._timer = QtCore.QTimer(self)
         self._timer.setInterval(2000)
@@ -155,7 +159,13 @@ class FileController(QtCore.QObject):
 
     def offer_recovery(self, rec: Any) -> bool:
         """Ask whether to restore an autosave; True if it was restored."""
-        what = rec.project.name if rec.project is not None else "an untitled document"
+        if rec.project is not None:
+            what = rec.project.name
+        elif getattr(rec, "recorded", None) is not None:
+            # Only shown: the recovered document stays untitled, so Save asks where to write it.
+            what = f"an unsaved document (its record names {rec.recorded})"
+        else:
+            what = "an untitled document"
         when = rec.saved_at.replace("T", " ").replace("+00:00", " UTC") if rec.saved_at else "an unknown time"
         box = QtWidgets.QMessageBox(self.win)
         box.setObjectName("recoveryDialog")
@@ -243,10 +253,15 @@ class FileController(QtCore.QObject):
         return True
 
     def autosave_tick(self) -> None:
+        # Autosaver.tick reports its failures through _autosave_failed and never raises; the guard keeps
+        # a timer slot from ever propagating an exception into Qt's event loop.
         try:
             self.autosaver.tick()
-        except (OSError, MRMError) as e:
-            self.win.show_message(f"autosave failed: {describe_error(e)}", 5000)
+        except Exception as e:
+            self._autosave_failed(f"Autosave failed, will retry: {describe_error(e)}")
+
+    def _autosave_failed(self, message: str) -> None:
+        self.win.show_message(message, 10000)
 
     # ------------------------------------------------------------------ import / export
     def import_dialog(self) -> bool:
@@ -263,19 +278,21 @@ class FileController(QtCore.QObject):
     def read_objects(self, path: Path) -> list[tuple[str, Any]]:
         """The (name, source) pairs a file brings in; raises on a bad file (nothing is added then)."""
         from mrm.document import validate_geometry
+        from mrm.limits import clean_name
 
         ext = path.suffix.lower()
         if ext in IMAGE_EXTS:
             from mrm.io.pixel_files import read_pixels
 
-            return [(path.stem, read_pixels(path))]
+            return [(clean_name(path.stem), read_pixels(path))]
         if ext in VECTOR_EXTS:
             from mrm.io.vector_files import read_geometries
 
             out: list[tuple[str, Any]] = []
             named = read_geometries(path)
             for k, (name, g) in enumerate(named):
-                label = name or (path.stem if len(named) == 1 else f"{path.stem} {k + 1}")
+                stem = clean_name(path.stem)  # an undecodable file name holds lone surrogates
+                label = name or (stem if len(named) == 1 else f"{stem} {k + 1}")
                 if g.geom_type in ("Polygon", "MultiPolygon"):
                     out.append((str(label), validate_geometry(g)))
                 elif not g.is_empty:

@@ -31,6 +31,7 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.history import COMMAND_OVERHEAD, Command
+from mrm.limits import check_name
 from mrm.reps.pixels import PixelSet
 
 #: A vertex of a Euclidean source: (polygon index in a MultiPolygon (0 for a Polygon), ring (0 = exterior,
@@ -138,6 +139,7 @@ class AddObject(Command):
 
     def do(self, doc: Document) -> None:
         """Insert the object."""
+        doc.check_capacity(add=[self.obj])
         self.selection_before = doc.selection
         doc.insert_object(self.obj, self.index)
         if self.select:
@@ -237,6 +239,7 @@ class _Swap(Command):
         if self.after is None:
             self.after = self._build(doc, obj)
             self.before = obj
+        doc.check_capacity(add=[self.after], remove=[self.obj_id])
         doc.replace_object(self.after)
 
     def undo(self, doc: Document) -> None:
@@ -284,7 +287,7 @@ class RenameObject(_Swap):
         super().__init__(obj_id)
         if not isinstance(name, str):
             raise ParameterError("a name must be text")
-        self.name = name
+        self.name = check_name(name)
         self.label = "Rename"
 
     def _build(self, doc: Document, obj: DocObject) -> DocObject:
@@ -478,7 +481,9 @@ class _PixelEdit(Command):
             self.provenance_before = obj.provenance
         if self.delta.is_empty():
             return
-        doc.replace_object(obj.with_(source=self.delta.apply(base), provenance=None))
+        after = obj.with_(source=self.delta.apply(base), provenance=None)  # checks the per-object limits
+        doc.check_capacity(add=[after], remove=[self.obj_id])
+        doc.replace_object(after)
 
     def undo(self, doc: Document) -> None:
         """Flip the pixels back (or restore the Euclidean source the object had)."""
@@ -654,14 +659,24 @@ class ApplyResults(Command):
         self._selection_before: tuple[int, ...] = ()
 
     def do(self, doc: Document) -> None:
-        """Remove, replace, then insert."""
+        """Remove, replace, then insert — after checking all of it, so a refused step changes nothing."""
         for i in self.remove:
             doc.get(i)
+        replaced = [o.id for o in self.replace]
         for o in self.replace:
             doc.get(o.id)
+        if len(set(replaced)) != len(replaced):
+            raise ParameterError("an operation result replaces the same object twice")
+        both = set(replaced) & set(self.remove)
+        if both:
+            raise ParameterError(f"an operation result both replaces and removes object {min(both)}")
+        added = [o.id for o in self.add]
+        if len(set(added)) != len(added):
+            raise ParameterError("an operation result adds two objects with the same id")
         for o in self.add:
             if o.id in doc:
                 raise ParameterError(f"an object with id {o.id} already exists")
+        doc.check_capacity(add=[*self.replace, *self.add], remove=[*self.remove, *replaced])
         self._selection_before = doc.selection
         removed = []
         for i in self.remove:

@@ -45,9 +45,15 @@ def discretize_source(geom: Any, model: str) -> PixelSet:
 
 
 def reconstruct_source(ps: PixelSet, model: str) -> Any:
-    """R(ps) under ``model`` (:func:`mrm.geometry.reconstruct.reconstruct`)."""
-    from mrm.geometry.reconstruct import reconstruct
+    """R(ps) under ``model`` (:func:`mrm.geometry.reconstruct.reconstruct`).
 
+    Raises :class:`~mrm.errors.LimitError` before any work when the boundary of ``ps`` is longer than
+    :data:`mrm.limits.MAX_CRACK_STEPS` (its cost is bounded up front, issue 11).
+    """
+    from mrm.geometry.reconstruct import reconstruct
+    from mrm.limits import check_reconstruct
+
+    check_reconstruct(ps)
     return reconstruct(ps, model)
 
 

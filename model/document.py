@@ -32,9 +32,15 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
+from mrm import limits
 from mrm.derive import DerivationCache, Derived
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.history import Command, History
+
+# Declared once in mrm.limits; re-exported here for the modules that imported them from this one.
+from mrm.limits import COORDINATE_LIMIT as COORDINATE_LIMIT
+from mrm.limits import PARAMS_MAX_CHARS as PARAMS_MAX_CHARS
+from mrm.limits import PARAMS_MAX_DEPTH as PARAMS_MAX_DEPTH
 from mrm.reps.pixels import PixelSet
 
 #: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
@@ -45,14 +51,6 @@ SourceKind = Literal["euclidean", "discrete"]
 
 #: The discretization models (DESIGN §2).
 MODELS = ("standard", "supercover", "gauss")
-
-#: Largest absolute coordinate accepted in a Euclidean source. Beyond it pixel indices leave the int32 range
-#: the kernels use, and float64 spacing there exceeds a millionth of a pixel, so nothing exact could follow.
-COORDINATE_LIMIT = float(2**31)
-
-#: Largest nesting depth and size accepted for provenance parameters (they are free-form JSON data).
-PARAMS_MAX_DEPTH = 16
-PARAMS_MAX_CHARS = 1_000_000
 
 _COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?$")
 
@@ -96,6 +94,19 @@ def validate_geometry(geom: object) -> Geometry:
     with _VALIDATED_LOCK:
         _VALIDATED[id(geom)] = geom
     return geom
+
+
+def _source_cost(source: Source) -> tuple[int, int]:
+    """(pixels of the mask box, bytes in a file) of a source; refuses one beyond the per-object limits."""
+    if isinstance(source, PixelSet):
+        limits.check_pixel_extent(source.origin, source.shape, "the pixel object")
+        n = source.shape[0] * source.shape[1]
+        return n, limits.source_file_bytes("discrete", pixels=n)
+    n = int(shapely.get_num_coordinates(source))
+    limits.check_vertices(n, "the polygon object")
+    parts = shapely.get_parts(source)
+    rings = int(parts.size + shapely.get_num_interior_rings(parts).sum()) if parts.size else 0
+    return 0, limits.source_file_bytes("euclidean", coordinates=n, rings=rings)
 
 
 def source_kind(source: Source) -> SourceKind:
@@ -162,16 +173,18 @@ def _freeze_json(value: Any, depth: int = 0) -> Any:
     """Return a checked deep copy of a JSON value (dict/list/str/int/float/bool/None); tuples become lists."""
     if depth > PARAMS_MAX_DEPTH:
         raise ParameterError(f"provenance parameters are nested deeper than {PARAMS_MAX_DEPTH} levels")
-    if value is None or isinstance(value, bool | str):
+    if value is None or isinstance(value, bool):
         return value
+    if isinstance(value, str):
+        return limits.check_text(value, "a provenance parameter")
     if isinstance(value, int):
-        return int(value)
+        return limits.check_param_int(int(value))
     if isinstance(value, float):
         if not math.isfinite(value):
             raise ParameterError("provenance parameters must be finite numbers")
         return float(value)
     if isinstance(value, np.integer):
-        return int(value)
+        return limits.check_param_int(int(value))
     if isinstance(value, np.floating):
         return _freeze_json(float(value), depth)
     if isinstance(value, list | tuple):
@@ -181,6 +194,7 @@ def _freeze_json(value: Any, depth: int = 0) -> Any:
         for k, v in value.items():
             if not isinstance(k, str):
                 raise ParameterError(f"provenance parameter names must be strings, got {k!r}")
+            limits.check_text(k, "a provenance parameter name")
             out[k] = _freeze_json(v, depth + 1)
         return out
     raise ParameterError(f"provenance parameters must be JSON data, got {type(value).__name__}")
@@ -207,6 +221,11 @@ class Provenance:
     def __post_init__(self) -> None:
         if not isinstance(self.operation, str) or not self.operation:
             raise ParameterError("a provenance needs an operation name")
+        if len(self.operation) > limits.MAX_OPERATION_CHARS:
+            raise limits.LimitError(
+                f"an operation name is longer than {limits.MAX_OPERATION_CHARS} characters"
+            )
+        limits.check_text(self.operation, "the operation name")
         if not isinstance(self.params, Mapping):
             raise ParameterError("provenance parameters must be a mapping of names to values")
         params = _freeze_json(self.params)
@@ -216,6 +235,8 @@ class Provenance:
         ins = tuple(self.inputs)
         if not all(isinstance(i, int) and not isinstance(i, bool) for i in ins):
             raise ParameterError("provenance inputs must be object ids (integers)")
+        if not all(1 <= i <= limits.MAX_ID for i in ins):
+            raise limits.LimitError(f"provenance inputs must be object ids in [1, 2^53], got {list(ins)[:5]}")
         object.__setattr__(self, "inputs", ins)
 
     @classmethod
@@ -257,13 +278,35 @@ class DocObject:
     __hash__ = None  # type: ignore[assignment]  # a value with a dict inside; compare, don't hash
 
     def __post_init__(self) -> None:
-        if isinstance(self.id, bool) or not isinstance(self.id, int) or self.id < 1:
-            raise ParameterError(f"object ids are positive integers, got {self.id!r}")
+        if isinstance(self.id, bool) or not isinstance(self.id, int) or not 1 <= self.id <= limits.MAX_ID:
+            raise ParameterError(f"object ids are integers in [1, 2^53], got {self.id!r}")
         if not isinstance(self.name, str):
             raise ParameterError(f"an object name must be text, got {type(self.name).__name__}")
+        limits.check_name(self.name)
         object.__setattr__(self, "source", validate_source(self.source))
         if not isinstance(self.style, Style):
             raise ParameterError("style must be a Style")
+        if self.provenance is not None and not isinstance(self.provenance, Provenance):
+            raise ParameterError("provenance must be a Provenance or None")
+        # The object's share of the per-file limits, checked by the document before it is inserted.
+        pixels, source_bytes = _source_cost(self.source)
+        prov_bytes = limits.json_bytes(self.provenance.to_json()) if self.provenance is not None else 4
+        object.__setattr__(self, "_mask_pixels", pixels)
+        object.__setattr__(
+            self,
+            "_file_bytes",
+            limits.object_file_bytes(limits.json_bytes(self.name), prov_bytes, source_bytes),
+        )
+
+    @property
+    def mask_pixels(self) -> int:
+        """Pixels of the bounding box of a discrete source (0 for a Euclidean one), as files count them."""
+        return int(self.__dict__["_mask_pixels"])
+
+    @property
+    def file_bytes(self) -> int:
+        """Upper bound of the bytes this object takes in a project file."""
+        return int(self.__dict__["_file_bytes"])
 
     @property
     def kind(self) -> SourceKind:
@@ -368,6 +411,10 @@ class Document:
         self._revision = 0
         self._obj_rev: dict[int, int] = {}
         self._next_id = 1
+        # Running totals of the per-file limits (mrm.limits): pixels of the discrete sources' boxes and
+        # the bytes of the project file, kept by the low-level mutations.
+        self._mask_pixels = 0
+        self._file_bytes = 0
         self._subscribers: list[Callable[[Changes], None]] = []
         self._batch_depth = 0
         self._pending: _Pending | None = None
@@ -557,6 +604,35 @@ class Document:
             provenance=provenance,
         )
 
+    # ------------------------------------------------------------------ limits
+    def check_capacity(self, add: Iterable[DocObject] = (), remove: Iterable[int] = ()) -> None:
+        """Refuse an edit that would take the document beyond the per-file limits (:mod:`mrm.limits`).
+
+        Commands call this before they change anything, with the objects they will insert (or the new
+        versions of objects they replace) and the ids they will remove or replace; the project file of the
+        result is then guaranteed to save and reopen.
+
+        Raises
+        ------
+        SizeLimitError, LimitError
+            Too many pixels in the discrete sources together, or a project file too large.
+        """
+        pixels, nbytes = self._mask_pixels, self._file_bytes
+        for i in dict.fromkeys(remove):
+            o = self._by_id.get(i)
+            if o is not None:
+                pixels -= o.mask_pixels
+                nbytes -= o.file_bytes
+        for o in add:
+            pixels += o.mask_pixels
+            nbytes += o.file_bytes
+        if pixels > self._mask_pixels or nbytes > self._file_bytes:
+            limits.check_document_totals(pixels, nbytes)
+
+    def _count(self, obj: DocObject, sign: int) -> None:
+        self._mask_pixels += sign * obj.mask_pixels
+        self._file_bytes += sign * obj.file_bytes
+
     # ------------------------------------------------------------------ low-level mutations (commands only)
     def insert_object(self, obj: DocObject, index: int | None = None) -> None:
         """Insert ``obj`` at ``index`` (default: on top). For commands; views push commands."""
@@ -568,6 +644,7 @@ class Document:
             idx = n if index is None else max(0, min(int(index), n))
             self._objects.insert(idx, obj)
             self._by_id[obj.id] = obj
+            self._count(obj, +1)
             self._obj_rev[obj.id] = self._obj_rev.get(obj.id, 0) + 1
             self._next_id = max(self._next_id, obj.id + 1)
             if obj.id in p.order:  # removed and re-inserted in one batch: it may differ in every aspect
@@ -580,6 +657,7 @@ class Document:
             self._touch()
             obj = self._objects.pop(idx)
             del self._by_id[obj_id]
+            self._count(obj, -1)
             self._obj_rev[obj_id] = self._obj_rev.get(obj_id, 0) + 1
             if obj_id in self._selection:
                 self._selection = tuple(i for i in self._selection if i != obj_id)
@@ -593,6 +671,8 @@ class Document:
             p = self._touch()
             self._objects[idx] = obj
             self._by_id[obj.id] = obj
+            self._count(old, -1)
+            self._count(obj, +1)
             what = p.changed.setdefault(obj.id, set())
             if old.source is not obj.source:
                 what.add("source")
@@ -640,6 +720,8 @@ class Document:
                 self._obj_rev[o.id] = self._obj_rev.get(o.id, 0) + 1
             self._objects = objs
             self._by_id = {o.id: o for o in objs}
+            self._mask_pixels = sum(o.mask_pixels for o in objs)
+            self._file_bytes = sum(o.file_bytes for o in objs)
             for o in objs:
                 self._obj_rev[o.id] = self._obj_rev.get(o.id, 0) + 1
             self._settings = settings or Settings()

@@ -51,3 +51,10 @@ class Cancelled(MRMError):
 
 #: Default maximum number of pixels of a discretization or operation result (DESIGN §2 / issue 2).
 DEFAULT_PIXEL_LIMIT = 200_000_000
+
+
+class LimitError(MRMError, ValueError):
+    """An edit, operation, import or export would go beyond one of the limits of :mod:`mrm.limits`.
+
+    Raised before anything is changed or written, so the document and the files stay as they were.
+    """

@@ -153,8 +153,10 @@ def reconstruct_file(
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
     from mrm.geometry.reconstruct import reconstruct
+    from mrm.limits import check_reconstruct
 
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
+    check_reconstruct(ps, f"{path}")  # boundary length bounded before any work (mrm.limits)
     if bar is not None:
         bar.update(None, f"{len(ps):_} pixels")
     t0 = time.perf_counter()

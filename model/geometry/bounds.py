@@ -516,6 +516,9 @@ def bound_of_chain(
     steps = tuple(steps)
     if not steps:
         raise ParameterError("the chain is empty")
+    from mrm.limits import check_chain_steps
+
+    check_chain_steps(len(steps))  # exact arithmetic grows with the chain: bounded up front (issue 11)
 
     # Expand into primitives, converting between the representations where a step needs the other one.
     prims: list[tuple[tuple[object, ...], int]] = []

@@ -11,13 +11,22 @@ On the next start, :func:`find_recovery` (for a project being opened) and :func:
 documents of processes that are gone) return :class:`Recovery` records; :meth:`Recovery.restore` gives the
 recovered document — marked modified, since its edits are in no saved file — and :meth:`Recovery.discard`
 deletes the side file. Saving the project or undoing back to its saved state removes the side file.
+
+What is found on start-up is not trusted (ADR 0015): any file name in the autosave folder is tolerated, an
+orphan's recorded project path is only shown, never adopted (the recovered document is untitled, so Save
+asks where to write), and side files are written without following a symbolic link planted at their name.
+An autosave that fails (disk full, read-only folder) is reported through ``on_error`` and retried; it never
+raises out of :meth:`Autosaver.tick`.
 """
 
 from __future__ import annotations
 
 import contextlib
+import logging
 import os
+import re
 import secrets
+import stat
 import sys
 import time
 from collections.abc import Callable
@@ -29,6 +38,14 @@ from mrm.document import Changes, Document
 from mrm.io.project import dumps, read_project
 
 SUFFIX = ".autosave"
+#: Seconds before a failed autosave is tried again.
+RETRY_SECONDS = 15.0
+#: Untitled side files: ``untitled-<pid>-<token>.mrm.autosave``.
+_ORPHAN = re.compile(r"untitled-(\d{1,10})-[0-9A-Za-z]{1,64}\.mrm" + re.escape(SUFFIX))
+#: Largest process id of any system we run on (Linux's pid_max is at most 2^22).
+_MAX_PID = 2**31 - 1
+
+log = logging.getLogger(__name__)
 
 
 def default_directory() -> Path:
@@ -56,17 +73,22 @@ class Recovery:
     path : Path
         The side file.
     project : Path or None
-        The project it belongs to (None for an untitled document).
+        The project it belongs to: the project being opened, for the side file beside it; None for an
+        orphan (an untitled document), whatever its record says.
     saved_at : str
         When it was written (ISO 8601, UTC).
+    recorded : Path or None
+        The project path written in the side file's record — shown to the user, never used as the
+        recovered document's path (a planted or stale record must not make Save overwrite what it names).
     """
 
     path: Path
     project: Path | None
     saved_at: str
+    recorded: Path | None = None
 
     def restore(self) -> Document:
-        """Load the autosaved document: its path is the original project's, and it is marked modified.
+        """Load the autosaved document: its path is :attr:`project` (None for an orphan), marked modified.
 
         Raises :class:`~mrm.errors.FileFormatError` if the side file is damaged (offer :meth:`discard`).
         """
@@ -85,7 +107,8 @@ def _record(path: Path) -> Recovery | None:
         return Recovery(path, None, "")
     info = proj.autosave or {}
     project = info.get("project")
-    return Recovery(path, Path(project) if project else None, str(info.get("saved_at", "")))
+    recorded = Path(project) if isinstance(project, str) and project else None
+    return Recovery(path, None, str(info.get("saved_at", "")), recorded)
 
 
 def find_recovery(project: str | os.PathLike[str]) -> Recovery | None:
@@ -103,7 +126,7 @@ def find_recovery(project: str | os.PathLike[str]) -> Recovery | None:
         if p.stat().st_mtime > side_mtime:
             return None
     rec = _record(side)
-    return None if rec is None else Recovery(rec.path, p, rec.saved_at)
+    return None if rec is None else Recovery(rec.path, p, rec.saved_at, rec.recorded)
 
 
 def _pid_alive(pid: int) -> bool:
@@ -111,30 +134,49 @@ def _pid_alive(pid: int) -> bool:
         return True
     if sys.platform == "win32":  # os.kill(pid, 0) would terminate the process on Windows
         return False
+    if not 0 < pid <= _MAX_PID:
+        return False
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:
         return True
+    except (OverflowError, ValueError, OSError):
+        return False
     return True
 
 
 def find_orphans(directory: str | os.PathLike[str] | None = None) -> list[Recovery]:
     """Autosaves of untitled documents whose process is no longer running, newest first."""
     d = Path(directory) if directory is not None else default_directory()
-    if not d.is_dir():
+    try:
+        if not d.is_dir():
+            return []
+        names = os.listdir(d)
+    except OSError:
         return []
     found: list[tuple[float, Recovery]] = []
-    for f in d.glob(f"untitled-*.mrm{SUFFIX}"):
-        parts = f.name.split("-")
-        pid = int(parts[1]) if len(parts) > 2 and parts[1].isdigit() else -1
-        if pid >= 0 and _pid_alive(pid):
+    for fname in names:
+        if not fname.endswith(SUFFIX):
             continue
-        rec = _record(f)
+        # Whatever else is in the folder (junk names, huge "pids", links, folders) is skipped, never fatal.
+        try:
+            m = _ORPHAN.fullmatch(fname)
+            if m is None:
+                continue
+            f = d / fname
+            st = os.lstat(f)
+            if not stat.S_ISREG(st.st_mode):
+                continue
+            if _pid_alive(int(m.group(1))):
+                continue
+            rec = _record(f)
+        except Exception as e:
+            log.warning("skipping %r in the autosave folder: %s", fname, e)
+            continue
         if rec is not None:
-            with contextlib.suppress(FileNotFoundError):
-                found.append((f.stat().st_mtime, rec))
+            found.append((st.st_mtime, rec))
     return [r for _, r in sorted(found, key=lambda t: -t[0])]
 
 
@@ -153,6 +195,9 @@ class Autosaver:
         Where untitled documents autosave (default :func:`default_directory`).
     clock : callable
         Monotonic time source (tests pass a fake one).
+    on_error : callable, optional
+        ``on_error(message)`` after a failed autosave (the GUI shows it); the write is retried after
+        :data:`RETRY_SECONDS`. Failures are logged in any case.
     """
 
     def __init__(
@@ -163,6 +208,7 @@ class Autosaver:
         every_edits: int = 50,
         directory: str | os.PathLike[str] | None = None,
         clock: Callable[[], float] = time.monotonic,
+        on_error: Callable[[str], None] | None = None,
     ) -> None:
         self.doc = doc
         self.interval = float(interval)
@@ -173,6 +219,12 @@ class Autosaver:
         self.edits = 1 if doc.is_modified else 0  # edits made before the autosaver started count too
         self._since = clock()
         self._written: Path | None = None
+        self.on_error = on_error
+        #: The message of the last failed autosave (None after a success).
+        self.last_error: str | None = None
+        #: Consecutive failed autosaves.
+        self.failures = 0
+        self._retry_at: float | None = None
         self._unsubscribe = doc.subscribe(self._on_change)
 
     def _on_change(self, ch: Changes) -> None:
@@ -193,17 +245,38 @@ class Autosaver:
         if not self.doc.is_modified or self.edits == 0:
             return False
         t = self.clock() if now is None else now
+        if self._retry_at is not None:
+            return t >= self._retry_at
         return self.edits >= self.every_edits or t - self._since >= self.interval
 
     def tick(self, now: float | None = None) -> Path | None:
-        """Autosave if due (returns the side file written); drop the side file once the document is clean."""
+        """Autosave if due (returns the side file written); drop the side file once the document is clean.
+
+        Never raises: a failed write is logged, reported to ``on_error`` and retried after
+        :data:`RETRY_SECONDS` (the edits stay pending), so crash recovery is never silently switched off.
+        """
         if not self.doc.is_modified:
-            self.discard()
+            with contextlib.suppress(OSError):
+                self.discard()
             self.edits = 0
+            self._retry_at = None
             return None
-        if self.due(now):
+        if not self.due(now):
+            return None
+        try:
             return self.write_now()
-        return None
+        except Exception as e:  # every failure, not only OSError: a timer callback must never raise
+            self.failures += 1
+            self.last_error = _describe(e)
+            t = self.clock() if now is None else now
+            self._retry_at = t + RETRY_SECONDS
+            log.warning("autosave to %s failed (%d in a row): %s", self.path, self.failures, self.last_error)
+            if self.on_error is not None:
+                try:
+                    self.on_error(f"Autosave failed, will retry: {self.last_error}")
+                except Exception:
+                    log.exception("the autosave error handler failed")
+            return None
 
     def write_now(self) -> Path:
         """Write the side file at once (atomically) and reset the counters."""
@@ -217,8 +290,12 @@ class Autosaver:
             "project": str(self.doc.path) if self.doc.path is not None else None,
             "saved_at": datetime.now(UTC).isoformat(timespec="seconds"),
         }
-        atomic_write_bytes(target, dumps(self.doc, autosave=record))
+        # Never follow a link planted at the side file's name: it is replaced, its target left alone.
+        atomic_write_bytes(target, dumps(self.doc, autosave=record), follow_symlinks=False)
         self._written = target
+        self.failures = 0
+        self.last_error = None
+        self._retry_at = None
         self.edits = 0
         self._since = self.clock()
         return target
@@ -233,3 +310,10 @@ class Autosaver:
     def close(self) -> None:
         """Stop watching the document (the side file stays, for recovery, unless discarded)."""
         self._unsubscribe()
+
+
+def _describe(e: BaseException) -> str:
+    if isinstance(e, OSError):
+        where = getattr(e, "filename", None)
+        return f"{where}: {e.strerror or e}" if where else str(e.strerror or e)
+    return str(e) or type(e).__name__

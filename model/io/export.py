@@ -154,11 +154,12 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
         return LabelMap(np.zeros((0, 0), dtype=np.int32)), mapping
     x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
     x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
-    from mrm.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
+    from mrm.errors import SizeLimitError
+    from mrm.limits import MAX_LABEL_PIXELS
 
     area = (x1 - x0 + 1) * (y1 - y0 + 1)
-    if area > DEFAULT_PIXEL_LIMIT:
-        raise SizeLimitError(area, DEFAULT_PIXEL_LIMIT, "the label map")
+    if area > MAX_LABEL_PIXELS:  # four bytes a pixel: the label map limit, not the pixel set one
+        raise SizeLimitError(area, MAX_LABEL_PIXELS, "the label map")
     out = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=np.int32)
     for k, p in enumerate(parts, start=1):
         if p.is_empty():

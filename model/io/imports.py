@@ -16,6 +16,7 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.commands import ApplyResults
 from mrm.document import DocObject, Document, Provenance, validate_geometry
 from mrm.errors import FileFormatError
+from mrm.limits import clean_name
 
 PathLike = str | os.PathLike[str]
 
@@ -30,7 +31,7 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
     """
     p = Path(path)
     ext = p.suffix.lower()
-    stem = p.stem or p.name
+    stem = clean_name(p.stem or p.name)  # a file name undecodable as UTF-8 holds lone surrogates
     if ext == ".mrm":
         from mrm.io.project import read_project
 

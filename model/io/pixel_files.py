@@ -38,9 +38,11 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, PngImagePlugin, UnidentifiedImageError
 
+from mrm import limits
 from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.netpbm import encode_pbm, encode_pgm, read_netpbm
+from mrm.io.reading import open_regular
 from mrm.io.threshold import binarize, grey_of
 from mrm.reps.pixels import LabelMap, PixelSet
 
@@ -52,8 +54,9 @@ PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz")
 LABEL_EXTENSIONS = (".png", ".npz")
 #: The PNG text chunk keyword (and Netpbm comment) holding the origin.
 ORIGIN_KEY = "mrm:origin"
-#: Pixel coordinates stay within ±2⁵³ so that every pixel centre and corner is an exact float64.
-COORD_LIMIT = 2**53
+#: Pixel coordinates stay within the document's limit (±2³¹, :data:`mrm.limits.PIXEL_COORDINATE_LIMIT`), so
+#: that an imported image can always be saved in a project and reopened.
+COORD_LIMIT = limits.PIXEL_COORDINATE_LIMIT
 
 _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 _PNG_IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"  # the whole (empty) IEND chunk with its CRC
@@ -97,11 +100,13 @@ def parse_origin(text: str, name: str) -> tuple[int, int]:
 
 
 def _check_extent(origin: tuple[int, int], shape: tuple[int, ...], name: str) -> None:
+    """Refuse an image whose pixels would lie beyond the document's pixel coordinates (mrm.limits)."""
     x0, y0 = origin
     h, w = shape[0], shape[1]
-    if min(x0, y0) < -COORD_LIMIT or max(x0 + w, y0 + h) > COORD_LIMIT:
+    lim = limits.PIXEL_COORDINATE_LIMIT
+    if h and w and (min(x0, y0) < -lim or max(x0 + w - 1, y0 + h - 1) > lim):
         raise FileFormatError(
-            f"{name}: origin ({x0}, {y0}) puts pixels beyond ±2^53, where coordinates are no longer exact"
+            f"{name}: origin ({x0}, {y0}) puts pixels beyond ±2^31, the coordinates a document can hold"
         )
 
 
@@ -210,6 +215,57 @@ def _png_grey(im: Image.Image, name: str) -> tuple[npt.NDArray[Any], bool]:
     raise FileFormatError(f"{name}: unsupported PNG colour mode {mode!r}")
 
 
+#: Interlaced PNGs go through Pillow, which decodes the whole image at up to 4 bytes per pixel and whose
+#: grey conversion takes several int64 arrays: they are read up to this size (a few hundred MB at worst).
+PILLOW_PNG_PIXELS = 10_000_000
+
+
+def _read_png_pixels(fh: BinaryIO, name: str, limit: int, threshold: float | None) -> PixelSet:
+    """A PNG's pixel set, decoded by :mod:`mrm.io.png_stream` at one byte per pixel (ADR 0010)."""
+    from mrm.io.png_stream import read_png_mask
+    from mrm.io.threshold import _check_threshold
+
+    head = fh.read(29)
+    if not head.startswith(_PNG_SIGNATURE):
+        raise FileFormatError(f"{name}: not a PNG image ({_describe_content(head)})")
+    if len(head) < 29 or head[12:16] != b"IHDR":
+        raise FileFormatError(f"{name}: corrupt PNG: the header (IHDR) is missing or truncated")
+    width, height = int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+    _check_size(width, height, limit, name)
+    if threshold is not None:
+        _check_threshold(threshold)
+    if head[28] == 1:  # Adam7 interlacing: rows are not stored in order; Pillow, within a bound
+        if width * height > PILLOW_PNG_PIXELS:
+            raise FileFormatError(
+                f"{name}: an interlaced PNG of {width}×{height} pixels is more than the "
+                f"{PILLOW_PNG_PIXELS:,} read in that form; save it without interlacing"
+            )
+        fh.seek(0)
+        im, origin = _open_png(fh, name, limit)
+        samples, is_bitmap = _png_grey(im, name)
+        rows = samples if is_bitmap else binarize(samples, threshold)
+        return _rows_to_pixels(rows, origin, name)
+    fh.seek(8)
+    mask, text = read_png_mask(fh, name, threshold, _check_threshold)
+    origin = parse_origin(text[ORIGIN_KEY], name) if ORIGIN_KEY in text else (0, 0)
+    _check_extent(origin, mask.shape, name)
+    return _owned_pixel_set(mask, origin)
+
+
+def _owned_pixel_set(mask: npt.NDArray[np.bool_], origin: tuple[int, int]) -> PixelSet:
+    """A pixel set taking over a freshly decoded mask (bottom row first) without a second full copy."""
+    from mrm.reps.pixels import _crop_bounds, _frozen
+
+    b = _crop_bounds(mask)
+    if b is None:
+        return PixelSet.empty()
+    r0, r1, c0, c1 = b
+    if (r0, r1, c0, c1) == (0, mask.shape[0], 0, mask.shape[1]):
+        # Already canonical and referenced nowhere else: freeze it in place instead of copying.
+        return PixelSet._canonical(_frozen(mask, fresh=True), (int(origin[0]), int(origin[1])))
+    return PixelSet(mask[r0:r1, c0:c1], (int(origin[0]) + c0, int(origin[1]) + r0))
+
+
 def _png_bytes(im: Image.Image, origin: tuple[int, int]) -> bytes:
     info = PngImagePlugin.PngInfo()
     info.add_text(ORIGIN_KEY, f"{origin[0]} {origin[1]}")
@@ -219,6 +275,15 @@ def _png_bytes(im: Image.Image, origin: tuple[int, int]) -> bytes:
 
 
 # ---------------------------------------------------------------------------------------------- NPZ
+#: Per NPZ array: the dtype kinds accepted and the most bytes read (one byte per pixel for a mask; a label
+#: map's int32 labels are bounded by the label map limit).
+_NPZ_ROLES = {
+    "mask": ("b", 2, limits.MAX_OBJECT_PIXELS, "a 2-D boolean array"),
+    "labels": ("iu", 2, 4 * limits.MAX_LABEL_PIXELS, "a 2-D integer array"),
+    "origin": ("iu", 1, 64, "two integers (x0, y0)"),
+}
+
+
 def _read_npz_arrays(
     fh: BinaryIO, name: str, keys: tuple[str, ...], limit: int
 ) -> dict[str, npt.NDArray[Any]]:
@@ -238,7 +303,7 @@ def _read_npz_arrays(
                 raise FileFormatError(f"{name}: the NPZ archive has no '{key}' array (it holds: {found})")
             try:
                 with zf.open(member) as m:
-                    out[key] = _read_npy(m, f"{name}: '{key}'", limit)
+                    out[key] = _read_npy(m, f"{name}: '{key}'", limit, _NPZ_ROLES[key])
             except FileFormatError:
                 raise
             except MemoryError:
@@ -248,7 +313,13 @@ def _read_npz_arrays(
     return out
 
 
-def _read_npy(m: IO[bytes], what: str, limit: int) -> npt.NDArray[Any]:
+def _read_npy(
+    m: IO[bytes],
+    what: str,
+    limit: int,
+    role: tuple[str, int, int, str] = ("biu", 2, limits.MAX_OBJECT_PIXELS, "a 2-D array"),
+) -> npt.NDArray[Any]:
+    kinds, ndim, max_bytes, desc = role
     fmt = np.lib.format
     try:
         version = fmt.read_magic(m)
@@ -264,10 +335,22 @@ def _read_npy(m: IO[bytes], what: str, limit: int) -> npt.NDArray[Any]:
         raise FileFormatError(f"{what}: malformed .npy header ({e})") from None
     if dtype.hasobject:
         raise FileFormatError(f"{what} holds Python objects (pickled data), which are never loaded")
+    # The dtype and every dimension are checked before anything is read: (-1, 1000) must not pass as a
+    # small array (reading a negative byte count would decompress the whole member).
+    if not isinstance(shape, tuple) or any(
+        not isinstance(d, int) or isinstance(d, bool) or d < 0 for d in shape
+    ):
+        raise FileFormatError(f"{what} has the invalid shape {shape!r:.80}")
+    if dtype.kind not in kinds or dtype.itemsize > 8 or len(shape) != ndim:
+        raise FileFormatError(f"{what} must be {desc}, found dtype {dtype} and shape {shape!r:.80}")
     count = int(np.prod(shape, dtype=object)) if shape else 1
     if count > limit:
         raise FileFormatError(f"{what} has {count:,} elements, more than the limit of {limit:,}")
     nbytes = count * dtype.itemsize
+    if nbytes > max_bytes:
+        raise FileFormatError(
+            f"{what} holds {nbytes:,} bytes ({count:,} × {dtype}), more than the {max_bytes:,} accepted"
+        )
     data = m.read(nbytes)
     if len(data) < nbytes:
         raise FileFormatError(f"{what} is truncated: {nbytes:,} bytes expected, {len(data):,} found")
@@ -324,12 +407,9 @@ def read_pixels(
     """
     name = _name(path)
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
-    with open(path, "rb") as fh:
+    with open_regular(path, name) as fh:  # a FIFO or device is refused, never waited on
         if ext == ".png":
-            im, origin = _open_png(fh, name, limit)
-            samples, is_bitmap = _png_grey(im, name)
-            rows = samples if is_bitmap else binarize(samples, threshold)
-            return _rows_to_pixels(rows, origin, name)
+            return _read_png_pixels(fh, name, limit, threshold)
         if ext in (".pbm", ".pgm"):
             img = read_netpbm(fh, name, limit)
             origin = _netpbm_origin(img.comments, name)
@@ -367,8 +447,12 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
     ------
     FileFormatError
         For an extension that is not a pixel file type.
+    LimitError, SizeLimitError
+        For a set with pixels beyond ±2³¹ or a box over the pixel limit (:mod:`mrm.limits`).
     """
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
+    # What this module writes it reads back: pixels beyond the document's coordinates are refused here too.
+    limits.check_pixel_extent(ps.origin, ps.shape, f"{_name(path)}: the pixel set")
     if ext == ".npz":
         data = _npz_bytes(mask=np.asarray(ps.mask), origin=np.array(ps.origin, dtype=np.int64))
     else:
@@ -383,7 +467,7 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
 
 
 # ---------------------------------------------------------------------------------------------- label maps
-def read_label_map(path: PathLike, *, limit: int = DEFAULT_PIXEL_LIMIT) -> LabelMap:
+def read_label_map(path: PathLike, *, limit: int = limits.MAX_LABEL_PIXELS) -> LabelMap:
     """Read a label map from a grey or indexed .png or an .npz (``labels`` + ``origin``).
 
     A PNG's grey value (8 or 16 bits) or palette index is the label; 0 is the background. Row 0 of the image
@@ -396,7 +480,7 @@ def read_label_map(path: PathLike, *, limit: int = DEFAULT_PIXEL_LIMIT) -> Label
     """
     name = _name(path)
     ext = _extension(path, LABEL_EXTENSIONS, "label map")
-    with open(path, "rb") as fh:
+    with open_regular(path, name) as fh:  # a FIFO or device is refused, never waited on
         if ext == ".png":
             im, origin = _open_png(fh, name, limit)
             if im.mode not in ("1", "L", "P", "I", "I;16", "I;16B", "I;16L", "I;16N"):

@@ -50,6 +50,7 @@ from typing import Any, NoReturn
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
 
+from mrm import limits
 from mrm.document import (
     COORDINATE_LIMIT,
     MODELS,
@@ -63,25 +64,27 @@ from mrm.document import (
     Style,
     validate_geometry,
 )
-from mrm.errors import DEFAULT_PIXEL_LIMIT, MRMError
 from mrm.errors import FileFormatError as FileFormatError
+from mrm.errors import MRMError
 from mrm.reps.pixels import PixelSet
 
 #: The value of the "format" key.
 FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
 SCHEMA_VERSION = 1
+# The limits are those of the document (mrm.limits, ADR 0010), so that the loader accepts every file the
+# saver can write: the document refuses the edit that would exceed them.
 #: Files larger than this are refused before being read.
-MAX_FILE_BYTES = 1 << 30
+MAX_FILE_BYTES = limits.MAX_FILE_BYTES
 #: A discrete source's bounding box may hold at most this many pixels.
-MAX_MASK_PIXELS = DEFAULT_PIXEL_LIMIT
+MAX_MASK_PIXELS = limits.MAX_OBJECT_PIXELS
 #: All the discrete sources of a file together hold at most this many pixels (their bounding boxes): a file
 #: cannot make us allocate more than about 1 GB of masks, whatever it claims.
-MAX_TOTAL_MASK_PIXELS = 1_000_000_000
+MAX_TOTAL_MASK_PIXELS = limits.MAX_FILE_PIXELS
 #: Largest magnitude of an integer coordinate (origins, shapes).
-MAX_INT_COORD = 2**31
+MAX_INT_COORD = limits.PIXEL_COORDINATE_LIMIT
 #: Longest object name accepted.
-MAX_NAME_CHARS = 10_000
+MAX_NAME_CHARS = limits.MAX_NAME_CHARS
 
 
 @dataclass(frozen=True)
@@ -299,9 +302,11 @@ class _Checker:
         for k in required:
             if k not in v:
                 self.fail(path, f"missing key {k!r}")
-        unknown = [k for k in v if k not in required and k not in optional]
-        if unknown:
-            self.fail(path, f"unknown key {unknown[0]!r}")
+        if len(v) > len(required):  # sets: linear in the number of keys, whatever it is
+            known = {*required, *optional}
+            unknown = next((k for k in v if k not in known), None)
+            if unknown is not None:
+                self.fail(path, f"unknown key {self.show(unknown)}")
         return v
 
     def list_(self, v: Any, path: str) -> list[Any]:
@@ -331,7 +336,7 @@ class _Checker:
             self.fail(path, f"expected a string, got {self.show(v)}")
         if len(v) > max_len:
             self.fail(path, f"string of {len(v)} characters is longer than {max_len}")
-        return v
+        return limits.clean_text(v)  # a JSON "\ud800" escape must not make the document unsavable
 
     def json_value(self, v: Any, path: str) -> None:
         """Check free-form JSON data iteratively (no recursion, whatever the nesting)."""
@@ -346,7 +351,7 @@ class _Checker:
                 stack.extend((val, f"{p}[{i}]", d + 1) for i, val in enumerate(x))
             elif isinstance(x, float) and not math.isfinite(x):
                 self.fail(p, "numbers must be finite")
-            elif isinstance(x, int) and not isinstance(x, bool) and abs(x) > 2**63:
+            elif isinstance(x, int) and not isinstance(x, bool) and abs(x) > limits.MAX_PARAM_INT:
                 self.fail(p, f"number {self.show(x)} is too large")
 
 
@@ -362,6 +367,8 @@ def _decode_bits(c: _Checker, src: dict[str, Any], path: str) -> PixelSet:
         c.fail(f"{path}.shape", f"expected [rows, cols], got {c.show(shape)}")
     h = c.int_(shape[0], f"{path}.shape[0]", 0, MAX_INT_COORD)
     w = c.int_(shape[1], f"{path}.shape[1]", 0, MAX_INT_COORD)
+    if h and w and max(x0 + w - 1, y0 + h - 1) > MAX_INT_COORD:
+        c.fail(f"{path}.shape", f"the mask reaches pixel coordinates beyond ±{MAX_INT_COORD:,}")
     if h * w > MAX_MASK_PIXELS:
         c.fail(f"{path}.shape", f"a {h} x {w} mask holds more than the limit of {MAX_MASK_PIXELS:,} pixels")
     c.mask_pixels += h * w
@@ -479,6 +486,9 @@ def _decode_provenance(c: _Checker, p: Any, path: str) -> Provenance | None:
         p["params"], f"{path}.params", (), tuple(p["params"]) if isinstance(p["params"], dict) else ()
     )
     c.json_value(params, f"{path}.params")
+    if len(json.dumps(params)) > limits.PARAMS_MAX_CHARS:
+        c.fail(f"{path}.params", f"the parameters are larger than {limits.PARAMS_MAX_CHARS:,} characters")
+    params = limits.clean_json(params)
     inputs = c.list_(p["inputs"], f"{path}.inputs")
     ids = [c.int_(v, f"{path}.inputs[{i}]", 1, 2**53) for i, v in enumerate(inputs)]
     try:
@@ -623,15 +633,19 @@ def parse_project(
 
 def read_project(path: str | os.PathLike[str], **kw: Any) -> Project:
     """Read and validate a project file (see :func:`parse_project`)."""
+    from mrm.io.reading import open_regular
+
     p = Path(path)
     name = p.name
-    size = p.stat().st_size
-    if size > MAX_FILE_BYTES:
-        raise FileFormatError(
-            f"{name}: the file is {size:,} bytes, larger than the limit of {MAX_FILE_BYTES:,}"
-        )
-    with open(p, "rb") as fh:
+    with open_regular(p, name) as fh:  # a FIFO or device is refused, never waited on
+        size = os.fstat(fh.fileno()).st_size
+        if size > MAX_FILE_BYTES:
+            raise FileFormatError(
+                f"{name}: the file is {size:,} bytes, larger than the limit of {MAX_FILE_BYTES:,}"
+            )
         data = fh.read(MAX_FILE_BYTES + 1)
+    if len(data) > MAX_FILE_BYTES:
+        raise FileFormatError(f"{name}: the file is larger than the limit of {MAX_FILE_BYTES:,} bytes")
     return parse_project(data, name, **kw)
 
 

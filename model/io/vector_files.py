@@ -36,6 +36,7 @@ from shapely.geometry.polygon import orient
 
 from mrm.errors import FileFormatError, InvalidGeometryError
 from mrm.io.atomic import atomic_open
+from mrm.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, check_output_bytes, clean_name
 from mrm.reps.pixels import PixelSet
 
 PathLike = str | os.PathLike[str]
@@ -108,7 +109,7 @@ def check_geometry(geom: BaseGeometry, where: str) -> BaseGeometry:
     if coords.size and not np.isfinite(coords).all():
         bad = coords[~np.isfinite(coords).all(axis=1)][0]
         raise InvalidGeometryError(
-            f"{where}: coordinates must be finite numbers, found ({bad[0]!r}, {bad[1]!r})"
+            f"{where}: coordinates must be finite numbers, found ({float(bad[0])!r}, {float(bad[1])!r})"
         )
     if not shapely.is_valid(geom):
         reason = str(shapely.is_valid_reason(geom))
@@ -156,15 +157,19 @@ def _flatten(g: BaseGeometry) -> list[BaseGeometry]:
 
 # ---------------------------------------------------------------------------------------------- reading
 def _read_text(path: PathLike) -> str:
+    from mrm.io.reading import open_regular
+
     name = os.fspath(path)
-    size = os.stat(path).st_size
-    if size > MAX_VECTOR_FILE_BYTES:
-        raise FileFormatError(
-            f"{name}: the file is {size / 2**20:.0f} MB, more than the {MAX_VECTOR_FILE_BYTES // 2**20} MB "
-            "accepted for vector files"
-        )
-    with open(path, "rb") as fh:
+    with open_regular(path, name) as fh:  # a FIFO or device is refused, never waited on
+        size = os.fstat(fh.fileno()).st_size
+        if size > MAX_VECTOR_FILE_BYTES:
+            raise FileFormatError(
+                f"{name}: the file is {size / 2**20:.0f} MB, more than the "
+                f"{MAX_VECTOR_FILE_BYTES // 2**20} MB accepted for vector files"
+            )
         data = fh.read(MAX_VECTOR_FILE_BYTES + 1)
+    if len(data) > MAX_VECTOR_FILE_BYTES:
+        raise FileFormatError(f"{name}: more than the {MAX_VECTOR_FILE_BYTES // 2**20} MB accepted")
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as e:
@@ -194,22 +199,37 @@ def _clean_coordinates(coords: Any, depth: int, where: str) -> Any:
     return [_clean_coordinates(c, depth - 1, where) for c in coords]
 
 
-def _geojson_geometry(obj: Any, where: str, name: str) -> BaseGeometry:
+def _count_positions(coords: Any, depth: int) -> int:
+    if depth == 0:
+        return 1
+    if depth == 1:
+        return len(coords)
+    return sum(_count_positions(c, depth - 1) for c in coords)
+
+
+def _geojson_geometry(obj: Any, where: str, name: str, depth: int = 1) -> BaseGeometry:
     if not isinstance(obj, dict):
         raise FileFormatError(f"{where}: a geometry must be a JSON object")
     gtype = obj.get("type")
     if gtype == "GeometryCollection":
+        if depth > MAX_GEOMETRY_NESTING:
+            raise FileFormatError(
+                f"{where}: geometry collections nested more than {MAX_GEOMETRY_NESTING} deep"
+            )
         members = obj.get("geometries")
         if not isinstance(members, list):
             raise FileFormatError(f"{where}: a GeometryCollection needs a 'geometries' array")
         return GeometryCollection(
-            [_geojson_geometry(g, f"{where}, geometry {i}", name) for i, g in enumerate(members)]
+            [_geojson_geometry(g, f"{where}, geometry {i}", name, depth + 1) for i, g in enumerate(members)]
         )
     if gtype not in _GEOJSON_DEPTH:
         raise FileFormatError(f"{where}: unsupported GeoJSON geometry type {gtype!r}")
     if "coordinates" not in obj:
         raise FileFormatError(f"{where}: the {gtype} has no 'coordinates'")
     coords = _clean_coordinates(obj["coordinates"], _GEOJSON_DEPTH[str(gtype)], where)
+    n = _count_positions(coords, _GEOJSON_DEPTH[str(gtype)])
+    if n > MAX_OBJECT_VERTICES:
+        raise FileFormatError(f"{where}: {n:,} positions, more than the limit of {MAX_OBJECT_VERTICES:,}")
     try:
         geom = shape({"type": gtype, "coordinates": coords})
     except Exception as e:  # shapely's constructors raise ValueError, GEOSException, …
@@ -226,6 +246,11 @@ def _feature_name(feature: dict[str, Any]) -> str | None:
     if feature.get("id") is not None:
         return str(feature["id"])
     return None
+
+
+def _clean_label(label: str | None) -> str | None:
+    """A feature name made storable: no lone surrogate, at most the name limit (mrm.limits)."""
+    return None if label is None else clean_name(label)
 
 
 def _read_geojson(path: PathLike) -> list[NamedGeometry]:
@@ -257,7 +282,7 @@ def _read_geojson(path: PathLike) -> list[NamedGeometry]:
         where = f"{name}: feature {i}"
         if not isinstance(feature, dict) or feature.get("type") != "Feature":
             raise FileFormatError(f"{where} is not a GeoJSON Feature")
-        label = _feature_name(feature)
+        label = _clean_label(_feature_name(feature))
         if label is not None:
             where += f" ({label!r})"
         if "geometry" not in feature:
@@ -272,6 +297,13 @@ def _read_wkt(path: PathLike) -> list[NamedGeometry]:
     """One geometry per statement; a statement may span lines (it ends when its parentheses balance)."""
     name = os.fspath(path)
     text = _read_text(path)
+    deepest = max_nesting(text)
+    if deepest > MAX_GEOMETRY_NESTING:
+        # GEOS parses nesting by recursion: 20,000 levels crash the process, 1,000 overflow Python's stack.
+        raise FileFormatError(
+            f"{name}: the WKT nests parentheses {deepest:,} deep, more than the {MAX_GEOMETRY_NESTING} "
+            "a geometry can need"
+        )
     out: list[NamedGeometry] = []
     buf: list[str] = []
     depth = 0
@@ -294,9 +326,35 @@ def _read_wkt(path: PathLike) -> list[NamedGeometry]:
     return out
 
 
+def max_nesting(text: str, open_: str = "(", close: str = ")", chunk: int = 1 << 22) -> int:
+    """The deepest nesting of ``open_``/``close`` in ``text`` (linear, a few MB of memory at most)."""
+    if open_ not in text:
+        return 0
+    o, c = ord(open_), ord(close)
+    deepest = 0
+    level = 0
+    for start in range(0, len(text), chunk):
+        b = np.frombuffer(text[start : start + chunk].encode("utf-8", "replace"), dtype=np.uint8)
+        steps = (b == o).astype(np.int32) - (b == c).astype(np.int32)
+        if not steps.any():
+            continue
+        run = np.cumsum(steps, dtype=np.int64) + level
+        deepest = max(deepest, int(run.max()))
+        level = int(run[-1])
+    return deepest
+
+
 def _parse_wkt(text: str, where: str) -> BaseGeometry:
+    positions = text.count(",") + 1
+    if positions > MAX_OBJECT_VERTICES:
+        raise FileFormatError(
+            f"{where}: about {positions:,} positions, more than the limit of {MAX_OBJECT_VERTICES:,}"
+        )
     try:
-        geom = shapely.from_wkt(text)
+        # NaN coordinates make GEOS's parser raise a floating-point warning; the check below gives the
+        # message, so the warning (printed above it) is silenced here, for this thread only.
+        with np.errstate(invalid="ignore"):
+            geom = shapely.from_wkt(text)
     except GEOSException as e:
         raise FileFormatError(f"{where}: malformed WKT: {str(e).removeprefix('ParseException: ')}") from None
     except NotImplementedError as e:  # curved types
@@ -330,10 +388,15 @@ def read_geometries(path: PathLike) -> list[NamedGeometry]:
         See :func:`check_geometry`.
     """
     ext = Path(path).suffix.lower()
-    if ext in (".geojson", ".json"):
-        return _read_geojson(path)
-    if ext == ".wkt":
-        return _read_wkt(path)
+    try:
+        if ext in (".geojson", ".json"):
+            return _read_geojson(path)
+        if ext == ".wkt":
+            return _read_wkt(path)
+    except RecursionError:  # every import error is a message, never an escaping exception
+        raise FileFormatError(f"{os.fspath(path)}: the geometry is nested too deeply") from None
+    except MemoryError:
+        raise FileFormatError(f"{os.fspath(path)}: not enough memory to read the geometry") from None
     shown = f"'{ext}'" if ext else "no extension"
     raise FileFormatError(
         f"{os.fspath(path)}: {shown} is not a vector file type; use .geojson, .json or .wkt"
@@ -380,6 +443,17 @@ def _geojson_of(g: BaseGeometry) -> dict[str, Any]:
     raise InvalidGeometryError(f"cannot write a {g.geom_type} as GeoJSON")
 
 
+#: Upper bounds of the bytes written per coordinate pair (two float reprs and punctuation) and per SVG run.
+_BYTES_PER_POSITION = 52
+_BYTES_PER_RUN = 80
+
+
+def _check_geometry_output(geoms: Iterable[BaseGeometry], path: PathLike) -> None:
+    """Refuse, before building any text, a vector file larger than :data:`mrm.limits.MAX_OUTPUT_BYTES`."""
+    n = sum(int(shapely.get_num_coordinates(g)) for g in geoms)
+    check_output_bytes(n * _BYTES_PER_POSITION, f"{os.fspath(path)} ({n:,} positions)")
+
+
 def _parts(geom_or_parts: Any) -> list[tuple[Any, BaseGeometry]] | None:
     """None for a single geometry, else [(part name, geometry)]."""
     if isinstance(geom_or_parts, BaseGeometry):
@@ -418,6 +492,7 @@ def write_geojson(
     ``repr`` and read back identical.
     """
     parts = _parts(geom_or_parts)
+    _check_geometry_output([geom_or_parts] if parts is None else [g for _, g in parts], path)
     base = dict(properties or {})
     if parts is None:
         assert isinstance(geom_or_parts, BaseGeometry)
@@ -464,6 +539,7 @@ def wkt_of(g: BaseGeometry) -> str:
 def write_wkt(geom: BaseGeometry | Iterable[BaseGeometry], path: PathLike) -> None:
     """Write one geometry, or several (one per line), as WKT, atomically and exactly."""
     geoms = [geom] if isinstance(geom, BaseGeometry) else list(geom)
+    _check_geometry_output(geoms, path)
     text = "".join(wkt_of(g) + "\n" for g in geoms)
     with atomic_open(path, "w") as fh:
         fh.write(text)
@@ -504,6 +580,16 @@ def _svg_elements(g: BaseGeometry, r: float, outline: bool = False) -> list[str]
     if isinstance(g, MultiPolygon | MultiLineString | MultiPoint | GeometryCollection):
         return [e for part in g.geoms for e in _svg_elements(part, r, outline)]
     raise InvalidGeometryError(f"cannot draw a {g.geom_type} in SVG")
+
+
+def _run_count(ps: PixelSet) -> int:
+    """The number of maximal horizontal runs of pixels (one SVG rectangle each), a strip at a time."""
+    m = ps.mask
+    runs = 0
+    for r0 in range(0, m.shape[0], 1024):
+        s = m[r0 : r0 + 1024]
+        runs += int(np.count_nonzero(s[:, 0])) + int(np.count_nonzero(s[:, 1:] & ~s[:, :-1]))
+    return runs
 
 
 def _pixel_rects(ps: PixelSet) -> list[str]:
@@ -578,6 +664,12 @@ def write_svg(
     if geom is not None and not geom.is_empty:
         gx0, gy0, gx1, gy1 = (float(b) for b in geom.bounds)
         boxes.append((gx0, gy0, gx1, gy1))
+    estimate = 0
+    if pixels is not None and not pixels.is_empty():
+        estimate += _run_count(pixels) * _BYTES_PER_RUN
+    if geom is not None:
+        estimate += int(shapely.get_num_coordinates(geom)) * _BYTES_PER_POSITION
+    check_output_bytes(estimate, f"{os.fspath(path)} (an SVG picture)")  # before any text is built
     bounds = _union_bounds(boxes) or (0.0, 0.0, 1.0, 1.0)
     size = max(bounds[2] - bounds[0], bounds[3] - bounds[1], 1.0)
     body: list[str] = []

@@ -1,0 +1,307 @@
+"""The limits of what a document can hold, declared once (ADR 0010).
+
+Whatever a document can hold, its project file can hold and reopen: the same limits are checked at the edit,
+operation or import that would exceed them (with a :class:`~mrm.errors.LimitError` or
+:class:`~mrm.errors.SizeLimitError` naming the limit) and again by the project loader, which therefore never
+refuses a file this program wrote. The costs of work whose size does not follow from the pixel count —
+reconstruction (boundary length in crack steps), vector output (vertices), written files (bytes) — are
+computed here from the input before the work starts.
+
+Nothing here imports anything heavier than numpy, so every layer can use it.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.errors import DEFAULT_PIXEL_LIMIT, LimitError, SizeLimitError
+
+# ---------------------------------------------------------------------------------------------- the limits
+#: Largest absolute coordinate of a Euclidean source. Beyond it pixel indices leave the int32 range the
+#: kernels use, and float64 spacing there exceeds a millionth of a pixel, so nothing exact could follow.
+COORDINATE_LIMIT = float(2**31)
+#: Every pixel (x, y) of a discrete source has |x| ≤ this and |y| ≤ this (pixel files and projects alike).
+PIXEL_COORDINATE_LIMIT = 2**31
+#: Pixels in the bounding box of one discrete source.
+MAX_OBJECT_PIXELS = DEFAULT_PIXEL_LIMIT
+#: Pixels in the bounding boxes of all the discrete sources of one document (one file) together: about
+#: 1 GB of masks at most, whatever a file claims.
+MAX_FILE_PIXELS = 1_000_000_000
+#: Vertices (coordinates, closing points included) of one Euclidean source.
+MAX_OBJECT_VERTICES = 5_000_000
+#: Longest object name, in characters.
+MAX_NAME_CHARS = 10_000
+#: Longest operation name in a provenance.
+MAX_OPERATION_CHARS = 200
+#: Largest object id (ids stay exact in every JSON reader).
+MAX_ID = 2**53
+#: Largest magnitude of an integer in provenance parameters.
+MAX_PARAM_INT = 2**63
+#: Nesting depth and JSON size of provenance parameters (free-form JSON data).
+PARAMS_MAX_DEPTH = 16
+PARAMS_MAX_CHARS = 1_000_000
+#: Largest project file read; a document is kept :data:`FILE_BYTES_MARGIN` below it.
+MAX_FILE_BYTES = 1 << 30
+FILE_BYTES_MARGIN = 1 << 20
+#: Boundary length (crack steps: pixel edges between a pixel of the set and one outside) of a pixel set
+#: that may be reconstructed; reconstruction costs several hundred bytes per step.
+MAX_CRACK_STEPS = 2_000_000
+#: Largest file written by an export (SVG, GeoJSON, WKT, images).
+MAX_OUTPUT_BYTES = 256 << 20
+#: Pixels of a label map (four bytes each in memory).
+MAX_LABEL_PIXELS = 50_000_000
+#: Nesting depth of geometries in WKT and GeoJSON files (a MultiPolygon in a GeometryCollection is 4).
+MAX_GEOMETRY_NESTING = 32
+#: Steps of an error-bound chain (``mrm bounds``): its exact rationals grow with every step (500 steps of
+#: arbitrary fractions take 2.3 s, 256 under 1 s), and real chains have a handful.
+MAX_CHAIN_STEPS = 256
+
+#: Bytes an object takes in a project file beyond its name, provenance and source (id, style, keys).
+_OBJECT_OVERHEAD = 400
+#: Upper bound of the bytes of one position ``[x, y], `` in a project file: two float reprs of ≤ 24
+#: characters each and the punctuation.
+_POSITION_BYTES = 56
+
+
+# ---------------------------------------------------------------------------------------------- text
+def clean_text(text: str) -> str:
+    r"""``text`` with lone surrogates (which no UTF-8 file can hold) replaced by U+FFFD.
+
+    Text read from files goes through this on the way in (JSON's ``"\ud800"`` escape gives a lone
+    surrogate), so that a document never holds text it could not save.
+    """
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        # A surrogate pair spelt as two code points becomes the character it encodes; a lone one U+FFFD.
+        return text.encode("utf-16-le", "surrogatepass").decode("utf-16-le", "replace")
+    return text
+
+
+def check_text(text: str, what: str) -> str:
+    """Return ``text`` if it can be saved (valid Unicode, no lone surrogate), else raise LimitError."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as e:
+        raise LimitError(
+            f"{what} holds a character that cannot be saved "
+            f"(U+{ord(text[e.start]):04X} at position {e.start})"
+        ) from None
+    return text
+
+
+def check_name(name: str) -> str:
+    """Check an object name against :data:`MAX_NAME_CHARS` and :func:`check_text`."""
+    if len(name) > MAX_NAME_CHARS:
+        raise LimitError(
+            f"an object name of {len(name):,} characters is longer than the limit of {MAX_NAME_CHARS:,}"
+        )
+    return check_text(name, "the object name")
+
+
+def clean_name(name: str) -> str:
+    """A name read from a file made acceptable: cleaned (:func:`clean_text`) and cut to the limit."""
+    name = clean_text(name)
+    return name if len(name) <= MAX_NAME_CHARS else name[: MAX_NAME_CHARS - 1] + "…"
+
+
+def clean_json(value: Any) -> Any:
+    """A JSON value read from a file with every string (keys too) passed through :func:`clean_text`.
+
+    Iterative, so any nesting depth is fine; containers are rebuilt only where something changed.
+    """
+    if isinstance(value, str):
+        return clean_text(value)
+    if not isinstance(value, dict | list):
+        return value
+    out: Any = {} if isinstance(value, dict) else []
+    stack: list[tuple[Any, Any]] = [(value, out)]
+    while stack:
+        src, dst = stack.pop()
+        items = src.items() if isinstance(src, dict) else enumerate(src)
+        for k, v in items:
+            if isinstance(v, dict | list):
+                child: Any = {} if isinstance(v, dict) else []
+                stack.append((v, child))
+            else:
+                child = clean_text(v) if isinstance(v, str) else v
+            if isinstance(dst, dict):
+                dst[clean_text(k)] = child
+            else:
+                dst.append(child)
+    return out
+
+
+# ---------------------------------------------------------------------------------------------- pixels
+def check_pixel_extent(origin: tuple[int, int], shape: tuple[int, ...], what: str = "the pixel set") -> None:
+    """Refuse a box of pixels (origin (x0, y0), shape (rows, cols)) beyond the pixel limits.
+
+    Raises
+    ------
+    LimitError
+        When a pixel of the box has a coordinate beyond ±:data:`PIXEL_COORDINATE_LIMIT`.
+    SizeLimitError
+        When the box holds more than :data:`MAX_OBJECT_PIXELS` pixels.
+    """
+    h, w = int(shape[0]), int(shape[1])
+    if h == 0 or w == 0:
+        return
+    x0, y0 = int(origin[0]), int(origin[1])
+    lim = PIXEL_COORDINATE_LIMIT
+    if min(x0, y0) < -lim or max(x0 + w - 1, y0 + h - 1) > lim:
+        raise LimitError(
+            f"{what} would reach pixel coordinates beyond ±2^31 (its box starts at ({x0}, {y0}) and is "
+            f"{w} × {h}); move it closer to the origin or reduce the scale"
+        )
+    if h * w > MAX_OBJECT_PIXELS:
+        raise SizeLimitError(h * w, MAX_OBJECT_PIXELS, what)
+
+
+def crack_steps(mask: npt.NDArray[np.bool_], *, rows_per_strip: int = 1024) -> int:
+    """The boundary length of a mask: the pixel edges between a set pixel and an unset one (or the outside).
+
+    Linear time; works in strips of rows so that it needs at most a few bytes per pixel of one strip.
+    """
+    m = np.asarray(mask, dtype=bool)
+    if m.ndim != 2 or m.size == 0:
+        return 0
+    h = m.shape[0]
+    total = 0
+    for r0 in range(0, h, rows_per_strip):
+        s = m[r0 : r0 + rows_per_strip]
+        # Horizontal neighbours, with the outside as unset on both ends.
+        total += int(np.count_nonzero(s[:, 1:] != s[:, :-1]))
+        total += int(np.count_nonzero(s[:, 0])) + int(np.count_nonzero(s[:, -1]))
+        # Vertical neighbours inside the strip, and to the first row of the next strip (or the outside).
+        total += int(np.count_nonzero(s[1:] != s[:-1]))
+        below = m[r0 + rows_per_strip] if r0 + rows_per_strip < h else np.zeros(m.shape[1], dtype=bool)
+        total += int(np.count_nonzero(s[-1] != below))
+    total += int(np.count_nonzero(m[0]))  # the bottom row against the outside
+    return total
+
+
+def check_reconstruct(ps: Any, what: str = "the pixel set") -> int:
+    """Refuse to reconstruct (R) a pixel set whose boundary is longer than :data:`MAX_CRACK_STEPS`.
+
+    Returns the boundary length; call before any reconstruction work.
+    """
+    steps = crack_steps(ps.mask)
+    if steps > MAX_CRACK_STEPS:
+        raise LimitError(
+            f"{what} has a boundary of {steps:,} pixel edges, more than the {MAX_CRACK_STEPS:,} its polygon "
+            "may have (a checkerboard-like or noisy image?); simplify or smooth it first, or keep it as "
+            "pixels"
+        )
+    return steps
+
+
+# ---------------------------------------------------------------------------------------------- output
+def check_output_bytes(estimate: int, what: str) -> None:
+    """Refuse a file whose estimated size exceeds :data:`MAX_OUTPUT_BYTES`, before it is built."""
+    if estimate > MAX_OUTPUT_BYTES:
+        raise LimitError(
+            f"{what} would be about {estimate / 2**20:,.0f} MB, more than the limit of "
+            f"{MAX_OUTPUT_BYTES / 2**20:,.0f} MB"
+        )
+
+
+def check_vertices(n: int, what: str = "the polygon") -> None:
+    """Refuse a Euclidean shape with more than :data:`MAX_OBJECT_VERTICES` vertices."""
+    if n > MAX_OBJECT_VERTICES:
+        raise LimitError(f"{what} has {n:,} vertices, more than the limit of {MAX_OBJECT_VERTICES:,}")
+
+
+def check_chain_steps(n: int) -> None:
+    """Refuse an error-bound chain of more than :data:`MAX_CHAIN_STEPS` steps, before any arithmetic."""
+    if n > MAX_CHAIN_STEPS:
+        raise LimitError(f"the chain has {n:,} steps, more than the limit of {MAX_CHAIN_STEPS:,}")
+
+
+# ---------------------------------------------------------------------------------------------- parameters
+def check_param_int(v: int, what: str = "a provenance parameter") -> int:
+    """Refuse an integer parameter beyond ±:data:`MAX_PARAM_INT`."""
+    if abs(v) > MAX_PARAM_INT:
+        digits = len(str(abs(v))) if abs(v) < 10**4000 else "thousands of"
+        raise LimitError(f"{what} is an integer of {digits} digits, beyond the limit of ±2^63")
+    return v
+
+
+# ---------------------------------------------------------------------------------------------- file cost
+def json_bytes(value: Any) -> int:
+    """Upper bound of the UTF-8 bytes of ``value`` in a project file (its ASCII-escaped JSON length)."""
+    return len(json.dumps(value, allow_nan=False))
+
+
+def source_file_bytes(kind: str, *, pixels: int = 0, coordinates: int = 0, rings: int = 0) -> int:
+    """Upper bound of the bytes a source takes in a project file.
+
+    A discrete source is its packed mask in base64 (exact) plus its origin and shape; a Euclidean source
+    at most :data:`_POSITION_BYTES` per coordinate plus brackets per ring.
+    """
+    if kind == "discrete":
+        return 4 * (((pixels + 7) // 8 + 2) // 3) + 120
+    return _POSITION_BYTES * coordinates + 8 * rings + 120
+
+
+def object_file_bytes(name_bytes: int, provenance_bytes: int, source_bytes: int) -> int:
+    """Upper bound of the bytes of one object's line in a project file (selection entry included)."""
+    return _OBJECT_OVERHEAD + name_bytes + provenance_bytes + source_bytes + 20
+
+
+def check_document_totals(pixels: int, nbytes: int) -> None:
+    """Refuse a document whose discrete sources or file size would exceed the per-file limits."""
+    if pixels > MAX_FILE_PIXELS:
+        raise SizeLimitError(pixels, MAX_FILE_PIXELS, "the pixel objects of the document together")
+    if nbytes > MAX_FILE_BYTES - FILE_BYTES_MARGIN:
+        raise LimitError(
+            f"the document would need a project file of about {nbytes / 2**20:,.0f} MB, more than the limit "
+            f"of {(MAX_FILE_BYTES - FILE_BYTES_MARGIN) / 2**20:,.0f} MB; remove or simplify objects"
+        )
+
+
+def describe_limits() -> list[tuple[str, str]]:
+    """The limits as (what, value) rows, for the user guide and ``mrm --help`` style listings."""
+
+    def n(v: float) -> str:
+        return f"{v:,.0f}"
+
+    return [
+        ("Euclidean coordinates", f"±2^31 ({n(COORDINATE_LIMIT)})"),
+        ("pixel coordinates (every pixel of a pixel object)", f"±2^31 ({n(PIXEL_COORDINATE_LIMIT)})"),
+        ("pixels in the bounding box of one pixel object", n(MAX_OBJECT_PIXELS)),
+        ("pixels of all pixel objects of a document", n(MAX_FILE_PIXELS)),
+        ("vertices of one polygon object", n(MAX_OBJECT_VERTICES)),
+        ("object name", f"{n(MAX_NAME_CHARS)} characters"),
+        ("integer in operation parameters", "±2^63"),
+        ("project file", f"{n(MAX_FILE_BYTES / 2**20)} MB"),
+        ("boundary of a pixel set turned into a polygon", f"{n(MAX_CRACK_STEPS)} pixel edges"),
+        ("exported file", f"{n(MAX_OUTPUT_BYTES / 2**20)} MB"),
+        ("label map", f"{n(MAX_LABEL_PIXELS)} pixels"),
+        ("geometry nesting in WKT / GeoJSON", str(MAX_GEOMETRY_NESTING)),
+        ("steps of an error-bound chain", n(MAX_CHAIN_STEPS)),
+    ]
+
+
+__all__ = [name for name in dir() if name.isupper() and not name.startswith("_")] + [
+    "check_chain_steps",
+    "check_document_totals",
+    "check_name",
+    "check_output_bytes",
+    "check_param_int",
+    "check_pixel_extent",
+    "check_reconstruct",
+    "check_text",
+    "check_vertices",
+    "clean_json",
+    "clean_name",
+    "clean_text",
+    "crack_steps",
+    "describe_limits",
+    "json_bytes",
+    "object_file_bytes",
+    "source_file_bytes",
+]
