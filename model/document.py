@@ -200,9 +200,32 @@ def _freeze_json(value: Any, depth: int = 0) -> Any:
     raise ParameterError(f"provenance parameters must be JSON data, got {type(value).__name__}")
 
 
+def content_digest(source: Any) -> str:
+    """A digest of an object's source representation: equal digests mean equal content.
+
+    A pixel set is hashed through its canonical (cropped) mask and origin, a geometry through its WKB
+    (float64 coordinates bit for bit), so the digest names the content, not the object that holds it.
+    """
+    import hashlib
+
+    h = hashlib.sha256()
+    if isinstance(source, PixelSet):
+        h.update(b"discrete:")
+        h.update(np.asarray([*source.origin, *source.shape], dtype=np.int64).tobytes())
+        h.update(np.packbits(source.mask, axis=None).tobytes())
+    else:
+        h.update(b"euclidean:")
+        h.update(shapely.to_wkb(source, byte_order=1))
+    return h.hexdigest()[:32]
+
+
+#: Longest chain of pinned provenance records accepted (a project file nests them).
+PROVENANCE_MAX_DEPTH = 512
+
+
 @dataclass(frozen=True)
 class Provenance:
-    """How an object was produced: the operation, its parameters and the ids of its inputs.
+    """How an object was produced: the operation, its parameters and its inputs *as they were then*.
 
     Parameters
     ----------
@@ -211,12 +234,27 @@ class Provenance:
     params : Mapping
         Its parameters as JSON data (copied and checked; treat as read-only).
     inputs : sequence of int
-        Ids of the objects it read (they may since have been removed).
+        Ids of the objects it read (they may since have been edited or removed).
+    sources : sequence of Source, optional
+        The content of each input at the moment the result was made (pinned: editing or deleting the
+        input object never changes it). Empty for provenance that predates pinning.
+    parents : sequence of Provenance or None, optional
+        The provenance each input had at that moment (None for a drawn or imported input), so the whole
+        chain that led to the result is pinned too.
+
+    Notes
+    -----
+    ``digests`` (one per pinned source, :func:`content_digest`) is computed once; equality compares
+    digests, never the sources themselves. A project file stores each pinned content once, by digest,
+    shared between every result that read it (:mod:`mrm.io.project`).
     """
 
     operation: str
     params: Mapping[str, Any] = field(default_factory=dict)
     inputs: tuple[int, ...] = ()
+    sources: tuple[Any, ...] = field(default=(), compare=False, repr=False)
+    parents: tuple[Provenance | None, ...] = ()
+    digests: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not isinstance(self.operation, str) or not self.operation:
@@ -238,6 +276,48 @@ class Provenance:
         if not all(1 <= i <= limits.MAX_ID for i in ins):
             raise limits.LimitError(f"provenance inputs must be object ids in [1, 2^53], got {list(ins)[:5]}")
         object.__setattr__(self, "inputs", ins)
+        sources = tuple(self.sources)
+        if sources and len(sources) != len(ins):
+            raise ParameterError(f"a provenance pins {len(sources)} input contents for {len(ins)} inputs")
+        for s in sources:
+            if not isinstance(s, PixelSet | Polygon | MultiPolygon):
+                raise ParameterError(f"a pinned input content must be a source, got {type(s).__name__}")
+        object.__setattr__(self, "sources", sources)
+        parents = tuple(self.parents) if self.parents else (None,) * len(sources)
+        if len(parents) != len(sources):
+            raise ParameterError("a provenance needs one parent record per pinned input")
+        if not all(p is None or isinstance(p, Provenance) for p in parents):
+            raise ParameterError("a provenance's parents must be provenance records or None")
+        depth = 1 + max((p.depth for p in parents if p is not None), default=0)
+        if depth > PROVENANCE_MAX_DEPTH:
+            raise ParameterError(f"a provenance chain is longer than {PROVENANCE_MAX_DEPTH} operations")
+        object.__setattr__(self, "parents", parents)
+        object.__setattr__(self, "_depth", depth)
+        digests = tuple(self.digests) or tuple(content_digest(s) for s in sources)
+        if len(digests) != len(sources):
+            raise ParameterError("a provenance needs one digest per pinned input content")
+        object.__setattr__(self, "digests", digests)
+
+    @property
+    def depth(self) -> int:
+        """How many operations the pinned chain holds (this one included)."""
+        return int(self.__dict__["_depth"])
+
+    @property
+    def pinned(self) -> bool:
+        """True when the inputs' content at creation is recorded."""
+        return bool(self.sources)
+
+    @classmethod
+    def of_inputs(cls, operation: str, params: Mapping[str, Any], inputs: Sequence[DocObject]) -> Provenance:
+        """The provenance of a result made from ``inputs`` now: their ids, content and provenance pinned."""
+        return cls(
+            operation,
+            params,
+            tuple(o.id for o in inputs),
+            tuple(o.source for o in inputs),
+            tuple(o.provenance for o in inputs),
+        )
 
     @classmethod
     def from_json(cls, data: Mapping[str, Any]) -> Provenance:
@@ -246,9 +326,23 @@ class Provenance:
             raise ParameterError("a provenance is a mapping with 'operation', 'params' and 'inputs'")
         return cls(str(data["operation"]), data.get("params", {}), tuple(data.get("inputs", ())))
 
-    def to_json(self) -> dict[str, Any]:
-        """The provenance as the project file stores it."""
-        return {"operation": self.operation, "params": _freeze_json(self.params), "inputs": list(self.inputs)}
+    def to_json(self, contents: dict[str, Any] | None = None) -> dict[str, Any]:
+        """The provenance as the project file stores it.
+
+        With ``contents`` (digest → source, filled in here) the pinned inputs are written as their digests
+        plus their parents' records; the caller stores each content once.
+        """
+        out: dict[str, Any] = {
+            "operation": self.operation,
+            "params": _freeze_json(self.params),
+            "inputs": list(self.inputs),
+        }
+        if contents is not None and self.sources:
+            for d, s in zip(self.digests, self.sources, strict=True):
+                contents.setdefault(d, s)
+            out["input_contents"] = list(self.digests)
+            out["input_provenance"] = [None if p is None else p.to_json(contents) for p in self.parents]
+        return out
 
 
 @dataclass(frozen=True, eq=True)

@@ -55,6 +55,7 @@ from mrm.document import (
     COORDINATE_LIMIT,
     MODELS,
     PARAMS_MAX_DEPTH,
+    PROVENANCE_MAX_DEPTH,
     DocObject,
     Document,
     Geometry,
@@ -62,6 +63,7 @@ from mrm.document import (
     Settings,
     Source,
     Style,
+    content_digest,
     validate_geometry,
 )
 from mrm.errors import FileFormatError as FileFormatError
@@ -177,13 +179,17 @@ def _encode_style(s: Style) -> dict[str, Any]:
     }
 
 
-def object_to_json(obj: DocObject) -> dict[str, Any]:
-    """One object as the project file stores it."""
+def object_to_json(obj: DocObject, contents: dict[str, Any] | None = None) -> dict[str, Any]:
+    """One object as the project file stores it.
+
+    ``contents`` (digest → source) collects the pinned input contents of its provenance, which the file
+    stores once in its top-level ``contents`` table; without it the provenance is written unpinned.
+    """
     return {
         "id": obj.id,
         "name": obj.name,
         "style": _encode_style(obj.style),
-        "provenance": obj.provenance.to_json() if obj.provenance is not None else None,
+        "provenance": obj.provenance.to_json(contents) if obj.provenance is not None else None,
         "source": _encode_source(obj.source),
     }
 
@@ -218,7 +224,14 @@ def dumps(doc: Document, *, autosave: dict[str, Any] | None = None) -> bytes:
         head.append(("autosave", autosave))
     lines = ["{"]
     lines += [f" {_dump(k)}: {_dump(v)}," for k, v in head]
-    objs = [f"  {_dump(object_to_json(o))}" for o in doc.objects]
+    contents: dict[str, Any] = {}
+    objs = [f"  {_dump(object_to_json(o, contents))}" for o in doc.objects]
+    if contents:  # each pinned input content once, shared by every result that read it
+        lines.append(' "contents": {')
+        lines.append(
+            ",\n".join(f"  {_dump(d)}: {_dump(_encode_source(contents[d]))}" for d in sorted(contents))
+        )
+        lines.append(" },")
     if objs:
         lines.append(' "objects": [')
         lines.append(",\n".join(objs))
@@ -475,10 +488,14 @@ def _decode_style(c: _Checker, s: Any, path: str) -> Style:
         c.fail(path, str(e))
 
 
-def _decode_provenance(c: _Checker, p: Any, path: str) -> Provenance | None:
+def _decode_provenance(
+    c: _Checker, p: Any, path: str, contents: dict[str, Source] | None = None, depth: int = 0
+) -> Provenance | None:
     if p is None:
         return None
-    c.obj(p, path, ("operation", "params", "inputs"))
+    if depth > PROVENANCE_MAX_DEPTH:
+        c.fail(path, f"a provenance chain is longer than {PROVENANCE_MAX_DEPTH} operations")
+    c.obj(p, path, ("operation", "params", "inputs"), ("input_contents", "input_provenance"))
     op = c.str_(p["operation"], f"{path}.operation", 200)
     if not op:
         c.fail(f"{path}.operation", "empty operation name")
@@ -491,18 +508,40 @@ def _decode_provenance(c: _Checker, p: Any, path: str) -> Provenance | None:
     params = limits.clean_json(params)
     inputs = c.list_(p["inputs"], f"{path}.inputs")
     ids = [c.int_(v, f"{path}.inputs[{i}]", 1, 2**53) for i, v in enumerate(inputs)]
+    sources: list[Source] = []
+    parents: list[Provenance | None] = []
+    digests: list[str] = []
+    if "input_contents" in p:
+        refs = c.list_(p["input_contents"], f"{path}.input_contents")
+        if len(refs) != len(ids):
+            c.fail(f"{path}.input_contents", f"expected {len(ids)} digests (one per input), got {len(refs)}")
+        for i, d in enumerate(refs):
+            key = c.str_(d, f"{path}.input_contents[{i}]", 64)
+            if contents is None or key not in contents:
+                c.fail(f"{path}.input_contents[{i}]", f"no content {c.show(key)} in $.contents")
+            sources.append(contents[key])
+            digests.append(key)
+        ups = c.list_(p.get("input_provenance", [None] * len(ids)), f"{path}.input_provenance")
+        if len(ups) != len(ids):
+            c.fail(f"{path}.input_provenance", f"expected {len(ids)} records (one per input), got {len(ups)}")
+        parents = [
+            _decode_provenance(c, u, f"{path}.input_provenance[{i}]", contents, depth + 1)
+            for i, u in enumerate(ups)
+        ]
+    elif "input_provenance" in p:
+        c.fail(f"{path}.input_provenance", "given without input_contents")
     try:
-        return Provenance(op, params, tuple(ids))
+        return Provenance(op, params, tuple(ids), tuple(sources), tuple(parents), tuple(digests))
     except MRMError as e:
         c.fail(path, str(e))
 
 
-def _decode_object(c: _Checker, o: Any, path: str) -> DocObject:
+def _decode_object(c: _Checker, o: Any, path: str, contents: dict[str, Source] | None = None) -> DocObject:
     c.obj(o, path, ("id", "name", "style", "provenance", "source"))
     oid = c.int_(o["id"], f"{path}.id", 1, 2**53)
     name = c.str_(o["name"], f"{path}.name")
     style = _decode_style(c, o["style"], f"{path}.style")
-    prov = _decode_provenance(c, o["provenance"], f"{path}.provenance")
+    prov = _decode_provenance(c, o["provenance"], f"{path}.provenance", contents)
     source = _decode_source(c, o["source"], f"{path}.source")
     return DocObject(id=oid, name=name, source=source, style=style, provenance=prov)
 
@@ -595,7 +634,10 @@ def parse_project(
     )
     raw = migrate(raw, name, migrations, current)
     c.obj(
-        raw, "$", ("format", "schema_version", "settings", "objects"), ("generator", "selection", "autosave")
+        raw,
+        "$",
+        ("format", "schema_version", "settings", "objects"),
+        ("generator", "selection", "autosave", "contents"),
     )
     if "generator" in raw:
         c.str_(raw["generator"], "$.generator", 200)
@@ -604,15 +646,26 @@ def parse_project(
     if model not in MODELS:
         c.fail("$.settings.model", f"unknown model {c.show(model)}; expected one of {', '.join(MODELS)}")
     settings = Settings(model=model)
+    contents: dict[str, Source] = {}
+    if "contents" in raw:  # the pinned input contents of the provenance records, each stored once
+        keys = tuple(raw["contents"]) if isinstance(raw["contents"], dict) else ()
+        table = c.obj(raw["contents"], "$.contents", (), keys)
+        for key, src in table.items():
+            c.str_(key, "$.contents", 64)
+            value = _decode_source(c, src, f"$.contents[{key!r}]")
+            if content_digest(value) != key:  # a digest names its content: a file cannot make it lie
+                c.fail(f"$.contents[{key!r}]", "the content does not match its digest")
+            contents[key] = value
     objs_raw = c.list_(raw["objects"], "$.objects")
     objects: list[DocObject] = []
     seen: dict[int, int] = {}
     for i, o in enumerate(objs_raw):
-        obj = _decode_object(c, o, f"$.objects[{i}]")
+        obj = _decode_object(c, o, f"$.objects[{i}]", contents)
         if obj.id in seen:
             c.fail(f"$.objects[{i}].id", f"id {obj.id} is already used by $.objects[{seen[obj.id]}]")
         seen[obj.id] = i
         objects.append(obj)
+    objects = _pin_legacy_provenance(objects)
     selection: list[int] = []
     if "selection" in raw:
         sel = c.list_(raw["selection"], "$.selection")
@@ -629,6 +682,41 @@ def parse_project(
         c.str_(a["saved_at"], "$.autosave.saved_at", 100)
         autosave = dict(a)
     return Project(objects, settings, selection, autosave, file_version)
+
+
+def _pin_legacy_provenance(objects: list[DocObject]) -> list[DocObject]:
+    """Pin the inputs of provenance written before pinning existed, from the objects of the same file.
+
+    An older file recorded only input ids; the best record of what those inputs were is what the file holds
+    for them (the results were saved with them). Inputs the file no longer holds stay unpinned, and the
+    account of such a result says so instead of guessing.
+    """
+    by_id = {o.id: o for o in objects}
+    done: dict[int, DocObject] = {}
+    visiting: set[int] = set()
+
+    def pinned(oid: int, depth: int) -> DocObject:
+        if oid in done:
+            return done[oid]
+        obj = by_id[oid]
+        if oid in visiting:  # a cycle of ids in a hand-made file: leave it unpinned
+            return obj
+        visiting.add(oid)
+        prov = obj.provenance
+        if (
+            prov is not None
+            and not prov.pinned
+            and prov.inputs
+            and depth < PROVENANCE_MAX_DEPTH
+            and all(i in by_id and i != oid for i in prov.inputs)
+        ):
+            ins = [pinned(i, depth + 1) for i in prov.inputs]
+            obj = obj.with_(provenance=Provenance.of_inputs(prov.operation, prov.params, ins))
+        visiting.discard(oid)
+        done[oid] = obj
+        return obj
+
+    return [pinned(o.id, 0) for o in objects]
 
 
 def read_project(path: str | os.PathLike[str], **kw: Any) -> Project:

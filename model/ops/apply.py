@@ -2,7 +2,8 @@
 
 :func:`apply_operation` reads the sources of the input objects, runs the operation (which never touches the
 document), and only when it has finished pushes one :class:`~mrm.commands.ApplyResults` command that adds
-the results with their provenance — the operation's name, its parameters and the ids of its inputs. A
+the results with their provenance — the operation's name, its parameters, the ids of its inputs and their
+content at that moment (pinned: editing an input later never changes a result's account). A
 failure (bad parameter, size limit, invalid geometry) or a cancel raises before that push, so the document,
 its history and its selection are exactly as they were: nothing is lost.
 """
@@ -14,7 +15,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.ops.base import ProgressLike, get_operation, params_to_dict, run_operation
+from mrm.ops.base import Plan, ProgressLike, plan_operation
 
 #: The modules that register the paper's operations (``dss``, ``discrete_rotation``, ``simplify``, ``union``,
 #: ``corefine``) when imported.
@@ -38,6 +39,9 @@ def apply_operation(
 ) -> list[int]:
     """Run ``operation`` on the objects ``input_ids`` of ``doc`` and add its results as one undo step.
 
+    :func:`mrm.ops.base.plan_operation` does the work (it never touches the document); this pushes its
+    results. The GUI runs ``plan_operation`` on a worker and pushes on its own thread.
+
     Parameters
     ----------
     doc : mrm.document.Document
@@ -45,7 +49,7 @@ def apply_operation(
         A registered operation's name (``dss``, ``discrete_rotation``, ``simplify``, ``union``, ``corefine``).
     input_ids : sequence of int
         The input objects, as many as the operation's arity.
-    params : parameter dataclass, optional
+    params : parameter dataclass or mapping, optional
         The operation's parameters (defaults when None); pass ``model=doc.model`` so that the results keep
         the document's invariant D(Euclidean) = discrete under the model they were made with.
     progress : object with ``update(fraction, message)``, optional
@@ -62,21 +66,20 @@ def apply_operation(
     ParameterError, SizeLimitError, InvalidGeometryError, Cancelled
         Before anything is changed.
     """
-    from mrm.commands import ApplyResults
-    from mrm.document import Provenance
-
     load_paper_operations()
-    spec = get_operation(operation)
-    if params is None:
-        params = spec.default_params()
-    ids = [int(i) for i in input_ids]
-    sources = [doc.get(i).source for i in ids]
-    out = run_operation(spec, sources, params, progress=progress, limit=limit)  # checks arity and size first
-    base = params_to_dict(params)
-    objects = []
-    for name, source in out.outputs:
-        p = {**base, "part": name} if spec.name == "corefine" else base
-        prov = Provenance(spec.name, p, tuple(ids))
-        objects.append(doc.make_object(source, name, provenance=prov))
-    doc.push(ApplyResults(spec.title, add=objects))
+    plan = plan_operation([doc.get(int(i)) for i in input_ids], operation, params, progress, limit=limit)
+    return push_plan(doc, plan)
+
+
+def push_plan(doc: Any, plan: Plan, styles: Sequence[Any] | None = None) -> list[int]:
+    """Add the results of a plan to ``doc`` as one undo step; the ids of the new objects."""
+    from mrm.commands import ApplyResults
+
+    objects = [
+        doc.make_object(
+            r.source, r.name, provenance=r.provenance, style=styles[k] if styles is not None else None
+        )
+        for k, r in enumerate(plan.results)
+    ]
+    doc.push(ApplyResults(plan.label, add=objects))
     return [o.id for o in objects]

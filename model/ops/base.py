@@ -34,16 +34,18 @@ from mrm.reps.pixels import PixelSet
 __all__ = [
     "NO_PROGRESS",
     "REGISTRY",
-    "ChainResult",
     "NullProgress",
     "OperationResult",
     "OperationSpec",
     "ParamSpec",
+    "Plan",
+    "PlannedResult",
     "Progress",
     "ProgressLike",
     "SubProgress",
     "bounds_of",
     "check_pixel_limit",
+    "coerce_params",
     "estimate_result_pixels",
     "get_operation",
     "operations",
@@ -51,8 +53,9 @@ __all__ = [
     "param_specs",
     "params_from_dict",
     "params_to_dict",
+    "plan_operation",
+    "range_text",
     "register",
-    "run_chain",
     "run_operation",
     "validate_params",
 ]
@@ -328,6 +331,17 @@ def _fmt(v: float) -> str:
     return f"{v:g}"
 
 
+def range_text(spec: ParamSpec) -> str:
+    """The allowed values of a number as a reader writes them: ``0 < α ≤ 1e+06``, ``−3600 ≤ θ ≤ 3600``."""
+    lo, hi = spec.minimum, spec.maximum
+    name = spec.label or spec.name
+    left = "" if lo is None else f"{_fmt(lo)} {'≤' if spec.min_inclusive else '<'} "
+    right = "" if hi is None else f" {'≤' if spec.max_inclusive else '<'} {_fmt(hi)}"
+    if not left and not right:
+        return f"{name} any finite number"
+    return f"{left}{name}{right}"
+
+
 def _check_number(spec: ParamSpec, value: Any) -> float:
     what = f"parameter {spec.name!r}" + (f" ({spec.label})" if spec.label != spec.name else "")
     if isinstance(value, bool) or not isinstance(value, numbers.Real):  # numpy scalars are Real too
@@ -338,15 +352,15 @@ def _check_number(spec: ParamSpec, value: Any) -> float:
     if not math.isfinite(v):
         raise ParameterError(f"{what} must be finite, got {value!r}")
     lo, hi = spec.minimum, spec.maximum
-    if lo is not None and (v < lo or (v == lo and not spec.min_inclusive)):
-        if lo == 0 and not spec.min_inclusive:
-            raise ParameterError(f"{what} must be positive, got {_fmt(v)}")
-        rel = "≥" if spec.min_inclusive else ">"
-        raise ParameterError(f"{what} must be {rel} {_fmt(lo)}, got {_fmt(v)}")
-    if hi is not None and (v > hi or (v == hi and not spec.max_inclusive)):
-        rel = "≤" if spec.max_inclusive else "<"
-        raise ParameterError(f"{what} must be {rel} {_fmt(hi)}, got {_fmt(v)}")
+    below = lo is not None and (v < lo or (v == lo and not spec.min_inclusive))
+    above = hi is not None and (v > hi or (v == hi and not spec.max_inclusive))
+    if below or above:
+        raise ParameterError(f"{what} must satisfy {range_text(spec)}, got {value!r}")
     return v
+
+
+#: Largest magnitude of a point parameter's coordinates (a centre), as for Euclidean sources.
+POINT_LIMIT = float(2**31)
 
 
 def validate_params(params: Any) -> None:
@@ -374,6 +388,11 @@ def validate_params(params: Any) -> None:
             for v in value:
                 if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(float(v)):
                     raise ParameterError(f"{what} must be a pair of finite numbers, got {value!r}")
+                if abs(float(v)) > POINT_LIMIT:
+                    raise ParameterError(
+                        f"{what} must have coordinates between {-POINT_LIMIT:g} and {POINT_LIMIT:g}, "
+                        f"got {value!r}"
+                    )
         elif spec.kind == "bool":
             if not isinstance(value, bool):
                 raise ParameterError(f"{what} must be true or false, got {value!r}")
@@ -535,6 +554,12 @@ class OperationSpec:
         ``estimate(inputs, params) -> pixels``: the result's size, computed before running for the guard.
     chain_step : callable, optional
         ``chain_step(params) -> ChainStep``: the step in the bound model (DESIGN §8).
+    similarity : callable, optional
+        ``similarity(params) -> Similarity``: the exact Euclidean similarity the operation applies (Sc_α for
+        DSS, the exact rotation for dR, the identity for Sp); the account composes them (DESIGN §8). None for
+        an operation that is no step of a one-object chain.
+    aliases : tuple of str
+        Other names a chain's text or the CLI may use (``DSS``, ``ROT``, ``SP``…).
     """
 
     name: str
@@ -547,6 +572,13 @@ class OperationSpec:
     help: str = ""
     estimate: EstimateFn | None = None
     chain_step: Callable[[Any], ChainStep] | None = None
+    similarity: Callable[[Any], Any] | None = None
+    aliases: tuple[str, ...] = ()
+
+    @property
+    def reads(self) -> Kind:
+        """The representation the operation reads: ``discrete``, ``euclidean`` or ``any``."""
+        return self.input_kind
 
     def default_params(self) -> Any:
         """The parameters with their defaults."""
@@ -593,10 +625,13 @@ def _load_builtin() -> None:
 def get_operation(name: str) -> OperationSpec:
     """The registered operation ``name``."""
     _load_builtin()
-    try:
+    if name in REGISTRY:
         return REGISTRY[name]
-    except KeyError:
-        raise ParameterError(f"unknown operation {name!r} (known: {', '.join(sorted(REGISTRY))})") from None
+    key = str(name).strip().lower().replace("-", "_").replace(" ", "_")
+    for spec in REGISTRY.values():
+        if key == spec.name or key in (a.lower() for a in spec.aliases):
+            return spec
+    raise ParameterError(f"unknown operation {name!r} (known: {', '.join(sorted(REGISTRY))})")
 
 
 def operations() -> list[OperationSpec]:
@@ -624,40 +659,33 @@ def run_operation(
     *,
     progress: ProgressLike | None = None,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-    input_provenance: Sequence[dict[str, Any] | None] | None = None,
-    model: str = "standard",
+    model: str | None = None,
 ) -> OperationResult:
-    """Validate, guard, run ``spec`` and stamp the result with its provenance.
+    """Validate, guard, run ``spec`` and stamp the result with its provenance and bound: the one place.
 
     Parameters
     ----------
     spec : OperationSpec or str
-        The operation (or its registered name).
+        The operation (or a registered name or alias).
     inputs : sequence
         ``spec.arity`` pixel sets or geometries.
-    params : parameters dataclass, optional
-        Defaults when omitted.
+    params : parameters dataclass or mapping, optional
+        Defaults when omitted; a mapping is read with :func:`params_from_dict` (unknown names refused).
     progress : progress object, optional
         Receives ``update(fraction, message)``; cancelling it stops the work with :class:`Cancelled`.
     limit : int or None
-        The largest result allowed, in pixels (None: no limit).
-    input_provenance : sequence of dict, optional
-        The provenance of each input, nested into the result's.
-    model : str
-        The discretization model, for the operation's own bound when it does not set one.
+        The largest result allowed, in pixels (None: no limit), checked on the estimate before running.
+    model : str, optional
+        The discretization model of the bound for operations whose parameters carry none.
 
     Raises
     ------
     ParameterError, SizeLimitError, Cancelled
-        Bad parameters or inputs; a result beyond ``limit`` (raised before running); a cancel.
+        Bad parameters (the message gives the allowed range) or inputs; a result beyond ``limit`` (raised
+        before running); a cancel.
     """
-    if isinstance(spec, str):
-        spec = get_operation(spec)
-    if params is None:
-        params = spec.default_params()
-    if not isinstance(params, spec.params):
-        raise ParameterError(f"{spec.name} takes {spec.params.__name__}, got {type(params).__name__}")
-    validate_params(params)
+    spec = get_operation(spec) if isinstance(spec, str) else spec
+    params = coerce_params(spec, params)
     _check_inputs(spec, inputs)
     if spec.estimate is not None:
         check_pixel_limit(spec.estimate(inputs, params), limit, f"{spec.title} result")
@@ -665,93 +693,93 @@ def run_operation(
     progress.update(0.0, spec.title)
     result = spec.run(inputs, params, progress)
     progress.update(1.0, spec.title)
-    prov_inputs: list[dict[str, Any]] = []
-    for i in range(len(inputs)):
-        given = input_provenance[i] if input_provenance is not None and i < len(input_provenance) else None
-        prov_inputs.append(given if given is not None else {"input": i})
-    provenance = {"operation": spec.name, "params": params_to_dict(params), "inputs": prov_inputs}
+    provenance = {
+        "operation": spec.name,
+        "params": params_to_dict(params),
+        "inputs": [{"input": i} for i in range(len(inputs))],
+    }
     bound = result.bound
     if bound is None and spec.chain_step is not None:
-        bound = bound_of_chain([spec.chain_step(params)], model)
+        own_model = getattr(params, "model", None) or model or "standard"
+        bound = bound_of_chain([spec.chain_step(params)], own_model)
     return dataclasses.replace(result, provenance=provenance, bound=bound)
 
 
+def coerce_params(spec: OperationSpec, params: Any) -> Any:
+    """The operation's parameters dataclass from None (defaults), a mapping or an instance, validated."""
+    if params is None:
+        params = spec.default_params()
+    elif isinstance(params, dict):
+        params = params_from_dict(spec.params, params)
+    if not isinstance(params, spec.params):
+        raise ParameterError(f"{spec.name} takes {spec.params.__name__}, got {type(params).__name__}")
+    validate_params(params)
+    return params
+
+
 @dataclass(frozen=True)
-class ChainResult:
-    """The results of a chain, step by step, and the chain's error bound (None if a step has no model)."""
+class PlannedResult:
+    """One result of :func:`plan_operation`: what to add to a document, with its pinned provenance."""
 
-    results: list[OperationResult]
-    bound: BoundResult | None
-
-    @property
-    def output(self) -> Output:
-        """The last step's first output."""
-        return self.results[-1].output
-
-    @property
-    def provenance(self) -> dict[str, Any]:
-        """The last step's provenance (it nests every earlier step)."""
-        return self.results[-1].provenance
+    name: str
+    source: Output
+    provenance: Any  # mrm.document.Provenance
 
 
-ChainItem = tuple[OperationSpec | str, Any] | tuple[OperationSpec | str, Any, Sequence[Output]]
+@dataclass(frozen=True)
+class Plan:
+    """What an operation produced, ready to be added to a document as one undo step.
+
+    Attributes
+    ----------
+    label : str
+        The undo step's label (the operation's title).
+    results : list of PlannedResult
+    outcome : OperationResult
+        The operation's own result (bound, part bounds…).
+    """
+
+    label: str
+    results: list[PlannedResult]
+    outcome: OperationResult
 
 
-def run_chain(
-    steps: Sequence[ChainItem],
-    first: Output,
-    *,
-    model: str = "standard",
+def plan_operation(
+    inputs: Sequence[Any],
+    name: str | OperationSpec,
+    params: Any = None,
     progress: ProgressLike | None = None,
+    *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-    first_provenance: dict[str, Any] | None = None,
-) -> ChainResult:
-    """Run operations one after the other, each on the first output of the previous one.
+) -> Plan:
+    """Run an operation on document objects without touching any document: a pure function.
 
     Parameters
     ----------
-    steps : sequence of (spec, params) or (spec, params, other_inputs)
-        ``other_inputs`` are the extra operands of a binary operation (the chain's object comes first).
-    first : PixelSet or geometry
-        The chain's input.
-    model : str
-        The discretization model, for the chain's bound.
+    inputs : sequence of mrm.document.DocObject
+        The input objects (immutable values: safe to read on a worker thread).
+    name : str or OperationSpec
+        The operation.
+    params : parameters dataclass or mapping, optional
     progress : progress object, optional
-        Split evenly between the steps; a cancel stops the chain at the current step.
+    limit : int or None
 
     Returns
     -------
-    ChainResult
-        Every step's result (provenance nested: the last one names the whole chain) and the bound of the
-        chain when every step has a place in the bound model.
+    Plan
+        The results, each with a provenance that pins its inputs' ids, content and provenance as they are
+        now (:meth:`mrm.document.Provenance.of_inputs`); push them with
+        ``doc.push(ApplyResults(plan.label, add=[doc.make_object(r.source, r.name, provenance=r.provenance)
+        for r in plan.results]))``, as :func:`mrm.ops.apply.apply_operation` does.
     """
-    if not steps:
-        raise ParameterError("the chain is empty")
-    progress = NO_PROGRESS if progress is None else progress
-    results: list[OperationResult] = []
-    current: Output = first
-    prov: dict[str, Any] | None = first_provenance
-    chain_steps: list[ChainStep] = []
-    modelled = True  # every step so far has a place in the bound model
-    for i, item in enumerate(steps):
-        spec = get_operation(item[0]) if isinstance(item[0], str) else item[0]
-        params = item[1] if item[1] is not None else spec.default_params()
-        others: Sequence[Output] = item[2] if len(item) > 2 else ()
-        part = SubProgress(progress, i / len(steps), (i + 1) / len(steps))
-        res = run_operation(
-            spec,
-            [current, *others],
-            params,
-            progress=part,
-            limit=limit,
-            input_provenance=[prov] + [None] * len(others),
-            model=model,
-        )
-        results.append(res)
-        current, prov = res.output, res.provenance
-        if spec.chain_step is not None:
-            chain_steps.append(spec.chain_step(params))
-        else:
-            modelled = False
-    bound = bound_of_chain(chain_steps, model) if modelled else None
-    return ChainResult(results, bound)
+    from mrm.document import Provenance
+
+    spec = get_operation(name) if isinstance(name, str) else name
+    params = coerce_params(spec, params)
+    out = run_operation(spec, [o.source for o in inputs], params, progress=progress, limit=limit)
+    base = params_to_dict(params)
+    results = []
+    for part, source in out.outputs:
+        p = {**base, "part": part} if len(out.outputs) > 1 else base
+        results.append(PlannedResult(part, source, Provenance.of_inputs(spec.name, p, list(inputs))))
+    return Plan(spec.title, results, out)

@@ -21,10 +21,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep, CorefinePart
-from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.exact_geometry import (
     ExactShape,
     Similarity,
@@ -37,12 +37,12 @@ from mrm.ops.exact_geometry import (
 )
 from mrm.ops.outcome import (
     StepOutcome,
+    alpha_param,
     check_limit,
     check_model,
     check_size,
     joint_box,
     model_param,
-    provenance,
     source_box,
     sub_progress,
 )
@@ -213,14 +213,10 @@ class UnionParams:
 class CorefineParams:
     """Parameters of EDco and EDco_α."""
 
-    alpha: float | None = param(
+    alpha: float | None = alpha_param(
         None,
-        kind="float",
+        "Precision factor α of the precise co-refinement (error ≤ √2/α); empty: plain EDco.",
         optional=True,
-        positive=True,
-        label="α",
-        unit="×",
-        help="Precision factor α > 0 of the precise co-refinement (error ≤ √2/α); empty: plain EDco.",
     )
     model: str = model_param()
 
@@ -275,27 +271,18 @@ def run_union(
     inputs: Sequence[Any], params: UnionParams, progress: ProgressLike | None = None
 ) -> OperationResult:
     """Run EDu on two objects."""
-    if len(inputs) != 2:
-        raise ParameterError(f"the union takes two objects, got {len(inputs)}")
     out = euclidean_discrete_union(inputs[0], inputs[1], params.model, progress=progress)
-    return OperationResult(
-        outputs=[("EDu", out.result)],
-        provenance=provenance(UNION, params),
-        bound=bounds.bound_of_chain([union_chain_step(params)], params.model),
-    )
+    return OperationResult(outputs=[("EDu", out.result)])
 
 
 def run_corefine(
     inputs: Sequence[Any], params: CorefineParams, progress: ProgressLike | None = None
 ) -> CorefineResult:
     """Run EDco (or EDco_α) on two objects: three outputs, one per part (empty parts included)."""
-    if len(inputs) != 2:
-        raise ParameterError(f"the co-refinement takes two objects, got {len(inputs)}")
     out = euclidean_discrete_corefinement(inputs[0], inputs[1], params.model, params.alpha, progress=progress)
     part_bounds = {p: bounds.bound_of_chain([corefine_chain_step(params, p)], params.model) for p in PARTS}
     return CorefineResult(
         outputs=[(p, out.result[p]) for p in PARTS],
-        provenance=provenance(COREFINE, params),
         bound=part_bounds[PARTS[0]],
         label_map=out.extra["label_map"],
         part_bounds=part_bounds,
@@ -317,6 +304,7 @@ UNION_SPEC = register(
         help="EDu(E, E′) = R(D(E) ∪ D(E′)): a robust union made in the discrete space (paper, Def. 17).",
         estimate=estimate_union,
         chain_step=union_chain_step,
+        aliases=("EDu",),
     )
 )
 COREFINE_SPEC = register(
@@ -331,6 +319,7 @@ COREFINE_SPEC = register(
         help="EDco(E, E′): the parts A ∖ B, A ∩ B, B ∖ A made in the discrete space (paper, Defs. 18–19).",
         estimate=estimate_corefine,
         chain_step=corefine_chain_step,
+        aliases=("EDco", "corefinement", "co_refinement"),
     )
 )
 

@@ -252,7 +252,11 @@ def euclidean_similarity(source: Any, sim: Similarity, model: str, *, limit: int
     return StepOutcome(geom, sim, exact, PixelSet.empty())
 
 
-def _convert(current: Any, wanted: str, model: str, limit: int | None) -> Any:
+def convert_for(current: Any, wanted: str, model: str, limit: int | None) -> Any:
+    """The representation ``wanted`` (``discrete`` or ``euclidean``) of an object, as the document derives it.
+
+    D(E) of a polygon (exactly, for an :class:`ExactShape`), R(A) of a pixel set; unchanged otherwise.
+    """
     if wanted == "discrete" and isinstance(current, ExactShape):
         return discretize_exact(current, model, limit=limit)
     if wanted == "discrete" and not isinstance(current, PixelSet):
@@ -318,15 +322,15 @@ def run_chain(
 
     n = len(plan)
     share = 0.8 if measure else 0.9
-    current = _convert(source, CHAIN_OPERATIONS[plan[0][0]], model, limit)
-    a_first = ExactShape.from_geometry(_convert(current, "euclidean", model, limit))
+    current = convert_for(source, CHAIN_OPERATIONS[plan[0][0]], model, limit)
+    a_first = ExactShape.from_geometry(convert_for(current, "euclidean", model, limit))
     transform = Similarity.identity()
     results: list[ChainStepResult] = []
     for i, (name, pj, _) in enumerate(plan):
         sub = sub_progress(progress, share * i / n, share * (i + 1) / n)
         if progress is not None:
             progress.update(share * i / n, f"step {i + 1} of {n}: {name}")
-        current = _convert(current, CHAIN_OPERATIONS[name], model, limit)
+        current = convert_for(current, CHAIN_OPERATIONS[name], model, limit)
         outcome = run_step(name, current, pj, model, limit=limit, progress=sub)
         prov = {
             "operation": name,
@@ -341,7 +345,7 @@ def run_chain(
     final = results[-1].outcome.result
     t_first = a_first.map(transform)
     a_last = results[-1].outcome.euclidean
-    pixels = final if isinstance(final, PixelSet) else _convert(final, "discrete", model, limit)
+    pixels = final if isinstance(final, PixelSet) else convert_for(final, "discrete", model, limit)
     if progress is not None:
         progress.update(share, "the direct result D(T(A_first))")
     direct = discretize_exact(t_first, model, limit=limit, progress=sub_progress(progress, share, 0.9))

@@ -33,6 +33,32 @@ def model_param() -> Any:
     return param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
 
 
+#: The range of every scale and precision factor α (DSS_α, Sp_α, EDco_α), declared once: beyond it a result
+#: is either below one pixel or beyond any pixel limit, and the exact arithmetic would only spend time.
+ALPHA_MIN, ALPHA_MAX = 1e-6, 1e6
+#: The range of every rotation angle, in degrees (ten turns either way).
+ANGLE_LIMIT = 3600.0
+
+
+def alpha_param(default: float | None, help: str, *, optional: bool = False) -> Any:
+    """A factor α with its declared range [ALPHA_MIN, ALPHA_MAX], read exactly (0.2 is 1/5)."""
+    return param(
+        default,
+        kind="float",
+        label="α",
+        unit="×",
+        minimum=ALPHA_MIN,
+        maximum=ALPHA_MAX,
+        optional=optional,
+        help=help,
+    )
+
+
+def angle_param(default: float, help: str) -> Any:
+    """A rotation angle in degrees with its declared range [−ANGLE_LIMIT, ANGLE_LIMIT]."""
+    return param(default, label="θ", unit="°", minimum=-ANGLE_LIMIT, maximum=ANGLE_LIMIT, help=help)
+
+
 def center_param(help: str) -> Any:
     """An optional centre (a point; None means the origin), as DSS_α, dR_θ,C and Sp_α take."""
     return param(None, kind="point", optional=True, label="centre", unit="px", help=help)

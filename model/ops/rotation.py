@@ -21,20 +21,19 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep
-from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.exact_geometry import Similarity, exact_number, exact_point, number_to_json
 from mrm.ops.outcome import (
     StepOutcome,
+    angle_param,
     center_param,
-    check_model,
     discrete_of,
     discrete_similarity,
     estimate_through_pixels,
     model_param,
-    provenance,
 )
 from mrm.ops.rational_discretize import ProgressLike
 from mrm.reps.pixels import PixelSet
@@ -93,11 +92,8 @@ def discrete_rotation(
 class RotationParams:
     """Parameters of dR_θ,C."""
 
-    angle: float = param(
-        30.0,
-        label="θ",
-        unit="°",
-        help="Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact.",
+    angle: float = angle_param(
+        30.0, "Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact."
     )
     center: tuple[float, float] | None = center_param("Centre C of the rotation (default: origin).")
     model: str = model_param()
@@ -117,18 +113,17 @@ def run(
     inputs: Sequence[Any], params: RotationParams, progress: ProgressLike | None = None
 ) -> OperationResult:
     """Run dR_θ,C on one object (a polygon input is read as its discretization D(E))."""
-    if len(inputs) != 1:
-        raise ParameterError(f"the discrete-Euclidean rotation takes one object, got {len(inputs)}")
-    check_model(params.model)
     theta = exact_number(params.angle, "angle")
-    rotation_similarity(theta, params.center)  # validates before any work
+    sim = similarity(params)
     ps = discrete_of(inputs[0], params.model, DEFAULT_PIXEL_LIMIT)
-    out = discrete_rotation(ps, theta, params.center, params.model, progress=progress)
-    return OperationResult(
-        outputs=[(f"dR {number_to_json(theta)}°", out.result)],
-        provenance=provenance(NAME, params),
-        bound=bounds.bound_of_chain([chain_step(params)], params.model),
-    )
+    what = f"dR with θ = {number_to_json(theta)}°"
+    out = discrete_similarity(ps, sim, params.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=what)
+    return OperationResult(outputs=[(f"dR {number_to_json(theta)}°", out.result)])
+
+
+def similarity(params: RotationParams) -> Similarity:
+    """The exact rational rotation by θ about C."""
+    return rotation_similarity(params.angle, params.center)
 
 
 NAME = "discrete_rotation"
@@ -144,5 +139,7 @@ SPEC = register(
         help="dR_θ,C(A) = D(rot_θ,C(R(A))): rotate the continuation exactly, discretize it (paper, Def. 11).",
         estimate=estimate,
         chain_step=chain_step,
+        similarity=similarity,
+        aliases=("ROT", "dR", "rotation"),
     )
 )

@@ -16,20 +16,19 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep
-from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.exact_geometry import Similarity, exact_point, number_to_json, positive_number
 from mrm.ops.outcome import (
     StepOutcome,
+    alpha_param,
     center_param,
-    check_model,
     discrete_of,
     discrete_similarity,
     estimate_through_pixels,
     model_param,
-    provenance,
 )
 from mrm.ops.rational_discretize import ProgressLike
 from mrm.reps.pixels import PixelSet
@@ -89,12 +88,8 @@ def discrete_smooth_scaling(
 class DSSParams:
     """Parameters of DSS_α."""
 
-    alpha: float = param(
-        2.0,
-        label="α",
-        unit="×",
-        positive=True,
-        help="Scale factor α > 0, read exactly (0.2 is 1/5); the result's size is checked before running.",
+    alpha: float = alpha_param(
+        2.0, "Scale factor α, read exactly (0.2 is 1/5); the result's size is checked before running."
     )
     center: tuple[float, float] | None = center_param("Centre of the scaling (default: origin).")
     model: str = model_param()
@@ -110,19 +105,22 @@ def estimate(inputs: Sequence[Any], params: DSSParams) -> int:
     return estimate_through_pixels(inputs[0], scaling_similarity(params.alpha, params.center), params.model)
 
 
+def similarity(params: DSSParams) -> Similarity:
+    """Sc_α about the centre, exact."""
+    return scaling_similarity(params.alpha, params.center)
+
+
 def run(inputs: Sequence[Any], params: DSSParams, progress: ProgressLike | None = None) -> OperationResult:
-    """Run DSS_α on one object (a polygon input is read as its discretization D(E))."""
-    if len(inputs) != 1:
-        raise ParameterError(f"DSS takes one object, got {len(inputs)}")
-    check_model(params.model)
-    sim = scaling_similarity(params.alpha, params.center)
+    """Run DSS_α on one object (a polygon input is read as its discretization D(E)).
+
+    :func:`mrm.ops.base.run_operation` validated the parameters, checked the size and stamps provenance and
+    bound; this only computes.
+    """
+    sim = similarity(params)
     ps = discrete_of(inputs[0], params.model, DEFAULT_PIXEL_LIMIT)
-    out = discrete_smooth_scaling(ps, sim.ratio, params.center, params.model, progress=progress)
-    return OperationResult(
-        outputs=[(f"DSS {number_to_json(sim.ratio)}", out.result)],
-        provenance=provenance(NAME, params),
-        bound=bounds.bound_of_chain([chain_step(params)], params.model),
-    )
+    what = f"DSS with α = {number_to_json(sim.ratio)}"
+    out = discrete_similarity(ps, sim, params.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=what)
+    return OperationResult(outputs=[(f"DSS {number_to_json(sim.ratio)}", out.result)])
 
 
 NAME = "dss"
@@ -138,5 +136,7 @@ SPEC = register(
         help="DSS_α(A) = D(Sc_α(R(A))): scale the continuation exactly and discretize it (paper, Def. 3).",
         estimate=estimate,
         chain_step=chain_step,
+        similarity=similarity,
+        aliases=("DSS", "discrete_smooth_scaling", "smooth_scaling"),
     )
 )

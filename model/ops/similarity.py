@@ -11,6 +11,11 @@ cannot hold every image exactly, so the guarantee is the best one floats allow:
   are recomputed with :class:`fractions.Fraction`;
 - other rotations use ``cos θ`` and ``sin θ`` rounded to floats, so images are within a few ulps
   (``shapely.affinity`` would also round ``cos 90°`` to ``6e-17``; here 90° multiples never touch cos/sin).
+
+The registered operations ``scale``, ``rotate`` and ``translate`` do not use these float functions: they read
+their parameters as every other path does (a float is the decimal it prints as, so 0.4 is 2/5; a rotation is
+the exact rational rotation of :mod:`mrm.ops.exact_geometry`), apply the map exactly and round each coordinate
+once — the same numbers as the chain steps of the same names.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from shapely.geometry.base import BaseGeometry
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.geometry import bounds as chain
 from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, param, register
+from mrm.ops.exact_geometry import ExactShape, Similarity, exact_number, exact_point, positive_number
 
 F64 = npt.NDArray[np.float64]
 
@@ -216,16 +222,42 @@ def _result(name: str, geom: BaseGeometry) -> OperationResult:
     return OperationResult(outputs=[(name, geom)])
 
 
+# One arithmetic for every path (DESIGN §8): the registry's similarities read their parameters as the chain
+# steps of the same names do — a float as the decimal it prints as (0.4 is 2/5), the exact rational rotation —
+# apply them exactly and round each coordinate once.
+
+
+def _translate_similarity(p: TranslateParams) -> Similarity:
+    return Similarity.translation(exact_number(p.dx, "dx"), exact_number(p.dy, "dy"))
+
+
+def _scale_similarity(p: ScaleParams) -> Similarity:
+    return Similarity.scaling(positive_number(p.factor, "factor"), exact_point(p.center, "center"))
+
+
+def _rotate_similarity(p: RotateParams) -> Similarity:
+    return Similarity.rotation(exact_number(p.angle, "angle"), exact_point(p.center, "center"))
+
+
+def _exact_map(geom: BaseGeometry, sim: Similarity) -> BaseGeometry:
+    """The exact image of a polygonal geometry, each coordinate rounded once to float64."""
+    from shapely.geometry import MultiPolygon, Polygon
+
+    if not isinstance(geom, Polygon | MultiPolygon):
+        raise InvalidGeometryError(f"expected a polygon, got a {geom.geom_type}")
+    return _checked(ExactShape.from_geometry(geom).map(sim).to_geometry(), geom)
+
+
 def _run_translate(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
-    return _result("translated", translate_geometry(inputs[0], p.dx, p.dy))
+    return _result("translated", _exact_map(inputs[0], _translate_similarity(p)))
 
 
 def _run_scale(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
-    return _result("scaled", scale_geometry(inputs[0], p.factor, p.center))
+    return _result("scaled", _exact_map(inputs[0], _scale_similarity(p)))
 
 
 def _run_rotate(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
-    return _result("rotated", rotate_geometry(inputs[0], p.angle, p.center))
+    return _result("rotated", _exact_map(inputs[0], _rotate_similarity(p)))
 
 
 TRANSLATE = register(
@@ -237,8 +269,9 @@ TRANSLATE = register(
         run=_run_translate,
         input_kind="euclidean",
         output_kind="euclidean",
-        help="Move a Euclidean object by (dx, dy); exact up to the rounding of each coordinate.",
-        chain_step=lambda p: chain.translate(p.dx, p.dy),
+        help="Move a Euclidean object by (dx, dy), exactly, each coordinate rounded once.",
+        chain_step=lambda p: chain.translate(exact_number(p.dx, "dx"), exact_number(p.dy, "dy")),
+        similarity=_translate_similarity,
     )
 )
 
@@ -251,8 +284,12 @@ SCALE = register(
         run=_run_scale,
         input_kind="euclidean",
         output_kind="euclidean",
-        help="Scale a Euclidean object about a centre; every coordinate correctly rounded.",
-        chain_step=lambda p: chain.scale(p.factor, p.center),
+        help="Scale a Euclidean object about a centre, exactly (0.4 is 2/5), each coordinate rounded once.",
+        chain_step=lambda p: chain.scale(
+            positive_number(p.factor, "factor"), exact_point(p.center, "center")
+        ),
+        similarity=_scale_similarity,
+        aliases=("SCALE", "sc"),
     )
 )
 
@@ -265,7 +302,9 @@ ROTATE = register(
         run=_run_rotate,
         input_kind="euclidean",
         output_kind="euclidean",
-        help="Rotate a Euclidean object about a centre; exact for multiples of 90°.",
-        chain_step=lambda p: chain.erot(p.angle, p.center),
+        help="Rotate a Euclidean object about a centre by the exact rational rotation, rounded once.",
+        chain_step=lambda p: chain.erot(exact_number(p.angle, "angle"), exact_point(p.center, "center")),
+        similarity=_rotate_similarity,
+        aliases=("EROT",),
     )
 )

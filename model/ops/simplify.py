@@ -18,10 +18,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep
-from mrm.ops.base import OperationResult, OperationSpec, param, register
+from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.exact_geometry import (
     ExactShape,
     Similarity,
@@ -33,13 +33,13 @@ from mrm.ops.exact_geometry import (
 )
 from mrm.ops.outcome import (
     StepOutcome,
+    alpha_param,
     center_param,
     check_limit,
     check_model,
     check_size,
     estimate_source,
     model_param,
-    provenance,
     sub_progress,
 )
 from mrm.ops.rational_discretize import ProgressLike, discretize_exact
@@ -120,12 +120,8 @@ def simplification(
 class SimplifyParams:
     """Parameters of Sp_α."""
 
-    alpha: float = param(
-        0.5,
-        label="α",
-        unit="×",
-        positive=True,
-        help="α > 0: the grid spacing is 1/α, details below it are simplified away (error ≤ √2/α).",
+    alpha: float = alpha_param(
+        0.5, "The grid spacing is 1/α; details below it are simplified away (error ≤ √2/α)."
     )
     center: tuple[float, float] | None = center_param("Centre of the scalings (default: origin).")
     model: str = model_param()
@@ -146,16 +142,14 @@ def run(
     inputs: Sequence[Any], params: SimplifyParams, progress: ProgressLike | None = None
 ) -> OperationResult:
     """Run Sp_α on one object (a pixel set A is read as its Euclidean representation R(A))."""
-    if len(inputs) != 1:
-        raise ParameterError(f"the simplification takes one object, got {len(inputs)}")
-    check_model(params.model)
     a = positive_number(params.alpha, "alpha")
     out = simplification(inputs[0], a, params.center, params.model, progress=progress)
-    return OperationResult(
-        outputs=[(f"Sp {number_to_json(a)}", out.result)],
-        provenance=provenance(NAME, params),
-        bound=bounds.bound_of_chain([chain_step(params)], params.model),
-    )
+    return OperationResult(outputs=[(f"Sp {number_to_json(a)}", out.result)])
+
+
+def similarity(params: SimplifyParams) -> Similarity:
+    """Sp_α applies Sc_α and Sc_1/α around its round trip: as a whole, the identity."""
+    return Similarity.identity()
 
 
 NAME = "simplify"
@@ -171,5 +165,7 @@ SPEC = register(
         help="Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): simplify on a grid of spacing 1/α (paper, Def. 14).",
         estimate=estimate,
         chain_step=chain_step,
+        similarity=similarity,
+        aliases=("SP", "simplification"),
     )
 )

@@ -1,0 +1,586 @@
+"""The account of a result: its chain, the paper's bound, the exact measured error, the differing pixels.
+
+One function, :func:`account_of`, computes it from a result's pinned provenance
+(:class:`mrm.document.Provenance`: the operation, its parameters, and the content and provenance its inputs
+had when the result was made). The inspector, ``mrm account … --json``, ``mrm scale … --json`` and scripts all
+call it, so they print the same numbers (:meth:`Account.summary`). Nothing is guessed from names: the
+operation is looked up in the registry (:mod:`mrm.ops.base`), its parameters are read and range-checked by its
+parameters dataclass, its place in the bound rule and its similarity come from its spec.
+
+The chain (DESIGN §8)
+---------------------
+A result's chain is the run of one-object operations (DSS_α, dR_θ,C, Sp_α and the exact Euclidean scale,
+rotate, translate) that led to it, followed back through the pinned first inputs to an object that was
+drawn, imported, or made by a two-object operation (EDu, EDco): that object is ``A₀``. Then
+
+* ``A_first`` is ``R(A₀)`` (``A₀`` itself when the first step reads the Euclidean representation, ``R(D(E₀))``
+  when a discrete step starts from a polygon), exactly;
+* ``T`` is the composite of the steps' exact similarities (:attr:`mrm.ops.base.OperationSpec.similarity`);
+* ``A_last`` is the exact Euclidean object just before the last discretization (``T_k(R(A_{k−1}))`` for
+  DSS and dR, the exact Sp result, the exact image of a Euclidean similarity), recomputed from the pinned
+  input of the last step — the object the result was really made from;
+* ``measured`` is the exact ``H(T(A_first), A_last)`` (:mod:`mrm.ops.measure`), set beside the bound of
+  :func:`mrm.geometry.bounds.bound_of_chain`; ``direct`` is ``D(T(A_first))`` and the differing pixels are
+  the paper's Figure 12 light and dark grey.
+
+For Sp_α the account also checks ``Sp_α∘Sp_α = Sp_α`` on the result (:attr:`Account.idempotent`).
+
+Two-object operations
+---------------------
+EDu and EDco are accounted for on their own pinned inputs ``E``, ``E′`` (a pixel set ``A`` stands for
+``R(A)``): the bound of the step (√n for EDu; per part for EDco / EDco_α, with the directions that hold,
+:mod:`mrm.geometry.bounds`), and the measured distance to the Euclidean union or part, computed by GEOS's
+overlay — exact when the inputs do not overlap, otherwise exact for GEOS's polygon, whose new crossing
+vertices are rounded to float64 (``reference_exact`` says which). Both inputs' own chains are listed.
+
+Where no bound exists, :attr:`Account.no_bound` says why in words. A provenance that cannot be read (an
+unknown operation, parameters out of range, a chain that mixes models) gives an account whose
+:attr:`Account.error` says what is wrong; it never raises.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from typing import Any
+
+from mrm.errors import DEFAULT_PIXEL_LIMIT, MRMError, ParameterError
+from mrm.geometry.bounds import BoundResult, ChainStep, bound_of_chain
+from mrm.ops.base import ProgressLike, coerce_params, get_operation, params_to_dict
+from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
+from mrm.reps.pixels import PixelSet
+
+log = logging.getLogger(__name__)
+
+#: The operations of a one-object chain: they have a similarity and a place in the bound rule.
+CHAIN_OPERATIONS = ("dss", "discrete_rotation", "simplify", "scale", "rotate", "translate")
+#: Exact operations on pixel sets or objects: no discretization, no continuation, so no error.
+EXACT_OPERATIONS = {
+    "discrete_union": "a union of pixel sets is exact",
+    "discrete_intersection": "an intersection of pixel sets is exact",
+    "discrete_difference": "a difference of pixel sets is exact",
+    "merge": "merging objects copies their content exactly",
+}
+
+
+@dataclass(frozen=True)
+class Link:
+    """One operation of a chain as the account lists it.
+
+    Attributes
+    ----------
+    operation : str
+        The registry name.
+    label : str
+        The step as the paper writes it (``DSS 0.2``, ``ROT 30 about 1,2``), or the operation's title.
+    params : dict
+        Its parameters (JSON data, as recorded).
+    inputs : tuple of int
+        The ids of the objects it read.
+    digests : tuple of str
+        The digests of their content at the time.
+    """
+
+    operation: str
+    label: str
+    params: dict[str, Any]
+    inputs: tuple[int, ...]
+    digests: tuple[str, ...]
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON data."""
+        return {
+            "operation": self.operation,
+            "label": self.label,
+            "params": self.params,
+            "inputs": list(self.inputs),
+            "input_contents": list(self.digests),
+        }
+
+
+@dataclass(frozen=True)
+class PartAccount:
+    """The account of one part of a co-refinement."""
+
+    part: str
+    bound: BoundResult
+    measured: MeasuredError | None
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON data."""
+        out: dict[str, Any] = {"part": self.part, **_bound_dict(self.bound)}
+        out.update(_measured_dict(self.measured, self.bound))
+        return out
+
+
+@dataclass(frozen=True)
+class Account:
+    """Everything known about the error of one result (see the module docstring).
+
+    Attributes
+    ----------
+    operation : str
+        The result's own operation.
+    model : str
+        The discretization model of the chain.
+    chain : tuple of Link
+        The one-object chain, oldest first (just the operation itself for EDu and EDco).
+    input_chains : tuple of tuple of Link
+        For a two-object operation, the chain of each input (empty for a drawn one).
+    origin_digest : str
+        The digest of A₀'s content (empty when unknown).
+    bound : BoundResult or None
+    no_bound : str
+        Why there is no bound, in words (empty when there is one).
+    measured : MeasuredError or None
+    reference_exact : bool
+        Whether the reference of the measured distance is exact (always, except for overlapping EDu/EDco).
+    direct, result : PixelSet or None
+        D(T(A_first)) and the result's discrete representation.
+    difference : PixelDifference or None
+    parts : tuple of PartAccount
+        Every part of a co-refinement.
+    part : str
+        Which part this result is (co-refinement), else "".
+    idempotent : bool or None
+        For Sp_α: whether Sp_α(result) = result exactly.
+    error : str
+        Why the provenance could not be accounted for (nothing else is then set).
+    """
+
+    operation: str
+    model: str = "standard"
+    chain: tuple[Link, ...] = ()
+    input_chains: tuple[tuple[Link, ...], ...] = ()
+    origin_digest: str = ""
+    bound: BoundResult | None = None
+    no_bound: str = ""
+    measured: MeasuredError | None = None
+    reference_exact: bool = True
+    direct: PixelSet | None = None
+    result: PixelSet | None = None
+    difference: PixelDifference | None = None
+    parts: tuple[PartAccount, ...] = ()
+    part: str = ""
+    idempotent: bool | None = None
+    error: str = ""
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def within_bound(self) -> bool | None:
+        """Exactly: does the measured distance respect the bound in the directions that hold? (None: unknown)"""
+        if self.measured is None or self.bound is None:
+            return None
+        return _within(self.measured, self.bound)
+
+    def summary(self) -> dict[str, Any]:
+        """JSON data: the same keys and numbers wherever the account is shown."""
+        out: dict[str, Any] = {
+            "operation": self.operation,
+            "model": self.model,
+            "chain": [link.label for link in self.chain],
+            "steps": [link.as_dict() for link in self.chain],
+            "input_chains": [[link.label for link in c] for c in self.input_chains],
+            "origin_content": self.origin_digest or None,
+            "error": self.error or None,
+            "no_bound": self.no_bound or None,
+        }
+        if self.bound is not None:
+            out.update(_bound_dict(self.bound))
+        else:
+            out.update(bound=None, bound_one_sided=None, bound_formula=None, directions=[], guarantee=None)
+        out.update(_measured_dict(self.measured, self.bound))
+        out["reference_exact"] = self.reference_exact
+        out["light"] = None if self.difference is None else len(self.difference.light)
+        out["dark"] = None if self.difference is None else len(self.difference.dark)
+        out["part"] = self.part or None
+        out["parts"] = [p.as_dict() for p in self.parts]
+        out["idempotent"] = self.idempotent
+        return out
+
+
+def _bound_dict(b: BoundResult) -> dict[str, Any]:
+    return {
+        "bound": b.bound,
+        "bound_one_sided": b.one_sided,
+        "bound_coefficient": _fraction_text(b.coefficient),
+        "bound_formula": b.formula,
+        "directions": list(b.directions),
+        "guarantee": b.guarantee,
+    }
+
+
+def _measured_dict(m: MeasuredError | None, b: BoundResult | None) -> dict[str, Any]:
+    if m is None:
+        return {
+            "measured": None,
+            "result_within": None,
+            "source_within": None,
+            "measured_exact": None,
+            "within_bound": None,
+        }
+    d = m.as_dict()
+    return {
+        "measured": d["measured"],
+        "result_within": d["result_within"],
+        "source_within": d["source_within"],
+        "measured_exact": d["exact"],
+        "within_bound": None if b is None else _within(m, b),
+    }
+
+
+def _within(m: MeasuredError, b: BoundResult) -> bool | None:
+    if not b.directions:
+        return None
+    return not any(m.exceeds(b.coefficient, b.n, d) for d in b.directions)
+
+
+def _fraction_text(q: Any) -> str:
+    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+# ============================================================================================================
+# Reading a provenance record
+# ============================================================================================================
+
+
+def _spec_params(prov: Any) -> tuple[Any, Any, str]:
+    """(spec, validated parameters dataclass, part) of a provenance record; ParameterError if unreadable."""
+    spec = get_operation(prov.operation)
+    raw = dict(prov.params)
+    part = raw.pop("part", "")
+    if not isinstance(part, str):
+        raise ParameterError(f"the part of a {spec.name} result must be a name, got {part!r}")
+    if spec.name == "corefine" and part and part not in ("a_minus_b", "a_and_b", "b_minus_a"):
+        raise ParameterError(f"unknown co-refinement part {part!r}")
+    try:
+        params = coerce_params(spec, raw)
+    except (TypeError, ValueError) as e:  # a dataclass refusing an argument
+        raise ParameterError(f"{spec.name}: {e}") from None
+    return spec, params, part
+
+
+def _label(spec: Any, params: Any) -> str:
+    if spec.chain_step is not None and spec.name in CHAIN_OPERATIONS:
+        step: ChainStep = spec.chain_step(params)
+        return step.label()
+    aliases = {"union": "EDu", "corefine": "EDco"}
+    if spec.name == "corefine" and getattr(params, "alpha", None) is not None:
+        return f"EDco {params.alpha:g}"
+    return aliases.get(spec.name, spec.name)
+
+
+def _link(prov: Any) -> Link:
+    try:
+        spec, params, _ = _spec_params(prov)
+        label = _label(spec, params)
+    except MRMError:
+        label = prov.operation
+    return Link(prov.operation, label, dict(prov.params), tuple(prov.inputs), tuple(prov.digests))
+
+
+def chain_of(prov: Any) -> list[Any]:
+    """The provenance records of a result's one-object chain, oldest first (module docstring)."""
+    records = [prov]
+    cur = prov
+    while (
+        cur.operation in CHAIN_OPERATIONS
+        and cur.pinned
+        and cur.parents
+        and cur.parents[0] is not None
+        and cur.parents[0].operation in CHAIN_OPERATIONS
+        and len(records) < 100_000
+    ):
+        cur = cur.parents[0]
+        records.insert(0, cur)
+    return records
+
+
+def input_chain(prov: Any | None) -> tuple[Link, ...]:
+    """The links of an input's own chain (empty for a drawn or imported input)."""
+    if prov is None:
+        return ()
+    return tuple(_link(p) for p in chain_of(prov))
+
+
+# ============================================================================================================
+# The account
+# ============================================================================================================
+
+
+def account_of(
+    provenance: Any,
+    *,
+    measure: bool = True,
+    progress: ProgressLike | None = None,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+) -> Account:
+    """The account of a result from its pinned provenance (module docstring); never raises on bad records.
+
+    Parameters
+    ----------
+    provenance : mrm.document.Provenance
+        The result's provenance (with pinned inputs).
+    measure : bool
+        Compute the exact measured distance and the direct result (may take seconds on large objects).
+    progress : object with ``update(fraction, message)``, optional
+        Its ``Cancelled`` propagates (the only exception that does).
+    limit : int or None
+        Largest pixel set a recomputation may create.
+    """
+    op = str(getattr(provenance, "operation", "?"))
+    try:
+        return _account(provenance, measure, progress, limit)
+    except MRMError as e:
+        from mrm.errors import Cancelled
+
+        if isinstance(e, Cancelled):
+            raise
+        log.info("no account for a %s result: %s", op, e)
+        return Account(op, error=str(e), chain=(_safe_link(provenance),))
+
+
+def _safe_link(prov: Any) -> Link:
+    try:
+        return _link(prov)
+    except Exception:  # the record itself is what is broken: show its name only
+        return Link(str(getattr(prov, "operation", "?")), str(getattr(prov, "operation", "?")), {}, (), ())
+
+
+def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int | None) -> Account:
+    if prov.operation in EXACT_OPERATIONS:
+        why = EXACT_OPERATIONS[prov.operation]
+        return Account(prov.operation, chain=(_link(prov),), no_bound=f"no error to bound: {why}")
+    spec, params, part = _spec_params(prov)
+    if not prov.pinned:
+        return Account(
+            spec.name,
+            chain=(_link(prov),),
+            error="the content of this result's inputs was not recorded (the file predates pinned "
+            "provenance and no longer holds them): nothing can be measured",
+        )
+    if spec.name in CHAIN_OPERATIONS:
+        return _chain_account(prov, measure, progress, limit)
+    if spec.name in ("union", "corefine"):
+        return _binary_account(prov, spec, params, part, measure, progress, limit)
+    return Account(
+        spec.name,
+        chain=(_link(prov),),
+        no_bound=f"{spec.title} has no place in the paper's bound rule (DESIGN §8)",
+    )
+
+
+def _sub(progress: ProgressLike | None, lo: float, hi: float) -> ProgressLike | None:
+    from mrm.ops.outcome import sub_progress
+
+    return None if progress is None else sub_progress(progress, lo, hi)
+
+
+def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int | None) -> Account:
+    from mrm.ops.chain import convert_for, run_step, step_params
+    from mrm.ops.exact_geometry import ExactShape, Similarity
+    from mrm.ops.rational_discretize import discretize_exact
+    from mrm.ops.simplify import simplification
+
+    records = chain_of(prov)
+    links = tuple(_link(r) for r in records)
+    read = [_spec_params(r) for r in records]
+    models = {getattr(p, "model", "standard") for _, p, _ in read}
+    if len(models) > 1:
+        raise ParameterError(f"the chain mixes discretization models ({', '.join(sorted(models))})")
+    model = models.pop()
+    steps = [spec.chain_step(p) for spec, p, _ in read]
+    bound = bound_of_chain(steps, model)
+    first = records[0]
+    origin = first.sources[0]
+    origin_chain = input_chain(first.parents[0]) if first.parents else ()
+    transform = Similarity.identity()
+    for spec, p, _ in read:
+        transform = transform.then(spec.similarity(p))
+    last_spec, last_params, _ = read[-1]
+    pj, _ = step_params(last_spec.name, params_to_dict(last_params))
+    if progress is not None:
+        progress.update(0.0, "recomputing the last step from its recorded input")
+    source = convert_for(prov.sources[0], read_of(last_spec.name), model, limit)
+    outcome = run_step(last_spec.name, source, pj, model, limit=limit, progress=_sub(progress, 0.0, 0.3))
+    result = outcome.result
+    pixels = (
+        result if isinstance(result, PixelSet) else discretize_exact(outcome.euclidean, model, limit=limit)
+    )
+    idempotent = None
+    if last_spec.name == "simplify":
+        again = simplification(result, pj["alpha"], pj.get("center"), model, limit=limit)
+        # Sp_α∘Sp_α = Sp_α: Sp_α of the result as stored (float64) is exactly the exact result.
+        idempotent = again.euclidean == outcome.euclidean
+    acc = Account(
+        prov.operation,
+        model=model,
+        chain=links,
+        input_chains=(origin_chain,) if origin_chain else (),
+        origin_digest=first.digests[0],
+        bound=bound,
+        result=pixels,
+        idempotent=idempotent,
+    )
+    if not measure:
+        return acc
+    start = convert_for(origin, read_of(records[0].operation), model, limit)
+    a_first = ExactShape.from_geometry(convert_for(start, "euclidean", model, limit))
+    t_first = a_first.map(transform)
+    if progress is not None:
+        progress.update(0.3, "the direct result D(T(A_first))")
+    direct = discretize_exact(t_first, model, limit=limit, progress=_sub(progress, 0.3, 0.5))
+    if progress is not None:
+        progress.update(0.5, "measuring the Hausdorff distance")
+    measured = measured_error(t_first, outcome.euclidean, progress=_sub(progress, 0.5, 1.0))
+    return _replace(acc, measured=measured, direct=direct, difference=differing_pixels(pixels, direct))
+
+
+def read_of(operation: str) -> str:
+    """The representation a chain operation reads: ``discrete`` or ``euclidean``."""
+    return "discrete" if operation in ("dss", "discrete_rotation") else "euclidean"
+
+
+def _replace(acc: Account, **kw: Any) -> Account:
+    import dataclasses
+
+    return dataclasses.replace(acc, **kw)
+
+
+def _binary_account(
+    prov: Any,
+    spec: Any,
+    params: Any,
+    part: str,
+    measure: bool,
+    progress: ProgressLike | None,
+    limit: int | None,
+) -> Account:
+    from mrm.geometry import bounds as B
+    from mrm.ops.boolean import (
+        BOUND_PART,
+        PARTS,
+        euclidean_discrete_corefinement,
+        euclidean_discrete_union,
+        reference_parts,
+    )
+
+    model = params.model
+    first, second = prov.sources
+    chains = tuple(input_chain(p) for p in prov.parents)
+    link = _link(prov)
+    if spec.name == "union":
+        bound = bound_of_chain([B.union()], model)
+        acc = Account("union", model=model, chain=(link,), input_chains=chains, bound=bound)
+        if not measure:
+            return acc
+        out = euclidean_discrete_union(first, second, model, limit=limit, progress=_sub(progress, 0, 0.4))
+        refs, exact = reference_parts(first, second, model)
+        m = measured_error(refs["union"], out.euclidean, progress=_sub(progress, 0.4, 1.0))
+        return _replace(acc, measured=m, reference_exact=exact, result=out.discrete)
+    alpha = params.alpha
+    part = part or PARTS[0]
+    part_bounds = {p: bound_of_chain([B.corefine(_alpha(alpha), BOUND_PART[p])], model) for p in PARTS}
+    acc = Account(
+        "corefine",
+        model=model,
+        chain=(link,),
+        input_chains=chains,
+        bound=part_bounds[part],
+        part=part,
+        parts=tuple(PartAccount(p, part_bounds[p], None) for p in PARTS),
+    )
+    if not part_bounds[part].directions:
+        acc = _replace(acc, no_bound=f"no direction of the Hausdorff distance holds for {part} under {model}")
+    if not measure:
+        return acc
+    out = euclidean_discrete_corefinement(
+        first, second, model, alpha, limit=limit, progress=_sub(progress, 0, 0.4)
+    )
+    refs, exact = reference_parts(first, second, model)
+    parts = []
+    for k, p in enumerate(PARTS):
+        sub = _sub(progress, 0.4 + 0.2 * k, 0.6 + 0.2 * k)
+        m = measured_error(refs[p], out.extra["exact"][p], progress=sub)
+        parts.append(PartAccount(p, part_bounds[p], m))
+    own = next(pa for pa in parts if pa.part == part)
+    return _replace(
+        acc,
+        parts=tuple(parts),
+        measured=own.measured,
+        reference_exact=exact,
+        result=out.extra["pixels"][part],
+    )
+
+
+def _alpha(alpha: Any) -> Any:
+    from mrm.ops.exact_geometry import positive_number
+
+    return None if alpha is None else positive_number(alpha, "alpha")
+
+
+# ============================================================================================================
+# Against a document
+# ============================================================================================================
+
+
+@dataclass(frozen=True)
+class InputChange:
+    """An input of a result that is no longer what the result was made from."""
+
+    index: int
+    id: int
+    state: str  # "changed" or "deleted"
+
+    def text(self) -> str:
+        """A sentence for the inspector."""
+        return (
+            f"input {self.index + 1} (#{self.id}) was deleted since this result was made"
+            if self.state == "deleted"
+            else f"input {self.index + 1} (#{self.id}) has changed since this result was made"
+        )
+
+
+def changed_inputs(doc: Any, provenance: Any) -> list[InputChange]:
+    """The inputs of ``provenance`` whose current content in ``doc`` differs from the pinned one."""
+    from mrm.document import content_digest
+
+    out = []
+    if provenance is None or not provenance.pinned:
+        return out
+    for k, (oid, digest) in enumerate(zip(provenance.inputs, provenance.digests, strict=True)):
+        if oid not in doc:
+            out.append(InputChange(k, oid, "deleted"))
+        else:
+            src = doc.get(oid).source
+            if not any(src is s for s in provenance.sources) and content_digest(src) != digest:
+                out.append(InputChange(k, oid, "changed"))
+    return out
+
+
+def rerun_plan(doc: Any, obj_id: int, progress: ProgressLike | None = None) -> Any:
+    """A plan re-running a result's operation on the current content of its inputs (a new result)."""
+    from mrm.ops.base import plan_operation
+
+    prov = doc.get(obj_id).provenance
+    if prov is None:
+        raise ParameterError("this object was not made by an operation")
+    missing = [i for i in prov.inputs if i not in doc]
+    if missing:
+        raise ParameterError(f"input #{missing[0]} was deleted: there is nothing to re-run on")
+    _, params, _ = _spec_params(prov)
+    return plan_operation([doc.get(i) for i in prov.inputs], prov.operation, params, progress)
+
+
+__all__ = [
+    "CHAIN_OPERATIONS",
+    "Account",
+    "InputChange",
+    "Link",
+    "PartAccount",
+    "account_of",
+    "chain_of",
+    "changed_inputs",
+    "input_chain",
+    "rerun_plan",
+]
