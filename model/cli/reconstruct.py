@@ -19,7 +19,6 @@ of the per-input summaries.
 from __future__ import annotations
 
 import argparse
-import os
 import time
 from pathlib import Path
 from typing import Any
@@ -30,6 +29,7 @@ from mrm.cli._common import (
     add_inputs_argument,
     add_jobs_argument,
     add_limit_argument,
+    batch_outputs,
     expand_inputs,
     extension_of,
     print_table,
@@ -71,31 +71,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_jobs_argument(parser)
     add_image_arguments(parser)
     add_limit_argument(parser)
-
-
-def _outputs(inputs: list[str], output: str) -> list[str]:
-    """The output path of each input (see the module docstring); checked before any work."""
-    if len(inputs) == 1 and "{stem}" not in output:
-        extension_of(output, OUTPUTS, "vector output file")
-        return [output]
-    if "{stem}" in output:
-        outs = [output.replace("{stem}", Path(i).stem) for i in inputs]
-        for o in outs:
-            extension_of(o, OUTPUTS, "vector output file")
-    else:
-        p = Path(output)
-        if p.exists() and not p.is_dir():
-            raise ParameterError(
-                f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
-            )
-        if not p.exists() and p.suffix and not output.endswith(os.sep):
-            raise ParameterError(
-                f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
-            )
-        outs = [str(p / (Path(i).stem + ".geojson")) for i in inputs]
-    if len(set(outs)) != len(outs):
-        raise ParameterError("two inputs would write the same output file; use a pattern with {stem}")
-    return outs
 
 
 def _pixels_of(
@@ -178,7 +153,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
     for i in inputs:
         extension_of(i, INPUTS, "supported input file")
-    outputs = _outputs(inputs, str(args.output))
+    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".geojson", "vector output file")
     jobs = [
         (i, o, args.model, args.threshold, args.limit, args.invert)
         for i, o in zip(inputs, outputs, strict=True)
