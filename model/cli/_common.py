@@ -433,6 +433,13 @@ def read_image(
 _NETPBM_ORIGIN = re.compile(rb"#\s*mrm:origin\s+(-?\d+)\s+(-?\d+)")
 
 
+def _tiff_size(path: str | os.PathLike[str]) -> tuple[int, int]:
+    from mrm.io.georef import _rasterio
+
+    with _rasterio().open(path) as ds:
+        return int(ds.width), int(ds.height)
+
+
 def image_frame(path: str | os.PathLike[str]) -> tuple[int, int, int, int]:
     """The box (xmin, ymin, xmax, ymax) of every pixel of an image file, from its header.
 
@@ -444,8 +451,15 @@ def image_frame(path: str | os.PathLike[str]) -> tuple[int, int, int, int]:
     from mrm.io.pixel_files import ORIGIN_KEY, parse_origin
 
     ext = Path(path).suffix.lower()
+    if ext in (".tif", ".tiff"):
+        from mrm.io.georef import grid_origin, read_georef
+
+        georef = read_georef(path)
+        w, h = _tiff_size(path) if georef is None else (georef.width, georef.height)
+        x0, y0 = grid_origin(georef)
+        return x0, y0, x0 + w - 1, y0 + h - 1
     if ext not in (".png", ".pbm", ".pgm"):
-        raise ParameterError(f"{os.fspath(path)}: --invert applies to PNG and Netpbm images only")
+        raise ParameterError(f"{os.fspath(path)}: --invert applies to images (PNG, Netpbm, GeoTIFF) only")
     name = Path(path).name
     with Image.open(path) as im:  # reads the header only
         width, height = im.size

@@ -98,7 +98,7 @@ def _pixels_of(
 _GEOJSON_BYTES_PER_VERTEX = 2 * 24 + 4
 
 
-def _write(geom: Any, path: str, model: str, source: str) -> None:
+def _write(geom: Any, path: str, model: str, source: str, georef: Any = None) -> None:
     ext = Path(path).suffix.lower()
     if ext in (".geojson", ".json"):
         # What we write must read back: refuse, before writing, a file the vector reader would refuse.
@@ -114,7 +114,16 @@ def _write(geom: Any, path: str, model: str, source: str) -> None:
     elif ext == ".wkt":
         write_wkt(geom, path)
     else:
-        write_geojson(geom, path, properties={"model": model, "source": Path(source).name})
+        members: dict[str, Any] = {}
+        if georef is not None:
+            from mrm.io.georef import geojson_crs_member
+
+            crs = geojson_crs_member(georef.crs)
+            if crs is not None:
+                members["crs"] = crs
+            if not geom.is_empty:
+                members["bbox"] = list(geom.bounds)
+        write_geojson(geom, path, properties={"model": model, "source": Path(source).name}, members=members)
 
 
 def reconstruct_file(
@@ -130,6 +139,11 @@ def reconstruct_file(
     from mrm.geometry.reconstruct import reconstruct
 
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
+    georef = None
+    if Path(path).suffix.lower() in PIXEL_EXTENSIONS:
+        from mrm.io.georef import read_georef
+
+        georef = read_georef(path)  # a GeoTIFF's own, or a world file beside the image
     if bar is not None:
         bar.update(None, f"{len(ps):_} pixels")
     t0 = time.perf_counter()
@@ -138,9 +152,13 @@ def reconstruct_file(
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     if bar is not None:
         bar.update(None, "writing")
-    _write(geom, output, chosen, path)
+    # The result lands where the raster is: grid coordinates mapped by its transform (mrm.io.georef).
+    _write(geom if georef is None else georef.to_world(geom), output, chosen, path, georef)
     summary = {"input": str(path), "output": str(output), **summarize(ps, chosen, geom=geom)}
     summary["seconds"] = seconds
+    if georef is not None:
+        summary["crs"] = georef.crs
+        summary["transform"] = list(georef.transform)
     return summary
 
 

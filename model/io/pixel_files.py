@@ -47,7 +47,7 @@ from mrm.reps.pixels import LabelMap, PixelSet
 PathLike = str | os.PathLike[str]
 
 #: Extensions read and written by :func:`read_pixels` / :func:`write_pixels`.
-PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz")
+PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz", ".tif", ".tiff")  # GeoTIFF: mrm.io.georef
 #: Extensions read and written by :func:`read_label_map` / :func:`write_label_map`.
 LABEL_EXTENSIONS = (".png", ".npz")
 #: The PNG text chunk keyword (and Netpbm comment) holding the origin.
@@ -324,6 +324,10 @@ def read_pixels(
     """
     name = _name(path)
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
+    if ext in (".tif", ".tiff"):  # GeoTIFF (the geo extra)
+        from mrm.io.georef import read_pixels_tif
+
+        return read_pixels_tif(path, threshold=threshold, limit=limit)
     with open(path, "rb") as fh:
         if ext == ".png":
             im, origin = _open_png(fh, name, limit)
@@ -369,6 +373,11 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
         For an extension that is not a pixel file type.
     """
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
+    if ext in (".tif", ".tiff"):  # GeoTIFF (the geo extra)
+        from mrm.io.georef import write_pixels_tif
+
+        write_pixels_tif(ps, path)
+        return
     if ext == ".npz":
         data = _npz_bytes(mask=np.asarray(ps.mask), origin=np.array(ps.origin, dtype=np.int64))
     else:
