@@ -32,7 +32,7 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 
@@ -57,7 +57,7 @@ WORLD_FILE_EXTENSIONS = {
 FEW_PIXELS = 5
 
 #: (a, b, c, d, e, f) of GDAL's / rasterio's ``Affine``.
-Transform = tuple[float, float, float, float, float, float]
+Transform: TypeAlias = tuple[float, float, float, float, float, float]
 
 
 def _rasterio() -> Any:

@@ -192,3 +192,24 @@ def test_world_file_convention():
     g = GeoRef(t, 10, 10)
     corner = g.to_world(box(-0.5, 8.5, -0.4, 9.5))  # the top-left pixel's left side, grid (−½, 9½) on top
     assert corner.bounds[0] == 500_000.0 and corner.bounds[3] == 4_200_000.0
+
+
+@pytest.mark.parametrize(
+    ("model", "all_touched"), [("gauss", False), ("gauss", True), ("supercover", True), ("standard", True)]
+)
+def test_which_model_round_trips_through_gdal_rasterize(model, all_touched):
+    """docs/gdal.md's table: R under `model`, burned by GDAL with or without -at, gives the mask back."""
+    g = GeoRef(tuple(T)[:6], 64, 48)
+    for seed in range(4):
+        mask = blobs(48, 64, 10 + seed)
+        poly = g.to_world(mrm.reconstruct(mrm.PixelSet.from_image(mask), model))
+        burned = rasterize([(poly, 1)], out_shape=mask.shape, transform=T, all_touched=all_touched)
+        assert (burned.astype(bool) == mask).all()
+
+
+def test_the_covers_do_not_round_trip_with_the_centre_rule():
+    g = GeoRef(tuple(T)[:6], 64, 48)
+    mask = blobs(48, 64, 3)
+    poly = g.to_world(mrm.reconstruct(mrm.PixelSet.from_image(mask), "supercover"))
+    burned = rasterize([(poly, 1)], out_shape=mask.shape, transform=T).astype(bool)
+    assert burned.sum() < mask.sum() and not (burned & ~mask).any()  # thinner: the cover's R hugs the voxels
