@@ -279,7 +279,7 @@ def _run_cli(argv: list[str]) -> int:
     except OSError as e:
         return _fail(args.command, os_error_text(e))
     except (OverflowError, ZeroDivisionError) as e:
-        return _fail(args.command, f"number out of range: {e}")
+        return _fail(args.command, f"a number is out of range (a coordinate or parameter too large): {e}")
     except MemoryError:
         return _fail(args.command, "not enough memory for this input (try a smaller --limit)")
     finally:

@@ -154,6 +154,34 @@ def expand_inputs(items: Sequence[str], allowed: tuple[str, ...]) -> list[str]:
     return out
 
 
+def batch_outputs(
+    inputs: list[str], output: str, allowed: tuple[str, ...], default_ext: str, what: str = "output file"
+) -> list[str]:
+    """The output path of each input, checked before any work.
+
+    One input: ``output`` is the file (its extension one of ``allowed``). Several: ``output`` is a directory
+    (existing, or ending with a separator, or without an extension: created), where input ``NAME.x`` gives
+    ``NAME`` + ``default_ext``, or a pattern holding ``{stem}`` (the input's name without its extension).
+    """
+    if len(inputs) == 1 and "{stem}" not in output:
+        extension_of(output, allowed, what)
+        return [output]
+    if "{stem}" in output:
+        outs = [output.replace("{stem}", Path(i).stem) for i in inputs]
+        for o in outs:
+            extension_of(o, allowed, what)
+    else:
+        p = Path(output)
+        if (p.exists() and not p.is_dir()) or (not p.exists() and p.suffix and not output.endswith(os.sep)):
+            raise ParameterError(
+                f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
+            )
+        outs = [str(p / (Path(i).stem + default_ext)) for i in inputs]
+    if len(set(outs)) != len(outs):
+        raise ParameterError("two inputs would write the same output file; use a pattern with {stem}")
+    return outs
+
+
 class _Bar:
     """A progress bar (tqdm) that redraws itself while work without progress reports runs."""
 
@@ -166,8 +194,13 @@ class _Bar:
             self._thread.start()
 
     def _tick(self) -> None:
-        while not self._stop.wait(0.5):
+        # Nothing before one second (quick commands stay silent), then a redraw twice a second.
+        if self._stop.wait(1.0):
+            return
+        while True:
             self.bar.refresh()
+            if self._stop.wait(0.5):
+                return
 
     def update(self, fraction: float | None = None, message: str | None = None) -> None:
         """``ProgressLike``: move to ``fraction`` (of a one-unit bar) and show ``message``."""
@@ -400,6 +433,13 @@ def read_image(
 _NETPBM_ORIGIN = re.compile(rb"#\s*mrm:origin\s+(-?\d+)\s+(-?\d+)")
 
 
+def _tiff_size(path: str | os.PathLike[str]) -> tuple[int, int]:
+    from mrm.io.georef import _rasterio
+
+    with _rasterio().open(path) as ds:
+        return int(ds.width), int(ds.height)
+
+
 def image_frame(path: str | os.PathLike[str]) -> tuple[int, int, int, int]:
     """The box (xmin, ymin, xmax, ymax) of every pixel of an image file, from its header.
 
@@ -411,8 +451,15 @@ def image_frame(path: str | os.PathLike[str]) -> tuple[int, int, int, int]:
     from mrm.io.pixel_files import ORIGIN_KEY, parse_origin
 
     ext = Path(path).suffix.lower()
+    if ext in (".tif", ".tiff"):
+        from mrm.io.georef import grid_origin, read_georef
+
+        georef = read_georef(path)
+        w, h = _tiff_size(path) if georef is None else (georef.width, georef.height)
+        x0, y0 = grid_origin(georef)
+        return x0, y0, x0 + w - 1, y0 + h - 1
     if ext not in (".png", ".pbm", ".pgm"):
-        raise ParameterError(f"{os.fspath(path)}: --invert applies to PNG and Netpbm images only")
+        raise ParameterError(f"{os.fspath(path)}: --invert applies to images (PNG, Netpbm, GeoTIFF) only")
     name = Path(path).name
     with Image.open(path) as im:  # reads the header only
         width, height = im.size

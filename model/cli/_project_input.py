@@ -22,7 +22,7 @@ from mrm.errors import FileFormatError, ParameterError
 Kind = Literal["discrete", "euclidean"]
 
 #: Extensions of pixel files and of vector files.
-PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz")
+PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz", ".tif", ".tiff")
 VECTOR_EXTENSIONS = (".geojson", ".json", ".wkt")
 PROJECT_EXTENSIONS = (".mrm",)
 

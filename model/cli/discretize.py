@@ -1,4 +1,13 @@
-"""``mrm discretize IN -o OUT``: the exact discretization of a Euclidean geometry, written as pixels.
+"""``mrm discretize IN... -o OUT``: the exact discretization of a Euclidean geometry, written as pixels.
+
+Georeferenced output (docs/gdal.md): ``--like RASTER`` burns on that raster's grid (its transform, size and
+CRS; the input's coordinates are world coordinates in that CRS), ``--resolution R`` on a north-up grid of
+R world units per pixel over ``--extent XMIN,YMIN,XMAX,YMAX`` (default: the input's bounds). The output is
+then a GeoTIFF (.tif) or a PNG + world file (.pgw, and .prj for the CRS) covering the whole grid. A
+geometry that covers fewer than a handful of pixels gets a warning on stderr (wrong units?).
+
+Several inputs (files, directories, quoted globs; ``--jobs N`` workers) need ``-o`` to be a directory
+(``NAME.geojson`` gives ``NAME.png``) or a pattern holding ``{stem}``, as for ``mrm reconstruct``.
 
 ``IN`` is a GeoJSON or WKT file (every geometry in it, combined) or a project (.mrm). For a project,
 ``--object NAME`` picks one object — a Euclidean object is discretized, a discrete object is written as it
@@ -11,24 +20,37 @@ outlined on top.
 from __future__ import annotations
 
 import argparse
+import math
+import sys
 import time
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from mrm.cli._common import (
     PROJECT_EXTENSION,
+    add_inputs_argument,
+    add_jobs_argument,
     add_limit_argument,
+    batch_outputs,
     discretize_geometry,
+    expand_inputs,
     extension_of,
+    finite_float,
     load_object,
     print_table,
+    progress,
     project_objects,
+    run_batch,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import FileFormatError
+from mrm.errors import FileFormatError, ParameterError, SizeLimitError
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
 from mrm.reps.pixels import PixelSet
 from mrm.summary import summarize
+
+if TYPE_CHECKING:
+    from mrm.io.georef import GeoRef
 
 NAME = "discretize"
 HELP = (
@@ -40,54 +62,186 @@ OUTPUTS = (*PIXEL_EXTENSIONS, ".svg")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the input, ``--object``, ``-o OUT`` and ``--limit``."""
-    parser.add_argument("input", metavar="IN", help="a GeoJSON, WKT or project file")
+    """Add the inputs, ``--object``, ``-o OUT``, ``--jobs`` and ``--limit``."""
+    add_inputs_argument(parser, "GeoJSON, WKT or project files")
     add_object_argument(parser)
+    add_jobs_argument(parser)
+    parser.add_argument(
+        "--like",
+        metavar="RASTER",
+        default=None,
+        help="burn on the grid of this georeferenced raster (.tif, or an image with a world file)",
+    )
+    parser.add_argument(
+        "--resolution",
+        type=finite_float,
+        default=None,
+        metavar="R",
+        help="burn on a north-up grid of R world units per pixel (with --extent, or the input's bounds)",
+    )
+    parser.add_argument(
+        "--extent",
+        type=parse_extent,
+        default=None,
+        metavar="XMIN,YMIN,XMAX,YMAX",
+        help="the world box the --resolution grid covers",
+    )
     parser.add_argument(
         "-o",
         "--output",
         required=True,
         metavar="OUT",
-        help="the pixel file to write (.png .pbm .pgm .npz; .svg draws the pixels with the input outlined)",
+        help="the pixel file to write (.png .pbm .pgm .npz; .svg draws the pixels with the input outlined); "
+        "for several inputs a directory or a pattern holding {stem}",
     )
     add_limit_argument(parser)
 
 
-def _source(args: argparse.Namespace) -> tuple[Any, str]:
+def _source(path: str, object_name: str | None, model: str | None, limit: int) -> tuple[Any, str]:
     """The geometry (or, for a discrete project object, the pixel set) to discretize, and the model."""
-    if extension_of(args.input, INPUTS, "supported input file") == PROJECT_EXTENSION and args.object is None:
-        objects, project_model = project_objects(args.input)
+    if extension_of(path, INPUTS, "supported input file") == PROJECT_EXTENSION and object_name is None:
+        objects, project_model = project_objects(path)
         euclidean = [o.source for o in objects if not isinstance(o.source, PixelSet)]
         if not euclidean:
             raise FileFormatError(
-                f"{args.input}: the project holds no Euclidean object to discretize "
+                f"{path}: the project holds no Euclidean object to discretize "
                 "(--object NAME writes a discrete object's pixels)"
             )
-        return combine(euclidean), args.model or project_model
-    _, value, model = load_object(args.input, args.object, args.model, limit=args.limit)
-    return value, model
+        return combine(euclidean), model or project_model
+    _, value, chosen = load_object(path, object_name, model, limit=limit)
+    return value, chosen
+
+
+def parse_extent(text: str) -> tuple[float, float, float, float]:
+    """Argparse type of ``--extent``: four finite numbers XMIN,YMIN,XMAX,YMAX."""
+    parts = text.split(",")
+    try:
+        values = tuple(float(p) for p in parts)
+    except ValueError:
+        values = ()
+    if len(values) != 4 or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected XMIN,YMIN,XMAX,YMAX (four numbers), got {text!r}")
+    return values[0], values[1], values[2], values[3]
+
+
+def _grid(path: str, geom: Any, like: str | None, resolution: float | None, extent: Any) -> GeoRef | None:
+    """The georeferenced grid to burn on (None: the plain pixel grid of the input's coordinates)."""
+    from mrm.io.georef import GeoRef, read_geojson_crs, read_georef, same_crs
+
+    if like is None and resolution is None:
+        if extent is not None:
+            raise ParameterError("--extent needs --resolution (or use --like RASTER)")
+        return None
+    if geom is None:
+        raise ParameterError(f"{path}: --like and --resolution apply to Euclidean inputs only")
+    crs = read_geojson_crs(path) if Path(path).suffix.lower() in (".geojson", ".json") else None
+    if like is not None:
+        if resolution is not None or extent is not None:
+            raise ParameterError("--like gives the grid: it excludes --resolution and --extent")
+        grid = read_georef(like)
+        if grid is None:
+            raise ParameterError(f"{like}: the raster has no georeference (no GeoTIFF tags, no world file)")
+        if crs is not None and grid.crs is not None and not same_crs(crs, grid.crs):
+            raise ParameterError(
+                f"{path} is in {crs} and {Path(like).name} in {grid.crs}: reproject one of them first "
+                "(e.g. ogr2ogr -t_srs); MR Modeler does not reproject"
+            )
+        return grid
+    assert resolution is not None
+    return GeoRef.from_resolution(resolution, extent or tuple(geom.bounds), crs)
+
+
+def _write_georeferenced(ps: PixelSet, output: str, ext: str, grid: GeoRef) -> None:
+    """The whole grid as a GeoTIFF, or as an image + world file (+ .prj)."""
+    from mrm.io.georef import write_raster, write_world_file
+
+    if ext in (".tif", ".tiff"):
+        write_raster(ps, output, grid)
+        return
+    if ext != ".png":
+        raise ParameterError(f"{output}: a georeferenced result is written as .tif or .png (+ world file)")
+    import io
+
+    from PIL import Image
+
+    from mrm.io.atomic import atomic_write_bytes
+
+    buf = io.BytesIO()
+    Image.fromarray(ps.to_image(grid.frame)).save(buf, format="PNG")  # the frame's bottom-left is (0, 0)
+    atomic_write_bytes(output, buf.getvalue())
+    write_world_file(output, grid)
+
+
+def discretize_file(
+    path: str,
+    output: str,
+    object_name: str | None,
+    model: str | None,
+    limit: int,
+    like: str | None = None,
+    resolution: float | None = None,
+    extent: tuple[float, float, float, float] | None = None,
+) -> dict[str, Any]:
+    """Read one input, discretize it, write the pixels; return the summary (batch workers call it)."""
+    from mrm.io.georef import few_pixels_warning
+
+    out_ext = extension_of(output, OUTPUTS, "pixel output file")  # fail before any work
+    source, chosen = _source(path, object_name, model, limit)
+    geom = None if isinstance(source, PixelSet) else source
+    grid = _grid(path, geom, like, resolution, extent)
+    if grid is not None and grid.width * grid.height > limit:
+        raise SizeLimitError(grid.width * grid.height, limit, f"{output}: the grid")
+    t0 = time.perf_counter()
+    if geom is None:
+        ps = source
+    elif grid is None:
+        ps = discretize_geometry(geom, chosen, limit)
+    else:
+        ps = discretize_geometry(grid.to_grid(geom), chosen, limit).crop(grid.frame)
+    seconds = time.perf_counter() - t0
+    if geom is not None:
+        warning = few_pixels_warning(ps, geom, Path(path).name)
+        if warning is not None:
+            print(f"mrm discretize: warning: {warning}", file=sys.stderr, flush=True)
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    if grid is not None and out_ext != ".svg":
+        _write_georeferenced(ps, output, out_ext, grid)
+    elif out_ext == ".svg":
+        if geom is None:
+            write_svg(ps, output)
+        else:
+            write_svg(geom, output, pixels=ps)
+    else:
+        write_pixels(ps, output)
+    summary: dict[str, Any] = {"input": str(path), "output": str(output)}
+    if object_name is not None:
+        summary.update(object=object_name, source="discrete" if geom is None else "euclidean")
+    summary.update(summarize(ps, chosen, geom=geom))
+    summary["seconds"] = seconds
+    if grid is not None:
+        summary["grid"] = grid.as_dict()
+    return summary
+
+
+def _line(f: dict[str, Any]) -> str:
+    return f"{f['input']} -> {f['output']}: {f['pixels']} pixels, {f['seconds']:.3f} s"
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Read the geometry, discretize it, write the pixels; return the summary of the result."""
-    out_ext = extension_of(args.output, OUTPUTS, "pixel output file")  # fail before any work
-    source, model = _source(args)
-    geom = None if isinstance(source, PixelSet) else source
-    t0 = time.perf_counter()
-    ps = source if geom is None else discretize_geometry(geom, model, args.limit)
-    seconds = time.perf_counter() - t0
-    if out_ext == ".svg":
-        if geom is None:
-            write_svg(ps, args.output)
-        else:
-            write_svg(geom, args.output, pixels=ps)
-    else:
-        write_pixels(ps, args.output)
-    summary: dict[str, Any] = {"input": str(args.input), "output": str(args.output)}
-    if args.object is not None:
-        summary.update(object=args.object, source="discrete" if geom is None else "euclidean")
-    summary.update(summarize(ps, model, geom=geom))
-    summary["seconds"] = seconds
-    if not args.json:
-        print_table(summary)
-    return summary
+    """Discretize every input and write it; return the summary (several inputs: ``files`` and totals)."""
+    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
+    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".png", "pixel output file")
+    jobs = [
+        (i, o, args.object, args.model, args.limit, args.like, args.resolution, args.extent)
+        for i, o in zip(inputs, outputs, strict=True)
+    ]
+    if len(jobs) == 1:
+        with progress(args, desc=f"discretize {inputs[0]}"):
+            summary = discretize_file(*jobs[0])
+        if not args.json:
+            print_table(summary)
+        return summary
+    files, errors = run_batch(args, discretize_file, jobs, _line, desc="discretize")
+    if errors:
+        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
+    return {"inputs": len(jobs), "pixels": sum(f["pixels"] for f in files), "files": files}

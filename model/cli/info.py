@@ -1,4 +1,7 @@
-"""``mrm info IN``: the four representations of a pixel file, a geometry or a project, summarised.
+"""``mrm info IN...``: the four representations of a pixel file, a geometry or a project, summarised.
+
+Several inputs (files, directories, quoted globs; ``--jobs N`` workers) print one line per input as soon as
+it is done; ``--json`` then gives ``{"inputs": n, "files": [summary, …]}`` in input order.
 
 For a project (.mrm) the summary is that of one object with ``--object NAME``; without it, that of the
 union of every object's pixels, with one summary per object under ``objects``. The model is ``--model``,
@@ -12,16 +15,21 @@ from typing import Any
 
 from mrm.cli._common import (
     PROJECT_EXTENSION,
+    add_image_arguments,
+    add_inputs_argument,
+    add_jobs_argument,
     add_limit_argument,
     discretize_geometry,
+    expand_inputs,
     extension_of,
-    finite_float,
     load_object,
     print_table,
+    progress,
     project_objects,
+    run_batch,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import ParameterError
+from mrm.errors import FileFormatError, ParameterError
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import VECTOR_EXTENSIONS
 from mrm.reps.pixels import PixelSet
@@ -34,39 +42,60 @@ INPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, PROJECT_EXTENSION)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the input, ``--object``, ``--threshold`` and ``--limit``."""
-    parser.add_argument("input", metavar="IN", help="a pixel (.png .pbm .pgm .npz), vector or project file")
+    """Add the inputs, ``--object``, ``--jobs``, ``--threshold``, ``--invert`` and ``--limit``."""
+    add_inputs_argument(parser, "pixel (.png .pbm .pgm .npz), vector or project files")
     add_object_argument(parser)
-    parser.add_argument(
-        "--threshold",
-        type=finite_float,
-        default=None,
-        metavar="T",
-        help="grey images: pixels brighter than T are in the set (default: binary images as they are, "
-        "others at Otsu's threshold)",
-    )
+    add_jobs_argument(parser)
+    add_image_arguments(parser)
     add_limit_argument(parser)
 
 
-def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Read the input and return its summary (see :func:`mrm.summary.summarize`)."""
-    ext = extension_of(args.input, INPUTS, "supported input file")
-    if args.threshold is not None and ext not in PIXEL_EXTENSIONS:
-        raise ParameterError(f"{args.input}: --threshold applies to image inputs only")
-    if ext == PROJECT_EXTENSION and args.object is None:
-        objects, project_model = project_objects(args.input)
-        summary = _project_summary(objects, args.model or project_model, args.limit)
+def info_file(
+    path: str,
+    object_name: str | None,
+    model: str | None,
+    threshold: float | None,
+    invert: bool,
+    limit: int,
+) -> dict[str, Any]:
+    """The summary of one input (a module-level function: batch workers call it)."""
+    ext = extension_of(path, INPUTS, "supported input file")
+    if (threshold is not None or invert) and ext not in PIXEL_EXTENSIONS:
+        raise ParameterError(f"{path}: --threshold and --invert apply to image inputs only")
+    if ext == PROJECT_EXTENSION and object_name is None:
+        objects, project_model = project_objects(path)
+        summary = _project_summary(objects, model or project_model, limit)
     else:
-        kind, value, model = load_object(
-            args.input, args.object, args.model, threshold=args.threshold, limit=args.limit
+        kind, value, chosen = load_object(
+            path, object_name, model, threshold=threshold, invert=invert, limit=limit
         )
-        summary = _summary(value, model, args.limit)
-        if args.object is not None:
-            summary = {"object": args.object, "source": kind, **summary}
-    summary = {"input": str(args.input), **summary}
-    if not args.json:
-        print_table(summary)
-    return summary
+        summary = _summary(value, chosen, limit)
+        if object_name is not None:
+            summary = {"object": object_name, "source": kind, **summary}
+    return {"input": str(path), **summary}
+
+
+def _line(s: dict[str, Any]) -> str:
+    return (
+        f"{s['input']}: {s['pixels']} pixels, {s['components']} components, {s['holes']} holes, "
+        f"{s['vertices']} vertices"
+    )
+
+
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    """Read the inputs and return the summary (see :func:`mrm.summary.summarize`)."""
+    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
+    jobs = [(i, args.object, args.model, args.threshold, args.invert, args.limit) for i in inputs]
+    if len(jobs) == 1:
+        with progress(args, desc=f"info {inputs[0]}"):
+            summary = info_file(*jobs[0])
+        if not args.json:
+            print_table(summary)
+        return summary
+    files, errors = run_batch(args, info_file, jobs, _line, desc="info")
+    if errors:
+        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
+    return {"inputs": len(jobs), "files": files}
 
 
 def _summary(source: Any, model: str, limit: int) -> dict[str, Any]:

@@ -19,7 +19,6 @@ of the per-input summaries.
 from __future__ import annotations
 
 import argparse
-import os
 import time
 from pathlib import Path
 from typing import Any
@@ -30,6 +29,7 @@ from mrm.cli._common import (
     add_inputs_argument,
     add_jobs_argument,
     add_limit_argument,
+    batch_outputs,
     expand_inputs,
     extension_of,
     print_table,
@@ -73,31 +73,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_limit_argument(parser)
 
 
-def _outputs(inputs: list[str], output: str) -> list[str]:
-    """The output path of each input (see the module docstring); checked before any work."""
-    if len(inputs) == 1 and "{stem}" not in output:
-        extension_of(output, OUTPUTS, "vector output file")
-        return [output]
-    if "{stem}" in output:
-        outs = [output.replace("{stem}", Path(i).stem) for i in inputs]
-        for o in outs:
-            extension_of(o, OUTPUTS, "vector output file")
-    else:
-        p = Path(output)
-        if p.exists() and not p.is_dir():
-            raise ParameterError(
-                f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
-            )
-        if not p.exists() and p.suffix and not output.endswith(os.sep):
-            raise ParameterError(
-                f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
-            )
-        outs = [str(p / (Path(i).stem + ".geojson")) for i in inputs]
-    if len(set(outs)) != len(outs):
-        raise ParameterError("two inputs would write the same output file; use a pattern with {stem}")
-    return outs
-
-
 def _pixels_of(
     path: str, threshold: float | None, limit: int, model: str | None, invert: bool = False
 ) -> tuple[PixelSet, str]:
@@ -123,7 +98,7 @@ def _pixels_of(
 _GEOJSON_BYTES_PER_VERTEX = 2 * 24 + 4
 
 
-def _write(geom: Any, path: str, model: str, source: str) -> None:
+def _write(geom: Any, path: str, model: str, source: str, georef: Any = None) -> None:
     ext = Path(path).suffix.lower()
     if ext in (".geojson", ".json"):
         # What we write must read back: refuse, before writing, a file the vector reader would refuse.
@@ -139,7 +114,16 @@ def _write(geom: Any, path: str, model: str, source: str) -> None:
     elif ext == ".wkt":
         write_wkt(geom, path)
     else:
-        write_geojson(geom, path, properties={"model": model, "source": Path(source).name})
+        members: dict[str, Any] = {}
+        if georef is not None:
+            from mrm.io.georef import geojson_crs_member
+
+            crs = geojson_crs_member(georef.crs)
+            if crs is not None:
+                members["crs"] = crs
+            if not geom.is_empty:
+                members["bbox"] = list(geom.bounds)
+        write_geojson(geom, path, properties={"model": model, "source": Path(source).name}, members=members)
 
 
 def reconstruct_file(
@@ -157,6 +141,11 @@ def reconstruct_file(
 
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
     check_reconstruct(ps, f"{path}")  # boundary length bounded before any work (mrm.limits)
+    georef = None
+    if Path(path).suffix.lower() in PIXEL_EXTENSIONS:
+        from mrm.io.georef import read_georef
+
+        georef = read_georef(path)  # a GeoTIFF's own, or a world file beside the image
     if bar is not None:
         bar.update(None, f"{len(ps):_} pixels")
     t0 = time.perf_counter()
@@ -165,9 +154,13 @@ def reconstruct_file(
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     if bar is not None:
         bar.update(None, "writing")
-    _write(geom, output, chosen, path)
+    # The result lands where the raster is: grid coordinates mapped by its transform (mrm.io.georef).
+    _write(geom if georef is None else georef.to_world(geom), output, chosen, path, georef)
     summary = {"input": str(path), "output": str(output), **summarize(ps, chosen, geom=geom)}
     summary["seconds"] = seconds
+    if georef is not None:
+        summary["crs"] = georef.crs
+        summary["transform"] = list(georef.transform)
     return summary
 
 
@@ -180,7 +173,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
     for i in inputs:
         extension_of(i, INPUTS, "supported input file")
-    outputs = _outputs(inputs, str(args.output))
+    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".geojson", "vector output file")
     jobs = [
         (i, o, args.model, args.threshold, args.limit, args.invert)
         for i, o in zip(inputs, outputs, strict=True)

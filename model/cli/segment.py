@@ -15,6 +15,9 @@ from typing import Any
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
 
+#: Largest |x| or |y| of a chain point.
+CHAIN_COORD_LIMIT = 2**31
+
 NAME = "segment"
 HELP = "segment a Freeman chain into digital straight segments (greedy or maximal)"
 
@@ -67,6 +70,13 @@ def parse_chain(text: str) -> tuple[tuple[int, int], str]:
     bad = codes.translate(str.maketrans("", "", "0123"))
     if bad:
         raise ParameterError(f"--chain codes must be Freeman codes 0-3 (0=E 1=N 2=W 3=S), got {bad[0]!r}")
+    # Points are int64 and the characteristics multiply a coordinate by a slope term (up to the chain's
+    # length): keep every point within ±2³¹ so that a·x − b·y cannot overflow.
+    reach = CHAIN_COORD_LIMIT - len(codes)
+    if abs(x) > reach or abs(y) > reach:
+        raise ParameterError(
+            f"--chain start ({xs}, {ys}) is out of range: the chain's points must stay within ±2**31"
+        )
     return (x, y), codes
 
 

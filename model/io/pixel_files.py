@@ -49,7 +49,7 @@ from mrm.reps.pixels import LabelMap, PixelSet
 PathLike = str | os.PathLike[str]
 
 #: Extensions read and written by :func:`read_pixels` / :func:`write_pixels`.
-PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz")
+PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz", ".tif", ".tiff")  # GeoTIFF: mrm.io.georef
 #: Extensions read and written by :func:`read_label_map` / :func:`write_label_map`.
 LABEL_EXTENSIONS = (".png", ".npz")
 #: The PNG text chunk keyword (and Netpbm comment) holding the origin.
@@ -407,6 +407,11 @@ def read_pixels(
     """
     name = _name(path)
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
+    if ext in (".tif", ".tiff"):  # GeoTIFF (the geo extra)
+        from mrm.io.georef import read_pixels_tif
+
+        open_regular(path, name).close()  # a FIFO or device is refused before rasterio opens it
+        return read_pixels_tif(path, threshold=threshold, limit=limit)
     with open_regular(path, name) as fh:  # a FIFO or device is refused, never waited on
         if ext == ".png":
             return _read_png_pixels(fh, name, limit, threshold)
@@ -453,6 +458,11 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
     # What this module writes it reads back: pixels beyond the document's coordinates are refused here too.
     limits.check_pixel_extent(ps.origin, ps.shape, f"{_name(path)}: the pixel set")
+    if ext in (".tif", ".tiff"):  # GeoTIFF (the geo extra)
+        from mrm.io.georef import write_pixels_tif
+
+        write_pixels_tif(ps, path)
+        return
     if ext == ".npz":
         data = _npz_bytes(mask=np.asarray(ps.mask), origin=np.array(ps.origin, dtype=np.int64))
     else:

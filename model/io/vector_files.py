@@ -474,6 +474,8 @@ def write_geojson(
     geom_or_parts: BaseGeometry | Mapping[Any, BaseGeometry] | Iterable[Any],
     path: PathLike,
     properties: Mapping[str, Any] | None = None,
+    *,
+    members: Mapping[str, Any] | None = None,
 ) -> None:
     """Write a FeatureCollection, atomically.
 
@@ -485,6 +487,8 @@ def write_geojson(
     path : str or path-like
     properties : mapping, optional
         Properties added to every Feature.
+    members : mapping, optional
+        Members added to the FeatureCollection (``crs``, ``bbox`` of a georeferenced result: mrm.io.georef).
 
     Notes
     -----
@@ -503,7 +507,8 @@ def write_geojson(
             for label, g in parts
         ]
     try:
-        text = json.dumps({"type": "FeatureCollection", "features": features}, allow_nan=False)
+        doc = {"type": "FeatureCollection", **dict(members or {}), "features": features}
+        text = json.dumps(doc, allow_nan=False)
     except ValueError:
         raise InvalidGeometryError(f"{os.fspath(path)}: cannot write NaN or infinite coordinates") from None
     with atomic_open(path, "w") as fh:
