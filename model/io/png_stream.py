@@ -255,10 +255,11 @@ def _strips(fh: BinaryIO, info: PngInfo, name: str, text: dict[str, str] | None)
             if d.unconsumed_tail:
                 chunk = d.unconsumed_tail
             else:
-                chunk = next(src, None)
-                if chunk is None:
+                nxt = next(src, None)
+                if nxt is None:
                     exhausted = True
                     break
+                chunk = nxt
             try:
                 pending += d.decompress(chunk, need - len(pending) + 65536)
             except zlib.error as e:
