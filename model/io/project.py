@@ -492,9 +492,14 @@ def _decode_provenance(c: _Checker, p: Any, path: str) -> Provenance | None:
     params = c.obj(
         p["params"], f"{path}.params", (), tuple(p["params"]) if isinstance(p["params"], dict) else ()
     )
-    c.json_value(params, f"{path}.params")
-    if len(json.dumps(params)) > limits.PARAMS_MAX_CHARS:
+    # The size first (one C-speed dump), so that a huge parameter set is refused before the per-value checks.
+    try:
+        size = len(json.dumps(params))
+    except (RecursionError, ValueError):
+        c.fail(f"{path}.params", f"nested deeper than {PARAMS_MAX_DEPTH} levels")
+    if size > limits.PARAMS_MAX_CHARS:
         c.fail(f"{path}.params", f"the parameters are larger than {limits.PARAMS_MAX_CHARS:,} characters")
+    c.json_value(params, f"{path}.params")
     params = limits.clean_json(params)
     inputs = c.list_(p["inputs"], f"{path}.inputs")
     ids = [c.int_(v, f"{path}.inputs[{i}]", 1, 2**53) for i, v in enumerate(inputs)]
