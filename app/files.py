@@ -261,7 +261,7 @@ class FileController(QtCore.QObject):
             self._autosave_failed(f"Autosave failed, will retry: {describe_error(e)}")
 
     def _autosave_failed(self, message: str) -> None:
-        self.win.show_message(message, 10000)
+        self.win.show_message(message, 10000, error=True)
 
     # ------------------------------------------------------------------ import / export
     def import_dialog(self) -> bool:

@@ -31,7 +31,7 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.history import COMMAND_OVERHEAD, Command
-from mrm.limits import check_name
+from mrm.limits import check_name, check_pixel_extent
 from mrm.reps.pixels import PixelSet
 
 #: A vertex of a Euclidean source: (polygon index in a MultiPolygon (0 for a Polygon), ring (0 = exterior,
@@ -108,6 +108,26 @@ class PixelDelta:
     def nbytes(self) -> int:
         """Memory held."""
         return int(self._bits.nbytes) + 64
+
+    def box(self) -> tuple[int, int, int, int] | None:
+        """The box (xmin, ymin, xmax, ymax) of the flipped pixels' array, None when nothing flips."""
+        if self.count == 0:
+            return None
+        (x0, y0), (h, w) = self.origin, self.shape
+        return (x0, y0, x0 + w - 1, y0 + h - 1)
+
+
+def _check_union_box(boxes: Sequence[tuple[int, int, int, int] | None], what: str) -> None:
+    """Refuse, before any array is allocated, a result whose box would exceed the per-object limits.
+
+    Two small objects 2³² pixels apart have a union whose mask would take gigabytes; the box alone says so.
+    """
+    real = [b for b in boxes if b is not None]
+    if not real:
+        return
+    x0, y0 = min(b[0] for b in real), min(b[1] for b in real)
+    x1, y1 = max(b[2] for b in real), max(b[3] for b in real)
+    check_pixel_extent((x0, y0), (y1 - y0 + 1, x1 - x0 + 1), what)
 
 
 def discrete_of(doc: Document, obj: DocObject) -> PixelSet:
@@ -481,6 +501,7 @@ class _PixelEdit(Command):
             self.provenance_before = obj.provenance
         if self.delta.is_empty():
             return
+        _check_union_box([base.bbox, self.delta.box()], "the edited object")  # before allocating it
         after = obj.with_(source=self.delta.apply(base), provenance=None)  # checks the per-object limits
         doc.check_capacity(add=[after], remove=[self.obj_id])
         doc.replace_object(after)
@@ -729,9 +750,11 @@ class MergeObjects(Command):
             from mrm.document import Provenance
 
             objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
+            parts = [discrete_of(doc, o) for o in objs]
+            _check_union_box([p.bbox for p in parts], "the merged object")  # before allocating it
             union = PixelSet.empty()
-            for o in objs:
-                union = union | discrete_of(doc, o)
+            for part in parts:
+                union = union | part
             merged = DocObject(
                 id=doc.new_id(),
                 name=self.name if self.name is not None else objs[0].name,

@@ -34,7 +34,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm import limits
 from mrm.derive import DerivationCache, Derived
-from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.errors import InvalidGeometryError, LimitError, ParameterError
 from mrm.history import Command, History
 
 # Declared once in mrm.limits; re-exported here for the modules that imported them from this one.
@@ -260,9 +260,7 @@ class Provenance:
         if not isinstance(self.operation, str) or not self.operation:
             raise ParameterError("a provenance needs an operation name")
         if len(self.operation) > limits.MAX_OPERATION_CHARS:
-            raise limits.LimitError(
-                f"an operation name is longer than {limits.MAX_OPERATION_CHARS} characters"
-            )
+            raise LimitError(f"an operation name is longer than {limits.MAX_OPERATION_CHARS} characters")
         limits.check_text(self.operation, "the operation name")
         if not isinstance(self.params, Mapping):
             raise ParameterError("provenance parameters must be a mapping of names to values")
@@ -274,7 +272,7 @@ class Provenance:
         if not all(isinstance(i, int) and not isinstance(i, bool) for i in ins):
             raise ParameterError("provenance inputs must be object ids (integers)")
         if not all(1 <= i <= limits.MAX_ID for i in ins):
-            raise limits.LimitError(f"provenance inputs must be object ids in [1, 2^53], got {list(ins)[:5]}")
+            raise LimitError(f"provenance inputs must be object ids in [1, 2^53], got {list(ins)[:5]}")
         object.__setattr__(self, "inputs", ins)
         sources = tuple(self.sources)
         if sources and len(sources) != len(ins):

@@ -130,7 +130,7 @@ def clean_json(value: Any) -> Any:
             else:
                 child = clean_text(v) if isinstance(v, str) else v
             if isinstance(dst, dict):
-                dst[clean_text(k)] = child
+                dst[clean_text(str(k))] = child
             else:
                 dst.append(child)
     return out

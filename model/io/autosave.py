@@ -41,7 +41,7 @@ SUFFIX = ".autosave"
 #: Seconds before a failed autosave is tried again.
 RETRY_SECONDS = 15.0
 #: Untitled side files: ``untitled-<pid>-<token>.mrm.autosave``.
-_ORPHAN = re.compile(r"untitled-(\d{1,10})-[0-9A-Za-z]{1,64}\.mrm" + re.escape(SUFFIX))
+_ORPHAN = re.compile(r"untitled-([0-9]{1,10})-[0-9A-Za-z]{1,64}\.mrm" + re.escape(SUFFIX))
 #: Largest process id of any system we run on (Linux's pid_max is at most 2^22).
 _MAX_PID = 2**31 - 1
 

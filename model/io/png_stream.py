@@ -36,7 +36,7 @@ _DEPTHS = {0: (1, 2, 4, 8, 16), 2: (8, 16), 3: (1, 2, 4, 8), 4: (8, 16), 6: (8, 
 #: Largest chunk accepted (the PNG limit is 2³¹ − 1; text chunks are kept far smaller).
 _MAX_TEXT = 1 << 20
 #: Pixels per strip: the temporaries of one strip stay at a few tens of MB.
-_STRIP_PIXELS = 1 << 20
+_STRIP_PIXELS = 1 << 18
 _LUMA = (19595, 38470, 7471)
 
 
@@ -195,24 +195,30 @@ def _unfilter(raw: Any, nrows: int, stride: int, bpp: int, prev: Any, out: Any) 
     the index of a row with an unknown filter type.
     """
     for r in range(nrows):
-        base = r * (stride + 1)
-        f = raw[base]
+        base = r * (stride + 1) + 1
+        f = raw[base - 1]
         if f > 4:
             return r
-        for i in range(stride):
-            x = np.int32(raw[base + 1 + i])
-            a = np.int32(out[r, i - bpp]) if i >= bpp else np.int32(0)
-            b = np.int32(prev[i])
-            c = np.int32(prev[i - bpp]) if i >= bpp else np.int32(0)
-            if f == 0:
-                v = x
-            elif f == 1:
-                v = x + a
-            elif f == 2:
-                v = x + b
-            elif f == 3:
-                v = x + (a + b) // 2
-            else:
+        # One loop per filter type, so the inner loops carry no branch on it.
+        if f == 0:
+            for i in range(stride):
+                out[r, i] = raw[base + i]
+        elif f == 1:
+            for i in range(stride):
+                a = out[r, i - bpp] if i >= bpp else 0
+                out[r, i] = (raw[base + i] + a) & 0xFF
+        elif f == 2:
+            for i in range(stride):
+                out[r, i] = (raw[base + i] + prev[i]) & 0xFF
+        elif f == 3:
+            for i in range(stride):
+                a = np.int32(out[r, i - bpp]) if i >= bpp else np.int32(0)
+                out[r, i] = (np.int32(raw[base + i]) + (a + np.int32(prev[i])) // 2) & 0xFF
+        else:
+            for i in range(stride):
+                a = np.int32(out[r, i - bpp]) if i >= bpp else np.int32(0)
+                b = np.int32(prev[i])
+                c = np.int32(prev[i - bpp]) if i >= bpp else np.int32(0)
                 p = a + b - c
                 pa = abs(p - a)
                 pb = abs(p - b)
@@ -223,8 +229,7 @@ def _unfilter(raw: Any, nrows: int, stride: int, bpp: int, prev: Any, out: Any) 
                     pred = b
                 else:
                     pred = c
-                v = x + pred
-            out[r, i] = np.uint8(v & 0xFF)
+                out[r, i] = (np.int32(raw[base + i]) + pred) & 0xFF
         for i in range(stride):
             prev[i] = out[r, i]
     return -1
@@ -250,10 +255,11 @@ def _strips(fh: BinaryIO, info: PngInfo, name: str, text: dict[str, str] | None)
             if d.unconsumed_tail:
                 chunk = d.unconsumed_tail
             else:
-                chunk = next(src, None)
-                if chunk is None:
+                nxt = next(src, None)
+                if nxt is None:
                     exhausted = True
                     break
+                chunk = nxt
             try:
                 pending += d.decompress(chunk, need - len(pending) + 65536)
             except zlib.error as e:
@@ -280,57 +286,92 @@ def _strips(fh: BinaryIO, info: PngInfo, name: str, text: dict[str, str] | None)
         pass
 
 
-def _samples(strip: Any, info: PngInfo) -> tuple[Any, Any | None, bool]:
+@njit(cache=True)
+def _lum_alpha(  # pragma: no cover - compiled
+    strip: Any,
+    w: int,
+    ch: int,
+    step: int,
+    grey16: bool,
+    table: bool,
+    lum_tab: Any,
+    alpha_tab: Any,
+    lum: Any,
+    alpha: Any,
+) -> None:
+    """Grey value (BT.601 luminance) and alpha of every pixel of a strip, in one pass.
+
+    Channel c of pixel i is at byte (i·ch + c)·step of a row: step 2 for 16-bit samples, of which the
+    high byte is used for colour (as Pillow does) and both bytes for grey (``grey16``). With ``table`` the
+    single channel is an index into ``lum_tab``/``alpha_tab`` (palettes, scaled 2- and 4-bit grey).
+    """
+    n = strip.shape[0]
+    for r in range(n):
+        row = strip[r]
+        for i in range(w):
+            o = i * ch * step
+            if table:
+                v = row[o]
+                lum[r, i] = lum_tab[v]
+                alpha[r, i] = alpha_tab[v]
+            elif ch == 1:
+                if grey16:
+                    lum[r, i] = np.int32(row[o]) * 256 + np.int32(row[o + 1])
+                else:
+                    lum[r, i] = row[o]
+                alpha[r, i] = 255
+            elif ch == 2:
+                lum[r, i] = row[o]
+                alpha[r, i] = row[o + step]
+            else:
+                rr = np.int64(row[o])
+                gg = np.int64(row[o + step])
+                bb = np.int64(row[o + 2 * step])
+                lum[r, i] = np.int32((19595 * rr + 38470 * gg + 7471 * bb + 32768) >> 16)
+                alpha[r, i] = row[o + 3 * step] if ch == 4 else 255
+
+
+def _tables(info: PngInfo) -> tuple[Any, Any] | None:
+    """(luminance, alpha) per sample value for palettes and scaled low-depth grey; None otherwise."""
+    if info.color == 3:
+        pal = np.zeros((256, 3), dtype=np.int64)
+        assert info.palette is not None
+        pal[: len(info.palette)] = info.palette
+        lum = ((_LUMA[0] * pal[:, 0] + _LUMA[1] * pal[:, 1] + _LUMA[2] * pal[:, 2] + 32768) >> 16).astype(
+            np.int32
+        )
+        alpha = np.full(256, 255, dtype=np.int32)
+        if info.trns is not None:
+            t = np.frombuffer(info.trns[:256], dtype=np.uint8)
+            alpha[: len(t)] = t
+        return lum, alpha
+    if info.color == 0 and info.depth in (2, 4):  # Pillow's L;2 and L;4 scale the samples to 0–255
+        return (np.arange(256, dtype=np.int32) * (85 if info.depth == 2 else 17)), np.full(
+            256, 255, dtype=np.int32
+        )
+    return None
+
+
+def _samples(strip: Any, info: PngInfo, tables: tuple[Any, Any] | None) -> tuple[Any, Any | None, bool]:
     """(grey L, alpha or None, is_bitmap) of a strip of unfiltered rows, as Pillow's modes give them."""
     w, depth, color = info.width, info.depth, info.color
     n = strip.shape[0]
     if depth < 8:
-        bits = np.unpackbits(strip, axis=1) if depth == 1 else None
-        if bits is None:
-            shifts = np.arange(8 - depth, -1, -depth, dtype=np.uint8)
-            v = (strip[:, :, None] >> shifts) & ((1 << depth) - 1)
-            vals = v.reshape(n, -1)[:, :w]
+        if depth == 1:
+            vals = np.unpackbits(strip, axis=1)[:, :w]
         else:
-            vals = bits[:, :w]
-        if color == 0:
-            if depth == 1:
-                return vals.astype(bool), None, True
-            return vals.astype(np.int64) * (85 if depth == 2 else 17), None, False
-        return _palette(vals, info)
-    ch = _CHANNELS[color]
-    if depth == 16:
-        if color == 0:
-            be = strip.reshape(n, w, 2)
-            return be[..., 0].astype(np.int64) * 256 + be[..., 1], None, False
-        s = strip.reshape(n, w, ch, 2)[..., 0]  # Pillow keeps the high byte of 16-bit colour samples
+            shifts = np.arange(8 - depth, -1, -depth, dtype=np.uint8)
+            vals = ((strip[:, :, None] >> shifts) & ((1 << depth) - 1)).reshape(n, -1)[:, :w]
+        if color == 0 and depth == 1:
+            return vals.astype(bool), None, True
+        strip, ch, step = np.ascontiguousarray(vals, dtype=np.uint8), 1, 1
     else:
-        s = strip.reshape(n, w, ch)
-    if color == 0:
-        return s[..., 0].astype(np.int64), None, False
-    if color == 3:
-        return _palette(s[..., 0], info)
-    if color == 4:
-        return s[..., 0].astype(np.int64), s[..., 1].astype(np.int64), False
-    lum = (
-        _LUMA[0] * s[..., 0].astype(np.int64)
-        + _LUMA[1] * s[..., 1].astype(np.int64)
-        + _LUMA[2] * s[..., 2].astype(np.int64)
-        + 32768
-    ) >> 16
-    return lum, (s[..., 3].astype(np.int64) if color == 6 else None), False
-
-
-def _palette(idx: Any, info: PngInfo) -> tuple[Any, Any, bool]:
-    pal = np.zeros((256, 3), dtype=np.int64)
-    assert info.palette is not None
-    pal[: len(info.palette)] = info.palette
-    lum_table = (_LUMA[0] * pal[:, 0] + _LUMA[1] * pal[:, 1] + _LUMA[2] * pal[:, 2] + 32768) >> 16
-    alpha_table = np.full(256, 255, dtype=np.int64)
-    if info.trns is not None:
-        t = np.frombuffer(info.trns[:256], dtype=np.uint8)
-        alpha_table[: len(t)] = t
-    i = idx.astype(np.intp)
-    return lum_table[i], alpha_table[i], False
+        ch, step = _CHANNELS[color], depth // 8
+    lum = np.empty((n, w), dtype=np.int32)
+    alpha = np.empty((n, w), dtype=np.int32)
+    lt, at = tables if tables is not None else (np.zeros(1, np.int32), np.zeros(1, np.int32))
+    _lum_alpha(strip, w, ch, step, color == 0 and depth == 16, tables is not None, lt, at, lum, alpha)
+    return lum, (alpha if color in (3, 4, 6) else None), False
 
 
 def read_png_mask(
@@ -352,6 +393,7 @@ def read_png_mask(
     h, w = info.height, info.width
     has_alpha = info.color in (3, 4, 6)
     t = None if threshold is None else check_threshold(threshold)
+    tables = _tables(info)
     # Pass 1 (skipped when nothing global is needed): histograms and the visible-colour test.
     use_alpha_as_grey = False
     zero_image = False
@@ -362,7 +404,7 @@ def read_png_mask(
         hist_comp = np.zeros(256, dtype=np.int64)
         lo, hi, visible = None, None, False
         for strip in _strips(fh, info, name, text):
-            lum, alpha, _ = _samples(strip, info)
+            lum, alpha, _ = _samples(strip, info, tables)
             if alpha is None:
                 hist_plain += np.bincount(lum.ravel(), minlength=65536)
                 continue
@@ -400,7 +442,7 @@ def read_png_mask(
     mask = np.empty((h, w), dtype=bool)
     row = 0
     for strip in _strips(fh, info, name, text):
-        lum, alpha, is_bitmap = _samples(strip, info)
+        lum, alpha, is_bitmap = _samples(strip, info, tables)
         n = lum.shape[0]
         if is_bitmap:
             part = lum

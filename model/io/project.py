@@ -75,7 +75,8 @@ FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
 SCHEMA_VERSION = 1
 # The limits are those of the document (mrm.limits, ADR 0010), so that the loader accepts every file the
-# saver can write: the document refuses the edit that would exceed them.
+# saver can write: the document refuses the edit that would exceed them. The loader reads them from
+# mrm.limits when it runs; these names are kept for callers that imported them from here.
 #: Files larger than this are refused before being read.
 MAX_FILE_BYTES = limits.MAX_FILE_BYTES
 #: A discrete source's bounding box may hold at most this many pixels.
@@ -344,9 +345,11 @@ class _Checker:
             self.fail(path, f"number {self.show(v)} out of range [{lo:g}, {hi:g}]")
         return f
 
-    def str_(self, v: Any, path: str, max_len: int = MAX_NAME_CHARS) -> str:
+    def str_(self, v: Any, path: str, max_len: int | None = None) -> str:
         if not isinstance(v, str):
             self.fail(path, f"expected a string, got {self.show(v)}")
+        if max_len is None:
+            max_len = limits.MAX_NAME_CHARS
         if len(v) > max_len:
             self.fail(path, f"string of {len(v)} characters is longer than {max_len}")
         return limits.clean_text(v)  # a JSON "\ud800" escape must not make the document unsavable
@@ -373,23 +376,27 @@ def _decode_bits(c: _Checker, src: dict[str, Any], path: str) -> PixelSet:
     origin = c.list_(src["origin"], f"{path}.origin")
     if len(origin) != 2:
         c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
-    x0 = c.int_(origin[0], f"{path}.origin[0]", -MAX_INT_COORD, MAX_INT_COORD)
-    y0 = c.int_(origin[1], f"{path}.origin[1]", -MAX_INT_COORD, MAX_INT_COORD)
+    lim = limits.PIXEL_COORDINATE_LIMIT
+    x0 = c.int_(origin[0], f"{path}.origin[0]", -lim, lim)
+    y0 = c.int_(origin[1], f"{path}.origin[1]", -lim, lim)
     shape = c.list_(src["shape"], f"{path}.shape")
     if len(shape) != 2:
         c.fail(f"{path}.shape", f"expected [rows, cols], got {c.show(shape)}")
-    h = c.int_(shape[0], f"{path}.shape[0]", 0, MAX_INT_COORD)
-    w = c.int_(shape[1], f"{path}.shape[1]", 0, MAX_INT_COORD)
-    if h and w and max(x0 + w - 1, y0 + h - 1) > MAX_INT_COORD:
-        c.fail(f"{path}.shape", f"the mask reaches pixel coordinates beyond ±{MAX_INT_COORD:,}")
-    if h * w > MAX_MASK_PIXELS:
-        c.fail(f"{path}.shape", f"a {h} x {w} mask holds more than the limit of {MAX_MASK_PIXELS:,} pixels")
-    c.mask_pixels += h * w
-    if c.mask_pixels > MAX_TOTAL_MASK_PIXELS:
+    h = c.int_(shape[0], f"{path}.shape[0]", 0, lim)
+    w = c.int_(shape[1], f"{path}.shape[1]", 0, lim)
+    if h and w and max(x0 + w - 1, y0 + h - 1) > lim:
+        c.fail(f"{path}.shape", f"the mask reaches pixel coordinates beyond ±{lim:,}")
+    if h * w > limits.MAX_OBJECT_PIXELS:
         c.fail(
-            f"{path}.shape", f"the masks of the file hold more than {MAX_TOTAL_MASK_PIXELS:,} pixels in all"
+            f"{path}.shape",
+            f"a {h} x {w} mask holds more than the limit of {limits.MAX_OBJECT_PIXELS:,} pixels",
         )
-    bits = c.str_(src["bits"], f"{path}.bits", max_len=MAX_FILE_BYTES)
+    c.mask_pixels += h * w
+    if c.mask_pixels > limits.MAX_FILE_PIXELS:
+        c.fail(
+            f"{path}.shape", f"the masks of the file hold more than {limits.MAX_FILE_PIXELS:,} pixels in all"
+        )
+    bits = c.str_(src["bits"], f"{path}.bits", max_len=limits.MAX_FILE_BYTES)
     n = h * w
     nbytes = (n + 7) // 8
     if len(bits) != 4 * ((nbytes + 2) // 3):
@@ -502,9 +509,14 @@ def _decode_provenance(
     params = c.obj(
         p["params"], f"{path}.params", (), tuple(p["params"]) if isinstance(p["params"], dict) else ()
     )
-    c.json_value(params, f"{path}.params")
-    if len(json.dumps(params)) > limits.PARAMS_MAX_CHARS:
+    # The size first (one C-speed dump), so that a huge parameter set is refused before the per-value checks.
+    try:
+        size = len(json.dumps(params))
+    except (RecursionError, ValueError):
+        c.fail(f"{path}.params", f"nested deeper than {PARAMS_MAX_DEPTH} levels")
+    if size > limits.PARAMS_MAX_CHARS:
         c.fail(f"{path}.params", f"the parameters are larger than {limits.PARAMS_MAX_CHARS:,} characters")
+    c.json_value(params, f"{path}.params")
     params = limits.clean_json(params)
     inputs = c.list_(p["inputs"], f"{path}.inputs")
     ids = [c.int_(v, f"{path}.inputs[{i}]", 1, 2**53) for i, v in enumerate(inputs)]
@@ -727,13 +739,13 @@ def read_project(path: str | os.PathLike[str], **kw: Any) -> Project:
     name = p.name
     with open_regular(p, name) as fh:  # a FIFO or device is refused, never waited on
         size = os.fstat(fh.fileno()).st_size
-        if size > MAX_FILE_BYTES:
+        if size > limits.MAX_FILE_BYTES:
             raise FileFormatError(
-                f"{name}: the file is {size:,} bytes, larger than the limit of {MAX_FILE_BYTES:,}"
+                f"{name}: the file is {size:,} bytes, larger than the limit of {limits.MAX_FILE_BYTES:,}"
             )
-        data = fh.read(MAX_FILE_BYTES + 1)
-    if len(data) > MAX_FILE_BYTES:
-        raise FileFormatError(f"{name}: the file is larger than the limit of {MAX_FILE_BYTES:,} bytes")
+        data = fh.read(limits.MAX_FILE_BYTES + 1)
+    if len(data) > limits.MAX_FILE_BYTES:
+        raise FileFormatError(f"{name}: the file is larger than the limit of {limits.MAX_FILE_BYTES:,} bytes")
     return parse_project(data, name, **kw)
 
 

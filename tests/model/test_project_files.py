@@ -359,9 +359,9 @@ def test_the_cli_reports_hostile_projects_with_exit_status_2(case, tmp_path, cap
 
 
 def test_the_masks_of_a_file_have_a_total_budget(monkeypatch):
-    import mrm.io.project as project
+    import mrm.limits as limits
 
-    monkeypatch.setattr(project, "MAX_TOTAL_MASK_PIXELS", 30)  # the golden masks hold 25 + 0 + 6 pixels
+    monkeypatch.setattr(limits, "MAX_FILE_PIXELS", 30)  # the golden masks hold 25 + 0 + 6 pixels
     with pytest.raises(
         FileFormatError, match=r"\$\.objects\[5\]\.source\.shape: the masks of the file hold more"
     ):

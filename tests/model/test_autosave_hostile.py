@@ -1,0 +1,209 @@
+"""Issue 11, classes 2 and 6: autosave failures are reported and retried; what recovery finds is not trusted;
+interrupted saves leave nothing behind for long."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from mrm.commands import AddObject, RenameObject
+from mrm.document import Document
+from mrm.errors import FileFormatError
+from mrm.io import autosave
+from mrm.io.atomic import atomic_write_bytes, remove_stale_temps
+from mrm.io.autosave import Autosaver, find_orphans, find_recovery, side_file
+from mrm.io.project import dumps, save_project
+from mrm.reps.pixels import PixelSet
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.t = 0.0
+
+    def __call__(self) -> float:
+        return self.t
+
+
+def edited_doc() -> Document:
+    doc = Document()
+    doc.push(AddObject(doc.make_object(PixelSet.box(0, 0, 2, 2), "a")))
+    return doc
+
+
+def dead_pid() -> int:
+    p = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    )
+    return int(p.stdout)
+
+
+# ---------------------------------------------------------------------------------------------- class 2
+def test_a_failing_autosave_is_reported_retried_and_never_raises(tmp_path, monkeypatch):
+    doc = edited_doc()
+    clock = Clock()
+    messages: list[str] = []
+    saver = Autosaver(doc, interval=10, directory=tmp_path / "as", clock=clock, on_error=messages.append)
+    calls = {"n": 0}
+    real = autosave.dumps if hasattr(autosave, "dumps") else dumps
+
+    def failing(*a, **k):
+        calls["n"] += 1
+        if calls["n"] <= 2:
+            raise UnicodeEncodeError("utf-8", "\ud800", 0, 1, "surrogates not allowed")
+        return real(*a, **k)
+
+    monkeypatch.setattr(autosave, "dumps", failing)
+    clock.t = 11
+    assert saver.tick() is None  # no exception out of the timer's callback
+    assert messages == [
+        "Autosave failed, will retry: 'utf-8' codec can't encode character '\\ud800' in position 0: "
+        "surrogates not allowed"
+    ]
+    assert saver.failures == 1 and saver.last_error is not None
+    clock.t = 12
+    assert saver.tick() is None and calls["n"] == 1  # waits RETRY_SECONDS before trying again
+    clock.t = 11 + autosave.RETRY_SECONDS
+    assert saver.tick() is None and calls["n"] == 2 and len(messages) == 2
+    clock.t += autosave.RETRY_SECONDS
+    written = saver.tick()
+    assert written is not None and written.exists() and saver.failures == 0 and saver.last_error is None
+
+
+def test_an_os_error_while_autosaving_is_reported(tmp_path):
+    doc = edited_doc()
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    messages: list[str] = []
+    saver = Autosaver(
+        doc, interval=0, directory=blocker / "sub", on_error=messages.append
+    )  # a path through a file
+    assert saver.tick() is None
+    assert len(messages) == 1 and "Autosave failed, will retry" in messages[0]
+
+
+# ---------------------------------------------------------------------------------------------- class 6
+JUNK = [
+    "untitled-99999999999999999999-x.mrm.autosave",
+    "untitled--x.mrm.autosave",
+    "untitled-12-.mrm.autosave",
+    "untitled-abc-x.mrm.autosave",
+    "untitled-0-x.mrm.autosave",
+    "untitled-1e9-x.mrm.autosave",
+    "untitled-\u0661\u0662-x.mrm.autosave",  # Arabic-Indic digits pass str.isdigit()
+    ".mrm.autosave",
+    "untitled-4-x.mrm.autosave.tmp",
+]
+
+
+def test_junk_names_in_the_autosave_folder_never_fail_a_start(tmp_path):
+    d = tmp_path / "as"
+    d.mkdir()
+    for name in JUNK:
+        (d / name).write_bytes(b"not a project")
+    (d / "untitled-7-dir.mrm.autosave").mkdir()
+    (d / "untitled-8-link.mrm.autosave").symlink_to(tmp_path / "nowhere")
+    found = find_orphans(d)
+    # Junk is skipped; a file of our pattern whose pid cannot be alive is offered (damaged: discardable).
+    assert [r.path.name for r in found] == ["untitled-0-x.mrm.autosave"]
+    assert all(r.project is None for r in found)
+
+
+def test_an_orphans_recorded_path_is_offered_never_adopted(tmp_path):
+    victim = tmp_path / "precious.mrm"
+    victim.write_bytes(b"precious data")
+    d = tmp_path / "as"
+    d.mkdir()
+    doc = edited_doc()
+    data = dumps(doc, autosave={"project": str(victim), "saved_at": "2026-01-01T00:00:00+00:00"})
+    orphan = d / f"untitled-{dead_pid()}-cafe.mrm.autosave"
+    orphan.write_bytes(data)
+    (rec,) = find_orphans(d)
+    assert rec.project is None and rec.recorded == victim
+    restored = rec.restore()
+    assert restored.path is None and restored.is_modified  # Save asks where to write
+    assert victim.read_bytes() == b"precious data"
+
+
+def test_recovery_of_an_opened_project_uses_the_project_being_opened_not_the_record(tmp_path):
+    proj = tmp_path / "p.mrm"
+    doc = edited_doc()
+    save_project(doc, proj)
+    elsewhere = tmp_path / "elsewhere.mrm"
+    side = side_file(proj)
+    side.write_bytes(dumps(doc, autosave={"project": str(elsewhere), "saved_at": "x"}))
+    os.utime(side, (proj.stat().st_mtime + 10,) * 2)
+    rec = find_recovery(proj)
+    assert rec is not None and rec.project == proj and rec.recorded == elsewhere
+    assert rec.restore().path == proj
+
+
+def test_autosave_never_follows_a_planted_symlink(tmp_path):
+    proj = tmp_path / "name.mrm"
+    doc = edited_doc()
+    save_project(doc, proj)
+    target = tmp_path / "victim.txt"
+    target.write_bytes(b"keep me")
+    side_file(proj).symlink_to(target)
+    doc.push(RenameObject(doc.objects[0].id, "b"))
+    saver = Autosaver(doc, interval=0)
+    written = saver.tick()
+    assert written == side_file(proj)
+    assert target.read_bytes() == b"keep me"
+    assert not written.is_symlink() and b'"b"' in written.read_bytes()
+
+
+def test_stale_temporary_files_of_our_pattern_are_removed_on_the_next_save(tmp_path):
+    proj = tmp_path / "proj.mrm"
+    dead = dead_pid()
+    stale = [tmp_path / f".proj.mrm.{dead}-{k:08x}.tmp" for k in range(14)]
+    for p in stale:
+        p.write_bytes(b"x" * 1000)
+    legacy_old = tmp_path / ".proj.mrm.deadbeef.tmp"
+    legacy_old.write_bytes(b"old")
+    os.utime(legacy_old, (1, 1))
+    legacy_new = tmp_path / ".proj.mrm.0badf00d.tmp"  # may be another process's save in progress
+    legacy_new.write_bytes(b"new")
+    alive = tmp_path / f".proj.mrm.{os.getpid()}-0000abcd.tmp"  # ours, in progress
+    alive.write_bytes(b"live")
+    other = tmp_path / ".other.mrm.deadbeef.tmp"
+    other.write_bytes(b"other")
+    os.utime(other, (1, 1))
+    target = tmp_path / "victim"
+    target.write_bytes(b"v")
+    link = tmp_path / f".proj.mrm.{dead}-00000fff.tmp"
+    link.symlink_to(target)
+    atomic_write_bytes(proj, b"data")
+    left = sorted(p.name for p in tmp_path.iterdir())
+    assert left == sorted(["proj.mrm", legacy_new.name, alive.name, other.name, "victim", link.name])
+    assert target.read_bytes() == b"v"
+    assert remove_stale_temps(proj) == 0
+
+
+def test_temporary_files_left_by_killed_saves_are_cleaned_by_the_next_save(tmp_path):
+    proj = tmp_path / "k.mrm"
+    code = (
+        "import os, sys; from mrm.io import atomic; cm = atomic.atomic_open(sys.argv[1]); "
+        "fh = cm.__enter__(); fh.write(b'half'); fh.flush(); os._exit(9)"
+    )
+    for _ in range(5):
+        subprocess.run([sys.executable, "-c", code, str(proj)], check=False)
+        # Each interrupted save removed the one before it: one stale file at most, never a growing pile.
+        assert len(list(tmp_path.glob(".k.mrm.*.tmp"))) == 1 and not proj.exists()
+    save_project(edited_doc(), proj)
+    assert list(tmp_path.glob(".k.mrm.*.tmp")) == []
+    assert Path(proj).read_bytes().startswith(b"{")
+
+
+@pytest.mark.parametrize("name", JUNK)
+def test_every_junk_name_alone_is_harmless(tmp_path, name):
+    d = tmp_path / "as"
+    d.mkdir()
+    (d / name).write_bytes(b"\x00\xff junk")
+    for rec in find_orphans(d):
+        assert rec.project is None
+        with pytest.raises(FileFormatError, match=r"not an MR Modeler project|not UTF-8|empty"):
+            rec.restore()
