@@ -115,9 +115,10 @@ def test_the_registered_operation_gives_one_result_with_its_provenance():
     assert res.provenance["params"] == {"alpha": 0.5, "center": [1.0, 1.0], "model": "supercover"}
     # one DSS alone is exact in the paper's sense: A_last = Sc_α(R(A)) = T(A_first)
     assert res.bound is not None and res.bound.bound == 0.0
-    # run alone (as the GUI calls it) stamps the same provenance, fit for the document
+    # run alone only computes: run_operation is the one place that stamps provenance and bound
     direct = run([a], DSSParams(alpha=0.5, center=(1.0, 1.0), model="supercover"))
-    assert Provenance.from_json(direct.provenance).params == res.provenance["params"]
+    assert direct.outputs == res.outputs and direct.provenance == {} and direct.bound is None
+    assert Provenance("dss", res.provenance["params"]).params == res.provenance["params"]
 
 
 def test_a_polygon_input_is_scaled_through_its_discretization():
