@@ -73,8 +73,14 @@ def _range_of(spec: Any) -> tuple[float | None, float | None, bool]:
         return _POSITIVE_RANGE[0], _POSITIVE_RANGE[1], True
     if lo is not None and not spec.min_inclusive and lo == 0.0:
         lo = _POSITIVE_RANGE[0]
+    if lo is not None and hi is not None and lo > 0 and hi / lo > _POSITIVE_RANGE[1] / _POSITIVE_RANGE[0]:
+        # A factor with a wide declared range (1e-6 … 1e6): the slider covers the useful [1/64, 64]; the
+        # model still checks the declared range.
+        return max(lo, _POSITIVE_RANGE[0]), min(hi, _POSITIVE_RANGE[1]), True
+    if spec.unit == "°" and (lo is None or lo <= _ANGLE_RANGE[0]) and (hi is None or hi >= _ANGLE_RANGE[1]):
+        return (*_ANGLE_RANGE, False)  # one turn either way on the slider; the field takes the declared range
     if lo is None and hi is None:
-        return (*(_ANGLE_RANGE if spec.unit == "°" else _OPEN_RANGE), False)
+        return (*_OPEN_RANGE, False)
     if lo is None:
         lo = (hi or 0.0) - 1000.0
     if hi is None:

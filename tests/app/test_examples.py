@@ -105,3 +105,34 @@ def test_fig08_simplification_is_its_definition_at_each_alpha():
         coarse = reconstruct(discretize(affinity.scale(e, alpha, alpha, origin=(0, 0)), doc.model), doc.model)
         expected = affinity.scale(coarse, 1 / alpha, 1 / alpha, origin=(0, 0))
         assert objs[f"Sp {alpha:g}"].source.equals(expected), alpha
+
+
+@pytest.mark.parametrize(
+    "name", ["fig12-dss-combinations.mrm", "fig13-rotations.mrm", "fig08-simplification.mrm",
+             "fig09-10-union-corefinement.mrm"],
+)  # fmt: skip
+def test_the_inspector_cli_and_api_print_identical_numbers(make_window, qtbot, name):
+    """One account (mrm.ops.account): what the inspector holds is what ``mrm account --json`` prints."""
+    import contextlib
+    import io
+    import json
+
+    from mrm.cli import run_cli
+    from mrm.ops.account import account_of
+
+    win = make_window()
+    assert win.files.open(EXAMPLES / name, ask=False)
+    insp = win.inspector
+    for obj in [o for o in win.doc.objects if o.provenance is not None]:
+        win.doc.set_selection([obj.id])
+        insp.refresh()
+        qtbot.waitUntil(lambda: insp.measurement is not None, timeout=120_000)  # noqa: B023
+        gui = json.loads(json.dumps(insp.measurement.summary()))
+        api = json.loads(json.dumps(account_of(obj.provenance).summary()))
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            assert run_cli(["account", str(EXAMPLES / name), "--object", obj.name, "--json"]) == 0
+        cli = json.loads(out.getvalue())
+        assert gui == api == {k: cli[k] for k in api}, obj.name
+        if gui["measured"] is not None:
+            assert f"= {gui['measured']:.4g}" in insp.measured_label.text()
