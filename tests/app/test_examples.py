@@ -126,7 +126,7 @@ def test_the_inspector_cli_and_api_print_identical_numbers(make_window, qtbot, n
     for obj in [o for o in win.doc.objects if o.provenance is not None]:
         win.doc.set_selection([obj.id])
         insp.refresh()
-        qtbot.waitUntil(lambda: insp.measurement is not None, timeout=120_000)  # noqa: B023
+        qtbot.waitUntil(lambda: insp.measurement is not None, timeout=120_000)
         gui = json.loads(json.dumps(insp.measurement.summary()))
         api = json.loads(json.dumps(account_of(obj.provenance).summary()))
         out = io.StringIO()
