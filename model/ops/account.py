@@ -266,11 +266,11 @@ def _spec_params(prov: Any) -> tuple[Any, Any, str]:
 def _label(spec: Any, params: Any) -> str:
     if spec.chain_step is not None and spec.name in CHAIN_OPERATIONS:
         step: ChainStep = spec.chain_step(params)
-        return step.label()
+        return str(step.label())
     aliases = {"union": "EDu", "corefine": "EDco"}
     if spec.name == "corefine" and getattr(params, "alpha", None) is not None:
-        return f"EDco {params.alpha:g}"
-    return aliases.get(spec.name, spec.name)
+        return f"EDco {float(params.alpha):g}"
+    return aliases.get(spec.name, str(spec.name))
 
 
 def _link(prov: Any) -> Link:
@@ -373,7 +373,7 @@ def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int
     )
 
 
-def _sub(progress: ProgressLike | None, lo: float, hi: float) -> ProgressLike | None:
+def _sub(progress: ProgressLike | None, lo: float, hi: float) -> Any:
     from mrm.ops.outcome import sub_progress
 
     return None if progress is None else sub_progress(progress, lo, hi)
@@ -555,7 +555,7 @@ def changed_inputs(doc: Any, provenance: Any) -> list[InputChange]:
     """The inputs of ``provenance`` whose current content in ``doc`` differs from the pinned one."""
     from mrm.document import content_digest
 
-    out = []
+    out: list[InputChange] = []
     if provenance is None or not provenance.pinned:
         return out
     for k, (oid, digest) in enumerate(zip(provenance.inputs, provenance.digests, strict=True)):

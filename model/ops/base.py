@@ -354,14 +354,14 @@ def _check_number(spec: ParamSpec, value: Any) -> float:
     lo, hi = spec.minimum, spec.maximum
     below = lo is not None and (v < lo or (v == lo and not spec.min_inclusive))
     above = hi is not None and (v > hi or (v == hi and not spec.max_inclusive))
-    if below:
+    if below and lo is not None:
         first = (
             "positive"
             if lo == 0 and not spec.min_inclusive
             else f"{'≥' if spec.min_inclusive else '>'} {_fmt(lo)}"
         )
         raise ParameterError(f"{what} must be {first}, got {_fmt(v)} (allowed: {range_text(spec)})")
-    if above:
+    if above and hi is not None:
         rel = "≤" if spec.max_inclusive else "<"
         raise ParameterError(f"{what} must be {rel} {_fmt(hi)}, got {_fmt(v)} (allowed: {range_text(spec)})")
     return v
