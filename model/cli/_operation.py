@@ -192,3 +192,41 @@ def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:
     from mrm.geometry.discretize import discretize
 
     return discretize(result, model, limit=limit)
+
+
+def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
+    """``(add_arguments, run)`` of a one-object subcommand, generated from the operation's registry spec.
+
+    Every parameter of the spec's dataclass becomes an option (``--alpha``, ``--angle``, ``--center X,Y``)
+    with its label, unit, help and declared range; ``model`` is the common ``--model``. The values are read
+    exactly and range-checked by the registry (:func:`mrm.ops.base.coerce_params`), as the panel's are.
+    """
+    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.base import get_operation, range_text
+
+    load_paper_operations()
+    spec = get_operation(operation)
+    fields = [p for p in spec.param_specs() if p.name != "model"]
+
+    def add_arguments(parser: argparse.ArgumentParser) -> None:
+        add_input(parser)
+        for p in fields:
+            unit = f" [{p.unit}]" if p.unit and p.unit != "×" else ""
+            if p.kind == "point":
+                parser.add_argument(
+                    f"--{p.name}", type=parse_point, default=None, metavar="X,Y", help=f"{p.help}{unit}"
+                )
+            else:
+                allowed = f" ({range_text(p)})" if p.minimum is not None or p.maximum is not None else ""
+                parser.add_argument(
+                    f"--{p.name}",
+                    required=not p.optional,
+                    metavar=p.label.upper() if p.label.isascii() else p.name[0].upper(),
+                    help=f"{p.help}{unit}{allowed}; decimal or p/q, read exactly",
+                )
+        add_common(parser, output_help)
+
+    def run(args: argparse.Namespace) -> dict[str, Any]:
+        return run_unary(args, spec.name, {p.name: getattr(args, p.name) for p in fields})
+
+    return add_arguments, run
