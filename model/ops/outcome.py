@@ -21,7 +21,7 @@ from mrm.ops.exact_geometry import (
     pixel_box,
     voxel_bounds,
 )
-from mrm.ops.rational_discretize import ProgressLike, discretize_exact
+from mrm.ops.rational_discretize import ProgressLike, discretize_exact, discretize_image
 from mrm.reps.pixels import Box, PixelSet
 
 #: The discretization models an operation accepts.
@@ -86,9 +86,19 @@ class StepOutcome:
 
     result: Any
     transform: Similarity
-    euclidean: ExactShape
+    exact_image: Any  # an ExactShape, or a function making it on first use (it costs Fraction arithmetic)
     discrete: PixelSet
     extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def euclidean(self) -> ExactShape:
+        """The exact Euclidean object (computed on first use when the operation did not need it)."""
+        value = self.exact_image
+        if not isinstance(value, ExactShape):
+            value = value()
+            object.__setattr__(self, "exact_image", value)
+        assert isinstance(value, ExactShape)
+        return value
 
 
 def check_model(model: str) -> str:
@@ -141,8 +151,16 @@ def discrete_similarity(
     euclid = reconstruct(ps, model)
     if progress is not None:
         progress.update(0.3, "applying the similarity")
-    image = ExactShape.from_geometry(euclid).map(sim)
-    result = discretize_exact(image, model, limit=limit, progress=_Scaled(progress, 0.3, 1.0), what=what)
+
+    def image() -> ExactShape:
+        return ExactShape.from_geometry(euclid).map(sim)
+
+    # Scalings and translations of float64 vertices: integer arithmetic and compiled kernels, no Fraction.
+    result = discretize_image(euclid, sim, model, limit=limit, what=what)
+    if result is None:
+        exact = image()
+        result = discretize_exact(exact, model, limit=limit, progress=_Scaled(progress, 0.3, 1.0), what=what)
+        return StepOutcome(result, sim, exact, result)
     if progress is not None:
         progress.update(1.0, "done")
     return StepOutcome(result, sim, image, result)
