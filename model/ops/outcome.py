@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from mrm.errors import ParameterError, SizeLimitError
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
 from mrm.ops.base import param
 from mrm.ops.exact_geometry import (
     ExactShape,
@@ -164,6 +164,54 @@ def discrete_similarity(
     if progress is not None:
         progress.update(1.0, "done")
     return StepOutcome(result, sim, image, result)
+
+
+def register_discrete_similarity(
+    *,
+    name: str,
+    title: str,
+    params: type,
+    similarity: Any,
+    chain_step: Any,
+    label: Any,
+    help: str,
+    aliases: tuple[str, ...],
+) -> Any:
+    """Register a ``D∘T∘R`` operation (DSS_α, dR_θ,C) from its declarations alone.
+
+    ``similarity(params)`` is the exact T, ``chain_step(params)`` its place in the bound rule and
+    ``label(params)`` the result's name (``DSS 0.2``); the size estimate and the run are the same for every
+    such operation, so they are written here once.
+    """
+    from mrm.ops.base import OperationResult, OperationSpec, register
+
+    def estimate(inputs: Any, p: Any) -> int:
+        return estimate_through_pixels(inputs[0], similarity(p), p.model)
+
+    def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> Any:
+        # run_operation validated the parameters, checked the size and stamps provenance and bound.
+        ps = discrete_of(inputs[0], p.model, DEFAULT_PIXEL_LIMIT)
+        out = discrete_similarity(
+            ps, similarity(p), p.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=label(p)
+        )
+        return OperationResult(outputs=[(label(p), out.result)])
+
+    return register(
+        OperationSpec(
+            name=name,
+            title=title,
+            arity=1,
+            params=params,
+            run=run,
+            input_kind="any",
+            output_kind="discrete",
+            help=help,
+            estimate=estimate,
+            chain_step=chain_step,
+            similarity=similarity,
+            aliases=aliases,
+        )
+    )
 
 
 class _Scaled:
