@@ -185,6 +185,57 @@ def bench_scaling(repeats: int) -> None:
     t.show()
 
 
+def bench_dss_1024(repeats: int) -> None:
+    """DSS_α, α ∈ {1/5, 2, 5}, of a 1024² object: ours, the bare float composition, and the raster peers.
+
+    Targets (issue 9): ≤ 1.3× the float composition under standard (≤ 1.5× gauss), ≤ 1× scikit-image
+    ``rescale(order=1)`` + threshold, ≤ 10× ``cv2.resize`` nearest. The load is printed with the table.
+    """
+    img, ps = blob_1024()
+    u8 = img.astype(np.uint8)
+    f64 = img.astype(float)
+    for alpha in (0.2, 2.0, 5.0):
+        t = Table(f"DSS_{alpha:g} of a 1024² object ({len(ps)} pixels); load {os.getloadavg()[0]:.2f}", None)
+        _, t_near, _ = timed(
+            lambda a=alpha: cv2.resize(u8, None, fx=a, fy=a, interpolation=cv2.INTER_NEAREST), repeats
+        )
+        _, t_sk, _ = timed(lambda a=alpha: sktransform.rescale(f64, a, order=1) >= 0.5, repeats)
+        rows: list[tuple[str, float]] = []
+        for model in ("standard", "gauss"):
+
+            def ours(model: str = model, a: float = alpha) -> Any:
+                return DSS(ps, a, None, model).result  # type: ignore[misc]
+
+            def composition(model: str = model, a: float = alpha) -> Any:
+                e = reconstruct(ps, model)
+                return discretize(shapely.affinity.scale(e, a, a, origin=(0, 0)), model)
+
+            _, m_ours, r_ours = timed(ours, repeats)
+            _, m_comp, r_comp = timed(composition, repeats)
+            rows.append((model, m_ours))
+            same = (
+                "same pixels"
+                if r_ours == r_comp
+                else f"{len(r_ours ^ r_comp)} pixels differ (float Sc rounds)"
+            )
+            t.add(
+                f"ours (mrm.ops) DSS_{alpha:g}, {model}",
+                None,
+                m_ours,
+                f"÷ float composition {m_ours / m_comp:.2f}",
+            )
+            t.add(f"float composition R → shapely scale → D, {model}", None, m_comp, same)
+        t.add("peer cv2.resize INTER_NEAREST", None, t_near, "")
+        t.add("peer skimage rescale order=1 + threshold", None, t_sk, "")
+        t.peer = t_sk
+        t.show()
+        for model, m in rows:
+            print(
+                f"  ratio {model}: ÷ skimage {m / t_sk:.2f} (target ≤ 1), "
+                f"÷ cv2 nearest {m / t_near:.1f} (≤ 10)"
+            )
+
+
 def bench_rotation(repeats: int) -> None:
     img, ps = blob_1024()
     angle, centre = 30, (511.5, 511.5)
@@ -430,7 +481,19 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--no-cold", action="store_true", help="skip the cold-cache first-call subprocesses")
+    parser.add_argument(
+        "--only", choices=("dss1024", "scaling", "rotation", "boolean", "robustness"), default=None
+    )
     args = parser.parse_args()
+    if args.only is not None:
+        repeats = max(5, args.repeats)
+        {
+            "dss1024": bench_dss_1024,
+            "scaling": bench_scaling,
+            "rotation": bench_rotation,
+            "boolean": bench_boolean,
+        }.get(args.only, lambda r: bench_robustness(8))(repeats)
+        return
     repeats = max(5, args.repeats)
     if not args.no_cold and None not in (DSS, ROTATE, COREFINE):
         first_call_report()
@@ -439,6 +502,7 @@ def main() -> None:
         " 'median' = of the next calls."
     )
     bench_scaling(repeats)
+    bench_dss_1024(repeats)
     bench_rotation(repeats)
     bench_boolean(repeats)
     bench_robustness(8)

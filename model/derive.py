@@ -1,4 +1,4 @@
-"""Derived representations: a lazy cache per (source, model) and a small thread-pool derivation service.
+"""Derived representations: a lazy cache per (source, model).
 
 For an object whose source is a Euclidean geometry E, the discrete representation is D(E); for a discrete
 source A, the Euclidean one is R(A) (DESIGN §7). Region and analytical representations always come from the
@@ -7,26 +7,20 @@ source and shared between threads: whatever it computes stays true for that sour
 
 The algorithms are looked up when first needed (not at import time), so this module works while parts of the
 geometry package are still missing and never creates import cycles.
-
-:class:`DerivationService` computes slow derivations on worker threads (no Qt: the GUI passes a ``deliver``
-function that posts the result to its own thread). Each request remembers the object's revision; a result
-that arrives after the object changed is dropped, and a new request for the same object and representation
-cancels the one still queued ("latest request wins").
 """
 
 from __future__ import annotations
 
 import threading
 from collections import OrderedDict
-from collections.abc import Callable, Iterable
-from concurrent.futures import Future, ThreadPoolExecutor
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any, Literal
 
 from mrm.errors import MRMError
 from mrm.reps.pixels import PixelSet
 
 if TYPE_CHECKING:
-    from mrm.document import Document
+    pass
 
 Rep = Literal["discrete", "euclidean", "region", "analytical"]
 #: The four representations, in the order they are usually derived.
@@ -227,130 +221,3 @@ class DerivationCache:
         with self._lock:
             self._live.clear()
             self._recent.clear()
-
-
-# ---------------------------------------------------------------------------------------------- service
-class DerivationService:
-    """Compute derived representations off the caller's thread, dropping stale results.
-
-    Parameters
-    ----------
-    doc : Document
-        The document whose objects are derived.
-    workers : int
-        Worker threads.
-    deliver : callable, optional
-        ``deliver(fn)`` must arrange for ``fn()`` to run on the thread that owns the document (the GUI posts
-        it to its event loop). The default runs ``fn`` at once on the worker thread, which suits scripts.
-    sync_cost : float
-        Requests whose :meth:`Derived.estimated_cost` is below this run at once in the caller's thread.
-
-    Notes
-    -----
-    The staleness check runs inside ``deliver``'d code, i.e. on the document's thread, so a result is
-    delivered only if the object's revision is still the one the request saw.
-    """
-
-    def __init__(
-        self,
-        doc: Document,
-        *,
-        workers: int = 2,
-        deliver: Callable[[Callable[[], None]], None] | None = None,
-        sync_cost: float = SYNC_COST,
-    ) -> None:
-        self._doc = doc
-        self._pool = ThreadPoolExecutor(max_workers=max(1, int(workers)), thread_name_prefix="mrm-derive")
-        self._deliver = deliver or (lambda fn: fn())
-        self.sync_cost = float(sync_cost)
-        self._slots: dict[tuple[int, str], Future[Any]] = {}
-        self._lock = threading.Lock()
-        self._idle = threading.Condition(self._lock)
-        self._in_flight = 0
-        #: Number of results dropped because the object changed (or vanished) while they were computed.
-        self.dropped = 0
-
-    def request(
-        self,
-        obj_id: int,
-        what: Rep,
-        callback: Callable[[Any], None],
-        on_error: Callable[[BaseException], None] | None = None,
-    ) -> bool:
-        """Ask for representation ``what`` of object ``obj_id``; ``callback(value)`` gets it when fresh.
-
-        Returns True if the callback already ran (value cached or cheap), False if it was queued.
-        Errors of the derivation go to ``on_error`` (if given) under the same staleness rule.
-        """
-        entry = self._doc.derived(obj_id)
-        rev = self._doc.object_revision(obj_id)
-        slot = (obj_id, what)
-        with self._lock:
-            old = self._slots.pop(slot, None)
-        if old is not None:
-            old.cancel()
-        if entry.is_ready(what) or entry.estimated_cost(what) < self.sync_cost:
-            try:
-                value = entry.get(what)
-            except MRMError as e:
-                if on_error is None:
-                    raise
-                on_error(e)
-                return True
-            callback(value)
-            return True
-        with self._lock:
-            self._in_flight += 1
-        fut = self._pool.submit(entry.get, what)
-        with self._lock:
-            self._slots[slot] = fut
-
-        def done(f: Future[Any]) -> None:
-            self._deliver(lambda: self._finish(slot, f, obj_id, rev, callback, on_error))
-
-        fut.add_done_callback(done)
-        return False
-
-    def _finish(
-        self,
-        slot: tuple[int, str],
-        f: Future[Any],
-        obj_id: int,
-        rev: int,
-        callback: Callable[[Any], None],
-        on_error: Callable[[BaseException], None] | None,
-    ) -> None:
-        try:
-            with self._lock:
-                if self._slots.get(slot) is f:
-                    del self._slots[slot]
-            if f.cancelled():
-                return
-            if self._doc.object_revision(obj_id) != rev:
-                with self._lock:
-                    self.dropped += 1
-                return
-            exc = f.exception()
-            if exc is not None:
-                if on_error is not None:
-                    on_error(exc)
-                return
-            callback(f.result())
-        finally:
-            with self._lock:
-                self._in_flight -= 1
-                self._idle.notify_all()
-
-    def wait_idle(self, timeout: float | None = None) -> bool:
-        """Block until every queued request has been delivered or dropped (for scripts and tests)."""
-        with self._lock:
-            return self._idle.wait_for(lambda: self._in_flight == 0, timeout)
-
-    def shutdown(self, wait: bool = True) -> None:
-        """Cancel queued work and stop the workers."""
-        with self._lock:
-            slots = list(self._slots.values())
-            self._slots.clear()
-        for f in slots:
-            f.cancel()
-        self._pool.shutdown(wait=wait, cancel_futures=True)

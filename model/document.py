@@ -585,8 +585,8 @@ class Document:
     def derived(self, obj_id: int) -> Derived:
         """The representations of object ``obj_id`` under the current model, computed lazily and cached.
 
-        ``doc.derived(i).get('euclidean')`` computes in the calling thread; use
-        :class:`mrm.derive.DerivationService` to compute slow ones off the GUI thread.
+        ``doc.derived(i).get('euclidean')`` computes in the calling thread; the GUI computes slow ones on its
+        task runner (:mod:`mrm.views.scene`).
         """
         return self.cache.entry(self.get(obj_id).source, self._settings.model)
 

@@ -1,7 +1,10 @@
 """The error inspector: provenance chain, the bound beside the measured distance, the differing pixels.
 
-The bound is the paper's (DESIGN §8), the measured error the exact Hausdorff distance; the pixels that differ
-from the direct result are drawn in light and dark grey as in the paper's Figure 12.
+Everything shown is the model's account of the result (:func:`mrm.ops.account.account_of`), computed from
+the result's pinned provenance — the content its inputs had when it was made — so editing or deleting an input
+never changes it; the inspector says when an input changed since and offers to re-run the operation on the
+current input as a new result. The pixels that differ from the direct result are drawn in light and dark grey
+as in the paper's Figure 12.
 """
 
 from __future__ import annotations
@@ -12,8 +15,9 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.errors import MRMError
+from mrm.ops.account import Account, account_of, rerun_request
 from mrm.views.canvas import Camera, MaskItem, PlaneView, qcolor
-from mrm.views.provenance import Account, Measurement, account_of, measure
+from mrm.views.provenance import bound_text, chain_rows, changes_text, measured_text
 from mrm.views.scene import Scene
 
 LIGHT_GREY = (200, 200, 200)
@@ -24,6 +28,7 @@ class ErrorInspector(QtWidgets.QWidget):
     """Dock content; follows the selected object."""
 
     measured = QtCore.Signal()
+    rerun_done = QtCore.Signal(list)
 
     def __init__(self, scene: Scene, runner: Any, parent: QtWidgets.QWidget | None = None) -> None:
         super().__init__(parent)
@@ -31,9 +36,19 @@ class ErrorInspector(QtWidgets.QWidget):
         self.scene = scene
         self.runner = runner
         self.account: Account | None = None
-        self.measurement: Measurement | None = None
+        self.measurement: Account | None = None
         self.title = QtWidgets.QLabel("", self)
         self.title.setWordWrap(True)
+        self.changes_label = QtWidgets.QLabel("", self)
+        self.changes_label.setObjectName("inputChanges")
+        self.changes_label.setWordWrap(True)
+        self.rerun_button = QtWidgets.QPushButton("Re-run on the current input", self)
+        self.rerun_button.setObjectName("rerunButton")
+        self.rerun_button.setToolTip(
+            "Run the same operation with the same parameters on the inputs as they are now: a new result "
+            "(this one keeps its account)"
+        )
+        self.rerun_button.clicked.connect(self.rerun)
         self.chain = QtWidgets.QTreeWidget(self)
         self.chain.setObjectName("provenanceChain")
         self.chain.setHeaderLabels(["step", "object", "pixels"])
@@ -72,6 +87,10 @@ class ErrorInspector(QtWidgets.QWidget):
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(6, 6, 6, 6)
         lay.addWidget(self.title)
+        changes = QtWidgets.QHBoxLayout()
+        changes.addWidget(self.changes_label, 1)
+        changes.addWidget(self.rerun_button)
+        lay.addLayout(changes)
         lay.addWidget(self.chain)
         lay.addWidget(self.bound_label)
         row = QtWidgets.QHBoxLayout()
@@ -83,6 +102,7 @@ class ErrorInspector(QtWidgets.QWidget):
         lay.addWidget(self.overlay)
         lay.setAlignment(QtCore.Qt.AlignmentFlag.AlignTop)  # texts stay at the top when the picture is hidden
         self._overlay_item: MaskItem | None = None
+        self._measured_for: Any = None  # the provenance the current measurement belongs to
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(0)
@@ -93,8 +113,12 @@ class ErrorInspector(QtWidgets.QWidget):
     # ------------------------------------------------------------------ state
     def refresh(self) -> None:
         obj = self.scene.primary()
-        self.runner.cancel("inspect")
-        self.measurement = None
+        prov = obj.provenance if obj is not None else None
+        keep = prov is not None and prov is self._measured_for and self.measurement is not None
+        if not keep:
+            self.runner.cancel("inspect")
+            self.measurement = None
+            self._measured_for = None
         self._show_diff()
         self.chain.clear()
         details = (
@@ -106,8 +130,8 @@ class ErrorInspector(QtWidgets.QWidget):
             self.measured_label,
         )
         for w in details:
-            w.setVisible(obj is not None and obj.provenance is not None)
-        if obj is None or obj.provenance is None:
+            w.setVisible(prov is not None)
+        if obj is None or prov is None:
             self.account = None
             self.title.setText(
                 "Select an object produced by an operation to see its provenance, the paper's error bound "
@@ -117,38 +141,40 @@ class ErrorInspector(QtWidgets.QWidget):
             )
             self.bound_label.setText("")
             self.measured_label.setText("")
+            self.changes_label.setText("")
+            self.changes_label.setVisible(False)
+            self.rerun_button.setVisible(False)
             self.measure_button.setEnabled(False)
             return
-        acc = account_of(self.scene.doc, obj.id)
+        doc = self.scene.doc
+        # The fast part of the account (chain and bound, no geometry): the measurement goes to a worker.
+        acc = account_of(prov, measure=False)
         self.account = acc
-        origin = acc.origin.name if acc.origin is not None else "(deleted object)"
-        self.title.setText(f"<b>{obj.name}</b> — {len(acc.links)} operation(s) from <b>{origin}</b>")
-        if acc.origin is not None:
-            self._add_row("start", acc.origin)
-        for link in acc.links:
-            self._add_row(link.label(), link.obj)
-        if acc.bound is not None:
-            b = acc.shown or acc.bound
-            value = f"{b.bound:.4g}" if b.bound is not None else f"{b.value:.4g} (one-sided)"
-            self.bound_label.setText(
-                f"<b>Bound</b> ({b.model}): H ≤ {value}<br><small>{b.formula}<br>{b.guarantee}</small>"
-            )
-        else:
-            self.bound_label.setText(f"<b>Bound</b>: {acc.bound_error or 'none'}")
-        self.measure_button.setEnabled(acc.similarity_chain)
-        self.measured_label.setText(
-            "<b>Measured</b>: computing…"
-            if acc.similarity_chain
-            else "<b>Measured</b>: not available for this chain"
+        rows = chain_rows(doc, obj, acc)
+        origin = rows[0].name if rows else "?"
+        self.title.setText(f"<b>{obj.name}</b> — {len(acc.chain)} operation(s) from <b>{origin}</b>")
+        for r in rows:
+            item = QtWidgets.QTreeWidgetItem([r.step, r.name, r.pixels])
+            item.setData(0, QtCore.Qt.ItemDataRole.UserRole, r.obj_id)
+            self.chain.addTopLevelItem(item)
+        changes = changes_text(doc, obj)
+        self.changes_label.setText(
+            f"<span style='color:#b9770e'>{changes}</span><br><small>The account below is of the "
+            "inputs as they were.</small>"
+            if changes
+            else ""
         )
-        if acc.similarity_chain:
+        self.changes_label.setVisible(bool(changes))
+        self.rerun_button.setVisible(bool(changes) and all(i in doc for i in prov.inputs))
+        self.bound_label.setText(bound_text(acc))
+        can_measure = not acc.error and (acc.bound is not None or bool(acc.parts))
+        self.measure_button.setEnabled(can_measure)
+        if keep and self.measurement is not None:
+            self.measured_label.setText(measured_text(self.measurement))
+            return
+        self.measured_label.setText("<b>Measured</b>: computing…" if can_measure else measured_text(acc))
+        if can_measure:
             self.start_measure()
-
-    def _add_row(self, label: str, obj: Any) -> None:
-        ps = self.scene.doc.derived(obj.id).peek("discrete")
-        item = QtWidgets.QTreeWidgetItem([label, obj.name, f"{ps.count:,}" if ps is not None else "…"])
-        item.setData(0, QtCore.Qt.ItemDataRole.UserRole, obj.id)
-        self.chain.addTopLevelItem(item)
 
     def _go_to(self, item: QtWidgets.QTreeWidgetItem, _col: int) -> None:
         obj_id = item.data(0, QtCore.Qt.ItemDataRole.UserRole)
@@ -158,26 +184,19 @@ class ErrorInspector(QtWidgets.QWidget):
     # ------------------------------------------------------------------ measuring
     def start_measure(self) -> None:
         acc = self.account
-        if acc is None or not acc.similarity_chain:
+        obj = self.scene.primary()
+        if acc is None or obj is None or obj.provenance is None or acc.error:
             return
-        doc = self.scene.doc
+        prov = obj.provenance
         self.measured_label.setText("<b>Measured</b>: computing…")
 
-        def done(m: Measurement) -> None:
+        def done(m: Account) -> None:
+            now = self.scene.primary()
+            if now is None or now.provenance is not prov:
+                return  # another object was selected meanwhile
             self.measurement = m
-            b = acc.bound
-            verdict = ""
-            if m.exceeds_bound is not None and b is not None:
-                verdict = (
-                    " — <span style='color:#c0392b'><b>exceeds the bound</b></span>"
-                    if m.exceeds_bound
-                    else " — within the bound ✓"
-                )
-            self.measured_label.setText(
-                f"<b>Measured</b>: H(T(A_first), A_last) = {m.measured:.4g}{verdict}<br>"
-                f"<small>{m.light.count:,} pixels only in the result (light grey), "
-                f"{m.dark.count:,} only in the direct result D(T(R(A))) (dark grey)</small>"
-            )
+            self._measured_for = prov
+            self.measured_label.setText(measured_text(m))
             self._show_diff()
             self.measured.emit()
 
@@ -186,24 +205,63 @@ class ErrorInspector(QtWidgets.QWidget):
                 raise exc
             self.measured_label.setText(f"<b>Measured</b>: {exc}")
 
+        # The provenance is an immutable value pinning everything the account reads: safe on a worker.
         self.runner.submit(
             "inspect",
-            lambda progress: measure(doc, acc, progress),
+            lambda progress: account_of(prov, measure=True, progress=progress),
             on_result=done,
             on_error=failed,
             label="Measuring the error",
-            revision=doc.revision,
+        )
+
+    # ------------------------------------------------------------------ re-running
+    def rerun(self) -> None:
+        """Run the result's operation again on the current inputs, as a new result (one undo step)."""
+        obj = self.scene.primary()
+        if obj is None or obj.provenance is None:
+            return
+        doc = self.scene.doc
+        try:
+            inputs, name, params = rerun_request(doc, obj.id)
+        except MRMError as e:
+            self.changes_label.setText(f"<span style='color:#c0392b'>{e}</span>")
+            return
+        from mrm.ops.apply import push_plan
+        from mrm.ops.base import plan_operation
+
+        def done(plan: Any) -> None:
+            if any(o.id not in doc or doc.get(o.id) is not o for o in inputs):
+                self.changes_label.setText("an input changed again meanwhile; nothing was added")
+                return
+            ids = push_plan(doc, plan)
+            doc.set_selection(ids[:1])
+            self.rerun_done.emit(ids)
+
+        def failed(exc: BaseException) -> None:
+            if not isinstance(exc, MRMError):
+                raise exc
+            self.changes_label.setText(f"<span style='color:#c0392b'>{exc}</span>")
+
+        self.runner.submit(
+            "rerun",
+            lambda progress: plan_operation(inputs, name, params, progress),
+            on_result=done,
+            on_error=failed,
+            label="Re-running on the current input",
         )
 
     # ------------------------------------------------------------------ pictures
-    def _diff_image(self, m: Measurement) -> tuple[np.ndarray, tuple[int, int]] | None:
+    def _diff_image(self, m: Account) -> tuple[np.ndarray, tuple[int, int]] | None:
+        if m.result is None or m.direct is None or m.difference is None:
+            return None
         union = m.result | m.direct
         box = union.bbox
         if box is None:
             return None
         img = np.zeros((box[3] - box[1] + 1, box[2] - box[0] + 1), dtype=np.uint8)
-        light = m.light.to_array(box) if not m.light.is_empty() else None
-        dark = m.dark.to_array(box) if not m.dark.is_empty() else None
+        light_ps, dark_ps = m.difference.light, m.difference.dark
+        light = light_ps.to_array(box) if not light_ps.is_empty() else None
+        dark = dark_ps.to_array(box) if not dark_ps.is_empty() else None
         if light is not None:
             img[light] = 1
         if dark is not None:
@@ -213,12 +271,12 @@ class ErrorInspector(QtWidgets.QWidget):
     def _show_diff(self) -> None:
         m = self.measurement
         lut = np.array([[0, 0, 0, 0], [*LIGHT_GREY, 255], [*DARK_GREY, 255]])
-        if m is None:
+        if m is None or m.result is None:
             self.result_item.set_pixels(None, (0, 0))
             self.diff_item.set_pixels(None, (0, 0))
             self._overlay_changed(self.overlay.isChecked())
             return
-        obj = self.account.obj if self.account is not None else None
+        obj = self.scene.primary()
         colour = qcolor(obj.style.fill) if obj is not None else QtGui.QColor("#4c72b0")
         self.result_item.set_pixels(
             m.result.mask, m.result.origin, np.array([[0, 0, 0, 0], [*colour.getRgb()[:3], 110]])
@@ -226,7 +284,7 @@ class ErrorInspector(QtWidgets.QWidget):
         d = self._diff_image(m)
         if d is not None:
             self.diff_item.set_pixels(d[0], d[1], lut)
-        box = (m.result | m.direct).bbox
+        box = (m.result | m.direct).bbox if m.direct is not None else m.result.bbox
         if box is not None:
             self.camera.fit((box[0] - 1.5, box[1] - 1.5, box[2] + 1.5, box[3] + 1.5), margin=0.02)
         self._overlay_changed(self.overlay.isChecked())

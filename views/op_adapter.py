@@ -2,15 +2,13 @@
 
 The panels are generated from the registry (:func:`mrm.ops.base.operations`): every field of an operation's
 parameters dataclass gives a control, its ``metadata["mrm"]`` (written by :func:`mrm.ops.base.param`, read
-through :func:`mrm.ops.base.param_specs`) the kind, range, unit and help. Apply goes through
-:func:`mrm.ops.apply.apply_operation` in a worker thread against a *staging* document (:func:`stage_apply`):
-the operation reads the inputs and builds its results with their provenance there, and the GUI thread pushes
-the one undo step it staged — so a cancel or an error leaves the real document untouched.
+through :func:`mrm.ops.base.param_specs`) the kind, range, unit and help. Apply runs the pure
+:func:`mrm.ops.base.plan_operation` on a worker thread with the input objects (immutable values); the GUI
+thread pushes its results as one undo step — so a cancel or an error leaves the document untouched.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -55,9 +53,10 @@ class OpInfo:
         return params
 
     def run(self, inputs: Sequence[Any], params: Any, progress: Any) -> list[tuple[str | None, Any]]:
-        """Run the operation; returns (part name or None, source) pairs."""
-        out = self.spec.run(list(inputs), params, progress)
-        return normalise_results(out)
+        """Run the operation (validated, size-checked); returns (part name or None, source) pairs."""
+        from mrm.ops.base import run_operation
+
+        return normalise_results(run_operation(self.spec, list(inputs), params, progress=progress))
 
 
 #: Slider ranges for numbers whose metadata leaves a side open (the field still takes any valid value).
@@ -74,8 +73,14 @@ def _range_of(spec: Any) -> tuple[float | None, float | None, bool]:
         return _POSITIVE_RANGE[0], _POSITIVE_RANGE[1], True
     if lo is not None and not spec.min_inclusive and lo == 0.0:
         lo = _POSITIVE_RANGE[0]
+    if lo is not None and hi is not None and lo > 0 and hi / lo > _POSITIVE_RANGE[1] / _POSITIVE_RANGE[0]:
+        # A factor with a wide declared range (1e-6 … 1e6): the slider covers the useful [1/64, 64]; the
+        # model still checks the declared range.
+        return max(lo, _POSITIVE_RANGE[0]), min(hi, _POSITIVE_RANGE[1]), True
+    if spec.unit == "°" and (lo is None or lo <= _ANGLE_RANGE[0]) and (hi is None or hi >= _ANGLE_RANGE[1]):
+        return (*_ANGLE_RANGE, False)  # one turn either way on the slider; the field takes the declared range
     if lo is None and hi is None:
-        return (*(_ANGLE_RANGE if spec.unit == "°" else _OPEN_RANGE), False)
+        return (*_OPEN_RANGE, False)
     if lo is None:
         lo = (hi or 0.0) - 1000.0
     if hi is None:
@@ -172,72 +177,6 @@ def normalise_results(out: Any) -> list[tuple[str | None, Any]]:
         else:
             res.append((getattr(r, "name", None) or getattr(r, "part", None), source_of(r)))
     return res
-
-
-def json_params(params: Any) -> dict[str, Any]:
-    """Parameters as JSON data for the provenance (tuples become lists)."""
-    if dataclasses.is_dataclass(params) and not isinstance(params, type):
-        d = dataclasses.asdict(params)
-    elif isinstance(params, Mapping):
-        d = dict(params)
-    else:
-        d = {}
-
-    def conv(v: Any) -> Any:
-        if isinstance(v, tuple | list):
-            return [conv(x) for x in v]
-        if isinstance(v, float | int | str | bool) or v is None:
-            return v
-        return str(v)
-
-    return {k: conv(v) for k, v in d.items()}
-
-
-@dataclass(frozen=True)
-class StagedObject:
-    """A result :func:`mrm.ops.apply.apply_operation` made, before it enters the real document."""
-
-    source: Any
-    name: str | None
-    provenance: Any
-    id: int = -1  # no id is reserved off the GUI thread; the real object gets one when it is pushed
-
-
-class _StagingDocument:
-    """The part of a Document that apply_operation uses, safe to use off the GUI thread.
-
-    ``get`` reads a snapshot of the input objects (immutable values), ``make_object`` reserves no id and
-    ``push`` records the command instead of changing anything.
-    """
-
-    def __init__(self, objects: Mapping[int, Any], model: str) -> None:
-        self._objects = dict(objects)
-        self.model = model
-        self.label = ""
-        self.staged: list[StagedObject] = []
-
-    def get(self, obj_id: int) -> Any:
-        return self._objects[obj_id]
-
-    def make_object(
-        self, source: Any, name: str | None = None, *, style: Any = None, provenance: Any = None
-    ) -> StagedObject:
-        return StagedObject(source, name, provenance)
-
-    def push(self, command: Any) -> None:
-        self.label = str(command.label)
-        self.staged = list(command.add)
-
-
-def stage_apply(
-    objects: Mapping[int, Any], model: str, operation: str, ids: Sequence[int], params: Any, progress: Any
-) -> tuple[str, list[StagedObject]]:
-    """Run :func:`mrm.ops.apply.apply_operation` on a snapshot of the inputs; (undo label, results)."""
-    from mrm.ops.apply import apply_operation
-
-    staging = _StagingDocument(objects, model)
-    apply_operation(staging, operation, ids, params, progress)
-    return staging.label, staging.staged
 
 
 Runner = Callable[[Sequence[Any], Any, Any], Any]

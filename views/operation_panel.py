@@ -16,7 +16,8 @@ from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import ApplyResults
 from mrm.errors import MRMError
-from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations, stage_apply
+from mrm.ops.base import plan_operation
+from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations
 from mrm.views.scene import Scene
 
 SLIDER_STEPS = 1000
@@ -417,8 +418,7 @@ class OperationPanel(QtWidgets.QWidget):
         self._preview_timer.stop()
         self.runner.cancel("preview")
         doc = self.scene.doc
-        inputs = {i: doc.get(i) for i in ids}  # immutable snapshot read by the worker
-        model = doc.model
+        inputs = [doc.get(i) for i in ids]  # immutable values read by the worker
         self.apply_button.setEnabled(False)
         self.cancel_button.setEnabled(True)
         self.status.setText(f"running {op.title}…")
@@ -426,13 +426,13 @@ class OperationPanel(QtWidgets.QWidget):
 
         self._cancel_requested = False
 
-        def done(staged: tuple[str, list[Any]]) -> None:
+        def done(staged: Any) -> None:
             if self._cancel_requested:
                 # Cancel was pressed after the work's last report: the user still gets "nothing changed".
                 cancelled()
                 return
             self._finished()
-            label, results = staged
+            label, results = staged.label, staged.results
             if not results:
                 self.status.setText(f"{op.title}: no result")
                 return
@@ -450,7 +450,7 @@ class OperationPanel(QtWidgets.QWidget):
                 for k, r in enumerate(results)
             ]
             try:
-                doc.push(ApplyResults(label, add=objs))  # the one undo step apply_operation staged
+                doc.push(ApplyResults(label, add=objs))  # the one undo step of the plan
             except MRMError as e:
                 self.status.setText(f"<span style='color:#c0392b'>{e}</span>")
                 return
@@ -471,7 +471,7 @@ class OperationPanel(QtWidgets.QWidget):
 
         self.runner.submit(
             "operation",
-            lambda progress: stage_apply(inputs, model, op.name, ids, params, progress),
+            lambda progress: plan_operation(inputs, op.spec, params, progress),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

@@ -1,224 +1,142 @@
-"""The error account of a derived object: provenance chain, bound, measured distance, differing pixels.
+"""What the error inspector shows of a result: rows of its pinned chain and the texts of its account.
 
-The differing pixels are those of the paper's Figure 12: the result against the direct result.
-
-The chain is read back through the objects' provenance (operation, parameters, inputs). For a chain of
-discrete operations D∘T_i∘R with similarities T_i (smooth scaling, rotation):
-
-* ``A_first`` = R(A₀), the continuation of the first input's pixels;
-* ``T`` = T_k∘…∘T_1, the composite similarity;
-* ``A_last`` = T_k(R(A_{k−1})), the Euclidean object just before the final discretization;
-* the *measured* error is the exact Hausdorff distance H(T(A_first), A_last), to set beside the paper's bound
-  (:func:`mrm.geometry.bounds.bound_of_chain`);
-* the *direct result* is D(T(A_first)), the one-step discretization; the result's pixels that it lacks are
-  drawn light grey, the ones it has that the result lost dark grey.
+The account itself — chain, bound, exact measured distance, differing pixels — is the model's
+(:func:`mrm.ops.account.account_of`), the same one ``mrm account … --json`` prints; this module only turns it
+into rows and sentences. Nothing is recomputed or guessed here.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
-from fractions import Fraction
+import html
+from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
-from mrm.document import DocObject, Document
-from mrm.errors import MRMError, ParameterError
-from mrm.reps.pixels import PixelSet
-
-#: Parameter names the operations may use, per meaning.
-_ALPHA = ("alpha", "factor", "ratio", "scale", "s")
-_ANGLE = ("angle", "theta", "degrees", "angle_deg", "deg")
-_CENTER = ("center", "centre", "c", "about")
+from mrm.ops.account import Account, chain_of, changed_inputs
 
 
-@dataclass
-class ChainLink:
-    """One operation of the chain, with the object it produced."""
+@dataclass(frozen=True)
+class Row:
+    """One row of the provenance list: the step, the object it made (or read), its pixel count."""
 
-    obj: DocObject
-    operation: str
-    params: dict[str, Any]
-    inputs: tuple[int, ...]
-    step: Any = None  # mrm.geometry.bounds.ChainStep, or None when the operation has no bound rule
-
-    def label(self) -> str:
-        """The step as the paper writes it (``DSS 0.1``), or the operation's name."""
-        try:
-            step = chain_step(self.operation, self.params, decimal=True)
-        except (MRMError, TypeError, ValueError, IndexError):
-            step = None
-        return step.label() if step is not None else self.operation
+    step: str
+    name: str
+    obj_id: int | None
+    pixels: str
 
 
-@dataclass
-class Account:
-    """Everything the inspector shows for one object."""
+def _count(source: Any) -> str:
+    from mrm.reps.pixels import PixelSet
 
-    obj: DocObject
-    origin: DocObject | None = None  # A₀, when it still exists
-    links: list[ChainLink] = field(default_factory=list)
-    bound: Any = None  # BoundResult, parameters read exactly (what was computed)
-    shown: Any = None  # BoundResult, parameters read as the decimals they print as (what is displayed)
-    bound_error: str = ""
-    similarity_chain: bool = False  # every step is D∘T∘R with a similarity T: measured/direct computable
+    return f"{source.count:,}" if isinstance(source, PixelSet) else "polygon"
 
 
-def _param(params: dict[str, Any], names: tuple[str, ...]) -> Any:
-    for n in names:
-        if n in params and params[n] is not None:
-            return params[n]
-    return None
+def _name(doc: Any, oid: int | None, digest: str | None) -> str:
+    from mrm.document import content_digest
+
+    if oid is None:
+        return "?"
+    if oid not in doc:
+        return f"#{oid} (deleted)"
+    obj = doc.get(oid)
+    if digest is not None and content_digest(obj.source) != digest:
+        return f"{obj.name} (changed since)"
+    return str(obj.name)
 
 
-def _exact(v: Any, decimal: bool = False) -> Any:
-    """A parameter as an exact number.
-
-    A float is the dyadic rational it is, or (``decimal``) the decimal the user typed — 0.1 read as 1/10,
-    which is how the paper writes its chains.
-    """
-    if isinstance(v, float):
-        return Fraction(repr(v)) if decimal else Fraction(v)
-    return v
-
-
-def chain_step(operation: str, params: dict[str, Any], *, decimal: bool = False) -> Any:
-    """The bounds module's step for a provenance record, or None when no rule covers the operation.
-
-    ``decimal`` reads float parameters as the decimals they print as (for display); the default reads
-    them exactly, which is what the operation computed with.
-    """
-    from functools import partial
-
-    from mrm.geometry import bounds as B
-
-    _exact_ = partial(_exact, decimal=decimal)
-    op = operation.lower()
-    center = _param(params, _CENTER)
-    if center is not None:
-        center = (_exact_(center[0]), _exact_(center[1]))
-    if "rot" in op:
-        return B.rot(_exact_(_param(params, _ANGLE)), center)
-    if "simpl" in op or op in ("sp",):
-        return B.sp(_exact_(_param(params, _ALPHA)), center)
-    if "union" in op:
-        return B.union()
-    if "coref" in op:
-        a = _param(params, _ALPHA)
-        return B.corefine(None if a is None else _exact_(a), str(params.get("part", "common")))
-    if op in ("dss", "scale", "smooth_scaling", "discrete_smooth_scaling") or "dss" in op or "scal" in op:
-        return B.dss(_exact_(_param(params, _ALPHA)), center)
-    return None
+def chain_rows(doc: Any, obj: Any, account: Account) -> list[Row]:
+    """The rows of a result's chain, oldest first: the start, then one per operation (pinned content)."""
+    prov = obj.provenance
+    if prov is None:
+        return []
+    records = chain_of(prov)
+    first = records[0]
+    rows: list[Row] = []
+    for k, (oid, digest) in enumerate(
+        zip(first.inputs, first.digests or [None] * len(first.inputs), strict=False)
+    ):
+        label = "start" if len(first.inputs) == 1 else f"input {'AB'[k] if k < 2 else k + 1}"
+        src = first.sources[k] if first.sources else None
+        rows.append(Row(label, _name(doc, oid, digest), oid, _count(src) if src is not None else "…"))
+    for i, link in enumerate(account.chain):
+        if i + 1 < len(records):
+            nxt = records[i + 1]
+            oid = nxt.inputs[0] if nxt.inputs else None
+            src = nxt.sources[0] if nxt.sources else None
+            digest = nxt.digests[0] if nxt.digests else None
+            rows.append(
+                Row(link.label, _name(doc, oid, digest), oid, _count(src) if src is not None else "…")
+            )
+        else:
+            rows.append(Row(link.label, str(obj.name), obj.id, _count(obj.source)))
+    return rows
 
 
-def account_of(doc: Document, obj_id: int) -> Account:
-    """Follow the provenance of an object back to its origin and compute the bound of the chain."""
-    obj = doc.get(obj_id)
-    acc = Account(obj)
-    cur: DocObject | None = obj
-    seen: set[int] = set()
-    while cur is not None and cur.provenance is not None and cur.id not in seen:
-        seen.add(cur.id)
-        p = cur.provenance
-        params = dict(p.params)
-        try:
-            step = chain_step(p.operation, params)
-        except (MRMError, TypeError, ValueError, IndexError):
-            step = None
-        acc.links.insert(0, ChainLink(cur, p.operation, params, tuple(p.inputs), step))
-        first_input = p.inputs[0] if p.inputs else None
-        if first_input is None or first_input not in doc:
-            cur = None
-            break
-        cur = doc.get(first_input)
-    acc.origin = cur
-    steps = [link.step for link in acc.links]
-    if acc.links and all(s is not None for s in steps):
-        from mrm.geometry.bounds import bound_of_chain
-
-        try:
-            acc.bound = bound_of_chain(steps, doc.model)
-            shown = [chain_step(link.operation, link.params, decimal=True) for link in acc.links]
-            acc.shown = bound_of_chain(shown, doc.model)
-        except (MRMError, ValueError) as e:
-            acc.bound_error = str(e)
-    elif acc.links:
-        acc.bound_error = "no bound rule for " + ", ".join(
-            sorted({link.operation for link in acc.links if link.step is None})
+def bound_text(acc: Account) -> str:
+    """The bound paragraph (HTML)."""
+    if acc.error:
+        return f"<b>No account</b>: {html.escape(acc.error, quote=False)}"
+    b = acc.bound
+    parts_note = ""
+    if acc.parts:
+        lines = []
+        for p in acc.parts:
+            holds = ", ".join(_direction(d) for d in p.bound.directions) or "no direction"
+            lines.append(f"{p.part}: {_value(p.bound)} ({holds})")
+        parts_note = "<br><small>per part: " + "; ".join(lines) + "</small>"
+    if b is None:
+        return f"<b>Bound</b>: none — {html.escape(acc.no_bound or 'no rule', quote=False)}{parts_note}"
+    chains = ""
+    if acc.input_chains:
+        listed = [", ".join(link.label for link in c) or "drawn" for c in acc.input_chains]
+        chains = (
+            "<br><small>inputs' chains: "
+            + " | ".join(html.escape(c, quote=False) for c in listed)
+            + "</small>"
         )
-    acc.similarity_chain = (
-        acc.origin is not None
-        and bool(acc.links)
-        and all(s is not None and s.kind in ("DSS", "ROT") for s in steps)
+    return (
+        f"<b>Bound</b> ({b.model}): H ≤ {_value(b)}<br><small>{html.escape(b.formula, quote=False)}<br>"
+        f"{html.escape(b.guarantee, quote=False)}</small>{parts_note}{chains}"
     )
-    return acc
 
 
-# ---------------------------------------------------------------------------------------------- similarities
-def similarity_matrix(step: Any) -> np.ndarray:
-    """The 3×3 affine matrix of a DSS (scaling about its centre) or ROT (rotation about its centre) step."""
-    cx, cy = (float(step.center[0]), float(step.center[1])) if step.center is not None else (0.0, 0.0)
-    if step.kind == "DSS":
-        s = float(step.value)
-        m = np.array([[s, 0, 0], [0, s, 0], [0, 0, 1]], dtype=float)
-    elif step.kind == "ROT":
-        t = math.radians(float(step.value))
-        c, s = math.cos(t), math.sin(t)
-        m = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], dtype=float)
-    else:
-        raise ParameterError(f"{step.kind} is not a similarity")
-    to = np.array([[1, 0, cx], [0, 1, cy], [0, 0, 1]], dtype=float)
-    back = np.array([[1, 0, -cx], [0, 1, -cy], [0, 0, 1]], dtype=float)
-    return to @ m @ back
+def _value(b: Any) -> str:
+    if b.bound is not None:
+        return f"{b.bound:.4g}"
+    return f"{b.value:.4g} (one-sided)" if b.directions else f"{b.value:.4g} (no direction holds)"
 
 
-def apply_matrix(geom: Any, m: np.ndarray) -> Any:
-    """``geom`` mapped by the affine 3×3 matrix ``m``."""
-    from shapely import affinity
-
-    return affinity.affine_transform(geom, [m[0, 0], m[0, 1], m[1, 0], m[1, 1], m[0, 2], m[1, 2]])
+def _direction(d: str) -> str:
+    return {"result_within": "result within", "source_within": "source within"}.get(d, d)
 
 
-@dataclass
-class Measurement:
-    """The measured side of the account (computed off the GUI thread)."""
+def measured_text(acc: Account) -> str:
+    """The measured paragraph (HTML) of a measured account."""
+    m = acc.measured
+    if acc.error:
+        return f"<b>Measured</b>: {html.escape(acc.error, quote=False)}"
+    if m is None:
+        return "<b>Measured</b>: " + html.escape(acc.no_bound or "not measured", quote=False)
+    verdict = ""
+    if acc.within_bound is not None:
+        verdict = (
+            " — within the bound ✓"
+            if acc.within_bound
+            else " — <span style='color:#c0392b'><b>exceeds the bound</b></span>"
+        )
+    what = "H(T(A_first), A_last)" if acc.chain and acc.operation not in ("union", "corefine") else "H"
+    text = f"<b>Measured</b>: {what} = {m.value:.4g}{verdict}"
+    if not acc.reference_exact:
+        text += "<br><small>the Euclidean reference is GEOS's overlay (crossing vertices rounded)</small>"
+    if acc.difference is not None:
+        text += (
+            f"<br><small>{len(acc.difference.light):,} pixels only in the result (light grey), "
+            f"{len(acc.difference.dark):,} only in the direct result D(T(A_first)) (dark grey)</small>"
+        )
+    if acc.idempotent is not None:
+        text += f"<br><small>Sp_α∘Sp_α = Sp_α: {'checked ✓' if acc.idempotent else 'FAILS'}</small>"
+    return text
 
-    measured: float
-    exceeds_bound: bool | None  # exact comparison with the bound (None without a two-sided bound)
-    direct: PixelSet
-    result: PixelSet
-    light: PixelSet  # in the result, not in the direct result
-    dark: PixelSet  # in the direct result, not in the result
 
-
-def measure(doc: Document, acc: Account, progress: Any = None) -> Measurement:
-    """Measured Hausdorff distance and the direct result of a similarity chain (see the module docstring)."""
-    from mrm.geometry.discretize import discretize
-    from mrm.geometry.hausdorff import hausdorff_distance
-    from mrm.geometry.reconstruct import reconstruct
-
-    if not acc.similarity_chain or acc.origin is None:
-        raise ParameterError("the measured error is computed for chains of smooth scalings and rotations")
-    model = doc.model
-    a0 = doc.derived(acc.origin.id).get("discrete")
-    a_first = reconstruct(a0, model)
-    t = np.eye(3)
-    for link in acc.links:
-        t = similarity_matrix(link.step) @ t
-    transformed = apply_matrix(a_first, t)
-    last = acc.links[-1]
-    prev_id = last.inputs[0]
-    prev = doc.derived(prev_id).get("discrete") if prev_id in doc else None
-    if prev is None:
-        raise ParameterError("an intermediate object of the chain was deleted")
-    a_last = apply_matrix(reconstruct(prev, model), similarity_matrix(last.step))
-    if progress is not None:
-        progress.update(0.1, "measuring the Hausdorff distance")
-    h = hausdorff_distance(transformed, a_last, progress=progress)
-    exceeds = None
-    if acc.bound is not None and acc.bound.bound is not None:
-        exceeds = h.exceeds_sqrt_multiple(acc.bound.coefficient, acc.bound.n)
-    direct = discretize(transformed, model)
-    result = doc.derived(acc.obj.id).get("discrete")
-    return Measurement(h.value, exceeds, direct, result, result - direct, direct - result)
+def changes_text(doc: Any, obj: Any) -> str:
+    """A sentence per input that changed or was deleted since the result was made (empty if none)."""
+    return "<br>".join(c.text() for c in changed_inputs(doc, obj.provenance))

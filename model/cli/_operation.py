@@ -131,22 +131,102 @@ def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
     return summarize(pixels, model, geom=None if isinstance(result, PixelSet) else result)
 
 
+def _input_record(path: str, object_name: str | None, source: Any) -> tuple[int, Any]:
+    """(id, provenance) of a project input object, so that its own chain joins the account; else (0, None)."""
+    if Path(path).suffix.lower() != ".mrm":
+        return 0, None
+    from mrm.io.project import read_project
+
+    objs = [o for o in read_project(path).objects if object_name is None or o.name == object_name]
+    if len(objs) == 1 and objs[0].source == source:
+        return objs[0].id, objs[0].provenance
+    return 0, None
+
+
 def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) -> dict[str, Any]:
-    """Run one unary operation as a one-step chain, write its result, return the --json summary."""
-    from mrm.ops.chain import run_chain
+    """Run one unary operation, write its result, return the --json summary: the model's account.
+
+    The parameters are read and range-checked by the registry (:func:`mrm.ops.base.coerce_params`); the
+    numbers printed are :meth:`mrm.ops.account.Account.summary`, the same as the inspector's and
+    ``mrm account``'s for the same chain (a project input's own chain is part of it).
+    """
+    import dataclasses
+
+    from mrm.document import Provenance
+    from mrm.ops.account import account_of
+    from mrm.ops.base import coerce_params, get_operation, params_to_dict, run_operation
 
     extension_of(args.output, OUTPUTS, "output file")  # fail before any work
+    spec = get_operation(operation)
+    checked = coerce_params(spec, {k: v for k, v in params.items() if v is not None})  # before reading
     source, model = read_one(args.input, args.object, args.model, args.limit)
+    checked = dataclasses.replace(checked, model=model)
+    oid, parent = _input_record(args.input, args.object, source)
+    prov = Provenance(spec.name, params_to_dict(checked), (oid,), (source,), (parent,))
     t0 = time.perf_counter()
-    chain = run_chain(source, [(operation, params)], model, limit=args.limit, measure=not args.no_measure)
+    if args.no_measure:
+        result = run_operation(spec, [source], checked, limit=args.limit).output
+        acc = account_of(prov, measure=False, limit=args.limit)
+    else:  # the account recomputes the step from its input: the result is made once
+        acc = account_of(prov, measure=True, limit=args.limit)
+        if acc.error:
+            raise ParameterError(acc.error)
+        result = acc.output
     seconds = time.perf_counter() - t0
-    write_result(chain.result, args.output, model, {"operation": operation})
-    summary: dict[str, Any] = {"input": str(args.input), "output": str(args.output), "operation": operation}
-    summary["params"] = chain.steps[0].params
-    summary.update(result_summary(chain.result, chain.pixels, model))
-    summary.update(chain.summary())
-    summary.pop("chain", None)
+    write_result(result, args.output, model, {"operation": spec.name})
+    summary: dict[str, Any] = {"input": str(args.input), "output": str(args.output), "operation": spec.name}
+    summary["params"] = params_to_dict(checked)
+    pixels = acc.result if acc.result is not None else _pixels_of(result, model, args.limit)
+    summary.update(result_summary(result, pixels, model))
+    summary["account"] = acc.summary()
+    summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})
     summary["seconds"] = seconds
     if not args.json:
-        print_table(summary)
+        print_table({k: v for k, v in summary.items() if k not in ("account", "steps", "parts")})
     return summary
+
+
+def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:
+    if isinstance(result, PixelSet):
+        return result
+    from mrm.geometry.discretize import discretize
+
+    return discretize(result, model, limit=limit)
+
+
+def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
+    """``(add_arguments, run)`` of a one-object subcommand, generated from the operation's registry spec.
+
+    Every parameter of the spec's dataclass becomes an option (``--alpha``, ``--angle``, ``--center X,Y``)
+    with its label, unit, help and declared range; ``model`` is the common ``--model``. The values are read
+    exactly and range-checked by the registry (:func:`mrm.ops.base.coerce_params`), as the panel's are.
+    """
+    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.base import get_operation, range_text
+
+    load_paper_operations()
+    spec = get_operation(operation)
+    fields = [p for p in spec.param_specs() if p.name != "model"]
+
+    def add_arguments(parser: argparse.ArgumentParser) -> None:
+        add_input(parser)
+        for p in fields:
+            unit = f" [{p.unit}]" if p.unit and p.unit != "×" else ""
+            if p.kind == "point":
+                parser.add_argument(
+                    f"--{p.name}", type=parse_point, default=None, metavar="X,Y", help=f"{p.help}{unit}"
+                )
+            else:
+                allowed = f" ({range_text(p)})" if p.minimum is not None or p.maximum is not None else ""
+                parser.add_argument(
+                    f"--{p.name}",
+                    required=not p.optional,
+                    metavar=p.label.upper() if p.label.isascii() else p.name[0].upper(),
+                    help=f"{p.help}{unit}{allowed}; decimal or p/q, read exactly",
+                )
+        add_common(parser, output_help)
+
+    def run(args: argparse.Namespace) -> dict[str, Any]:
+        return run_unary(args, spec.name, {p.name: getattr(args, p.name) for p in fields})
+
+    return add_arguments, run

@@ -7,25 +7,13 @@ a pixel centre are exact pixel rotations. A vector input is read as its discreti
 
 from __future__ import annotations
 
-import argparse
-from typing import Any
-
-from mrm.cli._operation import add_common, add_input, parse_point, run_unary
+from mrm.cli._operation import operation_command
 
 NAME = "rotate"
 HELP = "discrete-Euclidean rotation dR_θ,C (D of the continuation rotated by θ about C) of an input"
 
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add IN, ``--object``, ``--angle``, ``--center``, ``-o``, ``--limit``, ``--no-measure``."""
-    add_input(parser)
-    parser.add_argument("--angle", required=True, metavar="DEG", help="angle in degrees, counter-clockwise")
-    parser.add_argument(
-        "--center", type=parse_point, default=None, metavar="X,Y", help="centre of the rotation (default 0,0)"
-    )
-    add_common(parser, "the result: a pixel file (.png .pbm .pgm .npz) or a vector file (.geojson .wkt .svg)")
-
-
-def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Rotate, write the result, return the summary."""
-    return run_unary(args, "discrete_rotation", {"angle": args.angle, "center": args.center})
+# Options, help and ranges come from the registry's spec of 'discrete_rotation' (declared once).
+add_arguments, run = operation_command(
+    "discrete_rotation",
+    "the result: a pixel file (.png .pbm .pgm .npz) or a vector file (.geojson .wkt .svg)",
+)

@@ -7,27 +7,12 @@ within √2/α of E (cover models). A pixel input is read as its continuation R(
 
 from __future__ import annotations
 
-import argparse
-from typing import Any
-
-from mrm.cli._operation import add_common, add_input, parse_point, run_unary
+from mrm.cli._operation import operation_command
 
 NAME = "simplify"
 HELP = "discrete-based simplification Sp_α of a Euclidean object (vector, pixel or project input)"
 
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add IN, ``--object``, ``--alpha``, ``--center``, ``-o``, ``--limit``, ``--no-measure``."""
-    add_input(parser)
-    parser.add_argument("--alpha", required=True, metavar="A", help="α > 0: the grid spacing is 1/α")
-    parser.add_argument(
-        "--center", type=parse_point, default=None, metavar="X,Y", help="centre of the scalings (default 0,0)"
-    )
-    add_common(
-        parser, "the result: a vector file (.geojson .json .wkt .svg) or a pixel file (.png .pbm .npz)"
-    )
-
-
-def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Simplify, write the result, return the summary."""
-    return run_unary(args, "simplify", {"alpha": args.alpha, "center": args.center})
+# Options, help and ranges come from the registry's spec of 'simplify' (one declaration, as for the panel).
+add_arguments, run = operation_command(
+    "simplify", "the result: a vector file (.geojson .json .wkt .svg) or a pixel file (.png .pbm .npz)"
+)

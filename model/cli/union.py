@@ -27,28 +27,33 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Unite, write the result, return the summary."""
-    from mrm.geometry.bounds import bound_of_chain, union
-    from mrm.ops.boolean import euclidean_discrete_union, reference_parts
-    from mrm.ops.measure import measured_error
+    """Unite, write the result, return the summary (the numbers are the model's account of the result)."""
+    from mrm.document import Provenance
+    from mrm.ops.account import account_of
+    from mrm.ops.base import run_operation
 
     extension_of(args.output, OUTPUTS, "output file")
     a, b, model = read_two(args)
+    prov = Provenance("union", {"model": model}, (1, 2), (a, b), (None, None))
     t0 = time.perf_counter()
-    out = euclidean_discrete_union(a, b, model, limit=args.limit)
+    if args.no_measure:
+        result = run_operation("union", [a, b], {"model": model}, limit=args.limit).output
+        acc = account_of(prov, measure=False, limit=args.limit)
+    else:  # the account makes the union once, from the inputs, and measures it
+        acc = account_of(prov, measure=True, limit=args.limit)
+        result = acc.output
     seconds = time.perf_counter() - t0
-    write_result(out.result, args.output, model, {"operation": "union"})
+    write_result(result, args.output, model, {"operation": "union"})
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary["operation"] = "union"
-    summary.update(result_summary(out.result, out.discrete, model))
-    bound = bound_of_chain([union()], model)
-    summary.update(bound=bound.bound, bound_one_sided=bound.one_sided, bound_formula=bound.formula)
-    summary["measured"] = None
-    if not args.no_measure:
-        refs, exact_ref = reference_parts(a, b, model)
-        summary.update(measured_error(refs["union"], out.euclidean).as_dict())
-        summary["reference_exact"] = exact_ref
+    pixels = acc.result if acc.result is not None else None
+    if pixels is None:
+        from mrm.geometry.discretize import discretize
+
+        pixels = discretize(result, model, limit=args.limit)
+    summary.update(result_summary(result, pixels, model))
+    summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})
     summary["seconds"] = seconds
     if not args.json:
-        print_table(summary)
+        print_table({k: v for k, v in summary.items() if k not in ("steps", "parts")})
     return summary

@@ -1,10 +1,10 @@
 """Project files (``*.mrm``): one versioned JSON document, validated on load, written atomically.
 
-Schema version 1::
+Schema version 2::
 
     {
      "format": "mrm-project",
-     "schema_version": 1,
+     "schema_version": 2,
      "generator": "MR Modeler 0.1.0",                      (optional, informative)
      "settings": {"model": "standard"},
      "selection": [2],                                      (optional; ids of selected objects)
@@ -15,13 +15,19 @@ Schema version 1::
                  "visible": true},
        "provenance": null,
        "source": {"kind": "discrete", "origin": [-3, -3], "shape": [7, 7], "bits": "<base64>"}},
-      {"id": 2, ..., "provenance": {"operation": "scale", "params": {"alpha": 2.5}, "inputs": [1]},
+      {"id": 2, ..., "provenance": {"operation": "dss", "params": {"alpha": 2.5}, "inputs": [1],
+                                    "input_contents": ["<digest>"], "input_provenance": [null]},
        "source": {"kind": "euclidean",
                   "geometry": {"type": "Polygon", "coordinates": [[[0.0, 0.0], [4.5, 0.0], ...]]}}}
      ]
     }
 
 * Only each object's **source** representation is stored (DESIGN §7); the others are derived on load.
+* A provenance pins the content its inputs had when the result was made (``input_contents``: digests of
+  :func:`mrm.document.content_digest`) and their own provenance then (``input_provenance``); each pinned
+  content is stored once in the top-level ``"contents": {digest: source}`` table (optional), shared by every
+  result that read it, and checked against its digest on load. Version 1 files had ids only: on load their
+  provenance is pinned to the objects the file holds (the best record there is).
 * A discrete source is its canonical (cropped) mask, ``np.packbits`` row-major (row 0 = lowest y, big-endian
   bit order) in base64, with its origin and shape: compact, and valid JSON.
 * A Euclidean source is GeoJSON-like: Polygon or MultiPolygon coordinates, rings closed, float coordinates
@@ -73,7 +79,7 @@ from mrm.reps.pixels import PixelSet
 #: The value of the "format" key.
 FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 # The limits are those of the document (mrm.limits, ADR 0010), so that the loader accepts every file the
 # saver can write: the document refuses the edit that would exceed them. The loader reads them from
 # mrm.limits when it runs; these names are kept for callers that imported them from here.
@@ -112,7 +118,14 @@ class Migration:
 #: The migrations, oldest first; version ``k`` is upgraded by the entry with ``from_version == k``.
 #: Schema 1 is the first version, so there is none yet. When the format changes: bump SCHEMA_VERSION, append
 #: a Migration from the previous version, and add a golden file of the new version to tests/model/golden/.
-MIGRATIONS: tuple[Migration, ...] = ()
+MIGRATIONS: tuple[Migration, ...] = (
+    Migration(
+        1,
+        "provenance may pin its inputs' content (input_contents, input_provenance, a top-level contents "
+        "table); a version 1 file's provenance is pinned on load to the objects the file holds",
+        lambda data: {**data, "schema_version": 2},
+    ),
+)
 
 
 @dataclass
@@ -677,7 +690,8 @@ def parse_project(
             c.fail(f"$.objects[{i}].id", f"id {obj.id} is already used by $.objects[{seen[obj.id]}]")
         seen[obj.id] = i
         objects.append(obj)
-    objects = _pin_legacy_provenance(objects)
+    if file_version < 2:  # written before provenance pinned its inputs
+        objects = _pin_legacy_provenance(objects)
     selection: list[int] = []
     if "selection" in raw:
         sel = c.list_(raw["selection"], "$.selection")

@@ -146,6 +146,9 @@ class Account:
         For Sp_α: whether Sp_α(result) = result exactly.
     error : str
         Why the provenance could not be accounted for (nothing else is then set).
+    output : object
+        The result as the measurement recomputed it from the pinned inputs (a pixel set, a polygon, or for
+        a co-refinement a dict part → polygon); None when not measured.
     """
 
     operation: str
@@ -164,11 +167,11 @@ class Account:
     part: str = ""
     idempotent: bool | None = None
     error: str = ""
-    extra: dict[str, Any] = field(default_factory=dict)
+    output: Any = field(default=None, repr=False, compare=False)
 
     @property
     def within_bound(self) -> bool | None:
-        """Exactly: does the measured distance respect the bound in the directions that hold? (None: unknown)"""
+        """Whether the measured distance respects the bound where it holds (exact; None: unknown)."""
         if self.measured is None or self.bound is None:
             return None
         return _within(self.measured, self.bound)
@@ -263,11 +266,11 @@ def _spec_params(prov: Any) -> tuple[Any, Any, str]:
 def _label(spec: Any, params: Any) -> str:
     if spec.chain_step is not None and spec.name in CHAIN_OPERATIONS:
         step: ChainStep = spec.chain_step(params)
-        return step.label()
+        return str(step.label())
     aliases = {"union": "EDu", "corefine": "EDco"}
     if spec.name == "corefine" and getattr(params, "alpha", None) is not None:
-        return f"EDco {params.alpha:g}"
-    return aliases.get(spec.name, spec.name)
+        return f"EDco {float(params.alpha):g}"
+    return aliases.get(spec.name, str(spec.name))
 
 
 def _link(prov: Any) -> Link:
@@ -370,7 +373,7 @@ def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int
     )
 
 
-def _sub(progress: ProgressLike | None, lo: float, hi: float) -> ProgressLike | None:
+def _sub(progress: ProgressLike | None, lo: float, hi: float) -> Any:
     from mrm.ops.outcome import sub_progress
 
     return None if progress is None else sub_progress(progress, lo, hi)
@@ -397,6 +400,16 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     transform = Similarity.identity()
     for spec, p, _ in read:
         transform = transform.then(spec.similarity(p))
+    acc = Account(
+        prov.operation,
+        model=model,
+        chain=links,
+        input_chains=(origin_chain,) if origin_chain else (),
+        origin_digest=first.digests[0],
+        bound=bound,
+    )
+    if not measure:
+        return acc
     last_spec, last_params, _ = read[-1]
     pj, _ = step_params(last_spec.name, params_to_dict(last_params))
     if progress is not None:
@@ -409,21 +422,9 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     )
     idempotent = None
     if last_spec.name == "simplify":
-        again = simplification(result, pj["alpha"], pj.get("center"), model, limit=limit)
         # Sp_α∘Sp_α = Sp_α: Sp_α of the result as stored (float64) is exactly the exact result.
+        again = simplification(result, pj["alpha"], pj.get("center"), model, limit=limit)
         idempotent = again.euclidean == outcome.euclidean
-    acc = Account(
-        prov.operation,
-        model=model,
-        chain=links,
-        input_chains=(origin_chain,) if origin_chain else (),
-        origin_digest=first.digests[0],
-        bound=bound,
-        result=pixels,
-        idempotent=idempotent,
-    )
-    if not measure:
-        return acc
     start = convert_for(origin, read_of(records[0].operation), model, limit)
     a_first = ExactShape.from_geometry(convert_for(start, "euclidean", model, limit))
     t_first = a_first.map(transform)
@@ -433,7 +434,15 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     if progress is not None:
         progress.update(0.5, "measuring the Hausdorff distance")
     measured = measured_error(t_first, outcome.euclidean, progress=_sub(progress, 0.5, 1.0))
-    return _replace(acc, measured=measured, direct=direct, difference=differing_pixels(pixels, direct))
+    return _replace(
+        acc,
+        measured=measured,
+        direct=direct,
+        result=pixels,
+        difference=differing_pixels(pixels, direct),
+        idempotent=idempotent,
+        output=result,
+    )
 
 
 def read_of(operation: str) -> str:
@@ -477,7 +486,7 @@ def _binary_account(
         out = euclidean_discrete_union(first, second, model, limit=limit, progress=_sub(progress, 0, 0.4))
         refs, exact = reference_parts(first, second, model)
         m = measured_error(refs["union"], out.euclidean, progress=_sub(progress, 0.4, 1.0))
-        return _replace(acc, measured=m, reference_exact=exact, result=out.discrete)
+        return _replace(acc, measured=m, reference_exact=exact, result=out.discrete, output=out.result)
     alpha = params.alpha
     part = part or PARTS[0]
     part_bounds = {p: bound_of_chain([B.corefine(_alpha(alpha), BOUND_PART[p])], model) for p in PARTS}
@@ -510,6 +519,7 @@ def _binary_account(
         measured=own.measured,
         reference_exact=exact,
         result=out.extra["pixels"][part],
+        output=out.result,
     )
 
 
@@ -545,7 +555,7 @@ def changed_inputs(doc: Any, provenance: Any) -> list[InputChange]:
     """The inputs of ``provenance`` whose current content in ``doc`` differs from the pinned one."""
     from mrm.document import content_digest
 
-    out = []
+    out: list[InputChange] = []
     if provenance is None or not provenance.pinned:
         return out
     for k, (oid, digest) in enumerate(zip(provenance.inputs, provenance.digests, strict=True)):
@@ -558,18 +568,25 @@ def changed_inputs(doc: Any, provenance: Any) -> list[InputChange]:
     return out
 
 
-def rerun_plan(doc: Any, obj_id: int, progress: ProgressLike | None = None) -> Any:
-    """A plan re-running a result's operation on the current content of its inputs (a new result)."""
-    from mrm.ops.base import plan_operation
+def rerun_request(doc: Any, obj_id: int) -> tuple[list[Any], str, Any]:
+    """What re-running a result on the current content of its inputs needs: (inputs, operation, params).
 
+    Read on the document's thread; hand the three to :func:`mrm.ops.base.plan_operation` (on a worker) and
+    push its plan as a new result (:func:`mrm.ops.apply.push_plan`). The old result keeps its account.
+
+    Raises
+    ------
+    ParameterError
+        The object has no provenance, an input was deleted, or the recorded parameters are unreadable.
+    """
     prov = doc.get(obj_id).provenance
     if prov is None:
         raise ParameterError("this object was not made by an operation")
     missing = [i for i in prov.inputs if i not in doc]
     if missing:
         raise ParameterError(f"input #{missing[0]} was deleted: there is nothing to re-run on")
-    _, params, _ = _spec_params(prov)
-    return plan_operation([doc.get(i) for i in prov.inputs], prov.operation, params, progress)
+    spec, params, _ = _spec_params(prov)
+    return [doc.get(i) for i in prov.inputs], spec.name, params
 
 
 __all__ = [
@@ -582,5 +599,5 @@ __all__ = [
     "chain_of",
     "changed_inputs",
     "input_chain",
-    "rerun_plan",
+    "rerun_request",
 ]

@@ -354,8 +354,16 @@ def _check_number(spec: ParamSpec, value: Any) -> float:
     lo, hi = spec.minimum, spec.maximum
     below = lo is not None and (v < lo or (v == lo and not spec.min_inclusive))
     above = hi is not None and (v > hi or (v == hi and not spec.max_inclusive))
-    if below or above:
-        raise ParameterError(f"{what} must satisfy {range_text(spec)}, got {value!r}")
+    if below and lo is not None:
+        first = (
+            "positive"
+            if lo == 0 and not spec.min_inclusive
+            else f"{'≥' if spec.min_inclusive else '>'} {_fmt(lo)}"
+        )
+        raise ParameterError(f"{what} must be {first}, got {_fmt(v)} (allowed: {range_text(spec)})")
+    if above and hi is not None:
+        rel = "≤" if spec.max_inclusive else "<"
+        raise ParameterError(f"{what} must be {rel} {_fmt(hi)}, got {_fmt(v)} (allowed: {range_text(spec)})")
     return v
 
 
@@ -404,26 +412,57 @@ def validate_params(params: Any) -> None:
             raise ParameterError(f"{what} must be text, got {value!r}")
 
 
+def _json_number(v: Any) -> Any:
+    from fractions import Fraction
+
+    if isinstance(v, Fraction):
+        from mrm.ops.exact_geometry import number_to_json
+
+        return number_to_json(v)
+    return v
+
+
 def params_to_dict(params: Any) -> dict[str, Any]:
-    """The parameters as JSON-ready values (points become lists, floats stay floats)."""
+    """The parameters as JSON-ready values (points become lists; a Fraction its exact ``"p/q"`` text)."""
     out: dict[str, Any] = {}
     for spec in param_specs(params):
         v = getattr(params, spec.name)
-        out[spec.name] = list(v) if isinstance(v, tuple) else v
+        out[spec.name] = [_json_number(x) for x in v] if isinstance(v, tuple) else _json_number(v)
     return out
 
 
+def _read_number(v: Any, name: str) -> Any:
+    """A number given as text (``"0.2"``, ``"1/3"``): a float when it is the decimal a float prints as."""
+    if not isinstance(v, str):
+        return v
+    from fractions import Fraction
+
+    from mrm.ops.exact_geometry import exact_number
+
+    q = exact_number(v, f"parameter {name!r}")
+    f = float(q)
+    return f if math.isfinite(f) and Fraction(repr(f)) == q else q
+
+
 def params_from_dict(cls: type, data: dict[str, Any]) -> Any:
-    """Build and validate a parameters dataclass from a dict (unknown keys are refused)."""
+    """Build and validate a parameters dataclass from a dict (unknown keys are refused).
+
+    Numbers may be given as text, read exactly (``"1/3"`` stays the Fraction 1/3).
+    """
     names = {s.name: s for s in param_specs(cls)}
     unknown = set(data) - set(names)
     if unknown:
         raise ParameterError(
-            f"unknown parameter(s) {', '.join(sorted(unknown))} (expected {', '.join(names)})"
+            f"unknown parameter(s) {', '.join(sorted(unknown))} (expected {', '.join(names) or 'none'})"
         )
     kwargs = {}
     for k, v in data.items():
-        kwargs[k] = tuple(v) if names[k].kind == "point" and isinstance(v, list) else v
+        kind = names[k].kind
+        if kind == "point" and isinstance(v, list | tuple):
+            v = tuple(_read_number(x, k) for x in v)
+        elif kind in ("float", "int"):
+            v = _read_number(v, k)
+        kwargs[k] = v
     params = cls(**kwargs)
     validate_params(params)
     return params

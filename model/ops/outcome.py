@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from mrm.errors import ParameterError, SizeLimitError
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
 from mrm.ops.base import param
 from mrm.ops.exact_geometry import (
     ExactShape,
@@ -21,7 +21,7 @@ from mrm.ops.exact_geometry import (
     pixel_box,
     voxel_bounds,
 )
-from mrm.ops.rational_discretize import ProgressLike, discretize_exact
+from mrm.ops.rational_discretize import ProgressLike, discretize_exact, discretize_image
 from mrm.reps.pixels import Box, PixelSet
 
 #: The discretization models an operation accepts.
@@ -86,9 +86,19 @@ class StepOutcome:
 
     result: Any
     transform: Similarity
-    euclidean: ExactShape
+    exact_image: Any  # an ExactShape, or a function making it on first use (it costs Fraction arithmetic)
     discrete: PixelSet
     extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def euclidean(self) -> ExactShape:
+        """The exact Euclidean object (computed on first use when the operation did not need it)."""
+        value = self.exact_image
+        if not isinstance(value, ExactShape):
+            value = value()
+            object.__setattr__(self, "exact_image", value)
+        assert isinstance(value, ExactShape)
+        return value
 
 
 def check_model(model: str) -> str:
@@ -141,11 +151,67 @@ def discrete_similarity(
     euclid = reconstruct(ps, model)
     if progress is not None:
         progress.update(0.3, "applying the similarity")
-    image = ExactShape.from_geometry(euclid).map(sim)
-    result = discretize_exact(image, model, limit=limit, progress=_Scaled(progress, 0.3, 1.0), what=what)
+
+    def image() -> ExactShape:
+        return ExactShape.from_geometry(euclid).map(sim)
+
+    # Scalings and translations of float64 vertices: integer arithmetic and compiled kernels, no Fraction.
+    result = discretize_image(euclid, sim, model, limit=limit, what=what)
+    if result is None:
+        exact = image()
+        result = discretize_exact(exact, model, limit=limit, progress=_Scaled(progress, 0.3, 1.0), what=what)
+        return StepOutcome(result, sim, exact, result)
     if progress is not None:
         progress.update(1.0, "done")
     return StepOutcome(result, sim, image, result)
+
+
+def register_discrete_similarity(
+    *,
+    name: str,
+    title: str,
+    params: type,
+    similarity: Any,
+    chain_step: Any,
+    label: Any,
+    help: str,
+    aliases: tuple[str, ...],
+) -> Any:
+    """Register a ``D∘T∘R`` operation (DSS_α, dR_θ,C) from its declarations alone.
+
+    ``similarity(params)`` is the exact T, ``chain_step(params)`` its place in the bound rule and
+    ``label(params)`` the result's name (``DSS 0.2``); the size estimate and the run are the same for every
+    such operation, so they are written here once.
+    """
+    from mrm.ops.base import OperationResult, OperationSpec, register
+
+    def estimate(inputs: Any, p: Any) -> int:
+        return estimate_through_pixels(inputs[0], similarity(p), p.model)
+
+    def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> Any:
+        # run_operation validated the parameters, checked the size and stamps provenance and bound.
+        ps = discrete_of(inputs[0], p.model, DEFAULT_PIXEL_LIMIT)
+        out = discrete_similarity(
+            ps, similarity(p), p.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=label(p)
+        )
+        return OperationResult(outputs=[(label(p), out.result)])
+
+    return register(
+        OperationSpec(
+            name=name,
+            title=title,
+            arity=1,
+            params=params,
+            run=run,
+            input_kind="any",
+            output_kind="discrete",
+            help=help,
+            estimate=estimate,
+            chain_step=chain_step,
+            similarity=similarity,
+            aliases=aliases,
+        )
+    )
 
 
 class _Scaled:

@@ -27,7 +27,8 @@ from __future__ import annotations
 
 import math
 from collections import defaultdict
-from typing import Protocol
+from fractions import Fraction
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -61,6 +62,7 @@ def discretize_exact(
     progress: ProgressLike | None = None,
     what: str = "discretization",
     force_integer: bool = False,
+    compiled: bool = True,
 ) -> PixelSet:
     """Return D(shape) exactly for polygons with rational vertices.
 
@@ -79,6 +81,9 @@ def discretize_exact(
         How the size-limit message names the result.
     force_integer : bool
         Use the integer path even when the coordinates are float64 values (for tests).
+    compiled : bool
+        Let the integer path use the compiled int64 kernels when no overflow is possible (False: the Python
+        integers everywhere, for tests comparing the two).
 
     Returns
     -------
@@ -107,7 +112,7 @@ def discretize_exact(
         result = discretize(shape.to_geometry(), model, limit=limit)
         _tick(progress, None)
         return result
-    return _integer_path(shape, model, box, progress)
+    return _integer_path(shape, model, box, progress, compiled)
 
 
 # --------------------------------------------------------------------------------------------- integer path
@@ -135,9 +140,26 @@ def _ceil_div(a: int, b: int) -> int:
     return -((-a) // b)
 
 
-def _integer_path(shape: ExactShape, model: str, box: Box, progress: ProgressLike | None) -> PixelSet:
+def _integer_path(
+    shape: ExactShape, model: str, box: Box, progress: ProgressLike | None, compiled: bool = True
+) -> PixelSet:
     edges, g = _integer_edges(shape)
+    return integer_discretization(edges, g, model, box, progress, compiled)
+
+
+def integer_discretization(
+    edges: list[IntEdge], g: int, model: str, box: Box, progress: ProgressLike | None, compiled: bool = True
+) -> PixelSet:
+    """D of integer edges on the grid of spacing ``g``: the compiled int64 kernels when safe, else Python."""
     x0, y0, x1, y1 = box
+    if compiled and edges:
+        from mrm.geometry.rational_discretize import discretize_integer_edges, fits_int64
+
+        m = max(max(abs(v) for v in e) for e in edges)
+        if fits_int64(m, g):
+            mask = discretize_integer_edges(np.array(edges, dtype=np.int64), g, box, model)
+            mask.flags.writeable = False
+            return PixelSet(mask, (x0, y0))
     mask = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
     n_work = 2 * len(edges) if model != "gauss" else len(edges)
     _fill(mask, edges, g, box, progress, n_work)
@@ -243,3 +265,88 @@ def _meets_standard(ax: int, ay: int, dx: int, dy: int, i: int, j: int, g: int, 
             lows.append(((-hi[0], -hi[1], -hi[2]), -d, True))
             ups.append(((-lo[0], -lo[1], -lo[2]), -d, True))
     return all(_less(lo, dl, up, du, sl or su) for lo, dl, sl in lows for up, du, su in ups)
+
+
+# --------------------------------------------------------------------------------------- similarity images
+def discretize_image(
+    geom: Any,
+    sim: Any,
+    model: str,
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+    what: str = "discretization",
+) -> PixelSet | None:
+    """D(T(E)) for a float64 polygon E and an exact scaling-or-translation T, without Fractions.
+
+    Every float64 coordinate is ``X/2^k`` with an integer X; the image under ``v ↦ (p/q)·v + t`` is then
+    ``X'/D`` over one common denominator ``D``, computed with int64 numpy arithmetic once the magnitudes are
+    checked, and discretized by the compiled exact kernels (:mod:`mrm.geometry.rational_discretize`).
+    Returns None where this does not apply (a rotation, magnitudes beyond int64): the caller then takes the
+    Fraction path (:func:`discretize_exact`), which gives the same pixels.
+    """
+    import shapely
+    from shapely.geometry import MultiPolygon, Polygon
+
+    from mrm.geometry.rational_discretize import discretize_integer_edges, fits_int64
+
+    if sim.b != 0 or not isinstance(geom, Polygon | MultiPolygon):
+        return None
+    if geom.is_empty:
+        return PixelSet.empty()
+    rings = shapely.get_rings(shapely.get_parts(geom))
+    coords, index = shapely.get_coordinates(rings, return_index=True)
+    if not coords.size:
+        return PixelSet.empty()
+    if not np.isfinite(coords).all():
+        return None
+    k = _denominator_exponent(coords)
+    if k > 900:
+        return None
+    scaled = coords * float(2**k)
+    if np.abs(scaled).max(initial=0.0) >= 2.0**62:
+        return None
+    xs = scaled.astype(np.int64)
+    a, tx, ty = Fraction(sim.a), Fraction(sim.tx), Fraction(sim.ty)
+    base = a.denominator << k
+    d = math.lcm(base, tx.denominator, ty.denominator)
+    ma = a.numerator * (d // base)
+    t_x, t_y = tx.numerator * (d // tx.denominator), ty.numerator * (d // ty.denominator)
+    big = abs(ma) * int(np.abs(xs).max(initial=0)) + max(abs(t_x), abs(t_y))
+    g = 2 * d
+    if not fits_int64(2 * big, g) or 2 * big >= 2**62:
+        return None
+    img = np.empty_like(xs)
+    img[:, 0] = 2 * (ma * xs[:, 0] + t_x)
+    img[:, 1] = 2 * (ma * xs[:, 1] + t_y)
+    # Edges: consecutive vertices of each closed ring (the closing point repeats the first).
+    same = index[1:] == index[:-1]
+    e = np.concatenate([img[:-1][same], img[1:][same]], axis=1)
+    e = e[(e[:, 0] != e[:, 2]) | (e[:, 1] != e[:, 3])]
+    lo, hi = img.min(axis=0), img.max(axis=0)
+    bounds = (
+        Fraction(int(lo[0]), g),
+        Fraction(int(lo[1]), g),
+        Fraction(int(hi[0]), g),
+        Fraction(int(hi[1]), g),
+    )
+    box = pixel_box(bounds, "supercover" if model == "supercover" else "standard")
+    assert box is not None
+    estimated = box_area(box)
+    if limit is not None and estimated > limit:
+        raise SizeLimitError(estimated, int(limit), what)
+    mask = discretize_integer_edges(e, g, box, model)
+    mask.flags.writeable = False
+    return PixelSet(mask, (box[0], box[1]))
+
+
+def _denominator_exponent(values: np.ndarray) -> int:
+    """The smallest k ≥ 0 such that every float64 value times 2^k is an integer."""
+    v = values.ravel()
+    v = v[v != 0]
+    if not v.size:
+        return 0
+    m, e = np.frexp(v)  # v = m·2^e, 0.5 ≤ |m| < 1, m a 53-bit fraction
+    mant = np.abs(m * 2.0**53).astype(np.int64)
+    low = mant & -mant  # the lowest set bit: 2^(trailing zeros)
+    tz = np.log2(low.astype(np.float64)).astype(np.int64)  # exact: powers of two
+    return int(max(0, int((53 - e - tz).max())))

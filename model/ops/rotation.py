@@ -17,23 +17,19 @@ corners, and since R keeps its boundary away from every tie (DESIGN §3.6), dR_9
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep
-from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.exact_geometry import Similarity, exact_number, exact_point, number_to_json
 from mrm.ops.outcome import (
     StepOutcome,
     angle_param,
     center_param,
-    discrete_of,
     discrete_similarity,
-    estimate_through_pixels,
     model_param,
+    register_discrete_similarity,
 )
 from mrm.ops.rational_discretize import ProgressLike
 from mrm.reps.pixels import PixelSet
@@ -104,42 +100,21 @@ def chain_step(params: RotationParams) -> ChainStep:
     return bounds.rot(exact_number(params.angle, "angle"), exact_point(params.center, "center"))
 
 
-def estimate(inputs: Sequence[Any], params: RotationParams) -> int:
-    """The result's size from the input's bounding box alone (nothing is computed)."""
-    return estimate_through_pixels(inputs[0], rotation_similarity(params.angle, params.center), params.model)
-
-
-def run(
-    inputs: Sequence[Any], params: RotationParams, progress: ProgressLike | None = None
-) -> OperationResult:
-    """Run dR_θ,C on one object (a polygon input is read as its discretization D(E))."""
-    theta = exact_number(params.angle, "angle")
-    sim = similarity(params)
-    ps = discrete_of(inputs[0], params.model, DEFAULT_PIXEL_LIMIT)
-    what = f"dR with θ = {number_to_json(theta)}°"
-    out = discrete_similarity(ps, sim, params.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=what)
-    return OperationResult(outputs=[(f"dR {number_to_json(theta)}°", out.result)])
-
-
 def similarity(params: RotationParams) -> Similarity:
     """The exact rational rotation by θ about C."""
     return rotation_similarity(params.angle, params.center)
 
 
 NAME = "discrete_rotation"
-SPEC = register(
-    OperationSpec(
-        name=NAME,
-        title="Discrete-Euclidean rotation dR_θ,C",
-        arity=1,
-        params=RotationParams,
-        run=run,
-        input_kind="any",
-        output_kind="discrete",
-        help="dR_θ,C(A) = D(rot_θ,C(R(A))): rotate the continuation exactly, discretize it (paper, Def. 11).",
-        estimate=estimate,
-        chain_step=chain_step,
-        similarity=similarity,
-        aliases=("ROT", "dR", "rotation"),
-    )
+SPEC = register_discrete_similarity(
+    name=NAME,
+    title="Discrete-Euclidean rotation dR_θ,C",
+    params=RotationParams,
+    similarity=similarity,
+    chain_step=chain_step,
+    label=lambda p: f"dR {number_to_json(exact_number(p.angle, 'angle'))}°",
+    help="dR_θ,C(A) = D(rot_θ,C(R(A))): rotate the continuation exactly, discretize it (paper, Def. 11).",
+    aliases=("ROT", "dR", "rotation"),
 )
+#: Run dR_θ,C on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
+run = SPEC.run

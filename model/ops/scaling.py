@@ -12,23 +12,19 @@ object is refused at once, with the number of pixels it would have had.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep
-from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.exact_geometry import Similarity, exact_point, number_to_json, positive_number
 from mrm.ops.outcome import (
     StepOutcome,
     alpha_param,
     center_param,
-    discrete_of,
     discrete_similarity,
-    estimate_through_pixels,
     model_param,
+    register_discrete_similarity,
 )
 from mrm.ops.rational_discretize import ProgressLike
 from mrm.reps.pixels import PixelSet
@@ -100,43 +96,21 @@ def chain_step(params: DSSParams) -> ChainStep:
     return bounds.dss(positive_number(params.alpha, "alpha"), exact_point(params.center, "center"))
 
 
-def estimate(inputs: Sequence[Any], params: DSSParams) -> int:
-    """The result's size from the input's bounding box alone (nothing is computed)."""
-    return estimate_through_pixels(inputs[0], scaling_similarity(params.alpha, params.center), params.model)
-
-
 def similarity(params: DSSParams) -> Similarity:
     """Sc_α about the centre, exact."""
     return scaling_similarity(params.alpha, params.center)
 
 
-def run(inputs: Sequence[Any], params: DSSParams, progress: ProgressLike | None = None) -> OperationResult:
-    """Run DSS_α on one object (a polygon input is read as its discretization D(E)).
-
-    :func:`mrm.ops.base.run_operation` validated the parameters, checked the size and stamps provenance and
-    bound; this only computes.
-    """
-    sim = similarity(params)
-    ps = discrete_of(inputs[0], params.model, DEFAULT_PIXEL_LIMIT)
-    what = f"DSS with α = {number_to_json(sim.ratio)}"
-    out = discrete_similarity(ps, sim, params.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=what)
-    return OperationResult(outputs=[(f"DSS {number_to_json(sim.ratio)}", out.result)])
-
-
 NAME = "dss"
-SPEC = register(
-    OperationSpec(
-        name=NAME,
-        title="Discrete smooth scaling DSS_α",
-        arity=1,
-        params=DSSParams,
-        run=run,
-        input_kind="any",
-        output_kind="discrete",
-        help="DSS_α(A) = D(Sc_α(R(A))): scale the continuation exactly and discretize it (paper, Def. 3).",
-        estimate=estimate,
-        chain_step=chain_step,
-        similarity=similarity,
-        aliases=("DSS", "discrete_smooth_scaling", "smooth_scaling"),
-    )
+SPEC = register_discrete_similarity(
+    name=NAME,
+    title="Discrete smooth scaling DSS_α",
+    params=DSSParams,
+    similarity=similarity,
+    chain_step=chain_step,
+    label=lambda p: f"DSS {number_to_json(positive_number(p.alpha, 'alpha'))}",
+    help="DSS_α(A) = D(Sc_α(R(A))): scale the continuation exactly and discretize it (paper, Def. 3).",
+    aliases=("DSS", "discrete_smooth_scaling", "smooth_scaling"),
 )
+#: Run DSS_α on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
+run = SPEC.run

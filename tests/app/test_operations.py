@@ -105,18 +105,18 @@ def test_apply_dss_from_its_panel_and_read_the_bound_in_the_inspector(make_windo
     qtbot.waitUntil(
         lambda: (
             insp.account is not None
-            and insp.account.links[-1].obj.id == second
             and insp.measurement is not None
+            and insp.measurement.chain[-1].inputs == (first,)
         ),
         timeout=60_000,
     )
-    assert [link.obj.id for link in insp.account.links] == [first, second]
+    assert [link.inputs[0] for link in insp.measurement.chain] == [o1.provenance.inputs[0], first]
     # The paper's bound for DSS_5 then DSS_0.2 (Theorem 4): √2 · 0.2, computed here from the formula.
     bound = math.sqrt(2) * 0.2
     assert f"H ≤ {bound:.4g}" in insp.bound_label.text()
     m = insp.measurement
-    assert m.measured <= bound
-    assert m.exceeds_bound is False
+    assert m.measured.value <= bound
+    assert m.within_bound is True
     assert "within the bound" in insp.measured_label.text()
 
 

@@ -25,7 +25,7 @@ from mrm.commands import (
     RestyleObject,
     SetSource,
 )
-from mrm.derive import DerivationCache, DerivationService
+from mrm.derive import DerivationCache
 from mrm.document import Changes, DocObject, Document, Provenance, Settings, Style, validate_geometry
 from mrm.errors import InvalidGeometryError, ParameterError, SizeLimitError
 from mrm.reps.pixels import PixelSet
@@ -298,81 +298,6 @@ class Gate:
         self.started.set()
         assert self.release.wait(10)
         return discretize(geom, model)
-
-
-def test_service_computes_off_thread_and_delivers_fresh_results(monkeypatch):
-    gate = Gate()
-    monkeypatch.setattr(derive, "discretize_source", gate)
-    doc = Document()
-    o = doc.make_object(tri())
-    doc.push(AddObject(o))
-    service = DerivationService(doc, sync_cost=0)
-    got = []
-    threads = []
-
-    def cb(v):
-        got.append(v)
-        threads.append(threading.current_thread())
-
-    assert service.request(o.id, "discrete", cb) is False  # queued, the caller is not blocked
-    assert gate.started.wait(10) and got == []
-    gate.release.set()
-    assert service.wait_idle(10)
-    assert got == [doc.derived(o.id).get("discrete")] and threads[0] is not threading.main_thread()
-    # Now cached: delivered at once in the caller's thread.
-    assert service.request(o.id, "discrete", got.append) is True and len(got) == 2
-    service.shutdown()
-
-
-def test_service_drops_a_result_computed_for_an_older_revision(monkeypatch):
-    gate = Gate()
-    monkeypatch.setattr(derive, "discretize_source", gate)
-    doc = Document()
-    o = doc.make_object(tri())
-    doc.push(AddObject(o))
-    posted = []
-    service = DerivationService(doc, sync_cost=0, deliver=posted.append)  # delivery runs when we say
-    got = []
-    service.request(o.id, "discrete", got.append)
-    assert gate.started.wait(10)
-    doc.push(SetSource(o.id, tri(2, 2)))  # the object changes while the worker computes
-    gate.release.set()
-    for _ in range(100):
-        if posted:
-            break
-        threading.Event().wait(0.05)
-    for fn in posted:
-        fn()  # the GUI thread runs the delivery: the result is stale and dropped
-    assert got == [] and service.dropped == 1
-    assert service.wait_idle(10)
-    service.shutdown()
-
-
-def test_service_errors_go_to_on_error(monkeypatch):
-    def refuse(geom, model):
-        raise SizeLimitError(10**12, 10**8, "the discretization")
-
-    monkeypatch.setattr(derive, "discretize_source", refuse)
-    doc = Document()
-    o = doc.make_object(tri())
-    doc.push(AddObject(o))
-    service = DerivationService(doc, sync_cost=0)
-    errors = []
-    service.request(o.id, "discrete", lambda v: None, errors.append)
-    assert service.wait_idle(10)
-    assert len(errors) == 1 and isinstance(errors[0], SizeLimitError)
-    service.shutdown()
-
-
-def test_cheap_requests_run_in_the_callers_thread():
-    doc = Document()
-    o = doc.make_object(tri())
-    doc.push(AddObject(o))
-    service = DerivationService(doc)
-    got = []
-    assert service.request(o.id, "discrete", got.append) is True
-    assert got and got[0] == doc.derived(o.id).get("discrete")
-    service.shutdown()
 
 
 # ---------------------------------------------------------------------------------------------- invariant

@@ -16,7 +16,6 @@ from hypothesis import strategies as st
 from shapely.geometry import box
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
-from mrm.geometry.bounds import dss
 from mrm.ops import setops, similarity
 from mrm.ops.base import (
     NO_PROGRESS,
@@ -35,7 +34,6 @@ from mrm.ops.base import (
     params_from_dict,
     params_to_dict,
     register,
-    run_chain,
     run_operation,
     validate_params,
 )
@@ -304,12 +302,12 @@ def test_bad_parameters_are_refused_before_running() -> None:
 
 def test_provenance_names_operation_params_and_inputs() -> None:
     a, b = PixelSet.box(0, 0, 3, 3), PixelSet.box(2, 2, 5, 5)
-    res = run_operation("discrete_union", [a, b], input_provenance=[{"source": "A"}, None])
+    res = run_operation("discrete_union", [a, b])
     assert res.output == a | b and res.outputs[0][0] == "union"
     assert res.provenance == {
         "operation": "discrete_union",
         "params": {},
-        "inputs": [{"source": "A"}, {"input": 1}],
+        "inputs": [{"input": 0}, {"input": 1}],
     }
     assert res.bound is None and res.measured is None
 
@@ -392,65 +390,3 @@ def test_set_operations_are_the_set_operations(pa: set[tuple[int, int]], pb: set
         out = run_operation(name, [a, b]).output
         assert isinstance(out, PixelSet)
         assert {tuple(map(int, p)) for p in out.points()} == expected
-
-
-def test_chain_runner_nests_provenance_splits_progress_and_bounds() -> None:
-    seen: list[float] = []
-    prog = Progress(lambda f, m: seen.append(f))
-    g = box(0, 0, 2, 1)
-    res = run_chain(
-        [
-            ("rotate", similarity.RotateParams(90, (0.5, 0.5))),
-            ("scale", similarity.ScaleParams(2.0)),
-            ("translate", similarity.TranslateParams(1, -1)),
-        ],
-        g,
-        progress=prog,
-        first_provenance={"source": "E"},
-    )
-    assert res.output.equals(box(1, -1, 3, 3))
-    prov = res.provenance
-    assert prov["operation"] == "translate"
-    assert prov["inputs"][0]["operation"] == "scale"
-    assert prov["inputs"][0]["inputs"][0]["params"] == {"angle": 90, "center": [0.5, 0.5]}
-    assert prov["inputs"][0]["inputs"][0]["inputs"] == [{"source": "E"}]
-    assert seen == sorted(seen) and seen[-1] == 1.0 and len(res.results) == 3
-    assert res.bound is not None and res.bound.bound == 0.0  # exact Euclidean maps: no round trip
-
-
-def test_chain_runner_without_a_bound_model_and_with_a_binary_step() -> None:
-    calls: list[str] = []
-    a, b = PixelSet.box(0, 0, 3, 3), PixelSet.box(2, 2, 5, 5)
-    res = run_chain([(setops.UNION, None, [b]), (_counting_op(calls, 1), None)], a)
-    assert res.output == a | b and res.bound is None and calls == ["run"]
-    assert res.provenance["inputs"][0]["operation"] == "discrete_union"
-
-
-def test_chain_runner_stops_on_cancel() -> None:
-    prog = Progress()
-    prog.cancel()
-    with pytest.raises(Cancelled):
-        run_chain([("translate", similarity.TranslateParams(1, 1))], box(0, 0, 1, 1), progress=prog)
-    with pytest.raises(ParameterError, match="empty"):
-        run_chain([], box(0, 0, 1, 1))
-
-
-def test_operation_bound_uses_its_chain_step() -> None:
-    @dataclass(frozen=True)
-    class P:
-        alpha: float = param(2.0, positive=True)
-
-    spec = OperationSpec(
-        "fake_dss",
-        "Fake DSS",
-        1,
-        P,
-        lambda inputs, p, progress: OperationResult(outputs=[("x", inputs[0])]),
-        chain_step=lambda p: dss(p.alpha),
-    )
-    res = run_chain([(spec, P(5.0)), (spec, P(0.2))], PixelSet.box(0, 0, 1, 1), model="gauss")
-    assert (
-        res.bound is not None
-        and res.bound.bound is None
-        and res.bound.one_sided == pytest.approx(0.2 * 2**0.5)
-    )

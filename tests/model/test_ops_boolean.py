@@ -23,7 +23,6 @@ from mrm.ops.boolean import (
     euclidean_discrete_corefinement,
     euclidean_discrete_union,
     run_corefine,
-    run_union,
 )
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
@@ -128,22 +127,22 @@ def test_disjoint_objects_give_an_empty_common_part():
 def test_specs_give_named_parts_with_provenance():
     e1 = shapely.box(0, 0, 4, 4)
     e2 = shapely.box(2, 2, 6, 6)
-    res = run_corefine([e1, e2], CorefineParams(alpha=2.0, model="supercover"))
+    res = run_operation("corefine", [e1, e2], CorefineParams(alpha=2.0, model="supercover"))
     assert [name for name, _ in res.outputs] == list(PARTS)
     assert res.provenance == {
         "operation": "corefine",
         "params": {"alpha": 2.0, "model": "supercover"},
-        "inputs": [],
+        "inputs": [{"input": 0}, {"input": 1}],
     }
     expected = euclidean_discrete_corefinement(e1, e2, "supercover", 2.0)
     assert res.label_map == expected.extra["label_map"]
     assert res.part_bounds["a_and_b"].directions == ("source_within",)
     assert res.part_bounds["a_minus_b"].directions == ("result_within",)
-    u = run_union([e1, e2], UnionParams())
+    u = run_operation("union", [e1, e2], UnionParams())
     assert discretize(u.output) == discretize(e1) | discretize(e2)
     assert u.provenance["operation"] == "union"
-    with pytest.raises(ParameterError, match="two objects"):
-        run_union([e1], UnionParams())
+    with pytest.raises(ParameterError, match="2 input"):
+        run_operation("union", [e1], UnionParams())
     with pytest.raises(ParameterError, match="alpha"):
         run_corefine([e1, e2], CorefineParams(alpha=float("nan")))
     load_paper_operations()

@@ -81,7 +81,7 @@ def test_scale_writes_the_pixels_and_reports_bound_and_measured(capsys, files):
     assert read_pixels(out) == expected
     assert s["pixels"] == len(expected)
     assert s["bound"] == 0.0 and s["measured"] == 0.0  # one DSS: A_last is T(A_first)
-    assert s["params"] == {"alpha": 0.2, "center": [1, 1]}
+    assert s["params"] == {"alpha": 0.2, "center": [1, 1], "model": "standard"}
 
 
 def test_scale_of_a_vector_file_to_a_vector_file(capsys, files):
@@ -193,8 +193,11 @@ def test_project_inputs_with_object_names(capsys, project, tmp_path):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["scale", "{png}", "--alpha", "0", "-o", "{dir}/o.png"], "alpha must be positive"),
-        (["scale", "{png}", "--alpha", "nan", "-o", "{dir}/o.png"], "alpha must be a finite"),
+        (
+            ["scale", "{png}", "--alpha", "0", "-o", "{dir}/o.png"],
+            "'alpha' (α) must be ≥ 1e-06, got 0 (allowed: 1e-06 ≤ α ≤ 1e+06)",
+        ),
+        (["scale", "{png}", "--alpha", "nan", "-o", "{dir}/o.png"], "'alpha' must be a finite number"),
         (["scale", "{png}", "--alpha", "1e6", "-o", "{dir}/o.png"], "would cover"),
         (["rotate", "{png}", "--angle", "inf", "-o", "{dir}/o.png"], "angle"),
         (["simplify", "{tri}", "--alpha", "-1", "-o", "{dir}/o.wkt"], "alpha"),

@@ -202,8 +202,8 @@ def test_the_registered_estimates_bound_the_results_of_polygon_inputs(poly, alph
     from mrm.ops import rotation, scaling, simplify
 
     p = DSSParams(alpha=alpha, model=model)
-    assert box_area(scaling.run([poly], p).output) <= scaling.estimate([poly], p)
+    assert box_area(scaling.run([poly], p).output) <= scaling.SPEC.estimate([poly], p)
     r = RotationParams(angle=37.0, center=(0.5, 1.0), model=model)
-    assert box_area(rotation.run([poly], r).output) <= rotation.estimate([poly], r)
+    assert box_area(rotation.run([poly], r).output) <= rotation.SPEC.estimate([poly], r)
     s = SimplifyParams(alpha=alpha, model=model)
     assert box_area(simplification(poly, alpha, None, model).discrete) <= simplify.estimate([poly], s)

@@ -11,8 +11,9 @@ from hypothesis import strategies as st
 
 from mrm.errors import ParameterError
 from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.base import run_operation
 from mrm.ops.exact_geometry import rotation_cos_sin
-from mrm.ops.rotation import RotationParams, discrete_rotation, rotation_similarity, run
+from mrm.ops.rotation import RotationParams, discrete_rotation, rotation_similarity
 from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import (
     MODELS,
@@ -85,7 +86,7 @@ def test_rotating_back_composes_to_the_identity_exactly():
 
 def test_run_and_provenance():
     a = PixelSet.from_points([(0, 0), (1, 0), (2, 0), (2, 1)])
-    res = run([a], RotationParams(angle=90.0, center=(1.0, 0.0)))
+    res = run_operation("discrete_rotation", [a], RotationParams(angle=90.0, center=(1.0, 0.0)))
     assert res.output == a.rotate90(1, (1, 0))
     assert res.provenance["operation"] == "discrete_rotation"
     assert res.provenance["params"] == {"angle": 90.0, "center": [1.0, 0.0], "model": "standard"}

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import numpy as np
 import pytest
 import shapely
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from mrm.document import Provenance
@@ -115,9 +116,10 @@ def test_the_registered_operation_gives_one_result_with_its_provenance():
     assert res.provenance["params"] == {"alpha": 0.5, "center": [1.0, 1.0], "model": "supercover"}
     # one DSS alone is exact in the paper's sense: A_last = Sc_α(R(A)) = T(A_first)
     assert res.bound is not None and res.bound.bound == 0.0
-    # run alone (as the GUI calls it) stamps the same provenance, fit for the document
+    # run alone only computes: run_operation is the one place that stamps provenance and bound
     direct = run([a], DSSParams(alpha=0.5, center=(1.0, 1.0), model="supercover"))
-    assert Provenance.from_json(direct.provenance).params == res.provenance["params"]
+    assert direct.outputs == res.outputs and direct.provenance == {} and direct.bound is None
+    assert Provenance("dss", res.provenance["params"]).params == res.provenance["params"]
 
 
 def test_a_polygon_input_is_scaled_through_its_discretization():
@@ -132,3 +134,43 @@ def test_scale_factor_errors_name_the_parameter():
             discrete_smooth_scaling(a, bad)
     with pytest.raises(ParameterError, match="model"):
         discrete_smooth_scaling(a, 2, None, "nearest")
+
+
+CENTRES = [
+    None,
+    (Fraction(1, 2), Fraction(-3, 10)),
+    (Fraction(1, 3), Fraction(2, 7)),
+    (Fraction(5), Fraction(0)),
+]
+
+
+@settings(max_examples=200)
+@given(rational_shapes(), st.sampled_from(MODELS), st.sampled_from(CENTRES))
+def test_the_fraction_free_compiled_path_follows_the_definitions(shape_and_q, model, centre):
+    """D(Sc_q,C(E)) by int64 kernels (no Fraction) = the slow Fraction reference = the Python-integer path."""
+    from mrm.ops.exact_geometry import Similarity
+    from mrm.ops.rational_discretize import discretize_image
+
+    poly, q = shape_and_q
+    # Vertices on a 1/64 grid, as a continuation R(A) has them: the int64 path applies.
+    poly = shapely.transform(poly, lambda c: np.round(c * 64) / 64)
+    assume(poly.is_valid and not poly.is_empty)
+    sim = Similarity.scaling(q, centre)
+    got = discretize_image(poly, sim, model)
+    assert got is not None
+    polys = scaled(polygons_of(poly), q, centre)
+    assert got == reference_discretize_rings(polys, model)
+    exact = ExactShape.from_geometry(poly).map(sim)
+    assert got == discretize_exact(exact, model, force_integer=True, compiled=False)
+
+
+@settings(max_examples=100)
+@given(objects(), st.sampled_from([0.2, 0.8, 1.25, 3.0]), st.sampled_from(MODELS))
+def test_dss_by_the_compiled_path_is_the_definition(a, alpha, model):
+    """DSS_α(A) = D(Sc_α(R(A))) with α the decimal it prints as, against the Fraction reference."""
+    out = discrete_smooth_scaling(a, alpha, None, model)
+    polys = scaled(polygons_of(reconstruct(a, model)), Fraction(str(alpha)))
+    assert out.result == reference_discretize_rings(polys, model)
+    assert out.euclidean == ExactShape.from_geometry(reconstruct(a, model)).map(
+        __import__("mrm.ops.exact_geometry", fromlist=["Similarity"]).Similarity.scaling(Fraction(str(alpha)))
+    )

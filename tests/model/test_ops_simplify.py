@@ -14,8 +14,9 @@ from hypothesis import strategies as st
 from mrm.errors import ParameterError
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.base import run_operation
 from mrm.ops.measure import measured_error
-from mrm.ops.simplify import SimplifyParams, run, simplification
+from mrm.ops.simplify import SimplifyParams, simplification
 from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import COVERS, MODELS, polygons_of, reference_discretize_rings, scaled
@@ -82,12 +83,12 @@ def test_a_coarse_simplification_removes_a_small_hole_and_keeps_the_shape():
 
 def test_a_pixel_input_is_simplified_through_its_continuation():
     a = PixelSet.box(0, 0, 7, 4)
-    res = run([a], SimplifyParams(alpha=0.5))
+    res = run_operation("simplify", [a], SimplifyParams(alpha=0.5))
     assert np.array_equal(coords(res.output), coords(simplification(reconstruct(a), 0.5).result))
     assert res.provenance == {
         "operation": "simplify",
         "params": {"alpha": 0.5, "center": None, "model": "standard"},
-        "inputs": [],
+        "inputs": [{"input": 0}],
     }
 
 

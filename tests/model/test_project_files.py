@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.commands import AddObject, PaintPixels, RenameObject
-from mrm.document import Document, Provenance, Settings, Style
+from mrm.document import Document, Provenance, Settings, Style, content_digest
 from mrm.errors import FileFormatError, MRMError
 from mrm.io import autosave
 from mrm.io.project import (
@@ -53,9 +53,14 @@ def test_golden_v1_reads_as_written_down_here():
     assert tri.kind == "euclidean"
     assert list(tri.source.exterior.coords) == [(0.5, -0.25), (7.125, 1.0), (2.0, 6.5), (0.5, -0.25)]
     assert tri.style == Style(fill="#dd8452", stroke="#000000", opacity=0.25, stroke_width=2.0, visible=True)
-    assert tri.provenance == Provenance(
-        "rotate", {"angle": 30.0, "center": [0, 0], "exact": True, "note": None}, (3,)
+    p = tri.provenance
+    assert (p.operation, p.params, p.inputs) == (
+        "rotate",
+        {"angle": 30.0, "center": [0, 0], "exact": True, "note": None},
+        (3,),
     )
+    # A file from before pinned provenance: the input is pinned to what the file holds for it.
+    assert p.sources == (diamond.source,) and p.digests == (content_digest(diamond.source),)
     islands = doc.get(7).source
     assert isinstance(islands, MultiPolygon) and len(islands.geoms) == 2
     assert list(islands.geoms[0].interiors[0].coords)[1] == (-8.5, -5.5)

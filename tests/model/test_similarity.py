@@ -175,3 +175,23 @@ def test_as_operations() -> None:
         run_operation("scale", [g], similarity.ScaleParams(factor=-2.0))
     with pytest.raises(ParameterError, match="'angle'"):
         run_operation("rotate", [g], similarity.RotateParams(angle=float("nan")))
+
+
+def test_the_registry_and_the_chain_read_parameters_the_same_way() -> None:
+    """One arithmetic: 0.4 is 2/5 and a rotation is the exact rational one on every path."""
+    from fractions import Fraction
+
+    from mrm.ops.chain import run_chain
+    from mrm.ops.exact_geometry import ExactShape, Similarity
+
+    g = box(0, 0, 3, 3)
+    res = run_operation("scale", [g], similarity.ScaleParams(factor=0.4, center=(0.0, 0.0)))
+    assert res.output.bounds == (0.0, 0.0, 1.2, 1.2)  # the float nearest to 3·2/5, not 3·fl(0.4)
+    chained = run_chain(g, [("scale", {"factor": 0.4})], "standard", measure=False)
+    assert res.output.equals_exact(chained.result, 0.0)
+    assert res.bound is not None and res.bound.steps[0].value == Fraction(2, 5)
+    rot = run_operation("rotate", [g], similarity.RotateParams(angle=30.0, center=(1.0, 1.0)))
+    exact = ExactShape.from_geometry(g).map(Similarity.rotation(Fraction(30), (Fraction(1), Fraction(1))))
+    assert rot.output.equals_exact(exact.to_geometry(), 0.0)
+    chained = run_chain(g, [("rotate", {"angle": 30.0, "center": (1.0, 1.0)})], "standard", measure=False)
+    assert rot.output.equals_exact(chained.result, 0.0)

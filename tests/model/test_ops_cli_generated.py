@@ -1,0 +1,34 @@
+"""The one-object operation subcommands are generated from the registry: options, help, ranges, messages."""
+
+from __future__ import annotations
+
+import pytest
+
+from mrm.cli import build_parser, run_cli
+from mrm.io.pixel_files import write_pixels
+from mrm.ops.base import get_operation, range_text
+from mrm.reps.pixels import PixelSet
+
+
+@pytest.mark.parametrize(
+    ("command", "operation"), [("scale", "dss"), ("rotate", "discrete_rotation"), ("simplify", "simplify")]
+)
+def test_every_parameter_of_the_spec_is_an_option_with_its_range(command, operation, capsys):
+    with pytest.raises(SystemExit):
+        build_parser().parse_args([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for p in get_operation(operation).param_specs():
+        if p.name == "model":
+            continue
+        assert f"--{p.name}" in text
+        if p.minimum is not None:
+            assert range_text(p) in text
+
+
+def test_an_out_of_range_value_is_refused_with_the_declared_range(tmp_path, capsys):
+    png = tmp_path / "a.png"
+    write_pixels(PixelSet.box(0, 0, 3, 3), png)
+    assert run_cli(["rotate", str(png), "--angle", "7200", "-o", str(tmp_path / "o.png")]) == 2
+    err = capsys.readouterr().err
+    assert "'angle' (θ) must be ≤ 3600, got 7200 (allowed: -3600 ≤ θ ≤ 3600)" in err
+    assert not (tmp_path / "o.png").exists()
