@@ -38,6 +38,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
+from mrm.geometry import _dual_kernels as _dk
 from mrm.geometry import _reconstruct_kernels as _k
 from mrm.geometry.cracks import trace_mask
 from mrm.reps.pixels import PixelSet
@@ -106,9 +107,13 @@ def _run(ps: PixelSet, model: str) -> _Run:
     kcap = _scale_cap(ps)
     rings = trace_mask(m)
     x0, y0 = ps.origin
-    cor = _k.corridors_all(
-        rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], model == "gauss", kcap
-    )
+    gauss = model == "gauss"
+    h, w = m.shape
+    if gauss:
+        # the dual corridor (pointels as pixels, :mod:`._dual_kernels`); the cover pipeline runs on it
+        cor = _dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
+    else:
+        cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, False, kcap)
     (
         eoff,
         ec,
@@ -130,14 +135,14 @@ def _run(ps: PixelSet, model: str) -> _Run:
         special,
         full,
     ) = cor
-    reach, lines = _k.reach_all(
-        eoff, ec, er, cnt, model == "gauss", poff, pel, rect, gp, gq, gdir, special, full
-    )
+    reach, lines = _k.reach_all(eoff, ec, er, cnt, False, poff, pel, rect, gp, gq, gdir, special, full)
     ga = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, True)
     gb = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, False)
     xy, roff, status, src, win = _k.finish_all(
         eoff, ec, er, reach, poff, rect, gp, gq, gdir, kmax, special, r0off, r0, r0t, *ga, *gb, x0, y0
     )
+    if gauss:
+        xy -= 0.5  # dual frame → plane (exact: |coordinates| < 2⁵⁰)
     return _Run(rings, cor, reach, lines, xy, roff, status, src, win)
 
 
@@ -288,14 +293,16 @@ def reconstruct_detailed(ps: PixelSet, model: str = "standard") -> Reconstructio
     poff = run.corridor[10]
     rect = run.corridor[11]
     text = (rings.codes + np.uint8(48)).tobytes().decode("ascii")
-    shift = np.array([4 * x0, 4 * x0, 4 * y0, 4 * y0], dtype=np.int64)
+    # gauss works in the dual frame, half a pixel up and right of the plane
+    d = 2 if model == "gauss" else 0
+    shift = np.array([4 * x0 - d, 4 * x0 - d, 4 * y0 - d, 4 * y0 - d], dtype=np.int64)
     details: list[RingDetail] = []
     for k in range(rings.off.size - 1):
         a, b = int(poff[k]), int(poff[k + 1])
         r0_, r1_ = int(run.roff[k]), int(run.roff[k + 1]) - 1  # without the closing repeat
         lines = run.lines[a:b].copy()
-        lines[:, 0] = lines[:, 0] / 4.0 + x0
-        lines[:, 1] = lines[:, 1] / 4.0 + y0
+        lines[:, 0] = (lines[:, 0] - d) / 4.0 + x0
+        lines[:, 1] = (lines[:, 1] - d) / 4.0 + y0
         chain = CrackChain._trusted(
             (int(rings.sx[k]) + x0, int(rings.sy[k]) + y0), text[int(rings.off[k]) : int(rings.off[k + 1])]
         )
