@@ -1,10 +1,11 @@
 """Benchmark of the reversible continuation R against its peers: vertices, pixels wrong, speed.
 
-Shapes: the horse silhouette, Otsu-thresholded camera and coins (scikit-image data), and disks of radius 10 to
-1000 centred at (1/7, 2/9). For each: the greedy standard-DSS count of the crack chains (the yardstick),
-R's vertices under each model, and three peers — potrace's polygon (``potracer``, alphamax=0), OpenCV's
-approxPolyDP at 0.5 on its contours, GDAL's staircase (rasterio.features.shapes) — with the number of pixels
-each one gets wrong when discretized back with our exact D (|D(P) Δ A|) under every model.
+Shapes: the horse silhouette, Otsu-thresholded camera, coins, page and text (scikit-image data), and disks
+of radius 10 to 1000 centred at (1/7, 2/9). For each: the greedy standard-DSS count of the crack chains
+(the yardstick), R's vertices under each model, and three peers — potrace's polygon (``potracer``,
+turdsize 0, alphamax 0, one vertex per corner segment), OpenCV's approxPolyDP at 0.5 on its contours, GDAL's
+staircase (rasterio.features.shapes) — with the number of pixels each one gets wrong when discretized back
+with our exact D (|D(P) Δ A|) under every model.
 
 Speed: R on the horse, on the horse upscaled 6×5 (1968 × 2000, padded to 2048²) against
 rasterio.features.shapes on the same mask (medians of several runs, same process), and the first-call cost
@@ -70,6 +71,8 @@ def shapes() -> list[tuple[str, PixelSet]]:
         ("horse", PixelSet(~skimage.data.horse()[::-1])),
         ("camera", PixelSet(otsu(skimage.data.camera())[::-1])),
         ("coins", PixelSet(otsu(skimage.data.coins())[::-1])),
+        ("page", PixelSet(otsu(skimage.data.page())[::-1])),
+        ("text", PixelSet(otsu(skimage.data.text())[::-1])),
     ]
     radii = (10, 20, 50, 100, 200) if QUICK else (10, 20, 50, 100, 200, 500, 1000)
     out += [(f"disk {r}", disk(r)) for r in radii]
@@ -193,17 +196,23 @@ def compactness(items: list[tuple[str, PixelSet]]) -> None:
     rows = []
     ratios: dict[str, list[float]] = {m: [] for m in MODELS}
     peer_rows = []
+    potrace_rows = []
     for name, ps in items:
         g = greedy_count(ps)
         row: list[Any] = [name, len(ps), g]
+        counts = {}
         for model in MODELS:
             r = reconstruct(ps, model)
             v = count_vertices(r)
             assert discretize(r, model) == ps, (name, model)
             ratios[model].append(v / g)
+            counts[model] = v
             row += [v, v / g]
         row.append(row[-2] / corner_count(ps))
         rows.append(row)
+        if not name.startswith("disk"):
+            _geom, npt_ = peer_potrace(ps)
+            potrace_rows.append([name, npt_, *[c for m in MODELS for c in (counts[m], counts[m] / npt_)]])
         big = len(ps) > 400_000
         peers = [("approxPolyDP 0.5", peer_opencv), ("rasterio/GDAL", peer_rasterio)]
         if not (QUICK and big) and len(ps) < 2_000_000:
@@ -217,6 +226,11 @@ def compactness(items: list[tuple[str, PixelSet]]) -> None:
         rows,
     )
     print("median ratio to greedy: " + ", ".join(f"{m} {np.median(ratios[m]):.3f}" for m in MODELS))
+    table(
+        "R against potrace's polygon (turdsize 0, alphamax 0, one vertex per corner segment; target <= 1.10)",
+        ["image", "potrace", *[c for m in MODELS for c in (m, "ratio")]],
+        potrace_rows,
+    )
     table(
         "peers: vertices and pixels wrong when discretized back with the exact D",
         ["shape", "peer", "vertices", "ratio", *[f"wrong {m}" for m in MODELS]],
