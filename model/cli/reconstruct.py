@@ -4,6 +4,7 @@ One input: ``OUT`` is the file to write (.geojson, .json, .wkt or .svg). Several
 directory (existing, or a path ending with a separator or without an extension: it is created), where each
 input ``NAME.png`` gives ``NAME.geojson``, or a pattern holding ``{stem}`` (the input's name without its
 extension), e.g. ``out/{stem}-R.wkt``. ``--jobs N`` spreads the inputs over N worker processes.
+``--features components`` writes one GeoJSON Feature per 4-connected component (property ``part``).
 
 Inputs are pixel files (.png .pbm .pgm .npz: grey images are cut at Otsu's threshold unless
 ``--threshold`` is given) or projects (.mrm: the union of their objects' pixels under the model).
@@ -69,6 +70,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="grey images: pixels brighter than T are in the set (default: binary images as they are, "
         "others at Otsu's threshold)",
     )
+    parser.add_argument(
+        "--features",
+        choices=("one", "components"),
+        default="one",
+        help="GeoJSON: one Feature holding everything (default), or one Feature per 4-connected component "
+        "(keeps large results within GDAL's object size limit)",
+    )
     add_limit_argument(parser)
 
 
@@ -115,18 +123,21 @@ def _pixels_of(path: str, threshold: float | None, limit: int, model: str | None
     return union, chosen
 
 
-def _write(geom: Any, path: str, model: str, source: str) -> None:
+def _write(geom: Any, path: str, model: str, source: str, features: str = "one") -> None:
     ext = Path(path).suffix.lower()
     if ext == ".svg":
         write_svg(geom, path)
     elif ext == ".wkt":
         write_wkt(geom, path)
+    elif features == "components":
+        parts = list(getattr(geom, "geoms", [] if geom.is_empty else [geom]))
+        write_geojson(parts, path, properties={"model": model, "source": Path(source).name})
     else:
         write_geojson(geom, path, properties={"model": model, "source": Path(source).name})
 
 
 def reconstruct_file(
-    path: str, output: str, model: str | None, threshold: float | None, limit: int
+    path: str, output: str, model: str | None, threshold: float | None, limit: int, features: str = "one"
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
     from mrm.geometry.reconstruct import reconstruct
@@ -136,13 +147,15 @@ def reconstruct_file(
     geom = reconstruct(ps, chosen)
     seconds = time.perf_counter() - t0
     Path(output).parent.mkdir(parents=True, exist_ok=True)
-    _write(geom, output, chosen, path)
+    _write(geom, output, chosen, path, features)
     summary = {"input": str(path), "output": str(output), **summarize(ps, chosen, geom=geom)}
     summary["seconds"] = seconds
     return summary
 
 
-def _one(job: tuple[str, str, str | None, float | None, int]) -> tuple[dict[str, Any] | None, str | None]:
+def _one(
+    job: tuple[str, str, str | None, float | None, int, str],
+) -> tuple[dict[str, Any] | None, str | None]:
     try:
         return reconstruct_file(*job), None
     except MRMError as e:
@@ -157,7 +170,10 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     for i in inputs:
         extension_of(i, INPUTS, "supported input file")
     outputs = _outputs(inputs, str(args.output))
-    jobs = [(i, o, args.model, args.threshold, args.limit) for i, o in zip(inputs, outputs, strict=True)]
+    jobs = [
+        (i, o, args.model, args.threshold, args.limit, args.features)
+        for i, o in zip(inputs, outputs, strict=True)
+    ]
     if len(jobs) == 1:
         summary = reconstruct_file(*jobs[0])
         if not args.json:

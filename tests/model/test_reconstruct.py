@@ -686,3 +686,25 @@ def test_simplest_line_is_the_simplest_direction_crossing_the_gates() -> None:
                                         assert lo2 >= hi2, ((u, v), (dx, dy), window)
                         checked += 1
     assert checked > 100
+
+
+def test_cli_reconstruct_writes_one_feature_per_component(capsys, tmp_path) -> None:
+    import json
+
+    from shapely.geometry import shape
+
+    from mrm.io.pixel_files import write_pixels
+
+    ps = ps_of(CASES["checker"], (3, 4)) | (disk(5.2) - disk(1.5)).translate(30, 0)
+    write_pixels(ps, tmp_path / "a.png")
+    region = region_of(ps)
+    for model in MODELS:
+        out = tmp_path / f"{model}.geojson"
+        code, _text, err = mrm(
+            capsys, "reconstruct", tmp_path / "a.png", "-o", out, "--model", model, "--features", "components"
+        )
+        assert code == 0, err
+        feats = json.loads(out.read_text(encoding="utf-8"))["features"]
+        assert [f["properties"]["part"] for f in feats] == list(range(region.n_components))
+        for f, comp in zip(feats, region.components, strict=True):
+            assert discretize(shape(f["geometry"]), model) == region.labels.pixel_set(comp.label)
