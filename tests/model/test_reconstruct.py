@@ -148,18 +148,20 @@ def test_translation_is_exact_and_output_deterministic() -> None:
 
 
 def test_far_from_the_origin_coordinates_stay_exact() -> None:
+    # DESIGN §3 item 8: translation covariance and exactness up to the accepted limit ±2⁴⁰, refused beyond.
     ps = disk(9.3)
-    g = reconstruct(ps)
-    for t in ((2**26, -(2**26)), (3 * 2**30, 5), (-(2**40), 2**44)):
-        moved = ps.translate(*t)
-        gm = reconstruct(moved)
-        assert discretize(gm, "standard") == moved
-        assert verify(gm, moved).ok
-        if max(abs(v) for v in t) < 2**27:
+    for model in MODELS:
+        g = reconstruct(ps, model)
+        for t in ((2**26, -(2**26)), (3 * 2**30, 5), (-(2**40) + 12, 2**40 - 12), (2**39 + 7, -(2**35))):
+            moved = ps.translate(*t)
+            gm = reconstruct(moved, model)
+            assert discretize(gm, model) == moved
+            assert verify(gm, moved, model).ok
             shift = np.array(t, dtype=float)
             assert np.array_equal(shapely.get_coordinates(gm), shapely.get_coordinates(g) + shift)
-    with pytest.raises(ParameterError, match="too large"):
-        reconstruct(ps.translate(2**48, 0))
+    for t in ((2**40 + 1, 0), (0, -(2**40) - 5), (2**48, 0)):
+        with pytest.raises(ParameterError, match="too large"):
+            reconstruct(ps.translate(*t))
 
 
 def test_coordinates_are_coarse_dyadic_rationals() -> None:

@@ -269,6 +269,27 @@ def test_polygons_are_the_components_in_canonical_order(model: str, ps: PixelSet
         assert discretize(poly, model) == region.labels.pixel_set(comp.label)
 
 
+@pytest.mark.parametrize("model", MODELS)
+@settings(max_examples=300)
+@given(ps=pixel_sets, e=st.integers(30, 40), sx=st.sampled_from([-1, 1]), sy=st.sampled_from([-1, 1]))
+def test_far_from_the_origin_r_is_translation_covariant(
+    model: str, ps: PixelSet, e: int, sx: int, sy: int
+) -> None:
+    # DESIGN §3 item 8: offsets 2^30 … 2^40 (the accepted limit): the same polygons, translated exactly.
+    if ps.is_empty():
+        return
+    x0, y0, x1, y1 = ps.bbox  # type: ignore[misc]
+    # the largest |coordinate| after the move is at most 2^e
+    t = (sx * (2**e) - (x1 if sx > 0 else x0), sy * (2**e) - (y1 if sy > 0 else y0))
+    moved = ps.translate(*t)
+    g = reconstruct(ps, model)
+    gm = reconstruct(moved, model)
+    assert np.array_equal(
+        shapely.get_coordinates(gm), shapely.get_coordinates(g) + np.array(t, dtype=np.float64)
+    )
+    assert discretize(gm, model) == moved
+
+
 @st.composite
 def small_sets(draw: st.DrawFn) -> PixelSet:
     seed = draw(st.integers(0, 2**32 - 1))
