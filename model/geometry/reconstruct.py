@@ -3,28 +3,33 @@
 For every finite pixel set A, :func:`reconstruct` returns a valid shapely Polygon or MultiPolygon (an
 empty Polygon for ∅) with dyadic float64 coordinates such that
 
-1. R(A) ⊂ V(A), its polygons are the 4-connected components of A and its holes the bounded 8-connected
-   components of the complement;
+1. its polygons are the 4-connected components of A and its holes the bounded 8-connected components of
+   the complement; under ``standard`` and ``supercover`` R(A) ⊂ V(A); under ``gauss`` ∂R(A) separates the
+   centres of A from the other centres strictly and stays within the voxels of the border pixels on either
+   side (DESIGN §3 item 2, revised);
 2. D(R(A)) = A exactly for the chosen model; under ``standard`` and ``supercover`` the same polygons serve
    both (∂R(A) crosses between pixels only through open sides shared by two pixels of A, crosses every
    border pixel through its open square and keeps every outside centre out); under ``gauss`` every centre
    of A is strictly inside and every other centre strictly outside;
 3. no vertex or edge sits where a tie rule of the model decides (pixel corners and sides under the cover
    models, pixel centres under ``gauss``), so a rotation by a multiple of 90° about a pixel centre is exact;
-4. R(A + t) = R(A) + t for t ∈ Z², and the same A always gives the same output;
-5. few vertices: about one per greedy digital straight segment of the boundary under the cover models.
+4. R(A + t) = R(A) + t for t ∈ Z² (up to |coordinates| ≤ 2⁴⁰, :data:`COORD_LIMIT`), and the same A always
+   gives the same output;
+5. few vertices: about one per greedy digital straight segment of the boundary, in every model.
 
 How (ALGORITHMS §3.5, "V4"): each crack ring gives a corridor of pieces and gates (:mod:`.border`); the
 reach of one straight line from every piece is computed exactly (arithmetic standard-DSS recognition on
-full pixels, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet
+full pieces, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet
 inside a piece of their overlap, or a two-vertex patch joins them; every vertex is snapped to the coarsest
 dyadic grid that keeps all constraints, and every ring is verified exactly. A failing stretch is replaced
-locally by the safety net (the crack ring offset inward by ¼, :mod:`.safety_net`), never the whole result.
+locally by the safety net of the corridor, never the whole result.
 
-Under ``gauss`` the polygon must stay inside V(A) while keeping the border centres inside: every corner of
-the crack boundary is then the midpoint of two such centres (reflex corners) or cuts one off (convex
-corners), so a vertex is needed near each corner and R has about as many vertices as the staircase — that
-is the price of R(A) ⊂ V(A) under that model, not a fallback.
+The cover models use the border pixels' squares as pieces (:mod:`._reconstruct_kernels`). ``gauss`` uses
+the *dual* corridor (:mod:`._dual_kernels`, ADR 0012): the open unit squares whose corners are the four
+pixel centres around each pointel of the crack ring, joined by the open segments between the centres on
+either side of each linel. It holds no pixel centre, so a ring that follows it winds once around the
+centres of A and never around the others; it is the cover corridor shifted by half a pixel, so the same
+pipeline runs on it, and consecutive lines meet across pixel sides where the cover models could not.
 """
 
 from __future__ import annotations
