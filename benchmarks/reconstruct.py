@@ -7,9 +7,10 @@ turdsize 0, alphamax 0, one vertex per corner segment), OpenCV's approxPolyDP at
 staircase (rasterio.features.shapes) — with the number of pixels each one gets wrong when discretized back
 with our exact D (|D(P) Δ A|) under every model.
 
-Speed: R on the horse, on the horse upscaled 6×5 (1968 × 2000, padded to 2048²) against
-rasterio.features.shapes on the same mask (medians of several runs, same process), and the first-call cost
-of the kernels in a fresh process: cold (empty numba cache) and warm (cache on disk).
+Speed: R on the horse, camera, coins, page, text, 1024² 50 % noise and 4096² blobs against
+rasterio.features.shapes on the same mask (medians of several runs, same process); the peak memory each adds
+(fresh processes); and the first-call cost of the kernels in a fresh process: cold (empty numba cache) and
+warm (cache on disk).
 
 Run: ``.venv/bin/python benchmarks/reconstruct.py`` (``--quick`` skips the two largest disks and potrace on
 big inputs).
@@ -238,25 +239,84 @@ def compactness(items: list[tuple[str, PixelSet]]) -> None:
     )
 
 
+def speed_inputs() -> list[tuple[str, np.ndarray]]:
+    """The inputs of the speed table (masks, row 0 = lowest y)."""
+    import skimage.data
+    from skimage.filters import threshold_otsu
+    from skimage.transform import resize
+
+    def otsu(img: np.ndarray) -> np.ndarray:
+        return np.asarray(img > threshold_otsu(img))[::-1]
+
+    rng = np.random.default_rng(12345)
+    out = [("horse 328x400", ~skimage.data.horse()[::-1])]
+    out += [(n, otsu(getattr(skimage.data, n)())) for n in ("camera", "coins", "page", "text")]
+    out.append(("noise 50% 1024^2", rng.random((1024, 1024)) < 0.5))
+    if not QUICK:
+        field = resize(rng.random((64, 64)), (4096, 4096), order=3, mode="reflect", anti_aliasing=False)
+        out.append(("blobs 4096^2", field > 0.5))
+    return out
+
+
 def speed() -> None:
     import rasterio.features
-    import skimage.data
 
-    horse = PixelSet(~skimage.data.horse()[::-1])
-    big_mask = np.zeros((2048, 2048), dtype=bool)
-    up = np.kron(~skimage.data.horse()[::-1], np.ones((6, 5), dtype=bool))
-    big_mask[: up.shape[0], : up.shape[1]] = up
-    big = PixelSet(big_mask)
     rows = []
-    for name, ps, m in (("horse 328x400", horse, horse.mask), ("horse x6x5 in 2048^2", big, big_mask)):
+    for name, m in speed_inputs():
+        ps = PixelSet(m)
         m8 = np.ascontiguousarray(m.astype(np.uint8))
-        t_gdal = median_ms(lambda m8=m8, m=m: list(rasterio.features.shapes(m8, mask=m, connectivity=4)))
+        reps = 3 if m.size > 2_000_000 else 7
+        t_gdal = median_ms(
+            lambda m8=m8, m=m: list(rasterio.features.shapes(m8, mask=m, connectivity=4)), reps
+        )
         for model in MODELS:
-            t = median_ms(lambda ps=ps, model=model: reconstruct(ps, model))
+            t = median_ms(lambda ps=ps, model=model: reconstruct(ps, model), reps)
             rows.append([name, model, t, t_gdal, t / t_gdal])
     table(
-        "speed (median ms, same process)",
+        "speed (median ms, same process; target R / rasterio <= 1.0)",
         ["input", "model", "R ms", "rasterio.shapes ms", "R / rasterio"],
+        rows,
+    )
+
+
+_PEAK = """
+import resource, sys, numpy as np
+sys.path.insert(0, {root!r})
+from benchmarks.reconstruct import speed_inputs
+from mrm.reps.pixels import PixelSet
+m = dict(speed_inputs())[{name!r}]
+who = {who!r}
+if who == "gdal":
+    import rasterio.features
+    m8 = np.ascontiguousarray(m.astype(np.uint8))
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    list(rasterio.features.shapes(m8, mask=m, connectivity=4))
+else:
+    from mrm.geometry.reconstruct import reconstruct
+    ps = PixelSet(m)
+    reconstruct(PixelSet(np.eye(5, dtype=bool)), who)  # load the kernels first
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    reconstruct(ps, who)
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base)
+"""
+
+
+def peak_memory() -> None:
+    """Peak resident memory added by one call, each in a fresh process (MB)."""
+    root = str(Path(__file__).resolve().parents[1])
+    rows = []
+    names = ["camera", "noise 50% 1024^2"] + ([] if QUICK else ["blobs 4096^2"])
+    for name in names:
+        got = {}
+        for who in ("gdal", *MODELS):
+            code = _PEAK.format(root=root, name=name, who=who)
+            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+            got[who] = int(out.stdout.strip().splitlines()[-1]) / 1024
+        for model in MODELS:
+            rows.append([name, model, got[model], got["gdal"], got[model] / max(got["gdal"], 1e-9)])
+    table(
+        "peak memory added by the call (MB, ru_maxrss in a fresh process; target <= 1.5x GDAL)",
+        ["input", "model", "R MB", "rasterio.shapes MB", "ratio"],
         rows,
     )
 
@@ -291,6 +351,7 @@ def main() -> None:
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2-core machine shared with others)")
     compactness(shapes())
     speed()
+    peak_memory()
     first_call()
 
 
