@@ -13,8 +13,11 @@ through, in path order, and of the open segments (*gates*) between consecutive p
   visited several times gives each visit its own part, the part of the square on the outer side of the path
   of pixel centres (half a square along a straight stretch, a quarter at an elbow, a half and a quarter at a
   convex corner, two halves at the tip of an arm), so that the parts of different visits are disjoint;
-* ``gauss``: every element uses those outer parts: the polygon must keep every centre of A strictly inside
-  and stay inside V(A), i.e. run between the path of centres and the crack.
+* ``gauss``: the *dual* corridor instead (:mod:`mrm.geometry._dual_kernels`, ADR 0012): the open unit
+  squares whose corners are the four pixel centres around each pointel of the chain, joined by the open
+  segments between the centres on either side of each linel (a quarter of the square for each visit of a
+  pointel met twice). It holds no pixel centre, so the polygon keeps every centre of A strictly inside and
+  every other centre strictly outside, and stays within the voxels of the border pixels.
 
 A ring that enters every piece through its gate and leaves through the next one, with every vertex strictly
 inside a piece, is simple, disjoint from the rings of the other visits, and D(polygon) = A
