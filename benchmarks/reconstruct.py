@@ -1,14 +1,16 @@
 """Benchmark of the reversible continuation R against its peers: vertices, pixels wrong, speed.
 
-Shapes: the horse silhouette, Otsu-thresholded camera and coins (scikit-image data), and disks of radius 10 to
-1000 centred at (1/7, 2/9). For each: the greedy standard-DSS count of the crack chains (the yardstick),
-R's vertices under each model, and three peers — potrace's polygon (``potracer``, alphamax=0), OpenCV's
-approxPolyDP at 0.5 on its contours, GDAL's staircase (rasterio.features.shapes) — with the number of pixels
-each one gets wrong when discretized back with our exact D (|D(P) Δ A|) under every model.
+Shapes: the horse silhouette, Otsu-thresholded camera, coins, page and text (scikit-image data), and disks
+of radius 10 to 1000 centred at (1/7, 2/9). For each: the greedy standard-DSS count of the crack chains
+(the yardstick), R's vertices under each model, and three peers — potrace's polygon (``potracer``,
+turdsize 0, alphamax 0, one vertex per corner segment), OpenCV's approxPolyDP at 0.5 on its contours, GDAL's
+staircase (rasterio.features.shapes) — with the number of pixels each one gets wrong when discretized back
+with our exact D (|D(P) Δ A|) under every model.
 
-Speed: R on the horse, on the horse upscaled 6×5 (1968 × 2000, padded to 2048²) against
-rasterio.features.shapes on the same mask (medians of several runs, same process), and the first-call cost
-of the kernels in a fresh process: cold (empty numba cache) and warm (cache on disk).
+Speed: R on the horse, camera, coins, page, text, 1024² 50 % noise and 4096² blobs against
+rasterio.features.shapes on the same mask (medians of several runs, same process); the peak memory each adds
+(fresh processes); and the first-call cost of the kernels in a fresh process: cold (empty numba cache) and
+warm (cache on disk).
 
 Run: ``.venv/bin/python benchmarks/reconstruct.py`` (``--quick`` skips the two largest disks and potrace on
 big inputs).
@@ -70,6 +72,8 @@ def shapes() -> list[tuple[str, PixelSet]]:
         ("horse", PixelSet(~skimage.data.horse()[::-1])),
         ("camera", PixelSet(otsu(skimage.data.camera())[::-1])),
         ("coins", PixelSet(otsu(skimage.data.coins())[::-1])),
+        ("page", PixelSet(otsu(skimage.data.page())[::-1])),
+        ("text", PixelSet(otsu(skimage.data.text())[::-1])),
     ]
     radii = (10, 20, 50, 100, 200) if QUICK else (10, 20, 50, 100, 200, 500, 1000)
     out += [(f"disk {r}", disk(r)) for r in radii]
@@ -193,17 +197,23 @@ def compactness(items: list[tuple[str, PixelSet]]) -> None:
     rows = []
     ratios: dict[str, list[float]] = {m: [] for m in MODELS}
     peer_rows = []
+    potrace_rows = []
     for name, ps in items:
         g = greedy_count(ps)
         row: list[Any] = [name, len(ps), g]
+        counts = {}
         for model in MODELS:
             r = reconstruct(ps, model)
             v = count_vertices(r)
             assert discretize(r, model) == ps, (name, model)
             ratios[model].append(v / g)
+            counts[model] = v
             row += [v, v / g]
         row.append(row[-2] / corner_count(ps))
         rows.append(row)
+        if not name.startswith("disk"):
+            _geom, npt_ = peer_potrace(ps)
+            potrace_rows.append([name, npt_, *[c for m in MODELS for c in (counts[m], counts[m] / npt_)]])
         big = len(ps) > 400_000
         peers = [("approxPolyDP 0.5", peer_opencv), ("rasterio/GDAL", peer_rasterio)]
         if not (QUICK and big) and len(ps) < 2_000_000:
@@ -218,31 +228,160 @@ def compactness(items: list[tuple[str, PixelSet]]) -> None:
     )
     print("median ratio to greedy: " + ", ".join(f"{m} {np.median(ratios[m]):.3f}" for m in MODELS))
     table(
+        "R against potrace's polygon (turdsize 0, alphamax 0, one vertex per corner segment; target <= 1.10)",
+        ["image", "potrace", *[c for m in MODELS for c in (m, "ratio")]],
+        potrace_rows,
+    )
+    table(
         "peers: vertices and pixels wrong when discretized back with the exact D",
         ["shape", "peer", "vertices", "ratio", *[f"wrong {m}" for m in MODELS]],
         peer_rows,
     )
 
 
+def speed_inputs() -> list[tuple[str, np.ndarray]]:
+    """The inputs of the speed table (masks, row 0 = lowest y)."""
+    import skimage.data
+    from skimage.filters import threshold_otsu
+    from skimage.transform import resize
+
+    def otsu(img: np.ndarray) -> np.ndarray:
+        return np.asarray(img > threshold_otsu(img))[::-1]
+
+    rng = np.random.default_rng(12345)
+    out = [("horse 328x400", ~skimage.data.horse()[::-1])]
+    out += [(n, otsu(getattr(skimage.data, n)())) for n in ("camera", "coins", "page", "text")]
+    out.append(("noise 50% 1024^2", rng.random((1024, 1024)) < 0.5))
+    if not QUICK:
+        field = resize(rng.random((64, 64)), (4096, 4096), order=3, mode="reflect", anti_aliasing=False)
+        out.append(("blobs 4096^2", field > 0.5))
+    return out
+
+
 def speed() -> None:
+    import rasterio.features
+
+    rows = []
+    for name, m in speed_inputs():
+        ps = PixelSet(m)
+        m8 = np.ascontiguousarray(m.astype(np.uint8))
+        reps = 3 if m.size > 2_000_000 else 7
+        t_gdal = median_ms(
+            lambda m8=m8, m=m: list(rasterio.features.shapes(m8, mask=m, connectivity=4)), reps
+        )
+        for model in MODELS:
+            t = median_ms(lambda ps=ps, model=model: reconstruct(ps, model), reps)
+            rows.append([name, model, t, t_gdal, t / t_gdal])
+    table(
+        "speed (median ms, same process; target R / rasterio <= 1.0)",
+        ["input", "model", "R ms", "rasterio.shapes ms", "R / rasterio"],
+        rows,
+    )
+
+
+_PEAK = """
+import resource, sys, numpy as np
+sys.path.insert(0, {root!r})
+from benchmarks.reconstruct import speed_inputs
+from mrm.reps.pixels import PixelSet
+m = dict(speed_inputs())[{name!r}]
+who = {who!r}
+if who == "gdal":
+    import rasterio.features
+    m8 = np.ascontiguousarray(m.astype(np.uint8))
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    list(rasterio.features.shapes(m8, mask=m, connectivity=4))
+else:
+    from mrm.geometry.reconstruct import reconstruct
+    ps = PixelSet(m)
+    reconstruct(PixelSet(np.eye(5, dtype=bool)), who)  # load the kernels first
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    reconstruct(ps, who)
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base)
+"""
+
+
+def peak_memory() -> None:
+    """Peak resident memory added by one call, each in a fresh process (MB)."""
+    root = str(Path(__file__).resolve().parents[1])
+    rows = []
+    names = ["camera", "noise 50% 1024^2"] + ([] if QUICK else ["blobs 4096^2"])
+    for name in names:
+        got = {}
+        for who in ("gdal", *MODELS):
+            code = _PEAK.format(root=root, name=name, who=who)
+            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+            got[who] = int(out.stdout.strip().splitlines()[-1]) / 1024
+        for model in MODELS:
+            rows.append([name, model, got[model], got["gdal"], got[model] / max(got["gdal"], 1e-9)])
+    table(
+        "peak memory added by the call (MB, ru_maxrss in a fresh process; target <= 1.5x GDAL)",
+        ["input", "model", "R MB", "rasterio.shapes MB", "ratio"],
+        rows,
+    )
+
+
+def label_maps() -> None:
+    """mrm polygonize against GDAL polygonize (+ shapely.coverage_simplify) on a quantized image."""
     import rasterio.features
     import skimage.data
 
-    horse = PixelSet(~skimage.data.horse()[::-1])
-    big_mask = np.zeros((2048, 2048), dtype=bool)
-    up = np.kron(~skimage.data.horse()[::-1], np.ones((6, 5), dtype=bool))
-    big_mask[: up.shape[0], : up.shape[1]] = up
-    big = PixelSet(big_mask)
-    rows = []
-    for name, ps, m in (("horse 328x400", horse, horse.mask), ("horse x6x5 in 2048^2", big, big_mask)):
-        m8 = np.ascontiguousarray(m.astype(np.uint8))
-        t_gdal = median_ms(lambda m8=m8, m=m: list(rasterio.features.shapes(m8, mask=m, connectivity=4)))
-        for model in MODELS:
-            t = median_ms(lambda ps=ps, model=model: reconstruct(ps, model))
-            rows.append([name, model, t, t_gdal, t / t_gdal])
+    from mrm.geometry.polygonize import polygonize
+    from mrm.reps.pixels import LabelMap
+
+    img = skimage.data.coins()[::-1][:128, :160]
+    labels = (img // 64).astype(np.int32) + 1  # four grey levels, labels 1..4
+    lm = LabelMap(labels)
+    t = time.perf_counter()
+    regions = polygonize(lm)
+    t_ours = time.perf_counter() - t
+    ours_v = sum(count_vertices(r.geometry) for r in regions)
+
+    def burnt(geoms: list[Any], values: list[int]) -> int:
+        h, w = labels.shape
+        from affine import Affine
+
+        img2 = rasterio.features.rasterize(
+            list(zip(geoms, values, strict=True)),
+            out_shape=(h, w),
+            transform=Affine(1.0, 0.0, -0.5, 0.0, -1.0, h - 0.5),
+            dtype="int32",
+        )[::-1]
+        return int(np.count_nonzero(img2 != labels))
+
+    t = time.perf_counter()
+    feats = list(rasterio.features.shapes(labels, connectivity=4))
+    t_gdal = time.perf_counter() - t
+    gdal_geoms = [
+        Polygon(np.asarray(g["coordinates"][0]) - 0.5, [np.asarray(r) - 0.5 for r in g["coordinates"][1:]])
+        for g, _v in feats
+    ]
+    gdal_vals = [int(v) for _g, v in feats]
+    gdal_v = sum(count_vertices(g) for g in gdal_geoms)
+    rows = [
+        [
+            "mrm polygonize (gauss)",
+            len(regions),
+            ours_v,
+            burnt([r.geometry for r in regions], [r.label for r in regions]),
+            t_ours * 1e3,
+        ],
+        ["GDAL polygonize", len(gdal_geoms), gdal_v, burnt(gdal_geoms, gdal_vals), t_gdal * 1e3],
+    ]
+    for tol in (0.5, 1.0):
+        simp = list(shapely.coverage_simplify(np.array(gdal_geoms, dtype=object), tol))
+        rows.append(
+            [
+                f"GDAL + coverage_simplify {tol}",
+                len(simp),
+                sum(count_vertices(g) for g in simp),
+                burnt(simp, gdal_vals),
+                float("nan"),
+            ]
+        )
     table(
-        "speed (median ms, same process)",
-        ["input", "model", "R ms", "rasterio.shapes ms", "R / rasterio"],
+        "label map: coins 128x160 quantized to 4 labels (pixels wrong: rasterize with the labels vs the map)",
+        ["method", "regions", "vertices", "pixels wrong", "ms"],
         rows,
     )
 
@@ -277,6 +416,8 @@ def main() -> None:
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2-core machine shared with others)")
     compactness(shapes())
     speed()
+    peak_memory()
+    label_maps()
     first_call()
 
 

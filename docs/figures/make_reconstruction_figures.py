@@ -349,10 +349,12 @@ def figure_models() -> None:
             (x0 - 1, y0 - 1, x1 + 1, y1 + 1),
             40,
             f"Corridor and R(A), {label}",
-            f"{d.n_vertices} vertices; centres of A must stay inside"
+            f"{d.n_vertices} vertices; dual squares between the centres; R may cross pixel sides"
             if model == "gauss"
             else f"{d.n_vertices} vertices; every pixel of A crossed or inside, no outside centre inside",
         )
+        if model == "gauss":
+            c.pixels(ps, (236, 240, 246))
         c.grid()
         for cor in cors:
             for p in cor.pieces.tolist():
@@ -360,11 +362,50 @@ def figure_models() -> None:
                 c.rect(p[0], p[1], p[2], p[3], SPLIT if split else PIECE, SPLIT_EDGE if split else PIECE_EDGE)
         for x, y in ps.points().tolist():
             c.dot(x, y, 2.5, (90, 110, 140))
+        if model == "gauss":
+            # the outside centres the boundary keeps out, as rings
+            inside = set(map(tuple, ps.points().tolist()))
+            for x in range(x0 - 1, x1 + 2):
+                for y in range(y0 - 1, y1 + 2):
+                    if (x, y) not in inside:
+                        c.dot(x, y, 2.5, (90, 110, 140))
+                        c.dot(x, y, 1.4, WHITE)
         for r in d.rings:
             c.polyline(r.vertices, POLY, 3.0, closed=True)
             for x, y in r.vertices.tolist():
                 c.dot(x, y, 3.5, POLY)
         c.save(f"reconstruction-{model}.png")
+
+
+def figure_gauss_disk() -> None:
+    """A digitized disk under gauss: the staircase V(A) (GDAL's polygonize) against R(A)."""
+    r = 9.4
+    yy, xx = np.mgrid[-11:12, -11:12]
+    ps = PixelSet((xx - 0.3) ** 2 + (yy - 0.2) ** 2 <= r * r, (-11, -11))
+    d = reconstruct_detailed(ps, "gauss")
+    stair = sum(
+        int(np.count_nonzero(ch.code_array() != np.roll(ch.code_array(), 1)))
+        for ch in region_of(ps).boundary_chains
+    )
+    x0, y0, x1, y1 = ps.bbox
+    c = Canvas(
+        (x0 - 1, y0 - 1, x1 + 1, y1 + 1),
+        22,
+        "gauss: R(A) against the staircase",
+        f"staircase V(A) {stair} vertices (grey); R(A) {d.n_vertices} vertices; D_gauss(R(A)) = A",
+    )
+    c.pixels(ps, BLUE)
+    c.grid()
+    for ch in region_of(ps).boundary_chains:
+        c.polyline(crack_polyline(ch), (120, 120, 120), 1.5, closed=True)
+    for x, y in ps.points().tolist():
+        c.dot(x, y, 1.6, (60, 80, 110))
+    for ring in d.rings:
+        c.polyline(ring.vertices, POLY, 2.6, closed=True)
+        for x, y in ring.vertices.tolist():
+            c.dot(x, y, 3.2, POLY)
+    assert discretize(d.geometry, "gauss") == ps
+    c.save("reconstruction-gauss-disk.png")
 
 
 def main() -> None:
@@ -373,6 +414,7 @@ def main() -> None:
     figure_pipeline()
     figure_preimage()
     figure_models()
+    figure_gauss_disk()
 
 
 if __name__ == "__main__":

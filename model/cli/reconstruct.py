@@ -6,6 +6,7 @@ input ``NAME.png`` gives ``NAME.geojson``, or a pattern holding ``{stem}`` (the 
 extension), e.g. ``out/{stem}-R.wkt``. Inputs may be directories (their pixel files) and quoted globs;
 ``--jobs N`` spreads them over N worker processes (at most the CPU count) and each input's line is printed
 as soon as it is done. ``-`` reads standard input and ``-o -`` writes on standard output.
+``--features components`` writes one GeoJSON Feature per 4-connected component (property ``part``).
 
 Inputs are pixel files (.png .pbm .pgm .npz: grey images are cut at Otsu's threshold unless
 ``--threshold`` is given; ``--invert`` takes the dark pixels) or projects (.mrm: the union of their
@@ -70,6 +71,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add_jobs_argument(parser)
     add_image_arguments(parser)
+    parser.add_argument(
+        "--features",
+        choices=("one", "components"),
+        default="one",
+        help="GeoJSON: one Feature holding everything (default), or one Feature per 4-connected component "
+        "(keeps large results within GDAL's object size limit)",
+    )
     add_limit_argument(parser)
 
 
@@ -98,7 +106,7 @@ def _pixels_of(
 _GEOJSON_BYTES_PER_VERTEX = 2 * 24 + 4
 
 
-def _write(geom: Any, path: str, model: str, source: str, georef: Any = None) -> None:
+def _write(geom: Any, path: str, model: str, source: str, georef: Any = None, features: str = "one") -> None:
     ext = Path(path).suffix.lower()
     if ext in (".geojson", ".json"):
         # What we write must read back: refuse, before writing, a file the vector reader would refuse.
@@ -113,6 +121,9 @@ def _write(geom: Any, path: str, model: str, source: str, georef: Any = None) ->
         write_svg(geom, path)
     elif ext == ".wkt":
         write_wkt(geom, path)
+    elif features == "components":
+        parts = list(getattr(geom, "geoms", [] if geom.is_empty else [geom]))
+        write_geojson(parts, path, properties={"model": model, "source": Path(source).name})
     else:
         members: dict[str, Any] = {}
         if georef is not None:
@@ -133,6 +144,7 @@ def reconstruct_file(
     threshold: float | None,
     limit: int,
     invert: bool = False,
+    features: str = "one",
     bar: Any = None,
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
@@ -155,7 +167,7 @@ def reconstruct_file(
     if bar is not None:
         bar.update(None, "writing")
     # The result lands where the raster is: grid coordinates mapped by its transform (mrm.io.georef).
-    _write(geom if georef is None else georef.to_world(geom), output, chosen, path, georef)
+    _write(geom if georef is None else georef.to_world(geom), output, chosen, path, georef, features)
     summary = {"input": str(path), "output": str(output), **summarize(ps, chosen, geom=geom)}
     summary["seconds"] = seconds
     if georef is not None:
@@ -175,7 +187,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         extension_of(i, INPUTS, "supported input file")
     outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".geojson", "vector output file")
     jobs = [
-        (i, o, args.model, args.threshold, args.limit, args.invert)
+        (i, o, args.model, args.threshold, args.limit, args.invert, args.features)
         for i, o in zip(inputs, outputs, strict=True)
     ]
     if len(jobs) == 1:

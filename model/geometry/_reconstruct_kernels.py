@@ -2984,6 +2984,18 @@ def finish_all(
                 best_t = vt.copy()
                 best_s = vs.copy()
                 best_bad = bad2
+        if not done and b - a <= _SMALL:
+            # no greedy ring verified: a small corridor may still hold a triangle (a 1 x 3 bar under gauss)
+            tx, ty, tt, okt = small_triangle(rc, p, q, g, reach[a:b], kk)
+            if okt:
+                tbad = np.zeros(3, np.bool_)
+                if verify_ring(tx, ty, tt, rc, p, q, g, sc, tbad):
+                    s3 = np.full(3, SRC_LINES, np.int64)
+                    xy, src, win, pos = _push(
+                        xy, src, win, pos, tx, ty, s3, np.full(3, -1, np.int64), kk, x0, y0
+                    )
+                    status[k] = RING_V4
+                    done = True
         if not done and best_t.size >= 3:
             # local repair: widen the removed runs until the spliced ring verifies
             m = best_t.size

@@ -13,8 +13,11 @@ through, in path order, and of the open segments (*gates*) between consecutive p
   visited several times gives each visit its own part, the part of the square on the outer side of the path
   of pixel centres (half a square along a straight stretch, a quarter at an elbow, a half and a quarter at a
   convex corner, two halves at the tip of an arm), so that the parts of different visits are disjoint;
-* ``gauss``: every element uses those outer parts: the polygon must keep every centre of A strictly inside
-  and stay inside V(A), i.e. run between the path of centres and the crack.
+* ``gauss``: the *dual* corridor instead (:mod:`mrm.geometry._dual_kernels`, ADR 0012): the open unit
+  squares whose corners are the four pixel centres around each pointel of the chain, joined by the open
+  segments between the centres on either side of each linel (a quarter of the square for each visit of a
+  pointel met twice). It holds no pixel centre, so the polygon keeps every centre of A strictly inside and
+  every other centre strictly outside, and stays within the voxels of the border pixels.
 
 A ring that enters every piece through its gate and leaves through the next one, with every vertex strictly
 inside a piece, is simple, disjoint from the rings of the other visits, and D(polygon) = A
@@ -31,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from mrm.geometry import _dual_kernels as _dk
 from mrm.geometry import _reconstruct_kernels as _k
 from mrm.reps.region import CrackChain
 
@@ -166,10 +170,13 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
         Every boundary chain of the set (or of one component): visits are counted over all of them, so a
         pixel on two rings (a wall between a hole and the outside) is split between them.
     model : {"standard", "supercover", "gauss"}
-        The cover models share one corridor; ``gauss`` uses the outer parts everywhere.
+        The cover models share one corridor; ``gauss`` uses the dual squares of the crack pointels
+        (:mod:`mrm.geometry._dual_kernels`).
     """
     if not chains:
         return []
+    if model == "gauss":
+        return _dual_corridors(chains)
     eoff, ec, er, edin, edout, enl, _r0off, _r0, _r0e = _elements(chains)
     # Shift to non-negative array indices for the visit counter.
     mx, my = int(ec.min()), int(er.min())
@@ -196,6 +203,36 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
             continue
         rect, pel, gp, gq, gdir, full = _k.build_pieces(a, b, cx, cy, edin, edout, enl, cnt, gauss)
         shift = np.array([4 * mx, 4 * mx, 4 * my, 4 * my], dtype=np.int64)
+        out.append(
+            Corridor(
+                (rect + shift) / 4.0,
+                pel.copy(),
+                (gp + shift[[0, 2]]) / 4.0,
+                (gq + shift[[0, 2]]) / 4.0,
+                gdir.copy(),
+                bool(full[0]),
+            )
+        )
+    return out
+
+
+def _dual_corridors(chains: Sequence[CrackChain]) -> list[Corridor]:
+    # gauss: the dual squares of each chain's pointels (quarters where a pointel is met twice), in plane
+    # coordinates; ``element`` is the pointel's index along the chain.
+    codes, off, sx, sy = _chains_arrays(chains)
+    # pointels of all chains, shifted to non-negative indices for the visit counter
+    pts = [c.points() for c in chains]
+    mx = min(int(p[:, 0].min()) for p in pts)
+    my = min(int(p[:, 1].min()) for p in pts)
+    w = max(int(p[:, 0].max()) for p in pts) - mx
+    h = max(int(p[:, 1].max()) for p in pts) - my
+    eoff, ec, er, edin, edout, _enl, cnt = _dk.dual_elements(codes, off, sx - mx, sy - my, h, w)
+    out = []
+    for k in range(len(chains)):
+        a, b = int(eoff[k]), int(eoff[k + 1])
+        rect, pel, gp, gq, gdir, full, _r0, _r0t = _dk.dual_pieces(a, b, ec, er, edin, edout, cnt)
+        # dual Q-units → plane: pointel (i, j) is (i − ½, j − ½)
+        shift = np.array([4 * mx - 2, 4 * mx - 2, 4 * my - 2, 4 * my - 2], dtype=np.int64)
         out.append(
             Corridor(
                 (rect + shift) / 4.0,

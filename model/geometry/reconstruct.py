@@ -3,28 +3,33 @@
 For every finite pixel set A, :func:`reconstruct` returns a valid shapely Polygon or MultiPolygon (an
 empty Polygon for ∅) with dyadic float64 coordinates such that
 
-1. R(A) ⊂ V(A), its polygons are the 4-connected components of A and its holes the bounded 8-connected
-   components of the complement;
+1. its polygons are the 4-connected components of A and its holes the bounded 8-connected components of
+   the complement; under ``standard`` and ``supercover`` R(A) ⊂ V(A); under ``gauss`` ∂R(A) separates the
+   centres of A from the other centres strictly and stays within the voxels of the border pixels on either
+   side (DESIGN §3 item 2, revised);
 2. D(R(A)) = A exactly for the chosen model; under ``standard`` and ``supercover`` the same polygons serve
    both (∂R(A) crosses between pixels only through open sides shared by two pixels of A, crosses every
    border pixel through its open square and keeps every outside centre out); under ``gauss`` every centre
    of A is strictly inside and every other centre strictly outside;
 3. no vertex or edge sits where a tie rule of the model decides (pixel corners and sides under the cover
    models, pixel centres under ``gauss``), so a rotation by a multiple of 90° about a pixel centre is exact;
-4. R(A + t) = R(A) + t for t ∈ Z², and the same A always gives the same output;
-5. few vertices: about one per greedy digital straight segment of the boundary under the cover models.
+4. R(A + t) = R(A) + t for t ∈ Z² (up to |coordinates| ≤ 2⁴⁰, :data:`COORD_LIMIT`), and the same A always
+   gives the same output;
+5. few vertices: about one per greedy digital straight segment of the boundary, in every model.
 
 How (ALGORITHMS §3.5, "V4"): each crack ring gives a corridor of pieces and gates (:mod:`.border`); the
 reach of one straight line from every piece is computed exactly (arithmetic standard-DSS recognition on
-full pixels, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet
+full pieces, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet
 inside a piece of their overlap, or a two-vertex patch joins them; every vertex is snapped to the coarsest
 dyadic grid that keeps all constraints, and every ring is verified exactly. A failing stretch is replaced
-locally by the safety net (the crack ring offset inward by ¼, :mod:`.safety_net`), never the whole result.
+locally by the safety net of the corridor, never the whole result.
 
-Under ``gauss`` the polygon must stay inside V(A) while keeping the border centres inside: every corner of
-the crack boundary is then the midpoint of two such centres (reflex corners) or cuts one off (convex
-corners), so a vertex is needed near each corner and R has about as many vertices as the staircase — that
-is the price of R(A) ⊂ V(A) under that model, not a fallback.
+The cover models use the border pixels' squares as pieces (:mod:`._reconstruct_kernels`). ``gauss`` uses
+the *dual* corridor (:mod:`._dual_kernels`, ADR 0012): the open unit squares whose corners are the four
+pixel centres around each pointel of the crack ring, joined by the open segments between the centres on
+either side of each linel. It holds no pixel centre, so a ring that follows it winds once around the
+centres of A and never around the others; it is the cover corridor shifted by half a pixel, so the same
+pipeline runs on it, and consecutive lines meet across pixel sides where the cover models could not.
 """
 
 from __future__ import annotations
@@ -38,6 +43,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
+from mrm.geometry import _dual_kernels as _dk
 from mrm.geometry import _reconstruct_kernels as _k
 from mrm.geometry.cracks import trace_mask
 from mrm.reps.pixels import PixelSet
@@ -86,19 +92,27 @@ class _Run:
     win: IntArray
 
 
+#: The finest snapping grid: vertices are origin + k / 2^(K+2) with K <= this (twelve fractional bits).
+#: It does not depend on where A lies, so R(A + t) = R(A) + t exactly (the kernels work relative to A's
+#: own array); on the test images and random sets no vertex needs more (K = 20 gives the same polygons).
+KCAP = 10
+
+#: The largest |pixel coordinate| R accepts: every vertex lies within a pixel of A, so with twelve fractional
+#: bits it is an exact float64 number (|v| · 2¹² < 2⁵³) up to here.
+COORD_LIMIT = 2**40
+
+
 def _scale_cap(ps: PixelSet) -> int:
-    # Output coordinates are origin + k / 2^(K+2): they stay exact float64 numbers (53 bits) when
-    # max |coordinate| * 2^(K+2) < 2^52. K = 2 (sixteenths of a pixel) is the least the pipeline needs.
+    # Refuse, with a message, coordinates where the output could not be written exactly in float64.
     box = ps.bbox
     assert box is not None
-    big = int(max(abs(v) for v in box)) + 2
-    cap = 50 - big.bit_length()
-    if cap < 2:
+    big = int(max(abs(v) for v in box))
+    if big > COORD_LIMIT:
         raise ParameterError(
-            f"pixel coordinates up to {big - 2:,} are too large for an exact reconstruction in float64 "
-            f"(the limit is {2**47:,})"
+            f"pixel coordinates up to {big:,} are too large for an exact reconstruction in float64 "
+            f"(the limit is ±{COORD_LIMIT:,} = ±2^40)"
         )
-    return cap
+    return KCAP
 
 
 def _run(ps: PixelSet, model: str) -> _Run:
@@ -106,9 +120,13 @@ def _run(ps: PixelSet, model: str) -> _Run:
     kcap = _scale_cap(ps)
     rings = trace_mask(m)
     x0, y0 = ps.origin
-    cor = _k.corridors_all(
-        rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], model == "gauss", kcap
-    )
+    gauss = model == "gauss"
+    h, w = m.shape
+    if gauss:
+        # the dual corridor (pointels as pixels, :mod:`._dual_kernels`); the cover pipeline runs on it
+        cor = _dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
+    else:
+        cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, False, kcap)
     (
         eoff,
         ec,
@@ -130,14 +148,14 @@ def _run(ps: PixelSet, model: str) -> _Run:
         special,
         full,
     ) = cor
-    reach, lines = _k.reach_all(
-        eoff, ec, er, cnt, model == "gauss", poff, pel, rect, gp, gq, gdir, special, full
-    )
+    reach, lines = _k.reach_all(eoff, ec, er, cnt, False, poff, pel, rect, gp, gq, gdir, special, full)
     ga = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, True)
     gb = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, False)
     xy, roff, status, src, win = _k.finish_all(
         eoff, ec, er, reach, poff, rect, gp, gq, gdir, kmax, special, r0off, r0, r0t, *ga, *gb, x0, y0
     )
+    if gauss:
+        xy -= 0.5  # dual frame → plane (exact: |coordinates| < 2⁵⁰)
     return _Run(rings, cor, reach, lines, xy, roff, status, src, win)
 
 
@@ -167,7 +185,7 @@ def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon
     Raises
     ------
     ParameterError
-        For an unknown model, or pixel coordinates beyond ±2⁴⁷ (where sixteenths of a pixel are no longer
+        For an unknown model, or pixel coordinates beyond ±2⁴⁰ (where 2⁻¹² of a pixel is no longer
         exact float64 numbers).
     """
     _check_model(model)
@@ -288,14 +306,16 @@ def reconstruct_detailed(ps: PixelSet, model: str = "standard") -> Reconstructio
     poff = run.corridor[10]
     rect = run.corridor[11]
     text = (rings.codes + np.uint8(48)).tobytes().decode("ascii")
-    shift = np.array([4 * x0, 4 * x0, 4 * y0, 4 * y0], dtype=np.int64)
+    # gauss works in the dual frame, half a pixel up and right of the plane
+    d = 2 if model == "gauss" else 0
+    shift = np.array([4 * x0 - d, 4 * x0 - d, 4 * y0 - d, 4 * y0 - d], dtype=np.int64)
     details: list[RingDetail] = []
     for k in range(rings.off.size - 1):
         a, b = int(poff[k]), int(poff[k + 1])
         r0_, r1_ = int(run.roff[k]), int(run.roff[k + 1]) - 1  # without the closing repeat
         lines = run.lines[a:b].copy()
-        lines[:, 0] = lines[:, 0] / 4.0 + x0
-        lines[:, 1] = lines[:, 1] / 4.0 + y0
+        lines[:, 0] = (lines[:, 0] - d) / 4.0 + x0
+        lines[:, 1] = (lines[:, 1] - d) / 4.0 + y0
         chain = CrackChain._trusted(
             (int(rings.sx[k]) + x0, int(rings.sy[k]) + y0), text[int(rings.off[k]) : int(rings.off[k + 1])]
         )

@@ -518,7 +518,12 @@ def _to_plane(ch: _Chain, verts: Sequence[Vertex]) -> FloatArray:
     for k, (x, y, e) in enumerate(verts):
         nx, ny = x + ((2 * ox - 1) << e), y + ((2 * oy - 1) << e)
         if max(abs(nx), abs(ny)) >= 1 << 53:
-            raise AssertionError("a vertex is not a float64 value")
+            # far from the origin a fine dyadic vertex has no exact float64 value: refuse, never round
+            raise ParameterError(
+                f"the label map lies too far from the origin for an exact subdivision in float64: a vertex "
+                f"near ({float(nx) / (1 << (e + 1)):.6g}, {float(ny) / (1 << (e + 1)):.6g}) needs {e + 1} "
+                f"fractional bits; move the label map closer to the origin"
+            )
         out[k, 0], out[k, 1] = nx / (1 << (e + 1)), ny / (1 << (e + 1))
     return out
 

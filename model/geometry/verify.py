@@ -16,7 +16,10 @@ of :mod:`mrm.geometry.border`:
 Pieces of different visits are disjoint, so these conditions make every ring simple and the rings pairwise
 disjoint, keep ∂P inside V(A) crossing between pixels only through open sides shared by two pixels of A,
 make ∂P cross every border pixel and keep every outside centre out (cover models: conditions C1–C3, hence
-D_standard(P) = D_supercover(P) = A), or keep every centre of A strictly inside and P ⊂ V(A) (``gauss``).
+D_standard(P) = D_supercover(P) = A). Under ``gauss`` the corridor is made of the dual squares of the crack
+pointels (:mod:`mrm.geometry._dual_kernels`): it holds no pixel centre, so a ring following it is homotopic to
+its crack ring in the plane minus the centres, every centre of A is strictly inside P, every other centre
+strictly outside, none on ∂P, and ∂P stays within the voxels of the border pixels on either side.
 A pixel with no neighbour in A (its crack ring is its own) only needs its ring inside the open square (and,
 under ``gauss``, around its centre).
 
@@ -26,6 +29,7 @@ may still discretize to A by other means (the report says which condition failed
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -75,14 +79,25 @@ def _scaled(coords: FloatArray, k: int) -> IntArray:
     return np.asarray(np.round(coords * float(2**k)), dtype=np.int64)
 
 
+def _cell_key(x: float, y: float, gauss: bool) -> tuple[int, int]:
+    # The unit cell a point strictly inside a piece belongs to: the pixel (cover models, pieces are parts of
+    # pixel squares) or the dual square [i − 1, i] × [j − 1, j] of a pointel (gauss), keyed by its corner.
+    if gauss:
+        return math.floor(x), math.floor(y)
+    return round(x), round(y)
+
+
 def _locate(
-    coords: FloatArray, cor: list[Corridor], where: dict[tuple[int, int], list[tuple[int, int]]]
+    coords: FloatArray,
+    cor: list[Corridor],
+    where: dict[tuple[int, int], list[tuple[int, int]]],
+    gauss: bool,
 ) -> tuple[int, IntArray] | None:
     # The crack ring holding every vertex strictly inside one of its pieces, and the piece of each vertex.
     ring = -1
     pieces = np.empty(coords.shape[0], dtype=np.int64)
     for i, (x, y) in enumerate(coords.tolist()):
-        px, py = round(x), round(y)
+        px, py = _cell_key(x, y, gauss)
         hit = None
         for r, t in where.get((int(px), int(py)), ()):
             a = cor[r].pieces[t]
@@ -137,7 +152,7 @@ def _check_ring(
         report.fail(f"{label}: fewer than 3 vertices")
         return -1
     for attempt in (coords, coords[::-1]):
-        found = _locate(attempt, cor, where)
+        found = _locate(attempt, cor, where, model == "gauss")
         if found is None:
             continue
         r, t = found
@@ -233,7 +248,7 @@ def verify(geom: Any, ps: PixelSet, model: str = "standard") -> Report:
     where: dict[tuple[int, int], list[tuple[int, int]]] = {}
     for r, c in enumerate(cor):
         for t, a in enumerate(c.pieces.tolist()):
-            key = (round((a[0] + a[1]) / 2), round((a[2] + a[3]) / 2))
+            key = _cell_key((a[0] + a[1]) / 2, (a[2] + a[3]) / 2, model == "gauss")
             where.setdefault(key, []).append((r, t))
     if len(polys) != len(region.components):
         report.fail(f"{len(polys)} polygons for {len(region.components)} 4-connected components")

@@ -17,6 +17,7 @@ from mrm.geometry.verify import verify
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain, region_of
 from mrm.summary import count_vertices
+from tests.oracles.gauss_contract import check_gauss_containment
 
 
 def ps_of(rows: list[str], origin: tuple[int, int] = (0, 0)) -> PixelSet:
@@ -48,7 +49,10 @@ def assert_exact(ps: PixelSet, model: str) -> Polygon | MultiPolygon:
     g = reconstruct(ps, model)
     assert g.is_valid, shapely.is_valid_reason(g)
     assert discretize(g, model) == ps
-    assert discretize(g, "supercover") == ps  # ⊂ V(A)
+    if model == "gauss":
+        check_gauss_containment(g, ps)  # no centre on ∂R, ∂R within the border pixels' voxels
+    else:
+        assert discretize(g, "supercover") == ps  # ⊂ V(A)
     report = verify(g, ps, model)
     assert report.ok, report.problems
     return g
@@ -144,18 +148,20 @@ def test_translation_is_exact_and_output_deterministic() -> None:
 
 
 def test_far_from_the_origin_coordinates_stay_exact() -> None:
+    # DESIGN §3 item 8: translation covariance and exactness up to the accepted limit ±2⁴⁰, refused beyond.
     ps = disk(9.3)
-    g = reconstruct(ps)
-    for t in ((2**26, -(2**26)), (3 * 2**30, 5), (-(2**40), 2**44)):
-        moved = ps.translate(*t)
-        gm = reconstruct(moved)
-        assert discretize(gm, "standard") == moved
-        assert verify(gm, moved).ok
-        if max(abs(v) for v in t) < 2**27:
+    for model in MODELS:
+        g = reconstruct(ps, model)
+        for t in ((2**26, -(2**26)), (3 * 2**30, 5), (-(2**40) + 12, 2**40 - 12), (2**39 + 7, -(2**35))):
+            moved = ps.translate(*t)
+            gm = reconstruct(moved, model)
+            assert discretize(gm, model) == moved
+            assert verify(gm, moved, model).ok
             shift = np.array(t, dtype=float)
             assert np.array_equal(shapely.get_coordinates(gm), shapely.get_coordinates(g) + shift)
-    with pytest.raises(ParameterError, match="too large"):
-        reconstruct(ps.translate(2**48, 0))
+    for t in ((2**40 + 1, 0), (0, -(2**40) - 5), (2**48, 0)):
+        with pytest.raises(ParameterError, match="too large"):
+            reconstruct(ps.translate(*t))
 
 
 def test_coordinates_are_coarse_dyadic_rationals() -> None:
@@ -445,11 +451,15 @@ def test_cli_reconstruct_bad_input_is_a_clear_error(capsys, tmp_path, monkeypatc
 
 
 def _corridor_arrays(ps: PixelSet, gauss: bool) -> tuple:
+    # gauss: the dual corridor (dual squares of the crack pointels), in the dual frame
+    from mrm.geometry import _dual_kernels as dk
     from mrm.geometry import _reconstruct_kernels as k
     from mrm.geometry.cracks import trace_mask
 
     m = np.ascontiguousarray(ps.mask.view(np.uint8))
     rings = trace_mask(m)
+    if gauss:
+        return dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], 20)
     return k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], gauss, 20)
 
 
@@ -536,7 +546,8 @@ def test_exact_preimage_reach_against_a_fraction_linear_program() -> None:
 
 @pytest.mark.parametrize("gauss", [False, True])
 def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
-    # Cover models on whole pixels: the O(n) standard DSS reach; gauss: the DSS of half-pixel cells.
+    # On whole squares (pixels under the cover models, dual squares of pointels under gauss) the O(n)
+    # standard DSS reach equals the exact preimage's.
     from mrm.geometry import _reconstruct_kernels as k
 
     rng = np.random.default_rng(9)
@@ -546,7 +557,7 @@ def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
     for ps in sets:
         cor = _corridor_arrays(ps, gauss)
         eoff, ec, er = cor[0], cor[1], cor[2]
-        poff, rect, gp, gq, gdir = cor[10], cor[11], cor[13], cor[14], cor[15]
+        poff, gp, gq, gdir = cor[10], cor[13], cor[14], cor[15]
         special, full = cor[17], cor[18]
         for r in range(poff.size - 1):
             a, b = int(poff[r]), int(poff[r + 1])
@@ -556,9 +567,7 @@ def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
             exact = np.zeros(n, np.int64)
             fast = np.zeros(n, np.int64)
             k.general_reach(gp[a:b], gq[a:b], gdir[a:b], np.ones(n, bool), exact, np.zeros((n, 4)))
-            if gauss:
-                assert k.cell_reach(rect[a:b], gp[a:b], gq[a:b], fast, np.zeros((n, 4)))
-            elif full[r]:
+            if full[r]:
                 k.dss_reach(int(eoff[r]), ec, er, n, fast, np.zeros((n, 4)))
             else:
                 continue
@@ -606,6 +615,10 @@ def test_a_box_of_pixels_is_an_axis_aligned_rectangle(box: tuple[int, int, int, 
     e = _edges(g)
     assert np.all((e[:, 0] == 0) != (e[:, 1] == 0))  # every edge horizontal or vertical
     xmin, ymin, xmax, ymax = box
+    if model == "gauss":
+        # halfway between the border centres inside and outside: the pixel sides, V(A) itself
+        assert g.bounds == (xmin - 0.5, ymin - 0.5, xmax + 0.5, ymax + 0.5)
+        return
     assert xmin - 0.5 < g.bounds[0] and g.bounds[2] < xmax + 0.5  # ... inside the pixels
     assert ymin - 0.5 < g.bounds[1] and g.bounds[3] < ymax + 0.5
 
@@ -675,3 +688,25 @@ def test_simplest_line_is_the_simplest_direction_crossing_the_gates() -> None:
                                         assert lo2 >= hi2, ((u, v), (dx, dy), window)
                         checked += 1
     assert checked > 100
+
+
+def test_cli_reconstruct_writes_one_feature_per_component(capsys, tmp_path) -> None:
+    import json
+
+    from shapely.geometry import shape
+
+    from mrm.io.pixel_files import write_pixels
+
+    ps = ps_of(CASES["checker"], (3, 4)) | (disk(5.2) - disk(1.5)).translate(30, 0)
+    write_pixels(ps, tmp_path / "a.png")
+    region = region_of(ps)
+    for model in MODELS:
+        out = tmp_path / f"{model}.geojson"
+        code, _text, err = mrm(
+            capsys, "reconstruct", tmp_path / "a.png", "-o", out, "--model", model, "--features", "components"
+        )
+        assert code == 0, err
+        feats = json.loads(out.read_text(encoding="utf-8"))["features"]
+        assert [f["properties"]["part"] for f in feats] == list(range(region.n_components))
+        for f, comp in zip(feats, region.components, strict=True):
+            assert discretize(shape(f["geometry"]), model) == region.labels.pixel_set(comp.label)

@@ -1,7 +1,8 @@
 """R on real images: the horse silhouette and Otsu-thresholded camera, coins and text (scikit-image data).
 
 Each image is reconstructed under the three models and checked exactly: valid geometry, D(R(A)) = A,
-R(A) ⊂ V(A) (through the supercover), the (4, 8) topology, the exact corridor verifier, translation
+R(A) ⊂ V(A) for the cover models (through the supercover) and, under ``gauss``, no centre on ∂R(A) and
+∂R(A) within the border pixels' voxels; the (4, 8) topology, the exact corridor verifier, translation
 covariance, and the vertex counts that make R worth having (DESIGN §3, item 7).
 """
 
@@ -24,6 +25,7 @@ from mrm.geometry.verify import verify
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from mrm.summary import count_vertices
+from tests.oracles.gauss_contract import check_gauss_containment
 
 
 def _otsu(img: np.ndarray) -> np.ndarray:
@@ -55,7 +57,10 @@ def test_images_are_reconstructed_exactly(name: str, model: str) -> None:
     g = reconstruct(ps, model)
     assert g.is_valid
     assert discretize(g, model) == ps
-    assert discretize(g, "supercover") == ps
+    if model == "gauss":
+        check_gauss_containment(g, ps)
+    else:
+        assert discretize(g, "supercover") == ps
     region = region_of(ps)
     polys = list(g.geoms) if isinstance(g, MultiPolygon) else [g]
     assert len(polys) == region.n_components
@@ -68,11 +73,11 @@ def test_images_are_reconstructed_exactly(name: str, model: str) -> None:
 
 
 def test_horse_needs_about_one_vertex_per_greedy_segment() -> None:
-    # For scale (the brief): greedy 158 segments, MLP 313 vertices, potrace's polygon 302 (188 pixels wrong
-    # under gauss), approxPolyDP 472.
+    # For scale (the brief): greedy 158 segments, MLP 313 vertices, potrace's polygon 151 corners (188 pixels
+    # wrong under gauss), approxPolyDP 472.
     ps = image("horse")
     greedy = greedy_count(ps)
-    for model in ("standard", "supercover"):
+    for model in MODELS:
         d = reconstruct_detailed(ps, model)
         assert d.n_fallback == 0
         assert count_vertices(d.geometry) <= 1.15 * greedy
@@ -89,13 +94,14 @@ def test_noisy_images_stay_far_below_the_safety_net(name: str) -> None:
     assert all(r.vertices.shape[0] <= 8 for r in whole)
 
 
-def test_gauss_costs_about_one_vertex_per_crack_corner() -> None:
-    # Under gauss R(A) ⊂ V(A) must keep the border centres inside: each corner of the crack boundary needs a
-    # vertex nearby (a reflex corner is the midpoint of two such centres), so R matches the staircase count.
-    ps = image("horse")
-    corners = 0
-    for ch in region_of(ps).boundary_chains:
-        c = ch.code_array()
-        corners += int(np.count_nonzero(c != np.roll(c, 1)))
-    n = count_vertices(reconstruct(ps, "gauss"))
-    assert 0.9 * corners <= n <= corners
+def test_gauss_is_far_below_the_staircase() -> None:
+    # DESIGN §3 item 2 (revised): the gauss boundary may leave V(A) between the border centres, so it no
+    # longer needs a vertex near every corner of the crack boundary (it had 1,174 of the 1,180 before).
+    for name in IMAGES:
+        ps = image(name)
+        corners = 0
+        for ch in region_of(ps).boundary_chains:
+            c = ch.code_array()
+            corners += int(np.count_nonzero(c != np.roll(c, 1)))
+        n = count_vertices(reconstruct(ps, "gauss"))
+        assert n <= 0.6 * corners, (name, n, corners)

@@ -549,3 +549,16 @@ def test_the_checker_catches_independent_reconstructions_and_moved_vertices() ->
     moved[1] = shapely.transform(parts[1], nudge)
     with pytest.raises(AssertionError):
         check_subdivision(lm, moved)
+
+
+def test_a_vertex_without_an_exact_float64_value_is_refused_with_a_message() -> None:
+    # Far from the origin a fine dyadic vertex cannot be written in float64: a ParameterError that says
+    # so (the audit found an AssertionError from `mrm corefine --model gauss` at x = 2^45).
+    from mrm.errors import ParameterError
+    from mrm.geometry.subdivision import _Chain, _to_plane
+
+    pts = np.array([[2**45, 0], [2**45 + 1, 0], [2**45 + 2, 0]], dtype=np.int64)
+    ch = _Chain(pts, closed=False)
+    assert _to_plane(ch, [(1, 1, 0)]).tolist() == [[2**45, 0.0]]  # (Q - 1) / 2 of the origin pointel
+    with pytest.raises(ParameterError, match="too far from the origin"):
+        _to_plane(ch, [(1, 1, 12)])  # 13 fractional bits at 2^45: 58 bits
