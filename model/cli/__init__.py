@@ -86,6 +86,10 @@ def _json_default(o: Any) -> Any:
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
+#: Subcommands that never call a compiled kernel (no first-run notice for them).
+NO_KERNELS = frozenset({"bounds"})
+
+
 def run_cli(argv: list[str]) -> int:
     """Parse ``argv`` (without the program name), run the subcommand, return the exit status."""
     parser = build_parser()
@@ -93,6 +97,10 @@ def run_cli(argv: list[str]) -> int:
     if getattr(args, "_module", None) is None:
         parser.print_help()
         return 2
+    if args.command not in NO_KERNELS:
+        from mrm.warmup import announce_if_cold
+
+        announce_if_cold()  # one line before numba compiles for a minute on a fresh install
     try:
         summary = args._module.run(args)
     except MRMError as e:
