@@ -47,6 +47,22 @@ def describe_error(e: BaseException) -> str:
     return str(e)
 
 
+def is_bundled(path: str | os.PathLike[str]) -> bool:
+    """True for a path inside the application's own resources (the bundled examples)."""
+    from mrm.app.gui import RESOURCES
+
+    try:
+        return Path(path).resolve().is_relative_to(RESOURCES.resolve())
+    except OSError:
+        return False
+
+
+def user_documents() -> str:
+    """The user's documents folder (XDG ``Documents``) when it exists, else the home folder."""
+    docs = QtCore.QStandardPaths.writableLocation(QtCore.QStandardPaths.StandardLocation.DocumentsLocation)
+    return docs if docs and Path(docs).is_dir() else str(Path.home())
+
+
 class FileController(QtCore.QObject):
     """The window's file commands; dialogs are shown only when no path is given."""
 
@@ -109,7 +125,18 @@ class FileController(QtCore.QObject):
 
     def _directory(self) -> str:
         d = self.prefs.last_directory
-        return d if Path(d).is_dir() else str(Path.home())
+        return d if Path(d).is_dir() and not is_bundled(d) else user_documents()
+
+    def _save_start(self, name: str) -> str:
+        """Where a save dialog starts: beside the project, or in the user's documents for an example.
+
+        A bundled example lives inside the installation: the user's work does not belong there.
+        """
+        p = self.doc.path
+        if p is not None and not is_bundled(p):
+            return str(p)
+        stem = Path(p).stem if p is not None else name
+        return str(Path(self._directory()) / f"{stem}.mrm")
 
     # ------------------------------------------------------------------ new / open
     def new(self) -> bool:
@@ -208,7 +235,7 @@ class FileController(QtCore.QObject):
 
     def save_as(self, path: str | os.PathLike[str] | None = None) -> bool:
         if path is None:
-            start = str(self.doc.path) if self.doc.path else str(Path(self._directory()) / "untitled.mrm")
+            start = self._save_start("untitled")
             fn, _ = QtWidgets.QFileDialog.getSaveFileName(
                 self.win, "Save project", start, "MR Modeler projects (*.mrm)"
             )
@@ -348,7 +375,8 @@ class FileController(QtCore.QObject):
             elif ext == ".svg":
                 from mrm.io.vector_files import write_svg
 
-                write_svg(entry.get("euclidean"), p)
+                style = self.doc.get(obj_id).style
+                write_svg(entry.get("euclidean"), p, colour=style.fill[:7], opacity=style.opacity)
             elif ext in (".geojson", ".json"):
                 from mrm.io.vector_files import write_geojson
 

@@ -19,7 +19,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         self.setObjectName("preferencesDialog")
         self.setWindowTitle("Preferences")
         self.prefs = prefs
-        self.actions = actions
+        self.registry = actions
         tabs = QtWidgets.QTabWidget(self)
         tabs.addTab(self._general(), "General")
         tabs.addTab(self._appearance(), "Appearance")
@@ -98,7 +98,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         lay = QtWidgets.QVBoxLayout(w)
         self.table = QtWidgets.QTableWidget(w)
         self.table.setObjectName("shortcutTable")
-        ids = self.actions.ids()
+        ids = self.registry.ids()
         self.table.setColumnCount(2)
         self.table.setRowCount(len(ids))
         self.table.setHorizontalHeaderLabels(["Command", "Shortcut"])
@@ -106,7 +106,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         self.table.horizontalHeader().setSectionResizeMode(0, QtWidgets.QHeaderView.ResizeMode.Stretch)
         self.editors: dict[str, QtWidgets.QKeySequenceEdit] = {}
         for r, aid in enumerate(ids):
-            a = self.actions[aid]
+            a = self.registry[aid]
             item = QtWidgets.QTableWidgetItem(a.text().replace("&", ""))
             item.setToolTip(aid)
             item.setFlags(QtCore.Qt.ItemFlag.ItemIsEnabled)
@@ -133,7 +133,7 @@ class PreferencesDialog(QtWidgets.QDialog):
 
     def _reset_shortcuts(self) -> None:
         for aid, ed in self.editors.items():
-            ed.setKeySequence(QtGui.QKeySequence(self.actions.default_shortcut(aid)))
+            ed.setKeySequence(QtGui.QKeySequence(self.registry.default_shortcut(aid)))
 
     def accept(self) -> None:
         p = self.prefs
@@ -147,7 +147,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         overrides = {}
         for aid, ed in self.editors.items():
             text = ed.keySequence().toString(QtGui.QKeySequence.SequenceFormat.PortableText)
-            if text != self.actions.default_shortcut(aid):
+            if text != self.registry.default_shortcut(aid):
                 overrides[aid] = text
         p.set_shortcut_overrides(overrides)
         theme_controller().set_preference(p.theme)

@@ -183,6 +183,16 @@ class Preferences(QtCore.QObject):
     def brush_shape(self, v: str) -> None:
         self._set("tools/brush_shape", v)
 
+    # ------------------------------------------------------------------ operations
+    @property
+    def live_preview(self) -> bool:
+        """Whether the Operations panel previews its result while parameters change (off by default)."""
+        return bool(self._get("operations/live_preview", False, bool))
+
+    @live_preview.setter
+    def live_preview(self, v: bool) -> None:
+        self._set("operations/live_preview", bool(v))
+
     # ------------------------------------------------------------------ shortcuts
     def shortcut_overrides(self) -> dict[str, str]:
         """User-defined shortcuts by action id ('' = none)."""

@@ -42,6 +42,9 @@ class RepresentationView(QtWidgets.QFrame):
     subtitle = ""
     #: The representation the view draws (used for error and "computing" messages).
     rep: Rep = "discrete"
+    #: Whether the view draws previewed results (ghosts); the region and analytical views colour each
+    #: component or segment, which would make a ghost look like an object, so they do not.
+    shows_ghosts = False
 
     #: Emitted after each refresh (tests and the screenshot wait for it).
     refreshed = QtCore.Signal()
@@ -120,7 +123,7 @@ class RepresentationView(QtWidgets.QFrame):
         """Bring the layers of dirty objects up to date with the scene."""
         self._timer.stop()
         doc = self.scene.doc
-        objects = self.scene.objects()
+        objects = tuple(o for o in self.scene.objects() if self.shows_ghosts or not isinstance(o, Phantom))
         present = {o.id for o in objects}
         for i in [i for i in self._layers if i not in present]:
             self._remove_layer(i)

@@ -33,6 +33,8 @@ class DiscreteView(RepresentationView):
     _stroke_item: MaskItem | None = None
     _stroke_obj: int | None = None
 
+    shows_ghosts = True
+
     def make_layer(self, obj_id: int) -> Layer:
         return DiscreteLayer(obj_id)
 

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-from PySide6 import QtGui
+from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import qcolor
 from mrm.views.items import MarkersItem, PathItem, geometry_path, polygon_rings
+from mrm.views.scene import Phantom
 
 
 class EuclideanLayer(Layer):
@@ -38,6 +39,8 @@ class EuclideanView(RepresentationView):
     subtitle = "polygons"
     rep = "euclidean"
 
+    shows_ghosts = True
+
     def make_layer(self, obj_id: int) -> Layer:
         return EuclideanLayer(obj_id)
 
@@ -55,7 +58,13 @@ class EuclideanView(RepresentationView):
         stroke = (
             qcolor(obj.style.fill).darker(160) if not self.is_dark() else qcolor(obj.style.fill).lighter(140)
         )
-        layer.polygon.set_style(fill, stroke, obj.style.stroke_width + (0.8 if selected else 0.0))
+        ghost = isinstance(obj, Phantom)
+        layer.polygon.set_style(
+            fill,
+            stroke,
+            obj.style.stroke_width + (0.8 if selected else 0.0),
+            QtCore.Qt.PenStyle.DashLine if ghost else None,
+        )
         if selected:
             layer.handles.set_points(layer.vertices)
             dark = self.is_dark()
