@@ -18,14 +18,16 @@ from PySide6 import QtCore, QtGui
 
 from mrm.commands import (
     AddObject,
+    DeleteComponent,
     DeleteVertex,
+    FillHole,
     InsertVertex,
     MoveVertex,
     PaintPixels,
     SetSource,
 )
 from mrm.document import DocObject, Style
-from mrm.errors import MRMError
+from mrm.errors import MRMError, ParameterError
 from mrm.reps.pixels import PixelSet
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
@@ -843,33 +845,24 @@ class FillHoleTool(_ClickPixelTool):
     def click(self, px: tuple[int, int]) -> None:
         doc = self.scene.doc
         cands = [o for o in ([self.scene.primary(), *list(reversed(doc.objects))]) if o is not None]
+        tried: set[int] = set()  # the selected object first, then top to bottom, each once
         for obj in cands:
-            ps = self.scene.get(obj.id, "discrete")
-            if ps is None or not obj.style.visible:
+            if obj.id in tried:
                 continue
-            hole = hole_pixels_at(ps, px)
-            if hole is not None:
-                cmd = PaintPixels(obj.id, hole, True)
-                cmd.label = "Fill hole"
-                if self.host.push(cmd):
-                    doc.set_selection([obj.id])
-                return
+            tried.add(obj.id)
+            ps = self.scene.get(obj.id, "discrete")
+            b = ps.bbox if ps is not None else None
+            if b is None or not obj.style.visible or px in ps:
+                continue
+            if not (b[0] < px[0] < b[2] and b[1] < px[1] < b[3]):
+                continue  # outside the object's box: in no hole of it
+            try:
+                doc.push(FillHole(obj.id, px))  # the model's command finds the hole (DESIGN §4)
+            except ParameterError:
+                continue  # not in a hole of this object: try the next one
+            doc.set_selection([obj.id])
+            return
         self.host.message.emit("no hole there", 2500)
-
-
-def hole_pixels_at(ps: PixelSet, px: tuple[int, int]) -> PixelSet | None:
-    """The hole of ``ps`` holding pixel ``px``: its bounded 8-connected component of the complement."""
-    b = ps.bbox
-    if b is None or px in ps or not (b[0] < px[0] < b[2] and b[1] < px[1] < b[3]):
-        return None
-    from mrm.geometry.labeling import label
-
-    outside = np.pad(~ps.mask, 1, constant_values=True)
-    lab, _n = label(outside, connectivity=8)
-    k = lab[px[1] - b[1] + 1, px[0] - b[0] + 1]
-    if k == 0 or k == lab[0, 0]:
-        return None  # the unbounded background
-    return PixelSet(lab[1:-1, 1:-1] == k, (b[0], b[1]))
 
 
 class DeleteComponentTool(_ClickPixelTool):
@@ -878,14 +871,10 @@ class DeleteComponentTool(_ClickPixelTool):
 
     def click(self, px: tuple[int, int]) -> None:
         obj = self.object_at(px[0], px[1])
-        region = self.scene.get(obj.id, "region") if obj is not None else None
-        comp = region.component_of(*px) if region is not None else None
-        if obj is None or comp is None:
+        if obj is None:
             self.host.message.emit("no component there", 2500)
             return
-        cmd = PaintPixels(obj.id, region.labels.pixel_set(comp.label), False)
-        cmd.label = "Delete component"
-        self.host.push(cmd)
+        self.host.push(DeleteComponent(obj.id, px))
 
 
 def make_tools(host: ToolHost) -> dict[str, Tool]:

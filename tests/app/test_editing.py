@@ -254,6 +254,9 @@ def test_fill_hole_and_delete_component_by_clicking(make_window, qtbot):
     ps = win.doc.get(obj.id).source
     assert all(p in ps for p in [(2, 2), (3, 1), (3, 2), (3, 3)])
     assert win.doc.history.undo_label() == "Fill hole"
+    from mrm.commands import DeleteComponent, FillHole
+
+    assert isinstance(win.doc.history._steps[win.doc.history.index - 1], FillHole)  # the model's command
     assert win.doc.derived(obj.id).get("region").n_holes == 0
     click(qtbot, win.views.region, 20, 20)  # not a hole: nothing happens
     assert "no hole" in win.statusBar().currentMessage()
@@ -261,6 +264,7 @@ def test_fill_hole_and_delete_component_by_clicking(make_window, qtbot):
     click(qtbot, win.views.region, 9, 6)
     ps = win.doc.get(obj.id).source
     assert (9, 6) not in ps and (0, 0) in ps
+    assert isinstance(win.doc.history._steps[win.doc.history.index - 1], DeleteComponent)
     assert win.doc.derived(obj.id).get("region").n_components == 1
     wait_drawn(qtbot, win)
     assert is_background(win.views.discrete, colour_at(win.views.discrete, 9, 6))
