@@ -160,6 +160,13 @@ class AnalyticalView(RepresentationView):
             self.plane.vb.addItem(it, ignoreBounds=True)
         scene.segmentSelected.connect(lambda *_a: self.after_refresh())
 
+    legend = (
+        "<span style='color:#4e79a7'>━</span><span style='color:#e15759'>━</span> consecutive segments "
+        "alternate colours · □ segment ends (selected object) · "
+        "<span style='color:#ffb000'>━</span> chosen segment · ━ its line · "
+        "<span style='color:#9467bd'>╍</span> preimage bounds"
+    )
+
     def make_layer(self, obj_id: int) -> Layer:
         return AnalyticalLayer(obj_id)
 
@@ -200,6 +207,7 @@ class AnalyticalView(RepresentationView):
             )
         line = QtGui.QColor("#f0f0f0") if dark else QtGui.QColor("#202020")
         layer.ends.set_colours(line, QtGui.QColor("#ffffff") if not dark else QtGui.QColor("#303030"))
+        layer.ends.setVisible(selected)  # segment ends of the selected object only (not a black mass)
         layer.key = key
         return True
 

@@ -45,6 +45,8 @@ class RepresentationView(QtWidgets.QFrame):
     #: Whether the view draws previewed results (ghosts); the region and analytical views colour each
     #: component or segment, which would make a ghost look like an object, so they do not.
     shows_ghosts = False
+    #: What the marks mean, shown under the plane (rich text, one line that wraps).
+    legend = ""
 
     #: Emitted after each refresh (tests and the screenshot wait for it).
     refreshed = QtCore.Signal()
@@ -80,6 +82,15 @@ class RepresentationView(QtWidgets.QFrame):
         lay.addWidget(self.header)
         self.plane = PlaneView(self.name, self)
         lay.addWidget(self.plane, 1)
+        self.legend_label = QtWidgets.QLabel(self.legend, self)
+        self.legend_label.setObjectName("viewLegend")
+        self.legend_label.setWordWrap(True)
+        self.legend_label.setTextFormat(QtCore.Qt.TextFormat.RichText)
+        self.legend_label.setContentsMargins(8, 1, 6, 2)
+        policy = QtWidgets.QSizePolicy.Policy
+        self.legend_label.setSizePolicy(policy.Ignored, policy.Fixed)
+        self.legend_label.setVisible(bool(self.legend))
+        lay.addWidget(self.legend_label)
         self._layers: dict[int, Layer] = {}
         self._dirty: set[int] = set()
         self._all_dirty = True
@@ -195,6 +206,8 @@ class RepresentationView(QtWidgets.QFrame):
         pal = self.palette()
         mid = pal.color(QtGui.QPalette.ColorRole.PlaceholderText).name()
         self.subtitle_label.setStyleSheet(f"color: {mid};")
+        if hasattr(self, "legend_label"):
+            self.legend_label.setStyleSheet(f"color: {mid}; font-size: 8pt;")
         self.status_label.setStyleSheet(f"color: {mid};")
 
     def changeEvent(self, ev: QtCore.QEvent) -> None:

@@ -34,6 +34,10 @@ class DiscreteView(RepresentationView):
     _stroke_obj: int | None = None
 
     shows_ghosts = True
+    legend = (
+        "■ pixels in the object's colour · ▭ outline of the selected object · "
+        "<span style='color:#9a9a9a'>■</span> grey: operation preview (not an object)"
+    )
 
     def make_layer(self, obj_id: int) -> Layer:
         return DiscreteLayer(obj_id)

@@ -40,6 +40,10 @@ class EuclideanView(RepresentationView):
     rep = "euclidean"
 
     shows_ghosts = True
+    legend = (
+        "polygons in the object's colour · □ vertices of the selected object · "
+        "<span style='color:#9a9a9a'>╍</span> grey dashed: operation preview (not an object)"
+    )
 
     def make_layer(self, obj_id: int) -> Layer:
         return EuclideanLayer(obj_id)

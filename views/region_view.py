@@ -59,6 +59,12 @@ def junctions(chains: list[Any]) -> np.ndarray:
     return uniq[counts > 1].astype(float) - 0.5
 
 
+def colour_distance(a: str, b: str) -> float:
+    """Euclidean distance of two ``#rrggbb`` colours in RGB (0 … 441)."""
+    ca, cb = qcolor(a), qcolor(b)
+    return float(np.sqrt(sum((x - y) ** 2 for x, y in zip(ca.getRgb()[:3], cb.getRgb()[:3], strict=True))))
+
+
 class RegionLayer(Layer):
     def __init__(self, obj_id: int) -> None:
         super().__init__(obj_id)
@@ -88,8 +94,17 @@ class RegionView(RepresentationView):
     def make_layer(self, obj_id: int) -> Layer:
         return RegionLayer(obj_id)
 
+    legend = (
+        "<span style='color:#4e79a7'>■</span><span style='color:#f28e2b'>■</span>"
+        "<span style='color:#59a14f'>■</span> one colour per component · "
+        "<span style='color:#969696'>■</span> hole · ━ outer boundary · ╍ hole boundary · "
+        "<span style='color:#e15759'>●</span> junction (selected object)"
+    )
+
     def component_lut(self, fill: str, alpha: int) -> np.ndarray:
-        cols = [fill, *[c for c in COMPONENT_COLOURS if c.lower() != fill.lower()]]
+        # The object's colour first, then the palette without the colours close to it (a blue object's
+        # second component must not be another blue).
+        cols = [fill, *[c for c in COMPONENT_COLOURS if colour_distance(c, fill) > 60]]
         lut = np.zeros((256, 4), dtype=np.uint8)
         for k in range(1, 256):
             lut[k] = [*list(qcolor(cols[(k - 1) % len(cols)]).getRgb()[:3]), alpha]
@@ -126,5 +141,6 @@ class RegionView(RepresentationView):
         layer.outer.set_style(None, line, width)
         layer.inner.set_style(None, line, width, QtCore.Qt.PenStyle.DashLine)
         layer.junctions.set_colours(line, QtGui.QColor("#e15759"))
+        layer.junctions.setVisible(selected)  # only the selected object's: many objects' dots are a blur
         layer.key = key
         return True

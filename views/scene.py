@@ -84,8 +84,12 @@ class Scene(QtCore.QObject):
         for i in changes.removed:
             self._previews.pop(i, None)
         self._errors = {k: v for k, v in self._errors.items() if self.has(k[0])}
-        if self.segment[0] != -1 and (self.segment[0] not in self.doc or self.segment[0] in changes.changed):
-            self.select_segment(-1, -1, -1)
+        if self.segment[0] != -1 and (
+            self.segment[0] not in self.doc
+            or self.segment[0] in changes.changed
+            or (changes.selection and self.segment[0] not in self.doc.selection)
+        ):
+            self.select_segment(-1, -1, -1)  # the chosen segment's line belongs to the selected object
         self.documentChanged.emit(changes)
 
     def objects(self) -> tuple[DocObject | Phantom, ...]:
