@@ -96,7 +96,7 @@ def test_region_components_get_clearly_different_colours(make_window, qtbot):
     win.doc.push(AddObject(obj, select=True))
     wait_drawn(qtbot, win)
     lut = win.views.region.layer(obj.id).components._lut
-    colours = ["#%02x%02x%02x" % tuple(int(c) for c in lut[k][:3]) for k in range(1, 6)]
+    colours = ["#" + "".join(f"{int(c):02x}" for c in lut[k][:3]) for k in range(1, 6)]
     for i in range(5):
         for j in range(i + 1, 5):
             assert colour_distance(colours[i], colours[j]) > 60, colours  # not two blues (≈ 12 apart)
