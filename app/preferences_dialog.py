@@ -8,6 +8,9 @@ from mrm.app.actions import ActionRegistry
 from mrm.app.application import theme_controller
 from mrm.app.settings import MODELS, Preferences
 
+#: The entry the pixel-limit message points at (File ▸ Preferences ▸ General).
+PIXEL_LIMIT_LABEL = "Largest operation result"
+
 
 class PreferencesDialog(QtWidgets.QDialog):
     """Edits :class:`Preferences`; changes apply on OK."""
@@ -65,6 +68,19 @@ class PreferencesDialog(QtWidgets.QDialog):
         self.autosave.setSpecialValueText("off")
         self.autosave.setValue(self.prefs.autosave_seconds)
         f.addRow("Autosave unsaved work every", self.autosave)
+        self.pixel_limit = QtWidgets.QDoubleSpinBox(w)
+        self.pixel_limit.setObjectName("prefPixelLimit")
+        self.pixel_limit.setDecimals(0)
+        self.pixel_limit.setRange(1_000, 10_000_000_000)
+        self.pixel_limit.setSingleStep(10_000_000)
+        self.pixel_limit.setGroupSeparatorShown(True)
+        self.pixel_limit.setSuffix(" pixels")
+        self.pixel_limit.setValue(self.prefs.pixel_limit)
+        self.pixel_limit.setToolTip(
+            "An operation whose result would be larger is refused before it runs (memory: about one byte "
+            "per pixel for each representation)"
+        )
+        f.addRow(PIXEL_LIMIT_LABEL, self.pixel_limit)
         return w
 
     def _appearance(self) -> QtWidgets.QWidget:
@@ -141,6 +157,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         p.brush_size = self.brush.value()
         p.brush_shape = self.brush_shape.currentText()
         p.autosave_seconds = self.autosave.value()
+        p.pixel_limit = int(self.pixel_limit.value())
         p.theme = self.theme.currentText()
         p.pixel_grid_threshold = self.grid.value()
         p.set_object_colours([str(b.property("colour")) for b in self.colour_buttons])

@@ -230,13 +230,25 @@ class _StagingDocument:
 
 
 def stage_apply(
-    objects: Mapping[int, Any], model: str, operation: str, ids: Sequence[int], params: Any, progress: Any
+    objects: Mapping[int, Any],
+    model: str,
+    operation: str,
+    ids: Sequence[int],
+    params: Any,
+    progress: Any,
+    limit: int | None = None,
 ) -> tuple[str, list[StagedObject]]:
-    """Run :func:`mrm.ops.apply.apply_operation` on a snapshot of the inputs; (undo label, results)."""
+    """Run :func:`mrm.ops.apply.apply_operation` on a snapshot of the inputs; (undo label, results).
+
+    ``limit`` is the largest result in pixels (the preference; the model's default when None).
+    """
+    from mrm.errors import DEFAULT_PIXEL_LIMIT
     from mrm.ops.apply import apply_operation
 
     staging = _StagingDocument(objects, model)
-    apply_operation(staging, operation, ids, params, progress)
+    apply_operation(
+        staging, operation, ids, params, progress, limit=DEFAULT_PIXEL_LIMIT if limit is None else limit
+    )
     return staging.label, staging.staged
 
 

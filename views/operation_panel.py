@@ -15,7 +15,7 @@ from typing import Any
 from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import ApplyResults
-from mrm.errors import MRMError
+from mrm.errors import MRMError, SizeLimitError
 from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations, stage_apply
 from mrm.views.scene import Scene
 
@@ -608,6 +608,7 @@ class OperationPanel(QtWidgets.QWidget):
         doc = self.scene.doc
         inputs = {i: doc.get(i) for i in ids}  # immutable snapshot read by the worker
         model = doc.model
+        limit = self._prefs.pixel_limit if self._prefs is not None else None
         self.apply_button.setEnabled(False)
         self.cancel_button.setEnabled(True)
         self.status.setText(f"running {op.title}…")
@@ -666,7 +667,15 @@ class OperationPanel(QtWidgets.QWidget):
             self._finished()
             if not isinstance(exc, MRMError):
                 raise exc
-            self.status.setText(f"<span style='color:#c0392b'>{op.title}: {exc}</span>")
+            text = str(exc)
+            if isinstance(exc, SizeLimitError):
+                from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
+
+                text = text.replace(
+                    "raise the limit",
+                    f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
+                )
+            self.status.setText(f"<span style='color:#c0392b'>{op.title}: {text}</span>")
 
         def cancelled() -> None:
             self._finished()
@@ -674,7 +683,7 @@ class OperationPanel(QtWidgets.QWidget):
 
         self.runner.submit(
             "operation",
-            lambda progress: stage_apply(inputs, model, op.name, ids, params, progress),
+            lambda progress: stage_apply(inputs, model, op.name, ids, params, progress, limit),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 import shapely
-from PySide6 import QtCore, QtGui
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.commands import (
     AddObject,
@@ -350,17 +350,66 @@ class PolygonTool(Tool):
             self.host.error.emit("a polygon needs at least 3 vertices")
             return
         ring = np.asarray(pts, dtype=float)
-        doc = self.scene.doc
         try:
             if self.hole:
                 self._add_hole(ring)
                 return
             geom = ge.new_polygon(ring)
         except MRMError as e:
-            self.host.error.emit(f"polygon refused: {e}")
+            if not shapely.Polygon(ring).is_valid and len(pts) >= 3:
+                self.offer_repair(pts)  # a self-crossing outline: repair it or keep editing, never lose it
+            else:
+                self.host.error.emit(f"polygon refused: {e}")
             return
+        self._add(geom)
+
+    def _add(self, geom: shapely.Geometry) -> None:
+        doc = self.scene.doc
         obj = doc.make_object(geom, name=f"Polygon {next(self.counter)}", style=self.host.new_style())
         self.host.push(AddObject(obj, select=True))
+
+    def offer_repair(self, pts: list[tuple[float, float]]) -> QtWidgets.QMessageBox:
+        """Ask whether to repair a self-crossing outline (shapely ``make_valid``) or go on editing it.
+
+        The box is window-modal but does not block the caller; ``self.repair_box`` is the open one.
+        """
+        repaired = repair_polygon(np.asarray(pts, dtype=float))
+        parent = self.host.parent() if isinstance(self.host.parent(), QtWidgets.QWidget) else None
+        box = QtWidgets.QMessageBox(parent)
+        box.setObjectName("repairPolygon")
+        box.setIcon(QtWidgets.QMessageBox.Icon.Question)
+        box.setWindowTitle("The outline crosses itself")
+        n = len(shapely.get_parts(repaired)) if repaired is not None else 0
+        box.setText("The outline you drew crosses itself, so it is not a valid polygon.")
+        box.setInformativeText(
+            (
+                f"Repair splits it where it crosses into {n} valid polygon{'s' if n != 1 else ''} "
+                f"(area {repaired.area:.4g}). "
+                if repaired is not None
+                else "It encloses no area, so it cannot be repaired. "
+            )
+            + "Keep editing goes back to the drawing with every vertex (Backspace removes the last one)."
+        )
+        repair = box.addButton("Repair", QtWidgets.QMessageBox.ButtonRole.AcceptRole)
+        repair.setObjectName("repairButton")
+        repair.setEnabled(repaired is not None)
+        keep = box.addButton("Keep editing", QtWidgets.QMessageBox.ButtonRole.RejectRole)
+        keep.setObjectName("keepEditingButton")
+        box.setDefaultButton(keep)
+
+        def chosen(button: QtWidgets.QAbstractButton) -> None:
+            if button is repair and repaired is not None:
+                self._add(repaired)
+            else:
+                self.points = list(pts)
+                self.host.overlayChanged.emit()
+                self.host.message.emit("drawing kept: move the mouse and click to go on", 4000)
+
+        box.buttonClicked.connect(chosen)
+        box.setWindowModality(QtCore.Qt.WindowModality.WindowModal)
+        box.show()
+        self.repair_box = box
+        return box
 
     def _add_hole(self, ring: np.ndarray) -> None:
         doc = self.scene.doc
@@ -875,6 +924,32 @@ class DeleteComponentTool(_ClickPixelTool):
             self.host.message.emit("no component there", 2500)
             return
         self.host.push(DeleteComponent(obj.id, px))
+
+
+def repair_polygon(ring: np.ndarray) -> shapely.Geometry | None:
+    """The valid polygon(s) shapely's ``make_valid`` makes of a self-crossing ring (None: no area)."""
+    from mrm.document import validate_geometry
+
+    fixed = shapely.make_valid(shapely.Polygon(ring))
+    polys = [p for p in shapely.get_parts(fixed) if isinstance(p, shapely.Polygon) and p.area > 0]
+    if not polys:
+        # A collection may hold a MultiPolygon among lines and points.
+        for g in shapely.get_parts(fixed):
+            if isinstance(g, shapely.MultiPolygon):
+                polys.extend(p for p in g.geoms if p.area > 0)
+    if not polys:
+        return None
+    geom = shapely.MultiPolygon(polys) if len(polys) > 1 else polys[0]
+    return validate_geometry(orient_all(geom))
+
+
+def orient_all(geom: shapely.Geometry) -> shapely.Geometry:
+    """Counter-clockwise exteriors (as drawn polygons are stored)."""
+    from shapely.geometry.polygon import orient
+
+    if isinstance(geom, shapely.MultiPolygon):
+        return shapely.MultiPolygon([orient(p, 1.0) for p in geom.geoms])
+    return orient(geom, 1.0)
 
 
 def make_tools(host: ToolHost) -> dict[str, Tool]:
