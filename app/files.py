@@ -74,6 +74,8 @@ class FileController(QtCore.QObject):
         self.win = window
         self.doc: Document = window.doc
         self.prefs = window.prefs
+        self._chosen: dict[int, Any] = {}  # answers of the image import dialog, by file index
+        self.import_dialog: Any = None
         from mrm.io.autosave import Autosaver
 
         seconds = self.prefs.autosave_seconds
@@ -319,12 +321,58 @@ class FileController(QtCore.QObject):
         )
 
     def import_files(self, paths: Iterable[str | os.PathLike[str]]) -> bool:
-        """Import every file as new objects, in one undo step; a bad file is reported and skipped."""
+        """Import every file as new objects, in one undo step; a bad file is reported and skipped.
+
+        A grey, colour or label image first asks (once, window-modal, without blocking) how to turn it
+        into objects; the import then happens when the dialog is accepted, and this returns False.
+        """
+        paths = [Path(p) for p in paths]
+        from mrm.app.import_dialog import image_values
+
+        for k, p in enumerate(paths):
+            if p.suffix.lower() not in IMAGE_EXTS or k in self._chosen:
+                continue
+            try:
+                values = image_values(p)
+            except (OSError, ValueError):
+                values = None  # the model's reader reports what is wrong with the file
+            if values is not None:
+                self._ask_image(paths, k, *values)
+                return False
+        chosen, self._chosen = self._chosen, {}
+        return self._import(paths, chosen)
+
+    def _ask_image(self, paths: list[Path], k: int, grey: Any, labels_ok: bool) -> None:
+        from mrm.app.import_dialog import ImageImportDialog
+
+        dlg = ImageImportDialog(paths[k], grey, labels_ok, self.win)
+        self.import_dialog = dlg
+
+        def done(result: int) -> None:
+            self.import_dialog = None
+            if result != QtWidgets.QDialog.DialogCode.Accepted:
+                self._chosen = {}
+                self.win.show_message(f"import of {paths[k].name} cancelled; nothing was added", 4000)
+                return
+            try:
+                self._chosen[k] = dlg.read_objects()
+            except (MRMError, OSError, ValueError) as e:
+                self._chosen[k] = e
+            self.import_files(paths)
+
+        dlg.finished.connect(done)
+        dlg.setWindowModality(QtCore.Qt.WindowModality.WindowModal)
+        dlg.open()
+
+    def _import(self, paths: list[Path], chosen: dict[int, Any]) -> bool:
         items: list[tuple[str, Any]] = []
         errors = []
-        for p in map(Path, paths):
+        for k, p in enumerate(paths):
             try:
-                items += self.read_objects(p)
+                got = chosen.get(k)
+                if isinstance(got, BaseException):
+                    raise got
+                items += got if got is not None else self.read_objects(p)
             except (MRMError, OSError, ValueError) as e:
                 errors.append(describe_error(e))
         if items:

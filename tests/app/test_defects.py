@@ -215,3 +215,22 @@ def test_first_save_as_of_an_example_starts_in_the_users_folder(make_window, mon
     assert seen and not Path(seen[0]).resolve().is_relative_to(EXAMPLES.resolve())
     assert Path(seen[0]).parent in (home / "Documents", home)
     assert Path(seen[0]).name == default_example().stem + ".mrm"
+
+
+# ---------------------------------------------------------------------------------------------- source column
+def test_the_source_column_reads_as_words(make_window, qtbot):
+    from mrm.views.object_list import COL_SOURCE
+
+    win = make_window()
+    a = _with_object(win)
+    panel = win.operations
+    panel.select_operation("discrete_rotation")
+    _type_into(qtbot, panel.control("angle").field, "30")
+    win.doc.set_selection([a.id])
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=30_000)
+    model = win.object_list.model
+    texts = [model.index(r, COL_SOURCE).data() for r in range(model.rowCount())]
+    assert "pixels" in texts  # the drawn object
+    rot = [t for t in texts if "rotation" in t]
+    assert rot == ["pixels · rotation 30°"] and not any("_" in t for t in texts), texts
