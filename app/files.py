@@ -47,6 +47,25 @@ def describe_error(e: BaseException) -> str:
     return str(e)
 
 
+#: Projects bigger than this (bytes, or pixels + vertices for a document) are read and written on a worker.
+BIG_FILE = 4_000_000
+
+
+def document_weight(doc: Any) -> int:
+    """A cheap size estimate of a document's file: pixels of pixel sources plus coordinates of polygons."""
+    import shapely
+
+    from mrm.reps.pixels import PixelSet
+
+    total = 0
+    for o in doc.objects:
+        src = o.source
+        total += (
+            src.mask.size // 4 if isinstance(src, PixelSet) else 40 * int(shapely.get_num_coordinates(src))
+        )
+    return total
+
+
 def is_bundled(path: str | os.PathLike[str]) -> bool:
     """True for a path inside the application's own resources (the bundled examples)."""
     from mrm.app.gui import RESOURCES
@@ -171,15 +190,36 @@ class FileController(QtCore.QObject):
             rec = None
         if rec is not None and self.offer_recovery(rec):
             return True
+
+        def opened(project: Any) -> None:
+            self._reset(project.to_document(p), p.resolve())
+            self.prefs.add_recent_file(p)
+            if not is_bundled(p):
+                self.prefs.last_directory = str(p.resolve().parent)
+            self.win.update_recent_menu()
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            self._error("Cannot open the project", describe_error(e))
+
+        try:
+            big = p.stat().st_size > BIG_FILE
+        except OSError:
+            big = False
+        if big:
+            # Reading and checking a big project takes seconds: on a worker, with progress and Cancel.
+            self.win.runner.submit(
+                "file", lambda _p: read_project(p), on_result=opened, on_error=failed,
+                label=f"Opening {p.name}", show_progress=True,
+            )  # fmt: skip
+            return True
         try:
             project = read_project(p)
         except (MRMError, OSError, ValueError) as e:
-            self._error("Cannot open the project", describe_error(e))
+            failed(e)
             return False
-        self._reset(project.to_document(p), p.resolve())
-        self.prefs.add_recent_file(p)
-        self.prefs.last_directory = str(p.resolve().parent)
-        self.win.update_recent_menu()
+        opened(project)
         return True
 
     def offer_recovery(self, rec: Any) -> bool:
@@ -253,11 +293,46 @@ class FileController(QtCore.QObject):
         from mrm.io.project import save_project
 
         old_side = self.autosaver.path
+        if document_weight(self.doc) > BIG_FILE:
+            return self._write_on_worker(p, old_side)
         try:
             save_project(self.doc, p)
         except (MRMError, OSError, ValueError) as e:
             self._error("Cannot save the project", describe_error(e))
             return False
+        self._written(p, old_side)
+        return True
+
+    def _write_on_worker(self, p: Path, old_side: Path) -> bool:
+        """Serialise and write a big project on a worker (the objects are immutable: a snapshot is free)."""
+        from types import SimpleNamespace
+
+        from mrm.io.atomic import atomic_write_bytes
+        from mrm.io.project import dumps
+
+        doc = self.doc
+        snap = SimpleNamespace(settings=doc.settings, selection=doc.selection, objects=doc.objects)
+        revision = doc.revision
+
+        def work(_progress: Any) -> None:
+            atomic_write_bytes(p, dumps(snap))  # type: ignore[arg-type]
+
+        def done(_r: object) -> None:
+            if doc.revision == revision:
+                doc.history.set_clean()
+            self._written(p, old_side)
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            self._error("Cannot save the project", describe_error(e))
+
+        self.win.runner.submit(
+            "file", work, on_result=done, on_error=failed, label=f"Saving {p.name}", show_progress=True
+        )
+        return True
+
+    def _written(self, p: Path, old_side: Path) -> None:
         self.autosaver.discard()
         if old_side.exists() and old_side != self.autosaver.path:
             old_side.unlink(missing_ok=True)
@@ -269,7 +344,6 @@ class FileController(QtCore.QObject):
         self.win.update_title()
         self.win.show_message(f"Saved {p.name}", 3000)
         self.saved.emit(str(p))
-        return True
 
     def autosave_tick(self) -> None:
         try:

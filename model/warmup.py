@@ -26,6 +26,7 @@ log = logging.getLogger(__name__)
 
 #: Modules holding ``@njit(cache=True)`` kernels (relative to the package root).
 KERNEL_MODULES = (
+    "geometry/_jit.py",
     "geometry/_discretize_kernels.py",
     "geometry/_dss_kernels.py",
     "geometry/_reconstruct_kernels.py",

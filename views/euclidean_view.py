@@ -54,9 +54,15 @@ class EuclideanView(RepresentationView):
         if geom is None:
             return self.scene.error(obj.id, "euclidean") is not None
         if geom is not layer.geometry:
-            layer.polygon.setPath(geometry_path(geom))
+            n = int(shapely.get_num_coordinates(geom))
+            data = self.prepared(
+                obj.id, "polygons", geom, n * 20, lambda: (geometry_path(geom), ring_vertices(geom))
+            )
+            if data is None:
+                return False  # prepared on a worker
+            layer.polygon.setPath(data[0])
             layer.geometry = geom
-            layer.vertices = ring_vertices(geom)
+            layer.vertices = data[1]
         fill = qcolor(obj.style.fill)
         fill.setAlphaF(obj.style.opacity * (0.8 if selected else 0.6))
         stroke = (

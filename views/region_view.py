@@ -14,7 +14,7 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, qcolor
+from mrm.views.canvas import MaskItem, lod_image, qcolor
 from mrm.views.items import MarkersItem, PathItem, rings_path
 
 #: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
@@ -57,6 +57,23 @@ def junctions(chains: list[Any]) -> np.ndarray:
     allp = np.concatenate(pts)
     uniq, counts = np.unique(allp, axis=0, return_counts=True)
     return uniq[counts > 1].astype(float) - 0.5
+
+
+def region_drawing(region: Any) -> tuple[Any, Any, Any, Any, Any]:
+    """What the region view draws of a region (any thread): labels, hole mask, boundary paths, junctions."""
+    data = region.labels.labels
+    # Labels beyond 255 cycle through the palette: colour, not identity, is what is shown.
+    img = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8) if data.size else data
+    holes = hole_mask(data > 0).astype(np.uint8) if data.size else data
+    outer = [chain_xy(c.outer) for c in region.components]
+    inner = [chain_xy(h.boundary) for c in region.components for h in c.holes]
+    return (
+        lod_image(img),
+        lod_image(holes),
+        rings_path(outer, close=False),
+        rings_path(inner, close=False),
+        junctions(list(region.boundary_chains)),
+    )
 
 
 def colour_distance(a: str, b: str) -> float:
@@ -121,19 +138,19 @@ class RegionView(RepresentationView):
         if key == layer.key:
             return True
         if region is not layer.region:
+            data = self.prepared(
+                obj.id, "region", region, region.labels.labels.size, lambda: region_drawing(region)
+            )
+            if data is None:
+                return False  # prepared on a worker: the view says "computing…" meanwhile
+            img, holes, outer, inner, junction_points = data
             lab = region.labels
-            data = lab.labels
-            # Labels beyond 255 cycle through the palette: colour, not identity, is what is shown.
-            img = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8) if data.size else data
-            layer.components.set_pixels(img, lab.origin)
-            holes = hole_mask(data > 0) if data.size else data
+            layer.components.set_pixels(img[0], lab.origin, None, img[1])
             hl = np.array([[0, 0, 0, 0], [150, 150, 150, 90] if not dark else [200, 200, 200, 70]])
-            layer.holes.set_pixels(holes.astype(np.uint8), lab.origin, hl)
-            outer = [chain_xy(c.outer) for c in region.components]
-            inner = [chain_xy(h.boundary) for c in region.components for h in c.holes]
-            layer.outer.setPath(rings_path(outer, close=False))
-            layer.inner.setPath(rings_path(inner, close=False))
-            layer.junctions.set_points(junctions(list(region.boundary_chains)))
+            layer.holes.set_pixels(holes[0], lab.origin, hl, holes[1])
+            layer.outer.setPath(outer)
+            layer.inner.setPath(inner)
+            layer.junctions.set_points(junction_points)
             layer.region = region
         layer.components.set_lut(self.component_lut(obj.style.fill, alpha))
         line = QtGui.QColor("#e8e8e8") if dark else QtGui.QColor("#1d1d1d")
