@@ -1,4 +1,4 @@
-"""Big objects: drawing data made on workers, a coarser level of detail beyond 4 M pixels, big files on workers.
+"""Big objects: drawing data made on workers, coarser images beyond 4 M pixels, big files on workers.
 
 The issue: after DSS 20 the window ignored the mouse for ~9 s while the views built their images and paths on
 the GUI thread. Here the layers of a 5 M-pixel object wait for their data (the view says "computing…") instead
