@@ -53,6 +53,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--view", choices=("discrete", "region", "analytical", "euclidean"), help="view to bring forward"
     )
+    p.add_argument(
+        "--live-preview", action="store_true", help="switch the Operations panel's live preview on (a ghost)"
+    )
     p.add_argument("--timeout", type=float, default=120.0, help="seconds --screenshot waits for the views")
     return p
 
@@ -147,6 +150,8 @@ def run_gui(args: list[str]) -> int:
                     win.scene.select_segment(found[0].id, chain, k)
         if opts.tool:
             win.tools.set_tool(opts.tool)
+        if opts.live_preview:
+            win.operations.live.setChecked(True)
         if opts.view:
             win.views.show_view(win.views.by_name(opts.view))
         win.fit_all()

@@ -138,9 +138,11 @@ class RegionView(RepresentationView):
         if key == layer.key:
             return True
         if region is not layer.region:
-            data = self.prepared(
-                obj.id, "region", region, region.labels.labels.size, lambda: region_drawing(region)
-            )
+            # The size from the pixels' box: reading region.labels here would paint the labels (seconds on a
+            # big object) on the GUI thread.
+            ps = self.get(obj.id, "discrete")
+            size = ps.mask.size if ps is not None else 0
+            data = self.prepared(obj.id, "region", region, size, lambda: region_drawing(region))
             if data is None:
                 return False  # prepared on a worker: the view says "computing…" meanwhile
             img, holes, outer, inner, junction_points = data
