@@ -6,8 +6,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 QT_DEBS="libegl1 libgl1 libxkbcommon0 libfontconfig1 libfreetype6 libglib2.0-0 libdbus-1-3 libx11-6 fonts-dejavu-core"
+# What Qt's xcb platform plugin (libqxcb.so, a real X display) loads besides the above: `ldd` on the plugin
+# and on libQt6XcbQpa lists these; without them `mrm` aborts with "could not load the Qt platform plugin xcb".
+XCB_DEBS="libx11-xcb1 libxcb1 libxcb-cursor0 libxcb-icccm4 libxcb-image0 libxcb-keysyms1 libxcb-randr0
+  libxcb-render0 libxcb-render-util0 libxcb-shape0 libxcb-shm0 libxcb-sync1 libxcb-util1 libxcb-xfixes0
+  libxcb-xkb1 libxkbcommon-x11-0"
+# A virtual X server and the tools the real-display start test uses (tests/app/test_real_display.py).
+X_TEST_DEBS="xvfb xauth xdotool x11-apps"
 missing=""
-for p in $QT_DEBS; do
+for p in $QT_DEBS $XCB_DEBS $X_TEST_DEBS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"
 done
 if [ -n "$missing" ]; then
@@ -30,3 +37,12 @@ if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
   .venv/bin/python -m pip install -q -e '.[gui,geo,test,docs,bench,dev]'
   touch "$stamp"
 fi
+
+# Qt's xcb plugin must find every library it links (checked, not assumed: a new PySide6 may need more).
+qxcb=$(.venv/bin/python -c "import os, PySide6; print(os.path.join(os.path.dirname(PySide6.__file__), 'Qt', 'plugins', 'platforms', 'libqxcb.so'))")
+if [ -f "$qxcb" ] && ldd "$qxcb" | grep -q "not found"; then
+  echo "setup: warning: the Qt xcb plugin still misses:$(ldd "$qxcb" | awk '/not found/ {printf " %s", $1}')" >&2
+fi
+
+# Compile the numba kernels once (cached on disk), so the first `mrm` paints a usable window at once.
+.venv/bin/python -m mrm.warmup

@@ -131,6 +131,14 @@ _FALLBACK = {
 }
 
 
+#: Keys a standard action always has, whatever the platform binds (the user guide promises them): redo is
+#: both Ctrl+Y and Ctrl+Shift+Z, help is F1 even where the desktop has no help key binding.
+_ALWAYS = {
+    Std.Redo: ("Ctrl+Y", "Ctrl+Shift+Z"),
+    Std.HelpContents: ("F1",),
+}
+
+
 def _key_sequence(spec: ActionSpec, overrides: dict[str, str]) -> list[QtGui.QKeySequence]:
     if spec.id in overrides:
         text = overrides[spec.id]
@@ -139,9 +147,13 @@ def _key_sequence(spec: ActionSpec, overrides: dict[str, str]) -> list[QtGui.QKe
         return []
     if isinstance(spec.shortcut, str):
         return [QtGui.QKeySequence(spec.shortcut)]
-    seqs = QtGui.QKeySequence.keyBindings(spec.shortcut)
+    seqs = list(QtGui.QKeySequence.keyBindings(spec.shortcut))
     if not seqs and spec.shortcut in _FALLBACK:
         seqs = [QtGui.QKeySequence(_FALLBACK[spec.shortcut])]
+    for text in _ALWAYS.get(spec.shortcut, ()):
+        k = QtGui.QKeySequence(text)
+        if k not in seqs:
+            seqs.append(k)
     return seqs
 
 
@@ -160,6 +172,9 @@ class ActionRegistry:
     def _add(self, spec: ActionSpec) -> QtGui.QAction:
         a = QtGui.QAction(spec.text, self._parent)
         a.setObjectName(spec.id)
+        # Toolbar buttons show the icon text: short and fixed, so that "Undo Discrete-based simplification
+        # Sp_α" never widens the toolbar (the full text is in the menu and the tooltip).
+        a.setIconText(spec.text.replace("&", "").replace("…", ""))
         if spec.tip:
             a.setStatusTip(spec.tip)
             a.setToolTip(spec.tip)

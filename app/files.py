@@ -47,6 +47,41 @@ def describe_error(e: BaseException) -> str:
     return str(e)
 
 
+#: Projects bigger than this (bytes, or pixels + vertices for a document) are read and written on a worker.
+BIG_FILE = 4_000_000
+
+
+def document_weight(doc: Any) -> int:
+    """A cheap size estimate of a document's file: pixels of pixel sources plus coordinates of polygons."""
+    import shapely
+
+    from mrm.reps.pixels import PixelSet
+
+    total = 0
+    for o in doc.objects:
+        src = o.source
+        total += (
+            src.mask.size // 4 if isinstance(src, PixelSet) else 40 * int(shapely.get_num_coordinates(src))
+        )
+    return total
+
+
+def is_bundled(path: str | os.PathLike[str]) -> bool:
+    """True for a path inside the application's own resources (the bundled examples)."""
+    from mrm.app.gui import RESOURCES
+
+    try:
+        return Path(path).resolve().is_relative_to(RESOURCES.resolve())
+    except OSError:
+        return False
+
+
+def user_documents() -> str:
+    """The user's documents folder (XDG ``Documents``) when it exists, else the home folder."""
+    docs = QtCore.QStandardPaths.writableLocation(QtCore.QStandardPaths.StandardLocation.DocumentsLocation)
+    return docs if docs and Path(docs).is_dir() else str(Path.home())
+
+
 class FileController(QtCore.QObject):
     """The window's file commands; dialogs are shown only when no path is given."""
 
@@ -58,6 +93,8 @@ class FileController(QtCore.QObject):
         self.win = window
         self.doc: Document = window.doc
         self.prefs = window.prefs
+        self._chosen: dict[int, Any] = {}  # answers of the image import dialog, by file index
+        self.import_dialog: Any = None
         from mrm.io.autosave import Autosaver
 
         seconds = self.prefs.autosave_seconds
@@ -113,7 +150,18 @@ class FileController(QtCore.QObject):
 
     def _directory(self) -> str:
         d = self.prefs.last_directory
-        return d if Path(d).is_dir() else str(Path.home())
+        return d if Path(d).is_dir() and not is_bundled(d) else user_documents()
+
+    def _save_start(self, name: str) -> str:
+        """Where a save dialog starts: beside the project, or in the user's documents for an example.
+
+        A bundled example lives inside the installation: the user's work does not belong there.
+        """
+        p = self.doc.path
+        if p is not None and not is_bundled(p):
+            return str(p)
+        stem = Path(p).stem if p is not None else name
+        return str(Path(self._directory()) / f"{stem}.mrm")
 
     # ------------------------------------------------------------------ new / open
     def new(self) -> bool:
@@ -146,15 +194,36 @@ class FileController(QtCore.QObject):
             rec = None
         if rec is not None and self.offer_recovery(rec):
             return True
+
+        def opened(project: Any) -> None:
+            self._reset(project.to_document(p), p.resolve())
+            self.prefs.add_recent_file(p)
+            if not is_bundled(p):
+                self.prefs.last_directory = str(p.resolve().parent)
+            self.win.update_recent_menu()
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            self._error("Cannot open the project", describe_error(e))
+
+        try:
+            big = p.stat().st_size > BIG_FILE
+        except OSError:
+            big = False
+        if big:
+            # Reading and checking a big project takes seconds: on a worker, with progress and Cancel.
+            self.win.runner.submit(
+                "file", lambda _p: read_project(p), on_result=opened, on_error=failed,
+                label=f"Opening {p.name}", show_progress=True,
+            )  # fmt: skip
+            return True
         try:
             project = read_project(p)
         except (MRMError, OSError, ValueError) as e:
-            self._error("Cannot open the project", describe_error(e))
+            failed(e)
             return False
-        self._reset(project.to_document(p), p.resolve())
-        self.prefs.add_recent_file(p)
-        self.prefs.last_directory = str(p.resolve().parent)
-        self.win.update_recent_menu()
+        opened(project)
         return True
 
     def offer_recovery(self, rec: Any) -> bool:
@@ -218,7 +287,7 @@ class FileController(QtCore.QObject):
 
     def save_as(self, path: str | os.PathLike[str] | None = None) -> bool:
         if path is None:
-            start = str(self.doc.path) if self.doc.path else str(Path(self._directory()) / "untitled.mrm")
+            start = self._save_start("untitled")
             fn, _ = QtWidgets.QFileDialog.getSaveFileName(
                 self.win, "Save project", start, "MR Modeler projects (*.mrm)"
             )
@@ -234,11 +303,46 @@ class FileController(QtCore.QObject):
         from mrm.io.project import save_project
 
         old_side = self.autosaver.path
+        if document_weight(self.doc) > BIG_FILE:
+            return self._write_on_worker(p, old_side)
         try:
             save_project(self.doc, p)
         except (MRMError, OSError, ValueError) as e:
             self._error("Cannot save the project", describe_error(e))
             return False
+        self._written(p, old_side)
+        return True
+
+    def _write_on_worker(self, p: Path, old_side: Path) -> bool:
+        """Serialise and write a big project on a worker (the objects are immutable: a snapshot is free)."""
+        from types import SimpleNamespace
+
+        from mrm.io.atomic import atomic_write_bytes
+        from mrm.io.project import dumps
+
+        doc = self.doc
+        snap = SimpleNamespace(settings=doc.settings, selection=doc.selection, objects=doc.objects)
+        revision = doc.revision
+
+        def work(_progress: Any) -> None:
+            atomic_write_bytes(p, dumps(snap))  # type: ignore[arg-type]
+
+        def done(_r: object) -> None:
+            if doc.revision == revision:
+                doc.history.set_clean()
+            self._written(p, old_side)
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            self._error("Cannot save the project", describe_error(e))
+
+        self.win.runner.submit(
+            "file", work, on_result=done, on_error=failed, label=f"Saving {p.name}", show_progress=True
+        )
+        return True
+
+    def _written(self, p: Path, old_side: Path) -> None:
         self.autosaver.discard()
         if old_side.exists() and old_side != self.autosaver.path:
             old_side.unlink(missing_ok=True)
@@ -250,7 +354,6 @@ class FileController(QtCore.QObject):
         self.win.update_title()
         self.win.show_message(f"Saved {p.name}", 3000)
         self.saved.emit(str(p))
-        return True
 
     def autosave_tick(self) -> None:
         # Autosaver.tick reports its failures through _autosave_failed and never raises; the guard keeps
@@ -309,12 +412,58 @@ class FileController(QtCore.QObject):
         )
 
     def import_files(self, paths: Iterable[str | os.PathLike[str]]) -> bool:
-        """Import every file as new objects, in one undo step; a bad file is reported and skipped."""
+        """Import every file as new objects, in one undo step; a bad file is reported and skipped.
+
+        A grey, colour or label image first asks (once, window-modal, without blocking) how to turn it
+        into objects; the import then happens when the dialog is accepted, and this returns False.
+        """
+        paths = [Path(p) for p in paths]
+        from mrm.app.import_dialog import image_values
+
+        for k, p in enumerate(paths):
+            if p.suffix.lower() not in IMAGE_EXTS or k in self._chosen:
+                continue
+            try:
+                values = image_values(p)
+            except (OSError, ValueError):
+                values = None  # the model's reader reports what is wrong with the file
+            if values is not None:
+                self._ask_image(paths, k, *values)
+                return False
+        chosen, self._chosen = self._chosen, {}
+        return self._import(paths, chosen)
+
+    def _ask_image(self, paths: list[Path], k: int, grey: Any, labels_ok: bool) -> None:
+        from mrm.app.import_dialog import ImageImportDialog
+
+        dlg = ImageImportDialog(paths[k], grey, labels_ok, self.win)
+        self.import_dialog = dlg
+
+        def done(result: int) -> None:
+            self.import_dialog = None
+            if result != QtWidgets.QDialog.DialogCode.Accepted:
+                self._chosen = {}
+                self.win.show_message(f"import of {paths[k].name} cancelled; nothing was added", 4000)
+                return
+            try:
+                self._chosen[k] = dlg.read_objects()
+            except (MRMError, OSError, ValueError) as e:
+                self._chosen[k] = e
+            self.import_files(paths)
+
+        dlg.finished.connect(done)
+        dlg.setWindowModality(QtCore.Qt.WindowModality.WindowModal)
+        dlg.open()
+
+    def _import(self, paths: list[Path], chosen: dict[int, Any]) -> bool:
         items: list[tuple[str, Any]] = []
         errors = []
-        for p in map(Path, paths):
+        for k, p in enumerate(paths):
             try:
-                items += self.read_objects(p)
+                got = chosen.get(k)
+                if isinstance(got, BaseException):
+                    raise got
+                items += got if got is not None else self.read_objects(p)
             except (MRMError, OSError, ValueError) as e:
                 errors.append(describe_error(e))
         if items:
@@ -365,7 +514,8 @@ class FileController(QtCore.QObject):
             elif ext == ".svg":
                 from mrm.io.vector_files import write_svg
 
-                write_svg(entry.get("euclidean"), p)
+                style = self.doc.get(obj_id).style
+                write_svg(entry.get("euclidean"), p, colour=style.fill[:7], opacity=style.opacity)
             elif ext in (".geojson", ".json"):
                 from mrm.io.vector_files import write_geojson
 

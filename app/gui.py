@@ -43,6 +43,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--view", choices=("discrete", "region", "analytical", "euclidean"), help="view to bring forward"
     )
+    p.add_argument(
+        "--live-preview", action="store_true", help="switch the Operations panel's live preview on (a ghost)"
+    )
     p.add_argument("--timeout", type=float, default=120.0, help="seconds --screenshot waits for the views")
     return p
 
@@ -137,17 +140,28 @@ def run_gui(args: list[str]) -> int:
                     win.scene.select_segment(found[0].id, chain, k)
         if opts.tool:
             win.tools.set_tool(opts.tool)
+        if opts.live_preview:
+            win.operations.live.setChecked(True)
         if opts.view:
             win.views.show_view(win.views.by_name(opts.view))
         win.fit_all()
         return opened
 
+    from mrm.app.startup import prepare_then, when_exposed
+
     if opts.screenshot is None:
-        # The window paints first, then the document loads: it is on screen as soon as possible.
-        QtCore.QTimer.singleShot(0, load)
+        # The window paints first, then (after compiling the kernels on a worker, on a fresh install) the
+        # document loads: it is on screen as soon as possible and says what it is preparing.
         win.show_message(f"ready in {time.perf_counter() - t0:.2f} s", 4000)
+        when_exposed(win, lambda: prepare_then(win, load))
         return int(app.exec())
-    if not load() and project is not None:
+    loaded: list[bool] = []
+    prepare_then(win, lambda: loaded.append(load()))
+    deadline = time.monotonic() + max(opts.timeout, 600.0)  # a cold compile takes minutes on a slow box
+    while not loaded and time.monotonic() < deadline:
+        QtCore.QCoreApplication.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
+        time.sleep(0.01)
+    if not (loaded and loaded[0]) and project is not None:
         print(f"mrm: error: cannot open {project}", file=sys.stderr)
         return 2
     return screenshot(app, win, Path(opts.screenshot), opts.timeout)

@@ -53,7 +53,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.scene = Scene(self.doc, self.runner, self)
         self.views = ViewArea(self.scene, self)
         self.setCentralWidget(self.views)
-        self.actions = ActionRegistry(self, prefs.shortcut_overrides())
+        self.registry = ActionRegistry(self, prefs.shortcut_overrides())
         self.host = ToolHost(self.scene, self)
         self.host.brush_size = prefs.brush_size
         self.host.brush_shape = prefs.brush_shape
@@ -62,7 +62,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.host.colours = prefs.object_colours()
         self.tools = ToolController(self.host, [v.plane for v in self.views.views], self)
         self.undo = UndoAdapter(
-            self.doc, self.actions["edit.undo"], self.actions["edit.redo"], self, before=self.tools.cancel
+            self.doc, self.registry["edit.undo"], self.registry["edit.redo"], self, before=self.tools.cancel
         )
         self.status = StatusBar(self.scene, self)
         self.setStatusBar(self.status)
@@ -74,9 +74,9 @@ class MainWindow(QtWidgets.QMainWindow):
         self.setAcceptDrops(True)
         self.resize(1360, 880)
         self.views.set_layout_mode(prefs.layout)
-        self.actions["view.grid_layout" if prefs.layout == "grid" else "view.tabs_layout"].setChecked(True)
-        self.actions["view.pixel_grid"].setChecked(True)
-        self.actions["tool.select"].setChecked(True)
+        self.registry["view.grid_layout" if prefs.layout == "grid" else "view.tabs_layout"].setChecked(True)
+        self.registry["view.pixel_grid"].setChecked(True)
+        self.registry["tool.select"].setChecked(True)
         self.update_title()
         self._closing = False
         self._discard_on_close = True
@@ -126,7 +126,7 @@ class MainWindow(QtWidgets.QMainWindow):
         return d
 
     def _build_menus(self) -> None:
-        a = self.actions
+        a = self.registry
         mb = self.menuBar()
         m = mb.addMenu("&File")
         a.menu(m, ["file.new", "file.open"])
@@ -165,7 +165,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, ["help.guide", "help.about"])
 
     def _build_toolbars(self) -> None:
-        a = self.actions
+        a = self.registry
         tb = self.addToolBar("File")
         tb.setObjectName("toolbar_file")
         tb.setIconSize(QtCore.QSize(18, 18))
@@ -199,7 +199,7 @@ class MainWindow(QtWidgets.QMainWindow):
         tt.addWidget(self.brush_shape)
 
     def _connect(self) -> None:
-        a = self.actions
+        a = self.registry
         self.scene.documentChanged.connect(self._on_changes)
         self.undo.cleanChanged.connect(lambda _clean: self.update_title())
         for aid, tool in TOOL_ACTIONS.items():
@@ -260,7 +260,7 @@ class MainWindow(QtWidgets.QMainWindow):
         if ch.settings or ch.reset:
             for act in self._model_group.actions():
                 act.setChecked(act.text() == self.doc.model)
-        self.actions["edit.delete"].setEnabled(bool(self.doc.selection))
+        self.registry["edit.delete"].setEnabled(bool(self.doc.selection))
 
     def update_title(self) -> None:
         name = self.doc.path.name if self.doc.path else "Untitled"
@@ -289,11 +289,11 @@ class MainWindow(QtWidgets.QMainWindow):
     def _tool_changed(self, name: str) -> None:
         for aid, tool in TOOL_ACTIONS.items():
             if tool == name:
-                self.actions[aid].setChecked(True)
+                self.registry[aid].setChecked(True)
 
     def _pref_changed(self, key: str) -> None:
         if key == "shortcuts":
-            self.actions.apply_shortcuts(self.prefs.shortcut_overrides())
+            self.registry.apply_shortcuts(self.prefs.shortcut_overrides())
         elif key == "appearance/object_colours":
             self.host.colours = self.prefs.object_colours()
         elif key == "tools/brush_size" and self.brush_spin.value() != self.prefs.brush_size:
@@ -426,7 +426,7 @@ class MainWindow(QtWidgets.QMainWindow):
     def show_preferences(self) -> None:
         from mrm.app.preferences_dialog import PreferencesDialog
 
-        dlg = PreferencesDialog(self.prefs, self.actions, self)
+        dlg = PreferencesDialog(self.prefs, self.registry, self)
         dlg.open()
 
     def show_about(self) -> None:
@@ -439,11 +439,16 @@ class MainWindow(QtWidgets.QMainWindow):
         )
 
     def show_guide(self) -> None:
-        guide = Path(__file__).resolve().parent.parent / "docs" / "user-guide.md"
-        if guide.is_file():
-            QtGui.QDesktopServices.openUrl(QtCore.QUrl.fromLocalFile(str(guide)))
-        else:
-            self.show_message("the user guide is in docs/user-guide.md of the source tree", 5000)
+        """Show the user guide in a window of the application (F1)."""
+        from mrm.app.help import HelpWindow
+
+        win = getattr(self, "help_window", None)
+        if win is None:
+            win = self.help_window = HelpWindow(self)
+        win.show()
+        if QtGui.QGuiApplication.platformName() != "offscreen":  # offscreen warns it cannot raise
+            win.raise_()
+        win.activateWindow()
 
     def save_picture_dialog(self) -> None:
         fn, _ = QtWidgets.QFileDialog.getSaveFileName(

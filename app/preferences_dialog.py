@@ -8,6 +8,9 @@ from mrm.app.actions import ActionRegistry
 from mrm.app.application import theme_controller
 from mrm.app.settings import MODELS, Preferences
 
+#: The entry the pixel-limit message points at (File ▸ Preferences ▸ General).
+PIXEL_LIMIT_LABEL = "Largest operation result"
+
 
 class PreferencesDialog(QtWidgets.QDialog):
     """Edits :class:`Preferences`; changes apply on OK."""
@@ -19,7 +22,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         self.setObjectName("preferencesDialog")
         self.setWindowTitle("Preferences")
         self.prefs = prefs
-        self.actions = actions
+        self.registry = actions
         tabs = QtWidgets.QTabWidget(self)
         tabs.addTab(self._general(), "General")
         tabs.addTab(self._appearance(), "Appearance")
@@ -65,6 +68,19 @@ class PreferencesDialog(QtWidgets.QDialog):
         self.autosave.setSpecialValueText("off")
         self.autosave.setValue(self.prefs.autosave_seconds)
         f.addRow("Autosave unsaved work every", self.autosave)
+        self.pixel_limit = QtWidgets.QDoubleSpinBox(w)
+        self.pixel_limit.setObjectName("prefPixelLimit")
+        self.pixel_limit.setDecimals(0)
+        self.pixel_limit.setRange(1_000, 10_000_000_000)
+        self.pixel_limit.setSingleStep(10_000_000)
+        self.pixel_limit.setGroupSeparatorShown(True)
+        self.pixel_limit.setSuffix(" pixels")
+        self.pixel_limit.setValue(self.prefs.pixel_limit)
+        self.pixel_limit.setToolTip(
+            "An operation whose result would be larger is refused before it runs (memory: about one byte "
+            "per pixel for each representation)"
+        )
+        f.addRow(PIXEL_LIMIT_LABEL, self.pixel_limit)
         return w
 
     def _appearance(self) -> QtWidgets.QWidget:
@@ -98,7 +114,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         lay = QtWidgets.QVBoxLayout(w)
         self.table = QtWidgets.QTableWidget(w)
         self.table.setObjectName("shortcutTable")
-        ids = self.actions.ids()
+        ids = self.registry.ids()
         self.table.setColumnCount(2)
         self.table.setRowCount(len(ids))
         self.table.setHorizontalHeaderLabels(["Command", "Shortcut"])
@@ -106,7 +122,7 @@ class PreferencesDialog(QtWidgets.QDialog):
         self.table.horizontalHeader().setSectionResizeMode(0, QtWidgets.QHeaderView.ResizeMode.Stretch)
         self.editors: dict[str, QtWidgets.QKeySequenceEdit] = {}
         for r, aid in enumerate(ids):
-            a = self.actions[aid]
+            a = self.registry[aid]
             item = QtWidgets.QTableWidgetItem(a.text().replace("&", ""))
             item.setToolTip(aid)
             item.setFlags(QtCore.Qt.ItemFlag.ItemIsEnabled)
@@ -133,7 +149,7 @@ class PreferencesDialog(QtWidgets.QDialog):
 
     def _reset_shortcuts(self) -> None:
         for aid, ed in self.editors.items():
-            ed.setKeySequence(QtGui.QKeySequence(self.actions.default_shortcut(aid)))
+            ed.setKeySequence(QtGui.QKeySequence(self.registry.default_shortcut(aid)))
 
     def accept(self) -> None:
         p = self.prefs
@@ -141,13 +157,14 @@ class PreferencesDialog(QtWidgets.QDialog):
         p.brush_size = self.brush.value()
         p.brush_shape = self.brush_shape.currentText()
         p.autosave_seconds = self.autosave.value()
+        p.pixel_limit = int(self.pixel_limit.value())
         p.theme = self.theme.currentText()
         p.pixel_grid_threshold = self.grid.value()
         p.set_object_colours([str(b.property("colour")) for b in self.colour_buttons])
         overrides = {}
         for aid, ed in self.editors.items():
             text = ed.keySequence().toString(QtGui.QKeySequence.SequenceFormat.PortableText)
-            if text != self.actions.default_shortcut(aid):
+            if text != self.registry.default_shortcut(aid):
                 overrides[aid] = text
         p.set_shortcut_overrides(overrides)
         theme_controller().set_preference(p.theme)

@@ -183,6 +183,27 @@ class Preferences(QtCore.QObject):
     def brush_shape(self, v: str) -> None:
         self._set("tools/brush_shape", v)
 
+    # ------------------------------------------------------------------ operations
+    @property
+    def live_preview(self) -> bool:
+        """Whether the Operations panel previews its result while parameters change (off by default)."""
+        return bool(self._get("operations/live_preview", False, bool))
+
+    @live_preview.setter
+    def live_preview(self, v: bool) -> None:
+        self._set("operations/live_preview", bool(v))
+
+    @property
+    def pixel_limit(self) -> int:
+        """The largest operation result allowed, in pixels (Preferences ▸ General ▸ Largest result)."""
+        from mrm.errors import DEFAULT_PIXEL_LIMIT
+
+        return max(1_000, self._get("operations/pixel_limit", DEFAULT_PIXEL_LIMIT, int))
+
+    @pixel_limit.setter
+    def pixel_limit(self, v: int) -> None:
+        self._set("operations/pixel_limit", max(1_000, int(v)))
+
     # ------------------------------------------------------------------ shortcuts
     def shortcut_overrides(self) -> dict[str, str]:
         """User-defined shortcuts by action id ('' = none)."""

@@ -63,6 +63,11 @@ class UndoAdapter(QtCore.QObject):
         u, r = h.undo_label(), h.redo_label()
         self.undo_action.setText(f"&Undo {u}" if u else "&Undo")
         self.redo_action.setText(f"&Redo {r}" if r else "&Redo")
+        # The toolbar keeps its short label; the tooltip says what would be undone or redone.
+        self.undo_action.setIconText("Undo")
+        self.redo_action.setIconText("Redo")
+        self.undo_action.setToolTip(f"Undo {u}" if u else "Nothing to undo")
+        self.redo_action.setToolTip(f"Redo {r}" if r else "Nothing to redo")
         self.undo_action.setStatusTip(f"Undo {u}" if u else "Nothing to undo")
         self.redo_action.setStatusTip(f"Redo {r}" if r else "Nothing to redo")
         clean = h.is_clean

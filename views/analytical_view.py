@@ -17,7 +17,7 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, qcolor
+from mrm.views.canvas import MaskItem, lod_image, qcolor
 from mrm.views.items import MarkersItem, PathItem, cosmetic_pen, segments_path
 
 #: Alternating segment colours (and a third for the odd one out of a closed chain).
@@ -126,6 +126,16 @@ def preimage_lines(chain: Any, k: int) -> list[tuple[Fraction, Fraction, Fractio
     return out
 
 
+def analytical_drawing(ana: Any) -> tuple[Any, list[QtGui.QPainterPath], np.ndarray]:
+    """What the analytical view draws of an analytical representation (any thread)."""
+    img = segment_pixel_image(ana)
+    if img is not None:
+        coarse, f = lod_image(img[0])
+        img = (coarse, img[1], f)
+    pieces, ends = segment_cracks(ana)
+    return img, [segments_path(segs) for segs in pieces], ends
+
+
 class AnalyticalLayer(Layer):
     def __init__(self, obj_id: int) -> None:
         super().__init__(obj_id)
@@ -160,6 +170,13 @@ class AnalyticalView(RepresentationView):
             self.plane.vb.addItem(it, ignoreBounds=True)
         scene.segmentSelected.connect(lambda *_a: self.after_refresh())
 
+    legend = (
+        "<span style='color:#4e79a7'>━</span><span style='color:#e15759'>━</span> consecutive segments "
+        "alternate colours · □ segment ends (selected object) · "
+        "<span style='color:#ffb000'>━</span> chosen segment · ━ its line · "
+        "<span style='color:#9467bd'>╍</span> preimage bounds"
+    )
+
     def make_layer(self, obj_id: int) -> Layer:
         return AnalyticalLayer(obj_id)
 
@@ -176,19 +193,26 @@ class AnalyticalView(RepresentationView):
         if key == layer.key:
             return True
         if ana is not layer.analytical:
-            img = segment_pixel_image(ana)
+            data = self.prepared(obj.id, "segments", ana, ps.mask.size, lambda: analytical_drawing(ana))
+            if data is None:
+                return False  # prepared on a worker
+            img, paths, ends = data
             if img is None:
                 layer.border.set_pixels(None, (0, 0))
             else:
-                layer.border.set_pixels(img[0], img[1])
-            pieces, ends = segment_cracks(ana)
-            for item, segs in zip(layer.cracks, pieces, strict=True):
-                item.setPath(segments_path(segs))
+                layer.border.set_pixels(img[0], img[1], None, img[2])
+            for item, path in zip(layer.cracks, paths, strict=True):
+                item.setPath(path)
             layer.ends.set_points(ends)
             layer.analytical = ana
         body = qcolor(obj.style.fill)
         alpha = 70 if selected else 45
-        layer.body.set_pixels(ps.mask, ps.origin, np.array([[0, 0, 0, 0], [*body.getRgb()[:3], alpha]]))
+        shown = self.prepared(obj.id, "body", ps, ps.mask.size, lambda: lod_image(ps.mask))
+        if shown is None:
+            return False
+        layer.body.set_pixels(
+            shown[0], ps.origin, np.array([[0, 0, 0, 0], [*body.getRgb()[:3], alpha]]), shown[1]
+        )
         a = 150 if selected else 110
         lut = np.zeros((4, 4), dtype=np.uint8)
         for k, c in enumerate(SEGMENT_COLOURS):
@@ -200,6 +224,7 @@ class AnalyticalView(RepresentationView):
             )
         line = QtGui.QColor("#f0f0f0") if dark else QtGui.QColor("#202020")
         layer.ends.set_colours(line, QtGui.QColor("#ffffff") if not dark else QtGui.QColor("#303030"))
+        layer.ends.setVisible(selected)  # segment ends of the selected object only (not a black mass)
         layer.key = key
         return True
 

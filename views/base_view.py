@@ -42,6 +42,11 @@ class RepresentationView(QtWidgets.QFrame):
     subtitle = ""
     #: The representation the view draws (used for error and "computing" messages).
     rep: Rep = "discrete"
+    #: Whether the view draws previewed results (ghosts); the region and analytical views colour each
+    #: component or segment, which would make a ghost look like an object, so they do not.
+    shows_ghosts = False
+    #: What the marks mean, shown under the plane (rich text, one line that wraps).
+    legend = ""
 
     #: Emitted after each refresh (tests and the screenshot wait for it).
     refreshed = QtCore.Signal()
@@ -77,7 +82,18 @@ class RepresentationView(QtWidgets.QFrame):
         lay.addWidget(self.header)
         self.plane = PlaneView(self.name, self)
         lay.addWidget(self.plane, 1)
+        self.legend_label = QtWidgets.QLabel(self.legend, self)
+        self.legend_label.setObjectName("viewLegend")
+        self.legend_label.setWordWrap(True)
+        self.legend_label.setTextFormat(QtCore.Qt.TextFormat.RichText)
+        self.legend_label.setContentsMargins(8, 1, 6, 2)
+        policy = QtWidgets.QSizePolicy.Policy
+        self.legend_label.setSizePolicy(policy.Ignored, policy.Fixed)
+        self.legend_label.setVisible(bool(self.legend))
+        lay.addWidget(self.legend_label)
         self._layers: dict[int, Layer] = {}
+        self._prepared: dict[tuple[int, str], tuple[Any, Any]] = {}  # (object, what) -> (key, drawing data)
+        self._preparing: dict[str, Any] = {}  # worker slot -> the key it prepares
         self._dirty: set[int] = set()
         self._all_dirty = True
         self._timer = QtCore.QTimer(self)
@@ -114,13 +130,14 @@ class RepresentationView(QtWidgets.QFrame):
             and not self._all_dirty
             and not self._dirty
             and not any(layer.waiting for layer in self._layers.values())
+            and not self.is_preparing()
         )
 
     def refresh(self) -> None:
         """Bring the layers of dirty objects up to date with the scene."""
         self._timer.stop()
         doc = self.scene.doc
-        objects = self.scene.objects()
+        objects = tuple(o for o in self.scene.objects() if self.shows_ghosts or not isinstance(o, Phantom))
         present = {o.id for o in objects}
         for i in [i for i in self._layers if i not in present]:
             self._remove_layer(i)
@@ -149,6 +166,47 @@ class RepresentationView(QtWidgets.QFrame):
     def _remove_layer(self, obj_id: int) -> None:
         layer = self._layers.pop(obj_id)
         self.plane.vb.removeItem(layer)
+        for k in [k for k in self._prepared if k[0] == obj_id]:
+            del self._prepared[k]
+
+    #: Drawing data for representations up to this many elements (pixels, vertices) is prepared at once on
+    #: the GUI thread (well under 50 ms); beyond, on a worker, and the layer waits for it.
+    PREPARE_SYNC = 250_000
+
+    def prepared(self, obj_id: int, what: str, key: Any, size: int, compute: Any) -> Any | None:
+        """The drawing data ``compute()`` makes for ``key`` (a representation, compared by identity).
+
+        Small ones are computed now; big ones on a worker (the newest request per object wins), and None is
+        returned meanwhile: the layer keeps what it shows and the view says "computing…".
+        """
+        hit = self._prepared.get((obj_id, what))
+        if hit is not None and hit[0] is key:
+            return hit[1]
+        if size <= self.PREPARE_SYNC or getattr(self.scene, "runner", None) is None:
+            value = compute()
+            self._prepared[(obj_id, what)] = (key, value)
+            return value
+        slot = f"prepare:{self.name}:{what}:{obj_id}"
+        if self._preparing.get(slot) is key and self.scene.runner.is_busy(slot):
+            return None
+        self._preparing[slot] = key
+
+        def done(value: Any) -> None:
+            if self._preparing.get(slot) is key:
+                del self._preparing[slot]
+            self._prepared[(obj_id, what)] = (key, value)
+            self.mark_dirty(obj_id)
+
+        def failed(exc: BaseException) -> None:
+            self._preparing.pop(slot, None)
+            raise exc
+
+        self.scene.runner.submit(slot, lambda _p: compute(), on_result=done, on_error=failed)
+        return None
+
+    def is_preparing(self) -> bool:
+        runner = getattr(self.scene, "runner", None)
+        return runner is not None and any(runner.is_busy(s) for s in self._preparing)
 
     def _update_status(self) -> None:
         errors = []
@@ -192,6 +250,8 @@ class RepresentationView(QtWidgets.QFrame):
         pal = self.palette()
         mid = pal.color(QtGui.QPalette.ColorRole.PlaceholderText).name()
         self.subtitle_label.setStyleSheet(f"color: {mid};")
+        if hasattr(self, "legend_label"):
+            self.legend_label.setStyleSheet(f"color: {mid}; font-size: 8pt;")
         self.status_label.setStyleSheet(f"color: {mid};")
 
     def changeEvent(self, ev: QtCore.QEvent) -> None:

@@ -192,6 +192,27 @@ def full_lut(lut: np.ndarray) -> np.ndarray:
     return out
 
 
+#: Images with more pixels are shown at a coarser level of detail (each shown pixel the union of f × f).
+LOD_PIXELS = 4_000_000
+
+
+def lod_image(data: np.ndarray, limit: int = LOD_PIXELS) -> tuple[np.ndarray, int]:
+    """``(image, f)``: the image itself (f = 1), or its f × f max-pooled version (≤ ``limit`` pixels).
+
+    Max-pooling keeps every object pixel visible (a thin line stays a line) and a label wins over background.
+    Runs on any thread (the views call it on a worker for big objects).
+    """
+    if data.size <= limit:
+        return data, 1
+    f = math.ceil(math.sqrt(data.size / limit))
+    h, w = data.shape
+    hh, ww = -(-h // f) * f, -(-w // f) * f
+    src = data.view(np.uint8) if data.dtype == np.bool_ else data
+    pad = np.zeros((hh, ww), src.dtype)
+    pad[:h, :w] = src
+    return pad.reshape(hh // f, f, ww // f, f).max(axis=(1, 3)), f
+
+
 class MaskItem(pg.ImageItem):
     """A label or boolean image placed on the pixel grid; label k is drawn with ``lut[k]`` (RGBA)."""
 
@@ -203,9 +224,14 @@ class MaskItem(pg.ImageItem):
         self.setAutoDownsample(False)
 
     def set_pixels(
-        self, data: np.ndarray | None, origin: tuple[int, int], lut: np.ndarray | None = None
+        self, data: np.ndarray | None, origin: tuple[int, int], lut: np.ndarray | None = None, scale: int = 1
     ) -> None:
-        """Show ``data[row, col]`` (bool or small ints) with pixel (x0 + col, y0 + row) on its voxel."""
+        """Show ``data[row, col]`` (bool or small ints) with pixel (x0 + col, y0 + row) on its voxel.
+
+        With ``scale`` f > 1, ``data`` is a level-of-detail image (:func:`lod_image`): each pixel covers
+        f × f pixels of the plane.
+        """
+        self.scale_factor = scale
         if lut is not None:
             self._lut = full_lut(lut)
         if data is None or data.size == 0:
@@ -219,7 +245,7 @@ class MaskItem(pg.ImageItem):
         self._origin = (int(origin[0]), int(origin[1]))
         self.setImage(img, autoLevels=False, levels=None, lut=self._lut)
         h, w = img.shape
-        self.setRect(QtCore.QRectF(self._origin[0] - 0.5, self._origin[1] - 0.5, w, h))
+        self.setRect(QtCore.QRectF(self._origin[0] - 0.5, self._origin[1] - 0.5, w * scale, h * scale))
 
     def update_pixels(self, data: np.ndarray) -> None:
         """Replace the image data in place (same shape and origin): the brush's fast path."""

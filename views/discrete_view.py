@@ -8,7 +8,7 @@ from PySide6 import QtGui
 from mrm.document import DocObject
 from mrm.reps.pixels import PixelSet
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, qcolor
+from mrm.views.canvas import MaskItem, lod_image, qcolor
 from mrm.views.items import PathItem, crack_segments, segments_path
 
 
@@ -33,6 +33,12 @@ class DiscreteView(RepresentationView):
     _stroke_item: MaskItem | None = None
     _stroke_obj: int | None = None
 
+    shows_ghosts = True
+    legend = (
+        "■ pixels in the object's colour · ▭ outline of the selected object · "
+        "<span style='color:#9a9a9a'>■</span> grey: operation preview (not an object)"
+    )
+
     def make_layer(self, obj_id: int) -> Layer:
         return DiscreteLayer(obj_id)
 
@@ -44,11 +50,23 @@ class DiscreteView(RepresentationView):
         alpha = round(255 * (min(1.0, obj.style.opacity + 0.25) if selected else obj.style.opacity))
         lut = np.array([[0, 0, 0, 0], [*list(qcolor(obj.style.fill).getRgb()[:3]), alpha]])
         if ps is not layer.pixels or not np.array_equal(layer.mask._lut[:2], lut):
-            layer.mask.set_pixels(ps.mask, ps.origin, lut)
+            shown = self.prepared(obj.id, "pixels", ps, ps.mask.size, lambda: lod_image(ps.mask))
+            if shown is None:
+                return False  # a coarser image of a big object is being made on a worker
+            layer.mask.set_pixels(shown[0], ps.origin, lut, shown[1])
             layer.pixels = ps
         if selected:
             if layer.outlined is not ps:
-                layer.outline.setPath(segments_path(crack_segments(ps.mask, ps.origin)))
+                path = self.prepared(
+                    obj.id,
+                    "outline",
+                    ps,
+                    ps.mask.size,
+                    lambda: segments_path(crack_segments(ps.mask, ps.origin)),
+                )
+                if path is None:
+                    return False
+                layer.outline.setPath(path)
                 layer.outlined = ps
             layer.outline.set_style(None, self.highlight_colour(), 2.0)
             layer.outline.setVisible(True)

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-from PySide6 import QtGui
+from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import qcolor
 from mrm.views.items import MarkersItem, PathItem, geometry_path, polygon_rings
+from mrm.views.scene import Phantom
 
 
 class EuclideanLayer(Layer):
@@ -38,6 +39,12 @@ class EuclideanView(RepresentationView):
     subtitle = "polygons"
     rep = "euclidean"
 
+    shows_ghosts = True
+    legend = (
+        "polygons in the object's colour · □ vertices of the selected object · "
+        "<span style='color:#9a9a9a'>╍</span> grey dashed: operation preview (not an object)"
+    )
+
     def make_layer(self, obj_id: int) -> Layer:
         return EuclideanLayer(obj_id)
 
@@ -47,15 +54,27 @@ class EuclideanView(RepresentationView):
         if geom is None:
             return self.scene.error(obj.id, "euclidean") is not None
         if geom is not layer.geometry:
-            layer.polygon.setPath(geometry_path(geom))
+            n = int(shapely.get_num_coordinates(geom))
+            data = self.prepared(
+                obj.id, "polygons", geom, n * 20, lambda: (geometry_path(geom), ring_vertices(geom))
+            )
+            if data is None:
+                return False  # prepared on a worker
+            layer.polygon.setPath(data[0])
             layer.geometry = geom
-            layer.vertices = ring_vertices(geom)
+            layer.vertices = data[1]
         fill = qcolor(obj.style.fill)
         fill.setAlphaF(obj.style.opacity * (0.8 if selected else 0.6))
         stroke = (
             qcolor(obj.style.fill).darker(160) if not self.is_dark() else qcolor(obj.style.fill).lighter(140)
         )
-        layer.polygon.set_style(fill, stroke, obj.style.stroke_width + (0.8 if selected else 0.0))
+        ghost = isinstance(obj, Phantom)
+        layer.polygon.set_style(
+            fill,
+            stroke,
+            obj.style.stroke_width + (0.8 if selected else 0.0),
+            QtCore.Qt.PenStyle.DashLine if ghost else None,
+        )
         if selected:
             layer.handles.set_points(layer.vertices)
             dark = self.is_dark()

@@ -22,7 +22,32 @@ _ROOT = QtCore.QModelIndex()  # the invalid index: the model's root
 COL_VISIBLE, COL_COLOUR, COL_NAME, COL_SOURCE = range(4)
 HEADERS = ("", "", "Name", "Source")
 
-SOURCE_TEXT = {"euclidean": "Euclidean", "discrete": "discrete"}
+SOURCE_TEXT = {"euclidean": "polygon", "discrete": "pixels"}
+
+#: How the Source column names the operation that made an object (its parameters follow).
+OPERATION_TEXT = {
+    "dss": "DSS",
+    "discrete_rotation": "rotation",
+    "simplify": "simplification",
+    "union": "union",
+    "corefine": "co-refinement",
+}
+
+
+def provenance_text(prov: object) -> str:
+    """``DSS α = 5``, ``rotation 30°``, ``co-refinement A ∖ B``: what made an object, for people."""
+    op = str(getattr(prov, "operation", ""))
+    params = dict(getattr(prov, "params", {}) or {})
+    name = OPERATION_TEXT.get(op, op.replace("_", " "))
+    if "alpha" in params:
+        return f"{name} α = {params['alpha']:g}" if isinstance(params["alpha"], float | int) else name
+    if "angle" in params and isinstance(params["angle"], float | int):
+        return f"{name} {params['angle']:g}°"
+    if "part" in params:
+        from mrm.ops.boolean import PART_TITLES
+
+        return f"{name} {PART_TITLES.get(str(params['part']), params['part'])}"
+    return name
 
 
 class ObjectListModel(QtCore.QAbstractTableModel):
@@ -85,11 +110,12 @@ class ObjectListModel(QtCore.QAbstractTableModel):
             return o.name
         if c == COL_SOURCE and role == R.DisplayRole:
             text = SOURCE_TEXT[o.kind]
-            return f"{text} · {o.provenance.operation}" if o.provenance is not None else text
+            return f"{text} · {provenance_text(o.provenance)}" if o.provenance is not None else text
         if role == R.ToolTipRole:
-            tip = f"{o.name}\nsource: {SOURCE_TEXT[o.kind]} representation"
+            rep = "Euclidean (polygons)" if o.kind == "euclidean" else "discrete (pixels)"
+            tip = f"{o.name}\nsource: the {rep} representation"
             if o.provenance is not None:
-                tip += f"\nproduced by {o.provenance.operation}"
+                tip += f"\nproduced by {provenance_text(o.provenance)}"
                 if o.provenance.params:
                     tip += " (" + ", ".join(f"{k}={v}" for k, v in o.provenance.params.items()) + ")"
             return tip

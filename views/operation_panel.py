@@ -15,12 +15,151 @@ from typing import Any
 from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import ApplyResults
-from mrm.errors import MRMError
+from mrm.errors import MRMError, SizeLimitError
 from mrm.ops.base import plan_operation
 from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations
 from mrm.views.scene import Scene
 
 SLIDER_STEPS = 1000
+
+
+def _limit_kw(limit: int | None) -> dict[str, int]:
+    """The preference's pixel limit for plan_operation (its own default when the preference is unset)."""
+    return {} if limit is None else {"limit": limit}
+
+
+def readable_name(name: str) -> str:
+    """A result's name for people: co-refinement parts as A ∖ B, A ∩ B, B ∖ A instead of identifiers."""
+    from mrm.ops.boolean import PART_TITLES
+
+    for key, title in PART_TITLES.items():
+        name = name.replace(key, title)
+    return name.replace("_", " ")
+
+
+def unique_name(name: str, taken: set[str]) -> str:
+    """``name``, or ``name (2)``, ``name (3)``… : the first not in ``taken``."""
+    if name not in taken:
+        return name
+    k = 2
+    while f"{name} ({k})" in taken:
+        k += 1
+    return f"{name} ({k})"
+
+
+def _is_empty(source: Any) -> bool:
+    empty = getattr(source, "is_empty", False)
+    return bool(empty() if callable(empty) else empty)
+
+
+def range_text(spec: Any) -> str:
+    """The allowed values of a number parameter in interval notation: ``(0, ∞)``, ``[0, 1]``, any number."""
+    lo, hi = getattr(spec, "minimum", None), getattr(spec, "maximum", None)
+    if lo is None and hi is None:
+        return "any number"
+    left = "(−∞" if lo is None else ("[" if spec.min_inclusive else "(") + _num_text(float(lo))
+    right = "∞)" if hi is None else _num_text(float(hi)) + ("]" if spec.max_inclusive else ")")
+    return f"{left}, {right}"
+
+
+def _num_text(v: float) -> str:
+    return f"{v:g}".replace("-", "−")
+
+
+def parse_number(text: str) -> float:
+    """A number as a person types it: ``1e9``, ``−3`` (typographic minus), ``2,5``, a trailing unit."""
+    t = text.strip().replace("−", "-").replace("\u2009", "").replace(" ", "")
+    t = t.rstrip("×°px%")
+    if t.count(",") == 1 and "." not in t:
+        t = t.replace(",", ".")
+    return float(t)
+
+
+class NumberField(QtWidgets.QLineEdit):
+    """A number typed as text, checked against the parameter's allowed range and never rewritten.
+
+    The check runs when the text is committed (Enter or leaving the field). An invalid entry stays as
+    typed, marked red with the reason; the panel refuses to preview or apply until it is corrected.
+    """
+
+    valueChanged = QtCore.Signal(float)
+    #: The text was committed: (valid, message).
+    validated = QtCore.Signal(bool, str)
+
+    def __init__(self, info: ParamInfo, spec: Any, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.info = info
+        self.spec = spec
+        self._value: float | None = None
+        self.error = ""
+        self.setObjectName(f"field_{info.name}")
+        self.setPlaceholderText("default" if info.optional else "")
+        self.editingFinished.connect(self._commit)
+        self.setToolTip(f"{info.label}: {range_text(spec) if spec is not None else ''}")
+
+    def suffix(self) -> str:
+        return f" {self.info.unit}" if self.info.unit else ""
+
+    def value(self) -> float | None:
+        return self._value
+
+    def is_valid(self) -> bool:
+        return not self.error
+
+    def setValue(self, v: float | None) -> None:
+        self._value = None if v is None else float(v)
+        self.setText("" if v is None else _format_value(float(v), self.info.kind))
+        self._mark("")
+
+    def _mark(self, error: str) -> None:
+        self.error = error
+        self.setProperty("invalid", bool(error))
+        self.setStyleSheet("QLineEdit { border: 2px solid #c0392b; }" if error else "")
+        rng = range_text(self.spec) if self.spec is not None else ""
+        self.setToolTip(error or f"{self.info.label}: {rng}")
+
+    def _commit(self) -> None:
+        text = self.text()
+        if not text.strip() and self.info.optional:
+            changed = self._value is not None or bool(self.error)
+            self._value = None
+            self._mark("")
+            if changed:
+                self.validated.emit(True, "")
+                self.valueChanged.emit(float("nan"))
+            return
+        try:
+            v = parse_number(text)
+            if self.info.kind == "int" and v != int(v):
+                raise ValueError
+            if self.spec is not None:
+                from mrm.errors import MRMError
+                from mrm.ops.base import _check_number
+
+                try:
+                    _check_number(self.spec, int(v) if self.info.kind == "int" else v)
+                except MRMError as e:
+                    raise ValueError(str(e).replace("parameter ", "", 1)) from None
+        except ValueError as e:
+            msg = str(e) if str(e) and "could not convert" not in str(e) else ""
+            kind = "a whole number" if self.info.kind == "int" else "a number"
+            rng = range_text(self.spec) if self.spec is not None else ""
+            self._mark(msg or f"{self.info.label}: {text.strip()!r} is not {kind} in {rng}")
+            self.validated.emit(False, self.error)
+            self.valueChanged.emit(float("nan"))
+            return
+        was_error = bool(self.error)
+        self._mark("")
+        if v != self._value or was_error:
+            self._value = v
+            self.validated.emit(True, "")
+            self.valueChanged.emit(v)
+
+
+def _format_value(v: float, kind: str) -> str:
+    if kind == "int":
+        return str(int(v))
+    return f"{v:.6g}"
 
 
 class ParamControl(QtWidgets.QWidget):
@@ -30,9 +169,10 @@ class ParamControl(QtWidgets.QWidget):
     #: The slider is being dragged (True) or was released (False).
     dragging = QtCore.Signal(bool)
 
-    def __init__(self, info: ParamInfo, parent: QtWidgets.QWidget | None = None) -> None:
+    def __init__(self, info: ParamInfo, parent: QtWidgets.QWidget | None = None, spec: Any = None) -> None:
         super().__init__(parent)
         self.info = info
+        self.spec = spec  # the model's ParamSpec: the allowed range (the slider covers a useful part)
         self.setObjectName(f"param_{info.name}")
         lay = QtWidgets.QHBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
@@ -46,30 +186,21 @@ class ParamControl(QtWidgets.QWidget):
             hi = info.maximum if info.maximum is not None else (lo + 100.0)
             self._lo, self._hi = float(lo), float(hi)
             self._log = info.log or (self._lo > 0 and self._hi / self._lo >= 100)
-            if k == "float":
-                f = QtWidgets.QDoubleSpinBox(self)
-                f.setDecimals(4)
-                f.setRange(self._lo, self._hi)
-                f.setSingleStep(info.step or (self._hi - self._lo) / 100 or 0.1)
-            else:
-                f = QtWidgets.QSpinBox(self)
-                f.setRange(int(self._lo), int(self._hi))
-                f.setSingleStep(int(info.step or 1))
-            if info.unit:
-                f.setSuffix(f" {info.unit}")
-            if info.optional and k == "float":
-                # None ("the operation's default") sits just below the range, shown as text.
-                f.setMinimum(0.0 if self._lo > 0 else self._lo - 1.0)
-                f.setSpecialValueText("default")
-            f.setKeyboardTracking(False)
-            f.setObjectName(f"field_{info.name}")
+            f = NumberField(info, spec, self)
             self.field = f
+            # The allowed range and the unit, always in sight (the slider spans only a useful part of it).
+            self.range_label = QtWidgets.QLabel(
+                (f"{info.unit} " if info.unit else "") + (range_text(spec) if spec is not None else ""), self
+            )
+            self.range_label.setObjectName(f"range_{info.name}")
+            self.range_label.setStyleSheet("color: palette(placeholder-text);")
             s = QtWidgets.QSlider(QtCore.Qt.Orientation.Horizontal, self)
             s.setObjectName(f"slider_{info.name}")
             s.setRange(0, SLIDER_STEPS)
             self.slider = s
             lay.addWidget(s, 3)
             lay.addWidget(f, 2)
+            lay.addWidget(self.range_label)
             s.valueChanged.connect(self._slider_moved)
             s.sliderPressed.connect(lambda: self.dragging.emit(True))
             s.sliderReleased.connect(lambda: self.dragging.emit(False))
@@ -130,12 +261,18 @@ class ParamControl(QtWidgets.QWidget):
             self._syncing = False
         self.changed.emit()
 
+    def is_valid(self) -> bool:
+        return not isinstance(self.field, NumberField) or self.field.is_valid()
+
+    def error(self) -> str:
+        return self.field.error if isinstance(self.field, NumberField) else ""
+
     def _field_changed(self, v: float) -> None:
         if self._syncing:
             return
         self._syncing = True
         try:
-            if self.slider is not None:
+            if self.slider is not None and not math.isnan(v):
                 self.slider.setValue(self._to_slider(float(v)))
         finally:
             self._syncing = False
@@ -145,11 +282,11 @@ class ParamControl(QtWidgets.QWidget):
     def value(self) -> Any:
         k = self.info.kind
         if k == "float":
-            if self.info.optional and self.field.value() == self.field.minimum():
-                return None
-            return float(self.field.value())
+            v = self.field.value()
+            return None if v is None else float(v)
         if k == "int":
-            return int(self.field.value())
+            v = self.field.value()
+            return None if v is None else int(v)
         if k == "bool":
             return bool(self.field.isChecked())
         if k == "choice":
@@ -165,7 +302,7 @@ class ParamControl(QtWidgets.QWidget):
         self._syncing = True
         try:
             if k == "float" and v is None and self.info.optional:
-                self.field.setValue(self.field.minimum())
+                self.field.setValue(None)
                 if self.slider is not None:
                     self.slider.setValue(0)
             elif k in ("float", "int") and v is not None:
@@ -220,9 +357,15 @@ class OperationPanel(QtWidgets.QWidget):
         lay.addWidget(self.form_box)
         self.live = QtWidgets.QCheckBox("Live preview", self)
         self.live.setObjectName("livePreview")
-        self.live.setChecked(True)
-        self.live.setToolTip("Show the result in every view while the parameters change")
-        self.live.toggled.connect(lambda on: self.request_preview() if on else self.clear_preview())
+        self._prefs = getattr(parent, "prefs", None)
+        self.live.setChecked(bool(self._prefs.live_preview) if self._prefs is not None else False)
+        self.live.setToolTip(
+            "Show the result of the current input and parameters as a grey ghost in the discrete and "
+            "Euclidean views (not an object: not listed, not saved, not counted by Fit All)"
+        )
+        self.live.toggled.connect(self._live_toggled)
+        self._paused = False  # after Apply: no preview until the user changes the input or a parameter
+        self._preview_key: tuple[Any, ...] | None = None
         lay.addWidget(self.live)
         row = QtWidgets.QHBoxLayout()
         self.apply_button = QtWidgets.QPushButton("Apply", self)
@@ -290,15 +433,17 @@ class OperationPanel(QtWidgets.QWidget):
         for k in range(self.op.arity):
             cb = QtWidgets.QComboBox(self.form_box)
             cb.setObjectName(f"input_{k}")
+            cb.activated.connect(lambda _i: self.user_edited())
             cb.currentIndexChanged.connect(lambda _i: self.request_preview())
             self.inputs.append(cb)
             self.form.addRow("Input" if self.op.arity == 1 else f"Input {'AB'[k] if k < 2 else k + 1}", cb)
+        specs = {s.name: s for s in self.op.spec.param_specs()} if self.op.spec is not None else {}
         for p in self.op.params:
-            c = ParamControl(p, self.form_box)
+            c = ParamControl(p, self.form_box, specs.get(p.name))
             if p.name == "model" and self.scene.doc.model in p.choices:
                 # Results keep D(Euclidean) = discrete under the document's model.
                 c.set_value(self.scene.doc.model)
-            c.changed.connect(self.request_preview)
+            c.changed.connect(self.user_edited)
             self.controls.append(c)
             label = QtWidgets.QLabel(p.label, self.form_box)
             label.setToolTip(c.toolTip())
@@ -307,6 +452,12 @@ class OperationPanel(QtWidgets.QWidget):
         self.request_preview()
 
     def _fill_inputs(self) -> None:
+        before = self.input_ids()
+        self._refill_inputs()
+        if self.input_ids() != before:
+            self.request_preview()  # a ghost of the former input must not stay on screen
+
+    def _refill_inputs(self) -> None:
         doc = self.scene.doc
         sel = list(doc.selection)
         for k, cb in enumerate(self.inputs):
@@ -331,8 +482,16 @@ class OperationPanel(QtWidgets.QWidget):
             or any("name" in w for w in ch.changed.values())
         ):
             self._fill_inputs()
+        if ch.settings or ch.reset:
+            self._follow_model()
         if ch.changed or ch.removed or ch.reset or ch.settings:
             self.request_preview()
+
+    def _follow_model(self) -> None:
+        """The panel's model is the document's (Edit ▸ Discretization Model), so results keep D(E) = A."""
+        for c in self.controls:
+            if c.info.name == "model" and self.scene.doc.model in c.info.choices:
+                c.set_value(self.scene.doc.model)
 
     # ------------------------------------------------------------------ values
     def values(self) -> dict[str, Any]:
@@ -355,6 +514,10 @@ class OperationPanel(QtWidgets.QWidget):
         if len(ids) < op.arity:
             self.status.setText(f"{op.title} needs {op.arity} input object{'s' if op.arity > 1 else ''}.")
             return None
+        bad = [c.error() for c in self.controls if not c.is_valid()]
+        if bad:
+            self.status.setText(f"<span style='color:#c0392b'>{bad[0]}</span>")
+            return None
         try:
             params = op.make_params(self.values())
         except (MRMError, TypeError, ValueError) as e:
@@ -364,8 +527,33 @@ class OperationPanel(QtWidgets.QWidget):
         return op, params, ids, sources
 
     # ------------------------------------------------------------------ preview
+    def _live_toggled(self, on: bool) -> None:
+        if self._prefs is not None:
+            self._prefs.live_preview = on
+        self._paused = False
+        if on:
+            self.request_preview()
+        else:
+            self.clear_preview()
+            self.status.setText("")
+
+    def user_edited(self) -> None:
+        """The user changed the input or a parameter: previews resume (they pause after Apply)."""
+        self._paused = False
+        self.request_preview()
+
+    def current_key(self) -> tuple[Any, ...]:
+        """What a preview is of: operation, inputs (and their revisions), parameters, model."""
+        doc = self.scene.doc
+        ids = tuple(self.input_ids())
+        revs = tuple(doc.object_revision(i) for i in ids if i in doc)
+        return (self.op.name if self.op else None, ids, revs, repr(sorted(self.values().items())), doc.model)
+
     def request_preview(self) -> None:
-        if self.live.isChecked() and self.op is not None:
+        """Clear the ghost at once (it would be of other inputs or parameters) and compute the new one."""
+        self.clear_preview()
+        if self.live.isChecked() and self.op is not None and not self._paused:
+            self.status.setText("preview: computing…")
             self._preview_timer.start()
 
     def _run_preview(self) -> None:
@@ -375,11 +563,17 @@ class OperationPanel(QtWidgets.QWidget):
             return
         op, params, _ids, sources = job
         t0 = time.perf_counter()
+        key = self.current_key()
+        self._preview_key = key
 
         def done(results: list[tuple[str | None, Any]]) -> None:
+            if key != self.current_key() or not self.live.isChecked() or self._paused:
+                return  # of other inputs or parameters by now: never shown
             items = [(name or f"{op.title} preview", src) for name, src in results]
             self.scene.set_phantoms(items)
-            self.status.setText(f"preview: {len(items)} result{'s' if len(items) != 1 else ''}, "
+            names = ", ".join(self.scene.doc.get(i).name for i in _ids)
+            self.status.setText(f"preview of {op.title} on {names} (grey ghost, not an object): "
+                                f"{len(items)} result{'s' if len(items) != 1 else ''}, "
                                 f"{time.perf_counter() - t0:.2f} s")  # fmt: skip
             self.previewed.emit()
 
@@ -406,8 +600,8 @@ class OperationPanel(QtWidgets.QWidget):
     def clear_preview(self) -> None:
         self._preview_timer.stop()
         self.runner.cancel("preview")
-        if self.scene.phantoms():
-            self.scene.set_phantoms([])
+        self._preview_key = None
+        self.scene.set_phantoms([])
 
     # ------------------------------------------------------------------ apply / cancel
     def apply(self) -> None:
@@ -419,6 +613,7 @@ class OperationPanel(QtWidgets.QWidget):
         self.runner.cancel("preview")
         doc = self.scene.doc
         inputs = [doc.get(i) for i in ids]  # immutable values read by the worker
+        limit = self._prefs.pixel_limit if self._prefs is not None else None
         self.apply_button.setEnabled(False)
         self.cancel_button.setEnabled(True)
         self.status.setText(f"running {op.title}…")
@@ -440,30 +635,52 @@ class OperationPanel(QtWidgets.QWidget):
                 self.status.setText(f"{op.title}: an input was deleted meanwhile; nothing was changed")
                 return
             w = self.window()
+            taken = {o.name for o in doc.objects}
+            kept, empty = [], []
+            for r in results:
+                name = unique_name(readable_name(r.name), taken)
+                if _is_empty(r.source):
+                    empty.append(readable_name(r.name))  # reported, never added as a 0-pixel object
+                    continue
+                taken.add(name)
+                kept.append((name, r))
+            if not kept:
+                self.status.setText(f"{op.title}: the result is empty ({', '.join(empty)}); nothing added")
+                return
             objs = [
                 doc.make_object(
                     r.source,
-                    name=r.name,
+                    name=name,
                     style=w.host.new_style(k) if hasattr(w, "host") else None,
                     provenance=r.provenance,
                 )
-                for k, r in enumerate(results)
+                for k, (name, r) in enumerate(kept)
             ]
             try:
                 doc.push(ApplyResults(label, add=objs))  # the one undo step of the plan
             except MRMError as e:
                 self.status.setText(f"<span style='color:#c0392b'>{e}</span>")
                 return
-            self.scene.set_phantoms([])
+            self._paused = True  # no ghost of the operation applied again to its own result
+            self.clear_preview()
+            note = f"; empty, not created: {', '.join(empty)}" if empty else ""
             self.status.setText(f"{op.title}: {len(objs)} object{'s' if len(objs) != 1 else ''} added "
-                                f"in {time.perf_counter() - t0:.2f} s")  # fmt: skip
+                                f"in {time.perf_counter() - t0:.2f} s{note}")  # fmt: skip
             self.applied.emit([o.id for o in objs])
 
         def failed(exc: BaseException) -> None:
             self._finished()
             if not isinstance(exc, MRMError):
                 raise exc
-            self.status.setText(f"<span style='color:#c0392b'>{op.title}: {exc}</span>")
+            text = str(exc)
+            if isinstance(exc, SizeLimitError):
+                from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
+
+                text = text.replace(
+                    "raise the limit",
+                    f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
+                )
+            self.status.setText(f"<span style='color:#c0392b'>{op.title}: {text}</span>")
 
         def cancelled() -> None:
             self._finished()
@@ -471,7 +688,7 @@ class OperationPanel(QtWidgets.QWidget):
 
         self.runner.submit(
             "operation",
-            lambda progress: plan_operation(inputs, op.spec, params, progress),
+            lambda progress: plan_operation(inputs, op.spec, params, progress, **_limit_kw(limit)),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

@@ -14,7 +14,7 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, qcolor
+from mrm.views.canvas import MaskItem, lod_image, qcolor
 from mrm.views.items import MarkersItem, PathItem, rings_path
 
 #: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
@@ -59,6 +59,29 @@ def junctions(chains: list[Any]) -> np.ndarray:
     return uniq[counts > 1].astype(float) - 0.5
 
 
+def region_drawing(region: Any) -> tuple[Any, Any, Any, Any, Any]:
+    """What the region view draws of a region (any thread): labels, hole mask, boundary paths, junctions."""
+    data = region.labels.labels
+    # Labels beyond 255 cycle through the palette: colour, not identity, is what is shown.
+    img = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8) if data.size else data
+    holes = hole_mask(data > 0).astype(np.uint8) if data.size else data
+    outer = [chain_xy(c.outer) for c in region.components]
+    inner = [chain_xy(h.boundary) for c in region.components for h in c.holes]
+    return (
+        lod_image(img),
+        lod_image(holes),
+        rings_path(outer, close=False),
+        rings_path(inner, close=False),
+        junctions(list(region.boundary_chains)),
+    )
+
+
+def colour_distance(a: str, b: str) -> float:
+    """Euclidean distance of two ``#rrggbb`` colours in RGB (0 … 441)."""
+    ca, cb = qcolor(a), qcolor(b)
+    return float(np.sqrt(sum((x - y) ** 2 for x, y in zip(ca.getRgb()[:3], cb.getRgb()[:3], strict=True))))
+
+
 class RegionLayer(Layer):
     def __init__(self, obj_id: int) -> None:
         super().__init__(obj_id)
@@ -88,8 +111,17 @@ class RegionView(RepresentationView):
     def make_layer(self, obj_id: int) -> Layer:
         return RegionLayer(obj_id)
 
+    legend = (
+        "<span style='color:#4e79a7'>■</span><span style='color:#f28e2b'>■</span>"
+        "<span style='color:#59a14f'>■</span> one colour per component · "
+        "<span style='color:#969696'>■</span> hole · ━ outer boundary · ╍ hole boundary · "
+        "<span style='color:#e15759'>●</span> junction (selected object)"
+    )
+
     def component_lut(self, fill: str, alpha: int) -> np.ndarray:
-        cols = [fill, *[c for c in COMPONENT_COLOURS if c.lower() != fill.lower()]]
+        # The object's colour first, then the palette without the colours close to it (a blue object's
+        # second component must not be another blue).
+        cols = [fill, *[c for c in COMPONENT_COLOURS if colour_distance(c, fill) > 60]]
         lut = np.zeros((256, 4), dtype=np.uint8)
         for k in range(1, 256):
             lut[k] = [*list(qcolor(cols[(k - 1) % len(cols)]).getRgb()[:3]), alpha]
@@ -106,19 +138,21 @@ class RegionView(RepresentationView):
         if key == layer.key:
             return True
         if region is not layer.region:
+            # The size from the pixels' box: reading region.labels here would paint the labels (seconds on a
+            # big object) on the GUI thread.
+            ps = self.get(obj.id, "discrete")
+            size = ps.mask.size if ps is not None else 0
+            data = self.prepared(obj.id, "region", region, size, lambda: region_drawing(region))
+            if data is None:
+                return False  # prepared on a worker: the view says "computing…" meanwhile
+            img, holes, outer, inner, junction_points = data
             lab = region.labels
-            data = lab.labels
-            # Labels beyond 255 cycle through the palette: colour, not identity, is what is shown.
-            img = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8) if data.size else data
-            layer.components.set_pixels(img, lab.origin)
-            holes = hole_mask(data > 0) if data.size else data
+            layer.components.set_pixels(img[0], lab.origin, None, img[1])
             hl = np.array([[0, 0, 0, 0], [150, 150, 150, 90] if not dark else [200, 200, 200, 70]])
-            layer.holes.set_pixels(holes.astype(np.uint8), lab.origin, hl)
-            outer = [chain_xy(c.outer) for c in region.components]
-            inner = [chain_xy(h.boundary) for c in region.components for h in c.holes]
-            layer.outer.setPath(rings_path(outer, close=False))
-            layer.inner.setPath(rings_path(inner, close=False))
-            layer.junctions.set_points(junctions(list(region.boundary_chains)))
+            layer.holes.set_pixels(holes[0], lab.origin, hl, holes[1])
+            layer.outer.setPath(outer)
+            layer.inner.setPath(inner)
+            layer.junctions.set_points(junction_points)
             layer.region = region
         layer.components.set_lut(self.component_lut(obj.style.fill, alpha))
         line = QtGui.QColor("#e8e8e8") if dark else QtGui.QColor("#1d1d1d")
@@ -126,5 +160,6 @@ class RegionView(RepresentationView):
         layer.outer.set_style(None, line, width)
         layer.inner.set_style(None, line, width, QtCore.Qt.PenStyle.DashLine)
         layer.junctions.set_colours(line, QtGui.QColor("#e15759"))
+        layer.junctions.setVisible(selected)  # only the selected object's: many objects' dots are a blur
         layer.key = key
         return True

@@ -17,6 +17,12 @@ from mrm.derive import SYNC_COST, Derived, Rep
 from mrm.document import Changes, DocObject, Document, Source, Style
 from mrm.errors import MRMError
 
+#: The one look of every previewed result (a "ghost"): a neutral grey no object is given (not in the
+#: palette of new objects), half transparent; the Euclidean view also draws its outline dashed. Ghosts are
+#: drawn only in the discrete and Euclidean views, listed nowhere and never counted by Fit All.
+GHOST_FILL = "#9a9a9a"
+GHOST_STYLE = Style(fill=GHOST_FILL, opacity=0.5)
+
 
 @dataclass(frozen=True)
 class Phantom:
@@ -25,7 +31,7 @@ class Phantom:
     id: int
     name: str
     source: Source
-    style: Style = field(default_factory=lambda: Style(fill="#ff7f0e", opacity=0.45))
+    style: Style = field(default_factory=lambda: GHOST_STYLE)
 
     @property
     def kind(self) -> str:
@@ -78,8 +84,12 @@ class Scene(QtCore.QObject):
         for i in changes.removed:
             self._previews.pop(i, None)
         self._errors = {k: v for k, v in self._errors.items() if self.has(k[0])}
-        if self.segment[0] != -1 and (self.segment[0] not in self.doc or self.segment[0] in changes.changed):
-            self.select_segment(-1, -1, -1)
+        if self.segment[0] != -1 and (
+            self.segment[0] not in self.doc
+            or self.segment[0] in changes.changed
+            or (changes.selection and self.segment[0] not in self.doc.selection)
+        ):
+            self.select_segment(-1, -1, -1)  # the chosen segment's line belongs to the selected object
         self.documentChanged.emit(changes)
 
     def objects(self) -> tuple[DocObject | Phantom, ...]:
@@ -90,11 +100,13 @@ class Scene(QtCore.QObject):
         return obj_id in self.doc or obj_id in self._phantoms
 
     # ------------------------------------------------------------------ phantoms (operation previews)
-    def set_phantoms(self, items: list[tuple[str, Source]], style: Style | None = None) -> None:
-        """Show ``(name, source)`` results as temporary objects drawn above the document ([] clears)."""
+    def set_phantoms(self, items: list[tuple[str, Source]]) -> None:
+        """Show ``(name, source)`` results as ghosts drawn above the document ([] clears)."""
+        if not items and not self._phantoms:
+            return
         self._phantoms = {}
         for k, (name, src) in enumerate(items):
-            ph = Phantom(-(k + 1), name, src, style or Phantom(0, "", src).style)
+            ph = Phantom(-(k + 1), name, src, GHOST_STYLE)
             self._phantoms[ph.id] = (ph, Derived(src, self.doc.model))
         self.phantomsChanged.emit()
 

@@ -79,8 +79,38 @@ class SegmentModel(QtCore.QAbstractTableModel):
             return int(QtCore.Qt.AlignmentFlag.AlignRight | QtCore.Qt.AlignmentFlag.AlignVCenter)
         if role == QtCore.Qt.ItemDataRole.ToolTipRole:
             a, b, mu, om = (int(v) for v in row[2:6])
-            return f"{mu} ≤ {a}·i − {b}·j < {mu + om}  (pointels (i, j); direction ({b}, {a}))"
+            return f"{_n(mu)} ≤ {linear(a, -b)} < {_n(mu + om)}  (pointels (i, j); direction ({b}, {a}))"
         return None
+
+
+def _n(v: object) -> str:
+    return str(v).replace("-", "−")
+
+
+def linear(a: object, b: object, x: str = "i", y: str = "j") -> str:
+    """``a·x + b·y`` written as a person would: ``4·i − 3·j``, never ``4·i − -3·j``; zero terms dropped."""
+    from fractions import Fraction
+
+    terms = []
+    for coef, var in ((Fraction(str(a)), x), (Fraction(str(b)), y)):
+        if coef == 0:
+            continue
+        mag = abs(coef)
+        body = var if mag == 1 else f"{_n(mag)}·{var}"
+        if not terms:
+            terms.append(("−" if coef < 0 else "") + body)
+        else:
+            terms.append(("− " if coef < 0 else "+ ") + body)
+    return " ".join(terms) or "0"
+
+
+def to_local(frame: tuple[int, int], u: Any, w: Any, i0: int, j0: int) -> tuple[Any, Any]:
+    """(u, w) of a line in coordinates relative to the pointel (i0, j0), exactly.
+
+    u·x′ − (1 − u)·y′ = w with x′ = σx·x, y′ = σy·y keeps u and gets w − u·σx·i0 + (1 − u)·σy·j0.
+    """
+    sx, sy = frame
+    return u, w - u * sx * i0 + (1 - u) * sy * j0
 
 
 class SegmentTable(QtWidgets.QWidget):
@@ -119,7 +149,7 @@ class SegmentTable(QtWidgets.QWidget):
             self.plot.getAxis(side).enableAutoSIPrefix(False)
         self._style_plot()
         self.plot.setLabel("bottom", "u (0 horizontal … 1 vertical)")
-        self.plot.setLabel("left", "w (offset)")
+        self.plot.setLabel("left", "w (offset from the first pointel)")
         self.preimage_item = PathItem()
         self.median_item = pg.ScatterPlotItem(size=9, symbol="o")
         self.plot.addItem(self.preimage_item)
@@ -218,24 +248,30 @@ class SegmentTable(QtWidgets.QWidget):
             return
         seg = chain.segments[k]
         pre = chain.preimage(k)
-        vs = np.array([(float(u), float(w)) for u, w in pre.vertices]).reshape(-1, 2)
+        # Drawn in the segment's local frame (origin at its first pointel): far from the origin the global
+        # offsets w are huge and the polygon would be a sliver.
+        pts = chain.points()
+        i0, j0 = (int(v) for v in pts[seg.first % len(pts)])
+        local = [to_local(pre.frame, u, w, i0, j0) for u, w in pre.vertices]
+        vs = np.array([(float(u), float(w)) for u, w in local]).reshape(-1, 2)
         fill = QtGui.QColor("#9467bd")
         fill.setAlpha(90)
         self.preimage_item.setPath(rings_path([vs]) if len(vs) else QtGui.QPainterPath())
         self.preimage_item.set_style(fill, QtGui.QColor("#9467bd"), 2.0)
         text = (
             f"Segment {k}: (a, b, μ, ω) = ({seg.a}, {seg.b}, {seg.mu}, {seg.omega}), "
-            f"pointels {seg.first}–{seg.last}. Preimage in frame {pre.frame}: {len(pre.vertices)} vertices."
+            f"pointels {seg.first}–{seg.last}. Preimage in the segment's frame {pre.frame}, origin at its "
+            f"first pointel ({_n(i0)}, {_n(j0)}): {len(pre.vertices)} vertices."
         )
         if seg.a or seg.b:
             from mrm.geometry.preimage import median_parameters
 
-            u, w = median_parameters(seg)
+            u, w = to_local(pre.frame, *median_parameters(seg), i0, j0)
             self.median_item.setData(
                 [float(u)], [float(w)], brush=pg.mkBrush("#000000"), pen=pg.mkPen("#ffffff")
             )
             a, b, c = chain.line(k)
-            text += f" Chosen line: {a}·i − {b}·j = {c} (the median line, inside the open preimage)."
+            text += f" Chosen line: {linear(a, -b)} = {_n(c)} (the median line, inside the open preimage)."
         else:
             self.median_item.setData([], [])
         self.plot_caption.setText(text)

@@ -14,18 +14,20 @@ from typing import Any
 
 import numpy as np
 import shapely
-from PySide6 import QtCore, QtGui
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.commands import (
     AddObject,
+    DeleteComponent,
     DeleteVertex,
+    FillHole,
     InsertVertex,
     MoveVertex,
     PaintPixels,
     SetSource,
 )
 from mrm.document import DocObject, Style
-from mrm.errors import MRMError
+from mrm.errors import MRMError, ParameterError
 from mrm.reps.pixels import PixelSet
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
@@ -348,17 +350,66 @@ class PolygonTool(Tool):
             self.host.error.emit("a polygon needs at least 3 vertices")
             return
         ring = np.asarray(pts, dtype=float)
-        doc = self.scene.doc
         try:
             if self.hole:
                 self._add_hole(ring)
                 return
             geom = ge.new_polygon(ring)
         except MRMError as e:
-            self.host.error.emit(f"polygon refused: {e}")
+            if not shapely.Polygon(ring).is_valid and len(pts) >= 3:
+                self.offer_repair(pts)  # a self-crossing outline: repair it or keep editing, never lose it
+            else:
+                self.host.error.emit(f"polygon refused: {e}")
             return
+        self._add(geom)
+
+    def _add(self, geom: shapely.Geometry) -> None:
+        doc = self.scene.doc
         obj = doc.make_object(geom, name=f"Polygon {next(self.counter)}", style=self.host.new_style())
         self.host.push(AddObject(obj, select=True))
+
+    def offer_repair(self, pts: list[tuple[float, float]]) -> QtWidgets.QMessageBox:
+        """Ask whether to repair a self-crossing outline (shapely ``make_valid``) or go on editing it.
+
+        The box is window-modal but does not block the caller; ``self.repair_box`` is the open one.
+        """
+        repaired = repair_polygon(np.asarray(pts, dtype=float))
+        parent = self.host.parent() if isinstance(self.host.parent(), QtWidgets.QWidget) else None
+        box = QtWidgets.QMessageBox(parent)
+        box.setObjectName("repairPolygon")
+        box.setIcon(QtWidgets.QMessageBox.Icon.Question)
+        box.setWindowTitle("The outline crosses itself")
+        n = len(shapely.get_parts(repaired)) if repaired is not None else 0
+        box.setText("The outline you drew crosses itself, so it is not a valid polygon.")
+        box.setInformativeText(
+            (
+                f"Repair splits it where it crosses into {n} valid polygon{'s' if n != 1 else ''} "
+                f"(area {repaired.area:.4g}). "
+                if repaired is not None
+                else "It encloses no area, so it cannot be repaired. "
+            )
+            + "Keep editing goes back to the drawing with every vertex (Backspace removes the last one)."
+        )
+        repair = box.addButton("Repair", QtWidgets.QMessageBox.ButtonRole.AcceptRole)
+        repair.setObjectName("repairButton")
+        repair.setEnabled(repaired is not None)
+        keep = box.addButton("Keep editing", QtWidgets.QMessageBox.ButtonRole.RejectRole)
+        keep.setObjectName("keepEditingButton")
+        box.setDefaultButton(keep)
+
+        def chosen(button: QtWidgets.QAbstractButton) -> None:
+            if button is repair and repaired is not None:
+                self._add(repaired)
+            else:
+                self.points = list(pts)
+                self.host.overlayChanged.emit()
+                self.host.message.emit("drawing kept: move the mouse and click to go on", 4000)
+
+        box.buttonClicked.connect(chosen)
+        box.setWindowModality(QtCore.Qt.WindowModality.WindowModal)
+        box.show()
+        self.repair_box = box
+        return box
 
     def _add_hole(self, ring: np.ndarray) -> None:
         doc = self.scene.doc
@@ -843,33 +894,24 @@ class FillHoleTool(_ClickPixelTool):
     def click(self, px: tuple[int, int]) -> None:
         doc = self.scene.doc
         cands = [o for o in ([self.scene.primary(), *list(reversed(doc.objects))]) if o is not None]
+        tried: set[int] = set()  # the selected object first, then top to bottom, each once
         for obj in cands:
-            ps = self.scene.get(obj.id, "discrete")
-            if ps is None or not obj.style.visible:
+            if obj.id in tried:
                 continue
-            hole = hole_pixels_at(ps, px)
-            if hole is not None:
-                cmd = PaintPixels(obj.id, hole, True)
-                cmd.label = "Fill hole"
-                if self.host.push(cmd):
-                    doc.set_selection([obj.id])
-                return
+            tried.add(obj.id)
+            ps = self.scene.get(obj.id, "discrete")
+            b = ps.bbox if ps is not None else None
+            if b is None or not obj.style.visible or px in ps:
+                continue
+            if not (b[0] < px[0] < b[2] and b[1] < px[1] < b[3]):
+                continue  # outside the object's box: in no hole of it
+            try:
+                doc.push(FillHole(obj.id, px))  # the model's command finds the hole (DESIGN §4)
+            except ParameterError:
+                continue  # not in a hole of this object: try the next one
+            doc.set_selection([obj.id])
+            return
         self.host.message.emit("no hole there", 2500)
-
-
-def hole_pixels_at(ps: PixelSet, px: tuple[int, int]) -> PixelSet | None:
-    """The hole of ``ps`` holding pixel ``px``: its bounded 8-connected component of the complement."""
-    b = ps.bbox
-    if b is None or px in ps or not (b[0] < px[0] < b[2] and b[1] < px[1] < b[3]):
-        return None
-    from mrm.geometry.labeling import label
-
-    outside = np.pad(~ps.mask, 1, constant_values=True)
-    lab, _n = label(outside, connectivity=8)
-    k = lab[px[1] - b[1] + 1, px[0] - b[0] + 1]
-    if k == 0 or k == lab[0, 0]:
-        return None  # the unbounded background
-    return PixelSet(lab[1:-1, 1:-1] == k, (b[0], b[1]))
 
 
 class DeleteComponentTool(_ClickPixelTool):
@@ -878,14 +920,36 @@ class DeleteComponentTool(_ClickPixelTool):
 
     def click(self, px: tuple[int, int]) -> None:
         obj = self.object_at(px[0], px[1])
-        region = self.scene.get(obj.id, "region") if obj is not None else None
-        comp = region.component_of(*px) if region is not None else None
-        if obj is None or comp is None:
+        if obj is None:
             self.host.message.emit("no component there", 2500)
             return
-        cmd = PaintPixels(obj.id, region.labels.pixel_set(comp.label), False)
-        cmd.label = "Delete component"
-        self.host.push(cmd)
+        self.host.push(DeleteComponent(obj.id, px))
+
+
+def repair_polygon(ring: np.ndarray) -> shapely.Geometry | None:
+    """The valid polygon(s) shapely's ``make_valid`` makes of a self-crossing ring (None: no area)."""
+    from mrm.document import validate_geometry
+
+    fixed = shapely.make_valid(shapely.Polygon(ring))
+    polys = [p for p in shapely.get_parts(fixed) if isinstance(p, shapely.Polygon) and p.area > 0]
+    if not polys:
+        # A collection may hold a MultiPolygon among lines and points.
+        for g in shapely.get_parts(fixed):
+            if isinstance(g, shapely.MultiPolygon):
+                polys.extend(p for p in g.geoms if p.area > 0)
+    if not polys:
+        return None
+    geom = shapely.MultiPolygon(polys) if len(polys) > 1 else polys[0]
+    return validate_geometry(orient_all(geom))
+
+
+def orient_all(geom: shapely.Geometry) -> shapely.Geometry:
+    """Counter-clockwise exteriors (as drawn polygons are stored)."""
+    from shapely.geometry.polygon import orient
+
+    if isinstance(geom, shapely.MultiPolygon):
+        return shapely.MultiPolygon([orient(p, 1.0) for p in geom.geoms])
+    return orient(geom, 1.0)
 
 
 def make_tools(host: ToolHost) -> dict[str, Tool]:

@@ -247,6 +247,10 @@ def _stdout_to_stderr(active: bool) -> Iterator[None]:
         yield
 
 
+#: Subcommands that never call a compiled kernel (no first-run notice for them).
+NO_KERNELS = frozenset({"bounds"})
+
+
 def run_cli(argv: list[str]) -> int:
     """Parse ``argv`` (without the program name), run the subcommand, return the exit status."""
     try:
@@ -263,6 +267,10 @@ def _run_cli(argv: list[str]) -> int:
         parser.print_help()
         return 2
     streams = _Streams()
+    if args.command not in NO_KERNELS:
+        from mrm.warmup import announce_if_cold
+
+        announce_if_cold()  # one line before numba compiles for a minute on a fresh install
     try:
         _bind_streams(args, streams)
         _make_output_folder(args)

@@ -17,7 +17,8 @@ to about 2³⁰ and segments up to 2³⁰ points are safe from overflow.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from mrm.geometry._jit import njit
 
 A, B, LO, HI = 0, 1, 2, 3
 FX, FY, LX, LY = 4, 5, 6, 7

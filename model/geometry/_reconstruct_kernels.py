@@ -35,9 +35,9 @@ coordinate differences stays below 2⁶² (no overflow, no rounding).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from mrm.geometry._dss_kernels import reach_kernel
+from mrm.geometry._jit import njit
 
 # Freeman directions 0 = E, 1 = N, 2 = W, 3 = S.
 _DX = np.array([1, 0, -1, 0], dtype=np.int64)

@@ -57,7 +57,7 @@ class Rings(NamedTuple):
     runs: Runs
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _count_linels(rs: I32Array, re: I32Array, ptr: I64Array) -> int:  # pragma: no cover
     # Vertical linels: two per run. Horizontal ones between rows r-1 and r: |row r xor row r-1|.
     h = ptr.size - 1
@@ -88,12 +88,12 @@ def _count_linels(rs: I32Array, re: I32Array, ptr: I64Array) -> int:  # pragma: 
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _inside(m: U8Array, x: int, y: int) -> bool:  # pragma: no cover
     return 0 <= y < m.shape[0] and 0 <= x < m.shape[1] and bool(m[y, x] != 0)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _reverse(a: U8Array, i: int, j: int) -> None:  # pragma: no cover
     # Reverse a[i:j] in place.
     j -= 1
@@ -105,7 +105,7 @@ def _reverse(a: U8Array, i: int, j: int) -> None:  # pragma: no cover
         j -= 1
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _gap(rs: I32Array, ptr: I64Array, c: int, r: int) -> int:  # pragma: no cover
     # Index of the background run (gap) holding the background pixel (c, r) of row r (0 <= r < h).
     lo = ptr[r]
@@ -119,7 +119,7 @@ def _gap(rs: I32Array, ptr: I64Array, c: int, r: int) -> int:  # pragma: no cove
     return int(lo + r)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _trace_mask(
     m: U8Array,
     rs: I32Array,
@@ -255,7 +255,7 @@ def trace_mask(mask: npt.ArrayLike) -> Rings:
 # ---------------------------------------------------------------------------------------------- fill
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _ring_extent(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array
 ) -> tuple[int, int, int, int, bool]:  # pragma: no cover
@@ -295,7 +295,7 @@ def _ring_extent(
     return xmin, ymin, xmax, ymax, closed
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _winding_diff(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array, wt: I32Array, x0: int, y0: int, w: int, h: int
 ) -> I32Array:  # pragma: no cover
@@ -324,7 +324,7 @@ def _winding_diff(
     return diff
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _fill(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array, x0: int, y0: int, w: int, h: int
 ) -> tuple[BoolArray, bool]:  # pragma: no cover
@@ -341,7 +341,7 @@ def _fill(
     return out, ok
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _paint_rings(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array, wt: I32Array, x0: int, y0: int, w: int, h: int
 ) -> I32Array:  # pragma: no cover
@@ -437,7 +437,7 @@ class CellChains(NamedTuple):
     right: I32Array
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _trace_cells(
     lab: I32Array,
 ) -> tuple[I64Array, I64Array, U8Array, I64Array, I64Array, I64Array, I32Array, I32Array]:  # pragma: no cover

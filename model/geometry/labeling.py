@@ -45,7 +45,7 @@ class Runs(NamedTuple):
     bg_counts: Int64Array
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _find_runs(m: npt.NDArray[np.uint8]) -> tuple[Int32Array, Int32Array, Int64Array]:  # pragma: no cover
     h, w = m.shape
     cap = max(1, h * ((w + 1) // 2))
@@ -72,7 +72,7 @@ def _find_runs(m: npt.NDArray[np.uint8]) -> tuple[Int32Array, Int32Array, Int64A
     return rs[:n], re[:n], ptr
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _find(parent: Int64Array, x: int) -> int:  # pragma: no cover
     while parent[x] != x:
         parent[x] = parent[parent[x]]
@@ -80,7 +80,7 @@ def _find(parent: Int64Array, x: int) -> int:  # pragma: no cover
     return x
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _union(parent: Int64Array, a: int, b: int) -> None:  # pragma: no cover
     # The smaller index stays the root, so a component's root is its first run in raster order.
     a = _find(parent, a)
@@ -91,7 +91,7 @@ def _union(parent: Int64Array, a: int, b: int) -> None:  # pragma: no cover
         parent[a] = b
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _label_runs(
     rs: Int32Array, re: Int32Array, ptr: Int64Array, w: int, obj_diag: int
 ) -> tuple[Int32Array, int, Int64Array, Int32Array, int, Int64Array]:  # pragma: no cover
@@ -188,7 +188,7 @@ def _label_runs(
     return label, nlab, counts, bg_label, nbg, bg_counts
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _paint(
     rs: Int32Array, re: Int32Array, ptr: Int64Array, label: Int32Array, w: int
 ) -> Int32Array:  # pragma: no cover
@@ -272,7 +272,7 @@ def label(mask: npt.ArrayLike, connectivity: int = 4) -> tuple[Int32Array, int]:
     return paint(runs, m.shape[1]), runs.n_labels
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _group_by_label(flat: Int32Array, vmax: int) -> tuple[Int64Array, Int64Array]:  # pragma: no cover
     # Counting sort of the pixel indices by label: pixels of label v are order[start[v]:start[v+1]].
     start = np.zeros(vmax + 2, np.int64)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -566,14 +567,14 @@ def _svg_path(coords: Any, close: bool) -> str:
     return "M " + " L ".join(pts) + (" Z" if close else "")
 
 
-def _svg_elements(g: BaseGeometry, r: float, outline: bool = False) -> list[str]:
+def _svg_elements(g: BaseGeometry, r: float, outline: bool = False, fill: str = _FILL) -> list[str]:
     """SVG elements of a geometry: polygons filled (or only outlined), lines stroked, points as dots."""
     if g.is_empty:
         return []
     color = _OUTLINE if outline else _DARK
     if isinstance(g, Polygon):
         d = " ".join(_svg_path(ring.coords, True) for ring in [g.exterior, *g.interiors])
-        paint = f'fill="none" stroke="{color}" stroke-width="2" stroke-linejoin="round"' if outline else _FILL
+        paint = f'fill="none" stroke="{color}" stroke-width="2" stroke-linejoin="round"' if outline else fill
         return [f'<path d="{d}" fill-rule="evenodd" {paint} vector-effect="non-scaling-stroke"/>']
     if isinstance(g, LineString):
         return [
@@ -583,7 +584,7 @@ def _svg_elements(g: BaseGeometry, r: float, outline: bool = False) -> list[str]
     if isinstance(g, Point):
         return [f'<circle cx="{_num(g.x)}" cy="{_num(-g.y)}" r="{_num(r)}" fill="{color}"/>']
     if isinstance(g, MultiPolygon | MultiLineString | MultiPoint | GeometryCollection):
-        return [e for part in g.geoms for e in _svg_elements(part, r, outline)]
+        return [e for part in g.geoms for e in _svg_elements(part, r, outline, fill)]
     raise InvalidGeometryError(f"cannot draw a {g.geom_type} in SVG")
 
 
@@ -633,6 +634,8 @@ def write_svg(
     path: PathLike,
     *,
     pixels: PixelSet | None = None,
+    colour: str | None = None,
+    opacity: float = 0.55,
 ) -> None:
     """Draw a geometry, a pixel set, or a geometry over a pixel set as an SVG picture, upright, atomically.
 
@@ -646,6 +649,11 @@ def write_svg(
     pixels : PixelSet, optional
         With a geometry (or None) as first argument: a pixel set drawn underneath as light squares, the
         geometry then only outlined on top of them — a picture of a discretization or a reconstruction.
+    colour : str, optional
+        The fill of the polygons (an object's colour, ``#rrggbb``); the outline is the same colour,
+        darkened. A blue by default.
+    opacity : float
+        The fill's opacity, with ``colour``.
 
     Notes
     -----
@@ -684,8 +692,15 @@ def write_svg(
             *_pixel_rects(pixels),
             "</g>",
         ]
+    fill = _FILL
+    if colour is not None:
+        if not re.fullmatch(r"#[0-9a-fA-F]{6}", colour):
+            raise ValueError(f"write_svg: colour must look like #rrggbb, got {colour!r}")
+        rgb = [int(colour[i : i + 2], 16) for i in (1, 3, 5)]
+        edge = "#" + "".join(f"{round(c * 0.6):02x}" for c in rgb)
+        fill = f'fill="{colour}" fill-opacity="{min(1.0, max(0.0, opacity)):.3g}" stroke="{edge}"'
     if geom is not None:
-        body += _svg_elements(geom, size / 200, outline=pixels is not None)
+        body += _svg_elements(geom, size / 200, outline=pixels is not None, fill=fill)
     margin = max(size * 0.02, 0.5)
     xmin, ymin, xmax, ymax = bounds[0] - margin, bounds[1] - margin, bounds[2] + margin, bounds[3] + margin
     w, h = xmax - xmin, ymax - ymin

@@ -73,8 +73,8 @@ def test_help_lists_the_window_options_and_the_subcommands(tmp_path):
 
 def test_every_command_has_a_distinct_shortcut(make_window):
     win = make_window()
-    assert win.actions.conflicts() == []
-    without = [s.id for s in SPECS if not win.actions[s.id].shortcuts()]
+    assert win.registry.conflicts() == []
+    without = [s.id for s in SPECS if not win.registry[s.id].shortcuts()]
     assert without == ["help.about"]
 
 
@@ -94,7 +94,7 @@ def test_tool_keys_switch_tools(make_window, qtbot):
         key = getattr(Qt.Key, f"Key_{letter}")
         qtbot.keyClick(view, key)
         assert win.tools.tool.name == tool
-        assert win.actions[f"tool.{tool}"].isChecked()
+        assert win.registry[f"tool.{tool}"].isChecked()
     qtbot.keyClick(view, Qt.Key.Key_BracketRight)
     assert win.host.brush_size == 4
     qtbot.keyClick(
@@ -105,14 +105,14 @@ def test_tool_keys_switch_tools(make_window, qtbot):
 def test_undo_redo_shortcuts_and_titles(make_window, qtbot):
     win = make_window()
     win.doc.push(AddObject(win.doc.make_object(PixelSet.box(0, 0, 3, 3), name="box")))
-    assert win.actions["edit.undo"].text() == "&Undo Add box"
+    assert win.registry["edit.undo"].text() == "&Undo Add box"
     assert win.windowTitle().startswith("Untitled") and win.isWindowModified()
     view = win.views.discrete.plane
     view.setFocus()
     qtbot.keyClick(view, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
     assert len(win.doc) == 0 and not win.isWindowModified()
-    assert win.actions["edit.redo"].isEnabled()
-    win.actions["edit.redo"].trigger()
+    assert win.registry["edit.redo"].isEnabled()
+    win.registry["edit.redo"].trigger()
     assert len(win.doc) == 1
 
 
@@ -130,7 +130,7 @@ def test_model_switch_is_undoable_and_rederives(make_window, qtbot):
     qtbot.waitUntil(lambda: "supercover" in win.status.model_label.text())
     sup = win.scene.get(obj.id, "discrete")
     assert sup != std and std.issubset(sup)
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert win.doc.model == "standard"
 
 
@@ -138,15 +138,15 @@ def test_preferences_dialog_changes_settings(make_window, qtbot, prefs):
     from mrm.app.preferences_dialog import PreferencesDialog
 
     win = make_window()
-    dlg = PreferencesDialog(prefs, win.actions, win)
+    dlg = PreferencesDialog(prefs, win.registry, win)
     dlg.model.setCurrentText("gauss")
     dlg.brush.setValue(7)
     dlg.editors["tool.polygon"].setKeySequence(QtGui.QKeySequence("Ctrl+Shift+Y"))
     dlg.accept()
     assert prefs.default_model == "gauss" and prefs.brush_size == 7
     assert win.brush_spin.value() == 7
-    assert win.actions["tool.polygon"].shortcut().toString() == "Ctrl+Shift+Y"
-    win.actions["file.new"].trigger()
+    assert win.registry["tool.polygon"].shortcut().toString() == "Ctrl+Shift+Y"
+    win.registry["file.new"].trigger()
     assert win.doc.model == "gauss"  # new projects use the preferred model
     # Settings went to this test's own file, nowhere else.
     prefs.sync()

@@ -49,7 +49,7 @@ def test_window_shows_four_linked_views(make_window, qtbot):
 def test_draw_polygon_updates_the_other_views(make_window, qtbot):
     win = make_window()
     zoom_to(win, -2, -2, 22, 22)
-    win.actions["tool.polygon"].trigger()
+    win.registry["tool.polygon"].trigger()
     view = win.views.euclidean
     corners = [(1.2, 1.3), (15.4, 2.1), (12.8, 14.6), (2.3, 11.7)]
     for x, y in corners:
@@ -72,7 +72,7 @@ def test_draw_polygon_updates_the_other_views(make_window, qtbot):
         assert not is_background(v, colour_at(v, 7, 7))
         assert is_background(v, colour_at(v, 19, 19))
     # Undo removes it in one step, everywhere.
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert len(win.doc) == 0
     wait_drawn(qtbot, win)
     assert is_background(win.views.discrete, colour_at(win.views.discrete, 7, 7))
@@ -81,7 +81,7 @@ def test_draw_polygon_updates_the_other_views(make_window, qtbot):
 def test_polygon_tool_keys_enter_backspace_escape(make_window, qtbot):
     win = make_window()
     zoom_to(win, -2, -2, 22, 22)
-    win.actions["tool.polygon"].trigger()
+    win.registry["tool.polygon"].trigger()
     view = win.views.discrete
     for x, y in [(0, 0), (10, 0), (17, 17), (10, 10)]:
         click(qtbot, view, x, y, modifiers=Qt.KeyboardModifier.ShiftModifier)
@@ -100,7 +100,7 @@ def test_hole_drawn_with_alt(make_window, qtbot):
     sq = Polygon([(0, 0), (20, 0), (20, 20), (0, 20)])
     win.doc.push(AddObject(win.doc.make_object(sq, name="square"), select=True))
     zoom_to(win, -2, -2, 22, 22)
-    win.actions["tool.polygon"].trigger()
+    win.registry["tool.polygon"].trigger()
     view = win.views.euclidean
     alt_shift = Qt.KeyboardModifier.AltModifier | Qt.KeyboardModifier.ShiftModifier
     click(qtbot, view, 5, 5, modifiers=alt_shift)
@@ -121,7 +121,7 @@ def test_drag_vertex_previews_live_and_undoes_in_one_step(make_window, qtbot):
     obj = win.doc.make_object(tri, name="tri")
     win.doc.push(AddObject(obj, select=True))
     zoom_to(win, -2, -2, 22, 22)
-    win.actions["tool.vertex"].trigger()
+    win.registry["tool.vertex"].trigger()
     view = win.views.euclidean
     steps_before = win.doc.history.index
     seen_previews = []
@@ -147,7 +147,7 @@ def test_drag_vertex_previews_live_and_undoes_in_one_step(make_window, qtbot):
     assert not win.scene.has_preview(obj.id)
     assert True in seen_previews
     wait_drawn(qtbot, win)
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert win.doc.get(obj.id).source.equals(tri)
     assert win.doc.history.index == steps_before
     wait_drawn(qtbot, win)
@@ -160,7 +160,7 @@ def test_insert_and_delete_vertex(make_window, qtbot):
     obj = win.doc.make_object(sq, name="sq")
     win.doc.push(AddObject(obj, select=True))
     zoom_to(win, -2, -2, 22, 22)
-    win.actions["tool.vertex"].trigger()
+    win.registry["tool.vertex"].trigger()
     view = win.views.euclidean
     # Drag from the middle of the bottom edge: inserts a vertex and moves it, as one step.
     drag(qtbot, view, [(8, 0), (8, -1), (8, -2)], modifiers=Qt.KeyboardModifier.ShiftModifier)
@@ -171,8 +171,8 @@ def test_insert_and_delete_vertex(make_window, qtbot):
     # Right-click the new vertex deletes it.
     click(qtbot, view, 8, -2, button=Qt.MouseButton.RightButton)
     assert len(win.doc.get(obj.id).source.exterior.coords) == 5
-    win.actions["edit.undo"].trigger()
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert win.doc.get(obj.id).source.equals(sq)
 
 
@@ -182,7 +182,7 @@ def test_self_crossing_drag_is_refused(make_window, qtbot):
     obj = win.doc.make_object(sq, name="sq")
     win.doc.push(AddObject(obj, select=True))
     zoom_to(win, -2, -2, 22, 22)
-    win.actions["tool.vertex"].trigger()
+    win.registry["tool.vertex"].trigger()
     # Dragging (16, 0) to the far side of the left edge would cross the polygon with itself.
     drag(qtbot, win.views.euclidean, [(16, 0), (-3, 8)])
     g = win.doc.get(obj.id).source
@@ -194,7 +194,7 @@ def test_paint_new_object_then_erase_in_one_step_each(make_window, qtbot):
     win = make_window()
     zoom_to(win, -2, -2, 30, 30)
     win.brush_spin.setValue(1)
-    win.actions["tool.paint"].trigger()
+    win.registry["tool.paint"].trigger()
     view = win.views.discrete
     drag(qtbot, view, [(2, 2), (12, 2)])
     assert len(win.doc) == 1
@@ -207,7 +207,7 @@ def test_paint_new_object_then_erase_in_one_step_each(make_window, qtbot):
     ps = win.doc.get(obj.id).source
     assert all((x, y) in ps for x in (4, 5, 6) for y in range(8, 15))
     assert win.doc.history.index == 2
-    win.actions["tool.erase"].trigger()
+    win.registry["tool.erase"].trigger()
     win.brush_spin.setValue(1)
     drag(qtbot, view, [(5, 2), (7, 2)])
     ps = win.doc.get(obj.id).source
@@ -215,7 +215,7 @@ def test_paint_new_object_then_erase_in_one_step_each(make_window, qtbot):
     wait_drawn(qtbot, win)
     assert is_background(view, colour_at(view, 6, 2))
     assert not is_background(view, colour_at(view, 4, 2))
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert (6, 2) in win.doc.get(obj.id).source
 
 
@@ -226,13 +226,13 @@ def test_painting_a_polygon_changes_its_source(make_window, qtbot):
     win.doc.push(AddObject(obj, select=True))
     zoom_to(win, -2, -2, 20, 20)
     win.brush_spin.setValue(1)
-    win.actions["tool.paint"].trigger()
+    win.registry["tool.paint"].trigger()
     drag(qtbot, win.views.discrete, [(10, 4), (14, 4)])
     new = win.doc.get(obj.id)
     assert new.kind == "discrete"
     # Under the standard model the sides on x = −½ and y = −½ go to the pixels left of and below them.
     assert new.source == discretize(sq, "standard") | PixelSet.from_points([(x, 4) for x in range(10, 15)])
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert win.doc.get(obj.id).kind == "euclidean"
 
 
@@ -249,21 +249,25 @@ def test_fill_hole_and_delete_component_by_clicking(make_window, qtbot):
     wait_drawn(qtbot, win)
     region = win.doc.derived(obj.id).get("region")
     assert region.n_components == 2 and region.n_holes == 1
-    win.actions["tool.fill_hole"].trigger()
+    win.registry["tool.fill_hole"].trigger()
     click(qtbot, win.views.region, 3, 2)
     ps = win.doc.get(obj.id).source
     assert all(p in ps for p in [(2, 2), (3, 1), (3, 2), (3, 3)])
     assert win.doc.history.undo_label() == "Fill hole"
+    from mrm.commands import DeleteComponent, FillHole
+
+    assert isinstance(win.doc.history._steps[win.doc.history.index - 1], FillHole)  # the model's command
     assert win.doc.derived(obj.id).get("region").n_holes == 0
     click(qtbot, win.views.region, 20, 20)  # not a hole: nothing happens
     assert "no hole" in win.statusBar().currentMessage()
-    win.actions["tool.delete_component"].trigger()
+    win.registry["tool.delete_component"].trigger()
     click(qtbot, win.views.region, 9, 6)
     ps = win.doc.get(obj.id).source
     assert (9, 6) not in ps and (0, 0) in ps
+    assert isinstance(win.doc.history._steps[win.doc.history.index - 1], DeleteComponent)
     assert win.doc.derived(obj.id).get("region").n_components == 1
     wait_drawn(qtbot, win)
     assert is_background(win.views.discrete, colour_at(win.views.discrete, 9, 6))
-    win.actions["edit.undo"].trigger()
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert win.doc.get(obj.id).source == PixelSet(m, (0, 0))

@@ -59,10 +59,10 @@ def test_unsaved_changes_prompt(make_window, qtbot):
     win = make_window()
     _populate(win)
     answer_dialog(qtbot, "unsavedDialog", "Cancel")
-    win.actions["file.new"].trigger()
+    win.registry["file.new"].trigger()
     assert len(win.doc) == 2  # cancelled: nothing lost
     texts = answer_dialog(qtbot, "unsavedDialog", "Discard")
-    win.actions["file.new"].trigger()
+    win.registry["file.new"].trigger()
     assert len(win.doc) == 0 and not win.doc.is_modified
     assert "Untitled" in texts[0]
 
@@ -170,7 +170,7 @@ def test_export_and_import_round_trip(make_window, qtbot, tmp_path):
         assert shapely.normalize(o.source).equals_exact(shapely.normalize(SQUARE), 0)
     assert objs[3].source == blob.source
     assert "<svg" in (tmp_path / "sq.svg").read_text()
-    win2.actions["edit.undo"].trigger()
+    win2.registry["edit.undo"].trigger()
     assert len(win2.doc) == 0
 
 

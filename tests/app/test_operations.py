@@ -61,8 +61,8 @@ def test_panel_lists_the_registry_with_its_parameter_metadata(make_window):
         assert name in names
     panel.select_operation("dss")
     alpha = panel.control("alpha")
-    # α > 0 (exclusive): the field refuses 0 and negatives, the slider is logarithmic, the unit is shown.
-    assert alpha.field.minimum() > 0
+    # α > 0 (exclusive): the range and the unit are shown beside the field, the slider is logarithmic.
+    assert alpha.range_label.text() == "× (0, ∞)"
     assert alpha.field.suffix().strip() == "×"
     assert alpha.value() == 2.0
     assert panel.control("model").value() == win.doc.model
@@ -89,8 +89,12 @@ def test_apply_dss_from_its_panel_and_read_the_bound_in_the_inspector(make_windo
     assert first in doc
 
     doc.set_selection([first])
-    # Live preview: typing α shows the result before Apply, without touching the document.
+    # Live preview (off by default, switched on here): typing α shows the result before Apply, without
+    # touching the document.
     panel = win.operations
+    assert not panel.live.isChecked()
+    qtbot.mouseClick(panel.live, Qt.MouseButton.LeftButton, pos=QtCore.QPoint(8, panel.live.height() // 2))
+    assert panel.live.isChecked()
     _type_into(qtbot, panel.control("alpha").field, "0.2")
     expected = _dss(o1.source, 0.2)
     qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [expected], timeout=60_000)

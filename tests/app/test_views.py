@@ -108,7 +108,7 @@ def test_pixel_grid_appears_when_zoomed_in(make_window, qtbot):
     centre = colour_at(view, 4.0, 4.0, img)
     assert is_background(view, centre)
     assert any(not is_background(view, c) for c in near_line)
-    win.actions["view.pixel_grid"].trigger()  # G toggles it off
+    win.registry["view.pixel_grid"].trigger()  # G toggles it off
     assert not view.plane.grid.is_drawn()
     img = view.plane.viewport().grab().toImage()
     assert all(
@@ -138,14 +138,14 @@ def test_status_bar_shows_cursor_and_figures(make_window, qtbot):
 
 def test_layout_tabs_and_linked_zoom(make_window, qtbot):
     win = make_window()
-    win.actions["view.tabs_layout"].trigger()
+    win.registry["view.tabs_layout"].trigger()
     assert win.views.layout_mode == "tabs"
     assert win.prefs.layout == "tabs"
-    win.actions["view.euclidean"].trigger()
+    win.registry["view.euclidean"].trigger()
     assert win.views.current_view() is win.views.euclidean
-    win.actions["view.zoom_in"].trigger()
+    win.registry["view.zoom_in"].trigger()
     s = win.views.camera.scale
-    win.actions["view.grid_layout"].trigger()
+    win.registry["view.grid_layout"].trigger()
     qtbot.waitUntil(lambda: abs(win.views.discrete.plane.pixels_per_unit() - s) < 1e-6)
 
 
@@ -162,7 +162,7 @@ def test_object_list_visibility_colour_rename_reorder(make_window, qtbot):
     zoom_to(win, -1, -1, 14, 4)
     wait_drawn(qtbot, win)
     assert is_background(win.views.discrete, colour_at(win.views.discrete, 1, 1))
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert win.doc.get(a.id).style.visible
     # Rename through the editor.
     model.setData(model.index(0, 2), "bee", Qt.ItemDataRole.EditRole)
@@ -174,7 +174,7 @@ def test_object_list_visibility_colour_rename_reorder(make_window, qtbot):
     mime = model.mimeData([model.index(1, 2)])
     model.dropMimeData(mime, Qt.DropAction.MoveAction, 0, 0, QtCore.QModelIndex())
     assert model.ids() == [b.id, a.id]
-    win.actions["edit.undo"].trigger()
+    win.registry["edit.undo"].trigger()
     assert model.ids() == [a.id, b.id]
 
 

@@ -1,0 +1,170 @@
+"""Importing a grey, colour or label image: ask once how to turn it into objects.
+
+A binary image (two values) imports as it is. Any other image opens this dialog: a threshold (Otsu's value
+proposed and shown, adjustable with a slider and a field), an Invert box, a preview of the pixels that would
+be imported — or, for a grey or indexed image, one object per label (each non-zero value). The pixels
+themselves are read by the model (:func:`mrm.io.pixel_files.read_pixels` with the chosen threshold,
+:func:`mrm.io.pixel_files.read_label_map`); the dialog only reads the image's values for the preview.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from PySide6 import QtCore, QtGui, QtWidgets
+
+PREVIEW_SIZE = 220
+
+
+def image_values(path: Path) -> tuple[np.ndarray, bool] | None:
+    """The grey values of an image (rows top first) and whether labels make sense; None if binary.
+
+    Colour images give their luminance (the model's :func:`~mrm.io.threshold.luminance`); labels are
+    offered for grey and indexed images only.
+    """
+    from PIL import Image
+
+    from mrm.io.threshold import luminance
+
+    if path.suffix.lower() != ".png":
+        return None  # PBM is binary; PGM and NPZ keep the model's own rules
+    with Image.open(path) as im:
+        mode = im.mode
+        if mode == "1":
+            return None
+        labels_ok = mode in ("L", "P", "I", "I;16", "I;16B", "I;16L", "I;16N")
+        if mode in ("RGB", "RGBA", "LA", "PA") or (mode == "P" and "transparency" in im.info):
+            rgb = np.asarray(im.convert("RGB"), dtype=np.int64)
+            grey = luminance(rgb)
+        else:
+            grey = np.asarray(im, dtype=np.int64)  # grey values, or palette indices
+    values = np.unique(grey)
+    if len(values) <= 2 and (len(values) < 2 or values[0] == 0):
+        return None  # binary: imported as it is, no question
+    return grey, labels_ok
+
+
+class ImageImportDialog(QtWidgets.QDialog):
+    """Threshold (Otsu shown), invert, preview — or one object per label."""
+
+    def __init__(
+        self, path: Path, grey: np.ndarray, labels_ok: bool, parent: QtWidgets.QWidget | None
+    ) -> None:
+        super().__init__(parent)
+        from mrm.io.threshold import otsu_threshold
+
+        self.setObjectName("imageImportDialog")
+        self.setWindowTitle(f"Import {path.name}")
+        self.path = path
+        self.grey = grey
+        top = int(grey.max())
+        hist = np.bincount(grey.ravel().astype(np.int64), minlength=top + 1)
+        self.otsu = int(otsu_threshold(hist))
+        lay = QtWidgets.QVBoxLayout(self)
+        kind = "colour" if grey.ndim == 2 and not labels_ok else "grey"
+        lay.addWidget(
+            QtWidgets.QLabel(
+                f"{path.name} is a {kind} image ({grey.shape[1]} × {grey.shape[0]}, values 0–{top}). "
+                "How should it become objects?",
+                self,
+            )
+        )
+        self.threshold_mode = QtWidgets.QRadioButton("Pixels brighter than a threshold", self)
+        self.threshold_mode.setObjectName("thresholdMode")
+        self.threshold_mode.setChecked(True)
+        self.labels_mode = QtWidgets.QRadioButton("One object per label (each non-zero value)", self)
+        self.labels_mode.setObjectName("labelsMode")
+        self.labels_mode.setEnabled(labels_ok)
+        if not labels_ok:
+            self.labels_mode.setToolTip("Labels need a grey or indexed image")
+        lay.addWidget(self.threshold_mode)
+        row = QtWidgets.QHBoxLayout()
+        self.slider = QtWidgets.QSlider(QtCore.Qt.Orientation.Horizontal, self)
+        self.slider.setObjectName("thresholdSlider")
+        self.slider.setRange(0, max(top - 1, 0))
+        self.spin = QtWidgets.QSpinBox(self)
+        self.spin.setObjectName("thresholdField")
+        self.spin.setRange(0, max(top - 1, 0))
+        self.slider.setValue(self.otsu)
+        self.spin.setValue(self.otsu)
+        self.slider.valueChanged.connect(self.spin.setValue)
+        self.spin.valueChanged.connect(self.slider.setValue)
+        self.spin.valueChanged.connect(lambda _v: self.update_preview())
+        row.addWidget(self.slider, 1)
+        row.addWidget(self.spin)
+        self.otsu_button = QtWidgets.QPushButton(f"Otsu: {self.otsu}", self)
+        self.otsu_button.setObjectName("otsuButton")
+        self.otsu_button.setToolTip(
+            "Back to Otsu's threshold (the split with the largest between-class variance)"
+        )
+        self.otsu_button.clicked.connect(lambda: self.spin.setValue(self.otsu))
+        row.addWidget(self.otsu_button)
+        lay.addLayout(row)
+        self.invert = QtWidgets.QCheckBox("Invert (dark pixels are the object)", self)
+        self.invert.setObjectName("invertBox")
+        self.invert.toggled.connect(lambda _v: self.update_preview())
+        lay.addWidget(self.invert)
+        lay.addWidget(self.labels_mode)
+        self.threshold_mode.toggled.connect(lambda _v: self.update_preview())
+        self.preview = QtWidgets.QLabel(self)
+        self.preview.setObjectName("importPreview")
+        self.preview.setAlignment(QtCore.Qt.AlignmentFlag.AlignCenter)
+        self.preview.setMinimumSize(PREVIEW_SIZE, PREVIEW_SIZE)
+        lay.addWidget(self.preview, 1)
+        self.summary = QtWidgets.QLabel("", self)
+        self.summary.setObjectName("importSummary")
+        lay.addWidget(self.summary)
+        std = QtWidgets.QDialogButtonBox.StandardButton
+        buttons = QtWidgets.QDialogButtonBox(std.Ok | std.Cancel, self)
+        buttons.button(std.Ok).setText("Import")
+        buttons.button(std.Ok).setObjectName("importButton")
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        lay.addWidget(buttons)
+        self.update_preview()
+
+    def mask(self) -> np.ndarray:
+        """The pixels the threshold choice imports (rows top first), as the model's rule: value > t."""
+        m = self.grey > self.spin.value()
+        return ~m if self.invert.isChecked() else m
+
+    def update_preview(self) -> None:
+        on = self.threshold_mode.isChecked()
+        for w in (self.slider, self.spin, self.otsu_button, self.invert):
+            w.setEnabled(on)
+        if on:
+            m = self.mask()
+            img = np.where(m, 30, 235).astype(np.uint8)
+            self.summary.setText(f"{int(m.sum()):,} pixels of {m.size:,} (threshold {self.spin.value()})")
+        else:
+            vals = np.unique(self.grey)
+            n = int((vals != 0).sum())
+            img = (255 - (self.grey * 37 % 200)).astype(np.uint8)
+            img[self.grey == 0] = 255
+            self.summary.setText(f"{n} objects, one per non-zero value")
+        h, w = img.shape
+        q = QtGui.QImage(np.ascontiguousarray(img).data, w, h, w, QtGui.QImage.Format.Format_Grayscale8)
+        pm = QtGui.QPixmap.fromImage(q.copy()).scaled(
+            PREVIEW_SIZE,
+            PREVIEW_SIZE,
+            QtCore.Qt.AspectRatioMode.KeepAspectRatio,
+            QtCore.Qt.TransformationMode.FastTransformation,
+        )
+        self.preview.setPixmap(pm)
+
+    def read_objects(self) -> list[tuple[str, Any]]:
+        """The (name, pixel set) pairs of the choice, read by the model."""
+        from mrm.io.pixel_files import read_label_map, read_pixels
+
+        stem = self.path.stem
+        if self.labels_mode.isChecked():
+            lm = read_label_map(self.path)
+            return [(f"{stem} label {v}", lm.pixel_set(v)) for v in lm.label_values() if v != 0]
+        t = self.spin.value()
+        ps = read_pixels(self.path, threshold=t)
+        if self.invert.isChecked():
+            full = read_pixels(self.path, threshold=-1)  # every pixel: the image's box at its origin
+            ps = full.difference(ps)
+        return [(stem, ps)]

@@ -1,0 +1,247 @@
+"""Fill numba's on-disk cache once, so that no user waits for the geometry kernels to compile.
+
+The kernels are compiled on their first call and cached next to their sources (``__pycache__``) or in
+``NUMBA_CACHE_DIR``. A fresh install compiles for a minute or more on that first call. :func:`warm_up` runs
+every derivation and every operation on tiny inputs, in steps that report progress, then writes a stamp; the
+set-up script calls it (``python -m mrm.warmup``), the desktop application runs it on a worker thread with a
+progress message when :func:`is_warm` says the stamp is missing, and the command line prints one line to
+stderr before a first-run compile (:func:`announce_if_cold`).
+
+The stamp is keyed by the numba and Python versions and by the text of every module holding kernels: an
+edited kernel or a new numba makes the cache cold again, which is exactly when numba recompiles.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import os
+import platform
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+log = logging.getLogger(__name__)
+
+#: Modules holding ``@njit(cache=True)`` kernels (relative to the package root).
+KERNEL_MODULES = (
+    "geometry/_jit.py",
+    "geometry/_discretize_kernels.py",
+    "geometry/_dss_kernels.py",
+    "geometry/_reconstruct_kernels.py",
+    "geometry/cracks.py",
+    "geometry/labeling.py",
+    "geometry/segmentation.py",
+    "geometry/dss.py",
+    "reps/region.py",
+)
+
+STAMP_NAME = "mrm-kernels-warm.json"
+
+#: ``progress(done, total, what)``: called before each step and once at the end (done == total).
+ProgressFn = Callable[[int, int, str], None]
+
+
+def _package_root() -> Path:
+    return Path(__file__).resolve().parent
+
+
+def stamp_path() -> Path:
+    """Where the stamp lives: numba's cache directory for the geometry kernels."""
+    cache_dir = os.environ.get("NUMBA_CACHE_DIR")
+    if cache_dir:
+        return Path(cache_dir) / STAMP_NAME
+    return _package_root() / "geometry" / "__pycache__" / STAMP_NAME
+
+
+def cache_key() -> dict[str, str]:
+    """What the compiled cache depends on: numba, Python, the machine and the kernels' source text."""
+    import numba
+
+    h = hashlib.sha256()
+    root = _package_root()
+    for rel in KERNEL_MODULES:
+        p = root / rel
+        h.update(rel.encode())
+        if p.is_file():
+            h.update(p.read_bytes())
+    return {
+        "numba": str(numba.__version__),
+        "python": platform.python_version(),
+        "machine": platform.machine(),
+        "sources": h.hexdigest(),
+    }
+
+
+def is_warm() -> bool:
+    """True when :func:`warm_up` ran for these kernels, this numba and this Python."""
+    try:
+        stamp = json.loads(stamp_path().read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return bool(stamp == cache_key())
+
+
+def _write_stamp() -> None:
+    p = stamp_path()
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True)
+        p.write_text(json.dumps(cache_key()), encoding="utf-8")
+    except OSError as exc:  # a read-only install still works, it just compiles in memory each time
+        log.warning("cannot write the kernel cache stamp %s: %s", p, exc)
+
+
+def _shapes() -> tuple[object, object]:
+    from shapely.geometry import MultiPolygon, Polygon
+
+    poly = Polygon([(0.3, 0.2), (9.7, 1.1), (8.4, 7.9), (1.2, 9.3)], [[(3.1, 3.2), (6.2, 3.9), (4.4, 6.1)]])
+    multi = MultiPolygon([poly, Polygon([(12.5, 0.5), (15.5, 0.5), (14.0, 3.5)])])
+    return poly, multi
+
+
+def _step_discretize() -> None:
+    from mrm.document import MODELS
+    from mrm.geometry.discretize import discretize
+
+    poly, multi = _shapes()
+    for model in MODELS:
+        discretize(poly, model)
+        discretize(multi, model)
+
+
+def _pixel_sets() -> list[object]:
+    import numpy as np
+
+    from mrm.reps.pixels import PixelSet
+
+    yy, xx = np.mgrid[0:14, 0:14]
+    disc = (xx - 6.5) ** 2 + (yy - 6.5) ** 2 <= 36
+    ring = disc & ((xx - 6.5) ** 2 + (yy - 6.5) ** 2 > 6)
+    two = np.zeros((6, 12), bool)
+    two[1:5, 1:4] = True
+    two[1:5, 7:11] = True
+    return [PixelSet(disc), PixelSet(ring, (-3, 5)), PixelSet(two)]
+
+
+def _step_reconstruct() -> None:
+    from mrm.document import MODELS
+    from mrm.geometry.reconstruct import reconstruct
+
+    for model in MODELS:
+        for ps in _pixel_sets():
+            reconstruct(ps, model)  # type: ignore[arg-type]
+
+
+def _step_regions() -> None:
+    from mrm.reps.analytical import analytical_of
+    from mrm.reps.region import region_of
+
+    for ps in _pixel_sets():
+        analytical_of(region_of(ps))  # type: ignore[arg-type]
+
+
+def _step_operations() -> None:
+    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.base import operations, run_operation
+
+    load_paper_operations()
+    poly, _multi = _shapes()
+    pixels = _pixel_sets()
+    for spec in operations():
+        inputs: list[object] = []
+        for i in range(spec.arity):
+            inputs.append(poly if spec.input_kind == "euclidean" else pixels[i % len(pixels)])
+        try:
+            run_operation(spec, inputs)  # type: ignore[arg-type]
+        except Exception as exc:
+            log.info("warm-up of %s: %s", spec.name, exc)
+
+
+def _step_examples() -> None:
+    from mrm.io.project import load_project
+
+    examples = _package_root().parent / "resources" / "examples"
+    for p in sorted(examples.glob("*.mrm")) if examples.is_dir() else []:
+        try:
+            doc = load_project(p)
+        except Exception as exc:
+            log.info("warm-up: cannot open %s: %s", p, exc)
+            continue
+        for obj in doc:
+            d = doc.derived(obj.id)
+            for rep in ("discrete", "euclidean", "region", "analytical"):
+                d.get(rep)  # type: ignore[arg-type]
+
+
+#: The steps, with what a user is told while each runs.
+STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
+    ("discretization kernels", _step_discretize),
+    ("reconstruction kernels", _step_reconstruct),
+    ("region and segment kernels", _step_regions),
+    ("operation kernels", _step_operations),
+    ("example projects", _step_examples),
+)
+
+
+def warm_up(progress: ProgressFn | None = None) -> None:
+    """Compile every kernel (numba caches them on disk) and write the stamp :func:`is_warm` reads.
+
+    Parameters
+    ----------
+    progress : callable, optional
+        ``progress(done, total, what)`` before each step and ``progress(total, total, "done")`` at the end.
+    """
+    total = len(STEPS)
+    for i, (what, step) in enumerate(STEPS):
+        if progress is not None:
+            progress(i, total, what)
+        step()
+    _write_stamp()
+    if progress is not None:
+        progress(total, total, "done")
+
+
+def load_kernels() -> None:
+    """Load the kernels every derivation uses from numba's disk cache (seconds, not a compile).
+
+    The desktop application runs this on a worker at start, so that no view pays for loading a kernel on
+    the GUI thread; the operations' kernels load when an operation first runs (on its worker).
+    """
+    for _what, step in STEPS[:3]:
+        step()
+
+
+FIRST_RUN_MESSAGE = (
+    "mrm: first run: compiling the geometry kernels once (about a minute; "
+    "`python -m mrm.warmup` does it ahead of time) …"
+)
+
+
+def announce_if_cold(stream: object = None) -> bool:
+    """Print one line to stderr when the kernels will compile now; True when it printed."""
+    if is_warm():
+        return False
+    out = sys.stderr if stream is None else stream
+    print(FIRST_RUN_MESSAGE, file=out, flush=True)  # type: ignore[call-overload]
+    return True
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m mrm.warmup [--check]``: fill the cache (or, with ``--check``, exit 1 when it is cold)."""
+    args = sys.argv[1:] if argv is None else argv
+    if "--check" in args:
+        return 0 if is_warm() else 1
+    if is_warm():
+        print("mrm: the geometry kernels are already compiled")
+        return 0
+
+    def show(done: int, total: int, what: str) -> None:
+        print(f"mrm: warm-up {done}/{total}: {what}", flush=True)
+
+    warm_up(show)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

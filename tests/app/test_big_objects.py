@@ -1,0 +1,63 @@
+"""Big objects: drawing data made on workers, coarser images beyond 4 M pixels, big files on workers.
+
+The issue: after DSS 20 the window ignored the mouse for ~9 s while the views built their images and paths on
+the GUI thread. Here the layers of a 5 M-pixel object wait for their data (the view says "computing…") instead
+of computing it on the GUI thread, and the discrete view shows an image of at most 4 M pixels covering it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mrm.commands import AddObject
+from mrm.reps.pixels import PixelSet
+from mrm.views.canvas import LOD_PIXELS, lod_image
+
+
+def test_lod_image_keeps_every_pixel_visible():
+    m = np.zeros((3001, 2001), bool)
+    m[1500, :] = True  # a one-pixel line
+    m[7, 9] = True  # a lone pixel
+    img, f = lod_image(m, limit=1_000_000)
+    assert f == 3 and img.size <= 1_000_000
+    assert img[500].all()  # the line is still drawn across
+    assert img[7 // 3, 9 // 3] == 1 and img.sum() == img.shape[1] + 1
+
+
+def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_window, qtbot):
+    win = make_window(threaded=True)
+    ps = PixelSet(np.ones((2000, 2500), bool), (-100, 40))
+    obj = win.doc.make_object(ps, name="big")
+    win.doc.push(AddObject(obj, select=True))
+    dv = win.views.discrete
+    # Right after the change nothing heavy ran on the GUI thread: the layer waits for a worker's image.
+    dv.refresh()
+    layer = dv.layer(obj.id)
+    assert layer is not None and layer.waiting and not win.is_drawn()
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    item = layer.mask
+    assert item.image.size <= LOD_PIXELS and item.scale_factor == 2
+    r = item.mapRectToParent(item.boundingRect())
+    assert (r.left(), r.bottom() if r.bottom() > r.top() else r.top()) == (-100.5, 40 - 0.5 + 2000)
+    assert r.width() == 2500
+    # The other views drew it too, with their own prepared data.
+    assert win.views.region.layer(obj.id).components.image.size <= LOD_PIXELS
+    assert not win.views.euclidean.layer(obj.id).polygon.path().isEmpty()
+
+
+def test_a_big_project_is_saved_and_opened_on_a_worker(make_window, qtbot, tmp_path):
+    win = make_window(threaded=True)
+    m = np.ones((4000, 4500), bool)
+    m[1000:3000, 1000:3500] = False  # a frame: big, with a hole, cheap to derive
+    ps = PixelSet(m, (0, 0))
+    win.doc.push(AddObject(win.doc.make_object(ps, name="frame"), select=True))
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    path = tmp_path / "big.mrm"
+    assert win.files.save_as(path)
+    assert win.runner.is_busy("file")  # written by a worker, the window stays live
+    qtbot.waitUntil(lambda: not win.runner.is_busy("file"), timeout=120_000)
+    assert path.stat().st_size > 10_000 and not win.doc.is_modified
+    win2 = make_window(threaded=True)
+    assert win2.files.open(path, ask=False)
+    qtbot.waitUntil(lambda: len(win2.doc) == 1, timeout=120_000)
+    assert win2.doc.objects[0].source == ps

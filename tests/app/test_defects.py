@@ -1,0 +1,236 @@
+"""The issue's list of wrong or missing things, each driven through the real widgets.
+
+Typed values are validated with the range shown and never rewritten; Ctrl+Y and Ctrl+Shift+Z redo; the
+panel's model follows Edit ▸ Discretization Model; SVG export uses the object's colour; result names are
+unique and readable; empty parts are reported, not created; the toolbar keeps short labels; F1 shows the
+guide inside the application; the first Save As does not open the bundled examples; the window's
+QWidget.actions() is not shadowed.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PySide6 import QtCore, QtWidgets
+
+from mrm.commands import AddObject
+from mrm.reps.pixels import PixelSet
+
+Qt = QtCore.Qt
+
+
+def _square(x0: int, y0: int, n: int = 6) -> PixelSet:
+    return PixelSet(np.ones((n, n), bool), (x0, y0))
+
+
+def _type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
+    field.setFocus()
+    qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
+    qtbot.keyClicks(field, text)
+    qtbot.keyClick(field, Qt.Key.Key_Return)
+
+
+def _with_object(win, n: int = 6, name: str = "A"):  # type: ignore[no-untyped-def]
+    a = win.doc.make_object(_square(0, 0, n), name=name)
+    win.doc.push(AddObject(a, select=True))
+    return a
+
+
+# ---------------------------------------------------------------------------------------------- fields
+@pytest.mark.parametrize("typed", ["1e9", "1000000000", "-3", "0", "abc", "-0.5"])
+def test_typed_alpha_is_never_rewritten(make_window, qtbot, typed):
+    win = make_window()
+    _with_object(win)
+    panel = win.operations
+    panel.select_operation("dss")
+    field = panel.control("alpha").field
+    _type_into(qtbot, field, typed)
+    assert field.text() == typed  # exactly what was typed stays in the field
+    value = panel.control("alpha").value()
+    if typed in ("1e9", "1000000000"):
+        assert value == 1e9 and field.is_valid()  # a valid (huge) α is taken as typed, not 19 or 10
+    else:
+        assert not field.is_valid() and field.property("invalid") is True
+        assert "positive" in field.error or "(0, ∞)" in field.error
+        # The panel refuses to apply it and says why; the document is untouched.
+        n = len(win.doc)
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+        assert len(win.doc) == n
+        assert field.error.split(",")[0] in panel.status.text()
+    assert panel.control("alpha").range_label.text() == "× (0, ∞)"
+
+
+def test_an_invalid_value_corrected_is_accepted_and_unmarked(make_window, qtbot):
+    win = make_window()
+    _with_object(win)
+    panel = win.operations
+    panel.select_operation("dss")
+    field = panel.control("alpha").field
+    _type_into(qtbot, field, "-3")
+    assert not field.is_valid()
+    _type_into(qtbot, field, "3")
+    assert field.is_valid() and field.property("invalid") is False
+    assert panel.control("alpha").value() == 3.0
+    n = len(win.doc)
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) == n + 1, timeout=30_000)
+    assert win.doc.objects[-1].provenance.params["alpha"] == 3.0
+
+
+# ---------------------------------------------------------------------------------------------- redo
+@pytest.mark.parametrize(
+    "key, mods",
+    [
+        (Qt.Key.Key_Y, Qt.KeyboardModifier.ControlModifier),
+        (Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier),
+    ],
+)
+def test_ctrl_y_and_ctrl_shift_z_redo(make_window, qtbot, key, mods):
+    win = make_window()
+    a = _with_object(win)
+    qtbot.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert a.id not in win.doc
+    qtbot.keyClick(win, key, mods)
+    assert a.id in win.doc
+
+
+# ---------------------------------------------------------------------------------------------- model
+def test_the_panel_model_follows_edit_discretization_model(make_window, qtbot):
+    win = make_window()
+    _with_object(win)
+    panel = win.operations
+    panel.select_operation("dss")
+    assert panel.control("model").value() == "standard"
+    win.model_menu.actions()[1].trigger()  # Edit ▸ Discretization Model ▸ supercover
+    assert win.doc.model == "supercover"
+    assert panel.control("model").value() == "supercover"
+    panel.select_operation("discrete_rotation")
+    assert panel.control("model").value() == "supercover"
+
+
+# ---------------------------------------------------------------------------------------------- export
+def test_svg_export_uses_the_objects_colour(make_window, tmp_path: Path):
+    from mrm.commands import RestyleObject
+    from mrm.document import Style
+
+    win = make_window()
+    a = _with_object(win)
+    win.doc.push(RestyleObject(a.id, Style(fill="#12ab34", opacity=0.7)))
+    out = tmp_path / "a.svg"
+    assert win.files.export(a.id, out)
+    text = out.read_text()
+    assert 'fill="#12ab34"' in text and 'fill-opacity="0.7"' in text
+    assert "#4a90d9" not in text
+
+
+# ---------------------------------------------------------------------------------------------- names
+def test_result_names_are_unique_and_readable_and_empty_parts_are_reported(make_window, qtbot):
+    win = make_window()
+    doc, panel = win.doc, win.operations
+    a = _with_object(win)
+    panel.select_operation("dss")
+    _type_into(qtbot, panel.control("alpha").field, "2")
+    for expected in (2, 3):
+        n = len(doc)
+        doc.set_selection([a.id])
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+        qtbot.waitUntil(lambda n=n: len(doc) == n + 1, timeout=30_000)
+        assert len(doc) == expected
+    names = [o.name for o in doc.objects]
+    assert len(set(names)) == len(names), names
+    # Co-refinement of two disjoint objects: A ∩ B is empty, reported and not created; readable names.
+    b = doc.make_object(_square(40, 40), name="B")
+    doc.push(AddObject(b))
+    panel.select_operation("corefine")
+    panel.inputs[0].setCurrentIndex(panel.inputs[0].findData(a.id))
+    panel.inputs[1].setCurrentIndex(panel.inputs[1].findData(b.id))
+    n = len(doc)
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(doc) > n or "empty" in panel.status.text(), timeout=60_000)
+    qtbot.waitUntil(lambda: not panel.is_running(), timeout=60_000)
+    new = list(doc.objects[n:])
+    assert len(new) == 2  # A ∖ B and B ∖ A
+    assert all(len(win.scene.get(o.id, "discrete")) > 0 for o in new)
+    assert all("_" not in o.name for o in new), [o.name for o in new]
+    assert "A ∩ B" in panel.status.text() and "empty" in panel.status.text()
+
+
+# ---------------------------------------------------------------------------------------------- layout
+def test_toolbar_keeps_short_labels_and_the_window_does_not_widen(make_window, qtbot):
+    win = make_window(size=(1024, 700))
+    a = _with_object(win)
+    panel = win.operations
+    panel.select_operation("simplify")
+    width = win.width()
+    tb = win.findChild(QtWidgets.QToolBar, "toolbar_file")
+    button = tb.widgetForAction(win.registry["edit.undo"])
+    before = button.sizeHint().width()
+    n = len(win.doc)
+    win.doc.set_selection([a.id])
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) == n + 1, timeout=30_000)
+    assert button.text() == "Undo"
+    assert "Undo" in button.toolTip() and len(button.toolTip()) > len("Undo ")
+    assert button.sizeHint().width() == before
+    assert win.width() == width
+
+
+def test_the_window_keeps_qwidget_actions(make_window):
+    win = make_window()
+    acts = win.actions()
+    assert isinstance(acts, list) and win.registry["edit.undo"] in acts
+
+
+# ---------------------------------------------------------------------------------------------- help
+def test_f1_shows_the_user_guide_inside_the_application(make_window, qtbot):
+    win = make_window()
+    qtbot.keyClick(win, Qt.Key.Key_F1)
+    help_win = win.findChild(QtWidgets.QDialog, "helpWindow")
+    assert help_win is not None and help_win.isVisible()
+    text = help_win.browser.toPlainText()
+    assert "MR Modeler" in text and "# " not in text.splitlines()[0]  # rendered, not raw Markdown
+    help_win.find.setText("Discretization Model")
+    assert help_win.find_next()
+
+
+# ---------------------------------------------------------------------------------------------- save as
+def test_first_save_as_of_an_example_starts_in_the_users_folder(make_window, monkeypatch, tmp_path):
+    from mrm.app.gui import EXAMPLES, default_example
+
+    home = tmp_path / "home"
+    (home / "Documents").mkdir(parents=True)
+    monkeypatch.setenv("HOME", str(home))
+    win = make_window()
+    assert win.files.open(default_example(), ask=False)
+    seen: list[str] = []
+
+    def fake_dialog(_parent, _title, start, _filters):  # type: ignore[no-untyped-def]
+        seen.append(start)
+        return "", ""
+
+    monkeypatch.setattr(QtWidgets.QFileDialog, "getSaveFileName", fake_dialog)
+    win.registry["file.save_as"].trigger()
+    assert seen and not Path(seen[0]).resolve().is_relative_to(EXAMPLES.resolve())
+    assert Path(seen[0]).parent in (home / "Documents", home)
+    assert Path(seen[0]).name == default_example().stem + ".mrm"
+
+
+# ---------------------------------------------------------------------------------------------- source column
+def test_the_source_column_reads_as_words(make_window, qtbot):
+    from mrm.views.object_list import COL_SOURCE
+
+    win = make_window()
+    a = _with_object(win)
+    panel = win.operations
+    panel.select_operation("discrete_rotation")
+    _type_into(qtbot, panel.control("angle").field, "30")
+    win.doc.set_selection([a.id])
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=30_000)
+    model = win.object_list.model
+    texts = [model.index(r, COL_SOURCE).data() for r in range(model.rowCount())]
+    assert "pixels" in texts  # the drawn object
+    rot = [t for t in texts if "rotation" in t]
+    assert rot == ["pixels · rotation 30°"] and not any("_" in t for t in texts), texts

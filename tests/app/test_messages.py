@@ -1,0 +1,86 @@
+"""Messages that help: a self-crossing drawing is offered a repair or kept for editing (never raw GEOS text,
+never lost); the pixel-limit message points at a Preferences entry that exists and works."""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6 import QtCore, QtWidgets
+
+from mrm.commands import AddObject
+from mrm.reps.pixels import PixelSet
+from tests.app.helpers import click, press_key, zoom_to
+
+Qt = QtCore.Qt
+
+BOWTIE = [(0, 0), (10, 0), (0, 10), (10, 10)]  # the second and fourth edges cross at (5, 5)
+
+
+def _draw_bowtie(win, qtbot):  # type: ignore[no-untyped-def]
+    zoom_to(win, -2, -2, 14, 14)
+    win.registry["tool.polygon"].trigger()
+    view = win.views.euclidean
+    for x, y in BOWTIE:
+        click(qtbot, view, x, y, modifiers=Qt.KeyboardModifier.ShiftModifier)
+    press_key(qtbot, view, Qt.Key.Key_Return)
+    box = win.findChild(QtWidgets.QMessageBox, "repairPolygon")
+    assert box is not None and box.isVisible()
+    text = box.text() + box.informativeText()
+    assert "crosses itself" in text and "Self-intersection" not in text and "[" not in text
+    return box
+
+
+def test_a_self_crossing_drawing_is_repaired_on_request(make_window, qtbot):
+    win = make_window()
+    box = _draw_bowtie(win, qtbot)
+    assert "2 valid polygons" in box.informativeText()
+    qtbot.mouseClick(box.findChild(QtWidgets.QPushButton, "repairButton"), Qt.MouseButton.LeftButton)
+    assert len(win.doc) == 1
+    geom = win.doc.objects[0].source
+    assert geom.is_valid and geom.geom_type == "MultiPolygon" and len(geom.geoms) == 2
+    assert abs(geom.area - 50.0) < 1e-9  # two triangles of 25 each, meeting at (5, 5)
+
+
+def test_a_self_crossing_drawing_can_be_kept_for_editing(make_window, qtbot):
+    win = make_window()
+    box = _draw_bowtie(win, qtbot)
+    qtbot.mouseClick(box.findChild(QtWidgets.QPushButton, "keepEditingButton"), Qt.MouseButton.LeftButton)
+    assert len(win.doc) == 0
+    tool = win.tools.tools["polygon"]
+    assert [tuple(p) for p in tool.points] == [tuple(map(float, p)) for p in BOWTIE]  # nothing lost
+    # Fix it by hand: drop the last vertex, put it where the outline no longer crosses, close it.
+    view = win.views.euclidean
+    press_key(qtbot, view, Qt.Key.Key_Backspace)
+    press_key(qtbot, view, Qt.Key.Key_Backspace)
+    click(qtbot, view, 10, 10, modifiers=Qt.KeyboardModifier.ShiftModifier)
+    click(qtbot, view, 0, 10, modifiers=Qt.KeyboardModifier.ShiftModifier)
+    press_key(qtbot, view, Qt.Key.Key_Return)
+    assert len(win.doc) == 1 and win.doc.objects[0].source.area == 100.0
+
+
+def test_the_pixel_limit_message_points_at_a_preference_that_works(make_window, prefs, qtbot):
+    from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL, PreferencesDialog
+
+    win = make_window()
+    a = win.doc.make_object(PixelSet(np.ones((10, 10), bool)), name="A")
+    win.doc.push(AddObject(a, select=True))
+    # Lower the limit in the dialog, as a user does.
+    dlg = PreferencesDialog(prefs, win.registry, win)
+    field = dlg.findChild(QtWidgets.QDoubleSpinBox, "prefPixelLimit")
+    form = field.parentWidget().layout()
+    assert form.labelForField(field).text() == PIXEL_LIMIT_LABEL
+    field.setValue(5_000)
+    dlg.accept()
+    assert prefs.pixel_limit == 5_000
+    panel = win.operations
+    panel.select_operation("dss")
+    panel.control("alpha").set_value(10.0)  # 100 pixels × 100 = 10,000 > 5,000
+    n = len(win.doc)
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: not panel.is_running(), timeout=30_000)
+    assert len(win.doc) == n
+    msg = panel.status.text()
+    assert "5,000" in msg and f"Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}" in msg
+    # Raised again, the same operation runs.
+    prefs.pixel_limit = 1_000_000
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) == n + 1, timeout=30_000)

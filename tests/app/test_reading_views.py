@@ -1,0 +1,111 @@
+"""Reading the views: marks only on the selected object, the chosen segment cleared with the selection,
+the preimage in the segment's own frame with readable signs, distinct region colours, a legend per view."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+from shapely.geometry import Polygon
+
+from mrm.commands import AddObject
+from mrm.document import Style
+from mrm.reps.pixels import PixelSet
+from mrm.views.region_view import colour_distance
+from mrm.views.segment_table import linear
+from tests.app.helpers import click, wait_drawn, zoom_to
+
+
+def _two_objects(win):  # type: ignore[no-untyped-def]
+    a = win.doc.make_object(Polygon([(0, 0), (20, 0), (17, 9), (0, 6)]), name="A")
+    b = win.doc.make_object(Polygon([(30, 0), (45, 0), (40, 12)]), name="B")
+    win.doc.push(AddObject(a))
+    win.doc.push(AddObject(b, select=True))
+    return a, b
+
+
+def test_handles_and_junctions_only_on_the_selected_object(make_window, qtbot):
+    win = make_window()
+    a, b = _two_objects(win)
+    zoom_to(win, -2, -2, 48, 14)
+    wait_drawn(qtbot, win)
+    av, ev = win.views.analytical, win.views.euclidean
+    assert av.layer(b.id).ends.isVisible() and not av.layer(a.id).ends.isVisible()
+    assert ev.layer(b.id).handles.isVisible() and not ev.layer(a.id).handles.isVisible()
+    # Select A by clicking it in the Euclidean view: the marks move with the selection.
+    click(qtbot, ev, 8.0, 3.0)
+    wait_drawn(qtbot, win)
+    assert win.doc.selection == (a.id,)
+    assert av.layer(a.id).ends.isVisible() and not av.layer(b.id).ends.isVisible()
+    assert not ev.layer(b.id).handles.isVisible()
+
+
+def test_the_chosen_segment_line_goes_when_another_object_is_selected(make_window, qtbot):
+    win = make_window()
+    a, b = _two_objects(win)
+    zoom_to(win, -2, -2, 48, 14)
+    wait_drawn(qtbot, win)
+    win.segments.table.selectRow(1)
+    av = win.views.analytical
+    assert win.scene.segment[0] == b.id and not av.chosen.path().isEmpty()
+    click(qtbot, win.views.euclidean, 8.0, 3.0)  # select A
+    wait_drawn(qtbot, win)
+    assert win.doc.selection == (a.id,)
+    assert win.scene.segment == (-1, -1, -1)
+    assert av.chosen.path().isEmpty() and av.extremes.path().isEmpty() and av.highlight.path().isEmpty()
+
+
+def test_the_preimage_is_drawn_in_the_segments_local_frame(make_window, qtbot):
+    win = make_window()
+    far = Polygon([(5000, -3000), (5040, -3000), (5031, -2987), (5000, -2990)])
+    obj = win.doc.make_object(far, name="far")
+    win.doc.push(AddObject(obj, select=True))
+    wait_drawn(qtbot, win)
+    table = win.segments
+    table.table.selectRow(1)
+    ana = win.doc.derived(obj.id).get("analytical")
+    chain = ana.chains[0]
+    seg = chain.segments[1]
+    i0, j0 = (int(v) for v in chain.points()[seg.first % len(chain.points())])
+    # Every vertex of the drawn polygon is the exact preimage vertex with w moved to the first pointel.
+    sx, sy = chain.preimage(1).frame
+    want = [(float(u), float(w - u * sx * i0 + (1 - u) * sy * j0)) for u, w in chain.preimage(1).vertices]
+    r = table.preimage_item.path().boundingRect()
+    ws = [w for _u, w in want]
+    assert abs(r.top() - min(ws)) < 1e-9 and abs(r.bottom() - max(ws)) < 1e-9
+    assert max(abs(w) for w in ws) < 2  # near 0 in the local frame, not thousands
+    text = table.plot_caption.text()
+    assert "− -" not in text and "+ -" not in text and "− −" not in text
+    assert f"({i0}, {j0})".replace("-", "−") in text
+
+
+def test_linear_forms_read_naturally():
+    assert linear(4, 3) == "4·i + 3·j"
+    assert linear(4, -3) == "4·i − 3·j"
+    assert linear(-1, -3) == "−i − 3·j"
+    assert linear(0, 2) == "2·j"
+    assert linear(Fraction(1, 2), -1) == "1/2·i − j"
+
+
+def test_region_components_get_clearly_different_colours(make_window, qtbot):
+    win = make_window()
+    m = np.zeros((5, 20), bool)
+    for k in range(5):
+        m[1:4, 4 * k : 4 * k + 3] = True  # five separate components
+    obj = win.doc.make_object(PixelSet(m), name="five", style=Style(fill="#4c72b0"))
+    win.doc.push(AddObject(obj, select=True))
+    wait_drawn(qtbot, win)
+    lut = win.views.region.layer(obj.id).components._lut
+    colours = ["#" + "".join(f"{int(c):02x}" for c in lut[k][:3]) for k in range(1, 6)]
+    for i in range(5):
+        for j in range(i + 1, 5):
+            assert colour_distance(colours[i], colours[j]) > 60, colours  # not two blues (≈ 12 apart)
+
+
+def test_every_view_has_a_legend(make_window, qtbot):
+    win = make_window()
+    for v in win.views.views:
+        assert v.legend_label.isVisibleTo(win) and v.legend_label.text()
+    assert "hole boundary" in win.views.region.legend_label.text()
+    assert "junction" in win.views.region.legend_label.text()
+    assert "preview" in win.views.discrete.legend_label.text()

@@ -1,0 +1,69 @@
+"""First start: a cold kernel cache compiles on a worker with progress; the command line says so first."""
+
+from __future__ import annotations
+
+import threading
+from pathlib import Path
+
+import pytest
+
+from mrm import warmup
+from mrm.app.gui import default_example
+from mrm.app.startup import PREPARING, prepare_then
+
+
+@pytest.fixture
+def cold(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Path:
+    """A stamp location of this test only, so the cache looks cold until a warm-up writes it."""
+    stamp = tmp_path / "numba-cache" / warmup.STAMP_NAME
+    monkeypatch.setattr(warmup, "stamp_path", lambda: stamp)
+    return stamp
+
+
+def test_cold_start_shows_the_window_with_progress_then_opens_the_document(  # type: ignore[no-untyped-def]
+    make_window, qtbot, cold, monkeypatch
+):
+    win = make_window(threaded=True)
+    gate = threading.Event()
+    real_step = warmup.STEPS[0][1]
+
+    def slow_first_step() -> None:
+        gate.wait(20)  # hold the worker so the test sees the window while it prepares
+        real_step()
+
+    steps = (("discretization kernels", slow_first_step), *warmup.STEPS[1:3])
+    monkeypatch.setattr(warmup, "STEPS", steps)
+    opened: list[bool] = []
+    example = default_example()
+    assert prepare_then(win, lambda: opened.append(win.files.open(example, ask=False))) is True
+    # The window is there and answers while the kernels compile: it says what it prepares, with progress.
+    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=5000)
+    qtbot.waitUntil(lambda: "discretization kernels (1/3)" in win.status.progress_label.text(), timeout=5000)
+    assert PREPARING in win.status.progress_label.text()
+    assert not opened and len(win.doc) == 0
+    gate.set()
+    qtbot.waitUntil(lambda: bool(opened), timeout=120_000)
+    assert opened == [True] and len(win.doc) > 0
+    assert warmup.is_warm()  # the stamp is written: the next start goes straight to the document
+    qtbot.waitUntil(lambda: not win.status.progress_box.isVisible(), timeout=60_000)
+
+
+def test_warm_start_opens_at_once_and_keeps_kernel_loading_off_the_gui_thread(make_window, qtbot, cold):
+    win = make_window(threaded=True)
+    warmup._write_stamp()
+    opened: list[bool] = []
+    assert prepare_then(win, lambda: opened.append(True)) is False
+    assert opened == [True]
+    assert win.scene.sync_cost == 0  # every derivation runs on a worker until the kernels are loaded
+    qtbot.waitUntil(lambda: win.scene.sync_cost > 0, timeout=120_000)
+
+
+def test_the_cli_prints_one_line_before_a_first_run_compile(cold, capsys):
+    from mrm.cli import run_cli
+
+    assert run_cli(["segment", "--chain", "0,0,0001011", "--json"]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [warmup.FIRST_RUN_MESSAGE]
+    warmup.warm_up()
+    assert run_cli(["segment", "--chain", "0,0,0001011", "--json"]) == 0
+    assert capsys.readouterr().err == ""
