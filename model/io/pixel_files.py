@@ -293,6 +293,8 @@ def _read_npz_arrays(
     except (zipfile.BadZipFile, OSError, ValueError, EOFError):
         head = (fh.seek(0), fh.read(16))[1]
         raise FileFormatError(f"{name}: not an NPZ archive ({_describe_content(head)})") from None
+    except Exception as e:  # NotImplementedError for a "zip file version 9.6", RuntimeError, …
+        raise FileFormatError(f"{name}: unreadable NPZ archive: {e}") from None
     out: dict[str, npt.NDArray[Any]] = {}
     with zf:
         members = set(zf.namelist())

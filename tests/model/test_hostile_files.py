@@ -162,6 +162,21 @@ def test_npz_with_negative_or_absurd_dimensions_is_refused_before_decompression(
     assert peak < 2_000_000 + len(data)
 
 
+def test_npz_of_an_unsupported_zip_version_is_a_message(tmp_path):
+    # Found by random fuzzing: zipfile raises NotImplementedError("zip file version 9.6").
+    data = bytearray(
+        hostile.npz(
+            {"mask": hostile.npy(np.ones((2, 2), bool)), "origin": hostile.npy(np.zeros(2, np.int64))}
+        )
+    )
+    central = data.rindex(b"PK\x01\x02")
+    data[central + 6] = 96  # "version needed to extract" of the first central directory entry
+    p = tmp_path / "v.npz"
+    p.write_bytes(bytes(data))
+    with pytest.raises(FileFormatError, match=r"v\.npz: unreadable NPZ archive: zip file version 9\.6"):
+        read_pixels(p)
+
+
 def test_npz_wide_dtypes_are_refused_before_reading(tmp_path):
     data = hostile.npz(
         {"mask": hostile.npy_header((10_000, 10_000), "<c16"), "origin": hostile.npy(np.zeros(2, np.int64))}
