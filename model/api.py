@@ -220,8 +220,9 @@ def scale(
     Examples
     --------
     >>> import mrm
-    >>> # R_gauss of the 2×2 block is [-1/4, 5/4]²; doubled, [-1/2, 5/2]² holds the centres 0, 1, 2
-    >>> mrm.scale(mrm.PixelSet.box(0, 0, 1, 1), 2, model="gauss") == mrm.PixelSet.box(0, 0, 2, 2)
+    >>> # R_gauss of the 4×4 block is its voxels [-1/2, 7/2]²; doubled, [-1, 7]² holds the centres -1 … 6
+    >>> # (the τ rule keeps the left and bottom sides, not the right and top ones): an 8×8 block
+    >>> mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model="gauss") == mrm.PixelSet.box(-1, -1, 6, 6)
     True
     """
     from mrm.ops.outcome import discrete_of
