@@ -318,6 +318,15 @@ def discretize_image(
     img = np.empty_like(xs)
     img[:, 0] = 2 * (ma * xs[:, 0] + t_x)
     img[:, 1] = 2 * (ma * xs[:, 1] + t_y)
+    if d & (d - 1) == 0 and big < 2**52:
+        # Every image coordinate is a float64 (a dyadic over a power-of-two denominator): the compiled float
+        # discretization is exact on it, and faster than the integer kernels.
+        from mrm.geometry.discretize import discretize
+
+        values = (img // 2).astype(np.float64) / float(d)
+        image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
+        whole = image[0] if len(image) == 1 else MultiPolygon(list(image))
+        return discretize(whole, model, limit=limit)
     # Edges: consecutive vertices of each closed ring (the closing point repeats the first).
     same = index[1:] == index[:-1]
     e = np.concatenate([img[:-1][same], img[1:][same]], axis=1)
