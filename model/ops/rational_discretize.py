@@ -299,6 +299,22 @@ def discretize_image(
         return PixelSet.empty()
     if not np.isfinite(coords).all():
         return None
+    a = Fraction(sim.a)
+    if (
+        sim.tx == 0
+        and sim.ty == 0
+        and a.numerator & (a.numerator - 1) == 0
+        and a.denominator & (a.denominator - 1) == 0
+    ):
+        # A scaling about the origin by a power of two: the float64 image is exact (range checked below).
+        from mrm.geometry.discretize import discretize
+
+        values = coords * float(a)
+        nonzero = np.abs(values[values != 0])
+        if np.isfinite(values).all() and (not nonzero.size or nonzero.min() > 2.0**-1000):
+            image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
+            whole = image[0] if len(image) == 1 else MultiPolygon(list(image))
+            return discretize(whole, model, limit=limit)
     k = _denominator_exponent(coords)
     if k > 900:
         return None
@@ -306,7 +322,7 @@ def discretize_image(
     if np.abs(scaled).max(initial=0.0) >= 2.0**62:
         return None
     xs = scaled.astype(np.int64)
-    a, tx, ty = Fraction(sim.a), Fraction(sim.tx), Fraction(sim.ty)
+    tx, ty = Fraction(sim.tx), Fraction(sim.ty)
     base = a.denominator << k
     d = math.lcm(base, tx.denominator, ty.denominator)
     ma = a.numerator * (d // base)
