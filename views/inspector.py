@@ -165,7 +165,7 @@ class ErrorInspector(QtWidgets.QWidget):
             else ""
         )
         self.changes_label.setVisible(bool(changes))
-        self.rerun_button.setVisible(bool(changes) and all(i in doc for i in prov.inputs))
+        self.rerun_button.setVisible(bool(changes) and self._can_rerun(obj.id))
         self.bound_label.setText(bound_text(acc))
         can_measure = not acc.error and (acc.bound is not None or bool(acc.parts))
         self.measure_button.setEnabled(can_measure)
@@ -175,6 +175,13 @@ class ErrorInspector(QtWidgets.QWidget):
         self.measured_label.setText("<b>Measured</b>: computing…" if can_measure else measured_text(acc))
         if can_measure:
             self.start_measure()
+
+    def _can_rerun(self, obj_id: int) -> bool:
+        try:
+            rerun_request(self.scene.doc, obj_id)
+        except MRMError:
+            return False
+        return True
 
     def _go_to(self, item: QtWidgets.QTreeWidgetItem, _col: int) -> None:
         obj_id = item.data(0, QtCore.Qt.ItemDataRole.UserRole)
@@ -222,12 +229,13 @@ class ErrorInspector(QtWidgets.QWidget):
             return
         doc = self.scene.doc
         try:
-            inputs, name, params = rerun_request(doc, obj.id)
+            request = rerun_request(doc, obj.id)
         except MRMError as e:
             self.changes_label.setText(f"<span style='color:#c0392b'>{e}</span>")
             return
         from mrm.ops.apply import push_plan
-        from mrm.ops.base import plan_operation
+
+        inputs = request.inputs
 
         def done(plan: Any) -> None:
             if any(o.id not in doc or doc.get(o.id) is not o for o in inputs):
@@ -244,7 +252,7 @@ class ErrorInspector(QtWidgets.QWidget):
 
         self.runner.submit(
             "rerun",
-            lambda progress: plan_operation(inputs, name, params, progress),
+            request.plan,
             on_result=done,
             on_error=failed,
             label="Re-running on the current input",

@@ -532,7 +532,8 @@ def _decode_provenance(
     c.json_value(params, f"{path}.params")
     params = limits.clean_json(params)
     inputs = c.list_(p["inputs"], f"{path}.inputs")
-    ids = [c.int_(v, f"{path}.inputs[{i}]", 1, 2**53) for i, v in enumerate(inputs)]
+    # 0 names an input that was an intermediate result of a re-run, never an object of the document.
+    ids = [c.int_(v, f"{path}.inputs[{i}]", 0, 2**53) for i, v in enumerate(inputs)]
     sources: list[Source] = []
     parents: list[Provenance | None] = []
     digests: list[str] = []

@@ -536,57 +536,118 @@ def _alpha(alpha: Any) -> Any:
 
 @dataclass(frozen=True)
 class InputChange:
-    """An input of a result that is no longer what the result was made from."""
+    """An input of a result, or of an earlier step of its chain, that is no longer what it was then."""
 
     index: int
     id: int
     state: str  # "changed" or "deleted"
+    step: int = 0  # 0: the result's own input; k > 0: an input of the k-th step before it
 
     def text(self) -> str:
         """A sentence for the inspector."""
-        return (
-            f"input {self.index + 1} (#{self.id}) was deleted since this result was made"
-            if self.state == "deleted"
-            else f"input {self.index + 1} (#{self.id}) has changed since this result was made"
-        )
+        what = f"input {self.index + 1} (#{self.id})"
+        if self.step:
+            what += f" of the step {self.step} before"
+        verb = "was deleted" if self.state == "deleted" else "has changed"
+        return f"{what} {verb} since this result was made"
 
 
 def changed_inputs(doc: Any, provenance: Any) -> list[InputChange]:
-    """The inputs of ``provenance`` whose current content in ``doc`` differs from the pinned one."""
+    """The inputs of a result and of the earlier steps of its chain whose content in ``doc`` differs now.
+
+    Inputs that were intermediate results of a re-run (id 0: never in the document) are not reported.
+    """
     from mrm.document import content_digest
 
     out: list[InputChange] = []
     if provenance is None or not provenance.pinned:
         return out
-    for k, (oid, digest) in enumerate(zip(provenance.inputs, provenance.digests, strict=True)):
-        if oid not in doc:
-            out.append(InputChange(k, oid, "deleted"))
-        else:
+    for step, record in enumerate(reversed(chain_of(provenance))):
+        if not record.pinned:
+            continue
+        for k, (oid, digest) in enumerate(zip(record.inputs, record.digests, strict=True)):
+            if oid == 0:
+                continue
+            if oid not in doc:
+                out.append(InputChange(k, oid, "deleted", step))
+                continue
             src = doc.get(oid).source
-            if not any(src is s for s in provenance.sources) and content_digest(src) != digest:
-                out.append(InputChange(k, oid, "changed"))
+            if not any(src is s for s in record.sources) and content_digest(src) != digest:
+                out.append(InputChange(k, oid, "changed", step))
     return out
 
 
-def rerun_request(doc: Any, obj_id: int) -> tuple[list[Any], str, Any]:
-    """What re-running a result on the current content of its inputs needs: (inputs, operation, params).
+@dataclass(frozen=True)
+class _Intermediate:
+    """An intermediate result of a re-run: what plan_operation reads of an input (id 0: not an object)."""
 
-    Read on the document's thread; hand the three to :func:`mrm.ops.base.plan_operation` (on a worker) and
-    push its plan as a new result (:func:`mrm.ops.apply.push_plan`). The old result keeps its account.
+    id: int
+    source: Any
+    provenance: Any
+
+
+@dataclass(frozen=True)
+class RerunRequest:
+    """What re-running a result's chain on the current content of its inputs needs (read on the GUI thread).
+
+    Attributes
+    ----------
+    inputs : list of DocObject
+        The current objects the first re-run step reads.
+    steps : list of (operation, params)
+        The operations of the chain from that step on, oldest first.
+    """
+
+    inputs: list[Any]
+    steps: list[tuple[str, Any]]
+
+    def plan(self, progress: ProgressLike | None = None) -> Any:
+        """Run the steps (pure: no document); the plan of the final result, to push as one undo step.
+
+        Intermediate results are not added to the document: the final result's provenance pins them, with
+        id 0 ("made by a re-run, not kept").
+        """
+        from mrm.ops.base import plan_operation
+
+        inputs = list(self.inputs)
+        plan = None
+        for i, (name, params) in enumerate(self.steps):
+            plan = plan_operation(
+                inputs, name, params, _sub(progress, i / len(self.steps), (i + 1) / len(self.steps))
+            )
+            r = plan.results[0]
+            inputs = [_Intermediate(0, r.source, r.provenance)]
+        return plan
+
+
+def rerun_request(doc: Any, obj_id: int) -> RerunRequest:
+    """Re-run a result on the current content of its inputs: from the oldest step whose input changed.
+
+    Hand the request to a worker (:meth:`RerunRequest.plan`) and push the plan as a new result
+    (:func:`mrm.ops.apply.push_plan`); the old result keeps its account.
 
     Raises
     ------
     ParameterError
-        The object has no provenance, an input was deleted, or the recorded parameters are unreadable.
+        No provenance, nothing changed that can be re-run on, or a recorded parameter is unreadable.
     """
     prov = doc.get(obj_id).provenance
     if prov is None:
         raise ParameterError("this object was not made by an operation")
-    missing = [i for i in prov.inputs if i not in doc]
+    records = chain_of(prov)
+    changed = [c.step for c in changed_inputs(doc, prov) if c.state == "changed"]
+    if not changed:
+        raise ParameterError("no input of this result has changed since (a deleted one cannot be re-run on)")
+    start = len(records) - 1 - max(changed)
+    first = records[start]
+    missing = [i for i in first.inputs if i not in doc]
     if missing:
         raise ParameterError(f"input #{missing[0]} was deleted: there is nothing to re-run on")
-    spec, params, _ = _spec_params(prov)
-    return [doc.get(i) for i in prov.inputs], spec.name, params
+    steps = []
+    for r in records[start:]:
+        spec, params, _ = _spec_params(r)
+        steps.append((spec.name, params))
+    return RerunRequest([doc.get(i) for i in first.inputs], steps)
 
 
 __all__ = [
@@ -595,6 +656,7 @@ __all__ = [
     "InputChange",
     "Link",
     "PartAccount",
+    "RerunRequest",
     "account_of",
     "chain_of",
     "changed_inputs",

@@ -17,8 +17,9 @@ subdivision: neighbouring parts share their boundaries exactly.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
@@ -46,7 +47,7 @@ from mrm.ops.outcome import (
     source_box,
     sub_progress,
 )
-from mrm.ops.rational_discretize import ProgressLike, discretize_exact
+from mrm.ops.rational_discretize import ProgressLike, discretize_exact, discretize_image
 from mrm.ops.simplify import euclidean_input
 from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.summary import optional_function
@@ -65,7 +66,16 @@ def discrete_input(
     """D(T(E)) for a polygon E, or A itself for a pixel set A when T is the identity (None)."""
     if isinstance(source, PixelSet) and sim is None:
         return source
-    shape = ExactShape.from_geometry(euclidean_input(source, model))
+    geom = euclidean_input(source, model)
+    if sim is None and not isinstance(geom, ExactShape):
+        from mrm.geometry.discretize import discretize
+
+        return discretize(geom, model, limit=limit)  # float64 input: the compiled exact discretization
+    if sim is not None and not isinstance(geom, ExactShape):
+        fast = discretize_image(geom, sim, model, limit=limit, what="the discretization of an input")
+        if fast is not None:  # int64 kernels, no Fraction (the same pixels)
+            return fast
+    shape = ExactShape.from_geometry(geom)
     if sim is not None:
         shape = shape.map(sim)
     return discretize_exact(
@@ -110,7 +120,7 @@ def euclidean_discrete_union(
     geom = reconstruct(union, model)
     if progress is not None:
         progress.update(1.0, "done")
-    return StepOutcome(geom, Similarity.identity(), ExactShape.from_geometry(geom), union)
+    return StepOutcome(geom, Similarity.identity(), lambda: ExactShape.from_geometry(geom), union)
 
 
 def euclidean_discrete_corefinement(
@@ -153,8 +163,11 @@ def euclidean_discrete_corefinement(
         for src in (first, second):
             if isinstance(src, PixelSet):  # R(A) ⊂ V(bbox(A)): estimate before continuing
                 bounds = mapped_bounds(voxel_bounds(src.bbox), sim)
-            else:
-                bounds = ExactShape.from_geometry(src).map(sim).bounds()
+            elif src.is_empty:
+                continue
+            else:  # a scaling maps the bounding box onto the image's bounding box, exactly
+                x0, y0, x1, y1 = (Fraction(float(v)) for v in src.bounds)
+                bounds = mapped_bounds((x0, y0, x1, y1), sim)
             check_size(box_area(pixel_box(bounds, model)), limit, what)
     a = discrete_input(first, model, sim, limit, sub_progress(progress, 0.0, 0.2))
     b = discrete_input(second, model, sim, limit, sub_progress(progress, 0.2, 0.4))
@@ -165,8 +178,18 @@ def euclidean_discrete_corefinement(
         progress.update(0.45, "continuing the parts")
     geoms, watertight = _reconstruct_parts(pixels, label_map, model, progress)
     back = sim.inverse() if sim is not None else Similarity.identity()
-    exact = {p: ExactShape.from_geometry(g).map(back) for p, g in geoms.items()}
-    result = {p: exact[p].to_geometry() for p in PARTS}
+    exact: Mapping[str, ExactShape]
+    if _is_dyadic_scaling(back):
+        # Scaling back by a power of two is exact in float64: the parts need no Fraction; their exact form
+        # is made only when asked for (the account measures it).
+        from shapely import affinity
+
+        r = float(back.ratio)
+        result = {p: geoms[p] if r == 1 else affinity.scale(geoms[p], r, r, origin=(0, 0)) for p in PARTS}
+        exact = _LazyExact(result)
+    else:
+        exact = {p: ExactShape.from_geometry(g).map(back) for p, g in geoms.items()}
+        result = {p: exact[p].to_geometry() for p in PARTS}
     if progress is not None:
         progress.update(1.0, "done")
     extra = {
@@ -176,8 +199,37 @@ def euclidean_discrete_corefinement(
         "alpha": None if sim is None else sim.ratio,
         "watertight": watertight,
     }
-    union = ExactShape(tuple(poly for p in PARTS for poly in exact[p].polygons))
+
+    def union() -> ExactShape:
+        return ExactShape(tuple(poly for p in PARTS for poly in exact[p].polygons))
+
     return StepOutcome(result, Similarity.identity(), union, a | b, extra)
+
+
+def _is_dyadic_scaling(sim: Similarity) -> bool:
+    """A scaling about the origin by a power of two (exact on float64 coordinates, barring underflow)."""
+    q = sim.ratio
+    power_of_two = q.numerator & (q.numerator - 1) == 0 and q.denominator & (q.denominator - 1) == 0
+    return sim.b == 0 and sim.tx == 0 and sim.ty == 0 and power_of_two and Fraction(2) ** -60 < q < 2**60
+
+
+class _LazyExact(Mapping[str, ExactShape]):
+    """Part name → its exact shape, read from the (exact) float64 part on first use."""
+
+    def __init__(self, parts: dict[str, Any]) -> None:
+        self._parts = parts
+        self._done: dict[str, ExactShape] = {}
+
+    def __getitem__(self, key: str) -> ExactShape:
+        if key not in self._done:
+            self._done[key] = ExactShape.from_geometry(self._parts[key])
+        return self._done[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._parts)
+
+    def __len__(self) -> int:
+        return len(self._parts)
 
 
 def _reconstruct_parts(

@@ -299,6 +299,22 @@ def discretize_image(
         return PixelSet.empty()
     if not np.isfinite(coords).all():
         return None
+    a = Fraction(sim.a)
+    if (
+        sim.tx == 0
+        and sim.ty == 0
+        and a.numerator & (a.numerator - 1) == 0
+        and a.denominator & (a.denominator - 1) == 0
+    ):
+        # A scaling about the origin by a power of two: the float64 image is exact (range checked below).
+        from mrm.geometry.discretize import discretize
+
+        values = coords * float(a)
+        nonzero = np.abs(values[values != 0])
+        if np.isfinite(values).all() and (not nonzero.size or nonzero.min() > 2.0**-1000):
+            image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
+            whole = image[0] if len(image) == 1 else MultiPolygon(list(image))
+            return discretize(whole, model, limit=limit)
     k = _denominator_exponent(coords)
     if k > 900:
         return None
@@ -306,7 +322,7 @@ def discretize_image(
     if np.abs(scaled).max(initial=0.0) >= 2.0**62:
         return None
     xs = scaled.astype(np.int64)
-    a, tx, ty = Fraction(sim.a), Fraction(sim.tx), Fraction(sim.ty)
+    tx, ty = Fraction(sim.tx), Fraction(sim.ty)
     base = a.denominator << k
     d = math.lcm(base, tx.denominator, ty.denominator)
     ma = a.numerator * (d // base)
@@ -318,6 +334,15 @@ def discretize_image(
     img = np.empty_like(xs)
     img[:, 0] = 2 * (ma * xs[:, 0] + t_x)
     img[:, 1] = 2 * (ma * xs[:, 1] + t_y)
+    if d & (d - 1) == 0 and big < 2**52:
+        # Every image coordinate is a float64 (a dyadic over a power-of-two denominator): the compiled float
+        # discretization is exact on it, and faster than the integer kernels.
+        from mrm.geometry.discretize import discretize
+
+        values = (img // 2).astype(np.float64) / float(d)
+        image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
+        whole = image[0] if len(image) == 1 else MultiPolygon(list(image))
+        return discretize(whole, model, limit=limit)
     # Edges: consecutive vertices of each closed ring (the closing point repeats the first).
     same = index[1:] == index[:-1]
     e = np.concatenate([img[:-1][same], img[1:][same]], axis=1)

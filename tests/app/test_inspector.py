@@ -197,3 +197,24 @@ def test_inspector_without_provenance(make_window):
     win.inspector.refresh()
     assert "no provenance" in win.inspector.title.text()
     assert not win.inspector.measure_button.isEnabled()
+
+
+def test_a_changed_origin_is_reported_and_the_chain_re_run(make_window, qtbot):
+    from mrm.ops.apply import apply_operation
+
+    win = make_window()
+    a, _o1, o2 = _chain(win, (2.0, 0.5))
+    insp = win.inspector
+    win.doc.push(PaintPixels(a.id, PixelSet.box(8, 8, 10, 10)))
+    win.doc.set_selection([o2.id])
+    insp.refresh()
+    qtbot.waitUntil(lambda: insp.measurement is not None, timeout=60_000)
+    assert "of the step 1 before has changed" in insp.changes_label.text()
+    assert insp.rerun_button.isVisible()
+    n = len(win.doc.objects)
+    qtbot.mouseClick(insp.rerun_button, QtCore.Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc.objects) == n + 1, timeout=60_000)
+    new = win.doc.objects[-1]
+    (x,) = apply_operation(win.doc, "dss", [a.id], {"alpha": 2.0})
+    (y,) = apply_operation(win.doc, "dss", [x], {"alpha": 0.5})
+    assert new.source == win.doc.get(y).source and new.source != o2.source

@@ -24,7 +24,7 @@ from hypothesis import strategies as st
 from mrm.cli import run_cli
 from mrm.commands import AddObject, PaintPixels, RemoveObjects
 from mrm.document import Document, Provenance, Settings, content_digest
-from mrm.errors import FileFormatError
+from mrm.errors import FileFormatError, ParameterError
 from mrm.geometry.hausdorff import hausdorff_distance
 from mrm.geometry.reconstruct import reconstruct
 from mrm.io.pixel_files import write_pixels
@@ -227,10 +227,12 @@ def test_editing_or_deleting_the_input_never_changes_the_account():
     doc.push(PaintPixels(a, PixelSet.box(-20, -20, 20, 20)))
     doc.push(PaintPixels(b, PixelSet.box(30, 30, 31, 31)))
     assert account_of(doc.get(c).provenance).summary() == before
-    assert [ch.state for ch in changed_inputs(doc, doc.get(c).provenance)] == ["changed"]
+    changes = changed_inputs(doc, doc.get(c).provenance)
+    assert [(ch.id, ch.step, ch.state) for ch in changes] == [(b, 0, "changed"), (a, 1, "changed")]
     doc.push(RemoveObjects([a, b]))
     assert account_of(doc.get(c).provenance).summary() == before
-    assert [ch.state for ch in changed_inputs(doc, doc.get(c).provenance)] == ["deleted"]
+    changes = changed_inputs(doc, doc.get(c).provenance)
+    assert [(ch.id, ch.state) for ch in changes] == [(b, "deleted"), (a, "deleted")]
     # ... and after a save and a load, the pinned contents come back (each stored once).
     data = dumps(doc)
     back = loads(data)
@@ -243,11 +245,32 @@ def test_re_running_on_the_current_input_is_a_new_result():
     (b,) = apply_operation(doc, "dss", [a], {"alpha": 2.0})
     old = account_of(doc.get(b).provenance).summary()
     doc.push(PaintPixels(a, PixelSet.box(10, 10, 12, 12)))
-    inputs, name, params = rerun_request(doc, b)
-    (new,) = push_plan(doc, plan_operation(inputs, name, params))
+    (new,) = push_plan(doc, rerun_request(doc, b).plan())
     assert doc.get(new).provenance.digests == (content_digest(doc.get(a).source),)
     assert account_of(doc.get(b).provenance).summary() == old
     assert changed_inputs(doc, doc.get(new).provenance) == []
+
+
+def test_re_running_a_chain_starts_from_the_oldest_changed_input():
+    doc, a = _doc(_diamond(4))
+    (b,) = apply_operation(doc, "dss", [a], {"alpha": 2.0})
+    (c,) = apply_operation(doc, "dss", [b], {"alpha": 0.5})
+    doc.push(PaintPixels(a, PixelSet.box(10, 10, 12, 12)))
+    changes = changed_inputs(doc, doc.get(c).provenance)
+    assert [(ch.id, ch.step, ch.state) for ch in changes] == [(a, 1, "changed")]
+    assert "of the step 1 before" in changes[0].text()
+    request = rerun_request(doc, c)
+    assert [name for name, _ in request.steps] == ["dss", "dss"]
+    (new,) = push_plan(doc, request.plan())
+    fresh = apply_operation(doc, "dss", apply_operation(doc, "dss", [a], {"alpha": 2.0}), {"alpha": 0.5})
+    assert doc.get(new).source == doc.get(fresh[0]).source
+    acc = account_of(doc.get(new).provenance)
+    assert acc.chain[0].inputs == (a,) and acc.chain[1].inputs == (0,)  # the intermediate was not kept
+    assert changed_inputs(doc, doc.get(new).provenance) == []
+    assert loads(dumps(doc)).get(new).provenance.inputs == (0,)  # saved and read back
+    doc.push(RemoveObjects([a]))
+    with pytest.raises(ParameterError, match="deleted one cannot"):
+        rerun_request(doc, new)
 
 
 def test_plan_operation_needs_no_document():
