@@ -59,6 +59,7 @@ class StatusBar(QtWidgets.QStatusBar):
         self.addPermanentWidget(self.figures)
         self.addPermanentWidget(self.cursor_label)
         self.addPermanentWidget(self.model_label)
+        self._counted: tuple[Any, int] | None = None  # (pixel set, its count)
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(0)
@@ -92,7 +93,11 @@ class StatusBar(QtWidgets.QStatusBar):
         }
         ps = s.get(obj_id, "discrete")
         if ps is not None:
-            out["pixels"] = ps.count
+            # Counting 10⁸ pixels takes ~0.2 s: once per pixel set, not at every status update.
+            cached = self._counted
+            if cached is None or cached[0] is not ps:
+                cached = self._counted = (ps, ps.count)
+            out["pixels"] = cached[1]
         region = s.get(obj_id, "region")
         if region is not None:
             out["components"] = region.n_components

@@ -21,6 +21,7 @@ import platform
 import sys
 from collections.abc import Callable
 from pathlib import Path
+from typing import TextIO
 
 log = logging.getLogger(__name__)
 
@@ -75,12 +76,29 @@ def cache_key() -> dict[str, str]:
 
 
 def is_warm() -> bool:
-    """True when :func:`warm_up` ran for these kernels, this numba and this Python."""
+    """True when :func:`warm_up` ran for these kernels, this numba and this Python.
+
+    A stale stamp (a kernel module edited since) still counts as warm when numba's cache holds an index for
+    every kernel module: only the edited kernels recompile then, on first use, which no notice announces.
+    """
     try:
         stamp = json.loads(stamp_path().read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return False
-    return bool(stamp == cache_key())
+    return bool(stamp == cache_key()) or _indexes_present()
+
+
+def _indexes_present() -> bool:
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return False  # another layout: the stamp alone decides
+    root = _package_root()
+    for rel in KERNEL_MODULES:
+        p = root / rel
+        if p.name == "_jit.py" or not p.is_file() or "njit" not in p.read_text(encoding="utf-8"):
+            continue
+        if not any((p.parent / "__pycache__").glob(f"{p.stem}.*.nbi")):
+            return False
+    return True
 
 
 def _write_stamp() -> None:
@@ -153,7 +171,7 @@ def _step_operations() -> None:
         for i in range(spec.arity):
             inputs.append(poly if spec.input_kind == "euclidean" else pixels[i % len(pixels)])
         try:
-            run_operation(spec, inputs)  # type: ignore[arg-type]
+            run_operation(spec, inputs)
         except Exception as exc:
             log.info("warm-up of %s: %s", spec.name, exc)
 
@@ -171,7 +189,7 @@ def _step_examples() -> None:
         for obj in doc:
             d = doc.derived(obj.id)
             for rep in ("discrete", "euclidean", "region", "analytical"):
-                d.get(rep)  # type: ignore[arg-type]
+                d.get(rep)
 
 
 #: The steps, with what a user is told while each runs.
@@ -218,12 +236,11 @@ FIRST_RUN_MESSAGE = (
 )
 
 
-def announce_if_cold(stream: object = None) -> bool:
-    """Print one line to stderr when the kernels will compile now; True when it printed."""
+def announce_if_cold(stream: TextIO | None = None) -> bool:
+    """Print one line to stderr (or ``stream``) when the kernels will compile now; True when it printed."""
     if is_warm():
         return False
-    out = sys.stderr if stream is None else stream
-    print(FIRST_RUN_MESSAGE, file=out, flush=True)  # type: ignore[call-overload]
+    print(FIRST_RUN_MESSAGE, file=sys.stderr if stream is None else stream, flush=True)
     return True
 
 

@@ -223,6 +223,8 @@ class RepresentationView(QtWidgets.QFrame):
         else:
             self.status_label.setText("")
             self.status_label.setToolTip("")
+        # An empty status takes no room: the subtitle ("components, holes, cracks") is then shown whole.
+        self.status_label.setVisible(bool(self.status_label.text()))
 
     def layer(self, obj_id: int) -> Layer | None:
         return self._layers.get(obj_id)

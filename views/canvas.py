@@ -220,18 +220,28 @@ class MaskItem(pg.ImageItem):
         super().__init__(axisOrder="row-major")
         self._origin = (0, 0)
         self._lut: np.ndarray = full_lut(np.array([[0, 0, 0, 0], [0, 0, 0, 255]]))
+        self.scale_factor = 1
+        self._full: np.ndarray | None = None  # the exact image behind a coarse one
+        self._detail: pg.ImageItem | None = None  # its visible part, when zoomed in enough
         # Pixels must stay sharp squares at every zoom.
         self.setAutoDownsample(False)
 
     def set_pixels(
-        self, data: np.ndarray | None, origin: tuple[int, int], lut: np.ndarray | None = None, scale: int = 1
+        self,
+        data: np.ndarray | None,
+        origin: tuple[int, int],
+        lut: np.ndarray | None = None,
+        scale: int = 1,
+        full: np.ndarray | None = None,
     ) -> None:
         """Show ``data[row, col]`` (bool or small ints) with pixel (x0 + col, y0 + row) on its voxel.
 
         With ``scale`` f > 1, ``data`` is a level-of-detail image (:func:`lod_image`): each pixel covers
-        f × f pixels of the plane.
+        f × f pixels of the plane, and ``full`` (the image itself) is shown exactly, cropped to the view, as
+        soon as the visible part of it has at most :data:`LOD_PIXELS` pixels: zoomed in, every pixel is true.
         """
         self.scale_factor = scale
+        self._full = full if scale > 1 else None
         if lut is not None:
             self._lut = full_lut(lut)
         if data is None or data.size == 0:
@@ -246,6 +256,43 @@ class MaskItem(pg.ImageItem):
         self.setImage(img, autoLevels=False, levels=None, lut=self._lut)
         h, w = img.shape
         self.setRect(QtCore.QRectF(self._origin[0] - 0.5, self._origin[1] - 0.5, w * scale, h * scale))
+        self.update_detail()
+
+    def viewRangeChanged(self) -> None:
+        super().viewRangeChanged()
+        self.update_detail()
+
+    def update_detail(self) -> None:
+        """Show the exact pixels of the visible part of a coarse (level-of-detail) image when few enough."""
+        detail = getattr(self, "_detail", None)
+        full = getattr(self, "_full", None)
+        vb = self.getViewBox() if full is not None else None
+        if full is None or vb is None or not self.isVisible():
+            if detail is not None:
+                detail.setVisible(False)
+            return
+        r = vb.viewRect()
+        ox, oy = self._origin[0] - 0.5, self._origin[1] - 0.5
+        h, w = full.shape
+        x0, x1 = max(0, math.floor(r.left() - ox)), min(w, math.ceil(r.right() - ox))
+        y0, y1 = (
+            max(0, math.floor(min(r.top(), r.bottom()) - oy)),
+            min(h, math.ceil(max(r.top(), r.bottom()) - oy)),
+        )
+        if x1 <= x0 or y1 <= y0 or (x1 - x0) * (y1 - y0) > LOD_PIXELS:
+            if detail is not None:
+                detail.setVisible(False)
+            return
+        if detail is None:
+            detail = self._detail = pg.ImageItem(axisOrder="row-major")
+            detail.setAutoDownsample(False)
+            detail.setParentItem(self.parentItem())
+        detail.setZValue(self.zValue() + 0.01)
+        crop = full[y0:y1, x0:x1]
+        img = crop.view(np.uint8) if crop.dtype == np.bool_ else crop.astype(np.uint8)
+        detail.setImage(np.ascontiguousarray(img), autoLevels=False, levels=None, lut=self._lut)
+        detail.setRect(QtCore.QRectF(ox + x0, oy + y0, x1 - x0, y1 - y0))
+        detail.setVisible(True)
 
     def update_pixels(self, data: np.ndarray) -> None:
         """Replace the image data in place (same shape and origin): the brush's fast path."""
@@ -256,6 +303,9 @@ class MaskItem(pg.ImageItem):
         self._lut = full_lut(lut)
         if self.image is not None:
             self.setLookupTable(self._lut)
+        detail = getattr(self, "_detail", None)
+        if detail is not None and detail.image is not None:
+            detail.setLookupTable(self._lut)
 
 
 # ---------------------------------------------------------------------------------------------- view

@@ -53,7 +53,7 @@ class DiscreteView(RepresentationView):
             shown = self.prepared(obj.id, "pixels", ps, ps.mask.size, lambda: lod_image(ps.mask))
             if shown is None:
                 return False  # a coarser image of a big object is being made on a worker
-            layer.mask.set_pixels(shown[0], ps.origin, lut, shown[1])
+            layer.mask.set_pixels(shown[0], ps.origin, lut, shown[1], ps.mask)
             layer.pixels = ps
         if selected:
             if layer.outlined is not ps:

@@ -7,12 +7,21 @@ on arrays only (nopython mode), so releasing the GIL is safe (docs/adr/0014).
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
 
 import numba
 
+_F = TypeVar("_F", bound=Callable[..., Any])
 
-def njit(*args: Any, **kwargs: Any) -> Any:
-    """``numba.njit`` with ``nogil=True`` unless the caller says otherwise."""
+
+def njit(**kwargs: Any) -> Callable[[_F], _F]:
+    """``numba.njit(**kwargs)`` with ``nogil=True`` unless said otherwise: ``@njit(cache=True)``."""
     kwargs.setdefault("nogil", True)
-    return numba.njit(*args, **kwargs)
+    decorator: Callable[[_F], _F] = numba.njit(**kwargs)
+    return decorator
+
+
+def py_func(kernel: _F) -> _F:
+    """The plain Python function behind a kernel (numba's ``py_func``), e.g. to run it on Python ints."""
+    return cast(_F, getattr(kernel, "py_func", kernel))

@@ -50,16 +50,18 @@ def steps_of(a: int, b: int, adjacency: int) -> tuple[Point, Point]:
         DGtal ``ArithmeticalDSLKernel::steps``: the steps that occur along a DSL of that slope.
     """
     from mrm.geometry._dss_kernels import steps_of as _k
+    from mrm.geometry._jit import py_func
 
-    s1x, s1y, s2x, s2y = _k.py_func(a, b, adjacency)
+    s1x, s1y, s2x, s2y = py_func(_k)(a, b, adjacency)
     return (s1x, s1y), (s2x, s2y)
 
 
 def shift_of(a: int, b: int, adjacency: int) -> Point:
     """Return the shift vector of the DSLs of slope (a, b): r(p + shift) = r(p) + ω (DGtal's ``shift``)."""
     from mrm.geometry._dss_kernels import shift_of as _k
+    from mrm.geometry._jit import py_func
 
-    x, y = _k.py_func(a, b, adjacency)
+    x, y = py_func(_k)(a, b, adjacency)
     return (x, y)
 
 

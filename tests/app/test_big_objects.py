@@ -26,7 +26,9 @@ def test_lod_image_keeps_every_pixel_visible():
 
 def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_window, qtbot):
     win = make_window(threaded=True)
-    ps = PixelSet(np.ones((2000, 2500), bool), (-100, 40))
+    m = np.ones((2000, 2500), bool)
+    m[470:480, 210:230] = False  # a hole, seen when zoomed in at x 110 … 129, y 510 … 519
+    ps = PixelSet(m, (-100, 40))
     obj = win.doc.make_object(ps, name="big")
     win.doc.push(AddObject(obj, select=True))
     dv = win.views.discrete
@@ -40,6 +42,19 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     r = item.mapRectToParent(item.boundingRect())
     assert (r.left(), r.bottom() if r.bottom() > r.top() else r.top()) == (-100.5, 40 - 0.5 + 2000)
     assert r.width() == 2500
+    # Zoomed in, the exact pixels of the visible part are drawn over the coarse image (nothing blocky).
+    from tests.app.helpers import zoom_to
+
+    zoom_to(win, 100, 500, 160, 540)
+    detail = item._detail
+    assert detail is not None and detail.isVisible()
+    d = detail.mapRectToParent(detail.boundingRect())
+    x0, y0 = int(d.left() + 0.5), int(min(d.top(), d.bottom()) + 0.5)
+    w, h = round(d.width()), round(abs(d.height()))
+    assert x0 <= 100 and x0 + w >= 160 and y0 <= 500 and y0 + h >= 540
+    exact = ps.to_array((x0, y0, x0 + w - 1, y0 + h - 1))
+    assert not exact.all()  # the hole is in view
+    assert np.array_equal(detail.image.astype(bool), exact)
     # The other views drew it too, with their own prepared data.
     assert win.views.region.layer(obj.id).components.image.size <= LOD_PIXELS
     assert not win.views.euclidean.layer(obj.id).polygon.path().isEmpty()

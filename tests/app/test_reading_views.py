@@ -109,3 +109,12 @@ def test_every_view_has_a_legend(make_window, qtbot):
     assert "hole boundary" in win.views.region.legend_label.text()
     assert "junction" in win.views.region.legend_label.text()
     assert "preview" in win.views.discrete.legend_label.text()
+
+
+def test_view_subtitles_are_not_cut_when_nothing_is_computing(make_window, qtbot):
+    win = make_window(size=(1600, 1000))
+    wait_drawn(qtbot, win)
+    qtbot.wait(50)  # the header layouts settle after the status labels were hidden
+    for v in win.views.views:
+        label = v.subtitle_label
+        assert label.width() >= label.fontMetrics().horizontalAdvance(label.text()), v.name
