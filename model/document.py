@@ -271,8 +271,10 @@ class Provenance:
         ins = tuple(self.inputs)
         if not all(isinstance(i, int) and not isinstance(i, bool) for i in ins):
             raise ParameterError("provenance inputs must be object ids (integers)")
-        if not all(1 <= i <= limits.MAX_ID for i in ins):
-            raise LimitError(f"provenance inputs must be object ids in [1, 2^53], got {list(ins)[:5]}")
+        # 0 stands for an input that is no object of a document (a file given to the CLI, a chain's
+        # intermediate result): its content is pinned all the same. The project loader takes the same range.
+        if not all(0 <= i <= limits.MAX_ID for i in ins):
+            raise LimitError(f"provenance inputs must be object ids in [0, 2^53], got {list(ins)[:5]}")
         object.__setattr__(self, "inputs", ins)
         sources = tuple(self.sources)
         if sources and len(sources) != len(ins):
