@@ -123,9 +123,14 @@ def check_size(estimated: int, limit: int | None, what: str) -> None:
 def estimated_pixels(ps: PixelSet, sim: Similarity, model: str) -> int:
     """An upper bound of the pixels of D(T(R(A))), from A's bounding box alone (nothing is computed).
 
-    R(A) ⊂ V(A) ⊂ V(bbox(A)), so T(R(A)) lies in the box of T's image of that rectangle.
+    Under the covers R(A) ⊂ V(A) ⊂ V(bbox(A)); under gauss ∂R(A) stays within the voxels of the border
+    pixels on either side (DESIGN §3.2), so R(A) lies in V(bbox(A)) grown by one pixel. T(R(A)) lies in the
+    box of T's image of that rectangle.
     """
-    return box_area(pixel_box(mapped_bounds(voxel_bounds(ps.bbox), sim), model))
+    box = ps.bbox
+    if box is not None and model == "gauss":
+        box = (box[0] - 1, box[1] - 1, box[2] + 1, box[3] + 1)
+    return box_area(pixel_box(mapped_bounds(voxel_bounds(box), sim), model))
 
 
 def discrete_similarity(

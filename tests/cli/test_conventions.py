@@ -277,7 +277,8 @@ def test_bad_numbers_are_one_line(tmp_path):
         mrm_run("scale", "l.pbm", "--alpha", "2", "--center", "1e308,1e308", "-o", "s.png", cwd=tmp_path),
         "scale",
     )
-    assert "out of range" in line
+    assert "center" in line and "between" in line  # the registry's declared range, named in the message
+    assert not (tmp_path / "s.png").exists()  # refused before any work: nothing written
     line = one_error_line(mrm_run("segment", "--chain", "99999999999999999999,0,01", cwd=tmp_path), "segment")
     assert "out of range" in line
     one_error_line(mrm_run("rotate", "l.pbm", "--angle", "1e400", "-o", "r.png", cwd=tmp_path), "rotate")
