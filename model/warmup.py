@@ -31,6 +31,9 @@ KERNEL_MODULES = (
     "geometry/_discretize_kernels.py",
     "geometry/_dss_kernels.py",
     "geometry/_reconstruct_kernels.py",
+    "geometry/_dual_kernels.py",
+    "geometry/rational_discretize.py",
+    "io/png_stream.py",
     "geometry/cracks.py",
     "geometry/labeling.py",
     "geometry/segmentation.py",
@@ -176,6 +179,39 @@ def _step_operations() -> None:
             log.info("warm-up of %s: %s", spec.name, exc)
 
 
+def _step_files() -> None:
+    """Read a tiny PNG of every colour type, so the streaming decoder's kernels are compiled too."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    from mrm.io.pixel_files import read_pixels
+
+    grey = (np.arange(48, dtype=np.uint8).reshape(6, 8) * 5).astype(np.uint8)
+    images = [
+        Image.fromarray(grey > 100),
+        Image.fromarray(grey),
+        Image.fromarray(np.dstack([grey] * 3)),
+        Image.fromarray(np.dstack([grey] * 3 + [grey[::-1]])),
+        Image.fromarray(np.dstack([grey, grey[::-1]]), mode="LA"),
+        Image.fromarray(grey).convert("P"),
+        Image.fromarray(grey.astype(np.uint16) * 257),
+    ]
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        for k, im in enumerate(images):
+            path = Path(tmp) / f"w{k}.png"
+            buf = io.BytesIO()
+            im.save(buf, format="PNG")
+            path.write_bytes(buf.getvalue())
+            try:
+                read_pixels(path)
+            except Exception as exc:
+                log.info("warm-up of the PNG reader (%s): %s", im.mode, exc)
+
+
 def _step_examples() -> None:
     from mrm.io.project import load_project
 
@@ -198,6 +234,7 @@ STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("reconstruction kernels", _step_reconstruct),
     ("region and segment kernels", _step_regions),
     ("operation kernels", _step_operations),
+    ("file decoders", _step_files),
     ("example projects", _step_examples),
 )
 
