@@ -4,9 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.app.main_window import MainWindow
+from mrm.reps.pixels import PixelSet
 from mrm.views.base_view import RepresentationView
 
 Qt = QtCore.Qt
@@ -103,3 +105,16 @@ def answer_dialog(qtbot, object_name: str, button_text: str) -> list[str]:  # ty
 
     QtCore.QTimer.singleShot(0, poll)
     return seen
+
+
+def square(x0: int, y0: int, n: int = 6) -> PixelSet:
+    """An n×n block of pixels with its bottom-left pixel at (x0, y0)."""
+    return PixelSet(np.ones((n, n), bool), (x0, y0))
+
+
+def type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
+    """Replace a line edit's text as a user does: select all, type, press Enter."""
+    field.setFocus()
+    qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
+    qtbot.keyClicks(field, text)
+    qtbot.keyClick(field, Qt.Key.Key_Return)

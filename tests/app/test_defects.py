@@ -11,29 +11,17 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
 import pytest
 from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from tests.app.helpers import square, type_into
 
 Qt = QtCore.Qt
 
 
-def _square(x0: int, y0: int, n: int = 6) -> PixelSet:
-    return PixelSet(np.ones((n, n), bool), (x0, y0))
-
-
-def _type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
-    field.setFocus()
-    qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
-    qtbot.keyClicks(field, text)
-    qtbot.keyClick(field, Qt.Key.Key_Return)
-
-
 def _with_object(win, n: int = 6, name: str = "A"):  # type: ignore[no-untyped-def]
-    a = win.doc.make_object(_square(0, 0, n), name=name)
+    a = win.doc.make_object(square(0, 0, n), name=name)
     win.doc.push(AddObject(a, select=True))
     return a
 
@@ -46,7 +34,7 @@ def test_typed_alpha_is_never_rewritten(make_window, qtbot, typed):
     panel = win.operations
     panel.select_operation("dss")
     field = panel.control("alpha").field
-    _type_into(qtbot, field, typed)
+    type_into(qtbot, field, typed)
     assert field.text() == typed  # exactly what was typed stays in the field
     value = panel.control("alpha").value()
     if typed in ("250000", "1e5"):
@@ -69,9 +57,9 @@ def test_an_invalid_value_corrected_is_accepted_and_unmarked(make_window, qtbot)
     panel = win.operations
     panel.select_operation("dss")
     field = panel.control("alpha").field
-    _type_into(qtbot, field, "-3")
+    type_into(qtbot, field, "-3")
     assert not field.is_valid()
-    _type_into(qtbot, field, "3")
+    type_into(qtbot, field, "3")
     assert field.is_valid() and field.property("invalid") is False
     assert panel.control("alpha").value() == 3.0
     n = len(win.doc)
@@ -132,7 +120,7 @@ def test_result_names_are_unique_and_readable_and_empty_parts_are_reported(make_
     doc, panel = win.doc, win.operations
     a = _with_object(win)
     panel.select_operation("dss")
-    _type_into(qtbot, panel.control("alpha").field, "2")
+    type_into(qtbot, panel.control("alpha").field, "2")
     for expected in (2, 3):
         n = len(doc)
         doc.set_selection([a.id])
@@ -142,7 +130,7 @@ def test_result_names_are_unique_and_readable_and_empty_parts_are_reported(make_
     names = [o.name for o in doc.objects]
     assert len(set(names)) == len(names), names
     # Co-refinement of two disjoint objects: A ∩ B is empty, reported and not created; readable names.
-    b = doc.make_object(_square(40, 40), name="B")
+    b = doc.make_object(square(40, 40), name="B")
     doc.push(AddObject(b))
     panel.select_operation("corefine")
     panel.inputs[0].setCurrentIndex(panel.inputs[0].findData(a.id))
@@ -226,7 +214,7 @@ def test_the_source_column_reads_as_words(make_window, qtbot):
     a = _with_object(win)
     panel = win.operations
     panel.select_operation("discrete_rotation")
-    _type_into(qtbot, panel.control("angle").field, "30")
+    type_into(qtbot, panel.control("angle").field, "30")
     win.doc.set_selection([a.id])
     qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
     qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=30_000)

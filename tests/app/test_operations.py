@@ -16,6 +16,7 @@ from mrm.commands import AddObject
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.pixels import PixelSet
+from tests.app.helpers import type_into
 
 Qt = QtCore.Qt
 
@@ -34,19 +35,11 @@ def _dss(ps: PixelSet, alpha: float) -> PixelSet:
     return discretize(affinity.scale(reconstruct(ps, "standard"), alpha, alpha, origin=(0, 0)), "standard")
 
 
-def _type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
-    """Replace a spin box's text by keyboard, as a user does, and commit with Enter."""
-    field.setFocus()
-    qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
-    qtbot.keyClicks(field, text)
-    qtbot.keyClick(field, Qt.Key.Key_Return)
-
-
 def _apply_dss_from_panel(win, qtbot, alpha_text: str) -> int:  # type: ignore[no-untyped-def]
     panel = win.operations
     n = len(win.doc.objects)
     panel.select_operation("dss")
-    _type_into(qtbot, panel.control("alpha").field, alpha_text)
+    type_into(qtbot, panel.control("alpha").field, alpha_text)
     assert panel.values()["alpha"] == float(alpha_text)
     qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
     qtbot.waitUntil(lambda: len(win.doc.objects) == n + 1, timeout=60_000)
@@ -95,7 +88,7 @@ def test_apply_dss_from_its_panel_and_read_the_bound_in_the_inspector(make_windo
     assert not panel.live.isChecked()
     qtbot.mouseClick(panel.live, Qt.MouseButton.LeftButton, pos=QtCore.QPoint(8, panel.live.height() // 2))
     assert panel.live.isChecked()
-    _type_into(qtbot, panel.control("alpha").field, "0.2")
+    type_into(qtbot, panel.control("alpha").field, "0.2")
     expected = _dss(o1.source, 0.2)
     qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [expected], timeout=60_000)
     assert len(doc.objects) == 2
@@ -133,7 +126,7 @@ def test_cancel_a_long_operation_from_the_panel(make_window, qtbot):
     a = doc.make_object(big, name="big")
     doc.push(AddObject(a, select=True))
     panel.select_operation("discrete_rotation")
-    _type_into(qtbot, panel.control("angle").field, "17.3")
+    type_into(qtbot, panel.control("angle").field, "17.3")
     n = len(doc.objects)
     qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
     assert panel.is_running()

@@ -7,25 +7,14 @@ after Apply it previewed the operation applied again to the new result).
 
 from __future__ import annotations
 
-import numpy as np
 from PySide6 import QtCore
 
 from mrm.commands import AddObject
 from mrm.reps.pixels import PixelSet
 from mrm.views.scene import GHOST_FILL, GHOST_STYLE
+from tests.app.helpers import square, type_into
 
 Qt = QtCore.Qt
-
-
-def _square(x0: int, y0: int, n: int = 6) -> PixelSet:
-    return PixelSet(np.ones((n, n), bool), (x0, y0))
-
-
-def _type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
-    field.setFocus()
-    qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
-    qtbot.keyClicks(field, text)
-    qtbot.keyClick(field, Qt.Key.Key_Return)
 
 
 def _click_live(qtbot, panel) -> None:  # type: ignore[no-untyped-def]
@@ -43,10 +32,10 @@ def test_preview_is_off_by_default_and_the_choice_is_remembered(make_window, pre
     win = make_window()
     panel = win.operations
     assert not panel.live.isChecked()
-    a = win.doc.make_object(_square(0, 0), name="A")
+    a = win.doc.make_object(square(0, 0), name="A")
     win.doc.push(AddObject(a, select=True))
     panel.select_operation("dss")
-    _type_into(qtbot, panel.control("alpha").field, "3")
+    type_into(qtbot, panel.control("alpha").field, "3")
     qtbot.wait(100)
     assert panel.scene.phantoms() == []  # nothing previewed while it is off
     _click_live(qtbot, panel)
@@ -62,11 +51,11 @@ def test_preview_is_off_by_default_and_the_choice_is_remembered(make_window, pre
 def test_the_ghost_is_grey_listed_nowhere_and_not_counted_by_fit_all(make_window, qtbot):
     win = make_window()
     doc, panel = win.doc, win.operations
-    a = doc.make_object(_square(100, 100, 4), name="A")
+    a = doc.make_object(square(100, 100, 4), name="A")
     doc.push(AddObject(a, select=True))
     panel.select_operation("dss")
     _click_live(qtbot, panel)
-    _type_into(qtbot, panel.control("alpha").field, "20")  # about the origin: far from A, 20× bigger
+    type_into(qtbot, panel.control("alpha").field, "20")  # about the origin: far from A, 20× bigger
     expected = _dss_result(panel, a.source, 20.0)
     qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [expected], timeout=30_000)
     ghost = panel.scene.phantoms()[0]
@@ -90,13 +79,13 @@ def test_the_ghost_is_grey_listed_nowhere_and_not_counted_by_fit_all(make_window
 def test_the_ghost_follows_the_input_and_is_cleared_after_apply(make_window, qtbot):
     win = make_window()
     doc, panel = win.doc, win.operations
-    a = doc.make_object(_square(0, 0), name="A")
-    b = doc.make_object(_square(40, 0, 9), name="B")
+    a = doc.make_object(square(0, 0), name="A")
+    b = doc.make_object(square(40, 0, 9), name="B")
     doc.push(AddObject(a))
     doc.push(AddObject(b, select=True))
     panel.select_operation("dss")
     _click_live(qtbot, panel)
-    _type_into(qtbot, panel.control("alpha").field, "2")
+    type_into(qtbot, panel.control("alpha").field, "2")
     of_b = _dss_result(panel, b.source, 2.0)
     qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [of_b], timeout=30_000)
     assert "on B" in panel.status.text()
@@ -107,7 +96,7 @@ def test_the_ghost_follows_the_input_and_is_cleared_after_apply(make_window, qtb
     qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [of_a], timeout=30_000)
     assert "on A" in panel.status.text()
     # A parameter changes: the former ghost goes at once.
-    _type_into(qtbot, panel.control("alpha").field, "3")
+    type_into(qtbot, panel.control("alpha").field, "3")
     of_a3 = _dss_result(panel, a.source, 3.0)
     qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [of_a3], timeout=30_000)
     # Apply: the result is an object; no ghost of "DSS 3 applied again to the result" follows.
@@ -117,7 +106,7 @@ def test_the_ghost_follows_the_input_and_is_cleared_after_apply(make_window, qtb
     qtbot.wait(200)
     assert panel.scene.phantoms() == []
     # Editing a parameter again resumes the preview, of the panel's current input.
-    _type_into(qtbot, panel.control("alpha").field, "2")
+    type_into(qtbot, panel.control("alpha").field, "2")
     cur = doc.get(panel.input_ids()[0])
     expected = _dss_result(panel, cur.source, 2.0)
     qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [expected], timeout=30_000)
