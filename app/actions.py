@@ -46,9 +46,26 @@ SPECS: tuple[ActionSpec, ...] = (
     # Edit
     ActionSpec("edit.undo", "&Undo", Std.Undo, "Undo the last edit", icon="edit-undo"),
     ActionSpec("edit.redo", "&Redo", Std.Redo, "Redo the last undone edit", icon="edit-redo"),
+    ActionSpec(
+        "edit.copy", "&Copy", Std.Copy, "Copy the selected objects to the clipboard", icon="edit-copy"
+    ),
+    ActionSpec(
+        "edit.paste",
+        "&Paste",
+        Std.Paste,
+        "Paste objects from the clipboard (MR Modeler objects, GeoJSON or WKT text) in place",
+        icon="edit-paste",
+    ),
     ActionSpec("edit.delete", "&Delete Object", "Del", "Delete the selected object", icon="edit-delete"),
     ActionSpec("edit.duplicate", "D&uplicate Object", "Ctrl+D", "Copy the selected object"),
     ActionSpec("edit.rename", "Re&name Object…", "F2", "Rename the selected object"),
+    ActionSpec("edit.colour", "Object Co&lour…", "Ctrl+Shift+L", "Choose the colour of the selected object"),
+    ActionSpec(
+        "edit.properties",
+        "Object P&roperties",
+        "Ctrl+Shift+O",
+        "Name, colour, opacity and vertex coordinates of the selected object",
+    ),
     ActionSpec("edit.select_next", "Select &Next Object", "Ctrl+]", "Select the next object in the list"),
     ActionSpec(
         "edit.select_previous", "Select &Previous Object", "Ctrl+[", "Select the previous object in the list"
@@ -93,11 +110,25 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec(
         "tool.delete_component", "Delete &Component", "X", "Click a component to delete it", True, "tools"
     ),
+    ActionSpec(
+        "tool.measure",
+        "&Measure",
+        "M",
+        "Click two points to measure their distance (Shift: snap to pixel centres, Ctrl: to corners)",
+        True,
+        "tools",
+    ),
     ActionSpec("tool.brush_larger", "Larger Brush", "]", "Increase the brush size"),
     ActionSpec("tool.brush_smaller", "Smaller Brush", "[", "Decrease the brush size"),
     # View
     ActionSpec("view.fit", "&Fit All", "Home", "Zoom to show every visible object", icon="zoom-fit-best"),
-    ActionSpec("view.fit_selection", "Fit &Selection", "Shift+Home", "Zoom to the selected object"),
+    ActionSpec("view.fit_selection", "Zoom to &Selection", "Shift+Home", "Zoom to the selected objects"),
+    ActionSpec(
+        "view.fit_differences",
+        "Zoom to &Differences",
+        "Ctrl+Shift+D",
+        "Zoom to the pixels where the selected result differs from its direct computation",
+    ),
     ActionSpec("view.zoom_in", "Zoom &In", Std.ZoomIn, "Zoom in", icon="zoom-in"),
     ActionSpec("view.zoom_out", "Zoom &Out", Std.ZoomOut, "Zoom out", icon="zoom-out"),
     ActionSpec("view.actual", "&One Pixel per Pixel", "Ctrl+0", "One plane unit per screen pixel"),
@@ -114,6 +145,18 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec("ops.panel", "&Operations", "Ctrl+R", "Show the operations panel"),
     ActionSpec("ops.apply", "&Apply Operation", "Ctrl+Return", "Apply the operation of the panel"),
     ActionSpec("ops.cancel", "&Cancel Running Task", "Esc", "Cancel the operation that is running"),
+    ActionSpec(
+        "ops.pick_centre",
+        "Pick &Centre in View",
+        "Ctrl+Shift+C",
+        "Click in a view to set the operation's rotation or scaling centre",
+    ),
+    ActionSpec(
+        "measure.hausdorff",
+        "&Hausdorff Distance",
+        "Ctrl+Shift+M",
+        "Exact Hausdorff distance between two objects (the two selected, or those of the Measure panel)",
+    ),
     ActionSpec("inspect.errors", "&Error Inspector", "Ctrl+Shift+I", "Provenance, bound and measured error"),
     # Help
     ActionSpec("help.guide", "&User Guide", Std.HelpContents, "Open the user guide"),

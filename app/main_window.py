@@ -29,7 +29,12 @@ TOOL_ACTIONS = {
     "tool.erase": "erase",
     "tool.fill_hole": "fill_hole",
     "tool.delete_component": "delete_component",
+    "tool.measure": "measure",
 }
+
+#: Side panels' widths at the default size and their least useful widths (the views get the rest).
+LEFT_WIDTH, RIGHT_WIDTH = 230, 300
+LEFT_MIN, RIGHT_MIN = 170, 230
 
 
 class MainWindow(QtWidgets.QMainWindow):
@@ -68,6 +73,12 @@ class MainWindow(QtWidgets.QMainWindow):
         self.setStatusBar(self.status)
         self._build_docks()
         self.files = FileController(self, autosave_dir)
+        from mrm.app.clipboard import ClipboardController
+        from mrm.app.context_menus import ContextMenus
+
+        self.clipboard = ClipboardController(self)
+        self.context_menu: QtWidgets.QMenu | None = None
+        self.context_menus = ContextMenus(self)
         self._build_menus()
         self._build_toolbars()
         self._connect()
@@ -88,35 +99,61 @@ class MainWindow(QtWidgets.QMainWindow):
             "Objects", self.object_list, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
         from mrm.views.inspector import ErrorInspector
+        from mrm.views.measure import MeasurePanel
         from mrm.views.operation_panel import OperationPanel
+        from mrm.views.properties_panel import PropertiesPanel
         from mrm.views.segment_table import SegmentTable
 
+        right = QtCore.Qt.DockWidgetArea.RightDockWidgetArea
         self.operations = OperationPanel(self.scene, self.runner, self)
-        self.operations_dock = self._dock(
-            "Operations", self.operations, QtCore.Qt.DockWidgetArea.RightDockWidgetArea
-        )
+        self.operations_dock = self._dock("Operations", _scrolled(self.operations), right)
+        self.properties = PropertiesPanel(self.scene, self)
+        self.properties_dock = self._dock("Properties", self.properties, right)
+        self.measure = MeasurePanel(self.scene, self.runner, self)
+        self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
         self.inspector = ErrorInspector(self.scene, self.runner, self)
-        self.inspector_dock = self._dock(
-            "Error inspector", self.inspector, QtCore.Qt.DockWidgetArea.RightDockWidgetArea
-        )
+        self.inspector_dock = self._dock("Error inspector", self.inspector, right)
+        # One tabbed column on the right: at 1024 px the four views keep most of the width (ADR 0020).
+        for d in (self.properties_dock, self.measure_dock, self.inspector_dock):
+            self.tabifyDockWidget(self.operations_dock, d)
+        self.operations_dock.raise_()
+        self.setTabPosition(right, QtWidgets.QTabWidget.TabPosition.North)
         self.segments = SegmentTable(self.scene, self)
         self.segments_dock = self._dock(
             "Segments", self.segments, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
         self.setCorner(QtCore.Qt.Corner.BottomLeftCorner, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea)
-        self.resizeDocks([self.objects_dock, self.segments_dock], [220, 520], QtCore.Qt.Orientation.Vertical)
-        self.resizeDocks(
-            [self.operations_dock, self.inspector_dock], [300, 480], QtCore.Qt.Orientation.Vertical
+        self.setDockOptions(
+            QtWidgets.QMainWindow.DockOption.AnimatedDocks
+            | QtWidgets.QMainWindow.DockOption.AllowTabbedDocks
+            | QtWidgets.QMainWindow.DockOption.AllowNestedDocks
         )
-        self.resizeDocks([self.objects_dock], [290], QtCore.Qt.Orientation.Horizontal)
-        self.resizeDocks([self.operations_dock], [310], QtCore.Qt.Orientation.Horizontal)
+        self.resizeDocks([self.objects_dock, self.segments_dock], [220, 520], QtCore.Qt.Orientation.Vertical)
+        self._fit_side_panels(1360)
+
+    def _fit_side_panels(self, window_width: int) -> None:
+        """Side panels at their default widths, narrowed on a small window so the views keep 55 % of it."""
+        spare = max(0, window_width * 45 // 100 - 10)
+        left = max(LEFT_MIN, min(LEFT_WIDTH, spare * LEFT_WIDTH // (LEFT_WIDTH + RIGHT_WIDTH)))
+        right = max(RIGHT_MIN, min(RIGHT_WIDTH, spare - left))
+        self.resizeDocks([self.objects_dock], [left], QtCore.Qt.Orientation.Horizontal)
+        self.resizeDocks([self.operations_dock], [right], QtCore.Qt.Orientation.Horizontal)
+
+    def resizeEvent(self, ev: QtGui.QResizeEvent) -> None:
+        super().resizeEvent(ev)
+        # Only when the window becomes narrower than the panels allow: a user's own dock widths stay.
+        central = self.centralWidget()
+        if central is not None and central.width() < ev.size().width() * 55 // 100 - 10:
+            self._fit_side_panels(ev.size().width())
 
     def _dock(
         self, title: str, widget: QtWidgets.QWidget, area: QtCore.Qt.DockWidgetArea
     ) -> QtWidgets.QDockWidget:
+        """A movable, closable, floatable dock holding ``widget``."""
         d = QtWidgets.QDockWidget(title, self)
         d.setObjectName(f"dock_{title.lower().replace(' ', '_')}")
         d.setWidget(widget)
+        widget.setMinimumWidth(min(widget.minimumSizeHint().width(), RIGHT_MIN))
         d.setFeatures(
             QtWidgets.QDockWidget.DockWidgetFeature.DockWidgetMovable
             | QtWidgets.QDockWidget.DockWidgetFeature.DockWidgetClosable
@@ -136,7 +173,8 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, [None, "file.preferences", None, "file.quit"])
         self.update_recent_menu()
         m = mb.addMenu("&Edit")
-        a.menu(m, ["edit.undo", "edit.redo", None, "edit.rename", "edit.duplicate", "edit.delete", None])
+        a.menu(m, ["edit.undo", "edit.redo", None, "edit.copy", "edit.paste", None])
+        a.menu(m, ["edit.rename", "edit.colour", "edit.properties", "edit.duplicate", "edit.delete", None])
         a.menu(m, ["edit.select_previous", "edit.select_next"])
         self.model_menu = m.addMenu("Discretization &Model")
         self._model_group = QtGui.QActionGroup(self)
@@ -148,18 +186,26 @@ class MainWindow(QtWidgets.QMainWindow):
             act.triggered.connect(lambda _c=False, n=name: self.set_model(n))
         m = mb.addMenu("&Tools")
         a.menu(m, list(TOOL_ACTIONS))
-        a.menu(m, [None, "tool.brush_larger", "tool.brush_smaller"])
+        a.menu(m, [None, "tool.brush_larger", "tool.brush_smaller", None, "measure.hausdorff"])
         m = mb.addMenu("&View")
-        a.menu(m, ["view.fit", "view.fit_selection", "view.zoom_in", "view.zoom_out", "view.actual", None])
+        a.menu(m, ["view.fit", "view.fit_selection", "view.fit_differences"])
+        a.menu(m, ["view.zoom_in", "view.zoom_out", "view.actual", None])
         a.menu(m, ["view.grid_layout", "view.tabs_layout", None])
         a.menu(
             m, ["view.discrete", "view.region", "view.analytical", "view.euclidean", None, "view.pixel_grid"]
         )
         m.addSeparator()
-        for d in (self.objects_dock, self.operations_dock, self.inspector_dock, self.segments_dock):
+        for d in (
+            self.objects_dock,
+            self.segments_dock,
+            self.operations_dock,
+            self.properties_dock,
+            self.measure_dock,
+            self.inspector_dock,
+        ):
             m.addAction(d.toggleViewAction())
         m = mb.addMenu("&Operations")
-        a.menu(m, ["ops.panel", "ops.apply", "ops.cancel", None, "inspect.errors"])
+        a.menu(m, ["ops.panel", "ops.apply", "ops.cancel", "ops.pick_centre", None, "inspect.errors"])
         self.operations.fill_menu(m)
         m = mb.addMenu("&Help")
         a.menu(m, ["help.guide", "help.about"])
@@ -225,6 +271,15 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("edit.delete", self.delete_selection)
         a.connect("edit.duplicate", self.duplicate_selection)
         a.connect("edit.rename", self.rename_selection)
+        a.connect("edit.copy", self.clipboard.copy)
+        a.connect("edit.paste", self.clipboard.paste)
+        a.connect("edit.colour", self.choose_colour)
+        a.connect("edit.properties", self.show_properties)
+        a.connect("view.fit_differences", self.fit_differences)
+        a.connect("ops.pick_centre", lambda: self.pick_centre(None))
+        a.connect("measure.hausdorff", self.measure_hausdorff)
+        self.operations.pickRequested.connect(self.pick_centre)
+        self.host.measured.connect(self.measure.show_points)
         a.connect("edit.select_next", lambda: self.select_step(+1))
         a.connect("edit.select_previous", lambda: self.select_step(-1))
         a.connect("tool.brush_larger", lambda: self.brush_spin.setValue(self.brush_spin.value() + 1))
@@ -260,7 +315,24 @@ class MainWindow(QtWidgets.QMainWindow):
         if ch.settings or ch.reset:
             for act in self._model_group.actions():
                 act.setChecked(act.text() == self.doc.model)
-        self.registry["edit.delete"].setEnabled(bool(self.doc.selection))
+        self.update_action_states()
+
+    def update_action_states(self) -> None:
+        """Enable the object commands that apply to the current selection (menus and shortcuts alike)."""
+        a = self.registry
+        sel = [i for i in self.doc.selection if i in self.doc]
+        for aid in (
+            "edit.delete",
+            "edit.copy",
+            "edit.duplicate",
+            "edit.rename",
+            "edit.colour",
+            "view.fit_selection",
+        ):
+            a[aid].setEnabled(bool(sel))
+        primary = self.scene.primary()
+        a["view.fit_differences"].setEnabled(primary is not None and primary.provenance is not None)
+        a["measure.hausdorff"].setEnabled(len(self.doc) >= 2)
 
     def update_title(self) -> None:
         name = self.doc.path.name if self.doc.path else "Untitled"
@@ -394,8 +466,98 @@ class MainWindow(QtWidgets.QMainWindow):
         self._fit([o for o in self.doc.objects if o.style.visible])
 
     def fit_selection(self) -> None:
+        """Zoom to the selected objects (all of them)."""
+        self._fit([self.doc.get(i) for i in self.doc.selection if i in self.doc])
+
+    def fit_differences(self) -> None:
+        """Zoom to the pixels where the selected result differs from its direct computation.
+
+        They are the error inspector's light and dark grey pixels: the model's account of the result
+        (:func:`mrm.ops.account.account_of`), computed on a worker.
+        """
+        from mrm.ops.account import account_of
+
         obj = self.scene.primary()
-        self._fit([obj] if obj is not None else [])
+        if obj is None or obj.provenance is None:
+            self.show_message("select a result of an operation to zoom to its differences", 4000)
+            return
+        prov, name = obj.provenance, obj.name
+
+        def done(acc: Any) -> None:
+            diff = acc.difference
+            if diff is None:
+                why = acc.error or acc.no_bound or "no direct computation to compare with"
+                self.show_message(f"{name}: {why}", 6000)
+                return
+            boxes = [ps.bbox for ps in (diff.light, diff.dark) if ps.bbox is not None]
+            if not boxes:
+                self.show_message(f"{name}: no pixel differs from the direct result", 5000)
+                return
+            x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
+            x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
+            self.views.camera.fit((x0 - 2.5, y0 - 2.5, x1 + 2.5, y1 + 2.5))
+            self.show_message(
+                f"{name}: {diff.count} differing pixels "
+                f"({len(diff.light)} light, {len(diff.dark)} dark grey)",
+                6000,
+            )
+
+        def failed(exc: BaseException) -> None:
+            from mrm.errors import MRMError
+
+            if not isinstance(exc, MRMError):
+                raise exc
+            self.show_message(f"{name}: {exc}", 6000, error=True)
+
+        self.runner.submit(
+            "zoom-differences",
+            lambda progress: account_of(prov, measure=True, progress=progress),
+            on_result=done,
+            on_error=failed,
+            label=f"Differences of {name}",
+            show_progress=True,
+        )
+
+    def set_visible_selection(self, visible: bool) -> None:
+        """Show or hide the selected objects, one undo step."""
+        from dataclasses import replace
+
+        from mrm.commands import RestyleObject
+
+        ids = [i for i in self.doc.selection if i in self.doc and self.doc.get(i).style.visible != visible]
+        if not ids:
+            return
+        with self.doc.history.macro("Show objects" if visible else "Hide objects"):
+            for i in ids:
+                o = self.doc.get(i)
+                self.doc.push(RestyleObject(i, replace(o.style, visible=visible)))
+
+    def choose_colour(self) -> None:
+        if self.scene.primary() is not None:
+            self.properties.choose_colour()
+
+    def show_properties(self) -> None:
+        self.properties_dock.show()
+        self.properties_dock.raise_()
+        self.properties.focus_name()
+
+    def pick_centre(self, name: str | None) -> None:
+        """The next click in a view sets the operation's centre (``name``: which point parameter)."""
+        c = self.operations.centre_control() if name is None else self.operations.control(name)
+        if c is None:
+            self.show_message(f"{self.operations.op.title if self.operations.op else 'This operation'} "
+                              "has no centre", 4000)  # fmt: skip
+            return
+        self.tools.pick_point(lambda x, y: self.operations.set_centre(x, y, c.info.name))
+
+    def measure_hausdorff(self) -> None:
+        """Hausdorff distance between the two selected objects (or those of the Measure panel)."""
+        sel = [i for i in self.doc.selection if i in self.doc]
+        if len(sel) >= 2:
+            self.measure.set_objects(sel[0], sel[1])
+        self.measure_dock.show()
+        self.measure_dock.raise_()
+        self.measure.compute()
 
     def _fit(self, objs: list[Any]) -> None:
         boxes = []
@@ -498,3 +660,14 @@ class MainWindow(QtWidgets.QMainWindow):
         self.undo.close()
         self.scene.close()
         self.prefs.sync()
+
+
+def _scrolled(panel: QtWidgets.QWidget) -> QtWidgets.QScrollArea:
+    """``panel`` in a scroll area: a narrow or short side column scrolls instead of squeezing the views."""
+    area = QtWidgets.QScrollArea()
+    area.setObjectName(f"{panel.objectName()}Scroll")
+    area.setWidget(panel)
+    area.setWidgetResizable(True)
+    area.setFrameShape(QtWidgets.QFrame.Shape.NoFrame)
+    area.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAsNeeded)
+    return area

@@ -168,6 +168,8 @@ class ParamControl(QtWidgets.QWidget):
     changed = QtCore.Signal()
     #: The slider is being dragged (True) or was released (False).
     dragging = QtCore.Signal(bool)
+    #: A point parameter's Pick button: the next click in a view gives the point.
+    pickRequested = QtCore.Signal()
 
     def __init__(self, info: ParamInfo, parent: QtWidgets.QWidget | None = None, spec: Any = None) -> None:
         super().__init__(parent)
@@ -194,9 +196,12 @@ class ParamControl(QtWidgets.QWidget):
             )
             self.range_label.setObjectName(f"range_{info.name}")
             self.range_label.setStyleSheet("color: palette(placeholder-text);")
+            self.range_label.setWordWrap(True)  # a narrow panel wraps the range instead of scrolling
             s = QtWidgets.QSlider(QtCore.Qt.Orientation.Horizontal, self)
             s.setObjectName(f"slider_{info.name}")
             s.setRange(0, SLIDER_STEPS)
+            s.setMinimumWidth(40)
+            f.setMinimumWidth(48)
             self.slider = s
             lay.addWidget(s, 3)
             lay.addWidget(f, 2)
@@ -219,12 +224,25 @@ class ParamControl(QtWidgets.QWidget):
             self.xs = QtWidgets.QDoubleSpinBox(self)
             self.ys = QtWidgets.QDoubleSpinBox(self)
             for w, label in ((self.xs, "x "), (self.ys, "y ")):
+                w.setObjectName(f"{info.name}_{label.strip()}")
                 w.setRange(-1e9, 1e9)
                 w.setDecimals(4)
                 w.setPrefix(label)
                 w.setKeyboardTracking(False)
+                # Narrow enough for a side panel at 1024 px: the spin boxes shrink, the text scrolls.
+                w.setMinimumWidth(60)
+                w.setSizePolicy(QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Fixed)
                 w.valueChanged.connect(lambda _v: self.changed.emit())
-                lay.addWidget(w)
+                lay.addWidget(w, 1)
+            self.pick_button = QtWidgets.QToolButton(self)
+            self.pick_button.setObjectName(f"pick_{info.name}")
+            self.pick_button.setText("Pick")
+            self.pick_button.setToolTip(
+                f"Pick the {info.label.lower()} by clicking in a view (Ctrl+Shift+C); Shift snaps to a "
+                "pixel centre, Ctrl to a corner"
+            )
+            self.pick_button.clicked.connect(self.pickRequested.emit)
+            lay.addWidget(self.pick_button)
         else:
             self.field = QtWidgets.QLineEdit(self)
             self.field.editingFinished.connect(self.changed.emit)
@@ -324,11 +342,19 @@ class ParamControl(QtWidgets.QWidget):
             self._syncing = False
 
 
+def _narrow(combo: QtWidgets.QComboBox) -> None:
+    """A combo box that may be narrower than its longest item (it elides; the popup shows them whole)."""
+    combo.setSizeAdjustPolicy(QtWidgets.QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+    combo.setMinimumContentsLength(8)
+
+
 class OperationPanel(QtWidgets.QWidget):
     """The Operations dock."""
 
     applied = QtCore.Signal(list)  # ids of the new objects
     previewed = QtCore.Signal()
+    #: The Pick button of a point parameter (its name) was pressed: the window lets a view click set it.
+    pickRequested = QtCore.Signal(str)
 
     def __init__(self, scene: Scene, runner: Any, parent: QtWidgets.QWidget | None = None) -> None:
         super().__init__(parent)
@@ -344,6 +370,7 @@ class OperationPanel(QtWidgets.QWidget):
         lay.setContentsMargins(6, 6, 6, 6)
         self.combo = QtWidgets.QComboBox(self)
         self.combo.setObjectName("operationCombo")
+        _narrow(self.combo)
         for op in self.ops:
             self.combo.addItem(op.title, op.name)
         lay.addWidget(self.combo)
@@ -433,6 +460,7 @@ class OperationPanel(QtWidgets.QWidget):
         for k in range(self.op.arity):
             cb = QtWidgets.QComboBox(self.form_box)
             cb.setObjectName(f"input_{k}")
+            _narrow(cb)
             cb.activated.connect(lambda _i: self.user_edited())
             cb.currentIndexChanged.connect(lambda _i: self.request_preview())
             self.inputs.append(cb)
@@ -444,6 +472,8 @@ class OperationPanel(QtWidgets.QWidget):
                 # Results keep D(Euclidean) = discrete under the document's model.
                 c.set_value(self.scene.doc.model)
             c.changed.connect(self.user_edited)
+            if p.kind == "point":
+                c.pickRequested.connect(lambda n=p.name: self.pickRequested.emit(n))
             self.controls.append(c)
             label = QtWidgets.QLabel(p.label, self.form_box)
             label.setToolTip(c.toolTip())
@@ -502,6 +532,22 @@ class OperationPanel(QtWidgets.QWidget):
             if c.info.name == name:
                 return c
         raise KeyError(name)
+
+    def centre_control(self) -> ParamControl | None:
+        """The operation's point parameter (a rotation or scaling centre), if it has one."""
+        for c in self.controls:
+            if c.info.kind == "point":
+                return c
+        return None
+
+    def set_centre(self, x: float, y: float, name: str | None = None) -> bool:
+        """Set the point parameter ``name`` (default: the first one) to (x, y), as if typed; False: none."""
+        c = self.centre_control() if name is None else self.control(name)
+        if c is None or c.info.kind != "point":
+            return False
+        c.set_value((x, y))
+        self.user_edited()
+        return True
 
     def input_ids(self) -> list[int]:
         return [int(cb.currentData()) for cb in self.inputs if cb.currentData() is not None]

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
+
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
@@ -34,9 +37,15 @@ class ToolOverlay(pg.GraphicsObject):
 
 
 class ToolController(QtCore.QObject):
-    """Owns the tools; ``set_tool(name)`` switches, ``toolChanged(name)`` tells the window."""
+    """Owns the tools; ``set_tool(name)`` switches, ``toolChanged(name)`` tells the window.
+
+    A right click that the active tool does not use (the polygon tool uses it while drawing, the vertex
+    tool on a vertex) asks for the view's context menu: ``contextMenuRequested(view, x, y, global_pos)``,
+    on release, so that it works the same on every platform.
+    """
 
     toolChanged = QtCore.Signal(str)
+    contextMenuRequested = QtCore.Signal(object, float, float, QtCore.QPoint)
 
     def __init__(self, host: ToolHost, views: list[PlaneView], parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
@@ -53,10 +62,54 @@ class ToolController(QtCore.QObject):
             self.overlays.append(ov)
             v.tool_handler = self._dispatch
         host.overlayChanged.connect(self._repaint)
+        host.pointPicked.connect(self._picked)
+        self._right_press: QtCore.QPointF | None = None
+        self._pick_callback: Callable[[float, float], None] | None = None
+        self._before_pick = "select"
         self.set_tool("select")
 
     def _dispatch(self, view: PlaneView, ev: QtCore.QEvent) -> bool:
-        return self.tool.handle(view, ev) if self.tool is not None else False
+        if self.tool is None:
+            return False
+        t = ev.type()
+        right = isinstance(ev, QtGui.QMouseEvent) and ev.button() == QtCore.Qt.MouseButton.RightButton
+        if right and t == QtCore.QEvent.Type.MouseButtonPress:
+            assert isinstance(ev, QtGui.QMouseEvent)
+            if self.tool.handle(view, ev):
+                self._right_press = None
+                return True
+            self._right_press = ev.position()
+            return True  # the context menu's click, not pyqtgraph's right-drag zoom
+        if right and t == QtCore.QEvent.Type.MouseButtonRelease and self._right_press is not None:
+            assert isinstance(ev, QtGui.QMouseEvent)
+            moved = (ev.position() - self._right_press).manhattanLength()
+            self._right_press = None
+            if moved <= 6:
+                x, y = view.map_to_plane(ev.position())
+                gpos = view.viewport().mapToGlobal(ev.position().toPoint())
+                self.contextMenuRequested.emit(view, x, y, gpos)
+            return True
+        return self.tool.handle(view, ev)
+
+    # ------------------------------------------------------------------ picking a point
+    def pick_point(self, callback: Callable[[float, float], None]) -> None:
+        """Let the next click in a view give a plane point to ``callback``; then back to the current tool.
+
+        Esc (or choosing another tool) cancels: ``callback`` is not called.
+        """
+        if self.tool is not None and self.tool.name != "pick_point":
+            self._before_pick = self.tool.name
+        self._pick_callback = callback
+        self.set_tool("pick_point")
+
+    def is_picking(self) -> bool:
+        return self.tool is not None and self.tool.name == "pick_point"
+
+    def _picked(self, x: float, y: float) -> None:
+        cb, self._pick_callback = self._pick_callback, None
+        self.set_tool(self._before_pick)
+        if cb is not None and not (math.isnan(x) or math.isnan(y)):
+            cb(x, y)
 
     def _repaint(self) -> None:
         for ov in self.overlays:
@@ -68,6 +121,8 @@ class ToolController(QtCore.QObject):
             return
         if self.tool is not None:
             self.tool.deactivate()
+        if name != "pick_point":
+            self._pick_callback = None  # another tool chosen: the pick is abandoned
         self.tool = tool
         for v in self.views:
             v.setCursor(tool.cursor)

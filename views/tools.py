@@ -57,6 +57,8 @@ class ToolHost(QtCore.QObject):
     error = QtCore.Signal(str)
     overlayChanged = QtCore.Signal()
     brushChanged = QtCore.Signal()
+    measured = QtCore.Signal(object)  # a PointMeasure of the measure tool
+    pointPicked = QtCore.Signal(float, float)  # the pick-point tool's click
 
     def __init__(self, scene: Scene, parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
@@ -294,9 +296,10 @@ class PolygonTool(Tool):
 
     def press(self, view: PlaneView, x: float, y: float, ev: QtGui.QMouseEvent) -> bool:
         if ev.button() == Qt.MouseButton.RightButton:
-            if self.points:
-                self.points.pop()
-                self.host.overlayChanged.emit()
+            if not self.points:
+                return False  # nothing drawn yet: the view's context menu
+            self.points.pop()
+            self.host.overlayChanged.emit()
             return True
         if ev.button() != Qt.MouseButton.LeftButton:
             return False
@@ -926,6 +929,55 @@ class DeleteComponentTool(_ClickPixelTool):
         self.host.push(DeleteComponent(obj.id, px))
 
 
+class PickPointTool(Tool):
+    """A one-click tool: the click's plane point goes to ``host.pointPicked`` (the operation's centre).
+
+    The tool controller switches back to the previous tool after the click (or Esc).
+    """
+
+    name = "pick_point"
+    cursor = Qt.CursorShape.CrossCursor
+    hint = "Click in a view to set the centre (Shift: snap to a pixel centre, Ctrl: to a corner); Esc cancels"
+    busy_keys = (Qt.Key.Key_Escape,)
+
+    def in_gesture(self) -> bool:
+        return True
+
+    def cancel(self) -> None:
+        self.host.pointPicked.emit(math.nan, math.nan)
+
+    def deactivate(self) -> None:
+        pass  # switching away is the end of the pick, not a cancel to report
+
+    def press(self, view: PlaneView, x: float, y: float, ev: QtGui.QMouseEvent) -> bool:
+        if ev.button() != Qt.MouseButton.LeftButton:
+            return False
+        self.host.pointPicked.emit(*ge.snap(x, y, snap_mode(ev.modifiers())))
+        return True
+
+    def key(self, view: PlaneView, ev: QtGui.QKeyEvent) -> bool:
+        if ev.key() == Qt.Key.Key_Escape:
+            self.host.pointPicked.emit(math.nan, math.nan)
+            return True
+        return False
+
+    def paint_overlay(self, p: QtGui.QPainter, view: PlaneView) -> None:
+        if self.hover is None:
+            return
+        x, y = self.hover
+        c = p.transform().map(QtCore.QPointF(x, y))
+        p.save()
+        p.resetTransform()
+        p.setPen(_pen(_accent(view), 1.2))
+        p.drawLine(QtCore.QPointF(c.x() - 9, c.y()), QtCore.QPointF(c.x() + 9, c.y()))
+        p.drawLine(QtCore.QPointF(c.x(), c.y() - 9), QtCore.QPointF(c.x(), c.y() + 9))
+        p.restore()
+
+    def move(self, view: PlaneView, x: float, y: float, ev: QtGui.QMouseEvent) -> bool:
+        self.hover = ge.snap(x, y, snap_mode(ev.modifiers()))
+        return False
+
+
 def repair_polygon(ring: np.ndarray) -> shapely.Geometry | None:
     """The valid polygon(s) shapely's ``make_valid`` makes of a self-crossing ring (None: no area)."""
     from mrm.document import validate_geometry
@@ -962,7 +1014,11 @@ def make_tools(host: ToolHost) -> dict[str, Tool]:
         BrushTool(host, False),
         FillHoleTool(host),
         DeleteComponentTool(host),
+        PickPointTool(host),
     ]
+    from mrm.views.measure import MeasureTool  # it builds on this module's helpers
+
+    tools.append(MeasureTool(host))
     return {t.name: t for t in tools}
 
 

@@ -1,0 +1,156 @@
+"""Copy and paste of objects through the system clipboard (Ctrl+C, Ctrl+V).
+
+A copy puts two things on the clipboard:
+
+* :data:`MIME`: the copied objects as a small project file (the ``.mrm`` format,
+  :func:`mrm.io.project.dumps`). Pixels stay pixels, polygons keep every coordinate bit for bit, names,
+  styles and provenance come along.
+* plain text: the objects' Euclidean representations as a GeoJSON FeatureCollection (a ``name`` property
+  per feature, coordinates written with ``repr``), which other programs — QGIS, a text editor — can read.
+
+A paste reads the MIME data when it is there, else the text as GeoJSON or WKT. Both go through the
+importer (:func:`mrm.io.imports.objects_from_file`), so a pasted payload is checked exactly as an opened
+file is (limits, hostile content). The pasted objects get fresh ids and unique names and are added in one
+undo step, selected, at the place they were copied from.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import tempfile
+from collections.abc import Sequence
+from typing import Any
+
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from mrm.commands import ApplyResults
+from mrm.document import DocObject, Document, Settings
+from mrm.errors import MRMError
+
+log = logging.getLogger(__name__)
+
+#: The clipboard format of MR Modeler objects: the bytes of a project file holding just them.
+MIME = "application/x-mrm-objects"
+
+
+def copy_payload(doc: Document, ids: Sequence[int]) -> bytes:
+    """The bytes of a project file with the objects ``ids`` of ``doc`` (in drawing order)."""
+    from mrm.io.project import dumps
+
+    part = Document(Settings(model=doc.model))
+    for o in doc.objects:
+        if o.id in ids:
+            part.insert_object(o, None)
+    return dumps(part)
+
+
+def geojson_text(named: Sequence[tuple[str, Any]]) -> str:
+    """A GeoJSON FeatureCollection of (name, polygonal geometry); coordinates exactly as stored."""
+    from shapely.geometry import mapping
+
+    features = [
+        {"type": "Feature", "properties": {"name": name}, "geometry": mapping(g)}
+        for name, g in named
+        if g is not None
+    ]
+    return json.dumps({"type": "FeatureCollection", "features": features}, allow_nan=False)
+
+
+def copy_objects(doc: Document, ids: Sequence[int], euclidean: Any) -> QtCore.QMimeData:
+    """Mime data for the objects ``ids``: :data:`MIME` and a GeoJSON text fallback.
+
+    ``euclidean(obj_id)`` gives an object's Euclidean representation, or None when it is not ready (a pixel
+    object whose continuation is still being computed is then left out of the text, never of :data:`MIME`).
+    """
+    md = QtCore.QMimeData()
+    md.setData(MIME, QtCore.QByteArray(copy_payload(doc, ids)))
+    named = [(doc.get(i).name, euclidean(i)) for i in ids if i in doc]
+    md.setText(geojson_text(named))
+    return md
+
+
+def _suffix_of_text(text: str) -> str:
+    return ".geojson" if text.lstrip().startswith("{") else ".wkt"
+
+
+def objects_from_mime(doc: Document, md: QtCore.QMimeData) -> list[DocObject]:
+    """New objects (fresh ids, not inserted) read from clipboard data: :data:`MIME`, else GeoJSON/WKT text.
+
+    Raises
+    ------
+    MRMError
+        Nothing usable on the clipboard, or content the importer refuses (with its message).
+    """
+    from mrm.errors import FileFormatError
+    from mrm.io.imports import objects_from_file
+
+    if md.hasFormat(MIME):
+        data, suffix = bytes(md.data(MIME).data()), ".mrm"
+    elif md.hasText() and md.text().strip():
+        data, suffix = md.text().encode("utf-8"), _suffix_of_text(md.text())
+    else:
+        raise FileFormatError("the clipboard holds no objects, GeoJSON or WKT")
+    fd, path = tempfile.mkstemp(prefix="mrm-paste-", suffix=suffix)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        objs = objects_from_file(doc, path)
+    finally:
+        os.unlink(path)
+    if not objs:
+        raise FileFormatError("the clipboard holds no shapes")
+    return objs
+
+
+def paste_objects(doc: Document, md: QtCore.QMimeData) -> list[int]:
+    """Add the clipboard's objects to ``doc`` in one undo step ("Paste"), with unique names; their ids."""
+    from mrm.views.operation_panel import unique_name
+
+    objs = objects_from_mime(doc, md)
+    taken = {o.name for o in doc.objects}
+    named = []
+    for o in objs:
+        name = unique_name(o.name, taken)
+        taken.add(name)
+        named.append(o.with_(name=name))
+    doc.push(ApplyResults("Paste" if len(named) == 1 else f"Paste {len(named)} objects", add=named))
+    return [o.id for o in named]
+
+
+class ClipboardController(QtCore.QObject):
+    """The window's Copy and Paste actions on the system clipboard."""
+
+    def __init__(self, window: Any) -> None:
+        super().__init__(window)
+        self.win = window
+
+    def copy(self) -> bool:
+        doc = self.win.doc
+        ids = [i for i in doc.selection if i in doc]
+        if not ids:
+            self.win.show_message("select the objects to copy", 3000)
+            return False
+        md = copy_objects(doc, ids, lambda i: self.win.scene.get(i, "euclidean"))
+        QtGui.QGuiApplication.clipboard().setMimeData(md)
+        n = len(ids)
+        self.win.show_message(f"copied {n} object{'s' if n != 1 else ''}", 3000)
+        return True
+
+    def paste(self) -> list[int]:
+        md = QtGui.QGuiApplication.clipboard().mimeData()
+        if md is None:
+            return []
+        try:
+            ids = paste_objects(self.win.doc, md)
+        except MRMError as e:
+            self.win.show_message(f"paste: {e}", 6000, error=True)
+            return []
+        n = len(ids)
+        self.win.show_message(f"pasted {n} object{'s' if n != 1 else ''}", 3000)
+        return ids
+
+    def can_paste(self) -> bool:
+        md = QtWidgets.QApplication.clipboard().mimeData()
+        return md is not None and (md.hasFormat(MIME) or (md.hasText() and bool(md.text().strip())))

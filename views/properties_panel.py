@@ -1,0 +1,303 @@
+"""The object properties panel: name, colour, opacity and the vertex coordinates of the selected object.
+
+Every edit made here is one of the model's commands pushed on the document's history — one undo step each:
+``RenameObject``, ``RestyleObject`` (colour, opacity) and ``MoveVertex`` (a typed coordinate). Coordinates are
+shown as the shortest text that reads back as the same float, so what is shown is exactly what is stored;
+a typed value that would make the polygon cross itself is refused with the reason and nothing changes.
+
+A pixel object's vertices are those of its Euclidean representation R(A); moving one makes the polygon the
+object's source (as the vertex tool does).
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import replace
+from typing import Any
+
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from mrm.commands import MoveVertex, RenameObject, RestyleObject
+from mrm.errors import MRMError
+from mrm.views import geometry_edit as ge
+from mrm.views.measure import num_text
+
+log = logging.getLogger(__name__)
+Qt = QtCore.Qt
+_ROOT = QtCore.QModelIndex()
+
+COLUMNS = ("polygon", "ring", "#", "x", "y")
+
+
+class VertexModel(QtCore.QAbstractTableModel):
+    """The vertices of one geometry (lazy: a table of 10⁵ rows costs only the rows drawn)."""
+
+    edited = QtCore.Signal(object, float, float)  # VertexRef, x, y
+    refused = QtCore.Signal(str)
+
+    def __init__(self, parent: QtCore.QObject | None = None) -> None:
+        super().__init__(parent)
+        self.xy: Any = None
+        self.refs: list[ge.VertexRef] = []
+
+    def set_geometry(self, geom: Any) -> None:
+        self.beginResetModel()
+        if geom is None or geom.is_empty:
+            self.xy, self.refs = None, []
+        else:
+            self.xy, self.refs = ge.vertex_table(geom)
+        self.endResetModel()
+
+    def rowCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
+        return 0 if parent.isValid() else len(self.refs)
+
+    def columnCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
+        return 0 if parent.isValid() else len(COLUMNS)
+
+    def headerData(self, section: int, orientation: Qt.Orientation, role: int = 0) -> object:
+        if role == Qt.ItemDataRole.DisplayRole and orientation == Qt.Orientation.Horizontal:
+            return COLUMNS[section]
+        return None
+
+    def data(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, role: int = 0) -> object:
+        if not index.isValid():
+            return None
+        r, c = index.row(), index.column()
+        if role in (Qt.ItemDataRole.DisplayRole, Qt.ItemDataRole.EditRole):
+            if c < 3:
+                return self.refs[r][c]
+            return num_text(float(self.xy[r, c - 3]))
+        if role == Qt.ItemDataRole.TextAlignmentRole and c >= 3:
+            return int(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
+        return None
+
+    def flags(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex) -> Qt.ItemFlag:
+        f = Qt.ItemFlag.ItemIsEnabled | Qt.ItemFlag.ItemIsSelectable
+        if index.isValid() and index.column() >= 3:
+            f |= Qt.ItemFlag.ItemIsEditable
+        return f
+
+    def setData(
+        self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, value: object, role: int = 0
+    ) -> bool:
+        if not index.isValid() or role != Qt.ItemDataRole.EditRole or index.column() < 3:
+            return False
+        from mrm.views.operation_panel import parse_number
+
+        r = index.row()
+        try:
+            v = parse_number(str(value))
+        except ValueError:
+            self.refused.emit(f"{str(value).strip()!r} is not a number")
+            return False
+        x, y = float(self.xy[r, 0]), float(self.xy[r, 1])
+        if index.column() == 3:
+            x = v
+        else:
+            y = v
+        if (x, y) == (float(self.xy[r, 0]), float(self.xy[r, 1])):
+            return False
+        self.edited.emit(self.refs[r], x, y)
+        return True
+
+
+class PropertiesPanel(QtWidgets.QWidget):
+    """The Properties dock."""
+
+    def __init__(self, scene: Any, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("propertiesPanel")
+        self.scene = scene
+        self.obj_id: int | None = None
+        lay = QtWidgets.QVBoxLayout(self)
+        lay.setContentsMargins(6, 6, 6, 6)
+        self.title = QtWidgets.QLabel("Select an object to see and edit its properties.", self)
+        self.title.setObjectName("propertiesTitle")
+        self.title.setWordWrap(True)
+        lay.addWidget(self.title)
+        self.form_box = QtWidgets.QWidget(self)
+        form = QtWidgets.QFormLayout(self.form_box)
+        form.setContentsMargins(0, 0, 0, 0)
+        self.name_edit = QtWidgets.QLineEdit(self.form_box)
+        self.name_edit.setObjectName("propName")
+        self.name_edit.editingFinished.connect(self._rename)
+        form.addRow("Name", self.name_edit)
+        crow = QtWidgets.QHBoxLayout()
+        self.colour_button = QtWidgets.QToolButton(self.form_box)
+        self.colour_button.setObjectName("propColourButton")
+        self.colour_button.setToolTip("Choose the fill colour")
+        self.colour_button.clicked.connect(self.choose_colour)
+        self.colour_edit = QtWidgets.QLineEdit(self.form_box)
+        self.colour_edit.setObjectName("propColour")
+        self.colour_edit.setPlaceholderText("#rrggbb")
+        self.colour_edit.setToolTip("Fill colour as #rrggbb (press Enter)")
+        self.colour_edit.editingFinished.connect(self._colour_typed)
+        crow.addWidget(self.colour_button)
+        crow.addWidget(self.colour_edit, 1)
+        form.addRow("Colour", crow)
+        self.opacity = QtWidgets.QSpinBox(self.form_box)
+        self.opacity.setObjectName("propOpacity")
+        self.opacity.setRange(0, 100)
+        self.opacity.setSuffix(" %")
+        self.opacity.setKeyboardTracking(False)
+        self.opacity.setToolTip("Fill opacity")
+        self.opacity.valueChanged.connect(self._opacity_changed)
+        form.addRow("Opacity", self.opacity)
+        self.source_label = QtWidgets.QLabel("", self.form_box)
+        self.source_label.setObjectName("propSource")
+        self.source_label.setWordWrap(True)
+        form.addRow("Source", self.source_label)
+        lay.addWidget(self.form_box)
+        self.vertex_note = QtWidgets.QLabel("", self)
+        self.vertex_note.setWordWrap(True)
+        self.vertex_note.setObjectName("propVertexNote")
+        lay.addWidget(self.vertex_note)
+        self.vertices = VertexModel(self)
+        self.vertices.edited.connect(self._move_vertex)
+        self.vertices.refused.connect(self._refused)
+        self.table = QtWidgets.QTableView(self)
+        self.table.setObjectName("propVertices")
+        self.table.setModel(self.vertices)
+        self.table.verticalHeader().setVisible(False)
+        self.table.verticalHeader().setDefaultSectionSize(self.fontMetrics().height() + 6)
+        hdr = self.table.horizontalHeader()
+        for c in range(3):
+            hdr.setSectionResizeMode(c, QtWidgets.QHeaderView.ResizeMode.ResizeToContents)
+        for c in (3, 4):
+            hdr.setSectionResizeMode(c, QtWidgets.QHeaderView.ResizeMode.Stretch)
+        self.table.setEditTriggers(
+            QtWidgets.QAbstractItemView.EditTrigger.DoubleClicked
+            | QtWidgets.QAbstractItemView.EditTrigger.EditKeyPressed
+            | QtWidgets.QAbstractItemView.EditTrigger.AnyKeyPressed
+        )
+        lay.addWidget(self.table, 1)
+        self.status = QtWidgets.QLabel("", self)
+        self.status.setObjectName("propStatus")
+        self.status.setWordWrap(True)
+        lay.addWidget(self.status)
+        self._syncing = False
+        scene.documentChanged.connect(self._doc_changed)
+        scene.derivedReady.connect(self._derived_ready)
+        self.refresh()
+
+    # ------------------------------------------------------------------ document → panel
+    def _doc_changed(self, ch: Any) -> None:
+        if ch.selection or ch.reset or ch.removed or ch.settings or (self.obj_id in ch.changed):
+            self.refresh()
+
+    def _derived_ready(self, obj_id: int) -> None:
+        if obj_id == self.obj_id and self.vertices.xy is None:
+            self.refresh()
+
+    def refresh(self) -> None:
+        obj = self.scene.primary()
+        self.obj_id = obj.id if obj is not None else None
+        self.form_box.setEnabled(obj is not None)
+        self.table.setEnabled(obj is not None)
+        self._syncing = True
+        try:
+            if obj is None:
+                self.title.setText("Select an object to see and edit its properties.")
+                self.name_edit.clear()
+                self.colour_edit.clear()
+                self.source_label.clear()
+                self.vertex_note.clear()
+                self.vertices.set_geometry(None)
+                return
+            self.title.setText(f"<b>{obj.name}</b>")
+            if not self.name_edit.hasFocus():
+                self.name_edit.setText(obj.name)
+            fill = obj.style.fill[:7]
+            self.colour_edit.setText(fill)
+            pm = QtGui.QPixmap(16, 16)
+            pm.fill(QtGui.QColor(fill))
+            self.colour_button.setIcon(QtGui.QIcon(pm))
+            self.opacity.setValue(round(obj.style.opacity * 100))
+            from mrm.views.object_list import SOURCE_TEXT, provenance_text
+
+            src = SOURCE_TEXT[obj.kind]
+            self.source_label.setText(
+                f"{src} · {provenance_text(obj.provenance)}" if obj.provenance is not None else src
+            )
+            geom = self.scene.get(obj.id, "euclidean")
+            self.vertices.set_geometry(geom)
+            if geom is None:
+                err = self.scene.error(obj.id, "euclidean")
+                self.vertex_note.setText(err or "computing the polygon…")
+            elif obj.kind == "discrete":
+                self.vertex_note.setText(
+                    f"{len(self.vertices.refs)} vertices of the continuation R(A); editing one makes the "
+                    "polygon the object's source."
+                )
+            else:
+                self.vertex_note.setText(
+                    f"{len(self.vertices.refs)} vertices (double-click a coordinate to type it)."
+                )
+        finally:
+            self._syncing = False
+
+    # ------------------------------------------------------------------ panel → document (commands)
+    def _push(self, cmd: Any) -> bool:
+        try:
+            self.scene.doc.push(cmd)
+        except MRMError as e:
+            self._refused(str(e))
+            return False
+        self.status.setText("")
+        return True
+
+    def _refused(self, text: str) -> None:
+        self.status.setText(f"<span style='color:#c0392b'>refused: {text}</span>")
+
+    def _current(self) -> Any:
+        if self.obj_id is None or self.obj_id not in self.scene.doc:
+            return None
+        return self.scene.doc.get(self.obj_id)
+
+    def _rename(self) -> None:
+        obj = self._current()
+        name = self.name_edit.text().strip()
+        if self._syncing or obj is None or not name or name == obj.name:
+            return
+        self._push(RenameObject(obj.id, name))
+
+    def _colour_typed(self) -> None:
+        obj = self._current()
+        text = self.colour_edit.text().strip()
+        if self._syncing or obj is None:
+            return
+        if not QtGui.QColor.isValidColorName(text) or not text.startswith("#") or len(text) != 7:
+            self._refused(f"{text!r} is not a colour #rrggbb")
+            return
+        self.set_colour(text)
+
+    def set_colour(self, colour: str) -> None:
+        obj = self._current()
+        if obj is None or colour.lower() == obj.style.fill[:7]:
+            return
+        self._push(RestyleObject(obj.id, replace(obj.style, fill=colour.lower())))
+
+    def choose_colour(self) -> None:
+        obj = self._current()
+        if obj is None:
+            return
+        c = QtWidgets.QColorDialog.getColor(QtGui.QColor(obj.style.fill[:7]), self, f"Colour of {obj.name}")
+        if c.isValid():
+            self.set_colour(c.name())
+
+    def _opacity_changed(self, value: int) -> None:
+        obj = self._current()
+        if self._syncing or obj is None:
+            return
+        new = value / 100.0
+        if round(obj.style.opacity * 100) != value:
+            self._push(RestyleObject(obj.id, replace(obj.style, opacity=new)))
+
+    def _move_vertex(self, ref: Any, x: float, y: float) -> None:
+        obj = self._current()
+        if obj is not None:
+            self._push(MoveVertex(obj.id, ref, (x, y)))
+
+    def focus_name(self) -> None:
+        self.name_edit.setFocus()
+        self.name_edit.selectAll()
