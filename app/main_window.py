@@ -440,9 +440,10 @@ class MainWindow(QtWidgets.QMainWindow):
         obj = self.scene.primary()
         if obj is None:
             return
-        copy = self.doc.make_object(
-            obj.source, name=f"{obj.name} copy", style=obj.style, provenance=obj.provenance
-        )
+        from mrm.views.operation_panel import unique_name
+
+        name = unique_name(f"{obj.name} copy", {o.name for o in self.doc.objects})
+        copy = self.doc.make_object(obj.source, name=name, style=obj.style, provenance=obj.provenance)
         self.doc.push(AddObject(copy, self.doc.index_of(obj.id) + 1, select=True))
 
     def rename_selection(self) -> None:
