@@ -38,9 +38,13 @@ class VertexModel(QtCore.QAbstractTableModel):
     def __init__(self, parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
         self.xy: Any = None
+        self.geom: Any = None
         self.refs: list[ge.VertexRef] = []
 
     def set_geometry(self, geom: Any) -> None:
+        if geom is self.geom:
+            return  # the same value (immutable): keep the rows, and any editor open on them
+        self.geom = geom
         self.beginResetModel()
         if geom is None or geom.is_empty:
             self.xy, self.refs = None, []
@@ -97,8 +101,22 @@ class VertexModel(QtCore.QAbstractTableModel):
             y = v
         if (x, y) == (float(self.xy[r, 0]), float(self.xy[r, 1])):
             return False
-        self.edited.emit(self.refs[r], x, y)
+        ref = self.refs[r]
+        # After the view has closed its editor: the edit resets this model (the geometry is a new value).
+        QtCore.QTimer.singleShot(0, lambda: self.edited.emit(ref, x, y))
         return True
+
+
+class VertexTable(QtWidgets.QTableView):
+    """The vertex table; F2 edits the current coordinate here (elsewhere it renames the object)."""
+
+    def event(self, ev: QtCore.QEvent) -> bool:
+        if ev.type() == QtCore.QEvent.Type.ShortcutOverride:
+            assert isinstance(ev, QtGui.QKeyEvent)
+            if ev.key() == Qt.Key.Key_F2 and ev.modifiers() == Qt.KeyboardModifier.NoModifier:
+                ev.accept()
+                return True
+        return super().event(ev)
 
 
 class PropertiesPanel(QtWidgets.QWidget):
@@ -155,7 +173,7 @@ class PropertiesPanel(QtWidgets.QWidget):
         self.vertices = VertexModel(self)
         self.vertices.edited.connect(self._move_vertex)
         self.vertices.refused.connect(self._refused)
-        self.table = QtWidgets.QTableView(self)
+        self.table = VertexTable(self)
         self.table.setObjectName("propVertices")
         self.table.setModel(self.vertices)
         self.table.verticalHeader().setVisible(False)

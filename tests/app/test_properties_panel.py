@@ -1,0 +1,111 @@
+"""The Properties panel: typed name, colour, opacity and vertex coordinates, each one undo step."""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6 import QtCore, QtWidgets
+from shapely.geometry import Polygon
+
+from mrm.commands import AddObject
+from mrm.reps.pixels import PixelSet
+from tests.app.helpers import type_into
+
+Qt = QtCore.Qt
+
+
+def _window_with(make_window, source, name="obj"):  # type: ignore[no-untyped-def]
+    win = make_window()
+    obj = win.doc.make_object(source, name=name)
+    win.doc.push(AddObject(obj, select=True))
+    win.registry["edit.properties"].trigger()  # Ctrl+Shift+O shows the panel
+    assert win.properties_dock.isVisible()
+    return win, obj.id
+
+
+def _edit_cell(qtbot, table, row: int, col: int, text: str) -> None:  # type: ignore[no-untyped-def]
+    """Click a cell of the vertex table, press F2 (edit), type, press Enter."""
+    table.scrollTo(table.model().index(row, col))
+    rect = table.visualRect(table.model().index(row, col))
+    vp = table.viewport()
+    qtbot.mouseClick(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, rect.center())
+    qtbot.keyClick(table, Qt.Key.Key_F2)
+
+    def editor() -> QtWidgets.QLineEdit | None:
+        eds = [e for e in vp.findChildren(QtWidgets.QLineEdit) if e.isVisible()]
+        return eds[0] if eds else None
+
+    qtbot.waitUntil(lambda: editor() is not None, timeout=3000)
+    editor = editor()
+    qtbot.keyClick(editor, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
+    qtbot.keyClicks(editor, text)
+    qtbot.keyClick(editor, Qt.Key.Key_Return)
+    # The delegate commits on the next turn of the event loop.
+    qtbot.waitUntil(lambda: table.state() != QtWidgets.QAbstractItemView.State.EditingState, timeout=3000)
+    qtbot.wait(20)  # and pushes the edit after that
+
+
+def test_typing_a_vertex_coordinate_moves_it_and_ctrl_z_restores_it(make_window, qtbot):
+    tri = Polygon([(0, 0), (8, 0), (0, 6)])
+    win, oid = _window_with(make_window, tri)
+    table = win.properties.table
+    model = table.model()
+    assert model.rowCount() == 3
+    # Shown exactly as stored.
+    assert [model.index(r, 3).data() for r in range(3)] == ["0", "8", "0"]
+    _edit_cell(qtbot, table, 1, 3, "9.125")
+    geom = win.doc.get(oid).source
+    assert list(geom.exterior.coords)[:3] == [(0.0, 0.0), (9.125, 0.0), (0.0, 6.0)]
+    assert model.index(1, 3).data() == "9.125"
+    assert win.doc.history.undo_label() == "Move vertex"
+    win.views.discrete.plane.setFocus()
+    qtbot.keyClick(win.views.discrete.plane, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert win.doc.get(oid).source.equals_exact(tri, 0)
+    assert model.index(1, 3).data() == "8"
+
+
+def test_a_coordinate_that_makes_the_polygon_cross_itself_is_refused(make_window, qtbot):
+    sq = Polygon([(0, 0), (4, 0), (4, 4), (0, 4)])
+    win, oid = _window_with(make_window, sq)
+    steps = win.doc.history.undo_label()
+    # Vertex 1 at (−2, 0): its edge to (4, 4) crosses the edge (0, 4)–(0, 0).
+    _edit_cell(qtbot, win.properties.table, 1, 3, "-2")
+    assert win.doc.get(oid).source.equals_exact(sq, 0)
+    assert "refused" in win.properties.status.text()
+    assert win.doc.history.undo_label() == steps  # nothing recorded
+    assert win.properties.table.model().index(1, 3).data() == "4"  # the table shows what is stored
+    _edit_cell(qtbot, win.properties.table, 2, 4, "abc")
+    assert "not a number" in win.properties.status.text()
+    assert win.doc.get(oid).source.equals_exact(sq, 0)
+
+
+def test_name_colour_and_opacity_fields_push_one_step_each(make_window, qtbot):
+    win, oid = _window_with(make_window, PixelSet(np.ones((3, 3), bool), (0, 0)), "before")
+    type_into(qtbot, win.properties.name_edit, "after")
+    assert win.doc.get(oid).name == "after"
+    assert win.object_list.model.obj(0).name == "after"  # the list follows
+    type_into(qtbot, win.properties.colour_edit, "#12ab34")
+    assert win.doc.get(oid).style.fill == "#12ab34"
+    type_into(qtbot, win.properties.opacity.lineEdit(), "25")
+    assert win.doc.get(oid).style.opacity == 0.25
+    labels = []
+    for _ in range(3):
+        labels.append(win.doc.history.undo_label())
+        win.doc.undo()
+    assert labels == ["Change style", "Change style", "Rename"]
+    o = win.doc.get(oid)
+    assert (o.name, o.style.opacity) == ("before", 0.6)
+    type_into(qtbot, win.properties.colour_edit, "green-ish")
+    assert "not a colour" in win.properties.status.text()
+    assert win.doc.get(oid).style.fill != "green-ish"
+
+
+def test_a_pixel_objects_vertices_are_those_of_its_continuation(make_window, qtbot):
+    win, oid = _window_with(make_window, PixelSet(np.ones((2, 3), bool), (0, 0)))
+    qtbot.waitUntil(lambda: win.properties.table.model().rowCount() > 0, timeout=10_000)
+    r = win.scene.get(oid, "euclidean")
+    xy = np.asarray(r.exterior.coords)[:-1]
+    model = win.properties.table.model()
+    rows = range(model.rowCount())
+    shown = [(float(model.index(k, 3).data()), float(model.index(k, 4).data())) for k in rows]
+    assert shown == [tuple(p) for p in xy.tolist()]
+    assert "R(A)" in win.properties.vertex_note.text()
