@@ -7,7 +7,7 @@ from PySide6 import QtCore
 
 from mrm.commands import AddObject
 from mrm.reps.pixels import PixelSet
-from tests.app.helpers import click, square, type_into, wait_drawn, zoom_to
+from tests.app.helpers import click, square, type_into, zoom_to
 
 Qt = QtCore.Qt
 CTRL_SHIFT = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
