@@ -40,12 +40,16 @@ def fraction_text(q: Fraction) -> str:
 
 
 def sqrt_text(sq: Fraction) -> str:
-    """``√sq`` in exact form: ``5`` for 25, ``√2`` for 2, ``√(13/4)`` otherwise."""
+    """``√sq`` exactly: ``5`` for 25, ``5/2`` for 25/4, ``√2`` for 2, ``√13/2`` for 13/4, else ``√(2/3)``."""
     n, d = sq.numerator, sq.denominator
     rn, rd = math.isqrt(n), math.isqrt(d)
     if rn * rn == n and rd * rd == d:
         return fraction_text(Fraction(rn, rd))
-    return f"√{fraction_text(sq)}" if d == 1 else f"√({fraction_text(sq)})"
+    if d == 1:
+        return f"√{n}"
+    if rd * rd == d:
+        return f"√{n}/{rd}"
+    return f"√({fraction_text(sq)})"
 
 
 @dataclass(frozen=True)

@@ -272,9 +272,13 @@ class ObjectList(QtWidgets.QWidget):
         hdr.setSectionResizeMode(COL_VISIBLE, QtWidgets.QHeaderView.ResizeMode.Fixed)
         hdr.setSectionResizeMode(COL_COLOUR, QtWidgets.QHeaderView.ResizeMode.Fixed)
         hdr.setSectionResizeMode(COL_NAME, QtWidgets.QHeaderView.ResizeMode.Stretch)
-        hdr.setSectionResizeMode(COL_SOURCE, QtWidgets.QHeaderView.ResizeMode.ResizeToContents)
+        # The Source column takes what its text needs, up to 45 % of the list: the names come first in a
+        # narrow panel (the whole text is in the tooltip).
+        hdr.setSectionResizeMode(COL_SOURCE, QtWidgets.QHeaderView.ResizeMode.Interactive)
         hdr.resizeSection(COL_VISIBLE, 28)
         hdr.resizeSection(COL_COLOUR, 26)
+        self.model.modelReset.connect(self._fit_source_column)
+        self.model.dataChanged.connect(lambda *_a: self._fit_source_column())
         self.view.clicked.connect(self._clicked)
         self.view.selectionModel().selectionChanged.connect(self._selection_from_view)
         self.model.modelReset.connect(self._selection_from_doc)
@@ -296,6 +300,15 @@ class ObjectList(QtWidgets.QWidget):
         lay.addWidget(self.view, 1)
         lay.addLayout(bar)
         self._syncing = False
+
+    def _fit_source_column(self) -> None:
+        need = self.view.sizeHintForColumn(COL_SOURCE) if self.model.rowCount() else 60
+        cap = int(self.view.viewport().width() * 0.45)
+        self.view.header().resizeSection(COL_SOURCE, max(50, min(need, cap)))
+
+    def resizeEvent(self, ev: QtGui.QResizeEvent) -> None:
+        super().resizeEvent(ev)
+        self._fit_source_column()
 
     def _button(self, text: str, tip: str, slot: object) -> QtWidgets.QToolButton:
         b = QtWidgets.QToolButton(self)

@@ -249,7 +249,7 @@ class PropertiesPanel(QtWidgets.QWidget):
                 )
             else:
                 self.vertex_note.setText(
-                    f"{len(self.vertices.refs)} vertices (double-click a coordinate to type it)."
+                    f"{len(self.vertices.refs)} vertices (double-click a coordinate, or F2, to type it)."
                 )
         finally:
             self._syncing = False

@@ -1,0 +1,212 @@
+"""Take the user guide's pictures of the window that ``mrm --screenshot`` alone cannot stage.
+
+Run from the repository root::
+
+    .venv/bin/python docs/figures/make_window_figures.py [NAME ...]
+
+It drives the real main window offscreen — the same :class:`~mrm.app.main_window.MainWindow`, fresh
+preferences, the bundled examples — exactly as a user would (operations applied through the Operations
+panel, measures through the Measure panel), waits until every view and background computation has finished
+(:func:`mrm.app.gui.wait_until_drawn`) and saves ``window.grab()``. A context menu is a window of its own, so
+its picture is drawn over the window's at the place it opened.
+
+Pictures (docs/img): ``analytical-segment.png``, ``inspector.png``, ``dark.png``, ``properties-panel.png``,
+``context-menu.png``, ``measure.png``.
+"""
+
+from __future__ import annotations
+
+import sys
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[2]
+OUT = ROOT / "docs" / "img"
+EXAMPLES = ROOT / "resources" / "examples"
+SIZE = (1440, 900)
+
+
+def _app() -> Any:
+    from mrm.app.application import create_application
+
+    return create_application([sys.argv[0]], offscreen=True)
+
+
+def _window(theme: str = "light") -> Any:
+    from mrm.app.application import theme_controller
+    from mrm.app.main_window import MainWindow
+    from mrm.app.settings import Preferences, make_settings
+
+    prefs = Preferences(make_settings(Path(tempfile.mkdtemp(prefix="mrm-fig-")) / "mrm.ini"))
+    theme_controller().set_preference(theme)
+    win = MainWindow(prefs)
+    win.resize(*SIZE)
+    win.show()
+    return win
+
+
+def _settle(app: Any, win: Any) -> None:
+    from mrm.app.gui import wait_until_drawn
+
+    wait_until_drawn(app, win, 300)
+
+
+def _save(app: Any, win: Any, name: str, *, fit: bool = True, menu: Any = None) -> Path:
+    from PySide6 import QtGui
+
+    if fit:
+        win.fit_all()
+    _settle(app, win)
+    pm = win.grab()
+    if menu is not None:
+        p = QtGui.QPainter(pm)
+        p.drawPixmap(win.mapFromGlobal(menu.pos()), menu.grab())
+        p.end()
+    out = OUT / name
+    pm.save(str(out), "PNG")
+    print(out.relative_to(ROOT))
+    win.close_now()
+    return out
+
+
+def _apply(app: Any, win: Any, op: str, **values: str) -> None:
+    """Apply ``op`` from the Operations panel to the selected object, fields typed as text."""
+    panel = win.operations
+    panel.select_operation(op)
+    for name, text in values.items():
+        field = panel.control(name).field
+        field.setText(text)
+        field.editingFinished.emit()
+    panel.apply()
+    _settle(app, win)
+    win.doc.set_selection([win.doc.objects[-1].id])
+
+
+def analytical_segment(app: Any) -> Path:
+    """The analytical view with a digital straight segment picked (its preimage in the Segments dock)."""
+    win = _window()
+    win.files.open(EXAMPLES / "holes-and-components.mrm", ask=False)
+    _settle(app, win)
+    obj = win.doc.objects[0]
+    win.doc.set_selection([obj.id])
+    win.scene.select_segment(obj.id, 0, 3)
+    return _save(app, win, "analytical-segment.png")
+
+
+def _inspector_window(app: Any, theme: str = "light") -> Any:
+    win = _window(theme)
+    win.files.open(EXAMPLES / "two-polygons.mrm", ask=False)
+    _settle(app, win)
+    win.doc.set_selection([win.doc.find("pentagon")[0].id])
+    for alpha in ("2", "5", "0.1"):
+        _apply(app, win, "dss", alpha=alpha)
+    win.show_inspector()
+    _settle(app, win)
+    win.inspector.start_measure()
+    _settle(app, win)
+    return win
+
+
+def inspector(app: Any) -> Path:
+    """The error inspector on DSS 2 → DSS 5 → DSS 0.1 of the pentagon, measured."""
+    return _save(app, _inspector_window(app), "inspector.png")
+
+
+def dark(app: Any) -> Path:
+    """The window in the dark theme."""
+    win = _window("dark")
+    win.files.open(EXAMPLES / "holes-and-components.mrm", ask=False)
+    _settle(app, win)
+    win.doc.set_selection([win.doc.objects[0].id])
+    out = _save(app, win, "dark.png")
+    from mrm.app.application import theme_controller
+
+    theme_controller().set_preference("light")
+    return out
+
+
+def properties_panel(app: Any) -> Path:
+    """The Properties panel of a polygon: name, colour, opacity, its vertex table."""
+    win = _window()
+    win.files.open(EXAMPLES / "two-polygons.mrm", ask=False)
+    _settle(app, win)
+    win.doc.set_selection([win.doc.objects[-1].id])
+    win.show_properties()
+    win.tools.set_tool("vertex")
+    _settle(app, win)
+    win.properties.table.selectRow(1)
+    return _save(app, win, "properties-panel.png")
+
+
+def context_menu(app: Any) -> Path:
+    """The right-click menu of the discrete view, opened inside a hole."""
+    win = _window()
+    win.files.open(EXAMPLES / "holes-and-components.mrm", ask=False)
+    _settle(app, win)
+    obj = win.doc.objects[0]
+    win.doc.set_selection([obj.id])
+    win.fit_all()
+    _settle(app, win)
+    view = win.views.discrete.plane
+    # Right-click inside the ring's hole: the menu offers to fill it.
+    x, y = _a_hole_pixel(win, obj.id)
+    gpos = view.viewport().mapToGlobal(view.map_from_plane(x, y))
+    menu = win.context_menus.open_view_menu(win.views.discrete, x, y, gpos)
+    _settle(app, win)
+    return _save(app, win, "context-menu.png", fit=False, menu=menu)
+
+
+def _a_hole_pixel(win: Any, obj_id: int) -> tuple[int, int]:
+    from mrm.commands import hole_pixels
+
+    ps = win.scene.get(obj_id, "discrete")
+    x, y = next(iter(hole_pixels(ps)))
+    return int(x), int(y)
+
+
+def measure(app: Any) -> Path:
+    """A two-point measure drawn in the views and the Hausdorff distance of the two polygons."""
+    from mrm.views.measure import PointMeasure
+
+    win = _window()
+    win.files.open(EXAMPLES / "two-polygons.mrm", ask=False)
+    _settle(app, win)
+    a, b = win.doc.objects[0], win.doc.objects[-1]
+    win.doc.set_selection([a.id, b.id])
+    win.measure_hausdorff()
+    _settle(app, win)
+    tool = win.tools.tools["measure"]
+    win.tools.set_tool("measure")
+    ga, gb = win.scene.get(a.id, "euclidean"), win.scene.get(b.id, "euclidean")
+    pa, pb = ga.representative_point(), gb.representative_point()
+    tool.result = PointMeasure((round(pa.x), round(pa.y)), (round(pb.x), round(pb.y)))
+    win.host.measured.emit(tool.result)
+    win.host.overlayChanged.emit()
+    return _save(app, win, "measure.png")
+
+
+FIGURES: dict[str, Callable[[Any], Path]] = {
+    "analytical-segment": analytical_segment,
+    "inspector": inspector,
+    "dark": dark,
+    "properties-panel": properties_panel,
+    "context-menu": context_menu,
+    "measure": measure,
+}
+
+
+def main(names: list[str]) -> int:
+    """Make the pictures ``names`` (all when empty)."""
+    app = _app()
+    from mrm.warmup import warm_up
+
+    warm_up()
+    for name in names or list(FIGURES):
+        FIGURES[name](app)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
