@@ -427,6 +427,8 @@ class MainWindow(QtWidgets.QMainWindow):
             return
         self.operations.cancel()
         self.runner.cancel("operation")
+        self.runner.cancel("measure")  # the Hausdorff distance of the Measure panel
+        self.runner.cancel("zoom-differences")
 
     def delete_selection(self) -> None:
         from mrm.commands import RemoveObjects

@@ -12,6 +12,15 @@ from mrm.views.canvas import PlaneView
 from mrm.views.tools import Tool, ToolHost, make_tools
 
 
+def _is_menu_key(ev: QtCore.QEvent) -> bool:
+    if not isinstance(ev, QtGui.QKeyEvent):
+        return False
+    k, mods = ev.key(), ev.modifiers()
+    return k == QtCore.Qt.Key.Key_Menu or (
+        k == QtCore.Qt.Key.Key_F10 and mods == QtCore.Qt.KeyboardModifier.ShiftModifier
+    )
+
+
 class ToolOverlay(pg.GraphicsObject):
     """Draws the active tool's feedback (rubber band, brush outline, hovered vertex) above everything."""
 
@@ -72,6 +81,15 @@ class ToolController(QtCore.QObject):
         if self.tool is None:
             return False
         t = ev.type()
+        if t == QtCore.QEvent.Type.KeyPress and _is_menu_key(ev) and not self.tool.in_gesture():
+            # The keyboard's menu key (or Shift+F10): the menu of the point under the cursor, else the centre.
+            vp = view.viewport()
+            pos = vp.mapFromGlobal(QtGui.QCursor.pos())
+            if not vp.rect().contains(pos):
+                pos = vp.rect().center()
+            x, y = view.map_to_plane(QtCore.QPointF(pos))
+            self.contextMenuRequested.emit(view, x, y, vp.mapToGlobal(pos))
+            return True
         right = isinstance(ev, QtGui.QMouseEvent) and ev.button() == QtCore.Qt.MouseButton.RightButton
         if right and t == QtCore.QEvent.Type.MouseButtonPress:
             assert isinstance(ev, QtGui.QMouseEvent)

@@ -136,3 +136,18 @@ def test_right_click_while_drawing_still_removes_the_last_vertex(make_window, qt
     click(qtbot, view, 5, 5, button=Qt.MouseButton.RightButton)
     assert win.tools.tool.points == [(1.0, 1.0), (10.0, 1.0)]
     assert win.context_menu is menu_before  # no menu over a drawing in progress
+
+
+def test_the_menu_key_opens_the_views_menu(make_window, qtbot):
+    win = make_window()
+    _add(win, square(0, 0), "A")
+    zoom_to(win, -2, -2, 10, 10)
+    view = win.views.discrete.plane
+    view.setFocus()
+    qtbot.keyClick(view, Qt.Key.Key_F10, Qt.KeyboardModifier.ShiftModifier)
+    menu = win.context_menu
+    assert menu is not None and menu.objectName() == "viewContextMenu"
+    qtbot.waitUntil(menu.isVisible, timeout=3000)
+    qtbot.keyClick(menu, Qt.Key.Key_Escape)
+    qtbot.waitUntil(lambda: not menu.isVisible(), timeout=3000)
+    assert len(win.doc) == 1
