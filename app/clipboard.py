@@ -64,10 +64,15 @@ def copy_objects(doc: Document, ids: Sequence[int], euclidean: Any) -> QtCore.QM
     ``euclidean(obj_id)`` gives an object's Euclidean representation, or None when it is not ready (a pixel
     object whose continuation is still being computed is then left out of the text, never of :data:`MIME`).
     """
-    md = QtCore.QMimeData()
-    md.setData(MIME, QtCore.QByteArray(copy_payload(doc, ids)))
     named = [(doc.get(i).name, euclidean(i)) for i in ids if i in doc]
-    md.setText(geojson_text(named))
+    return mime_data(copy_payload(doc, ids), geojson_text(named))
+
+
+def mime_data(payload: bytes, text: str) -> QtCore.QMimeData:
+    """The clipboard data of a copy: the project bytes under :data:`MIME`, the text as plain text."""
+    md = QtCore.QMimeData()
+    md.setData(MIME, QtCore.QByteArray(payload))
+    md.setText(text)
     return md
 
 
@@ -132,10 +137,27 @@ class ClipboardController(QtCore.QObject):
         if not ids:
             self.win.show_message("select the objects to copy", 3000)
             return False
-        md = copy_objects(doc, ids, lambda i: self.win.scene.get(i, "euclidean"))
-        QtGui.QGuiApplication.clipboard().setMimeData(md)
+        # Immutable values are read here; the encoding (megabytes for a big pixel object) runs on a worker.
+        part = Document(Settings(model=doc.model))
+        for o in doc.objects:
+            if o.id in ids:
+                part.insert_object(o, None)
+        named = [(doc.get(i).name, self.win.scene.get(i, "euclidean")) for i in ids]
         n = len(ids)
-        self.win.show_message(f"copied {n} object{'s' if n != 1 else ''}", 3000)
+
+        def work(_progress: Any) -> tuple[bytes, str]:
+            return copy_payload(part, [o.id for o in part.objects]), geojson_text(named)
+
+        def done(result: tuple[bytes, str]) -> None:
+            QtGui.QGuiApplication.clipboard().setMimeData(mime_data(*result))
+            self.win.show_message(f"copied {n} object{'s' if n != 1 else ''}", 3000)
+
+        def failed(exc: BaseException) -> None:
+            if not isinstance(exc, MRMError):
+                raise exc
+            self.win.show_message(f"copy: {exc}", 6000, error=True)
+
+        self.win.runner.submit("copy", work, on_result=done, on_error=failed, label="Copying")
         return True
 
     def paste(self) -> list[int]:

@@ -98,3 +98,16 @@ def test_paste_of_text_that_is_no_shape_says_so_and_changes_nothing(make_window,
     assert len(win.doc) == 0
     assert "paste:" in win.status.currentMessage() and "WKT" in win.status.currentMessage()
     assert not win.doc.history.can_undo()
+
+
+def test_copy_is_encoded_on_a_worker_then_pastes(make_window, qtbot):
+    win = make_window(threaded=True)
+    _clipboard().clear()
+    ps = PixelSet(np.ones((300, 400), bool), (5, -7))
+    o = win.doc.make_object(ps, name="block")
+    win.doc.push(AddObject(o, select=True))
+    _keys(qtbot, win, Qt.Key.Key_C)
+    qtbot.waitUntil(lambda: _clipboard().mimeData().hasFormat(MIME), timeout=20_000)
+    _keys(qtbot, win, Qt.Key.Key_V)
+    assert [x.name for x in win.doc.objects] == ["block", "block (2)"]
+    assert win.doc.objects[-1].source == ps
