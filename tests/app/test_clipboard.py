@@ -107,7 +107,12 @@ def test_copy_is_encoded_on_a_worker_then_pastes(make_window, qtbot):
     o = win.doc.make_object(ps, name="block")
     win.doc.push(AddObject(o, select=True))
     _keys(qtbot, win, Qt.Key.Key_C)
-    qtbot.waitUntil(lambda: _clipboard().mimeData().hasFormat(MIME), timeout=20_000)
+
+    def copied() -> bool:
+        md = _clipboard().mimeData()
+        return md is not None and md.hasFormat(MIME)
+
+    qtbot.waitUntil(copied, timeout=20_000)
     _keys(qtbot, win, Qt.Key.Key_V)
     assert [x.name for x in win.doc.objects] == ["block", "block (2)"]
     assert win.doc.objects[-1].source == ps
