@@ -1,7 +1,8 @@
 """The object properties panel: name, colour, opacity and the vertex coordinates of the selected object.
 
 Every edit made here is one of the model's commands pushed on the document's history — one undo step each:
-``RenameObject``, ``RestyleObject`` (colour, opacity) and ``MoveVertex`` (a typed coordinate). Coordinates are
+``RenameObject``, ``RestyleObject`` (colour, opacity), ``MoveVertex`` (a typed coordinate) and
+``DeleteVertex`` (Delete on a row). Coordinates are
 shown as the shortest text that reads back as the same float, so what is shown is exactly what is stored;
 a typed value that would make the polygon cross itself is refused with the reason and nothing changes.
 
@@ -17,7 +18,7 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.commands import MoveVertex, RenameObject, RestyleObject
+from mrm.commands import DeleteVertex, MoveVertex, RenameObject, RestyleObject
 from mrm.errors import MRMError
 from mrm.views import geometry_edit as ge
 from mrm.views.measure import num_text
@@ -108,15 +109,31 @@ class VertexModel(QtCore.QAbstractTableModel):
 
 
 class VertexTable(QtWidgets.QTableView):
-    """The vertex table; F2 edits the current coordinate here (elsewhere it renames the object)."""
+    """The vertex table, with its own keys.
+
+    Here F2 edits the current coordinate (elsewhere it renames the object) and Delete removes the current
+    vertex (elsewhere it deletes the object).
+    """
+
+    deleteRequested = QtCore.Signal(int)  # row
+
+    _OWN_KEYS = (Qt.Key.Key_F2, Qt.Key.Key_Delete, Qt.Key.Key_Backspace)
 
     def event(self, ev: QtCore.QEvent) -> bool:
         if ev.type() == QtCore.QEvent.Type.ShortcutOverride:
             assert isinstance(ev, QtGui.QKeyEvent)
-            if ev.key() == Qt.Key.Key_F2 and ev.modifiers() == Qt.KeyboardModifier.NoModifier:
+            if ev.key() in self._OWN_KEYS and ev.modifiers() == Qt.KeyboardModifier.NoModifier:
                 ev.accept()
                 return True
         return super().event(ev)
+
+    def keyPressEvent(self, ev: QtGui.QKeyEvent) -> None:
+        if ev.key() in (Qt.Key.Key_Delete, Qt.Key.Key_Backspace) and self.state() != self.State.EditingState:
+            if self.currentIndex().isValid():
+                self.deleteRequested.emit(self.currentIndex().row())
+            ev.accept()
+            return
+        super().keyPressEvent(ev)
 
 
 class PropertiesPanel(QtWidgets.QWidget):
@@ -176,6 +193,7 @@ class PropertiesPanel(QtWidgets.QWidget):
         self.table = VertexTable(self)
         self.table.setObjectName("propVertices")
         self.table.setModel(self.vertices)
+        self.table.deleteRequested.connect(self._delete_vertex)
         self.table.verticalHeader().setVisible(False)
         self.table.verticalHeader().setDefaultSectionSize(self.fontMetrics().height() + 6)
         hdr = self.table.horizontalHeader()
@@ -315,6 +333,11 @@ class PropertiesPanel(QtWidgets.QWidget):
         obj = self._current()
         if obj is not None:
             self._push(MoveVertex(obj.id, ref, (x, y)))
+
+    def _delete_vertex(self, row: int) -> None:
+        obj = self._current()
+        if obj is not None and 0 <= row < len(self.vertices.refs):
+            self._push(DeleteVertex(obj.id, self.vertices.refs[row]))
 
     def focus_name(self) -> None:
         self.name_edit.setFocus()

@@ -109,3 +109,19 @@ def test_a_pixel_objects_vertices_are_those_of_its_continuation(make_window, qtb
     shown = [(float(model.index(k, 3).data()), float(model.index(k, 4).data())) for k in rows]
     assert shown == [tuple(p) for p in xy.tolist()]
     assert "R(A)" in win.properties.vertex_note.text()
+
+
+def test_delete_in_the_vertex_table_removes_that_vertex_not_the_object(make_window, qtbot):
+    pent = Polygon([(0, 0), (4, 0), (5, 3), (2, 5), (-1, 3)])
+    win, oid = _window_with(make_window, pent)
+    table = win.properties.table
+    rect = table.visualRect(table.model().index(2, 3))
+    qtbot.mouseClick(
+        table.viewport(), Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, rect.center()
+    )
+    qtbot.keyClick(table, Qt.Key.Key_Delete)
+    assert oid in win.doc
+    assert list(win.doc.get(oid).source.exterior.coords)[:-1] == [(0, 0), (4, 0), (2, 5), (-1, 3)]
+    assert table.model().rowCount() == 4
+    win.doc.undo()
+    assert win.doc.get(oid).source.equals_exact(pent, 0)
