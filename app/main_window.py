@@ -280,6 +280,8 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("measure.hausdorff", self.measure_hausdorff)
         self.operations.pickRequested.connect(self.pick_centre)
         self.host.measured.connect(self.measure.show_points)
+        self.measure.computed.connect(self._hausdorff_marks)
+        self.measure.stale.connect(lambda: self.tools.set_marks([]))
         a.connect("edit.select_next", lambda: self.select_step(+1))
         a.connect("edit.select_previous", lambda: self.select_step(-1))
         a.connect("tool.brush_larger", lambda: self.brush_spin.setValue(self.brush_spin.value() + 1))
@@ -553,11 +555,24 @@ class MainWindow(QtWidgets.QMainWindow):
             return
         self.tools.pick_point(lambda x, y: self.operations.set_centre(x, y, c.info.name))
 
+    def _hausdorff_marks(self, r: Any) -> None:
+        """Mark in every view where H(A, B) is reached."""
+        w = r.full.witness
+        self.tools.set_marks([] if w is None else [(w[0], w[1], f"H = {r.full.value:.4g}")])
+
     def measure_hausdorff(self) -> None:
         """Hausdorff distance between the two selected objects (or those of the Measure panel)."""
         sel = [i for i in self.doc.selection if i in self.doc]
         if len(sel) >= 2:
             self.measure.set_objects(sel[0], sel[1])
+        elif len(sel) == 1:
+            # One selected: it is A; B stays the panel's choice, or the next object in the list.
+            b = self.measure.b_combo.currentData()
+            if b is None or b == sel[0]:
+                others = [i for i in self.object_list.model.ids() if i != sel[0]]
+                b = others[0] if others else None
+            if b is not None:
+                self.measure.set_objects(sel[0], b)
         self.measure_dock.show()
         self.measure_dock.raise_()
         self.measure.compute()

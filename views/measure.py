@@ -223,6 +223,7 @@ class MeasurePanel(QtWidgets.QWidget):
     """The Measure dock: the last two-point measure, and the Hausdorff distance between two objects."""
 
     computed = QtCore.Signal(object)  # HausdorffResult
+    stale = QtCore.Signal()  # the measured objects changed: the result no longer holds
 
     def __init__(self, scene: Any, runner: Any, parent: QtWidgets.QWidget | None = None) -> None:
         super().__init__(parent)
@@ -300,8 +301,11 @@ class MeasurePanel(QtWidgets.QWidget):
             self._fill()
         if self.result is not None and (ch.changed or ch.removed or ch.reset or ch.settings):
             ids = {self.a_combo.currentData(), self.b_combo.currentData()}
-            if ch.reset or ch.settings or ids & (set(ch.changed) | set(ch.removed)):
+            reshaped = {i for i, what in ch.changed.items() if "source" in what}
+            if ch.reset or ch.settings or ids & (reshaped | set(ch.removed)):
                 self.result_label.setText("<i>(an object changed since: compute again)</i>")
+                self.result = None
+                self.stale.emit()
 
     def set_objects(self, a: int, b: int) -> None:
         """Measure between objects ``a`` and ``b`` (ids)."""
@@ -313,6 +317,7 @@ class MeasurePanel(QtWidgets.QWidget):
 
     # ------------------------------------------------------------------ computing
     def compute(self) -> None:
+        self.stale.emit()  # the former result's marks go at once
         doc = self.scene.doc
         a, b = self.a_combo.currentData(), self.b_combo.currentData()
         if a is None or b is None or a not in doc or b not in doc:

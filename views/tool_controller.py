@@ -40,9 +40,27 @@ class ToolOverlay(pg.GraphicsObject):
 
     def paint(self, p: QtGui.QPainter, *_args: object) -> None:
         tool = self.controller.tool
+        p.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, True)
         if tool is not None:
-            p.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, True)
             tool.paint_overlay(p, self.view)
+        for x, y, label in self.controller.marks:
+            self._paint_mark(p, x, y, label)
+
+    def _paint_mark(self, p: QtGui.QPainter, x: float, y: float, label: str) -> None:
+        """A point of interest (where a Hausdorff distance is reached): a ring and its label, screen-sized."""
+        c = p.transform().map(QtCore.QPointF(x, y))
+        colour = QtGui.QColor("#ffb000") if self.view.is_dark() else QtGui.QColor("#c2185b")
+        p.save()
+        p.resetTransform()
+        pen = QtGui.QPen(colour)
+        pen.setWidthF(2.0)
+        p.setPen(pen)
+        p.setBrush(QtCore.Qt.BrushStyle.NoBrush)
+        p.drawEllipse(c, 6.0, 6.0)
+        p.drawLine(c + QtCore.QPointF(-9, 0), c + QtCore.QPointF(9, 0))
+        p.drawLine(c + QtCore.QPointF(0, -9), c + QtCore.QPointF(0, 9))
+        p.drawText(c + QtCore.QPointF(9, -8), label)
+        p.restore()
 
 
 class ToolController(QtCore.QObject):
@@ -73,6 +91,8 @@ class ToolController(QtCore.QObject):
         host.overlayChanged.connect(self._repaint)
         host.pointPicked.connect(self._picked)
         self._right_press: QtCore.QPointF | None = None
+        #: Points drawn in every view whatever the tool: (x, y, label) — e.g. where H(A, B) is reached.
+        self.marks: list[tuple[float, float, str]] = []
         self._pick_callback: Callable[[float, float], None] | None = None
         self._before_pick = "select"
         self.set_tool("select")
@@ -108,6 +128,10 @@ class ToolController(QtCore.QObject):
                 self.contextMenuRequested.emit(view, x, y, gpos)
             return True
         return self.tool.handle(view, ev)
+
+    def set_marks(self, marks: list[tuple[float, float, str]]) -> None:
+        self.marks = list(marks)
+        self._repaint()
 
     # ------------------------------------------------------------------ picking a point
     def pick_point(self, callback: Callable[[float, float], None]) -> None:

@@ -8,8 +8,8 @@ from fractions import Fraction
 from PySide6 import QtCore
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject
-from tests.app.helpers import click, press_key, zoom_to
+from mrm.commands import AddObject, RenameObject, SetSource
+from tests.app.helpers import click, colour_at, press_key, zoom_to
 
 Qt = QtCore.Qt
 F = Fraction
@@ -124,3 +124,18 @@ def test_hausdorff_from_the_panel_with_a_hole(make_window, qtbot):
     assert panel.result.ab.squared == 1 and panel.result.ba.squared == 0
     assert panel.result.ab.witness == (5.0, 5.0)
     assert "H(full, holed) = 1 = 1.0" in panel.result_label.text()
+    # Where it is reached is marked in every view.
+    assert win.tools.marks == [(5.0, 5.0, "H = 1")]
+    zoom_to(win, -1, -1, 11, 11)
+
+    def off_mark() -> int:  # how far the colour drawn at (5, 5) is from the mark's (antialiased lines)
+        c = colour_at(win.views.euclidean, 5, 5)
+        return abs(c.red() - 0xC2) + abs(c.green() - 0x18) + abs(c.blue() - 0x5B)
+
+    assert off_mark() < 120
+    win.doc.push(RenameObject(holed.id, "holed 2"))  # a new name: the distance still holds
+    assert win.tools.marks == [(5.0, 5.0, "H = 1")]
+    # It no longer holds once a shape changes: the mark goes.
+    win.doc.push(SetSource(holed.id, Polygon(outer)))
+    assert win.tools.marks == []
+    assert off_mark() > 150
