@@ -113,8 +113,10 @@ class MainWindow(QtWidgets.QMainWindow):
         self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
         self.inspector = ErrorInspector(self.scene, self.runner, self)
         self.inspector_dock = self._dock("Error inspector", self.inspector, right)
-        # One tabbed column on the right: at 1024 px the four views keep most of the width (ADR 0020).
-        for d in (self.properties_dock, self.measure_dock, self.inspector_dock):
+        # One column on the right (ADR 0020): Operations, Properties and Measure as tabs, the inspector below
+        # them, beside the operation whose result it accounts for.
+        self.splitDockWidget(self.operations_dock, self.inspector_dock, QtCore.Qt.Orientation.Vertical)
+        for d in (self.properties_dock, self.measure_dock):
             self.tabifyDockWidget(self.operations_dock, d)
         self.operations_dock.raise_()
         self.setTabPosition(right, QtWidgets.QTabWidget.TabPosition.North)
@@ -129,6 +131,9 @@ class MainWindow(QtWidgets.QMainWindow):
             | QtWidgets.QMainWindow.DockOption.AllowNestedDocks
         )
         self.resizeDocks([self.objects_dock, self.segments_dock], [220, 520], QtCore.Qt.Orientation.Vertical)
+        self.resizeDocks(
+            [self.operations_dock, self.inspector_dock], [340, 440], QtCore.Qt.Orientation.Vertical
+        )
         self._fit_side_panels(1360)
 
     def _fit_side_panels(self, window_width: int) -> None:
@@ -145,6 +150,29 @@ class MainWindow(QtWidgets.QMainWindow):
         central = self.centralWidget()
         if central is not None and central.width() < ev.size().width() * 55 // 100 - 10:
             self._fit_side_panels(ev.size().width())
+        # Once the docks have their new sizes (the layout runs after this event).
+        QtCore.QTimer.singleShot(0, self._fit_operations_height)
+
+    def _fit_operations_height(self) -> None:
+        """Give the Operations tab the height its fields and Apply need on a short window.
+
+        The inspector below it gets the rest, and keeps at least a third of the column.
+        """
+        area = self.operations_dock.widget()
+        if not isinstance(area, QtWidgets.QScrollArea) or self.inspector_dock.isFloating():
+            return
+        if self.operations_dock.isFloating() or not self.inspector_dock.isVisible():
+            return
+        panel = self.operations
+        width = area.viewport().width()
+        need = panel.heightForWidth(width) if panel.hasHeightForWidth() else panel.sizeHint().height()
+        if area.viewport().height() >= need:
+            return
+        total = self.operations_dock.height() + self.inspector_dock.height()
+        extra = self.operations_dock.height() - area.viewport().height()
+        ops = min(need + extra + 24, total * 2 // 3)  # + the tab bar: resizeDocks sizes the tab group
+        pair = [self.operations_dock, self.inspector_dock]
+        self.resizeDocks(pair, [ops, total - ops], QtCore.Qt.Orientation.Vertical)
 
     def _dock(
         self, title: str, widget: QtWidgets.QWidget, area: QtCore.Qt.DockWidgetArea

@@ -22,9 +22,10 @@ def test_views_are_wide_enough_at_1024_by_700(make_window, qtbot):
     for v in win.views.views:
         w, h = v.plane.viewport_size()
         assert w >= 200 and h >= 180  # the plot area itself, axes aside
-    # Every panel is still there: the right column is tabbed, the left one keeps the list in sight.
+    # Every panel is still there: tabs on the right, the inspector below them, the list in sight on the left.
     tabbed = {d.windowTitle() for d in win.tabifiedDockWidgets(win.operations_dock)}
-    assert tabbed == {"Properties", "Measure", "Error inspector"}
+    assert tabbed == {"Properties", "Measure"}
+    assert win.inspector_dock.isVisible()
     assert win.objects_dock.isVisible() and win.objects_dock.width() >= 160
     assert win.operations_dock.width() >= 220
     assert win.operations.apply_button.isVisible()
@@ -32,6 +33,7 @@ def test_views_are_wide_enough_at_1024_by_700(make_window, qtbot):
     scroll = win.operations_dock.widget()
     assert isinstance(scroll, QtWidgets.QScrollArea)
     assert not scroll.horizontalScrollBar().isVisible()
+    assert not scroll.verticalScrollBar().isVisible()  # Apply in sight without scrolling
 
 
 def test_tabs_layout_gives_one_view_the_whole_centre(make_window, qtbot):
