@@ -119,6 +119,7 @@ class MainWindow(QtWidgets.QMainWindow):
         for d in (self.properties_dock, self.measure_dock):
             self.tabifyDockWidget(self.operations_dock, d)
         self.operations_dock.raise_()
+        self.operations.installEventFilter(self)  # its content grows (a status line): keep Apply in sight
         self.setTabPosition(right, QtWidgets.QTabWidget.TabPosition.North)
         self.segments = SegmentTable(self.scene, self)
         self.segments_dock = self._dock(
@@ -132,7 +133,7 @@ class MainWindow(QtWidgets.QMainWindow):
         )
         self.resizeDocks([self.objects_dock, self.segments_dock], [220, 520], QtCore.Qt.Orientation.Vertical)
         self.resizeDocks(
-            [self.operations_dock, self.inspector_dock], [340, 440], QtCore.Qt.Orientation.Vertical
+            [self.operations_dock, self.inspector_dock], [300, 480], QtCore.Qt.Orientation.Vertical
         )
         self._fit_side_panels(1360)
 
@@ -152,6 +153,11 @@ class MainWindow(QtWidgets.QMainWindow):
             self._fit_side_panels(ev.size().width())
         # Once the docks have their new sizes (the layout runs after this event).
         QtCore.QTimer.singleShot(0, self._fit_operations_height)
+
+    def eventFilter(self, obj: QtCore.QObject, ev: QtCore.QEvent) -> bool:
+        if obj is getattr(self, "operations", None) and ev.type() == QtCore.QEvent.Type.LayoutRequest:
+            QtCore.QTimer.singleShot(0, self._fit_operations_height)
+        return super().eventFilter(obj, ev)
 
     def _fit_operations_height(self) -> None:
         """Give the Operations tab the height its fields and Apply need on a short window.
