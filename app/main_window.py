@@ -88,6 +88,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.registry["view.grid_layout" if prefs.layout == "grid" else "view.tabs_layout"].setChecked(True)
         self.registry["view.pixel_grid"].setChecked(True)
         self.registry["tool.select"].setChecked(True)
+        self.update_action_states()
         self.update_title()
         self._closing = False
         self._discard_on_close = True
