@@ -116,3 +116,18 @@ def test_copy_is_encoded_on_a_worker_then_pastes(make_window, qtbot):
     _keys(qtbot, win, Qt.Key.Key_V)
     assert [x.name for x in win.doc.objects] == ["block", "block (2)"]
     assert win.doc.objects[-1].source == ps
+
+
+def test_ctrl_c_in_a_text_field_copies_its_text_not_the_objects(make_window, qtbot):
+    win = make_window()
+    o = win.doc.make_object(Polygon([(0, 0), (3, 0), (0, 4)]), name="tri")
+    win.doc.push(AddObject(o, select=True))
+    _clipboard().clear()
+    win.registry["edit.properties"].trigger()  # focuses the name field, its text selected
+    field = win.properties.name_edit
+    qtbot.waitUntil(field.hasFocus, timeout=3000)
+    qtbot.keyClick(field, Qt.Key.Key_C, CTRL)
+    md = _clipboard().mimeData()
+    assert md is not None and md.text() == "tri" and not md.hasFormat(MIME)
+    qtbot.keyClick(field, Qt.Key.Key_V, CTRL)  # and Ctrl+V pastes text there, not objects
+    assert len(win.doc) == 1
