@@ -369,7 +369,7 @@ class MainWindow(QtWidgets.QMainWindow):
         if obj is None:
             return
         copy = self.doc.make_object(
-            obj.source, name=f"{obj.name} copy", style=obj.style, provenance=obj.provenance
+            obj.source, name=f"{obj.name} copy", style=obj.style, provenance=obj.provenance, georef=obj.georef
         )
         self.doc.push(AddObject(copy, self.doc.index_of(obj.id) + 1, select=True))
 

@@ -38,7 +38,7 @@ from typing import Any, TypeAlias
 
 import numpy as np
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError, SizeLimitError
+from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, MRMError, ParameterError, SizeLimitError
 from mrm.reps.pixels import PixelSet
 
 log = logging.getLogger(__name__)
@@ -201,10 +201,14 @@ class GeoRef:
         """
         from fractions import Fraction
 
-        q = Fraction(alpha) if not isinstance(alpha, str) else Fraction(alpha.strip())
+        def exact(v: Any) -> Fraction:
+            # as the operations read parameters: a float is the decimal it prints as, text may be "p/q"
+            return Fraction(repr(v)) if isinstance(v, float) else Fraction(str(v).strip())
+
+        q = exact(alpha)
         if q <= 0:
             raise ParameterError(f"a scaling factor is positive, got {alpha!r}")
-        cx, cy = (Fraction(0), Fraction(0)) if center is None else (Fraction(center[0]), Fraction(center[1]))
+        cx, cy = (Fraction(0), Fraction(0)) if center is None else (exact(center[0]), exact(center[1]))
         A, B, D, E, XO, YO = self.grid_to_world()
         inv = 1 / q
         # u = u′/α + C(1 − 1/α)
@@ -236,11 +240,11 @@ class GeoRef:
         """The inverse of :meth:`as_dict` (``origin`` optional); FileFormatError on a malformed record."""
         try:
             return cls(
-                tuple(data["transform"]),  # type: ignore[arg-type]
+                tuple(data["transform"]),
                 data["width"],
                 data["height"],
                 data.get("crs"),
-                tuple(data.get("origin", (0, 0))),  # type: ignore[arg-type]
+                tuple(data.get("origin", (0, 0))),
             )
         except (KeyError, TypeError, ValueError) as e:
             raise FileFormatError(f"not a georeference record: {e}") from None
@@ -521,6 +525,43 @@ def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:
         data = mem.read()
     with atomic_open(path, "wb") as fh:
         fh.write(data)
+
+
+#: Operations whose results live on their inputs' grid, in the inputs' grid coordinates (ADR 0021): the
+#: rotation turns the shape on the grid (so it turns in the world about the centre's world point), the
+#: simplification and the co-refinement map their scaled work back by Sc_1/α, union and merge take pixels.
+SAME_GRID_OPERATIONS = frozenset({"discrete_rotation", "simplify", "union", "corefine", "merge"})
+#: Operations that scale the grid: the result gets the scaled georeference (:meth:`GeoRef.scaled`).
+SCALING_OPERATIONS = frozenset({"dss"})
+
+
+def result_georef(
+    operation: str, params: Mapping[str, Any], inputs: Sequence[GeoRef | None]
+) -> GeoRef | None:
+    """The georeference of an operation's result, from its inputs' (ADR 0021).
+
+    * Every input on one grid (equal georeferences) and an operation of :data:`SAME_GRID_OPERATIONS`: that
+      grid. DSS_α: the grid scaled by α about the centre (pixels α times smaller, the world outline where
+      the input's was), so the result exported as a GeoTIFF lands on the input.
+    * Inputs on different grids, an input without georeference, or an operation this module does not know:
+      None. Mixing grids has no single right answer and MR Modeler does not resample; the result is then in
+      plain grid coordinates, as on the canvas.
+    """
+    if not inputs or inputs[0] is None or any(g != inputs[0] for g in inputs[1:]):
+        if any(g is not None for g in inputs):
+            log.info("the result of %s has no georeference: its inputs are not on one grid", operation)
+        return None
+    grid = inputs[0]
+    if operation in SAME_GRID_OPERATIONS:
+        return grid
+    if operation in SCALING_OPERATIONS:
+        try:
+            return grid.scaled(params["alpha"], params.get("center"))
+        except (KeyError, TypeError, ValueError, ZeroDivisionError, OverflowError, MRMError):
+            log.info("the result of %s has no georeference: its scale factor is unreadable", operation)
+            return None
+    log.info("the result of %s has no georeference: the operation's grid is not known", operation)
+    return None
 
 
 def few_pixels_warning(ps: PixelSet, geom: Any, what: str) -> str | None:
