@@ -329,8 +329,10 @@ def run_batch(
             if not args.json and not getattr(args, "quiet", False):
                 bar.write(line(summary))
         else:
-            errors.append((i, f"{jobs[i][0]}: {error}"))
-            print(f"mrm {args.command}: error: {jobs[i][0]}: {error}", file=sys.stderr, flush=True)
+            name = str(jobs[i][0])
+            text = error if error is not None and error.startswith(f"{name}: ") else f"{name}: {error}"
+            errors.append((i, text))
+            print(f"mrm {args.command}: error: {text}", file=sys.stderr, flush=True)
 
     with progress(args, total=len(jobs), desc=desc) as bar:
         if n_workers <= 1:
