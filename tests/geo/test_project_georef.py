@@ -239,3 +239,24 @@ def test_a_bad_georeference_in_a_project_is_named_by_its_path(value, message):
     with pytest.raises(FileFormatError, match=message) as info:
         loads(json.dumps(data).encode(), "bad.mrm")
     assert "$.objects[0].georef" in str(info.value)
+
+
+def test_a_unit_grid_tif_reconstructs_in_place(tmp_path):
+    """A .tif written from a pixel set off the origin reads back in place, and R lands where the set is."""
+    import subprocess
+    import sys
+
+    import mrm
+
+    ps = mrm.PixelSet.from_points([(3, -2), (4, -2), (3, 0)])
+    mrm.write_pixels(ps, tmp_path / "u.tif")
+    g = read_georef(tmp_path / "u.tif")
+    assert g is not None and g.origin == (3, -2) and g.frame == (3, -2, 4, 0)
+    done = subprocess.run(
+        [sys.executable, "-m", "mrm", "reconstruct", "u.tif", "-o", "u.geojson", "--model", "gauss"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    assert mrm.discretize(mrm.read_geometry(tmp_path / "u.geojson"), "gauss") == ps  # not shifted
