@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from mrm.app.main_window import MainWindow
 
 PROJECT_EXT = ".mrm"
-IMAGE_EXTS = (".png", ".pbm", ".pgm", ".npz")
+IMAGE_EXTS = (".png", ".pbm", ".pgm", ".npz", ".tif", ".tiff")
 VECTOR_EXTS = (".geojson", ".json", ".wkt")
 EXPORT_FILTERS = {
     ".png": "PNG image — pixels (*.png)",
@@ -31,6 +31,7 @@ EXPORT_FILTERS = {
     ".wkt": "WKT — polygons (*.wkt)",
     ".npz": "NumPy mask — pixels (*.npz)",
     ".pbm": "PBM bitmap — pixels (*.pbm)",
+    ".tif": "GeoTIFF — pixels, georeferenced (*.tif)",
 }
 
 
@@ -373,7 +374,7 @@ class FileController(QtCore.QObject):
             "Import",
             self._directory(),
             "Images and geometry (*.png *.pbm *.pgm *.npz *.geojson *.json *.wkt);;"
-            "Images — pixels (*.png *.pbm *.pgm *.npz);;"
+            "Images — pixels (*.png *.pbm *.pgm *.npz *.tif *.tiff);;"
             "Geometry — polygons (*.geojson *.json *.wkt);;All files (*)",
         )
         return self.import_files([Path(f) for f in files]) if files else False
@@ -456,20 +457,28 @@ class FileController(QtCore.QObject):
         dlg.open()
 
     def _import(self, paths: list[Path], chosen: dict[int, Any]) -> bool:
-        items: list[tuple[str, Any]] = []
+        items: list[tuple[str, Any, Any]] = []
         errors = []
         for k, p in enumerate(paths):
             try:
                 got = chosen.get(k)
                 if isinstance(got, BaseException):
                     raise got
-                items += got if got is not None else self.read_objects(p)
+                pairs = got if got is not None else self.read_objects(p)
+                georef = None
+                if p.suffix.lower() in IMAGE_EXTS:  # a GeoTIFF's or a world file's place stays on the object
+                    from mrm.io.georef import read_georef
+
+                    georef = read_georef(p)
+                items += [(name, src, georef) for name, src in pairs]
             except (MRMError, OSError, ValueError) as e:
                 errors.append(describe_error(e))
         if items:
             objs = []
-            for k, (name, src) in enumerate(items):
-                objs.append(self.doc.make_object(src, name=name, style=self.win.host.new_style(k)))
+            for k, (name, src, georef) in enumerate(items):
+                objs.append(
+                    self.doc.make_object(src, name=name, style=self.win.host.new_style(k), georef=georef)
+                )
             try:
                 with self.doc.history.macro("Import" if len(objs) > 1 else f"Import {objs[0].name}"):
                     for o in objs:
@@ -507,7 +516,13 @@ class FileController(QtCore.QObject):
         ext = p.suffix.lower()
         entry = self.doc.derived(obj_id)
         try:
-            if ext in (".png", ".pbm", ".npz"):
+            if ext == ".tif" or (
+                self.doc.get(obj_id).georef is not None and ext in (".png", ".geojson", ".json", ".wkt")
+            ):
+                from mrm.io.export import export_object
+
+                export_object(self.doc, obj_id, p)  # where it lies on the Earth (ADR 0021)
+            elif ext in (".png", ".pbm", ".npz"):
                 from mrm.io.pixel_files import write_pixels
 
                 write_pixels(entry.get("discrete"), p)

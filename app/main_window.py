@@ -482,7 +482,9 @@ class MainWindow(QtWidgets.QMainWindow):
         from mrm.views.operation_panel import unique_name
 
         name = unique_name(f"{obj.name} copy", {o.name for o in self.doc.objects})
-        copy = self.doc.make_object(obj.source, name=name, style=obj.style, provenance=obj.provenance)
+        copy = self.doc.make_object(
+            obj.source, name=name, style=obj.style, provenance=obj.provenance, georef=obj.georef
+        )
         self.doc.push(AddObject(copy, self.doc.index_of(obj.id) + 1, select=True))
 
     def rename_selection(self) -> None:

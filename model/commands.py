@@ -748,6 +748,7 @@ class MergeObjects(Command):
         """Build the merged object (first call) and apply it."""
         if self._inner is None:
             from mrm.document import Provenance
+            from mrm.io.georef import result_georef
 
             objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
             parts = [discrete_of(doc, o) for o in objs]
@@ -761,6 +762,7 @@ class MergeObjects(Command):
                 source=union,
                 style=objs[0].style,
                 provenance=Provenance("merge", {}, tuple(o.id for o in objs)),
+                georef=result_georef("merge", {}, [o.georef for o in objs]),  # one grid: kept (ADR 0021)
             )
             index = doc.index_of(objs[0].id)
             self._inner = ApplyResults(self.label, add=[merged], remove=[o.id for o in objs], index=index)

@@ -36,6 +36,7 @@ from mrm import limits
 from mrm.derive import DerivationCache, Derived
 from mrm.errors import InvalidGeometryError, LimitError, ParameterError
 from mrm.history import Command, History
+from mrm.io.georef import GeoRef, result_georef
 
 # Declared once in mrm.limits; re-exported here for the modules that imported them from this one.
 from mrm.limits import COORDINATE_LIMIT as COORDINATE_LIMIT
@@ -361,6 +362,9 @@ class DocObject:
         How it is drawn.
     provenance : Provenance or None
         The operation that produced it, if any.
+    georef : GeoRef or None
+        Where its grid lies on the Earth (the affine transform and CRS of the raster it came from, or of
+        its inputs' grid: :func:`mrm.io.georef.result_georef`); None for a plain grid (ADR 0016, 0021).
     """
 
     id: int
@@ -368,6 +372,7 @@ class DocObject:
     source: Source
     style: Style = field(default_factory=Style)
     provenance: Provenance | None = None
+    georef: GeoRef | None = None
 
     __hash__ = None  # type: ignore[assignment]  # a value with a dict inside; compare, don't hash
 
@@ -382,9 +387,16 @@ class DocObject:
             raise ParameterError("style must be a Style")
         if self.provenance is not None and not isinstance(self.provenance, Provenance):
             raise ParameterError("provenance must be a Provenance or None")
+        if self.georef is not None:
+            if not isinstance(self.georef, GeoRef):
+                raise ParameterError("georef must be a GeoRef or None")
+            if self.georef.crs is not None:
+                limits.check_text(self.georef.crs, "the CRS")
         # The object's share of the per-file limits, checked by the document before it is inserted.
         pixels, source_bytes = _source_cost(self.source)
         prov_bytes = limits.json_bytes(self.provenance.to_json()) if self.provenance is not None else 4
+        if self.georef is not None:  # counted with the provenance: both are small records beside the source
+            prov_bytes += limits.json_bytes(self.georef.as_dict()) + 12
         object.__setattr__(self, "_mask_pixels", pixels)
         object.__setattr__(
             self,
@@ -444,8 +456,8 @@ class Changes:
         Ids of objects that appeared / disappeared (net over the batch).
     changed : Mapping[int, frozenset[str]]
         For objects present before and after: which aspects changed, among 'source', 'name', 'style',
-        'provenance' and 'derived' (the derived representations changed although the source did not, e.g.
-        after a change of the discretization model).
+        'provenance', 'georef' and 'derived' (the derived representations changed although the source did
+        not, e.g. after a change of the discretization model).
     reordered : bool
         The order of the objects present before and after changed.
     selection, settings, reset : bool
@@ -687,15 +699,27 @@ class Document:
         *,
         style: Style | None = None,
         provenance: Provenance | None = None,
+        georef: GeoRef | Literal["inputs"] | None = "inputs",
     ) -> DocObject:
-        """Build a new object with a fresh id (not yet inserted: push an ``AddObject`` with it)."""
+        """Build a new object with a fresh id (not yet inserted: push an ``AddObject`` with it).
+
+        ``georef`` defaults to what the provenance's inputs give (:func:`mrm.io.georef.result_georef`: the
+        inputs' grid, scaled for DSS_α; None without provenance or for inputs on different grids), so every
+        operation result keeps its inputs' place on the Earth without each caller passing it.
+        """
         i = self.new_id()
+        if georef == "inputs":
+            georef = None
+            if provenance is not None and provenance.inputs:
+                ins = [self._by_id[k].georef if k in self._by_id else None for k in provenance.inputs]
+                georef = result_georef(provenance.operation, provenance.params, ins)
         return DocObject(
             id=i,
             name=name if name is not None else f"Object {i}",
             source=source,
             style=style if style is not None else Style.for_index(i - 1),
             provenance=provenance,
+            georef=georef,
         )
 
     # ------------------------------------------------------------------ limits
@@ -742,7 +766,8 @@ class Document:
             self._obj_rev[obj.id] = self._obj_rev.get(obj.id, 0) + 1
             self._next_id = max(self._next_id, obj.id + 1)
             if obj.id in p.order:  # removed and re-inserted in one batch: it may differ in every aspect
-                p.changed.setdefault(obj.id, set()).update(("source", "name", "style", "provenance"))
+                aspects = ("source", "name", "style", "provenance", "georef")
+                p.changed.setdefault(obj.id, set()).update(aspects)
 
     def remove_object(self, obj_id: int) -> tuple[DocObject, int]:
         """Remove an object; returns it and the position it had. For commands."""
@@ -771,7 +796,7 @@ class Document:
             if old.source is not obj.source:
                 what.add("source")
                 self._obj_rev[obj.id] = self._obj_rev.get(obj.id, 0) + 1
-            for name in ("name", "style", "provenance"):
+            for name in ("name", "style", "provenance", "georef"):
                 if getattr(old, name) != getattr(obj, name):
                     what.add(name)
         return old

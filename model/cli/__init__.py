@@ -14,7 +14,8 @@ Conventions every subcommand gets from this layer (docs/adr/0011):
 * ``--model``, ``--json`` and ``--quiet`` on every subcommand; ``mrm --version``.
 * ``-`` as an input reads standard input (the format is recognised from its first bytes) and ``-o -`` writes
   the result on standard output (``--format`` chooses its type; the text summary then goes to stderr).
-* The folder an output file goes into is created when missing, by every subcommand alike.
+* The folder an output file goes into is created when missing, by every subcommand alike; a run that fails
+  removes the folders it created when nothing was written into them.
 * Errors are one line ``mrm NAME: error: message`` on stderr with exit status 2, never a traceback: every
   :class:`mrm.errors.MRMError`, every ``OSError`` (read-only file system, full disk, symlink loop, name too
   long, a path through a regular file, …) and every number out of range.
@@ -225,17 +226,48 @@ def _bind_streams(args: argparse.Namespace, streams: _Streams) -> None:
         raise MRMError("--format applies to -o - only (a file's extension gives its type)")
 
 
-def _make_output_folder(args: argparse.Namespace) -> None:
-    """Create the folder the output goes into (every subcommand alike; ADR 0011)."""
+def _output_folder(args: argparse.Namespace) -> Path | None:
+    """The folder the output goes into: a file's parent, a batch's directory, a pattern's parent."""
     out = getattr(args, "output", None)
     if not isinstance(out, str) or not out:
-        return
+        return None
     if "{stem}" in out:
-        out = out.split("{stem}", 1)[0] + "x"
+        return Path(out.split("{stem}", 1)[0] + "x").parent
     target = Path(out)
     if out.endswith(("/", os.sep)) or (not target.suffix and getattr(args, "inputs", None)):
-        return  # a batch's output directory: the subcommand creates it
-    target.parent.mkdir(parents=True, exist_ok=True)
+        return target  # a batch's output directory
+    return target.parent
+
+
+def _missing_folders(folder: Path | None) -> list[Path]:
+    """``folder`` and its ancestors that do not exist yet, deepest first (what this run may create)."""
+    missing: list[Path] = []
+    p = folder
+    while p is not None and p != p.parent and not p.exists() and not p.is_symlink():
+        missing.append(p)
+        p = p.parent
+    return missing
+
+
+def _make_output_folder(args: argparse.Namespace) -> None:
+    """Create the folder an output file goes into (every subcommand alike; ADR 0011).
+
+    A batch's directory is left to the subcommand, which creates it when it writes the first file.
+    """
+    folder = _output_folder(args)
+    out = getattr(args, "output", None)
+    if folder is None or (isinstance(out, str) and ("{stem}" in out or folder == Path(out))):
+        return
+    folder.mkdir(parents=True, exist_ok=True)
+
+
+def _remove_if_empty(folders: list[Path]) -> None:
+    """Remove the folders a failed run created and left empty, deepest first (never one holding a file)."""
+    for p in folders:
+        try:
+            p.rmdir()  # fails on a folder that holds anything: what was written stays
+        except OSError:
+            return
 
 
 @contextlib.contextmanager
@@ -271,8 +303,11 @@ def _run_cli(argv: list[str]) -> int:
         from mrm.warmup import announce_if_cold
 
         announce_if_cold()  # one line before numba compiles for a minute on a fresh install
+    created: list[Path] = []
+    status = 2
     try:
         _bind_streams(args, streams)
+        created = _missing_folders(_output_folder(args))
         _make_output_folder(args)
         with _stdout_to_stderr(streams.stdout_path is not None):
             summary = args._module.run(args)
@@ -290,8 +325,12 @@ def _run_cli(argv: list[str]) -> int:
         return _fail(args.command, f"a number is out of range (a coordinate or parameter too large): {e}")
     except MemoryError:
         return _fail(args.command, "not enough memory for this input (try a smaller --limit)")
+    else:
+        status = 0
     finally:
         streams.close()
+        if status != 0:
+            _remove_if_empty(created)  # a failed run leaves no empty output folder behind
     if args.json and summary is not None:
         print(json.dumps(summary, default=_json_default), flush=True)
     return 0

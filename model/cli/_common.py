@@ -20,7 +20,6 @@ import argparse
 import glob
 import math
 import os
-import re
 import sys
 import threading
 from collections.abc import Callable, Iterator, Sequence
@@ -330,8 +329,10 @@ def run_batch(
             if not args.json and not getattr(args, "quiet", False):
                 bar.write(line(summary))
         else:
-            errors.append((i, f"{jobs[i][0]}: {error}"))
-            print(f"mrm {args.command}: error: {jobs[i][0]}: {error}", file=sys.stderr, flush=True)
+            name = str(jobs[i][0])
+            text = error if error is not None and error.startswith(f"{name}: ") else f"{name}: {error}"
+            errors.append((i, text))
+            print(f"mrm {args.command}: error: {text}", file=sys.stderr, flush=True)
 
     with progress(args, total=len(jobs), desc=desc) as bar:
         if n_workers <= 1:
@@ -430,47 +431,11 @@ def read_image(
     return ps.complement(image_frame(path))
 
 
-_NETPBM_ORIGIN = re.compile(rb"#\s*mrm:origin\s+(-?\d+)\s+(-?\d+)")
-
-
-def _tiff_size(path: str | os.PathLike[str]) -> tuple[int, int]:
-    from mrm.io.georef import _rasterio
-
-    with _rasterio().open(path) as ds:
-        return int(ds.width), int(ds.height)
-
-
 def image_frame(path: str | os.PathLike[str]) -> tuple[int, int, int, int]:
-    """The box (xmin, ymin, xmax, ymax) of every pixel of an image file, from its header.
+    """The box of every pixel of an image file (:func:`mrm.io.georef.image_frame`, kept here for callers)."""
+    from mrm.io.georef import image_frame as frame_of
 
-    A picture's background is everything in its frame that is not in the set; ``--invert`` needs that
-    frame, which the (cropped) pixel set has lost. NPZ files hold sets, not pictures: refused.
-    """
-    from PIL import Image
-
-    from mrm.io.pixel_files import ORIGIN_KEY, parse_origin
-
-    ext = Path(path).suffix.lower()
-    if ext in (".tif", ".tiff"):
-        from mrm.io.georef import grid_origin, read_georef
-
-        georef = read_georef(path)
-        w, h = _tiff_size(path) if georef is None else (georef.width, georef.height)
-        x0, y0 = grid_origin(georef)
-        return x0, y0, x0 + w - 1, y0 + h - 1
-    if ext not in (".png", ".pbm", ".pgm"):
-        raise ParameterError(f"{os.fspath(path)}: --invert applies to images (PNG, Netpbm, GeoTIFF) only")
-    name = Path(path).name
-    with Image.open(path) as im:  # reads the header only
-        width, height = im.size
-        text = getattr(im, "text", {}) if ext == ".png" else {}
-        origin = parse_origin(text[ORIGIN_KEY], name) if ORIGIN_KEY in text else (0, 0)
-    if ext != ".png":
-        with open(path, "rb") as fh:
-            m = _NETPBM_ORIGIN.search(fh.read(4096))
-        if m is not None:
-            origin = (int(m.group(1)), int(m.group(2)))
-    return origin[0], origin[1], origin[0] + width - 1, origin[1] + height - 1
+    return frame_of(path)
 
 
 def read_project_input(path: str | os.PathLike[str]) -> Input:

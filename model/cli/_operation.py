@@ -9,6 +9,16 @@ Outputs: a pixel result goes to .png/.pbm/.pgm/.npz, a Euclidean result to .geoj
 for the other kind writes the result's other representation (R of a pixel result, D of a Euclidean one —
 exact both ways, since D(R(A)) = A). Files are written atomically: a failure leaves no half-written file.
 
+The one-input operations (``scale``, ``rotate``, ``simplify``) take several inputs as ``reconstruct`` does
+(docs/adr/0011): files, directories (their files of the input types), quoted globs and ``-``; ``-o`` is then
+a directory or a pattern holding ``{stem}``; ``--jobs N`` spreads them over worker processes, each input's
+line is printed as soon as it is done, a progress bar shows on a terminal. ``--threshold`` and ``--invert``
+say how an image becomes a pixel set.
+
+A georeferenced input (a GeoTIFF, an image with a world file, a project object with a georeference) gives a
+georeferenced result (ADR 0021): the input's grid for rotate and simplify, the grid scaled by α for scale;
+a .tif or .png (+ world file) result is written on that grid, a vector result in world coordinates.
+
 ``--json`` prints the info keys of the result (:func:`mrm.summary.summarize`) plus ``bound`` (the error
 bound of the operation as a chain, null where the model gives none) and ``measured`` (the exact Hausdorff
 distance between the composite Euclidean transform of A_first and A_last; null with ``--no-measure``).
@@ -17,13 +27,26 @@ distance between the composite Euclidean transform of A_first and A_last; null w
 from __future__ import annotations
 
 import argparse
+import math
 import time
 from pathlib import Path
 from typing import Any
 
-from mrm.cli._common import add_limit_argument, extension_of, load_object, print_table
+from mrm.cli._common import (
+    add_image_arguments,
+    add_inputs_argument,
+    add_jobs_argument,
+    add_limit_argument,
+    batch_outputs,
+    expand_inputs,
+    extension_of,
+    load_object,
+    print_table,
+    progress,
+    run_batch,
+)
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import ParameterError
+from mrm.errors import FileFormatError, ParameterError
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
 from mrm.reps.pixels import PixelSet
@@ -73,10 +96,17 @@ def parse_point(text: str) -> tuple[str, str]:
     return parts[0], parts[1]
 
 
-def read_one(path: str, object_name: str | None, model: str | None, limit: int) -> tuple[Any, str]:
+def read_one(
+    path: str,
+    object_name: str | None,
+    model: str | None,
+    limit: int,
+    threshold: float | None = None,
+    invert: bool = False,
+) -> tuple[Any, str]:
     """Read one input: (PixelSet or geometry, model)."""
     extension_of(path, INPUTS, "supported input file")
-    _, value, chosen = load_object(path, object_name, model, limit=limit)
+    _, value, chosen = load_object(path, object_name, model, threshold=threshold, invert=invert, limit=limit)
     return value, chosen
 
 
@@ -103,15 +133,30 @@ def read_two(args: argparse.Namespace) -> tuple[Any, Any, str]:
     return a, b, model
 
 
-def write_result(result: Any, path: str, model: str, properties: dict[str, Any] | None = None) -> None:
-    """Write a pixel set or a polygon to ``path``, converting to the representation the extension asks for."""
+def write_result(
+    result: Any,
+    path: str,
+    model: str,
+    properties: dict[str, Any] | None = None,
+    georef: Any = None,
+) -> None:
+    """Write a pixel set or a polygon to ``path``, converting to the representation the extension asks for.
+
+    With a georeference (:class:`mrm.io.georef.GeoRef`), a .tif or .png is written on its grid (+ world
+    file) and a vector file in world coordinates (GeoJSON with ``crs`` and ``bbox``); SVG stays a picture.
+    """
     ext = extension_of(path, OUTPUTS, "output file")
     if ext in PIXEL_EXTENSIONS:
         if not isinstance(result, PixelSet):
             from mrm.geometry.discretize import discretize
 
             result = discretize(result, model)
-        write_pixels(result, path)
+        from mrm.io.georef import GEOREFERENCED_EXTENSIONS, write_georeferenced
+
+        if georef is not None and ext in GEOREFERENCED_EXTENSIONS:
+            write_georeferenced(result, path, georef)
+        else:
+            write_pixels(result, path)
         return
     if ext == ".svg":
         write_svg(result, path)
@@ -120,10 +165,19 @@ def write_result(result: Any, path: str, model: str, properties: dict[str, Any] 
         from mrm.geometry.reconstruct import reconstruct
 
         result = reconstruct(result, model)
+    if georef is not None:
+        result = georef.to_world(result)
     if ext == ".wkt":
         write_wkt(result, path)
     else:
-        write_geojson(result, path, properties={"model": model, **(properties or {})})
+        from mrm.io.georef import geojson_members
+
+        write_geojson(
+            result,
+            path,
+            properties={"model": model, **(properties or {})},
+            members=geojson_members(georef, result),
+        )
 
 
 def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
@@ -131,59 +185,133 @@ def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
     return summarize(pixels, model, geom=None if isinstance(result, PixelSet) else result)
 
 
-def _input_record(path: str, object_name: str | None, source: Any) -> tuple[int, Any]:
-    """(id, provenance) of a project input object, so that its own chain joins the account; else (0, None)."""
-    if Path(path).suffix.lower() != ".mrm":
-        return 0, None
+def _input_record(path: str, object_name: str | None, source: Any) -> tuple[int, Any, Any]:
+    """(id, provenance, georef) of a project input object, so that its chain joins the account; else none.
+
+    For a pixel file, its georeference (a GeoTIFF's, a world file's) or None.
+    """
+    ext = Path(path).suffix.lower()
+    if ext != ".mrm":
+        if ext in PIXEL_EXTENSIONS and ext != ".npz":
+            from mrm.io.georef import read_georef
+
+            return 0, None, read_georef(path)
+        return 0, None, None
     from mrm.io.project import read_project
 
     objs = [o for o in read_project(path).objects if object_name is None or o.name == object_name]
     if len(objs) == 1 and objs[0].source == source:
-        return objs[0].id, objs[0].provenance
-    return 0, None
+        return objs[0].id, objs[0].provenance, objs[0].georef
+    return 0, None, None
 
 
-def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) -> dict[str, Any]:
-    """Run one unary operation, write its result, return the --json summary: the model's account.
+def unary_file(
+    path: str,
+    output: str,
+    operation: str,
+    params: dict[str, Any],
+    object_name: str | None,
+    model: str | None,
+    limit: int,
+    no_measure: bool,
+    threshold: float | None = None,
+    invert: bool = False,
+) -> dict[str, Any]:
+    """Run one unary operation on one input and write its result; return its summary (batch workers call it).
 
     The parameters are read and range-checked by the registry (:func:`mrm.ops.base.coerce_params`); the
-    numbers printed are :meth:`mrm.ops.account.Account.summary`, the same as the inspector's and
-    ``mrm account``'s for the same chain (a project input's own chain is part of it).
+    numbers are :meth:`mrm.ops.account.Account.summary`, the same as the inspector's and ``mrm account``'s
+    for the same chain (a project input's own chain is part of it).
     """
     import dataclasses
 
     from mrm.document import Provenance
+    from mrm.io.georef import result_georef
     from mrm.ops.account import account_of
+    from mrm.ops.apply import load_paper_operations
     from mrm.ops.base import coerce_params, get_operation, params_to_dict, run_operation
 
-    extension_of(args.output, OUTPUTS, "output file")  # fail before any work
+    load_paper_operations()
     spec = get_operation(operation)
-    checked = coerce_params(spec, {k: v for k, v in params.items() if v is not None})  # before reading
-    source, model = read_one(args.input, args.object, args.model, args.limit)
-    checked = dataclasses.replace(checked, model=model)
-    oid, parent = _input_record(args.input, args.object, source)
+    checked = coerce_params(spec, params)
+    source, chosen = read_one(path, object_name, model, limit, threshold, invert)
+    checked = dataclasses.replace(checked, model=chosen)
+    oid, parent, georef = _input_record(path, object_name, source)
     prov = Provenance(spec.name, params_to_dict(checked), (oid,), (source,), (parent,))
     t0 = time.perf_counter()
-    if args.no_measure:
-        result = run_operation(spec, [source], checked, limit=args.limit).output
-        acc = account_of(prov, measure=False, limit=args.limit)
+    if no_measure:
+        result = run_operation(spec, [source], checked, limit=limit).output
+        acc = account_of(prov, measure=False, limit=limit)
     else:  # the account recomputes the step from its input: the result is made once
-        acc = account_of(prov, measure=True, limit=args.limit)
+        acc = account_of(prov, measure=True, limit=limit)
         if acc.error:
             raise ParameterError(acc.error)
         result = acc.output
     seconds = time.perf_counter() - t0
-    write_result(result, args.output, model, {"operation": spec.name})
-    summary: dict[str, Any] = {"input": str(args.input), "output": str(args.output), "operation": spec.name}
+    out_georef = result_georef(spec.name, params_to_dict(checked), [georef])
+    Path(output).parent.mkdir(parents=True, exist_ok=True)  # a batch's directory: when the first file is
+    write_result(result, output, chosen, {"operation": spec.name}, out_georef)
+    summary: dict[str, Any] = {"input": str(path), "output": str(output), "operation": spec.name}
     summary["params"] = params_to_dict(checked)
-    pixels = acc.result if acc.result is not None else _pixels_of(result, model, args.limit)
-    summary.update(result_summary(result, pixels, model))
+    pixels = acc.result if acc.result is not None else _pixels_of(result, chosen, limit)
+    summary.update(result_summary(result, pixels, chosen))
     summary["account"] = acc.summary()
     summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})
     summary["seconds"] = seconds
-    if not args.json:
-        print_table({k: v for k, v in summary.items() if k not in ("account", "steps", "parts")})
+    if out_georef is not None:
+        summary["crs"] = out_georef.crs
+        summary["transform"] = list(out_georef.transform)
     return summary
+
+
+def _line(f: dict[str, Any]) -> str:
+    return f"{f['input']} -> {f['output']}: {f['pixels']} pixels, {f['seconds']:.3f} s"
+
+
+#: Keys summed over the inputs of a batch.
+_SUM_KEYS = ("pixels", "components", "holes", "vertices", "seconds")
+
+
+def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) -> dict[str, Any]:
+    """Run one unary operation on every input, write the results, return the --json summary.
+
+    One input: its summary (the model's account, see :func:`unary_file`). Several: ``inputs``, the sums of
+    :data:`_SUM_KEYS` and ``files``, the per-input summaries in input order; an input that fails is reported
+    on stderr when it fails, the others go on, and the command then exits with status 2.
+    """
+    from mrm.ops.base import coerce_params, get_operation
+
+    spec = get_operation(operation)
+    given = {k: v for k, v in params.items() if v is not None}
+    check_parameter_text(spec, given)
+    coerce_params(spec, given)  # refused before any input is read
+    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
+    for i in inputs:
+        extension_of(i, INPUTS, "supported input file")
+    image = (args.threshold, args.invert)
+    default_ext = ".png" if spec.name in ("dss", "discrete_rotation") else ".geojson"
+    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, default_ext, "output file")
+    jobs = [
+        (i, o, spec.name, given, args.object, args.model, args.limit, args.no_measure, *image)
+        for i, o in zip(inputs, outputs, strict=True)
+    ]
+    if len(jobs) == 1:
+        with progress(args, desc=f"{args.command} {Path(inputs[0]).name}"):
+            summary = unary_file(*jobs[0])
+        if not args.json:
+            print_table({k: v for k, v in summary.items() if k not in ("account", "steps", "parts")})
+        return summary
+    files, errors = run_batch(args, unary_file, jobs, _line, desc=str(args.command))
+    total: dict[str, Any] = {"operation": spec.name, "inputs": len(jobs)}
+    for k in _SUM_KEYS:
+        values = [f.get(k) for f in files]
+        total[k] = None if any(v is None for v in values) else sum(values)
+    total["files"] = files
+    if not args.json:
+        print_table(total)
+    if errors:
+        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
+    return total
 
 
 def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:
@@ -192,6 +320,71 @@ def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:
     from mrm.geometry.discretize import discretize
 
     return discretize(result, model, limit=limit)
+
+
+def _approx(text: str) -> float | None:
+    """A float close to the number ``text`` writes (``1e400`` → inf, ``1e-400`` → the least subnormal).
+
+    None for text that is not a decimal or ``p/q`` (the registry says what is wrong with it).
+    """
+    t = text.strip()
+    if "/" in t:
+        num, den = (_approx(x) for x in t.split("/", 1))
+        if num is None or den is None or den == 0 or (math.isinf(num) and math.isinf(den)):
+            return None
+        return num / den
+    try:
+        f = float(t)
+    except ValueError:
+        return None
+    if math.isnan(f) or (math.isinf(f) and not any(ch.isdigit() for ch in t)):
+        return None  # nan, inf: "must be finite", from the registry
+    mantissa = t.lower().split("e", 1)[0]
+    if f == 0 and any(ch in "123456789" for ch in mantissa):
+        return math.copysign(5e-324, -1.0 if t.startswith("-") else 1.0)  # below every float: not zero
+    return f
+
+
+def check_parameter_text(spec: Any, given: dict[str, Any]) -> None:
+    """Refuse, in one short line showing the declared range, a number too large or too small for a float.
+
+    The registry reads parameters exactly, so ``--angle 1e400`` would become a 400-digit Fraction before its
+    range check; this looks at the text first. Values a float can hold are left to the registry's own
+    checks (:func:`mrm.ops.base.validate_params`), which give the same kind of message.
+    """
+    from mrm.ops.base import POINT_LIMIT, range_text
+
+    for p in spec.param_specs():
+        value = given.get(p.name)
+        texts = value if isinstance(value, tuple) else (value,)
+        for t in texts:
+            if not isinstance(t, str):
+                continue
+            f = _approx(t)
+            if f is None:
+                continue
+            shown = t.strip() if len(t.strip()) <= 24 else t.strip()[:21] + "..."
+            what = f"parameter {p.name!r}" + (f" ({p.label})" if p.label and p.label != p.name else "")
+            if p.kind == "point":
+                if math.isinf(f):
+                    raise ParameterError(
+                        f"{what} must have coordinates between {-POINT_LIMIT:g} and {POINT_LIMIT:g}, "
+                        f"got {shown}"
+                    )
+                continue
+            lo, hi = p.minimum, p.maximum
+            allowed = f" (allowed: {range_text(p)})" if lo is not None or hi is not None else ""
+            if math.isinf(f) and f > 0 and hi is not None:
+                need = f"{'≤' if p.max_inclusive else '<'} {hi:g}"
+            elif math.isinf(f) and f < 0 and lo is not None:
+                need = f"{'≥' if p.min_inclusive else '>'} {lo:g}"
+            elif math.isinf(f):
+                need = "within ±1.8e308"
+            elif abs(f) == 5e-324 and lo is not None and lo > 0:
+                need = f"{'≥' if p.min_inclusive else '>'} {lo:g}"
+            else:
+                continue
+            raise ParameterError(f"{what} must be {need}, got {shown}{allowed}")
 
 
 def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
@@ -209,7 +402,8 @@ def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
     fields = [p for p in spec.param_specs() if p.name != "model"]
 
     def add_arguments(parser: argparse.ArgumentParser) -> None:
-        add_input(parser)
+        add_inputs_argument(parser, "pixel files, vector files or projects (.mrm)")
+        add_object_argument(parser)
         for p in fields:
             unit = f" [{p.unit}]" if p.unit and p.unit != "×" else ""
             if p.kind == "point":
@@ -224,7 +418,9 @@ def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
                     metavar=p.label.upper() if p.label.isascii() else p.name[0].upper(),
                     help=f"{p.help}{unit}{allowed}; decimal or p/q, read exactly",
                 )
-        add_common(parser, output_help)
+        add_common(parser, output_help + "; for several inputs a directory or a pattern holding {stem}")
+        add_jobs_argument(parser)
+        add_image_arguments(parser)
 
     def run(args: argparse.Namespace) -> dict[str, Any]:
         return run_unary(args, spec.name, {p.name: getattr(args, p.name) for p in fields})

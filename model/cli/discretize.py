@@ -151,27 +151,6 @@ def _grid(path: str, geom: Any, like: str | None, resolution: float | None, exte
     return GeoRef.from_resolution(resolution, extent or tuple(geom.bounds), crs)
 
 
-def _write_georeferenced(ps: PixelSet, output: str, ext: str, grid: GeoRef) -> None:
-    """The whole grid as a GeoTIFF, or as an image + world file (+ .prj)."""
-    from mrm.io.georef import write_raster, write_world_file
-
-    if ext in (".tif", ".tiff"):
-        write_raster(ps, output, grid)
-        return
-    if ext != ".png":
-        raise ParameterError(f"{output}: a georeferenced result is written as .tif or .png (+ world file)")
-    import io
-
-    from PIL import Image
-
-    from mrm.io.atomic import atomic_write_bytes
-
-    buf = io.BytesIO()
-    Image.fromarray(ps.to_image(grid.frame)).save(buf, format="PNG")  # the frame's bottom-left is (0, 0)
-    atomic_write_bytes(output, buf.getvalue())
-    write_world_file(output, grid)
-
-
 def discretize_file(
     path: str,
     output: str,
@@ -205,7 +184,9 @@ def discretize_file(
             print(f"mrm discretize: warning: {warning}", file=sys.stderr, flush=True)
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     if grid is not None and out_ext != ".svg":
-        _write_georeferenced(ps, output, out_ext, grid)
+        from mrm.io.georef import write_georeferenced
+
+        write_georeferenced(ps, output, grid)
     elif out_ext == ".svg":
         if geom is None:
             write_svg(ps, output)

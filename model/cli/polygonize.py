@@ -1,4 +1,4 @@
-"""``mrm polygonize LABELS -o OUT.geojson``: a label image as a watertight set of polygons, one per region.
+"""``mrm polygonize LABELS... -o OUT.geojson``: a label image as a watertight set of polygons, one per region.
 
 ``LABELS`` is an integer label image: a grey (8 or 16 bits) or palette PNG, a PGM (the grey value is the
 label), or an NPZ holding ``labels`` (and optionally ``origin``). Label 0 is the background. Each region —
@@ -9,6 +9,10 @@ features with their labels back to the label image exactly.
 
 ``--json`` prints ``model``, ``labels`` (distinct non-zero labels), ``regions``, ``pixels``, ``vertices``,
 ``seconds`` (the time the polygonization took), ``input`` and ``output``.
+
+Several inputs (files, directories, quoted globs, ``-``) work as for ``reconstruct`` (docs/adr/0011): ``-o``
+is a directory or a pattern holding ``{stem}``, ``--jobs N`` spreads them over worker processes, each
+input's line is printed when it is done; ``--json`` then gives ``inputs``, the sums and ``files``.
 """
 
 from __future__ import annotations
@@ -20,7 +24,17 @@ import zipfile
 from pathlib import Path
 from typing import Any
 
-from mrm.cli._common import add_limit_argument, extension_of, print_table
+from mrm.cli._common import (
+    add_inputs_argument,
+    add_jobs_argument,
+    add_limit_argument,
+    batch_outputs,
+    expand_inputs,
+    extension_of,
+    print_table,
+    progress,
+    run_batch,
+)
 from mrm.errors import FileFormatError, InvalidGeometryError
 from mrm.io.atomic import atomic_open
 from mrm.reps.pixels import LabelMap
@@ -34,9 +48,16 @@ OUTPUTS = (".geojson", ".json")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the input, ``-o OUT`` and ``--limit``."""
-    parser.add_argument("input", metavar="LABELS", help="label image (.png grey or palette, .pgm, .npz)")
-    parser.add_argument("-o", "--output", required=True, metavar="OUT", help="the GeoJSON file to write")
+    """Add the inputs, ``-o OUT``, ``--jobs`` and ``--limit``."""
+    add_inputs_argument(parser, "label images (.png grey or palette, .pgm, .npz)")
+    parser.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="OUT",
+        help="the GeoJSON file to write; for several inputs a directory or a pattern holding {stem}",
+    )
+    add_jobs_argument(parser)
     add_limit_argument(parser)
 
 
@@ -80,16 +101,15 @@ def read_labels(path: str, limit: int) -> LabelMap:
     return LabelMap(img.samples[::-1], _netpbm_origin(img.comments, name))
 
 
-def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Polygonize the label image and write the features; return the summary."""
+def polygonize_file(path: str, output: str, model: str | None, limit: int) -> dict[str, Any]:
+    """Polygonize one label image and write its features; return its summary (batch workers call it)."""
     from mrm.geometry.polygonize import polygonize
     from mrm.io.vector_files import _geojson_of
 
-    extension_of(args.output, OUTPUTS, "GeoJSON output file")
-    lm = read_labels(str(args.input), args.limit)
-    model = args.model or "gauss"
+    lm = read_labels(path, limit)
+    chosen = model or "gauss"
     t0 = time.perf_counter()
-    regions = polygonize(lm, model=model)
+    regions = polygonize(lm, model=chosen)
     seconds = time.perf_counter() - t0
     features = [
         {
@@ -102,20 +122,46 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     try:
         text = json.dumps({"type": "FeatureCollection", "features": features}, allow_nan=False)
     except ValueError:
-        raise InvalidGeometryError(f"{args.output}: cannot write NaN or infinite coordinates") from None
-    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
-    with atomic_open(args.output, "w") as fh:
+        raise InvalidGeometryError(f"{output}: cannot write NaN or infinite coordinates") from None
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    with atomic_open(output, "w") as fh:
         fh.write(text + "\n")
-    summary = {
-        "input": str(args.input),
-        "output": str(args.output),
-        "model": model,
+    return {
+        "input": str(path),
+        "output": str(output),
+        "model": chosen,
         "labels": len({r.label for r in regions}),
         "regions": len(regions),
         "pixels": sum(r.pixels for r in regions),
         "vertices": sum(count_vertices(r.geometry) for r in regions),
         "seconds": seconds,
     }
+
+
+def _line(f: dict[str, Any]) -> str:
+    return f"{f['input']} -> {f['output']}: {f['regions']} regions, {f['seconds']:.3f} s"
+
+
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    """Polygonize every label image and write the features; return the summary."""
+    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
+    for i in inputs:
+        extension_of(i, INPUTS, "label image")
+    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".geojson", "GeoJSON output file")
+    jobs = [(i, o, args.model, args.limit) for i, o in zip(inputs, outputs, strict=True)]
+    if len(jobs) == 1:
+        with progress(args, desc=f"polygonize {Path(inputs[0]).name}"):
+            summary = polygonize_file(*jobs[0])
+        if not args.json:
+            print_table(summary)
+        return summary
+    files, errors = run_batch(args, polygonize_file, jobs, _line, desc="polygonize")
+    total: dict[str, Any] = {"model": args.model or "gauss", "inputs": len(jobs)}
+    for k in ("regions", "pixels", "vertices", "seconds"):
+        total[k] = sum(f[k] for f in files)
+    total["files"] = files
     if not args.json:
-        print_table(summary)
-    return summary
+        print_table(total)
+    if errors:
+        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
+    return total

@@ -125,15 +125,9 @@ def _write(geom: Any, path: str, model: str, source: str, georef: Any = None, fe
         parts = list(getattr(geom, "geoms", [] if geom.is_empty else [geom]))
         write_geojson(parts, path, properties={"model": model, "source": Path(source).name})
     else:
-        members: dict[str, Any] = {}
-        if georef is not None:
-            from mrm.io.georef import geojson_crs_member
+        from mrm.io.georef import geojson_members
 
-            crs = geojson_crs_member(georef.crs)
-            if crs is not None:
-                members["crs"] = crs
-            if not geom.is_empty:
-                members["bbox"] = list(geom.bounds)
+        members = geojson_members(georef, geom)
         write_geojson(geom, path, properties={"model": model, "source": Path(source).name}, members=members)
 
 

@@ -2,10 +2,16 @@
 
 The representation written follows the file type:
 
-* ``.png`` ``.pbm`` ``.pgm`` ``.npz`` — the **discrete** representation (the source, or D(E)), keeping its
-  place on the grid (:func:`mrm.io.pixel_files.write_pixels`);
+* ``.png`` ``.pbm`` ``.pgm`` ``.npz`` ``.tif`` — the **discrete** representation (the source, or D(E)),
+  keeping its place on the grid (:func:`mrm.io.pixel_files.write_pixels`);
 * ``.geojson`` ``.json`` ``.wkt`` — the **Euclidean** representation (the source, or R(A)), coordinates exact
   (:mod:`mrm.io.vector_files`);
+
+An object with a georeference (``DocObject.georef``: it came from a GeoTIFF or an image with a world file, or
+from operations on one, ADR 0021) is exported where it lies on the Earth: ``.tif`` with its transform and CRS,
+``.png`` with a world file (+ ``.prj``), on the raster's frame grown to hold every pixel
+(:func:`mrm.io.georef.write_georeferenced`); GeoJSON and WKT in world coordinates, GeoJSON with ``crs`` and
+``bbox``. SVG pictures and the other pixel formats stay in grid coordinates.
 * ``.svg`` — a picture with y up: the Euclidean shape by default (SVG is a vector format, so a plain export
   gives the shape alone, ready for an SVG editor or a publication figure), the pixels (``rep="discrete"``), or
   both (``rep="both"``: the pixels as light squares with the Euclidean shape outlined on top, the picture
@@ -31,7 +37,7 @@ from mrm.reps.pixels import LabelMap, PixelSet
 
 PathLike = str | os.PathLike[str]
 
-PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz")
+PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz", ".tif", ".tiff")
 VECTOR_EXTENSIONS = (".geojson", ".json", ".wkt")
 PICTURE_EXTENSIONS = (".svg",)
 LABEL_EXTENSIONS = (".png", ".npz")
@@ -90,18 +96,27 @@ def export_object(
         write_svg(derived.get("euclidean"), path, pixels=derived.get("discrete"))
         return "both"
     value = doc.derived(obj.id).get("discrete" if chosen == "discrete" else "euclidean")
+    georef = obj.georef
     if ext in PIXEL_EXTENSIONS:
+        from mrm.io.georef import GEOREFERENCED_EXTENSIONS, write_georeferenced
         from mrm.io.pixel_files import write_pixels
 
-        write_pixels(value, path)
+        if georef is not None and ext in GEOREFERENCED_EXTENSIONS:
+            write_georeferenced(value, path, georef)
+        else:
+            write_pixels(value, path)
     elif ext == ".wkt":
         from mrm.io.vector_files import write_wkt
 
-        write_wkt(value, path)
+        write_wkt(value if georef is None else georef.to_world(value), path)
     elif ext in VECTOR_EXTENSIONS:
+        from mrm.io.georef import geojson_members
         from mrm.io.vector_files import write_geojson
 
-        write_geojson(value, path, properties=_properties(doc, obj_id))
+        world = value if georef is None else georef.to_world(value)
+        write_geojson(
+            world, path, properties=_properties(doc, obj_id), members=geojson_members(georef, world)
+        )
     else:
         from mrm.io.vector_files import write_svg
 
@@ -123,8 +138,26 @@ def export_objects_geojson(doc: Document, ids: Sequence[int], path: PathLike) ->
 
     if _ext(path) not in (".geojson", ".json"):
         raise FileFormatError(f"{os.fspath(path)}: several objects go to a .geojson file")
-    parts = [(doc.get(i).name, doc.derived(i).get("euclidean")) for i in ids]
-    write_geojson(parts, path, properties={"model": doc.model})
+    from mrm.io.georef import geojson_members, same_crs
+
+    objs = [doc.get(i) for i in ids]
+    georefs = [o.georef for o in objs]
+    # One file holds one coordinate system: world coordinates for all, in one CRS, or grid ones for all.
+    refs = [g for g in georefs if g is not None]
+    if refs and (len(refs) < len(georefs) or not all(same_crs(g.crs, refs[0].crs) for g in refs)):
+        raise ParameterError(
+            "the objects are not all georeferenced in one CRS: export them to separate files"
+        )
+    parts = [
+        (o.name, e if o.georef is None else o.georef.to_world(e))
+        for o, e in ((o, doc.derived(o.id).get("euclidean")) for o in objs)
+    ]
+    members: dict[str, Any] = {}
+    if georefs and georefs[0] is not None:
+        from shapely.geometry import GeometryCollection
+
+        members = geojson_members(georefs[0], GeometryCollection([g for _, g in parts if not g.is_empty]))
+    write_geojson(parts, path, properties={"model": doc.model}, members=members)
 
 
 def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[LabelMap, dict[int, int]]:

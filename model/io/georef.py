@@ -30,13 +30,15 @@ import json
 import logging
 import math
 import os
+import re
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeAlias
 
 import numpy as np
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError, SizeLimitError
+from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, MRMError, ParameterError, SizeLimitError
 from mrm.reps.pixels import PixelSet
 
 log = logging.getLogger(__name__)
@@ -82,27 +84,47 @@ class GeoRef:
         The raster's size in pixels.
     crs : str or None
         The coordinate reference system as ``EPSG:n`` when it has a code, else WKT; None when unknown.
+    origin : (int, int)
+        The grid coordinates of the raster's bottom-left pixel: (0, 0) for a raster as it is read, (x0, y0)
+        for a unit grid read back in place (:func:`grid_origin`), anything for an object's grid after an
+        edit (:meth:`covering`, :meth:`scaled`).
     """
 
     transform: Transform
     width: int
     height: int
     crs: str | None = None
+    origin: tuple[int, int] = (0, 0)
 
     def __post_init__(self) -> None:
+        if len(self.transform) != 6 or not all(
+            isinstance(v, int | float) and not isinstance(v, bool) for v in self.transform
+        ):
+            raise FileFormatError(f"a raster's transform is six numbers, got {self.transform!r}")
+        object.__setattr__(self, "transform", tuple(float(v) for v in self.transform))
         a, b, _c, d, e, _f = self.transform
         if not all(math.isfinite(v) for v in self.transform) or a * e - b * d == 0:
             raise FileFormatError(f"the raster's transform {self.transform} is not invertible")
+        for v in (self.width, self.height, *self.origin):
+            if isinstance(v, bool) or not isinstance(v, int | np.integer):
+                raise FileFormatError(f"a raster's size and origin are integers, got {v!r}")
         if self.width < 1 or self.height < 1:
             raise FileFormatError(f"a raster of {self.width}×{self.height} pixels holds nothing")
+        if len(self.origin) != 2:
+            raise FileFormatError(f"a raster's origin is (x0, y0), got {self.origin!r}")
+        object.__setattr__(self, "origin", (int(self.origin[0]), int(self.origin[1])))
+        if self.crs is not None and not isinstance(self.crs, str):
+            raise FileFormatError(f"a CRS is given as text (EPSG:n or WKT), got {type(self.crs).__name__}")
 
     # ------------------------------------------------------------------ maps
     def grid_to_world(self) -> list[float]:
         """The map (u, v) ↦ (X, Y) as shapely's ``affine_transform`` matrix [a, b, d, e, xoff, yoff]."""
         a, b, c, d, e, f = self.transform
         h = self.height
-        # (X, Y) = T · (u + ½, H − ½ − v)
-        return [a, -b, d, -e, a * 0.5 + b * (h - 0.5) + c, d * 0.5 + e * (h - 0.5) + f]
+        x0, y0 = self.origin
+        # (X, Y) = T · (u − x0 + ½, H − ½ − (v − y0))
+        cu, rv = 0.5 - x0, h - 0.5 + y0
+        return [a, -b, d, -e, a * cu + b * rv + c, d * cu + e * rv + f]
 
     def world_to_grid(self) -> list[float]:
         """The inverse map (X, Y) ↦ (u, v), as shapely's ``affine_transform`` matrix."""
@@ -125,8 +147,9 @@ class GeoRef:
 
     @property
     def frame(self) -> tuple[int, int, int, int]:
-        """The box of the raster's pixels in grid coordinates: (0, 0, width − 1, height − 1)."""
-        return (0, 0, self.width - 1, self.height - 1)
+        """The box of the raster's pixels in grid coordinates: (x0, y0, x0 + width − 1, y0 + height − 1)."""
+        x0, y0 = self.origin
+        return (x0, y0, x0 + self.width - 1, y0 + self.height - 1)
 
     @property
     def pixel_area(self) -> float:
@@ -135,13 +158,96 @@ class GeoRef:
         return abs(a * e - b * d)
 
     def as_dict(self) -> dict[str, Any]:
-        """JSON form: ``transform``, ``width``, ``height``, ``crs``."""
+        """JSON form: ``transform``, ``width``, ``height``, ``crs``, ``origin`` (what project files store)."""
         return {
             "transform": list(self.transform),
             "width": self.width,
             "height": self.height,
             "crs": self.crs,
+            "origin": list(self.origin),
         }
+
+    # ------------------------------------------------------------------ other frames of the same map
+    def covering(self, box: tuple[int, int, int, int] | None) -> GeoRef:
+        """The same grid-to-world map on a frame grown to hold ``box`` (grid pixels xmin, ymin, xmax, ymax).
+
+        An object edited or rotated on its raster's grid may leave the raster's frame; exporting it on this
+        frame keeps every pixel, and GDAL still reads each pixel where the map puts it. The frame only grows
+        by whole pixels, so the new corner is the old one moved by whole pixel steps (exact for the usual
+        power-of-two or integer pixel sizes). Returns ``self`` when the frame already holds ``box``.
+        """
+        fx0, fy0, fx1, fy1 = self.frame
+        if box is None or (box[0] >= fx0 and box[1] >= fy0 and box[2] <= fx1 and box[3] <= fy1):
+            return self
+        nx0, ny0 = min(fx0, box[0]), min(fy0, box[1])
+        nx1, ny1 = max(fx1, box[2]), max(fy1, box[3])
+        a, b, c, d, e, f = self.transform
+        dcol, drow = nx0 - fx0, fy1 - ny1  # the new top-left pixel, in the old raster's (col, row)
+        return GeoRef(
+            (a, b, c + a * dcol + b * drow, d, e, f + d * dcol + e * drow),
+            nx1 - nx0 + 1,
+            ny1 - ny0 + 1,
+            self.crs,
+            (nx0, ny0),
+        )
+
+    def scaled(self, alpha: Any, center: Any = None) -> GeoRef:
+        """The georeference of a result scaled by α about ``center`` on this grid (DSS_α, ADR 0021).
+
+        The result's grid point u′ = C + α(u − C) stands for the world point of u, so the new map is
+        ``grid_to_world ∘ Sc_α⁻¹``: pixels α times smaller, the world outline where the input's was. The map
+        is rounded to float64 once (exact for α a power of two); the frame is the pixels whose centres lie
+        in the scaled frame.
+        """
+        from fractions import Fraction
+
+        def exact(v: Any) -> Fraction:
+            # as the operations read parameters: a float is the decimal it prints as, text may be "p/q"
+            return Fraction(repr(v)) if isinstance(v, float) else Fraction(str(v).strip())
+
+        q = exact(alpha)
+        if q <= 0:
+            raise ParameterError(f"a scaling factor is positive, got {alpha!r}")
+        cx, cy = (Fraction(0), Fraction(0)) if center is None else (exact(center[0]), exact(center[1]))
+        A, B, D, E, XO, YO = self.grid_to_world()
+        inv = 1 / q
+        # u = u′/α + C(1 − 1/α)
+        kx, ky = float(cx * (1 - inv)), float(cy * (1 - inv))
+        fi = float(inv)
+        m = [A * fi, B * fi, D * fi, E * fi, XO + A * kx + B * ky, YO + D * kx + E * ky]
+        fx0, fy0, fx1, fy1 = self.frame
+
+        def span(lo: int, hi: int, c: Fraction) -> tuple[int, int]:
+            a0 = math.ceil(c + q * (Fraction(lo) - Fraction(1, 2) - c))
+            a1 = math.floor(c + q * (Fraction(hi) + Fraction(1, 2) - c))
+            return a0, max(a0, a1)
+
+        (nx0, nx1), (ny0, ny1) = span(fx0, fx1, cx), span(fy0, fy1, cy)
+        return GeoRef.from_grid_map(m, (nx0, ny0, nx1, ny1), self.crs)
+
+    @classmethod
+    def from_grid_map(cls, m: Sequence[float], frame: tuple[int, int, int, int], crs: str | None) -> GeoRef:
+        """The georeference with grid-to-world map ``m`` (shapely's [a, b, d, e, xoff, yoff]) on ``frame``."""
+        A, B, D, E, XO, YO = (float(v) for v in m)
+        x0, y0, x1, y1 = frame
+        h = y1 - y0 + 1
+        # u = col + x0 − ½, v = H − ½ − row + y0
+        cu, rv = x0 - 0.5, h - 0.5 + y0
+        return cls((A, -B, A * cu + B * rv + XO, D, -E, D * cu + E * rv + YO), x1 - x0 + 1, h, crs, (x0, y0))
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> GeoRef:
+        """The inverse of :meth:`as_dict` (``origin`` optional); FileFormatError on a malformed record."""
+        try:
+            return cls(
+                tuple(data["transform"]),
+                data["width"],
+                data["height"],
+                data.get("crs"),
+                tuple(data.get("origin", (0, 0))),
+            )
+        except (KeyError, TypeError, ValueError) as e:
+            raise FileFormatError(f"not a georeference record: {e}") from None
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -249,15 +355,54 @@ def world_file_text(transform: Transform) -> str:
     )
 
 
-def _image_size(path: PathLike) -> tuple[int, int]:
+_NETPBM_ORIGIN = re.compile(rb"#\s*mrm:origin\s+(-?\d+)\s+(-?\d+)")
+
+
+def _tiff_size(path: PathLike) -> tuple[int, int]:
+    with _rasterio().open(path) as ds:
+        return int(ds.width), int(ds.height)
+
+
+def image_frame(path: PathLike) -> tuple[int, int, int, int]:
+    """The box (xmin, ymin, xmax, ymax) of every pixel of an image file, from its header.
+
+    The pixel readers place an image's bottom-left pixel at its ``mrm:origin`` (PNG text, Netpbm comment),
+    a GeoTIFF's at :func:`grid_origin`, else at (0, 0); this is the frame they place it in. ``--invert`` and
+    the georeference of a world file need it, which the (cropped) pixel set has lost. NPZ files hold sets,
+    not pictures: refused.
+    """
     from PIL import Image
 
-    with Image.open(path) as im:  # the header only
-        return int(im.size[0]), int(im.size[1])
+    from mrm.io.pixel_files import ORIGIN_KEY, parse_origin
+
+    ext = Path(path).suffix.lower()
+    if ext in GEOTIFF_EXTENSIONS:
+        georef = read_georef(path)
+        if georef is not None:
+            return georef.frame
+        w, h = _tiff_size(path)
+        return 0, 0, w - 1, h - 1
+    if ext not in (".png", ".pbm", ".pgm"):
+        raise ParameterError(f"{os.fspath(path)}: --invert applies to images (PNG, Netpbm, GeoTIFF) only")
+    name = Path(path).name
+    with Image.open(path) as im:  # reads the header only
+        width, height = im.size
+        text = getattr(im, "text", {}) if ext == ".png" else {}
+        origin = parse_origin(text[ORIGIN_KEY], name) if ORIGIN_KEY in text else (0, 0)
+    if ext != ".png":
+        with open(path, "rb") as fh:
+            m = _NETPBM_ORIGIN.search(fh.read(4096))
+        if m is not None:
+            origin = (int(m.group(1)), int(m.group(2)))
+    return origin[0], origin[1], origin[0] + width - 1, origin[1] + height - 1
 
 
 def read_georef(path: PathLike) -> GeoRef | None:
-    """The georeference of a raster: a GeoTIFF's own, or an image's world file (+ ``.prj``); else None."""
+    """The georeference of a raster: a GeoTIFF's own, or an image's world file (+ ``.prj``); else None.
+
+    Its ``origin`` is where the pixel readers (:func:`mrm.io.pixel_files.read_pixels`) put the raster's
+    bottom-left pixel, so that ``read_georef(p).to_world`` maps what ``read_pixels(p)`` gives.
+    """
     p = Path(path)
     if p.suffix.lower() in GEOTIFF_EXTENSIONS:
         rasterio = _rasterio()
@@ -266,14 +411,16 @@ def read_georef(path: PathLike) -> GeoRef | None:
                 t = ds.transform
                 if ds.transform.is_identity and world_file_of(p) is None:
                     return None  # a plain TIFF without georeference
-                return GeoRef((t.a, t.b, t.c, t.d, t.e, t.f), ds.width, ds.height, _crs_text(ds.crs))
+                g = GeoRef((t.a, t.b, t.c, t.d, t.e, t.f), ds.width, ds.height, _crs_text(ds.crs))
         except rasterio.errors.RasterioIOError as e:
             raise FileFormatError(f"{p.name}: not a readable GeoTIFF ({e})") from None
+        origin = grid_origin(g)
+        return g if origin == (0, 0) else GeoRef(g.transform, g.width, g.height, g.crs, origin)
     wf = world_file_of(p)
     if wf is None:
         return None
     transform = parse_world_file(wf.read_text(encoding="ascii", errors="replace"), wf.name)
-    width, height = _image_size(p)
+    x0, y0, x1, y1 = image_frame(p)
     prj = p.with_suffix(".prj")
     crs = prj.read_text(encoding="utf-8", errors="replace").strip() if prj.is_file() else None
     if crs:
@@ -281,7 +428,7 @@ def read_georef(path: PathLike) -> GeoRef | None:
             crs = _crs_text(_rasterio().crs.CRS.from_wkt(crs))
         except Exception:  # no rasterio, or a WKT it cannot parse: keep the text as it is
             log.debug("kept the .prj text of %s as it is", p.name)
-    return GeoRef(transform, width, height, crs or None)
+    return GeoRef(transform, x1 - x0 + 1, y1 - y0 + 1, crs or None, (x0, y0))
 
 
 def write_world_file(path: PathLike, georef: GeoRef) -> Path:
@@ -308,7 +455,7 @@ def read_raster(
     threshold: float | None = None,
     limit: int = DEFAULT_PIXEL_LIMIT,
 ) -> tuple[PixelSet, GeoRef | None]:
-    """Read band 1 of a GeoTIFF as a pixel set (bottom-left pixel at (0, 0)) and its georeference.
+    """Read band 1 of a GeoTIFF as a pixel set and its georeference.
 
     Parameters
     ----------
@@ -321,6 +468,7 @@ def read_raster(
     Returns
     -------
     pixels : PixelSet
+        Placed where :func:`read_georef` says (its ``origin``: (0, 0), or (x0, y0) for a unit grid).
     georef : GeoRef or None
         None for a TIFF without georeference.
     """
@@ -345,11 +493,17 @@ def read_raster(
     else:
         grey = np.where(valid, band, 0).astype(np.int64)
         rows = binarize(np.clip(grey, 0, None), threshold) & valid
-    return PixelSet(rows[::-1], (0, 0)), read_georef(path)
+    georef = read_georef(path)
+    ps = PixelSet(rows[::-1], (0, 0))
+    dx, dy = grid_origin(georef)
+    return (ps.translate(dx, dy) if (dx, dy) != (0, 0) else ps), georef
 
 
 def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:
-    """Write the pixels of ``georef``'s frame as a one-band uint8 GeoTIFF (1 = in the set), atomically."""
+    """Write the pixels of ``georef``'s frame as a one-band uint8 GeoTIFF (1 = in the set), atomically.
+
+    Pixels outside the frame are not written; :func:`write_georeferenced` grows the frame to hold them.
+    """
     rasterio = _rasterio()
     from mrm.io.atomic import atomic_open
 
@@ -371,6 +525,43 @@ def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:
         data = mem.read()
     with atomic_open(path, "wb") as fh:
         fh.write(data)
+
+
+#: Operations whose results live on their inputs' grid, in the inputs' grid coordinates (ADR 0021): the
+#: rotation turns the shape on the grid (so it turns in the world about the centre's world point), the
+#: simplification and the co-refinement map their scaled work back by Sc_1/α, union and merge take pixels.
+SAME_GRID_OPERATIONS = frozenset({"discrete_rotation", "simplify", "union", "corefine", "merge"})
+#: Operations that scale the grid: the result gets the scaled georeference (:meth:`GeoRef.scaled`).
+SCALING_OPERATIONS = frozenset({"dss"})
+
+
+def result_georef(
+    operation: str, params: Mapping[str, Any], inputs: Sequence[GeoRef | None]
+) -> GeoRef | None:
+    """The georeference of an operation's result, from its inputs' (ADR 0021).
+
+    * Every input on one grid (equal georeferences) and an operation of :data:`SAME_GRID_OPERATIONS`: that
+      grid. DSS_α: the grid scaled by α about the centre (pixels α times smaller, the world outline where
+      the input's was), so the result exported as a GeoTIFF lands on the input.
+    * Inputs on different grids, an input without georeference, or an operation this module does not know:
+      None. Mixing grids has no single right answer and MR Modeler does not resample; the result is then in
+      plain grid coordinates, as on the canvas.
+    """
+    if not inputs or inputs[0] is None or any(g != inputs[0] for g in inputs[1:]):
+        if any(g is not None for g in inputs):
+            log.info("the result of %s has no georeference: its inputs are not on one grid", operation)
+        return None
+    grid = inputs[0]
+    if operation in SAME_GRID_OPERATIONS:
+        return grid
+    if operation in SCALING_OPERATIONS:
+        try:
+            return grid.scaled(params["alpha"], params.get("center"))
+        except (KeyError, TypeError, ValueError, ZeroDivisionError, OverflowError, MRMError):
+            log.info("the result of %s has no georeference: its scale factor is unreadable", operation)
+            return None
+    log.info("the result of %s has no georeference: the operation's grid is not known", operation)
+    return None
 
 
 def few_pixels_warning(ps: PixelSet, geom: Any, what: str) -> str | None:
@@ -413,9 +604,74 @@ def read_pixels_tif(
     path: PathLike, *, threshold: float | None = None, limit: int = DEFAULT_PIXEL_LIMIT
 ) -> PixelSet:
     """:func:`mrm.io.pixel_files.read_pixels` for a GeoTIFF: band 1, placed by :func:`grid_origin`."""
-    ps, georef = read_raster(path, threshold=threshold, limit=limit)
-    dx, dy = grid_origin(georef)
-    return ps.translate(dx, dy) if (dx, dy) != (0, 0) else ps
+    return read_raster(path, threshold=threshold, limit=limit)[0]
+
+
+def read_pixels_georef(
+    path: PathLike, *, threshold: float | None = None, limit: int = DEFAULT_PIXEL_LIMIT
+) -> tuple[PixelSet, GeoRef | None]:
+    """A pixel file's pixels (:func:`mrm.io.pixel_files.read_pixels`) and its georeference, if it has one.
+
+    What an import keeps on the object (``DocObject.georef``): the GeoTIFF's transform and CRS, or the world
+    file's, consistent with where the pixels were placed.
+    """
+    from mrm.io.pixel_files import read_pixels
+
+    if Path(path).suffix.lower() in GEOTIFF_EXTENSIONS:
+        return read_raster(path, threshold=threshold, limit=limit)
+    ps = read_pixels(path, threshold=threshold, limit=limit)
+    georef = read_georef(path) if Path(path).suffix.lower() in WORLD_FILE_EXTENSIONS else None
+    return ps, georef
+
+
+#: The pixel files a georeferenced result may be written to: a GeoTIFF, or an image with a world file.
+GEOREFERENCED_EXTENSIONS = (".tif", ".tiff", ".png")
+
+
+def write_georeferenced(ps: PixelSet, path: PathLike, georef: GeoRef) -> GeoRef:
+    """Write ``ps`` on ``georef``'s grid: a GeoTIFF, or a PNG + world file (+ ``.prj``); atomically.
+
+    The frame is the georeference's, grown to hold every pixel of ``ps`` (:meth:`GeoRef.covering`), so an
+    object read from a raster and written back unchanged gets the raster's transform and size back. Returns
+    the georeference written.
+    """
+    ext = Path(path).suffix.lower()
+    if ext not in GEOREFERENCED_EXTENSIONS:
+        raise ParameterError(
+            f"{os.fspath(path)}: a georeferenced result is written as .tif or .png (+ world file)"
+        )
+    from mrm.limits import check_pixel_extent
+
+    grid = georef.covering(ps.bbox)
+    check_pixel_extent((grid.frame[0], grid.frame[1]), (grid.height, grid.width), f"{Path(path).name}")
+    if ext in GEOTIFF_EXTENSIONS:
+        write_raster(ps, path, grid)
+        return grid
+    import io
+
+    from PIL import Image
+
+    from mrm.io.atomic import atomic_write_bytes
+
+    buf = io.BytesIO()
+    Image.fromarray(ps.to_image(grid.frame)).save(buf, format="PNG")  # the world file's top-left pixel
+    atomic_write_bytes(path, buf.getvalue())
+    # The PNG carries no mrm:origin: it reads back at (0, 0) with the world file placing it.
+    write_world_file(path, grid)
+    return grid
+
+
+def geojson_members(georef: GeoRef | None, world_geom: Any) -> dict[str, Any]:
+    """The FeatureCollection members of a georeferenced result: ``crs`` (EPSG URN) and ``bbox``."""
+    if georef is None:
+        return {}
+    members: dict[str, Any] = {}
+    crs = geojson_crs_member(georef.crs)
+    if crs is not None:
+        members["crs"] = crs
+    if not world_geom.is_empty:
+        members["bbox"] = list(world_geom.bounds)
+    return members
 
 
 def write_pixels_tif(ps: PixelSet, path: PathLike) -> None:

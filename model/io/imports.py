@@ -1,6 +1,7 @@
 """Import of interchange files into a document as new objects (one undo step).
 
-* pixel files (``.png`` ``.pbm`` ``.pgm`` ``.npz``, grey images thresholded) → one discrete object;
+* pixel files (``.png`` ``.pbm`` ``.pgm`` ``.npz`` ``.tif``, grey images thresholded) → one discrete object,
+  with its georeference (a GeoTIFF's, or a world file's) when it has one;
 * vector files (``.geojson`` ``.json`` ``.wkt``) → one object per geometry: polygons become Euclidean objects;
   lines and points, which are no shapes, become discrete objects D(geometry) under the document's model;
 * another project (``.mrm``) → copies of its objects, with fresh ids (provenance inputs follow them).
@@ -44,11 +45,14 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
                 prov = Provenance(prov.operation, prov.params, tuple(new_ids.get(i, i) for i in prov.inputs))
             out.append(o.with_(id=new_ids[o.id], provenance=prov))
         return out
-    from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
+    from mrm.io.georef import read_pixels_georef
+    from mrm.io.pixel_files import PIXEL_EXTENSIONS
     from mrm.io.vector_files import VECTOR_EXTENSIONS, read_geometries
 
     if ext in PIXEL_EXTENSIONS:
-        return [doc.make_object(read_pixels(p, threshold=threshold), stem)]
+        # A GeoTIFF's transform and CRS (or a world file's) stay on the object (ADR 0021).
+        ps, georef = read_pixels_georef(p, threshold=threshold)
+        return [doc.make_object(ps, stem, georef=georef)]
     if ext in VECTOR_EXTENSIONS:
         from mrm.derive import discretize_source
 

@@ -1,10 +1,10 @@
 """Project files (``*.mrm``): one versioned JSON document, validated on load, written atomically.
 
-Schema version 2::
+Schema version 3::
 
     {
      "format": "mrm-project",
-     "schema_version": 2,
+     "schema_version": 3,
      "generator": "MR Modeler 0.1.0",                      (optional, informative)
      "settings": {"model": "standard"},
      "selection": [2],                                      (optional; ids of selected objects)
@@ -18,7 +18,10 @@ Schema version 2::
       {"id": 2, ..., "provenance": {"operation": "dss", "params": {"alpha": 2.5}, "inputs": [1],
                                     "input_contents": ["<digest>"], "input_provenance": [null]},
        "source": {"kind": "euclidean",
-                  "geometry": {"type": "Polygon", "coordinates": [[[0.0, 0.0], [4.5, 0.0], ...]]}}}
+                  "geometry": {"type": "Polygon", "coordinates": [[[0.0, 0.0], [4.5, 0.0], ...]]}}},
+      {"id": 3, ..., "georef": {"transform": [30.0, 0.0, 500000.0, 0.0, -30.0, 4200000.0],
+                                "width": 64, "height": 48, "crs": "EPSG:32633", "origin": [0, 0]},
+       "source": {"kind": "discrete", ...}}
      ]
     }
 
@@ -28,6 +31,10 @@ Schema version 2::
   content is stored once in the top-level ``"contents": {digest: source}`` table (optional), shared by every
   result that read it, and checked against its digest on load. Version 1 files had ids only: on load their
   provenance is pinned to the objects the file holds (the best record there is).
+* ``georef`` (optional, schema 3): where the object's grid lies on the Earth, the GDAL affine
+  ``transform`` (a, b, c, d, e, f, written with ``repr``: bit for bit), the raster's ``width`` and
+  ``height``, its ``crs`` (``EPSG:n``, WKT or null) and the grid ``origin`` of its bottom-left pixel
+  (:class:`mrm.io.georef.GeoRef`, ADR 0021). Absent for an object on a plain grid.
 * A discrete source is its canonical (cropped) mask, ``np.packbits`` row-major (row 0 = lowest y, big-endian
   bit order) in base64, with its origin and shape: compact, and valid JSON.
 * A Euclidean source is GeoJSON-like: Polygon or MultiPolygon coordinates, rings closed, float coordinates
@@ -74,12 +81,15 @@ from mrm.document import (
 )
 from mrm.errors import FileFormatError as FileFormatError
 from mrm.errors import MRMError
+from mrm.io.georef import GeoRef
 from mrm.reps.pixels import PixelSet
 
 #: The value of the "format" key.
 FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
+#: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
+MAX_CRS_CHARS = 100_000
 # The limits are those of the document (mrm.limits, ADR 0010), so that the loader accepts every file the
 # saver can write: the document refuses the edit that would exceed them. The loader reads them from
 # mrm.limits when it runs; these names are kept for callers that imported them from here.
@@ -124,6 +134,12 @@ MIGRATIONS: tuple[Migration, ...] = (
         "provenance may pin its inputs' content (input_contents, input_provenance, a top-level contents "
         "table); a version 1 file's provenance is pinned on load to the objects the file holds",
         lambda data: {**data, "schema_version": 2},
+    ),
+    Migration(
+        2,
+        "an object may carry its georeference (georef: transform, width, height, crs, origin); a version 2 "
+        "file has none, so it reads unchanged",
+        lambda data: {**data, "schema_version": 3},
     ),
 )
 
@@ -199,13 +215,16 @@ def object_to_json(obj: DocObject, contents: dict[str, Any] | None = None) -> di
     ``contents`` (digest → source) collects the pinned input contents of its provenance, which the file
     stores once in its top-level ``contents`` table; without it the provenance is written unpinned.
     """
-    return {
+    out: dict[str, Any] = {
         "id": obj.id,
         "name": obj.name,
         "style": _encode_style(obj.style),
         "provenance": obj.provenance.to_json(contents) if obj.provenance is not None else None,
-        "source": _encode_source(obj.source),
     }
+    if obj.georef is not None:  # absent on a plain grid: files without georeferences stay as they were
+        out["georef"] = obj.georef.as_dict()
+    out["source"] = _encode_source(obj.source)
+    return out
 
 
 def _dump(value: Any) -> str:
@@ -562,14 +581,39 @@ def _decode_provenance(
         c.fail(path, str(e))
 
 
+def _decode_georef(c: _Checker, g: Any, path: str) -> GeoRef | None:
+    if g is None:
+        return None
+    c.obj(g, path, ("transform", "width", "height", "crs"), ("origin",))
+    t = c.list_(g["transform"], f"{path}.transform")
+    if len(t) != 6:
+        c.fail(f"{path}.transform", f"expected six numbers [a, b, c, d, e, f], got {c.show(t)}")
+    big = float(2**1000)  # any finite float64; only NaN, infinities and huge integers are refused
+    transform = tuple(c.num(v, f"{path}.transform[{i}]", -big, big) for i, v in enumerate(t))
+    lim = limits.PIXEL_COORDINATE_LIMIT
+    width = c.int_(g["width"], f"{path}.width", 1, 2 * lim)
+    height = c.int_(g["height"], f"{path}.height", 1, 2 * lim)
+    origin = c.list_(g.get("origin", [0, 0]), f"{path}.origin")
+    if len(origin) != 2:
+        c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
+    x0 = c.int_(origin[0], f"{path}.origin[0]", -lim, lim)
+    y0 = c.int_(origin[1], f"{path}.origin[1]", -lim, lim)
+    crs = None if g["crs"] is None else c.str_(g["crs"], f"{path}.crs", MAX_CRS_CHARS)
+    try:
+        return GeoRef(transform, width, height, crs, (x0, y0))  # type: ignore[arg-type]
+    except MRMError as e:
+        c.fail(path, str(e))
+
+
 def _decode_object(c: _Checker, o: Any, path: str, contents: dict[str, Source] | None = None) -> DocObject:
-    c.obj(o, path, ("id", "name", "style", "provenance", "source"))
+    c.obj(o, path, ("id", "name", "style", "provenance", "source"), ("georef",))
     oid = c.int_(o["id"], f"{path}.id", 1, 2**53)
     name = c.str_(o["name"], f"{path}.name")
     style = _decode_style(c, o["style"], f"{path}.style")
     prov = _decode_provenance(c, o["provenance"], f"{path}.provenance", contents)
+    georef = _decode_georef(c, o.get("georef"), f"{path}.georef")
     source = _decode_source(c, o["source"], f"{path}.source")
-    return DocObject(id=oid, name=name, source=source, style=style, provenance=prov)
+    return DocObject(id=oid, name=name, source=source, style=style, provenance=prov, georef=georef)
 
 
 def migrate(

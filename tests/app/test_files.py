@@ -233,3 +233,30 @@ def test_dropping_files_on_the_window(make_window, qtbot, tmp_path):
     enter = _drag_enter(QtCore.QPointF(5, 5), mime)
     QtWidgets.QApplication.sendEvent(win, enter)
     assert not enter.isAccepted()
+
+
+def test_a_geotiff_keeps_its_place_through_the_window(make_window, tmp_path):
+    """Import a GeoTIFF, save, reopen, export: the same transform, CRS and pixels (ADR 0021)."""
+    import rasterio
+    from rasterio.transform import from_origin
+
+    t = from_origin(500_000.0, 4_200_000.0, 30.0, 30.0)
+    mask = np.zeros((10, 12), dtype=np.uint8)
+    mask[2:7, 3:10] = 1
+    mask[4, 5] = 0
+    with rasterio.open(
+        tmp_path / "m.tif", "w", driver="GTiff", width=12, height=10, count=1, dtype="uint8",
+        transform=t, crs="EPSG:32633",
+    ) as ds:  # fmt: skip
+        ds.write(mask, 1)
+    win = make_window()
+    assert win.files.import_files([tmp_path / "m.tif"])
+    (obj,) = win.doc.objects
+    assert obj.georef is not None and obj.georef.transform == tuple(t)[:6]
+    assert win.files.save_as(tmp_path / "p.mrm")
+    win2 = make_window()
+    assert win2.files.open(tmp_path / "p.mrm", ask=False)
+    assert win2.files.export(win2.doc.objects[0].id, tmp_path / "back.tif")
+    with rasterio.open(tmp_path / "back.tif") as ds:
+        assert ds.transform == t and ds.crs.to_epsg() == 32633 and (ds.width, ds.height) == (12, 10)
+        assert (ds.read(1) == mask).all()

@@ -73,6 +73,8 @@ def test_wheel_holds_one_package_the_examples_the_guide_and_the_licence(dist: Pa
     assert "mrm/docs/img/mrm-window.png" in names
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not any(n.endswith(".py") and "/examples/" in n for n in names)
+    # nothing a run left behind: a warm-up stamp would tell a fresh install its kernels are compiled
+    assert not any("__pycache__" in n for n in names)
 
 
 def test_sdist_holds_the_tests_the_resources_and_the_docs(dist: Path):
