@@ -459,9 +459,10 @@ def _trace_cells(
             tl = lab[j, i - 1]
             br = lab[j - 1, i]
             bl = lab[j - 1, i - 1]
-            e = tr != br
-            n = tl != tr
-            deg[j, i] = e + n + (tl != bl) + (bl != br)
+            # int(): without the JIT (NUMBA_DISABLE_JIT=1), numpy bools add as a logical or.
+            e = int(tr != br)
+            n = int(tl != tr)
+            deg[j, i] = e + n + int(tl != bl) + int(bl != br)
             n_linels += e + n
             if deg[j, i] >= 3:
                 n_zero += 1

@@ -255,3 +255,17 @@ def test_cli_polygonize_errors_are_one_line_messages(capsys, tmp_path) -> None:
     code, _out, err = run(capsys, "polygonize", tmp_path / "rgb.png", "-o", tmp_path / "o.geojson")
     assert code == 2 and "grey" in err
     assert not (tmp_path / "o.geojson").exists()
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_cell_tracing_without_the_jit_gives_the_compiled_cells(seed: int) -> None:
+    # NUMBA_DISABLE_JIT=1 (debugging, a platform without LLVM) runs the kernels as plain Python, where numpy
+    # bools add as a logical or: the linel count came out short and the trace wrote past its array.
+    from mrm.geometry.cracks import _trace_cells
+
+    rng = np.random.default_rng(seed)
+    lab = np.pad(rng.integers(0, 3, (9, 7)).astype(np.int32), 1)
+    compiled = _trace_cells(lab)
+    plain = _trace_cells.py_func(lab)
+    for a, b in zip(compiled, plain, strict=True):
+        assert np.array_equal(a, b)
