@@ -20,6 +20,7 @@ import numpy.typing as npt
 from numba import njit
 
 Ints = npt.NDArray[np.int64]
+Floats = npt.NDArray[np.float64]
 
 #: Largest magnitude the kernels accept for ``8·M² + 4·G·M`` (every intermediate product stays below it).
 _INT64_SAFE = 2**62
@@ -54,7 +55,7 @@ def _count_crossings(edges: Ints, g: int) -> int:
 @njit(cache=True, nogil=True)
 def fill_kernel(mask: npt.NDArray[np.bool_], edges: Ints, g: int, x0: int, y0: int) -> None:
     """Mark ``{p : p + τ ∈ P}`` (even-odd over all rings), row by row, exactly."""
-    h, w = mask.shape
+    w = mask.shape[1]
     x1 = x0 + w - 1
     n = _count_crossings(edges, g)
     rows = np.empty(n, np.int64)
@@ -81,6 +82,19 @@ def fill_kernel(mask: npt.NDArray[np.bool_], edges: Ints, g: int, x0: int, y0: i
             rows[t] = j
             t += 1
             num += step
+    _fill_spans(mask, rows, xs, x0, y0)
+
+
+@njit(cache=True, nogil=True)
+def _fill_spans(mask: npt.NDArray[np.bool_], rows: Ints, xs: Ints, x0: int, y0: int) -> None:
+    """Fill row by row from the crossings ``(rows, xs)``, ``xs`` clipped to ``[x0 − 1, x1]``.
+
+    Pixel ``i`` of row ``j`` is inside when an odd number of the row's crossings ``m`` (the last pixel left
+    of a crossing) have ``i ≤ m``.
+    """
+    h, w = mask.shape
+    x1 = x0 + w - 1
+    n = rows.shape[0]
     order = np.argsort(rows * (w + 2) + (xs - x0 + 1), kind="mergesort")
     start = 0
     while start < n:
@@ -193,3 +207,186 @@ def discretize_integer_edges(
         if model != "gauss":
             walks_kernel(mask, e, int(g), int(x0), int(y0), model == "standard")
     return mask
+
+
+# ------------------------------------------------------------------------------ float-filtered kernels
+# The exact image of a float64 polygon under a rational similarity (a rotation by the exact rational angle)
+# has coordinates with ~110-bit denominators: the integer kernels above would overflow int64 and Python
+# integers cost 10× the float discretization. Here the image is computed in float64 with a proven error
+# bound ``delta`` per coordinate (|X − X'| ≤ delta for every vertex, exact X, float X'), and every decision
+# of the integer kernels is taken from the float data when it is the same for every polygon within
+# ``delta``; an edge with one decision that is not is flagged (``ok[k] = False``) and left to the exact
+# integer path, which decides it from the exact vertices (mrm.ops.rational_discretize). So the pixels are
+# those of the integer path, bit for bit, and the exact arithmetic runs only on the near-ties.
+#
+# Both kernels rest on one fact: the exact edge S = [a, b] and its float image S' = [a', b'] with
+# |a − a'|∞, |b − b'|∞ ≤ delta are within delta of each other point by point (a + t(b − a) vs
+# a' + t(b' − a'), same t). ``delta`` carries a factor ≥ 2 of slack over the vertex rounding it bounds,
+# which absorbs the relative roundings (a few units of 2⁻⁵³) of the bounds computed from it here.
+
+_U = 2.0**-53
+_TINY = 2.0**-1000
+
+
+@njit(cache=True, inline="always")
+def _sure_ceil(v: float, e: float) -> tuple[bool, int]:
+    """(True, ⌈V⌉) when ⌈V⌉ is one integer for every real V with |V − v| ≤ e; else (False, 0).
+
+    The widening by 8u·e + 4u·|v| covers the rounding of ``v ± w`` (u = 2⁻⁵³), so the two computed ends
+    enclose [v − e, v + e]; NaN or infinite input is never sure.
+    """
+    w = e * (1.0 + 8.0 * _U) + 4.0 * _U * abs(v) + _TINY
+    lo = np.ceil(v - w)
+    hi = np.ceil(v + w)
+    if lo != hi or not (abs(lo) < 2.0**62):  # NaN compares unequal
+        return False, 0
+    return True, int(lo)
+
+
+@njit(cache=True, nogil=True)
+def filtered_crossings(
+    ax: Floats, ay: Floats, bx: Floats, by: Floats, delta: float, x0: int, x1: int
+) -> tuple[Ints, Ints, npt.NDArray[np.bool_]]:
+    """The fill crossings ``(row j, ⌈X⌉ − 1)`` of the edges the float data decide, and the flags ``ok``.
+
+    As :func:`fill_kernel`: an edge counts on row j when min(a_y, b_y) ≤ j < max(a_y, b_y) (exact
+    vertices), at the crossing X of the row. The rows follow from ⌈a_y⌉ and ⌈b_y⌉ (sure within delta).
+    The exact crossing X of S and the crossing X'' of the line of S' differ by at most
+    delta·(1 + |dx'/dy'|): the point of S' at S's parameter of (X, j) is within delta of it, and sliding
+    along S' back to height j moves x by |dy|·|dx'/dy'| ≤ delta·|dx'/dy'|. X' = a'_x + (j − a'_y)·slope in
+    float64 is within 8u(|a'_x| + |(j − a'_y)·slope|) of X'' (five roundings, u = 2⁻⁵³). An edge with a
+    doubtful decision records no crossing and gets ``ok[k] = False``.
+    """
+    n_e = ax.shape[0]
+    bound = 0
+    for k in range(n_e):
+        lo = min(ay[k], by[k])
+        hi = max(ay[k], by[k])
+        bound += int(np.ceil(hi + delta + 1.0) - np.floor(lo - delta - 1.0)) + 1
+    rows = np.empty(bound, np.int64)
+    xs = np.empty(bound, np.int64)
+    ok = np.ones(n_e, np.bool_)
+    t = 0
+    for k in range(n_e):
+        sa, ca = _sure_ceil(ay[k], delta)
+        sb, cb = _sure_ceil(by[k], delta)
+        if not (sa and sb):
+            ok[k] = False
+            continue
+        if ca == cb:
+            continue  # no integer j with min ≤ j < max: the edge crosses no row
+        # ⌈a_y⌉ ≠ ⌈b_y⌉ for every exact edge within delta, so a'_y ≠ b'_y and the slope is finite or inf.
+        slope = (bx[k] - ax[k]) / (by[k] - ay[k])
+        grow = delta * (1.0 + abs(slope) * (1.0 + 8.0 * _U))
+        start = t
+        for j in range(min(ca, cb), max(ca, cb)):
+            p = (j - ay[k]) * slope
+            x = ax[k] + p
+            sx, cx = _sure_ceil(x, grow + 8.0 * _U * (abs(ax[k]) + abs(p)))
+            if not sx:
+                t = start
+                ok[k] = False
+                break
+            xs[t] = min(max(cx - 1, x0 - 1), x1)  # pixel i counts when i < X, i.e. i ≤ ⌈X⌉ − 1
+            rows[t] = j
+            t += 1
+    return rows[:t].copy(), xs[:t].copy(), ok
+
+
+@njit(cache=True, nogil=True)
+def filtered_spans(mask: npt.NDArray[np.bool_], rows: Ints, xs: Ints, x0: int, y0: int) -> None:
+    """Fill ``mask`` from crossings (:func:`filtered_crossings` plus the exact ones of flagged edges)."""
+    _fill_spans(mask, rows, xs, x0, y0)
+
+
+@njit(cache=True, inline="always")
+def _walk_major(
+    mask: npt.NDArray[np.bool_],
+    ua: float,
+    va: float,
+    ub: float,
+    vb: float,
+    m: float,
+    e: float,
+    x0: int,
+    y0: int,
+    swapped: bool,
+) -> bool:
+    """Mark the pixels the exact edge surely meets in their open square; False if one is doubtful.
+
+    (u, v) is (x, y), or (y, x) when ``swapped``, chosen so that |v'_b − v'_a| ≤ |u'_b − u'_a|: the slope
+    is at most 1 and each v(u) on S' is computed within e/2 (e = 32u·(M + 4) for magnitudes ≤ M).
+    Column i: *outer* rows are those whose closed square grown by delta S' may meet (every pixel whose
+    closed square S meets is one); *inner* rows those whose square shrunk by delta S' surely meets (S then
+    meets the open square). The margins m = delta + e and e cover the roundings of the bounds themselves.
+    Inner pixels are in D under both cover models (an edge through the open square meets int V(p) + τ);
+    a pixel that is outer but not inner is a near-tie, and the edge goes to the exact path.
+    """
+    if ua > ub:
+        ua, va, ub, vb = ub, vb, ua, va
+    du = ub - ua
+    slope = (vb - va) / du if du > 0.0 else 0.0
+    hh, ww = mask.shape
+    sure = True
+    i_lo = int(np.ceil(ua - 0.5 - m))
+    i_hi = int(np.floor(ub + 0.5 + m))
+    for i in range(i_lo, i_hi + 1):
+        ul = max(ua, i - 0.5 - m)
+        ur = min(ub, i + 0.5 + m)
+        if ul > ur:
+            continue
+        vl = va + (ul - ua) * slope
+        vr = va + (ur - ua) * slope
+        jo0 = int(np.ceil(min(vl, vr) - 0.5 - m - e))
+        jo1 = int(np.floor(max(vl, vr) + 0.5 + m + e))
+        ul = max(ua, i - 0.5 + m)
+        ur = min(ub, i + 0.5 - m)
+        if ul > ur:
+            if jo0 <= jo1:
+                sure = False
+            continue
+        vl = va + (ul - ua) * slope
+        vr = va + (ur - ua) * slope
+        ji0 = int(np.ceil(min(vl, vr) + e + m - 0.5))
+        ji1 = int(np.floor(max(vl, vr) - e - m + 0.5))
+        if ji0 > jo0 or ji1 < jo1:
+            sure = False
+        for j in range(ji0, ji1 + 1):
+            if swapped:
+                r, c = i - y0, j - x0
+            else:
+                r, c = j - y0, i - x0
+            if 0 <= r < hh and 0 <= c < ww:
+                mask[r, c] = True
+    return sure
+
+
+@njit(cache=True, nogil=True)
+def filtered_walks(
+    mask: npt.NDArray[np.bool_],
+    ax: Floats,
+    ay: Floats,
+    bx: Floats,
+    by: Floats,
+    ok: npt.NDArray[np.bool_],
+    delta: float,
+    magnitude: float,
+    x0: int,
+    y0: int,
+) -> None:
+    """Mark the edge pixels of the cover models for the edges still ``ok``; flag those with a near-tie.
+
+    ``magnitude`` bounds every |coordinate| of the float images. The pixels marked for a flagged edge are
+    all in D; the exact path adds the rest.
+    """
+    e = 32.0 * _U * (magnitude + 4.0)
+    m = delta + e
+    for k in range(ax.shape[0]):
+        if not ok[k]:
+            continue
+        if abs(bx[k] - ax[k]) >= abs(by[k] - ay[k]):
+            sure = _walk_major(mask, ax[k], ay[k], bx[k], by[k], m, e, x0, y0, False)
+        else:
+            sure = _walk_major(mask, ay[k], ax[k], by[k], bx[k], m, e, x0, y0, True)
+        if not sure:
+            ok[k] = False

@@ -25,8 +25,10 @@ the operations' results, not as a replacement of the compiled discretization.
 
 from __future__ import annotations
 
+import logging
 import math
 from collections import defaultdict
+from collections.abc import Iterator
 from fractions import Fraction
 from typing import Any, Protocol
 
@@ -37,6 +39,8 @@ from mrm.ops.exact_geometry import ExactShape, box_area, pixel_box
 from mrm.reps.pixels import Box, PixelSet
 
 MODELS = ("standard", "supercover", "gauss")
+
+log = logging.getLogger(__name__)
 
 IntEdge = tuple[int, int, int, int]
 _Triple = tuple[int, int, int]
@@ -175,25 +179,11 @@ def _fill(
     """Mark { p : p + τ ∈ P } (even-odd over all rings), row by row."""
     x0, y0, x1, _ = box
     crossings: dict[int, list[int]] = defaultdict(list)
-    for k, (ax, ay, bx, by) in enumerate(edges):
+    for k, edge in enumerate(edges):
         if k % 256 == 0:
             _tick(progress, k / max(1, n_work))
-        if ay == by:
-            continue  # the row y = G·j + ε² never meets a horizontal edge
-        dx, dy = bx - ax, by - ay
-        lo, hi = (ay, by) if dy > 0 else (by, ay)
-        den = g * dy
-        sign = 1 if den > 0 else -1
-        den *= sign
-        base = sign * (ax * dy - ay * dx)
-        step = sign * g * dx
-        j0 = _ceil_div(lo, g)
-        j1 = _ceil_div(hi, g) - 1
-        num = base + step * j0
-        for j in range(j0, j1 + 1):
-            # The crossing is X = num / den (in pixel units); pixel i counts when i < X: i ≤ ⌈X⌉ − 1.
-            crossings[j].append(_ceil_div(num, den) - 1)
-            num += step
+        for j, m in _edge_crossings(edge, g):
+            crossings[j].append(m)
     for j, ms in crossings.items():
         ms.sort()
         row = mask[j - y0]
@@ -202,6 +192,31 @@ def _fill(
             hi_i = min(ms[t + 1], x1)
             if lo_i <= hi_i:
                 row[lo_i - x0 : hi_i - x0 + 1] = True
+
+
+def _edge_crossings(edge: IntEdge, g: int) -> Iterator[tuple[int, int]]:
+    """The crossings ``(j, m)`` of one integer edge with the rows, as the fill counts them.
+
+    The edge counts on row j when a_y ≤ G·j < b_y or b_y ≤ G·j < a_y; pixel i of the row counts when it
+    lies strictly left of the crossing X, i.e. up to ``m = ⌈X⌉ − 1``.
+    """
+    ax, ay, bx, by = edge
+    if ay == by:
+        return  # the row y = G·j + ε² never meets a horizontal edge
+    dx, dy = bx - ax, by - ay
+    lo, hi = (ay, by) if dy > 0 else (by, ay)
+    den = g * dy
+    sign = 1 if den > 0 else -1
+    den *= sign
+    base = sign * (ax * dy - ay * dx)
+    step = sign * g * dx
+    j0 = _ceil_div(lo, g)
+    j1 = _ceil_div(hi, g) - 1
+    num = base + step * j0
+    for j in range(j0, j1 + 1):
+        # The crossing is X = num / den (in pixel units).
+        yield j, _ceil_div(num, den) - 1
+        num += step
 
 
 def _walks(
@@ -289,7 +304,7 @@ def discretize_image(
 
     from mrm.geometry.rational_discretize import discretize_integer_edges, fits_int64
 
-    if sim.b != 0 or not isinstance(geom, Polygon | MultiPolygon):
+    if not isinstance(geom, Polygon | MultiPolygon):
         return None
     if geom.is_empty:
         return PixelSet.empty()
@@ -299,6 +314,8 @@ def discretize_image(
         return PixelSet.empty()
     if not np.isfinite(coords).all():
         return None
+    if sim.b != 0:
+        return filtered_image(coords, index, sim, model, limit=limit)
     a = Fraction(sim.a)
     if (
         sim.tx == 0
@@ -317,10 +334,10 @@ def discretize_image(
             return discretize(whole, model, limit=limit)
     k = _denominator_exponent(coords)
     if k > 900:
-        return None
+        return filtered_image(coords, index, sim, model, limit=limit)
     scaled = coords * float(2**k)
     if np.abs(scaled).max(initial=0.0) >= 2.0**62:
-        return None
+        return filtered_image(coords, index, sim, model, limit=limit)
     xs = scaled.astype(np.int64)
     tx, ty = Fraction(sim.tx), Fraction(sim.ty)
     base = a.denominator << k
@@ -330,7 +347,7 @@ def discretize_image(
     big = abs(ma) * int(np.abs(xs).max(initial=0)) + max(abs(t_x), abs(t_y))
     g = 2 * d
     if not fits_int64(2 * big, g) or 2 * big >= 2**62:
-        return None
+        return filtered_image(coords, index, sim, model, limit=limit)
     img = np.empty_like(xs)
     img[:, 0] = 2 * (ma * xs[:, 0] + t_x)
     img[:, 1] = 2 * (ma * xs[:, 1] + t_y)
@@ -362,6 +379,92 @@ def discretize_image(
     mask = discretize_integer_edges(e, g, box, model)
     mask.flags.writeable = False
     return PixelSet(mask, (box[0], box[1]))
+
+
+#: The float-filtered path works on coordinates below this magnitude (far beyond the limits of mrm.limits,
+#: ±2³¹): every rounding bound below is then far above the subnormal range and far below overflow.
+_FILTER_MAGNITUDE = 2.0**40
+_U = 2.0**-53
+
+
+def filtered_image(
+    coords: np.ndarray, index: np.ndarray, sim: Any, model: str, *, limit: int | None = DEFAULT_PIXEL_LIMIT
+) -> PixelSet | None:
+    """D(T(E)) for the rings of a float64 polygon E (``coords`` with shapely's ring ``index``), exactly.
+
+    The image is computed in float64 with a proven bound ``delta`` on the error of every coordinate, the
+    compiled kernels of :mod:`mrm.geometry.rational_discretize` decide every crossing and edge pixel the
+    float data decide for every polygon within ``delta``, and the edges with a near-tie are decided from
+    their exact image (Fractions, then the integer definitions of this module): the pixels of the integer
+    path, at the cost of the float one. Returns None (the caller takes the exact path) for magnitudes
+    beyond ``2⁴⁰`` or a box beyond ``limit``.
+
+    Error bound: ``X' = fl(fl(fl(c'·x) − fl(s'·y)) + t'_x)`` with ``c' = fl(c)``, ``s' = fl(s)``,
+    ``t' = fl(t)`` (each correctly rounded, relative error ≤ u = 2⁻⁵³) has
+    ``|X − X'| ≤ 4.01·u·(|c|·|x| + |s|·|y| + |t_x|)`` (at most four roundings on each term); products
+    that underflow lose at most 2⁻¹⁰⁷⁴ each. ``delta = 16·u·max(…) + 2⁻¹⁰⁰⁰`` keeps a factor 2 of slack
+    (with |c| ≤ (1 + u)|c'|), which the kernels' own bounds rely on.
+    """
+    from mrm.geometry.rational_discretize import filtered_crossings, filtered_spans, filtered_walks
+
+    cf, sf, txf, tyf = float(sim.a), float(sim.b), float(sim.tx), float(sim.ty)
+    if max(abs(cf), abs(sf), abs(txf), abs(tyf)) >= _FILTER_MAGNITUDE:
+        return None
+    x = np.ascontiguousarray(coords[:, 0], dtype=np.float64)
+    y = np.ascontiguousarray(coords[:, 1], dtype=np.float64)
+    if np.abs(coords).max(initial=0.0) >= _FILTER_MAGNITUDE:
+        return None
+    ix = (cf * x - sf * y) + txf
+    iy = (sf * x + cf * y) + tyf
+    magnitude = float(max(np.abs(ix).max(initial=0.0), np.abs(iy).max(initial=0.0)))
+    if not magnitude < _FILTER_MAGNITUDE:
+        return None
+    spread = (abs(cf) + abs(sf)) * (np.abs(x) + np.abs(y)) + (abs(txf) + abs(tyf))
+    delta = 16.0 * _U * float(spread.max(initial=0.0)) + 2.0**-1000
+    # Edges: consecutive vertices of each closed ring; an edge of two equal input points has one exact
+    # image point (T is injective) and is skipped, as the integer path skips zero-length edges.
+    first = np.flatnonzero(index[1:] == index[:-1])
+    second = first + 1
+    keep = (x[first] != x[second]) | (y[first] != y[second])
+    first, second = first[keep], second[keep]
+    ax, ay, bx, by = ix[first], iy[first], ix[second], iy[second]
+    # A box holding every pixel D can contain (cells of the bounds, grown by one pixel for delta < 1).
+    x0 = int(np.floor(ix.min() - 0.5)) - 1
+    y0 = int(np.floor(iy.min() - 0.5)) - 1
+    x1 = int(np.ceil(ix.max() + 0.5)) + 1
+    y1 = int(np.ceil(iy.max() + 0.5)) + 1
+    box = (x0, y0, x1, y1)
+    if limit is not None and box_area(box) > limit:
+        return None  # the exact path checks the exact box (this one is a few pixels larger)
+
+    def exact_edge(k: int) -> tuple[IntEdge, int]:
+        a = sim((Fraction(float(x[first[k]])), Fraction(float(y[first[k]]))))
+        b = sim((Fraction(float(x[second[k]])), Fraction(float(y[second[k]]))))
+        den = math.lcm(a[0].denominator, a[1].denominator, b[0].denominator, b[1].denominator)
+        g = 2 * den
+        ints = tuple(int(v.numerator * (g // v.denominator)) for v in (*a, *b))
+        return (ints[0], ints[1], ints[2], ints[3]), g
+
+    rows, xs, ok = filtered_crossings(ax, ay, bx, by, delta, x0, x1)
+    doubtful = np.flatnonzero(~ok)
+    if doubtful.size:
+        extra = [
+            (j, min(max(m, x0 - 1), x1)) for k in doubtful for j, m in _edge_crossings(*exact_edge(int(k)))
+        ]
+        if extra:
+            more = np.array(extra, dtype=np.int64).reshape(-1, 2)
+            rows = np.concatenate([rows, more[:, 0]])
+            xs = np.concatenate([xs, more[:, 1]])
+    mask = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
+    filtered_spans(mask, rows, xs, x0, y0)
+    if model != "gauss":
+        filtered_walks(mask, ax, ay, bx, by, ok, delta, magnitude, x0, y0)
+        for k in np.flatnonzero(~ok):
+            edge, g = exact_edge(int(k))
+            _walks(mask, [edge], g, box, model == "standard", None, 1)
+    log.debug("filtered discretization: %d edges, %d decided exactly", len(ok), int((~ok).sum()))
+    mask.flags.writeable = False
+    return PixelSet(mask, (x0, y0))
 
 
 def _denominator_exponent(values: np.ndarray) -> int:
