@@ -234,8 +234,7 @@ def bench_dss_1024(repeats: int) -> None:
                 e = reconstruct(ps, model)
                 return discretize(shapely.affinity.scale(e, a, a, origin=(0, 0)), model)
 
-            _, m_ours, r_ours = timed(ours, repeats)
-            _, m_comp, r_comp = timed(composition, repeats)
+            (_, m_ours, r_ours), (_, m_comp, r_comp) = timed_pair(ours, composition, repeats)
             rows.append((model, m_ours))
             same = (
                 "same pixels"
