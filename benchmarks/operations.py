@@ -365,6 +365,60 @@ def bench_boolean(repeats: int) -> None:
     t.show()
 
 
+def bench_boolean_5000(repeats: int) -> None:
+    """EDu, EDco and EDco_8 of two 5,000-vertex polygons against shapely's overlays (issue 9 targets).
+
+    Targets: EDu and EDco ≤ 3× shapely (standard), ≤ 6× (gauss, watertight); EDco_8 ≤ 10×; ≤ 1.3× / 1.5×
+    the composition of the same pieces. EDco_8 under gauss (seconds per call) is timed with 3 repeats.
+    """
+    e = noisy_star(5000, 60.0, seed=11)
+    f = noisy_star(5000, 55.0, seed=12, centre=(40.0, 10.0))
+    load = os.getloadavg()[0]
+    _, t_union, _ = timed(lambda: shapely.union(e, f), repeats)
+    _, t_three, _ = timed(
+        lambda: [shapely.difference(e, f), shapely.intersection(e, f), shapely.difference(f, e)], repeats
+    )
+    summary: list[str] = []
+    t = Table(f"EDu of two 5,000-vertex polygons (~120 units across); load {load:.2f}", None)
+    t.peer = t_union
+    for model in ("standard", "gauss"):
+        if UNION is None:
+            break
+        (f1, m, out), (fc, mc, _) = timed_pair(
+            lambda model=model: UNION(e, f, model),  # type: ignore[misc]
+            lambda model=model: reconstruct(discretize(e, model) | discretize(f, model), model),
+            repeats,
+        )
+        t.add(f"ours (mrm.ops) EDu, {model}", f1, m, f"{shapely.get_num_coordinates(out.result)} vertices")
+        t.add(f"composition R(D(E) ∪ D(F)), {model}", fc, mc, "")
+        summary.append(f"EDu {model}: ÷ shapely.union {m / t_union:.2f}, ÷ composition {m / mc:.2f}")
+    t.add("peer shapely.union", None, t_union, "")
+    t.show()
+    for alpha, label in ((None, "EDco"), (8, "EDco_8")):
+        t = Table(f"{label} of the same polygons; load {os.getloadavg()[0]:.2f}", None)
+        t.peer = t_three
+        for model in ("standard", "gauss"):
+            if COREFINE is None:
+                break
+            n = 3 if (alpha, model) == (8, "gauss") else repeats
+            (f1, m, out), (fc, mc, _) = timed_pair(
+                lambda model=model, alpha=alpha: COREFINE(e, f, model, alpha),  # type: ignore[misc]
+                lambda model=model, alpha=alpha: corefine_composition(e, f, alpha or 1, model),
+                n,
+            )
+            nv = sum(shapely.get_num_coordinates(g) for g in out.result.values())
+            wt = " watertight" if out.extra.get("watertight") else ""
+            t.add(f"ours (mrm.ops) {label}, {model}", f1, m, f"{nv} vertices{wt}")
+            t.add(f"composition {label}, {model}", fc, mc, "")
+            summary.append(
+                f"{label} {model}: ÷ shapely overlays {m / t_three:.2f}, ÷ composition {m / mc:.2f}"
+            )
+        t.add("peer shapely difference+intersection+difference", None, t_three, "")
+        t.show()
+    for line in summary:
+        print("  ratio " + line)
+
+
 # ------------------------------------------------------------------------------------------ robustness
 def polygons(g: Any) -> list[Any]:
     if g is None or g.is_empty:
@@ -530,7 +584,9 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--no-cold", action="store_true", help="skip the cold-cache first-call subprocesses")
     parser.add_argument(
-        "--only", choices=("dss1024", "scaling", "rotation", "boolean", "robustness"), default=None
+        "--only",
+        choices=("dss1024", "scaling", "rotation", "boolean", "boolean5000", "robustness"),
+        default=None,
     )
     args = parser.parse_args()
     if args.only is not None:
@@ -540,6 +596,7 @@ def main() -> None:
             "scaling": bench_scaling,
             "rotation": bench_rotation,
             "boolean": bench_boolean,
+            "boolean5000": bench_boolean_5000,
         }.get(args.only, lambda r: bench_robustness(8))(repeats)
         return
     repeats = max(5, args.repeats)
@@ -553,6 +610,7 @@ def main() -> None:
     bench_dss_1024(repeats)
     bench_rotation(repeats)
     bench_boolean(repeats)
+    bench_boolean_5000(repeats)
     bench_robustness(8)
 
 
