@@ -2,33 +2,25 @@
 
 :func:`mrm.geometry.discretize.discretize` is exact for float64 input. The image of a polygon under an
 exact similarity (``Sc_1/5``, a rational rotation) has rational vertices that are not float64 values; rounding
-them first could move a vertex across a pixel side. :func:`discretize_exact` takes an
-:class:`~mrm.ops.exact_geometry.ExactShape` and
+them first could move a vertex across a pixel side. Three exact paths, all giving the pixels of the
+definitions (ALGORITHMS §1.7):
 
-* hands it to ``discretize`` unchanged when every coordinate is a float64 (the fast, compiled path);
-* otherwise scales every coordinate by ``2L`` (L the common denominator) so that vertices, pixel centres
-  (multiples of ``G = 2L``) and pixel sides (odd multiples of ``L``) are integers, and evaluates the same
-  definitions as ``discretize`` with Python integers: no rounding anywhere.
+* every coordinate a float64: ``discretize`` itself;
+* the integer definitions of :mod:`mrm.geometry.rational_discretize` — coordinates scaled by ``2L`` (L the
+  common denominator) so that vertices, pixel centres (multiples of ``G = 2L``) and pixel sides (odd
+  multiples of ``L``) are integers; compiled on int64 when that cannot overflow, else on Python integers;
+* :func:`filtered_image` for a float64 polygon under a similarity whose image does not fit int64 (a
+  rotation): float64 arithmetic with a proven error bound decides almost every pixel in compiled kernels,
+  and the integer definitions decide the edges with a near-tie.
 
-The integer path computes, as ``discretize`` does (ALGORITHMS §1.7):
-
-* ``gauss``: { p : p + τ ∈ P } by a scanline: on row j an edge counts when ``lo ≤ G·j < hi`` and pixel i lies
-  strictly left of the crossing (``G·i < X``); a pixel is inside when the count is odd;
-* ``standard`` / ``supercover``: that set, united with the pixels whose kernel meets an edge. The candidates
-  of an edge are the pixels whose closed square it meets (column by column, exact); under ``standard`` each
-  is decided by an exact Liang–Barsky test against the open square shifted by τ = (ε, ε²), with quantities
-  ``v₀ + v₁ε + v₂ε²`` compared lexicographically.
-
-Its cost is O(rows × crossings + perimeter) Python operations plus the row fills (numpy), so it is meant for
-the operations' results, not as a replacement of the compiled discretization.
+:func:`discretize_exact` takes an :class:`~mrm.ops.exact_geometry.ExactShape` (the first two paths);
+:func:`discretize_image` takes a float64 polygon and an exact similarity (the fastest path that applies).
 """
 
 from __future__ import annotations
 
 import logging
 import math
-from collections import defaultdict
-from collections.abc import Iterator
 from fractions import Fraction
 from typing import Any, Protocol
 
@@ -139,11 +131,6 @@ def _integer_edges(shape: ExactShape) -> tuple[list[IntEdge], int]:
     return edges, g
 
 
-def _ceil_div(a: int, b: int) -> int:
-    """⌈a / b⌉ for b > 0."""
-    return -((-a) // b)
-
-
 def _integer_path(
     shape: ExactShape, model: str, box: Box, progress: ProgressLike | None, compiled: bool = True
 ) -> PixelSet:
@@ -154,132 +141,18 @@ def _integer_path(
 def integer_discretization(
     edges: list[IntEdge], g: int, model: str, box: Box, progress: ProgressLike | None, compiled: bool = True
 ) -> PixelSet:
-    """D of integer edges on the grid of spacing ``g``: the compiled int64 kernels when safe, else Python."""
-    x0, y0, x1, y1 = box
-    if compiled and edges:
-        from mrm.geometry.rational_discretize import discretize_integer_edges, fits_int64
+    """D of integer edges on the grid of spacing ``g`` (:mod:`mrm.geometry.rational_discretize`).
 
-        m = max(max(abs(v) for v in e) for e in edges)
-        if fits_int64(m, g):
-            mask = discretize_integer_edges(np.array(edges, dtype=np.int64), g, box, model)
-            mask.flags.writeable = False
-            return PixelSet(mask, (x0, y0))
-    mask = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
-    n_work = 2 * len(edges) if model != "gauss" else len(edges)
-    _fill(mask, edges, g, box, progress, n_work)
-    if model != "gauss":
-        _walks(mask, edges, g, box, model == "standard", progress, n_work)
-    mask.flags.writeable = False
-    return PixelSet(mask, (x0, y0))
-
-
-def _fill(
-    mask: np.ndarray, edges: list[IntEdge], g: int, box: Box, progress: ProgressLike | None, n_work: int
-) -> None:
-    """Mark { p : p + τ ∈ P } (even-odd over all rings), row by row."""
-    x0, y0, x1, _ = box
-    crossings: dict[int, list[int]] = defaultdict(list)
-    for k, edge in enumerate(edges):
-        if k % 256 == 0:
-            _tick(progress, k / max(1, n_work))
-        for j, m in _edge_crossings(edge, g):
-            crossings[j].append(m)
-    for j, ms in crossings.items():
-        ms.sort()
-        row = mask[j - y0]
-        for t in range(0, len(ms) - 1, 2):
-            lo_i = max(ms[t] + 1, x0)
-            hi_i = min(ms[t + 1], x1)
-            if lo_i <= hi_i:
-                row[lo_i - x0 : hi_i - x0 + 1] = True
-
-
-def _edge_crossings(edge: IntEdge, g: int) -> Iterator[tuple[int, int]]:
-    """The crossings ``(j, m)`` of one integer edge with the rows, as the fill counts them.
-
-    The edge counts on row j when a_y ≤ G·j < b_y or b_y ≤ G·j < a_y; pixel i of the row counts when it
-    lies strictly left of the crossing X, i.e. up to ``m = ⌈X⌉ − 1``.
+    The definitions run compiled on int64 when no overflow is possible (and ``compiled``), else on Python
+    integers; ``progress`` is told when the work starts and ends.
     """
-    ax, ay, bx, by = edge
-    if ay == by:
-        return  # the row y = G·j + ε² never meets a horizontal edge
-    dx, dy = bx - ax, by - ay
-    lo, hi = (ay, by) if dy > 0 else (by, ay)
-    den = g * dy
-    sign = 1 if den > 0 else -1
-    den *= sign
-    base = sign * (ax * dy - ay * dx)
-    step = sign * g * dx
-    j0 = _ceil_div(lo, g)
-    j1 = _ceil_div(hi, g) - 1
-    num = base + step * j0
-    for j in range(j0, j1 + 1):
-        # The crossing is X = num / den (in pixel units).
-        yield j, _ceil_div(num, den) - 1
-        num += step
+    from mrm.geometry.rational_discretize import discretize_integer_edges
 
-
-def _walks(
-    mask: np.ndarray,
-    edges: list[IntEdge],
-    g: int,
-    box: Box,
-    standard: bool,
-    progress: ProgressLike | None,
-    n_work: int,
-) -> None:
-    """Mark the pixels whose kernel meets an edge (closed square; open square + τ for ``standard``)."""
-    x0, y0, _, _ = box
-    h = g // 2
-    offset = len(edges)
-    for k, (ax, ay, bx, by) in enumerate(edges):
-        if k % 256 == 0:
-            _tick(progress, (offset + k) / max(1, n_work))
-        if ax > bx:
-            ax, ay, bx, by = bx, by, ax, ay
-        dx, dy = bx - ax, by - ay
-        for i in range(_ceil_div(ax - h, g), (bx + h) // g + 1):
-            if dx == 0:
-                ylo, yhi = min(ay, by), max(ay, by)
-                j0, j1 = _ceil_div(ylo - h, g), (yhi + h) // g
-            else:
-                xl, xr = max(ax, g * i - h), min(bx, g * i + h)
-                n1 = ay * dx + (xl - ax) * dy
-                n2 = ay * dx + (xr - ax) * dy
-                nlo, nhi = min(n1, n2), max(n1, n2)
-                j0, j1 = _ceil_div(nlo - h * dx, g * dx), (nhi + h * dx) // (g * dx)
-            for j in range(j0, j1 + 1):
-                if not standard or _meets_standard(ax, ay, dx, dy, i, j, g, h):
-                    mask[j - y0, i - x0] = True
-
-
-def _less(a: _Triple, da: int, b: _Triple, db: int, strict: bool) -> bool:
-    """Lexicographic a/da < b/db (or ≤), for positive denominators."""
-    left = (a[0] * db, a[1] * db, a[2] * db)
-    right = (b[0] * da, b[1] * da, b[2] * da)
-    return left < right if strict else left <= right
-
-
-def _meets_standard(ax: int, ay: int, dx: int, dy: int, i: int, j: int, g: int, h: int) -> bool:
-    """Does the segment a + t·d, t ∈ [0, 1], meet int V(p) + τ for p = (i, j)? (exact Liang–Barsky)."""
-    lows: list[tuple[_Triple, int, bool]] = [((0, 0, 0), 1, False)]
-    ups: list[tuple[_Triple, int, bool]] = [((1, 0, 0), 1, False)]
-    # x: g·i − h + ε < ax + t·dx < g·i + h + ε;  y: g·j − h + ε² < ay + t·dy < g·j + h + ε².
-    for a0, d, c, unit in ((ax, dx, g * i, (1, 0)), (ay, dy, g * j, (0, 1))):
-        if d == 0:
-            # c − h + ε < a0 < c + h + ε  ⟺  c − h < a0 ≤ c + h
-            if not (c - h < a0 <= c + h):
-                return False
-            continue
-        lo = (c - h - a0, unit[0], unit[1])
-        hi = (c + h - a0, unit[0], unit[1])
-        if d > 0:
-            lows.append((lo, d, True))
-            ups.append((hi, d, True))
-        else:
-            lows.append(((-hi[0], -hi[1], -hi[2]), -d, True))
-            ups.append(((-lo[0], -lo[1], -lo[2]), -d, True))
-    return all(_less(lo, dl, up, du, sl or su) for lo, dl, sl in lows for up, du, su in ups)
+    _tick(progress, 0.0)
+    mask = discretize_integer_edges(edges, g, box, model, compiled=compiled)
+    _tick(progress, 1.0)
+    mask.flags.writeable = False
+    return PixelSet(mask, (box[0], box[1]))
 
 
 # --------------------------------------------------------------------------------------- similarity images
@@ -405,7 +278,13 @@ def filtered_image(
     that underflow lose at most 2⁻¹⁰⁷⁴ each. ``delta = 16·u·max(…) + 2⁻¹⁰⁰⁰`` keeps a factor 2 of slack
     (with |c| ≤ (1 + u)|c'|), which the kernels' own bounds rely on.
     """
-    from mrm.geometry.rational_discretize import filtered_crossings, filtered_spans, filtered_walks
+    from mrm.geometry.rational_discretize import (
+        filtered_crossings,
+        filtered_spans,
+        filtered_walks,
+        integer_crossings,
+        integer_walks,
+    )
 
     cf, sf, txf, tyf = float(sim.a), float(sim.b), float(sim.tx), float(sim.ty)
     if max(abs(cf), abs(sf), abs(txf), abs(tyf)) >= _FILTER_MAGNITUDE:
@@ -437,31 +316,28 @@ def filtered_image(
     if limit is not None and box_area(box) > limit:
         return None  # the exact path checks the exact box (this one is a few pixels larger)
 
-    def exact_edge(k: int) -> tuple[IntEdge, int]:
-        a = sim((Fraction(float(x[first[k]])), Fraction(float(y[first[k]]))))
-        b = sim((Fraction(float(x[second[k]])), Fraction(float(y[second[k]]))))
-        den = math.lcm(a[0].denominator, a[1].denominator, b[0].denominator, b[1].denominator)
+    def exact_edges(ks: np.ndarray) -> tuple[list[IntEdge], int]:
+        """The exact images of edges ``ks`` as integers on one grid G = 2L (L: their common denominator)."""
+        pts = [sim((Fraction(float(x[v])), Fraction(float(y[v])))) for k in ks for v in (first[k], second[k])]
+        den = math.lcm(*(c.denominator for p in pts for c in p))
         g = 2 * den
-        ints = tuple(int(v.numerator * (g // v.denominator)) for v in (*a, *b))
-        return (ints[0], ints[1], ints[2], ints[3]), g
+        ints = [(int(px * g), int(py * g)) for px, py in pts]
+        return [(*ints[2 * t], *ints[2 * t + 1]) for t in range(len(ks))], g
 
     rows, xs, ok = filtered_crossings(ax, ay, bx, by, delta, x0, x1)
     doubtful = np.flatnonzero(~ok)
     if doubtful.size:
-        extra = [
-            (j, min(max(m, x0 - 1), x1)) for k in doubtful for j, m in _edge_crossings(*exact_edge(int(k)))
-        ]
-        if extra:
-            more = np.array(extra, dtype=np.int64).reshape(-1, 2)
-            rows = np.concatenate([rows, more[:, 0]])
-            xs = np.concatenate([xs, more[:, 1]])
+        edges, g = exact_edges(doubtful)
+        more_rows, more_xs = integer_crossings(edges, g, x0, x1)
+        rows, xs = np.concatenate([rows, more_rows]), np.concatenate([xs, more_xs])
     mask = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
     filtered_spans(mask, rows, xs, x0, y0)
     if model != "gauss":
         filtered_walks(mask, ax, ay, bx, by, ok, delta, magnitude, x0, y0)
-        for k in np.flatnonzero(~ok):
-            edge, g = exact_edge(int(k))
-            _walks(mask, [edge], g, box, model == "standard", None, 1)
+        doubtful = np.flatnonzero(~ok)
+        if doubtful.size:
+            edges, g = exact_edges(doubtful)
+            integer_walks(mask, edges, g, x0, y0, model == "standard")
     log.debug("filtered discretization: %d edges, %d decided exactly", len(ok), int((~ok).sum()))
     mask.flags.writeable = False
     return PixelSet(mask, (x0, y0))

@@ -18,7 +18,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
-import mrm.ops.rational_discretize as rd
+import mrm.geometry.rational_discretize as grd
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.exact_geometry import ExactShape, Similarity, rotation_cos_sin
 from mrm.ops.rational_discretize import discretize_exact, discretize_image
@@ -49,7 +49,7 @@ def _image_rings(poly, sim):
 def _counting(monkeypatch):
     """Count the edges the filtered path hands to the exact integer definitions."""
     calls = {"crossings": 0, "walks": 0}
-    crossings, walks = rd._edge_crossings, rd._walks
+    crossings, walks = grd.integer_crossings, grd.integer_walks
 
     def counted_crossings(*args):
         calls["crossings"] += 1
@@ -59,8 +59,8 @@ def _counting(monkeypatch):
         calls["walks"] += 1
         return walks(*args)
 
-    monkeypatch.setattr(rd, "_edge_crossings", counted_crossings)
-    monkeypatch.setattr(rd, "_walks", counted_walks)
+    monkeypatch.setattr(grd, "integer_crossings", counted_crossings)
+    monkeypatch.setattr(grd, "integer_walks", counted_walks)
     return calls
 
 
