@@ -123,14 +123,24 @@ def check_size(estimated: int, limit: int | None, what: str) -> None:
         raise SizeLimitError(estimated, int(limit), what)
 
 
-def estimated_pixels(ps: PixelSet, sim: Similarity, model: str) -> int:
-    """An upper bound of the pixels of D(T(R(A))), from A's bounding box alone (nothing is computed).
+def estimated_pixels(source: Any, sim: Similarity, model: str) -> int:
+    """An upper bound of the pixels of D(T(R(A))), A an object's discrete representation (nothing computed).
 
-    Under the covers R(A) ⊂ V(A) ⊂ V(bbox(A)); under gauss ∂R(A) stays within the voxels of the border
-    pixels on either side (DESIGN §3.2), so R(A) lies in V(bbox(A)) grown by one pixel. T(R(A)) lies in the
-    box of T's image of that rectangle.
+    A pixel set is A itself; for a polygon E, A = D(E) lies in the closed cells of E's bounding box (the
+    supercover box). Under the covers R(A) ⊂ V(A) ⊂ V(bbox(A)); under gauss ∂R(A) stays within the voxels
+    of the border pixels on either side (DESIGN §3.2), so R(A) lies in V(bbox(A)) grown by one pixel.
+    T(R(A)) lies in the box of T's image of that rectangle. The one estimate of DSS_α and dR_θ,C: the
+    registry's guard (run_operation) and the direct calls both use it.
     """
-    box = ps.bbox
+    if source is None:
+        return 0
+    if isinstance(source, PixelSet):
+        box = source.bbox
+    elif source.is_empty:
+        return 0
+    else:
+        x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
+        box = pixel_box((x0, y0, x1, y1), "supercover")
     if box is not None and model == "gauss":
         box = (box[0] - 1, box[1] - 1, box[2] + 1, box[3] + 1)
     return box_area(pixel_box(mapped_bounds(voxel_bounds(box), sim), model))
@@ -144,14 +154,17 @@ def discrete_similarity(
     limit: int | None,
     progress: ProgressLike | None,
     what: str,
+    estimated: bool = False,
 ) -> StepOutcome:
     """``D(T(R(A)))`` with ``T`` applied exactly: the core of DSS_α and dR_θ,C.
 
-    The size of the result is estimated from A's bounding box first and refused beyond ``limit``.
+    The size of the result is estimated from A's bounding box first (:func:`estimated_pixels`) and refused
+    beyond ``limit``, unless the caller did so already (``estimated``: run_operation's guard).
     """
     check_model(model)
     check_limit(limit)
-    check_size(estimated_pixels(ps, sim, model), limit, what)
+    if not estimated:
+        check_size(estimated_pixels(ps, sim, model), limit, what)
     from mrm.geometry.reconstruct import reconstruct
 
     pooled = scaling_by_pixels(ps, sim, model)
@@ -269,13 +282,20 @@ def register_discrete_similarity(
     from mrm.ops.base import OperationResult, OperationSpec, register
 
     def estimate(inputs: Any, p: Any) -> int:
-        return estimate_through_pixels(inputs[0], similarity(p), p.model)
+        return estimated_pixels(inputs[0], similarity(p), p.model)
 
     def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> Any:
-        # run_operation validated the parameters, checked the size and stamps provenance and bound.
+        # run_operation validated the parameters, checked the size (estimate above) and stamps provenance
+        # and bound: the estimate is not made a second time.
         ps = discrete_of(inputs[0], p.model, DEFAULT_PIXEL_LIMIT)
         out = discrete_similarity(
-            ps, similarity(p), p.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=label(p)
+            ps,
+            similarity(p),
+            p.model,
+            limit=DEFAULT_PIXEL_LIMIT,
+            progress=progress,
+            what=label(p),
+            estimated=True,
         )
         return OperationResult(outputs=[(label(p), out.result)])
 
@@ -365,21 +385,6 @@ def source_box(source: Any, sim: Similarity, model: str) -> Box | None:
 def estimate_source(source: Any, sim: Similarity, model: str) -> int:
     """An upper bound of the pixels of D(T(X)) for an object X, before anything is computed."""
     return box_area(source_box(source, sim, model))
-
-
-def estimate_through_pixels(source: Any, sim: Similarity, model: str) -> int:
-    """An upper bound of the pixels of D(T(R(A))) where A is the object's discrete representation.
-
-    For a polygon E, A = D(E) lies in the closed cells of E's bounding box (the supercover box), so R(A)
-    lies in the voxels of that box.
-    """
-    if isinstance(source, PixelSet) or source is None or source.is_empty:
-        return estimate_source(source, sim, model) if source is not None else 0
-    from fractions import Fraction
-
-    x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
-    cells = pixel_box((x0, y0, x1, y1), "supercover")
-    return box_area(pixel_box(mapped_bounds(voxel_bounds(cells), sim), model))
 
 
 def joint_box(boxes: list[Box | None]) -> Box | None:
