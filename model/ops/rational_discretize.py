@@ -108,6 +108,12 @@ def discretize_exact(
         result = discretize(shape.to_geometry(), model, limit=limit)
         _tick(progress, None)
         return result
+    if not force_integer:
+        # Coordinates that are not float64 values (a rotation's): the float filter, exact by its bound.
+        filtered = filtered_exact(shape, model, limit=limit)
+        if filtered is not None:
+            _tick(progress, None)
+            return filtered
     return _integer_path(shape, model, box, progress, compiled)
 
 
@@ -278,14 +284,6 @@ def filtered_image(
     that underflow lose at most 2⁻¹⁰⁷⁴ each. ``delta = 16·u·max(…) + 2⁻¹⁰⁰⁰`` keeps a factor 2 of slack
     (with |c| ≤ (1 + u)|c'|), which the kernels' own bounds rely on.
     """
-    from mrm.geometry.rational_discretize import (
-        filtered_crossings,
-        filtered_spans,
-        filtered_walks,
-        integer_crossings,
-        integer_walks,
-    )
-
     cf, sf, txf, tyf = float(sim.a), float(sim.b), float(sim.tx), float(sim.ty)
     if max(abs(cf), abs(sf), abs(txf), abs(tyf)) >= _FILTER_MAGNITUDE:
         return None
@@ -305,20 +303,95 @@ def filtered_image(
     first = np.flatnonzero(index[1:] == index[:-1])
     second = first + 1
     keep = (x[first] != x[second]) | (y[first] != y[second])
-    first, second = first[keep], second[keep]
+
+    def exact_point(v: int) -> tuple[Fraction, Fraction]:
+        p: tuple[Fraction, Fraction] = sim((Fraction(float(x[v])), Fraction(float(y[v]))))
+        return p
+
+    return _filtered(ix, iy, first[keep], second[keep], delta, magnitude, exact_point, model, limit)
+
+
+def filtered_exact(
+    shape: ExactShape, model: str, *, limit: int | None = DEFAULT_PIXEL_LIMIT
+) -> PixelSet | None:
+    """D(shape) for rational polygons by the float filter of :func:`filtered_image` (None: not applicable).
+
+    Each coordinate is rounded once to the nearest float64 (``Fraction.__float__`` is correctly rounded:
+    ``|X − X'| ≤ u·|X|``, u = 2⁻⁵³, or 2⁻¹⁰⁷⁵ in the subnormal range); ``delta = 4·u·max|X| + 2⁻¹⁰⁰⁰``
+    keeps the factor 2 of slack the kernels rely on. The edges with a near-tie are decided from the exact
+    coordinates by the integer definitions.
+    """
+    pts: list[tuple[Fraction, Fraction]] = []
+    first: list[int] = []
+    second: list[int] = []
+    for poly in shape.polygons:
+        for ring in poly:
+            start, n = len(pts), len(ring)
+            pts.extend(ring)
+            for k in range(n):
+                if ring[k] != ring[(k + 1) % n]:  # the integer path skips zero-length edges too
+                    first.append(start + k)
+                    second.append(start + (k + 1) % n)
+    if not pts:
+        return PixelSet.empty()
+    try:
+        ix = np.array([float(p[0]) for p in pts], dtype=np.float64)
+        iy = np.array([float(p[1]) for p in pts], dtype=np.float64)
+    except OverflowError:
+        return None
+    magnitude = float(max(np.abs(ix).max(), np.abs(iy).max()))
+    if not magnitude < _FILTER_MAGNITUDE:
+        return None
+    delta = 4.0 * _U * magnitude + 2.0**-1000
+    return _filtered(
+        ix,
+        iy,
+        np.array(first, dtype=np.int64),
+        np.array(second, dtype=np.int64),
+        delta,
+        magnitude,
+        lambda v: pts[v],
+        model,
+        limit,
+    )
+
+
+def _filtered(
+    ix: np.ndarray,
+    iy: np.ndarray,
+    first: np.ndarray,
+    second: np.ndarray,
+    delta: float,
+    magnitude: float,
+    exact_point: Any,
+    model: str,
+    limit: int | None,
+) -> PixelSet | None:
+    """The float-filtered discretization of the edges ``first[k] → second[k]``.
+
+    The float vertices ``(ix, iy)`` are each within ``delta`` of the exact vertex ``exact_point(v)``;
+    ``magnitude`` bounds their coordinates.
+    """
+    from mrm.geometry.rational_discretize import (
+        filtered_crossings,
+        filtered_spans,
+        filtered_walks,
+        integer_crossings,
+        integer_walks,
+    )
+
     ax, ay, bx, by = ix[first], iy[first], ix[second], iy[second]
     # A box holding every pixel D can contain (cells of the bounds, grown by one pixel for delta < 1).
     x0 = int(np.floor(ix.min() - 0.5)) - 1
     y0 = int(np.floor(iy.min() - 0.5)) - 1
     x1 = int(np.ceil(ix.max() + 0.5)) + 1
     y1 = int(np.ceil(iy.max() + 0.5)) + 1
-    box = (x0, y0, x1, y1)
-    if limit is not None and box_area(box) > limit:
+    if limit is not None and box_area((x0, y0, x1, y1)) > limit:
         return None  # the exact path checks the exact box (this one is a few pixels larger)
 
     def exact_edges(ks: np.ndarray) -> tuple[list[IntEdge], int]:
-        """The exact images of edges ``ks`` as integers on one grid G = 2L (L: their common denominator)."""
-        pts = [sim((Fraction(float(x[v])), Fraction(float(y[v])))) for k in ks for v in (first[k], second[k])]
+        """The exact edges ``ks`` as integers on one grid G = 2L (L: their common denominator)."""
+        pts = [exact_point(int(v)) for k in ks for v in (first[k], second[k])]
         den = math.lcm(*(c.denominator for p in pts for c in p))
         g = 2 * den
         ints = [(int(px * g), int(py * g)) for px, py in pts]

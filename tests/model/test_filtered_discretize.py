@@ -186,3 +186,25 @@ def test_dss_of_a_far_object_by_a_third_is_the_definition():
         out = discrete_smooth_scaling(a, "1/3", None, model)
         polys = scaled(polygons_of(reconstruct(a, model)), Q(1, 3))
         assert out.result == reference_discretize_rings(polys, model)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.one_of(tie_polygons(), star_polygons(max_vertices=6, max_radius=4.0)),
+    st.sampled_from(
+        [
+            Similarity(Q(3, 5), Q(4, 5), Q(1, 2), Q(-3, 2), Q(1)),
+            Similarity.rotation(Q(30), (Q(1, 3), Q(2, 7))),
+            Similarity.scaling(Q(1, 3), (Q(2**30), Q(-(2**30)))),
+            Similarity.rotation(Q("-73.25"), (Q(2**31 - 7), Q(0))),
+        ]
+    ),
+    st.sampled_from(MODELS),
+)
+def test_rational_shapes_by_the_filter_are_the_definition(poly, sim, model):
+    """discretize_exact of an ExactShape with non-float64 coordinates (an account's T(A_first))."""
+    exact = ExactShape.from_geometry(poly).map(sim)
+    assume(not exact.is_float_exact())
+    got = discretize_exact(exact, model)
+    assert got == reference_discretize_rings(_image_rings(poly, sim), model)
+    assert got == discretize_exact(exact, model, force_integer=True, compiled=False)
