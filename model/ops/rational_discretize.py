@@ -170,13 +170,14 @@ def discretize_image(
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     what: str = "discretization",
 ) -> PixelSet | None:
-    """D(T(E)) for a float64 polygon E and an exact scaling-or-translation T, without Fractions.
+    """D(T(E)) for a float64 polygon E and an exact similarity T, without a Fraction per vertex.
 
-    Every float64 coordinate is ``X/2^k`` with an integer X; the image under ``v ↦ (p/q)·v + t`` is then
-    ``X'/D`` over one common denominator ``D``, computed with int64 numpy arithmetic once the magnitudes are
-    checked, and discretized by the compiled exact kernels (:mod:`mrm.geometry.rational_discretize`).
-    Returns None where this does not apply (a rotation, magnitudes beyond int64): the caller then takes the
-    Fraction path (:func:`discretize_exact`), which gives the same pixels.
+    A scaling-or-translation: every float64 coordinate is ``X/2^k`` with an integer X; the image under
+    ``v ↦ (p/q)·v + t`` is then ``X'/D`` over one common denominator ``D``, computed with int64 numpy
+    arithmetic once the magnitudes are checked, and discretized by the compiled exact kernels
+    (:mod:`mrm.geometry.rational_discretize`). A rotation, or an image beyond int64: the float filter
+    (:func:`filtered_image`). Returns None where neither applies (non-finite input, magnitudes beyond
+    2⁴⁰): the caller then takes :func:`discretize_exact`, which gives the same pixels.
     """
     import shapely
     from shapely.geometry import MultiPolygon, Polygon
