@@ -8,6 +8,11 @@ Speed (medians of ≥ 5 repeats, peers measured in the same run, first call repo
   scikit-image rotate (nearest, and bilinear + threshold).
 * EDco_8 (co-refinement at α = 8) of two 500-vertex polygons — target ≤ 500 ms; peer: shapely (GEOS OverlayNG)
   intersection + the two differences. EDu (α = 1, as the paper defines it) against shapely.union.
+* ``--only boolean5000``: EDu, EDco and EDco_8 of two 5,000-vertex polygons against the same peers.
+
+Where a row is compared with its float composition, the two are timed alternately (``timed_pair``) so that
+a change of load hits both alike; the load is printed with those tables. The raster peers (OpenCV) use
+several threads, so their times — and every ratio to them — move with the machine's load more than ours.
 
 "ours (mrm.ops)" rows call the operations as the application does (exact rational similarities, exact
 discretization). "ours (composition)" rows chain the same pieces directly — discretize ∘ shapely.affinity ∘
@@ -22,6 +27,7 @@ of polygons and of slivers (area < 10⁻⁶), the smallest area, the vertex coun
 distance between our result and GEOS's (a sampled estimate).
 
 Run:  .venv/bin/python benchmarks/operations.py [--repeats 7] [--no-cold]
+      [--only dss1024|scaling|rotation|boolean|boolean5000|robustness]
 """
 
 from __future__ import annotations
