@@ -47,13 +47,15 @@ from typing import Any
 from mrm.errors import DEFAULT_PIXEL_LIMIT, MRMError, ParameterError
 from mrm.geometry.bounds import BoundResult, ChainStep, bound_of_chain
 from mrm.ops.base import ProgressLike, coerce_params, get_operation, params_to_dict
+from mrm.ops.chain import CHAIN_OPERATIONS as _CHAIN_READS
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
 from mrm.reps.pixels import PixelSet
 
 log = logging.getLogger(__name__)
 
-#: The operations of a one-object chain: they have a similarity and a place in the bound rule.
-CHAIN_OPERATIONS = ("dss", "discrete_rotation", "simplify", "scale", "rotate", "translate")
+#: The operations of a one-object chain: they have a similarity and a place in the bound rule (declared once,
+#: with the representation each reads, in mrm.ops.chain).
+CHAIN_OPERATIONS = tuple(_CHAIN_READS)
 #: Exact operations on pixel sets or objects: no discretization, no continuation, so no error.
 EXACT_OPERATIONS = {
     "discrete_union": "a union of pixel sets is exact",
@@ -149,6 +151,9 @@ class Account:
     output : object
         The result as the measurement recomputed it from the pinned inputs (a pixel set, a polygon, or for
         a co-refinement a dict part → polygon); None when not measured.
+    outcome : StepOutcome or None
+        The operation's whole outcome behind ``output`` (for a co-refinement: its label map and parts), so
+        that a caller that writes the result does not compute it a second time; None when not measured.
     """
 
     operation: str
@@ -168,6 +173,7 @@ class Account:
     idempotent: bool | None = None
     error: str = ""
     output: Any = field(default=None, repr=False, compare=False)
+    outcome: Any = field(default=None, repr=False, compare=False)
 
     @property
     def within_bound(self) -> bool | None:
@@ -486,7 +492,9 @@ def _binary_account(
         out = euclidean_discrete_union(first, second, model, limit=limit, progress=_sub(progress, 0, 0.4))
         refs, exact = reference_parts(first, second, model)
         m = measured_error(refs["union"], out.euclidean, progress=_sub(progress, 0.4, 1.0))
-        return _replace(acc, measured=m, reference_exact=exact, result=out.discrete, output=out.result)
+        return _replace(
+            acc, measured=m, reference_exact=exact, result=out.discrete, output=out.result, outcome=out
+        )
     alpha = params.alpha
     part = part or PARTS[0]
     part_bounds = {p: bound_of_chain([B.corefine(_alpha(alpha), BOUND_PART[p])], model) for p in PARTS}
@@ -520,6 +528,7 @@ def _binary_account(
         reference_exact=exact,
         result=out.extra["pixels"][part],
         output=out.result,
+        outcome=out,
     )
 
 

@@ -22,6 +22,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
+import numpy as np
+
 from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep, CorefinePart
@@ -30,11 +32,8 @@ from mrm.ops.exact_geometry import (
     ExactShape,
     Similarity,
     box_area,
-    mapped_bounds,
     number_to_json,
-    pixel_box,
     positive_number,
-    voxel_bounds,
 )
 from mrm.ops.outcome import (
     StepOutcome,
@@ -81,6 +80,23 @@ def discrete_input(
     return discretize_exact(
         shape, model, limit=limit, progress=progress, what="the discretization of an input"
     )
+
+
+def parts_label_map(a: PixelSet, b: PixelSet) -> LabelMap:
+    """The label map of the three parts of D(E) and D(E′): 1 = a ∖ b, 2 = a ∩ b, 3 = b ∖ a.
+
+    The same labels as ``LabelMap.from_pixel_sets([a - b, a & b, b - a])``, read from one table lookup of
+    ``a + 2·b`` over the joint box (a sixth of the time on a 800² co-refinement).
+    """
+    box = joint_box([a.bbox, b.bbox])
+    if box is None:
+        return LabelMap(np.zeros((0, 0), dtype=np.int32))
+    code = a.to_array(box).view(np.uint8) + (b.to_array(box).view(np.uint8) << 1)  # bools are bytes 0/1
+    return LabelMap(_PART_OF_CODE[code], (box[0], box[1]))
+
+
+#: Label of each code a + 2·b (0 neither, 1 only a, 2 only b, 3 both).
+_PART_OF_CODE = np.array([0, 1, 3, 2], dtype=np.int32)
 
 
 def euclidean_discrete_union(
@@ -131,6 +147,7 @@ def euclidean_discrete_corefinement(
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
+    estimated: bool = False,
 ) -> StepOutcome:
     """Return EDco(E, E′), or EDco_α(E, E′) when ``alpha`` is given.
 
@@ -144,6 +161,9 @@ def euclidean_discrete_corefinement(
     limit : int or None
         Largest discretization (pixels of its bounding box), at scale α; checked before it is computed.
     progress : object with ``update(fraction, message)``, optional
+    estimated : bool
+        The caller checked the size estimate (:func:`estimate_corefine`) against ``limit`` already
+        (run_operation's guard): it is not made twice.
 
     Returns
     -------
@@ -160,20 +180,13 @@ def euclidean_discrete_corefinement(
         a_q = positive_number(alpha, "alpha")
         sim = Similarity.scaling(a_q)
         what = f"the discretization at scale α = {number_to_json(a_q)}"
-        for src in (first, second):
-            if isinstance(src, PixelSet):  # R(A) ⊂ V(bbox(A)): estimate before continuing
-                bounds = mapped_bounds(voxel_bounds(src.bbox), sim)
-            elif src.is_empty:
-                continue
-            else:  # a scaling maps the bounding box onto the image's bounding box, exactly
-                x0, y0, x1, y1 = (Fraction(float(v)) for v in src.bounds)
-                bounds = mapped_bounds((x0, y0, x1, y1), sim)
-            check_size(box_area(pixel_box(bounds, model)), limit, what)
+        if not estimated:  # from the bounding boxes, before anything is discretized or continued
+            check_size(_estimate_pair([first, second], sim, model), limit, what)
     a = discrete_input(first, model, sim, limit, sub_progress(progress, 0.0, 0.2))
     b = discrete_input(second, model, sim, limit, sub_progress(progress, 0.2, 0.4))
     check_size(box_area(joint_box([a.bbox, b.bbox])), limit, "the co-refinement")
     pixels = {"a_minus_b": a - b, "a_and_b": a & b, "b_minus_a": b - a}
-    label_map = LabelMap.from_pixel_sets([pixels[p] for p in PARTS])
+    label_map = parts_label_map(a, b)
     if progress is not None:
         progress.update(0.45, "continuing the parts")
     geoms, watertight = _reconstruct_parts(pixels, label_map, model, progress)
@@ -331,7 +344,9 @@ def run_corefine(
     inputs: Sequence[Any], params: CorefineParams, progress: ProgressLike | None = None
 ) -> CorefineResult:
     """Run EDco (or EDco_α) on two objects: three outputs, one per part (empty parts included)."""
-    out = euclidean_discrete_corefinement(inputs[0], inputs[1], params.model, params.alpha, progress=progress)
+    out = euclidean_discrete_corefinement(
+        inputs[0], inputs[1], params.model, params.alpha, progress=progress, estimated=True
+    )
     part_bounds = {p: bounds.bound_of_chain([corefine_chain_step(params, p)], params.model) for p in PARTS}
     return CorefineResult(
         outputs=[(p, out.result[p]) for p in PARTS],

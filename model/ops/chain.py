@@ -65,21 +65,6 @@ CHAIN_OPERATIONS = {
     "translate": "euclidean",
 }
 
-_ALIASES = {
-    "dss": "dss",
-    "rot": "discrete_rotation",
-    "dr": "discrete_rotation",
-    "discrete_rotation": "discrete_rotation",
-    "sp": "simplify",
-    "simplify": "simplify",
-    "simplification": "simplify",
-    "scale": "scale",
-    "sc": "scale",
-    "rotate": "rotate",
-    "erot": "rotate",
-    "translate": "translate",
-}
-
 
 @dataclass(frozen=True)
 class ChainStepResult:
@@ -168,13 +153,18 @@ class ChainResult:
 
 
 def normalize_operation(name: str) -> str:
-    """The canonical name of a chain operation (aliases such as ``DSS``, ``ROT``, ``SP`` accepted)."""
-    key = str(name).strip().lower().replace("-", "_").replace(" ", "_")
-    if key not in _ALIASES:
+    """The canonical name of a chain operation; the aliases are the registry's (``DSS``, ``ROT``, ``SP``…)."""
+    from mrm.ops.base import get_operation
+
+    try:
+        spec = get_operation(name)
+    except ParameterError:
+        spec = None
+    if spec is None or spec.name not in CHAIN_OPERATIONS:
         raise ParameterError(
             f"unknown chain operation {name!r}; expected one of {', '.join(CHAIN_OPERATIONS)}"
         )
-    return _ALIASES[key]
+    return spec.name
 
 
 def _params_dict(params: Any) -> dict[str, Any]:

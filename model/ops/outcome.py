@@ -9,7 +9,10 @@ discretization (or its exact Euclidean result): :class:`StepOutcome` carries the
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any
+
+import numpy as np
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
 from mrm.ops.base import param
@@ -120,14 +123,24 @@ def check_size(estimated: int, limit: int | None, what: str) -> None:
         raise SizeLimitError(estimated, int(limit), what)
 
 
-def estimated_pixels(ps: PixelSet, sim: Similarity, model: str) -> int:
-    """An upper bound of the pixels of D(T(R(A))), from A's bounding box alone (nothing is computed).
+def estimated_pixels(source: Any, sim: Similarity, model: str) -> int:
+    """An upper bound of the pixels of D(T(R(A))), A an object's discrete representation (nothing computed).
 
-    Under the covers R(A) ⊂ V(A) ⊂ V(bbox(A)); under gauss ∂R(A) stays within the voxels of the border
-    pixels on either side (DESIGN §3.2), so R(A) lies in V(bbox(A)) grown by one pixel. T(R(A)) lies in the
-    box of T's image of that rectangle.
+    A pixel set is A itself; for a polygon E, A = D(E) lies in the closed cells of E's bounding box (the
+    supercover box). Under the covers R(A) ⊂ V(A) ⊂ V(bbox(A)); under gauss ∂R(A) stays within the voxels
+    of the border pixels on either side (DESIGN §3.2), so R(A) lies in V(bbox(A)) grown by one pixel.
+    T(R(A)) lies in the box of T's image of that rectangle. The one estimate of DSS_α and dR_θ,C: the
+    registry's guard (run_operation) and the direct calls both use it.
     """
-    box = ps.bbox
+    if source is None:
+        return 0
+    if isinstance(source, PixelSet):
+        box = source.bbox
+    elif source.is_empty:
+        return 0
+    else:
+        x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
+        box = pixel_box((x0, y0, x1, y1), "supercover")
     if box is not None and model == "gauss":
         box = (box[0] - 1, box[1] - 1, box[2] + 1, box[3] + 1)
     return box_area(pixel_box(mapped_bounds(voxel_bounds(box), sim), model))
@@ -141,18 +154,31 @@ def discrete_similarity(
     limit: int | None,
     progress: ProgressLike | None,
     what: str,
+    estimated: bool = False,
 ) -> StepOutcome:
     """``D(T(R(A)))`` with ``T`` applied exactly: the core of DSS_α and dR_θ,C.
 
-    The size of the result is estimated from A's bounding box first and refused beyond ``limit``.
+    The size of the result is estimated from A's bounding box first (:func:`estimated_pixels`) and refused
+    beyond ``limit``, unless the caller did so already (``estimated``: run_operation's guard).
     """
     check_model(model)
     check_limit(limit)
-    check_size(estimated_pixels(ps, sim, model), limit, what)
-    if progress is not None:
-        progress.update(0.0, "continuing R(A)")
+    if not estimated:
+        check_size(estimated_pixels(ps, sim, model), limit, what)
     from mrm.geometry.reconstruct import reconstruct
 
+    pooled = scaling_by_pixels(ps, sim, model)
+    if pooled is not None:
+        # The pixels of A decide every result pixel (see scaling_by_pixels); R(A) and T(R(A)) are still the
+        # chain's Euclidean object, made on first use only.
+        def lazy_image() -> ExactShape:
+            return ExactShape.from_geometry(reconstruct(ps, model)).map(sim)
+
+        if progress is not None:
+            progress.update(1.0, "done")
+        return StepOutcome(pooled, sim, lazy_image, pooled)
+    if progress is not None:
+        progress.update(0.0, "continuing R(A)")
     euclid = reconstruct(ps, model)
     if progress is not None:
         progress.update(0.3, "applying the similarity")
@@ -169,6 +195,71 @@ def discrete_similarity(
     if progress is not None:
         progress.update(1.0, "done")
     return StepOutcome(result, sim, image, result)
+
+
+def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | None:
+    """DSS_1/k(A) = D(Sc_1/k(R(A))) from A's pixels alone, when the grid of the result is aligned to A's.
+
+    Applies when ``sim`` is ``Sc_α`` with α = 1/k (k a positive integer) about a centre C, and
+    ``Sc_1/α = v ↦ k·v + c`` (c = (1 − k)·C) maps pixel centres to pixel centres (gauss: c ∈ Z²) or the
+    kernel of every result pixel onto a k × k block of A's voxels (covers: c − (k − 1)/2 ∈ Z²); otherwise
+    returns None. Proof, from R's contract (DESIGN §3; :mod:`mrm.geometry.reconstruct`, items 1–3):
+
+    * ``gauss``: q ∈ D(Sc_α(R(A))) ⟺ z + kτ ∈ R(A) with z = k·q + c, a pixel centre. No centre lies on
+      ∂R(A), so that is z ∈ R(A), and since D(R(A)) = A it is z ∈ A: the result is A sampled every k
+      pixels, ``{q : k·q + c ∈ A}``.
+    * ``standard`` / ``supercover``: the kernel of q maps to the open block B(q) + kτ (standard) or the
+      closed block B̄(q) (supercover) made of the voxels of the k × k pixels b with
+      b − (k·q + s) ∈ [0, k − 1]², s = c − (k − 1)/2. If one of them is in A, R(A) meets int V(b)
+      (condition C2: its centre is in R(A) or ∂R(A) crosses its open square), an open subset of B(q), so
+      both kernels meet R(A). If none is, R(A) misses every V(b) (the same R(A) has D_supercover = A, so it
+      misses the closed voxel of every pixel outside A), so it misses the compact B̄(q) at a positive
+      distance and both kernels. The result is ``{q : A meets the block of q}``, a k × k OR-pooling.
+
+    (k = 1 gives DSS_1(A) = A.) tests/model/test_ops_scaling.py compares it with D(Sc_α(R(A))) computed.
+    """
+    if sim.b != 0 or sim.a <= 0 or sim.a.numerator != 1 or ps.is_empty():
+        return None
+    inv = sim.inverse()
+    k = int(inv.a)
+    cx, cy = inv.tx, inv.ty
+    if model == "gauss":
+        if cx.denominator != 1 or cy.denominator != 1:
+            return None
+        sx, sy = int(cx), int(cy)
+    else:
+        half = Fraction(k - 1, 2)
+        if (cx - half).denominator != 1 or (cy - half).denominator != 1:
+            return None
+        sx, sy = int(cx - half), int(cy - half)
+    x0, y0 = ps.origin
+    mask = ps.mask
+    if model == "gauss":
+        # q holds the one pixel b = k·q + s: the rows and columns of A congruent to s modulo k.
+        r0, c0 = (sy - y0) % k, (sx - x0) % k
+        sub = np.ascontiguousarray(mask[r0::k, c0::k])
+        return PixelSet(sub, ((x0 + c0 - sx) // k, (y0 + r0 - sy) // k))
+    # q holds the pixels b with k·q + s ≤ b ≤ k·q + s + k − 1: pad A to whole blocks, then OR each block.
+    qx0, qy0 = (x0 - sx) // k, (y0 - sy) // k
+    left, bottom = (x0 - sx) - k * qx0, (y0 - sy) - k * qy0
+    h, w = mask.shape
+    rows = -(-(h + bottom) // k)
+    cols = -(-(w + left) // k)
+    if (bottom, left, h, w) == (0, 0, rows * k, cols * k):
+        padded = mask
+    else:
+        padded = np.zeros((rows * k, cols * k), dtype=bool)
+        padded[bottom : bottom + h, left : left + w] = mask
+    # OR of the k rows, then of the k columns of each block (k slice ORs: ten times faster than .any(axis)).
+    strips = padded.reshape(rows, k, cols * k)
+    rows_or = strips[:, 0].copy()
+    for i in range(1, k):
+        rows_or |= strips[:, i]
+    blocks = rows_or.reshape(rows, cols, k)
+    pooled = blocks[..., 0].copy()
+    for i in range(1, k):
+        pooled |= blocks[..., i]
+    return PixelSet(pooled, (qx0, qy0))
 
 
 def register_discrete_similarity(
@@ -191,13 +282,20 @@ def register_discrete_similarity(
     from mrm.ops.base import OperationResult, OperationSpec, register
 
     def estimate(inputs: Any, p: Any) -> int:
-        return estimate_through_pixels(inputs[0], similarity(p), p.model)
+        return estimated_pixels(inputs[0], similarity(p), p.model)
 
     def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> Any:
-        # run_operation validated the parameters, checked the size and stamps provenance and bound.
+        # run_operation validated the parameters, checked the size (estimate above) and stamps provenance
+        # and bound: the estimate is not made a second time.
         ps = discrete_of(inputs[0], p.model, DEFAULT_PIXEL_LIMIT)
         out = discrete_similarity(
-            ps, similarity(p), p.model, limit=DEFAULT_PIXEL_LIMIT, progress=progress, what=label(p)
+            ps,
+            similarity(p),
+            p.model,
+            limit=DEFAULT_PIXEL_LIMIT,
+            progress=progress,
+            what=label(p),
+            estimated=True,
         )
         return OperationResult(outputs=[(label(p), out.result)])
 
@@ -287,21 +385,6 @@ def source_box(source: Any, sim: Similarity, model: str) -> Box | None:
 def estimate_source(source: Any, sim: Similarity, model: str) -> int:
     """An upper bound of the pixels of D(T(X)) for an object X, before anything is computed."""
     return box_area(source_box(source, sim, model))
-
-
-def estimate_through_pixels(source: Any, sim: Similarity, model: str) -> int:
-    """An upper bound of the pixels of D(T(R(A))) where A is the object's discrete representation.
-
-    For a polygon E, A = D(E) lies in the closed cells of E's bounding box (the supercover box), so R(A)
-    lies in the voxels of that box.
-    """
-    if isinstance(source, PixelSet) or source is None or source.is_empty:
-        return estimate_source(source, sim, model) if source is not None else 0
-    from fractions import Fraction
-
-    x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
-    cells = pixel_box((x0, y0, x1, y1), "supercover")
-    return box_area(pixel_box(mapped_bounds(voxel_bounds(cells), sim), model))
 
 
 def joint_box(boxes: list[Box | None]) -> Box | None:

@@ -2,31 +2,25 @@
 
 :func:`mrm.geometry.discretize.discretize` is exact for float64 input. The image of a polygon under an
 exact similarity (``Sc_1/5``, a rational rotation) has rational vertices that are not float64 values; rounding
-them first could move a vertex across a pixel side. :func:`discretize_exact` takes an
-:class:`~mrm.ops.exact_geometry.ExactShape` and
+them first could move a vertex across a pixel side. Three exact paths, all giving the pixels of the
+definitions (ALGORITHMS §1.7):
 
-* hands it to ``discretize`` unchanged when every coordinate is a float64 (the fast, compiled path);
-* otherwise scales every coordinate by ``2L`` (L the common denominator) so that vertices, pixel centres
-  (multiples of ``G = 2L``) and pixel sides (odd multiples of ``L``) are integers, and evaluates the same
-  definitions as ``discretize`` with Python integers: no rounding anywhere.
+* every coordinate a float64: ``discretize`` itself;
+* the integer definitions of :mod:`mrm.geometry.rational_discretize` — coordinates scaled by ``2L`` (L the
+  common denominator) so that vertices, pixel centres (multiples of ``G = 2L``) and pixel sides (odd
+  multiples of ``L``) are integers; compiled on int64 when that cannot overflow, else on Python integers;
+* :func:`filtered_image` for a float64 polygon under a similarity whose image does not fit int64 (a
+  rotation): float64 arithmetic with a proven error bound decides almost every pixel in compiled kernels,
+  and the integer definitions decide the edges with a near-tie.
 
-The integer path computes, as ``discretize`` does (ALGORITHMS §1.7):
-
-* ``gauss``: { p : p + τ ∈ P } by a scanline: on row j an edge counts when ``lo ≤ G·j < hi`` and pixel i lies
-  strictly left of the crossing (``G·i < X``); a pixel is inside when the count is odd;
-* ``standard`` / ``supercover``: that set, united with the pixels whose kernel meets an edge. The candidates
-  of an edge are the pixels whose closed square it meets (column by column, exact); under ``standard`` each
-  is decided by an exact Liang–Barsky test against the open square shifted by τ = (ε, ε²), with quantities
-  ``v₀ + v₁ε + v₂ε²`` compared lexicographically.
-
-Its cost is O(rows × crossings + perimeter) Python operations plus the row fills (numpy), so it is meant for
-the operations' results, not as a replacement of the compiled discretization.
+:func:`discretize_exact` takes an :class:`~mrm.ops.exact_geometry.ExactShape` (the first two paths);
+:func:`discretize_image` takes a float64 polygon and an exact similarity (the fastest path that applies).
 """
 
 from __future__ import annotations
 
+import logging
 import math
-from collections import defaultdict
 from fractions import Fraction
 from typing import Any, Protocol
 
@@ -37,6 +31,8 @@ from mrm.ops.exact_geometry import ExactShape, box_area, pixel_box
 from mrm.reps.pixels import Box, PixelSet
 
 MODELS = ("standard", "supercover", "gauss")
+
+log = logging.getLogger(__name__)
 
 IntEdge = tuple[int, int, int, int]
 _Triple = tuple[int, int, int]
@@ -112,6 +108,12 @@ def discretize_exact(
         result = discretize(shape.to_geometry(), model, limit=limit)
         _tick(progress, None)
         return result
+    if not force_integer:
+        # Coordinates that are not float64 values (a rotation's): the float filter, exact by its bound.
+        filtered = filtered_exact(shape, model, limit=limit)
+        if filtered is not None:
+            _tick(progress, None)
+            return filtered
     return _integer_path(shape, model, box, progress, compiled)
 
 
@@ -135,11 +137,6 @@ def _integer_edges(shape: ExactShape) -> tuple[list[IntEdge], int]:
     return edges, g
 
 
-def _ceil_div(a: int, b: int) -> int:
-    """⌈a / b⌉ for b > 0."""
-    return -((-a) // b)
-
-
 def _integer_path(
     shape: ExactShape, model: str, box: Box, progress: ProgressLike | None, compiled: bool = True
 ) -> PixelSet:
@@ -150,121 +147,18 @@ def _integer_path(
 def integer_discretization(
     edges: list[IntEdge], g: int, model: str, box: Box, progress: ProgressLike | None, compiled: bool = True
 ) -> PixelSet:
-    """D of integer edges on the grid of spacing ``g``: the compiled int64 kernels when safe, else Python."""
-    x0, y0, x1, y1 = box
-    if compiled and edges:
-        from mrm.geometry.rational_discretize import discretize_integer_edges, fits_int64
+    """D of integer edges on the grid of spacing ``g`` (:mod:`mrm.geometry.rational_discretize`).
 
-        m = max(max(abs(v) for v in e) for e in edges)
-        if fits_int64(m, g):
-            mask = discretize_integer_edges(np.array(edges, dtype=np.int64), g, box, model)
-            mask.flags.writeable = False
-            return PixelSet(mask, (x0, y0))
-    mask = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
-    n_work = 2 * len(edges) if model != "gauss" else len(edges)
-    _fill(mask, edges, g, box, progress, n_work)
-    if model != "gauss":
-        _walks(mask, edges, g, box, model == "standard", progress, n_work)
+    The definitions run compiled on int64 when no overflow is possible (and ``compiled``), else on Python
+    integers; ``progress`` is told when the work starts and ends.
+    """
+    from mrm.geometry.rational_discretize import discretize_integer_edges
+
+    _tick(progress, 0.0)
+    mask = discretize_integer_edges(edges, g, box, model, compiled=compiled)
+    _tick(progress, 1.0)
     mask.flags.writeable = False
-    return PixelSet(mask, (x0, y0))
-
-
-def _fill(
-    mask: np.ndarray, edges: list[IntEdge], g: int, box: Box, progress: ProgressLike | None, n_work: int
-) -> None:
-    """Mark { p : p + τ ∈ P } (even-odd over all rings), row by row."""
-    x0, y0, x1, _ = box
-    crossings: dict[int, list[int]] = defaultdict(list)
-    for k, (ax, ay, bx, by) in enumerate(edges):
-        if k % 256 == 0:
-            _tick(progress, k / max(1, n_work))
-        if ay == by:
-            continue  # the row y = G·j + ε² never meets a horizontal edge
-        dx, dy = bx - ax, by - ay
-        lo, hi = (ay, by) if dy > 0 else (by, ay)
-        den = g * dy
-        sign = 1 if den > 0 else -1
-        den *= sign
-        base = sign * (ax * dy - ay * dx)
-        step = sign * g * dx
-        j0 = _ceil_div(lo, g)
-        j1 = _ceil_div(hi, g) - 1
-        num = base + step * j0
-        for j in range(j0, j1 + 1):
-            # The crossing is X = num / den (in pixel units); pixel i counts when i < X: i ≤ ⌈X⌉ − 1.
-            crossings[j].append(_ceil_div(num, den) - 1)
-            num += step
-    for j, ms in crossings.items():
-        ms.sort()
-        row = mask[j - y0]
-        for t in range(0, len(ms) - 1, 2):
-            lo_i = max(ms[t] + 1, x0)
-            hi_i = min(ms[t + 1], x1)
-            if lo_i <= hi_i:
-                row[lo_i - x0 : hi_i - x0 + 1] = True
-
-
-def _walks(
-    mask: np.ndarray,
-    edges: list[IntEdge],
-    g: int,
-    box: Box,
-    standard: bool,
-    progress: ProgressLike | None,
-    n_work: int,
-) -> None:
-    """Mark the pixels whose kernel meets an edge (closed square; open square + τ for ``standard``)."""
-    x0, y0, _, _ = box
-    h = g // 2
-    offset = len(edges)
-    for k, (ax, ay, bx, by) in enumerate(edges):
-        if k % 256 == 0:
-            _tick(progress, (offset + k) / max(1, n_work))
-        if ax > bx:
-            ax, ay, bx, by = bx, by, ax, ay
-        dx, dy = bx - ax, by - ay
-        for i in range(_ceil_div(ax - h, g), (bx + h) // g + 1):
-            if dx == 0:
-                ylo, yhi = min(ay, by), max(ay, by)
-                j0, j1 = _ceil_div(ylo - h, g), (yhi + h) // g
-            else:
-                xl, xr = max(ax, g * i - h), min(bx, g * i + h)
-                n1 = ay * dx + (xl - ax) * dy
-                n2 = ay * dx + (xr - ax) * dy
-                nlo, nhi = min(n1, n2), max(n1, n2)
-                j0, j1 = _ceil_div(nlo - h * dx, g * dx), (nhi + h * dx) // (g * dx)
-            for j in range(j0, j1 + 1):
-                if not standard or _meets_standard(ax, ay, dx, dy, i, j, g, h):
-                    mask[j - y0, i - x0] = True
-
-
-def _less(a: _Triple, da: int, b: _Triple, db: int, strict: bool) -> bool:
-    """Lexicographic a/da < b/db (or ≤), for positive denominators."""
-    left = (a[0] * db, a[1] * db, a[2] * db)
-    right = (b[0] * da, b[1] * da, b[2] * da)
-    return left < right if strict else left <= right
-
-
-def _meets_standard(ax: int, ay: int, dx: int, dy: int, i: int, j: int, g: int, h: int) -> bool:
-    """Does the segment a + t·d, t ∈ [0, 1], meet int V(p) + τ for p = (i, j)? (exact Liang–Barsky)."""
-    lows: list[tuple[_Triple, int, bool]] = [((0, 0, 0), 1, False)]
-    ups: list[tuple[_Triple, int, bool]] = [((1, 0, 0), 1, False)]
-    # x: g·i − h + ε < ax + t·dx < g·i + h + ε;  y: g·j − h + ε² < ay + t·dy < g·j + h + ε².
-    for a0, d, c, unit in ((ax, dx, g * i, (1, 0)), (ay, dy, g * j, (0, 1))):
-        if d == 0:
-            # c − h + ε < a0 < c + h + ε  ⟺  c − h < a0 ≤ c + h
-            if not (c - h < a0 <= c + h):
-                return False
-            continue
-        lo = (c - h - a0, unit[0], unit[1])
-        hi = (c + h - a0, unit[0], unit[1])
-        if d > 0:
-            lows.append((lo, d, True))
-            ups.append((hi, d, True))
-        else:
-            lows.append(((-hi[0], -hi[1], -hi[2]), -d, True))
-            ups.append(((-lo[0], -lo[1], -lo[2]), -d, True))
-    return all(_less(lo, dl, up, du, sl or su) for lo, dl, sl in lows for up, du, su in ups)
+    return PixelSet(mask, (box[0], box[1]))
 
 
 # --------------------------------------------------------------------------------------- similarity images
@@ -276,20 +170,21 @@ def discretize_image(
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     what: str = "discretization",
 ) -> PixelSet | None:
-    """D(T(E)) for a float64 polygon E and an exact scaling-or-translation T, without Fractions.
+    """D(T(E)) for a float64 polygon E and an exact similarity T, without a Fraction per vertex.
 
-    Every float64 coordinate is ``X/2^k`` with an integer X; the image under ``v ↦ (p/q)·v + t`` is then
-    ``X'/D`` over one common denominator ``D``, computed with int64 numpy arithmetic once the magnitudes are
-    checked, and discretized by the compiled exact kernels (:mod:`mrm.geometry.rational_discretize`).
-    Returns None where this does not apply (a rotation, magnitudes beyond int64): the caller then takes the
-    Fraction path (:func:`discretize_exact`), which gives the same pixels.
+    A scaling-or-translation: every float64 coordinate is ``X/2^k`` with an integer X; the image under
+    ``v ↦ (p/q)·v + t`` is then ``X'/D`` over one common denominator ``D``, computed with int64 numpy
+    arithmetic once the magnitudes are checked, and discretized by the compiled exact kernels
+    (:mod:`mrm.geometry.rational_discretize`). A rotation, or an image beyond int64: the float filter
+    (:func:`filtered_image`). Returns None where neither applies (non-finite input, magnitudes beyond
+    2⁴⁰): the caller then takes :func:`discretize_exact`, which gives the same pixels.
     """
     import shapely
     from shapely.geometry import MultiPolygon, Polygon
 
     from mrm.geometry.rational_discretize import discretize_integer_edges, fits_int64
 
-    if sim.b != 0 or not isinstance(geom, Polygon | MultiPolygon):
+    if not isinstance(geom, Polygon | MultiPolygon):
         return None
     if geom.is_empty:
         return PixelSet.empty()
@@ -299,6 +194,8 @@ def discretize_image(
         return PixelSet.empty()
     if not np.isfinite(coords).all():
         return None
+    if sim.b != 0:
+        return filtered_image(coords, index, sim, model, limit=limit)
     a = Fraction(sim.a)
     if (
         sim.tx == 0
@@ -317,10 +214,10 @@ def discretize_image(
             return discretize(whole, model, limit=limit)
     k = _denominator_exponent(coords)
     if k > 900:
-        return None
+        return filtered_image(coords, index, sim, model, limit=limit)
     scaled = coords * float(2**k)
     if np.abs(scaled).max(initial=0.0) >= 2.0**62:
-        return None
+        return filtered_image(coords, index, sim, model, limit=limit)
     xs = scaled.astype(np.int64)
     tx, ty = Fraction(sim.tx), Fraction(sim.ty)
     base = a.denominator << k
@@ -330,7 +227,7 @@ def discretize_image(
     big = abs(ma) * int(np.abs(xs).max(initial=0)) + max(abs(t_x), abs(t_y))
     g = 2 * d
     if not fits_int64(2 * big, g) or 2 * big >= 2**62:
-        return None
+        return filtered_image(coords, index, sim, model, limit=limit)
     img = np.empty_like(xs)
     img[:, 0] = 2 * (ma * xs[:, 0] + t_x)
     img[:, 1] = 2 * (ma * xs[:, 1] + t_y)
@@ -362,6 +259,162 @@ def discretize_image(
     mask = discretize_integer_edges(e, g, box, model)
     mask.flags.writeable = False
     return PixelSet(mask, (box[0], box[1]))
+
+
+#: The float-filtered path works on coordinates below this magnitude (far beyond the limits of mrm.limits,
+#: ±2³¹): every rounding bound below is then far above the subnormal range and far below overflow.
+_FILTER_MAGNITUDE = 2.0**40
+_U = 2.0**-53
+
+
+def filtered_image(
+    coords: np.ndarray, index: np.ndarray, sim: Any, model: str, *, limit: int | None = DEFAULT_PIXEL_LIMIT
+) -> PixelSet | None:
+    """D(T(E)) for the rings of a float64 polygon E (``coords`` with shapely's ring ``index``), exactly.
+
+    The image is computed in float64 with a proven bound ``delta`` on the error of every coordinate, the
+    compiled kernels of :mod:`mrm.geometry.rational_discretize` decide every crossing and edge pixel the
+    float data decide for every polygon within ``delta``, and the edges with a near-tie are decided from
+    their exact image (Fractions, then the integer definitions of this module): the pixels of the integer
+    path, at the cost of the float one. Returns None (the caller takes the exact path) for magnitudes
+    beyond ``2⁴⁰`` or a box beyond ``limit``.
+
+    Error bound: ``X' = fl(fl(fl(c'·x) − fl(s'·y)) + t'_x)`` with ``c' = fl(c)``, ``s' = fl(s)``,
+    ``t' = fl(t)`` (each correctly rounded, relative error ≤ u = 2⁻⁵³) has
+    ``|X − X'| ≤ 4.01·u·(|c|·|x| + |s|·|y| + |t_x|)`` (at most four roundings on each term); products
+    that underflow lose at most 2⁻¹⁰⁷⁴ each. ``delta = 16·u·max(…) + 2⁻¹⁰⁰⁰`` keeps a factor 2 of slack
+    (with |c| ≤ (1 + u)|c'|), which the kernels' own bounds rely on.
+    """
+    cf, sf, txf, tyf = float(sim.a), float(sim.b), float(sim.tx), float(sim.ty)
+    if max(abs(cf), abs(sf), abs(txf), abs(tyf)) >= _FILTER_MAGNITUDE:
+        return None
+    x = np.ascontiguousarray(coords[:, 0], dtype=np.float64)
+    y = np.ascontiguousarray(coords[:, 1], dtype=np.float64)
+    if np.abs(coords).max(initial=0.0) >= _FILTER_MAGNITUDE:
+        return None
+    ix = (cf * x - sf * y) + txf
+    iy = (sf * x + cf * y) + tyf
+    magnitude = float(max(np.abs(ix).max(initial=0.0), np.abs(iy).max(initial=0.0)))
+    if not magnitude < _FILTER_MAGNITUDE:
+        return None
+    spread = (abs(cf) + abs(sf)) * (np.abs(x) + np.abs(y)) + (abs(txf) + abs(tyf))
+    delta = 16.0 * _U * float(spread.max(initial=0.0)) + 2.0**-1000
+    # Edges: consecutive vertices of each closed ring; an edge of two equal input points has one exact
+    # image point (T is injective) and is skipped, as the integer path skips zero-length edges.
+    first = np.flatnonzero(index[1:] == index[:-1])
+    second = first + 1
+    keep = (x[first] != x[second]) | (y[first] != y[second])
+
+    def exact_point(v: int) -> tuple[Fraction, Fraction]:
+        p: tuple[Fraction, Fraction] = sim((Fraction(float(x[v])), Fraction(float(y[v]))))
+        return p
+
+    return _filtered(ix, iy, first[keep], second[keep], delta, magnitude, exact_point, model, limit)
+
+
+def filtered_exact(
+    shape: ExactShape, model: str, *, limit: int | None = DEFAULT_PIXEL_LIMIT
+) -> PixelSet | None:
+    """D(shape) for rational polygons by the float filter of :func:`filtered_image` (None: not applicable).
+
+    Each coordinate is rounded once to the nearest float64 (``Fraction.__float__`` is correctly rounded:
+    ``|X − X'| ≤ u·|X|``, u = 2⁻⁵³, or 2⁻¹⁰⁷⁵ in the subnormal range); ``delta = 4·u·max|X| + 2⁻¹⁰⁰⁰``
+    keeps the factor 2 of slack the kernels rely on. The edges with a near-tie are decided from the exact
+    coordinates by the integer definitions.
+    """
+    pts: list[tuple[Fraction, Fraction]] = []
+    first: list[int] = []
+    second: list[int] = []
+    for poly in shape.polygons:
+        for ring in poly:
+            start, n = len(pts), len(ring)
+            pts.extend(ring)
+            for k in range(n):
+                if ring[k] != ring[(k + 1) % n]:  # the integer path skips zero-length edges too
+                    first.append(start + k)
+                    second.append(start + (k + 1) % n)
+    if not pts:
+        return PixelSet.empty()
+    try:
+        ix = np.array([float(p[0]) for p in pts], dtype=np.float64)
+        iy = np.array([float(p[1]) for p in pts], dtype=np.float64)
+    except OverflowError:
+        return None
+    magnitude = float(max(np.abs(ix).max(), np.abs(iy).max()))
+    if not magnitude < _FILTER_MAGNITUDE:
+        return None
+    delta = 4.0 * _U * magnitude + 2.0**-1000
+    return _filtered(
+        ix,
+        iy,
+        np.array(first, dtype=np.int64),
+        np.array(second, dtype=np.int64),
+        delta,
+        magnitude,
+        lambda v: pts[v],
+        model,
+        limit,
+    )
+
+
+def _filtered(
+    ix: np.ndarray,
+    iy: np.ndarray,
+    first: np.ndarray,
+    second: np.ndarray,
+    delta: float,
+    magnitude: float,
+    exact_point: Any,
+    model: str,
+    limit: int | None,
+) -> PixelSet | None:
+    """The float-filtered discretization of the edges ``first[k] → second[k]``.
+
+    The float vertices ``(ix, iy)`` are each within ``delta`` of the exact vertex ``exact_point(v)``;
+    ``magnitude`` bounds their coordinates.
+    """
+    from mrm.geometry.rational_discretize import (
+        filtered_crossings,
+        filtered_spans,
+        filtered_walks,
+        integer_crossings,
+        integer_walks,
+    )
+
+    ax, ay, bx, by = ix[first], iy[first], ix[second], iy[second]
+    # A box holding every pixel D can contain (cells of the bounds, grown by one pixel for delta < 1).
+    x0 = int(np.floor(ix.min() - 0.5)) - 1
+    y0 = int(np.floor(iy.min() - 0.5)) - 1
+    x1 = int(np.ceil(ix.max() + 0.5)) + 1
+    y1 = int(np.ceil(iy.max() + 0.5)) + 1
+    if limit is not None and box_area((x0, y0, x1, y1)) > limit:
+        return None  # the exact path checks the exact box (this one is a few pixels larger)
+
+    def exact_edges(ks: np.ndarray) -> tuple[list[IntEdge], int]:
+        """The exact edges ``ks`` as integers on one grid G = 2L (L: their common denominator)."""
+        pts = [exact_point(int(v)) for k in ks for v in (first[k], second[k])]
+        den = math.lcm(*(c.denominator for p in pts for c in p))
+        g = 2 * den
+        ints = [(int(px * g), int(py * g)) for px, py in pts]
+        return [(*ints[2 * t], *ints[2 * t + 1]) for t in range(len(ks))], g
+
+    rows, xs, ok = filtered_crossings(ax, ay, bx, by, delta, x0, x1)
+    doubtful = np.flatnonzero(~ok)
+    if doubtful.size:
+        edges, g = exact_edges(doubtful)
+        more_rows, more_xs = integer_crossings(edges, g, x0, x1)
+        rows, xs = np.concatenate([rows, more_rows]), np.concatenate([xs, more_xs])
+    mask = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
+    filtered_spans(mask, rows, xs, x0, y0)
+    if model != "gauss":
+        filtered_walks(mask, ax, ay, bx, by, ok, delta, magnitude, x0, y0)
+        doubtful = np.flatnonzero(~ok)
+        if doubtful.size:
+            edges, g = exact_edges(doubtful)
+            integer_walks(mask, edges, g, x0, y0, model == "standard")
+    log.debug("filtered discretization: %d edges, %d decided exactly", len(ok), int((~ok).sum()))
+    mask.flags.writeable = False
+    return PixelSet(mask, (x0, y0))
 
 
 def _denominator_exponent(values: np.ndarray) -> int:

@@ -27,7 +27,7 @@ from mrm.ops.boolean import (
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from tests.oracles.geometry_strategies import star_polygons
-from tests.oracles.ops_reference import MODELS, polygons_of, reference_discretize_rings, scaled
+from tests.oracles.ops_reference import MODELS, pixel_sets, polygons_of, reference_discretize_rings, scaled
 
 pairs = st.tuples(
     star_polygons(max_vertices=6, max_radius=4.0), star_polygons(max_vertices=6, max_radius=4.0)
@@ -158,3 +158,17 @@ def test_the_reconstruction_of_a_union_is_the_continuation_of_the_pixels():
     e2 = shapely.Polygon([(4, 3), (9, 2), (8, 8)])
     out = euclidean_discrete_union(e1, e2)
     assert out.result.equals_exact(reconstruct(discretize(e1) | discretize(e2)), 0)
+
+
+@settings(max_examples=100, deadline=None)
+@given(pixel_sets(max_side=9), pixel_sets(max_side=9))
+def test_the_parts_label_map_labels_each_part(a, b):
+    from mrm.ops.boolean import parts_label_map
+    from mrm.reps.pixels import LabelMap
+
+    lm = parts_label_map(a, b)
+    assert lm == LabelMap.from_pixel_sets([a - b, a & b, b - a])
+    assert lm.pixel_set(1) == a - b and lm.pixel_set(2) == (a & b) and lm.pixel_set(3) == b - a
+    assert parts_label_map(a, PixelSet.empty()) == LabelMap.from_pixel_sets(
+        [a, PixelSet.empty(), PixelSet.empty()]
+    )

@@ -155,6 +155,24 @@ def test_corefine_to_a_prefix_writes_one_file_per_part(capsys, files):
     assert s["parts"]["a_and_b"]["source_within"] <= math.sqrt(2)
 
 
+@pytest.mark.parametrize(("model", "alpha"), [("standard", None), ("gauss", "1.25"), ("supercover", "2")])
+def test_corefine_prints_the_numbers_of_the_one_account(capsys, files, model, alpha):
+    from mrm.document import Provenance
+    from mrm.ops.account import account_of
+
+    extra = [] if alpha is None else ["--alpha", alpha]
+    s = run_json(
+        capsys, "corefine", files["tri"], files["sq"], "--model", model, *extra, "-o", files["dir"] / "c"
+    )
+    prov = Provenance("corefine", {"model": model, "alpha": alpha}, (1, 2), (TRIANGLE, SQUARE), (None, None))
+    acc = account_of(prov)
+    for pa in acc.parts:
+        told = pa.as_dict()
+        for key in ("bound", "bound_one_sided", "bound_coefficient", "directions", "measured"):
+            assert s["parts"][pa.part][key] == told[key], (pa.part, key)
+    assert s["measured"] == max(pa.measured.value for pa in acc.parts)
+
+
 def test_corefine_to_geojson_is_one_feature_collection(capsys, files):
     out = files["dir"] / "co.geojson"
     run_json(capsys, "corefine", files["tri"], files["sq"], "--alpha", "2", "-o", out)

@@ -174,3 +174,47 @@ def test_dss_by_the_compiled_path_is_the_definition(a, alpha, model):
     assert out.euclidean == ExactShape.from_geometry(reconstruct(a, model)).map(
         __import__("mrm.ops.exact_geometry", fromlist=["Similarity"]).Similarity.scaling(Fraction(str(alpha)))
     )
+
+
+# ------------------------------------------------------------------------------ DSS_1/k from the pixels alone
+@settings(max_examples=200, deadline=None)
+@given(
+    objects(),
+    st.integers(1, 7),
+    st.tuples(st.integers(-6, 6), st.integers(-6, 6)).map(lambda t: (Fraction(t[0], 2), Fraction(t[1], 2))),
+    st.sampled_from(MODELS),
+)
+def test_dss_by_one_over_k_from_the_pixels_is_the_definition(a, k, centre, model):
+    """Pooling (covers) and sampling (gauss) of A give D(Sc_1/k(R(A))) whenever they apply."""
+    from mrm.ops.exact_geometry import Similarity
+    from mrm.ops.outcome import scaling_by_pixels
+
+    sim = Similarity.scaling(Fraction(1, k), centre)
+    got = scaling_by_pixels(a, sim, model)
+    c = [(1 - k) * v for v in centre]
+    aligned = (
+        all(v.denominator == 1 for v in c)
+        if model == "gauss"
+        else all((v - Fraction(k - 1, 2)).denominator == 1 for v in c)
+    )
+    assert (got is not None) == aligned
+    if got is not None:
+        polys = scaled(polygons_of(reconstruct(a, model)), Fraction(1, k), centre)
+        assert got == reference_discretize_rings(polys, model)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_dss_one_fifth_of_a_large_object_is_the_computed_definition(model):
+    """The shortcut on a 300² noisy object equals D(Sc_1/5(R(A))) computed by the exact discretization."""
+    from mrm.ops.exact_geometry import Similarity
+    from mrm.ops.rational_discretize import discretize_image
+
+    rng = np.random.default_rng(5)
+    yy, xx = np.mgrid[0:300, 0:300]
+    blob = ((xx - 150.0) ** 2 + (yy - 140.0) ** 2 < 130**2) ^ (rng.random((300, 300)) < 0.05)
+    a = PixelSet(blob, (-7, 3))
+    out = discrete_smooth_scaling(a, 0.2, None, model)
+    assert out.result == discretize_image(reconstruct(a, model), Similarity.scaling(Fraction(1, 5)), model)
+    assert out.euclidean == ExactShape.from_geometry(reconstruct(a, model)).map(
+        Similarity.scaling(Fraction(1, 5))
+    )
