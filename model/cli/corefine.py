@@ -20,6 +20,7 @@ recomputation is the result written, so nothing is computed twice.
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from pathlib import Path
 from typing import Any
@@ -53,6 +54,8 @@ def _targets(output: str) -> tuple[str, dict[str, str]]:
     from mrm.ops.boolean import PARTS
 
     p = Path(output)
+    if output.endswith(("/", os.sep)) or p.is_dir():  # a folder: one file per part, named after the part
+        return "files", {part: str(p / f"{part}.geojson") for part in PARTS}
     ext = p.suffix.lower()
     if ext in (".geojson", ".json"):
         return "collection", {}
@@ -83,6 +86,17 @@ def _write(
                 write_geojson(result[part], path, properties={"model": model, "part": part})
 
 
+def _read_alpha(text: str) -> Any:
+    """α read and range-checked as the registry declares it, refused in one line (``1e400`` too)."""
+    from mrm.cli._operation import check_parameter_text
+    from mrm.ops.base import coerce_params
+    from mrm.ops.boolean import COREFINE_SPEC
+
+    check_parameter_text(COREFINE_SPEC, {"alpha": text})
+    coerce_params(COREFINE_SPEC, {"alpha": text})  # the declared range
+    return positive_number(text, "alpha")  # the exact value, as the operation reads it
+
+
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Co-refine, write the parts, return the summary (the numbers are the model's account of the result)."""
     from mrm.document import Provenance
@@ -90,7 +104,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     from mrm.ops.account import account_of
     from mrm.ops.boolean import PARTS, euclidean_discrete_corefinement
 
-    alpha = None if args.alpha is None else positive_number(args.alpha, "alpha")
+    alpha = None if args.alpha is None else _read_alpha(args.alpha)
     kind, files = _targets(str(args.output))
     a, b, model = read_two(args)
     alpha_json = None if alpha is None else number_to_json(alpha)
@@ -103,6 +117,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     if out is None:  # not measured: the account holds the bounds only
         out = euclidean_discrete_corefinement(a, b, model, alpha, limit=args.limit)
     seconds = time.perf_counter() - t0
+    if files:  # a folder target is created only now, when there is something to write into it
+        Path(next(iter(files.values()))).parent.mkdir(parents=True, exist_ok=True)
     _write(kind, files, str(args.output), out.result, out.extra["label_map"], model)
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary.update(operation="corefine", alpha=alpha_json)

@@ -155,6 +155,28 @@ def test_corefine_to_a_prefix_writes_one_file_per_part(capsys, files):
     assert s["parts"]["a_and_b"]["source_within"] <= math.sqrt(2)
 
 
+def test_corefine_to_a_folder_names_the_files_after_the_parts(capsys, files):
+    folder = files["dir"] / "new" / "parts"
+    run_json(capsys, "corefine", files["tri"], files["sq"], "-o", f"{folder}/")
+    expected = euclidean_discrete_corefinement(TRIANGLE, SQUARE)
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "a_and_b.geojson",
+        "a_minus_b.geojson",
+        "b_minus_a.geojson",
+    ]
+    for part in ("a_minus_b", "a_and_b", "b_minus_a"):
+        assert discretize(read_geometry(folder / f"{part}.geojson")) == expected.extra["pixels"][part]
+
+
+@pytest.mark.parametrize("alpha", ["1e400", "1e-400", "0", "-2"])
+def test_corefine_refuses_alpha_out_of_range_in_one_short_line(capsys, files, alpha):
+    out = files["dir"] / "x/"
+    message = fails(capsys, "corefine", files["tri"], files["sq"], "--alpha", alpha, "-o", out)
+    assert "1e-06 ≤ α ≤ 1e+06" in message
+    assert len(message) < 200
+    assert not (files["dir"] / "x").exists()
+
+
 @pytest.mark.parametrize(("model", "alpha"), [("standard", None), ("gauss", "1.25"), ("supercover", "2")])
 def test_corefine_prints_the_numbers_of_the_one_account(capsys, files, model, alpha):
     from mrm.document import Provenance
