@@ -120,7 +120,25 @@ def number_to_json(q: Fraction) -> float | int | str:
     f = float(q)
     if math.isfinite(f) and Fraction(repr(f)) == q:
         return f
-    return f"{q.numerator}/{q.denominator}"
+    fraction = f"{q.numerator}/{q.denominator}"
+    decimal = _scientific(q)
+    return decimal if decimal is not None and len(decimal) < len(fraction) else fraction
+
+
+def _scientific(q: Fraction) -> str | None:
+    """``q`` as an exact ``"me-k"`` text when it is a decimal (``1e-400`` instead of a 401-digit fraction)."""
+    d, twos, fives = q.denominator, 0, 0
+    while d % 2 == 0:
+        d //= 2
+        twos += 1
+    while d % 5 == 0:
+        d //= 5
+        fives += 1
+    if d != 1:
+        return None
+    k = max(twos, fives)
+    m = q.numerator * 10**k // q.denominator
+    return f"{m}e-{k}"
 
 
 def is_float_exact(q: Fraction) -> bool:
