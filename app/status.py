@@ -60,6 +60,10 @@ class StatusBar(QtWidgets.QStatusBar):
         self.addPermanentWidget(self.cursor_label)
         self.addPermanentWidget(self.model_label)
         self._counted: tuple[Any, int] | None = None  # (pixel set, its count)
+        self._show_timer = QtCore.QTimer(self)
+        self._show_timer.setSingleShot(True)
+        self._show_timer.setInterval(self.SHOW_AFTER_MS)
+        self._show_timer.timeout.connect(lambda: self.progress_box.setVisible(True))
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(0)
@@ -132,11 +136,18 @@ class StatusBar(QtWidgets.QStatusBar):
         )
 
     # ------------------------------------------------------------------ progress
+    #: Work shorter than this never shows the progress bar (a derivation of a small object would flicker).
+    SHOW_AFTER_MS = 250
+
     def set_busy(self, busy: bool) -> None:
-        self.progress_box.setVisible(busy)
-        if busy:
+        if not busy:
+            self._show_timer.stop()
+            self.progress_box.setVisible(False)
+            return
+        if not self.progress_box.isVisible() and not self._show_timer.isActive():
             self.progress.setValue(0)
             self.progress.setRange(0, 0)  # indeterminate until the first report
+            self._show_timer.start()
 
     def set_progress(self, label: str, fraction: float, message: str) -> None:
         self.progress.setRange(0, 1000)

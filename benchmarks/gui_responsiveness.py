@@ -13,7 +13,8 @@ Measured, each over many repeats (medians, with the 90th percentile):
    DSS 20 (≈ 17 M pixels), DSS 4.5 of that result (≈ 85 M pixels) while panning and zooming, a rotation of the
    17 M-pixel object, saving and opening the project — target ≤ 100 ms in every workflow. The peer is the
    heartbeat's lateness on the same event loop left idle. ``--stalls`` runs only this part; ``--scale F``
-   shrinks every workflow's object linearly by F (F = 1: the issue's sizes).
+   shrinks every workflow's object linearly by F (F = 1: the issue's sizes); ``--trace FILE`` records the GUI
+   thread's traceback every 50 ms of a stall and prints where it was.
 
 Peer measured in the same run: bare pyqtgraph — a PlotWidget repainting after ``ImageItem.setImage`` of the
 same 2048² mask, and after ``PlotCurveItem.setData`` of the same 500-vertex ring. It is the floor any
@@ -247,12 +248,19 @@ def bench_startup(repeats: int = 5) -> list[float]:
 
 # ---------------------------------------------------------------------------------------------- 4. stalls
 class Heartbeat:
-    """A 10 ms timer on the GUI thread; the longest lateness of a tick is the longest stall."""
+    """A 10 ms timer on the GUI thread; the longest lateness of a tick is the longest stall.
 
-    def __init__(self, interval_ms: int = 10) -> None:
+    With ``trace`` (a file), every stall longer than ``trace_after`` seconds leaves the GUI thread's
+    traceback in that file (``faulthandler.dump_traceback_later``, re-armed at every tick: it reads the
+    frames from a C thread, so it sees a stall inside C code too); :func:`stall_report` sums them up.
+    """
+
+    def __init__(self, interval_ms: int = 10, trace: Path | None = None, trace_after: float = 0.05) -> None:
         from PySide6 import QtCore
 
         self.interval = interval_ms / 1000
+        self.trace_after = trace_after
+        self._trace = open(trace, "w") if trace is not None else None  # noqa: SIM115 (closed in mark)
         self.timer = QtCore.QTimer()
         self.timer.setTimerType(QtCore.Qt.TimerType.PreciseTimer)
         self.timer.setInterval(interval_ms)
@@ -264,6 +272,20 @@ class Heartbeat:
         self.last = time.perf_counter()
         self.worst = 0.0
         self.lates: list[float] = []
+        self._arm()
+
+    def mark(self, label: str) -> None:
+        """Start a new section of the trace file."""
+        if self._trace is not None:
+            self._trace.write(f"=== {label}\n")
+            self._trace.flush()
+
+    def _arm(self) -> None:
+        if self._trace is not None:
+            import faulthandler
+
+            faulthandler.cancel_dump_traceback_later()
+            faulthandler.dump_traceback_later(self.trace_after, repeat=True, file=self._trace)
 
     def _tick(self) -> None:
         now = time.perf_counter()
@@ -271,6 +293,48 @@ class Heartbeat:
         self.lates.append(late)
         self.worst = max(self.worst, late)
         self.last = now
+        self._arm()
+
+
+def stall_report(trace: Path, top: int = 6) -> str:
+    """Per section of a trace file: the GUI thread's innermost project frames seen most often in stalls."""
+    import collections
+    import re
+    import threading
+
+    main = f"{threading.main_thread().ident:#018x}"
+    sections: dict[str, collections.Counter[str]] = {}
+    counter: collections.Counter[str] | None = None
+    frames: list[str] | None = None
+
+    def flush() -> None:
+        if counter is not None and frames:
+            own = [f for f in frames if f.startswith("*")]
+            counter[" < ".join((own or frames)[:3])] += 1
+
+    for line in trace.read_text(errors="replace").splitlines():
+        if line.startswith("=== "):
+            flush()
+            frames = None
+            counter = sections.setdefault(line[4:], collections.Counter())
+        elif line.startswith("Thread ") or line.startswith("Current thread "):
+            flush()
+            frames = [] if main in line.lower() else None
+        elif frames is not None and line.strip().startswith("File "):
+            m = re.match(r'\s*File "(.*)", line (\d+) in (.*)', line)
+            if m:
+                path = m.group(1)
+                mine = (str(ROOT) in path and "site-packages" not in path) or "pyqtgraph" in path
+                frames.append(f"{'*' if mine else ''}{Path(path).name}:{m.group(2)} {m.group(3)}")
+    flush()
+    out = []
+    for label, c in sections.items():
+        if not c:
+            continue
+        out.append(f"   {label}: {sum(c.values())} samples ({0.05 * 1000:.0f} ms each)")
+        for stack, n in c.most_common(top):
+            out.append(f"      {n:4d}  {stack}")
+    return "\n".join(out)
 
 
 def _blob(scale: float) -> np.ndarray:
@@ -310,7 +374,9 @@ def run_until_drawn(app, win, beat, timeout, during=None):  # type: ignore[no-un
     raise RuntimeError(f"not drawn after {timeout:.0f} s")
 
 
-def bench_stalls(scale: float = 1.0, timeout: float = 900.0) -> list[tuple[str, float, float, str]]:
+def bench_stalls(
+    scale: float = 1.0, timeout: float = 900.0, trace: Path | None = None
+) -> list[tuple[str, float, float, str]]:
     import tempfile
 
     from PIL import Image
@@ -318,7 +384,7 @@ def bench_stalls(scale: float = 1.0, timeout: float = 900.0) -> list[tuple[str, 
     from mrm.app.startup import preload
 
     app, win = make_window()
-    beat = Heartbeat()
+    beat = Heartbeat(trace=trace)
     out: list[tuple[str, float, float, str]] = []
     # As `mrm` does at start: the cached kernels load on a worker (not measured: the window is idle then).
     preload(win)
@@ -326,6 +392,7 @@ def bench_stalls(scale: float = 1.0, timeout: float = 900.0) -> list[tuple[str, 
     # DSS 4.5 of the DSS 20 result is estimated (by its box) beyond the default 200 M-pixel limit.
     win.prefs.pixel_limit = 1_000_000_000
     # The peer: the same heartbeat on the same loop, idle for 2 s.
+    beat.mark("idle")
     beat.reset()
     t0 = time.perf_counter()
     while time.perf_counter() - t0 < 2.0:
@@ -338,6 +405,7 @@ def bench_stalls(scale: float = 1.0, timeout: float = 900.0) -> list[tuple[str, 
     panel = win.operations
 
     def step(label: str, action, during=None) -> None:  # type: ignore[no-untyped-def]
+        beat.mark(label)
         beat.reset()
         t = time.perf_counter()
         action()
@@ -389,11 +457,15 @@ def main() -> int:
     scale = float(args[args.index("--scale") + 1]) if "--scale" in args else 1.0
     if "--stalls" in args:
         print(f"4. longest GUI-thread stall per workflow (target ≤ 100 ms), scale {scale:g}")
-        rows = bench_stalls(scale)
+        trace = Path(args[args.index("--trace") + 1]) if "--trace" in args else None
+        rows = bench_stalls(scale, trace=trace)
         peer = max(rows[0][1], 1e-4)
         print(f"   peer: idle event loop                         longest stall {rows[0][1] * 1000:8.1f} ms")
         for label, worst, _took, _size in rows[1:]:
             print(f"   ratio to the peer, {label:<40} {worst / peer:8.1f}×")
+        if trace is not None:
+            print("   where the GUI thread was during the stalls (innermost project frames):")
+            print(stall_report(trace))
         return 0
     print(
         "MR Modeler GUI responsiveness (offscreen)"

@@ -1,0 +1,168 @@
+"""The GUI thread never computes (issue 10, "never blocks"): heavy work runs on workers, with Cancel.
+
+- The error inspector's picture of the differing pixels (the union of two results and their masks: seconds at
+  10⁸ pixels) is made on a worker; the inspector shows the counts first and the picture when it arrives.
+- Cancel in the status bar stops the derivations that follow an edit (not only an operation): what is computed
+  stays drawn, the rest says "cancelled" and is computed again on request; the document is untouched.
+"""
+
+from __future__ import annotations
+
+import threading
+
+import numpy as np
+from PySide6 import QtCore
+
+import mrm.derive
+import mrm.views.inspector
+from mrm.commands import AddObject
+from mrm.reps.pixels import PixelSet
+from tests.app.helpers import colour_at, is_background, wait_drawn
+from tests.app.test_inspector import _chain
+
+Qt = QtCore.Qt
+
+
+def _inspector_colour(insp, x: int, y: int):  # type: ignore[no-untyped-def]
+    """Colour the inspector's own plane shows at pixel (x, y)."""
+    img = insp.plane.viewport().grab().toImage()
+    p = insp.plane.map_from_plane(float(x), float(y))
+    dpr = img.devicePixelRatio()
+    return img.pixelColor(int(p.x() * dpr), int(p.y() * dpr))
+
+
+def test_the_difference_picture_is_made_on_a_worker_and_drawn(make_window, qtbot, monkeypatch):
+    threads: list[bool] = []
+    original = mrm.views.inspector.diff_picture
+
+    def recording(m):  # type: ignore[no-untyped-def]
+        threads.append(threading.current_thread() is threading.main_thread())
+        return original(m)
+
+    monkeypatch.setattr(mrm.views.inspector, "diff_picture", recording)
+    win = make_window(threaded=True, size=(1400, 900))
+    _chain(win, (2.0, 5.0, 0.1))  # α₁ = 2 then 5, back by 1/10: pixels differ (the paper's Figure 12)
+    insp = win.inspector
+    qtbot.waitUntil(lambda: insp.picture is not None and not win.runner.is_busy(), timeout=120_000)
+    assert threads and not any(threads), "the picture was made on the GUI thread"
+    m = insp.measurement
+    light, dark = m.difference.light, m.difference.dark
+    # The counts are in the text, the pixels in the picture, in the paper's two greys.
+    assert f"{len(light):,} pixels only in the result" in insp.measured_label.text()
+    assert not (light.is_empty() and dark.is_empty())
+    for ps, grey in ((light, (200, 200, 200)), (dark, (95, 95, 95))):
+        if not ps.is_empty():
+            x, y = (int(v) for v in ps.points()[0])
+            c = _inspector_colour(insp, x, y)
+            assert (c.red(), c.green(), c.blue()) == grey
+    # The overlay on the discrete view uses the same picture.
+    insp.overlay.setChecked(True)
+    wait_drawn(qtbot, win)
+    if not light.is_empty():
+        x, y = (int(v) for v in light.points()[0])
+        c = colour_at(win.views.discrete, x, y)
+        assert (c.red(), c.green(), c.blue()) == (200, 200, 200)
+    # Unchecked, the overlay is gone from the discrete view.
+    insp.overlay.setChecked(False)
+    wait_drawn(qtbot, win)
+    if not light.is_empty():
+        x, y = (int(v) for v in light.points()[0])
+        c = colour_at(win.views.discrete, x, y)
+        assert (c.red(), c.green(), c.blue()) != (200, 200, 200)
+
+
+def test_a_big_difference_picture_is_coarse_at_fit_all_and_exact_zoomed_in():
+    """Differences of a 3000² result are drawn from a level-of-detail image, with the exact mask behind."""
+    from mrm.ops.account import Account, PixelDifference
+
+    result = np.ones((3000, 3000), bool)
+    result[1500, 1500] = False
+    direct = np.ones((3000, 3000), bool)
+    direct[10, 20] = False
+    r, d = PixelSet(result, (5, 7)), PixelSet(direct, (5, 7))
+    m = Account(operation="dss", result=r, direct=d, difference=PixelDifference(light=r - d, dark=d - r))
+    pic = mrm.views.inspector.diff_picture(m)
+    assert pic is not None and pic.diff is not None
+    assert pic.result.size <= mrm.views.canvas.LOD_PIXELS and pic.result_f > 1
+    # The two differing pixels: light at (25, 17) (in the result only), dark at (1505, 1507).
+    full, (ox, oy) = pic.diff_full, pic.diff_origin
+    assert full[17 - oy, 25 - ox] == 1 and full[1507 - oy, 1505 - ox] == 2 and np.count_nonzero(full) == 2
+    assert pic.box == (5, 7, 3004, 3006)
+
+
+def _gate_regions(monkeypatch):  # type: ignore[no-untyped-def]
+    """Make computing regions wait until the returned event is set (the derivation is then 'long')."""
+    gate = threading.Event()
+    started = threading.Event()
+    original = mrm.derive.region_from_pixels
+
+    def slow(ps):  # type: ignore[no-untyped-def]
+        started.set()
+        gate.wait(60)
+        return original(ps)
+
+    monkeypatch.setattr(mrm.derive, "region_from_pixels", slow)
+    return gate, started
+
+
+def _big_disk() -> PixelSet:
+    yy, xx = np.mgrid[0:420, 0:420]
+    return PixelSet((xx - 210) ** 2 + (yy - 210) ** 2 < 200**2, (0, 0))
+
+
+def test_cancel_in_the_status_bar_stops_the_derivations_and_keeps_the_document(
+    make_window, qtbot, monkeypatch
+):
+    gate, started = _gate_regions(monkeypatch)
+    win = make_window(threaded=True, size=(1400, 900))
+    obj = win.doc.make_object(_big_disk(), name="disk")
+    win.doc.push(AddObject(obj, select=True))
+    win.fit_all()
+    qtbot.waitUntil(started.is_set, timeout=30_000)
+    # The derivation is in the status bar, with its progress and Cancel.
+    status = win.status
+    qtbot.waitUntil(lambda: status.progress_box.isVisible(), timeout=10_000)
+    qtbot.waitUntil(lambda: "disk: computing the regions" in status.progress_label.text(), timeout=10_000)
+    assert status.cancel_button.isEnabled()
+    qtbot.mouseClick(status.cancel_button, Qt.MouseButton.LeftButton)
+    gate.set()  # the running kernel ends; what comes after it does not run
+    qtbot.waitUntil(lambda: not win.runner.is_busy(), timeout=60_000)
+    qtbot.waitUntil(win.is_drawn, timeout=10_000)
+    assert not status.progress_box.isVisible()
+    # The document is intact: the object, its source, the undo history.
+    assert [o.id for o in win.doc.objects] == [obj.id]
+    assert win.doc.get(obj.id).source is obj.source
+    assert win.doc.history.undo_label() == "Add disk"
+    # The analytical view says what it did not compute, instead of "computing…" for ever.
+    av = win.views.analytical
+    assert "cancelled" in av.status_label.text()
+    # The discrete view shows what was ready: the pixels themselves.
+    c = colour_at(win.views.discrete, 210, 210)
+    assert not is_background(win.views.discrete, c)
+    # "Compute" in the view's header starts it again, and it completes.
+    win.views.show_view(av)
+    qtbot.waitUntil(av.resume_button.isVisible, timeout=5000)
+    qtbot.mouseClick(av.resume_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: win.scene.get(obj.id, "analytical") is not None, timeout=120_000)
+    qtbot.waitUntil(win.is_drawn, timeout=30_000)
+    assert "cancelled" not in av.status_label.text()
+
+
+def test_an_edit_after_a_cancel_computes_afresh(make_window, qtbot, monkeypatch):
+    gate, started = _gate_regions(monkeypatch)
+    win = make_window(threaded=True)
+    obj = win.doc.make_object(_big_disk(), name="disk")
+    win.doc.push(AddObject(obj, select=True))
+    qtbot.waitUntil(started.is_set, timeout=30_000)
+    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=10_000)
+    qtbot.mouseClick(win.status.cancel_button, Qt.MouseButton.LeftButton)
+    gate.set()
+    qtbot.waitUntil(lambda: not win.runner.is_busy(), timeout=60_000)
+    assert win.scene.is_cancelled(obj.id, "analytical")
+    # A new version of the object (its pixels shifted) is not the cancelled one: it is computed.
+    from mrm.commands import SetSource
+
+    win.doc.push(SetSource(obj.id, _big_disk().translate(3, 0)))
+    qtbot.waitUntil(lambda: win.scene.get(obj.id, "analytical") is not None, timeout=120_000)
+    qtbot.waitUntil(win.is_drawn, timeout=30_000)
+    assert "cancelled" not in win.views.analytical.status_label.text()
