@@ -297,41 +297,42 @@ class Heartbeat:
 
 
 def stall_report(trace: Path, top: int = 6) -> str:
-    """Per section of a trace file: the GUI thread's innermost project frames seen most often in stalls."""
+    """Per section of a trace file: the GUI thread's innermost project frames seen most often in stalls.
+
+    The GUI thread is the one whose outermost frame is a module's top level (workers start in ``run``).
+    """
     import collections
     import re
-    import threading
 
-    main = f"{threading.main_thread().ident:#018x}"
     sections: dict[str, collections.Counter[str]] = {}
     counter: collections.Counter[str] | None = None
-    frames: list[str] | None = None
+    frames: list[str] = []
 
     def flush() -> None:
-        if counter is not None and frames:
-            own = [f for f in frames if f.startswith("*")]
+        if counter is not None and frames and frames[-1].endswith("<module>"):
+            own = [f[1:] for f in frames if f.startswith("*")]
             counter[" < ".join((own or frames)[:3])] += 1
+        frames.clear()
 
     for line in trace.read_text(errors="replace").splitlines():
         if line.startswith("=== "):
             flush()
-            frames = None
             counter = sections.setdefault(line[4:], collections.Counter())
-        elif line.startswith("Thread ") or line.startswith("Current thread "):
+        elif line.startswith(("Thread ", "Current thread ", "Timeout ")):
             flush()
-            frames = [] if main in line.lower() else None
-        elif frames is not None and line.strip().startswith("File "):
+        elif line.strip().startswith("File "):
             m = re.match(r'\s*File "(.*)", line (\d+) in (.*)', line)
             if m:
                 path = m.group(1)
                 mine = (str(ROOT) in path and "site-packages" not in path) or "pyqtgraph" in path
+                mine = mine and "benchmarks" not in path
                 frames.append(f"{'*' if mine else ''}{Path(path).name}:{m.group(2)} {m.group(3)}")
     flush()
     out = []
     for label, c in sections.items():
         if not c:
             continue
-        out.append(f"   {label}: {sum(c.values())} samples ({0.05 * 1000:.0f} ms each)")
+        out.append(f"   {label}: {sum(c.values())} samples")
         for stack, n in c.most_common(top):
             out.append(f"      {n:4d}  {stack}")
     return "\n".join(out)

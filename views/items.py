@@ -118,6 +118,13 @@ class PathItem(QtWidgets.QGraphicsPathItem):
         self.setPen(QtGui.QPen(QtCore.Qt.PenStyle.NoPen))
         self.setBrush(QtGui.QBrush(QtCore.Qt.BrushStyle.NoBrush))
 
+    def shape(self) -> QtGui.QPainterPath:
+        # Qt's own shape strokes the whole path, and pyqtgraph asks for it at every mouse move (hover
+        # events): seconds for the outline of 10⁸ pixels. The tools hit-test the model, never these items.
+        out = QtGui.QPainterPath()
+        out.addRect(self.path().controlPointRect())  # not boundingRect(): Qt's calls shape()
+        return out
+
     def set_style(
         self,
         fill: QtGui.QColor | None = None,
