@@ -207,3 +207,31 @@ def test_the_coordinate_readout_follows_the_mouse_without_redrawing_the_views(ma
     counter.count = 0
     qtbot.mouseMove(vp, view.plane.map_from_plane(200.0, 300.0))
     qtbot.waitUntil(lambda: counter.count > 0, timeout=5000)
+
+
+def test_a_big_documents_autosave_is_written_by_a_worker_and_recovers_it(make_window, qtbot, monkeypatch):
+    """Serialising 10⁸ pixels takes seconds: the autosave timer hands it to a worker, the side file is whole."""
+    from mrm.io import autosave
+    from mrm.io.project import load_project
+
+    threads: list[bool] = []
+    real = autosave.dumps
+
+    def recording(*a, **k):  # type: ignore[no-untyped-def]
+        threads.append(threading.current_thread() is threading.main_thread())
+        return real(*a, **k)
+
+    monkeypatch.setattr(autosave, "dumps", recording)
+    win = make_window(threaded=True)
+    m = np.zeros((4100, 4100), bool)  # above the 4 M-pixel-equivalent weight of a "big" document
+    m[::3, ::5] = True
+    obj = win.doc.make_object(PixelSet(m, (10, -20)), name="big")
+    win.doc.push(AddObject(obj))
+    a = win.files.autosaver
+    a.interval = 0.0
+    win.files.autosave_tick()
+    qtbot.waitUntil(lambda: a.path.is_file() and not win.runner.is_busy("autosave"), timeout=120_000)
+    assert threads == [False], threads  # written once, not on the GUI thread
+    assert a.failures == 0 and a.edits == 0
+    back = load_project(a.path)
+    assert [o.name for o in back] == ["big"] and back.get(back.objects[0].id).source == obj.source
