@@ -13,8 +13,8 @@ Measured, each over many repeats (medians, with the 90th percentile):
    DSS 20 (≈ 17 M pixels), DSS 4.5 of that result (≈ 85 M pixels) while panning and zooming, a rotation of the
    17 M-pixel object, saving and opening the project — target ≤ 100 ms in every workflow. The peer is the
    heartbeat's lateness on the same event loop left idle. ``--stalls`` runs only this part; ``--scale F``
-   shrinks every workflow's object linearly by F (F = 1: the issue's sizes); ``--trace FILE`` records the GUI
-   thread's traceback every 50 ms of a stall and prints where it was.
+   shrinks every workflow's object linearly by F (F = 1: the issue's sizes); ``--trace`` samples where the GUI
+   thread and the workers are every 10 ms of a stall and prints it; ``--steps 3`` stops after DSS 4.5.
 
 ``--startup [N]`` measures instead the real ``mrm`` on a virtual X server, N starts (target ≤ 5 s to the
 painted window, the check of ``tests/app/test_real_display.py``).
@@ -307,42 +307,38 @@ def bench_startup_x(repeats: int = 5) -> list[float]:
 class Heartbeat:
     """A 10 ms timer on the GUI thread; the longest lateness of a tick is the longest stall.
 
-    With ``trace`` (a file), every stall longer than ``trace_after`` seconds leaves the GUI thread's
-    traceback in that file (``faulthandler.dump_traceback_later``, re-armed at every tick: it reads the
-    frames from a C thread, so it sees a stall inside C code too); :func:`stall_report` sums them up.
+    With ``trace``, a sampler thread looks at the GUI thread every 10 ms and, while a tick is more than
+    ``trace_after`` seconds late, records where the GUI thread is (``sys._current_frames``);
+    :meth:`report` sums the samples up per section (:meth:`mark`).
     """
 
-    def __init__(self, interval_ms: int = 10, trace: Path | None = None, trace_after: float = 0.05) -> None:
+    def __init__(self, interval_ms: int = 10, trace: bool = False, trace_after: float = 0.05) -> None:
+        import threading
+
         from PySide6 import QtCore
 
         self.interval = interval_ms / 1000
         self.trace_after = trace_after
-        self._trace = open(trace, "w") if trace is not None else None  # noqa: SIM115 (closed in mark)
+        self.samples: dict[str, dict[str, int]] = {}
+        self._section: dict[str, int] | None = None
         self.timer = QtCore.QTimer()
         self.timer.setTimerType(QtCore.Qt.TimerType.PreciseTimer)
         self.timer.setInterval(interval_ms)
         self.timer.timeout.connect(self._tick)
         self.reset()
         self.timer.start()
+        if trace:
+            self._gui = threading.get_ident()
+            threading.Thread(target=self._sample, daemon=True).start()
 
     def reset(self) -> None:
         self.last = time.perf_counter()
         self.worst = 0.0
         self.lates: list[float] = []
-        self._arm()
 
     def mark(self, label: str) -> None:
-        """Start a new section of the trace file."""
-        if self._trace is not None:
-            self._trace.write(f"=== {label}\n")
-            self._trace.flush()
-
-    def _arm(self) -> None:
-        if self._trace is not None:
-            import faulthandler
-
-            faulthandler.cancel_dump_traceback_later()
-            faulthandler.dump_traceback_later(self.trace_after, repeat=True, file=self._trace)
+        """Start a new section of the samples."""
+        self._section = self.samples.setdefault(label, {})
 
     def _tick(self) -> None:
         now = time.perf_counter()
@@ -350,49 +346,41 @@ class Heartbeat:
         self.lates.append(late)
         self.worst = max(self.worst, late)
         self.last = now
-        self._arm()
+
+    def _sample(self) -> None:
+        import threading
+        import traceback
+
+        while True:
+            time.sleep(0.01)
+            section = self._section
+            if section is None or time.perf_counter() - self.last < self.interval + self.trace_after:
+                continue
+            for ident, frame in sys._current_frames().items():
+                if ident == threading.get_ident():
+                    continue
+                stack = traceback.extract_stack(frame)[::-1]  # innermost first
+                own = [f for f in stack if _is_own(f.filename)] or stack
+                where = " < ".join(f"{Path(f.filename).name}:{f.lineno} {f.name}" for f in own[:4])
+                # A worker holding the GIL stops the GUI thread as surely as the GUI thread's own work.
+                key = f"GUI: {where}" if ident == self._gui else f"worker: {stack[0].name} | {where}"
+                section[key] = section.get(key, 0) + 1
+
+    def report(self, top: int = 14) -> str:
+        """Per section: the GUI thread's innermost project frames seen most often during stalls."""
+        out = []
+        for label, c in self.samples.items():
+            if c:
+                out.append(f"   {label}: {sum(c.values())} samples of 10 ms")
+                for stack, n in sorted(c.items(), key=lambda kv: -kv[1])[:top]:
+                    out.append(f"      {n:4d}  {stack}")
+        return "\n".join(out)
 
 
-def stall_report(trace: Path, top: int = 6) -> str:
-    """Per section of a trace file: the GUI thread's innermost project frames seen most often in stalls.
-
-    The GUI thread is the one whose outermost frame is a module's top level (workers start in ``run``).
-    """
-    import collections
-    import re
-
-    sections: dict[str, collections.Counter[str]] = {}
-    counter: collections.Counter[str] | None = None
-    frames: list[str] = []
-
-    def flush() -> None:
-        if counter is not None and frames and frames[-1].endswith("<module>"):
-            own = [f[1:] for f in frames if f.startswith("*")]
-            counter[" < ".join((own or frames)[:3])] += 1
-        frames.clear()
-
-    for line in trace.read_text(errors="replace").splitlines():
-        if line.startswith("=== "):
-            flush()
-            counter = sections.setdefault(line[4:], collections.Counter())
-        elif line.startswith(("Thread ", "Current thread ", "Timeout ")):
-            flush()
-        elif line.strip().startswith("File "):
-            m = re.match(r'\s*File "(.*)", line (\d+) in (.*)', line)
-            if m:
-                path = m.group(1)
-                mine = (str(ROOT) in path and "site-packages" not in path) or "pyqtgraph" in path
-                mine = mine and "benchmarks" not in path
-                frames.append(f"{'*' if mine else ''}{Path(path).name}:{m.group(2)} {m.group(3)}")
-    flush()
-    out = []
-    for label, c in sections.items():
-        if not c:
-            continue
-        out.append(f"   {label}: {sum(c.values())} samples")
-        for stack, n in c.most_common(top):
-            out.append(f"      {n:4d}  {stack}")
-    return "\n".join(out)
+def _is_own(path: str) -> bool:
+    """Frames of MR Modeler or pyqtgraph (not of this benchmark, not of the standard library)."""
+    mine = (str(ROOT) in path and "site-packages" not in path) or "pyqtgraph" in path
+    return mine and "benchmarks" not in path
 
 
 def _blob(scale: float) -> np.ndarray:
@@ -438,8 +426,11 @@ def run_until_drawn(app, win, beat, timeout, during=None):  # type: ignore[no-un
     raise RuntimeError(f"not drawn after {timeout:.0f} s")
 
 
+_BEAT: list[Heartbeat] = []
+
+
 def bench_stalls(
-    scale: float = 1.0, timeout: float = 900.0, trace: Path | None = None
+    scale: float = 1.0, timeout: float = 900.0, trace: bool = False
 ) -> list[tuple[str, float, float, str]]:
     import tempfile
 
@@ -449,6 +440,7 @@ def bench_stalls(
 
     app, win = make_window()
     beat = Heartbeat(trace=trace)
+    _BEAT[:] = [beat]
     out: list[tuple[str, float, float, str]] = []
     # As `mrm` does at start: the cached kernels load on a worker (not measured: the window is idle then).
     preload(win)
@@ -491,6 +483,7 @@ def bench_stalls(
         panel.control(name).set_value(value)
         panel.apply()
 
+    steps = int(sys.argv[sys.argv.index("--steps") + 1]) if "--steps" in sys.argv else 99
     step("import (PNG)", lambda: win.files.import_files([png]))
     step("DSS 20", lambda: apply("dss", 20.0, "alpha"))
     big = win.scene.primary()
@@ -504,6 +497,9 @@ def bench_stalls(
             v.plane.viewport().repaint()
 
     step("DSS 4.5 of the result, panning and zooming", lambda: apply("dss", 4.5, "alpha"), pan_zoom)
+    if steps <= 3:
+        win.close_now()
+        return out
     huge = win.scene.primary()
     if big is not None:
         win.doc.set_selection([big.id])
@@ -530,15 +526,15 @@ def main() -> int:
         return 0
     if "--stalls" in args:
         print(f"4. longest GUI-thread stall per workflow (target ≤ 100 ms), scale {scale:g}")
-        trace = Path(args[args.index("--trace") + 1]) if "--trace" in args else None
+        trace = "--trace" in args
         rows = bench_stalls(scale, trace=trace)
         peer = max(rows[0][1], 1e-4)
         print(f"   peer: idle event loop                         longest stall {rows[0][1] * 1000:8.1f} ms")
         for label, worst, _took, _size in rows[1:]:
             print(f"   ratio to the peer, {label:<40} {worst / peer:8.1f}×")
-        if trace is not None:
+        if trace:
             print("   where the GUI thread was during the stalls (innermost project frames):")
-            print(stall_report(trace))
+            print(_BEAT[0].report() if _BEAT else "")
         return 0
     print(
         "MR Modeler GUI responsiveness (offscreen)"

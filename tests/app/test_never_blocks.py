@@ -235,3 +235,20 @@ def test_a_big_documents_autosave_is_written_by_a_worker_and_recovers_it(make_wi
     assert a.failures == 0 and a.edits == 0
     back = load_project(a.path)
     assert [o.name for o in back] == ["big"] and back.get(back.objects[0].id).source == obj.source
+
+
+def test_junctions_are_the_pointels_a_boundary_visits_twice():
+    """The junction dots (computed without np.unique(axis=0), which holds the GIL) against a plain count."""
+    from collections import Counter
+
+    from mrm.reps.region import region_of
+    from mrm.views.region_view import junctions
+
+    rng = np.random.default_rng(7)
+    for _ in range(12):
+        m = rng.random((rng.integers(3, 30), rng.integers(3, 30))) < 0.45
+        region = region_of(PixelSet(m, (int(rng.integers(-50, 50)), int(rng.integers(-50, 50)))))
+        chains = list(region.boundary_chains)
+        seen = Counter(tuple(int(v) for v in p) for c in chains if len(c) for p in list(c.points())[:-1])
+        expected = sorted((x - 0.5, y - 0.5) for (x, y), n in seen.items() if n > 1)
+        assert [tuple(p) for p in junctions(chains)] == expected
