@@ -210,7 +210,10 @@ def test_the_coordinate_readout_follows_the_mouse_without_redrawing_the_views(ma
 
 
 def test_a_big_documents_autosave_is_written_by_a_worker_and_recovers_it(make_window, qtbot, monkeypatch):
-    """Serialising 10⁸ pixels takes seconds: the autosave timer hands it to a worker, the side file is whole."""
+    """Serialising 10⁸ pixels takes seconds: the autosave timer hands it to a worker; the side file is whole.
+
+    (A big document is one over the 4 M-pixel-equivalent weight of app.files.BIG_FILE.)
+    """
     from mrm.io import autosave
     from mrm.io.project import load_project
 
