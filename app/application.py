@@ -83,6 +83,11 @@ def configure(app: QtWidgets.QApplication) -> None:
         return
     app.setProperty("mrm_configured", True)
     _guard_refcount_leak()
+    # Every Qt callback into Python (each paint, each boundingRect) takes the GIL back from the workers;
+    # a worker running Python gives it up only at the switch interval, 5 ms by default, so a repaint of the
+    # four views could wait hundreds of such turns while a derivation runs. 1 ms halves those stalls
+    # (ADR 0019).
+    sys.setswitchinterval(min(sys.getswitchinterval(), 0.001))
     app.setOrganizationName(ORGANIZATION)
     app.setApplicationName(APPLICATION)
     app.setApplicationDisplayName(DISPLAY_NAME)
