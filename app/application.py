@@ -94,6 +94,9 @@ def configure(app: QtWidgets.QApplication) -> None:
     app.setDesktopFileName("mr-modeler")
     # Fusion draws the same on every platform and honours a custom palette fully (the native styles do not).
     app.setStyle("Fusion")
+    # Big outlines are drawn through Qt's item caches (views/items.py), which live in QPixmapCache: room
+    # for a few views' worth of them (the default 10 MB holds two full-screen pictures).
+    QtGui.QPixmapCache.setCacheLimit(max(QtGui.QPixmapCache.cacheLimit(), 96 * 1024))
     import pyqtgraph as pg
 
     # Keep pyqtgraph's QPainter path (no OpenGL: it needs a display) and its default image axis order:

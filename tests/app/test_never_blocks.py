@@ -255,3 +255,45 @@ def test_junctions_are_the_pointels_a_boundary_visits_twice():
         seen = Counter(tuple(int(v) for v in p) for c in chains if len(c) for p in list(c.points())[:-1])
         expected = sorted((x - 0.5, y - 0.5) for (x, y), n in seen.items() if n > 1)
         assert [tuple(p) for p in junctions(chains)] == expected
+
+
+def test_a_big_outline_is_drawn_through_a_cache_and_follows_a_pan(make_window, qtbot):
+    """Stroking 10⁵ outline pieces took 50–200 ms per view at every pan; cached, a pan moves the picture.
+
+    What is drawn must still be right: the selected object's outline is where the object's edge is, before
+    and after panning the views.
+    """
+    from PySide6 import QtWidgets
+
+    win = make_window(size=(1400, 900))
+    m = np.zeros((600, 600), bool)
+    m[::2, ::2] = True  # a chequer of lone pixels: an outline of 4 × 90,000 sides
+    m[100:500, 100:500] = True
+    ps = PixelSet(m, (0, 0))
+    obj = win.doc.make_object(ps, name="chequer")
+    win.doc.push(AddObject(obj, select=True))
+    wait_drawn(qtbot, win, timeout=120_000)
+    view = win.views.discrete
+    outline = view.layer(obj.id).outline
+    assert outline.cacheMode() == QtWidgets.QGraphicsItem.CacheMode.DeviceCoordinateCache
+    hl = view.highlight_colour()
+
+    def edge_is_outlined() -> bool:
+        # The left side of the solid square, x = 99.5, at a few heights: drawn in the highlight colour.
+        img = view.plane.viewport().grab().toImage()
+        dpr = img.devicePixelRatio()
+        hits = 0
+        for y in (200.0, 300.0, 400.0):
+            p = view.plane.map_from_plane(99.5, y)
+            c = img.pixelColor(int(p.x() * dpr), int(p.y() * dpr))
+            hits += abs(c.red() - hl.red()) + abs(c.green() - hl.green()) + abs(c.blue() - hl.blue()) < 60
+        return hits == 3
+
+    cam = win.views.camera
+    cam.set(150.0, 300.0, 1.0)
+    wait_drawn(qtbot, win)
+    assert edge_is_outlined()
+    for dx in (37.0, -81.0):  # pans: only the view's translation changes, the cached picture is reused
+        cam.set(cam.cx + dx, cam.cy + dx / 3, cam.scale)
+        QtCore.QCoreApplication.processEvents()
+        assert edge_is_outlined()
