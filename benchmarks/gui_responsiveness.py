@@ -510,6 +510,7 @@ def bench_stalls(
     out[-1] = (out[-1][0], out[-1][1], out[-1][2], f"{mb:.0f} MB")
     step(f"open the project ({mb:.0f} MB)", lambda: win.files.open(project, ask=False))
     del huge
+    beat.mark("closing (not measured)")
     win.close_now()
     return out
 
