@@ -43,6 +43,13 @@ class StatusBar(QtWidgets.QStatusBar):
         pl.setContentsMargins(0, 0, 0, 0)
         pl.setSpacing(4)
         self.progress_label = QtWidgets.QLabel("", self.progress_box)
+        # A long message ("DSS 4.5: computing the digital straight segments (3/3)") is cut, never allowed to
+        # widen the window while it shows.
+        self.progress_label.setSizePolicy(
+            QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Preferred
+        )
+        self.progress_label.setMinimumWidth(60)
+        self.progress_label.setMaximumWidth(240)
         self.progress = QtWidgets.QProgressBar(self.progress_box)
         self.progress.setObjectName("taskProgress")
         self.progress.setRange(0, 1000)
@@ -153,6 +160,7 @@ class StatusBar(QtWidgets.QStatusBar):
         self.progress.setRange(0, 1000)
         self.progress.setValue(round(1000 * fraction))
         self.progress_label.setText(message or label)
+        self.progress_box.setToolTip(message or label)
 
 
 def segment_count(ana: Any) -> int:
