@@ -281,6 +281,9 @@ def bench_startup_x(repeats: int = 5) -> list[float]:
             app = subprocess.Popen(_mrm_command(), env=env, stdout=quiet, stderr=quiet)
             try:
                 while time.monotonic() - t0 < 120:
+                    if app.poll() is not None:
+                        print(f"   run {k + 1}: mrm exited with {app.returncode} before its window was seen")
+                        break
                     wids = subprocess.run(
                         [xdotool, "search", "--onlyvisible", "--name", "MR Modeler"],
                         env=env, capture_output=True, text=True,
@@ -296,6 +299,8 @@ def bench_startup_x(repeats: int = 5) -> list[float]:
                                 times.append(time.monotonic() - t0)
                                 break
                     time.sleep(0.02)
+                else:
+                    print(f"   run {k + 1}: no painted window after 120 s")
             finally:
                 _stop(app)
     finally:
