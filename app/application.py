@@ -83,12 +83,20 @@ def configure(app: QtWidgets.QApplication) -> None:
         return
     app.setProperty("mrm_configured", True)
     _guard_refcount_leak()
+    # Every Qt callback into Python (each paint, each boundingRect) takes the GIL back from the workers;
+    # a worker running Python gives it up only at the switch interval, 5 ms by default, so a repaint of the
+    # four views could wait hundreds of such turns while a derivation runs. 1 ms halves those stalls
+    # (ADR 0019).
+    sys.setswitchinterval(min(sys.getswitchinterval(), 0.001))
     app.setOrganizationName(ORGANIZATION)
     app.setApplicationName(APPLICATION)
     app.setApplicationDisplayName(DISPLAY_NAME)
     app.setDesktopFileName("mr-modeler")
     # Fusion draws the same on every platform and honours a custom palette fully (the native styles do not).
     app.setStyle("Fusion")
+    # Big outlines are drawn through Qt's item caches (views/items.py), which live in QPixmapCache: room
+    # for a few views' worth of them (the default 10 MB holds two full-screen pictures).
+    QtGui.QPixmapCache.setCacheLimit(max(QtGui.QPixmapCache.cacheLimit(), 96 * 1024))
     import pyqtgraph as pg
 
     # Keep pyqtgraph's QPainter path (no OpenGL: it needs a display) and its default image axis order:

@@ -360,9 +360,28 @@ class FileController(QtCore.QObject):
         # Autosaver.tick reports its failures through _autosave_failed and never raises; the guard keeps
         # a timer slot from ever propagating an exception into Qt's event loop.
         try:
-            self.autosaver.tick()
+            a = self.autosaver
+            if self.win.runner.is_busy("autosave"):
+                return
+            if self.doc.is_modified and a.due() and document_weight(self.doc) > BIG_FILE:
+                self._autosave_on_worker()
+                return
+            a.tick()
         except Exception as e:
             self._autosave_failed(f"Autosave failed, will retry: {describe_error(e)}")
+
+    def _autosave_on_worker(self) -> None:
+        """Serialise a big document's autosave on a worker: at 10⁸ pixels it takes seconds."""
+        a = self.autosaver
+        target, write = a.prepare_write()
+        edits = a.edits
+
+        def failed(e: BaseException) -> None:
+            a.write_failed(e)
+
+        self.win.runner.submit(
+            "autosave", lambda _p: write(), on_result=lambda _r: a.written(target, edits), on_error=failed
+        )
 
     def _autosave_failed(self, message: str) -> None:
         self.win.show_message(message, 10000, error=True)

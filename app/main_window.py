@@ -462,10 +462,15 @@ class MainWindow(QtWidgets.QMainWindow):
     def cancel_task(self) -> None:
         if self.tools.cancel():
             return
-        self.operations.cancel()
-        self.runner.cancel("operation")
+        if self.operations.is_running():
+            self.operations.cancel()
+            return
+        self.operations.cancel()  # its preview
         self.runner.cancel("measure")  # the Hausdorff distance of the Measure panel
         self.runner.cancel("zoom-differences")
+        # Then what follows an operation or an edit: the derivations and the inspector's measurement.
+        self.scene.cancel_derivations()
+        self.inspector.cancel()
 
     def delete_selection(self) -> None:
         from mrm.commands import RemoveObjects

@@ -43,6 +43,13 @@ class StatusBar(QtWidgets.QStatusBar):
         pl.setContentsMargins(0, 0, 0, 0)
         pl.setSpacing(4)
         self.progress_label = QtWidgets.QLabel("", self.progress_box)
+        # A long message ("DSS 4.5: computing the digital straight segments (3/3)") is cut, never allowed to
+        # widen the window while it shows.
+        self.progress_label.setSizePolicy(
+            QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Preferred
+        )
+        self.progress_label.setMinimumWidth(60)
+        self.progress_label.setMaximumWidth(240)
         self.progress = QtWidgets.QProgressBar(self.progress_box)
         self.progress.setObjectName("taskProgress")
         self.progress.setRange(0, 1000)
@@ -60,6 +67,10 @@ class StatusBar(QtWidgets.QStatusBar):
         self.addPermanentWidget(self.cursor_label)
         self.addPermanentWidget(self.model_label)
         self._counted: tuple[Any, int] | None = None  # (pixel set, its count)
+        self._show_timer = QtCore.QTimer(self)
+        self._show_timer.setSingleShot(True)
+        self._show_timer.setInterval(self.SHOW_AFTER_MS)
+        self._show_timer.timeout.connect(lambda: self.progress_box.setVisible(True))
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(0)
@@ -132,16 +143,24 @@ class StatusBar(QtWidgets.QStatusBar):
         )
 
     # ------------------------------------------------------------------ progress
+    #: Work shorter than this never shows the progress bar (a derivation of a small object would flicker).
+    SHOW_AFTER_MS = 250
+
     def set_busy(self, busy: bool) -> None:
-        self.progress_box.setVisible(busy)
-        if busy:
+        if not busy:
+            self._show_timer.stop()
+            self.progress_box.setVisible(False)
+            return
+        if not self.progress_box.isVisible() and not self._show_timer.isActive():
             self.progress.setValue(0)
             self.progress.setRange(0, 0)  # indeterminate until the first report
+            self._show_timer.start()
 
     def set_progress(self, label: str, fraction: float, message: str) -> None:
         self.progress.setRange(0, 1000)
         self.progress.setValue(round(1000 * fraction))
         self.progress_label.setText(message or label)
+        self.progress_box.setToolTip(message or label)
 
 
 def segment_count(ana: Any) -> int:

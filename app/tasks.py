@@ -13,6 +13,8 @@ deterministic, and it shows that nothing in the GUI depends on the threading.
 from __future__ import annotations
 
 import itertools
+import os
+import sys
 import threading
 import time
 import traceback
@@ -104,6 +106,27 @@ class _Signals(QtCore.QObject):
     progressed = QtCore.Signal(object, float, str)  # task, fraction, message
 
 
+#: How much lower than the GUI thread the workers are scheduled (a nice increment, Linux only): on a busy
+#: machine the GUI thread then gets a core before the derivations do, and the window keeps answering.
+WORKER_NICENESS = 10
+_worker_thread = threading.local()
+
+
+def lower_thread_priority(increment: int = WORKER_NICENESS) -> None:
+    """Schedule the calling thread ``increment`` nice levels below the others (Linux; elsewhere nothing).
+
+    On Linux ``setpriority`` with a thread id applies to that thread only.
+    """
+    if getattr(_worker_thread, "lowered", False) or not sys.platform.startswith("linux"):
+        return
+    _worker_thread.lowered = True
+    try:
+        tid = threading.get_native_id()
+        os.setpriority(os.PRIO_PROCESS, tid, min(19, os.getpriority(os.PRIO_PROCESS, tid) + increment))
+    except OSError:  # not permitted in some sandboxes: the workers then simply share the CPU evenly
+        pass
+
+
 class _Worker(QtCore.QRunnable):
     def __init__(self, task: Task, signals: _Signals) -> None:
         super().__init__()
@@ -112,6 +135,7 @@ class _Worker(QtCore.QRunnable):
         self.setAutoDelete(True)
 
     def run(self) -> None:
+        lower_thread_priority()
         task = self.task
         try:
             task.progress.check()

@@ -60,9 +60,11 @@ def stamp_path() -> Path:
 
 
 def cache_key() -> dict[str, str]:
-    """What the compiled cache depends on: numba, Python, the machine and the kernels' source text."""
-    import numba
+    """What the compiled cache depends on: numba, Python, the machine and the kernels' source text.
 
+    numba's version is read from its installed metadata, not by importing it: the desktop application asks
+    this before its first paint, and importing numba takes a second or more on a loaded machine.
+    """
     h = hashlib.sha256()
     root = _package_root()
     for rel in KERNEL_MODULES:
@@ -71,11 +73,22 @@ def cache_key() -> dict[str, str]:
         if p.is_file():
             h.update(p.read_bytes())
     return {
-        "numba": str(numba.__version__),
+        "numba": _numba_version(),
         "python": platform.python_version(),
         "machine": platform.machine(),
         "sources": h.hexdigest(),
     }
+
+
+def _numba_version() -> str:
+    from importlib import metadata
+
+    try:
+        return metadata.version("numba")
+    except metadata.PackageNotFoundError:  # a numba without metadata (a source tree): ask the module
+        import numba
+
+        return str(numba.__version__)
 
 
 def is_warm() -> bool:

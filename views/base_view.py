@@ -15,7 +15,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from mrm.derive import Rep
 from mrm.document import Changes, DocObject
 from mrm.views.canvas import PlaneView
-from mrm.views.scene import Phantom, Scene
+from mrm.views.scene import CANCELLED, Phantom, Scene
 
 
 class Layer(pg.ItemGroup):
@@ -78,6 +78,15 @@ class RepresentationView(QtWidgets.QFrame):
         hl.addWidget(self.title_label)
         hl.addWidget(self.subtitle_label, 2)
         hl.addWidget(self.status_label, 3)
+        # After a Cancel in the status bar: compute what was left out (shown only then).
+        self.resume_button = QtWidgets.QToolButton(self.header)
+        self.resume_button.setObjectName("resumeDerivations")
+        self.resume_button.setText("Compute")
+        self.resume_button.setToolTip("Compute what was cancelled")
+        self.resume_button.setAutoRaise(True)
+        self.resume_button.clicked.connect(lambda: self.scene.resume_derivations())
+        self.resume_button.hide()
+        hl.addWidget(self.resume_button)
         self.header_layout = hl
         lay.addWidget(self.header)
         self.plane = PlaneView(self.name, self)
@@ -210,11 +219,20 @@ class RepresentationView(QtWidgets.QFrame):
 
     def _update_status(self) -> None:
         errors = []
+        cancelled = []
         for obj in self.scene.objects():
+            if not obj.style.visible:
+                continue
+            if self.scene.is_cancelled(obj.id, self.rep) or self.scene.is_cancelled(obj.id, "discrete"):
+                cancelled.append(obj.name)
+                continue
             e = self.scene.error(obj.id, self.rep) or self.scene.error(obj.id, "discrete")
-            if e and obj.style.visible:
+            if e:
                 errors.append(f"{obj.name}: {e}")
-        if errors:
+        if cancelled and not errors:
+            self.status_label.setText(f"{cancelled[0]}: {CANCELLED}")
+            self.status_label.setToolTip("\n".join(cancelled))
+        elif errors:
             self.status_label.setText(f"<span style='color:#c0392b'>{errors[0]}</span>")
             self.status_label.setToolTip("\n".join(errors))
         elif any(layer.waiting for layer in self._layers.values()):
@@ -223,6 +241,7 @@ class RepresentationView(QtWidgets.QFrame):
         else:
             self.status_label.setText("")
             self.status_label.setToolTip("")
+        self.resume_button.setVisible(bool(cancelled) and not errors)
         # An empty status takes no room: the subtitle ("components, holes, cracks") is then shown whole.
         self.status_label.setVisible(bool(self.status_label.text()))
 

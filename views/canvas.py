@@ -247,6 +247,7 @@ class MaskItem(pg.ImageItem):
         if data is None or data.size == 0:
             self.clear()
             self.setVisible(False)
+            self.update_detail()  # hides the exact detail of a previous coarse image
             return
         self.setVisible(True)
         img = data.view(np.uint8) if data.dtype == np.bool_ else data
@@ -293,6 +294,15 @@ class MaskItem(pg.ImageItem):
         detail.setImage(np.ascontiguousarray(img), autoLevels=False, levels=None, lut=self._lut)
         detail.setRect(QtCore.QRectF(ox + x0, oy + y0, x1 - x0, y1 - y0))
         detail.setVisible(True)
+
+    def detach(self) -> None:
+        """Remove the exact-detail image (a sibling item) from the view: call before removing this item."""
+        detail = getattr(self, "_detail", None)
+        if detail is not None:
+            detail.setParentItem(None)
+            if detail.scene() is not None:
+                detail.scene().removeItem(detail)
+            self._detail = None
 
     def update_pixels(self, data: np.ndarray) -> None:
         """Replace the image data in place (same shape and origin): the brush's fast path."""

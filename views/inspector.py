@@ -9,6 +9,7 @@ as in the paper's Figure 12.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -16,18 +17,22 @@ from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.errors import MRMError
 from mrm.ops.account import Account, account_of, rerun_request
-from mrm.views.canvas import Camera, MaskItem, PlaneView, qcolor
+from mrm.ops.outcome import joint_box
+from mrm.views.canvas import Camera, MaskItem, PlaneView, lod_image, qcolor
 from mrm.views.provenance import bound_text, chain_rows, changes_text, measured_text
 from mrm.views.scene import Scene
 
 LIGHT_GREY = (200, 200, 200)
 DARK_GREY = (95, 95, 95)
+DIFF_LUT = np.array([[0, 0, 0, 0], [*LIGHT_GREY, 255], [*DARK_GREY, 255]])
 
 
 class ErrorInspector(QtWidgets.QWidget):
     """Dock content; follows the selected object."""
 
     measured = QtCore.Signal()
+    #: The picture of the differences is drawn (it is made on a worker after the measurement).
+    pictured = QtCore.Signal()
     rerun_done = QtCore.Signal(list)
 
     def __init__(self, scene: Scene, runner: Any, parent: QtWidgets.QWidget | None = None) -> None:
@@ -37,6 +42,7 @@ class ErrorInspector(QtWidgets.QWidget):
         self.runner = runner
         self.account: Account | None = None
         self.measurement: Account | None = None
+        self.picture: DiffPicture | None = None  # the drawing of the measurement, once made
         self.title = QtWidgets.QLabel("", self)
         self.title.setWordWrap(True)
         self.changes_label = QtWidgets.QLabel("", self)
@@ -117,7 +123,9 @@ class ErrorInspector(QtWidgets.QWidget):
         keep = prov is not None and prov is self._measured_for and self.measurement is not None
         if not keep:
             self.runner.cancel("inspect")
+            self.runner.cancel("inspect:picture")
             self.measurement = None
+            self.picture = None
             self._measured_for = None
         self._show_diff()
         self.chain.clear()
@@ -202,15 +210,20 @@ class ErrorInspector(QtWidgets.QWidget):
             if now is None or now.provenance is not prov:
                 return  # another object was selected meanwhile
             self.measurement = m
+            self.picture = None
             self._measured_for = prov
             self.measured_label.setText(measured_text(m))
-            self._show_diff()
+            self._show_diff()  # clears the previous picture at once
             self.measured.emit()
+            self._request_picture(m)
 
         def failed(exc: BaseException) -> None:
             if not isinstance(exc, MRMError):
                 raise exc
             self.measured_label.setText(f"<b>Measured</b>: {exc}")
+
+        def cancelled() -> None:
+            self.measured_label.setText("<b>Measured</b>: cancelled — <i>Measure</i> computes it")
 
         # The provenance is an immutable value pinning everything the account reads: safe on a worker.
         self.runner.submit(
@@ -218,8 +231,15 @@ class ErrorInspector(QtWidgets.QWidget):
             lambda progress: account_of(prov, measure=True, progress=progress),
             on_result=done,
             on_error=failed,
-            label="Measuring the error",
+            on_cancel=cancelled,
+            label=f"{obj.name}: measuring the error",
+            show_progress=True,
         )
+
+    def cancel(self) -> None:
+        """Stop measuring (and drawing the differences); the account's chain and bound stay shown."""
+        self.runner.cancel("inspect")
+        self.runner.cancel("inspect:picture")
 
     # ------------------------------------------------------------------ re-running
     def rerun(self) -> None:
@@ -259,40 +279,37 @@ class ErrorInspector(QtWidgets.QWidget):
         )
 
     # ------------------------------------------------------------------ pictures
-    def _diff_image(self, m: Account) -> tuple[np.ndarray, tuple[int, int]] | None:
-        if m.result is None or m.direct is None or m.difference is None:
-            return None
-        union = m.result | m.direct
-        box = union.bbox
-        if box is None:
-            return None
-        img = np.zeros((box[3] - box[1] + 1, box[2] - box[0] + 1), dtype=np.uint8)
-        light_ps, dark_ps = m.difference.light, m.difference.dark
-        light = light_ps.to_array(box) if not light_ps.is_empty() else None
-        dark = dark_ps.to_array(box) if not dark_ps.is_empty() else None
-        if light is not None:
-            img[light] = 1
-        if dark is not None:
-            img[dark] = 2
-        return img, (box[0], box[1])
+    def _request_picture(self, m: Account) -> None:
+        """Make the drawing of ``m`` on a worker: at 10⁸ pixels the union and the masks take seconds."""
+
+        def done(pic: DiffPicture | None) -> None:
+            if self.measurement is m:
+                self.picture = pic
+                self._show_diff()
+                self.pictured.emit()
+
+        self.picture = None
+        self.runner.submit(
+            "inspect:picture", lambda _p: diff_picture(m), on_result=done, label="Drawing the differences"
+        )
 
     def _show_diff(self) -> None:
         m = self.measurement
-        lut = np.array([[0, 0, 0, 0], [*LIGHT_GREY, 255], [*DARK_GREY, 255]])
-        if m is None or m.result is None:
+        pic = self.picture if m is not None else None
+        if pic is None:
             self.result_item.set_pixels(None, (0, 0))
             self.diff_item.set_pixels(None, (0, 0))
             self._overlay_changed(self.overlay.isChecked())
             return
         obj = self.scene.primary()
         colour = qcolor(obj.style.fill) if obj is not None else QtGui.QColor("#4c72b0")
-        self.result_item.set_pixels(
-            m.result.mask, m.result.origin, np.array([[0, 0, 0, 0], [*colour.getRgb()[:3], 110]])
-        )
-        d = self._diff_image(m)
-        if d is not None:
-            self.diff_item.set_pixels(d[0], d[1], lut)
-        box = (m.result | m.direct).bbox if m.direct is not None else m.result.bbox
+        result_lut = np.array([[0, 0, 0, 0], [*colour.getRgb()[:3], 110]])
+        self.result_item.set_pixels(pic.result, pic.result_origin, result_lut, pic.result_f, pic.result_full)
+        if pic.diff is not None:
+            self.diff_item.set_pixels(pic.diff, pic.diff_origin, DIFF_LUT, pic.diff_f, pic.diff_full)
+        else:
+            self.diff_item.set_pixels(None, (0, 0))
+        box = pic.box
         if box is not None:
             self.camera.fit((box[0] - 1.5, box[1] - 1.5, box[2] + 1.5, box[3] + 1.5), margin=0.02)
         self._overlay_changed(self.overlay.isChecked())
@@ -305,18 +322,70 @@ class ErrorInspector(QtWidgets.QWidget):
             return
         vb = views.discrete.plane.vb
         if self._overlay_item is not None:
+            self._overlay_item.detach()
             vb.removeItem(self._overlay_item)
             self._overlay_item = None
-        m = self.measurement
-        if on and m is not None:
-            d = self._diff_image(m)
-            if d is not None:
-                item = MaskItem()
-                item.setZValue(30_000)
-                lut = np.array([[0, 0, 0, 0], [*LIGHT_GREY, 255], [*DARK_GREY, 255]])
-                item.set_pixels(d[0], d[1], lut)
-                vb.addItem(item)
-                self._overlay_item = item
+        pic = self.picture if self.measurement is not None else None
+        if on and pic is not None and pic.diff is not None:
+            item = MaskItem()
+            vb.addItem(item)
+            item.setZValue(30_000)
+            item.set_pixels(pic.diff, pic.diff_origin, DIFF_LUT, pic.diff_f, pic.diff_full)
+            self._overlay_item = item
 
     def is_measuring(self) -> bool:
-        return bool(self.runner.is_busy("inspect"))
+        return bool(self.runner.is_busy("inspect") or self.runner.is_busy("inspect:picture"))
+
+
+@dataclass(frozen=True, eq=False)
+class DiffPicture:
+    """What the inspector draws of a measured account, made off the GUI thread by :func:`diff_picture`.
+
+    Each image is a level-of-detail image (:func:`~mrm.views.canvas.lod_image`) with its factor and the
+    exact mask behind it, as :meth:`MaskItem.set_pixels` takes them.
+    """
+
+    result: np.ndarray
+    result_f: int
+    result_full: np.ndarray
+    result_origin: tuple[int, int]
+    diff: np.ndarray | None  # 1 = light grey (only in the result), 2 = dark grey (only in the direct one)
+    diff_f: int
+    diff_full: np.ndarray | None
+    diff_origin: tuple[int, int]
+    box: tuple[int, int, int, int] | None  # the result and the direct result together
+
+
+def diff_image(m: Account) -> tuple[np.ndarray, tuple[int, int]] | None:
+    """The label image of the differing pixels of ``m`` over the box of both results, and its origin."""
+    if m.result is None or m.direct is None or m.difference is None:
+        return None
+    light_ps, dark_ps = m.difference.light, m.difference.dark
+    boxes = [ps.bbox for ps in (light_ps, dark_ps) if not ps.is_empty()]
+    if not boxes:
+        return None
+    # The box of the differences only: the union of the two results is never built.
+    box = joint_box(boxes)
+    assert box is not None
+    img = np.zeros((box[3] - box[1] + 1, box[2] - box[0] + 1), dtype=np.uint8)
+    for ps, value in ((light_ps, 1), (dark_ps, 2)):
+        if not ps.is_empty():
+            x0, y0 = ps.origin
+            h, w = ps.shape
+            sub = img[y0 - box[1] : y0 - box[1] + h, x0 - box[0] : x0 - box[0] + w]
+            sub[ps.mask] = value
+    return img, (box[0], box[1])
+
+
+def diff_picture(m: Account) -> DiffPicture | None:
+    """Everything :class:`ErrorInspector` draws for ``m``; runs on a worker (pure numpy, no Qt)."""
+    if m.result is None:
+        return None
+    result, rf = lod_image(m.result.mask)
+    d = diff_image(m)
+    diff, df, full, origin = None, 1, None, (0, 0)
+    if d is not None:
+        full, origin = d
+        diff, df = lod_image(full)
+    box = joint_box([m.result.bbox, m.direct.bbox if m.direct is not None else None])
+    return DiffPicture(result, rf, m.result.mask, m.result.origin, diff, df, full, origin, box)

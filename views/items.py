@@ -110,6 +110,10 @@ def cosmetic_pen(
     return pen
 
 
+#: Paths with more elements, and marker sets with more points, are drawn through a device-pixel cache.
+CACHE_ELEMENTS = 4000
+
+
 class PathItem(QtWidgets.QGraphicsPathItem):
     """A filled and/or stroked path in plane coordinates (cosmetic pen: constant screen width)."""
 
@@ -117,6 +121,21 @@ class PathItem(QtWidgets.QGraphicsPathItem):
         super().__init__(path or QtGui.QPainterPath())
         self.setPen(QtGui.QPen(QtCore.Qt.PenStyle.NoPen))
         self.setBrush(QtGui.QBrush(QtCore.Qt.BrushStyle.NoBrush))
+
+    def setPath(self, path: QtGui.QPainterPath) -> None:
+        # A big path (the outline of 10⁸ pixels: 10⁵–10⁶ segments) takes 50–200 ms to stroke; cached in
+        # device pixels it is stroked once per zoom, and a pan only moves the cached picture (ADR 0019).
+        big = path.elementCount() > CACHE_ELEMENTS
+        mode = QtWidgets.QGraphicsItem.CacheMode
+        self.setCacheMode(mode.DeviceCoordinateCache if big else mode.NoCache)
+        super().setPath(path)
+
+    def shape(self) -> QtGui.QPainterPath:
+        # Qt's own shape strokes the whole path, and pyqtgraph asks for it at every mouse move (hover
+        # events): seconds for the outline of 10⁸ pixels. The tools hit-test the model, never these items.
+        out = QtGui.QPainterPath()
+        out.addRect(self.path().controlPointRect())  # not boundingRect(): Qt's calls shape()
+        return out
 
     def set_style(
         self,
@@ -160,6 +179,9 @@ class MarkersItem(pg.GraphicsObject):
     def set_points(self, xy: np.ndarray) -> None:
         self.prepareGeometryChange()
         self._xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+        mode = QtWidgets.QGraphicsItem.CacheMode
+        # Thousands of handles are drawn in Python: once per zoom, not at every pan (see PathItem.setPath).
+        self.setCacheMode(mode.DeviceCoordinateCache if len(self._xy) > CACHE_ELEMENTS // 4 else mode.NoCache)
         if len(self._xy):
             lo = self._xy.min(axis=0)
             hi = self._xy.max(axis=0)

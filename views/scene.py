@@ -24,6 +24,32 @@ GHOST_FILL = "#9a9a9a"
 GHOST_STYLE = Style(fill=GHOST_FILL, opacity=0.5)
 
 
+#: What each representation is called in the status bar's progress.
+REP_WORDS = {
+    "discrete": "pixels D(E)",
+    "euclidean": "Euclidean shape R(A)",
+    "region": "regions",
+    "analytical": "digital straight segments",
+}
+#: The steps of a derivation, per kind of source: a Cancel takes effect between them.
+DERIVATION_STEPS: dict[str, dict[str, tuple[Rep, ...]]] = {
+    "discrete": {
+        "discrete": ("discrete",),
+        "euclidean": ("euclidean",),
+        "region": ("region",),
+        "analytical": ("region", "analytical"),
+    },
+    "euclidean": {
+        "discrete": ("discrete",),
+        "euclidean": ("euclidean",),
+        "region": ("discrete", "region"),
+        "analytical": ("discrete", "region", "analytical"),
+    },
+}
+#: The text a view shows for a representation whose computation was cancelled.
+CANCELLED = "not computed (cancelled)"
+
+
 @dataclass(frozen=True)
 class Phantom:
     """A result previewed but not yet in the document (an operation's live preview); ids are negative."""
@@ -72,6 +98,7 @@ class Scene(QtCore.QObject):
         self.segment: tuple[int, int, int] = (-1, -1, -1)
         self._wanted: dict[str, Derived] = {}  # slot -> the entry being computed there
         self._phantoms: dict[int, tuple[Phantom, Derived]] = {}
+        self._cancelled: dict[tuple[int, str], Derived] = {}  # (object, rep) -> the entry cancelled
         self._unsubscribe = doc.subscribe(self._on_changes)
 
     def close(self) -> None:
@@ -169,13 +196,30 @@ class Scene(QtCore.QObject):
                 return None
             self._errors.pop(key, None)
             return value
+        if self._cancelled.get(key) is entry:
+            return None  # the user cancelled it: computed again only when asked (resume_derivations)
         slot = f"derive:{obj_id}:{rep}"
         if self.runner.is_busy(slot) and self._wanted.get(slot) is entry:
             return None  # already computing exactly this
         self._wanted[slot] = entry
+        name = self._name(obj_id)
 
-        def compute(_progress: Any, e: Derived = entry) -> Any:
+        def compute(progress: Any, e: Derived = entry) -> Any:
+            # One step at a time, so that a Cancel stops between the steps (a kernel itself runs to its end).
+            steps = DERIVATION_STEPS[e.kind][rep]
+            for k, step in enumerate(steps):
+                progress.update(
+                    k / len(steps), f"{name}: computing the {REP_WORDS[step]} ({k + 1}/{len(steps)})"
+                )
+                e.get(step)
+            progress.update(1.0)
             return e.get(rep)
+
+        def cancelled(e: Derived = entry) -> None:
+            self._wanted.pop(slot, None)
+            if self._still_shown(obj_id, e):
+                self._cancelled[key] = e
+                self.derivedReady.emit(obj_id)
 
         def done(_value: Any, e: Derived = entry) -> None:
             self._wanted.pop(slot, None)
@@ -191,14 +235,52 @@ class Scene(QtCore.QObject):
             if self._still_shown(obj_id, e):
                 self.derivedReady.emit(obj_id)
 
-        self.runner.submit(slot, compute, on_result=done, on_error=failed, label=f"Computing {rep}")
+        self.runner.submit(
+            slot,
+            compute,
+            on_result=done,
+            on_error=failed,
+            on_cancel=cancelled,
+            label=f"{name}: computing the {REP_WORDS[rep]}",
+            show_progress=True,
+        )
         return None
+
+    def _name(self, obj_id: int) -> str:
+        if obj_id < 0:
+            return "preview"
+        return str(self.doc.get(obj_id).name) if obj_id in self.doc else "object"
+
+    def cancel_derivations(self) -> bool:
+        """Stop the derivations in progress (Cancel in the status bar); True if there were any.
+
+        What is computed stays; what is not is shown as cancelled, until :meth:`resume_derivations`.
+        """
+        busy = [slot for slot in self._wanted if self.runner.is_busy(slot)]
+        for slot in busy:
+            self.runner.cancel(slot)
+        return bool(busy)
+
+    def is_cancelled(self, obj_id: int, rep: str) -> bool:
+        """True when the user cancelled computing ``rep`` of what is shown for the object."""
+        e = self._cancelled.get((obj_id, rep))
+        return e is not None and self.has(obj_id) and self.entry(obj_id) is e
+
+    def resume_derivations(self) -> None:
+        """Compute again what was cancelled (the views ask for it at their next refresh)."""
+        ids = {k[0] for k in self._cancelled}
+        self._cancelled.clear()
+        for i in ids:
+            if self.has(i):
+                self.derivedReady.emit(i)
 
     def _still_shown(self, obj_id: int, entry: Derived) -> bool:
         return self.has(obj_id) and self.entry(obj_id) is entry
 
     def error(self, obj_id: int, rep: str) -> str | None:
-        """The message of the last failed derivation of ``rep`` for the object, if any."""
+        """The message of the last failed (or cancelled) derivation of ``rep`` for the object, if any."""
+        if self.is_cancelled(obj_id, rep):
+            return CANCELLED
         return self._errors.get((obj_id, rep))
 
     def is_computing(self) -> bool:

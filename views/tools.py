@@ -94,6 +94,9 @@ class Tool:
     #: Keys the tool wants before the window's shortcuts while it is in the middle of something.
     busy_keys: tuple[int, ...] = ()
 
+    #: The tool draws feedback under the cursor (every mouse move repaints the views' overlays then).
+    hover_feedback = True
+
     def __init__(self, host: ToolHost) -> None:
         self.host = host
         self.scene = host.scene
@@ -113,7 +116,8 @@ class Tool:
         if t == E.Leave:
             self.hover = None
             self.leave(view)
-            self.host.overlayChanged.emit()
+            if self.hover_feedback:
+                self.host.overlayChanged.emit()
             return False
         if not isinstance(ev, QtGui.QMouseEvent):
             return False
@@ -121,7 +125,8 @@ class Tool:
         if t == E.MouseMove:
             self.hover = (x, y)
             r = self.move(view, x, y, ev)
-            self.host.overlayChanged.emit()
+            if self.hover_feedback:
+                self.host.overlayChanged.emit()  # repaints every view: only for a tool that draws there
             return r
         if ev.button() == Qt.MouseButton.MiddleButton:
             return False  # pan with every tool
@@ -222,6 +227,7 @@ def _screen_square(
 # ---------------------------------------------------------------------------------------------- select
 class SelectTool(Tool):
     name = "select"
+    hover_feedback = False
     hint = "Click an object to select it (Shift: add to the selection); drag to pan, wheel to zoom"
 
     def __init__(self, host: ToolHost) -> None:

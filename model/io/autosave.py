@@ -280,25 +280,58 @@ class Autosaver:
 
     def write_now(self) -> Path:
         """Write the side file at once (atomically) and reset the counters."""
+        target, write = self.prepare_write()
+        write()
+        self.written(target, self.edits)
+        return target
+
+    def prepare_write(self) -> tuple[Path, Callable[[], None]]:
+        """The side file and a callable writing the document as it is now to it.
+
+        The callable holds a snapshot (the objects are immutable values), so it may run on another thread
+        while the document changes; report its outcome with :meth:`written` or :meth:`write_failed`.
+        """
+        from types import SimpleNamespace
+
         from mrm.io.atomic import atomic_write_bytes
 
         target = self.path
         if self._written is not None and self._written != target:
             self.discard()  # the document was saved under another name
-        target.parent.mkdir(parents=True, exist_ok=True)
+        doc = self.doc
+        snap = SimpleNamespace(settings=doc.settings, selection=doc.selection, objects=doc.objects)
         record = {
-            "project": str(self.doc.path) if self.doc.path is not None else None,
+            "project": str(doc.path) if doc.path is not None else None,
             "saved_at": datetime.now(UTC).isoformat(timespec="seconds"),
         }
-        # Never follow a link planted at the side file's name: it is replaced, its target left alone.
-        atomic_write_bytes(target, dumps(self.doc, autosave=record), follow_symlinks=False)
+
+        def write() -> None:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            # Never follow a link planted at the side file's name: it is replaced, its target left alone.
+            atomic_write_bytes(target, dumps(snap, autosave=record), follow_symlinks=False)  # type: ignore[arg-type]
+
+        return target, write
+
+    def written(self, target: Path, edits: int) -> None:
+        """A write of :meth:`prepare_write` succeeded; ``edits`` were pending when it was prepared."""
         self._written = target
         self.failures = 0
         self.last_error = None
         self._retry_at = None
-        self.edits = 0
+        self.edits = max(0, self.edits - edits)  # edits made while it was written stay pending
         self._since = self.clock()
-        return target
+
+    def write_failed(self, e: BaseException) -> None:
+        """A write of :meth:`prepare_write` failed: reported to ``on_error`` and retried later."""
+        self.failures += 1
+        self.last_error = _describe(e)
+        self._retry_at = self.clock() + RETRY_SECONDS
+        log.warning("autosave to %s failed (%d in a row): %s", self.path, self.failures, self.last_error)
+        if self.on_error is not None:
+            try:
+                self.on_error(f"Autosave failed, will retry: {self.last_error}")
+            except Exception:
+                log.exception("the autosave error handler failed")
 
     def discard(self) -> None:
         """Delete the side file written by this autosaver, if any (after a save, or on a clean close)."""

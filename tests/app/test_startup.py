@@ -67,3 +67,14 @@ def test_the_cli_prints_one_line_before_a_first_run_compile(cold, capsys):
     warmup.warm_up()
     assert run_cli(["segment", "--chain", "0,0,0001011", "--json"]) == 0
     assert capsys.readouterr().err == ""
+
+
+def test_checking_the_kernel_cache_does_not_import_numba():
+    """The start asks ``is_warm()`` on the GUI thread before the document shows: importing numba there cost
+    a second or more of the ≤ 5 s to a painted window (issue 10); its version comes from the metadata."""
+    import subprocess
+    import sys
+
+    code = "import sys; from mrm.warmup import is_warm; is_warm(); print('numba' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -140,3 +140,23 @@ def test_errors_go_to_the_error_callback(qtbot):
         runner.submit("x", boom, on_error=errors.append)
     assert isinstance(errors[0], ValueError) and "bad input" in str(errors[0])
     runner.shutdown()
+
+
+def test_workers_run_below_the_gui_threads_priority(qtbot):
+    """On a loaded machine the window must get the CPU before the derivations (issue 10: never blocks).
+
+    Per-thread nice levels are Linux's (the platform of the project's CI and set-up).
+    """
+    import os
+
+    from mrm.app.tasks import WORKER_NICENESS
+
+    runner = TaskRunner()
+    seen = []
+    runner.submit(
+        "x", lambda p: os.getpriority(os.PRIO_PROCESS, threading.get_native_id()), on_result=seen.append
+    )
+    qtbot.waitUntil(lambda: bool(seen), timeout=10_000)
+    gui = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
+    assert seen[0] == min(19, gui + WORKER_NICENESS)
+    runner.shutdown()
