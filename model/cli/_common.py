@@ -354,6 +354,31 @@ def run_batch(
     return [results[i] for i in sorted(results)], [e for _, e in sorted(errors)]
 
 
+def batch_total(
+    args: argparse.Namespace,
+    head: dict[str, Any],
+    inputs: int,
+    files: list[dict[str, Any]],
+    errors: list[str],
+    sums: Sequence[str],
+) -> dict[str, Any]:
+    """A batch's summary: ``head``, the number of ``inputs``, the sums of ``sums``, the per-file summaries.
+
+    A sum is ``None`` when a file lacks it. The table is printed unless ``--json``; when inputs failed, the
+    batch raises after the table, so what succeeded is written and shown first.
+    """
+    total: dict[str, Any] = {**head, "inputs": inputs}
+    for k in sums:
+        values = [f.get(k) for f in files]
+        total[k] = None if any(v is None for v in values) else sum(values)
+    total["files"] = files
+    if not args.json:
+        print_table(total)
+    if errors:
+        raise FileFormatError(f"{len(errors)} of {inputs} inputs failed: " + "; ".join(errors))
+    return total
+
+
 def finite_float(text: str) -> float:
     """Argparse type: a finite number (for ``--threshold``)."""
     try:

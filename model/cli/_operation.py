@@ -38,6 +38,7 @@ from mrm.cli._common import (
     add_jobs_argument,
     add_limit_argument,
     batch_outputs,
+    batch_total,
     expand_inputs,
     extension_of,
     load_object,
@@ -46,7 +47,7 @@ from mrm.cli._common import (
     run_batch,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import FileFormatError, ParameterError
+from mrm.errors import ParameterError
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
 from mrm.reps.pixels import PixelSet
@@ -302,16 +303,7 @@ def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) 
             print_table({k: v for k, v in summary.items() if k not in ("account", "steps", "parts")})
         return summary
     files, errors = run_batch(args, unary_file, jobs, _line, desc=str(args.command))
-    total: dict[str, Any] = {"operation": spec.name, "inputs": len(jobs)}
-    for k in _SUM_KEYS:
-        values = [f.get(k) for f in files]
-        total[k] = None if any(v is None for v in values) else sum(values)
-    total["files"] = files
-    if not args.json:
-        print_table(total)
-    if errors:
-        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
-    return total
+    return batch_total(args, {"operation": spec.name}, len(jobs), files, errors, _SUM_KEYS)
 
 
 def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:

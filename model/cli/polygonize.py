@@ -29,6 +29,7 @@ from mrm.cli._common import (
     add_jobs_argument,
     add_limit_argument,
     batch_outputs,
+    batch_total,
     expand_inputs,
     extension_of,
     print_table,
@@ -156,12 +157,5 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             print_table(summary)
         return summary
     files, errors = run_batch(args, polygonize_file, jobs, _line, desc="polygonize")
-    total: dict[str, Any] = {"model": args.model or "gauss", "inputs": len(jobs)}
-    for k in ("regions", "pixels", "vertices", "seconds"):
-        total[k] = sum(f[k] for f in files)
-    total["files"] = files
-    if not args.json:
-        print_table(total)
-    if errors:
-        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
-    return total
+    head = {"model": args.model or "gauss"}
+    return batch_total(args, head, len(jobs), files, errors, ("regions", "pixels", "vertices", "seconds"))

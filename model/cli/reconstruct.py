@@ -31,6 +31,7 @@ from mrm.cli._common import (
     add_jobs_argument,
     add_limit_argument,
     batch_outputs,
+    batch_total,
     expand_inputs,
     extension_of,
     print_table,
@@ -191,16 +192,5 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             print_table(summary)
         return summary
     files, errors = run_batch(args, reconstruct_file, jobs, _line, desc="reconstruct")
-    total: dict[str, Any] = {
-        "model": args.model or (files[0]["model"] if files else "standard"),
-        "inputs": len(jobs),
-    }
-    for k in _SUM_KEYS:
-        values = [f.get(k) for f in files]
-        total[k] = None if any(v is None for v in values) else sum(values)
-    total["files"] = files
-    if not args.json:
-        print_table(total)
-    if errors:
-        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
-    return total
+    head = {"model": args.model or (files[0]["model"] if files else "standard")}
+    return batch_total(args, head, len(jobs), files, errors, _SUM_KEYS)
