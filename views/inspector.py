@@ -106,7 +106,9 @@ class ErrorInspector(QtWidgets.QWidget):
         lay.addWidget(self.plane, 1)
         lay.addWidget(self.legend)
         lay.addWidget(self.overlay)
-        lay.setAlignment(QtCore.Qt.AlignmentFlag.AlignTop)  # texts stay at the top when the picture is hidden
+        # Texts stay at the top when the picture is hidden: a spacer with no stretch takes the room only then
+        # (the plane has stretch 1). Aligning the layout instead shrank the wrapped texts to a narrow column.
+        lay.addStretch(0)
         self._overlay_item: MaskItem | None = None
         self._measured_for: Any = None  # the provenance the current measurement belongs to
         self._timer = QtCore.QTimer(self)
