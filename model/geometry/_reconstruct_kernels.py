@@ -60,6 +60,7 @@ RING_NET = 2  # the whole ring is the safety net
 RING_SINGLE = 3  # isolated pixel
 
 _SMALL = 12  # corridors up to this many pieces also get an exhaustive search for a triangle
+_SMALL_POLY = 24  # verified rings of corridors up to this many pieces: search for 3 or 4 vertices
 _EPS = 1e-4  # float margin (Q-units) used only while *constructing*; every result is checked exactly
 _BIG = 1e300
 
@@ -2070,6 +2071,147 @@ def small_triangle(
     return tx, ty, tt, False
 
 
+@njit(cache=True)
+def window_bound(reach: np.ndarray) -> int:  # pragma: no cover
+    """A lower bound on the vertices of any ring of the corridor: the fewest windows covering one lap.
+
+    An edge leaving a vertex in piece t ends in a piece at most t + reach[t] (reach is exact), and the
+    pieces of consecutive vertices advance by one lap in total, so a ring of m vertices is a cyclic chain of
+    m windows, each starting where the last one ends. Starts are tried across the longest window (every
+    chain has a vertex there); the greedy longest jump is optimal for a fixed start.
+    """
+    n = reach.size
+    s0 = 0
+    for i in range(n):
+        if reach[i] > reach[s0]:
+            s0 = i
+    best = 1 << 30
+    for s in range(s0, s0 + reach[s0] + 1):
+        t = s
+        c = 0
+        while t < s + n and c < best:
+            step = reach[t % n]
+            if step <= 0:
+                c = 1 << 30
+                break
+            t += step
+            c += 1
+        if c < best:
+            best = c
+    return best
+
+
+@njit(cache=True)
+def small_polygon(
+    rect: np.ndarray, gp: np.ndarray, gq: np.ndarray, gdir: np.ndarray, reach: np.ndarray, kmax: int, nv: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:  # pragma: no cover
+    """For a small corridor, look for a ring of ``nv`` = 3 or 4 vertices (the fewest the windows allow).
+
+    Vertex 0 lies in the shortest window (every ring has a vertex in each window, since i + reach[i] never
+    decreases). Vertices 0 and 2 are taken among nine points per piece (a 3 × 3 grid at 1/6, 1/2, 5/6 of
+    the piece);
+    each vertex between them is placed by :func:`_merge_pair` (the centre of the region both neighbours
+    see, searched in every piece between them), so only two of the vertices are enumerated. For a triangle
+    the edge 2 → 0 is checked directly. Piece pairs are pruned by the reach table; the result is verified
+    exactly (:func:`verify_ring`).
+    """
+    n = gdir.size
+    sc = 1 << kmax
+    per = 9
+    cx = np.empty(per * n, np.int64)
+    cy = np.empty(per * n, np.int64)
+    k = 0
+    for t in range(n):
+        x0 = rect[t, 0] * sc
+        x1 = rect[t, 1] * sc
+        y0 = rect[t, 2] * sc
+        y1 = rect[t, 3] * sc
+        for a in range(3):
+            for b in range(3):
+                cx[k] = x0 + (x1 - x0) * (2 * a + 1) // 6
+                cy[k] = y0 + (y1 - y0) * (2 * b + 1) // 6
+                k += 1
+    cone = np.empty((2, 4, n + 1), np.float64)
+    okc = np.zeros((2, n + 1), np.bool_)
+    poly = np.empty((4, 16), np.float64)
+    tx = np.empty(nv, np.int64)
+    ty = np.empty(nv, np.int64)
+    tt = np.empty(nv, np.int64)
+    bad = np.zeros(nv, np.bool_)
+    # every window chain has a vertex in every window (i + reach[i] never decreases): start in the shortest
+    smin = 0
+    for i in range(n):
+        if reach[i] < reach[smin]:
+            smin = i
+    for ta0 in range(smin, smin + reach[smin] + 1):
+        ta = ta0 % n
+        for tc in range(ta, ta + n):
+            # a window chain ta -> tb -> tc, then tc -> ta + n directly (triangle) or through td (quad)
+            okb = False
+            for tb in range(ta, min(tc, ta + reach[ta]) + 1):
+                if tb + reach[tb % n] >= tc:
+                    okb = True
+                    break
+            if not okb:
+                continue
+            if nv == 3:
+                if tc + reach[tc % n] < ta + n:
+                    continue
+            else:
+                okd = False
+                for td in range(tc, min(ta + n, tc + reach[tc % n]) + 1):
+                    if td + reach[td % n] >= ta + n:
+                        okd = True
+                        break
+                if not okd:
+                    continue
+            for i in range(per * ta, per * ta + per):
+                for c in range(per * (tc % n), per * (tc % n) + per):
+                    if nv == 3 and not edge_ok(cx[c], cy[c], tc, cx[i], cy[i], ta + n, gp, gq, gdir, sc):
+                        continue
+                    wx, wy, tw, ok = _merge_pair(
+                        cx[i], cy[i], ta, cx[c], cy[c], tc, ta, tc, rect, gp, gq, gdir, kmax, cone, okc, poly
+                    )
+                    if not ok:
+                        continue
+                    tx[0] = cx[i]
+                    ty[0] = cy[i]
+                    tt[0] = ta
+                    tx[1] = wx
+                    ty[1] = wy
+                    tt[1] = tw
+                    tx[2] = cx[c]
+                    ty[2] = cy[c]
+                    tt[2] = tc
+                    if nv == 4:
+                        ux, uy, tu, oku = _merge_pair(
+                            cx[c],
+                            cy[c],
+                            tc,
+                            cx[i],
+                            cy[i],
+                            ta + n,
+                            tc,
+                            ta + n,
+                            rect,
+                            gp,
+                            gq,
+                            gdir,
+                            kmax,
+                            cone,
+                            okc,
+                            poly,
+                        )
+                        if not oku:
+                            continue
+                        tx[3] = ux
+                        ty[3] = uy
+                        tt[3] = tu
+                    if verify_ring(tx, ty, tt, rect, gp, gq, gdir, sc, bad):
+                        return tx, ty, tt, True
+    return tx, ty, tt, False
+
+
 # ============================================================================================ straightening
 
 
@@ -2965,14 +3107,18 @@ def finish_all(
             if good:
                 px, py, pt, ps, pl = prune_ring(ix, iy, vt, vs, vl, rc, p, q, g, sc)
                 px, py, pt, ps, pl = merge_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
-                if px.size > 3 and b - a <= _SMALL:
-                    tx, ty, tt, okt = small_triangle(rc, p, q, g, reach[a:b], kk)
-                    if okt:
-                        px = tx
-                        py = ty
-                        pt = tt
-                        ps = np.full(3, SRC_LINES, np.int64)
-                        pl = np.full(3, -1, np.int64)
+                if px.size > 3 and b - a <= _SMALL_POLY:
+                    # a small corridor: search for the fewest vertices its windows allow (3 or 4)
+                    lbv = max(3, window_bound(reach[a:b]))
+                    for nvv in range(lbv, min(px.size - 1, 4) + 1):
+                        tx, ty, tt, okt = small_polygon(rc, p, q, g, reach[a:b], kk, nvv)
+                        if okt:
+                            px = tx
+                            py = ty
+                            pt = tt
+                            ps = np.full(nvv, SRC_LINES, np.int64)
+                            pl = np.full(nvv, -1, np.int64)
+                            break
                 px, py, pt, ps, pl = straighten_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
                 xy, src, win, pos = _push(xy, src, win, pos, px, py, ps, pl, kk, x0, y0)
                 status[k] = RING_V4
