@@ -2212,6 +2212,184 @@ def small_polygon(
     return tx, ty, tt, False
 
 
+@njit(cache=True)
+def _unwrap6(t: np.ndarray, i: int, n: int, jj: np.ndarray, tt: np.ndarray) -> None:  # pragma: no cover
+    # Indices of vertices i-2 … i+3 (cyclic) and their pieces unwrapped from the first.
+    m = t.size
+    for d in range(6):
+        j = (i - 2 + d) % m
+        jj[d] = j
+        tt[d] = t[j]
+        if d > 0:
+            while tt[d] < tt[d - 1]:
+                tt[d] += n
+
+
+@njit(cache=True)
+def relink_ring(
+    ix: np.ndarray,
+    iy: np.ndarray,
+    vt: np.ndarray,
+    vs: np.ndarray,
+    vl: np.ndarray,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    kmax: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
+    """Replace four consecutive vertices by three where the two outer neighbours allow it.
+
+    For vertices a, c1, v, v', c3, b: c1 is moved among its own position and nine points of its piece that
+    a sees, c3 likewise towards b, and one point w replacing v, v' is placed by :func:`_merge_pair`. This
+    undoes what :func:`merge_ring` cannot (two vertices close together that one vertex would replace only if
+    both neighbours moved). Every change is verified exactly on the whole ring, so the ring stays valid; the
+    scan stops after a lap without change.
+    """
+    n = gdir.size
+    sc = 1 << kmax
+    m = ix.size
+    if m < 6:
+        return ix, iy, vt, vs, vl
+    x = ix.copy()
+    y = iy.copy()
+    t = vt.copy()
+    s = vs.copy()
+    ln = vl.copy()
+    cone = np.empty((2, 4, n + 1), np.float64)
+    okc = np.zeros((2, n + 1), np.bool_)
+    poly = np.empty((4, 16), np.float64)
+    jj = np.empty(6, np.int64)
+    tt = np.empty(6, np.int64)
+    c1x = np.empty(10, np.int64)
+    c1y = np.empty(10, np.int64)
+    c3x = np.empty(10, np.int64)
+    c3y = np.empty(10, np.int64)
+    nx = np.empty(m, np.int64)
+    ny = np.empty(m, np.int64)
+    nt = np.empty(m, np.int64)
+    ns = np.empty(m, np.int64)
+    nl = np.empty(m, np.int64)
+    bad = np.zeros(m, np.bool_)
+    i = 0
+    fails = 0
+    steps = 0
+    while m >= 6 and fails < m and steps < 4 * ix.size:
+        steps += 1
+        _unwrap6(t[:m], i, n, jj, tt)
+        ok = False
+        if tt[5] - tt[0] < n:
+            ax = x[jj[0]]
+            ay = y[jj[0]]
+            bx = x[jj[5]]
+            by = y[jj[5]]
+            # candidates for c1 (seen from a) and c3 (seeing b): the current point first, then a 3 x 3 grid
+            n1 = 0
+            n3 = 0
+            for side in range(2):
+                d = 1 if side == 0 else 4
+                r = tt[d] % n
+                for k in range(10):
+                    if k == 0:
+                        px = x[jj[d]]
+                        py = y[jj[d]]
+                    else:
+                        a_ = (k - 1) // 3
+                        b_ = (k - 1) % 3
+                        px = rect[r, 0] * sc + (rect[r, 1] - rect[r, 0]) * sc * (2 * a_ + 1) // 6
+                        py = rect[r, 2] * sc + (rect[r, 3] - rect[r, 2]) * sc * (2 * b_ + 1) // 6
+                        if not _in_piece(rect, r, px, py, sc):
+                            continue
+                    if side == 0:
+                        if edge_ok(ax, ay, tt[0], px, py, tt[1], gp, gq, gdir, sc):
+                            c1x[n1] = px
+                            c1y[n1] = py
+                            n1 += 1
+                    elif edge_ok(px, py, tt[4], bx, by, tt[5], gp, gq, gdir, sc):
+                        c3x[n3] = px
+                        c3y[n3] = py
+                        n3 += 1
+            for u in range(n1):
+                if ok:
+                    break
+                for v in range(n3):
+                    wx, wy, tw, okw = _merge_pair(
+                        c1x[u],
+                        c1y[u],
+                        tt[1],
+                        c3x[v],
+                        c3y[v],
+                        tt[4],
+                        tt[2],
+                        tt[3],
+                        rect,
+                        gp,
+                        gq,
+                        gdir,
+                        kmax,
+                        cone,
+                        okc,
+                        poly,
+                    )
+                    if not okw:
+                        continue
+                    # the new ring from b round to a, then c1, w, c3 (pieces unwrapped from b's)
+                    q = 0
+                    j = jj[5]
+                    base = tt[5]
+                    prev = tt[5]
+                    while True:
+                        pj = t[j]
+                        while pj < prev:
+                            pj += n
+                        nx[q] = x[j]
+                        ny[q] = y[j]
+                        nt[q] = pj
+                        ns[q] = s[j]
+                        nl[q] = ln[j]
+                        prev = pj
+                        q += 1
+                        if j == jj[0]:
+                            break
+                        j = (j + 1) % m
+                    lap = prev - tt[0]  # a one lap later, relative to its position in tt
+                    nx[q] = c1x[u]
+                    ny[q] = c1y[u]
+                    nt[q] = tt[1] + lap
+                    nx[q + 1] = wx
+                    ny[q + 1] = wy
+                    nt[q + 1] = tw + lap
+                    nx[q + 2] = c3x[v]
+                    ny[q + 2] = c3y[v]
+                    nt[q + 2] = tt[4] + lap
+                    for e in range(3):
+                        ns[q + e] = SRC_LINES
+                        nl[q + e] = -1
+                    q += 3
+                    off = (base // n) * n
+                    for e in range(q):
+                        nt[e] -= off
+                    if verify_ring(nx[:q], ny[:q], nt[:q], rect, gp, gq, gdir, sc, bad[:q]):
+                        for e in range(q):
+                            x[e] = nx[e]
+                            y[e] = ny[e]
+                            t[e] = nt[e]
+                            s[e] = ns[e]
+                            ln[e] = nl[e]
+                        m = q
+                        ok = True
+                        break
+        if ok:
+            fails = 0
+            i = 0
+        else:
+            fails += 1
+            i = (i + 1) % m
+    if m == ix.size:
+        return ix, iy, vt, vs, vl
+    return x[:m].copy(), y[:m].copy(), t[:m].copy(), s[:m].copy(), ln[:m].copy()
+
+
 # ============================================================================================ straightening
 
 
@@ -3107,6 +3285,8 @@ def finish_all(
             if good:
                 px, py, pt, ps, pl = prune_ring(ix, iy, vt, vs, vl, rc, p, q, g, sc)
                 px, py, pt, ps, pl = merge_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
+                if px.size >= 6 and px.size > window_bound(reach[a:b]):
+                    px, py, pt, ps, pl = relink_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
                 if px.size > 3 and b - a <= _SMALL_POLY:
                     # a small corridor: search for the fewest vertices its windows allow (3 or 4)
                     lbv = max(3, window_bound(reach[a:b]))
