@@ -33,7 +33,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from mrm.geometry._reconstruct_kernels import _DX, _DY, _cp1, _cp2, _kmax_for, _rect_of
+from mrm.geometry._reconstruct_kernels import _kmax_for
+from mrm.geometry._rk_base import _DX, _DY, _cp1, _cp2
+from mrm.geometry._rk_corridor import _rect_of
 
 
 @njit(cache=True)
