@@ -136,6 +136,44 @@ def _rect_of(c: int, r: int, hx: int, hy: int, out: np.ndarray, k: int) -> None:
     out[k, 3] = cy if hy < 0 else cy + 2
 
 
+@njit(cache=True, inline="always")
+def side_gate(
+    rect: np.ndarray, a: int, k: int, gp: np.ndarray, gq: np.ndarray, gdir: np.ndarray
+) -> None:  # pragma: no cover
+    # Gate k between pieces a and k (used by both corridors): their common side, oriented so that gp[k] is
+    # its left end and gq[k] its right end when crossing in direction gdir[k].
+    ix0 = max(rect[a, 0], rect[k, 0])
+    ix1 = min(rect[a, 1], rect[k, 1])
+    iy0 = max(rect[a, 2], rect[k, 2])
+    iy1 = min(rect[a, 3], rect[k, 3])
+    if ix0 == ix1:
+        if rect[a, 1] == ix0:  # crossing East
+            gdir[k] = 0
+            gp[k, 0] = ix0
+            gp[k, 1] = iy1
+            gq[k, 0] = ix0
+            gq[k, 1] = iy0
+        else:
+            gdir[k] = 2
+            gp[k, 0] = ix0
+            gp[k, 1] = iy0
+            gq[k, 0] = ix0
+            gq[k, 1] = iy1
+    else:
+        if rect[a, 3] == iy0:  # crossing North
+            gdir[k] = 1
+            gp[k, 0] = ix0
+            gp[k, 1] = iy0
+            gq[k, 0] = ix1
+            gq[k, 1] = iy0
+        else:
+            gdir[k] = 3
+            gp[k, 0] = ix1
+            gp[k, 1] = iy0
+            gq[k, 0] = ix0
+            gq[k, 1] = iy0
+
+
 @njit(cache=True)
 def build_pieces(
     e0: int,
@@ -219,36 +257,7 @@ def build_pieces(
             gq[k, 1] = cy + 2 * _DY[din]
             gdir[k] = (din + 1) & 3
             continue
-        ix0 = max(rect[a, 0], rect[k, 0])
-        ix1 = min(rect[a, 1], rect[k, 1])
-        iy0 = max(rect[a, 2], rect[k, 2])
-        iy1 = min(rect[a, 3], rect[k, 3])
-        if ix0 == ix1:
-            if rect[a, 1] == ix0:  # crossing East
-                gdir[k] = 0
-                gp[k, 0] = ix0
-                gp[k, 1] = iy1
-                gq[k, 0] = ix0
-                gq[k, 1] = iy0
-            else:
-                gdir[k] = 2
-                gp[k, 0] = ix0
-                gp[k, 1] = iy0
-                gq[k, 0] = ix0
-                gq[k, 1] = iy1
-        else:
-            if rect[a, 3] == iy0:  # crossing North
-                gdir[k] = 1
-                gp[k, 0] = ix0
-                gp[k, 1] = iy0
-                gq[k, 0] = ix1
-                gq[k, 1] = iy0
-            else:
-                gdir[k] = 3
-                gp[k, 0] = ix1
-                gp[k, 1] = iy0
-                gq[k, 0] = ix0
-                gq[k, 1] = iy0
+        side_gate(rect, a, k, gp, gq, gdir)
     return rect[:n], pel[:n], gp, gq, gdir, np.array([full], np.int64)
 
 
