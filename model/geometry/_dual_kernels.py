@@ -33,7 +33,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from mrm.geometry._reconstruct_kernels import _DX, _DY, _cp1, _cp2, _kmax_for, _rect_of
+from mrm.geometry._reconstruct_kernels import _kmax_for
+from mrm.geometry._rk_base import _DX, _DY, _cp1, _cp2
+from mrm.geometry._rk_corridor import _rect_of, side_gate
 
 
 @njit(cache=True)
@@ -43,36 +45,7 @@ def _gates(rect: np.ndarray, gp: np.ndarray, gq: np.ndarray, gdir: np.ndarray) -
     n = rect.shape[0]
     for k in range(n):
         a = (k - 1) % n
-        ix0 = max(rect[a, 0], rect[k, 0])
-        ix1 = min(rect[a, 1], rect[k, 1])
-        iy0 = max(rect[a, 2], rect[k, 2])
-        iy1 = min(rect[a, 3], rect[k, 3])
-        if ix0 == ix1:
-            if rect[a, 1] == ix0:  # crossing East
-                gdir[k] = 0
-                gp[k, 0] = ix0
-                gp[k, 1] = iy1
-                gq[k, 0] = ix0
-                gq[k, 1] = iy0
-            else:
-                gdir[k] = 2
-                gp[k, 0] = ix0
-                gp[k, 1] = iy0
-                gq[k, 0] = ix0
-                gq[k, 1] = iy1
-        else:
-            if rect[a, 3] == iy0:  # crossing North
-                gdir[k] = 1
-                gp[k, 0] = ix0
-                gp[k, 1] = iy0
-                gq[k, 0] = ix1
-                gq[k, 1] = iy0
-            else:
-                gdir[k] = 3
-                gp[k, 0] = ix1
-                gp[k, 1] = iy0
-                gq[k, 0] = ix0
-                gq[k, 1] = iy0
+        side_gate(rect, a, k, gp, gq, gdir)
 
 
 @njit(cache=True)

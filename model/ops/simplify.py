@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
 from mrm.geometry import bounds
 from mrm.geometry.bounds import ChainStep
 from mrm.ops.base import OperationResult, OperationSpec, register
@@ -110,9 +110,37 @@ def simplification(
     if progress is not None:
         progress.update(0.9, "scaling back")
     result = exact.to_geometry()
+    if not exact.is_float_exact() and _rounding_may_matter(result, a):
+        # Far from the origin the final rounding is no longer provably below R's margin: check the fixed
+        # point exactly (one more discretization) and refuse rather than return a result that is not one.
+        again = discretize_exact(ExactShape.from_geometry(result).map(sc), model, limit=limit, what=what)
+        if again != scaled:
+            raise ParameterError(
+                f"{what}: the result cannot be written in float64 this far from the origin without changing "
+                "its discretization (Sp_α would not be idempotent); move the object or the centre nearer "
+                "the origin, or use an α whose inverse is a power of two"
+            )
     if progress is not None:
         progress.update(1.0, "done")
     return StepOutcome(result, Similarity.identity(), exact, scaled, {"scaled_pixels": scaled})
+
+
+#: R keeps its boundary at least 2⁻²⁴ / L pixels from every tie of the model (its vertices lie on the grid
+#: 2⁻¹² with the pixel corners and centres, so a nonzero cross product is at least 2⁻²⁴; L is the longest
+#: edge). Rounding Sc_1/α's output to float64 moves a vertex by at most 2⁻⁵³·|v| per coordinate, i.e.
+#: 2⁻⁵³·α·|v|·√2 pixels at scale α. Below this bound on α·|v|·L that is less than half the margin, so the
+#: discretization at scale α, and hence Sp_α ∘ Sp_α = Sp_α, cannot change.
+_PROVEN_PRODUCT = 2.0**27
+
+
+def _rounding_may_matter(result: Any, alpha: Any) -> bool:
+    # α·max|v|·L against the proven bound (L ≤ the diagonal of the result's box, at scale α).
+    if result.is_empty:
+        return False
+    x0, y0, x1, y1 = result.bounds
+    vmax = max(abs(x0), abs(y0), abs(x1), abs(y1))
+    diag = float(alpha) * ((x1 - x0) ** 2 + (y1 - y0) ** 2) ** 0.5 + 1.0
+    return bool(float(alpha) * vmax * diag >= _PROVEN_PRODUCT)
 
 
 # ---------------------------------------------------------------------------------------------- the spec

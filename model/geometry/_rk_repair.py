@@ -1,0 +1,936 @@
+"""Phase 4 of R on verified rings: net splices, pruning, merging, relinking, small-corridor searches."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mrm.geometry._jit import njit
+from mrm.geometry._rk_base import _DX, _DY, SRC_LINES, SRC_NET, SRC_SPLICE
+from mrm.geometry._rk_check import _in_piece, edge_ok, verify_ring
+
+# ============================================================================================ repair
+
+
+@njit(cache=True)
+def _seg_point_in_rect(
+    ax: float, ay: float, bx: float, by: float, rect: np.ndarray, k: int, frac: float
+) -> tuple[float, float, bool]:  # pragma: no cover
+    # A point of the segment [a, b] inside the open rectangle k, at fraction ``frac`` of the chord.
+    t0 = 0.0
+    t1 = 1.0
+    for ax_ in range(2):
+        o = ax if ax_ == 0 else ay
+        d = (bx - ax) if ax_ == 0 else (by - ay)
+        lo = float(rect[k, 2 * ax_])
+        hi = float(rect[k, 2 * ax_ + 1])
+        if d == 0.0:
+            if not (lo < o < hi):
+                return 0.0, 0.0, False
+        else:
+            ta = (lo - o) / d
+            tb = (hi - o) / d
+            if ta > tb:
+                ta, tb = tb, ta
+            t0 = max(t0, ta)
+            t1 = min(t1, tb)
+    if t1 <= t0:
+        return 0.0, 0.0, False
+    t = t0 + frac * (t1 - t0)
+    return ax + t * (bx - ax), ay + t * (by - ay), True
+
+
+@njit(cache=True)
+def _net_crossing(
+    r0: np.ndarray, r0t: np.ndarray, k: int, n: int, gp: np.ndarray, gdir: np.ndarray
+) -> tuple[int, int, int]:  # pragma: no cover
+    # Where the safety net crosses gate k (0 <= k < n; Q-units), and the index of the net vertex after it.
+    m = r0t.size
+    # first net vertex whose piece >= k (pieces of the net are 0 … n-1, non-decreasing)
+    j = 0
+    while j < m and r0t[j] < k:
+        j += 1
+    jp = (j - 1) % m
+    jn = j % m
+    g = k % n
+    d = gdir[g]
+    if d == 0 or d == 2:
+        cx = gp[g, 0]
+        cy = r0[jp, 1]
+    else:
+        cx = r0[jp, 0]
+        cy = gp[g, 1]
+    return cx, cy, jn
+
+
+@njit(cache=True)
+def splice_ring(
+    ix: np.ndarray,
+    iy: np.ndarray,
+    vt: np.ndarray,
+    vs: np.ndarray,
+    remove: np.ndarray,
+    r0: np.ndarray,
+    r0t: np.ndarray,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gdir: np.ndarray,
+    kmax: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]:  # pragma: no cover
+    """Replace each maximal run of removed vertices by the safety net.
+
+    The net is joined with two splice vertices at each end (one on the kept edge, one on the net, both in the
+    same piece). Returns the new ring or False when a run cannot be spliced (too short a gap, everything
+    removed).
+    """
+    n = gdir.size
+    m = ix.size
+    sc = 1 << kmax
+    nr = r0t.size
+    cap = m + 4 * m + nr * 2 + 8
+    ox = np.empty(cap, np.int64)
+    oy = np.empty(cap, np.int64)
+    ot = np.empty(cap, np.int64)
+    osrc = np.empty(cap, np.int64)
+    # start at a kept vertex that follows a removed one (or just any kept one)
+    start = -1
+    for i in range(m):
+        if not remove[i] and remove[(i - 1) % m]:
+            start = i
+            break
+    if start < 0:
+        return ox[:0], oy[:0], ot[:0], osrc[:0], False
+    no = 0
+    i = start
+    cnt = 0
+    while cnt < m:
+        ii = i % m
+        if not remove[ii]:
+            t = vt[ii] + (n if ii < start else 0)
+            ox[no] = ix[ii]
+            oy[no] = iy[ii]
+            ot[no] = t
+            osrc[no] = vs[ii]
+            no += 1
+            i += 1
+            cnt += 1
+            continue
+        # a run of removed vertices ii .. jj
+        jj = i
+        while remove[jj % m] and jj - i < m:
+            jj += 1
+        # kept u before, kept w after
+        u = (i - 1) % m
+        w = jj % m
+        tu = ot[no - 1]
+        r1 = ii
+        r2 = (jj - 1) % m
+        a = vt[r1] + (n if r1 < start else 0)
+        b = vt[r2] + (n if r2 < start else 0)
+        tw = vt[w] + (n if w < start else 0)
+        if w == start:
+            tw = vt[w] + n
+        if b < a + 1:
+            b = a + 1
+        if not (tu < a and b < tw):
+            return ox[:0], oy[:0], ot[:0], osrc[:0], False
+        # Z1 on the kept edge u -> removed r1, inside piece a
+        z1x, z1y, ok1 = _seg_point_in_rect(
+            ix[u] / sc, iy[u] / sc, ix[r1] / sc, iy[r1] / sc, rect, a % n, 0.25
+        )
+        # Z4 on the kept edge removed r2 -> w, inside piece b
+        z4x, z4y, ok4 = _seg_point_in_rect(
+            ix[r2] / sc, iy[r2] / sc, ix[w] / sc, iy[w] / sc, rect, b % n, 0.75
+        )
+        if not (ok1 and ok4):
+            return ox[:0], oy[:0], ot[:0], osrc[:0], False
+        # Z2: the net's crossing of gate a+1, one eighth of a pixel back; Z3: crossing of gate b, 1/8 on
+        c2x, c2y, j2 = _net_crossing(r0, r0t, (a + 1) % n, n, gp, gdir)
+        c3x, c3y, j3 = _net_crossing(r0, r0t, b % n, n, gp, gdir)
+        d2 = gdir[(a + 1) % n]
+        d3 = gdir[b % n]
+        half = sc // 2  # 1/8 pixel = 1/2 Q-unit
+        z2x = c2x * sc - _DX[d2] * half
+        z2y = c2y * sc - _DY[d2] * half
+        z3x = c3x * sc + _DX[d3] * half
+        z3y = c3y * sc + _DY[d3] * half
+        ox[no] = int(np.round(z1x * sc))
+        oy[no] = int(np.round(z1y * sc))
+        ot[no] = a
+        osrc[no] = SRC_SPLICE
+        no += 1
+        ox[no] = z2x
+        oy[no] = z2y
+        ot[no] = a
+        osrc[no] = SRC_SPLICE
+        no += 1
+        # net vertices strictly between pieces a and b
+        q = j2
+        steps = 0
+        while steps < nr:
+            tq = r0t[q]
+            # unwrap tq into (a, b)
+            tu_ = tq
+            while tu_ <= a:
+                tu_ += n
+            if tu_ >= b:
+                break
+            ox[no] = r0[q, 0] * sc
+            oy[no] = r0[q, 1] * sc
+            ot[no] = tu_
+            osrc[no] = SRC_NET
+            no += 1
+            q = (q + 1) % nr
+            steps += 1
+        ox[no] = z3x
+        oy[no] = z3y
+        ot[no] = b
+        osrc[no] = SRC_SPLICE
+        no += 1
+        ox[no] = int(np.round(z4x * sc))
+        oy[no] = int(np.round(z4y * sc))
+        ot[no] = b
+        osrc[no] = SRC_SPLICE
+        no += 1
+        _ = j3
+        cnt += jj - i
+        i = jj
+    return ox[:no], oy[:no], ot[:no], osrc[:no], True
+
+
+# ============================================================================================ pruning
+
+
+@njit(cache=True)
+def prune_ring(
+    ix: np.ndarray,
+    iy: np.ndarray,
+    vt: np.ndarray,
+    vs: np.ndarray,
+    vl: np.ndarray,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    sc: int,
+    check: bool = True,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
+    """Drop every vertex whose two neighbours can be joined by a valid edge (exact), in one sweep.
+
+    With ``check``, the original ring is kept if the result does not verify; without, the pruned ring is
+    returned as it is (used to repair a ring that failed: the caller verifies).
+    """
+    n = gdir.size
+    m = ix.size
+    keep = np.ones(m, np.bool_)
+    left = m
+    for i in range(m):
+        if left <= 3:
+            break
+        p = (i - 1) % m
+        while not keep[p]:
+            p = (p - 1) % m
+        q = (i + 1) % m
+        while not keep[q]:
+            q = (q + 1) % m
+        tp = vt[p]
+        tq = vt[q]
+        if p > i:
+            tp -= n  # p is in the previous lap
+        if q < i:
+            tq += n  # q is in the next lap
+        if tq - tp >= n:
+            continue
+        if edge_ok(ix[p], iy[p], tp, ix[q], iy[q], tq, gp, gq, gdir, sc):
+            keep[i] = False
+            left -= 1
+    if left == m:
+        return ix, iy, vt, vs, vl
+    ox = np.empty(left, np.int64)
+    oy = np.empty(left, np.int64)
+    ot = np.empty(left, np.int64)
+    os_ = np.empty(left, np.int64)
+    ol = np.empty(left, np.int64)
+    j = 0
+    for i in range(m):
+        if keep[i]:
+            ox[j] = ix[i]
+            oy[j] = iy[i]
+            ot[j] = vt[i]
+            os_[j] = vs[i]
+            ol[j] = vl[i]
+            j += 1
+    if not check:
+        return ox, oy, ot, os_, ol
+    bad = np.zeros(left, np.bool_)
+    if verify_ring(ox, oy, ot, rect, gp, gq, gdir, sc, bad):
+        return ox, oy, ot, os_, ol
+    return ix, iy, vt, vs, vl
+
+
+@njit(cache=True)
+def _clip_poly(
+    px: np.ndarray,
+    py: np.ndarray,
+    n: int,
+    ax: float,
+    ay: float,
+    bx: float,
+    by: float,
+    sign: float,
+    ox: np.ndarray,
+    oy: np.ndarray,
+) -> int:  # pragma: no cover
+    # Keep the part of polygon (px, py)[:n] where sign * orient(a, b, w) > 0 (float; a margin is enforced
+    # later by the exact checks). Returns the new vertex count, written to (ox, oy).
+    m = 0
+    for i in range(n):
+        j = i + 1 if i + 1 < n else 0
+        fi = sign * ((bx - ax) * (py[i] - ay) - (by - ay) * (px[i] - ax))
+        fj = sign * ((bx - ax) * (py[j] - ay) - (by - ay) * (px[j] - ax))
+        if fi > 0:
+            ox[m] = px[i]
+            oy[m] = py[i]
+            m += 1
+        if (fi > 0) != (fj > 0) and fi != fj:
+            t = fi / (fi - fj)
+            ox[m] = px[i] + t * (px[j] - px[i])
+            oy[m] = py[i] + t * (py[j] - py[i])
+            m += 1
+    return m
+
+
+@njit(cache=True)
+def _merge_pair(
+    ax: int,
+    ay: int,
+    ta: int,
+    bx: int,
+    by: int,
+    tb: int,
+    t0: int,
+    t1: int,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    kmax: int,
+    cone: np.ndarray,
+    okc: np.ndarray,
+    poly: np.ndarray,
+) -> tuple[int, int, int, bool]:  # pragma: no cover
+    # A dyadic point w in a piece t0 <= t <= t1 such that a -> w and w -> b are valid edges (a in piece ta,
+    # b in piece tb). From a, w must lie in the cone of rays through the gates ta+1 … t (right of every
+    # a→P, left of every a→Q); from b, in the cone through the gates t+1 … tb (left of every b→P, right of
+    # every b→Q). Both cones are kept as their two tightest rays, so each piece costs O(1) on top of one
+    # sweep; the piece cut by the four rays gives a centre, snapped and checked exactly.
+    n = gdir.size
+    sc = float(1 << kmax)
+    isc = 1 << kmax
+    fax = ax / sc
+    fay = ay / sc
+    fbx = bx / sc
+    fby = by / sc
+    span = tb - ta
+    # scratch (span + 1 rows): cone from a after gates ta+1 .. ta+k in cone[0], from b in cone[1]
+    alx = cone[0, 0]
+    aly = cone[0, 1]
+    arx = cone[0, 2]
+    ary = cone[0, 3]
+    aok = okc[0]
+    blx = cone[1, 0]
+    bly = cone[1, 1]
+    brx = cone[1, 2]
+    bry = cone[1, 3]
+    bok = okc[1]
+    lx = 0.0
+    ly = 0.0
+    rx = 0.0
+    ry = 0.0
+    ok = True
+    for k in range(1, span + 1):
+        g = (ta + k) % n
+        px_ = gp[g, 0] - fax
+        py_ = gp[g, 1] - fay
+        qx_ = gq[g, 0] - fax
+        qy_ = gq[g, 1] - fay
+        if k == 1:
+            lx, ly, rx, ry = px_, py_, qx_, qy_
+        else:
+            if lx * py_ - ly * px_ < 0:  # P ray clockwise of the left ray: tighter
+                lx, ly = px_, py_
+            if rx * qy_ - ry * qx_ > 0:  # Q ray counter-clockwise of the right ray: tighter
+                rx, ry = qx_, qy_
+        if ok and rx * ly - ry * lx <= 0:  # the left ray must stay counter-clockwise of the right ray
+            ok = False
+        alx[k] = lx
+        aly[k] = ly
+        arx[k] = rx
+        ary[k] = ry
+        aok[k] = ok
+    # cone from b before gates tb-k+1 .. tb (k = 0 .. span), looking back
+    ok = True
+    for k in range(1, span + 1):
+        g = (tb - k + 1) % n
+        px_ = gp[g, 0] - fbx
+        py_ = gp[g, 1] - fby
+        qx_ = gq[g, 0] - fbx
+        qy_ = gq[g, 1] - fby
+        if k == 1:
+            lx, ly, rx, ry = px_, py_, qx_, qy_
+        else:
+            if lx * py_ - ly * px_ > 0:  # w left of every b→P: the most counter-clockwise P ray binds
+                lx, ly = px_, py_
+            if rx * qy_ - ry * qx_ < 0:
+                rx, ry = qx_, qy_
+        if ok and lx * ry - ly * rx <= 0:
+            ok = False
+        blx[k] = lx
+        bly[k] = ly
+        brx[k] = rx
+        bry[k] = ry
+        bok[k] = ok
+    pxs = poly[0]
+    pys = poly[1]
+    qxs = poly[2]
+    qys = poly[3]
+    for t in range(t0, t1 + 1):
+        ka = t - ta
+        kb = tb - t
+        if (ka > 0 and not aok[ka]) or (kb > 0 and not bok[kb]):
+            continue
+        r = t % n
+        pxs[0] = rect[r, 0]
+        pys[0] = rect[r, 2]
+        pxs[1] = rect[r, 1]
+        pys[1] = rect[r, 2]
+        pxs[2] = rect[r, 1]
+        pys[2] = rect[r, 3]
+        pxs[3] = rect[r, 0]
+        pys[3] = rect[r, 3]
+        nv = 4
+        if ka > 0:
+            nv = _clip_poly(pxs, pys, nv, fax, fay, fax + alx[ka], fay + aly[ka], -1.0, qxs, qys)
+            if nv >= 3:
+                nv = _clip_poly(qxs, qys, nv, fax, fay, fax + arx[ka], fay + ary[ka], 1.0, pxs, pys)
+        if nv >= 3 and kb > 0:
+            nv = _clip_poly(pxs, pys, nv, fbx, fby, fbx + blx[kb], fby + bly[kb], 1.0, qxs, qys)
+            if nv >= 3:
+                nv = _clip_poly(qxs, qys, nv, fbx, fby, fbx + brx[kb], fby + bry[kb], -1.0, pxs, pys)
+        if nv < 3:
+            continue
+        cx = 0.0
+        cy = 0.0
+        for i in range(nv):
+            cx += pxs[i]
+            cy += pys[i]
+        cx /= nv
+        cy /= nv
+        # start at a grid four times finer than the region's extent: coarser ones would miss it
+        ext = 0.0
+        for i in range(nv):
+            ext = max(ext, abs(pxs[i] - cx), abs(pys[i] - cy))
+        k0 = 0
+        while k0 < kmax and float(1 << k0) * ext < 4.0:
+            k0 += 1
+        for k in range(k0, kmax + 1):
+            f = float(1 << k)
+            mul = 1 << (kmax - k)
+            x = int(np.round(cx * f)) * mul
+            y = int(np.round(cy * f)) * mul
+            if not _in_piece(rect, r, x, y, isc):
+                continue
+            if not edge_ok(ax, ay, ta, x, y, t, gp, gq, gdir, isc):
+                continue
+            if not edge_ok(x, y, t, bx, by, tb, gp, gq, gdir, isc):
+                continue
+            return x, y, t, True
+    return 0, 0, 0, False
+
+
+@njit(cache=True)
+def merge_ring(
+    ix: np.ndarray,
+    iy: np.ndarray,
+    vt: np.ndarray,
+    vs: np.ndarray,
+    vl: np.ndarray,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    kmax: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
+    """Replace pairs of consecutive vertices by one wherever both neighbours can reach a common point.
+
+    The point is searched in the pieces of the pair (exact checks), until no pair merges; the input is kept
+    if the result fails to verify.
+    """
+    n = gdir.size
+    m = ix.size
+    x = ix.copy()
+    y = iy.copy()
+    t = vt.copy()
+    s = vs.copy()
+    ln = vl.copy()
+    cone = np.empty((2, 4, n + 1), np.float64)
+    okc = np.zeros((2, n + 1), np.bool_)
+    poly = np.empty((4, 16), np.float64)
+    for rnd in range(2):
+        i = 0
+        while i < m - 1 and m > 3:
+            # vertices i and i+1 (never across the end of the arrays: the second round runs on the ring
+            # rotated by half a turn); unwrapped pieces of the neighbours
+            ta = t[i - 1] if i > 0 else t[m - 1] - n
+            tb = t[i + 2] if i + 2 < m else t[0] + n
+            xa = x[i - 1] if i > 0 else x[m - 1]
+            ya = y[i - 1] if i > 0 else y[m - 1]
+            xb = x[i + 2] if i + 2 < m else x[0]
+            yb = y[i + 2] if i + 2 < m else y[0]
+            merged = False
+            if tb - ta < n:
+                wx, wy, tt, ok = _merge_pair(
+                    xa, ya, ta, xb, yb, tb, t[i], t[i + 1], rect, gp, gq, gdir, kmax, cone, okc, poly
+                )
+                if ok:
+                    x[i] = wx
+                    y[i] = wy
+                    t[i] = tt
+                    s[i] = SRC_LINES
+                    ln[i] = -1
+                    for q in range(i + 1, m - 1):
+                        x[q] = x[q + 1]
+                        y[q] = y[q + 1]
+                        t[q] = t[q + 1]
+                        s[q] = s[q + 1]
+                        ln[q] = ln[q + 1]
+                    m -= 1
+                    merged = True
+            if not merged:
+                i += 1
+        if rnd == 0 and m > 3:
+            # rotate by half a turn, keeping the pieces non-decreasing from vertex 0
+            h = m // 2
+            rx = np.empty(m, np.int64)
+            ry = np.empty(m, np.int64)
+            rt = np.empty(m, np.int64)
+            rs = np.empty(m, np.int64)
+            rl = np.empty(m, np.int64)
+            for q in range(m):
+                src = (h + q) % m
+                rx[q] = x[src]
+                ry[q] = y[src]
+                rt[q] = t[src] + (n if src < h else 0)
+                rs[q] = s[src]
+                rl[q] = ln[src]
+            base = (rt[0] // n) * n
+            for q in range(m):
+                x[q] = rx[q]
+                y[q] = ry[q]
+                t[q] = rt[q] - base
+                s[q] = rs[q]
+                ln[q] = rl[q]
+    if m == ix.size:
+        return ix, iy, vt, vs, vl
+    ox = x[:m].copy()
+    oy = y[:m].copy()
+    ot = t[:m].copy()
+    os_ = s[:m].copy()
+    ol = ln[:m].copy()
+    bad = np.zeros(m, np.bool_)
+    if verify_ring(ox, oy, ot, rect, gp, gq, gdir, 1 << kmax, bad):
+        return ox, oy, ot, os_, ol
+    return ix, iy, vt, vs, vl
+
+
+@njit(cache=True)
+def small_triangle(
+    rect: np.ndarray, gp: np.ndarray, gq: np.ndarray, gdir: np.ndarray, reach: np.ndarray, kmax: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:  # pragma: no cover
+    """For a small corridor, look for a triangle among a few candidate points per piece.
+
+    Candidates are each piece's centre, side midpoints and corners, inset by 1/16 pixel; the search is
+    pruned by the reach table; exact checks throughout.
+    """
+    n = gdir.size
+    sc = 1 << kmax
+    q = sc // 4  # 1/16 pixel = 1/4 Q-unit
+    nc = 9 * n
+    cx = np.empty(nc, np.int64)
+    cy = np.empty(nc, np.int64)
+    ct = np.empty(nc, np.int64)
+    k = 0
+    for t in range(n):
+        x0 = rect[t, 0] * sc + q
+        x1 = rect[t, 1] * sc - q
+        y0 = rect[t, 2] * sc + q
+        y1 = rect[t, 3] * sc - q
+        xm = (rect[t, 0] + rect[t, 1]) * sc // 2
+        ym = (rect[t, 2] + rect[t, 3]) * sc // 2
+        for a in range(3):
+            xa = x0 if a == 0 else (xm if a == 1 else x1)
+            for b in range(3):
+                cx[k] = xa
+                cy[k] = y0 if b == 0 else (ym if b == 1 else y1)
+                ct[k] = t
+                k += 1
+    valid = np.full((nc, nc), -1, np.int8)  # edge i -> j with j's piece unwrapped after i's (memo)
+    tx = np.empty(3, np.int64)
+    ty = np.empty(3, np.int64)
+    tt = np.empty(3, np.int64)
+    bad = np.zeros(3, np.bool_)
+    # piece triples first: three windows must cover the ring (reach), else no candidate can work
+    for ta in range(n):
+        for tb in range(ta + 1, min(ta + reach[ta], ta + n - 1) + 1):
+            if tb >= n + ta:
+                break
+            for tc in range(tb + 1, min(tb + reach[tb % n], ta + n - 1) + 1):
+                if tc + reach[tc % n] < ta + n:
+                    continue
+                for i in range(9 * ta, 9 * ta + 9):
+                    for j in range(9 * (tb % n), 9 * (tb % n) + 9):
+                        if valid[i, j] < 0:
+                            valid[i, j] = (
+                                1 if edge_ok(cx[i], cy[i], ta, cx[j], cy[j], tb, gp, gq, gdir, sc) else 0
+                            )
+                        if valid[i, j] == 0:
+                            continue
+                        for c in range(9 * (tc % n), 9 * (tc % n) + 9):
+                            if valid[j, c] < 0:
+                                valid[j, c] = (
+                                    1 if edge_ok(cx[j], cy[j], tb, cx[c], cy[c], tc, gp, gq, gdir, sc) else 0
+                                )
+                            if valid[j, c] == 0:
+                                continue
+                            if not edge_ok(cx[c], cy[c], tc, cx[i], cy[i], ta + n, gp, gq, gdir, sc):
+                                continue
+                            tx[0] = cx[i]
+                            ty[0] = cy[i]
+                            tt[0] = ta
+                            tx[1] = cx[j]
+                            ty[1] = cy[j]
+                            tt[1] = tb
+                            tx[2] = cx[c]
+                            ty[2] = cy[c]
+                            tt[2] = tc
+                            if verify_ring(tx, ty, tt, rect, gp, gq, gdir, sc, bad):
+                                return tx, ty, tt, True
+    return tx, ty, tt, False
+
+
+@njit(cache=True)
+def window_bound(reach: np.ndarray) -> int:  # pragma: no cover
+    """A lower bound on the vertices of any ring of the corridor: the fewest windows covering one lap.
+
+    An edge leaving a vertex in piece t ends in a piece at most t + reach[t] (reach is exact), and the
+    pieces of consecutive vertices advance by one lap in total, so a ring of m vertices is a cyclic chain of
+    m windows, each starting where the last one ends. Starts are tried across the longest window (every
+    chain has a vertex there); the greedy longest jump is optimal for a fixed start.
+    """
+    n = reach.size
+    s0 = 0
+    for i in range(n):
+        if reach[i] > reach[s0]:
+            s0 = i
+    best = 1 << 30
+    for s in range(s0, s0 + reach[s0] + 1):
+        t = s
+        c = 0
+        while t < s + n and c < best:
+            step = reach[t % n]
+            if step <= 0:
+                c = 1 << 30
+                break
+            t += step
+            c += 1
+        if c < best:
+            best = c
+    return best
+
+
+@njit(cache=True)
+def small_polygon(
+    rect: np.ndarray, gp: np.ndarray, gq: np.ndarray, gdir: np.ndarray, reach: np.ndarray, kmax: int, nv: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:  # pragma: no cover
+    """For a small corridor, look for a ring of ``nv`` = 3 or 4 vertices (the fewest the windows allow).
+
+    Vertex 0 lies in the shortest window (every ring has a vertex in each window, since i + reach[i] never
+    decreases). Vertices 0 and 2 are taken among nine points per piece (a 3 × 3 grid at 1/6, 1/2, 5/6 of
+    the piece);
+    each vertex between them is placed by :func:`_merge_pair` (the centre of the region both neighbours
+    see, searched in every piece between them), so only two of the vertices are enumerated. For a triangle
+    the edge 2 → 0 is checked directly. Piece pairs are pruned by the reach table; the result is verified
+    exactly (:func:`verify_ring`).
+    """
+    n = gdir.size
+    sc = 1 << kmax
+    per = 9
+    cx = np.empty(per * n, np.int64)
+    cy = np.empty(per * n, np.int64)
+    k = 0
+    for t in range(n):
+        x0 = rect[t, 0] * sc
+        x1 = rect[t, 1] * sc
+        y0 = rect[t, 2] * sc
+        y1 = rect[t, 3] * sc
+        for a in range(3):
+            for b in range(3):
+                cx[k] = x0 + (x1 - x0) * (2 * a + 1) // 6
+                cy[k] = y0 + (y1 - y0) * (2 * b + 1) // 6
+                k += 1
+    cone = np.empty((2, 4, n + 1), np.float64)
+    okc = np.zeros((2, n + 1), np.bool_)
+    poly = np.empty((4, 16), np.float64)
+    tx = np.empty(nv, np.int64)
+    ty = np.empty(nv, np.int64)
+    tt = np.empty(nv, np.int64)
+    bad = np.zeros(nv, np.bool_)
+    # every window chain has a vertex in every window (i + reach[i] never decreases): start in the shortest
+    smin = 0
+    for i in range(n):
+        if reach[i] < reach[smin]:
+            smin = i
+    for ta0 in range(smin, smin + reach[smin] + 1):
+        ta = ta0 % n
+        for tc in range(ta, ta + n):
+            # a window chain ta -> tb -> tc, then tc -> ta + n directly (triangle) or through td (quad)
+            okb = False
+            for tb in range(ta, min(tc, ta + reach[ta]) + 1):
+                if tb + reach[tb % n] >= tc:
+                    okb = True
+                    break
+            if not okb:
+                continue
+            if nv == 3:
+                if tc + reach[tc % n] < ta + n:
+                    continue
+            else:
+                okd = False
+                for td in range(tc, min(ta + n, tc + reach[tc % n]) + 1):
+                    if td + reach[td % n] >= ta + n:
+                        okd = True
+                        break
+                if not okd:
+                    continue
+            for i in range(per * ta, per * ta + per):
+                for c in range(per * (tc % n), per * (tc % n) + per):
+                    if nv == 3 and not edge_ok(cx[c], cy[c], tc, cx[i], cy[i], ta + n, gp, gq, gdir, sc):
+                        continue
+                    wx, wy, tw, ok = _merge_pair(
+                        cx[i], cy[i], ta, cx[c], cy[c], tc, ta, tc, rect, gp, gq, gdir, kmax, cone, okc, poly
+                    )
+                    if not ok:
+                        continue
+                    tx[0] = cx[i]
+                    ty[0] = cy[i]
+                    tt[0] = ta
+                    tx[1] = wx
+                    ty[1] = wy
+                    tt[1] = tw
+                    tx[2] = cx[c]
+                    ty[2] = cy[c]
+                    tt[2] = tc
+                    if nv == 4:
+                        ux, uy, tu, oku = _merge_pair(
+                            cx[c],
+                            cy[c],
+                            tc,
+                            cx[i],
+                            cy[i],
+                            ta + n,
+                            tc,
+                            ta + n,
+                            rect,
+                            gp,
+                            gq,
+                            gdir,
+                            kmax,
+                            cone,
+                            okc,
+                            poly,
+                        )
+                        if not oku:
+                            continue
+                        tx[3] = ux
+                        ty[3] = uy
+                        tt[3] = tu
+                    if verify_ring(tx, ty, tt, rect, gp, gq, gdir, sc, bad):
+                        return tx, ty, tt, True
+    return tx, ty, tt, False
+
+
+@njit(cache=True)
+def _unwrap6(t: np.ndarray, i: int, n: int, jj: np.ndarray, tt: np.ndarray) -> None:  # pragma: no cover
+    # Indices of vertices i-2 … i+3 (cyclic) and their pieces unwrapped from the first.
+    m = t.size
+    for d in range(6):
+        j = (i - 2 + d) % m
+        jj[d] = j
+        tt[d] = t[j]
+        if d > 0:
+            while tt[d] < tt[d - 1]:
+                tt[d] += n
+
+
+@njit(cache=True)
+def relink_ring(
+    ix: np.ndarray,
+    iy: np.ndarray,
+    vt: np.ndarray,
+    vs: np.ndarray,
+    vl: np.ndarray,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    kmax: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
+    """Replace four consecutive vertices by three where the two outer neighbours allow it.
+
+    For vertices a, c1, v, v', c3, b: c1 is moved among its own position and nine points of its piece that
+    a sees, c3 likewise towards b, and one point w replacing v, v' is placed by :func:`_merge_pair`. This
+    undoes what :func:`merge_ring` cannot (two vertices close together that one vertex would replace only if
+    both neighbours moved). Every change is verified exactly on the whole ring, so the ring stays valid; the
+    scan stops after a lap without change.
+    """
+    n = gdir.size
+    sc = 1 << kmax
+    m = ix.size
+    if m < 6:
+        return ix, iy, vt, vs, vl
+    x = ix.copy()
+    y = iy.copy()
+    t = vt.copy()
+    s = vs.copy()
+    ln = vl.copy()
+    cone = np.empty((2, 4, n + 1), np.float64)
+    okc = np.zeros((2, n + 1), np.bool_)
+    poly = np.empty((4, 16), np.float64)
+    jj = np.empty(6, np.int64)
+    tt = np.empty(6, np.int64)
+    c1x = np.empty(10, np.int64)
+    c1y = np.empty(10, np.int64)
+    c3x = np.empty(10, np.int64)
+    c3y = np.empty(10, np.int64)
+    nx = np.empty(m, np.int64)
+    ny = np.empty(m, np.int64)
+    nt = np.empty(m, np.int64)
+    ns = np.empty(m, np.int64)
+    nl = np.empty(m, np.int64)
+    bad = np.zeros(m, np.bool_)
+    i = 0
+    fails = 0
+    steps = 0
+    while m >= 6 and fails < m and steps < 4 * ix.size:
+        steps += 1
+        _unwrap6(t[:m], i, n, jj, tt)
+        ok = False
+        if tt[5] - tt[0] < n:
+            ax = x[jj[0]]
+            ay = y[jj[0]]
+            bx = x[jj[5]]
+            by = y[jj[5]]
+            # candidates for c1 (seen from a) and c3 (seeing b): the current point first, then a 3 x 3 grid
+            n1 = 0
+            n3 = 0
+            for side in range(2):
+                d = 1 if side == 0 else 4
+                r = tt[d] % n
+                for k in range(10):
+                    if k == 0:
+                        px = x[jj[d]]
+                        py = y[jj[d]]
+                    else:
+                        a_ = (k - 1) // 3
+                        b_ = (k - 1) % 3
+                        px = rect[r, 0] * sc + (rect[r, 1] - rect[r, 0]) * sc * (2 * a_ + 1) // 6
+                        py = rect[r, 2] * sc + (rect[r, 3] - rect[r, 2]) * sc * (2 * b_ + 1) // 6
+                        if not _in_piece(rect, r, px, py, sc):
+                            continue
+                    if side == 0:
+                        if edge_ok(ax, ay, tt[0], px, py, tt[1], gp, gq, gdir, sc):
+                            c1x[n1] = px
+                            c1y[n1] = py
+                            n1 += 1
+                    elif edge_ok(px, py, tt[4], bx, by, tt[5], gp, gq, gdir, sc):
+                        c3x[n3] = px
+                        c3y[n3] = py
+                        n3 += 1
+            for u in range(n1):
+                if ok:
+                    break
+                for v in range(n3):
+                    wx, wy, tw, okw = _merge_pair(
+                        c1x[u],
+                        c1y[u],
+                        tt[1],
+                        c3x[v],
+                        c3y[v],
+                        tt[4],
+                        tt[2],
+                        tt[3],
+                        rect,
+                        gp,
+                        gq,
+                        gdir,
+                        kmax,
+                        cone,
+                        okc,
+                        poly,
+                    )
+                    if not okw:
+                        continue
+                    # the new ring from b round to a, then c1, w, c3 (pieces unwrapped from b's)
+                    q = 0
+                    j = jj[5]
+                    base = tt[5]
+                    prev = tt[5]
+                    while True:
+                        pj = t[j]
+                        while pj < prev:
+                            pj += n
+                        nx[q] = x[j]
+                        ny[q] = y[j]
+                        nt[q] = pj
+                        ns[q] = s[j]
+                        nl[q] = ln[j]
+                        prev = pj
+                        q += 1
+                        if j == jj[0]:
+                            break
+                        j = (j + 1) % m
+                    lap = prev - tt[0]  # a one lap later, relative to its position in tt
+                    nx[q] = c1x[u]
+                    ny[q] = c1y[u]
+                    nt[q] = tt[1] + lap
+                    nx[q + 1] = wx
+                    ny[q + 1] = wy
+                    nt[q + 1] = tw + lap
+                    nx[q + 2] = c3x[v]
+                    ny[q + 2] = c3y[v]
+                    nt[q + 2] = tt[4] + lap
+                    for e in range(3):
+                        ns[q + e] = SRC_LINES
+                        nl[q + e] = -1
+                    q += 3
+                    off = (base // n) * n
+                    for e in range(q):
+                        nt[e] -= off
+                    if verify_ring(nx[:q], ny[:q], nt[:q], rect, gp, gq, gdir, sc, bad[:q]):
+                        for e in range(q):
+                            x[e] = nx[e]
+                            y[e] = ny[e]
+                            t[e] = nt[e]
+                            s[e] = ns[e]
+                            ln[e] = nl[e]
+                        m = q
+                        ok = True
+                        break
+        if ok:
+            fails = 0
+            i = 0
+        else:
+            fails += 1
+            i = (i + 1) % m
+    if m == ix.size:
+        return ix, iy, vt, vs, vl
+    return x[:m].copy(), y[:m].copy(), t[:m].copy(), s[:m].copy(), ln[:m].copy()
