@@ -50,6 +50,7 @@ from mrm.geometry._rk_base import (
     _EPS,
     _LXD,
     _LYD,
+    _RELINK_MAX,
     _SMALL,
     _SMALL_POLY,
     RING_NET,
@@ -150,6 +151,7 @@ __all__ = [
     "_LYD",
     "_QUAD_X",
     "_QUAD_Y",
+    "_RELINK_MAX",
     "_SMALL",
     "_SMALL_POLY",
     "_best_line",
@@ -645,7 +647,7 @@ def finish_all(
             if good:
                 px, py, pt, ps, pl = prune_ring(ix, iy, vt, vs, vl, rc, p, q, g, sc)
                 px, py, pt, ps, pl = merge_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
-                if px.size >= 6 and px.size > window_bound(reach[a:b]):
+                if 6 <= px.size <= _RELINK_MAX and px.size > window_bound(reach[a:b]):
                     px, py, pt, ps, pl = relink_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
                 if px.size > 3 and b - a <= _SMALL_POLY:
                     # a small corridor: search for the fewest vertices its windows allow (3 or 4)

@@ -28,6 +28,7 @@ RING_SINGLE = 3  # isolated pixel
 
 _SMALL = 12  # corridors up to this many pieces also get an exhaustive search for a triangle
 _SMALL_POLY = 24  # verified rings of corridors up to this many pieces: search for 3 or 4 vertices
+_RELINK_MAX = 48  # relink_ring verifies the whole ring per candidate (quadratic): only rings this small
 _EPS = 1e-4  # float margin (Q-units) used only while *constructing*; every result is checked exactly
 _BIG = 1e300
 
