@@ -195,8 +195,8 @@ def test_operations_on_a_geotiff_give_georeferenced_results(tmp_path):
     with rasterio.open(tmp_path / "s.tif") as ds:
         assert ds.crs.to_epsg() == 32633 and (ds.transform.a, ds.transform.e) == (15.0, -15.0)
         ys, xs = np.nonzero(ds.read(1))
-        west, north = ds.transform * (xs.min(), ys.min())
-        east, south = ds.transform * (xs.max() + 1, ys.max() + 1)
+        west, north = ds.transform @ (xs.min(), ys.min())
+        east, south = ds.transform @ (xs.max() + 1, ys.max() + 1)
     # The 8×6 block of 30 m pixels scaled on a grid twice as fine lands where the block is, within one fine
     # pixel (the fine grid is centred on the coarse pixel centres, so its edges are not the coarse ones);
     # tests/geo/test_project_georef.py compares such a result with GDAL's burn, pixel for pixel.
@@ -209,8 +209,8 @@ def test_operations_on_a_geotiff_give_georeferenced_results(tmp_path):
     with rasterio.open(tmp_path / "r.tif") as ds:
         assert ds.transform == t and ds.crs.to_epsg() == 32633  # the input's grid, unchanged
         ys, xs = np.nonzero(ds.read(1))
-        west, north = ds.transform * (xs.min(), ys.min())
-        east, south = ds.transform * (xs.max() + 1, ys.max() + 1)
+        west, north = ds.transform @ (xs.min(), ys.min())
+        east, south = ds.transform @ (xs.max() + 1, ys.max() + 1)
     # turned a quarter about the block's centre: 6 wide and 8 high, centred where the block was
     assert (east - west, north - south) == (6 * 30, 8 * 30)
     assert ((west + east) / 2, (north + south) / 2) == (500_000.0 + 8 * 30, 4_200_000.0 - 6 * 30)

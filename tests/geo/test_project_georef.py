@@ -134,7 +134,7 @@ def test_undo_redo_and_edits_keep_the_georeference(tmp_path):
         assert ds.transform.a == 30 and ds.transform.c == 500_000.0
         assert ds.transform.f == 4_200_000.0 + 30 * (100 - 15)  # 85 rows added on top
         assert (ds.width, ds.height) == (101, 101)
-        col, row = ~ds.transform * (500_000.0 + 30 * 100.5, 4_200_000.0 - 30 * (15 - 100 + 0.5))
+        col, row = ~ds.transform @ (500_000.0 + 30 * 100.5, 4_200_000.0 - 30 * (15 - 100 + 0.5))
         assert ds.read(1)[int(row), int(col)] == 1
 
 
