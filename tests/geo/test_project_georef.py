@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 import rasterio
 from rasterio.features import rasterize
-from rasterio.transform import from_origin
 from shapely.geometry import shape
 
 from mrm.commands import MergeObjects, PaintPixels, RenameObject
@@ -27,32 +26,9 @@ from mrm.io.imports import import_file
 from mrm.io.project import load_project, loads, save_project
 from mrm.ops.apply import apply_operation
 from mrm.reps.pixels import PixelSet
+from tests.geo.test_georef import CRS, T, blobs, write_tif
 
-T = from_origin(500_000.0, 4_200_000.0, 30.0, 30.0)  # UTM 33N, 30 m pixels
-CRS = "EPSG:32633"
 GOLDEN = Path(__file__).parents[1] / "model" / "golden"
-
-
-def blobs(h: int, w: int, seed: int) -> np.ndarray:
-    rng = np.random.default_rng(seed)
-    noise = rng.random((h // 4 + 2, w // 4 + 2))
-    big = np.kron(noise, np.ones((4, 4)))[:h, :w]
-    return (big + 0.3 * rng.random((h, w))) > 0.75
-
-
-def write_tif(path: Path, mask: np.ndarray, transform=T, crs=CRS) -> None:
-    with rasterio.open(
-        path,
-        "w",
-        driver="GTiff",
-        width=mask.shape[1],
-        height=mask.shape[0],
-        count=1,
-        dtype="uint8",
-        transform=transform,
-        crs=crs,
-    ) as ds:
-        ds.write(mask.astype(np.uint8), 1)
 
 
 def imported(tmp_path: Path, mask: np.ndarray, model: str = "gauss", **kw) -> tuple[Document, int]:
