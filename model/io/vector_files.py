@@ -15,6 +15,7 @@ import math
 import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -33,9 +34,9 @@ from shapely.geometry import (
     shape,
 )
 from shapely.geometry.base import BaseGeometry
-from shapely.geometry.polygon import orient
 
 from mrm.errors import FileFormatError, InvalidGeometryError
+from mrm.gc_pause import paused_gc
 from mrm.io.atomic import atomic_open
 from mrm.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, check_output_bytes, clean_name
 from mrm.reps.pixels import PixelSet
@@ -418,23 +419,41 @@ def _num(v: float) -> str:
     return repr(f)
 
 
+def _polygon_coordinates(polys: Any) -> list[Any]:
+    """The GeoJSON coordinates of each polygon of ``polys``, in a few array passes.
+
+    One pass over a large result instead of one shapely call per ring: a 50 % noise image has 42,000
+    components and 44,000 rings, and reading them ring by ring took longer than reconstructing them.
+    Rings are oriented as RFC 7946 asks (exterior counter-clockwise, holes clockwise); GEOS reverses a ring
+    in place, first point kept, exactly as :func:`shapely.geometry.polygon.orient` does. An empty polygon
+    gives ``[]``.
+    """
+    polys = shapely.orient_polygons(np.asarray(polys, dtype=object))
+    rings, ring_of = shapely.get_rings(polys, return_index=True)
+    coords, coord_of = shapely.get_coordinates(rings, return_index=True)
+    flat = coords.tolist()  # Python floats, each written by json with repr: it reads back identical
+    ring_lists = _split(flat, np.bincount(coord_of, minlength=len(rings)))
+    return _split(ring_lists, np.bincount(ring_of, minlength=len(polys)))
+
+
+def _split(items: list[Any], counts: np.ndarray) -> list[list[Any]]:
+    """``items`` cut into consecutive lists of ``counts[i]`` items."""
+    return [items[a:b] for a, b in pairwise([0, *np.cumsum(counts).tolist()])]
+
+
 def _geojson_of(g: BaseGeometry) -> dict[str, Any]:
     def pos(c: Sequence[float]) -> list[float]:
         return [float(c[0]), float(c[1])]
-
-    def ring(r: Any) -> list[list[float]]:
-        return [pos(c) for c in r.coords]
 
     if isinstance(g, Point):
         return {"type": "Point", "coordinates": [] if g.is_empty else pos(g.coords[0])}
     if isinstance(g, LineString):
         return {"type": "LineString", "coordinates": [pos(c) for c in g.coords]}
     if isinstance(g, Polygon):
-        if g.is_empty:
-            return {"type": "Polygon", "coordinates": []}
-        p = orient(g, 1.0)  # RFC 7946: exterior counter-clockwise, holes clockwise (same coordinates)
-        return {"type": "Polygon", "coordinates": [ring(p.exterior)] + [ring(h) for h in p.interiors]}
-    if isinstance(g, MultiPoint | MultiLineString | MultiPolygon):
+        return {"type": "Polygon", "coordinates": _polygon_coordinates([g])[0]}
+    if isinstance(g, MultiPolygon):
+        return {"type": "MultiPolygon", "coordinates": _polygon_coordinates(shapely.get_parts(g))}
+    if isinstance(g, MultiPoint | MultiLineString):
         return {
             "type": g.geom_type,
             "coordinates": [_geojson_of(part)["coordinates"] for part in g.geoms],
@@ -499,17 +518,19 @@ def write_geojson(
     parts = _parts(geom_or_parts)
     _check_geometry_output([geom_or_parts] if parts is None else [g for _, g in parts], path)
     base = dict(properties or {})
-    if parts is None:
-        assert isinstance(geom_or_parts, BaseGeometry)
-        features = [{"type": "Feature", "properties": base, "geometry": _geojson_of(geom_or_parts)}]
-    else:
-        features = [
-            {"type": "Feature", "properties": {**base, "part": label}, "geometry": _geojson_of(g)}
-            for label, g in parts
-        ]
     try:
-        doc = {"type": "FeatureCollection", **dict(members or {}), "features": features}
-        text = json.dumps(doc, allow_nan=False)
+        with paused_gc():  # 10⁵–10⁶ coordinate lists, none in a cycle
+            if parts is None:
+                assert isinstance(geom_or_parts, BaseGeometry)
+                geometry = _geojson_of(geom_or_parts)
+                features = [{"type": "Feature", "properties": base, "geometry": geometry}]
+            else:
+                features = [
+                    {"type": "Feature", "properties": {**base, "part": label}, "geometry": _geojson_of(g)}
+                    for label, g in parts
+                ]
+            doc = {"type": "FeatureCollection", **dict(members or {}), "features": features}
+            text = json.dumps(doc, allow_nan=False)
     except ValueError:
         raise InvalidGeometryError(f"{os.fspath(path)}: cannot write NaN or infinite coordinates") from None
     with atomic_open(path, "w") as fh:

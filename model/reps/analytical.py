@@ -27,6 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.gc_pause import paused_gc
 from mrm.geometry import _dss_kernels as K
 from mrm.geometry.dss import Segment
 from mrm.geometry.preimage import Preimage, segment_preimage
@@ -209,6 +210,29 @@ def analytical_of(region: Any, *, mode: Mode = "greedy") -> Analytical:
     chains = _chains_of(region)
     if not chains:
         return Analytical(mode, ())
+    table, ptr = _segment_table(chains, mode)
+    with paused_gc():  # one object per chain: 10⁵ of them on a noise image
+        out = tuple(
+            ChainSegments(c[0], c[1], table[ptr[i] : ptr[i + 1]], c[2], c[3]) for i, c in enumerate(chains)
+        )
+    return Analytical(mode, out)
+
+
+def segment_count(region: Any, *, mode: Mode = "greedy") -> int:
+    """The number of segments :func:`analytical_of` gives, without building its per-chain objects.
+
+    Parameters and errors are those of :func:`analytical_of`.
+    """
+    if mode not in ("greedy", "maximal"):
+        raise ParameterError(f"mode must be 'greedy' or 'maximal', not {mode!r}")
+    chains = _chains_of(region)
+    return int(_segment_table(chains, mode)[1][-1]) if chains else 0
+
+
+def _segment_table(
+    chains: list[tuple[tuple[int, int], str, int, bool]], mode: Mode
+) -> tuple[IntArray, IntArray]:
+    """The segment table of every chain in one kernel call: (rows, ptr), chain i's rows ptr[i]:ptr[i + 1]."""
     lengths = np.array([len(c[1]) for c in chains], dtype=np.int64)
     if lengths.min() == 0:
         raise InvalidGeometryError("a boundary chain has no codes")
@@ -237,7 +261,4 @@ def analytical_of(region: Any, *, mode: Mode = "greedy") -> Analytical:
     pts[:, 0] = starts[chain_of, 0] + before_x
     pts[:, 1] = starts[chain_of, 1] + before_y
     table, ptr = K.segment_chains_kernel(pts, offsets, mode == "maximal", True, 4)
-    out = tuple(
-        ChainSegments(c[0], c[1], table[ptr[i] : ptr[i + 1]], c[2], c[3]) for i, c in enumerate(chains)
-    )
-    return Analytical(mode, out)
+    return table, ptr

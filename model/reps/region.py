@@ -18,37 +18,20 @@ Region → discrete is exact: :func:`fill` rebuilds the pixel set from the chain
 
 from __future__ import annotations
 
-import gc
-from collections.abc import Iterable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 import numpy.typing as npt
 
 from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.gc_pause import paused_gc
 from mrm.geometry.cracks import DX, DY, LX, LY, RX, RY, fill_rings, paint_rings, ring_extent, trace_mask
 from mrm.reps.pixels import Box, LabelMap, PixelSet
 
 IntArray = npt.NDArray[np.int64]
 
 _NOT_CODES = str.maketrans("", "", "0123")
-
-
-@contextmanager
-def paused_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector while building many small acyclic objects.
-
-    Each batch of allocations triggers a collection that walks every live container, so building 10⁵–10⁶
-    chains and cells is several times slower with it on, although none of them can be part of a cycle.
-    """
-    was_enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was_enabled:
-            gc.enable()
 
 
 def _code_array(codes: str) -> npt.NDArray[np.uint8]:

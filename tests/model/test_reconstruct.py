@@ -402,6 +402,22 @@ def test_cli_reconstruct_writes_geojson_that_discretizes_back(capsys, tmp_path) 
         assert summary["vertices"] == count_vertices(geom) == count_vertices(reconstruct(ps, model))
 
 
+@pytest.mark.parametrize("seed", range(12))
+def test_vertex_count_is_the_ring_points_without_their_closing_repeat(seed) -> None:
+    # count_vertices asks GEOS for all coordinates at once; the reference walks every ring.
+    def by_rings(g) -> int:
+        polys = getattr(g, "geoms", [g])
+        return sum(len(r.coords) - 1 for p in polys if not p.is_empty for r in (p.exterior, *p.interiors))
+
+    rng = np.random.default_rng(seed)
+    ps = PixelSet(rng.random((20, 17)) < rng.uniform(0.2, 0.8), (int(rng.integers(-50, 50)), 7))
+    for model in MODELS:
+        g = reconstruct(ps, model)
+        assert count_vertices(g) == by_rings(g) > 0
+        with_empty = MultiPolygon([*getattr(g, "geoms", [g])])
+        assert count_vertices(shapely.GeometryCollection([with_empty, Polygon()])) == by_rings(g)
+
+
 def test_cli_reconstruct_many_inputs_into_a_directory_or_pattern(capsys, tmp_path) -> None:
     import json
 
