@@ -186,6 +186,7 @@ class _Bar:
 
     def __init__(self, bar: Any) -> None:
         self.bar = bar
+        self._drawn = False
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         if bar.total is None or bar.total == 1:
@@ -197,6 +198,7 @@ class _Bar:
         if self._stop.wait(1.0):
             return
         while True:
+            self._drawn = True
             self.bar.refresh()
             if self._stop.wait(0.5):
                 return
@@ -221,6 +223,10 @@ class _Bar:
         self._stop.set()
         if self._thread is not None:
             self._thread.join()
+        if self._drawn:
+            # tqdm clears only a bar it drew itself after its delay; ours was drawn by the ticker, so
+            # clear it here, or the next line (an error message, the summary) is glued to the bar.
+            self.bar.clear()
         self.bar.close()
 
 
