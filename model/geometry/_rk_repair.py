@@ -6,7 +6,7 @@ import numpy as np
 
 from mrm.geometry._jit import njit
 from mrm.geometry._rk_base import _DX, _DY, SRC_LINES, SRC_NET, SRC_SPLICE
-from mrm.geometry._rk_check import _in_piece, edge_ok, verify_ring
+from mrm.geometry._rk_check import _in_piece, edge_ok, gate_rays, rays_admit, verify_ring
 
 # ============================================================================================ repair
 
@@ -485,6 +485,41 @@ def _merge_cones(
 
 
 @njit(cache=True)
+def _sees_piece(
+    rect: np.ndarray,
+    r: int,
+    ox: float,
+    oy: float,
+    cone: np.ndarray,
+    row: int,
+    k: int,
+    fwd: bool,
+    poly: np.ndarray,
+) -> bool:  # pragma: no cover
+    # Whether piece r meets the cone cone[row, :, k] from (ox, oy) (Q-units): the first clips of
+    # :func:`_merge_cones`, alone. Used to skip pairs of candidates whose own sides already leave nothing.
+    if k == 0:
+        return True
+    pxs = poly[0]
+    pys = poly[1]
+    qxs = poly[2]
+    qys = poly[3]
+    pxs[0] = rect[r, 0]
+    pys[0] = rect[r, 2]
+    pxs[1] = rect[r, 1]
+    pys[1] = rect[r, 2]
+    pxs[2] = rect[r, 1]
+    pys[2] = rect[r, 3]
+    pxs[3] = rect[r, 0]
+    pys[3] = rect[r, 3]
+    sg = -1.0 if fwd else 1.0
+    nv = _clip_poly(pxs, pys, 4, ox, oy, ox + cone[row, 0, k], oy + cone[row, 1, k], sg, qxs, qys)
+    if nv >= 3:
+        nv = _clip_poly(qxs, qys, nv, ox, oy, ox + cone[row, 2, k], oy + cone[row, 3, k], -sg, pxs, pys)
+    return nv >= 3
+
+
+@njit(cache=True)
 def _merge_pair(
     ax: int,
     ay: int,
@@ -921,6 +956,8 @@ def relink_ring(
     cone_b = np.empty((10, 4, ccap), np.float64)
     ok_b = np.zeros((10, ccap), np.bool_)
     live_a = np.zeros(10, np.bool_)
+    mask_a = np.zeros(10, np.int64)
+    mask_b = np.zeros(10, np.int64)
     poly = np.empty((4, 16), np.float64)
     jj = np.empty(6, np.int64)
     tt = np.empty(6, np.int64)
@@ -949,6 +986,8 @@ def relink_ring(
             # candidates for c1 (seen from a) and c3 (seeing b): the current point first, then a 3 x 3 grid
             n1 = 0
             n3 = 0
+            alx, aly, arx, ary, fa = gate_rays(ax, ay, tt[0], tt[1], True, gp, gq, sc)
+            blx, bly, brx, bry, fb = gate_rays(bx, by, tt[4], tt[5], False, gp, gq, sc)
             for side in range(2):
                 d = 1 if side == 0 else 4
                 r = tt[d] % n
@@ -964,11 +1003,15 @@ def relink_ring(
                         if not _in_piece(rect, r, px, py, sc):
                             continue
                     if side == 0:
+                        if fa and not rays_admit(ax, ay, alx, aly, arx, ary, True, px, py):
+                            continue
                         if edge_ok(ax, ay, tt[0], px, py, tt[1], gp, gq, gdir, sc):
                             c1x[n1] = px
                             c1y[n1] = py
                             n1 += 1
-                    elif edge_ok(px, py, tt[4], bx, by, tt[5], gp, gq, gdir, sc):
+                    elif (not fb or rays_admit(bx, by, blx, bly, brx, bry, False, px, py)) and edge_ok(
+                        px, py, tt[4], bx, by, tt[5], gp, gq, gdir, sc
+                    ):
                         c3x[n3] = px
                         c3y[n3] = py
                         n3 += 1
@@ -988,6 +1031,31 @@ def relink_ring(
             if any_a:
                 for v in range(n3):
                     _cone_bwd(c3x[v], c3y[v], tt[4], tt[4] - tt[2], gp, gq, fsc, cone_b, ok_b, v)
+            # which pieces tt[2] … tt[3] each candidate's cone meets (bit per piece): a pair can only work
+            # in a piece both meet
+            nt_ = tt[3] - tt[2] + 1
+            for u in range(n1):
+                mask_a[u] = -1
+                if live_a[u] and nt_ <= 62:
+                    mask_a[u] = 0
+                    for e in range(nt_):
+                        te = tt[2] + e
+                        ka = te - tt[1]
+                        if (ka == 0 or ok_a[u, ka]) and _sees_piece(
+                            rect, te % n, c1x[u] / fsc, c1y[u] / fsc, cone_a, u, ka, True, poly
+                        ):
+                            mask_a[u] |= 1 << e
+            for v in range(n3):
+                mask_b[v] = -1
+                if any_a and nt_ <= 62:
+                    mask_b[v] = 0
+                    for e in range(nt_):
+                        te = tt[2] + e
+                        kb = tt[4] - te
+                        if (kb == 0 or ok_b[v, kb]) and _sees_piece(
+                            rect, te % n, c3x[v] / fsc, c3y[v] / fsc, cone_b, v, kb, False, poly
+                        ):
+                            mask_b[v] |= 1 << e
             for u in range(n1):
                 if ok:
                     break
@@ -996,6 +1064,8 @@ def relink_ring(
                 for v in range(n3):
                     if tt[4] > tt[3] and not ok_b[v, tt[4] - tt[3]]:
                         continue  # c3 sees no piece tt[2] … tt[3]
+                    if (mask_a[u] & mask_b[v]) == 0:
+                        continue
                     wx, wy, tw, okw = _merge_cones(
                         c1x[u],
                         c1y[u],

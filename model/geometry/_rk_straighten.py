@@ -6,7 +6,15 @@ import numpy as np
 
 from mrm.geometry._jit import njit
 from mrm.geometry._rk_base import _DX, _DY
-from mrm.geometry._rk_check import _in_piece, _orient, edge_ok, segments_meet, verify_ring
+from mrm.geometry._rk_check import (
+    _in_piece,
+    _orient,
+    edge_ok,
+    gate_rays,
+    rays_admit,
+    segments_meet,
+    verify_ring,
+)
 
 # ============================================================================================ straightening
 
@@ -178,42 +186,8 @@ def _place(
     # a→P and counter-clockwise of every a→Q, hence of the tightest two (exact integers); likewise x seen
     # from b through the gates t+1 … tb. When the exact check would pass these tests pass, so the result is
     # the one of the exact checks alone.
-    fa = check_prev and ta < t < ta + n
-    lpx = 0
-    lpy = 0
-    rqx = 0
-    rqy = 0
-    if fa:
-        for k in range(ta + 1, t + 1):
-            g = k % n
-            px_ = gp[g, 0] * sc - ax
-            py_ = gp[g, 1] * sc - ay
-            qx_ = gq[g, 0] * sc - ax
-            qy_ = gq[g, 1] * sc - ay
-            if k == ta + 1 or lpx * py_ - lpy * px_ < 0:
-                lpx = px_
-                lpy = py_
-            if k == ta + 1 or rqx * qy_ - rqy * qx_ > 0:
-                rqx = qx_
-                rqy = qy_
-    fb = check_next and t < tb < t + n
-    blx = 0
-    bly = 0
-    brx = 0
-    bry = 0
-    if fb:
-        for k in range(1, tb - t + 1):
-            g = (tb - k + 1) % n
-            px_ = gp[g, 0] * sc - bx
-            py_ = gp[g, 1] * sc - by
-            qx_ = gq[g, 0] * sc - bx
-            qy_ = gq[g, 1] * sc - by
-            if k == 1 or blx * py_ - bly * px_ > 0:
-                blx = px_
-                bly = py_
-            if k == 1 or brx * qy_ - bry * qx_ < 0:
-                brx = qx_
-                bry = qy_
+    alx, aly, arx, ary, fa = gate_rays(ax, ay, ta, t if check_prev else ta, True, gp, gq, sc)
+    blx, bly, brx, bry, fb = gate_rays(bx, by, t, tb if check_next else t, False, gp, gq, sc)
     for k in range(-1, kmax + 1):
         if k < 0:
             if fx != np.floor(fx) or fy != np.floor(fy):
@@ -226,9 +200,9 @@ def _place(
             y = int(np.round(fy / mul)) * mul
         if not _in_piece(rect, t % n, x, y, sc):
             continue
-        if fa and not (lpx * (y - ay) - lpy * (x - ax) < 0 < rqx * (y - ay) - rqy * (x - ax)):
+        if fa and not rays_admit(ax, ay, alx, aly, arx, ary, True, x, y):
             continue
-        if fb and not (brx * (y - by) - bry * (x - bx) < 0 < blx * (y - by) - bly * (x - bx)):
+        if fb and not rays_admit(bx, by, blx, bly, brx, bry, False, x, y):
             continue
         if check_prev and not edge_ok(ax, ay, ta, x, y, t, gp, gq, gdir, sc):
             continue
