@@ -761,8 +761,9 @@ def small_polygon(
     Vertex 0 lies in the shortest window (every ring has a vertex in each window, since i + reach[i] never
     decreases). Vertices 0 and 2 are taken among nine points per piece (a 3 × 3 grid at 1/6, 1/2, 5/6 of
     the piece);
-    each vertex between them is placed by :func:`_merge_pair` (the centre of the region both neighbours
-    see, searched in every piece between them), so only two of the vertices are enumerated. For a triangle
+    each vertex between them is placed as by :func:`_merge_pair` (the centre of the region both neighbours
+    see, searched in every piece between them; each candidate's cone of rays is computed once per piece or
+    piece pair, :func:`_merge_cones`), so only two of the vertices are enumerated. For a triangle
     the edge 2 → 0 is checked directly. Piece pairs are pruned by the reach table; the result is verified
     exactly (:func:`verify_ring`).
     """
