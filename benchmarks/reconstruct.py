@@ -8,7 +8,8 @@ staircase (rasterio.features.shapes) — with the number of pixels each one gets
 with our exact D (|D(P) Δ A|) under every model.
 
 Speed: R on the horse, camera, coins, page, text, 1024² 50 % noise and 4096² blobs against
-rasterio.features.shapes on the same mask (medians of several runs, same process); the peak memory each adds
+rasterio.features.shapes on the same mask (medians of several runs, same process), with the time per boundary
+step (crack linel); the time per step on the horse upscaled from 1024² to 8192²; the peak memory each adds
 (fresh processes); and the first-call cost of the kernels in a fresh process: cold (empty numba cache) and
 warm (cache on disk).
 
@@ -258,6 +259,13 @@ def speed_inputs() -> list[tuple[str, np.ndarray]]:
     return out
 
 
+def boundary_steps(m: np.ndarray) -> int:
+    """Linels of the crack rings of a mask (the boundary steps R walks)."""
+    from mrm.geometry.cracks import trace_mask
+
+    return int(trace_mask(np.ascontiguousarray(m.view(np.uint8))).codes.size)
+
+
 def speed() -> None:
     import rasterio.features
 
@@ -266,15 +274,47 @@ def speed() -> None:
         ps = PixelSet(m)
         m8 = np.ascontiguousarray(m.astype(np.uint8))
         reps = 3 if m.size > 2_000_000 else 7
+        steps = boundary_steps(m)
         t_gdal = median_ms(
             lambda m8=m8, m=m: list(rasterio.features.shapes(m8, mask=m, connectivity=4)), reps
         )
         for model in MODELS:
             t = median_ms(lambda ps=ps, model=model: reconstruct(ps, model), reps)
-            rows.append([name, model, t, t_gdal, t / t_gdal])
+            rows.append([name, model, t, t_gdal, t / t_gdal, 1e3 * t / steps])
     table(
         "speed (median ms, same process; target R / rasterio <= 1.0)",
-        ["input", "model", "R ms", "rasterio.shapes ms", "R / rasterio"],
+        ["input", "model", "R ms", "rasterio.shapes ms", "R / rasterio", "R us/step"],
+        rows,
+    )
+
+
+def scaling(sizes: tuple[int, ...] = (1024, 2048, 4096, 8192)) -> None:
+    """Time per boundary step on the horse upscaled to n x n (target: within 1.3x from 1024² to 8192²)."""
+    import rasterio.features
+    import skimage.data
+    from skimage.transform import resize
+
+    horse = ~skimage.data.horse()[::-1]
+    rows = []
+    first: dict[str, float] = {}
+    for size in sizes:
+        m = resize(horse.astype(np.float32), (size, size), order=0, anti_aliasing=False) > 0.5
+        steps = boundary_steps(m)
+        ps = PixelSet(m)
+        reps = 3 if size <= 2048 else 1
+        m8 = np.ascontiguousarray(m.astype(np.uint8))
+        t_gdal = median_ms(
+            lambda m8=m8, m=m: list(rasterio.features.shapes(m8, mask=m, connectivity=4)), reps
+        )
+        for who in ("gdal", *MODELS):
+            t = t_gdal if who == "gdal" else median_ms(lambda ps=ps, who=who: reconstruct(ps, who), reps)
+            us = 1e3 * t / steps
+            first.setdefault(who, us)
+            rows.append([f"horse {size}^2", who, steps, t, us, us / first[who]])
+        del ps, m, m8
+    table(
+        "time per boundary step, horse upscaled (median ms; target: us/step within 1.3x of 1024^2)",
+        ["input", "who", "steps", "ms", "us/step", "vs 1024^2"],
         rows,
     )
 
@@ -431,6 +471,8 @@ def main() -> None:
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2-core machine shared with others)")
     compactness(shapes())
     speed()
+    if not QUICK:
+        scaling()
     peak_memory()
     label_maps()
     first_call()

@@ -98,15 +98,28 @@ def _numba_version() -> str:
         return str(numba.__version__)
 
 
+def _read_stamp() -> object:
+    # The stamp's content, or None when there is none (or it cannot be read).
+    try:
+        return json.loads(stamp_path().read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+
+
+def _stamp_is_current() -> bool:
+    # The stamp was written by a warm-up of exactly these kernel sources, this numba and this Python.
+    return bool(_read_stamp() == cache_key())
+
+
 def is_warm() -> bool:
     """True when :func:`warm_up` ran for these kernels, this numba and this Python.
 
     A stale stamp (a kernel module edited since) still counts as warm when numba's cache holds an index for
     every kernel module: only the edited kernels recompile then, on first use, which no notice announces.
+    ``python -m mrm.warmup`` does not take that shortcut: it compiles again unless the stamp is current.
     """
-    try:
-        stamp = json.loads(stamp_path().read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+    stamp = _read_stamp()
+    if stamp is None:
         return False
     return bool(stamp == cache_key()) or _indexes_present()
 
@@ -306,7 +319,7 @@ def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
     if "--check" in args:
         return 0 if is_warm() else 1
-    if is_warm():
+    if _stamp_is_current():
         print("mrm: the geometry kernels are already compiled")
         return 0
 

@@ -11,8 +11,8 @@ The pipeline for one crack ring (object on the left):
 2. *pieces* — open axis-parallel rectangles the ring may pass through, in path order, and the *gates* (open
    segments) between consecutive pieces. Cover models: a pixel visited once is one full-square piece; a
    pixel visited several times (one-pixel-wide parts) gets one part per visit, the part on the outer side
-   of the centre polyline. ``gauss`` uses those outer parts everywhere (the ring must keep every centre of
-   A strictly inside and stay in V(A));
+   of the centre polyline. ``gauss`` builds the dual corridor instead (:mod:`._dual_kernels`, ADR 0012)
+   and runs the same later steps on it;
 3. *reach* — for each start piece i, the farthest piece j such that one line crosses gates i+1 … j in
    order: arithmetic standard-DSS recognition when every piece is a full pixel, an exact incremental
    preimage (dual polygon, integer orientation tests) otherwise; and a central line of that preimage;
@@ -101,7 +101,6 @@ from mrm.geometry._rk_reach import (
     _clip,
     _init_poly,
     _vline,
-    cell_reach,
     dss_reach,
     general_reach,
 )
@@ -192,7 +191,6 @@ __all__ = [
     "_window_fit",
     "build_elements",
     "build_pieces",
-    "cell_reach",
     "check_nets",
     "corridors_all",
     "count_visits",
@@ -294,7 +292,7 @@ def _net_ring(
 
 @njit(cache=True)
 def corridors_all(
-    codes: np.ndarray, off: np.ndarray, sx: np.ndarray, sy: np.ndarray, h: int, w: int, gauss: bool, kcap: int
+    codes: np.ndarray, off: np.ndarray, sx: np.ndarray, sy: np.ndarray, h: int, w: int, kcap: int
 ) -> tuple[
     np.ndarray,
     np.ndarray,
@@ -346,7 +344,7 @@ def corridors_all(
             kmax[k] = 2
             poff[k + 1] = pos
             continue
-        rc, pl, p, q, g, fl = build_pieces(e0, e1, ec, er, edin, edout, enl, cnt, gauss)
+        rc, pl, p, q, g, fl = build_pieces(e0, e1, ec, er, edin, edout, enl, cnt)
         n = g.size
         _cp2(rect, pos, rc)
         _cp1(pel, pos, pl)
@@ -392,7 +390,6 @@ def reach_all(
     ec: np.ndarray,
     er: np.ndarray,
     cnt: np.ndarray,
-    gauss: bool,
     poff: np.ndarray,
     pel: np.ndarray,
     rect: np.ndarray,
@@ -417,7 +414,6 @@ def reach_all(
             ec,
             er,
             cnt,
-            gauss,
             full[k] == 1,
             pel[a:b],
             rect[a:b],

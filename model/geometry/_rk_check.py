@@ -114,6 +114,62 @@ def edge_ok(
 
 
 @njit(cache=True)
+def gate_rays(
+    ox: int, oy: int, t0: int, t1: int, fwd: bool, gp: np.ndarray, gq: np.ndarray, sc: int
+) -> tuple[int, int, int, int, bool]:  # pragma: no cover
+    """The two tightest rays from o through the gates t0+1 … t1 (unwrapped), for a quick edge pre-test.
+
+    Forward (o in piece t0, the edge leaving o): an edge o → x that crosses those gates strictly inside has
+    x − o strictly clockwise of every o→P and counter-clockwise of every o→Q, so of the most clockwise P ray
+    and the most counter-clockwise Q ray returned. Backward (o in piece t1, the edge x → o): x − o strictly
+    counter-clockwise of every o→P and clockwise of every o→Q. Exact integers (coordinates scaled by ``sc``);
+    the last value is False when there are no gates (or a lap or more: then :func:`edge_ok` decides alone).
+    See :func:`rays_admit`.
+    """
+    n = gp.shape[0]
+    if not (t0 < t1 < t0 + n):
+        return 0, 0, 0, 0, False
+    lx = 0
+    ly = 0
+    rx = 0
+    ry = 0
+    for k in range(t0 + 1, t1 + 1):
+        g = (k if fwd else t0 + 1 + t1 - k) % n
+        px_ = gp[g, 0] * sc - ox
+        py_ = gp[g, 1] * sc - oy
+        qx_ = gq[g, 0] * sc - ox
+        qy_ = gq[g, 1] * sc - oy
+        first = k == t0 + 1
+        if fwd:
+            if first or lx * py_ - ly * px_ < 0:
+                lx = px_
+                ly = py_
+            if first or rx * qy_ - ry * qx_ > 0:
+                rx = qx_
+                ry = qy_
+        else:
+            if first or lx * py_ - ly * px_ > 0:
+                lx = px_
+                ly = py_
+            if first or rx * qy_ - ry * qx_ < 0:
+                rx = qx_
+                ry = qy_
+    return lx, ly, rx, ry, True
+
+
+@njit(cache=True, inline="always")
+def rays_admit(
+    ox: int, oy: int, lx: int, ly: int, rx: int, ry: int, fwd: bool, x: int, y: int
+) -> bool:  # pragma: no cover
+    """Whether x is strictly between the rays of :func:`gate_rays` (a necessary condition of the edge)."""
+    cl = lx * (y - oy) - ly * (x - ox)
+    cr = rx * (y - oy) - ry * (x - ox)
+    if fwd:
+        return cl < 0 < cr
+    return cr < 0 < cl
+
+
+@njit(cache=True)
 def _in_piece(rect: np.ndarray, t: int, x: int, y: int, sc: int) -> bool:  # pragma: no cover
     return bool(rect[t, 0] * sc < x < rect[t, 1] * sc and rect[t, 2] * sc < y < rect[t, 3] * sc)
 

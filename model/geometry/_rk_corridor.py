@@ -184,7 +184,6 @@ def build_pieces(
     edout: np.ndarray,
     enl: np.ndarray,
     cnt: np.ndarray,
-    gauss: bool,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
     """Pieces and gates of the ring whose elements are e0 … e1−1.
 
@@ -206,7 +205,7 @@ def build_pieces(
         din = edin[e]
         dout = edout[e]
         nl = enl[e]
-        if (not gauss) and cnt[r, c] < 2:
+        if cnt[r, c] < 2:
             _rect_of(c, r, 0, 0, rect, n)
             pel[n] = k
             n += 1

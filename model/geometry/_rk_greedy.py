@@ -6,7 +6,7 @@ import numpy as np
 
 from mrm.geometry._jit import njit
 from mrm.geometry._rk_base import _BIG, _EPS, SRC_LINES, SRC_PATCH
-from mrm.geometry._rk_reach import cell_reach, dss_reach, general_reach
+from mrm.geometry._rk_reach import dss_reach, general_reach
 
 # ============================================================================================ V4 greedy
 
@@ -18,7 +18,6 @@ def ring_reach(
     ec: np.ndarray,
     er: np.ndarray,
     cnt: np.ndarray,
-    gauss: bool,
     full: bool,
     pel: np.ndarray,
     rect: np.ndarray,
@@ -30,35 +29,32 @@ def ring_reach(
 ) -> None:  # pragma: no cover
     """Reach table and central lines of a ring's pieces.
 
-    Windows of full pixels use the O(n) standard DSS
-    reach (stabbing full gates in order is exactly being a standard DSS); windows that meet a split pixel,
-    and every window under gauss, use the exact dual-polygon preimage (sub-gates only restrict, so the DSS
-    window bounds it).
+    Windows of full squares (pixels under the cover models, dual squares of pointels under gauss) use the
+    O(n) standard DSS reach (stabbing full gates in order is exactly being a standard DSS); windows that
+    meet a split square use the exact dual-polygon preimage (sub-gates only restrict, so the DSS window
+    bounds it).
     """
     n = gdir.size
     if full:
         dss_reach(e0, ec, er, n, reach, lines)
         return
-    if gauss and cell_reach(rect, gp, gq, reach, lines):
-        return
     todo = np.ones(n, np.bool_)
-    if not gauss:
-        ne = e1 - e0
-        rd = np.empty(ne, np.int64)
-        ld = np.empty((ne, 4), np.float64)
-        dss_reach(e0, ec, er, ne, rd, ld)
-        # split elements, prefix counts over two laps
-        pre = np.zeros(2 * ne + 1, np.int64)
-        for k in range(2 * ne):
-            kk = k % ne
-            pre[k + 1] = pre[k] + (1 if cnt[er[e0 + kk], ec[e0 + kk]] >= 2 else 0)
-        for i in range(n):
-            k = pel[i]
-            if pre[k + rd[k] + 1] - pre[k] == 0:
-                todo[i] = False
-                reach[i] = rd[k]
-                for u in range(4):
-                    lines[i, u] = ld[k, u]
+    ne = e1 - e0
+    rd = np.empty(ne, np.int64)
+    ld = np.empty((ne, 4), np.float64)
+    dss_reach(e0, ec, er, ne, rd, ld)
+    # split elements, prefix counts over two laps
+    pre = np.zeros(2 * ne + 1, np.int64)
+    for k in range(2 * ne):
+        kk = k % ne
+        pre[k + 1] = pre[k] + (1 if cnt[er[e0 + kk], ec[e0 + kk]] >= 2 else 0)
+    for i in range(n):
+        k = pel[i]
+        if pre[k + rd[k] + 1] - pre[k] == 0:
+            todo[i] = False
+            reach[i] = rd[k]
+            for u in range(4):
+                lines[i, u] = ld[k, u]
     general_reach(gp, gq, gdir, todo, reach, lines)
 
 

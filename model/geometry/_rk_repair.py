@@ -6,7 +6,7 @@ import numpy as np
 
 from mrm.geometry._jit import njit
 from mrm.geometry._rk_base import _DX, _DY, SRC_LINES, SRC_NET, SRC_SPLICE
-from mrm.geometry._rk_check import _in_piece, edge_ok, verify_ring
+from mrm.geometry._rk_check import _in_piece, edge_ok, gate_rays, rays_admit, verify_ring
 
 # ============================================================================================ repair
 
@@ -300,48 +300,24 @@ def _clip_poly(
 
 
 @njit(cache=True)
-def _merge_pair(
+def _cone_fwd(
     ax: int,
     ay: int,
     ta: int,
-    bx: int,
-    by: int,
-    tb: int,
-    t0: int,
-    t1: int,
-    rect: np.ndarray,
+    span: int,
     gp: np.ndarray,
     gq: np.ndarray,
-    gdir: np.ndarray,
-    kmax: int,
+    sc: float,
     cone: np.ndarray,
     okc: np.ndarray,
-    poly: np.ndarray,
-) -> tuple[int, int, int, bool]:  # pragma: no cover
-    # A dyadic point w in a piece t0 <= t <= t1 such that a -> w and w -> b are valid edges (a in piece ta,
-    # b in piece tb). From a, w must lie in the cone of rays through the gates ta+1 … t (right of every
-    # a→P, left of every a→Q); from b, in the cone through the gates t+1 … tb (left of every b→P, right of
-    # every b→Q). Both cones are kept as their two tightest rays, so each piece costs O(1) on top of one
-    # sweep; the piece cut by the four rays gives a centre, snapped and checked exactly.
-    n = gdir.size
-    sc = float(1 << kmax)
-    isc = 1 << kmax
+    row: int,
+) -> None:  # pragma: no cover
+    # The cone of rays from a (in piece ta, scaled units) through the gates ta+1 … ta+k, for k = 1 … span:
+    # its two tightest rays in cone[row, :, k] (left x, y, right x, y; Q-units relative to a) and in
+    # okc[row, k] whether it is still open (a prefix property: once closed it stays closed).
+    n = gp.shape[0]
     fax = ax / sc
     fay = ay / sc
-    fbx = bx / sc
-    fby = by / sc
-    span = tb - ta
-    # scratch (span + 1 rows): cone from a after gates ta+1 .. ta+k in cone[0], from b in cone[1]
-    alx = cone[0, 0]
-    aly = cone[0, 1]
-    arx = cone[0, 2]
-    ary = cone[0, 3]
-    aok = okc[0]
-    blx = cone[1, 0]
-    bly = cone[1, 1]
-    brx = cone[1, 2]
-    bry = cone[1, 3]
-    bok = okc[1]
     lx = 0.0
     ly = 0.0
     rx = 0.0
@@ -362,12 +338,35 @@ def _merge_pair(
                 rx, ry = qx_, qy_
         if ok and rx * ly - ry * lx <= 0:  # the left ray must stay counter-clockwise of the right ray
             ok = False
-        alx[k] = lx
-        aly[k] = ly
-        arx[k] = rx
-        ary[k] = ry
-        aok[k] = ok
-    # cone from b before gates tb-k+1 .. tb (k = 0 .. span), looking back
+        cone[row, 0, k] = lx
+        cone[row, 1, k] = ly
+        cone[row, 2, k] = rx
+        cone[row, 3, k] = ry
+        okc[row, k] = ok
+
+
+@njit(cache=True)
+def _cone_bwd(
+    bx: int,
+    by: int,
+    tb: int,
+    span: int,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    sc: float,
+    cone: np.ndarray,
+    okc: np.ndarray,
+    row: int,
+) -> None:  # pragma: no cover
+    # The cone of rays from b (in piece tb) looking back through the gates tb−k+1 … tb, k = 1 … span: a
+    # point w there sees b through those gates when it is left of every b→P and right of every b→Q.
+    n = gp.shape[0]
+    fbx = bx / sc
+    fby = by / sc
+    lx = 0.0
+    ly = 0.0
+    rx = 0.0
+    ry = 0.0
     ok = True
     for k in range(1, span + 1):
         g = (tb - k + 1) % n
@@ -384,11 +383,45 @@ def _merge_pair(
                 rx, ry = qx_, qy_
         if ok and lx * ry - ly * rx <= 0:
             ok = False
-        blx[k] = lx
-        bly[k] = ly
-        brx[k] = rx
-        bry[k] = ry
-        bok[k] = ok
+        cone[row, 0, k] = lx
+        cone[row, 1, k] = ly
+        cone[row, 2, k] = rx
+        cone[row, 3, k] = ry
+        okc[row, k] = ok
+
+
+@njit(cache=True)
+def _merge_cones(
+    ax: int,
+    ay: int,
+    ta: int,
+    bx: int,
+    by: int,
+    tb: int,
+    t0: int,
+    t1: int,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    kmax: int,
+    ca: np.ndarray,
+    oka: np.ndarray,
+    ra: int,
+    cb: np.ndarray,
+    okb: np.ndarray,
+    rb: int,
+    poly: np.ndarray,
+) -> tuple[int, int, int, bool]:  # pragma: no cover
+    # :func:`_merge_pair` with the two cones already computed (rows ra of ca / oka from a, at least up to
+    # k = t1 − ta; rows rb of cb / okb from b, at least up to k = tb − t0).
+    n = gdir.size
+    sc = float(1 << kmax)
+    isc = 1 << kmax
+    fax = ax / sc
+    fay = ay / sc
+    fbx = bx / sc
+    fby = by / sc
     pxs = poly[0]
     pys = poly[1]
     qxs = poly[2]
@@ -396,7 +429,7 @@ def _merge_pair(
     for t in range(t0, t1 + 1):
         ka = t - ta
         kb = tb - t
-        if (ka > 0 and not aok[ka]) or (kb > 0 and not bok[kb]):
+        if (ka > 0 and not oka[ra, ka]) or (kb > 0 and not okb[rb, kb]):
             continue
         r = t % n
         pxs[0] = rect[r, 0]
@@ -409,13 +442,17 @@ def _merge_pair(
         pys[3] = rect[r, 3]
         nv = 4
         if ka > 0:
-            nv = _clip_poly(pxs, pys, nv, fax, fay, fax + alx[ka], fay + aly[ka], -1.0, qxs, qys)
+            nv = _clip_poly(pxs, pys, nv, fax, fay, fax + ca[ra, 0, ka], fay + ca[ra, 1, ka], -1.0, qxs, qys)
             if nv >= 3:
-                nv = _clip_poly(qxs, qys, nv, fax, fay, fax + arx[ka], fay + ary[ka], 1.0, pxs, pys)
+                nv = _clip_poly(
+                    qxs, qys, nv, fax, fay, fax + ca[ra, 2, ka], fay + ca[ra, 3, ka], 1.0, pxs, pys
+                )
         if nv >= 3 and kb > 0:
-            nv = _clip_poly(pxs, pys, nv, fbx, fby, fbx + blx[kb], fby + bly[kb], 1.0, qxs, qys)
+            nv = _clip_poly(pxs, pys, nv, fbx, fby, fbx + cb[rb, 0, kb], fby + cb[rb, 1, kb], 1.0, qxs, qys)
             if nv >= 3:
-                nv = _clip_poly(qxs, qys, nv, fbx, fby, fbx + brx[kb], fby + bry[kb], -1.0, pxs, pys)
+                nv = _clip_poly(
+                    qxs, qys, nv, fbx, fby, fbx + cb[rb, 2, kb], fby + cb[rb, 3, kb], -1.0, pxs, pys
+                )
         if nv < 3:
             continue
         cx = 0.0
@@ -445,6 +482,74 @@ def _merge_pair(
                 continue
             return x, y, t, True
     return 0, 0, 0, False
+
+
+@njit(cache=True)
+def _sees_piece(
+    rect: np.ndarray,
+    r: int,
+    ox: float,
+    oy: float,
+    cone: np.ndarray,
+    row: int,
+    k: int,
+    fwd: bool,
+    poly: np.ndarray,
+) -> bool:  # pragma: no cover
+    # Whether piece r meets the cone cone[row, :, k] from (ox, oy) (Q-units): the first clips of
+    # :func:`_merge_cones`, alone. Used to skip pairs of candidates whose own sides already leave nothing.
+    if k == 0:
+        return True
+    pxs = poly[0]
+    pys = poly[1]
+    qxs = poly[2]
+    qys = poly[3]
+    pxs[0] = rect[r, 0]
+    pys[0] = rect[r, 2]
+    pxs[1] = rect[r, 1]
+    pys[1] = rect[r, 2]
+    pxs[2] = rect[r, 1]
+    pys[2] = rect[r, 3]
+    pxs[3] = rect[r, 0]
+    pys[3] = rect[r, 3]
+    sg = -1.0 if fwd else 1.0
+    nv = _clip_poly(pxs, pys, 4, ox, oy, ox + cone[row, 0, k], oy + cone[row, 1, k], sg, qxs, qys)
+    if nv >= 3:
+        nv = _clip_poly(qxs, qys, nv, ox, oy, ox + cone[row, 2, k], oy + cone[row, 3, k], -sg, pxs, pys)
+    return nv >= 3
+
+
+@njit(cache=True)
+def _merge_pair(
+    ax: int,
+    ay: int,
+    ta: int,
+    bx: int,
+    by: int,
+    tb: int,
+    t0: int,
+    t1: int,
+    rect: np.ndarray,
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    kmax: int,
+    cone: np.ndarray,
+    okc: np.ndarray,
+    poly: np.ndarray,
+) -> tuple[int, int, int, bool]:  # pragma: no cover
+    # A dyadic point w in a piece t0 <= t <= t1 such that a -> w and w -> b are valid edges (a in piece ta,
+    # b in piece tb). From a, w must lie in the cone of rays through the gates ta+1 … t (right of every
+    # a→P, left of every a→Q); from b, in the cone through the gates t+1 … tb (left of every b→P, right of
+    # every b→Q). Both cones are kept as their two tightest rays, so each piece costs O(1) on top of one
+    # sweep; the piece cut by the four rays gives a centre, snapped and checked exactly. ``cone`` (2, 4, ≥
+    # span + 1), ``okc`` (2, ≥ span + 1) and ``poly`` (4, 16) are scratch.
+    sc = float(1 << kmax)
+    _cone_fwd(ax, ay, ta, t1 - ta, gp, gq, sc, cone, okc, 0)
+    _cone_bwd(bx, by, tb, tb - t0, gp, gq, sc, cone, okc, 1)
+    return _merge_cones(
+        ax, ay, ta, bx, by, tb, t0, t1, rect, gp, gq, gdir, kmax, cone, okc, 0, cone, okc, 1, poly
+    )
 
 
 @njit(cache=True)
@@ -656,8 +761,9 @@ def small_polygon(
     Vertex 0 lies in the shortest window (every ring has a vertex in each window, since i + reach[i] never
     decreases). Vertices 0 and 2 are taken among nine points per piece (a 3 × 3 grid at 1/6, 1/2, 5/6 of
     the piece);
-    each vertex between them is placed by :func:`_merge_pair` (the centre of the region both neighbours
-    see, searched in every piece between them), so only two of the vertices are enumerated. For a triangle
+    each vertex between them is placed as by :func:`_merge_pair` (the centre of the region both neighbours
+    see, searched in every piece between them; each candidate's cone of rays is computed once per piece or
+    piece pair, :func:`_merge_cones`), so only two of the vertices are enumerated. For a triangle
     the edge 2 → 0 is checked directly. Piece pairs are pruned by the reach table; the result is verified
     exactly (:func:`verify_ring`).
     """
@@ -677,8 +783,17 @@ def small_polygon(
                 cx[k] = x0 + (x1 - x0) * (2 * a + 1) // 6
                 cy[k] = y0 + (y1 - y0) * (2 * b + 1) // 6
                 k += 1
-    cone = np.empty((2, 4, n + 1), np.float64)
-    okc = np.zeros((2, n + 1), np.bool_)
+    # cones of the candidates (rows): from vertex 0 forward (ai) and, one lap later, back (bi), computed
+    # once per piece of vertex 0; from vertex 2 back (bc) and forward (ac), once per piece pair
+    ai = np.empty((per, 4, n + 1), np.float64)
+    oai = np.zeros((per, n + 1), np.bool_)
+    bi = np.empty((per, 4, n + 1), np.float64)
+    obi = np.zeros((per, n + 1), np.bool_)
+    ac = np.empty((per, 4, n + 1), np.float64)
+    oac = np.zeros((per, n + 1), np.bool_)
+    bc = np.empty((per, 4, n + 1), np.float64)
+    obc = np.zeros((per, n + 1), np.bool_)
+    fsc = float(sc)
     poly = np.empty((4, 16), np.float64)
     tx = np.empty(nv, np.int64)
     ty = np.empty(nv, np.int64)
@@ -691,6 +806,10 @@ def small_polygon(
             smin = i
     for ta0 in range(smin, smin + reach[smin] + 1):
         ta = ta0 % n
+        for u in range(per):
+            _cone_fwd(cx[per * ta + u], cy[per * ta + u], ta, n - 1, gp, gq, fsc, ai, oai, u)
+            if nv == 4:
+                _cone_bwd(cx[per * ta + u], cy[per * ta + u], ta + n, n, gp, gq, fsc, bi, obi, u)
         for tc in range(ta, ta + n):
             # a window chain ta -> tb -> tc, then tc -> ta + n directly (triangle) or through td (quad)
             okb = False
@@ -711,12 +830,36 @@ def small_polygon(
                         break
                 if not okd:
                     continue
+            for v in range(per):
+                c = per * (tc % n) + v
+                _cone_bwd(cx[c], cy[c], tc, tc - ta, gp, gq, fsc, bc, obc, v)
+                if nv == 4:
+                    _cone_fwd(cx[c], cy[c], tc, ta + n - tc, gp, gq, fsc, ac, oac, v)
             for i in range(per * ta, per * ta + per):
                 for c in range(per * (tc % n), per * (tc % n) + per):
                     if nv == 3 and not edge_ok(cx[c], cy[c], tc, cx[i], cy[i], ta + n, gp, gq, gdir, sc):
                         continue
-                    wx, wy, tw, ok = _merge_pair(
-                        cx[i], cy[i], ta, cx[c], cy[c], tc, ta, tc, rect, gp, gq, gdir, kmax, cone, okc, poly
+                    wx, wy, tw, ok = _merge_cones(
+                        cx[i],
+                        cy[i],
+                        ta,
+                        cx[c],
+                        cy[c],
+                        tc,
+                        ta,
+                        tc,
+                        rect,
+                        gp,
+                        gq,
+                        gdir,
+                        kmax,
+                        ai,
+                        oai,
+                        i - per * ta,
+                        bc,
+                        obc,
+                        c - per * (tc % n),
+                        poly,
                     )
                     if not ok:
                         continue
@@ -730,7 +873,7 @@ def small_polygon(
                     ty[2] = cy[c]
                     tt[2] = tc
                     if nv == 4:
-                        ux, uy, tu, oku = _merge_pair(
+                        ux, uy, tu, oku = _merge_cones(
                             cx[c],
                             cy[c],
                             tc,
@@ -744,8 +887,12 @@ def small_polygon(
                             gq,
                             gdir,
                             kmax,
-                            cone,
-                            okc,
+                            ac,
+                            oac,
+                            c - per * (tc % n),
+                            bi,
+                            obi,
+                            i - per * ta,
                             poly,
                         )
                         if not oku:
@@ -794,6 +941,7 @@ def relink_ring(
     """
     n = gdir.size
     sc = 1 << kmax
+    fsc = float(sc)
     m = ix.size
     if m < 6:
         return ix, iy, vt, vs, vl
@@ -802,8 +950,15 @@ def relink_ring(
     t = vt.copy()
     s = vs.copy()
     ln = vl.copy()
-    cone = np.empty((2, 4, n + 1), np.float64)
-    okc = np.zeros((2, n + 1), np.bool_)
+    # the cones of the (at most ten) candidates of each side, computed once per position
+    ccap = 16
+    cone_a = np.empty((10, 4, ccap), np.float64)
+    ok_a = np.zeros((10, ccap), np.bool_)
+    cone_b = np.empty((10, 4, ccap), np.float64)
+    ok_b = np.zeros((10, ccap), np.bool_)
+    live_a = np.zeros(10, np.bool_)
+    mask_a = np.zeros(10, np.int64)
+    mask_b = np.zeros(10, np.int64)
     poly = np.empty((4, 16), np.float64)
     jj = np.empty(6, np.int64)
     tt = np.empty(6, np.int64)
@@ -832,6 +987,8 @@ def relink_ring(
             # candidates for c1 (seen from a) and c3 (seeing b): the current point first, then a 3 x 3 grid
             n1 = 0
             n3 = 0
+            alx, aly, arx, ary, fa = gate_rays(ax, ay, tt[0], tt[1], True, gp, gq, sc)
+            blx, bly, brx, bry, fb = gate_rays(bx, by, tt[4], tt[5], False, gp, gq, sc)
             for side in range(2):
                 d = 1 if side == 0 else 4
                 r = tt[d] % n
@@ -847,19 +1004,70 @@ def relink_ring(
                         if not _in_piece(rect, r, px, py, sc):
                             continue
                     if side == 0:
+                        if fa and not rays_admit(ax, ay, alx, aly, arx, ary, True, px, py):
+                            continue
                         if edge_ok(ax, ay, tt[0], px, py, tt[1], gp, gq, gdir, sc):
                             c1x[n1] = px
                             c1y[n1] = py
                             n1 += 1
-                    elif edge_ok(px, py, tt[4], bx, by, tt[5], gp, gq, gdir, sc):
+                    elif (not fb or rays_admit(bx, by, blx, bly, brx, bry, False, px, py)) and edge_ok(
+                        px, py, tt[4], bx, by, tt[5], gp, gq, gdir, sc
+                    ):
                         c3x[n3] = px
                         c3y[n3] = py
                         n3 += 1
+            span = tt[4] - tt[1]
+            if span + 1 > ccap:
+                ccap = 2 * (span + 1)
+                cone_a = np.empty((10, 4, ccap), np.float64)
+                ok_a = np.zeros((10, ccap), np.bool_)
+                cone_b = np.empty((10, 4, ccap), np.float64)
+                ok_b = np.zeros((10, ccap), np.bool_)
+            any_a = False
+            for u in range(n1):
+                _cone_fwd(c1x[u], c1y[u], tt[1], tt[3] - tt[1], gp, gq, fsc, cone_a, ok_a, u)
+                # w needs a piece tt[2] … tt[3] that c1 sees (the cone is open up to it): else skip c1
+                live_a[u] = tt[2] == tt[1] or ok_a[u, tt[2] - tt[1]]
+                any_a = any_a or live_a[u]
+            if any_a:
+                for v in range(n3):
+                    _cone_bwd(c3x[v], c3y[v], tt[4], tt[4] - tt[2], gp, gq, fsc, cone_b, ok_b, v)
+            # which pieces tt[2] … tt[3] each candidate's cone meets (bit per piece): a pair can only work
+            # in a piece both meet
+            nt_ = tt[3] - tt[2] + 1
+            for u in range(n1):
+                mask_a[u] = -1
+                if live_a[u] and nt_ <= 62:
+                    mask_a[u] = 0
+                    for e in range(nt_):
+                        te = tt[2] + e
+                        ka = te - tt[1]
+                        if (ka == 0 or ok_a[u, ka]) and _sees_piece(
+                            rect, te % n, c1x[u] / fsc, c1y[u] / fsc, cone_a, u, ka, True, poly
+                        ):
+                            mask_a[u] |= 1 << e
+            for v in range(n3):
+                mask_b[v] = -1
+                if any_a and nt_ <= 62:
+                    mask_b[v] = 0
+                    for e in range(nt_):
+                        te = tt[2] + e
+                        kb = tt[4] - te
+                        if (kb == 0 or ok_b[v, kb]) and _sees_piece(
+                            rect, te % n, c3x[v] / fsc, c3y[v] / fsc, cone_b, v, kb, False, poly
+                        ):
+                            mask_b[v] |= 1 << e
             for u in range(n1):
                 if ok:
                     break
+                if not live_a[u]:
+                    continue
                 for v in range(n3):
-                    wx, wy, tw, okw = _merge_pair(
+                    if tt[4] > tt[3] and not ok_b[v, tt[4] - tt[3]]:
+                        continue  # c3 sees no piece tt[2] … tt[3]
+                    if (mask_a[u] & mask_b[v]) == 0:
+                        continue
+                    wx, wy, tw, okw = _merge_cones(
                         c1x[u],
                         c1y[u],
                         tt[1],
@@ -873,8 +1081,12 @@ def relink_ring(
                         gq,
                         gdir,
                         kmax,
-                        cone,
-                        okc,
+                        cone_a,
+                        ok_a,
+                        u,
+                        cone_b,
+                        ok_b,
+                        v,
                         poly,
                     )
                     if not okw:

@@ -6,7 +6,15 @@ import numpy as np
 
 from mrm.geometry._jit import njit
 from mrm.geometry._rk_base import _DX, _DY
-from mrm.geometry._rk_check import _in_piece, _orient, edge_ok, segments_meet, verify_ring
+from mrm.geometry._rk_check import (
+    _in_piece,
+    _orient,
+    edge_ok,
+    gate_rays,
+    rays_admit,
+    segments_meet,
+    verify_ring,
+)
 
 # ============================================================================================ straightening
 
@@ -173,6 +181,13 @@ def _place(
         t += 1
     if t > thi:
         return 0, 0, 0, False
+    # A quick necessary test before the exact edge checks (which cost the length of the edge each): the
+    # edge a → x crosses every gate ta+1 … t strictly inside, so x − a lies strictly clockwise of every
+    # a→P and counter-clockwise of every a→Q, hence of the tightest two (exact integers); likewise x seen
+    # from b through the gates t+1 … tb. When the exact check would pass these tests pass, so the result is
+    # the one of the exact checks alone.
+    alx, aly, arx, ary, fa = gate_rays(ax, ay, ta, t if check_prev else ta, True, gp, gq, sc)
+    blx, bly, brx, bry, fb = gate_rays(bx, by, t, tb if check_next else t, False, gp, gq, sc)
     for k in range(-1, kmax + 1):
         if k < 0:
             if fx != np.floor(fx) or fy != np.floor(fy):
@@ -184,6 +199,10 @@ def _place(
             x = int(np.round(fx / mul)) * mul
             y = int(np.round(fy / mul)) * mul
         if not _in_piece(rect, t % n, x, y, sc):
+            continue
+        if fa and not rays_admit(ax, ay, alx, aly, arx, ary, True, x, y):
+            continue
+        if fb and not rays_admit(bx, by, blx, bly, brx, bry, False, x, y):
             continue
         if check_prev and not edge_ok(ax, ay, ta, x, y, t, gp, gq, gdir, sc):
             continue

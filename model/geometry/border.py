@@ -183,7 +183,6 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
     cx = ec - mx
     cy = er - my
     cnt = _k.count_visits(int(cy.max()) + 1, int(cx.max()) + 1, cx, cy)
-    gauss = model == "gauss"
     out = []
     for k in range(len(chains)):
         a, b = int(eoff[k]), int(eoff[k + 1])
@@ -197,11 +196,11 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
                     np.zeros((0, 2)),
                     np.zeros((0, 2)),
                     np.zeros(0, np.int64),
-                    not gauss,
+                    True,
                 )
             )
             continue
-        rect, pel, gp, gq, gdir, full = _k.build_pieces(a, b, cx, cy, edin, edout, enl, cnt, gauss)
+        rect, pel, gp, gq, gdir, full = _k.build_pieces(a, b, cx, cy, edin, edout, enl, cnt)
         shift = np.array([4 * mx, 4 * mx, 4 * my, 4 * my], dtype=np.int64)
         out.append(
             Corridor(

@@ -126,7 +126,7 @@ def _run(ps: PixelSet, model: str) -> _Run:
         # the dual corridor (pointels as pixels, :mod:`._dual_kernels`); the cover pipeline runs on it
         cor = _dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
     else:
-        cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, False, kcap)
+        cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
     (
         eoff,
         ec,
@@ -148,7 +148,7 @@ def _run(ps: PixelSet, model: str) -> _Run:
         special,
         full,
     ) = cor
-    reach, lines = _k.reach_all(eoff, ec, er, cnt, False, poff, pel, rect, gp, gq, gdir, special, full)
+    reach, lines = _k.reach_all(eoff, ec, er, cnt, poff, pel, rect, gp, gq, gdir, special, full)
     ga = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, True)
     gb = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, False)
     xy, roff, status, src, win = _k.finish_all(

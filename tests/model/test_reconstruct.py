@@ -476,7 +476,7 @@ def _corridor_arrays(ps: PixelSet, gauss: bool) -> tuple:
     rings = trace_mask(m)
     if gauss:
         return dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], 20)
-    return k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], gauss, 20)
+    return k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, m.shape[0], m.shape[1], 20)
 
 
 def _stabbable(gates: list[tuple[tuple[int, int], tuple[int, int]]]) -> bool:

@@ -1,0 +1,65 @@
+"""The warm-up stamp hashes every kernel module; an edited kernel makes `python -m mrm.warmup` compile."""
+
+from __future__ import annotations
+
+import re
+import shutil
+from pathlib import Path
+
+import pytest
+
+from mrm import warmup
+
+ROOT = Path(warmup.__file__).resolve().parent
+
+
+def test_every_njit_module_is_in_the_stamp() -> None:
+    # A module with @njit kernels that the stamp does not hash would keep a stale stamp "current".
+    with_kernels = set()
+    for p in ROOT.rglob("*.py"):
+        if re.search(r"^\s*@njit\b", p.read_text(encoding="utf-8"), re.MULTILINE):
+            with_kernels.add(p.relative_to(ROOT).as_posix())
+    assert with_kernels, "no kernel module found: the scan is broken"
+    assert with_kernels <= set(warmup.KERNEL_MODULES), sorted(with_kernels - set(warmup.KERNEL_MODULES))
+
+
+@pytest.fixture
+def fake_root(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """A copy of the kernel modules with a numba index beside each, as after a warm-up."""
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    for rel in warmup.KERNEL_MODULES:
+        src = ROOT / rel
+        dst = tmp_path / rel
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(src, dst)
+        (dst.parent / "__pycache__").mkdir(exist_ok=True)
+        (dst.parent / "__pycache__" / f"{dst.stem}.kernel-1.py311.nbi").write_bytes(b"")
+    monkeypatch.setattr(warmup, "_package_root", lambda: tmp_path)
+    return tmp_path
+
+
+def test_warmup_compiles_again_after_a_kernel_module_is_edited(
+    fake_root: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    runs: list[int] = []
+    monkeypatch.setattr(warmup, "warm_up", lambda progress=None: runs.append(1) or warmup._write_stamp())
+    warmup._write_stamp()
+    assert warmup.main([]) == 0
+    assert runs == []
+    assert "already compiled" in capsys.readouterr().out
+    # edit one kernel module: numba recompiles it, so the warm-up must run again
+    p = fake_root / "geometry" / "_rk_repair.py"
+    p.write_text(p.read_text(encoding="utf-8") + "\n# edited\n", encoding="utf-8")
+    assert warmup.main([]) == 0
+    assert runs == [1]
+    assert "already compiled" not in capsys.readouterr().out
+    # and after that warm-up the stamp is current again
+    assert warmup.main([]) == 0
+    assert runs == [1]
+
+
+def test_an_unreadable_stamp_is_cold(fake_root: Path) -> None:
+    warmup.stamp_path().parent.mkdir(parents=True, exist_ok=True)
+    warmup.stamp_path().write_text("{not json", encoding="utf-8")
+    assert not warmup.is_warm()
+    assert warmup.main(["--check"]) == 1
