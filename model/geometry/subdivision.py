@@ -120,8 +120,10 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
+from mrm.geometry.cracks import DX, DY
 from mrm.geometry.discretize import discretize
 from mrm.geometry.labeling import group_by_label
+from mrm.geometry.labeling import label as label_components
 from mrm.geometry.segmentation import standard_dss_reach_table
 from mrm.reps.cells import Cells, cells_of
 from mrm.reps.pixels import LabelMap, PixelSet
@@ -161,7 +163,7 @@ class _Chain:
     Coordinates are Q coordinates relative to the first pointel (``origin``), so numbers stay small.
     """
 
-    __slots__ = ("closed", "gl", "gr", "index", "n", "origin", "params", "pts", "reach")
+    __slots__ = ("closed", "gl", "gr", "index", "n", "origin", "params", "pts", "reach", "turns")
 
     def __init__(self, pts: IntArray, closed: bool) -> None:
         self.closed = closed
@@ -169,6 +171,23 @@ class _Chain:
         self.origin = (int(pts[0, 0]), int(pts[0, 1]))
         loc = pts - pts[0]
         self.pts: list[tuple[int, int]] = list(map(tuple, loc.tolist()))
+        # the turning pointels: where the linel before differs from the linel after (cyclically on a ring)
+        d = np.diff(loc, axis=0)
+        if closed:
+            turn = np.flatnonzero(np.any(d != np.roll(d, 1, axis=0), axis=1))
+        else:
+            turn = np.flatnonzero(np.any(d[1:] != d[:-1], axis=1)) + 1
+        self.turns: list[int] = turn.tolist()
+
+    def build(self) -> None:
+        """Compute the gates, the piece index and the DSS reach table (only the chains that need them).
+
+        Most 1-cells of a big label map are one or two linels or straight, and :func:`_polyline` returns
+        their staircase without a corridor; building it for them cost more than everything else.
+        """
+        if hasattr(self, "reach"):
+            return
+        loc = np.asarray(self.pts, dtype=np.int64)
         d = np.diff(loc, axis=0)
         mid = 2 * loc[:-1] + d
         nrm = np.stack([-d[:, 1], d[:, 0]], axis=1)
@@ -176,7 +195,7 @@ class _Chain:
         self.gl: list[tuple[int, int]] = list(map(tuple, (mid + nrm).tolist()))
         self.gr: list[tuple[int, int]] = list(map(tuple, (mid - nrm).tolist()))
         # pointel -> position; the end points of an open chain are 0-cells, not pieces of this chain
-        inner = range(self.n) if closed else range(1, self.n)
+        inner = range(self.n) if self.closed else range(1, self.n)
         self.index = {self.pts[k]: k for k in inner}
         if self.n >= 2:
             reach, params = standard_dss_reach_table(loc, closed=False)
@@ -215,18 +234,8 @@ class _Chain:
 
     def staircase(self) -> list[tuple[Vertex, int]]:
         """The crack chain itself: its end points and turning pointels, with their positions."""
-        pts, n = self.pts, self.n
-        out: list[tuple[Vertex, int]] = []
-        for k in range(n + 1):
-            if k in (0, n) and not self.closed:
-                out.append((self.q(k), k))
-                continue
-            if k == n:
-                continue
-            a, b, c = pts[k - 1] if k else pts[n - 1], pts[k], pts[k + 1]
-            if (b[0] - a[0], b[1] - a[1]) != (c[0] - b[0], c[1] - b[1]):
-                out.append((self.q(k), k))
-        return out
+        ks = self.turns if self.closed else [0, *self.turns, self.n]
+        return [(self.q(k), k) for k in ks]
 
 
 class _Cone:
@@ -444,6 +453,7 @@ def _polyline(ch: _Chain) -> tuple[list[Vertex], bool]:
     stair = [v for v, _ in ch.staircase()]
     if ch.n <= 2 or len(stair) <= 2:  # nothing to gain: one or two linels, or a straight chain
         return stair, True
+    ch.build()
     verts = _greedy(ch)
     if verts is None:
         return stair, True
@@ -643,20 +653,16 @@ def _point_in_ring(ring: IntArray, x: int, y: int) -> bool:
 class _Assembler:
     """Rings of each label from the directed 1-cells, with the (4, 8) rule at 0-cells."""
 
-    def __init__(self, lm: LabelMap, cells: Cells) -> None:
+    def __init__(self, lm: LabelMap, cells: Cells, points: Sequence[IntArray], area2: Sequence[int]) -> None:
         self.labels = _Labels(lm)
         self.cells = cells
         zero = {z.point for z in cells.zero_cells}
-        self.points: list[IntArray] = []
-        self.area2: list[int] = []
+        self.points = points
+        self.area2 = area2
         self.loop: list[bool] = []  # a ring with no 0-cell on it
         self.out: dict[tuple[tuple[int, int], int, int], _Directed] = {}  # (pointel, code, label)
         self.by_label: dict[int, list[_Directed]] = {}
         for ci, c in enumerate(cells.one_cells):
-            pts = c.chain.points()
-            self.points.append(pts)
-            x, y = pts[:, 0], pts[:, 1]
-            self.area2.append(int(np.sum(x[:-1] * y[1:] - x[1:] * y[:-1])))
             loop = c.chain.start not in zero
             self.loop.append(loop)
             codes = c.chain.codes
@@ -664,6 +670,7 @@ class _Assembler:
             self.by_label.setdefault(c.left, []).append(fwd)
             self.by_label.setdefault(c.right, []).append(bwd)
             if not loop:
+                pts = points[ci]
                 end = (int(pts[-1, 0]), int(pts[-1, 1]))
                 self.out[(c.chain.start, int(codes[0]), c.left)] = fwd
                 self.out[(end, (int(codes[-1]) + 2) % 4, c.right)] = bwd
@@ -726,41 +733,110 @@ def _ring_coords(loop: list[_Directed], polylines: Sequence[FloatArray], loops: 
     return np.concatenate([p[:-1] for p in parts])
 
 
-def _assemble_label(asm: _Assembler, label: int, polylines: Sequence[FloatArray]) -> Polygon | MultiPolygon:
-    loops = asm.loops(label)
-    shells: list[tuple[list[_Directed], int, IntArray]] = []
-    holes: list[tuple[list[_Directed], IntArray]] = []
-    for lp in loops:
+def _first_pointel(pts: IntArray) -> tuple[int, int]:
+    """(y, x) of the lowest-leftmost pointel of a ring: the sort key of rings."""
+    k = int(np.lexsort((pts[:, 0], pts[:, 1]))[0])
+    return int(pts[k, 1]), int(pts[k, 0])
+
+
+def _left_of_first_linel(pts: IntArray) -> tuple[int, int]:
+    """The pixel on the left of the first linel of a ring of pointels."""
+    d = (int(pts[1, 0] - pts[0, 0]), int(pts[1, 1] - pts[0, 1]))
+    return _left_pixel((int(pts[0, 0]), int(pts[0, 1])), _STEP.index(d))
+
+
+def _owners_by_rings(shells: Sequence[tuple[int, IntArray]], holes: Sequence[IntArray]) -> list[int]:
+    """For each hole ring, the shell of least area that contains it: point-in-ring against every shell.
+
+    The definition, O(holes × shells); :func:`_owners_by_components` gives the same answer from the pixels.
+    Shells are (twice their area, pointels), holes their pointels.
+    """
+    if len(shells) == 1:
+        return [0] * len(holes)
+    boxes = [(2 * pts.min(axis=0), 2 * pts.max(axis=0)) for _, pts in shells]
+    out = []
+    for pts in holes:
+        # a test point that lies on no other ring: the midpoint of the hole's first linel (doubled)
+        px, py = int(pts[0, 0] + pts[1 % len(pts), 0]), int(pts[0, 1] + pts[1 % len(pts), 1])
+        inside = [
+            k
+            for k, (lo, hi) in enumerate(boxes)
+            if lo[0] < px < hi[0] and lo[1] < py < hi[1] and _point_in_ring(2 * shells[k][1], px, py)
+        ]
+        if not inside:
+            raise AssertionError("a hole outside every shell")
+        out.append(min(inside, key=lambda k: shells[k][0]))
+    return out
+
+
+def _owners_by_components(
+    shells: Sequence[tuple[int, IntArray]], holes: Sequence[IntArray], ps: PixelSet
+) -> list[int] | None:
+    """The owners of :func:`_owners_by_rings`, read from the 4-connected components of the label's pixels.
+
+    Every linel of a ring (a closed walk with the label on its left, split at repeated 0-cells) has its
+    left pixel 4-adjacent to, or equal to, the left pixel of the next one, so all the left pixels of a ring
+    lie in one 4-component C. A shell is the outer ring of its C; a hole ring of C faces a bounded
+    component of the complement of C, which C's shell encloses; any other shell enclosing that hole
+    encloses C and so is larger. So the owner is the shell of the component left of the hole's first
+    linel: O(pixels of the label's box) instead of O(holes × shells). None when the shells do not map
+    one-to-one onto the components (never seen; the caller then uses the definition).
+    """
+    comp, _ = label_components(ps.mask, 4)
+    x0, y0 = ps.origin
+
+    def component(pts: IntArray) -> int:
+        x, y = _left_of_first_linel(pts)
+        r, c = y - y0, x - x0
+        if not (0 <= r < comp.shape[0] and 0 <= c < comp.shape[1]):
+            return 0
+        return int(comp[r, c])
+
+    shell_of: dict[int, int] = {}
+    for k, (_, pts) in enumerate(shells):
+        cid = component(pts)
+        if cid == 0 or cid in shell_of:
+            return None
+        shell_of[cid] = k
+    owners = [shell_of.get(component(pts), -1) for pts in holes]
+    return None if -1 in owners else owners
+
+
+_Shell = tuple[list[_Directed], int, IntArray]  # walk, twice its area, pointels
+_Hole = tuple[list[_Directed], IntArray]
+
+
+def _rings(asm: _Assembler, label: int) -> tuple[list[_Shell], list[_Hole]]:
+    """The closed walks of a label split into shells (counter-clockwise, sorted) and holes."""
+    shells: list[_Shell] = []
+    holes: list[_Hole] = []
+    for lp in asm.loops(label):
         a2 = asm.loop_area2(lp)
         pts = asm.loop_points(lp)
         if a2 > 0:
             shells.append((lp, a2, pts))
         else:
             holes.append((lp, pts))
+    shells.sort(key=lambda s: _first_pointel(s[2]))
+    return shells, holes
+
+
+def _assemble_label(
+    asm: _Assembler, label: int, polylines: Sequence[FloatArray], ps: PixelSet
+) -> Polygon | MultiPolygon:
+    shells, holes = _rings(asm, label)
     if not shells:
         return Polygon()
-
-    def first_pointel(pts: IntArray) -> tuple[int, int]:
-        k = int(np.lexsort((pts[:, 0], pts[:, 1]))[0])
-        return int(pts[k, 1]), int(pts[k, 0])
-
-    shells.sort(key=lambda s: first_pointel(s[2]))
+    rings = [(a2, pts) for _, a2, pts in shells]
+    hole_pts = [pts for _, pts in holes]
+    owners: list[int] | None = [0] * len(holes)
+    if len(shells) > 1 and holes:
+        owners = _owners_by_components(rings, hole_pts, ps)
+        if owners is None:
+            owners = _owners_by_rings(rings, hole_pts)
     owned: list[list[tuple[tuple[int, int], list[_Directed]]]] = [[] for _ in shells]
-    boxes = [(2 * s[2].min(axis=0), 2 * s[2].max(axis=0)) for s in shells] if len(shells) > 1 else []
-    for lp, pts in holes:
-        owner = 0
-        if len(shells) > 1:
-            # a test point that lies on no other ring: the midpoint of the hole's first linel (doubled)
-            px, py = int(pts[0, 0] + pts[1 % len(pts), 0]), int(pts[0, 1] + pts[1 % len(pts), 1])
-            inside = [
-                k
-                for k, (lo, hi) in enumerate(boxes)
-                if lo[0] < px < hi[0] and lo[1] < py < hi[1] and _point_in_ring(2 * shells[k][2], px, py)
-            ]
-            if not inside:
-                raise AssertionError("a hole outside every shell")
-            owner = min(inside, key=lambda k: shells[k][1])
-        owned[owner].append((first_pointel(pts), lp))
+    for (lp, pts), owner in zip(holes, owners, strict=True):
+        owned[owner].append((_first_pointel(pts), lp))
     polys = []
     for (lp, _a2, _pts), hs in zip(shells, owned, strict=True):
         hs.sort(key=lambda h: h[0])
@@ -795,14 +871,14 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     chains: list[_Chain] = []
     polylines: list[FloatArray] = []
     stair: list[bool] = []
-    for c in cells.one_cells:
-        pts = c.chain.points()
+    points, area2 = _cell_points(lm, cells)
+    for c, pts in zip(cells.one_cells, points, strict=True):
         ch = _Chain(pts, closed=c.chain.start not in zero)
         chains.append(ch)
         verts, is_stair = _polyline(ch)
         polylines.append(_to_plane(ch, verts))
         stair.append(is_stair)
-    asm = _Assembler(lm, cells)
+    asm = _Assembler(lm, cells, points, area2)
     pixels = _label_pixel_sets(lm)
     labels = list(pixels)
     touching: dict[int, list[int]] = {v: [] for v in labels}
@@ -815,7 +891,7 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     while todo:
         redo: set[int] = set()
         for v in todo:
-            geom = _assemble_label(asm, v, polylines)
+            geom = _assemble_label(asm, v, polylines, pixels[v])
             parts[v] = geom
             if _part_ok(geom, pixels[v]):
                 continue
@@ -829,6 +905,34 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
                     redo.update(w for w in (c.left, c.right) if w != 0)
         todo = sorted(redo)
     return Subdivision(dict(sorted(parts.items())), tuple(polylines), tuple(stair), cells)
+
+
+def _cell_points(lm: LabelMap, cells: Cells) -> tuple[list[IntArray], list[int]]:
+    """The pointels of every 1-cell (``chain.points()``) and twice its signed area, in one pass.
+
+    The area of a 1-cell is taken in the label map's array coordinates: only its sums around closed walks are
+    used, which do not depend on the origin, and the numbers stay small.
+    """
+    ones = cells.one_cells
+    if not ones:
+        return [], []
+    lens = np.fromiter((len(c.chain.codes) for c in ones), dtype=np.int64, count=len(ones)) + 1
+    off = np.zeros(len(ones) + 1, dtype=np.int64)
+    np.cumsum(lens, out=off[1:])
+    codes = np.frombuffer("".join(c.chain.codes for c in ones).encode("ascii"), dtype=np.uint8) - np.uint8(48)
+    steps = np.zeros((int(off[-1]), 2), dtype=np.int64)
+    linel = np.ones(int(off[-1]), dtype=bool)
+    linel[off[:-1]] = False  # the first point of each cell is its start, not a step
+    steps[linel, 0] = DX[codes]
+    steps[linel, 1] = DY[codes]
+    walk = np.cumsum(steps, axis=0)
+    starts = np.array([c.chain.start for c in ones], dtype=np.int64)
+    pts = walk + np.repeat(starts - walk[off[:-1]], lens, axis=0)
+    rel = pts - np.asarray(lm.origin, dtype=np.int64)
+    cross = rel[:-1, 0] * rel[1:, 1] - rel[1:, 0] * rel[:-1, 1]
+    cross[off[1:-1] - 1] = 0  # from the last point of one cell to the first of the next
+    area2 = np.add.reduceat(cross, off[:-1]) if cross.size else np.zeros(len(ones), dtype=np.int64)
+    return np.split(pts, off[1:-1].tolist()), area2.tolist()
 
 
 def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:

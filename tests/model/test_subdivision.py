@@ -562,3 +562,80 @@ def test_a_vertex_without_an_exact_float64_value_is_refused_with_a_message() -> 
     assert _to_plane(ch, [(1, 1, 0)]).tolist() == [[2**45, 0.0]]  # (Q - 1) / 2 of the origin pointel
     with pytest.raises(ParameterError, match="too far from the origin"):
         _to_plane(ch, [(1, 1, 12)])  # 13 fractional bits at 2^45: 58 bits
+
+
+# ------------------------------------------------------------------- the fast paths against the definitions
+def nested_rings(k: int) -> LabelMap:
+    """k concentric square rings of label 1 (each ring a shell with a hole) and a few labels between them."""
+    size = 4 * k + 1
+    lab = np.zeros((size, size), dtype=np.int32)
+    for i in range(k):
+        a, b = 2 * i, size - 2 * i
+        lab[a:b, a:b] = 1
+        lab[a + 1 : b - 1, a + 1 : b - 1] = 2 + i % 2
+    lab[2 * k, 2 * k] = 1
+    return LabelMap(lab)
+
+
+@settings(max_examples=150)
+@given(st.one_of(label_maps(), st.integers(1, 6).map(nested_rings)))
+def test_hole_owners_from_components_are_the_owners_by_point_in_ring(lm: LabelMap) -> None:
+    # The owner of each hole read from the label's 4-components must be the smallest shell that contains
+    # the hole, found by point-in-ring tests against every shell (the definition).
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    points, area2 = sub._cell_points(lm, cells)
+    asm = sub._Assembler(lm, cells, points, area2)
+    pixels = sub._label_pixel_sets(lm)
+    several = 0
+    for v, ps in pixels.items():
+        shells, holes = sub._rings(asm, v)
+        rings = [(a2, pts) for _, a2, pts in shells]
+        hole_pts = [pts for _, pts in holes]
+        assert sub._owners_by_components(rings, hole_pts, ps) == sub._owners_by_rings(rings, hole_pts)
+        several += len(shells) > 1 and bool(holes)
+    assume(several)
+
+
+@settings(max_examples=80)
+@given(label_maps())
+def test_cell_points_and_areas_are_those_of_each_chain(lm: LabelMap) -> None:
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    points, area2 = sub._cell_points(lm, cells)
+    ox, oy = lm.origin
+    for c, pts, a2 in zip(cells.one_cells, points, area2, strict=True):
+        ref = c.chain.points()
+        assert pts.tolist() == ref.tolist()
+        xs = [int(x) - ox for x in ref[:, 0]]
+        ys = [int(y) - oy for y in ref[:, 1]]
+        assert a2 == sum(xs[k] * ys[k + 1] - xs[k + 1] * ys[k] for k in range(len(xs) - 1))
+
+
+@settings(max_examples=80)
+@given(label_maps())
+def test_the_staircase_is_the_chain_with_its_straight_pointels_dropped(lm: LabelMap) -> None:
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    zero = {z.point for z in cells.zero_cells}
+    for c in cells.one_cells:
+        pts = [tuple(p) for p in c.chain.points().tolist()]
+        closed = c.chain.start not in zero
+        n = len(pts) - 1
+        ch = sub._Chain(c.chain.points(), closed)
+        x0, y0 = pts[0]
+
+        def straight(k: int, pts: list[tuple[int, ...]] = pts, n: int = n) -> bool:
+            a, b, d = pts[(k - 1) % n], pts[k], pts[k + 1]
+            return (b[0] - a[0], b[1] - a[1]) == (d[0] - b[0], d[1] - b[1])
+
+        ks = (
+            [k for k in range(n) if not straight(k)]
+            if closed
+            else [0, *(k for k in range(1, n) if not straight(k)), n]
+        )
+        want = [((2 * (pts[k][0] - x0), 2 * (pts[k][1] - y0), 0), k) for k in ks]
+        assert ch.staircase() == want
