@@ -829,11 +829,9 @@ def _assemble_label(
         return Polygon()
     rings = [(a2, pts) for _, a2, pts in shells]
     hole_pts = [pts for _, pts in holes]
-    owners: list[int] | None = [0] * len(holes)
+    owners = [0] * len(holes)
     if len(shells) > 1 and holes:
-        owners = _owners_by_components(rings, hole_pts, ps)
-        if owners is None:
-            owners = _owners_by_rings(rings, hole_pts)
+        owners = _owners_by_components(rings, hole_pts, ps) or _owners_by_rings(rings, hole_pts)
     owned: list[list[tuple[tuple[int, int], list[_Directed]]]] = [[] for _ in shells]
     for (lp, pts), owner in zip(holes, owners, strict=True):
         owned[owner].append((_first_pointel(pts), lp))
