@@ -843,6 +843,63 @@ def _assemble_label(
     return polys[0] if len(polys) == 1 else MultiPolygon(polys)
 
 
+#: Build the polylines with the compiled kernels (:mod:`mrm.geometry._subdivision_kernels`); the Python
+#: functions above are their definition, used for the chains the kernels leave (int64 overflow) and by tests
+#: that replace a step of the construction.
+_KERNEL = True
+
+
+def _polylines(
+    pts_all: IntArray, off: IntArray, points: Sequence[IntArray], closed: Sequence[bool]
+) -> tuple[list[FloatArray], list[bool]]:
+    """γ_c for every 1-cell as float64 plane coordinates, and whether each is the staircase."""
+    m = len(points)
+    if not _KERNEL or m == 0:
+        chains = [_Chain(p, c) for p, c in zip(points, closed, strict=True)]
+        done = [_polyline(ch) for ch in chains]
+        return [_to_plane(ch, v) for ch, (v, _) in zip(chains, done, strict=True)], [s for _, s in done]
+    from mrm.geometry import _subdivision_kernels as K
+
+    lens = np.diff(off)
+    starts = pts_all[off[:-1]]
+    loc = pts_all - np.repeat(starts, lens, axis=0)
+    status, count, verts = K.polylines_kernel(loc, off, np.asarray(closed, dtype=np.bool_), K.LIMIT)
+    rank = np.arange(pts_all.shape[0], dtype=np.int64) - np.repeat(off[:-1], lens)
+    used = rank < np.repeat(count, lens)
+    x, y, e = verts[used, 0], verts[used, 1], verts[used, 2]
+    # X = (Q − 1) / 2 in plane coordinates, Q = v / 2^e + 2·origin: exact in int64 and float64 while
+    # |x + (2·ox − 1)·2^e| < 2^53; a chain beyond that goes through _to_plane (which refuses with a message)
+    ox = np.repeat(2 * starts[:, 0] - 1, count)
+    oy = np.repeat(2 * starts[:, 1] - 1, count)
+    scale = np.exp2(e.astype(np.float64))
+    far = (np.abs(ox) * scale + np.abs(x) >= 2.0**52) | (np.abs(oy) * scale + np.abs(y) >= 2.0**52)
+    plane = np.empty((x.size, 2), dtype=np.float64)
+    near = ~far
+    sh = e[near]
+    plane[near, 0] = np.ldexp((x[near] + (ox[near] << sh)).astype(np.float64), -(sh + 1))
+    plane[near, 1] = np.ldexp((y[near] + (oy[near] << sh)).astype(np.float64), -(sh + 1))
+    bad = set(np.repeat(np.arange(m), count)[far].tolist())
+    ends = np.cumsum(count).tolist()
+    polylines: list[FloatArray] = []
+    stair: list[bool] = []
+    for i, s in enumerate(status.tolist()):
+        if s == K.FALLBACK:
+            ch = _Chain(points[i], closed[i])
+            vs, is_stair = _polyline(ch)
+            polylines.append(_to_plane(ch, vs))
+            stair.append(is_stair)
+            continue
+        k0 = ends[i] - int(count[i])
+        if i in bad:
+            ch = _Chain(points[i], closed[i])
+            rows = verts[off[i] : off[i] + count[i]].tolist()
+            polylines.append(_to_plane(ch, [(a, b, c) for a, b, c in rows]))
+        else:
+            polylines.append(plane[k0 : ends[i]])
+        stair.append(s == K.STAIRCASE)
+    return polylines, stair
+
+
 def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     """Reconstruct all the labels of a label map jointly (module docstring), with the 1-cell polylines.
 
@@ -866,16 +923,9 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     _check_model(model)
     cells = cells_of(lm)
     zero = {z.point for z in cells.zero_cells}
-    chains: list[_Chain] = []
-    polylines: list[FloatArray] = []
-    stair: list[bool] = []
-    points, area2 = _cell_points(lm, cells)
-    for c, pts in zip(cells.one_cells, points, strict=True):
-        ch = _Chain(pts, closed=c.chain.start not in zero)
-        chains.append(ch)
-        verts, is_stair = _polyline(ch)
-        polylines.append(_to_plane(ch, verts))
-        stair.append(is_stair)
+    pts_all, off, points, area2 = _cell_points(lm, cells)
+    closed = [c.chain.start not in zero for c in cells.one_cells]
+    polylines, stair = _polylines(pts_all, off, points, closed)
     asm = _Assembler(lm, cells, points, area2)
     pixels = _label_pixel_sets(lm)
     labels = list(pixels)
@@ -898,22 +948,25 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
             for ci in touching[v]:
                 if not stair[ci]:
                     stair[ci] = True
-                    polylines[ci] = _to_plane(chains[ci], [v_ for v_, _ in chains[ci].staircase()])
+                    ch = _Chain(points[ci], closed[ci])
+                    polylines[ci] = _to_plane(ch, [v_ for v_, _ in ch.staircase()])
                     c = cells.one_cells[ci]
                     redo.update(w for w in (c.left, c.right) if w != 0)
         todo = sorted(redo)
     return Subdivision(dict(sorted(parts.items())), tuple(polylines), tuple(stair), cells)
 
 
-def _cell_points(lm: LabelMap, cells: Cells) -> tuple[list[IntArray], list[int]]:
+def _cell_points(lm: LabelMap, cells: Cells) -> tuple[IntArray, IntArray, list[IntArray], list[int]]:
     """The pointels of every 1-cell (``chain.points()``) and twice its signed area, in one pass.
+
+    Returns all the pointels, the offsets of each cell's rows in them, the per-cell views and the areas.
 
     The area of a 1-cell is taken in the label map's array coordinates: only its sums around closed walks are
     used, which do not depend on the origin, and the numbers stay small.
     """
     ones = cells.one_cells
     if not ones:
-        return [], []
+        return np.zeros((0, 2), dtype=np.int64), np.zeros(1, dtype=np.int64), [], []
     lens = np.fromiter((len(c.chain.codes) for c in ones), dtype=np.int64, count=len(ones)) + 1
     off = np.zeros(len(ones) + 1, dtype=np.int64)
     np.cumsum(lens, out=off[1:])
@@ -930,7 +983,7 @@ def _cell_points(lm: LabelMap, cells: Cells) -> tuple[list[IntArray], list[int]]
     cross = rel[:-1, 0] * rel[1:, 1] - rel[1:, 0] * rel[:-1, 1]
     cross[off[1:-1] - 1] = 0  # from the last point of one cell to the first of the next
     area2 = np.add.reduceat(cross, off[:-1]) if cross.size else np.zeros(len(ones), dtype=np.int64)
-    return np.split(pts, off[1:-1].tolist()), area2.tolist()
+    return pts, off, np.split(pts, off[1:-1].tolist()), area2.tolist()
 
 
 def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:

@@ -484,6 +484,7 @@ def test_any_polyline_the_verifier_accepts_keeps_the_subdivision_exact(
         rejected.append(not ok)
         return ok
 
+    monkeypatch.setattr(sub, "_KERNEL", False)  # the Python construction, whose _greedy is replaced
     monkeypatch.setattr(sub, "_greedy", random_polyline)
     monkeypatch.setattr(sub, "_part_ok", part_ok)
     accepted = 0
@@ -585,7 +586,7 @@ def test_hole_owners_from_components_are_the_owners_by_point_in_ring(lm: LabelMa
     import mrm.geometry.subdivision as sub
 
     cells = sub.cells_of(lm)
-    points, area2 = sub._cell_points(lm, cells)
+    _, _, points, area2 = sub._cell_points(lm, cells)
     asm = sub._Assembler(lm, cells, points, area2)
     pixels = sub._label_pixel_sets(lm)
     several = 0
@@ -604,7 +605,7 @@ def test_cell_points_and_areas_are_those_of_each_chain(lm: LabelMap) -> None:
     import mrm.geometry.subdivision as sub
 
     cells = sub.cells_of(lm)
-    points, area2 = sub._cell_points(lm, cells)
+    _, _, points, area2 = sub._cell_points(lm, cells)
     ox, oy = lm.origin
     for c, pts, a2 in zip(cells.one_cells, points, area2, strict=True):
         ref = c.chain.points()
@@ -639,3 +640,80 @@ def test_the_staircase_is_the_chain_with_its_straight_pointels_dropped(lm: Label
         )
         want = [((2 * (pts[k][0] - x0), 2 * (pts[k][1] - y0), 0), k) for k in ks]
         assert ch.staircase() == want
+
+
+def python_and_kernel_polylines(lm: LabelMap, limit: int) -> tuple[list[tuple[list, bool]], list[int], list]:  # type: ignore[type-arg]
+    """Per 1-cell: the Python construction's (vertices, staircase?), the kernel's status and vertices."""
+    import mrm.geometry._subdivision_kernels as K
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    zero = {z.point for z in cells.zero_cells}
+    pts_all, off, points, _ = sub._cell_points(lm, cells)
+    closed = np.array([c.chain.start not in zero for c in cells.one_cells], dtype=bool)
+    python = [sub._polyline(sub._Chain(p, bool(c))) for p, c in zip(points, closed, strict=True)]
+    loc = pts_all - np.repeat(pts_all[off[:-1]], np.diff(off), axis=0)
+    status, count, verts = K.polylines_kernel(loc, off, closed, limit)
+    kernel = [[tuple(v) for v in verts[off[i] : off[i] + count[i]].tolist()] for i in range(len(points))]
+    return python, status.tolist(), kernel
+
+
+@settings(max_examples=100)
+@given(label_maps(max_size=60), st.sampled_from([2**60, 2**60, 2**24, 2**14]))
+def test_the_compiled_construction_is_the_python_one_or_steps_aside(lm: LabelMap, limit: int) -> None:
+    # Chain by chain, the kernel returns exactly the Python construction's polyline (or its staircase), or
+    # FALLBACK when a product would pass the limit; with small limits the fallback is exercised too.
+    import mrm.geometry._subdivision_kernels as K
+
+    python, status, kernel = python_and_kernel_polylines(lm, limit)
+    for (verts, is_stair), s, kv in zip(python, status, kernel, strict=True):
+        if s == K.FALLBACK:
+            continue
+        assert (s == K.STAIRCASE) == is_stair
+        assert kv == verts
+
+
+def test_the_compiled_construction_builds_real_polylines_and_falls_back_under_a_small_limit(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The experiment above must see both outcomes: polylines built by the kernel under the real limit, and
+    # fallbacks when the limit is tiny; the subdivision stays exact either way.
+    import mrm.geometry._subdivision_kernels as K
+    import mrm.geometry.subdivision as sub
+
+    yy, xx = np.mgrid[-30:31, -30:31]
+    lab = ((xx * xx + yy * yy) < 28**2).astype(np.int32) + ((xx - 9) ** 2 + yy * yy < 15**2)
+    lm = LabelMap(lab.astype(np.int32))
+    _, status, _ = python_and_kernel_polylines(lm, K.LIMIT)
+    assert status.count(K.POLYLINE) >= 2 and K.FALLBACK not in status
+    _, status, _ = python_and_kernel_polylines(lm, 2**12)
+    assert K.FALLBACK in status
+    sd = sub.subdivide(lm)
+    check_subdivision(lm, sd.parts)
+    assert not all(sd.staircase)
+    monkeypatch.setattr(K, "LIMIT", 2**12)  # most chains now go through the Python functions
+    fell_back = sub.subdivide(lm)
+    assert fell_back.staircase == sd.staircase
+    assert all(np.array_equal(p, q) for p, q in zip(fell_back.polylines, sd.polylines, strict=True))
+
+
+@pytest.mark.parametrize("x0", [2**20, 2**44, 2**47])
+def test_far_from_the_origin_the_compiled_path_gives_the_python_answer_or_the_same_refusal(
+    monkeypatch: pytest.MonkeyPatch, x0: int
+) -> None:
+    import mrm.geometry.subdivision as sub
+
+    yy, xx = np.mgrid[-12:13, -12:13]
+    lab = ((xx * xx + yy * yy) < 11**2).astype(np.int32) + (xx * 2 + yy * 3 > 4)
+    lm = LabelMap(lab.astype(np.int32), (x0, -(x0 // 2)))
+
+    def run() -> object:
+        try:
+            sd = sub.subdivide(lm)
+        except ParameterError as e:
+            return str(e)
+        return [p.tolist() for p in sd.polylines]
+
+    fast = run()
+    monkeypatch.setattr(sub, "_KERNEL", False)
+    assert fast == run()
