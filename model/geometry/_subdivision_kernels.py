@@ -509,3 +509,25 @@ def polylines_kernel(
         status[i] = s
         count[i] = c
     return status, count, verts
+
+
+@njit(cache=True)
+def label_boxes(lab: np.ndarray, vmax: int) -> np.ndarray:
+    """For every label 0 … vmax: [pixel count, first row, last row, first column, last column] in one pass."""
+    out = np.zeros((vmax + 1, 5), dtype=np.int64)
+    out[:, 1] = lab.shape[0]
+    out[:, 3] = lab.shape[1]
+    out[:, 2] = -1
+    out[:, 4] = -1
+    for r in range(lab.shape[0]):
+        for c in range(lab.shape[1]):
+            v = lab[r, c]
+            out[v, 0] += 1
+            if r < out[v, 1]:
+                out[v, 1] = r
+            out[v, 2] = r
+            if c < out[v, 3]:
+                out[v, 3] = c
+            if c > out[v, 4]:
+                out[v, 4] = c
+    return out

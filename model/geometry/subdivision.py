@@ -987,13 +987,30 @@ def _cell_points(lm: LabelMap, cells: Cells) -> tuple[IntArray, IntArray, list[I
 
 
 def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:
-    """The pixels of every non-zero label, each cropped to its own box (one pass over the array)."""
+    """The pixels of every non-zero label, each cropped to its own box (one pass over the array).
+
+    Each label's mask is the comparison of its box with the label, unless the boxes together are much
+    larger than the array (many nested labels), where the pixels are gathered by label instead.
+    """
     lab = lm.labels
     if lab.size == 0:
         return {}
+    from mrm.geometry._subdivision_kernels import label_boxes
+
     x0, y0 = lm.origin
+    vmax = int(lab.max())
+    if vmax <= 4 * lab.size + 1024:
+        boxes = label_boxes(lab, vmax)
+        present = [v for v in np.flatnonzero(boxes[:, 0]).tolist() if v != 0]
+        area = sum(int((boxes[v, 2] - boxes[v, 1] + 1) * (boxes[v, 4] - boxes[v, 3] + 1)) for v in present)
+        if area <= 4 * lab.size:
+            out: dict[int, PixelSet] = {}
+            for v in present:
+                _, r0, r1, c0, c1 = boxes[v].tolist()
+                out[v] = PixelSet(lab[r0 : r1 + 1, c0 : c1 + 1] == v, (x0 + c0, y0 + r0))
+            return out
     w = lab.shape[1]
-    out: dict[int, PixelSet] = {}
+    out = {}
     for v, idx in zip(*group_by_label(lab), strict=True):
         if v == 0:
             continue

@@ -717,3 +717,20 @@ def test_far_from_the_origin_the_compiled_path_gives_the_python_answer_or_the_sa
     fast = run()
     monkeypatch.setattr(sub, "_KERNEL", False)
     assert fast == run()
+
+
+def concentric_labels(k: int) -> LabelMap:
+    """k square rings, each its own label: from k = 13 the labels' boxes together pass 4 times the array."""
+    yy, xx = np.mgrid[-k : k + 1, -k : k + 1]
+    return LabelMap((np.maximum(abs(xx), abs(yy)) + 1).astype(np.int32), (3, -2))
+
+
+@settings(max_examples=80)
+@given(st.one_of(label_maps(), st.integers(1, 20).map(concentric_labels)))
+def test_label_pixel_sets_are_the_pixels_of_each_label(lm: LabelMap) -> None:
+    import mrm.geometry.subdivision as sub
+
+    got = sub._label_pixel_sets(lm)
+    assert list(got) == lm.label_values()
+    for v, ps in got.items():
+        assert ps == lm.pixel_set(v)
