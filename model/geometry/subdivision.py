@@ -121,7 +121,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
 from mrm.geometry.cracks import DX, DY
-from mrm.geometry.discretize import discretize
+from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.labeling import group_by_label
 from mrm.geometry.labeling import label as label_components
 from mrm.geometry.segmentation import standard_dss_reach_table
@@ -542,12 +542,6 @@ def _to_plane(ch: _Chain, verts: Sequence[Vertex]) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class _Directed:
-    cell: int
-    forward: bool
-
-
-@dataclass(frozen=True)
 class Subdivision:
     """The joint reconstruction of a label map (:func:`subdivide`).
 
@@ -590,20 +584,6 @@ def _check_model(model: str) -> None:
             "two parts sharing an edge would both claim the pixels along it"
         )
     raise ParameterError(f"unknown model {model!r}; expected 'gauss'")
-
-
-class _Labels:
-    """Label lookup with the background (0) outside the array."""
-
-    def __init__(self, lm: LabelMap) -> None:
-        self.pad = np.pad(lm.labels, 1)
-        self.x0, self.y0 = lm.origin[0] - 1, lm.origin[1] - 1
-
-    def at(self, x: int, y: int) -> int:
-        r, c = y - self.y0, x - self.x0
-        if 0 <= r < self.pad.shape[0] and 0 <= c < self.pad.shape[1]:
-            return int(self.pad[r, c])
-        return 0
 
 
 def _left_pixel(p: tuple[int, int], code: int) -> tuple[int, int]:
@@ -650,61 +630,74 @@ def _point_in_ring(ring: IntArray, x: int, y: int) -> bool:
     return bool(np.count_nonzero(hit) % 2)
 
 
+#: A directed 1-cell: 2·c for 1-cell c as it runs (its left label on the left), 2·c + 1 for it reversed.
+_Directed = int
+
+
 class _Assembler:
     """Rings of each label from the directed 1-cells, with the (4, 8) rule at 0-cells."""
 
     def __init__(self, lm: LabelMap, cells: Cells, points: Sequence[IntArray], area2: Sequence[int]) -> None:
-        self.labels = _Labels(lm)
-        self.cells = cells
         zero = {z.point for z in cells.zero_cells}
+        ones = cells.one_cells
         self.points = points
         self.area2 = area2
-        self.loop: list[bool] = []  # a ring with no 0-cell on it
-        self.out: dict[tuple[tuple[int, int], int, int], _Directed] = {}  # (pointel, code, label)
+        self.loop = [c.chain.start not in zero for c in ones]  # a ring with no 0-cell on it
         self.by_label: dict[int, list[_Directed]] = {}
-        for ci, c in enumerate(cells.one_cells):
-            loop = c.chain.start not in zero
-            self.loop.append(loop)
-            codes = c.chain.codes
-            fwd, bwd = _Directed(ci, True), _Directed(ci, False)
-            self.by_label.setdefault(c.left, []).append(fwd)
-            self.by_label.setdefault(c.right, []).append(bwd)
-            if not loop:
-                pts = points[ci]
-                end = (int(pts[-1, 0]), int(pts[-1, 1]))
-                self.out[(c.chain.start, int(codes[0]), c.left)] = fwd
-                self.out[(end, (int(codes[-1]) + 2) % 4, c.right)] = bwd
+        for ci, c in enumerate(ones):
+            self.by_label.setdefault(c.left, []).append(2 * ci)
+            self.by_label.setdefault(c.right, []).append(2 * ci + 1)
+        m = len(ones)
+        self.start: list[tuple[int, int]] = []
+        self.next: list[_Directed] = [-1] * (2 * m)
+        if m == 0:
+            return
+        first = np.array([p[0] for p in points], dtype=np.int64)
+        last = np.array([p[-1] for p in points], dtype=np.int64)
+        c0 = np.array([int(c.chain.codes[0]) for c in ones], dtype=np.int64)
+        c1 = np.array([int(c.chain.codes[-1]) for c in ones], dtype=np.int64)
+        lab = np.array([(c.left, c.right) for c in ones], dtype=np.int64).reshape(-1)
+        # per directed cell (interleaved forward, backward): its start, its end t and the code k entering t
+        start = np.stack([first, last], axis=1).reshape(-1, 2)
+        end = np.stack([last, first], axis=1).reshape(-1, 2)
+        leave = np.stack([c0, (c1 + 2) % 4], axis=1).reshape(-1)
+        k = np.stack([c1, (c0 + 2) % 4], axis=1).reshape(-1)
+        self.start = [(a, b) for a, b in start.tolist()]
+        # the (4, 8) rule at t: turn left when the pixel ahead on the left is not the label, right when the
+        # one ahead on the right is, else go straight (the labels read from the padded array, 0 outside)
+        pad = np.pad(lm.labels, 1)
+        x0, y0 = lm.origin[0] - 1, lm.origin[1] - 1
+        left = np.asarray(_LEFT_PIXEL, dtype=np.int64)
 
-    def start(self, d: _Directed) -> tuple[int, int]:
-        pts = self.points[d.cell]
-        r = pts[0] if d.forward else pts[-1]
-        return int(r[0]), int(r[1])
+        def label_at(px: IntArray, py: IntArray) -> IntArray:
+            r, c = py - y0, px - x0
+            inside = (r >= 0) & (r < pad.shape[0]) & (c >= 0) & (c < pad.shape[1])
+            out = np.zeros(px.shape, dtype=np.int64)
+            out[inside] = pad[r[inside], c[inside]]
+            return out
 
-    def _next(self, d: _Directed, label: int) -> _Directed:
-        pts = self.points[d.cell]
-        codes = self.cells.one_cells[d.cell].chain.codes
-        if d.forward:
-            t, k = (int(pts[-1, 0]), int(pts[-1, 1])), int(codes[-1])
-        else:
-            t, k = (int(pts[0, 0]), int(pts[0, 1])), (int(codes[0]) + 2) % 4
-        fl = _left_pixel(t, k)
-        fr = _left_pixel(t, (k + 3) % 4)
-        if self.labels.at(*fl) != label:
-            k2 = (k + 1) % 4
-        elif self.labels.at(*fr) == label:
-            k2 = (k + 3) % 4
-        else:
-            k2 = k
-        return self.out[(t, k2, label)]
+        fl = label_at(end[:, 0] + left[k, 0], end[:, 1] + left[k, 1])
+        kr = (k + 3) % 4
+        fr = label_at(end[:, 0] + left[kr, 0], end[:, 1] + left[kr, 1])
+        k2 = np.where(fl != lab, (k + 1) % 4, np.where(fr == lab, kr, k))
+        out: dict[tuple[tuple[int, int], int, int], _Directed] = {}  # (start pointel, code, label)
+        rows = [d for d in range(2 * m) if not self.loop[d >> 1]]
+        leave_l, lab_l, k2_l, end_l = leave.tolist(), lab.tolist(), k2.tolist(), end.tolist()
+        for d in rows:
+            out[(self.start[d], leave_l[d], lab_l[d])] = d
+        for d in rows:
+            t = end_l[d]
+            self.next[d] = out[((t[0], t[1]), k2_l[d], lab_l[d])]
 
     def loops(self, label: int) -> list[list[_Directed]]:
         """The boundary of a label as simple closed walks of directed cells (label on the left)."""
         used: set[_Directed] = set()
         out: list[list[_Directed]] = []
+        nxt, start = self.next, self.start
         for d in self.by_label.get(label, []):
             if d in used:
                 continue
-            if self.loop[d.cell]:
+            if self.loop[d >> 1]:
                 used.add(d)
                 out.append([d])
                 continue
@@ -712,24 +705,24 @@ class _Assembler:
             cur = d
             while cur not in used:
                 used.add(cur)
-                walk.append((cur, self.start(cur)))
-                cur = self._next(cur, label)
+                walk.append((cur, start[cur]))
+                cur = nxt[cur]
             out.extend(_split(walk))
         return out
 
     def loop_area2(self, loop: list[_Directed]) -> int:
-        return sum(self.area2[d.cell] if d.forward else -self.area2[d.cell] for d in loop)
+        return sum(-self.area2[d >> 1] if d & 1 else self.area2[d >> 1] for d in loop)
 
     def loop_points(self, loop: list[_Directed]) -> IntArray:
-        parts = [self.points[d.cell] if d.forward else self.points[d.cell][::-1] for d in loop]
+        parts = [self.points[d >> 1][::-1] if d & 1 else self.points[d >> 1] for d in loop]
         return np.concatenate([p[:-1] for p in parts])
 
 
 def _ring_coords(loop: list[_Directed], polylines: Sequence[FloatArray], loops: Sequence[bool]) -> FloatArray:
-    if len(loop) == 1 and loops[loop[0].cell]:
-        pl = polylines[loop[0].cell]
-        return pl if loop[0].forward else pl[::-1]
-    parts = [polylines[d.cell] if d.forward else polylines[d.cell][::-1] for d in loop]
+    if len(loop) == 1 and loops[loop[0] >> 1]:
+        pl = polylines[loop[0] >> 1]
+        return pl[::-1] if loop[0] & 1 else pl
+    parts = [polylines[d >> 1][::-1] if d & 1 else polylines[d >> 1] for d in loop]
     return np.concatenate([p[:-1] for p in parts])
 
 
@@ -835,12 +828,18 @@ def _assemble_label(
     owned: list[list[tuple[tuple[int, int], list[_Directed]]]] = [[] for _ in shells]
     for (lp, pts), owner in zip(holes, owners, strict=True):
         owned[owner].append((_first_pointel(pts), lp))
-    polys = []
-    for (lp, _a2, _pts), hs in zip(shells, owned, strict=True):
+    # every ring's coordinates, each shell followed by its holes, made into polygons in two vectorised calls
+    coords: list[FloatArray] = []
+    polygon_of: list[int] = []
+    for k, ((lp, _a2, _pts), hs) in enumerate(zip(shells, owned, strict=True)):
         hs.sort(key=lambda h: h[0])
-        shell = _ring_coords(lp, polylines, asm.loop)
-        polys.append(Polygon(shell, [_ring_coords(h, polylines, asm.loop) for _, h in hs]))
-    return polys[0] if len(polys) == 1 else MultiPolygon(polys)
+        coords.append(_ring_coords(lp, polylines, asm.loop))
+        coords.extend(_ring_coords(h, polylines, asm.loop) for _, h in hs)
+        polygon_of.extend([k] * (len(hs) + 1))
+    sizes = [c.shape[0] for c in coords]
+    rings = shapely.linearrings(np.concatenate(coords), indices=np.repeat(np.arange(len(coords)), sizes))
+    polys = shapely.polygons(rings, indices=polygon_of)
+    return polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
 
 
 #: Build the polylines with the compiled kernels (:mod:`mrm.geometry._subdivision_kernels`); the Python
@@ -983,7 +982,8 @@ def _cell_points(lm: LabelMap, cells: Cells) -> tuple[IntArray, IntArray, list[I
     cross = rel[:-1, 0] * rel[1:, 1] - rel[1:, 0] * rel[:-1, 1]
     cross[off[1:-1] - 1] = 0  # from the last point of one cell to the first of the next
     area2 = np.add.reduceat(cross, off[:-1]) if cross.size else np.zeros(len(ones), dtype=np.int64)
-    return pts, off, np.split(pts, off[1:-1].tolist()), area2.tolist()
+    bounds = off.tolist()
+    return pts, off, [pts[a:b] for a, b in itertools.pairwise(bounds)], area2.tolist()
 
 
 def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:
@@ -1026,7 +1026,8 @@ def _part_ok(geom: Polygon | MultiPolygon, ps: PixelSet) -> bool:
     """Exactly: a valid geometry whose gauss discretization is ps."""
     if not shapely.is_valid(geom):
         return False
-    return bool(discretize(geom, "gauss") == ps)
+    # a valid (multi)polygon has valid members: discretize without checking them a second time
+    return bool(_discretize_pieces(_take_apart(geom, check_validity=False), "gauss", None) == ps)
 
 
 def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polygon | MultiPolygon]:
