@@ -485,6 +485,19 @@ class LabelMap:
             np.copyto(sub, i, where=p.mask)
         return cls(out, (box[0], box[1]))
 
+    @classmethod
+    def _canonical(cls, labels: npt.NDArray[np.int32], origin: tuple[int, int]) -> LabelMap:
+        """Take a fresh int32 array of non-negative labels whose non-zero labels touch all four sides.
+
+        No check, crop or copy: for builders that know it (the array is frozen here, so the caller must
+        hold no other reference to it).
+        """
+        lm = cls.__new__(cls)
+        lm._labels = _frozen(labels, fresh=True)
+        lm._origin = (int(origin[0]), int(origin[1]))
+        lm._hash = None
+        return lm
+
     @property
     def origin(self) -> tuple[int, int]:
         """(x0, y0) of ``labels[0, 0]``."""
