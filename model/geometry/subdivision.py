@@ -106,6 +106,11 @@ Every polyline is verified exactly (:func:`_verify_chain`) and replaced by the c
 when it fails or has no fewer vertices — a local fallback, never a global one. The assembled parts are
 checked once more (exact discretization, validity); a part that fails (none is known) has all its 1-cells
 set back to the staircase, which the proof above covers as well.
+
+The Python functions below are the definition of the construction. The polylines of all 1-cells are built by
+one compiled kernel that follows them step for step on int64 with every product checked
+(:mod:`mrm.geometry._subdivision_kernels`, docs/adr/0024): a chain whose numbers would leave the checked
+range is built by the Python functions on Python integers, so the result is the same either way.
 """
 
 from __future__ import annotations
