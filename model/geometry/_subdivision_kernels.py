@@ -76,6 +76,20 @@ def _in_piece(
 
 
 @njit(cache=True)
+def _gate_from(
+    gl: np.ndarray, gr: np.ndarray, n: int, k: int, e: int, px: int, py: int, st: np.ndarray
+) -> tuple[int, int, int, int]:
+    """The left and right centres of gate k (cyclic) at scale 2^e, minus the point (px, py)."""
+    i = (k - 1) % n
+    return (
+        _shl(gl[i, 0], e, st) - px,
+        _shl(gl[i, 1], e, st) - py,
+        _shl(gr[i, 0], e, st) - px,
+        _shl(gr[i, 1], e, st) - py,
+    )
+
+
+@njit(cache=True)
 def _edge_ok(
     gl: np.ndarray,
     gr: np.ndarray,
@@ -94,11 +108,7 @@ def _edge_ok(
     ax, ay = _shl(ax0, e - ae, st), _shl(ay0, e - ae, st)
     dx, dy = _shl(bx0, e - be, st) - ax, _shl(by0, e - be, st) - ay
     for k in range(ia + 1, ib + 1):
-        i = (k - 1) % n
-        lx_ = _shl(gl[i, 0], e, st) - ax
-        ly_ = _shl(gl[i, 1], e, st) - ay
-        rx_ = _shl(gr[i, 0], e, st) - ax
-        ry_ = _shl(gr[i, 1], e, st) - ay
+        lx_, ly_, rx_, ry_ = _gate_from(gl, gr, n, k, e, ax, ay, st)
         if (
             _cross(rx_, ry_, lx_, ly_, st) <= 0
             or _cross(dx, dy, lx_, ly_, st) <= 0
@@ -127,11 +137,7 @@ def _cones(
     cnt = 0
     lox = loy = hix = hiy = 0
     for k in range(ip + 1, last + 1):
-        i = (k - 1) % n
-        lx_ = _shl(gl[i, 0], e, st) - px
-        ly_ = _shl(gl[i, 1], e, st) - py
-        rx_ = _shl(gr[i, 0], e, st) - px
-        ry_ = _shl(gr[i, 1], e, st) - py
+        lx_, ly_, rx_, ry_ = _gate_from(gl, gr, n, k, e, px, py, st)
         if _cross(rx_, ry_, lx_, ly_, st) <= 0:
             break
         if cnt == 0:
