@@ -141,7 +141,6 @@ IntArray = npt.NDArray[np.int64]
 #: A dyadic point of Q coordinates (x / 2^e, y / 2^e), as (x, y, e) with the smallest e.
 Vertex = tuple[int, int, int]
 
-_STEP = ((1, 0), (0, 1), (-1, 0), (0, -1))
 # the pixel on the left of a linel leaving pointel (i, j) with code k is (i, j) + _LEFT_PIXEL[k]
 _LEFT_PIXEL = ((0, 0), (-1, 0), (-1, -1), (0, -1))
 _MAX_SNAP_BITS = 60
@@ -591,11 +590,6 @@ def _check_model(model: str) -> None:
     raise ParameterError(f"unknown model {model!r}; expected 'gauss'")
 
 
-def _left_pixel(p: tuple[int, int], code: int) -> tuple[int, int]:
-    o = _LEFT_PIXEL[code]
-    return p[0] + o[0], p[1] + o[1]
-
-
 def _split(loop: list[tuple[_Directed, tuple[int, int]]]) -> list[list[_Directed]]:
     """Split a closed walk of directed cells (each with its start pointel) where it passes a 0-cell twice."""
     out: list[list[_Directed]] = []
@@ -654,6 +648,8 @@ class _Assembler:
             self.by_label.setdefault(c.right, []).append(2 * ci + 1)
         m = len(ones)
         self.start: list[tuple[int, int]] = []
+        self.first_left: list[tuple[int, int]] = []
+        self.cell_key: list[int] = []
         self.next: list[_Directed] = [-1] * (2 * m)
         if m == 0:
             return
@@ -668,11 +664,20 @@ class _Assembler:
         leave = np.stack([c0, (c1 + 2) % 4], axis=1).reshape(-1)
         k = np.stack([c1, (c0 + 2) % 4], axis=1).reshape(-1)
         self.start = [(a, b) for a, b in start.tolist()]
+        # the pixel left of each directed cell's first linel (all left pixels of a ring share a 4-component)
+        left = np.asarray(_LEFT_PIXEL, dtype=np.int64)
+        self.first_left = [(a, b) for a, b in (start + left[leave]).tolist()]
+        # the lowest-leftmost pointel of each cell as one integer: a ring's is the least over its cells
+        cat = np.concatenate(list(points))
+        self.key_x0, self.key_y0 = int(cat[:, 0].min()), int(cat[:, 1].min())
+        self.key_w = int(cat[:, 0].max()) - self.key_x0 + 1
+        key = (cat[:, 1] - self.key_y0) * self.key_w + (cat[:, 0] - self.key_x0)
+        lens = np.fromiter((p.shape[0] for p in points), dtype=np.int64, count=m)
+        self.cell_key = np.minimum.reduceat(key, np.cumsum(lens) - lens).tolist()
         # the (4, 8) rule at t: turn left when the pixel ahead on the left is not the label, right when the
         # one ahead on the right is, else go straight (the labels read from the padded array, 0 outside)
         pad = np.pad(lm.labels, 1)
         x0, y0 = lm.origin[0] - 1, lm.origin[1] - 1
-        left = np.asarray(_LEFT_PIXEL, dtype=np.int64)
 
         def label_at(px: IntArray, py: IntArray) -> IntArray:
             r, c = py - y0, px - x0
@@ -715,6 +720,10 @@ class _Assembler:
             out.extend(_split(walk))
         return out
 
+    def loop_key(self, loop: list[_Directed]) -> int:
+        """The ring's lowest-leftmost pointel (least y, then least x) as one integer, ordered alike."""
+        return min(self.cell_key[d >> 1] for d in loop)
+
     def loop_area2(self, loop: list[_Directed]) -> int:
         return sum(-self.area2[d >> 1] if d & 1 else self.area2[d >> 1] for d in loop)
 
@@ -729,18 +738,6 @@ def _ring_coords(loop: list[_Directed], polylines: Sequence[FloatArray], loops: 
         return pl[::-1] if loop[0] & 1 else pl
     parts = [polylines[d >> 1][::-1] if d & 1 else polylines[d >> 1] for d in loop]
     return np.concatenate([p[:-1] for p in parts])
-
-
-def _first_pointel(pts: IntArray) -> tuple[int, int]:
-    """(y, x) of the lowest-leftmost pointel of a ring: the sort key of rings."""
-    k = int(np.lexsort((pts[:, 0], pts[:, 1]))[0])
-    return int(pts[k, 1]), int(pts[k, 0])
-
-
-def _left_of_first_linel(pts: IntArray) -> tuple[int, int]:
-    """The pixel on the left of the first linel of a ring of pointels."""
-    d = (int(pts[1, 0] - pts[0, 0]), int(pts[1, 1] - pts[0, 1]))
-    return _left_pixel((int(pts[0, 0]), int(pts[0, 1])), _STEP.index(d))
 
 
 def _owners_by_rings(shells: Sequence[tuple[int, IntArray]], holes: Sequence[IntArray]) -> list[int]:
@@ -768,7 +765,7 @@ def _owners_by_rings(shells: Sequence[tuple[int, IntArray]], holes: Sequence[Int
 
 
 def _owners_by_components(
-    shells: Sequence[tuple[int, IntArray]], holes: Sequence[IntArray], ps: PixelSet
+    shells: Sequence[tuple[int, int]], holes: Sequence[tuple[int, int]], ps: PixelSet
 ) -> list[int] | None:
     """The owners of :func:`_owners_by_rings`, read from the 4-connected components of the label's pixels.
 
@@ -777,46 +774,59 @@ def _owners_by_components(
     lie in one 4-component C. A shell is the outer ring of its C; a hole ring of C faces a bounded
     component of the complement of C, which C's shell encloses; any other shell enclosing that hole
     encloses C and so is larger. So the owner is the shell of the component left of the hole's first
-    linel: O(pixels of the label's box) instead of O(holes × shells). None when the shells do not map
-    one-to-one onto the components (never seen; the caller then uses the definition).
+    linel: O(pixels of the label's box) instead of O(holes × shells). Rings are given by the pixel left of
+    their first linel. None when the shells do not map one-to-one onto the components (never seen; the
+    caller then uses the definition).
     """
     comp, _ = label_components(ps.mask, 4)
     x0, y0 = ps.origin
 
-    def component(pts: IntArray) -> int:
-        x, y = _left_of_first_linel(pts)
-        r, c = y - y0, x - x0
+    def component(pixel: tuple[int, int]) -> int:
+        r, c = pixel[1] - y0, pixel[0] - x0
         if not (0 <= r < comp.shape[0] and 0 <= c < comp.shape[1]):
             return 0
         return int(comp[r, c])
 
     shell_of: dict[int, int] = {}
-    for k, (_, pts) in enumerate(shells):
-        cid = component(pts)
+    for k, pixel in enumerate(shells):
+        cid = component(pixel)
         if cid == 0 or cid in shell_of:
             return None
         shell_of[cid] = k
-    owners = [shell_of.get(component(pts), -1) for pts in holes]
+    owners = [shell_of.get(component(pixel), -1) for pixel in holes]
     return None if -1 in owners else owners
 
 
-_Shell = tuple[list[_Directed], int, IntArray]  # walk, twice its area, pointels
-_Hole = tuple[list[_Directed], IntArray]
+_Shell = tuple[list[_Directed], int, int]  # walk, twice its area, key of its lowest-leftmost pointel
+_Hole = tuple[list[_Directed], int]  # walk, key
 
 
 def _rings(asm: _Assembler, label: int) -> tuple[list[_Shell], list[_Hole]]:
-    """The closed walks of a label split into shells (counter-clockwise, sorted) and holes."""
+    """The closed walks of a label split into shells (counter-clockwise) and holes, each sorted by key."""
     shells: list[_Shell] = []
     holes: list[_Hole] = []
     for lp in asm.loops(label):
         a2 = asm.loop_area2(lp)
-        pts = asm.loop_points(lp)
         if a2 > 0:
-            shells.append((lp, a2, pts))
+            shells.append((lp, a2, asm.loop_key(lp)))
         else:
-            holes.append((lp, pts))
-    shells.sort(key=lambda s: _first_pointel(s[2]))
+            holes.append((lp, asm.loop_key(lp)))
+    shells.sort(key=lambda s: s[2])
+    holes.sort(key=lambda h: h[1])
     return shells, holes
+
+
+def _owners(asm: _Assembler, shells: Sequence[_Shell], holes: Sequence[_Hole], ps: PixelSet) -> list[int]:
+    """The shell (index) that owns each hole."""
+    if len(shells) == 1 or not holes:
+        return [0] * len(holes)
+    first = asm.first_left
+    owners = _owners_by_components([first[s[0][0]] for s in shells], [first[h[0][0]] for h in holes], ps)
+    if owners is None:
+        owners = _owners_by_rings(
+            [(a2, asm.loop_points(lp)) for lp, a2, _ in shells], [asm.loop_points(lp) for lp, _ in holes]
+        )
+    return owners
 
 
 def _assemble_label(
@@ -825,21 +835,15 @@ def _assemble_label(
     shells, holes = _rings(asm, label)
     if not shells:
         return Polygon()
-    rings = [(a2, pts) for _, a2, pts in shells]
-    hole_pts = [pts for _, pts in holes]
-    owners = [0] * len(holes)
-    if len(shells) > 1 and holes:
-        owners = _owners_by_components(rings, hole_pts, ps) or _owners_by_rings(rings, hole_pts)
-    owned: list[list[tuple[tuple[int, int], list[_Directed]]]] = [[] for _ in shells]
-    for (lp, pts), owner in zip(holes, owners, strict=True):
-        owned[owner].append((_first_pointel(pts), lp))
+    owned: list[list[list[_Directed]]] = [[] for _ in shells]
+    for (lp, _key), owner in zip(holes, _owners(asm, shells, holes, ps), strict=True):
+        owned[owner].append(lp)  # in key order, as the holes are
     # every ring's coordinates, each shell followed by its holes, made into polygons in two vectorised calls
     coords: list[FloatArray] = []
     polygon_of: list[int] = []
-    for k, ((lp, _a2, _pts), hs) in enumerate(zip(shells, owned, strict=True)):
-        hs.sort(key=lambda h: h[0])
+    for k, ((lp, _a2, _key), hs) in enumerate(zip(shells, owned, strict=True)):
         coords.append(_ring_coords(lp, polylines, asm.loop))
-        coords.extend(_ring_coords(h, polylines, asm.loop) for _, h in hs)
+        coords.extend(_ring_coords(h, polylines, asm.loop) for h in hs)
         polygon_of.extend([k] * (len(hs) + 1))
     sizes = [c.shape[0] for c in coords]
     rings = shapely.linearrings(np.concatenate(coords), indices=np.repeat(np.arange(len(coords)), sizes))

@@ -582,19 +582,32 @@ def nested_rings(k: int) -> LabelMap:
 @given(st.one_of(label_maps(), st.integers(1, 6).map(nested_rings)))
 def test_hole_owners_from_components_are_the_owners_by_point_in_ring(lm: LabelMap) -> None:
     # The owner of each hole read from the label's 4-components must be the smallest shell that contains
-    # the hole, found by point-in-ring tests against every shell (the definition).
+    # the hole, found by point-in-ring tests against every shell (the definition); the rings' sort keys
+    # and first left pixels are checked against their pointels.
     import mrm.geometry.subdivision as sub
 
     cells = sub.cells_of(lm)
     _, _, points, area2 = sub._cell_points(lm, cells)
     asm = sub._Assembler(lm, cells, points, area2)
     pixels = sub._label_pixel_sets(lm)
+    left_of = {(1, 0): (0, 0), (0, 1): (-1, 0), (-1, 0): (-1, -1), (0, -1): (0, -1)}
     several = 0
     for v, ps in pixels.items():
         shells, holes = sub._rings(asm, v)
-        rings = [(a2, pts) for _, a2, pts in shells]
-        hole_pts = [pts for _, pts in holes]
-        assert sub._owners_by_components(rings, hole_pts, ps) == sub._owners_by_rings(rings, hole_pts)
+        for lp, key in [(s[0], s[2]) for s in shells] + holes:
+            pts = asm.loop_points(lp)
+            low = min((int(y), int(x)) for x, y in pts.tolist())
+            assert divmod(key, asm.key_w) == (low[0] - asm.key_y0, low[1] - asm.key_x0)
+            step = (int(pts[1, 0] - pts[0, 0]), int(pts[1, 1] - pts[0, 1]))
+            o = left_of[step]
+            assert asm.first_left[lp[0]] == (int(pts[0, 0]) + o[0], int(pts[0, 1]) + o[1])
+            assert asm.first_left[lp[0]] in ps  # the label is on the left
+        rings = [(a2, asm.loop_points(lp)) for lp, a2, _ in shells]
+        hole_pts = [asm.loop_points(lp) for lp, _ in holes]
+        by_rings = sub._owners_by_rings(rings, hole_pts)
+        first = [asm.first_left[s[0][0]] for s in shells], [asm.first_left[h[0][0]] for h in holes]
+        assert sub._owners_by_components(*first, ps) == by_rings
+        assert sub._owners(asm, shells, holes, ps) == by_rings
         several += len(shells) > 1 and bool(holes)
     assume(several)
 
