@@ -118,6 +118,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -132,6 +133,7 @@ from mrm.geometry.labeling import label as label_components
 from mrm.geometry.segmentation import standard_dss_reach_table
 from mrm.reps.cells import Cells, cells_of
 from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.reps.region import paused_gc
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -629,6 +631,28 @@ def _point_in_ring(ring: IntArray, x: int, y: int) -> bool:
     return bool(np.count_nonzero(hit) % 2)
 
 
+def _code_of_step(d: IntArray) -> IntArray:
+    """Freeman codes (0 = E, 1 = N, 2 = W, 3 = S) of unit steps, an (n, 2) array."""
+    return np.asarray(_CODE_OF_STEP[d[:, 0] + 1, d[:, 1] + 1], dtype=np.int64)
+
+
+#: _CODE_OF_STEP[dx + 1, dy + 1] is the code of the unit step (dx, dy).
+_CODE_OF_STEP = np.array([[-1, 2, -1], [3, -1, 1], [-1, 0, -1]], dtype=np.int64)
+
+
+class _CellPoints(NamedTuple):
+    """The pointels of all 1-cells, in one array and per cell, and twice each cell's signed area.
+
+    Cell c is rows ``off[c]`` … ``off[c + 1] − 1`` of ``all``; ``each[c]`` is that view (``chain.points()``);
+    ``area2`` is taken in the label map's array coordinates.
+    """
+
+    all: IntArray
+    off: IntArray
+    each: list[IntArray]
+    area2: list[int]
+
+
 #: A directed 1-cell: 2·c for 1-cell c as it runs (its left label on the left), 2·c + 1 for it reversed.
 _Directed = int
 
@@ -636,11 +660,11 @@ _Directed = int
 class _Assembler:
     """Rings of each label from the directed 1-cells, with the (4, 8) rule at 0-cells."""
 
-    def __init__(self, lm: LabelMap, cells: Cells, points: Sequence[IntArray], area2: Sequence[int]) -> None:
+    def __init__(self, lm: LabelMap, cells: Cells, cp: _CellPoints) -> None:
         zero = {z.point for z in cells.zero_cells}
         ones = cells.one_cells
-        self.points = points
-        self.area2 = area2
+        self.points = cp.each
+        self.area2 = cp.area2
         self.loop = [c.chain.start not in zero for c in ones]  # a ring with no 0-cell on it
         self.by_label: dict[int, list[_Directed]] = {}
         for ci, c in enumerate(ones):
@@ -653,11 +677,11 @@ class _Assembler:
         self.next: list[_Directed] = [-1] * (2 * m)
         if m == 0:
             return
-        first = np.array([p[0] for p in points], dtype=np.int64)
-        last = np.array([p[-1] for p in points], dtype=np.int64)
-        c0 = np.array([int(c.chain.codes[0]) for c in ones], dtype=np.int64)
-        c1 = np.array([int(c.chain.codes[-1]) for c in ones], dtype=np.int64)
-        lab = np.array([(c.left, c.right) for c in ones], dtype=np.int64).reshape(-1)
+        head, tail = cp.off[:-1], cp.off[1:] - 1
+        first, last = cp.all[head], cp.all[tail]
+        c0 = _code_of_step(cp.all[head + 1] - first)
+        c1 = _code_of_step(last - cp.all[tail - 1])
+        lab = np.fromiter((v for c in ones for v in (c.left, c.right)), dtype=np.int64, count=2 * m)
         # per directed cell (interleaved forward, backward): its start, its end t and the code k entering t
         start = np.stack([first, last], axis=1).reshape(-1, 2)
         end = np.stack([last, first], axis=1).reshape(-1, 2)
@@ -668,12 +692,11 @@ class _Assembler:
         left = np.asarray(_LEFT_PIXEL, dtype=np.int64)
         self.first_left = [(a, b) for a, b in (start + left[leave]).tolist()]
         # the lowest-leftmost pointel of each cell as one integer: a ring's is the least over its cells
-        cat = np.concatenate(list(points))
+        cat = cp.all
         self.key_x0, self.key_y0 = int(cat[:, 0].min()), int(cat[:, 1].min())
         self.key_w = int(cat[:, 0].max()) - self.key_x0 + 1
         key = (cat[:, 1] - self.key_y0) * self.key_w + (cat[:, 0] - self.key_x0)
-        lens = np.fromiter((p.shape[0] for p in points), dtype=np.int64, count=m)
-        self.cell_key = np.minimum.reduceat(key, np.cumsum(lens) - lens).tolist()
+        self.cell_key = np.minimum.reduceat(key, head).tolist()
         # the (4, 8) rule at t: turn left when the pixel ahead on the left is not the label, right when the
         # one ahead on the right is, else go straight (the labels read from the padded array, 0 outside)
         pad = np.pad(lm.labels, 1)
@@ -929,12 +952,18 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
         For any model other than ``gauss``.
     """
     _check_model(model)
+    with paused_gc():  # tens of thousands of small acyclic tuples and lists: no cycle to collect
+        return _subdivide(lm)
+
+
+def _subdivide(lm: LabelMap) -> Subdivision:
     cells = cells_of(lm)
     zero = {z.point for z in cells.zero_cells}
-    pts_all, off, points, area2 = _cell_points(lm, cells)
+    cp = _cell_points(lm, cells)
+    points = cp.each
     closed = [c.chain.start not in zero for c in cells.one_cells]
-    polylines, stair = _polylines(pts_all, off, points, closed)
-    asm = _Assembler(lm, cells, points, area2)
+    polylines, stair = _polylines(cp.all, cp.off, points, closed)
+    asm = _Assembler(lm, cells, cp)
     pixels = _label_pixel_sets(lm)
     labels = list(pixels)
     touching: dict[int, list[int]] = {v: [] for v in labels}
@@ -964,7 +993,7 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     return Subdivision(dict(sorted(parts.items())), tuple(polylines), tuple(stair), cells)
 
 
-def _cell_points(lm: LabelMap, cells: Cells) -> tuple[IntArray, IntArray, list[IntArray], list[int]]:
+def _cell_points(lm: LabelMap, cells: Cells) -> _CellPoints:
     """The pointels of every 1-cell (``chain.points()``) and twice its signed area, in one pass.
 
     Returns all the pointels, the offsets of each cell's rows in them, the per-cell views and the areas.
@@ -974,7 +1003,7 @@ def _cell_points(lm: LabelMap, cells: Cells) -> tuple[IntArray, IntArray, list[I
     """
     ones = cells.one_cells
     if not ones:
-        return np.zeros((0, 2), dtype=np.int64), np.zeros(1, dtype=np.int64), [], []
+        return _CellPoints(np.zeros((0, 2), dtype=np.int64), np.zeros(1, dtype=np.int64), [], [])
     lens = np.fromiter((len(c.chain.codes) for c in ones), dtype=np.int64, count=len(ones)) + 1
     off = np.zeros(len(ones) + 1, dtype=np.int64)
     np.cumsum(lens, out=off[1:])
@@ -992,7 +1021,7 @@ def _cell_points(lm: LabelMap, cells: Cells) -> tuple[IntArray, IntArray, list[I
     cross[off[1:-1] - 1] = 0  # from the last point of one cell to the first of the next
     area2 = np.add.reduceat(cross, off[:-1]) if cross.size else np.zeros(len(ones), dtype=np.int64)
     bounds = off.tolist()
-    return pts, off, [pts[a:b] for a, b in itertools.pairwise(bounds)], area2.tolist()
+    return _CellPoints(pts, off, [pts[a:b] for a, b in itertools.pairwise(bounds)], area2.tolist())
 
 
 def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:

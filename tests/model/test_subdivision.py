@@ -587,8 +587,7 @@ def test_hole_owners_from_components_are_the_owners_by_point_in_ring(lm: LabelMa
     import mrm.geometry.subdivision as sub
 
     cells = sub.cells_of(lm)
-    _, _, points, area2 = sub._cell_points(lm, cells)
-    asm = sub._Assembler(lm, cells, points, area2)
+    asm = sub._Assembler(lm, cells, sub._cell_points(lm, cells))
     pixels = sub._label_pixel_sets(lm)
     left_of = {(1, 0): (0, 0), (0, 1): (-1, 0), (-1, 0): (-1, -1), (0, -1): (0, -1)}
     several = 0
