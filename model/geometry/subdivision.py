@@ -909,25 +909,19 @@ def _polylines(
     sh = e[near]
     plane[near, 0] = np.ldexp((x[near] + (ox[near] << sh)).astype(np.float64), -(sh + 1))
     plane[near, 1] = np.ldexp((y[near] + (oy[near] << sh)).astype(np.float64), -(sh + 1))
-    bad = set(np.repeat(np.arange(m), count)[far].tolist())
-    ends = np.cumsum(count).tolist()
-    polylines: list[FloatArray] = []
-    stair: list[bool] = []
-    for i, s in enumerate(status.tolist()):
-        if s == K.FALLBACK:
-            ch = _Chain(points[i], closed[i])
-            vs, is_stair = _polyline(ch)
-            polylines.append(_to_plane(ch, vs))
-            stair.append(is_stair)
-            continue
-        k0 = ends[i] - int(count[i])
-        if i in bad:
-            ch = _Chain(points[i], closed[i])
-            rows = verts[off[i] : off[i] + count[i]].tolist()
-            polylines.append(_to_plane(ch, [(a, b, c) for a, b, c in rows]))
-        else:
-            polylines.append(plane[k0 : ends[i]])
-        stair.append(s == K.STAIRCASE)
+    ends = np.zeros(m + 1, dtype=np.int64)
+    np.cumsum(count, out=ends[1:])
+    bounds = ends.tolist()
+    polylines: list[FloatArray] = [plane[a:b] for a, b in itertools.pairwise(bounds)]
+    stair = (status == K.STAIRCASE).tolist()
+    for i in set(np.repeat(np.arange(m), count)[far].tolist()):  # far from the origin: exact or refused
+        ch = _Chain(points[i], closed[i])
+        rows = verts[off[i] : off[i] + count[i]].tolist()
+        polylines[i] = _to_plane(ch, [(a, b, c) for a, b, c in rows])
+    for i in np.flatnonzero(status == K.FALLBACK).tolist():  # left by the kernel: the Python definition
+        ch = _Chain(points[i], closed[i])
+        vs, stair[i] = _polyline(ch)
+        polylines[i] = _to_plane(ch, vs)
     return polylines, stair
 
 
