@@ -11,7 +11,7 @@ The operations are the paper's (DESIGN §5–§8); each wrapper calls the one im
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -191,6 +191,20 @@ def segment(
     raise ParameterError(f"mode must be 'greedy' or 'maximal', got {mode!r}")
 
 
+def _image_of_pixels(
+    operation: Callable[..., Any], obj: Any, param: object, center: object, model: str, limit: int | None
+) -> PixelSet:
+    """The pixels of a similarity operation of :mod:`mrm.ops` (DSS_α, dR_θ) on obj read as pixels.
+
+    A geometry E stands for D(E); ``operation(pixels, param, center, model, limit=…)`` returns an outcome.
+    """
+    from mrm.ops.outcome import discrete_of
+
+    ps = discrete_of(_as_object(obj), model, limit)
+    out: PixelSet = operation(ps, param, center, model, limit=limit).result
+    return out
+
+
 def scale(
     obj: Any,
     alpha: object,
@@ -225,12 +239,9 @@ def scale(
     >>> mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model="gauss") == mrm.PixelSet.box(-1, -1, 6, 6)
     True
     """
-    from mrm.ops.outcome import discrete_of
     from mrm.ops.scaling import discrete_smooth_scaling
 
-    ps = discrete_of(_as_object(obj), model, limit)
-    out: PixelSet = discrete_smooth_scaling(ps, alpha, center, model, limit=limit).result
-    return out
+    return _image_of_pixels(discrete_smooth_scaling, obj, alpha, center, model, limit)
 
 
 def rotate(
@@ -262,12 +273,9 @@ def rotate(
     >>> sorted(mrm.rotate(mrm.PixelSet.box(0, 0, 2, 0), 90, model="gauss"))
     [(0, 0), (0, 1), (0, 2)]
     """
-    from mrm.ops.outcome import discrete_of
     from mrm.ops.rotation import discrete_rotation
 
-    ps = discrete_of(_as_object(obj), model, limit)
-    out: PixelSet = discrete_rotation(ps, angle, center, model, limit=limit).result
-    return out
+    return _image_of_pixels(discrete_rotation, obj, angle, center, model, limit)
 
 
 def simplify(

@@ -39,6 +39,7 @@ KERNEL_MODULES = (
     "geometry/_rk_repair.py",
     "geometry/_rk_straighten.py",
     "geometry/_dual_kernels.py",
+    "geometry/_subdivision_kernels.py",
     "geometry/rational_discretize.py",
     "io/png_stream.py",
     "geometry/cracks.py",
@@ -185,6 +186,14 @@ def _step_reconstruct() -> None:
     for model in MODELS:
         for ps in _pixel_sets():
             reconstruct(ps, model)  # type: ignore[arg-type]
+    import numpy as np
+
+    from mrm.geometry.subdivision import reconstruct_label_map
+    from mrm.reps.pixels import LabelMap
+
+    yy, xx = np.mgrid[0:14, 0:14]
+    two = ((xx - 6.5) ** 2 + (yy - 6.5) ** 2 <= 36).astype(np.int32) + (xx + 2 * yy > 14)
+    reconstruct_label_map(LabelMap(two.astype(np.int32)))  # the subdivision's polyline kernels
 
 
 def _step_regions() -> None:

@@ -106,6 +106,11 @@ Every polyline is verified exactly (:func:`_verify_chain`) and replaced by the c
 when it fails or has no fewer vertices — a local fallback, never a global one. The assembled parts are
 checked once more (exact discretization, validity); a part that fails (none is known) has all its 1-cells
 set back to the staircase, which the proof above covers as well.
+
+The Python functions below are the definition of the construction. The polylines of all 1-cells are built by
+one compiled kernel that follows them step for step on int64 with every product checked
+(:mod:`mrm.geometry._subdivision_kernels`, docs/adr/0024): a chain whose numbers would leave the checked
+range is built by the Python functions on Python integers, so the result is the same either way.
 """
 
 from __future__ import annotations
@@ -113,6 +118,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -120,11 +126,14 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
-from mrm.geometry.discretize import discretize
+from mrm.geometry.cracks import DX, DY
+from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.labeling import group_by_label
+from mrm.geometry.labeling import label as label_components
 from mrm.geometry.segmentation import standard_dss_reach_table
 from mrm.reps.cells import Cells, cells_of
 from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.reps.region import paused_gc
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -134,7 +143,6 @@ IntArray = npt.NDArray[np.int64]
 #: A dyadic point of Q coordinates (x / 2^e, y / 2^e), as (x, y, e) with the smallest e.
 Vertex = tuple[int, int, int]
 
-_STEP = ((1, 0), (0, 1), (-1, 0), (0, -1))
 # the pixel on the left of a linel leaving pointel (i, j) with code k is (i, j) + _LEFT_PIXEL[k]
 _LEFT_PIXEL = ((0, 0), (-1, 0), (-1, -1), (0, -1))
 _MAX_SNAP_BITS = 60
@@ -161,7 +169,7 @@ class _Chain:
     Coordinates are Q coordinates relative to the first pointel (``origin``), so numbers stay small.
     """
 
-    __slots__ = ("closed", "gl", "gr", "index", "n", "origin", "params", "pts", "reach")
+    __slots__ = ("closed", "gl", "gr", "index", "n", "origin", "params", "pts", "reach", "turns")
 
     def __init__(self, pts: IntArray, closed: bool) -> None:
         self.closed = closed
@@ -169,6 +177,23 @@ class _Chain:
         self.origin = (int(pts[0, 0]), int(pts[0, 1]))
         loc = pts - pts[0]
         self.pts: list[tuple[int, int]] = list(map(tuple, loc.tolist()))
+        # the turning pointels: where the linel before differs from the linel after (cyclically on a ring)
+        d = np.diff(loc, axis=0)
+        if closed:
+            turn = np.flatnonzero(np.any(d != np.roll(d, 1, axis=0), axis=1))
+        else:
+            turn = np.flatnonzero(np.any(d[1:] != d[:-1], axis=1)) + 1
+        self.turns: list[int] = turn.tolist()
+
+    def build(self) -> None:
+        """Compute the gates, the piece index and the DSS reach table (only the chains that need them).
+
+        Most 1-cells of a big label map are one or two linels or straight, and :func:`_polyline` returns
+        their staircase without a corridor; building it for them cost more than everything else.
+        """
+        if hasattr(self, "reach"):
+            return
+        loc = np.asarray(self.pts, dtype=np.int64)
         d = np.diff(loc, axis=0)
         mid = 2 * loc[:-1] + d
         nrm = np.stack([-d[:, 1], d[:, 0]], axis=1)
@@ -176,7 +201,7 @@ class _Chain:
         self.gl: list[tuple[int, int]] = list(map(tuple, (mid + nrm).tolist()))
         self.gr: list[tuple[int, int]] = list(map(tuple, (mid - nrm).tolist()))
         # pointel -> position; the end points of an open chain are 0-cells, not pieces of this chain
-        inner = range(self.n) if closed else range(1, self.n)
+        inner = range(self.n) if self.closed else range(1, self.n)
         self.index = {self.pts[k]: k for k in inner}
         if self.n >= 2:
             reach, params = standard_dss_reach_table(loc, closed=False)
@@ -215,18 +240,8 @@ class _Chain:
 
     def staircase(self) -> list[tuple[Vertex, int]]:
         """The crack chain itself: its end points and turning pointels, with their positions."""
-        pts, n = self.pts, self.n
-        out: list[tuple[Vertex, int]] = []
-        for k in range(n + 1):
-            if k in (0, n) and not self.closed:
-                out.append((self.q(k), k))
-                continue
-            if k == n:
-                continue
-            a, b, c = pts[k - 1] if k else pts[n - 1], pts[k], pts[k + 1]
-            if (b[0] - a[0], b[1] - a[1]) != (c[0] - b[0], c[1] - b[1]):
-                out.append((self.q(k), k))
-        return out
+        ks = self.turns if self.closed else [0, *self.turns, self.n]
+        return [(self.q(k), k) for k in ks]
 
 
 class _Cone:
@@ -444,6 +459,7 @@ def _polyline(ch: _Chain) -> tuple[list[Vertex], bool]:
     stair = [v for v, _ in ch.staircase()]
     if ch.n <= 2 or len(stair) <= 2:  # nothing to gain: one or two linels, or a straight chain
         return stair, True
+    ch.build()
     verts = _greedy(ch)
     if verts is None:
         return stair, True
@@ -532,12 +548,6 @@ def _to_plane(ch: _Chain, verts: Sequence[Vertex]) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class _Directed:
-    cell: int
-    forward: bool
-
-
-@dataclass(frozen=True)
 class Subdivision:
     """The joint reconstruction of a label map (:func:`subdivide`).
 
@@ -582,25 +592,6 @@ def _check_model(model: str) -> None:
     raise ParameterError(f"unknown model {model!r}; expected 'gauss'")
 
 
-class _Labels:
-    """Label lookup with the background (0) outside the array."""
-
-    def __init__(self, lm: LabelMap) -> None:
-        self.pad = np.pad(lm.labels, 1)
-        self.x0, self.y0 = lm.origin[0] - 1, lm.origin[1] - 1
-
-    def at(self, x: int, y: int) -> int:
-        r, c = y - self.y0, x - self.x0
-        if 0 <= r < self.pad.shape[0] and 0 <= c < self.pad.shape[1]:
-            return int(self.pad[r, c])
-        return 0
-
-
-def _left_pixel(p: tuple[int, int], code: int) -> tuple[int, int]:
-    o = _LEFT_PIXEL[code]
-    return p[0] + o[0], p[1] + o[1]
-
-
 def _split(loop: list[tuple[_Directed, tuple[int, int]]]) -> list[list[_Directed]]:
     """Split a closed walk of directed cells (each with its start pointel) where it passes a 0-cell twice."""
     out: list[list[_Directed]] = []
@@ -640,64 +631,106 @@ def _point_in_ring(ring: IntArray, x: int, y: int) -> bool:
     return bool(np.count_nonzero(hit) % 2)
 
 
+def _code_of_step(d: IntArray) -> IntArray:
+    """Freeman codes (0 = E, 1 = N, 2 = W, 3 = S) of unit steps, an (n, 2) array."""
+    return np.asarray(_CODE_OF_STEP[d[:, 0] + 1, d[:, 1] + 1], dtype=np.int64)
+
+
+#: _CODE_OF_STEP[dx + 1, dy + 1] is the code of the unit step (dx, dy).
+_CODE_OF_STEP = np.array([[-1, 2, -1], [3, -1, 1], [-1, 0, -1]], dtype=np.int64)
+
+
+class _CellPoints(NamedTuple):
+    """The pointels of all 1-cells, in one array and per cell, and twice each cell's signed area.
+
+    Cell c is rows ``off[c]`` … ``off[c + 1] − 1`` of ``all``; ``each[c]`` is that view (``chain.points()``);
+    ``area2`` is taken in the label map's array coordinates.
+    """
+
+    all: IntArray
+    off: IntArray
+    each: list[IntArray]
+    area2: list[int]
+
+
+#: A directed 1-cell: 2·c for 1-cell c as it runs (its left label on the left), 2·c + 1 for it reversed.
+_Directed = int
+
+
 class _Assembler:
     """Rings of each label from the directed 1-cells, with the (4, 8) rule at 0-cells."""
 
-    def __init__(self, lm: LabelMap, cells: Cells) -> None:
-        self.labels = _Labels(lm)
-        self.cells = cells
+    def __init__(self, lm: LabelMap, cells: Cells, cp: _CellPoints) -> None:
         zero = {z.point for z in cells.zero_cells}
-        self.points: list[IntArray] = []
-        self.area2: list[int] = []
-        self.loop: list[bool] = []  # a ring with no 0-cell on it
-        self.out: dict[tuple[tuple[int, int], int, int], _Directed] = {}  # (pointel, code, label)
+        ones = cells.one_cells
+        self.points = cp.each
+        self.area2 = cp.area2
+        self.loop = [c.chain.start not in zero for c in ones]  # a ring with no 0-cell on it
         self.by_label: dict[int, list[_Directed]] = {}
-        for ci, c in enumerate(cells.one_cells):
-            pts = c.chain.points()
-            self.points.append(pts)
-            x, y = pts[:, 0], pts[:, 1]
-            self.area2.append(int(np.sum(x[:-1] * y[1:] - x[1:] * y[:-1])))
-            loop = c.chain.start not in zero
-            self.loop.append(loop)
-            codes = c.chain.codes
-            fwd, bwd = _Directed(ci, True), _Directed(ci, False)
-            self.by_label.setdefault(c.left, []).append(fwd)
-            self.by_label.setdefault(c.right, []).append(bwd)
-            if not loop:
-                end = (int(pts[-1, 0]), int(pts[-1, 1]))
-                self.out[(c.chain.start, int(codes[0]), c.left)] = fwd
-                self.out[(end, (int(codes[-1]) + 2) % 4, c.right)] = bwd
+        for ci, c in enumerate(ones):
+            self.by_label.setdefault(c.left, []).append(2 * ci)
+            self.by_label.setdefault(c.right, []).append(2 * ci + 1)
+        m = len(ones)
+        self.start: list[tuple[int, int]] = []
+        self.first_left: list[tuple[int, int]] = []
+        self.cell_key: list[int] = []
+        self.next: list[_Directed] = [-1] * (2 * m)
+        if m == 0:
+            return
+        head, tail = cp.off[:-1], cp.off[1:] - 1
+        first, last = cp.all[head], cp.all[tail]
+        c0 = _code_of_step(cp.all[head + 1] - first)
+        c1 = _code_of_step(last - cp.all[tail - 1])
+        lab = np.fromiter((v for c in ones for v in (c.left, c.right)), dtype=np.int64, count=2 * m)
+        # per directed cell (interleaved forward, backward): its start, its end t and the code k entering t
+        start = np.stack([first, last], axis=1).reshape(-1, 2)
+        end = np.stack([last, first], axis=1).reshape(-1, 2)
+        leave = np.stack([c0, (c1 + 2) % 4], axis=1).reshape(-1)
+        k = np.stack([c1, (c0 + 2) % 4], axis=1).reshape(-1)
+        self.start = [(a, b) for a, b in start.tolist()]
+        # the pixel left of each directed cell's first linel (all left pixels of a ring share a 4-component)
+        left = np.asarray(_LEFT_PIXEL, dtype=np.int64)
+        self.first_left = [(a, b) for a, b in (start + left[leave]).tolist()]
+        # the lowest-leftmost pointel of each cell as one integer: a ring's is the least over its cells
+        cat = cp.all
+        self.key_x0, self.key_y0 = int(cat[:, 0].min()), int(cat[:, 1].min())
+        self.key_w = int(cat[:, 0].max()) - self.key_x0 + 1
+        key = (cat[:, 1] - self.key_y0) * self.key_w + (cat[:, 0] - self.key_x0)
+        self.cell_key = np.minimum.reduceat(key, head).tolist()
+        # the (4, 8) rule at t: turn left when the pixel ahead on the left is not the label, right when the
+        # one ahead on the right is, else go straight (the labels read from the padded array, 0 outside)
+        pad = np.pad(lm.labels, 1)
+        x0, y0 = lm.origin[0] - 1, lm.origin[1] - 1
 
-    def start(self, d: _Directed) -> tuple[int, int]:
-        pts = self.points[d.cell]
-        r = pts[0] if d.forward else pts[-1]
-        return int(r[0]), int(r[1])
+        def label_at(px: IntArray, py: IntArray) -> IntArray:
+            r, c = py - y0, px - x0
+            inside = (r >= 0) & (r < pad.shape[0]) & (c >= 0) & (c < pad.shape[1])
+            out = np.zeros(px.shape, dtype=np.int64)
+            out[inside] = pad[r[inside], c[inside]]
+            return out
 
-    def _next(self, d: _Directed, label: int) -> _Directed:
-        pts = self.points[d.cell]
-        codes = self.cells.one_cells[d.cell].chain.codes
-        if d.forward:
-            t, k = (int(pts[-1, 0]), int(pts[-1, 1])), int(codes[-1])
-        else:
-            t, k = (int(pts[0, 0]), int(pts[0, 1])), (int(codes[0]) + 2) % 4
-        fl = _left_pixel(t, k)
-        fr = _left_pixel(t, (k + 3) % 4)
-        if self.labels.at(*fl) != label:
-            k2 = (k + 1) % 4
-        elif self.labels.at(*fr) == label:
-            k2 = (k + 3) % 4
-        else:
-            k2 = k
-        return self.out[(t, k2, label)]
+        fl = label_at(end[:, 0] + left[k, 0], end[:, 1] + left[k, 1])
+        kr = (k + 3) % 4
+        fr = label_at(end[:, 0] + left[kr, 0], end[:, 1] + left[kr, 1])
+        k2 = np.where(fl != lab, (k + 1) % 4, np.where(fr == lab, kr, k))
+        out: dict[tuple[tuple[int, int], int, int], _Directed] = {}  # (start pointel, code, label)
+        rows = [d for d in range(2 * m) if not self.loop[d >> 1]]
+        leave_l, lab_l, k2_l, end_l = leave.tolist(), lab.tolist(), k2.tolist(), end.tolist()
+        for d in rows:
+            out[(self.start[d], leave_l[d], lab_l[d])] = d
+        for d in rows:
+            t = end_l[d]
+            self.next[d] = out[((t[0], t[1]), k2_l[d], lab_l[d])]
 
     def loops(self, label: int) -> list[list[_Directed]]:
         """The boundary of a label as simple closed walks of directed cells (label on the left)."""
         used: set[_Directed] = set()
         out: list[list[_Directed]] = []
+        nxt, start = self.next, self.start
         for d in self.by_label.get(label, []):
             if d in used:
                 continue
-            if self.loop[d.cell]:
+            if self.loop[d >> 1]:
                 used.add(d)
                 out.append([d])
                 continue
@@ -705,68 +738,191 @@ class _Assembler:
             cur = d
             while cur not in used:
                 used.add(cur)
-                walk.append((cur, self.start(cur)))
-                cur = self._next(cur, label)
+                walk.append((cur, start[cur]))
+                cur = nxt[cur]
             out.extend(_split(walk))
         return out
 
+    def loop_key(self, loop: list[_Directed]) -> int:
+        """The ring's lowest-leftmost pointel (least y, then least x) as one integer, ordered alike."""
+        return min(self.cell_key[d >> 1] for d in loop)
+
     def loop_area2(self, loop: list[_Directed]) -> int:
-        return sum(self.area2[d.cell] if d.forward else -self.area2[d.cell] for d in loop)
+        return sum(-self.area2[d >> 1] if d & 1 else self.area2[d >> 1] for d in loop)
 
     def loop_points(self, loop: list[_Directed]) -> IntArray:
-        parts = [self.points[d.cell] if d.forward else self.points[d.cell][::-1] for d in loop]
+        parts = [self.points[d >> 1][::-1] if d & 1 else self.points[d >> 1] for d in loop]
         return np.concatenate([p[:-1] for p in parts])
 
 
 def _ring_coords(loop: list[_Directed], polylines: Sequence[FloatArray], loops: Sequence[bool]) -> FloatArray:
-    if len(loop) == 1 and loops[loop[0].cell]:
-        pl = polylines[loop[0].cell]
-        return pl if loop[0].forward else pl[::-1]
-    parts = [polylines[d.cell] if d.forward else polylines[d.cell][::-1] for d in loop]
+    if len(loop) == 1 and loops[loop[0] >> 1]:
+        pl = polylines[loop[0] >> 1]
+        return pl[::-1] if loop[0] & 1 else pl
+    parts = [polylines[d >> 1][::-1] if d & 1 else polylines[d >> 1] for d in loop]
     return np.concatenate([p[:-1] for p in parts])
 
 
-def _assemble_label(asm: _Assembler, label: int, polylines: Sequence[FloatArray]) -> Polygon | MultiPolygon:
-    loops = asm.loops(label)
-    shells: list[tuple[list[_Directed], int, IntArray]] = []
-    holes: list[tuple[list[_Directed], IntArray]] = []
-    for lp in loops:
+def _owners_by_rings(shells: Sequence[tuple[int, IntArray]], holes: Sequence[IntArray]) -> list[int]:
+    """For each hole ring, the shell of least area that contains it: point-in-ring against every shell.
+
+    The definition, O(holes × shells); :func:`_owners_by_components` gives the same answer from the pixels.
+    Shells are (twice their area, pointels), holes their pointels.
+    """
+    if len(shells) == 1:
+        return [0] * len(holes)
+    boxes = [(2 * pts.min(axis=0), 2 * pts.max(axis=0)) for _, pts in shells]
+    out = []
+    for pts in holes:
+        # a test point that lies on no other ring: the midpoint of the hole's first linel (doubled)
+        px, py = int(pts[0, 0] + pts[1 % len(pts), 0]), int(pts[0, 1] + pts[1 % len(pts), 1])
+        inside = [
+            k
+            for k, (lo, hi) in enumerate(boxes)
+            if lo[0] < px < hi[0] and lo[1] < py < hi[1] and _point_in_ring(2 * shells[k][1], px, py)
+        ]
+        if not inside:
+            raise AssertionError("a hole outside every shell")
+        out.append(min(inside, key=lambda k: shells[k][0]))
+    return out
+
+
+def _owners_by_components(
+    shells: Sequence[tuple[int, int]], holes: Sequence[tuple[int, int]], ps: PixelSet
+) -> list[int] | None:
+    """The owners of :func:`_owners_by_rings`, read from the 4-connected components of the label's pixels.
+
+    Every linel of a ring (a closed walk with the label on its left, split at repeated 0-cells) has its
+    left pixel 4-adjacent to, or equal to, the left pixel of the next one, so all the left pixels of a ring
+    lie in one 4-component C. A shell is the outer ring of its C; a hole ring of C faces a bounded
+    component of the complement of C, which C's shell encloses; any other shell enclosing that hole
+    encloses C and so is larger. So the owner is the shell of the component left of the hole's first
+    linel: O(pixels of the label's box) instead of O(holes × shells). Rings are given by the pixel left of
+    their first linel. None when the shells do not map one-to-one onto the components (never seen; the
+    caller then uses the definition).
+    """
+    comp, _ = label_components(ps.mask, 4)
+    x0, y0 = ps.origin
+
+    def component(pixel: tuple[int, int]) -> int:
+        r, c = pixel[1] - y0, pixel[0] - x0
+        if not (0 <= r < comp.shape[0] and 0 <= c < comp.shape[1]):
+            return 0
+        return int(comp[r, c])
+
+    shell_of: dict[int, int] = {}
+    for k, pixel in enumerate(shells):
+        cid = component(pixel)
+        if cid == 0 or cid in shell_of:
+            return None
+        shell_of[cid] = k
+    owners = [shell_of.get(component(pixel), -1) for pixel in holes]
+    return None if -1 in owners else owners
+
+
+_Shell = tuple[list[_Directed], int, int]  # walk, twice its area, key of its lowest-leftmost pointel
+_Hole = tuple[list[_Directed], int]  # walk, key
+
+
+def _rings(asm: _Assembler, label: int) -> tuple[list[_Shell], list[_Hole]]:
+    """The closed walks of a label split into shells (counter-clockwise) and holes, each sorted by key."""
+    shells: list[_Shell] = []
+    holes: list[_Hole] = []
+    for lp in asm.loops(label):
         a2 = asm.loop_area2(lp)
-        pts = asm.loop_points(lp)
         if a2 > 0:
-            shells.append((lp, a2, pts))
+            shells.append((lp, a2, asm.loop_key(lp)))
         else:
-            holes.append((lp, pts))
+            holes.append((lp, asm.loop_key(lp)))
+    shells.sort(key=lambda s: s[2])
+    holes.sort(key=lambda h: h[1])
+    return shells, holes
+
+
+def _owners(asm: _Assembler, shells: Sequence[_Shell], holes: Sequence[_Hole], ps: PixelSet) -> list[int]:
+    """The shell (index) that owns each hole."""
+    if len(shells) == 1 or not holes:
+        return [0] * len(holes)
+    first = asm.first_left
+    owners = _owners_by_components([first[s[0][0]] for s in shells], [first[h[0][0]] for h in holes], ps)
+    if owners is None:
+        owners = _owners_by_rings(
+            [(a2, asm.loop_points(lp)) for lp, a2, _ in shells], [asm.loop_points(lp) for lp, _ in holes]
+        )
+    return owners
+
+
+def _assemble_label(
+    asm: _Assembler, label: int, polylines: Sequence[FloatArray], ps: PixelSet
+) -> Polygon | MultiPolygon:
+    shells, holes = _rings(asm, label)
     if not shells:
         return Polygon()
+    owned: list[list[list[_Directed]]] = [[] for _ in shells]
+    for (lp, _key), owner in zip(holes, _owners(asm, shells, holes, ps), strict=True):
+        owned[owner].append(lp)  # in key order, as the holes are
+    # every ring's coordinates, each shell followed by its holes, made into polygons in two vectorised calls
+    coords: list[FloatArray] = []
+    polygon_of: list[int] = []
+    for k, ((lp, _a2, _key), hs) in enumerate(zip(shells, owned, strict=True)):
+        coords.append(_ring_coords(lp, polylines, asm.loop))
+        coords.extend(_ring_coords(h, polylines, asm.loop) for h in hs)
+        polygon_of.extend([k] * (len(hs) + 1))
+    sizes = [c.shape[0] for c in coords]
+    rings = shapely.linearrings(np.concatenate(coords), indices=np.repeat(np.arange(len(coords)), sizes))
+    polys = shapely.polygons(rings, indices=polygon_of)
+    return polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
 
-    def first_pointel(pts: IntArray) -> tuple[int, int]:
-        k = int(np.lexsort((pts[:, 0], pts[:, 1]))[0])
-        return int(pts[k, 1]), int(pts[k, 0])
 
-    shells.sort(key=lambda s: first_pointel(s[2]))
-    owned: list[list[tuple[tuple[int, int], list[_Directed]]]] = [[] for _ in shells]
-    boxes = [(2 * s[2].min(axis=0), 2 * s[2].max(axis=0)) for s in shells] if len(shells) > 1 else []
-    for lp, pts in holes:
-        owner = 0
-        if len(shells) > 1:
-            # a test point that lies on no other ring: the midpoint of the hole's first linel (doubled)
-            px, py = int(pts[0, 0] + pts[1 % len(pts), 0]), int(pts[0, 1] + pts[1 % len(pts), 1])
-            inside = [
-                k
-                for k, (lo, hi) in enumerate(boxes)
-                if lo[0] < px < hi[0] and lo[1] < py < hi[1] and _point_in_ring(2 * shells[k][2], px, py)
-            ]
-            if not inside:
-                raise AssertionError("a hole outside every shell")
-            owner = min(inside, key=lambda k: shells[k][1])
-        owned[owner].append((first_pointel(pts), lp))
-    polys = []
-    for (lp, _a2, _pts), hs in zip(shells, owned, strict=True):
-        hs.sort(key=lambda h: h[0])
-        shell = _ring_coords(lp, polylines, asm.loop)
-        polys.append(Polygon(shell, [_ring_coords(h, polylines, asm.loop) for _, h in hs]))
-    return polys[0] if len(polys) == 1 else MultiPolygon(polys)
+#: Build the polylines with the compiled kernels (:mod:`mrm.geometry._subdivision_kernels`); the Python
+#: functions above are their definition, used for the chains the kernels leave (int64 overflow) and by tests
+#: that replace a step of the construction.
+_KERNEL = True
+
+
+def _polylines(
+    pts_all: IntArray, off: IntArray, points: Sequence[IntArray], closed: Sequence[bool]
+) -> tuple[list[FloatArray], list[bool]]:
+    """γ_c for every 1-cell as float64 plane coordinates, and whether each is the staircase."""
+    m = len(points)
+    if not _KERNEL or m == 0:
+        chains = [_Chain(p, c) for p, c in zip(points, closed, strict=True)]
+        done = [_polyline(ch) for ch in chains]
+        return [_to_plane(ch, v) for ch, (v, _) in zip(chains, done, strict=True)], [s for _, s in done]
+    from mrm.geometry import _subdivision_kernels as K
+
+    lens = np.diff(off)
+    starts = pts_all[off[:-1]]
+    loc = pts_all - np.repeat(starts, lens, axis=0)
+    status, count, verts = K.polylines_kernel(loc, off, np.asarray(closed, dtype=np.bool_), K.LIMIT)
+    rank = np.arange(pts_all.shape[0], dtype=np.int64) - np.repeat(off[:-1], lens)
+    used = rank < np.repeat(count, lens)
+    x, y, e = verts[used, 0], verts[used, 1], verts[used, 2]
+    # X = (Q − 1) / 2 in plane coordinates, Q = v / 2^e + 2·origin: exact in int64 and float64 while
+    # |x + (2·ox − 1)·2^e| < 2^53; a chain beyond that goes through _to_plane (which refuses with a message)
+    ox = np.repeat(2 * starts[:, 0] - 1, count)
+    oy = np.repeat(2 * starts[:, 1] - 1, count)
+    scale = np.exp2(e.astype(np.float64))
+    far = (np.abs(ox) * scale + np.abs(x) >= 2.0**52) | (np.abs(oy) * scale + np.abs(y) >= 2.0**52)
+    plane = np.empty((x.size, 2), dtype=np.float64)
+    near = ~far
+    sh = e[near]
+    plane[near, 0] = np.ldexp((x[near] + (ox[near] << sh)).astype(np.float64), -(sh + 1))
+    plane[near, 1] = np.ldexp((y[near] + (oy[near] << sh)).astype(np.float64), -(sh + 1))
+    ends = np.zeros(m + 1, dtype=np.int64)
+    np.cumsum(count, out=ends[1:])
+    bounds = ends.tolist()
+    polylines: list[FloatArray] = [plane[a:b] for a, b in itertools.pairwise(bounds)]
+    stair = (status == K.STAIRCASE).tolist()
+    for i in set(np.repeat(np.arange(m), count)[far].tolist()):  # far from the origin: exact or refused
+        ch = _Chain(points[i], closed[i])
+        rows = verts[off[i] : off[i] + count[i]].tolist()
+        polylines[i] = _to_plane(ch, [(a, b, c) for a, b, c in rows])
+    for i in np.flatnonzero(status == K.FALLBACK).tolist():  # left by the kernel: the Python definition
+        ch = _Chain(points[i], closed[i])
+        vs, stair[i] = _polyline(ch)
+        polylines[i] = _to_plane(ch, vs)
+    return polylines, stair
 
 
 def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
@@ -790,19 +946,18 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
         For any model other than ``gauss``.
     """
     _check_model(model)
+    with paused_gc():  # tens of thousands of small acyclic tuples and lists: no cycle to collect
+        return _subdivide(lm)
+
+
+def _subdivide(lm: LabelMap) -> Subdivision:
     cells = cells_of(lm)
     zero = {z.point for z in cells.zero_cells}
-    chains: list[_Chain] = []
-    polylines: list[FloatArray] = []
-    stair: list[bool] = []
-    for c in cells.one_cells:
-        pts = c.chain.points()
-        ch = _Chain(pts, closed=c.chain.start not in zero)
-        chains.append(ch)
-        verts, is_stair = _polyline(ch)
-        polylines.append(_to_plane(ch, verts))
-        stair.append(is_stair)
-    asm = _Assembler(lm, cells)
+    cp = _cell_points(lm, cells)
+    points = cp.each
+    closed = [c.chain.start not in zero for c in cells.one_cells]
+    polylines, stair = _polylines(cp.all, cp.off, points, closed)
+    asm = _Assembler(lm, cells, cp)
     pixels = _label_pixel_sets(lm)
     labels = list(pixels)
     touching: dict[int, list[int]] = {v: [] for v in labels}
@@ -815,7 +970,7 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     while todo:
         redo: set[int] = set()
         for v in todo:
-            geom = _assemble_label(asm, v, polylines)
+            geom = _assemble_label(asm, v, polylines, pixels[v])
             parts[v] = geom
             if _part_ok(geom, pixels[v]):
                 continue
@@ -824,21 +979,70 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
             for ci in touching[v]:
                 if not stair[ci]:
                     stair[ci] = True
-                    polylines[ci] = _to_plane(chains[ci], [v_ for v_, _ in chains[ci].staircase()])
+                    ch = _Chain(points[ci], closed[ci])
+                    polylines[ci] = _to_plane(ch, [v_ for v_, _ in ch.staircase()])
                     c = cells.one_cells[ci]
                     redo.update(w for w in (c.left, c.right) if w != 0)
         todo = sorted(redo)
     return Subdivision(dict(sorted(parts.items())), tuple(polylines), tuple(stair), cells)
 
 
+def _cell_points(lm: LabelMap, cells: Cells) -> _CellPoints:
+    """The pointels of every 1-cell (``chain.points()``) and twice its signed area, in one pass.
+
+    Returns all the pointels, the offsets of each cell's rows in them, the per-cell views and the areas.
+
+    The area of a 1-cell is taken in the label map's array coordinates: only its sums around closed walks are
+    used, which do not depend on the origin, and the numbers stay small.
+    """
+    ones = cells.one_cells
+    if not ones:
+        return _CellPoints(np.zeros((0, 2), dtype=np.int64), np.zeros(1, dtype=np.int64), [], [])
+    lens = np.fromiter((len(c.chain.codes) for c in ones), dtype=np.int64, count=len(ones)) + 1
+    off = np.zeros(len(ones) + 1, dtype=np.int64)
+    np.cumsum(lens, out=off[1:])
+    codes = np.frombuffer("".join(c.chain.codes for c in ones).encode("ascii"), dtype=np.uint8) - np.uint8(48)
+    steps = np.zeros((int(off[-1]), 2), dtype=np.int64)
+    linel = np.ones(int(off[-1]), dtype=bool)
+    linel[off[:-1]] = False  # the first point of each cell is its start, not a step
+    steps[linel, 0] = DX[codes]
+    steps[linel, 1] = DY[codes]
+    walk = np.cumsum(steps, axis=0)
+    starts = np.array([c.chain.start for c in ones], dtype=np.int64)
+    pts = walk + np.repeat(starts - walk[off[:-1]], lens, axis=0)
+    rel = pts - np.asarray(lm.origin, dtype=np.int64)
+    cross = rel[:-1, 0] * rel[1:, 1] - rel[1:, 0] * rel[:-1, 1]
+    cross[off[1:-1] - 1] = 0  # from the last point of one cell to the first of the next
+    area2 = np.add.reduceat(cross, off[:-1]) if cross.size else np.zeros(len(ones), dtype=np.int64)
+    bounds = off.tolist()
+    return _CellPoints(pts, off, [pts[a:b] for a, b in itertools.pairwise(bounds)], area2.tolist())
+
+
 def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:
-    """The pixels of every non-zero label, each cropped to its own box (one pass over the array)."""
+    """The pixels of every non-zero label, each cropped to its own box (one pass over the array).
+
+    Each label's mask is the comparison of its box with the label, unless the boxes together are much
+    larger than the array (many nested labels), where the pixels are gathered by label instead.
+    """
     lab = lm.labels
     if lab.size == 0:
         return {}
+    from mrm.geometry._subdivision_kernels import label_boxes
+
     x0, y0 = lm.origin
+    vmax = int(lab.max())
+    if vmax <= 4 * lab.size + 1024:
+        boxes = label_boxes(lab, vmax)
+        present = [v for v in np.flatnonzero(boxes[:, 0]).tolist() if v != 0]
+        area = sum(int((boxes[v, 2] - boxes[v, 1] + 1) * (boxes[v, 4] - boxes[v, 3] + 1)) for v in present)
+        if area <= 4 * lab.size:
+            out: dict[int, PixelSet] = {}
+            for v in present:
+                _, r0, r1, c0, c1 = boxes[v].tolist()
+                out[v] = PixelSet(lab[r0 : r1 + 1, c0 : c1 + 1] == v, (x0 + c0, y0 + r0))
+            return out
     w = lab.shape[1]
-    out: dict[int, PixelSet] = {}
+    out = {}
     for v, idx in zip(*group_by_label(lab), strict=True):
         if v == 0:
             continue
@@ -854,7 +1058,8 @@ def _part_ok(geom: Polygon | MultiPolygon, ps: PixelSet) -> bool:
     """Exactly: a valid geometry whose gauss discretization is ps."""
     if not shapely.is_valid(geom):
         return False
-    return bool(discretize(geom, "gauss") == ps)
+    # a valid (multi)polygon has valid members: discretize without checking them a second time
+    return bool(_discretize_pieces(_take_apart(geom, check_validity=False), "gauss", None) == ps)
 
 
 def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polygon | MultiPolygon]:

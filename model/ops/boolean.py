@@ -91,12 +91,11 @@ def parts_label_map(a: PixelSet, b: PixelSet) -> LabelMap:
     box = joint_box([a.bbox, b.bbox])
     if box is None:
         return LabelMap(np.zeros((0, 0), dtype=np.int32))
-    code = a.to_array(box).view(np.uint8) + (b.to_array(box).view(np.uint8) << 1)  # bools are bytes 0/1
-    return LabelMap(_PART_OF_CODE[code], (box[0], box[1]))
-
-
-#: Label of each code a + 2·b (0 neither, 1 only a, 2 only b, 3 both).
-_PART_OF_CODE = np.array([0, 1, 3, 2], dtype=np.int32)
+    ua, ub = a.to_array(box).view(np.uint8), b.to_array(box).view(np.uint8)  # bools are bytes 0/1
+    # the Gray code of a + 2·b: 0 neither, 1 only a, 2 both, 3 only b
+    labels = ((ua ^ ub) | (ub << 1)).astype(np.int32)
+    # a and b are cropped and the box is their joint box: the support touches its four sides
+    return LabelMap._canonical(labels, (box[0], box[1]))
 
 
 def euclidean_discrete_union(

@@ -475,11 +475,28 @@ class LabelMap:
         )
         out = np.zeros((box[3] - box[1] + 1, box[2] - box[0] + 1), dtype=np.int32)
         for i, p in enumerate(parts, start=1):
-            m = p.to_array(box)
-            if np.any(out[m] != 0):
+            b = p.bbox
+            if b is None:
+                continue
+            # each set written over its own box, by masked copies (no index arrays)
+            sub = out[b[1] - box[1] : b[3] - box[1] + 1, b[0] - box[0] : b[2] - box[0] + 1]
+            if np.logical_and(sub != 0, p.mask).any():
                 raise ValueError("the pixel sets of a label map must be disjoint")
-            out[m] = i
+            np.copyto(sub, i, where=p.mask)
         return cls(out, (box[0], box[1]))
+
+    @classmethod
+    def _canonical(cls, labels: npt.NDArray[np.int32], origin: tuple[int, int]) -> LabelMap:
+        """Take a fresh int32 array of non-negative labels whose non-zero labels touch all four sides.
+
+        No check, crop or copy: for builders that know it (the array is frozen here, so the caller must
+        hold no other reference to it).
+        """
+        lm = cls.__new__(cls)
+        lm._labels = _frozen(labels, fresh=True)
+        lm._origin = (int(origin[0]), int(origin[1]))
+        lm._hash = None
+        return lm
 
     @property
     def origin(self) -> tuple[int, int]:

@@ -167,7 +167,9 @@ def test_the_parts_label_map_labels_each_part(a, b):
     from mrm.reps.pixels import LabelMap
 
     lm = parts_label_map(a, b)
-    assert lm == LabelMap.from_pixel_sets([a - b, a & b, b - a])
+    checked = LabelMap.from_pixel_sets([a - b, a & b, b - a])  # through the validating constructor
+    assert lm == checked and hash(lm) == hash(checked) and lm.origin == checked.origin
+    assert not lm.labels.flags.writeable
     assert lm.pixel_set(1) == a - b and lm.pixel_set(2) == (a & b) and lm.pixel_set(3) == b - a
     assert parts_label_map(a, PixelSet.empty()) == LabelMap.from_pixel_sets(
         [a, PixelSet.empty(), PixelSet.empty()]

@@ -358,3 +358,15 @@ def test_label_map_does_not_alias_the_callers_array():
     a[0, 0] = 7
     assert lm.label_values() == [1, 2]
     assert LabelMap.from_pixel_sets([]) == LabelMap(np.zeros((2, 2), dtype=np.int32))
+
+
+@given(st.lists(st.sets(point, max_size=12), min_size=1, max_size=4))
+def test_label_map_from_pixel_sets_refuses_exactly_the_overlapping_sets(sets):
+    overlap = any(a & b for i, a in enumerate(sets) for b in sets[i + 1 :])
+    if overlap:
+        with pytest.raises(ValueError, match="disjoint"):
+            LabelMap.from_pixel_sets([ps_of(s) for s in sets])
+        return
+    lm = LabelMap.from_pixel_sets([ps_of(s) for s in sets])
+    for k, s in enumerate(sets, start=1):
+        assert as_set(lm.pixel_set(k)) == s

@@ -484,6 +484,7 @@ def test_any_polyline_the_verifier_accepts_keeps_the_subdivision_exact(
         rejected.append(not ok)
         return ok
 
+    monkeypatch.setattr(sub, "_KERNEL", False)  # the Python construction, whose _greedy is replaced
     monkeypatch.setattr(sub, "_greedy", random_polyline)
     monkeypatch.setattr(sub, "_part_ok", part_ok)
     accepted = 0
@@ -562,3 +563,186 @@ def test_a_vertex_without_an_exact_float64_value_is_refused_with_a_message() -> 
     assert _to_plane(ch, [(1, 1, 0)]).tolist() == [[2**45, 0.0]]  # (Q - 1) / 2 of the origin pointel
     with pytest.raises(ParameterError, match="too far from the origin"):
         _to_plane(ch, [(1, 1, 12)])  # 13 fractional bits at 2^45: 58 bits
+
+
+# ------------------------------------------------------------------- the fast paths against the definitions
+def nested_rings(k: int) -> LabelMap:
+    """k concentric square rings of label 1 (each ring a shell with a hole) and a few labels between them."""
+    size = 4 * k + 1
+    lab = np.zeros((size, size), dtype=np.int32)
+    for i in range(k):
+        a, b = 2 * i, size - 2 * i
+        lab[a:b, a:b] = 1
+        lab[a + 1 : b - 1, a + 1 : b - 1] = 2 + i % 2
+    lab[2 * k, 2 * k] = 1
+    return LabelMap(lab)
+
+
+@settings(max_examples=150)
+@given(st.one_of(label_maps(), st.integers(1, 6).map(nested_rings)))
+def test_hole_owners_from_components_are_the_owners_by_point_in_ring(lm: LabelMap) -> None:
+    # The owner of each hole read from the label's 4-components must be the smallest shell that contains
+    # the hole, found by point-in-ring tests against every shell (the definition); the rings' sort keys
+    # and first left pixels are checked against their pointels.
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    asm = sub._Assembler(lm, cells, sub._cell_points(lm, cells))
+    pixels = sub._label_pixel_sets(lm)
+    left_of = {(1, 0): (0, 0), (0, 1): (-1, 0), (-1, 0): (-1, -1), (0, -1): (0, -1)}
+    several = 0
+    for v, ps in pixels.items():
+        shells, holes = sub._rings(asm, v)
+        for lp, key in [(s[0], s[2]) for s in shells] + holes:
+            pts = asm.loop_points(lp)
+            low = min((int(y), int(x)) for x, y in pts.tolist())
+            assert divmod(key, asm.key_w) == (low[0] - asm.key_y0, low[1] - asm.key_x0)
+            step = (int(pts[1, 0] - pts[0, 0]), int(pts[1, 1] - pts[0, 1]))
+            o = left_of[step]
+            assert asm.first_left[lp[0]] == (int(pts[0, 0]) + o[0], int(pts[0, 1]) + o[1])
+            assert asm.first_left[lp[0]] in ps  # the label is on the left
+        rings = [(a2, asm.loop_points(lp)) for lp, a2, _ in shells]
+        hole_pts = [asm.loop_points(lp) for lp, _ in holes]
+        by_rings = sub._owners_by_rings(rings, hole_pts)
+        first = [asm.first_left[s[0][0]] for s in shells], [asm.first_left[h[0][0]] for h in holes]
+        assert sub._owners_by_components(*first, ps) == by_rings
+        assert sub._owners(asm, shells, holes, ps) == by_rings
+        several += len(shells) > 1 and bool(holes)
+    assume(several)
+
+
+@settings(max_examples=80)
+@given(label_maps())
+def test_cell_points_and_areas_are_those_of_each_chain(lm: LabelMap) -> None:
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    _, _, points, area2 = sub._cell_points(lm, cells)
+    ox, oy = lm.origin
+    for c, pts, a2 in zip(cells.one_cells, points, area2, strict=True):
+        ref = c.chain.points()
+        assert pts.tolist() == ref.tolist()
+        xs = [int(x) - ox for x in ref[:, 0]]
+        ys = [int(y) - oy for y in ref[:, 1]]
+        assert a2 == sum(xs[k] * ys[k + 1] - xs[k + 1] * ys[k] for k in range(len(xs) - 1))
+
+
+@settings(max_examples=80)
+@given(label_maps())
+def test_the_staircase_is_the_chain_with_its_straight_pointels_dropped(lm: LabelMap) -> None:
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    zero = {z.point for z in cells.zero_cells}
+    for c in cells.one_cells:
+        pts = [tuple(p) for p in c.chain.points().tolist()]
+        closed = c.chain.start not in zero
+        n = len(pts) - 1
+        ch = sub._Chain(c.chain.points(), closed)
+        x0, y0 = pts[0]
+
+        def straight(k: int, pts: list[tuple[int, ...]] = pts, n: int = n) -> bool:
+            a, b, d = pts[(k - 1) % n], pts[k], pts[k + 1]
+            return (b[0] - a[0], b[1] - a[1]) == (d[0] - b[0], d[1] - b[1])
+
+        ks = (
+            [k for k in range(n) if not straight(k)]
+            if closed
+            else [0, *(k for k in range(1, n) if not straight(k)), n]
+        )
+        want = [((2 * (pts[k][0] - x0), 2 * (pts[k][1] - y0), 0), k) for k in ks]
+        assert ch.staircase() == want
+
+
+def python_and_kernel_polylines(lm: LabelMap, limit: int) -> tuple[list[tuple[list, bool]], list[int], list]:  # type: ignore[type-arg]
+    """Per 1-cell: the Python construction's (vertices, staircase?), the kernel's status and vertices."""
+    import mrm.geometry._subdivision_kernels as K
+    import mrm.geometry.subdivision as sub
+
+    cells = sub.cells_of(lm)
+    zero = {z.point for z in cells.zero_cells}
+    pts_all, off, points, _ = sub._cell_points(lm, cells)
+    closed = np.array([c.chain.start not in zero for c in cells.one_cells], dtype=bool)
+    python = [sub._polyline(sub._Chain(p, bool(c))) for p, c in zip(points, closed, strict=True)]
+    loc = pts_all - np.repeat(pts_all[off[:-1]], np.diff(off), axis=0)
+    status, count, verts = K.polylines_kernel(loc, off, closed, limit)
+    kernel = [[tuple(v) for v in verts[off[i] : off[i] + count[i]].tolist()] for i in range(len(points))]
+    return python, status.tolist(), kernel
+
+
+@settings(max_examples=100)
+@given(label_maps(max_size=60), st.sampled_from([2**60, 2**60, 2**24, 2**14]))
+def test_the_compiled_construction_is_the_python_one_or_steps_aside(lm: LabelMap, limit: int) -> None:
+    # Chain by chain, the kernel returns exactly the Python construction's polyline (or its staircase), or
+    # FALLBACK when a product would pass the limit; with small limits the fallback is exercised too.
+    import mrm.geometry._subdivision_kernels as K
+
+    python, status, kernel = python_and_kernel_polylines(lm, limit)
+    for (verts, is_stair), s, kv in zip(python, status, kernel, strict=True):
+        if s == K.FALLBACK:
+            continue
+        assert (s == K.STAIRCASE) == is_stair
+        assert kv == verts
+
+
+def test_the_compiled_construction_builds_real_polylines_and_falls_back_under_a_small_limit(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The experiment above must see both outcomes: polylines built by the kernel under the real limit, and
+    # fallbacks when the limit is tiny; the subdivision stays exact either way.
+    import mrm.geometry._subdivision_kernels as K
+    import mrm.geometry.subdivision as sub
+
+    yy, xx = np.mgrid[-30:31, -30:31]
+    lab = ((xx * xx + yy * yy) < 28**2).astype(np.int32) + ((xx - 9) ** 2 + yy * yy < 15**2)
+    lm = LabelMap(lab.astype(np.int32))
+    _, status, _ = python_and_kernel_polylines(lm, K.LIMIT)
+    assert status.count(K.POLYLINE) >= 2 and K.FALLBACK not in status
+    _, status, _ = python_and_kernel_polylines(lm, 2**12)
+    assert K.FALLBACK in status
+    sd = sub.subdivide(lm)
+    check_subdivision(lm, sd.parts)
+    assert not all(sd.staircase)
+    monkeypatch.setattr(K, "LIMIT", 2**12)  # most chains now go through the Python functions
+    fell_back = sub.subdivide(lm)
+    assert fell_back.staircase == sd.staircase
+    assert all(np.array_equal(p, q) for p, q in zip(fell_back.polylines, sd.polylines, strict=True))
+
+
+@pytest.mark.parametrize("x0", [2**20, 2**44, 2**47])
+def test_far_from_the_origin_the_compiled_path_gives_the_python_answer_or_the_same_refusal(
+    monkeypatch: pytest.MonkeyPatch, x0: int
+) -> None:
+    import mrm.geometry.subdivision as sub
+
+    yy, xx = np.mgrid[-12:13, -12:13]
+    lab = ((xx * xx + yy * yy) < 11**2).astype(np.int32) + (xx * 2 + yy * 3 > 4)
+    lm = LabelMap(lab.astype(np.int32), (x0, -(x0 // 2)))
+
+    def run() -> object:
+        try:
+            sd = sub.subdivide(lm)
+        except ParameterError as e:
+            return str(e)
+        return [p.tolist() for p in sd.polylines]
+
+    fast = run()
+    monkeypatch.setattr(sub, "_KERNEL", False)
+    assert fast == run()
+
+
+def concentric_labels(k: int) -> LabelMap:
+    """k square rings, each its own label: from k = 13 the labels' boxes together pass 4 times the array."""
+    yy, xx = np.mgrid[-k : k + 1, -k : k + 1]
+    return LabelMap((np.maximum(abs(xx), abs(yy)) + 1).astype(np.int32), (3, -2))
+
+
+@settings(max_examples=80)
+@given(st.one_of(label_maps(), st.integers(1, 20).map(concentric_labels)))
+def test_label_pixel_sets_are_the_pixels_of_each_label(lm: LabelMap) -> None:
+    import mrm.geometry.subdivision as sub
+
+    got = sub._label_pixel_sets(lm)
+    assert list(got) == lm.label_values()
+    for v, ps in got.items():
+        assert ps == lm.pixel_set(v)
