@@ -328,6 +328,13 @@ class PlaneViewBox(pg.ViewBox):
         self.setDefaultPadding(0.0)
         self.disableAutoRange()
 
+    def updateViewRange(self, forceX: bool = False, forceY: bool = False) -> None:
+        super().updateViewRange(forceX, forceY)
+        # pyqtgraph applies a new range to the items' transform lazily, in the next paint (prepareForPaint):
+        # the scene then changes while it is being painted, and Qt paints the whole view a second time.
+        # Applied now, a zoom or pan step costs one paint per view, not two.
+        self.updateMatrix()
+
     def wheelEvent(self, ev: object, axis: int | None = None) -> None:
         # Zoom about the cursor on both axes only (an axis-only zoom would break the 1:1 aspect).
         super().wheelEvent(ev, None)
