@@ -716,11 +716,19 @@ class OperationPanel(QtWidgets.QWidget):
             text = str(exc)
             if isinstance(exc, SizeLimitError):
                 from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
+                from mrm.limits import MAX_OBJECT_PIXELS
 
-                text = text.replace(
-                    "raise the limit",
-                    f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
-                )
+                if exc.limit >= MAX_OBJECT_PIXELS:
+                    # No preference goes higher: the document's own limit (ADR 0010).
+                    text = text.replace(
+                        "; reduce the scale or raise the limit",
+                        ", the largest pixel object a document holds; reduce the scale",
+                    )
+                else:
+                    text = text.replace(
+                        "raise the limit",
+                        f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
+                    )
             self.status.setText(f"<span style='color:#c0392b'>{op.title}: {text}</span>")
 
         def cancelled() -> None:
