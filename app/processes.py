@@ -22,7 +22,6 @@ import contextlib
 import logging
 import os
 import pickle
-import struct
 import threading
 import time
 import traceback
@@ -42,21 +41,79 @@ CHILD_NICENESS = 10
 
 
 # ---------------------------------------------------------------------------------------------- the wire
+#: Arrays bigger than this go through a file in memory (``/dev/shm``) instead of the pipe: a pipe moves
+#: 64 KB per system call, and each call of the receiving thread takes the GIL back from the window's thread,
+#: a thousand times for a 77 M-pixel mask. A file is written and read in one call each, the GIL released.
+SPILL_BYTES = 1 << 20
+
+
+def _spill_dir() -> str:
+    """Where big arrays are spilled: this process tree's own folder in ``/dev/shm`` (else the temp dir)."""
+    import tempfile
+
+    d = os.environ.get("MRM_SPILL_DIR")
+    if not d or not os.path.isdir(d):
+        base = "/dev/shm" if os.path.isdir("/dev/shm") and os.access("/dev/shm", os.W_OK) else None
+        d = tempfile.mkdtemp(prefix="mrm-workers-", dir=base)
+        os.environ["MRM_SPILL_DIR"] = d  # the children inherit it
+    return d
+
+
+def _spill(raw: memoryview) -> str:
+    import tempfile
+
+    fd, path = tempfile.mkstemp(prefix="a-", dir=_spill_dir())
+    with os.fdopen(fd, "wb", buffering=0) as fh:
+        view = raw.cast("B")
+        done = 0
+        while done < len(view):
+            done += fh.write(view[done:])
+    return path
+
+
+def _unspill(path: str) -> bytearray:
+    size = os.path.getsize(path)
+    data = bytearray(size)
+    view = memoryview(data)
+    try:
+        with open(path, "rb", buffering=0) as fh:
+            done = 0
+            while done < size:
+                n = fh.readinto(view[done:])
+                if not n:
+                    raise EOFError(f"{path}: {done} of {size} bytes")
+                done += n
+    finally:
+        os.unlink(path)
+    return data
+
+
 def send_obj(conn: Any, obj: Any) -> None:
-    """Send ``obj`` pickled (protocol 5), its contiguous arrays as separate raw messages (no copy)."""
+    """Send ``obj`` pickled (protocol 5); its contiguous arrays out of band, never re-encoded.
+
+    An array of more than :data:`SPILL_BYTES` is written to a file in memory and only its name is sent.
+    """
     bufs: list[pickle.PickleBuffer] = []
     head = pickle.dumps(obj, protocol=5, buffer_callback=bufs.append)
-    conn.send_bytes(struct.pack("<I", len(bufs)) + head)
-    for b in bufs:
-        conn.send_bytes(b.raw())
+    raws = [b.raw() for b in bufs]
+    files = [_spill(r) if r.nbytes > SPILL_BYTES else None for r in raws]
+    conn.send_bytes(pickle.dumps(files))
+    conn.send_bytes(head)
+    for r, f in zip(raws, files, strict=True):
+        if f is None:
+            conn.send_bytes(r)
+
+
+def _recv_parts(conn: Any) -> tuple[bytes, list[Any]]:
+    files = pickle.loads(conn.recv_bytes())
+    head = conn.recv_bytes()
+    return head, [conn.recv_bytes() if f is None else _unspill(f) for f in files]
 
 
 def recv_obj(conn: Any) -> Any:
     """Receive what :func:`send_obj` sent."""
-    head = conn.recv_bytes()
-    (n,) = struct.unpack("<I", head[:4])
-    bufs = [conn.recv_bytes() for _ in range(n)]
-    return pickle.loads(head[4:], buffers=bufs)
+    head, bufs = _recv_parts(conn)
+    return pickle.loads(head, buffers=bufs)
 
 
 # ---------------------------------------------------------------------------------------------- the child
@@ -109,15 +166,13 @@ def _child_main(fd_in: int, fd_out: int) -> None:
     conn_in, conn_out = Connection(fd_in, writable=False), Connection(fd_out, readable=False)
     while True:
         try:
-            head = conn_in.recv_bytes()
-            (n,) = struct.unpack("<I", head[:4])
-            bufs = [conn_in.recv_bytes() for _ in range(n)]
+            head, bufs = _recv_parts(conn_in)
         except (EOFError, OSError):
             return
         _CANCEL.clear()
         progress = _ChildProgress(conn_out)
         try:
-            fn, args = pickle.loads(head[4:], buffers=bufs)  # a job that does not import is its error
+            fn, args = pickle.loads(head, buffers=bufs)  # a job that does not import is its error
             result = fn(*args, progress)
         except BaseException as exc:
             text = traceback.format_exc()
@@ -142,6 +197,7 @@ class _Child:
         import sys
         from multiprocessing.connection import Connection
 
+        _spill_dir()  # made before the child starts, which inherits its name
         to_child, from_parent = os.pipe()
         to_parent, from_child = os.pipe()
         try:
@@ -300,12 +356,17 @@ def pool() -> ProcessPool:
 
 
 def close_pool() -> None:
-    """Stop the application's worker processes, if any were started."""
+    """Stop the application's worker processes, if any were started, and remove their spill folder."""
+    import shutil
+
     global _POOL
     with _POOL_LOCK:
         p, _POOL = _POOL, None
     if p is not None:
         p.close()
+    d = os.environ.pop("MRM_SPILL_DIR", None)
+    if d and os.path.basename(d).startswith("mrm-workers-"):
+        shutil.rmtree(d, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -41,6 +41,9 @@ def test_a_job_runs_in_another_process_and_arrays_come_back_exactly(pool):  # ty
     assert back == ps and back is not ps
     assert not back.mask.flags.writeable  # still a frozen pixel set
     assert back.origin == (-40, 7) and back.count == ps.count
+    # The mask went both ways through a file in memory, removed once read.
+    assert ps.mask.nbytes > processes.SPILL_BYTES
+    assert os.listdir(os.environ["MRM_SPILL_DIR"]) == []
 
 
 def test_progress_is_relayed_and_a_cancel_stops_the_job(pool):  # type: ignore[no-untyped-def]
