@@ -7,6 +7,7 @@ pushed on release describe the same edit.
 
 from __future__ import annotations
 
+import bisect
 import math
 
 import numpy as np
@@ -55,21 +56,22 @@ class VertexRefs:
     __slots__ = ("_poly", "_ring", "_starts")
 
     def __init__(self, poly: np.ndarray, ring: np.ndarray, counts: np.ndarray) -> None:
-        self._poly = np.asarray(poly, dtype=np.int64)
-        self._ring = np.asarray(ring, dtype=np.int64)
-        self._starts = np.concatenate([[0], np.cumsum(np.asarray(counts, dtype=np.int64))])
+        # Python lists: a table view asks for rows one by one, and bisect on a list takes a microsecond.
+        self._poly: list[int] = np.asarray(poly, dtype=np.int64).tolist()
+        self._ring: list[int] = np.asarray(ring, dtype=np.int64).tolist()
+        self._starts: list[int] = [0, *np.cumsum(np.asarray(counts, dtype=np.int64)).tolist()]
 
     def __len__(self) -> int:
-        return int(self._starts[-1])
+        return self._starts[-1]
 
     def __getitem__(self, k: int) -> VertexRef:
-        n = len(self)
+        n = self._starts[-1]
         if k < 0:
             k += n
         if not 0 <= k < n:
             raise IndexError(k)
-        i = int(np.searchsorted(self._starts, k, side="right")) - 1
-        return (int(self._poly[i]), int(self._ring[i]), int(k - self._starts[i]))
+        i = bisect.bisect_right(self._starts, k) - 1
+        return (self._poly[i], self._ring[i], k - self._starts[i])
 
     def __iter__(self):  # type: ignore[no-untyped-def]
         for k in range(len(self)):
@@ -78,10 +80,10 @@ class VertexRefs:
     def index(self, ref: VertexRef) -> int:
         """The row of ``ref`` (ValueError when the geometry has no such vertex)."""
         p, r, i = ref
-        hit = np.flatnonzero((self._poly == p) & (self._ring == r))
-        if not len(hit) or not 0 <= i < self._starts[hit[0] + 1] - self._starts[hit[0]]:
-            raise ValueError(f"no vertex {ref!r}")
-        return int(self._starts[hit[0]] + i)
+        for k, (pk, rk) in enumerate(zip(self._poly, self._ring, strict=True)):
+            if (pk, rk) == (p, r) and 0 <= i < self._starts[k + 1] - self._starts[k]:
+                return self._starts[k] + i
+        raise ValueError(f"no vertex {ref!r}")
 
 
 def _ragged(geom: shapely.Geometry) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -28,6 +28,7 @@ Qt = QtCore.Qt
 _ROOT = QtCore.QModelIndex()
 
 COLUMNS = ("polygon", "ring", "#", "x", "y")
+_ROLES = frozenset((Qt.ItemDataRole.DisplayRole, Qt.ItemDataRole.EditRole, Qt.ItemDataRole.TextAlignmentRole))
 
 
 class VertexModel(QtCore.QAbstractTableModel):
@@ -70,7 +71,8 @@ class VertexModel(QtCore.QAbstractTableModel):
         return None
 
     def data(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, role: int = 0) -> object:
-        if not index.isValid():
+        # The view asks about ten roles per cell at every paint: the ones never answered cost nothing.
+        if role not in _ROLES or not index.isValid():
             return None
         r, c = index.row(), index.column()
         if role in (Qt.ItemDataRole.DisplayRole, Qt.ItemDataRole.EditRole):
