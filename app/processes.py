@@ -47,22 +47,22 @@ CHILD_NICENESS = 10
 SPILL_BYTES = 1 << 20
 
 
+#: The prefix of the files arrays are spilled to (removed by the receiver as soon as it has read them).
+SPILL_PREFIX = "mrm-spill-"
+
+
 def _spill_dir() -> str:
-    """Where big arrays are spilled: this process tree's own folder in ``/dev/shm`` (else the temp dir)."""
+    """Where big arrays are spilled: ``/dev/shm`` (memory) when writable, else the temp folder."""
     import tempfile
 
-    d = os.environ.get("MRM_SPILL_DIR")
-    if not d or not os.path.isdir(d):
-        base = "/dev/shm" if os.path.isdir("/dev/shm") and os.access("/dev/shm", os.W_OK) else None
-        d = tempfile.mkdtemp(prefix="mrm-workers-", dir=base)
-        os.environ["MRM_SPILL_DIR"] = d  # the children inherit it
-    return d
+    shm = "/dev/shm"
+    return shm if os.path.isdir(shm) and os.access(shm, os.W_OK) else tempfile.gettempdir()
 
 
 def _spill(raw: memoryview) -> str:
     import tempfile
 
-    fd, path = tempfile.mkstemp(prefix="a-", dir=_spill_dir())
+    fd, path = tempfile.mkstemp(prefix=SPILL_PREFIX, dir=_spill_dir())
     with os.fdopen(fd, "wb", buffering=0) as fh:
         view = raw.cast("B")
         done = 0
@@ -197,7 +197,6 @@ class _Child:
         import sys
         from multiprocessing.connection import Connection
 
-        _spill_dir()  # made before the child starts, which inherits its name
         to_child, from_parent = os.pipe()
         to_parent, from_child = os.pipe()
         try:
@@ -356,17 +355,12 @@ def pool() -> ProcessPool:
 
 
 def close_pool() -> None:
-    """Stop the application's worker processes, if any were started, and remove their spill folder."""
-    import shutil
-
+    """Stop the application's worker processes, if any were started."""
     global _POOL
     with _POOL_LOCK:
         p, _POOL = _POOL, None
     if p is not None:
         p.close()
-    d = os.environ.pop("MRM_SPILL_DIR", None)
-    if d and os.path.basename(d).startswith("mrm-workers-"):
-        shutil.rmtree(d, ignore_errors=True)
 
 
 if __name__ == "__main__":
