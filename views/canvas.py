@@ -213,7 +213,22 @@ def lod_image(data: np.ndarray, limit: int = LOD_PIXELS) -> tuple[np.ndarray, in
     return pad.reshape(hh // f, f, ww // f, f).max(axis=(1, 3)), f
 
 
-class MaskItem(pg.ImageItem):
+class ArgbImageItem(pg.ImageItem):
+    """An ImageItem whose picture is kept in the painter's own pixel format.
+
+    pyqtgraph renders a label image with a colour table as an ``Indexed8`` QImage; Qt then converts the whole
+    image at every paint — 7 ms for a 2000² level-of-detail image, against 0.7 ms in
+    ``ARGB32_Premultiplied``. Converted once per new image, a pan or zoom step draws it ten times faster.
+    """
+
+    def render(self) -> None:
+        super().render()
+        q = self.qimage
+        if q is not None and q.format() != QtGui.QImage.Format.Format_ARGB32_Premultiplied:
+            self.qimage = q.convertToFormat(QtGui.QImage.Format.Format_ARGB32_Premultiplied)
+
+
+class MaskItem(ArgbImageItem):
     """A label or boolean image placed on the pixel grid; label k is drawn with ``lut[k]`` (RGBA)."""
 
     def __init__(self) -> None:
@@ -222,7 +237,7 @@ class MaskItem(pg.ImageItem):
         self._lut: np.ndarray = full_lut(np.array([[0, 0, 0, 0], [0, 0, 0, 255]]))
         self.scale_factor = 1
         self._full: np.ndarray | None = None  # the exact image behind a coarse one
-        self._detail: pg.ImageItem | None = None  # its visible part, when zoomed in enough
+        self._detail: ArgbImageItem | None = None  # its visible part, when zoomed in enough
         # Pixels must stay sharp squares at every zoom.
         self.setAutoDownsample(False)
 
@@ -285,7 +300,7 @@ class MaskItem(pg.ImageItem):
                 detail.setVisible(False)
             return
         if detail is None:
-            detail = self._detail = pg.ImageItem(axisOrder="row-major")
+            detail = self._detail = ArgbImageItem(axisOrder="row-major")
             detail.setAutoDownsample(False)
             detail.setParentItem(self.parentItem())
         detail.setZValue(self.zValue() + 0.01)
