@@ -80,6 +80,23 @@ def _suffix_of_text(text: str) -> str:
     return ".geojson" if text.lstrip().startswith("{") else ".wkt"
 
 
+def mime_payload(md: QtCore.QMimeData) -> tuple[bytes, str]:
+    """The bytes to read from clipboard data and their file suffix: :data:`MIME`, else GeoJSON/WKT text.
+
+    Raises
+    ------
+    MRMError
+        Nothing usable on the clipboard.
+    """
+    from mrm.errors import FileFormatError
+
+    if md.hasFormat(MIME):
+        return bytes(md.data(MIME).data()), ".mrm"
+    if md.hasText() and md.text().strip():
+        return md.text().encode("utf-8"), _suffix_of_text(md.text())
+    raise FileFormatError("the clipboard holds no objects, GeoJSON or WKT")
+
+
 def objects_from_mime(doc: Document, md: QtCore.QMimeData) -> list[DocObject]:
     """New objects (fresh ids, not inserted) read from clipboard data: :data:`MIME`, else GeoJSON/WKT text.
 
@@ -88,15 +105,17 @@ def objects_from_mime(doc: Document, md: QtCore.QMimeData) -> list[DocObject]:
     MRMError
         Nothing usable on the clipboard, or content the importer refuses (with its message).
     """
+    return objects_from_payload(doc, *mime_payload(md))
+
+
+def objects_from_payload(doc: Document, data: bytes, suffix: str) -> list[DocObject]:
+    """New objects for ``doc`` read from clipboard bytes (:func:`mime_payload`), checked as a file is.
+
+    Any thread: the document only gives fresh ids.
+    """
     from mrm.errors import FileFormatError
     from mrm.io.imports import objects_from_file
 
-    if md.hasFormat(MIME):
-        data, suffix = bytes(md.data(MIME).data()), ".mrm"
-    elif md.hasText() and md.text().strip():
-        data, suffix = md.text().encode("utf-8"), _suffix_of_text(md.text())
-    else:
-        raise FileFormatError("the clipboard holds no objects, GeoJSON or WKT")
     fd, path = tempfile.mkstemp(prefix="mrm-paste-", suffix=suffix)
     try:
         with os.fdopen(fd, "wb") as fh:
@@ -111,9 +130,13 @@ def objects_from_mime(doc: Document, md: QtCore.QMimeData) -> list[DocObject]:
 
 def paste_objects(doc: Document, md: QtCore.QMimeData) -> list[int]:
     """Add the clipboard's objects to ``doc`` in one undo step ("Paste"), with unique names; their ids."""
+    return add_pasted(doc, objects_from_mime(doc, md))
+
+
+def add_pasted(doc: Document, objs: list[DocObject]) -> list[int]:
+    """Add pasted objects to ``doc`` in one undo step ("Paste"), with unique names; their ids."""
     from mrm.views.operation_panel import unique_name
 
-    objs = objects_from_mime(doc, md)
     taken = {o.name for o in doc.objects}
     named = []
     for o in objs:
@@ -160,18 +183,44 @@ class ClipboardController(QtCore.QObject):
         self.win.runner.submit("copy", work, on_result=done, on_error=failed, label="Copying")
         return True
 
-    def paste(self) -> list[int]:
+    def paste(self) -> bool:
+        """Paste: the clipboard's objects are read on a worker, then added in one undo step.
+
+        A big object's project data is megabytes to parse. False when the clipboard holds nothing usable.
+        """
         md = QtGui.QGuiApplication.clipboard().mimeData()
         if md is None:
-            return []
+            return False
+        doc = self.win.doc
         try:
-            ids = paste_objects(self.win.doc, md)
+            payload = mime_payload(md)  # the bytes are copied here: the clipboard may change meanwhile
         except MRMError as e:
             self.win.show_message(f"paste: {e}", 6000, error=True)
-            return []
-        n = len(ids)
-        self.win.show_message(f"pasted {n} object{'s' if n != 1 else ''}", 3000)
-        return ids
+            return False
+
+        def done(objs: list[DocObject]) -> None:
+            try:
+                ids = add_pasted(doc, objs)
+            except MRMError as e:
+                failed(e)
+                return
+            n = len(ids)
+            self.win.show_message(f"pasted {n} object{'s' if n != 1 else ''}", 3000)
+
+        def failed(exc: BaseException) -> None:
+            if not isinstance(exc, MRMError):
+                raise exc
+            self.win.show_message(f"paste: {exc}", 6000, error=True)
+
+        self.win.runner.submit(
+            "paste",
+            lambda _p: objects_from_payload(doc, *payload),
+            on_result=done,
+            on_error=failed,
+            label="Pasting",
+            show_progress=True,
+        )
+        return True
 
     def can_paste(self) -> bool:
         md = QtWidgets.QApplication.clipboard().mimeData()

@@ -214,9 +214,13 @@ class FileController(QtCore.QObject):
             big = False
         if big:
             # Reading and checking a big project takes seconds: on a worker, with progress and Cancel.
+            # In a worker process: parsing tens of megabytes of JSON holds the GIL (ADR 0025).
+            from mrm.app import process_jobs
+
+            runner = self.win.runner
             self.win.runner.submit(
-                "file", lambda _p: read_project(p), on_result=opened, on_error=failed,
-                label=f"Opening {p.name}", show_progress=True,
+                "file", lambda prog: runner.call(process_jobs.read_project, (str(p),), prog),
+                on_result=opened, on_error=failed, label=f"Opening {p.name}", show_progress=True,
             )  # fmt: skip
             return True
         try:
@@ -318,15 +322,15 @@ class FileController(QtCore.QObject):
         """Serialise and write a big project on a worker (the objects are immutable: a snapshot is free)."""
         from types import SimpleNamespace
 
-        from mrm.io.atomic import atomic_write_bytes
-        from mrm.io.project import dumps
+        from mrm.app import process_jobs
 
         doc = self.doc
         snap = SimpleNamespace(settings=doc.settings, selection=doc.selection, objects=doc.objects)
         revision = doc.revision
 
-        def work(_progress: Any) -> None:
-            atomic_write_bytes(p, dumps(snap))  # type: ignore[arg-type]
+        def work(progress: Any) -> None:
+            # In a worker process: encoding tens of megabytes holds the GIL (ADR 0025).
+            self.win.runner.call(process_jobs.write_project, (str(p), snap), progress)
 
         def done(_r: object) -> None:
             if doc.revision == revision:

@@ -154,7 +154,12 @@ def run_gui(args: list[str]) -> int:
         # document loads: it is on screen as soon as possible and says what it is preparing.
         win.show_message(f"ready in {time.perf_counter() - t0:.2f} s", 4000)
         when_exposed(win, lambda: prepare_then(win, load))
-        return int(app.exec())
+        try:
+            return int(app.exec())
+        finally:
+            from mrm.app.processes import close_pool
+
+            close_pool()
     loaded: list[bool] = []
     prepare_then(win, lambda: loaded.append(load()))
     deadline = time.monotonic() + max(opts.timeout, 600.0)  # a cold compile takes minutes on a slow box

@@ -7,6 +7,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from mrm.app.actions import ActionRegistry
 from mrm.app.application import theme_controller
 from mrm.app.settings import MODELS, Preferences
+from mrm.limits import MAX_OBJECT_PIXELS
 
 #: The entry the pixel-limit message points at (File ▸ Preferences ▸ General).
 PIXEL_LIMIT_LABEL = "Largest operation result"
@@ -71,14 +72,16 @@ class PreferencesDialog(QtWidgets.QDialog):
         self.pixel_limit = QtWidgets.QDoubleSpinBox(w)
         self.pixel_limit.setObjectName("prefPixelLimit")
         self.pixel_limit.setDecimals(0)
-        self.pixel_limit.setRange(1_000, 10_000_000_000)
+        # Up to the largest pixel object a document holds (ADR 0010): a higher setting could only fail later.
+        self.pixel_limit.setRange(1_000, MAX_OBJECT_PIXELS)
         self.pixel_limit.setSingleStep(10_000_000)
         self.pixel_limit.setGroupSeparatorShown(True)
         self.pixel_limit.setSuffix(" pixels")
         self.pixel_limit.setValue(self.prefs.pixel_limit)
         self.pixel_limit.setToolTip(
             "An operation whose result would be larger is refused before it runs (memory: about one byte "
-            "per pixel for each representation)"
+            f"per pixel for each representation). At most {MAX_OBJECT_PIXELS:,} pixels, the largest pixel "
+            "object a document holds."
         )
         f.addRow(PIXEL_LIMIT_LABEL, self.pixel_limit)
         return w

@@ -197,12 +197,17 @@ class Preferences(QtCore.QObject):
     def pixel_limit(self) -> int:
         """The largest operation result allowed, in pixels (Preferences ▸ General ▸ Largest result)."""
         from mrm.errors import DEFAULT_PIXEL_LIMIT
+        from mrm.limits import MAX_OBJECT_PIXELS
 
-        return max(1_000, self._get("operations/pixel_limit", DEFAULT_PIXEL_LIMIT, int))
+        # Never beyond the largest pixel object a document holds: a result over it would be refused anyway.
+        v = self._get("operations/pixel_limit", DEFAULT_PIXEL_LIMIT, int)
+        return min(MAX_OBJECT_PIXELS, max(1_000, v))
 
     @pixel_limit.setter
     def pixel_limit(self, v: int) -> None:
-        self._set("operations/pixel_limit", max(1_000, int(v)))
+        from mrm.limits import MAX_OBJECT_PIXELS
+
+        self._set("operations/pixel_limit", min(MAX_OBJECT_PIXELS, max(1_000, int(v))))
 
     # ------------------------------------------------------------------ shortcuts
     def shortcut_overrides(self) -> dict[str, str]:

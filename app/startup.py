@@ -78,9 +78,13 @@ def preload(win: Any) -> None:
     def restore(_r: object = None) -> None:
         scene.sync_cost = cost
 
-    def work(_p: Any) -> None:
+    def work(p: Any) -> None:
         load_kernels()
         load_view_kernels()
+        # The worker process of the operations and measurements (ADR 0025) loads them too, meanwhile.
+        from mrm.app import process_jobs
+
+        win.runner.call(process_jobs.warm, (), p)
 
     win.runner.submit(
         "warmup",

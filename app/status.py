@@ -7,8 +7,11 @@ from typing import Any
 
 from PySide6 import QtCore, QtWidgets
 
-from mrm.views.geometry_edit import pixel_at, vertex_table
+from mrm.views.geometry_edit import pixel_at, vertex_count
 from mrm.views.scene import Scene
+
+#: A count the user cancelled (shown "not computed", never "…" as if it were on its way).
+CANCELLED = object()
 
 
 def _fmt(v: float) -> str:
@@ -67,6 +70,7 @@ class StatusBar(QtWidgets.QStatusBar):
         self.addPermanentWidget(self.cursor_label)
         self.addPermanentWidget(self.model_label)
         self._counted: tuple[Any, int] | None = None  # (pixel set, its count)
+        self._vertices: tuple[Any, int] | None = None  # (geometry, its vertex count)
         self._show_timer = QtCore.QTimer(self)
         self._show_timer.setSingleShot(True)
         self._show_timer.setInterval(self.SHOW_AFTER_MS)
@@ -118,7 +122,15 @@ class StatusBar(QtWidgets.QStatusBar):
             out["segments"] = segment_count(ana)
         geom = s.get(obj_id, "euclidean")
         if geom is not None:
-            out["vertices"] = len(vertex_table(geom)[1])
+            # Once per geometry (10⁵ rings take 0.1–0.2 s to count), not at every status update.
+            vc = self._vertices
+            if vc is None or vc[0] is not geom:
+                vc = self._vertices = (geom, vertex_count(geom))
+            out["vertices"] = vc[1]
+        for key, rep in (("pixels", "discrete"), ("components", "region"), ("holes", "region"),
+                         ("segments", "analytical"), ("vertices", "euclidean")):  # fmt: skip
+            if out[key] is None and (s.is_cancelled(obj_id, rep) or s.is_cancelled(obj_id, "discrete")):
+                out[key] = CANCELLED
         return out
 
     def update_figures(self) -> None:
@@ -135,6 +147,8 @@ class StatusBar(QtWidgets.QStatusBar):
             val = f[key]
             if val is None:
                 return f"… {plural or unit + 's'}"
+            if val is CANCELLED:
+                return f"{plural or unit + 's'} not computed"
             return f"{_int(val)} {unit if val == 1 else (plural or unit + 's')}"
 
         self.figures.setText(

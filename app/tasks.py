@@ -241,6 +241,16 @@ class TaskRunner(QtCore.QObject):
     def pending(self) -> int:
         return len(self._running)
 
+    def call(self, fn: Callable[..., Any], args: tuple[Any, ...], progress: TaskProgress) -> Any:
+        """Inside a task: ``fn(*args, progress)`` in a worker process (:mod:`mrm.app.processes`).
+
+        For Python-heavy work, which in a thread would hold the GIL the window's painting needs. ``fn`` is a
+        module-level function; what it takes and returns is pickled.
+        """
+        from mrm.app.processes import pool
+
+        return pool().run(fn, args, progress)
+
     def shutdown(self, timeout_ms: int = 10_000) -> None:
         """Cancel everything and wait for the threads (window closing)."""
         self._closed = True
@@ -304,6 +314,9 @@ class TaskRunner(QtCore.QObject):
 
 class SynchronousTaskRunner(TaskRunner):
     """Runs each task immediately in the calling thread (tests); the delivery rules are the same."""
+
+    def call(self, fn: Callable[..., Any], args: tuple[Any, ...], progress: TaskProgress) -> Any:
+        return fn(*args, progress)  # in this thread too: the same function, no process
 
     def _start(self, task: Task) -> None:
         try:

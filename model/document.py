@@ -517,6 +517,9 @@ class Document:
         self._revision = 0
         self._obj_rev: dict[int, int] = {}
         self._next_id = 1
+        # new_id may be called from a worker (objects read off the GUI thread, e.g. a paste): no two
+        # callers may get the same id.
+        self._id_lock = threading.Lock()
         # Running totals of the per-file limits (mrm.limits): pixels of the discrete sources' boxes and
         # the bytes of the project file, kept by the low-level mutations.
         self._mask_pixels = 0
@@ -688,9 +691,10 @@ class Document:
 
     def new_id(self) -> int:
         """Reserve a fresh object id (ids are never reused, so undo can bring any object back)."""
-        i = self._next_id
-        self._next_id += 1
-        return i
+        with self._id_lock:
+            i = self._next_id
+            self._next_id += 1
+            return i
 
     def make_object(
         self,
@@ -764,7 +768,8 @@ class Document:
             self._by_id[obj.id] = obj
             self._count(obj, +1)
             self._obj_rev[obj.id] = self._obj_rev.get(obj.id, 0) + 1
-            self._next_id = max(self._next_id, obj.id + 1)
+            with self._id_lock:
+                self._next_id = max(self._next_id, obj.id + 1)
             if obj.id in p.order:  # removed and re-inserted in one batch: it may differ in every aspect
                 aspects = ("source", "name", "style", "provenance", "georef")
                 p.changed.setdefault(obj.id, set()).update(aspects)
@@ -845,5 +850,6 @@ class Document:
                 self._obj_rev[o.id] = self._obj_rev.get(o.id, 0) + 1
             self._settings = settings or Settings()
             self._selection = tuple(dict.fromkeys(i for i in selection if i in self._by_id))
-            self._next_id = max([self._next_id, *[i + 1 for i in ids]])
+            with self._id_lock:
+                self._next_id = max([self._next_id, *[i + 1 for i in ids]])
             self.history.clear(clean=clean)

@@ -227,10 +227,14 @@ class ErrorInspector(QtWidgets.QWidget):
         def cancelled() -> None:
             self.measured_label.setText("<b>Measured</b>: cancelled — <i>Measure</i> computes it")
 
-        # The provenance is an immutable value pinning everything the account reads: safe on a worker.
+        # The provenance is an immutable value pinning everything the account reads: safe on a worker. The
+        # exact measurement is Python-heavy for minutes at 10⁸ pixels: in a worker process, so that the
+        # window's painting never waits for the GIL it would hold (ADR 0025).
+        from mrm.app import process_jobs
+
         self.runner.submit(
             "inspect",
-            lambda progress: account_of(prov, measure=True, progress=progress),
+            lambda progress: self.runner.call(process_jobs.measure, (prov,), progress),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

@@ -14,18 +14,13 @@ from typing import Any
 
 from PySide6 import QtCore, QtWidgets
 
+from mrm.app import process_jobs
 from mrm.commands import ApplyResults
 from mrm.errors import MRMError, SizeLimitError
-from mrm.ops.base import plan_operation
 from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations
 from mrm.views.scene import Scene
 
 SLIDER_STEPS = 1000
-
-
-def _limit_kw(limit: int | None) -> dict[str, int]:
-    """The preference's pixel limit for plan_operation (its own default when the preference is unset)."""
-    return {} if limit is None else {"limit": limit}
 
 
 def readable_name(name: str) -> str:
@@ -721,11 +716,19 @@ class OperationPanel(QtWidgets.QWidget):
             text = str(exc)
             if isinstance(exc, SizeLimitError):
                 from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
+                from mrm.limits import MAX_OBJECT_PIXELS
 
-                text = text.replace(
-                    "raise the limit",
-                    f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
-                )
+                if exc.limit >= MAX_OBJECT_PIXELS:
+                    # No preference goes higher: the document's own limit (ADR 0010).
+                    text = text.replace(
+                        "; reduce the scale or raise the limit",
+                        ", the largest pixel object a document holds; reduce the scale",
+                    )
+                else:
+                    text = text.replace(
+                        "raise the limit",
+                        f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
+                    )
             self.status.setText(f"<span style='color:#c0392b'>{op.title}: {text}</span>")
 
         def cancelled() -> None:
@@ -734,7 +737,8 @@ class OperationPanel(QtWidgets.QWidget):
 
         self.runner.submit(
             "operation",
-            lambda progress: plan_operation(inputs, op.spec, params, progress, **_limit_kw(limit)),
+            # Operations are Python-heavy (exact rationals): in a worker process, off the GIL (ADR 0025).
+            lambda progress: self.runner.call(process_jobs.plan, (inputs, op.name, params, limit), progress),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

@@ -28,6 +28,7 @@ Qt = QtCore.Qt
 _ROOT = QtCore.QModelIndex()
 
 COLUMNS = ("polygon", "ring", "#", "x", "y")
+_ROLES = frozenset((Qt.ItemDataRole.DisplayRole, Qt.ItemDataRole.EditRole, Qt.ItemDataRole.TextAlignmentRole))
 
 
 class VertexModel(QtCore.QAbstractTableModel):
@@ -40,9 +41,14 @@ class VertexModel(QtCore.QAbstractTableModel):
         super().__init__(parent)
         self.xy: Any = None
         self.geom: Any = None
-        self.refs: list[ge.VertexRef] = []
+        self.refs: Any = []
 
-    def set_geometry(self, geom: Any) -> None:
+    def set_geometry(self, geom: Any, table: tuple[Any, Any] | None = None) -> None:
+        """Show the vertices of ``geom``.
+
+        ``table`` is its :func:`~mrm.views.geometry_edit.vertex_table` when already made (on a worker, for
+        a big geometry).
+        """
         if geom is self.geom:
             return  # the same value (immutable): keep the rows, and any editor open on them
         self.geom = geom
@@ -50,7 +56,7 @@ class VertexModel(QtCore.QAbstractTableModel):
         if geom is None or geom.is_empty:
             self.xy, self.refs = None, []
         else:
-            self.xy, self.refs = ge.vertex_table(geom)
+            self.xy, self.refs = table if table is not None else ge.vertex_table(geom)
         self.endResetModel()
 
     def rowCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
@@ -65,7 +71,8 @@ class VertexModel(QtCore.QAbstractTableModel):
         return None
 
     def data(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, role: int = 0) -> object:
-        if not index.isValid():
+        # The view asks about ten roles per cell at every paint: the ones never answered cost nothing.
+        if role not in _ROLES or not index.isValid():
             return None
         r, c = index.row(), index.column()
         if role in (Qt.ItemDataRole.DisplayRole, Qt.ItemDataRole.EditRole):
@@ -212,6 +219,7 @@ class PropertiesPanel(QtWidgets.QWidget):
         self.status.setWordWrap(True)
         lay.addWidget(self.status)
         self._syncing = False
+        self._tabling: Any = None  # the geometry whose vertex table a worker is making
         scene.documentChanged.connect(self._doc_changed)
         scene.derivedReady.connect(self._derived_ready)
         self.refresh()
@@ -256,6 +264,10 @@ class PropertiesPanel(QtWidgets.QWidget):
                 f"{src} · {provenance_text(obj.provenance)}" if obj.provenance is not None else src
             )
             geom = self.scene.get(obj.id, "euclidean")
+            if geom is not None and self._table_on_worker(geom):
+                self.vertices.set_geometry(None)
+                self.vertex_note.setText("listing the vertices…")
+                return
             self.vertices.set_geometry(geom)
             if geom is None:
                 err = self.scene.error(obj.id, "euclidean")
@@ -271,6 +283,47 @@ class PropertiesPanel(QtWidgets.QWidget):
                 )
         finally:
             self._syncing = False
+
+    #: Geometries with more coordinates than this get their vertex table made on a worker (about 50 ms on
+    #: the GUI thread at this size).
+    TABLE_SYNC = 50_000
+
+    def _table_on_worker(self, geom: Any) -> bool:
+        """True while the vertex table of ``geom`` is being made on a worker (it is shown when ready)."""
+        import shapely
+
+        runner = getattr(self.scene, "runner", None)
+        if (
+            runner is None
+            or geom is self.vertices.geom
+            or int(shapely.get_num_coordinates(geom)) <= self.TABLE_SYNC
+        ):
+            return False
+        if self._tabling is geom:
+            return True
+        self._tabling = geom
+        obj_id = self.obj_id
+
+        def done(table: tuple[Any, Any]) -> None:
+            if self._tabling is geom:
+                self._tabling = None
+            if obj_id == self.obj_id and self.scene.get(obj_id, "euclidean") is geom:
+                self.vertices.set_geometry(geom, table)
+                self.refresh()
+
+        def failed(exc: BaseException) -> None:
+            if self._tabling is geom:
+                self._tabling = None
+            raise exc
+
+        runner.submit(
+            "properties:vertices", lambda _p: ge.vertex_table(geom), on_result=done, on_error=failed
+        )
+        return True
+
+    def is_busy(self) -> bool:
+        """True while the vertex table is being made."""
+        return self._tabling is not None
 
     # ------------------------------------------------------------------ panel → document (commands)
     def _push(self, cmd: Any) -> bool:

@@ -9,6 +9,7 @@ the segments in order. Selecting a row selects the segment in the analytical vie
 
 from __future__ import annotations
 
+import bisect
 from typing import Any
 
 import numpy as np
@@ -23,6 +24,15 @@ _ROOT = QtCore.QModelIndex()  # the invalid index: the model's root
 COLUMNS = ("chain", "#", "first", "last", "a", "b", "μ", "ω", "points")
 
 
+_ROLES = frozenset(
+    (
+        QtCore.Qt.ItemDataRole.DisplayRole,
+        QtCore.Qt.ItemDataRole.TextAlignmentRole,
+        QtCore.Qt.ItemDataRole.ToolTipRole,
+    )
+)
+
+
 class SegmentModel(QtCore.QAbstractTableModel):
     """Lazy rows over an analytical representation (thousands of segments stay cheap)."""
 
@@ -30,6 +40,7 @@ class SegmentModel(QtCore.QAbstractTableModel):
         super().__init__(parent)
         self.ana: Any = None
         self._offsets = np.zeros(1, dtype=np.int64)
+        self._starts: list[int] = [0]
 
     def set_analytical(self, ana: Any) -> None:
         if ana is self.ana:
@@ -38,11 +49,12 @@ class SegmentModel(QtCore.QAbstractTableModel):
         self.ana = ana
         lengths = [len(c) for c in ana.chains] if ana is not None else []
         self._offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
+        self._starts = self._offsets.tolist()  # bisect on a list: a row is found in a microsecond
         self.endResetModel()
 
     def locate(self, row: int) -> tuple[int, int]:
-        ci = int(np.searchsorted(self._offsets, row, side="right")) - 1
-        return ci, row - int(self._offsets[ci])
+        ci = bisect.bisect_right(self._starts, row) - 1
+        return ci, row - self._starts[ci]
 
     def row_of(self, ci: int, k: int) -> int:
         return int(self._offsets[ci]) + k
@@ -61,7 +73,8 @@ class SegmentModel(QtCore.QAbstractTableModel):
         return None
 
     def data(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, role: int = 0) -> object:
-        if not index.isValid() or self.ana is None:
+        # The view asks about ten roles per cell at every paint: the ones never answered cost nothing.
+        if role not in _ROLES or not index.isValid() or self.ana is None:
             return None
         ci, k = self.locate(index.row())
         chain = self.ana.chains[ci]

@@ -100,7 +100,19 @@ def test_paste_of_text_that_is_no_shape_says_so_and_changes_nothing(make_window,
     assert not win.doc.history.can_undo()
 
 
-def test_copy_is_encoded_on_a_worker_then_pastes(make_window, qtbot):
+def test_copy_is_encoded_and_paste_read_on_a_worker(make_window, qtbot, monkeypatch):
+    import threading
+
+    import mrm.app.clipboard as clipboard
+
+    on_gui: list[bool] = []
+    original = clipboard.objects_from_payload
+
+    def recording(*a):  # type: ignore[no-untyped-def]
+        on_gui.append(threading.current_thread() is threading.main_thread())
+        return original(*a)
+
+    monkeypatch.setattr(clipboard, "objects_from_payload", recording)
     win = make_window(threaded=True)
     _clipboard().clear()
     ps = PixelSet(np.ones((300, 400), bool), (5, -7))
@@ -114,8 +126,11 @@ def test_copy_is_encoded_on_a_worker_then_pastes(make_window, qtbot):
 
     qtbot.waitUntil(copied, timeout=20_000)
     _keys(qtbot, win, Qt.Key.Key_V)
+    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=20_000)
+    assert on_gui == [False], "the paste was parsed on the GUI thread"
     assert [x.name for x in win.doc.objects] == ["block", "block (2)"]
     assert win.doc.objects[-1].source == ps
+    assert win.doc.history.undo_label() == "Paste"
 
 
 def test_ctrl_c_in_a_text_field_copies_its_text_not_the_objects(make_window, qtbot):

@@ -84,3 +84,22 @@ def test_the_pixel_limit_message_points_at_a_preference_that_works(make_window, 
     prefs.pixel_limit = 1_000_000
     qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
     qtbot.waitUntil(lambda: len(win.doc) == n + 1, timeout=30_000)
+    # The preference stops at the largest pixel object a document holds; beyond it the message says so
+    # instead of pointing at a setting that cannot help.
+    from mrm.limits import MAX_OBJECT_PIXELS
+
+    dlg = PreferencesDialog(prefs, win.registry, win)
+    field = dlg.findChild(QtWidgets.QDoubleSpinBox, "prefPixelLimit")
+    field.setValue(10 * MAX_OBJECT_PIXELS)
+    assert field.value() == MAX_OBJECT_PIXELS
+    dlg.accept()
+    assert prefs.pixel_limit == MAX_OBJECT_PIXELS
+    win.doc.set_selection([a.id])
+    panel.select_operation("dss")
+    panel.control("alpha").set_value(2000.0)  # 100 pixels × 2000² = 4·10⁸
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: not panel.is_running(), timeout=30_000)
+    assert len(win.doc) == n + 1
+    msg = panel.status.text()
+    assert f"{MAX_OBJECT_PIXELS:,}" in msg and "the largest pixel object a document holds" in msg
+    assert "Preferences" not in msg

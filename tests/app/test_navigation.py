@@ -106,3 +106,29 @@ def test_pick_button_then_a_click_in_a_view_sets_the_centre_fields(make_window, 
     assert not win.tools.is_picking()
     click(qtbot, win.views.discrete, 2, 2)
     assert (ctl.xs.value(), ctl.ys.value()) == (7.5, 1.5)
+
+
+def test_the_axes_label_round_coordinates_where_they_are(make_window, qtbot):
+    """The views' own axes (drawn directly, ADR 0025): round ticks, each label under its coordinate."""
+    from mrm.views.canvas import tick_step, tick_text
+
+    assert [tick_step(1000.0, 700.0), tick_step(7.0, 700.0), tick_step(0.35, 700.0)] == [100.0, 1.0, 0.05]
+    assert [tick_text(-0.0, 1.0), tick_text(250.0, 50.0), tick_text(0.15, 0.05)] == ["0", "250", "0.15"]
+    win = make_window()
+    win.views.camera.set(40.0, 30.0, 10.0)  # 10 screen pixels per unit around (40, 30)
+    view = win.views.discrete
+    qtbot.waitUntil(view.is_drawn, timeout=5000)
+    axis = view.plane.getPlotItem().getAxis("bottom")
+    img = axis.parentItem().scene().views()[0].grab().toImage()
+    # A tick mark is drawn just under the plot at x = 40 (a round value), and none half-way to x = 45.
+    x40 = view.plane.map_from_plane(40.0, 30.0).x()
+    x42 = view.plane.map_from_plane(42.5, 30.0).x()
+    top = int(axis.mapToScene(0, 0).y()) + 2
+    dpr = img.devicePixelRatio()
+
+    def dark(x: int) -> bool:
+        c = img.pixelColor(int(x * dpr), int(top * dpr))
+        return c.lightness() < 200
+
+    assert any(dark(x40 + d) for d in (-1, 0, 1))
+    assert not any(dark(x42 + d) for d in (-1, 0, 1))

@@ -136,6 +136,10 @@ def test_cancel_in_the_status_bar_stops_the_derivations_and_keeps_the_document(
     # The analytical view says what it did not compute, instead of "computing…" for ever.
     av = win.views.analytical
     assert "cancelled" in av.status_label.text()
+    # So does the status bar: no "… components" as if they were on their way.
+    qtbot.waitUntil(lambda: "segments not computed" in status.figures.text(), timeout=5000)
+    assert "…" not in status.figures.text()
+    assert "125\u2009609 pixels" in status.figures.text()  # what is computed is still given
     # The discrete view shows what was ready: the pixels themselves.
     c = colour_at(win.views.discrete, 210, 210)
     assert not is_background(win.views.discrete, c)

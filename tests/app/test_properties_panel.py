@@ -125,3 +125,50 @@ def test_delete_in_the_vertex_table_removes_that_vertex_not_the_object(make_wind
     assert table.model().rowCount() == 4
     win.doc.undo()
     assert win.doc.get(oid).source.equals_exact(pent, 0)
+
+
+def test_a_big_polygon_is_tabled_on_a_worker_and_edits_the_right_vertex(make_window, qtbot, monkeypatch):
+    """A MultiPolygon of 20,000 squares (100,000 coordinates): the table is made off the GUI thread."""
+    import threading
+
+    from shapely.geometry import MultiPolygon
+
+    import mrm.views.geometry_edit as ge
+
+    on_gui: list[bool] = []
+    original = ge.vertex_table
+
+    def recording(g):  # type: ignore[no-untyped-def]
+        on_gui.append(threading.current_thread() is threading.main_thread())
+        return original(g)
+
+    monkeypatch.setattr(ge, "vertex_table", recording)
+
+    def square(k: int) -> Polygon:
+        x = 3.0 * (k % 200)
+        y = 3.0 * (k // 200)
+        return Polygon([(x, y), (x + 2, y), (x + 2, y + 2), (x, y + 2)])
+
+    geom = MultiPolygon([square(k) for k in range(20_000)])
+    win = make_window(threaded=True)
+    obj = win.doc.make_object(geom, name="grid")
+    win.doc.push(AddObject(obj, select=True))
+    win.registry["edit.properties"].trigger()
+    panel = win.properties
+    model = panel.table.model()
+    qtbot.waitUntil(lambda: model.rowCount() == 80_000, timeout=60_000)
+    assert "80000 vertices" in panel.vertex_note.text()
+    assert on_gui and not any(on_gui), "the vertex table was made on the GUI thread"
+    # Row 4·k + i is vertex i of polygon k: (polygon, ring, index) and its coordinates.
+    row = 4 * 12_345 + 2
+    assert [model.index(row, c).data() for c in range(3)] == [12_345, 0, 2]
+    x, y = 3.0 * (12_345 % 200), 3.0 * (12_345 // 200)
+    assert [model.index(row, c).data() for c in (3, 4)] == [str(int(x + 2)), str(int(y + 2))]
+    # The status bar counts the same vertices.
+    qtbot.waitUntil(lambda: "80\u2009000 vertices" in win.status.figures.text(), timeout=10_000)
+    # Typing a coordinate moves that vertex of that polygon only.
+    _edit_cell(qtbot, panel.table, row, 3, str(x + 2.5))
+    qtbot.waitUntil(lambda: win.doc.history.undo_label() == "Move vertex", timeout=10_000)
+    moved = list(win.doc.get(obj.id).source.geoms)
+    assert list(moved[12_345].exterior.coords)[2] == (x + 2.5, y + 2)
+    assert list(moved[12_344].exterior.coords) == list(square(12_344).exterior.coords)

@@ -1,0 +1,55 @@
+"""The jobs the window runs in worker processes (:mod:`mrm.app.processes`): plain model calls.
+
+Each is a module-level function ``job(*args, progress)``, so that a child process can import it by name; none
+of them imports Qt.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+
+def warm(progress: Any) -> None:
+    """Load the operations and the cached kernels (a child's first job, while the window is idle)."""
+    from mrm.ops.account import account_of  # noqa: F401
+    from mrm.ops.apply import load_paper_operations
+    from mrm.warmup import is_warm, load_kernels
+
+    load_paper_operations()
+    if is_warm():  # else the window's own warm-up is compiling them: not twice at once
+        load_kernels()
+
+
+def measure(provenance: Any, progress: Any) -> Any:
+    """The inspector's account of a result, measured (:func:`mrm.ops.account.account_of`)."""
+    from mrm.ops.account import account_of
+
+    return account_of(provenance, measure=True, progress=progress)
+
+
+def plan(inputs: list[Any], op_name: str, params: Any, limit: int | None, progress: Any) -> Any:
+    """An operation planned on document objects (:func:`mrm.ops.base.plan_operation`)."""
+    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.base import plan_operation
+
+    load_paper_operations()
+    kw = {} if limit is None else {"limit": limit}
+    return plan_operation(inputs, op_name, params, progress, **kw)
+
+
+def read_project(path: str, progress: Any) -> Any:
+    """A project file read and checked (:func:`mrm.io.project.read_project`)."""
+    from mrm.io.project import read_project as read
+
+    progress.update(0.0, f"reading {Path(path).name}")
+    return read(Path(path))
+
+
+def write_project(path: str, snapshot: Any, progress: Any) -> None:
+    """A document snapshot serialised and written atomically (:func:`mrm.io.project.dumps`)."""
+    from mrm.io.atomic import atomic_write_bytes
+    from mrm.io.project import dumps
+
+    progress.update(0.0, f"writing {Path(path).name}")
+    atomic_write_bytes(Path(path), dumps(snapshot))

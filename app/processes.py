@@ -1,0 +1,373 @@
+"""Long Python-heavy work in worker *processes*, so that it never holds the GUI process's GIL (ADR 0025).
+
+Threads of one process share one GIL: while a worker thread runs Python (the exact Hausdorff measurement, an
+operation's rational arithmetic, a project's JSON), every paint of the window waits for it, turn after turn,
+and on a busy machine a pan of four views took a second. A job sent here runs in a child process instead; the
+worker thread that sent it only waits on a pipe (no GIL held), relays the child's progress and passes a
+Cancel on.
+
+A job is a module-level function ``fn(*args, progress)`` (:mod:`mrm.app.process_jobs`): the child imports it
+by name. Arguments and results travel pickled with protocol 5, numpy arrays *out of band*: each array's bytes
+go through the pipe as one message, written and read with the GIL released, and are never re-encoded.
+
+The children are fresh interpreters (``python -m mrm.app.processes``; a fork of a process running Qt threads
+is unsafe), started lazily, at most :data:`MAX_PROCESSES`, each running one job at a time, at a lower
+scheduling priority than the window; a Cancel reaches them as SIGUSR1. They end with the window, or with the
+parent, whose end closes their pipe.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import pickle
+import threading
+import time
+import traceback
+from collections.abc import Callable
+from typing import Any
+
+from mrm.errors import Cancelled
+
+log = logging.getLogger(__name__)
+
+#: Children at most (the machine has few cores; a third job waits for one of them).
+MAX_PROCESSES = 2
+#: After a Cancel, how long the child may take to reach its next progress check before it is killed.
+CANCEL_GRACE = 3.0
+#: How much lower than the window a child is scheduled (nice increment).
+CHILD_NICENESS = 10
+
+
+# ---------------------------------------------------------------------------------------------- the wire
+#: Arrays bigger than this go through a file in memory (``/dev/shm``) instead of the pipe: a pipe moves
+#: 64 KB per system call, and each call of the receiving thread takes the GIL back from the window's thread,
+#: a thousand times for a 77 M-pixel mask. A file is written and read in one call each, the GIL released.
+SPILL_BYTES = 1 << 20
+
+
+#: The prefix of the files arrays are spilled to (removed by the receiver as soon as it has read them).
+SPILL_PREFIX = "mrm-spill-"
+
+
+def _spill_dir() -> str:
+    """Where big arrays are spilled: ``/dev/shm`` (memory) when writable, else the temp folder."""
+    import tempfile
+
+    shm = "/dev/shm"
+    return shm if os.path.isdir(shm) and os.access(shm, os.W_OK) else tempfile.gettempdir()
+
+
+def _spill(raw: memoryview) -> str:
+    import tempfile
+
+    fd, path = tempfile.mkstemp(prefix=SPILL_PREFIX, dir=_spill_dir())
+    with os.fdopen(fd, "wb", buffering=0) as fh:
+        view = raw.cast("B")
+        done = 0
+        while done < len(view):
+            done += fh.write(view[done:])
+    return path
+
+
+def _unspill(path: str) -> Any:
+    import numpy as np
+
+    size = os.path.getsize(path)
+    # Not bytearray(size): it zero-fills the whole buffer with the GIL held (tens of ms at 77 MB); an
+    # empty array's pages are touched by the read below, with the GIL released.
+    data = np.empty(size, dtype=np.uint8)
+    view = memoryview(data)
+    try:
+        with open(path, "rb", buffering=0) as fh:
+            done = 0
+            while done < size:
+                n = fh.readinto(view[done:])
+                if not n:
+                    raise EOFError(f"{path}: {done} of {size} bytes")
+                done += n
+    finally:
+        os.unlink(path)
+    return data
+
+
+def send_obj(conn: Any, obj: Any) -> None:
+    """Send ``obj`` pickled (protocol 5); its contiguous arrays out of band, never re-encoded.
+
+    An array of more than :data:`SPILL_BYTES` is written to a file in memory and only its name is sent.
+    """
+    bufs: list[pickle.PickleBuffer] = []
+    head = pickle.dumps(obj, protocol=5, buffer_callback=bufs.append)
+    raws = [b.raw() for b in bufs]
+    files = [_spill(r) if r.nbytes > SPILL_BYTES else None for r in raws]
+    conn.send_bytes(pickle.dumps(files))
+    conn.send_bytes(head)
+    for r, f in zip(raws, files, strict=True):
+        if f is None:
+            conn.send_bytes(r)
+
+
+def _recv_parts(conn: Any) -> tuple[bytes, list[Any]]:
+    files = pickle.loads(conn.recv_bytes())
+    head = conn.recv_bytes()
+    return head, [conn.recv_bytes() if f is None else _unspill(f) for f in files]
+
+
+def recv_obj(conn: Any) -> Any:
+    """Receive what :func:`send_obj` sent."""
+    head, bufs = _recv_parts(conn)
+    return pickle.loads(head, buffers=bufs)
+
+
+# ---------------------------------------------------------------------------------------------- the child
+_CANCEL = threading.Event()  # in a child: set by SIGUSR1, the parent's Cancel
+
+
+class _ChildProgress:
+    """The progress a job sees in the child: reports go to the parent, a Cancel comes as a signal."""
+
+    MIN_INTERVAL = 0.05
+
+    def __init__(self, conn: Any) -> None:
+        self._conn = conn
+        self._last = 0.0
+        self.fraction = 0.0
+        self.message = ""
+
+    @property
+    def cancelled(self) -> bool:
+        return _CANCEL.is_set()
+
+    def check(self) -> None:
+        if _CANCEL.is_set():
+            raise Cancelled("cancelled")
+
+    def update(self, fraction: float | None = None, message: str | None = None) -> None:
+        self.check()
+        if fraction is not None:
+            self.fraction = min(1.0, max(0.0, float(fraction)))
+        if message is not None:
+            self.message = str(message)
+        now = time.monotonic()
+        if now - self._last >= self.MIN_INTERVAL or self.fraction >= 1.0:
+            self._last = now
+            send_obj(self._conn, ("progress", self.fraction, self.message))
+
+    __call__ = update
+    report = update
+
+
+def _child_main(fd_in: int, fd_out: int) -> None:
+    """The loop of a child: one job at a time until the parent closes the pipe."""
+    import signal
+    from multiprocessing.connection import Connection
+
+    with contextlib.suppress(OSError):  # not permitted in some sandboxes: the child then runs at par
+        os.nice(CHILD_NICENESS)
+    signal.signal(signal.SIGUSR1, lambda *_a: _CANCEL.set())
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C in a terminal is for the window, which stops us
+    conn_in, conn_out = Connection(fd_in, writable=False), Connection(fd_out, readable=False)
+    while True:
+        try:
+            head, bufs = _recv_parts(conn_in)
+        except (EOFError, OSError):
+            return
+        _CANCEL.clear()
+        progress = _ChildProgress(conn_out)
+        try:
+            fn, args = pickle.loads(head, buffers=bufs)  # a job that does not import is its error
+            result = fn(*args, progress)
+        except BaseException as exc:
+            text = traceback.format_exc()
+            try:
+                send_obj(conn_out, ("error", exc, text))
+            except Exception:  # an exception that does not pickle: its text does
+                send_obj(conn_out, ("error", RuntimeError(f"{type(exc).__name__}: {exc}"), text))
+        else:
+            send_obj(conn_out, ("result", result, ""))
+
+
+# ---------------------------------------------------------------------------------------------- the parent
+class _Child:
+    """One child: ``python -m mrm.app.processes`` with a pipe each way.
+
+    Never a fork of this process, and never a re-run of the parent's main script (which ``multiprocessing``'s
+    spawn does).
+    """
+
+    def __init__(self) -> None:
+        import subprocess
+        import sys
+        from multiprocessing.connection import Connection
+
+        to_child, from_parent = os.pipe()
+        to_parent, from_child = os.pipe()
+        try:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-m", "mrm.app.processes", str(to_child), str(from_child)],
+                pass_fds=(to_child, from_child),
+                stdin=subprocess.DEVNULL,
+            )
+        finally:
+            os.close(to_child)
+            os.close(from_child)
+        self.send = Connection(from_parent, readable=False)
+        self.recv = Connection(to_parent, writable=False)
+
+    def alive(self) -> bool:
+        return self.proc.poll() is None
+
+    def cancel(self) -> None:
+        import signal
+
+        if self.alive():
+            self.proc.send_signal(signal.SIGUSR1)
+
+    def kill(self) -> None:
+        for c in (self.send, self.recv):
+            with contextlib.suppress(OSError):
+                c.close()
+        if self.alive():
+            self.proc.kill()
+        with contextlib.suppress(Exception):
+            self.proc.wait(2.0)
+
+
+class ProcessPool:
+    """Runs jobs in child processes; :meth:`run` is called from worker threads and blocks until the end."""
+
+    def __init__(self, size: int = MAX_PROCESSES) -> None:
+        self.size = max(1, int(size))
+        self._idle: list[_Child] = []
+        self._count = 0
+        self._cond = threading.Condition()
+        self._closed = False
+        self.jobs = 0  # jobs sent to a child so far
+        self.pids: set[int] = set()  # the children's process ids
+
+    def _take(self) -> _Child:
+        with self._cond:
+            while True:
+                if self._closed:
+                    raise Cancelled("closing")
+                while self._idle:
+                    c = self._idle.pop()
+                    if c.alive():
+                        return c
+                    self._count -= 1
+                if self._count < self.size:
+                    self._count += 1
+                    break
+                self._cond.wait(0.2)
+        try:
+            return _Child()
+        except BaseException:
+            with self._cond:
+                self._count -= 1
+                self._cond.notify()
+            raise
+
+    def _give_back(self, child: _Child | None) -> None:
+        with self._cond:
+            if child is not None and not self._closed:
+                self._idle.append(child)
+            else:
+                self._count -= 1
+                if child is not None:
+                    child.kill()
+            self._cond.notify()
+
+    def warm(self) -> None:
+        """Start a child now (the window's start-up), so that the first job does not wait for it."""
+        child = self._take()
+        self._give_back(child)
+
+    def run(self, fn: Callable[..., Any], args: tuple[Any, ...], progress: Any) -> Any:
+        """``fn(*args, progress)`` in a child; its progress relayed to ``progress``, a Cancel passed on."""
+        if progress is not None:
+            progress.update()
+        child = self._take()
+        ok = False
+        try:
+            send_obj(child.send, (fn, args))
+            self.jobs += 1
+            self.pids.add(child.proc.pid)
+            cancelled_at: float | None = None
+            while True:
+                if child.recv.poll(0.05):
+                    try:
+                        kind, value, text = recv_obj(child.recv)
+                    except (EOFError, OSError):
+                        child.proc.wait(2.0)
+                        code = child.proc.returncode
+                        raise RuntimeError(f"the worker process ended unexpectedly (exit {code})") from None
+                    if kind == "progress":
+                        if cancelled_at is None and progress is not None:
+                            try:
+                                progress.update(value, text)
+                            except Cancelled:
+                                cancelled_at = time.monotonic()
+                                child.cancel()
+                        continue
+                    ok = True
+                    if kind == "result":
+                        if cancelled_at is not None:
+                            raise Cancelled("cancelled")
+                        return value
+                    if not isinstance(value, Cancelled):
+                        value.__traceback_text__ = text  # the child's traceback, for the log
+                    raise value
+                if not child.alive():
+                    raise RuntimeError(
+                        f"the worker process ended unexpectedly (exit {child.proc.returncode})"
+                    )
+                if cancelled_at is None and progress is not None and getattr(progress, "cancelled", False):
+                    cancelled_at = time.monotonic()
+                    child.cancel()
+                if cancelled_at is not None and time.monotonic() - cancelled_at > CANCEL_GRACE:
+                    # A long kernel does not look at its progress: the child is stopped instead.
+                    log.info("a worker process did not stop within %.0f s of a cancel: killed", CANCEL_GRACE)
+                    raise Cancelled("cancelled")
+        finally:
+            self._give_back(child if ok else None)
+            if not ok:
+                child.kill()
+
+    def close(self) -> None:
+        """Stop every child (the window closes)."""
+        with self._cond:
+            self._closed = True
+            idle, self._idle = self._idle, []
+            self._count -= len(idle)
+            self._cond.notify_all()
+        for c in idle:
+            c.kill()
+
+
+_POOL: ProcessPool | None = None
+_POOL_LOCK = threading.Lock()
+
+
+def pool() -> ProcessPool:
+    """The application's process pool (created on first use)."""
+    global _POOL
+    with _POOL_LOCK:
+        if _POOL is None or _POOL._closed:
+            _POOL = ProcessPool()
+        return _POOL
+
+
+def close_pool() -> None:
+    """Stop the application's worker processes, if any were started."""
+    global _POOL
+    with _POOL_LOCK:
+        p, _POOL = _POOL, None
+    if p is not None:
+        p.close()
+
+
+if __name__ == "__main__":
+    import sys
+
+    _child_main(int(sys.argv[1]), int(sys.argv[2]))

@@ -1,0 +1,105 @@
+"""Python-heavy work runs in worker processes (ADR 0025): results, errors and Cancel come back intact.
+
+The window's operations, inspector measurements and big project files go through
+:class:`mrm.app.processes.ProcessPool`, so a worker never holds the GIL the window's painting needs.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from mrm.app import processes
+from mrm.app.tasks import TaskProgress
+from mrm.errors import Cancelled, ParameterError
+from mrm.reps.pixels import PixelSet
+from tests.app import process_job_fixtures as jobs
+
+
+@pytest.fixture
+def pool():  # type: ignore[no-untyped-def]
+    p = processes.ProcessPool(2)
+    yield p
+    p.close()
+
+
+def _local_job(progress):  # type: ignore[no-untyped-def]
+    return 1  # pytest imports this module under a name the child does not know
+
+
+def test_a_job_runs_in_another_process_and_arrays_come_back_exactly(pool):  # type: ignore[no-untyped-def]
+    spill = processes._spill_dir()
+    before = {f for f in os.listdir(spill) if f.startswith(processes.SPILL_PREFIX)}
+    pid = pool.run(jobs.whoami, (), TaskProgress())
+    assert pid != os.getpid() and pid in pool.pids
+    rng = np.random.default_rng(5)
+    mask = rng.random((1500, 1700)) < 0.5  # 2.5 M pixels: sent out of band, as raw bytes
+    ps = PixelSet(mask, (-40, 7))
+    back = pool.run(jobs.echo, (ps,), TaskProgress())
+    assert back == ps and back is not ps
+    assert not back.mask.flags.writeable  # still a frozen pixel set
+    assert back.origin == (-40, 7) and back.count == ps.count
+    # The mask went both ways through a file in memory, removed once read.
+    assert ps.mask.nbytes > processes.SPILL_BYTES
+    assert {f for f in os.listdir(spill) if f.startswith(processes.SPILL_PREFIX)} <= before
+
+
+def test_progress_is_relayed_and_a_cancel_stops_the_job(pool):  # type: ignore[no-untyped-def]
+    seen: list[float] = []
+    progress = TaskProgress(lambda f, _m: seen.append(f))
+    threading.Timer(0.8, progress.cancel).start()
+    t0 = time.monotonic()
+    with pytest.raises(Cancelled):
+        pool.run(jobs.counting, (30.0,), progress)
+    assert time.monotonic() - t0 < 10  # not the 30 s of the job
+    assert seen and 0 < max(seen) < 1
+    # The child is reused for the next job.
+    assert pool.run(jobs.counting, (0.05,), TaskProgress()) == "finished"
+
+
+def test_a_job_deaf_to_cancel_is_stopped_by_killing_its_process(pool):  # type: ignore[no-untyped-def]
+    progress = TaskProgress()
+    threading.Timer(0.5, progress.cancel).start()
+    t0 = time.monotonic()
+    with pytest.raises(Cancelled):
+        pool.run(jobs.deaf, (60.0,), progress)
+    assert time.monotonic() - t0 < processes.CANCEL_GRACE + 5
+    assert pool.run(jobs.whoami, (), TaskProgress()) != os.getpid()  # a fresh child
+
+
+def test_errors_come_back_as_themselves_and_a_dead_child_is_replaced(pool):  # type: ignore[no-untyped-def]
+    with pytest.raises(ParameterError, match="α must be positive, got -3"):
+        pool.run(jobs.refusing, (), TaskProgress())
+    with pytest.raises(RuntimeError, match="ended unexpectedly"):
+        pool.run(jobs.dying, (), TaskProgress())
+    with pytest.raises(ModuleNotFoundError):  # a job the child cannot import is refused, the child lives on
+        pool.run(_local_job, (), TaskProgress())
+    assert pool.run(jobs.whoami, (), TaskProgress()) != os.getpid()
+
+
+def test_the_window_applies_an_operation_in_a_worker_process(make_window, qtbot):  # type: ignore[no-untyped-def]
+    from mrm.commands import AddObject
+    from tests.app.helpers import colour_at, is_background
+
+    win = make_window(threaded=True)
+    yy, xx = np.mgrid[0:60, 0:60]
+    obj = win.doc.make_object(PixelSet((xx - 30) ** 2 + (yy - 30) ** 2 < 25**2, (0, 0)), name="disk")
+    win.doc.push(AddObject(obj, select=True))
+    before = processes.pool().jobs
+    panel = win.operations
+    panel.select_operation("dss")
+    panel.control("alpha").set_value(2.0)
+    panel.apply()
+    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=120_000)
+    assert processes.pool().jobs > before
+    assert os.getpid() not in processes.pool().pids
+    result = win.doc.objects[-1]
+    assert result.provenance is not None and result.provenance.operation == "dss"
+    # Twice the size: the scaled disk covers (60, 60), which the input did not.
+    win.fit_all()
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    assert not is_background(win.views.discrete, colour_at(win.views.discrete, 60, 60))
