@@ -126,6 +126,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
+from mrm.gc_pause import paused_gc
 from mrm.geometry.cracks import DX, DY
 from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.labeling import group_by_label
@@ -133,7 +134,6 @@ from mrm.geometry.labeling import label as label_components
 from mrm.geometry.segmentation import standard_dss_reach_table
 from mrm.reps.cells import Cells, cells_of
 from mrm.reps.pixels import LabelMap, PixelSet
-from mrm.reps.region import paused_gc
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
