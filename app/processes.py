@@ -124,38 +124,11 @@ def recv_obj(conn: Any) -> Any:
 _CANCEL = threading.Event()  # in a child: set by SIGUSR1, the parent's Cancel
 
 
-class _ChildProgress:
+def _child_progress(conn: Any) -> Any:
     """The progress a job sees in the child: reports go to the parent, a Cancel comes as a signal."""
+    from mrm.app.progress import TaskProgress
 
-    MIN_INTERVAL = 0.05
-
-    def __init__(self, conn: Any) -> None:
-        self._conn = conn
-        self._last = 0.0
-        self.fraction = 0.0
-        self.message = ""
-
-    @property
-    def cancelled(self) -> bool:
-        return _CANCEL.is_set()
-
-    def check(self) -> None:
-        if _CANCEL.is_set():
-            raise Cancelled("cancelled")
-
-    def update(self, fraction: float | None = None, message: str | None = None) -> None:
-        self.check()
-        if fraction is not None:
-            self.fraction = min(1.0, max(0.0, float(fraction)))
-        if message is not None:
-            self.message = str(message)
-        now = time.monotonic()
-        if now - self._last >= self.MIN_INTERVAL or self.fraction >= 1.0:
-            self._last = now
-            send_obj(self._conn, ("progress", self.fraction, self.message))
-
-    __call__ = update
-    report = update
+    return TaskProgress(lambda fraction, message: send_obj(conn, ("progress", fraction, message)), _CANCEL)
 
 
 def _child_main(fd_in: int, fd_out: int) -> None:
@@ -174,7 +147,7 @@ def _child_main(fd_in: int, fd_out: int) -> None:
         except (EOFError, OSError):
             return
         _CANCEL.clear()
-        progress = _ChildProgress(conn_out)
+        progress = _child_progress(conn_out)
         try:
             fn, args = pickle.loads(head, buffers=bufs)  # a job that does not import is its error
             result = fn(*args, progress)
