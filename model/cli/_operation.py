@@ -111,8 +111,8 @@ def read_one(
     return value, chosen
 
 
-def read_two(args: argparse.Namespace) -> tuple[Any, Any, str]:
-    """Read A and B with their ``--object`` names; the model is --model, else A's project's, else B's."""
+def _two_names(args: argparse.Namespace) -> tuple[str | None, str | None]:
+    """The ``--object`` names of A and B (None: the input's only object, or a plain file)."""
     names = list(args.object or [])
     if len(names) > 2:
         raise ParameterError("--object is given at most twice (for A, then for B)")
@@ -128,6 +128,13 @@ def read_two(args: argparse.Namespace) -> tuple[Any, Any, str]:
             raise ParameterError("--object applies to project (.mrm) inputs only")
     else:
         name_a = name_b = None
+    return name_a, name_b
+
+
+def read_two(args: argparse.Namespace) -> tuple[Any, Any, str]:
+    """Read A and B with their ``--object`` names; the model is --model, else A's project's, else B's."""
+    project = [Path(p).suffix.lower() == ".mrm" for p in (args.first, args.second)]
+    name_a, name_b = _two_names(args)
     a, model_a = read_one(args.first, name_a, args.model, args.limit)
     b, model_b = read_one(args.second, name_b, args.model, args.limit)
     model = args.model or (model_a if project[0] else model_b if project[1] else model_a)
@@ -179,6 +186,22 @@ def write_result(
             properties={"model": model, **(properties or {})},
             members=geojson_members(georef, result),
         )
+
+
+def two_input_georef(args: argparse.Namespace, operation: str, a: Any, b: Any) -> Any:
+    """The georeference of a two-input result (ADR 0021): both inputs' grid when they share one, else None."""
+    from mrm.io.georef import result_georef
+
+    name_a, name_b = _two_names(args)
+    grids = [_input_record(args.first, name_a, a)[2], _input_record(args.second, name_b, b)[2]]
+    return result_georef(operation, {}, grids)
+
+
+def georef_summary(georef: Any) -> dict[str, Any]:
+    """The ``crs`` and ``transform`` keys of a georeferenced result's summary (none without one)."""
+    if georef is None:
+        return {}
+    return {"crs": georef.crs, "transform": list(georef.transform)}
 
 
 def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
@@ -259,9 +282,7 @@ def unary_file(
     summary["account"] = acc.summary()
     summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})
     summary["seconds"] = seconds
-    if out_georef is not None:
-        summary["crs"] = out_georef.crs
-        summary["transform"] = list(out_georef.transform)
+    summary.update(georef_summary(out_georef))
     return summary
 
 

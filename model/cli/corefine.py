@@ -25,10 +25,18 @@ import time
 from pathlib import Path
 from typing import Any
 
+import shapely
 from shapely.geometry import Polygon
 
 from mrm.cli._common import print_table
-from mrm.cli._operation import add_common, add_two_inputs, read_two, result_summary
+from mrm.cli._operation import (
+    add_common,
+    add_two_inputs,
+    georef_summary,
+    read_two,
+    result_summary,
+    two_input_georef,
+)
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
 from mrm.ops.exact_geometry import number_to_json, positive_number
@@ -68,22 +76,42 @@ def _targets(output: str) -> tuple[str, dict[str, str]]:
 
 
 def _write(
-    kind: str, files: dict[str, str], output: str, result: dict[str, Any], labels: Any, model: str
+    kind: str,
+    files: dict[str, str],
+    output: str,
+    result: dict[str, Any],
+    labels: Any,
+    model: str,
+    georef: Any = None,
 ) -> None:
+    """Write the parts, the vector files in world coordinates when the inputs share a georeference.
+
+    An SVG stays a picture and a label map stays on the pixel grid.
+    """
+    from mrm.io.georef import geojson_members
     from mrm.ops.boolean import PARTS
 
+    world = {part: result[part] if georef is None else georef.to_world(result[part]) for part in PARTS}
     if kind == "collection":
-        write_geojson([(part, result[part]) for part in PARTS], output, properties={"model": model})
+        members = geojson_members(georef, shapely.GeometryCollection([world[p] for p in PARTS]))
+        write_geojson(
+            [(part, world[part]) for part in PARTS], output, properties={"model": model}, members=members
+        )
     elif kind == "labels":
         write_label_map(labels, output)
     else:
         for part, path in files.items():
             if path.endswith(".wkt"):
-                write_wkt(result[part], path)
+                write_wkt(world[part], path)
             elif path.endswith(".svg"):
                 write_svg(result[part], path)
             else:
-                write_geojson(result[part], path, properties={"model": model, "part": part})
+                write_geojson(
+                    world[part],
+                    path,
+                    properties={"model": model, "part": part},
+                    members=geojson_members(georef, world[part]),
+                )
 
 
 def _read_alpha(text: str) -> Any:
@@ -119,7 +147,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     seconds = time.perf_counter() - t0
     if files:  # a folder target is created only now, when there is something to write into it
         Path(next(iter(files.values()))).parent.mkdir(parents=True, exist_ok=True)
-    _write(kind, files, str(args.output), out.result, out.extra["label_map"], model)
+    georef = two_input_georef(args, "corefine", a, b)
+    _write(kind, files, str(args.output), out.result, out.extra["label_map"], model, georef)
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary.update(operation="corefine", alpha=alpha_json)
     if files:
@@ -152,6 +181,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         summary["reference_exact"] = acc.reference_exact
     summary["parts"] = parts
     summary["seconds"] = seconds
+    summary.update(georef_summary(georef))
     if not args.json:
         print_table({k: v for k, v in summary.items() if k not in ("parts", "chain", "input_chains")})
         for part, info in parts.items():

@@ -12,7 +12,16 @@ import time
 from typing import Any
 
 from mrm.cli._common import extension_of, print_table
-from mrm.cli._operation import OUTPUTS, add_common, add_two_inputs, read_two, result_summary, write_result
+from mrm.cli._operation import (
+    OUTPUTS,
+    add_common,
+    add_two_inputs,
+    georef_summary,
+    read_two,
+    result_summary,
+    two_input_georef,
+    write_result,
+)
 
 NAME = "union"
 HELP = "Euclidean-discrete union EDu of two objects: R(D(A) ∪ D(B))"
@@ -43,7 +52,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         acc = account_of(prov, measure=True, limit=args.limit)
         result = acc.output
     seconds = time.perf_counter() - t0
-    write_result(result, args.output, model, {"operation": "union"})
+    georef = two_input_georef(args, "union", a, b)
+    write_result(result, args.output, model, {"operation": "union"}, georef)
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary["operation"] = "union"
     pixels = acc.result if acc.result is not None else None
@@ -54,6 +64,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     summary.update(result_summary(result, pixels, model))
     summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})
     summary["seconds"] = seconds
+    summary.update(georef_summary(georef))
     if not args.json:
         print_table({k: v for k, v in summary.items() if k not in ("steps", "parts")})
     return summary

@@ -222,3 +222,45 @@ def test_operations_on_a_geotiff_give_georeferenced_results(tmp_path):
     assert fc["crs"]["properties"]["name"] == "urn:ogc:def:crs:EPSG::32633"
     xmin, ymin, xmax, ymax = fc["bbox"]
     assert abs((xmin + xmax) / 2 - 500_240.0) < 1e-6 and abs((ymin + ymax) / 2 - 4_199_820.0) < 1e-6
+
+
+def test_union_and_corefine_of_two_geotiffs_on_one_grid_keep_it(tmp_path):
+    rasterio = pytest.importorskip("rasterio")
+    from rasterio.transform import from_origin
+
+    t = from_origin(500_000.0, 4_200_000.0, 30.0, 30.0)
+
+    def tif(name: str, rows: slice, cols: slice, transform=t) -> None:
+        mask = np.zeros((12, 16), dtype=np.uint8)
+        mask[rows, cols] = 1
+        with rasterio.open(
+            tmp_path / name, "w", driver="GTiff", width=16, height=12, count=1, dtype="uint8",
+            transform=transform, crs="EPSG:32633",
+        ) as ds:  # fmt: skip
+            ds.write(mask, 1)
+
+    tif("a.tif", slice(2, 6), slice(1, 9))  # two 30 m blocks that overlap in a 3×2-pixel corner
+    tif("b.tif", slice(4, 10), slice(6, 14))
+    done = mrm_run("union", "a.tif", "b.tif", "-o", "u.tif", "--json", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout)["crs"] == "EPSG:32633"
+    with rasterio.open(tmp_path / "u.tif") as ds:
+        assert ds.transform == t and ds.crs.to_epsg() == 32633
+        ys, xs = np.nonzero(ds.read(1))
+        burnt = {(int(x), int(y)) for x, y in zip(xs, ys, strict=True)}
+    block_a = {(c, r) for r in range(2, 6) for c in range(1, 9)}
+    block_b = {(c, r) for r in range(4, 10) for c in range(6, 14)}
+    assert burnt == block_a | block_b  # the union, back on the rasters' own pixels
+    done = mrm_run("corefine", "a.tif", "b.tif", "-o", "parts.geojson", "--model", "gauss", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    fc = json.loads((tmp_path / "parts.geojson").read_text())
+    assert fc["crs"]["properties"]["name"] == "urn:ogc:def:crs:EPSG::32633"
+    inter = next(f for f in fc["features"] if f["properties"]["part"] == "a_and_b")
+    xs_, ys_ = zip(*inter["geometry"]["coordinates"][0], strict=True)
+    # the overlap, columns 6–8 and rows 4–5, in world metres: within one pixel of its edges (gauss)
+    assert min(xs_) > 500_180.0 - 30 and max(xs_) < 500_270.0 + 30
+    assert min(ys_) > 4_199_820.0 - 30 and max(ys_) < 4_199_880.0 + 30
+    tif("c.tif", slice(4, 10), slice(6, 14), from_origin(500_000.0, 4_200_000.0, 10.0, 10.0))
+    other = mrm_run("union", "a.tif", "c.tif", "-o", "v.geojson", "--json", cwd=tmp_path)
+    assert other.returncode == 0, other.stderr
+    assert "crs" not in json.loads(other.stdout)  # two grids: no single answer, plain grid coordinates
