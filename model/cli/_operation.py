@@ -197,13 +197,6 @@ def two_input_georef(args: argparse.Namespace, operation: str, a: Any, b: Any) -
     return result_georef(operation, {}, grids)
 
 
-def georef_summary(georef: Any) -> dict[str, Any]:
-    """The ``crs`` and ``transform`` keys of a georeferenced result's summary (none without one)."""
-    if georef is None:
-        return {}
-    return {"crs": georef.crs, "transform": list(georef.transform)}
-
-
 def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
     """The info keys of a result (its discrete representation, and the polygon when it is Euclidean)."""
     return summarize(pixels, model, geom=None if isinstance(result, PixelSet) else result)
@@ -282,6 +275,8 @@ def unary_file(
     summary["account"] = acc.summary()
     summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})
     summary["seconds"] = seconds
+    from mrm.io.georef import georef_summary
+
     summary.update(georef_summary(out_georef))
     return summary
 

@@ -32,11 +32,11 @@ from mrm.cli._common import print_table
 from mrm.cli._operation import (
     add_common,
     add_two_inputs,
-    georef_summary,
     read_two,
     result_summary,
     two_input_georef,
 )
+from mrm.io.georef import georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
 from mrm.ops.exact_geometry import number_to_json, positive_number

@@ -40,6 +40,7 @@ from mrm.cli._common import (
     run_batch,
 )
 from mrm.errors import FileFormatError, ParameterError
+from mrm.io.georef import georef_summary
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import (
     MAX_VECTOR_FILE_BYTES,
@@ -165,9 +166,7 @@ def reconstruct_file(
     _write(geom if georef is None else georef.to_world(geom), output, chosen, path, georef, features)
     summary = {"input": str(path), "output": str(output), **summarize(ps, chosen, geom=geom)}
     summary["seconds"] = seconds
-    if georef is not None:
-        summary["crs"] = georef.crs
-        summary["transform"] = list(georef.transform)
+    summary.update(georef_summary(georef))
     return summary
 
 

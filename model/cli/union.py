@@ -16,12 +16,12 @@ from mrm.cli._operation import (
     OUTPUTS,
     add_common,
     add_two_inputs,
-    georef_summary,
     read_two,
     result_summary,
     two_input_georef,
     write_result,
 )
+from mrm.io.georef import georef_summary
 
 NAME = "union"
 HELP = "Euclidean-discrete union EDu of two objects: R(D(A) ∪ D(B))"

@@ -661,6 +661,13 @@ def write_georeferenced(ps: PixelSet, path: PathLike, georef: GeoRef) -> GeoRef:
     return grid
 
 
+def georef_summary(georef: GeoRef | None) -> dict[str, Any]:
+    """The ``crs`` and ``transform`` keys of a georeferenced result's ``--json`` summary (or none)."""
+    if georef is None:
+        return {}
+    return {"crs": georef.crs, "transform": list(georef.transform)}
+
+
 def geojson_members(georef: GeoRef | None, world_geom: Any) -> dict[str, Any]:
     """The FeatureCollection members of a georeferenced result: ``crs`` (EPSG URN) and ``bbox``."""
     if georef is None:
