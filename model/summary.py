@@ -2,11 +2,10 @@
 
 :func:`summarize` gives the fixed keys ``model``, ``pixels``, ``components``, ``holes``, ``euler``,
 ``boundary_chains``, ``segments`` and ``vertices`` (plus ``bbox``). Parts of the model that are not built yet
-give ``null``: the region keys need :mod:`mrm.reps.region`, ``segments`` the analytical representation
-(:func:`mrm.reps.analytical.analytical_of`, or else a greedy DSS segmentation of every boundary chain with
-:mod:`mrm.geometry.segmentation`), and ``vertices`` of a discrete object its continuation
-(:func:`mrm.geometry.reconstruct.reconstruct`). They are looked up at call time, so the summary fills in
-by itself as those modules land.
+give ``null``: the region keys need :mod:`mrm.reps.region`, ``segments`` is the analytical
+representation's count (:func:`mrm.reps.analytical.segment_count`), and ``vertices`` of a discrete object its
+continuation (:func:`mrm.geometry.reconstruct.reconstruct`). The region and the continuation are looked up at
+call time (:func:`optional_function`).
 """
 
 from __future__ import annotations
@@ -62,25 +61,11 @@ def count_vertices(geom: Any) -> int:
     raise TypeError(f"cannot count the vertices of a {kind}")
 
 
-def _count_segments(region: Any) -> int | None:
-    segment_count = optional_function("mrm.reps.analytical", "segment_count")
-    if segment_count is not None:
-        return int(segment_count(region))
-    analytical_of = optional_function("mrm.reps.analytical", "analytical_of")
-    if analytical_of is not None:
-        rep = analytical_of(region)
-        n = getattr(rep, "n_segments", None)
-        if n is not None:
-            return int(n)
-        segments = getattr(rep, "segments", None)
-        if segments is not None:
-            return len(segments)
-    greedy = optional_function("mrm.geometry.segmentation", "greedy_segmentation")
-    points_of = optional_function("mrm.geometry.segmentation", "chain_points")
-    if greedy is None or points_of is None:
-        return None
-    # The default analytical representation: greedy standard (4-connected) DSS around each closed chain.
-    return sum(len(greedy(points_of(ch.start, ch.codes), closed=True)) for ch in region.boundary_chains)
+def _count_segments(region: Any) -> int:
+    # The analytical representation's count (greedy standard DSS around every chain), without building it.
+    from mrm.reps.analytical import segment_count
+
+    return segment_count(region)
 
 
 def summarize(ps: PixelSet, model: str, geom: Any = None) -> dict[str, Any]:
