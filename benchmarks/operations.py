@@ -65,7 +65,7 @@ DSS = optional_function("mrm.ops.scaling", "discrete_smooth_scaling")
 ROTATE = optional_function("mrm.ops.rotation", "discrete_rotation")
 UNION = optional_function("mrm.ops.boolean", "euclidean_discrete_union")
 COREFINE = optional_function("mrm.ops.boolean", "euclidean_discrete_corefinement")
-WATERTIGHT = optional_function("mrm.geometry.subdivision", "watertight_parts")
+WATERTIGHT = optional_function("mrm.geometry.reconstruct.subdivision", "watertight_parts")
 
 SLIVER = 1e-6
 

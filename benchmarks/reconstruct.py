@@ -34,8 +34,8 @@ from shapely.geometry import MultiPolygon, Polygon
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from mrm.geometry.discretize import discretize
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
 from mrm.geometry.reconstruct import MODELS, reconstruct
-from mrm.geometry.segmentation import chain_points, greedy_segmentation
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from mrm.summary import count_vertices
@@ -261,7 +261,7 @@ def speed_inputs() -> list[tuple[str, np.ndarray]]:
 
 def boundary_steps(m: np.ndarray) -> int:
     """Linels of the crack rings of a mask (the boundary steps R walks)."""
-    from mrm.geometry.cracks import trace_mask
+    from mrm.geometry.topology.cracks import trace_mask
 
     return int(trace_mask(np.ascontiguousarray(m.view(np.uint8))).codes.size)
 
@@ -381,7 +381,7 @@ def label_maps() -> None:
     import rasterio.features
     import skimage.data
 
-    from mrm.geometry.polygonize import polygonize
+    from mrm.geometry.reconstruct.polygonize import polygonize
     from mrm.reps.pixels import LabelMap
 
     img = skimage.data.coins()[::-1][:128, :160]

@@ -37,7 +37,7 @@ def disk_contour(r: int) -> np.ndarray:
 
     The digitization is exact in integers: (x − 1/7)² + (y − 2/9)² ≤ r² ⇔ (63x − 9)² + (63y − 14)² ≤ (63r)².
     """
-    from mrm.geometry.segmentation import chain_points
+    from mrm.geometry.dss.segmentation import chain_points
 
     ys = np.arange(-r - 1, r + 2, dtype=np.int64)
     xs = np.arange(-r - 1, r + 2, dtype=np.int64)
@@ -75,7 +75,7 @@ def disk_contour(r: int) -> np.ndarray:
 
 
 def random_chain(n: int, seed: int = 7) -> np.ndarray:
-    from mrm.geometry.segmentation import chain_points
+    from mrm.geometry.dss.segmentation import chain_points
 
     rng = np.random.default_rng(seed)
     turns = rng.integers(-1, 2, n)  # left, straight or right: never a back-step
@@ -111,7 +111,7 @@ def main() -> None:
         os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="mrm-numba-")
 
     t0, c0 = time.perf_counter(), time.process_time()
-    from mrm.geometry.segmentation import greedy_table, maximal_table, standard_dss_reach
+    from mrm.geometry.dss.segmentation import greedy_table, maximal_table, standard_dss_reach
 
     tiny = np.array([[0, 0], [1, 0], [1, 1]], dtype=np.int64)
     greedy_table(tiny)

@@ -130,7 +130,7 @@ def polygonize(
     >>> sorted(parts), parts[1].intersection(parts[2]).area
     ([1, 2], 0.0)
     """
-    from mrm.geometry.subdivision import reconstruct_label_map
+    from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
 
     if not isinstance(labels, LabelMap):
         a = np.asarray(labels)
@@ -175,7 +175,7 @@ def segment(
     [[0, 8, 1, 2, 0, 3]]
     """
     from mrm.errors import ParameterError
-    from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
+    from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 
     if isinstance(chain, str):
         bad = chain.translate(str.maketrans("", "", "0123"))
@@ -387,7 +387,7 @@ def bound(chain: str | Sequence[Any], model: str = "standard", *, exact_identiti
     ----------
     chain : str or sequence of ChainStep
         E.g. ``"DSS 5, DSS 2, DSS 0.5, DSS 0.2"`` (applied left to right), or steps from
-        :mod:`mrm.geometry.bounds`.
+        :mod:`mrm.geometry.hausdorff.bounds`.
     model : {"standard", "supercover", "gauss"}
     exact_identities : bool
         Merge round trips separated by an exact identity.
@@ -404,7 +404,7 @@ def bound(chain: str | Sequence[Any], model: str = "standard", *, exact_identiti
     >>> b.coefficient, round(b.bound, 4)
     (Fraction(1, 2), 0.7071)
     """
-    from mrm.geometry.bounds import bound_of_chain, parse_chain
+    from mrm.geometry.hausdorff.bounds import bound_of_chain, parse_chain
 
     steps = parse_chain(chain) if isinstance(chain, str) else list(chain)
     return bound_of_chain(steps, model, exact_identities=exact_identities)

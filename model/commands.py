@@ -589,7 +589,7 @@ def hole_pixels(ps: PixelSet, at: tuple[int, int] | None = None) -> PixelSet:
     ParameterError
         When ``at`` is given and is not in a hole.
     """
-    from mrm.geometry.labeling import label
+    from mrm.geometry.topology.labeling import label
     from mrm.reps.region import fill_chains, region_of
 
     region = region_of(ps)

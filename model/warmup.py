@@ -28,24 +28,24 @@ log = logging.getLogger(__name__)
 #: Modules holding ``@njit(cache=True)`` kernels (relative to the package root).
 KERNEL_MODULES = (
     "geometry/_jit.py",
-    "geometry/_discretize_kernels.py",
-    "geometry/_dss_kernels.py",
-    "geometry/_reconstruct_kernels.py",
-    "geometry/_rk_base.py",
-    "geometry/_rk_corridor.py",
-    "geometry/_rk_reach.py",
-    "geometry/_rk_greedy.py",
-    "geometry/_rk_check.py",
-    "geometry/_rk_repair.py",
-    "geometry/_rk_straighten.py",
-    "geometry/_dual_kernels.py",
-    "geometry/_subdivision_kernels.py",
-    "geometry/rational_discretize.py",
+    "geometry/discretize/_kernels.py",
+    "geometry/dss/_kernels.py",
+    "geometry/reconstruct/_kernels.py",
+    "geometry/reconstruct/_base.py",
+    "geometry/reconstruct/_corridor.py",
+    "geometry/reconstruct/_reach.py",
+    "geometry/reconstruct/_greedy.py",
+    "geometry/reconstruct/_check.py",
+    "geometry/reconstruct/_repair.py",
+    "geometry/reconstruct/_straighten.py",
+    "geometry/reconstruct/_dual.py",
+    "geometry/reconstruct/_subdivision_kernels.py",
+    "geometry/discretize/rational_kernels.py",
     "io/png_stream.py",
-    "geometry/cracks.py",
-    "geometry/labeling.py",
-    "geometry/segmentation.py",
-    "geometry/dss.py",
+    "geometry/topology/cracks.py",
+    "geometry/topology/labeling.py",
+    "geometry/dss/segmentation.py",
+    "geometry/dss/__init__.py",
     "reps/region.py",
 )
 
@@ -188,7 +188,7 @@ def _step_reconstruct() -> None:
             reconstruct(ps, model)  # type: ignore[arg-type]
     import numpy as np
 
-    from mrm.geometry.subdivision import reconstruct_label_map
+    from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
     from mrm.reps.pixels import LabelMap
 
     yy, xx = np.mgrid[0:14, 0:14]

@@ -36,7 +36,7 @@ def hole_mask(mask: np.ndarray) -> np.ndarray:
     """Pixels of the bounded 8-components of the complement of ``mask`` (same shape as ``mask``)."""
     if mask.size == 0:
         return np.zeros_like(mask, dtype=bool)
-    from mrm.geometry.labeling import label  # numba: loaded on first use, not at start-up
+    from mrm.geometry.topology.labeling import label  # numba: loaded on first use, not at start-up
 
     outside = np.pad(~mask.astype(bool), 1, constant_values=True)
     lab, _n = label(outside, connectivity=8)

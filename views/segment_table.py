@@ -277,7 +277,7 @@ class SegmentTable(QtWidgets.QWidget):
             f"first pointel ({_n(i0)}, {_n(j0)}): {len(pre.vertices)} vertices."
         )
         if seg.a or seg.b:
-            from mrm.geometry.preimage import median_parameters
+            from mrm.geometry.dss.preimage import median_parameters
 
             u, w = to_local(pre.frame, *median_parameters(seg), i0, j0)
             self.median_item.setData(

@@ -5,8 +5,8 @@ Run from the repository root::
     .venv/bin/python docs/figures/make_reconstruction_figures.py
 
 It writes ``docs/img/reconstruction-*.png``. Every pixel, chain, segment, piece, line and vertex shown comes
-from MR Modeler (:mod:`mrm.geometry.reconstruct`, :mod:`mrm.geometry.border`,
-:mod:`mrm.geometry.segmentation`, :mod:`mrm.geometry.discretize`); only the drawing is done here, with
+from MR Modeler (:mod:`mrm.geometry.reconstruct`, :mod:`mrm.geometry.reconstruct.border`,
+:mod:`mrm.geometry.dss.segmentation`, :mod:`mrm.geometry.discretize`); only the drawing is done here, with
 Pillow's ImageDraw (drawn at 4× and scaled down). The plane has y up, as in MR Modeler.
 """
 
@@ -22,11 +22,11 @@ from PIL import Image, ImageDraw, ImageFont
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from mrm.geometry.border import border_paths, corridors  # noqa: E402
 from mrm.geometry.discretize import discretize  # noqa: E402
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation  # noqa: E402
 from mrm.geometry.reconstruct import reconstruct_detailed  # noqa: E402
-from mrm.geometry.safety_net import eroded_net  # noqa: E402
-from mrm.geometry.segmentation import chain_points, greedy_segmentation  # noqa: E402
+from mrm.geometry.reconstruct.border import border_paths, corridors  # noqa: E402
+from mrm.geometry.reconstruct.safety_net import eroded_net  # noqa: E402
 from mrm.reps.pixels import PixelSet  # noqa: E402
 from mrm.reps.region import region_of  # noqa: E402
 from mrm.summary import count_vertices  # noqa: E402

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from mrm.geometry.bounds import bound_of_chain, parse_chain
+from mrm.geometry.hausdorff.bounds import bound_of_chain, parse_chain
 
 NAME = "bounds"
 HELP = 'error bound of a chain of operations, e.g. "DSS 5, DSS 2, DSS 0.5, DSS 0.2" (applied left to right)'

@@ -36,10 +36,10 @@ from mrm.cli._operation import (
     result_summary,
     two_input_georef,
 )
+from mrm.geometry.discretize.exact_shape import number_to_json, positive_number
 from mrm.io.georef import georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
-from mrm.ops.exact_geometry import number_to_json, positive_number
 from mrm.summary import count_vertices, summarize
 
 NAME = "corefine"

@@ -3,7 +3,8 @@
 ``LABELS`` is an integer label image: a grey (8 or 16 bits) or palette PNG, a PGM (the grey value is the
 label), or an NPZ holding ``labels`` (and optionally ``origin``). Label 0 is the background. Each region —
 a 4-connected component of one label — becomes one GeoJSON Feature with the properties ``label`` and
-``pixels``. A boundary between two regions is one polyline used by both (:mod:`mrm.geometry.polygonize`),
+``pixels``. A boundary between two regions is one polyline used by both
+(:mod:`mrm.geometry.reconstruct.polygonize`),
 and under ``gauss`` (the only model that allows a shared boundary) every centre-rule rasterizer burns the
 features with their labels back to the label image exactly.
 
@@ -104,7 +105,7 @@ def read_labels(path: str, limit: int) -> LabelMap:
 
 def polygonize_file(path: str, output: str, model: str | None, limit: int) -> dict[str, Any]:
     """Polygonize one label image and write its features; return its summary (batch workers call it)."""
-    from mrm.geometry.polygonize import polygonize
+    from mrm.geometry.reconstruct.polygonize import polygonize
     from mrm.io.vector_files import _geojson_of
 
     lm = read_labels(path, limit)

@@ -20,7 +20,8 @@ drawn, imported, or made by a two-object operation (EDu, EDco): that object is `
   DSS and dR, the exact Sp result, the exact image of a Euclidean similarity), recomputed from the pinned
   input of the last step — the object the result was really made from;
 * ``measured`` is the exact ``H(T(A_first), A_last)`` (:mod:`mrm.ops.measure`), set beside the bound of
-  :func:`mrm.geometry.bounds.bound_of_chain`; ``direct`` is ``D(T(A_first))`` and the differing pixels are
+  :func:`mrm.geometry.hausdorff.bounds.bound_of_chain`; ``direct`` is ``D(T(A_first))`` and the differing
+  pixels are
   the paper's Figure 12 light and dark grey.
 
 For Sp_α the account also checks ``Sp_α∘Sp_α = Sp_α`` on the result (:attr:`Account.idempotent`).
@@ -29,7 +30,8 @@ Two-object operations
 ---------------------
 EDu and EDco are accounted for on their own pinned inputs ``E``, ``E′`` (a pixel set ``A`` stands for
 ``R(A)``): the bound of the step (√n for EDu; per part for EDco / EDco_α, with the directions that hold,
-:mod:`mrm.geometry.bounds`), and the measured distance to the Euclidean union or part, computed by GEOS's
+:mod:`mrm.geometry.hausdorff.bounds`), and the measured distance to the Euclidean union or part, computed by
+GEOS's
 overlay — exact when the inputs do not overlap, otherwise exact for GEOS's polygon, whose new crossing
 vertices are rounded to float64 (``reference_exact`` says which). Both inputs' own chains are listed.
 
@@ -45,7 +47,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, MRMError, ParameterError
-from mrm.geometry.bounds import BoundResult, ChainStep, bound_of_chain
+from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
 from mrm.ops.base import ProgressLike, coerce_params, get_operation, params_to_dict
 from mrm.ops.chain import CHAIN_OPERATIONS as _CHAIN_READS
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
@@ -386,9 +388,9 @@ def _sub(progress: ProgressLike | None, lo: float, hi: float) -> Any:
 
 
 def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int | None) -> Account:
+    from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+    from mrm.geometry.discretize.rational import discretize_exact
     from mrm.ops.chain import convert_for, run_step, step_params
-    from mrm.ops.exact_geometry import ExactShape, Similarity
-    from mrm.ops.rational_discretize import discretize_exact
     from mrm.ops.simplify import simplification
 
     records = chain_of(prov)
@@ -471,7 +473,7 @@ def _binary_account(
     progress: ProgressLike | None,
     limit: int | None,
 ) -> Account:
-    from mrm.geometry import bounds as B
+    from mrm.geometry.hausdorff import bounds as B
     from mrm.ops.boolean import (
         BOUND_PART,
         PARTS,
@@ -533,7 +535,7 @@ def _binary_account(
 
 
 def _alpha(alpha: Any) -> Any:
-    from mrm.ops.exact_geometry import positive_number
+    from mrm.geometry.discretize.exact_shape import positive_number
 
     return None if alpha is None else positive_number(alpha, "alpha")
 

@@ -28,7 +28,7 @@ from typing import Any, Literal, Protocol, TypeAlias, runtime_checkable
 from shapely.geometry.base import BaseGeometry
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
-from mrm.geometry.bounds import BoundResult, ChainStep, bound_of_chain
+from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
 from mrm.reps.pixels import PixelSet
 
 __all__ = [
@@ -416,7 +416,7 @@ def _json_number(v: Any) -> Any:
     from fractions import Fraction
 
     if isinstance(v, Fraction):
-        from mrm.ops.exact_geometry import number_to_json
+        from mrm.geometry.discretize.exact_shape import number_to_json
 
         return number_to_json(v)
     return v
@@ -437,7 +437,7 @@ def _read_number(v: Any, name: str) -> Any:
         return v
     from fractions import Fraction
 
-    from mrm.ops.exact_geometry import exact_number
+    from mrm.geometry.discretize.exact_shape import exact_number
 
     q = exact_number(v, f"parameter {name!r}")
     f = float(q)

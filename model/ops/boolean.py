@@ -11,7 +11,8 @@ representation is always D of its Euclidean one) and, for EDco_α, E is R(A).
 
 The discrete parts partition D(E) ∪ D(E′). Under the cover models each R(part) lies in V(part), so the three
 polygons have disjoint interiors. Under ``gauss`` the joint reconstruction of the label map
-(``mrm.geometry.subdivision.reconstruct_label_map``), when it is available, makes them a watertight
+(``mrm.geometry.reconstruct.subdivision.reconstruct_label_map``), when it is available, makes them a
+watertight
 subdivision: neighbouring parts share their boundaries exactly.
 """
 
@@ -25,16 +26,17 @@ from typing import Any
 import numpy as np
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.geometry import bounds
-from mrm.geometry.bounds import ChainStep, CorefinePart
-from mrm.ops.base import OperationResult, OperationSpec, register
-from mrm.ops.exact_geometry import (
+from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
     box_area,
     number_to_json,
     positive_number,
 )
+from mrm.geometry.discretize.rational import ProgressLike, discretize_exact, discretize_image
+from mrm.geometry.hausdorff import bounds
+from mrm.geometry.hausdorff.bounds import ChainStep, CorefinePart
+from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.outcome import (
     StepOutcome,
     alpha_param,
@@ -46,14 +48,13 @@ from mrm.ops.outcome import (
     source_box,
     sub_progress,
 )
-from mrm.ops.rational_discretize import ProgressLike, discretize_exact, discretize_image
 from mrm.ops.simplify import euclidean_input
 from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.summary import optional_function
 
 #: The parts of a co-refinement, in label order (label = index + 1), as files and properties name them.
 PARTS = ("a_minus_b", "a_and_b", "b_minus_a")
-#: The part of each in :mod:`mrm.geometry.bounds` terms.
+#: The part of each in :mod:`mrm.geometry.hausdorff.bounds` terms.
 BOUND_PART: dict[str, CorefinePart] = {"a_minus_b": "first", "a_and_b": "common", "b_minus_a": "second"}
 #: What each part is.
 PART_TITLES = {"a_minus_b": "A ∖ B", "a_and_b": "A ∩ B", "b_minus_a": "B ∖ A"}
@@ -249,7 +250,7 @@ def _reconstruct_parts(
 ) -> tuple[dict[str, Any], bool]:
     """R of each part; under gauss the joint (watertight) reconstruction of the label map when available."""
     if model == "gauss":
-        joint = optional_function("mrm.geometry.subdivision", "reconstruct_label_map")
+        joint = optional_function("mrm.geometry.reconstruct.subdivision", "reconstruct_label_map")
         if joint is not None:
             by_label = joint(label_map, model)
             from shapely.geometry import Polygon
@@ -294,7 +295,7 @@ class CorefineResult(OperationResult):
     label_map : LabelMap or None
         The discrete parts (label i + 1 = ``PARTS[i]``; on the grid scaled by α for EDco_α).
     part_bounds : dict
-        Part name → :class:`mrm.geometry.bounds.BoundResult` (one-sided: see that module).
+        Part name → :class:`mrm.geometry.hausdorff.bounds.BoundResult` (one-sided: see that module).
     watertight : bool
         Whether the parts come from the joint gauss reconstruction (shared boundaries).
     """

@@ -16,7 +16,7 @@ operation                    reads       params
 The names are those of the operation registry (:mod:`mrm.ops.base`); ``DSS``, ``ROT``/``dR`` (the
 discrete-Euclidean rotation), ``SP``, ``EROT`` are accepted too, as in a chain's text (``mrm bounds``). The
 Euclidean similarities are applied exactly and rounded once to float64 (the rotation is the exact rational
-rotation of :mod:`mrm.ops.exact_geometry`).
+rotation of :mod:`mrm.geometry.discretize.exact_shape`).
 
 When a step reads the other representation than the previous one produced, the runner converts as the
 document does: D(E) for a Euclidean object, R(A) for a discrete one (free, since D(R(A)) = A). A Euclidean
@@ -24,7 +24,7 @@ result goes on to the next step exactly (rational coordinates); only the results
 float64, so a chain is exactly the composition of the paper's definitions — a chain of Euclidean
 similarities alone measures 0, as its bound says.
 
-What is reported (the paper's Theorems 4–16 as one rule, :mod:`mrm.geometry.bounds`):
+What is reported (the paper's Theorems 4–16 as one rule, :mod:`mrm.geometry.hausdorff.bounds`):
 
 * ``A_first``: the Euclidean representation of the first step's input (R(A) for a discrete input);
 * ``T``: the composite of the steps' similarities (Sc_α for DSS, the exact rotation for dR, the identity for
@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from mrm.ops.exact_geometry import (
+from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
     exact_number,
@@ -50,9 +50,9 @@ from mrm.ops.exact_geometry import (
     number_to_json,
     positive_number,
 )
+from mrm.geometry.discretize.rational import ProgressLike, discretize_exact
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
 from mrm.ops.outcome import StepOutcome, check_limit, check_model, sub_progress
-from mrm.ops.rational_discretize import ProgressLike, discretize_exact
 from mrm.reps.pixels import PixelSet
 
 #: The operations a chain may hold, and the representation each reads.
@@ -109,7 +109,7 @@ class ChainResult:
         A_first, A_last and T(A_first), exact.
     transform : Similarity
         The composite transform T.
-    bound : mrm.geometry.bounds.BoundResult
+    bound : mrm.geometry.hausdorff.bounds.BoundResult
         The chain's bound (``bound.bound`` is None where the model gives no two-sided bound).
     measured : MeasuredError or None
         H(T(A_first), A_last) and its two directions (None when not asked for).
@@ -179,7 +179,7 @@ def _params_dict(params: Any) -> dict[str, Any]:
 
 def step_params(operation: str, params: Any) -> tuple[dict[str, Any], Any]:
     """Validate a step's parameters: (JSON parameters, the bounds module's ChainStep)."""
-    from mrm.geometry import bounds
+    from mrm.geometry.hausdorff import bounds
 
     p = _params_dict(params)
     center = exact_point(p.get("center"), "center")
@@ -297,7 +297,7 @@ def run_chain(
     SizeLimitError
         A step's result would exceed ``limit`` pixels.
     """
-    from mrm.geometry.bounds import bound_of_chain
+    from mrm.geometry.hausdorff.bounds import bound_of_chain
 
     check_model(model)
     check_limit(limit)
@@ -369,7 +369,7 @@ def run_chain(
 
 def parse_steps(text: str) -> list[tuple[str, dict[str, Any]]]:
     """Read a chain written as for ``mrm bounds`` (``"DSS 5, ROT 30 about 1,2, SP 0.5"``) into steps."""
-    from mrm.geometry.bounds import parse_chain
+    from mrm.geometry.hausdorff.bounds import parse_chain
 
     out: list[tuple[str, dict[str, Any]]] = []
     for st in parse_chain(text):

@@ -4,7 +4,8 @@ Measured error (DESIGN §8)
 --------------------------
 The paper bounds ``H(T(A_first), A_last)``: the Hausdorff distance between the composite Euclidean transform
 of the first Euclidean object and the Euclidean object just before the last discretization. Both are exact
-rational polygons here (:class:`~mrm.ops.exact_geometry.ExactShape`); the distance is computed by the exact
+rational polygons here (:class:`~mrm.geometry.discretize.exact_shape.ExactShape`); the distance is computed
+by the exact
 :mod:`mrm.geometry.hausdorff` on float64 input, so both shapes are first scaled by the odd part ``L`` of the
 common denominator of their coordinates, which makes every coordinate dyadic. When the scaled coordinates are
 float64 values (always, unless the denominators are huge, e.g. after non-right-angle rotations) the distance
@@ -28,8 +29,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Literal
 
-from mrm.ops.exact_geometry import ExactShape, Similarity
-from mrm.ops.rational_discretize import ProgressLike
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.discretize.rational import ProgressLike
 from mrm.reps.pixels import PixelSet
 
 Direction = Literal["both", "result_within", "source_within"]

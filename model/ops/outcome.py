@@ -15,8 +15,7 @@ from typing import Any
 import numpy as np
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
-from mrm.ops.base import param
-from mrm.ops.exact_geometry import (
+from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
     box_area,
@@ -24,7 +23,8 @@ from mrm.ops.exact_geometry import (
     pixel_box,
     voxel_bounds,
 )
-from mrm.ops.rational_discretize import ProgressLike, discretize_exact, discretize_image
+from mrm.geometry.discretize.rational import ProgressLike, discretize_exact, discretize_image
+from mrm.ops.base import param
 from mrm.reps.pixels import Box, PixelSet
 
 #: The discretization models an operation accepts.
@@ -347,7 +347,7 @@ def params_json(params: Any) -> dict[str, Any]:
     """A parameter dataclass (or mapping) as JSON data: tuples become lists, Fractions exact numbers."""
     from fractions import Fraction
 
-    from mrm.ops.exact_geometry import number_to_json
+    from mrm.geometry.discretize.exact_shape import number_to_json
 
     raw = (
         {k: getattr(params, k) for k in params.__dataclass_fields__}

@@ -4,7 +4,8 @@ What "rotation" means for float input
 -------------------------------------
 cos θ and sin θ are irrational for almost every angle, so no implementation applies the exact rot_θ,C to
 float vertices. Here rot_θ,C is the **exact rational rotation** of
-:func:`mrm.ops.exact_geometry.rotation_cos_sin`: θ is reduced to (−45°, 45°] by exact quarter turns, and
+:func:`mrm.geometry.discretize.exact_shape.rotation_cos_sin`: θ is reduced to (−45°, 45°] by exact quarter
+turns, and
 ``c = (1 − t²)/(1 + t²)``, ``s = 2t/(1 + t²)`` with ``t`` the float64 value of tan(θ/2) read exactly. It is an
 exact isometry (c² + s² = 1) whose angle is θ up to one float64 rounding (< 10⁻¹⁵ radian). The rotated
 vertices are rational and discretized exactly — nothing is rounded between R and D — so the error bounds of
@@ -20,9 +21,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.geometry import bounds
-from mrm.geometry.bounds import ChainStep
-from mrm.ops.exact_geometry import Similarity, exact_number, exact_point, number_to_json
+from mrm.geometry.discretize.exact_shape import Similarity, exact_number, exact_point, number_to_json
+from mrm.geometry.discretize.rational import ProgressLike
+from mrm.geometry.hausdorff import bounds
+from mrm.geometry.hausdorff.bounds import ChainStep
 from mrm.ops.outcome import (
     StepOutcome,
     angle_param,
@@ -31,7 +33,6 @@ from mrm.ops.outcome import (
     model_param,
     register_discrete_similarity,
 )
-from mrm.ops.rational_discretize import ProgressLike
 from mrm.reps.pixels import PixelSet
 
 

@@ -2,8 +2,8 @@
 
 The continuation R(A) has float64 (dyadic) vertices; ``Sc_α`` about the centre C (the origin by default, as
 in the paper) maps a vertex v to ``C + α·(v − C)``, computed exactly with rationals
-(:mod:`mrm.ops.exact_geometry`: α = 0.2 means 1/5), and the image is discretized exactly
-(:mod:`mrm.ops.rational_discretize`). So ``DSS_α(A) = D(Sc_α(R(A)))`` holds exactly, for every α > 0 —
+(:mod:`mrm.geometry.discretize.exact_shape`: α = 0.2 means 1/5), and the image is discretized exactly
+(:mod:`mrm.geometry.discretize.rational`). So ``DSS_α(A) = D(Sc_α(R(A)))`` holds exactly, for every α > 0 —
 not only for the powers of two whose products happen to be float64 values.
 
 The size of the result is estimated from A's bounding box before anything is computed: α = 10⁶ on a large
@@ -15,9 +15,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.geometry import bounds
-from mrm.geometry.bounds import ChainStep
-from mrm.ops.exact_geometry import Similarity, exact_point, number_to_json, positive_number
+from mrm.geometry.discretize.exact_shape import Similarity, exact_point, number_to_json, positive_number
+from mrm.geometry.discretize.rational import ProgressLike
+from mrm.geometry.hausdorff import bounds
+from mrm.geometry.hausdorff.bounds import ChainStep
 from mrm.ops.outcome import (
     StepOutcome,
     alpha_param,
@@ -26,7 +27,6 @@ from mrm.ops.outcome import (
     model_param,
     register_discrete_similarity,
 )
-from mrm.ops.rational_discretize import ProgressLike
 from mrm.reps.pixels import PixelSet
 
 

@@ -14,7 +14,8 @@ cannot hold every image exactly, so the guarantee is the best one floats allow:
 
 The registered operations ``scale``, ``rotate`` and ``translate`` do not use these float functions: they read
 their parameters as every other path does (a float is the decimal it prints as, so 0.4 is 2/5; a rotation is
-the exact rational rotation of :mod:`mrm.ops.exact_geometry`), apply the map exactly and round each coordinate
+the exact rational rotation of :mod:`mrm.geometry.discretize.exact_shape`), apply the map exactly and round
+each coordinate
 once — the same numbers as the chain steps of the same names.
 """
 
@@ -32,9 +33,15 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 
 from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.geometry import bounds as chain
+from mrm.geometry.discretize.exact_shape import (
+    ExactShape,
+    Similarity,
+    exact_number,
+    exact_point,
+    positive_number,
+)
+from mrm.geometry.hausdorff import bounds as chain
 from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, param, register
-from mrm.ops.exact_geometry import ExactShape, Similarity, exact_number, exact_point, positive_number
 
 F64 = npt.NDArray[np.float64]
 

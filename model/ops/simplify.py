@@ -1,6 +1,7 @@
 """Discrete-based simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))) (the paper's Definition 14, DESIGN §8).
 
-``Sc_α(E)`` is computed exactly with rationals and discretized exactly (:mod:`mrm.ops.rational_discretize`);
+``Sc_α(E)`` is computed exactly with rationals and discretized exactly
+(:mod:`mrm.geometry.discretize.rational`);
 R gives float64 vertices; ``Sc_1/α`` maps them back exactly, and the result is rounded once to float64 (a
 Euclidean object is a shapely polygon). For α a power of two — or any α with ``v/α`` a float64 for every
 vertex v — nothing is rounded at all.
@@ -19,10 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from mrm.geometry import bounds
-from mrm.geometry.bounds import ChainStep
-from mrm.ops.base import OperationResult, OperationSpec, register
-from mrm.ops.exact_geometry import (
+from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
     box_area,
@@ -31,6 +29,10 @@ from mrm.ops.exact_geometry import (
     pixel_box,
     positive_number,
 )
+from mrm.geometry.discretize.rational import ProgressLike, discretize_exact
+from mrm.geometry.hausdorff import bounds
+from mrm.geometry.hausdorff.bounds import ChainStep
+from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.outcome import (
     StepOutcome,
     alpha_param,
@@ -42,14 +44,14 @@ from mrm.ops.outcome import (
     model_param,
     sub_progress,
 )
-from mrm.ops.rational_discretize import ProgressLike, discretize_exact
 from mrm.reps.pixels import PixelSet
 
 
 def euclidean_input(source: Any, model: str) -> Any:
     """The Euclidean representation of an object's source: E itself, or R(A) for a pixel set A.
 
-    E may be a shapely polygon or an exact :class:`~mrm.ops.exact_geometry.ExactShape` (kept as it is).
+    E may be a shapely polygon or an exact :class:`~mrm.geometry.discretize.exact_shape.ExactShape` (kept as
+    it is).
     """
     if isinstance(source, PixelSet):
         from mrm.geometry.reconstruct import reconstruct

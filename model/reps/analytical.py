@@ -4,14 +4,14 @@ For each closed crack chain of a region (outer boundaries counter-clockwise, hol
 pointel (i, j) is the Euclidean point (i − ½, j − ½)), the chain's pointels are segmented into standard
 (4-connected) DSS, as DGtal does on a grid curve's points:
 
-* ``mode="greedy"`` (the default): :func:`mrm.geometry.segmentation.greedy_segmentation` from the chain's
+* ``mode="greedy"`` (the default): :func:`mrm.geometry.dss.segmentation.greedy_segmentation` from the chain's
   start, read as closed; the last segment ends back on the start (``closed_end="wrap"``), so the segments
   cover every linel and consecutive ones share an end pointel;
 * ``mode="maximal"``: all maximal segments (the tangential cover), which overlap.
 
 Each segment carries its index range in the chain's pointels (``first``, ``last``; on a chain of n codes
 point k is pointel ``k mod n``), its characteristics (a, b, μ, ω) in DGtal's convention (μ ≤ a·i − b·j < μ + ω
-for every pointel (i, j) of the segment), its leaning points, its preimage (:mod:`mrm.geometry.preimage`,
+for every pointel (i, j) of the segment), its leaning points, its preimage (:mod:`mrm.geometry.dss.preimage`,
 in pointel coordinates, computed on demand) and the chosen Euclidean line: the median line
 a·i − b·j = μ + (ω − 1)/2, which lies in the open preimage.
 """
@@ -28,9 +28,9 @@ import numpy.typing as npt
 
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.gc_pause import paused_gc
-from mrm.geometry import _dss_kernels as K
 from mrm.geometry.dss import Segment
-from mrm.geometry.preimage import Preimage, segment_preimage
+from mrm.geometry.dss import _kernels as K
+from mrm.geometry.dss.preimage import Preimage, segment_preimage
 
 IntArray = npt.NDArray[np.int64]
 Mode = Literal["greedy", "maximal"]

@@ -26,7 +26,18 @@ import numpy.typing as npt
 
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.gc_pause import paused_gc
-from mrm.geometry.cracks import DX, DY, LX, LY, RX, RY, fill_rings, paint_rings, ring_extent, trace_mask
+from mrm.geometry.topology.cracks import (
+    DX,
+    DY,
+    LX,
+    LY,
+    RX,
+    RY,
+    fill_rings,
+    paint_rings,
+    ring_extent,
+    trace_mask,
+)
 from mrm.reps.pixels import Box, LabelMap, PixelSet
 
 IntArray = npt.NDArray[np.int64]

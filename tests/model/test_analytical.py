@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.geometry.preimage import median_parameters
-from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
+from mrm.geometry.dss.preimage import median_parameters
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 from mrm.reps.analytical import Analytical, analytical_of
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain, region_of

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from mrm.cli import run_cli
 from mrm.errors import ParameterError
-from mrm.geometry.bounds import (
+from mrm.geometry.hausdorff.bounds import (
     bound_of_chain,
     corefine,
     dss,

@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from skimage.measure import label as sk_label
 
-from mrm.geometry.cracks import fill_rings, trace_mask
-from mrm.geometry.labeling import label, label_runs
+from mrm.geometry.topology.cracks import fill_rings, trace_mask
+from mrm.geometry.topology.labeling import label, label_runs
 
 DX = {0: 1, 1: 0, 2: -1, 3: 0}
 DY = {0: 0, 1: 1, 2: 0, 3: -1}

@@ -14,9 +14,9 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.geometry import _discretize_kernels as kernels
 from mrm.geometry.discretize import MODELS, _discretize_pieces, _take_apart, discretize, discretize_segment
-from mrm.geometry.exact import cell_index, closed_cell_range, float_predicates_are_exact
+from mrm.geometry.discretize import _kernels as kernels
+from mrm.geometry.discretize.exact import cell_index, closed_cell_range, float_predicates_are_exact
 from tests.oracles.discretize_reference import reference_discretize, reference_segment
 from tests.oracles.geometry_strategies import (
     floats,

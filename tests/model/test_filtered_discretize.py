@@ -1,6 +1,6 @@
 """The float-filtered exact discretization of similarity images (rotations; scalings beyond int64).
 
-``mrm.ops.rational_discretize.filtered_image`` decides D(T(E)) from float64 images of the vertices with a
+``mrm.geometry.discretize.rational.filtered_image`` decides D(T(E)) from float64 images of the vertices with a
 proven error bound and hands the edges with a near-tie to the integer definitions. Every test compares it
 with the slow Fraction reference of tests/oracles (the definitions of DESIGN §2 on the exact rational
 image) and with the Python-integer path, on random and adversarial input: vertices on pixel centres, sides
@@ -18,10 +18,10 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
-import mrm.geometry.rational_discretize as grd
+import mrm.geometry.discretize.rational_kernels as grd
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, rotation_cos_sin
+from mrm.geometry.discretize.rational import discretize_exact, discretize_image
 from mrm.geometry.reconstruct import reconstruct
-from mrm.ops.exact_geometry import ExactShape, Similarity, rotation_cos_sin
-from mrm.ops.rational_discretize import discretize_exact, discretize_image
 from mrm.ops.rotation import discrete_rotation
 from mrm.ops.scaling import discrete_smooth_scaling
 from mrm.reps.pixels import PixelSet

@@ -359,7 +359,7 @@ def test_project_validation_is_linear_in_the_number_of_keys(n):
 
 
 def test_a_chain_of_14000_steps_is_refused_up_front():
-    from mrm.geometry.bounds import bound_of_chain, parse_chain
+    from mrm.geometry.hausdorff.bounds import bound_of_chain, parse_chain
 
     steps = parse_chain(", ".join(["DSS 1.25", "DSS 0.8"] * 7000))
     t = time.perf_counter()

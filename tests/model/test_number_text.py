@@ -7,7 +7,7 @@ from fractions import Fraction
 from hypothesis import given
 from hypothesis import strategies as st
 
-from mrm.ops.exact_geometry import exact_number, number_to_json
+from mrm.geometry.discretize.exact_shape import exact_number, number_to_json
 
 
 @given(st.fractions())

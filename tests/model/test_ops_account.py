@@ -148,7 +148,7 @@ def test_rotation_chain_is_bounded_and_measured():
     (c,) = apply_operation(doc, "discrete_rotation", [b], {"angle": -30.0, "center": [1.0, 0.0]})
     acc = account_of(doc.get(c).provenance)
     assert acc.bound.coefficient == 1 and acc.within_bound is True  # Theorem 13: √2 for two rotations
-    from mrm.ops.exact_geometry import rotation_cos_sin
+    from mrm.geometry.discretize.exact_shape import rotation_cos_sin
 
     polys = polygons_of(reconstruct(doc.get(a).source, "standard"))
     c1, s1 = rotation_cos_sin(Fraction(30))

@@ -13,13 +13,13 @@ import mrm.geometry.reconstruct as reconstruct_module
 from mrm.document import Document
 from mrm.errors import Cancelled, ParameterError, SizeLimitError
 from mrm.geometry.discretize import discretize
+from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.ops.apply import apply_operation
 from mrm.ops.boolean import (
     CorefineParams,
     euclidean_discrete_corefinement,
     euclidean_discrete_union,
 )
-from mrm.ops.exact_geometry import Similarity
 from mrm.ops.outcome import estimated_pixels
 from mrm.ops.rotation import RotationParams, discrete_rotation
 from mrm.ops.scaling import DSSParams, discrete_smooth_scaling

@@ -10,9 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mrm.errors import ParameterError
+from mrm.geometry.discretize.exact_shape import rotation_cos_sin
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.base import run_operation
-from mrm.ops.exact_geometry import rotation_cos_sin
 from mrm.ops.rotation import RotationParams, discrete_rotation, rotation_similarity
 from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import (

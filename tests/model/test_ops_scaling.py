@@ -13,11 +13,11 @@ from hypothesis import strategies as st
 from mrm.document import Provenance
 from mrm.errors import ParameterError
 from mrm.geometry.discretize import discretize
+from mrm.geometry.discretize.exact_shape import ExactShape
+from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.apply import load_paper_operations
 from mrm.ops.base import run_operation
-from mrm.ops.exact_geometry import ExactShape
-from mrm.ops.rational_discretize import discretize_exact
 from mrm.ops.scaling import DSSParams, discrete_smooth_scaling, run
 from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
@@ -92,7 +92,7 @@ def test_rational_discretization_follows_the_definitions(shape_and_q, model):
     poly, q = shape_and_q
     exact = ExactShape.from_geometry(poly)
     polys = scaled(polygons_of(poly), q)
-    from mrm.ops.exact_geometry import Similarity
+    from mrm.geometry.discretize.exact_shape import Similarity
 
     got = discretize_exact(exact.map(Similarity.scaling(q)), model)
     assert got == reference_discretize_rings(polys, model)
@@ -148,8 +148,8 @@ CENTRES = [
 @given(rational_shapes(), st.sampled_from(MODELS), st.sampled_from(CENTRES))
 def test_the_fraction_free_compiled_path_follows_the_definitions(shape_and_q, model, centre):
     """D(Sc_q,C(E)) by int64 kernels (no Fraction) = the slow Fraction reference = the Python-integer path."""
-    from mrm.ops.exact_geometry import Similarity
-    from mrm.ops.rational_discretize import discretize_image
+    from mrm.geometry.discretize.exact_shape import Similarity
+    from mrm.geometry.discretize.rational import discretize_image
 
     poly, q = shape_and_q
     # Vertices on a 1/64 grid, as a continuation R(A) has them: the int64 path applies.
@@ -172,7 +172,9 @@ def test_dss_by_the_compiled_path_is_the_definition(a, alpha, model):
     polys = scaled(polygons_of(reconstruct(a, model)), Fraction(str(alpha)))
     assert out.result == reference_discretize_rings(polys, model)
     assert out.euclidean == ExactShape.from_geometry(reconstruct(a, model)).map(
-        __import__("mrm.ops.exact_geometry", fromlist=["Similarity"]).Similarity.scaling(Fraction(str(alpha)))
+        __import__("mrm.geometry.discretize.exact_shape", fromlist=["Similarity"]).Similarity.scaling(
+            Fraction(str(alpha))
+        )
     )
 
 
@@ -186,7 +188,7 @@ def test_dss_by_the_compiled_path_is_the_definition(a, alpha, model):
 )
 def test_dss_by_one_over_k_from_the_pixels_is_the_definition(a, k, centre, model):
     """Pooling (covers) and sampling (gauss) of A give D(Sc_1/k(R(A))) whenever they apply."""
-    from mrm.ops.exact_geometry import Similarity
+    from mrm.geometry.discretize.exact_shape import Similarity
     from mrm.ops.outcome import scaling_by_pixels
 
     sim = Similarity.scaling(Fraction(1, k), centre)
@@ -206,8 +208,8 @@ def test_dss_by_one_over_k_from_the_pixels_is_the_definition(a, k, centre, model
 @pytest.mark.parametrize("model", MODELS)
 def test_dss_one_fifth_of_a_large_object_is_the_computed_definition(model):
     """The shortcut on a 300² noisy object equals D(Sc_1/5(R(A))) computed by the exact discretization."""
-    from mrm.ops.exact_geometry import Similarity
-    from mrm.ops.rational_discretize import discretize_image
+    from mrm.geometry.discretize.exact_shape import Similarity
+    from mrm.geometry.discretize.rational import discretize_image
 
     rng = np.random.default_rng(5)
     yy, xx = np.mgrid[0:300, 0:300]

@@ -31,8 +31,8 @@ from shapely.geometry import Polygon, shape
 
 from mrm.errors import ParameterError
 from mrm.geometry.discretize import discretize
-from mrm.geometry.labeling import label
-from mrm.geometry.polygonize import Region, polygonize
+from mrm.geometry.reconstruct.polygonize import Region, polygonize
+from mrm.geometry.topology.labeling import label
 from mrm.reps.pixels import LabelMap
 
 
@@ -261,7 +261,7 @@ def test_cli_polygonize_errors_are_one_line_messages(capsys, tmp_path) -> None:
 def test_cell_tracing_without_the_jit_gives_the_compiled_cells(seed: int) -> None:
     # NUMBA_DISABLE_JIT=1 (debugging, a platform without LLVM) runs the kernels as plain Python, where numpy
     # bools add as a logical or: the linel count came out short and the trace wrote past its array.
-    from mrm.geometry.cracks import _trace_cells
+    from mrm.geometry.topology.cracks import _trace_cells
 
     rng = np.random.default_rng(seed)
     lab = np.pad(rng.integers(0, 3, (9, 7)).astype(np.int32), 1)

@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mrm.geometry.dss import recognize
-from mrm.geometry.preimage import (
+from mrm.geometry.dss.preimage import (
     Preimage,
     frame_of,
     median_parameters,
@@ -17,7 +17,7 @@ from mrm.geometry.preimage import (
     segment_preimage,
     standard_contains,
 )
-from mrm.geometry.segmentation import chain_points, greedy_segmentation, maximal_segments
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 
 HALF = Fraction(1, 2)
 

@@ -8,12 +8,12 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
-from mrm.geometry.border import KIND_NAMES, border_path, border_paths, corridors, visit_counts
 from mrm.geometry.discretize import discretize
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
 from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
-from mrm.geometry.safety_net import eroded_net, net_ring, safety_net, staircase
-from mrm.geometry.segmentation import chain_points, greedy_segmentation
-from mrm.geometry.verify import verify
+from mrm.geometry.reconstruct.border import KIND_NAMES, border_path, border_paths, corridors, visit_counts
+from mrm.geometry.reconstruct.safety_net import eroded_net, net_ring, safety_net, staircase
+from mrm.geometry.reconstruct.verify import verify
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain, region_of
 from mrm.summary import count_vertices
@@ -468,9 +468,9 @@ def test_cli_reconstruct_bad_input_is_a_clear_error(capsys, tmp_path, monkeypatc
 
 def _corridor_arrays(ps: PixelSet, gauss: bool) -> tuple:
     # gauss: the dual corridor (dual squares of the crack pointels), in the dual frame
-    from mrm.geometry import _dual_kernels as dk
-    from mrm.geometry import _reconstruct_kernels as k
-    from mrm.geometry.cracks import trace_mask
+    from mrm.geometry.reconstruct import _dual as dk
+    from mrm.geometry.reconstruct import _kernels as k
+    from mrm.geometry.topology.cracks import trace_mask
 
     m = np.ascontiguousarray(ps.mask.view(np.uint8))
     rings = trace_mask(m)
@@ -530,7 +530,7 @@ def _stabbable(gates: list[tuple[tuple[int, int], tuple[int, int]]]) -> bool:
 
 
 def test_exact_preimage_reach_against_a_fraction_linear_program() -> None:
-    from mrm.geometry import _reconstruct_kernels as k
+    from mrm.geometry.reconstruct import _kernels as k
 
     rng = np.random.default_rng(5)
     checked = 0
@@ -564,7 +564,7 @@ def test_exact_preimage_reach_against_a_fraction_linear_program() -> None:
 def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
     # On whole squares (pixels under the cover models, dual squares of pointels under gauss) the O(n)
     # standard DSS reach equals the exact preimage's.
-    from mrm.geometry import _reconstruct_kernels as k
+    from mrm.geometry.reconstruct import _kernels as k
 
     rng = np.random.default_rng(9)
     sets = [disk(r) for r in (3.3, 7.8, 15.1, 30.2, 45.7)]
@@ -594,7 +594,7 @@ def test_fast_reach_kernels_agree_with_the_exact_preimage(gauss: bool) -> None:
 
 @pytest.mark.parametrize("model", MODELS)
 def test_safety_net_rings_pass_the_exact_corridor_check(model: str) -> None:
-    from mrm.geometry import _reconstruct_kernels as k
+    from mrm.geometry.reconstruct import _kernels as k
 
     rng = np.random.default_rng(13)
     for _ in range(40):
@@ -658,7 +658,7 @@ def test_simplest_line_is_the_simplest_direction_crossing_the_gates() -> None:
     # P is strictly on its left and Q strictly on its right; try every primitive direction up to the answer.
     from math import gcd
 
-    from mrm.geometry import _reconstruct_kernels as k
+    from mrm.geometry.reconstruct import _kernels as k
 
     def offsets(d: tuple[int, int], window: list) -> tuple[int, int]:
         lo = max(d[0] * q[1] - d[1] * q[0] for _p, q in window)

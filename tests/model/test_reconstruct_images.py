@@ -18,10 +18,10 @@ from shapely.geometry import MultiPolygon
 from skimage.filters import threshold_otsu
 
 from mrm.geometry.discretize import discretize
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
 from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
-from mrm.geometry.safety_net import eroded_net
-from mrm.geometry.segmentation import chain_points, greedy_segmentation
-from mrm.geometry.verify import verify
+from mrm.geometry.reconstruct.safety_net import eroded_net
+from mrm.geometry.reconstruct.verify import verify
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from mrm.summary import count_vertices

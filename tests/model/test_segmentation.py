@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from mrm.errors import InvalidGeometryError
 from mrm.geometry.dss import recognize
-from mrm.geometry.segmentation import (
+from mrm.geometry.dss.segmentation import (
     chain_points,
     dss_of_window,
     greedy_segmentation,

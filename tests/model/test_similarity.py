@@ -181,8 +181,8 @@ def test_the_registry_and_the_chain_read_parameters_the_same_way() -> None:
     """One arithmetic: 0.4 is 2/5 and a rotation is the exact rational one on every path."""
     from fractions import Fraction
 
+    from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
     from mrm.ops.chain import run_chain
-    from mrm.ops.exact_geometry import ExactShape, Similarity
 
     g = box(0, 0, 3, 3)
     res = run_operation("scale", [g], similarity.ScaleParams(factor=0.4, center=(0.0, 0.0)))

@@ -15,8 +15,8 @@ from hypothesis import strategies as st
 from shapely import affinity
 
 from mrm.errors import MRMError
-from mrm.ops.exact_geometry import ExactShape, Similarity, positive_number
-from mrm.ops.rational_discretize import discretize_exact
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, positive_number
+from mrm.geometry.discretize.rational import discretize_exact
 from mrm.ops.simplify import simplification
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS

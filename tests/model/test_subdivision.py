@@ -31,8 +31,8 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
 from mrm.geometry.discretize import discretize
-from mrm.geometry.segmentation import greedy_segmentation
-from mrm.geometry.subdivision import reconstruct_label_map, subdivide, watertight_parts
+from mrm.geometry.dss.segmentation import greedy_segmentation
+from mrm.geometry.reconstruct.subdivision import reconstruct_label_map, subdivide, watertight_parts
 from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.reps.region import region_of
 from tests.oracles.discretize_reference import reference_discretize
@@ -463,7 +463,7 @@ def test_any_polyline_the_verifier_accepts_keeps_the_subdivision_exact(
     # Replace the construction by random polylines (staircase vertices dropped at random, the others
     # jittered inside their pieces): the exact per-1-cell verifier must accept only polylines that keep every
     # part exact and valid, so the final per-part check never has to step in.
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct.subdivision as sub
 
     rng = np.random.default_rng(7)
 
@@ -556,7 +556,7 @@ def test_a_vertex_without_an_exact_float64_value_is_refused_with_a_message() -> 
     # Far from the origin a fine dyadic vertex cannot be written in float64: a ParameterError that says
     # so (the audit found an AssertionError from `mrm corefine --model gauss` at x = 2^45).
     from mrm.errors import ParameterError
-    from mrm.geometry.subdivision import _Chain, _to_plane
+    from mrm.geometry.reconstruct.subdivision import _Chain, _to_plane
 
     pts = np.array([[2**45, 0], [2**45 + 1, 0], [2**45 + 2, 0]], dtype=np.int64)
     ch = _Chain(pts, closed=False)
@@ -584,7 +584,7 @@ def test_hole_owners_from_components_are_the_owners_by_point_in_ring(lm: LabelMa
     # The owner of each hole read from the label's 4-components must be the smallest shell that contains
     # the hole, found by point-in-ring tests against every shell (the definition); the rings' sort keys
     # and first left pixels are checked against their pointels.
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct.subdivision as sub
 
     cells = sub.cells_of(lm)
     asm = sub._Assembler(lm, cells, sub._cell_points(lm, cells))
@@ -614,7 +614,7 @@ def test_hole_owners_from_components_are_the_owners_by_point_in_ring(lm: LabelMa
 @settings(max_examples=80)
 @given(label_maps())
 def test_cell_points_and_areas_are_those_of_each_chain(lm: LabelMap) -> None:
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct.subdivision as sub
 
     cells = sub.cells_of(lm)
     _, _, points, area2 = sub._cell_points(lm, cells)
@@ -630,7 +630,7 @@ def test_cell_points_and_areas_are_those_of_each_chain(lm: LabelMap) -> None:
 @settings(max_examples=80)
 @given(label_maps())
 def test_the_staircase_is_the_chain_with_its_straight_pointels_dropped(lm: LabelMap) -> None:
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct.subdivision as sub
 
     cells = sub.cells_of(lm)
     zero = {z.point for z in cells.zero_cells}
@@ -656,8 +656,8 @@ def test_the_staircase_is_the_chain_with_its_straight_pointels_dropped(lm: Label
 
 def python_and_kernel_polylines(lm: LabelMap, limit: int) -> tuple[list[tuple[list, bool]], list[int], list]:  # type: ignore[type-arg]
     """Per 1-cell: the Python construction's (vertices, staircase?), the kernel's status and vertices."""
-    import mrm.geometry._subdivision_kernels as K
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct._subdivision_kernels as K
+    import mrm.geometry.reconstruct.subdivision as sub
 
     cells = sub.cells_of(lm)
     zero = {z.point for z in cells.zero_cells}
@@ -675,7 +675,7 @@ def python_and_kernel_polylines(lm: LabelMap, limit: int) -> tuple[list[tuple[li
 def test_the_compiled_construction_is_the_python_one_or_steps_aside(lm: LabelMap, limit: int) -> None:
     # Chain by chain, the kernel returns exactly the Python construction's polyline (or its staircase), or
     # FALLBACK when a product would pass the limit; with small limits the fallback is exercised too.
-    import mrm.geometry._subdivision_kernels as K
+    import mrm.geometry.reconstruct._subdivision_kernels as K
 
     python, status, kernel = python_and_kernel_polylines(lm, limit)
     for (verts, is_stair), s, kv in zip(python, status, kernel, strict=True):
@@ -690,8 +690,8 @@ def test_the_compiled_construction_builds_real_polylines_and_falls_back_under_a_
 ) -> None:
     # The experiment above must see both outcomes: polylines built by the kernel under the real limit, and
     # fallbacks when the limit is tiny; the subdivision stays exact either way.
-    import mrm.geometry._subdivision_kernels as K
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct._subdivision_kernels as K
+    import mrm.geometry.reconstruct.subdivision as sub
 
     yy, xx = np.mgrid[-30:31, -30:31]
     lab = ((xx * xx + yy * yy) < 28**2).astype(np.int32) + ((xx - 9) ** 2 + yy * yy < 15**2)
@@ -713,7 +713,7 @@ def test_the_compiled_construction_builds_real_polylines_and_falls_back_under_a_
 def test_far_from_the_origin_the_compiled_path_gives_the_python_answer_or_the_same_refusal(
     monkeypatch: pytest.MonkeyPatch, x0: int
 ) -> None:
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct.subdivision as sub
 
     yy, xx = np.mgrid[-12:13, -12:13]
     lab = ((xx * xx + yy * yy) < 11**2).astype(np.int32) + (xx * 2 + yy * 3 > 4)
@@ -740,7 +740,7 @@ def concentric_labels(k: int) -> LabelMap:
 @settings(max_examples=80)
 @given(st.one_of(label_maps(), st.integers(1, 20).map(concentric_labels)))
 def test_label_pixel_sets_are_the_pixels_of_each_label(lm: LabelMap) -> None:
-    import mrm.geometry.subdivision as sub
+    import mrm.geometry.reconstruct.subdivision as sub
 
     got = sub._label_pixel_sets(lm)
     assert list(got) == lm.label_values()

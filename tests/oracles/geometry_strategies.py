@@ -46,7 +46,7 @@ def snapper(draw: Any) -> Any:
         if lattice == "dyadic":
             return round(v * 1024) / 1024
         if lattice == "float":
-            # Below 2^-400 coordinates are refused (see mrm.geometry.exact.MIN_ABS_COORD).
+            # Below 2^-400 coordinates are refused (see mrm.geometry.discretize.exact.MIN_ABS_COORD).
             return v if abs(v) >= 2.0**-300 else 0.0
         counter[0] += 1
         return round(2 * v) / 2 + nudges[counter[0] % len(nudges)]

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from mrm.geometry._jit import njit
-from mrm.geometry._rk_base import _DX, _DY
-from mrm.geometry._rk_check import (
+from mrm.geometry.reconstruct._base import _DX, _DY
+from mrm.geometry.reconstruct._check import (
     _in_piece,
     _orient,
     edge_ok,

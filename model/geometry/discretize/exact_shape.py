@@ -4,12 +4,12 @@ The paper's operations apply a Euclidean similarity (a scaling ``Sc_α`` about a
 ``rot_θ,C``) between a continuation and a discretization. Applied to float64 vertices in floating point, a
 similarity rounds, and a rounded vertex may land on the other side of a pixel side than the true one. Here
 every similarity is applied **exactly**: coordinates are :class:`fractions.Fraction` (every float64 is a
-dyadic rational), and the image is discretized exactly (:mod:`mrm.ops.rational_discretize`).
+dyadic rational), and the image is discretized exactly (:mod:`mrm.geometry.discretize.rational`).
 
 Numbers
 -------
 A parameter given as a float is read as the decimal it prints as (``repr``): ``0.2`` means 1/5 and ``1.25``
-means 5/4, which is what a user typing them means, and what :mod:`mrm.geometry.bounds` reads from a
+means 5/4, which is what a user typing them means, and what :mod:`mrm.geometry.hausdorff.bounds` reads from a
 chain's text. So ``DSS 5`` followed by ``DSS 0.2`` scales by exactly 1. Integers, Fractions and strings
 (``"1/3"``) are read exactly as they are.
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from mrm.geometry._jit import njit
-from mrm.geometry._rk_base import _DX, _DY, SRC_LINES, SRC_NET, SRC_SPLICE
-from mrm.geometry._rk_check import _in_piece, edge_ok, gate_rays, rays_admit, verify_ring
+from mrm.geometry.reconstruct._base import _DX, _DY, SRC_LINES, SRC_NET, SRC_SPLICE
+from mrm.geometry.reconstruct._check import _in_piece, edge_ok, gate_rays, rays_admit, verify_ring
 
 # ============================================================================================ repair
 

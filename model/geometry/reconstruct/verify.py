@@ -3,7 +3,7 @@
 The check is the corridor condition of ALGORITHMS §3.4, made exact with integers: every float64 coordinate
 is a dyadic rational, so the coordinates of a ring are scaled by a power of two to integers and every test
 is a sign of a sum of products that fits in 64 bits. For a geometry P and a pixel set A, with the corridors
-of :mod:`mrm.geometry.border`:
+of :mod:`mrm.geometry.reconstruct.border`:
 
 * each polygon ring is matched to one crack ring of A (outer ring ↔ shell, hole ring ↔ hole of the same
   4-component, each used once), so the polygons are the 4-components and the holes the bounded
@@ -17,7 +17,8 @@ Pieces of different visits are disjoint, so these conditions make every ring sim
 disjoint, keep ∂P inside V(A) crossing between pixels only through open sides shared by two pixels of A,
 make ∂P cross every border pixel and keep every outside centre out (cover models: conditions C1–C3, hence
 D_standard(P) = D_supercover(P) = A). Under ``gauss`` the corridor is made of the dual squares of the crack
-pointels (:mod:`mrm.geometry._dual_kernels`): it holds no pixel centre, so a ring following it is homotopic to
+pointels (:mod:`mrm.geometry.reconstruct._dual`): it holds no pixel centre, so a ring following it is
+homotopic to
 its crack ring in the plane minus the centres, every centre of A is strictly inside P, every other centre
 strictly outside, none on ∂P, and ∂P stays within the voxels of the border pixels on either side.
 A pixel with no neighbour in A (its crack ring is its own) only needs its ring inside the open square (and,
@@ -37,8 +38,8 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.geometry import _reconstruct_kernels as _k
-from mrm.geometry.border import Corridor, corridors
+from mrm.geometry.reconstruct import _kernels as _k
+from mrm.geometry.reconstruct.border import Corridor, corridors
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 

@@ -26,8 +26,8 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.geometry import _dss_kernels as K
 from mrm.geometry.dss import Segment
+from mrm.geometry.dss import _kernels as K
 
 IntArray = npt.NDArray[np.int64]
 

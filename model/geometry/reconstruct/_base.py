@@ -1,4 +1,4 @@
-"""Shared constants and array helpers of R's kernels (:mod:`._reconstruct_kernels`)."""
+"""Shared constants and array helpers of R's kernels (:mod:`._kernels`)."""
 
 from __future__ import annotations
 

@@ -11,7 +11,7 @@ The pipeline for one crack ring (object on the left):
 2. *pieces* — open axis-parallel rectangles the ring may pass through, in path order, and the *gates* (open
    segments) between consecutive pieces. Cover models: a pixel visited once is one full-square piece; a
    pixel visited several times (one-pixel-wide parts) gets one part per visit, the part on the outer side
-   of the centre polyline. ``gauss`` builds the dual corridor instead (:mod:`._dual_kernels`, ADR 0012)
+   of the centre polyline. ``gauss`` builds the dual corridor instead (:mod:`._dual`, ADR 0012)
    and runs the same later steps on it;
 3. *reach* — for each start piece i, the farthest piece j such that one line crosses gates i+1 … j in
    order: arithmetic standard-DSS recognition when every piece is a full pixel, an exact incremental
@@ -28,10 +28,10 @@ The pipeline for one crack ring (object on the left):
    ¼ pixel, which is always a valid ring of the same corridor) spliced in with two vertices at each end;
    the whole ring becomes R0 only if that does not verify.
 
-Where each step lives: elements and pieces in :mod:`._rk_corridor`, the reach in :mod:`._rk_reach`, the
-greedy in :mod:`._rk_greedy`, snapping and the exact checks in :mod:`._rk_check`, splicing, pruning, merging,
-relinking and the small-corridor searches in :mod:`._rk_repair`, straightening in :mod:`._rk_straighten`,
-shared constants in :mod:`._rk_base`; this module runs them over all rings (the ``*_all`` phases) and
+Where each step lives: elements and pieces in :mod:`._corridor`, the reach in :mod:`._reach`, the
+greedy in :mod:`._greedy`, snapping and the exact checks in :mod:`._check`, splicing, pruning, merging,
+relinking and the small-corridor searches in :mod:`._repair`, straightening in :mod:`._straighten`,
+shared constants in :mod:`._base`; this module runs them over all rings (the ``*_all`` phases) and
 re-exports them, so callers import one module.
 
 Integer checks use coordinates scaled by 2^K with K chosen per ring so that every product of two
@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 
 from mrm.geometry._jit import njit
-from mrm.geometry._rk_base import (
+from mrm.geometry.reconstruct._base import (
     _BIG,
     _DX,
     _DY,
@@ -67,7 +67,7 @@ from mrm.geometry._rk_base import (
     _grow1,
     _grow2,
 )
-from mrm.geometry._rk_check import (
+from mrm.geometry.reconstruct._check import (
     _in_piece,
     _on_seg,
     _orient,
@@ -77,14 +77,14 @@ from mrm.geometry._rk_check import (
     snap_ring,
     verify_ring,
 )
-from mrm.geometry._rk_corridor import (
+from mrm.geometry.reconstruct._corridor import (
     _rect_of,
     build_elements,
     build_pieces,
     count_visits,
     net_pieces,
 )
-from mrm.geometry._rk_greedy import (
+from mrm.geometry.reconstruct._greedy import (
     _chord_point,
     _gate_param,
     _inside_rect,
@@ -94,7 +94,7 @@ from mrm.geometry._rk_greedy import (
     ring_reach,
     v4_greedy,
 )
-from mrm.geometry._rk_reach import (
+from mrm.geometry.reconstruct._reach import (
     _QUAD_X,
     _QUAD_Y,
     _best_line,
@@ -104,7 +104,7 @@ from mrm.geometry._rk_reach import (
     dss_reach,
     general_reach,
 )
-from mrm.geometry._rk_repair import (
+from mrm.geometry.reconstruct._repair import (
     _clip_poly,
     _merge_pair,
     _net_crossing,
@@ -118,7 +118,7 @@ from mrm.geometry._rk_repair import (
     splice_ring,
     window_bound,
 )
-from mrm.geometry._rk_straighten import (
+from mrm.geometry.reconstruct._straighten import (
     _edge_line,
     _local_ok,
     _meet_int,
@@ -131,7 +131,8 @@ from mrm.geometry._rk_straighten import (
     straighten_ring,
 )
 
-# The phases live in the _rk_* modules; this module runs them and keeps one import for callers.
+# The phases live in the sibling _base, _check, _corridor, … modules; this module runs them and keeps one
+# import for callers.
 __all__ = [
     "RING_NET",
     "RING_PARTIAL",

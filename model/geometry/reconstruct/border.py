@@ -13,7 +13,7 @@ through, in path order, and of the open segments (*gates*) between consecutive p
   visited several times gives each visit its own part, the part of the square on the outer side of the path
   of pixel centres (half a square along a straight stretch, a quarter at an elbow, a half and a quarter at a
   convex corner, two halves at the tip of an arm), so that the parts of different visits are disjoint;
-* ``gauss``: the *dual* corridor instead (:mod:`mrm.geometry._dual_kernels`, ADR 0012): the open unit
+* ``gauss``: the *dual* corridor instead (:mod:`mrm.geometry.reconstruct._dual`, ADR 0012): the open unit
   squares whose corners are the four pixel centres around each pointel of the chain, joined by the open
   segments between the centres on either side of each linel (a quarter of the square for each visit of a
   pointel met twice). It holds no pixel centre, so the polygon keeps every centre of A strictly inside and
@@ -21,7 +21,8 @@ through, in path order, and of the open segments (*gates*) between consecutive p
 
 A ring that enters every piece through its gate and leaves through the next one, with every vertex strictly
 inside a piece, is simple, disjoint from the rings of the other visits, and D(polygon) = A
-(:mod:`mrm.geometry.reconstruct` builds such rings, :mod:`mrm.geometry.verify` checks them exactly).
+(:mod:`mrm.geometry.reconstruct` builds such rings, :mod:`mrm.geometry.reconstruct.verify` checks them
+exactly).
 
 Coordinates are plane coordinates: pixel (x, y) is centred on (x, y); pointel (i, j) is (i − ½, j − ½).
 """
@@ -34,8 +35,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from mrm.geometry import _dual_kernels as _dk
-from mrm.geometry import _reconstruct_kernels as _k
+from mrm.geometry.reconstruct import _dual as _dk
+from mrm.geometry.reconstruct import _kernels as _k
 from mrm.reps.region import CrackChain
 
 IntArray = npt.NDArray[np.int64]
@@ -171,7 +172,7 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
         pixel on two rings (a wall between a hole and the outside) is split between them.
     model : {"standard", "supercover", "gauss"}
         The cover models share one corridor; ``gauss`` uses the dual squares of the crack pointels
-        (:mod:`mrm.geometry._dual_kernels`).
+        (:mod:`mrm.geometry.reconstruct._dual`).
     """
     if not chains:
         return []

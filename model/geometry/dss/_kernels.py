@@ -1,6 +1,6 @@
 """Numba kernels for arithmetic DSS recognition and the segmentations built on it.
 
-These are the hot paths behind :mod:`mrm.geometry.segmentation`; :mod:`mrm.geometry.dss` holds the
+These are the hot paths behind :mod:`mrm.geometry.dss.segmentation`; :mod:`mrm.geometry.dss` holds the
 readable pure-Python recognizer they mirror step for step (and that the tests compare them with). The
 algorithm is Debled-Rennesson & Reveillès' incremental recognition with Lachaud, de Vieilleville &
 Feschet's O(1) retraction, in the DGtal ``ArithmeticalDSS`` convention (ALGORITHMS.md §2.1-2.2):

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from mrm.geometry._jit import njit
-from mrm.geometry._rk_base import _BIG, _EPS, SRC_LINES, SRC_PATCH
-from mrm.geometry._rk_reach import dss_reach, general_reach
+from mrm.geometry.reconstruct._base import _BIG, _EPS, SRC_LINES, SRC_PATCH
+from mrm.geometry.reconstruct._reach import dss_reach, general_reach
 
 # ============================================================================================ V4 greedy
 

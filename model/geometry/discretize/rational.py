@@ -6,14 +6,16 @@ them first could move a vertex across a pixel side. Three exact paths, all givin
 definitions (ALGORITHMS §1.7):
 
 * every coordinate a float64: ``discretize`` itself;
-* the integer definitions of :mod:`mrm.geometry.rational_discretize` — coordinates scaled by ``2L`` (L the
+* the integer definitions of :mod:`mrm.geometry.discretize.rational_kernels` — coordinates scaled by ``2L``
+(L the
   common denominator) so that vertices, pixel centres (multiples of ``G = 2L``) and pixel sides (odd
   multiples of ``L``) are integers; compiled on int64 when that cannot overflow, else on Python integers;
 * :func:`filtered_image` for a float64 polygon under a similarity whose image does not fit int64 (a
   rotation): float64 arithmetic with a proven error bound decides almost every pixel in compiled kernels,
   and the integer definitions decide the edges with a near-tie.
 
-:func:`discretize_exact` takes an :class:`~mrm.ops.exact_geometry.ExactShape` (the first two paths);
+:func:`discretize_exact` takes an :class:`~mrm.geometry.discretize.exact_shape.ExactShape` (the first two
+paths);
 :func:`discretize_image` takes a float64 polygon and an exact similarity (the fastest path that applies).
 """
 
@@ -27,7 +29,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
-from mrm.ops.exact_geometry import ExactShape, box_area, pixel_box
+from mrm.geometry.discretize.exact_shape import ExactShape, box_area, pixel_box
 from mrm.reps.pixels import Box, PixelSet
 
 MODELS = ("standard", "supercover", "gauss")
@@ -147,12 +149,12 @@ def _integer_path(
 def integer_discretization(
     edges: list[IntEdge], g: int, model: str, box: Box, progress: ProgressLike | None, compiled: bool = True
 ) -> PixelSet:
-    """D of integer edges on the grid of spacing ``g`` (:mod:`mrm.geometry.rational_discretize`).
+    """D of integer edges on the grid of spacing ``g`` (:mod:`mrm.geometry.discretize.rational_kernels`).
 
     The definitions run compiled on int64 when no overflow is possible (and ``compiled``), else on Python
     integers; ``progress`` is told when the work starts and ends.
     """
-    from mrm.geometry.rational_discretize import discretize_integer_edges
+    from mrm.geometry.discretize.rational_kernels import discretize_integer_edges
 
     _tick(progress, 0.0)
     mask = discretize_integer_edges(edges, g, box, model, compiled=compiled)
@@ -175,14 +177,14 @@ def discretize_image(
     A scaling-or-translation: every float64 coordinate is ``X/2^k`` with an integer X; the image under
     ``v ↦ (p/q)·v + t`` is then ``X'/D`` over one common denominator ``D``, computed with int64 numpy
     arithmetic once the magnitudes are checked, and discretized by the compiled exact kernels
-    (:mod:`mrm.geometry.rational_discretize`). A rotation, or an image beyond int64: the float filter
+    (:mod:`mrm.geometry.discretize.rational_kernels`). A rotation, or an image beyond int64: the float filter
     (:func:`filtered_image`). Returns None where neither applies (non-finite input, magnitudes beyond
     2⁴⁰): the caller then takes :func:`discretize_exact`, which gives the same pixels.
     """
     import shapely
     from shapely.geometry import MultiPolygon, Polygon
 
-    from mrm.geometry.rational_discretize import discretize_integer_edges, fits_int64
+    from mrm.geometry.discretize.rational_kernels import discretize_integer_edges, fits_int64
 
     if not isinstance(geom, Polygon | MultiPolygon):
         return None
@@ -273,7 +275,8 @@ def filtered_image(
     """D(T(E)) for the rings of a float64 polygon E (``coords`` with shapely's ring ``index``), exactly.
 
     The image is computed in float64 with a proven bound ``delta`` on the error of every coordinate, the
-    compiled kernels of :mod:`mrm.geometry.rational_discretize` decide every crossing and edge pixel the
+    compiled kernels of :mod:`mrm.geometry.discretize.rational_kernels` decide every crossing and edge pixel
+    the
     float data decide for every polygon within ``delta``, and the edges with a near-tie are decided from
     their exact image (Fractions, then the integer definitions of this module): the pixels of the integer
     path, at the cost of the float one. Returns None (the caller takes the exact path) for magnitudes
@@ -373,7 +376,7 @@ def _filtered(
     The float vertices ``(ix, iy)`` are each within ``delta`` of the exact vertex ``exact_point(v)``;
     ``magnitude`` bounds their coordinates.
     """
-    from mrm.geometry.rational_discretize import (
+    from mrm.geometry.discretize.rational_kernels import (
         filtered_crossings,
         filtered_spans,
         filtered_walks,

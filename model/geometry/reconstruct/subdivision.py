@@ -94,7 +94,7 @@ How the polylines are chosen (a "V4" on the dual grid)
 Shifted by (½, ½), the pointels become pixel centres and the pieces their open squares: γ_c must cross
 a 4-connected path of squares through their open shared sides, from the centre of the first to the centre
 of the last. For every window of pointels that is a standard digital straight segment (a, b, μ, ω) (the
-reach table of :func:`mrm.geometry.segmentation.standard_dss_reach_table`), the left centres of its linels
+reach table of :func:`mrm.geometry.dss.segmentation.standard_dss_reach_table`), the left centres of its linels
 have a·x − b·y ≤ μ + ω/2 − 1 and the right ones ≥ μ + ω/2 (pointel coordinates), so every line in the open
 strip between (around the median line a·x − b·y = μ + (ω − 1)/2) separates them: it crosses every gate of the
 window. From the current vertex A (a 0-cell to begin with) the cone of directions through the following
@@ -109,7 +109,8 @@ set back to the staircase, which the proof above covers as well.
 
 The Python functions below are the definition of the construction. The polylines of all 1-cells are built by
 one compiled kernel that follows them step for step on int64 with every product checked
-(:mod:`mrm.geometry._subdivision_kernels`, docs/adr/0024): a chain whose numbers would leave the checked
+(:mod:`mrm.geometry.reconstruct._subdivision_kernels`, docs/adr/0024): a chain whose numbers would leave the
+checked
 range is built by the Python functions on Python integers, so the result is the same either way.
 """
 
@@ -127,11 +128,11 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
 from mrm.gc_pause import paused_gc
-from mrm.geometry.cracks import DX, DY
 from mrm.geometry.discretize import _discretize_pieces, _take_apart
-from mrm.geometry.labeling import group_by_label
-from mrm.geometry.labeling import label as label_components
-from mrm.geometry.segmentation import standard_dss_reach_table
+from mrm.geometry.dss.segmentation import standard_dss_reach_table
+from mrm.geometry.topology.cracks import DX, DY
+from mrm.geometry.topology.labeling import group_by_label
+from mrm.geometry.topology.labeling import label as label_components
 from mrm.reps.cells import Cells, cells_of
 from mrm.reps.pixels import LabelMap, PixelSet
 
@@ -874,7 +875,8 @@ def _assemble_label(
     return polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
 
 
-#: Build the polylines with the compiled kernels (:mod:`mrm.geometry._subdivision_kernels`); the Python
+#: Build the polylines with the compiled kernels (:mod:`mrm.geometry.reconstruct._subdivision_kernels`); the
+#: Python
 #: functions above are their definition, used for the chains the kernels leave (int64 overflow) and by tests
 #: that replace a step of the construction.
 _KERNEL = True
@@ -889,7 +891,7 @@ def _polylines(
         chains = [_Chain(p, c) for p, c in zip(points, closed, strict=True)]
         done = [_polyline(ch) for ch in chains]
         return [_to_plane(ch, v) for ch, (v, _) in zip(chains, done, strict=True)], [s for _, s in done]
-    from mrm.geometry import _subdivision_kernels as K
+    from mrm.geometry.reconstruct import _subdivision_kernels as K
 
     lens = np.diff(off)
     starts = pts_all[off[:-1]]
@@ -1027,7 +1029,7 @@ def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:
     lab = lm.labels
     if lab.size == 0:
         return {}
-    from mrm.geometry._subdivision_kernels import label_boxes
+    from mrm.geometry.reconstruct._subdivision_kernels import label_boxes
 
     x0, y0 = lm.origin
     vmax = int(lab.max())

@@ -1,11 +1,11 @@
-"""Phase 1 of R: border-path elements, pieces and gates of every ring (:mod:`._reconstruct_kernels`)."""
+"""Phase 1 of R: border-path elements, pieces and gates of every ring (:mod:`._kernels`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from mrm.geometry._jit import njit
-from mrm.geometry._rk_base import _DX, _DY, _LXD, _LYD
+from mrm.geometry.reconstruct._base import _DX, _DY, _LXD, _LYD
 
 # ============================================================================================ elements
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._dss_kernels import reach_kernel
 from mrm.geometry._jit import njit
-from mrm.geometry._rk_base import _BIG
+from mrm.geometry.dss._kernels import reach_kernel
+from mrm.geometry.reconstruct._base import _BIG
 
 # ============================================================================================ preimage
 

@@ -14,8 +14,8 @@ Conventions are DGtal's ``ArithmeticalDSL`` / ``ArithmeticalDSS``, so results ca
 
 :class:`ArithmeticalDSS` is the readable pure-Python recognizer (Debled-Rennesson & Reveillès 1995 for
 extension, Lachaud, de Vieilleville & Feschet 2007 for the O(1) retraction), step for step the algorithm of
-DGtal. The numba kernels in :mod:`mrm.geometry._dss_kernels` are the same algorithm on an int64 state; the
-segmentations in :mod:`mrm.geometry.segmentation` use those.
+DGtal. The numba kernels in :mod:`mrm.geometry.dss._kernels` are the same algorithm on an int64 state; the
+segmentations in :mod:`mrm.geometry.dss.segmentation` use those.
 """
 
 from __future__ import annotations
@@ -49,8 +49,8 @@ def steps_of(a: int, b: int, adjacency: int) -> tuple[Point, Point]:
     tuple of two points
         DGtal ``ArithmeticalDSLKernel::steps``: the steps that occur along a DSL of that slope.
     """
-    from mrm.geometry._dss_kernels import steps_of as _k
     from mrm.geometry._jit import py_func
+    from mrm.geometry.dss._kernels import steps_of as _k
 
     s1x, s1y, s2x, s2y = py_func(_k)(a, b, adjacency)
     return (s1x, s1y), (s2x, s2y)
@@ -58,8 +58,8 @@ def steps_of(a: int, b: int, adjacency: int) -> tuple[Point, Point]:
 
 def shift_of(a: int, b: int, adjacency: int) -> Point:
     """Return the shift vector of the DSLs of slope (a, b): r(p + shift) = r(p) + ω (DGtal's ``shift``)."""
-    from mrm.geometry._dss_kernels import shift_of as _k
     from mrm.geometry._jit import py_func
+    from mrm.geometry.dss._kernels import shift_of as _k
 
     x, y = py_func(_k)(a, b, adjacency)
     return (x, y)

@@ -1,6 +1,7 @@
-"""Numba kernels for :mod:`mrm.geometry.subdivision`: the polylines of many 1-cells in one call.
+"""Numba kernels for :mod:`mrm.geometry.reconstruct.subdivision`: the polylines of many 1-cells in one call.
 
-:func:`polylines_kernel` is :func:`mrm.geometry.subdivision._polyline` (staircase, greedy construction, merge
+:func:`polylines_kernel` is :func:`mrm.geometry.reconstruct.subdivision._polyline` (staircase, greedy
+construction, merge
 pass, closing of a ring, exact verification) written for int64, applied to every chain of a batch. The Python
 functions stay the definition and the tests compare the two chain by chain.
 
@@ -15,8 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._dss_kernels import reach_kernel
 from mrm.geometry._jit import njit
+from mrm.geometry.dss._kernels import reach_kernel
 
 #: Status of a chain: its polyline, its staircase (the construction gave nothing better), or left to the
 #: Python functions (int64 would overflow, or a case that "cannot happen" was met).
@@ -501,7 +502,7 @@ def polylines_kernel(
         The number of vertices of chain i, in rows off[i] … off[i] + count[i] − 1 of ``verts``.
     verts : (N, 3) int64
         Vertices (x, y, e): the dyadic point (x / 2^e, y / 2^e) in doubled coordinates relative to the
-        chain's first pointel (the ``Vertex`` of :mod:`mrm.geometry.subdivision`).
+        chain's first pointel (the ``Vertex`` of :mod:`mrm.geometry.reconstruct.subdivision`).
     """
     m = closed.shape[0]
     status = np.empty(m, dtype=np.int8)

@@ -44,8 +44,8 @@ import numpy.typing as npt
 import shapely
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, ParameterError, SizeLimitError
-from mrm.geometry import _discretize_kernels as _k
-from mrm.geometry.exact import (
+from mrm.geometry.discretize import _kernels as _k
+from mrm.geometry.discretize.exact import (
     MAX_ABS_COORD,
     MIN_ABS_COORD,
     cell_index,

@@ -2,7 +2,7 @@
 
 A *region* is a 4-connected component of the pixels of one non-zero label (label 0 is the background,
 DESIGN §1). :func:`polygonize` returns one :class:`Region` per region, built from the joint ``gauss``
-reconstruction of the label map (:mod:`mrm.geometry.subdivision`, ADR 0004):
+reconstruction of the label map (:mod:`mrm.geometry.reconstruct.subdivision`, ADR 0004):
 
 * D_gauss(region polygon) = the region's pixels exactly, so any centre-rule rasterizer (GDAL's
   ``rasterize``, PIL, scikit-image) burns the polygons with their labels back to the label image;
@@ -26,7 +26,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
 from mrm.geometry.discretize import discretize
-from mrm.geometry.subdivision import subdivide
+from mrm.geometry.reconstruct.subdivision import subdivide
 from mrm.reps.pixels import LabelMap
 
 logger = logging.getLogger(__name__)

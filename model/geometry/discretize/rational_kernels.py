@@ -287,7 +287,7 @@ def integer_walks(mask: npt.NDArray[np.bool_], edges: Any, g: int, x0: int, y0: 
 # bound ``delta`` per coordinate (|X − X'| ≤ delta for every vertex, exact X, float X'), and every decision
 # of the integer kernels is taken from the float data when it is the same for every polygon within
 # ``delta``; an edge with one decision that is not is flagged (``ok[k] = False``) and left to the exact
-# integer path, which decides it from the exact vertices (mrm.ops.rational_discretize). So the pixels are
+# integer path, which decides it from the exact vertices (mrm.geometry.discretize.rational). So the pixels are
 # those of the integer path, bit for bit, and the exact arithmetic runs only on the near-ties.
 #
 # Both kernels rest on one fact: the exact edge S = [a, b] and its float image S' = [a', b'] with

@@ -21,7 +21,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from mrm.geometry.labeling import Runs, as_u8, label_runs
+from mrm.geometry.topology.labeling import Runs, as_u8, label_runs
 
 U8Array = npt.NDArray[np.uint8]
 I32Array = npt.NDArray[np.int32]

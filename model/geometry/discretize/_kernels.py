@@ -9,7 +9,8 @@ Every decision reduces to one of two exact questions about float64 data:
 Signs are computed with a floating-point filter (Shewchuk's orient2d error bound) and, when the filter
 cannot decide, exactly with floating-point expansions (two-sum / two-product, Shewchuk 1997). When the
 caller has proved that plain float arithmetic is exact for the whole geometry (``exact=True``, see
-:func:`mrm.geometry.exact.float_predicates_are_exact`), the float result is used as is, including zero.
+:func:`mrm.geometry.discretize.exact.float_predicates_are_exact`), the float result is used as is, including
+zero.
 
 The expansion arithmetic is exact as long as no product underflows or overflows; the caller guarantees
 this by limiting coordinates to 2^-400 ≤ |v| ≤ 2^51 (or v = 0). Then every input and grid number is a

@@ -20,7 +20,7 @@ import numpy.typing as npt
 MAX_ABS_COORD = 2.0**51
 
 #: Smallest supported non-zero |coordinate|. The exact fallback multiplies differences of coordinates;
-#: below this bound those products could underflow and lose bits (see _discretize_kernels).
+#: below this bound those products could underflow and lose bits (see ._kernels).
 MIN_ABS_COORD = 2.0**-400
 
 #: Half-width, in units of the coarsest common dyadic step, under which products of coordinate

@@ -21,7 +21,7 @@ shifted by half a pixel, with pointels in the role of pixels:
   different polygons (the (4, 8) topology).
 
 Everything else (reach, V4 greedy, snapping, exact verification, local repair) is the cover pipeline of
-:mod:`._reconstruct_kernels`, run in the *dual frame*: pointel (i, j) plays the pixel (i, j), whose centre
+:mod:`._kernels`, run in the *dual frame*: pointel (i, j) plays the pixel (i, j), whose centre
 is (4i, 4j) in Q-units; plane coordinates are the dual ones minus half a pixel.
 
 The safety net is the crack ring itself (its turning pointels, centres of their dual squares), with the
@@ -33,9 +33,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from mrm.geometry._reconstruct_kernels import _kmax_for
-from mrm.geometry._rk_base import _DX, _DY, _cp1, _cp2
-from mrm.geometry._rk_corridor import _rect_of, side_gate
+from mrm.geometry.reconstruct._base import _DX, _DY, _cp1, _cp2
+from mrm.geometry.reconstruct._corridor import _rect_of, side_gate
+from mrm.geometry.reconstruct._kernels import _kmax_for
 
 
 @njit(cache=True)
@@ -103,7 +103,7 @@ def dual_pieces(
     """Pieces, gates and safety-net vertices of the ring whose dual elements are e0 … e1−1 (dual Q-units).
 
     Returns ``rect`` (n, 4), ``pel`` (element of each piece, local), ``gp``, ``gq``, ``gdir`` (as
-    :func:`._reconstruct_kernels.build_pieces`), ``full`` (1 if no pointel is met twice), ``r0`` (net
+    :func:`._kernels.build_pieces`), ``full`` (1 if no pointel is met twice), ``r0`` (net
     vertices, (m, 2)) and ``r0t`` (the local piece of each net vertex).
     """
     n = e1 - e0
@@ -168,7 +168,7 @@ def dual_corridors_all(
     np.ndarray,
     np.ndarray,
 ]:  # pragma: no cover
-    """Phase 1 under ``gauss``: the same 19 arrays as :func:`._reconstruct_kernels.corridors_all`.
+    """Phase 1 under ``gauss``: the same 19 arrays as :func:`._kernels.corridors_all`.
 
     Everything is in the dual frame (pointel (i, j) at (4i, 4j) Q-units); ``special`` is 0 for every ring.
     """

@@ -24,8 +24,8 @@ inside a piece of their overlap, or a two-vertex patch joins them; every vertex 
 dyadic grid that keeps all constraints, and every ring is verified exactly. A failing stretch is replaced
 locally by the safety net of the corridor, never the whole result.
 
-The cover models use the border pixels' squares as pieces (:mod:`._reconstruct_kernels`). ``gauss`` uses
-the *dual* corridor (:mod:`._dual_kernels`, ADR 0012): the open unit squares whose corners are the four
+The cover models use the border pixels' squares as pieces (:mod:`._kernels`). ``gauss`` uses
+the *dual* corridor (:mod:`._dual`, ADR 0012): the open unit squares whose corners are the four
 pixel centres around each pointel of the crack ring, joined by the open segments between the centres on
 either side of each linel. It holds no pixel centre, so a ring that follows it winds once around the
 centres of A and never around the others; it is the cover corridor shifted by half a pixel, so the same
@@ -43,9 +43,9 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
-from mrm.geometry import _dual_kernels as _dk
-from mrm.geometry import _reconstruct_kernels as _k
-from mrm.geometry.cracks import trace_mask
+from mrm.geometry.reconstruct import _dual as _dk
+from mrm.geometry.reconstruct import _kernels as _k
+from mrm.geometry.topology.cracks import trace_mask
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain
 
@@ -123,7 +123,7 @@ def _run(ps: PixelSet, model: str) -> _Run:
     gauss = model == "gauss"
     h, w = m.shape
     if gauss:
-        # the dual corridor (pointels as pixels, :mod:`._dual_kernels`); the cover pipeline runs on it
+        # the dual corridor (pointels as pixels, :mod:`._dual`); the cover pipeline runs on it
         cor = _dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
     else:
         cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)

@@ -1,0 +1,1 @@
+"""Topology of pixel sets: connected components (labeling) and crack boundaries (cracks)."""
