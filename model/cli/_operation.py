@@ -29,6 +29,7 @@ from __future__ import annotations
 import argparse
 import math
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -97,6 +98,22 @@ def parse_point(text: str) -> tuple[str, str]:
     return parts[0], parts[1]
 
 
+@dataclass(frozen=True)
+class OperationInput:
+    """One input of an operation as the command line read it (the file is read once).
+
+    ``value`` is the object in its source representation, ``model`` the model in force. A project object
+    also brings its ``id`` and ``provenance`` (so its chain joins the account) and its ``georef``; a pixel
+    file brings its georeference (a GeoTIFF's, a world file's) or None.
+    """
+
+    value: Any
+    model: str
+    id: int = 0
+    provenance: Any = None
+    georef: Any = None
+
+
 def read_one(
     path: str,
     object_name: str | None,
@@ -104,11 +121,25 @@ def read_one(
     limit: int,
     threshold: float | None = None,
     invert: bool = False,
-) -> tuple[Any, str]:
-    """Read one input: (PixelSet or geometry, model)."""
-    extension_of(path, INPUTS, "supported input file")
+) -> OperationInput:
+    """Read one input of an operation (a pixel file, a vector file or one object of a project)."""
+    ext = extension_of(path, INPUTS, "supported input file")
+    if ext == ".mrm":
+        from mrm.cli._project_input import project_object
+
+        if invert:
+            raise ParameterError(f"{path}: --invert applies to image inputs only")
+        if not Path(path).exists():
+            raise FileNotFoundError(2, "No such file", path)
+        obj, chosen = project_object(Path(path), object_name, model)
+        return OperationInput(obj.source, chosen, obj.id, obj.provenance, obj.georef)
     _, value, chosen = load_object(path, object_name, model, threshold=threshold, invert=invert, limit=limit)
-    return value, chosen
+    georef = None
+    if ext in PIXEL_EXTENSIONS and ext != ".npz":
+        from mrm.io.georef import read_georef
+
+        georef = read_georef(path)
+    return OperationInput(value, chosen, georef=georef)
 
 
 def _two_names(args: argparse.Namespace) -> tuple[str | None, str | None]:
@@ -131,14 +162,22 @@ def _two_names(args: argparse.Namespace) -> tuple[str | None, str | None]:
     return name_a, name_b
 
 
-def read_two(args: argparse.Namespace) -> tuple[Any, Any, str]:
+def read_two(args: argparse.Namespace) -> tuple[OperationInput, OperationInput, str]:
     """Read A and B with their ``--object`` names; the model is --model, else A's project's, else B's."""
     project = [Path(p).suffix.lower() == ".mrm" for p in (args.first, args.second)]
     name_a, name_b = _two_names(args)
-    a, model_a = read_one(args.first, name_a, args.model, args.limit)
-    b, model_b = read_one(args.second, name_b, args.model, args.limit)
-    model = args.model or (model_a if project[0] else model_b if project[1] else model_a)
+    a = read_one(args.first, name_a, args.model, args.limit)
+    b = read_one(args.second, name_b, args.model, args.limit)
+    model = args.model or (a.model if project[0] else b.model if project[1] else a.model)
     return a, b, model
+
+
+def two_input_provenance(operation: str, params: dict[str, Any], a: OperationInput, b: OperationInput) -> Any:
+    """The provenance of a two-input result: both inputs, with a project input's own chain."""
+    from mrm.document import Provenance
+
+    ids = (a.id or 1, b.id or 2)
+    return Provenance(operation, params, ids, (a.value, b.value), (a.provenance, b.provenance))
 
 
 def write_result(
@@ -188,38 +227,16 @@ def write_result(
         )
 
 
-def two_input_georef(args: argparse.Namespace, operation: str, a: Any, b: Any) -> Any:
+def two_input_georef(operation: str, a: OperationInput, b: OperationInput) -> Any:
     """The georeference of a two-input result (ADR 0021): both inputs' grid when they share one, else None."""
     from mrm.io.georef import result_georef
 
-    name_a, name_b = _two_names(args)
-    grids = [_input_record(args.first, name_a, a)[2], _input_record(args.second, name_b, b)[2]]
-    return result_georef(operation, {}, grids)
+    return result_georef(operation, {}, [a.georef, b.georef])
 
 
 def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
     """The info keys of a result (its discrete representation, and the polygon when it is Euclidean)."""
     return summarize(pixels, model, geom=None if isinstance(result, PixelSet) else result)
-
-
-def _input_record(path: str, object_name: str | None, source: Any) -> tuple[int, Any, Any]:
-    """(id, provenance, georef) of a project input object, so that its chain joins the account; else none.
-
-    For a pixel file, its georeference (a GeoTIFF's, a world file's) or None.
-    """
-    ext = Path(path).suffix.lower()
-    if ext != ".mrm":
-        if ext in PIXEL_EXTENSIONS and ext != ".npz":
-            from mrm.io.georef import read_georef
-
-            return 0, None, read_georef(path)
-        return 0, None, None
-    from mrm.io.project import read_project
-
-    objs = [o for o in read_project(path).objects if object_name is None or o.name == object_name]
-    if len(objs) == 1 and objs[0].source == source:
-        return objs[0].id, objs[0].provenance, objs[0].georef
-    return 0, None, None
 
 
 def unary_file(
@@ -251,10 +268,10 @@ def unary_file(
     load_paper_operations()
     spec = get_operation(operation)
     checked = coerce_params(spec, params)
-    source, chosen = read_one(path, object_name, model, limit, threshold, invert)
+    given = read_one(path, object_name, model, limit, threshold, invert)
+    source, chosen, georef = given.value, given.model, given.georef
     checked = dataclasses.replace(checked, model=chosen)
-    oid, parent, georef = _input_record(path, object_name, source)
-    prov = Provenance(spec.name, params_to_dict(checked), (oid,), (source,), (parent,))
+    prov = Provenance(spec.name, params_to_dict(checked), (given.id,), (source,), (given.provenance,))
     t0 = time.perf_counter()
     if no_measure:
         result = run_operation(spec, [source], checked, limit=limit).output

@@ -58,6 +58,18 @@ def _pick(objects: list[Any], object_name: str | None, name: str) -> Any:
     return found[0]
 
 
+def project_object(path: Path, object_name: str | None, model: str | None) -> tuple[Any, str]:
+    """The object ``object_name`` of a project file (read once) and the model in force.
+
+    The object is a :class:`mrm.document.DocObject`, so a caller also gets its id, provenance and
+    georeference; the model is ``model`` if given, else the project's.
+    """
+    from mrm.io.project import read_project
+
+    proj = read_project(path)
+    return _pick(proj.objects, object_name, path.name), model or proj.settings.model
+
+
 def _list(names: list[str], limit: int = 12) -> str:
     shown = ", ".join(repr(n) for n in names[:limit])
     return shown + (f" and {len(names) - limit} more" if len(names) > limit else "")
@@ -108,11 +120,7 @@ def load_input(
     kind: Kind
     value: Any
     if ext in PROJECT_EXTENSIONS:
-        from mrm.io.project import read_project
-
-        proj = read_project(p)
-        obj = _pick(proj.objects, object_name, p.name)
-        model = model or proj.settings.model
+        obj, model = project_object(p, object_name, model)
         kind, value = obj.kind, obj.source
     else:
         if object_name is not None:

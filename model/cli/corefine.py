@@ -35,6 +35,7 @@ from mrm.cli._operation import (
     read_two,
     result_summary,
     two_input_georef,
+    two_input_provenance,
 )
 from mrm.geometry.discretize.exact_shape import number_to_json, positive_number
 from mrm.io.georef import georef_summary
@@ -127,7 +128,6 @@ def _read_alpha(text: str) -> Any:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Co-refine, write the parts, return the summary (the numbers are the model's account of the result)."""
-    from mrm.document import Provenance
     from mrm.errors import MRMError
     from mrm.ops.account import account_of
     from mrm.ops.boolean import PARTS, euclidean_discrete_corefinement
@@ -136,18 +136,18 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     kind, files = _targets(str(args.output))
     a, b, model = read_two(args)
     alpha_json = None if alpha is None else number_to_json(alpha)
-    prov = Provenance("corefine", {"model": model, "alpha": alpha_json}, (1, 2), (a, b), (None, None))
+    prov = two_input_provenance("corefine", {"model": model, "alpha": alpha_json}, a, b)
     t0 = time.perf_counter()
     acc = account_of(prov, measure=not args.no_measure, limit=args.limit)
     if acc.error:
         raise MRMError(acc.error)
     out = acc.outcome
     if out is None:  # not measured: the account holds the bounds only
-        out = euclidean_discrete_corefinement(a, b, model, alpha, limit=args.limit)
+        out = euclidean_discrete_corefinement(a.value, b.value, model, alpha, limit=args.limit)
     seconds = time.perf_counter() - t0
     if files:  # a folder target is created only now, when there is something to write into it
         Path(next(iter(files.values()))).parent.mkdir(parents=True, exist_ok=True)
-    georef = two_input_georef(args, "corefine", a, b)
+    georef = two_input_georef("corefine", a, b)
     _write(kind, files, str(args.output), out.result, out.extra["label_map"], model, georef)
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary.update(operation="corefine", alpha=alpha_json)

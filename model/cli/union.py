@@ -19,6 +19,7 @@ from mrm.cli._operation import (
     read_two,
     result_summary,
     two_input_georef,
+    two_input_provenance,
     write_result,
 )
 from mrm.io.georef import georef_summary
@@ -37,22 +38,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Unite, write the result, return the summary (the numbers are the model's account of the result)."""
-    from mrm.document import Provenance
     from mrm.ops.account import account_of
     from mrm.ops.base import run_operation
 
     extension_of(args.output, OUTPUTS, "output file")
     a, b, model = read_two(args)
-    prov = Provenance("union", {"model": model}, (1, 2), (a, b), (None, None))
+    prov = two_input_provenance("union", {"model": model}, a, b)
     t0 = time.perf_counter()
     if args.no_measure:
-        result = run_operation("union", [a, b], {"model": model}, limit=args.limit).output
+        result = run_operation("union", [a.value, b.value], {"model": model}, limit=args.limit).output
         acc = account_of(prov, measure=False, limit=args.limit)
     else:  # the account makes the union once, from the inputs, and measures it
         acc = account_of(prov, measure=True, limit=args.limit)
         result = acc.output
     seconds = time.perf_counter() - t0
-    georef = two_input_georef(args, "union", a, b)
+    georef = two_input_georef("union", a, b)
     write_result(result, args.output, model, {"operation": "union"}, georef)
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary["operation"] = "union"

@@ -12,6 +12,6 @@
 =================  ==========================================================================================
 
 Each stage's main function is importable from the package itself: ``mrm.geometry.discretize.discretize``,
-``mrm.geometry.reconstruct.reconstruct``, ``mrm.geometry.hausdorff.hausdorff_distance``; ``_jit`` is the one numba
-entry point of every kernel.
+``mrm.geometry.reconstruct.reconstruct``, ``mrm.geometry.hausdorff.hausdorff_distance``; ``_jit`` is the
+one numba entry point of every kernel.
 """

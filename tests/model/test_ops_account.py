@@ -125,6 +125,41 @@ def test_random_chains_one_account_api_and_cli(tmp_path, steps, model):
     assert len(acc.chain) == len(steps)
 
 
+@pytest.mark.parametrize(("operation", "params"), [("union", {}), ("corefine", {"alpha": 2.0})])
+def test_two_input_results_from_a_project_carry_both_chains_in_api_and_cli(tmp_path, operation, params):
+    """``mrm union|corefine`` on project objects gives the account the application gives (both chains)."""
+    doc, a = _doc(_diamond(4))
+    (a2,) = apply_operation(doc, "dss", [a], {"alpha": 2.0})
+    b = doc.make_object(shapely.box(1, -3, 9, 5), "B")
+    doc.push(AddObject(b))
+    (b2,) = apply_operation(doc, "discrete_rotation", [b.id], {"angle": 30.0})
+    (result, *_) = apply_operation(doc, operation, [a2, b2], params)
+    path = tmp_path / "two.mrm"
+    save_project(doc, path)
+    api = _json(account_of(doc.get(result).provenance).summary())
+    assert [len(c) for c in api["input_chains"]] == [1, 1]  # DSS_2 of A, dR_30° of B
+    names = [doc.get(a2).name, doc.get(b2).name]
+    extra = ["--alpha", "2"] if operation == "corefine" else []
+    out = tmp_path / f"{operation}.geojson"
+    cli = _cli(
+        [
+            operation,
+            str(path),
+            str(path),
+            "--object",
+            names[0],
+            "--object",
+            names[1],
+            *extra,
+            "-o",
+            str(out),
+            "--json",
+        ]
+    )
+    assert cli["input_chains"] == api["input_chains"]
+    assert cli["measured"] == api["measured"] and cli["bound"] == api["bound"]
+
+
 # ---------------------------------------------------------------------------------------------- per operation
 def test_dss_chain_bound_measured_and_direct_result_against_the_reference():
     doc, a = _doc(_diamond(5))
