@@ -14,7 +14,7 @@ step (crack linel); the time per step on the horse upscaled from 1024Â² to 8192Â
 warm (cache on disk).
 
 Run: ``.venv/bin/python benchmarks/reconstruct.py`` (``--quick`` skips the two largest disks and potrace on
-big inputs).
+big inputs; ``--rings`` adds the per-ring excess over the window bound).
 """
 
 from __future__ import annotations
@@ -237,6 +237,38 @@ def compactness(items: list[tuple[str, PixelSet]]) -> None:
         "peers: vertices and pixels wrong when discretized back with the exact D",
         ["shape", "peer", "vertices", "ratio", *[f"wrong {m}" for m in MODELS]],
         peer_rows,
+    )
+
+
+def excess_by_ring(items: list[tuple[str, PixelSet]]) -> None:
+    """Where R's vertices exceed the window bound (fewest windows covering one lap, ADR 0022), per ring class.
+
+    The bound is a lower bound for every ring of the corridor, so vertices minus bound is what any better
+    vertex placement (e.g. a minimum-link path) could still gain, split into small corridors
+    (<= 12 and <= 24 pieces, searched by ``small_polygon``), rings relinked (<= 48 vertices, ``_RELINK_MAX``)
+    and the rest.
+    """
+    from mrm.geometry._rk_repair import window_bound
+    from mrm.geometry.reconstruct import reconstruct_detailed
+
+    classes = ("pieces <= 12", "pieces <= 24", "vertices <= 48", "vertices > 48")
+    rows = []
+    for name, ps in items:
+        for model in MODELS:
+            acc = {c: [0, 0, 0] for c in classes}
+            for r in reconstruct_detailed(ps, model).rings:
+                n, v = r.reach.size, len(r.vertices)
+                bound = max(3, window_bound(np.ascontiguousarray(r.reach)))
+                c = classes[0 if n <= 12 else 1 if n <= 24 else 2 if v <= 48 else 3]
+                acc[c][0] += 1
+                acc[c][1] += v
+                acc[c][2] += v - bound
+            total = sum(a[1] for a in acc.values())
+            rows.append([name, model, total, *[f"{a[0]}: +{a[2]}" for a in acc.values()]])
+    table(
+        "R's vertices above the window bound, per ring class (rings: excess)",
+        ["image", "model", "vertices", *classes],
+        rows,
     )
 
 
@@ -470,6 +502,8 @@ def first_call() -> None:
 def main() -> None:
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2-core machine shared with others)")
     compactness(shapes())
+    if "--rings" in sys.argv:
+        excess_by_ring([s for s in shapes() if not s[0].startswith("disk")])
     speed()
     if not QUICK:
         scaling()
