@@ -18,7 +18,15 @@ from PySide6 import QtCore, QtGui
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import MaskItem, lod_image, qcolor
-from mrm.views.items import MarkersItem, PathItem, cosmetic_pen, segments_path
+from mrm.views.items import (
+    LodPathItem,
+    MarkersItem,
+    PathItem,
+    cosmetic_pen,
+    levels_path,
+    piece_groups,
+    stroke_levels,
+)
 
 #: Alternating segment colours (and a third for the odd one out of a closed chain).
 SEGMENT_COLOURS = ("#e15759", "#4e79a7", "#59a14f")
@@ -74,9 +82,16 @@ def segment_pixel_image(ana: Any) -> tuple[np.ndarray, tuple[int, int]] | None:
 
 def segment_cracks(ana: Any) -> tuple[list[np.ndarray], np.ndarray]:
     """Per colour index, the (N, 4) crack pieces of the segments of that colour; and every end pointel."""
+    pieces, _chains, ends = _segment_cracks(ana)
+    return pieces, ends
+
+
+def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray]:
+    """:func:`segment_cracks` with, per colour, the chain index of each piece (its component's stroke)."""
     pieces: list[list[np.ndarray]] = [[], [], []]
+    owner: list[list[np.ndarray]] = [[], [], []]
     ends: list[np.ndarray] = []
-    for chain in ana.chains:
+    for ci, chain in enumerate(ana.chains):
         n = len(chain)
         if n == 0:
             continue
@@ -87,10 +102,13 @@ def segment_cracks(ana: Any) -> tuple[list[np.ndarray], np.ndarray]:
             first, last = int(t[k, 0]), int(t[k, 1])
             idx = np.arange(first, last + 1) % m
             p = pts[idx]
-            pieces[segment_colour_index(k, n)].append(np.hstack([p[:-1], p[1:]]))
+            colour = segment_colour_index(k, n)
+            pieces[colour].append(np.hstack([p[:-1], p[1:]]))
+            owner[colour].append(np.full(len(p) - 1, ci, dtype=np.int64))
             ends.append(p[[0, -1]])
     out = [np.concatenate(ps) if ps else np.zeros((0, 4)) for ps in pieces]
-    return out, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
+    chains = [np.concatenate(os) if os else np.zeros(0, np.int64) for os in owner]
+    return out, chains, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
 
 
 def line_through_box(
@@ -126,14 +144,34 @@ def preimage_lines(chain: Any, k: int) -> list[tuple[Fraction, Fraction, Fractio
     return out
 
 
-def analytical_drawing(ana: Any) -> tuple[Any, list[QtGui.QPainterPath], np.ndarray]:
-    """What the analytical view draws of an analytical representation (any thread)."""
+def analytical_drawing(ana: Any) -> tuple[Any, list[Any], np.ndarray]:
+    """What the analytical view draws of an analytical representation (any thread).
+
+    The cracks of each colour come by component size class (:func:`stroke_levels`): at fit-all zoom the
+    thousands of tiny chains of a speckled object are dots, not a black field of strokes.
+    """
     img = segment_pixel_image(ana)
     if img is not None:
         coarse, f = lod_image(img[0])
         img = (coarse, img[1], f)
-    pieces, ends = segment_cracks(ana)
-    return img, [segments_path(segs) for segs in pieces], ends
+    pieces, chains, ends = _segment_cracks(ana)
+    # A chain's colours are split across the three items: its size class comes from all its points, so
+    # the chain's pieces switch between dots and strokes at the same zoom in every item.
+    levels = []
+    for segs, owner in zip(pieces, chains, strict=True):
+        lv = stroke_levels(*piece_groups(segs, owner), extents=_chain_extents(ana))
+        levels.append((lv, levels_path(lv)))
+    return img, levels, ends
+
+
+def _chain_extents(ana: Any) -> np.ndarray:
+    """The longer side of each chain's box (plane units)."""
+    out = np.ones(len(ana.chains))
+    for ci, chain in enumerate(ana.chains):
+        pts = np.asarray(chain.points())
+        if len(pts):
+            out[ci] = max(1.0, float((pts.max(axis=0) - pts.min(axis=0)).max()))
+    return out
 
 
 class AnalyticalLayer(Layer):
@@ -143,7 +181,7 @@ class AnalyticalLayer(Layer):
         self.body.setParentItem(self)
         self.border = MaskItem()
         self.border.setParentItem(self)
-        self.cracks = [PathItem() for _ in SEGMENT_COLOURS]
+        self.cracks = [LodPathItem() for _ in SEGMENT_COLOURS]
         for c in self.cracks:
             c.setParentItem(self)
             c.setZValue(2)
@@ -201,8 +239,8 @@ class AnalyticalView(RepresentationView):
                 layer.border.set_pixels(None, (0, 0))
             else:
                 layer.border.set_pixels(img[0], img[1], None, img[2])
-            for item, path in zip(layer.cracks, paths, strict=True):
-                item.setPath(path)
+            for item, (levels, path) in zip(layer.cracks, paths, strict=True):
+                item.set_levels(levels, path)
             layer.ends.set_points(ends)
             layer.analytical = ana
         body = qcolor(obj.style.fill)

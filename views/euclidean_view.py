@@ -9,14 +9,14 @@ from PySide6 import QtCore, QtGui
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import qcolor
-from mrm.views.items import MarkersItem, PathItem, geometry_path, polygon_rings
+from mrm.views.items import LodPathItem, MarkersItem, geometry_levels, levels_path, polygon_rings
 from mrm.views.scene import Phantom
 
 
 class EuclideanLayer(Layer):
     def __init__(self, obj_id: int) -> None:
         super().__init__(obj_id)
-        self.polygon = PathItem()
+        self.polygon = LodPathItem()
         self.polygon.setParentItem(self)
         self.handles = MarkersItem(7.0, "square")
         self.handles.setParentItem(self)
@@ -31,6 +31,12 @@ def ring_vertices(geom: shapely.Geometry) -> np.ndarray:
     if not rings:
         return np.zeros((0, 2))
     return np.concatenate([r[:-1] if len(r) > 1 and (r[0] == r[-1]).all() else r for r in rings])
+
+
+def _polygon_drawing(geom: shapely.Geometry) -> tuple[list, QtGui.QPainterPath, np.ndarray]:
+    """Size classes of the polygons, their union path and the vertices (any thread)."""
+    levels = geometry_levels(geom)
+    return levels, levels_path(levels), ring_vertices(geom)
 
 
 class EuclideanView(RepresentationView):
@@ -55,14 +61,12 @@ class EuclideanView(RepresentationView):
             return self.scene.error(obj.id, "euclidean") is not None
         if geom is not layer.geometry:
             n = int(shapely.get_num_coordinates(geom))
-            data = self.prepared(
-                obj.id, "polygons", geom, n * 20, lambda: (geometry_path(geom), ring_vertices(geom))
-            )
+            data = self.prepared(obj.id, "polygons", geom, n * 20, lambda: _polygon_drawing(geom))
             if data is None:
                 return False  # prepared on a worker
-            layer.polygon.setPath(data[0])
+            layer.polygon.set_levels(data[0], data[1])
             layer.geometry = geom
-            layer.vertices = data[1]
+            layer.vertices = data[2]
         fill = qcolor(obj.style.fill)
         fill.setAlphaF(obj.style.opacity * (0.8 if selected else 0.6))
         stroke = (

@@ -6,6 +6,7 @@ polygon with thousands of vertices or the crack boundary of a 2048² mask redraw
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -156,6 +157,165 @@ class PathItem(QtWidgets.QGraphicsPathItem):
         self.setPen(
             QtGui.QPen(QtCore.Qt.PenStyle.NoPen) if stroke is None else cosmetic_pen(stroke, width, pen_style)
         )
+
+
+# ---------------------------------------------------------------------------------------------- stroke LOD
+#: A component drawn smaller than this many screen pixels is a dot, not a stroked outline.
+DOT_PX = 4.0
+
+
+def ring_groups(rings: Sequence[np.ndarray], group: Sequence[int] | np.ndarray) -> tuple[np.ndarray, ...]:
+    """``(xy, connect, point_group)`` of polylines ``rings`` (each (n, 2)); ring i is in ``group[i]``.
+
+    The layout :func:`stroke_levels` takes: points in order, ``connect[i]`` 1 when point i joins point i + 1.
+    """
+    rings = [np.asarray(r, dtype=float).reshape(-1, 2) for r in rings]
+    if not rings:
+        return np.zeros((0, 2)), np.zeros(0, np.int32), np.zeros(0, np.int64)
+    lens = np.array([len(r) for r in rings])
+    xy = np.concatenate(rings)
+    connect = np.ones(len(xy), dtype=np.int32)
+    connect[np.cumsum(lens) - 1] = 0
+    return xy, connect, np.repeat(np.asarray(group, dtype=np.int64), lens)
+
+
+def piece_groups(segs: np.ndarray, group: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``(xy, connect, point_group)`` of straight pieces (N, 4); piece i belongs to ``group[i]``."""
+    segs = np.asarray(segs, dtype=float).reshape(-1, 4)
+    xy = segs.reshape(-1, 2)
+    connect = np.zeros(len(xy), dtype=np.int32)
+    connect[0::2] = 1
+    return xy, connect, np.repeat(np.asarray(group, dtype=np.int64), 2)
+
+
+def stroke_levels(
+    xy: np.ndarray,
+    connect: np.ndarray,
+    group: np.ndarray,
+    fill_rule: QtCore.Qt.FillRule | None = None,
+    extents: np.ndarray | None = None,
+) -> list[tuple[float, QtGui.QPainterPath, np.ndarray]]:
+    """The strokes of components by size class, for :meth:`LodPathItem.set_levels` (any thread).
+
+    ``group[i]`` is the component of point i (points of one component consecutive). Components whose
+    extent (the longer side of their box) lies in [2ᵏ, 2ᵏ⁺¹) form class k: one path and the components'
+    centres; ``extents[g]``, when given, is component g's extent instead (its points spread over several
+    items). Returns ``(2ᵏ⁺¹, path, centres)`` per class, smallest first. Vectorised: a worker building
+    the classes of 10⁵ components holds the GIL only for a few numpy calls.
+    """
+    if len(xy) == 0:
+        return []
+    starts = np.flatnonzero(np.r_[True, group[1:] != group[:-1]])
+    lo = np.minimum.reduceat(xy, starts, axis=0)
+    hi = np.maximum.reduceat(xy, starts, axis=0)
+    extent = np.maximum((hi - lo).max(axis=1), 1.0) if extents is None else extents[group[starts]]
+    cls = np.floor(np.log2(extent)).astype(np.int64)
+    lens = np.diff(np.r_[starts, len(xy)])
+    point_cls = np.repeat(cls, lens)
+    centres = (lo + hi) / 2
+    out = []
+    for k in np.unique(cls):
+        sel = point_cls == k
+        path = pg.arrayToQPath(xy[sel, 0], xy[sel, 1], connect=connect[sel])
+        if fill_rule is not None:
+            path.setFillRule(fill_rule)
+        out.append((float(2.0 ** (k + 1)), path, centres[cls == k]))
+    return out
+
+
+def levels_path(levels: Sequence[tuple[float, QtGui.QPainterPath, np.ndarray]]) -> QtGui.QPainterPath:
+    """All classes' paths in one (the item's own path: its bounds, and what it draws zoomed in)."""
+    path = QtGui.QPainterPath()
+    for _ext, p, _c in levels:
+        path.addPath(p)
+    if levels:
+        path.setFillRule(levels[0][1].fillRule())
+    return path
+
+
+def geometry_levels(geom: shapely.Geometry) -> list[tuple[float, QtGui.QPainterPath, np.ndarray]]:
+    """:func:`stroke_levels` of a Polygon / MultiPolygon: one component per polygon (holes cut out)."""
+    rings: list[np.ndarray] = []
+    group: list[int] = []
+    if geom is not None and not geom.is_empty:
+        for k, poly in enumerate(shapely.get_parts(geom)):
+            if poly.geom_type != "Polygon" or poly.is_empty:
+                continue
+            for r in (poly.exterior, *poly.interiors):
+                rings.append(np.asarray(r.coords)[:, :2])
+                group.append(k)
+    return stroke_levels(*ring_groups(rings, group), fill_rule=QtCore.Qt.FillRule.OddEvenFill)
+
+
+class LodPathItem(PathItem):
+    """A path of many components drawn with level of detail.
+
+    A component smaller than :data:`DOT_PX` screen pixels is one dot at its centre (thousands of lone
+    pixels stroked at fit-all zoom are a black field),
+    bigger ones are stroked (and filled) in full. Classes come from :func:`stroke_levels`, built on a
+    worker; what is drawn at a zoom is cached in device pixels like any big path (:class:`PathItem`).
+    """
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.levels: list[tuple[float, QtGui.QPainterPath, np.ndarray]] = []
+
+    def set_levels(
+        self,
+        levels: Sequence[tuple[float, QtGui.QPainterPath, np.ndarray]],
+        path: QtGui.QPainterPath | None = None,
+    ) -> None:
+        """Show ``levels``; ``path`` is their union (:func:`levels_path`, built beside them on a worker)."""
+        self._setting = True
+        try:
+            self.setPath(levels_path(levels) if path is None else path)
+        finally:
+            self._setting = False
+        self.levels = list(levels)
+
+    def setPath(self, path: QtGui.QPainterPath) -> None:
+        if not getattr(self, "_setting", False) and hasattr(self, "levels"):
+            self.levels = []  # a plain path replaces the classes
+        super().setPath(path)
+
+    def drawn(self, scale: float) -> tuple[int, int]:
+        """(path elements stroked, dots) at ``scale`` screen pixels per unit: what :meth:`paint` draws."""
+        if not self.levels:
+            return self.path().elementCount(), 0
+        paths = sum(p.elementCount() for ext, p, _c in self.levels if ext * scale >= DOT_PX)
+        dots = sum(len(c) for ext, _p, c in self.levels if ext * scale < DOT_PX)
+        return paths, dots
+
+    def paint(self, painter: QtGui.QPainter, option: object, widget: object = None) -> None:
+        if not self.levels:
+            super().paint(painter, option, widget)
+            return
+        tr = painter.transform()
+        scale = math.hypot(tr.m11(), tr.m12())
+        pen = self.pen()
+        painter.setPen(pen)
+        painter.setBrush(self.brush())
+        small = []
+        for ext, path, centres in self.levels:
+            if ext * scale >= DOT_PX:
+                painter.drawPath(path)
+            elif len(centres):
+                small.append(centres)
+        if not small or pen.style() == QtCore.Qt.PenStyle.NoPen:
+            return
+        c = np.concatenate(small)
+        m = np.array([[tr.m11(), tr.m12()], [tr.m21(), tr.m22()]])
+        dev = np.floor(c @ m + np.array([tr.dx(), tr.dy()]))
+        dev = np.unique(dev, axis=0)  # one dot per screen pixel
+        dot = QtGui.QPen(pen.color())
+        dot.setCosmetic(True)
+        dot.setWidthF(max(1.0, min(pen.widthF(), 2.0)))
+        dot.setCapStyle(QtCore.Qt.PenCapStyle.SquareCap)
+        painter.save()
+        painter.resetTransform()
+        painter.setPen(dot)
+        painter.drawPoints(QtGui.QPolygonF([QtCore.QPointF(x + 0.5, y + 0.5) for x, y in dev]))
+        painter.restore()
 
 
 class MarkersItem(pg.GraphicsObject):

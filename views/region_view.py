@@ -15,7 +15,7 @@ from PySide6 import QtCore, QtGui
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import MaskItem, lod_image, qcolor
-from mrm.views.items import MarkersItem, PathItem, rings_path
+from mrm.views.items import LodPathItem, MarkersItem, levels_path, ring_groups, stroke_levels
 
 #: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
 COMPONENT_COLOURS = (
@@ -73,11 +73,14 @@ def region_drawing(region: Any) -> tuple[Any, Any, Any, Any, Any]:
     holes = hole_mask(data > 0).astype(np.uint8) if data.size else data
     outer = [chain_xy(c.outer) for c in region.components]
     inner = [chain_xy(h.boundary) for c in region.components for h in c.holes]
+    # By component size class (stroke_levels): thousands of tiny components are dots at fit-all zoom.
+    outer_levels = stroke_levels(*ring_groups(outer, np.arange(len(outer))))
+    inner_levels = stroke_levels(*ring_groups(inner, np.arange(len(inner))))
     return (
         lod_image(img),
         lod_image(holes),
-        rings_path(outer, close=False),
-        rings_path(inner, close=False),
+        (outer_levels, levels_path(outer_levels)),
+        (inner_levels, levels_path(inner_levels)),
         junctions(list(region.boundary_chains)),
     )
 
@@ -95,10 +98,10 @@ class RegionLayer(Layer):
         self.components.setParentItem(self)
         self.holes = MaskItem()
         self.holes.setParentItem(self)
-        self.outer = PathItem()
+        self.outer = LodPathItem()
         self.outer.setParentItem(self)
         self.outer.setZValue(2)
-        self.inner = PathItem()
+        self.inner = LodPathItem()
         self.inner.setParentItem(self)
         self.inner.setZValue(2)
         self.junctions = MarkersItem(6.0, "circle")
@@ -156,8 +159,8 @@ class RegionView(RepresentationView):
             layer.components.set_pixels(img[0], lab.origin, None, img[1])
             hl = np.array([[0, 0, 0, 0], [150, 150, 150, 90] if not dark else [200, 200, 200, 70]])
             layer.holes.set_pixels(holes[0], lab.origin, hl, holes[1])
-            layer.outer.setPath(outer)
-            layer.inner.setPath(inner)
+            layer.outer.set_levels(*outer)
+            layer.inner.set_levels(*inner)
             layer.junctions.set_points(junction_points)
             layer.region = region
         layer.components.set_lut(self.component_lut(obj.style.fill, alpha))

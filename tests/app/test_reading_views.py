@@ -118,3 +118,34 @@ def test_view_subtitles_are_not_cut_when_nothing_is_computing(make_window, qtbot
     for v in win.views.views:
         label = v.subtitle_label
         assert label.width() >= label.fontMetrics().horizontalAdvance(label.text()), v.name
+
+
+def test_tiny_components_are_dots_at_fit_all_and_outlines_zoomed_in(make_window, qtbot):
+    """A ring plus lone pixels: zoomed out, the lone pixels' strokes become dots; zoomed in, full paths."""
+    win = make_window()
+    yy, xx = np.mgrid[0:600, 0:600]
+    r2 = (xx - 300) ** 2 + (yy - 300) ** 2
+    mask = (r2 < 280**2) & (r2 > 250**2)
+    rng = np.random.default_rng(3)
+    lone = rng.integers(0, 300, size=(200, 2)) * 2  # even coordinates: never 4-adjacent to each other
+    mask[lone[:, 1], lone[:, 0]] |= r2[lone[:, 1], lone[:, 0]] > 285**2
+    obj = win.doc.make_object(PixelSet(mask, (0, 0)), name="speckled")
+    win.doc.push(AddObject(obj, select=True))
+    zoom_to(win, 0, 0, 600, 600)
+    wait_drawn(qtbot, win, timeout=60_000)
+    scale = win.views.camera.scale
+    assert scale < 1.5
+    for item in (*win.views.analytical.layer(obj.id).cracks, win.views.region.layer(obj.id).outer):
+        if item.levels:
+            paths, dots = item.drawn(scale)
+            # The ring's stroke is drawn; the lone pixels are dots, not strokes.
+            assert paths > 0 or item in win.views.analytical.layer(obj.id).cracks[1:]
+            assert dots > 0
+    outer = win.views.region.layer(obj.id).outer
+    n_lone = int((mask & (r2 > 285**2)).sum())
+    assert outer.drawn(scale)[1] == n_lone
+    poly = win.views.euclidean.layer(obj.id).polygon
+    assert poly.drawn(scale)[1] == n_lone
+    # Zoomed in: every component is stroked in full.
+    assert outer.drawn(8.0) == (outer.path().elementCount(), 0)
+    assert poly.drawn(8.0) == (poly.path().elementCount(), 0)
