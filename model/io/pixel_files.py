@@ -254,16 +254,7 @@ def _read_png_pixels(fh: BinaryIO, name: str, limit: int, threshold: float | Non
 
 def _owned_pixel_set(mask: npt.NDArray[np.bool_], origin: tuple[int, int]) -> PixelSet:
     """A pixel set taking over a freshly decoded mask (bottom row first) without a second full copy."""
-    from mrm.reps.pixels import _crop_bounds, _frozen
-
-    b = _crop_bounds(mask)
-    if b is None:
-        return PixelSet.empty()
-    r0, r1, c0, c1 = b
-    if (r0, r1, c0, c1) == (0, mask.shape[0], 0, mask.shape[1]):
-        # Already canonical and referenced nowhere else: freeze it in place instead of copying.
-        return PixelSet._canonical(_frozen(mask, fresh=True), (int(origin[0]), int(origin[1])))
-    return PixelSet(mask[r0:r1, c0:c1], (int(origin[0]) + c0, int(origin[1]) + r0))
+    return PixelSet.taking_over(mask, origin)
 
 
 def _png_bytes(im: Image.Image, origin: tuple[int, int]) -> bytes:

@@ -187,7 +187,7 @@ def discrete_similarity(
         return ExactShape.from_geometry(euclid).map(sim)
 
     # Scalings and translations of float64 vertices: integer arithmetic and compiled kernels, no Fraction.
-    result = discretize_image(euclid, sim, model, limit=limit, what=what)
+    result = discretize_image(euclid, sim, model, limit=limit, what=what, valid=True)  # R's output is valid
     if result is None:
         exact = image()
         result = discretize_exact(exact, model, limit=limit, progress=_Scaled(progress, 0.3, 1.0), what=what)

@@ -232,3 +232,22 @@ def test_supercover_commutes_with_grid_symmetries(geom) -> None:  # type: ignore
     assert discretize(mirror_x, "supercover") == sup.flip_x(0)
     assert discretize(mirror_y, "supercover") == sup.flip_y(0)
     assert discretize(quarter_turn, "supercover") == sup.rotate90(1)
+
+
+@given(st.one_of(polygonal(), st.lists(star_polygons(holes=True), min_size=2, max_size=3)))
+def test_skipping_the_validity_check_keeps_the_pixels(shape) -> None:  # type: ignore[no-untyped-def]
+    """check_validity=False (for callers holding a valid polygon, e.g. R's output) gives the same D."""
+    geom = shapely.GeometryCollection(shape) if isinstance(shape, list) else shape
+    for model in MODELS:
+        assert discretize(geom, model, check_validity=False) == discretize(geom, model)
+
+
+def test_the_validity_check_stays_on_by_default() -> None:
+    """A bow-tie is still refused unless the caller says it knows the polygon valid."""
+    import pytest
+
+    from mrm.errors import InvalidGeometryError
+
+    bowtie = shapely.Polygon([(0, 0), (4, 4), (4, 0), (0, 4)])
+    with pytest.raises(InvalidGeometryError):
+        discretize(bowtie)

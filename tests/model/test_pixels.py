@@ -370,3 +370,43 @@ def test_label_map_from_pixel_sets_refuses_exactly_the_overlapping_sets(sets):
     lm = LabelMap.from_pixel_sets([ps_of(s) for s in sets])
     for k, s in enumerate(sets, start=1):
         assert as_set(lm.pixel_set(k)) == s
+
+
+# ---------------------------------------------------------------------------------------------- taking over
+@given(
+    st.lists(st.lists(st.booleans(), min_size=6, max_size=6), min_size=1, max_size=6),
+    st.tuples(st.integers(-(10**9), 10**9), st.integers(-(10**9), 10**9)),
+    st.sampled_from(["fresh", "view", "fortran", "uint8"]),
+)
+def test_taking_over_is_the_constructor(rows, origin, kind):
+    """PixelSet.taking_over(m, o) is the set PixelSet(m, o), for canonical, padded, empty, viewed masks."""
+    base = np.array(rows, dtype=bool)
+    expected = PixelSet(base.copy(), origin)
+    if kind == "fresh":
+        mask = base.copy()
+    elif kind == "view":
+        mask = np.zeros((base.shape[0] + 2, base.shape[1] + 2), dtype=bool)
+        mask[1:-1, 1:-1] = base
+        mask = mask[1:-1, 1:-1]
+    elif kind == "fortran":
+        mask = np.asfortranarray(base)
+    else:
+        mask = base.astype(np.uint8)
+    got = PixelSet.taking_over(mask, origin)
+    assert got == expected and got.origin == expected.origin and got.mask.shape == expected.mask.shape
+    assert hash(got) == hash(expected)
+    assert not got.mask.flags.writeable
+    with pytest.raises(ValueError):
+        got.mask.flags.writeable = True
+
+
+def test_taking_over_freezes_a_canonical_mask_in_place():
+    """A fresh canonical mask is not copied (the point of taking_over); a padded one is cropped."""
+    mask = np.ones((3, 4), dtype=bool)
+    ps = PixelSet.taking_over(mask, (5, -2))
+    assert np.shares_memory(ps.mask, mask) and not mask.flags.writeable
+    assert ps == PixelSet.box(5, -2, 8, 0)
+    padded = np.zeros((5, 6), dtype=bool)
+    padded[1:4, 1:5] = True
+    assert PixelSet.taking_over(padded, (4, -3)) == PixelSet.box(5, -2, 8, 0)
+    assert PixelSet.taking_over(np.zeros((2, 2), dtype=bool), (7, 7)) == PixelSet.empty()
