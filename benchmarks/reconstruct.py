@@ -248,8 +248,8 @@ def excess_by_ring(items: list[tuple[str, PixelSet]]) -> None:
     (<= 12 and <= 24 pieces, searched by ``small_polygon``), rings relinked (<= 48 vertices, ``_RELINK_MAX``)
     and the rest.
     """
-    from mrm.geometry.reconstruct._repair import window_bound
     from mrm.geometry.reconstruct import reconstruct_detailed
+    from mrm.geometry.reconstruct._repair import window_bound
 
     classes = ("pieces <= 12", "pieces <= 24", "vertices <= 48", "vertices > 48")
     rows = []

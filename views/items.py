@@ -318,10 +318,30 @@ class LodPathItem(PathItem):
         painter.restore()
 
 
+def distinguishable(dev: np.ndarray, size: float) -> np.ndarray:
+    """Which device points get a symbol: those with no other point closer than ``size / 2`` on both axes.
+
+    Zoomed out, the handles of thousands of tiny components overlap into a solid black field, and none of
+    them could be picked anyway; their components are drawn as dots by the outlines' level of detail
+    (:class:`LodPathItem`). Zoomed in, every handle stands apart and is drawn. A point is kept when it is
+    alone in its cell of ``size`` pixels in four grids shifted by half a cell on each axis: two points
+    closer than half a cell on both axes share a cell in at least one of them.
+    """
+    keep = np.ones(len(dev), dtype=bool)
+    if not len(dev):
+        return keep
+    for shift in ((0.0, 0.0), (0.5, 0.0), (0.0, 0.5), (0.5, 0.5)):
+        cells = np.floor(dev / size + np.array(shift)).astype(np.int64)
+        _, inverse, counts = np.unique(cells, axis=0, return_inverse=True, return_counts=True)
+        keep &= counts[inverse.ravel()] == 1
+    return keep
+
+
 class MarkersItem(pg.GraphicsObject):
     """Points drawn as fixed-size screen symbols (vertex handles, junctions): one item, one paint call.
 
-    ``highlight`` draws one point larger (the vertex under the cursor or being dragged).
+    ``highlight`` draws one point larger (the vertex under the cursor or being dragged). Only handles
+    that can be told apart are drawn (:func:`distinguishable`); the highlighted one always is.
     """
 
     def __init__(self, size: float = 7.0, shape: str = "square") -> None:
@@ -367,6 +387,10 @@ class MarkersItem(pg.GraphicsObject):
             self.highlight = index
             self.update()
 
+    def drawn(self, scale: float) -> np.ndarray:
+        """Which points a paint at ``scale`` screen pixels per unit draws (all points in view)."""
+        return distinguishable(self._xy * np.array([scale, -scale]), self.size)
+
     def viewTransformChanged(self) -> None:
         self.prepareGeometryChange()
         px = self.pixelLength(pg.Point(1, 0))
@@ -402,6 +426,7 @@ class MarkersItem(pg.GraphicsObject):
             )
         else:
             keep = np.ones(len(dev), dtype=bool)
+        keep &= distinguishable(dev, s)
         rects = [QtCore.QRectF(x - h, y - h, s, s) for x, y in dev[keep]]
         if self.symbol == "circle":
             for r in rects:

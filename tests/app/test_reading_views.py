@@ -149,3 +149,17 @@ def test_tiny_components_are_dots_at_fit_all_and_outlines_zoomed_in(make_window,
     # Zoomed in: every component is stroked in full.
     assert outer.drawn(8.0) == (outer.path().elementCount(), 0)
     assert poly.drawn(8.0) == (poly.path().elementCount(), 0)
+    # The selected object's vertex handles: a handle overlapping another by more than half its size is not
+    # drawn (the lone pixels' handles made a black field at fit-all), one clear of every other is drawn.
+    handles = win.views.euclidean.layer(obj.id).handles
+    xy = handles.points()
+    assert handles.isVisible() and len(xy) > 4 * n_lone
+    cheb = np.abs(xy[:, None, :] - xy[None, :, :]).max(axis=2)
+    np.fill_diagonal(cheb, np.inf)
+    nearest = cheb.min(axis=1)  # in units; times the scale: screen pixels
+    for s in (scale, 4.0, 16.0):
+        shown = handles.drawn(s)
+        assert not shown[nearest * s < handles.size / 2].any(), s
+        assert shown[nearest * s >= handles.size].all(), s
+    assert handles.drawn(scale).sum() <= len(xy) - 4 * n_lone  # no lone pixel's handle at fit-all
+    assert handles.drawn(16.0).sum() > len(xy) - 4 * n_lone  # zoomed in, the lone pixels' handles too
