@@ -82,12 +82,17 @@ def segment_pixel_image(ana: Any) -> tuple[np.ndarray, tuple[int, int]] | None:
 
 def segment_cracks(ana: Any) -> tuple[list[np.ndarray], np.ndarray]:
     """Per colour index, the (N, 4) crack pieces of the segments of that colour; and every end pointel."""
-    pieces, _chains, ends = _segment_cracks(ana)
+    pieces, _chains, _extents, ends = _segment_cracks(ana)
     return pieces, ends
 
 
-def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray]:
-    """:func:`segment_cracks` with, per colour, the chain index of each piece (its component's stroke)."""
+def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray, np.ndarray]:
+    """:func:`segment_cracks` with the chain index of each piece and each chain's extent.
+
+    Per colour, the chain of each piece (its component's stroke); per chain, the longer side of its box
+    (plane units, at least 1).
+    """
+    extents = np.ones(len(ana.chains))
     pieces: list[list[np.ndarray]] = [[], [], []]
     owner: list[list[np.ndarray]] = [[], [], []]
     ends: list[np.ndarray] = []
@@ -97,6 +102,7 @@ def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.nd
             continue
         pts = pointel_xy(chain.points())
         m = len(pts) - 1
+        extents[ci] = max(1.0, float((pts.max(axis=0) - pts.min(axis=0)).max()))
         t = chain.table
         for k in range(n):
             first, last = int(t[k, 0]), int(t[k, 1])
@@ -108,7 +114,7 @@ def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.nd
             ends.append(p[[0, -1]])
     out = [np.concatenate(ps) if ps else np.zeros((0, 4)) for ps in pieces]
     chains = [np.concatenate(os) if os else np.zeros(0, np.int64) for os in owner]
-    return out, chains, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
+    return out, chains, extents, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
 
 
 def line_through_box(
@@ -154,24 +160,14 @@ def analytical_drawing(ana: Any) -> tuple[Any, list[Any], np.ndarray]:
     if img is not None:
         coarse, f = lod_image(img[0])
         img = (coarse, img[1], f)
-    pieces, chains, ends = _segment_cracks(ana)
+    pieces, chains, extents, ends = _segment_cracks(ana)
     # A chain's colours are split across the three items: its size class comes from all its points, so
     # the chain's pieces switch between dots and strokes at the same zoom in every item.
     levels = []
     for segs, owner in zip(pieces, chains, strict=True):
-        lv = stroke_levels(*piece_groups(segs, owner), extents=_chain_extents(ana))
+        lv = stroke_levels(*piece_groups(segs, owner), extents=extents)
         levels.append((lv, levels_path(lv)))
     return img, levels, ends
-
-
-def _chain_extents(ana: Any) -> np.ndarray:
-    """The longer side of each chain's box (plane units)."""
-    out = np.ones(len(ana.chains))
-    for ci, chain in enumerate(ana.chains):
-        pts = np.asarray(chain.points())
-        if len(pts):
-            out[ci] = max(1.0, float((pts.max(axis=0) - pts.min(axis=0)).max()))
-    return out
 
 
 class AnalyticalLayer(Layer):

@@ -332,8 +332,10 @@ def distinguishable(dev: np.ndarray, size: float) -> np.ndarray:
         return keep
     for shift in ((0.0, 0.0), (0.5, 0.0), (0.0, 0.5), (0.5, 0.5)):
         cells = np.floor(dev / size + np.array(shift)).astype(np.int64)
-        _, inverse, counts = np.unique(cells, axis=0, return_inverse=True, return_counts=True)
-        keep &= counts[inverse.ravel()] == 1
+        cells -= cells.min(axis=0)
+        key = cells[:, 0] * (int(cells[:, 1].max()) + 1) + cells[:, 1]  # one integer per cell: a 1-D unique
+        _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
+        keep &= counts[inverse] == 1
     return keep
 
 
@@ -426,7 +428,9 @@ class MarkersItem(pg.GraphicsObject):
             )
         else:
             keep = np.ones(len(dev), dtype=bool)
-        keep &= distinguishable(dev, s)
+        # Only the points in view (with a margin of one symbol, which holds every neighbour that could hide
+        # a visible one): zoomed in, a paint looks at a few handles, not all of them.
+        keep[keep] = distinguishable(dev[keep], s)
         rects = [QtCore.QRectF(x - h, y - h, s, s) for x, y in dev[keep]]
         if self.symbol == "circle":
             for r in rects:
