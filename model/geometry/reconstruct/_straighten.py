@@ -59,19 +59,42 @@ def simplest_line(
     allowed direction. Returns (found, dx, dy, c2) for the line dx·Y − dy·X = c2 / 2 in Q-units; not found
     beyond ``depth`` Stern–Brocot steps.
     """
-    # axis directions E, N, W, S
+    # axis directions E, N, W, S: their offset intervals (as _window_fit's) from one pass over the gates
+    pxmin = pymin = qxmin = qymin = 1 << 62
+    pxmax = pymax = qxmax = qymax = -(1 << 62)
+    for k in range(g0, g1 + 1):
+        g = k % n
+        pxmin = min(pxmin, gp[g, 0])
+        pxmax = max(pxmax, gp[g, 0])
+        pymin = min(pymin, gp[g, 1])
+        pymax = max(pymax, gp[g, 1])
+        qxmin = min(qxmin, gq[g, 0])
+        qxmax = max(qxmax, gq[g, 0])
+        qymin = min(qymin, gq[g, 1])
+        qymax = max(qymax, gq[g, 1])
     best = -1
     bdot = 0
+    blo = 0
+    bhi = 0
     for a in range(4):
-        lo, hi, _gl, _gh = _window_fit(_DX[a], _DY[a], gp, gq, g0, g1, n)
+        # the line dx·Y − dy·X = C of direction a: C = Y (E), −X (N), −Y (W), X (S)
+        if a == 0:
+            lo, hi = qymax, pymin
+        elif a == 1:
+            lo, hi = -qxmin, -pxmax
+        elif a == 2:
+            lo, hi = -qymin, -pymax
+        else:
+            lo, hi = qxmax, pxmin
         if lo < hi:
             dot = _DX[a] * ex + _DY[a] * ey
             if best < 0 or dot > bdot:
                 best = a
                 bdot = dot
+                blo = lo
+                bhi = hi
     if best >= 0:
-        lo, hi, _gl, _gh = _window_fit(_DX[best], _DY[best], gp, gq, g0, g1, n)
-        return True, _DX[best], _DY[best], lo + hi
+        return True, _DX[best], _DY[best], blo + bhi
     if ex == 0 or ey == 0:
         return False, 0, 0, 0
     sx = 1 if ex > 0 else -1
@@ -146,6 +169,23 @@ def _meet_int(
 
 
 @njit(cache=True)
+def _piece_of(
+    fx: float, fy: float, tlo: int, thi: int, rect: np.ndarray, n: int, sc: int
+) -> int:  # pragma: no cover
+    # The first piece of tlo … thi holding (fx, fy) (scaled units), thi + 1 if none (nor for far points).
+    # A float test: only a shortcut, the grid points :func:`_place` takes are checked exactly.
+    if abs(fx) > 4.0e9 or abs(fy) > 4.0e9:
+        return thi + 1
+    t = tlo
+    while t <= thi:
+        r = t % n
+        if rect[r, 0] * sc < fx < rect[r, 1] * sc and rect[r, 2] * sc < fy < rect[r, 3] * sc:
+            break
+        t += 1
+    return t
+
+
+@njit(cache=True)
 def _place(
     fx: float,
     fy: float,
@@ -170,15 +210,7 @@ def _place(
     # (ax, ay) valid and, with check_next, the edge to (bx, by) too.
     n = gdir.size
     sc = 1 << kmax
-    if abs(fx) > 4.0e9 or abs(fy) > 4.0e9:
-        return 0, 0, 0, False
-    # the piece of the point itself (float test: only a shortcut, the grid points are checked exactly)
-    t = tlo
-    while t <= thi:
-        r = t % n
-        if rect[r, 0] * sc < fx < rect[r, 1] * sc and rect[r, 2] * sc < fy < rect[r, 3] * sc:
-            break
-        t += 1
+    t = _piece_of(fx, fy, tlo, thi, rect, n, sc)
     if t > thi:
         return 0, 0, 0, False
     # A quick necessary test before the exact edge checks (which cost the length of the edge each): the
@@ -249,7 +281,7 @@ def _local_ok(
 
 
 @njit(cache=True)
-def _ring_lines(
+def _simplest_edge_line(
     x: np.ndarray,
     y: np.ndarray,
     t: np.ndarray,
@@ -260,25 +292,26 @@ def _ring_lines(
     vmin: int,
     isnew: np.ndarray,
     nl: np.ndarray,
+    i: int,
 ) -> None:  # pragma: no cover
-    # The simplest line of every edge of the ring (windows as in straighten_ring, from variant vmin on).
+    # The simplest line of edge i of the ring (windows as in straighten_ring, from variant vmin on), in
+    # nl[i] with isnew[i] set; isnew[i] cleared when no window has one.
     m = x.size
-    for i in range(m):
-        xb, yb, tb = _vget(x, y, t, m, n, i)
-        xc, yc, tc = _vget(x, y, t, m, n, i + 1)
-        isnew[i] = False
-        for variant in range(vmin, 4):
-            g0 = tb + (2 if variant <= 1 else 1)
-            g1 = tc - (1 if variant % 2 == 0 else 0)
-            if g1 < g0:
-                continue
-            okl, dx, dy, c2 = simplest_line(gp, gq, g0, g1, n, xc - xb, yc - yb, 4 * (g1 - g0) + 64)
-            if okl:
-                isnew[i] = True
-                nl[i, 0] = dx
-                nl[i, 1] = dy
-                nl[i, 2] = c2 * (sc // 2)
-                break
+    xb, yb, tb = _vget(x, y, t, m, n, i)
+    xc, yc, tc = _vget(x, y, t, m, n, i + 1)
+    isnew[i] = False
+    for variant in range(vmin, 4):
+        g0 = tb + (2 if variant <= 1 else 1)
+        g1 = tc - (1 if variant % 2 == 0 else 0)
+        if g1 < g0:
+            continue
+        okl, dx, dy, c2 = simplest_line(gp, gq, g0, g1, n, xc - xb, yc - yb, 4 * (g1 - g0) + 64)
+        if okl:
+            isnew[i] = True
+            nl[i, 0] = dx
+            nl[i, 1] = dy
+            nl[i, 2] = c2 * (sc // 2)
+            break
 
 
 @njit(cache=True)
@@ -286,6 +319,7 @@ def _ring_attempt(
     x: np.ndarray,
     y: np.ndarray,
     t: np.ndarray,
+    vmin: int,
     isnew: np.ndarray,
     nl: np.ndarray,
     rect: np.ndarray,
@@ -294,14 +328,20 @@ def _ring_attempt(
     gdir: np.ndarray,
     kmax: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:  # pragma: no cover
-    # Every vertex where the lines of its two edges meet (new lines where isnew, else the current edges),
-    # placed between the pieces of its neighbours; the ring verified exactly.
+    # Every edge on its simplest line (variants from vmin on, :func:`_simplest_edge_line`; the current edge
+    # where there is none) and every vertex where the lines of its two edges meet, placed between the
+    # pieces of its neighbours; the ring verified exactly. Lines are found as the vertices need them, so a
+    # failing attempt (most of them) stops early; isnew / nl then hold only the edges seen so far.
     n = gdir.size
     m = x.size
+    sc = 1 << kmax
     ox = np.empty(m, np.int64)
     oy = np.empty(m, np.int64)
     ot = np.empty(m, np.int64)
+    _simplest_edge_line(x, y, t, gp, gq, n, sc, vmin, isnew, nl, m - 1)
     for i in range(m):
+        if i < m - 1:
+            _simplest_edge_line(x, y, t, gp, gq, n, sc, vmin, isnew, nl, i)
         pdx, pdy, pc = _edge_line(x, y, t, isnew, nl, m, n, i - 1)
         qdx, qdy, qc = _edge_line(x, y, t, isnew, nl, m, n, i)
         fx, fy, okm = _meet_int(pdx, pdy, pc, qdx, qdy, qc)
@@ -399,8 +439,7 @@ def straighten_ring(
     changed = False
     # the whole ring at once first (neighbouring edges often have to change together, e.g. at a corner)
     for vmin in (0, 3):
-        _ring_lines(x, y, t, gp, gq, n, sc, vmin, isnew, nl)
-        rx, ry, rt, okr = _ring_attempt(x, y, t, isnew, nl, rect, gp, gq, gdir, kmax)
+        rx, ry, rt, okr = _ring_attempt(x, y, t, vmin, isnew, nl, rect, gp, gq, gdir, kmax)
         if okr:
             x = rx
             y = ry
@@ -413,10 +452,17 @@ def straighten_ring(
     if not changed:
         for i in range(m):
             isnew[i] = False
-    # then edge by edge, twice round (an edge may move once its neighbours have)
+    # then edge by edge, twice round (an edge may move once its neighbours have). A try depends only on
+    # vertices i−1 … i+2 and the lines of edges i−1, i+1, which change only with those vertices: an edge
+    # that failed is tried again only if one of them moved since (the same inputs would fail the same way).
+    moved = np.zeros(m, np.int64)  # times each vertex moved
+    tried = np.full(m, -1, np.int64)  # moves around edge i when it last failed
     for it in range(2 * m):
         i = it % m
         if isnew[i]:
+            continue
+        around = moved[(i - 1) % m] + moved[i] + moved[(i + 1) % m] + moved[(i + 2) % m]
+        if tried[i] == around:
             continue
         xa, ya, ta = _vget(x, y, t, m, n, i - 1)
         xb, yb, tb = _vget(x, y, t, m, n, i)
@@ -454,6 +500,9 @@ def straighten_ring(
             f2x, f2y, ok2 = _meet_int(dx, dy, cc, qdx, qdy, qc)
             if not (ok1 and ok2):
                 continue
+            # the second vertex is placed in a piece of (first's piece ≥ ta) … td: none there, no try
+            if _piece_of(f2x, f2y, ta, td, rect, n, sc) > td:
+                continue
             nbx, nby, nbt, okb = _place(
                 f1x, f1y, ta, tc, xa, ya, ta, True, False, 0, 0, 0, rect, gp, gq, gdir, kmax
             )
@@ -480,10 +529,14 @@ def straighten_ring(
                 nl[ob, 1] = dy
                 nl[ob, 2] = cc
                 ln[ob] = -1
+                moved[ob] += 1
+                moved[oc] += 1
                 changed = True
                 break
             x[ob], y[ob], t[ob] = sbx, sby, sbt
             x[oc], y[oc], t[oc] = scx, scy, sct
+        if not isnew[i]:
+            tried[i] = around
     if not changed:
         return ix, iy, vt, vs, vl
     base = (t[0] // n) * n
