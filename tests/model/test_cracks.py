@@ -71,6 +71,36 @@ def noise(draw: st.DrawFn) -> np.ndarray:
     return rng.random((h, w)) < draw(st.sampled_from([0.1, 0.3, 0.5, 0.55, 0.7, 0.95]))
 
 
+@st.composite
+def blocky(draw: st.DrawFn) -> np.ndarray:
+    """Rows of long runs (lengths 1 … 40) in widths that are and are not multiples of 8, any non-zero byte."""
+    h, w = draw(st.integers(1, 12)), draw(st.integers(1, 130))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    m = np.zeros((h, w), np.uint8)
+    for r in range(h):
+        c, on = 0, bool(rng.integers(2))
+        while c < w:
+            n = int(rng.integers(1, 41))
+            if on:
+                m[r, c : c + n] = draw(st.sampled_from([1, 1, 1, 255, 7]))
+            c, on = c + n, not on
+    return m
+
+
+@settings(max_examples=300)
+@given(blocky())
+def test_runs_are_the_maximal_non_zero_stretches_of_each_row(mask: np.ndarray) -> None:
+    # The run scan passes whole 8-byte words of background or of 1s at once: against a per-row reference.
+    runs = label_runs(mask)
+    for r in range(mask.shape[0]):
+        d = np.diff(np.concatenate(([0], (mask[r] != 0).astype(np.int8), [0])))
+        starts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1
+        a, b = runs.ptr[r], runs.ptr[r + 1]
+        assert runs.start[a:b].tolist() == starts.tolist()
+        assert runs.end[a:b].tolist() == ends.tolist()
+    assert our_rings(mask) == reference_rings(mask != 0)
+
+
 @settings(max_examples=300)
 @given(st.one_of(masks, noise()), st.sampled_from([4, 8]))
 def test_label_matches_skimage(mask: np.ndarray, connectivity: int) -> None:

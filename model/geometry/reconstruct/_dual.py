@@ -34,7 +34,7 @@ import numpy as np
 from numba import njit
 
 from mrm.geometry.reconstruct._base import _DX, _DY, _cp1, _cp2
-from mrm.geometry.reconstruct._corridor import _rect_of, side_gate
+from mrm.geometry.reconstruct._corridor import _rect_of, element_visits, side_gate
 from mrm.geometry.reconstruct._kernels import _kmax_for
 
 
@@ -57,8 +57,8 @@ def dual_elements(
     """The pointels of every ring as dual elements, and how many times each pointel is met.
 
     Returns ``eoff`` (ring offsets), ``ec, er`` (pointel, array coordinates), ``edin, edout`` (the codes of
-    the linels into and out of it), ``enl`` (1 everywhere: one piece per element) and ``cnt`` (visits per
-    pointel over all rings, saturated at 2, shape (h + 1, w + 1)).
+    the linels into and out of it), ``enl`` (1 everywhere: one piece per element) and ``cnt`` (per element:
+    how many times its pointel is met over all rings, saturated at 2; pointels are in [0, w] × [0, h]).
     """
     nr = off.size - 1
     lt = codes.size
@@ -68,7 +68,6 @@ def dual_elements(
     edout = np.empty(lt, np.int64)
     enl = np.ones(lt, np.int64)
     eoff = np.zeros(nr + 1, np.int64)
-    cnt = np.zeros((h + 1, w + 1), np.uint8)
     for k in range(nr):
         o0 = off[k]
         n = off[k + 1] - o0
@@ -80,12 +79,10 @@ def dual_elements(
             er[o0 + i] = y
             edin[o0 + i] = codes[o0 + (i - 1) % n]
             edout[o0 + i] = d
-            if cnt[y, x] < 2:
-                cnt[y, x] += 1
             x += _DX[d]
             y += _DY[d]
         eoff[k + 1] = o0 + n
-    return eoff, ec, er, edin, edout, enl, cnt
+    return eoff, ec, er, edin, edout, enl, element_visits(ec, er, h + 1, w + 1)
 
 
 @njit(cache=True)
@@ -120,7 +117,7 @@ def dual_pieces(
         din = edin[e]
         dout = edout[e]
         pel[k] = k
-        if cnt[r, c] < 2:
+        if cnt[e] < 2:
             _rect_of(c, r, 0, 0, rect, k)
             if din != dout:
                 r0[nv, 0] = 4 * c

@@ -47,7 +47,7 @@ def ring_reach(
     pre = np.zeros(2 * ne + 1, np.int64)
     for k in range(2 * ne):
         kk = k % ne
-        pre[k + 1] = pre[k] + (1 if cnt[er[e0 + kk], ec[e0 + kk]] >= 2 else 0)
+        pre[k + 1] = pre[k] + (1 if cnt[e0 + kk] >= 2 else 0)
     for i in range(n):
         k = pel[i]
         if pre[k + rd[k] + 1] - pre[k] == 0:

@@ -81,7 +81,7 @@ from mrm.geometry.reconstruct._corridor import (
     _rect_of,
     build_elements,
     build_pieces,
-    count_visits,
+    element_visits,
     net_pieces,
 )
 from mrm.geometry.reconstruct._greedy import (
@@ -194,9 +194,9 @@ __all__ = [
     "build_pieces",
     "check_nets",
     "corridors_all",
-    "count_visits",
     "dss_reach",
     "edge_ok",
+    "element_visits",
     "finish_all",
     "general_reach",
     "greedy_all",
@@ -323,7 +323,7 @@ def corridors_all(
     2 for two pixels visited once each (cover models), else 0.
     """
     eoff, ec, er, edin, edout, enl, r0off, r0, r0e = build_elements(codes, off, sx, sy)
-    cnt = count_visits(h, w, ec, er)
+    cnt = element_visits(ec, er, h, w)
     nr = off.size - 1
     cap = 2 * ec.size + 2 * nr + 2
     rect = np.empty((cap, 4), np.int64)

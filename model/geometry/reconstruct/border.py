@@ -183,7 +183,7 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
     mx, my = int(ec.min()), int(er.min())
     cx = ec - mx
     cy = er - my
-    cnt = _k.count_visits(int(cy.max()) + 1, int(cx.max()) + 1, cx, cy)
+    cnt = _k.element_visits(cx, cy, int(cy.max()) + 1, int(cx.max()) + 1)
     out = []
     for k in range(len(chains)):
         a, b = int(eoff[k]), int(eoff[k + 1])

@@ -120,6 +120,59 @@ def _gap(rs: I32Array, ptr: I64Array, c: int, r: int) -> int:  # pragma: no cove
 
 
 @numba.njit(cache=True, nogil=True)
+def _bottom_edges(
+    rs: I32Array, re: I32Array, ptr: I64Array
+) -> tuple[I64Array, I64Array, I64Array, I64Array, I64Array]:  # pragma: no cover
+    # The maximal column intervals [bs, be] of each row r whose pixels are in the object and whose lower
+    # neighbours are not (the bottom boundary linels, walked East), rows at bptr[r] … bptr[r+1]−1, the
+    # object run holding each (brun), and the index of each interval's first linel in a flat numbering of
+    # them all (bidx; the total last).
+    h = ptr.size - 1
+    cap = 2 * rs.size + 1
+    bs = np.empty(cap, np.int64)
+    be = np.empty(cap, np.int64)
+    brun = np.empty(cap, np.int64)
+    bidx = np.zeros(cap + 1, np.int64)
+    bptr = np.zeros(h + 1, np.int64)
+    nb = 0
+    for r in range(h):
+        i = ptr[r - 1] if r > 0 else 0
+        i1 = ptr[r] if r > 0 else 0
+        for j in range(ptr[r], ptr[r + 1]):
+            c = rs[j]
+            while c <= re[j]:
+                # skip the columns covered by a run of the row below
+                while i < i1 and re[i] < c:
+                    i += 1
+                if i < i1 and rs[i] <= c:
+                    c = re[i] + 1
+                    continue
+                e = re[j] if i >= i1 else min(re[j], rs[i] - 1)
+                bs[nb] = c
+                be[nb] = e
+                brun[nb] = j
+                bidx[nb + 1] = bidx[nb] + e - c + 1
+                nb += 1
+                c = e + 1
+        bptr[r + 1] = nb
+    return bs[:nb], be[:nb], brun[:nb], bidx[: nb + 1], bptr
+
+
+@numba.njit(cache=True, nogil=True)
+def _bottom_edge(bs: I64Array, bidx: I64Array, bptr: I64Array, x: int, y: int) -> int:  # pragma: no cover
+    # The flat index of the bottom boundary linel of pixel (x, y) (one of :func:`_bottom_edges`).
+    lo = bptr[y]
+    hi = bptr[y + 1]
+    while hi - lo > 1:  # the last interval starting at or before x
+        mid = (lo + hi) // 2
+        if bs[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    return int(bidx[lo] + x - bs[lo])
+
+
+@numba.njit(cache=True, nogil=True)
 def _trace_mask(
     m: U8Array,
     rs: I32Array,
@@ -144,89 +197,82 @@ def _trace_mask(
     bg = np.empty(n_rings, np.int32)
     area2 = np.empty(n_rings, np.int64)
     box = np.empty((n_rings, 4), np.int64)
-    # visited[r, c]: the bottom edge of pixel (c, r), walked East (code 0), belongs to a traced ring.
-    visited = np.zeros((h, w), np.uint8)
+    # visited[k]: bottom boundary linel k (walked East, code 0) belongs to a traced ring. Only those linels
+    # are numbered (a whole (h, w) array cost 28 ms of page faults at 8192², for a few thousand linels).
+    bs, be, brun, bidx, bptr = _bottom_edges(rs, re, ptr)
+    visited = np.zeros(bidx[-1], np.uint8)
     pos = 0
     nr = 0
     for r in range(h):
-        i = ptr[r - 1] if r > 0 else 0
-        i1 = ptr[r] if r > 0 else 0
-        for j in range(ptr[r], ptr[r + 1]):
-            c = rs[j]
-            while c <= re[j]:
-                # Skip the columns covered by a run of the row below: no boundary linel there.
-                while i < i1 and re[i] < c:
-                    i += 1
-                if i < i1 and rs[i] <= c:
-                    c = re[i] + 1
+        for b in range(bptr[r], bptr[r + 1]):
+            j = brun[b]
+            c = bs[b]
+            e = be[b]
+            for cc in range(c, e + 1):
+                if visited[bidx[b] + cc - c]:
                     continue
-                e = re[j] if i >= i1 else min(re[j], rs[i] - 1)
-                for cc in range(c, e + 1):
-                    if visited[r, cc]:
-                        continue
-                    # ---- trace the ring through the bottom edge of pixel (cc, r), walked East.
-                    start = pos
-                    x0 = cc
-                    y0 = r
-                    x = x0
-                    y = y0
-                    d = 0
-                    a2 = 0
-                    mx = x0
-                    my = y0
-                    mi = 0
-                    bx0 = x0
-                    bx1 = x0
-                    by1 = y0
-                    while True:
-                        codes[pos] = d
-                        pos += 1
-                        if d == 0:
-                            visited[y, x] = 1
-                        a2 += x * dy[d] - y * dx[d]
-                        x += dx[d]
-                        y += dy[d]
-                        if not _inside(m, x + lx[d], y + ly[d]):
-                            d = (d + 1) & 3
-                        elif _inside(m, x + rx[d], y + ry[d]):
-                            d = (d + 3) & 3
-                        if x == x0 and y == y0 and d == 0:
-                            break
-                        if y < my or (y == my and x < mx):
-                            # A new lowest-leftmost pointel; that one is passed only once (3 of its 4
-                            # pixels are on the same side), so the rotation below is well defined.
-                            my = y
-                            mx = x
-                            mi = pos - start
-                        if x < bx0:
-                            bx0 = x
-                        elif x > bx1:
-                            bx1 = x
-                        if y > by1:
-                            by1 = y
-                    # ---- rotate to the canonical start (the lowest-leftmost pointel).
-                    if mi != 0:
-                        _reverse(codes, start, start + mi)
-                        _reverse(codes, start + mi, pos)
-                        _reverse(codes, start, pos)
-                    sx[nr] = mx
-                    sy[nr] = my
-                    comp[nr] = label[j]
-                    d = codes[start]
-                    px = mx + rx[d]
-                    py = my + ry[d]
-                    if 0 <= py < h and 0 <= px < w:
-                        bg[nr] = bg_label[_gap(rs, ptr, px, py)]
-                    else:
-                        bg[nr] = 0
-                    area2[nr] = a2
-                    box[nr, 0] = bx0
-                    box[nr, 1] = my
-                    box[nr, 2] = bx1
-                    box[nr, 3] = by1
-                    nr += 1
-                    off[nr] = pos
-                c = e + 1
+                # ---- trace the ring through the bottom edge of pixel (cc, r), walked East.
+                start = pos
+                x0 = cc
+                y0 = r
+                x = x0
+                y = y0
+                d = 0
+                a2 = 0
+                mx = x0
+                my = y0
+                mi = 0
+                bx0 = x0
+                bx1 = x0
+                by1 = y0
+                while True:
+                    codes[pos] = d
+                    pos += 1
+                    if d == 0:
+                        visited[_bottom_edge(bs, bidx, bptr, x, y)] = 1
+                    a2 += x * dy[d] - y * dx[d]
+                    x += dx[d]
+                    y += dy[d]
+                    if not _inside(m, x + lx[d], y + ly[d]):
+                        d = (d + 1) & 3
+                    elif _inside(m, x + rx[d], y + ry[d]):
+                        d = (d + 3) & 3
+                    if x == x0 and y == y0 and d == 0:
+                        break
+                    if y < my or (y == my and x < mx):
+                        # A new lowest-leftmost pointel; that one is passed only once (3 of its 4
+                        # pixels are on the same side), so the rotation below is well defined.
+                        my = y
+                        mx = x
+                        mi = pos - start
+                    if x < bx0:
+                        bx0 = x
+                    elif x > bx1:
+                        bx1 = x
+                    if y > by1:
+                        by1 = y
+                # ---- rotate to the canonical start (the lowest-leftmost pointel).
+                if mi != 0:
+                    _reverse(codes, start, start + mi)
+                    _reverse(codes, start + mi, pos)
+                    _reverse(codes, start, pos)
+                sx[nr] = mx
+                sy[nr] = my
+                comp[nr] = label[j]
+                d = codes[start]
+                px = mx + rx[d]
+                py = my + ry[d]
+                if 0 <= py < h and 0 <= px < w:
+                    bg[nr] = bg_label[_gap(rs, ptr, px, py)]
+                else:
+                    bg[nr] = 0
+                area2[nr] = a2
+                box[nr, 0] = bx0
+                box[nr, 1] = my
+                box[nr, 2] = bx1
+                box[nr, 3] = by1
+                nr += 1
+                off[nr] = pos
     return codes[:pos], off[: nr + 1], sx[:nr], sy[:nr], comp[:nr], bg[:nr], area2[:nr], box[:nr]
 
 
