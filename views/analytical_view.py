@@ -17,7 +17,7 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, lod_image, qcolor
+from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
 from mrm.views.items import (
     LodPathItem,
     MarkersItem,
@@ -150,16 +150,25 @@ def preimage_lines(chain: Any, k: int) -> list[tuple[Fraction, Fraction, Fractio
     return out
 
 
-def analytical_drawing(ana: Any) -> tuple[Any, list[Any], np.ndarray]:
+def border_lut(alpha: int) -> np.ndarray:
+    """The table of the segments' border pixels: label 1 + k in segment colour k."""
+    lut = np.zeros((4, 4), dtype=np.uint8)
+    for k, c in enumerate(SEGMENT_COLOURS):
+        lut[k + 1] = [*qcolor(c).getRgb()[:3], alpha]
+    return lut
+
+
+def analytical_drawing(ana: Any, lut: np.ndarray) -> tuple[Any, list[Any], np.ndarray]:
     """What the analytical view draws of an analytical representation (any thread).
 
-    The cracks of each colour come by component size class (:func:`stroke_levels`): at fit-all zoom the
-    thousands of tiny chains of a speckled object are dots, not a black field of strokes.
+    The border pixels come as a level-of-detail image with its picture through ``lut``. The cracks of each
+    colour come by component size class (:func:`stroke_levels`): at fit-all zoom the thousands of tiny
+    chains of a speckled object are dots, not a black field of strokes.
     """
     img = segment_pixel_image(ana)
     if img is not None:
-        coarse, f = lod_image(img[0])
-        img = (coarse, img[1], f)
+        coarse, f, picture = pictured(lod_image(img[0]), lut)
+        img = (coarse, img[1], f, picture)
     pieces, chains, extents, ends = _segment_cracks(ana)
     # A chain's colours are split across the three items: its size class comes from all its points, so
     # the chain's pieces switch between dots and strokes at the same zoom in every item.
@@ -226,31 +235,28 @@ class AnalyticalView(RepresentationView):
         key = (ana, ps, obj.style.fill, dark, selected)
         if key == layer.key:
             return True
+        lut = border_lut(150 if selected else 110)
         if ana is not layer.analytical:
-            data = self.prepared(obj.id, "segments", ana, ps.mask.size, lambda: analytical_drawing(ana))
+            data = self.prepared(obj.id, "segments", ana, ps.mask.size, lambda: analytical_drawing(ana, lut))
             if data is None:
                 return False  # prepared on a worker
             img, paths, ends = data
             if img is None:
                 layer.border.set_pixels(None, (0, 0))
             else:
-                layer.border.set_pixels(img[0], img[1], None, img[2])
+                layer.border.set_pixels(img[0], img[1], lut, img[2], picture=img[3])
             for item, (levels, path) in zip(layer.cracks, paths, strict=True):
                 item.set_levels(levels, path)
             layer.ends.set_points(ends)
             layer.analytical = ana
         body = qcolor(obj.style.fill)
-        alpha = 70 if selected else 45
-        shown = self.prepared(obj.id, "body", ps, ps.mask.size, lambda: lod_image(ps.mask))
+        body_lut = np.array([[0, 0, 0, 0], [*body.getRgb()[:3], 70 if selected else 45]])
+        shown = self.prepared(
+            obj.id, "body", ps, ps.mask.size, lambda: pictured(lod_image(ps.mask), body_lut)
+        )
         if shown is None:
             return False
-        layer.body.set_pixels(
-            shown[0], ps.origin, np.array([[0, 0, 0, 0], [*body.getRgb()[:3], alpha]]), shown[1]
-        )
-        a = 150 if selected else 110
-        lut = np.zeros((4, 4), dtype=np.uint8)
-        for k, c in enumerate(SEGMENT_COLOURS):
-            lut[k + 1] = [*qcolor(c).getRgb()[:3], a]
+        layer.body.set_pixels(shown[0], ps.origin, body_lut, shown[1], picture=shown[2])
         layer.border.set_lut(lut)
         for item, c in zip(layer.cracks, SEGMENT_COLOURS, strict=True):
             item.set_style(

@@ -8,7 +8,7 @@ from PySide6 import QtGui
 from mrm.document import DocObject
 from mrm.reps.pixels import PixelSet
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, lod_image, qcolor
+from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
 from mrm.views.items import PathItem, crack_segments, segments_path
 
 
@@ -50,10 +50,13 @@ class DiscreteView(RepresentationView):
         alpha = round(255 * (min(1.0, obj.style.opacity + 0.25) if selected else obj.style.opacity))
         lut = np.array([[0, 0, 0, 0], [*list(qcolor(obj.style.fill).getRgb()[:3]), alpha]])
         if ps is not layer.pixels or not np.array_equal(layer.mask._lut[:2], lut):
-            shown = self.prepared(obj.id, "pixels", ps, ps.mask.size, lambda: lod_image(ps.mask))
+            shown = self.prepared(
+                obj.id, "pixels", ps, ps.mask.size, lambda: pictured(lod_image(ps.mask), lut)
+            )
             if shown is None:
                 return False  # a coarser image of a big object is being made on a worker
-            layer.mask.set_pixels(shown[0], ps.origin, lut, shown[1], ps.mask)
+            image, f, picture = shown
+            layer.mask.set_pixels(image, ps.origin, lut, f, ps.mask, picture)
             layer.pixels = ps
         if selected:
             if layer.outlined is not ps:
