@@ -24,7 +24,6 @@ from mrm.views.items import (
     PathItem,
     cosmetic_pen,
     levels_path,
-    piece_groups,
     stroke_levels,
 )
 
@@ -80,20 +79,15 @@ def segment_pixel_image(ana: Any) -> tuple[np.ndarray, tuple[int, int]] | None:
     return img, (int(x0), int(y0))
 
 
-def segment_cracks(ana: Any) -> tuple[list[np.ndarray], np.ndarray]:
-    """Per colour index, the (N, 4) crack pieces of the segments of that colour; and every end pointel."""
-    pieces, _chains, _extents, ends = _segment_cracks(ana)
-    return pieces, ends
+def segment_cracks(ana: Any) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray, np.ndarray]:
+    """The segments' crack polylines per colour index, each chain's extent, and every end pointel.
 
-
-def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray, np.ndarray]:
-    """:func:`segment_cracks` with the chain index of each piece and each chain's extent.
-
-    Per colour, the chain of each piece (its component's stroke); per chain, the longer side of its box
-    (plane units, at least 1).
+    Per colour, ``(xy, connect, chain)`` as :func:`~mrm.views.items.stroke_levels` takes them: each
+    segment one polyline through its pointels, ``chain[i]`` the chain of point i (its component's stroke).
+    Per chain, the longer side of its box (plane units, at least 1).
     """
     extents = np.ones(len(ana.chains))
-    pieces: list[list[np.ndarray]] = [[], [], []]
+    points: list[list[np.ndarray]] = [[], [], []]
     owner: list[list[np.ndarray]] = [[], [], []]
     ends: list[np.ndarray] = []
     for ci, chain in enumerate(ana.chains):
@@ -106,15 +100,21 @@ def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.nd
         t = chain.table
         for k in range(n):
             first, last = int(t[k, 0]), int(t[k, 1])
-            idx = np.arange(first, last + 1) % m
-            p = pts[idx]
+            p = pts[np.arange(first, last + 1) % m]
             colour = segment_colour_index(k, n)
-            pieces[colour].append(np.hstack([p[:-1], p[1:]]))
-            owner[colour].append(np.full(len(p) - 1, ci, dtype=np.int64))
+            points[colour].append(p)
+            owner[colour].append(np.full(len(p), ci, dtype=np.int64))
             ends.append(p[[0, -1]])
-    out = [np.concatenate(ps) if ps else np.zeros((0, 4)) for ps in pieces]
-    chains = [np.concatenate(os) if os else np.zeros(0, np.int64) for os in owner]
-    return out, chains, extents, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
+    out = []
+    for ps, os in zip(points, owner, strict=True):
+        if not ps:
+            out.append((np.zeros((0, 2)), np.zeros(0, np.int32), np.zeros(0, np.int64)))
+            continue
+        lens = np.array([len(p) for p in ps])
+        connect = np.ones(int(lens.sum()), dtype=np.int32)
+        connect[np.cumsum(lens) - 1] = 0
+        out.append((np.concatenate(ps), connect, np.concatenate(os)))
+    return out, extents, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
 
 
 def line_through_box(
@@ -169,12 +169,12 @@ def analytical_drawing(ana: Any, lut: np.ndarray) -> tuple[Any, list[Any], np.nd
     if img is not None:
         coarse, f, picture = pictured(lod_image(img[0]), lut)
         img = (coarse, img[1], f, picture)
-    pieces, chains, extents, ends = _segment_cracks(ana)
+    polylines, extents, ends = segment_cracks(ana)
     # A chain's colours are split across the three items: its size class comes from all its points, so
-    # the chain's pieces switch between dots and strokes at the same zoom in every item.
+    # the chain's segments switch between dots and strokes at the same zoom in every item.
     levels = []
-    for segs, owner in zip(pieces, chains, strict=True):
-        lv = stroke_levels(*piece_groups(segs, owner), extents=extents)
+    for xy, connect, owner in polylines:
+        lv = stroke_levels(xy, connect, owner, extents=extents)
         levels.append((lv, levels_path(lv)))
     return img, levels, ends
 

@@ -15,7 +15,7 @@ from PySide6 import QtCore, QtGui
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
-from mrm.views.items import LodPathItem, MarkersItem, levels_path, ring_groups, stroke_levels
+from mrm.views.items import LodPathItem, MarkersItem, StrokeLevel, levels_path, ring_groups, stroke_levels
 
 #: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
 COMPONENT_COLOURS = (
@@ -88,6 +88,22 @@ def region_drawing(
         (inner_levels, levels_path(inner_levels)),
         junctions(list(region.boundary_chains)),
     )
+
+
+def boundary_levels(region: Any) -> tuple[list[StrokeLevel], QtGui.QPainterPath]:
+    """Every crack boundary of a region by component size class (any thread): the selected object's outline.
+
+    A component's outer boundary and its holes' are one group (:func:`stroke_levels`), so a speck is a dot
+    at fit-all zoom and a big component's outline is simplified as far as the screen cannot tell.
+    """
+    rings: list[np.ndarray] = []
+    group: list[int] = []
+    for k, c in enumerate(region.components):
+        rings.append(chain_xy(c.outer))
+        rings.extend(chain_xy(h.boundary) for h in c.holes)
+        group.extend([k] * (1 + len(c.holes)))
+    levels = stroke_levels(*ring_groups(rings, group))
+    return levels, levels_path(levels)
 
 
 def colour_distance(a: str, b: str) -> float:
