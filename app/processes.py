@@ -47,7 +47,10 @@ CHILD_NICENESS = 10
 SPILL_BYTES = 1 << 20
 
 
-#: The prefix of the files arrays are spilled to (removed by the receiver as soon as it has read them).
+#: The prefix of the files arrays are spilled to: ``mrm-spill-<writer's pid>-<random>``. The receiver removes
+#: a file as soon as it has read it; the parent removes what a task left behind when its child died or was
+#: killed mid-transfer (:meth:`ProcessPool.run`), and at start the files of processes that no longer run
+#: (:func:`remove_stale_spills`).
 SPILL_PREFIX = "mrm-spill-"
 
 
@@ -62,7 +65,7 @@ def _spill_dir() -> str:
 def _spill(raw: memoryview) -> str:
     import tempfile
 
-    fd, path = tempfile.mkstemp(prefix=SPILL_PREFIX, dir=_spill_dir())
+    fd, path = tempfile.mkstemp(prefix=f"{SPILL_PREFIX}{os.getpid()}-", dir=_spill_dir())
     with os.fdopen(fd, "wb", buffering=0) as fh:
         view = raw.cast("B")
         done = 0
@@ -92,20 +95,84 @@ def _unspill(path: str) -> Any:
     return data
 
 
-def send_obj(conn: Any, obj: Any) -> None:
+def send_obj(conn: Any, obj: Any) -> list[str]:
     """Send ``obj`` pickled (protocol 5); its contiguous arrays out of band, never re-encoded.
 
     An array of more than :data:`SPILL_BYTES` is written to a file in memory and only its name is sent.
+    Returns those files' paths: the receiver removes them once read, the sender if it never reads them.
     """
     bufs: list[pickle.PickleBuffer] = []
     head = pickle.dumps(obj, protocol=5, buffer_callback=bufs.append)
     raws = [b.raw() for b in bufs]
-    files = [_spill(r) if r.nbytes > SPILL_BYTES else None for r in raws]
-    conn.send_bytes(pickle.dumps(files))
-    conn.send_bytes(head)
-    for r, f in zip(raws, files, strict=True):
-        if f is None:
-            conn.send_bytes(r)
+    files: list[str | None] = []
+    try:
+        for r in raws:
+            files.append(_spill(r) if r.nbytes > SPILL_BYTES else None)
+        conn.send_bytes(pickle.dumps(files))
+        conn.send_bytes(head)
+        for r, f in zip(raws, files, strict=True):
+            if f is None:
+                conn.send_bytes(r)
+    except BaseException:
+        remove_spills([f for f in files if f is not None])  # the receiver will never read them
+        raise
+    return [f for f in files if f is not None]
+
+
+def remove_spills(paths: list[str]) -> None:
+    """Remove spill files that may still be there (a receiver removed the ones it read)."""
+    for path in paths:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(path)
+
+
+def _spill_pid(name: str) -> int | None:
+    """The writer's process id in a spill file's name, if it has one."""
+    pid, sep, _rest = name[len(SPILL_PREFIX) :].partition("-")
+    return int(pid) if sep and pid.isdigit() else None
+
+
+def spills_of(pid: int) -> list[str]:
+    """The spill files process ``pid`` wrote that are still there."""
+    folder = _spill_dir()
+    head = f"{SPILL_PREFIX}{pid}-"
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return []
+    return [os.path.join(folder, n) for n in names if n.startswith(head)]
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process: it runs
+        return True
+    return True
+
+
+def remove_stale_spills() -> int:
+    """Remove the spill files of processes that no longer run (a crash, a kill); returns how many.
+
+    Files of running processes, this one's and other windows' included, are left alone.
+    """
+    folder = _spill_dir()
+    try:
+        names = [n for n in os.listdir(folder) if n.startswith(SPILL_PREFIX)]
+    except OSError:
+        return 0
+    removed = 0
+    for name in names:
+        pid = _spill_pid(name)
+        if pid is not None and not _running(pid):
+            with contextlib.suppress(OSError):
+                os.unlink(os.path.join(folder, name))
+                removed += 1
+    if removed:
+        log.info("removed %d spill files of worker processes that had ended", removed)
+    return removed
 
 
 def _recv_parts(conn: Any) -> tuple[bytes, list[Any]]:
@@ -257,13 +324,18 @@ class ProcessPool:
         self._give_back(child)
 
     def run(self, fn: Callable[..., Any], args: tuple[Any, ...], progress: Any) -> Any:
-        """``fn(*args, progress)`` in a child; its progress relayed to ``progress``, a Cancel passed on."""
+        """``fn(*args, progress)`` in a child; its progress relayed to ``progress``, a Cancel passed on.
+
+        A child that dies or is killed mid-task takes no spill file with it: the task's own (arguments the
+        child did not read) and the child's (results it had begun to send) are removed.
+        """
         if progress is not None:
             progress.update()
         child = self._take()
         ok = False
+        sent: list[str] = []
         try:
-            send_obj(child.send, (fn, args))
+            sent = send_obj(child.send, (fn, args))
             self.jobs += 1
             self.pids.add(child.proc.pid)
             cancelled_at: float | None = None
@@ -306,6 +378,7 @@ class ProcessPool:
             self._give_back(child if ok else None)
             if not ok:
                 child.kill()
+                remove_spills(sent + spills_of(child.proc.pid))
 
     def close(self) -> None:
         """Stop every child (the window closes)."""
@@ -323,10 +396,11 @@ _POOL_LOCK = threading.Lock()
 
 
 def pool() -> ProcessPool:
-    """The application's process pool (created on first use)."""
+    """The application's process pool (created on first use, after clearing the spills of ended ones)."""
     global _POOL
     with _POOL_LOCK:
         if _POOL is None or _POOL._closed:
+            remove_stale_spills()
             _POOL = ProcessPool()
         return _POOL
 

@@ -113,7 +113,8 @@ def load_view_kernels() -> None:
             step()
     yy, xx = np.mgrid[0:9, 0:9]
     ring = ((xx - 4) ** 2 + (yy - 4) ** 2 <= 12) & ((xx - 4) ** 2 + (yy - 4) ** 2 > 2)
-    region_drawing(region_of(PixelSet(ring, (0, 0))))
+    black = np.array([[0, 0, 0, 0], [0, 0, 0, 255]])
+    region_drawing(region_of(PixelSet(ring, (0, 0))), black, black)
 
 
 def when_exposed(win: Any, fn: Callable[[], Any], *, poll_ms: int = 15) -> None:

@@ -17,14 +17,13 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, lod_image, qcolor
+from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
 from mrm.views.items import (
     LodPathItem,
     MarkersItem,
     PathItem,
     cosmetic_pen,
     levels_path,
-    piece_groups,
     stroke_levels,
 )
 
@@ -80,20 +79,15 @@ def segment_pixel_image(ana: Any) -> tuple[np.ndarray, tuple[int, int]] | None:
     return img, (int(x0), int(y0))
 
 
-def segment_cracks(ana: Any) -> tuple[list[np.ndarray], np.ndarray]:
-    """Per colour index, the (N, 4) crack pieces of the segments of that colour; and every end pointel."""
-    pieces, _chains, _extents, ends = _segment_cracks(ana)
-    return pieces, ends
+def segment_cracks(ana: Any) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray, np.ndarray]:
+    """The segments' crack polylines per colour index, each chain's extent, and every end pointel.
 
-
-def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray, np.ndarray]:
-    """:func:`segment_cracks` with the chain index of each piece and each chain's extent.
-
-    Per colour, the chain of each piece (its component's stroke); per chain, the longer side of its box
-    (plane units, at least 1).
+    Per colour, ``(xy, connect, chain)`` as :func:`~mrm.views.items.stroke_levels` takes them: each
+    segment one polyline through its pointels, ``chain[i]`` the chain of point i (its component's stroke).
+    Per chain, the longer side of its box (plane units, at least 1).
     """
     extents = np.ones(len(ana.chains))
-    pieces: list[list[np.ndarray]] = [[], [], []]
+    points: list[list[np.ndarray]] = [[], [], []]
     owner: list[list[np.ndarray]] = [[], [], []]
     ends: list[np.ndarray] = []
     for ci, chain in enumerate(ana.chains):
@@ -106,15 +100,21 @@ def _segment_cracks(ana: Any) -> tuple[list[np.ndarray], list[np.ndarray], np.nd
         t = chain.table
         for k in range(n):
             first, last = int(t[k, 0]), int(t[k, 1])
-            idx = np.arange(first, last + 1) % m
-            p = pts[idx]
+            p = pts[np.arange(first, last + 1) % m]
             colour = segment_colour_index(k, n)
-            pieces[colour].append(np.hstack([p[:-1], p[1:]]))
-            owner[colour].append(np.full(len(p) - 1, ci, dtype=np.int64))
+            points[colour].append(p)
+            owner[colour].append(np.full(len(p), ci, dtype=np.int64))
             ends.append(p[[0, -1]])
-    out = [np.concatenate(ps) if ps else np.zeros((0, 4)) for ps in pieces]
-    chains = [np.concatenate(os) if os else np.zeros(0, np.int64) for os in owner]
-    return out, chains, extents, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
+    out = []
+    for ps, os in zip(points, owner, strict=True):
+        if not ps:
+            out.append((np.zeros((0, 2)), np.zeros(0, np.int32), np.zeros(0, np.int64)))
+            continue
+        lens = np.array([len(p) for p in ps])
+        connect = np.ones(int(lens.sum()), dtype=np.int32)
+        connect[np.cumsum(lens) - 1] = 0
+        out.append((np.concatenate(ps), connect, np.concatenate(os)))
+    return out, extents, (np.unique(np.concatenate(ends), axis=0) if ends else np.zeros((0, 2)))
 
 
 def line_through_box(
@@ -150,22 +150,31 @@ def preimage_lines(chain: Any, k: int) -> list[tuple[Fraction, Fraction, Fractio
     return out
 
 
-def analytical_drawing(ana: Any) -> tuple[Any, list[Any], np.ndarray]:
+def border_lut(alpha: int) -> np.ndarray:
+    """The table of the segments' border pixels: label 1 + k in segment colour k."""
+    lut = np.zeros((4, 4), dtype=np.uint8)
+    for k, c in enumerate(SEGMENT_COLOURS):
+        lut[k + 1] = [*qcolor(c).getRgb()[:3], alpha]
+    return lut
+
+
+def analytical_drawing(ana: Any, lut: np.ndarray) -> tuple[Any, list[Any], np.ndarray]:
     """What the analytical view draws of an analytical representation (any thread).
 
-    The cracks of each colour come by component size class (:func:`stroke_levels`): at fit-all zoom the
-    thousands of tiny chains of a speckled object are dots, not a black field of strokes.
+    The border pixels come as a level-of-detail image with its picture through ``lut``. The cracks of each
+    colour come by component size class (:func:`stroke_levels`): at fit-all zoom the thousands of tiny
+    chains of a speckled object are dots, not a black field of strokes.
     """
     img = segment_pixel_image(ana)
     if img is not None:
-        coarse, f = lod_image(img[0])
-        img = (coarse, img[1], f)
-    pieces, chains, extents, ends = _segment_cracks(ana)
+        coarse, f, picture = pictured(lod_image(img[0]), lut)
+        img = (coarse, img[1], f, picture)
+    polylines, extents, ends = segment_cracks(ana)
     # A chain's colours are split across the three items: its size class comes from all its points, so
-    # the chain's pieces switch between dots and strokes at the same zoom in every item.
+    # the chain's segments switch between dots and strokes at the same zoom in every item.
     levels = []
-    for segs, owner in zip(pieces, chains, strict=True):
-        lv = stroke_levels(*piece_groups(segs, owner), extents=extents)
+    for xy, connect, owner in polylines:
+        lv = stroke_levels(xy, connect, owner, extents=extents)
         levels.append((lv, levels_path(lv)))
     return img, levels, ends
 
@@ -226,31 +235,28 @@ class AnalyticalView(RepresentationView):
         key = (ana, ps, obj.style.fill, dark, selected)
         if key == layer.key:
             return True
+        lut = border_lut(150 if selected else 110)
         if ana is not layer.analytical:
-            data = self.prepared(obj.id, "segments", ana, ps.mask.size, lambda: analytical_drawing(ana))
+            data = self.prepared(obj.id, "segments", ana, ps.mask.size, lambda: analytical_drawing(ana, lut))
             if data is None:
                 return False  # prepared on a worker
             img, paths, ends = data
             if img is None:
                 layer.border.set_pixels(None, (0, 0))
             else:
-                layer.border.set_pixels(img[0], img[1], None, img[2])
+                layer.border.set_pixels(img[0], img[1], lut, img[2], picture=img[3])
             for item, (levels, path) in zip(layer.cracks, paths, strict=True):
                 item.set_levels(levels, path)
             layer.ends.set_points(ends)
             layer.analytical = ana
         body = qcolor(obj.style.fill)
-        alpha = 70 if selected else 45
-        shown = self.prepared(obj.id, "body", ps, ps.mask.size, lambda: lod_image(ps.mask))
+        body_lut = np.array([[0, 0, 0, 0], [*body.getRgb()[:3], 70 if selected else 45]])
+        shown = self.prepared(
+            obj.id, "body", ps, ps.mask.size, lambda: pictured(lod_image(ps.mask), body_lut)
+        )
         if shown is None:
             return False
-        layer.body.set_pixels(
-            shown[0], ps.origin, np.array([[0, 0, 0, 0], [*body.getRgb()[:3], alpha]]), shown[1]
-        )
-        a = 150 if selected else 110
-        lut = np.zeros((4, 4), dtype=np.uint8)
-        for k, c in enumerate(SEGMENT_COLOURS):
-            lut[k + 1] = [*qcolor(c).getRgb()[:3], a]
+        layer.body.set_pixels(shown[0], ps.origin, body_lut, shown[1], picture=shown[2])
         layer.border.set_lut(lut)
         for item, c in zip(layer.cracks, SEGMENT_COLOURS, strict=True):
             item.set_style(

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 import pyqtgraph as pg
@@ -210,18 +211,101 @@ def lod_image(data: np.ndarray, limit: int = LOD_PIXELS) -> tuple[np.ndarray, in
     src = data.view(np.uint8) if data.dtype == np.bool_ else data
     pad = np.zeros((hh, ww), src.dtype)
     pad[:h, :w] = src
-    return pad.reshape(hh // f, f, ww // f, f).max(axis=(1, 3)), f
+    # Rows, then columns, one strided elementwise maximum per offset: four times faster than a 4-D
+    # ``max(axis=(1, 3))`` (88 against 356 ms at 81 M pixels), CPU time the window shares on two cores.
+    rows = np.ascontiguousarray(pad[0::f])
+    for k in range(1, f):
+        np.maximum(rows, pad[k::f], out=rows)
+    out = np.ascontiguousarray(rows[:, 0::f])
+    for k in range(1, f):
+        np.maximum(out, rows[:, k::f], out=out)
+    return out, f
+
+
+def opaque_lut(lut: np.ndarray) -> tuple[np.ndarray, float]:
+    """``(table, opacity)``: a 256-entry lookup table with the one alpha of its visible entries taken out.
+
+    When every visible entry of ``lut`` has the same alpha A (an object's colours at its opacity), the table
+    comes back with those entries opaque, and A / 255 as the item's opacity: a picture made from it serves at
+    every opacity (selecting an object changes the opacity, not the picture). Otherwise ``lut`` and 1.
+    """
+    table = full_lut(lut)
+    alpha = table[:, 3]
+    seen = np.unique(alpha[alpha > 0])
+    if len(seen) != 1:
+        return table, 1.0
+    out = table.copy()
+    out[alpha > 0, 3] = 255
+    return out, float(seen[0]) / 255.0
+
+
+@dataclass(frozen=True, eq=False)
+class Picture:
+    """A label image made ready to draw: ``qimage`` shows ``image`` (as given) through the table ``lut``.
+
+    Made on any thread (:func:`make_picture`), so that a paint only draws it. The QImage wraps ``argb``,
+    which this keeps alive.
+    """
+
+    image: np.ndarray
+    lut: bytes
+    argb: np.ndarray
+    qimage: QtGui.QImage
+
+
+def make_picture(image: np.ndarray, lut: np.ndarray) -> Picture:
+    """The ``ARGB32_Premultiplied`` picture of a label image (bool or uint8) through ``lut`` (any thread).
+
+    Made as :class:`MaskItem` draws it (:func:`opaque_lut`), so the item uses it as it is. It is one
+    ``np.take`` from a 256-entry table, which releases the GIL: about 7 ms for 4 M pixels on a worker. Made
+    on the GUI thread at paint time instead, the conversion took 6–12 ms per image, with several images in
+    the one paint after a big object arrived.
+    """
+    img = image.view(np.uint8) if image.dtype == np.bool_ else image
+    if img.dtype != np.uint8:
+        img = img.astype(np.uint8)
+    table, _opacity = opaque_lut(lut)
+    a = table[:, 3].astype(np.uint32)
+    premultiplied = (table[:, :3].astype(np.uint32) * a[:, None] + 127) // 255
+    words = (a << 24) | (premultiplied[:, 0] << 16) | (premultiplied[:, 1] << 8) | premultiplied[:, 2]
+    argb = np.take(words, np.ascontiguousarray(img))
+    h, w = argb.shape
+    qimage = QtGui.QImage(argb.data, w, h, 4 * w, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
+    return Picture(image, table.tobytes(), argb, qimage)
+
+
+def pictured(lod: tuple[np.ndarray, int], lut: np.ndarray) -> tuple[np.ndarray, int, Picture]:
+    """A level-of-detail image ``(image, f)`` (:func:`lod_image`) with its picture (:func:`make_picture`)."""
+    return lod[0], lod[1], make_picture(lod[0], lut)
 
 
 class ArgbImageItem(pg.ImageItem):
-    """An ImageItem whose picture is kept in the painter's own pixel format.
+    """An ImageItem whose picture is kept in the painter's own pixel format, or made beforehand.
 
     pyqtgraph renders a label image with a colour table as an ``Indexed8`` QImage; Qt then converts the whole
     image at every paint — 7 ms for a 2000² level-of-detail image, against 0.7 ms in
     ``ARGB32_Premultiplied``. Converted once per new image, a pan or zoom step draws it ten times faster.
+    A :class:`Picture` made on a worker for the image and table shown is drawn as it is: nothing is
+    converted on the GUI thread.
     """
 
+    picture: Picture | None = None
+    _pictured: np.ndarray | None = None  # the image array the picture was given for (setImage's own view)
+
     def render(self) -> None:
+        pic = self.picture
+        lut = self.lut
+        if (
+            pic is not None
+            and self.image is not None
+            and self.image is self._pictured
+            and isinstance(lut, np.ndarray)
+            and lut.tobytes() == pic.lut
+        ):
+            self.qimage = pic.qimage
+            self._renderRequired = False
+            self._unrenderable = False
+            return
         super().render()
         q = self.qimage
         if q is not None and q.format() != QtGui.QImage.Format.Format_ARGB32_Premultiplied:
@@ -229,12 +313,16 @@ class ArgbImageItem(pg.ImageItem):
 
 
 class MaskItem(ArgbImageItem):
-    """A label or boolean image placed on the pixel grid; label k is drawn with ``lut[k]`` (RGBA)."""
+    """A label or boolean image placed on the pixel grid; label k is drawn with ``lut[k]`` (RGBA).
+
+    A table whose visible entries share one alpha is drawn opaque at that opacity (:func:`opaque_lut`).
+    """
 
     def __init__(self) -> None:
         super().__init__(axisOrder="row-major")
         self._origin = (0, 0)
         self._lut: np.ndarray = full_lut(np.array([[0, 0, 0, 0], [0, 0, 0, 255]]))
+        self._table, self._opacity = opaque_lut(self._lut)
         self.scale_factor = 1
         self._full: np.ndarray | None = None  # the exact image behind a coarse one
         self._detail: ArgbImageItem | None = None  # its visible part, when zoomed in enough
@@ -248,18 +336,22 @@ class MaskItem(ArgbImageItem):
         lut: np.ndarray | None = None,
         scale: int = 1,
         full: np.ndarray | None = None,
+        picture: Picture | None = None,
     ) -> None:
         """Show ``data[row, col]`` (bool or small ints) with pixel (x0 + col, y0 + row) on its voxel.
 
         With ``scale`` f > 1, ``data`` is a level-of-detail image (:func:`lod_image`): each pixel covers
         f × f pixels of the plane, and ``full`` (the image itself) is shown exactly, cropped to the view, as
         soon as the visible part of it has at most :data:`LOD_PIXELS` pixels: zoomed in, every pixel is true.
+        ``picture`` is ``data`` made ready to draw on a worker (:func:`make_picture`): it is drawn when it
+        was made with the table shown, and the paint converts ``data`` itself otherwise.
         """
         self.scale_factor = scale
         self._full = full if scale > 1 else None
         if lut is not None:
-            self._lut = full_lut(lut)
+            self._set_table(lut)
         if data is None or data.size == 0:
+            self.picture = None
             self.clear()
             self.setVisible(False)
             self.update_detail()  # hides the exact detail of a previous coarse image
@@ -269,10 +361,21 @@ class MaskItem(ArgbImageItem):
         if img.dtype != np.uint8:
             img = img.astype(np.uint8)
         self._origin = (int(origin[0]), int(origin[1]))
-        self.setImage(img, autoLevels=False, levels=None, lut=self._lut)
+        self.setImage(img, autoLevels=False, levels=None, lut=self._table)
+        # A picture of this very array (not of an earlier one) is drawn instead of a conversion.
+        self.picture = picture if picture is not None and picture.image is data else None
+        self._pictured = self.image if self.picture is not None else None
         h, w = img.shape
         self.setRect(QtCore.QRectF(self._origin[0] - 0.5, self._origin[1] - 0.5, w * scale, h * scale))
         self.update_detail()
+
+    def _set_table(self, lut: np.ndarray) -> None:
+        self._lut = full_lut(lut)
+        self._table, self._opacity = opaque_lut(self._lut)
+        self.setOpacity(self._opacity)
+        detail = getattr(self, "_detail", None)
+        if detail is not None:
+            detail.setOpacity(self._opacity)
 
     def viewRangeChanged(self) -> None:
         super().viewRangeChanged()
@@ -303,10 +406,11 @@ class MaskItem(ArgbImageItem):
             detail = self._detail = ArgbImageItem(axisOrder="row-major")
             detail.setAutoDownsample(False)
             detail.setParentItem(self.parentItem())
+            detail.setOpacity(self._opacity)
         detail.setZValue(self.zValue() + 0.01)
         crop = full[y0:y1, x0:x1]
         img = crop.view(np.uint8) if crop.dtype == np.bool_ else crop.astype(np.uint8)
-        detail.setImage(np.ascontiguousarray(img), autoLevels=False, levels=None, lut=self._lut)
+        detail.setImage(np.ascontiguousarray(img), autoLevels=False, levels=None, lut=self._table)
         detail.setRect(QtCore.QRectF(ox + x0, oy + y0, x1 - x0, y1 - y0))
         detail.setVisible(True)
 
@@ -325,12 +429,18 @@ class MaskItem(ArgbImageItem):
         self.updateImage(img)
 
     def set_lut(self, lut: np.ndarray) -> None:
-        self._lut = full_lut(lut)
+        new = full_lut(lut)
+        if np.array_equal(new, self._lut):
+            return
+        old_table = self._table
+        self._set_table(new)
+        if np.array_equal(old_table, self._table):
+            return  # only the opacity changed: the picture stays
         if self.image is not None:
-            self.setLookupTable(self._lut)
+            self.setLookupTable(self._table)
         detail = getattr(self, "_detail", None)
         if detail is not None and detail.image is not None:
-            detail.setLookupTable(self._lut)
+            detail.setLookupTable(self._table)
 
 
 # ---------------------------------------------------------------------------------------------- view

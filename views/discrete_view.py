@@ -8,8 +8,9 @@ from PySide6 import QtGui
 from mrm.document import DocObject
 from mrm.reps.pixels import PixelSet
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, lod_image, qcolor
-from mrm.views.items import PathItem, crack_segments, segments_path
+from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
+from mrm.views.items import LodPathItem, crack_segments, segments_path
+from mrm.views.region_view import boundary_levels
 
 
 class DiscreteLayer(Layer):
@@ -17,7 +18,7 @@ class DiscreteLayer(Layer):
         super().__init__(obj_id)
         self.mask = MaskItem()
         self.mask.setParentItem(self)
-        self.outline = PathItem()
+        self.outline = LodPathItem()
         self.outline.setParentItem(self)
         self.outline.setZValue(1)
         self.pixels: PixelSet | None = None
@@ -50,28 +51,48 @@ class DiscreteView(RepresentationView):
         alpha = round(255 * (min(1.0, obj.style.opacity + 0.25) if selected else obj.style.opacity))
         lut = np.array([[0, 0, 0, 0], [*list(qcolor(obj.style.fill).getRgb()[:3]), alpha]])
         if ps is not layer.pixels or not np.array_equal(layer.mask._lut[:2], lut):
-            shown = self.prepared(obj.id, "pixels", ps, ps.mask.size, lambda: lod_image(ps.mask))
+            shown = self.prepared(
+                obj.id, "pixels", ps, ps.mask.size, lambda: pictured(lod_image(ps.mask), lut)
+            )
             if shown is None:
                 return False  # a coarser image of a big object is being made on a worker
-            layer.mask.set_pixels(shown[0], ps.origin, lut, shown[1], ps.mask)
+            image, f, picture = shown
+            layer.mask.set_pixels(image, ps.origin, lut, f, ps.mask, picture)
             layer.pixels = ps
         if selected:
-            if layer.outlined is not ps:
-                path = self.prepared(
-                    obj.id,
-                    "outline",
-                    ps,
-                    ps.mask.size,
-                    lambda: segments_path(crack_segments(ps.mask, ps.origin)),
-                )
-                if path is None:
-                    return False
-                layer.outline.setPath(path)
-                layer.outlined = ps
+            if layer.outlined is not ps and not self._outline(layer, obj.id, ps):
+                return False
             layer.outline.set_style(None, self.highlight_colour(), 2.0)
             layer.outline.setVisible(True)
         else:
             layer.outline.setVisible(False)
+        return True
+
+    def _outline(self, layer: DiscreteLayer, obj_id: int, ps: PixelSet) -> bool:
+        """Draw the crack boundary of the selected object's pixels; False while it is being prepared.
+
+        From the region's boundary chains, by component size class with simplified outlines
+        (:func:`~mrm.views.region_view.boundary_levels`): at fit-all zoom, specks are dots and a 10⁸-pixel
+        outline is stroked with the corners the screen can show. The region is the one the region view
+        draws (computed once for both). Without a region (its derivation failed or was cancelled), the
+        merged crack pieces are stroked in full.
+        """
+        region = self.get(obj_id, "region")
+        if region is None:
+            if self.scene.error(obj_id, "region") is None:
+                return False  # being computed: the pixels are shown meanwhile
+            path = self.prepared(
+                obj_id, "outline", ps, ps.mask.size, lambda: segments_path(crack_segments(ps.mask, ps.origin))
+            )
+            if path is None:
+                return False
+            layer.outline.setPath(path)
+        else:
+            data = self.prepared(obj_id, "outline", region, ps.mask.size, lambda: boundary_levels(region))
+            if data is None:
+                return False
+            layer.outline.set_levels(*data)
+        layer.outlined = ps
         return True
 
     # ------------------------------------------------------------------ brush fast path

@@ -111,6 +111,7 @@ class ErrorInspector(QtWidgets.QWidget):
         lay.addStretch(0)
         self._overlay_item: MaskItem | None = None
         self._measured_for: Any = None  # the provenance the current measurement belongs to
+        self._measured_text = ""  # its paragraph, written on the worker (it counts 10⁸-pixel differences)
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(0)
@@ -180,7 +181,7 @@ class ErrorInspector(QtWidgets.QWidget):
         can_measure = not acc.error and (acc.bound is not None or bool(acc.parts))
         self.measure_button.setEnabled(can_measure)
         if keep and self.measurement is not None:
-            self.measured_label.setText(measured_text(self.measurement))
+            self.measured_label.setText(self._measured_text)
             return
         self.measured_label.setText("<b>Measured</b>: computing…" if can_measure else measured_text(acc))
         if can_measure:
@@ -207,14 +208,16 @@ class ErrorInspector(QtWidgets.QWidget):
         prov = obj.provenance
         self.measured_label.setText("<b>Measured</b>: computing…")
 
-        def done(m: Account) -> None:
+        def done(outcome: tuple[Account, str]) -> None:
+            m, text = outcome
             now = self.scene.primary()
             if now is None or now.provenance is not prov:
                 return  # another object was selected meanwhile
             self.measurement = m
             self.picture = None
             self._measured_for = prov
-            self.measured_label.setText(measured_text(m))
+            self._measured_text = text
+            self.measured_label.setText(text)
             self._show_diff()  # clears the previous picture at once
             self.measured.emit()
             self._request_picture(m)
@@ -234,7 +237,7 @@ class ErrorInspector(QtWidgets.QWidget):
 
         self.runner.submit(
             "inspect",
-            lambda progress: self.runner.call(process_jobs.measure, (prov,), progress),
+            lambda progress: _with_text(self.runner.call(process_jobs.measure, (prov,), progress)),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,
@@ -341,6 +344,14 @@ class ErrorInspector(QtWidgets.QWidget):
 
     def is_measuring(self) -> bool:
         return bool(self.runner.is_busy("inspect") or self.runner.is_busy("inspect:picture"))
+
+
+def _with_text(m: Account) -> tuple[Account, str]:
+    """A measurement with its paragraph, made on the worker.
+
+    The paragraph counts the differing pixels: 30 ms at 17 M pixels, a stall on the GUI thread.
+    """
+    return m, measured_text(m)
 
 
 @dataclass(frozen=True, eq=False)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 import pyqtgraph as pg
@@ -164,6 +165,23 @@ class PathItem(QtWidgets.QGraphicsPathItem):
 DOT_PX = 4.0
 
 
+class StrokeLevel(NamedTuple):
+    """One size class of components (:func:`stroke_levels`)."""
+
+    extent: float  # the class's components are smaller than this (plane units)
+    path: QtGui.QPainterPath  # their outlines in full
+    centres: np.ndarray  # (n, 2): where their dots go when they are drawn smaller than DOT_PX
+    coarse: tuple[tuple[float, QtGui.QPainterPath], ...]  # (tolerance, simplified outlines), coarsest last
+
+    def path_at(self, scale: float) -> QtGui.QPainterPath:
+        """The outlines to stroke at ``scale`` screen pixels per unit: the coarsest still exact on screen."""
+        best = self.path
+        for tolerance, path in self.coarse:
+            if tolerance * scale <= COARSE_PX:
+                best = path
+        return best
+
+
 def ring_groups(rings: Sequence[np.ndarray], group: Sequence[int] | np.ndarray) -> tuple[np.ndarray, ...]:
     """``(xy, connect, point_group)`` of polylines ``rings`` (each (n, 2)); ring i is in ``group[i]``.
 
@@ -179,29 +197,21 @@ def ring_groups(rings: Sequence[np.ndarray], group: Sequence[int] | np.ndarray) 
     return xy, connect, np.repeat(np.asarray(group, dtype=np.int64), lens)
 
 
-def piece_groups(segs: np.ndarray, group: np.ndarray) -> tuple[np.ndarray, ...]:
-    """``(xy, connect, point_group)`` of straight pieces (N, 4); piece i belongs to ``group[i]``."""
-    segs = np.asarray(segs, dtype=float).reshape(-1, 4)
-    xy = segs.reshape(-1, 2)
-    connect = np.zeros(len(xy), dtype=np.int32)
-    connect[0::2] = 1
-    return xy, connect, np.repeat(np.asarray(group, dtype=np.int64), 2)
-
-
 def stroke_levels(
     xy: np.ndarray,
     connect: np.ndarray,
     group: np.ndarray,
     fill_rule: QtCore.Qt.FillRule | None = None,
     extents: np.ndarray | None = None,
-) -> list[tuple[float, QtGui.QPainterPath, np.ndarray]]:
+) -> list[StrokeLevel]:
     """The strokes of components by size class, for :meth:`LodPathItem.set_levels` (any thread).
 
     ``group[i]`` is the component of point i (points of one component consecutive). Components whose
     extent (the longer side of their box) lies in [2ᵏ, 2ᵏ⁺¹) form class k: one path and the components'
     centres; ``extents[g]``, when given, is component g's extent instead (its points spread over several
-    items). Returns ``(2ᵏ⁺¹, path, centres)`` per class, smallest first. Vectorised: a worker building
-    the classes of 10⁵ components holds the GIL only for a few numpy calls.
+    items). Each class also comes simplified (:func:`coarse_paths`), for the zooms at which a plane unit is
+    less than a screen pixel. Returns one :class:`StrokeLevel` per class, smallest first. Vectorised: a
+    worker building the classes of 10⁵ components holds the GIL only for a few numpy and shapely calls.
     """
     if len(xy) == 0:
         return []
@@ -216,24 +226,69 @@ def stroke_levels(
     out = []
     for k in np.unique(cls):
         sel = point_cls == k
-        path = pg.arrayToQPath(xy[sel, 0], xy[sel, 1], connect=connect[sel])
+        cxy, cc = xy[sel], connect[sel]
+        path = pg.arrayToQPath(cxy[:, 0], cxy[:, 1], connect=cc)
+        coarse = coarse_paths(cxy, cc, float(2.0 ** (k + 1)))
         if fill_rule is not None:
             path.setFillRule(fill_rule)
-        out.append((float(2.0 ** (k + 1)), path, centres[cls == k]))
+            for _t, p in coarse:
+                p.setFillRule(fill_rule)
+        out.append(StrokeLevel(float(2.0 ** (k + 1)), path, centres[cls == k], tuple(coarse)))
     return out
 
 
-def levels_path(levels: Sequence[tuple[float, QtGui.QPainterPath, np.ndarray]]) -> QtGui.QPainterPath:
+#: A simplified outline is drawn when its error (the simplification's tolerance) is under this many screen
+#: pixels: what differs from the full outline is then hidden by the pen's own width.
+COARSE_PX = 0.5
+
+
+def coarse_paths(
+    xy: np.ndarray, connect: np.ndarray, extent: float
+) -> list[tuple[float, QtGui.QPainterPath]]:
+    """``(tolerance, path)``: polylines simplified by 1, 2, 4, … plane units (Douglas–Peucker), coarsest last.
+
+    Polylines as :func:`stroke_levels` takes them. A level is kept only if it has at most 2/3 of the elements
+    of the one before (a crack staircase loses most of its corners at a tolerance of one pixel); the
+    tolerances stop below ``extent`` / 4, where the component is drawn as a dot anyway. Shapely's calls run
+    without the GIL.
+    """
+    out: list[tuple[float, QtGui.QPainterPath]] = []
+    if len(xy) < 8:
+        return out
+    line = np.cumsum(np.r_[0, connect[:-1] == 0])  # polyline of each point
+    counts = np.bincount(line)
+    keep = counts[line] >= 2  # a lone point (no piece) draws nothing
+    if not keep.any():
+        return out
+    lines = shapely.linestrings(xy[keep], indices=line[keep])
+    lines = lines[~shapely.is_missing(lines)]
+    elements = int(keep.sum())
+    tolerance = 1.0
+    while tolerance < extent / 4:
+        simple = shapely.simplify(lines, tolerance, preserve_topology=False)
+        pts, idx = shapely.get_coordinates(simple, return_index=True)
+        if len(pts) > elements * 2 // 3:
+            tolerance *= 2
+            continue
+        cc = np.ones(len(pts), dtype=np.int32)
+        cc[np.flatnonzero(np.r_[idx[1:] != idx[:-1], True])] = 0
+        out.append((tolerance, pg.arrayToQPath(pts[:, 0], pts[:, 1], connect=cc)))
+        elements = len(pts)
+        tolerance *= 2
+    return out
+
+
+def levels_path(levels: Sequence[StrokeLevel]) -> QtGui.QPainterPath:
     """All classes' paths in one (the item's own path: its bounds, and what it draws zoomed in)."""
     path = QtGui.QPainterPath()
-    for _ext, p, _c in levels:
-        path.addPath(p)
+    for level in levels:
+        path.addPath(level.path)
     if levels:
-        path.setFillRule(levels[0][1].fillRule())
+        path.setFillRule(levels[0].path.fillRule())
     return path
 
 
-def geometry_levels(geom: shapely.Geometry) -> list[tuple[float, QtGui.QPainterPath, np.ndarray]]:
+def geometry_levels(geom: shapely.Geometry) -> list[StrokeLevel]:
     """:func:`stroke_levels` of a Polygon / MultiPolygon: one component per polygon (holes cut out)."""
     rings: list[np.ndarray] = []
     group: list[int] = []
@@ -251,18 +306,20 @@ class LodPathItem(PathItem):
     """A path of many components drawn with level of detail.
 
     A component smaller than :data:`DOT_PX` screen pixels is one dot at its centre (thousands of lone
-    pixels stroked at fit-all zoom are a black field),
-    bigger ones are stroked (and filled) in full. Classes come from :func:`stroke_levels`, built on a
-    worker; what is drawn at a zoom is cached in device pixels like any big path (:class:`PathItem`).
+    pixels stroked at fit-all zoom are a black field); bigger ones are stroked (and filled), simplified as
+    far as the screen cannot tell (:meth:`StrokeLevel.path_at`): at fit-all zoom a 10⁸-pixel object's crack
+    staircase has ten times more corners than the screen has pixels along it. Classes come from
+    :func:`stroke_levels`, built on a worker; what is drawn at a zoom is cached in device pixels like any
+    big path (:class:`PathItem`).
     """
 
     def __init__(self) -> None:
         super().__init__()
-        self.levels: list[tuple[float, QtGui.QPainterPath, np.ndarray]] = []
+        self.levels: list[StrokeLevel] = []
 
     def set_levels(
         self,
-        levels: Sequence[tuple[float, QtGui.QPainterPath, np.ndarray]],
+        levels: Sequence[StrokeLevel],
         path: QtGui.QPainterPath | None = None,
     ) -> None:
         """Show ``levels``; ``path`` is their union (:func:`levels_path`, built beside them on a worker)."""
@@ -282,8 +339,8 @@ class LodPathItem(PathItem):
         """(path elements stroked, dots) at ``scale`` screen pixels per unit: what :meth:`paint` draws."""
         if not self.levels:
             return self.path().elementCount(), 0
-        paths = sum(p.elementCount() for ext, p, _c in self.levels if ext * scale >= DOT_PX)
-        dots = sum(len(c) for ext, _p, c in self.levels if ext * scale < DOT_PX)
+        paths = sum(lv.path_at(scale).elementCount() for lv in self.levels if lv.extent * scale >= DOT_PX)
+        dots = sum(len(lv.centres) for lv in self.levels if lv.extent * scale < DOT_PX)
         return paths, dots
 
     def paint(self, painter: QtGui.QPainter, option: object, widget: object = None) -> None:
@@ -296,11 +353,11 @@ class LodPathItem(PathItem):
         painter.setPen(pen)
         painter.setBrush(self.brush())
         small = []
-        for ext, path, centres in self.levels:
-            if ext * scale >= DOT_PX:
-                painter.drawPath(path)
-            elif len(centres):
-                small.append(centres)
+        for level in self.levels:
+            if level.extent * scale >= DOT_PX:
+                painter.drawPath(level.path_at(scale))
+            elif len(level.centres):
+                small.append(level.centres)
         if not small or pen.style() == QtCore.Qt.PenStyle.NoPen:
             return
         c = np.concatenate(small)

@@ -272,8 +272,8 @@ class ObjectList(QtWidgets.QWidget):
         hdr.setSectionResizeMode(COL_VISIBLE, QtWidgets.QHeaderView.ResizeMode.Fixed)
         hdr.setSectionResizeMode(COL_COLOUR, QtWidgets.QHeaderView.ResizeMode.Fixed)
         hdr.setSectionResizeMode(COL_NAME, QtWidgets.QHeaderView.ResizeMode.Stretch)
-        # The Source column takes what its text needs, up to 45 % of the list: the names come first in a
-        # narrow panel (the whole text is in the tooltip).
+        # The Source column takes what its text needs, up to 45 % of the list and never room a name needs:
+        # the names come first in a narrow panel (the whole source text is in the tooltip).
         hdr.setSectionResizeMode(COL_SOURCE, QtWidgets.QHeaderView.ResizeMode.Interactive)
         hdr.resizeSection(COL_VISIBLE, 28)
         hdr.resizeSection(COL_COLOUR, 26)
@@ -302,9 +302,14 @@ class ObjectList(QtWidgets.QWidget):
         self._syncing = False
 
     def _fit_source_column(self) -> None:
-        need = self.view.sizeHintForColumn(COL_SOURCE) if self.model.rowCount() else 60
-        cap = int(self.view.viewport().width() * 0.45)
-        self.view.header().resizeSection(COL_SOURCE, max(50, min(need, cap)))
+        rows = self.model.rowCount()
+        need = self.view.sizeHintForColumn(COL_SOURCE) if rows else 60
+        hdr = self.view.header()
+        width = self.view.viewport().width()
+        # The names first: the Source column gets what the longest name leaves, at most 45 % of the list.
+        names = self.view.sizeHintForColumn(COL_NAME) if rows else 0
+        room = width - hdr.sectionSize(COL_VISIBLE) - hdr.sectionSize(COL_COLOUR) - names
+        hdr.resizeSection(COL_SOURCE, max(50, min(need, int(width * 0.45), room)))
 
     def resizeEvent(self, ev: QtGui.QResizeEvent) -> None:
         super().resizeEvent(ev)

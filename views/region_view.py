@@ -14,8 +14,8 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, lod_image, qcolor
-from mrm.views.items import LodPathItem, MarkersItem, levels_path, ring_groups, stroke_levels
+from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
+from mrm.views.items import LodPathItem, MarkersItem, StrokeLevel, levels_path, ring_groups, stroke_levels
 
 #: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
 COMPONENT_COLOURS = (
@@ -65,8 +65,13 @@ def junctions(chains: list[Any]) -> np.ndarray:
     return np.stack([rep // span + lo[0], rep % span + lo[1]], axis=1).astype(float) - 0.5
 
 
-def region_drawing(region: Any) -> tuple[Any, Any, Any, Any, Any]:
-    """What the region view draws of a region (any thread): labels, hole mask, boundary paths, junctions."""
+def region_drawing(
+    region: Any, component_lut: np.ndarray, hole_lut: np.ndarray
+) -> tuple[Any, Any, Any, Any, Any]:
+    """What the region view draws of a region (any thread): labels, hole mask, boundary paths, junctions.
+
+    The label and hole images come with their pictures through the given tables (:func:`pictured`).
+    """
     data = region.labels.labels
     # Labels beyond 255 cycle through the palette: colour, not identity, is what is shown.
     img = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8) if data.size else data
@@ -77,12 +82,28 @@ def region_drawing(region: Any) -> tuple[Any, Any, Any, Any, Any]:
     outer_levels = stroke_levels(*ring_groups(outer, np.arange(len(outer))))
     inner_levels = stroke_levels(*ring_groups(inner, np.arange(len(inner))))
     return (
-        lod_image(img),
-        lod_image(holes),
+        pictured(lod_image(img), component_lut),
+        pictured(lod_image(holes), hole_lut),
         (outer_levels, levels_path(outer_levels)),
         (inner_levels, levels_path(inner_levels)),
         junctions(list(region.boundary_chains)),
     )
+
+
+def boundary_levels(region: Any) -> tuple[list[StrokeLevel], QtGui.QPainterPath]:
+    """Every crack boundary of a region by component size class (any thread): the selected object's outline.
+
+    A component's outer boundary and its holes' are one group (:func:`stroke_levels`), so a speck is a dot
+    at fit-all zoom and a big component's outline is simplified as far as the screen cannot tell.
+    """
+    rings: list[np.ndarray] = []
+    group: list[int] = []
+    for k, c in enumerate(region.components):
+        rings.append(chain_xy(c.outer))
+        rings.extend(chain_xy(h.boundary) for h in c.holes)
+        group.extend([k] * (1 + len(c.holes)))
+    levels = stroke_levels(*ring_groups(rings, group))
+    return levels, levels_path(levels)
 
 
 def colour_distance(a: str, b: str) -> float:
@@ -151,14 +172,15 @@ class RegionView(RepresentationView):
             # big object) on the GUI thread.
             ps = self.get(obj.id, "discrete")
             size = ps.mask.size if ps is not None else 0
-            data = self.prepared(obj.id, "region", region, size, lambda: region_drawing(region))
+            lut = self.component_lut(obj.style.fill, alpha)
+            hl = np.array([[0, 0, 0, 0], [150, 150, 150, 90] if not dark else [200, 200, 200, 70]])
+            data = self.prepared(obj.id, "region", region, size, lambda: region_drawing(region, lut, hl))
             if data is None:
                 return False  # prepared on a worker: the view says "computing…" meanwhile
             img, holes, outer, inner, junction_points = data
             lab = region.labels
-            layer.components.set_pixels(img[0], lab.origin, None, img[1])
-            hl = np.array([[0, 0, 0, 0], [150, 150, 150, 90] if not dark else [200, 200, 200, 70]])
-            layer.holes.set_pixels(holes[0], lab.origin, hl, holes[1])
+            layer.components.set_pixels(img[0], lab.origin, lut, img[1], picture=img[2])
+            layer.holes.set_pixels(holes[0], lab.origin, hl, holes[1], picture=holes[2])
             layer.outer.set_levels(*outer)
             layer.inner.set_levels(*inner)
             layer.junctions.set_points(junction_points)

@@ -43,3 +43,24 @@ def refusing(progress: Any) -> None:
 def echo(value: Any, progress: Any) -> Any:
     """Return ``value`` (a round trip through the pipe both ways)."""
     return value
+
+
+def dying_mid_transfer(progress: Any) -> None:
+    """Begin to send a big result (its array spilled to a file in memory), then end abruptly."""
+    import numpy as np
+
+    from mrm.app import processes
+
+    processes._spill(memoryview(np.zeros(2 * processes.SPILL_BYTES, np.uint8)))
+    os._exit(3)
+
+
+def spilling_then_deaf(seconds: float, progress: Any) -> str:
+    """Begin to send a big result, then hang without looking at the progress (killed after a Cancel)."""
+    import numpy as np
+
+    from mrm.app import processes
+
+    processes._spill(memoryview(np.zeros(2 * processes.SPILL_BYTES, np.uint8)))
+    time.sleep(seconds)
+    return "finished"

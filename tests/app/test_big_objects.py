@@ -76,3 +76,66 @@ def test_a_big_project_is_saved_and_opened_on_a_worker(make_window, qtbot, tmp_p
     assert win2.files.open(path, ask=False)
     qtbot.waitUntil(lambda: len(win2.doc) == 1, timeout=120_000)
     assert win2.doc.objects[0].source == ps
+
+
+def _mask_items(win, obj_id):  # type: ignore[no-untyped-def]
+    """Every pixel image drawing the object, by name."""
+    d, r, a = (
+        win.views.discrete.layer(obj_id),
+        win.views.region.layer(obj_id),
+        win.views.analytical.layer(obj_id),
+    )
+    return {
+        "pixels": d.mask,
+        "components": r.components,
+        "holes": r.holes,
+        "body": a.body,
+        "border": a.border,
+    }
+
+
+def test_big_images_are_made_ready_to_draw_on_workers_and_look_the_same(make_window, qtbot):
+    """After a big object arrives, the paint only draws its images: each was converted on a worker.
+
+    The issue: the first paint after DSS 4.5 converted about six 4 M-pixel images on the GUI thread, 6–12 ms
+    each, on top of the first strokes. Here every image of a 3 M-pixel object comes with its picture, the view
+    draws exactly what it would have converted itself, and selecting the object changes its opacity only.
+    """
+    from tests.app.helpers import grab
+
+    win = make_window(threaded=True)
+    yy, xx = np.mgrid[0:1500, 0:2000]
+    m = ((xx - 1000) ** 2 / 900**2 + (yy - 750) ** 2 / 600**2 < 1) & (
+        (xx - 700) ** 2 + (yy - 700) ** 2 > 150**2
+    )
+    ps = PixelSet(m, (0, 0))
+    obj = win.doc.make_object(ps, name="big")
+    win.doc.push(AddObject(obj, select=False))
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    win.registry["view.fit"].trigger()
+    items = _mask_items(win, obj.id)
+    for name, item in items.items():
+        assert item.picture is not None, name
+    before = {v.name: grab(v) for v in win.views.views[:3]}
+    for name, item in items.items():
+        assert item.qimage is item.picture.qimage, (name, item.qimage)  # drawn as made on the worker
+    # Selecting the object makes it more opaque: the same pictures, drawn at another opacity.
+    opacity = {name: item.opacity() for name, item in items.items()}
+    pictures = {name: item.picture for name, item in items.items()}
+    win.doc.set_selection([obj.id])
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    for v in win.views.views[:3]:
+        grab(v)
+    for name, item in items.items():
+        assert item.picture is pictures[name] and item.qimage is item.picture.qimage, name
+    assert items["pixels"].opacity() > opacity["pixels"] and items["body"].opacity() > opacity["body"]
+    # What the GUI thread would have drawn without the pictures is the same, pixel for pixel.
+    win.doc.set_selection([])
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    for item in items.values():
+        item.picture = None
+        item.qimage = None
+        item._renderRequired = True
+    after = {v.name: grab(v) for v in win.views.views[:3]}
+    for name, img in before.items():
+        assert img == after[name], name

@@ -223,3 +223,36 @@ def test_the_source_column_reads_as_words(make_window, qtbot):
     assert "pixels" in texts  # the drawn object
     rot = [t for t in texts if "rotation" in t]
     assert rot == ["pixels · rotation 30°"] and not any("_" in t for t in texts), texts
+
+
+def test_object_names_are_shown_whole_at_1600_pixels(make_window, qtbot):
+    """The issue: object names were cut even at 1600 px. Results of operations keep readable names whole."""
+    win = make_window(size=(1600, 1000))
+    a = _with_object(win, name="horse")
+    panel = win.operations
+    panel.select_operation("dss")
+    type_into(qtbot, panel.control("alpha").field, "4.5")
+    for _ in range(2):
+        n = len(win.doc)
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+        qtbot.waitUntil(lambda n=n: len(win.doc) == n + 1, timeout=30_000)
+        win.doc.set_selection([win.doc.objects[-1].id])
+    panel.select_operation("discrete_rotation")
+    n = len(win.doc)
+    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) == n + 1, timeout=30_000)
+    qtbot.wait(50)  # the list's columns settle
+    view = win.object_list.view
+    model = view.model()
+    from mrm.views.object_list import COL_NAME
+
+    names = []
+    for row in range(model.rowCount()):
+        index = model.index(row, COL_NAME)
+        text = index.data()
+        names.append(text)
+        room = view.visualRect(index).width() - 2 * view.style().pixelMetric(
+            QtWidgets.QStyle.PixelMetric.PM_FocusFrameHMargin
+        )
+        assert room >= view.fontMetrics().horizontalAdvance(text), (text, room)
+    assert sorted(names) == sorted(o.name for o in win.doc.objects) and a.name in names and len(names) == 4

@@ -271,10 +271,12 @@ def test_a_big_outline_is_drawn_through_a_cache_and_follows_a_pan(make_window, q
 
     win = make_window(size=(1400, 900))
     m = np.zeros((600, 600), bool)
-    m[::2, ::2] = True  # a chequer of lone pixels: an outline of 4 × 90,000 sides
+    for y in range(0, 96, 6):
+        for x in range(0, 600, 6):
+            m[y : y + 4, x : x + 4] = True  # 1,600 blocks of 4 × 4: an outline of 25,600 sides, cheap for R
     m[100:500, 100:500] = True
     ps = PixelSet(m, (0, 0))
-    obj = win.doc.make_object(ps, name="chequer")
+    obj = win.doc.make_object(ps, name="blocks")
     win.doc.push(AddObject(obj, select=True))
     wait_drawn(qtbot, win, timeout=120_000)
     view = win.views.discrete

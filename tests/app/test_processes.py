@@ -103,3 +103,56 @@ def test_the_window_applies_an_operation_in_a_worker_process(make_window, qtbot)
     win.fit_all()
     qtbot.waitUntil(win.is_drawn, timeout=60_000)
     assert not is_background(win.views.discrete, colour_at(win.views.discrete, 60, 60))
+
+
+def _spills() -> set[str]:
+    folder = processes._spill_dir()
+    return {f for f in os.listdir(folder) if f.startswith(processes.SPILL_PREFIX)}
+
+
+def test_a_child_dying_or_killed_mid_transfer_leaves_no_spill_file(pool):  # type: ignore[no-untyped-def]
+    """The issue: a child killed while an array was on its way left a file of its size in /dev/shm."""
+    before = _spills()
+    with pytest.raises(RuntimeError, match="ended unexpectedly"):
+        pool.run(jobs.dying_mid_transfer, (), TaskProgress())
+    assert _spills() <= before
+    progress = TaskProgress()
+    threading.Timer(0.8, progress.cancel).start()
+    with pytest.raises(Cancelled):
+        pool.run(jobs.spilling_then_deaf, (60.0,), progress)
+    assert _spills() <= before
+    # Arguments sent to a child that died before reading them are removed too.
+    child = pool._take()
+    child.proc.kill()
+    child.proc.wait(5)
+    pool._give_back(child)  # an idle child that died meanwhile
+    big = np.ones(2 * processes.SPILL_BYTES, np.uint8)
+    for _ in range(2):  # the dead child may be taken again before a fresh one starts
+        try:
+            assert pool.run(jobs.echo, (big,), TaskProgress()).sum() == big.sum()
+            break
+        except (RuntimeError, OSError):
+            pass
+    assert _spills() <= before
+
+
+def test_spill_files_of_ended_processes_are_removed_at_start(tmp_path):  # type: ignore[no-untyped-def]
+    import subprocess
+    import sys
+
+    gone = subprocess.Popen([sys.executable, "-c", "pass"])
+    gone.wait()
+    folder = processes._spill_dir()
+    stale = os.path.join(folder, f"{processes.SPILL_PREFIX}{gone.pid}-test")
+    live = os.path.join(folder, f"{processes.SPILL_PREFIX}{os.getpid()}-test")
+    for path in (stale, live):
+        with open(path, "wb") as fh:
+            fh.write(b"x" * 100)
+    try:
+        processes.close_pool()
+        processes.pool()  # the window's first job creates the pool
+        assert not os.path.exists(stale)
+        assert os.path.exists(live)  # a running process's file (this one's) is left alone
+    finally:
+        processes.close_pool()
+        processes.remove_spills([stale, live])

@@ -163,3 +163,67 @@ def test_tiny_components_are_dots_at_fit_all_and_outlines_zoomed_in(make_window,
         assert shown[nearest * s >= handles.size].all(), s
     assert handles.drawn(scale).sum() <= len(xy) - 4 * n_lone  # no lone pixel's handle at fit-all
     assert handles.drawn(16.0).sum() > len(xy) - 4 * n_lone  # zoomed in, the lone pixels' handles too
+
+
+def _polylines(path):  # type: ignore[no-untyped-def]
+    """The polylines of a QPainterPath, as shapely LineStrings."""
+    import shapely
+
+    lines, cur = [], []
+    for k in range(path.elementCount()):
+        e = path.elementAt(k)
+        if e.isMoveTo() and len(cur) > 1:
+            lines.append(shapely.LineString(cur))
+        if e.isMoveTo():
+            cur = []
+        cur.append((e.x, e.y))
+    if len(cur) > 1:
+        lines.append(shapely.LineString(cur))
+    return shapely.MultiLineString(lines)
+
+
+def test_the_discrete_outline_has_the_same_level_of_detail_and_stays_exact_on_screen(make_window, qtbot):
+    """The selected object's outline in the discrete view has the level of detail of the other views.
+
+    Specks are dots at fit-all zoom, and the big outline is stroked with fewer corners, never more than half
+    a screen pixel off the crack boundary; zoomed in, in full. The same holds in every view that strokes
+    outlines.
+    """
+    from mrm.views.items import COARSE_PX
+
+    win = make_window()
+    yy, xx = np.mgrid[0:1500, 0:1500]
+    r2 = (xx - 750) ** 2 + (yy - 750) ** 2
+    mask = (r2 < 700**2) & (r2 > 400**2)
+    lone = np.random.default_rng(5).integers(0, 750, size=(150, 2)) * 2
+    far = r2[lone[:, 1], lone[:, 0]] > 705**2
+    mask[lone[far, 1], lone[far, 0]] = True
+    n_lone = int(far.sum())
+    obj = win.doc.make_object(PixelSet(mask, (0, 0)), name="ring")
+    win.doc.push(AddObject(obj, select=True))
+    zoom_to(win, 0, 0, 1500, 1500)
+    wait_drawn(qtbot, win, timeout=60_000)
+    scale = win.views.camera.scale
+    assert scale < 0.5
+    outline = win.views.discrete.layer(obj.id).outline
+    assert outline.isVisible() and outline.levels
+    paths, dots = outline.drawn(scale)
+    assert dots == n_lone
+    full = outline.path().elementCount()
+    assert 0 < paths < full / 4  # the ring's staircases, simplified
+    # Zoomed in, every crack is stroked.
+    assert outline.drawn(8.0) == (full, 0)
+    # What is stroked at fit-all lies within half a screen pixel of the crack boundary, and covers it.
+    cracks = win.views.analytical.layer(obj.id).cracks
+    for item in (
+        outline,
+        win.views.region.layer(obj.id).outer,
+        win.views.euclidean.layer(obj.id).polygon,
+        *cracks,
+    ):
+        big = [lv for lv in item.levels if lv.extent * scale >= 4.0]
+        assert big or item is cracks[2]  # the third colour only ends odd chains: the ring's may be specks
+        for level in big:
+            exact, shown = _polylines(level.path), _polylines(level.path_at(scale))
+            assert shown.hausdorff_distance(exact) <= COARSE_PX / scale + 1e-9
+            assert level.path_at(scale).elementCount() < level.path.elementCount()
