@@ -34,6 +34,7 @@ KERNEL_MODULES = (
     "geometry/reconstruct/_base.py",
     "geometry/reconstruct/_corridor.py",
     "geometry/reconstruct/_reach.py",
+    "geometry/reconstruct/_sliding.py",
     "geometry/reconstruct/_greedy.py",
     "geometry/reconstruct/_check.py",
     "geometry/reconstruct/_repair.py",

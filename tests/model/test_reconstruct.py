@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
@@ -558,6 +560,69 @@ def test_exact_preimage_reach_against_a_fraction_linear_program() -> None:
                         assert not _stabbable([*window, (tuple(gp[a + g]), tuple(gq[a + g]))])
                     checked += 1
     assert checked > 25
+
+
+@st.composite
+def _thin_sets(draw: st.DrawFn) -> PixelSet:
+    """Sets with long one-pixel-wide lines (every pixel visited twice: long windows of split pieces)."""
+    h, w = draw(st.integers(3, 14)), draw(st.integers(3, 70))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    m = np.zeros((h, w), bool)
+    for _ in range(draw(st.integers(1, 4))):
+        if rng.random() < 0.5:
+            r = int(rng.integers(h))
+            m[r, int(rng.integers(w)) :] = True
+        else:
+            c = int(rng.integers(w))
+            m[int(rng.integers(h)) :, c] = True
+    m |= rng.random((h, w)) < draw(st.sampled_from([0.0, 0.05, 0.3, 0.6]))
+    return PixelSet(m)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    ps=st.one_of(
+        _thin_sets(),
+        st.builds(lambda s: PixelSet(np.random.default_rng(s).random((12, 12)) < 0.6), st.integers(0, 2**16)),
+        st.builds(lambda s: PixelSet(np.random.default_rng(s).random((4, 4)) < 0.5), st.integers(0, 2**16)),
+    ),
+    gauss=st.booleans(),
+    seed=st.integers(0, 2**16),
+)
+def test_the_sliding_pass_gives_the_reaches_and_lines_of_the_per_window_preimages(
+    ps: PixelSet, gauss: bool, seed: int
+) -> None:
+    # sliding_reach (one pass, two stacks of suffix preimages) against general_reach (each window built
+    # from scratch), on every start or a random subset: the same reaches and the very same lines.
+    from mrm.geometry.reconstruct import _kernels as k
+    from mrm.geometry.reconstruct._sliding import sliding_reach
+
+    rng = np.random.default_rng(seed)
+    cor = _corridor_arrays(ps, gauss)
+    poff, gp, gq, gdir, special = cor[10], cor[13], cor[14], cor[15], cor[17]
+    for r in range(poff.size - 1):
+        a, b = int(poff[r]), int(poff[r + 1])
+        n = b - a
+        if special[r] == 1 or n < 2:
+            continue
+        todo = np.ones(n, bool) if rng.random() < 0.5 else rng.random(n) < 0.4
+        want_reach, want_lines = np.zeros(n, np.int64), np.zeros((n, 4))
+        k.general_reach(gp[a:b], gq[a:b], gdir[a:b], todo, want_reach, want_lines)
+        got_reach, got_lines = np.zeros(n, np.int64), np.zeros((n, 4))
+        assert sliding_reach(gp[a:b], gq[a:b], gdir[a:b], todo, got_reach, got_lines)
+        assert np.array_equal(got_reach[todo], want_reach[todo])
+        assert np.array_equal(got_lines[todo], want_lines[todo])
+
+
+def test_a_long_one_pixel_line_is_exact_and_compact_under_every_model() -> None:
+    # 3,000 pixels in a row: every window runs the length of the line (quadratic one window at a time).
+    m = np.zeros((3, 3000), bool)
+    m[1] = True
+    ps = PixelSet(m, (-1500, 7))
+    for model in MODELS:
+        geom = reconstruct(ps, model)
+        assert discretize(geom, model) == ps
+        assert len(geom.exterior.coords) - 1 <= 6
 
 
 @pytest.mark.parametrize("gauss", [False, True])

@@ -7,8 +7,12 @@ import numpy as np
 from mrm.geometry._jit import njit
 from mrm.geometry.reconstruct._base import _BIG, _EPS, SRC_LINES, SRC_PATCH
 from mrm.geometry.reconstruct._reach import dss_reach, general_reach
+from mrm.geometry.reconstruct._sliding import sliding_reach
 
 # ============================================================================================ V4 greedy
+
+#: Windows (gates) per start above which a ring's preimages are computed in one sliding pass.
+_SLIDE_RATIO = 16
 
 
 @njit(cache=True)
@@ -32,7 +36,9 @@ def ring_reach(
     Windows of full squares (pixels under the cover models, dual squares of pointels under gauss) use the
     O(n) standard DSS reach (stabbing full gates in order is exactly being a standard DSS); windows that
     meet a split square use the exact dual-polygon preimage (sub-gates only restrict, so the DSS window
-    bounds it).
+    bounds it): one window at a time (:func:`general_reach`, the sum of the windows' lengths), or, where
+    the windows are long (one-pixel-wide lines, where that sum is quadratic), all in one sliding pass
+    (:func:`sliding_reach`, linear, dearer per window). Both give the same reaches and lines.
     """
     n = gdir.size
     if full:
@@ -48,6 +54,8 @@ def ring_reach(
     for k in range(2 * ne):
         kk = k % ne
         pre[k + 1] = pre[k] + (1 if cnt[e0 + kk] >= 2 else 0)
+    work = 0  # what general_reach would cost (window lengths) …
+    scan = 0  # … and the starts sliding_reach would pass
     for i in range(n):
         k = pel[i]
         if pre[k + rd[k] + 1] - pre[k] == 0:
@@ -55,6 +63,12 @@ def ring_reach(
             reach[i] = rd[k]
             for u in range(4):
                 lines[i, u] = ld[k, u]
+        else:
+            work += rd[k]
+            scan = i + 1
+    # measured break-even: windows of about 12 gates on average (camera's largest ring)
+    if work > _SLIDE_RATIO * scan and sliding_reach(gp, gq, gdir, todo, reach, lines):
+        return
     general_reach(gp, gq, gdir, todo, reach, lines)
 
 

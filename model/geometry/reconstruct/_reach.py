@@ -156,10 +156,12 @@ def _best_line(
     line: np.ndarray,
     ida: np.ndarray,
     cand: np.ndarray,
+    first: int = 0,
 ) -> float:  # pragma: no cover
     # Max-margin line over the point constraints on the dual polygon's boundary: lines
     # f(X) = n(t).X + c, n = (-sgy t, sgx (1-t)), P: f >= m, Q: f <= -m; margin m is L1-normalised.
-    # g_X(t) = n(t).X = a_X + t b_X. m(t) = (min_P g - max_Q g) / 2. Returns the margin (Q-units).
+    # g_X(t) = n(t).X = a_X + t b_X. m(t) = (min_P g - max_Q g) / 2. Returns the margin (Q-units). The
+    # line's point is the one nearest the middle of the window's first gate (ids first, first + 1).
     na = 0
     for q in range(size):
         if buf[q0, w0, q] >= 0:
@@ -211,8 +213,8 @@ def _best_line(
     ny = dx
     nn = nx * nx + ny * ny
     # a point of the line n.X + c = 0 near the first gate
-    fx = 0.5 * (ptx[0] + ptx[1])
-    fy = 0.5 * (pty[0] + pty[1])
+    fx = 0.5 * (ptx[first] + ptx[first + 1])
+    fy = 0.5 * (pty[first] + pty[first + 1])
     f = nx * fx + ny * fy + bc
     line[0] = fx - f * nx / nn
     line[1] = fy - f * ny / nn
