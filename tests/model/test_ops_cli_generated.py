@@ -1,4 +1,4 @@
-"""The one-object operation subcommands are generated from the registry: options, help, ranges, messages."""
+"""The operation subcommands are generated from the registry: options, help, ranges, messages."""
 
 from __future__ import annotations
 
@@ -11,7 +11,14 @@ from mrm.reps.pixels import PixelSet
 
 
 @pytest.mark.parametrize(
-    ("command", "operation"), [("scale", "dss"), ("rotate", "discrete_rotation"), ("simplify", "simplify")]
+    ("command", "operation"),
+    [
+        ("scale", "dss"),
+        ("rotate", "discrete_rotation"),
+        ("simplify", "simplify"),
+        ("union", "union"),
+        ("corefine", "corefine"),
+    ],
 )
 def test_every_parameter_of_the_spec_is_an_option_with_its_range(command, operation, capsys):
     with pytest.raises(SystemExit):
@@ -32,3 +39,12 @@ def test_an_out_of_range_value_is_refused_with_the_declared_range(tmp_path, caps
     err = capsys.readouterr().err
     assert "'angle' (θ) must be ≤ 3600, got 7200 (allowed: -3600 ≤ θ ≤ 3600)" in err
     assert not (tmp_path / "o.png").exists()
+
+
+def test_corefine_refuses_an_alpha_out_of_range_before_reading_its_inputs(tmp_path, capsys):
+    # The inputs do not exist: the declared range is checked first, with the range in the message.
+    missing = str(tmp_path / "none.png")
+    assert run_cli(["corefine", missing, missing, "--alpha", "2e6", "-o", str(tmp_path / "o.geojson")]) == 2
+    err = capsys.readouterr().err
+    assert "'alpha' (α) must be ≤ 1e+06, got 2e+06 (allowed: 1e-06 ≤ α ≤ 1e+06)" in err
+    assert not list(tmp_path.iterdir())
