@@ -178,7 +178,24 @@ def _params_dict(params: Any) -> dict[str, Any]:
 
 
 def step_params(operation: str, params: Any) -> tuple[dict[str, Any], Any]:
-    """Validate a step's parameters: (JSON parameters, the bounds module's ChainStep)."""
+    """Validate a step's parameters: (JSON parameters, the bounds module's ChainStep).
+
+    The numbers are read exactly, then checked against the ranges the operation's registry spec declares
+    (:func:`mrm.ops.base.coerce_params`): a chain refuses what the panel and the command line refuse, with
+    the same message.
+    """
+    pj, step = _read_step_params(operation, params)
+    import dataclasses
+
+    from mrm.ops.base import coerce_params, get_operation
+
+    spec = get_operation(operation)
+    fields = {f.name for f in dataclasses.fields(spec.params)}
+    coerce_params(spec, {k: v for k, v in pj.items() if k in fields and v is not None})
+    return pj, step
+
+
+def _read_step_params(operation: str, params: Any) -> tuple[dict[str, Any], Any]:
     from mrm.geometry.hausdorff import bounds
 
     p = _params_dict(params)
