@@ -8,6 +8,7 @@ discretization (or its exact Euclidean result): :class:`StepOutcome` carries the
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -269,6 +270,23 @@ def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | N
     for i in range(1, k):
         pooled |= blocks[..., i]
     return PixelSet(pooled, (qx0, qy0))
+
+
+def factor_params(name: str, doc: str, factor: str, declared: Any, centre: str, module: str) -> type:
+    """The parameters dataclass of a one-factor similarity operation: ``factor``, ``center``, ``model``.
+
+    DSS_α, dR_θ,C and Sp_α take their number (declared with :func:`alpha_param` or :func:`angle_param`), an
+    optional centre (help text ``centre``) and the model, in that order; the class is frozen, named ``name``
+    in ``module`` (so that it pickles to a worker process), and read by :func:`mrm.ops.base.param_specs`.
+    """
+    fields = [
+        (factor, float, declared),
+        ("center", tuple[float, float] | None, center_param(centre)),
+        ("model", str, model_param()),
+    ]
+    cls = dataclasses.make_dataclass(name, fields, frozen=True, namespace={"__doc__": doc})
+    cls.__module__ = module
+    return cls
 
 
 def factor_map(

@@ -18,25 +18,24 @@ corners, and since R keeps its boundary away from every tie (DESIGN §3.6), dR_9
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.geometry.discretize.rational import ProgressLike
 from mrm.geometry.hausdorff import bounds
-from mrm.ops.outcome import StepOutcome, angle_param, center_param, model_param, register_discrete_similarity
+from mrm.ops.outcome import StepOutcome, angle_param, factor_params, register_discrete_similarity
 from mrm.reps.pixels import PixelSet
 
-
-@dataclass(frozen=True)
-class RotationParams:
-    """Parameters of dR_θ,C."""
-
-    angle: float = angle_param(
+#: θ in degrees (read exactly), the centre C, the model.
+RotationParams = factor_params(
+    "RotationParams",
+    "Parameters of dR_θ,C.",
+    "angle",
+    angle_param(
         30.0, "Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact."
-    )
-    center: tuple[float, float] | None = center_param("Centre C of the rotation (default: origin).")
-    model: str = model_param()
+    ),
+    "Centre C of the rotation (default: origin).",
+    __name__,
+)
 
 
 NAME = "discrete_rotation"

@@ -12,25 +12,24 @@ object is refused at once, with the number of pixels it would have had.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from mrm.errors import DEFAULT_PIXEL_LIMIT
 from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.geometry.discretize.rational import ProgressLike
 from mrm.geometry.hausdorff import bounds
-from mrm.ops.outcome import StepOutcome, alpha_param, center_param, model_param, register_discrete_similarity
+from mrm.ops.outcome import StepOutcome, alpha_param, factor_params, register_discrete_similarity
 from mrm.reps.pixels import PixelSet
 
-
-@dataclass(frozen=True)
-class DSSParams:
-    """Parameters of DSS_α."""
-
-    alpha: float = alpha_param(
+#: α (read exactly), the centre, the model.
+DSSParams = factor_params(
+    "DSSParams",
+    "Parameters of DSS_α.",
+    "alpha",
+    alpha_param(
         2.0, "Scale factor α, read exactly (0.2 is 1/5); the result's size is checked before running."
-    )
-    center: tuple[float, float] | None = center_param("Centre of the scaling (default: origin).")
-    model: str = model_param()
+    ),
+    "Centre of the scaling (default: origin).",
+    __name__,
+)
 
 
 NAME = "dss"

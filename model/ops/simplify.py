@@ -16,7 +16,6 @@ factors.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
@@ -33,13 +32,12 @@ from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.outcome import (
     StepOutcome,
     alpha_param,
-    center_param,
     check_limit,
     check_model,
     check_size,
     estimate_source,
     factor_map,
-    model_param,
+    factor_params,
     sub_progress,
 )
 from mrm.reps.pixels import PixelSet
@@ -144,29 +142,29 @@ def _rounding_may_matter(result: Any, alpha: Any) -> bool:
 
 
 # ---------------------------------------------------------------------------------------------- the spec
-@dataclass(frozen=True)
-class SimplifyParams:
-    """Parameters of Sp_α."""
-
-    alpha: float = alpha_param(
-        0.5, "The grid spacing is 1/α; details below it are simplified away (error ≤ √2/α)."
-    )
-    center: tuple[float, float] | None = center_param("Centre of the scalings (default: origin).")
-    model: str = model_param()
+#: α (read exactly), the centre of both scalings, the model.
+SimplifyParams = factor_params(
+    "SimplifyParams",
+    "Parameters of Sp_α.",
+    "alpha",
+    alpha_param(0.5, "The grid spacing is 1/α; details below it are simplified away (error ≤ √2/α)."),
+    "Centre of the scalings (default: origin).",
+    __name__,
+)
 
 
 #: Sc_α about the centre, read as every path reads it (:func:`mrm.ops.outcome.factor_map`).
 _scaling = factor_map("alpha", Similarity.scaling)
 
 
-def estimate(inputs: Sequence[Any], params: SimplifyParams) -> int:
+def estimate(inputs: Sequence[Any], params: Any) -> int:
     """The size of the discretization D(Sc_α(E)) from the input's bounding box alone."""
     return estimate_source(inputs[0], _scaling(params), params.model)
 
 
 def step(
     source: Any,
-    params: SimplifyParams,
+    params: Any,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
@@ -176,9 +174,7 @@ def step(
     return simplification(source, params.alpha, params.center, params.model, limit=limit, progress=progress)
 
 
-def run(
-    inputs: Sequence[Any], params: SimplifyParams, progress: ProgressLike | None = None
-) -> OperationResult:
+def run(inputs: Sequence[Any], params: Any, progress: ProgressLike | None = None) -> OperationResult:
     """Run Sp_α on one object (a pixel set A is read as its Euclidean representation R(A))."""
     out = step(inputs[0], params, progress=progress)
     return OperationResult(outputs=[(f"Sp {number_to_json(_scaling(params).ratio)}", out.result)])
