@@ -363,6 +363,8 @@ def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int
         why = EXACT_OPERATIONS[prov.operation]
         return Account(prov.operation, chain=(_link(prov),), no_bound=f"no error to bound: {why}")
     spec, params, part = _spec_params(prov)
+    if len(prov.inputs) != spec.arity:  # a hand-edited record: say so rather than fail on the missing input
+        raise ParameterError(f"{spec.name} takes {spec.arity} input(s), the record names {len(prov.inputs)}")
     if not prov.pinned:
         return Account(
             spec.name,

@@ -48,3 +48,16 @@ def test_corefine_refuses_an_alpha_out_of_range_before_reading_its_inputs(tmp_pa
     err = capsys.readouterr().err
     assert "'alpha' (α) must be ≤ 1e+06, got 2e+06 (allowed: 1e-06 ≤ α ≤ 1e+06)" in err
     assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("command", ["union", "corefine"])
+def test_a_two_object_result_beyond_the_limit_is_refused_in_one_line(command, tmp_path, capsys):
+    # Vector inputs are read without discretizing them: the limit is met by the operation's account.
+    (tmp_path / "p.wkt").write_text("POLYGON ((0 0, 100 0, 100 100, 0 100, 0 0))")
+    (tmp_path / "q.wkt").write_text("POLYGON ((50 50, 150 50, 150 150, 50 150, 50 50))")
+    out = tmp_path / "o.geojson"
+    argv = [command, str(tmp_path / "p.wkt"), str(tmp_path / "q.wkt"), "-o", str(out), "--limit", "1000"]
+    assert run_cli(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"mrm {command}: error: ") and "more than the limit of 1,000" in err
+    assert err.count("\n") == 1 and not out.exists()
