@@ -11,7 +11,7 @@ The operations are the paper's (DESIGN §5–§8); each wrapper calls the one im
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -191,18 +191,15 @@ def segment(
     raise ParameterError(f"mode must be 'greedy' or 'maximal', got {mode!r}")
 
 
-def _image_of_pixels(
-    operation: Callable[..., Any], obj: Any, param: object, center: object, model: str, limit: int | None
-) -> PixelSet:
-    """The pixels of a similarity operation of :mod:`mrm.ops` (DSS_α, dR_θ) on obj read as pixels.
+def _result_of(name: str, obj: Any, limit: int | None, *params: object) -> Any:
+    """The result of the registry's one-object operation ``name`` (DSS_α, dR_θ,C, Sp_α) on ``obj``.
 
-    A geometry E stands for D(E); ``operation(pixels, param, center, model, limit=…)`` returns an outcome.
+    An array is an image; ``params`` are the operation's parameters in the order its spec declares them.
     """
-    from mrm.ops.outcome import discrete_of
+    from mrm.ops.base import get_operation
 
-    ps = discrete_of(_as_object(obj), model, limit)
-    out: PixelSet = operation(ps, param, center, model, limit=limit).result
-    return out
+    spec = get_operation(name)
+    return spec.outcome(_as_object(obj), spec.params(*params), limit=limit).result
 
 
 def scale(
@@ -239,9 +236,8 @@ def scale(
     >>> mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model="gauss") == mrm.PixelSet.box(-1, -1, 6, 6)
     True
     """
-    from mrm.ops.scaling import discrete_smooth_scaling
-
-    return _image_of_pixels(discrete_smooth_scaling, obj, alpha, center, model, limit)
+    out: PixelSet = _result_of("dss", obj, limit, alpha, center, model)
+    return out
 
 
 def rotate(
@@ -273,9 +269,8 @@ def rotate(
     >>> sorted(mrm.rotate(mrm.PixelSet.box(0, 0, 2, 0), 90, model="gauss"))
     [(0, 0), (0, 1), (0, 2)]
     """
-    from mrm.ops.rotation import discrete_rotation
-
-    return _image_of_pixels(discrete_rotation, obj, angle, center, model, limit)
+    out: PixelSet = _result_of("discrete_rotation", obj, limit, angle, center, model)
+    return out
 
 
 def simplify(
@@ -310,9 +305,7 @@ def simplify(
     >>> len(mrm.simplify(disc, 0.25).exterior.coords) < len(disc.exterior.coords)
     True
     """
-    from mrm.ops.simplify import simplification
-
-    return simplification(_as_object(obj), alpha, center, model, limit=limit).result
+    return _result_of("simplify", obj, limit, alpha, center, model)
 
 
 def union(

@@ -126,6 +126,19 @@ def add_inputs_argument(parser: argparse.ArgumentParser, help: str) -> None:
     )
 
 
+def add_output_argument(parser: argparse.ArgumentParser, what: str, *, batch: bool = True) -> None:
+    """Add ``-o OUT``: ``what`` to write or, with ``batch``, for several inputs a directory or a pattern."""
+    more = "; for several inputs a directory or a pattern holding {stem}" if batch else ""
+    parser.add_argument("-o", "--output", required=True, metavar="OUT", help=what + more)
+
+
+def add_batch_arguments(parser: argparse.ArgumentParser, inputs: str, output: str) -> None:
+    """Add ``IN...`` (``inputs`` says what they are), ``-o OUT`` (``output`` one result) and ``--jobs``."""
+    add_inputs_argument(parser, inputs)
+    add_output_argument(parser, output)
+    add_jobs_argument(parser)
+
+
 def expand_inputs(items: Sequence[str], allowed: tuple[str, ...]) -> list[str]:
     """The input files named by ``items``: files as they are, directories and globs expanded.
 
@@ -179,6 +192,26 @@ def batch_outputs(
     if len(set(outs)) != len(outs):
         raise ParameterError("two inputs would write the same output file; use a pattern with {stem}")
     return outs
+
+
+def inputs_and_outputs(
+    args: argparse.Namespace,
+    inputs: tuple[str, ...],
+    what: str,
+    outputs: tuple[str, ...],
+    default_ext: str,
+    output_what: str,
+) -> list[tuple[str, str]]:
+    """Each input of a batch subcommand with its output path, every one checked before any work.
+
+    The inputs are ``args.inputs`` expanded (:func:`expand_inputs`), each of a type in ``inputs`` (else the
+    message names it as a ``what``); the outputs come from ``-o`` (:func:`batch_outputs`).
+    """
+    found = expand_inputs([str(i) for i in args.inputs], inputs)
+    for i in found:
+        extension_of(i, inputs, what)
+    outs = batch_outputs(found, str(args.output), outputs, default_ext, output_what)
+    return list(zip(found, outs, strict=True))
 
 
 class _Bar:
@@ -360,6 +393,40 @@ def run_batch(
     return [results[i] for i in sorted(results)], [e for _, e in sorted(errors)]
 
 
+def run_inputs(
+    args: argparse.Namespace,
+    func: Callable[..., dict[str, Any]],
+    jobs: Sequence[tuple[Any, ...]],
+    line: Callable[[dict[str, Any]], str],
+    total: Callable[[list[dict[str, Any]], list[str]], dict[str, Any]],
+    *,
+    first: str,
+    hidden: tuple[str, ...] = (),
+    bar: bool = False,
+) -> dict[str, Any]:
+    """Run a subcommand's inputs and return its ``--json`` summary: what every batch subcommand does.
+
+    One job runs here under a progress bar named ``first`` (passed to ``func`` as ``bar=`` when ``bar``); its
+    summary is printed as a table, without the ``hidden`` keys, unless ``--json``. Several jobs go through
+    :func:`run_batch` (each input's line printed when it is done) and ``total(files, errors)`` makes the
+    batch's summary (:func:`batch_total`, or the subcommand's own).
+    """
+    if len(jobs) == 1:
+        with progress(args, desc=first) as shown:
+            summary = func(*jobs[0], bar=shown) if bar else func(*jobs[0])
+        if not args.json:
+            print_table({k: v for k, v in summary.items() if k not in hidden})
+        return summary
+    files, errors = run_batch(args, func, jobs, line, desc=str(args.command))
+    return total(files, errors)
+
+
+def refuse_failures(errors: list[str], inputs: int) -> None:
+    """Raise, after what succeeded was written, when some inputs of a batch failed (one line naming each)."""
+    if errors:
+        raise FileFormatError(f"{len(errors)} of {inputs} inputs failed: " + "; ".join(errors))
+
+
 def batch_total(
     args: argparse.Namespace,
     head: dict[str, Any],
@@ -380,8 +447,7 @@ def batch_total(
     total["files"] = files
     if not args.json:
         print_table(total)
-    if errors:
-        raise FileFormatError(f"{len(errors)} of {inputs} inputs failed: " + "; ".join(errors))
+    refuse_failures(errors, inputs)
     return total
 
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 import argparse
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -38,14 +39,12 @@ from mrm.cli._common import (
     add_inputs_argument,
     add_jobs_argument,
     add_limit_argument,
-    batch_outputs,
+    add_output_argument,
     batch_total,
-    expand_inputs,
     extension_of,
+    inputs_and_outputs,
     load_object,
-    print_table,
-    progress,
-    run_batch,
+    run_inputs,
 )
 from mrm.cli._project_input import add_object_argument
 from mrm.errors import ParameterError
@@ -79,9 +78,9 @@ def add_two_inputs(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def add_common(parser: argparse.ArgumentParser, output_help: str) -> None:
-    """``-o OUT``, ``--limit`` and ``--no-measure``."""
-    parser.add_argument("-o", "--output", required=True, metavar="OUT", help=output_help)
+def add_common(parser: argparse.ArgumentParser, output_help: str, *, batch: bool = False) -> None:
+    """``-o OUT`` (``batch``: or a directory, a pattern), ``--limit`` and ``--no-measure``."""
+    add_output_argument(parser, output_help, batch=batch)
     add_limit_argument(parser)
     parser.add_argument(
         "--no-measure",
@@ -319,24 +318,19 @@ def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) 
     given = {k: v for k, v in params.items() if v is not None}
     check_parameter_text(spec, given)
     coerce_params(spec, given)  # refused before any input is read
-    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
-    for i in inputs:
-        extension_of(i, INPUTS, "supported input file")
     image = (args.threshold, args.invert)
-    default_ext = ".png" if spec.name in ("dss", "discrete_rotation") else ".geojson"
-    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, default_ext, "output file")
+    default_ext = ".png" if spec.output_kind == "discrete" else ".geojson"
+    pairs = inputs_and_outputs(args, INPUTS, "supported input file", OUTPUTS, default_ext, "output file")
     jobs = [
         (i, o, spec.name, given, args.object, args.model, args.limit, args.no_measure, *image)
-        for i, o in zip(inputs, outputs, strict=True)
+        for i, o in pairs
     ]
-    if len(jobs) == 1:
-        with progress(args, desc=f"{args.command} {Path(inputs[0]).name}"):
-            summary = unary_file(*jobs[0])
-        if not args.json:
-            print_table({k: v for k, v in summary.items() if k not in ("account", "steps", "parts")})
-        return summary
-    files, errors = run_batch(args, unary_file, jobs, _line, desc=str(args.command))
-    return batch_total(args, {"operation": spec.name}, len(jobs), files, errors, _SUM_KEYS)
+
+    def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
+        return batch_total(args, {"operation": spec.name}, len(jobs), files, errors, _SUM_KEYS)
+
+    first = f"{args.command} {Path(pairs[0][0]).name}"
+    return run_inputs(args, unary_file, jobs, _line, total, first=first, hidden=("account", "steps", "parts"))
 
 
 def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:
@@ -412,6 +406,36 @@ def check_parameter_text(spec: Any, given: dict[str, Any]) -> None:
             raise ParameterError(f"{what} must be {need}, got {shown}{allowed}")
 
 
+def _parameter_fields(operation: str) -> tuple[Any, list[Any]]:
+    """The registry spec of ``operation`` and its parameters that become options (all but ``model``)."""
+    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.base import get_operation
+
+    load_paper_operations()
+    spec = get_operation(operation)
+    return spec, [p for p in spec.param_specs() if p.name != "model"]
+
+
+def add_parameter_options(parser: argparse.ArgumentParser, fields: list[Any]) -> None:
+    """One option per parameter (``--alpha``, ``--angle``, ``--center X,Y``): label, unit, help, range."""
+    from mrm.ops.base import range_text
+
+    for p in fields:
+        unit = f" [{p.unit}]" if p.unit and p.unit != "×" else ""
+        if p.kind == "point":
+            parser.add_argument(
+                f"--{p.name}", type=parse_point, default=None, metavar="X,Y", help=f"{p.help}{unit}"
+            )
+        else:
+            allowed = f" ({range_text(p)})" if p.minimum is not None or p.maximum is not None else ""
+            parser.add_argument(
+                f"--{p.name}",
+                required=not p.optional,
+                metavar=p.label.upper() if p.label.isascii() else p.name[0].upper(),
+                help=f"{p.help}{unit}{allowed}; decimal or p/q, read exactly",
+            )
+
+
 def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
     """``(add_arguments, run)`` of a one-object subcommand, generated from the operation's registry spec.
 
@@ -419,35 +443,101 @@ def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
     with its label, unit, help and declared range; ``model`` is the common ``--model``. The values are read
     exactly and range-checked by the registry (:func:`mrm.ops.base.coerce_params`), as the panel's are.
     """
-    from mrm.ops.apply import load_paper_operations
-    from mrm.ops.base import get_operation, range_text
-
-    load_paper_operations()
-    spec = get_operation(operation)
-    fields = [p for p in spec.param_specs() if p.name != "model"]
+    spec, fields = _parameter_fields(operation)
 
     def add_arguments(parser: argparse.ArgumentParser) -> None:
         add_inputs_argument(parser, "pixel files, vector files or projects (.mrm)")
         add_object_argument(parser)
-        for p in fields:
-            unit = f" [{p.unit}]" if p.unit and p.unit != "×" else ""
-            if p.kind == "point":
-                parser.add_argument(
-                    f"--{p.name}", type=parse_point, default=None, metavar="X,Y", help=f"{p.help}{unit}"
-                )
-            else:
-                allowed = f" ({range_text(p)})" if p.minimum is not None or p.maximum is not None else ""
-                parser.add_argument(
-                    f"--{p.name}",
-                    required=not p.optional,
-                    metavar=p.label.upper() if p.label.isascii() else p.name[0].upper(),
-                    help=f"{p.help}{unit}{allowed}; decimal or p/q, read exactly",
-                )
-        add_common(parser, output_help + "; for several inputs a directory or a pattern holding {stem}")
+        add_parameter_options(parser, fields)
+        add_common(parser, output_help, batch=True)
         add_jobs_argument(parser)
         add_image_arguments(parser)
 
     def run(args: argparse.Namespace) -> dict[str, Any]:
         return run_unary(args, spec.name, {p.name: getattr(args, p.name) for p in fields})
+
+    return add_arguments, run
+
+
+@dataclass(frozen=True)
+class TwoInputRun:
+    """A two-object operation as ``mrm union`` and ``mrm corefine`` run it (:func:`two_input_command`).
+
+    Attributes
+    ----------
+    a, b : OperationInput
+        The inputs as read.
+    model : str
+        The model in force.
+    params : dict
+        The operation's parameters as JSON data (exact numbers), ``model`` first, as recorded.
+    account : mrm.ops.account.Account
+        The one account of the result (measured unless ``--no-measure``).
+    computed : object
+        What ``direct`` computed when the account did not (``--no-measure``), else None.
+    seconds : float
+        The time the operation (and its measurement) took.
+    georef : GeoRef or None
+        The result's georeference: both inputs' grid when they share one.
+    """
+
+    a: OperationInput
+    b: OperationInput
+    model: str
+    params: dict[str, Any]
+    account: Any
+    computed: Any
+    seconds: float
+    georef: Any
+
+
+def two_input_command(
+    operation: str,
+    output_help: str,
+    finish: Callable[[argparse.Namespace, TwoInputRun], dict[str, Any]],
+    direct: Callable[..., Any],
+    outputs: tuple[str, ...] | None = None,
+) -> tuple[Any, Any]:
+    """``(add_arguments, run)`` of a two-object subcommand, generated from the operation's registry spec.
+
+    The options are the spec's parameters, read exactly and range-checked as for the one-object commands.
+    ``run`` calls ``finish(args, TwoInputRun)`` for what the subcommand writes and prints;
+    ``direct(a, b, model, params, limit)`` computes the result when the account does not (``--no-measure``);
+    ``outputs``, when given, are the output types, checked first.
+    The numbers are those of the one account of the result (:func:`mrm.ops.account.account_of`): the
+    account's recomputation is the result written, so nothing is computed twice.
+    """
+    spec, fields = _parameter_fields(operation)
+
+    def add_arguments(parser: argparse.ArgumentParser) -> None:
+        add_two_inputs(parser)
+        add_parameter_options(parser, fields)
+        add_common(parser, output_help)
+
+    def run(args: argparse.Namespace) -> dict[str, Any]:
+        from mrm.errors import MRMError
+        from mrm.geometry.discretize.exact_shape import exact_number, number_to_json
+        from mrm.ops.account import account_of
+        from mrm.ops.base import coerce_params
+
+        if outputs is not None:
+            extension_of(args.output, outputs, "output file")
+        given = {p.name: getattr(args, p.name) for p in fields if getattr(args, p.name) is not None}
+        check_parameter_text(spec, given)
+        coerce_params(spec, given)  # the declared ranges, before any input is read
+        values = {p.name: given.get(p.name) for p in fields}
+        exact = {k: None if v is None else number_to_json(exact_number(v, k)) for k, v in values.items()}
+        a, b, model = read_two(args)
+        params = {"model": model, **exact}
+        t0 = time.perf_counter()
+        acc = account_of(
+            two_input_provenance(spec.name, params, a, b), measure=not args.no_measure, limit=args.limit
+        )
+        if acc.error:
+            raise MRMError(acc.error)
+        computed = None if acc.outcome is not None else direct(a, b, model, params, args.limit)
+        seconds = time.perf_counter() - t0
+        georef = two_input_georef(spec.name, a, b)
+        return finish(args, TwoInputRun(a, b, model, params, acc, computed, seconds, georef))
 
     return add_arguments, run

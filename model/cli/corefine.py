@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import time
 from pathlib import Path
 from typing import Any
 
@@ -29,15 +28,7 @@ import shapely
 from shapely.geometry import Polygon
 
 from mrm.cli._common import print_table
-from mrm.cli._operation import (
-    add_common,
-    add_two_inputs,
-    read_two,
-    result_summary,
-    two_input_georef,
-    two_input_provenance,
-)
-from mrm.geometry.discretize.exact_shape import number_to_json, positive_number
+from mrm.cli._operation import TwoInputRun, result_summary, two_input_command
 from mrm.io.georef import georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
@@ -45,17 +36,6 @@ from mrm.summary import count_vertices, summarize
 
 NAME = "corefine"
 HELP = "Euclidean-discrete co-refinement EDco(_α) of two objects: the parts A∖B, A∩B, B∖A"
-
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add A, B, ``--object``, ``--alpha``, ``-o``, ``--limit``, ``--no-measure``."""
-    add_two_inputs(parser)
-    parser.add_argument("--alpha", default=None, metavar="A", help="precision factor α > 0 (EDco_α)")
-    add_common(
-        parser,
-        "OUT.geojson (one FeatureCollection), OUT.png/.npz (the label map), OUT.wkt/.svg (one file per part) "
-        "or a prefix (OUT-a_minus_b.geojson, …)",
-    )
 
 
 def _targets(output: str) -> tuple[str, dict[str, str]]:
@@ -115,46 +95,29 @@ def _write(
                 )
 
 
-def _read_alpha(text: str) -> Any:
-    """α read and range-checked as the registry declares it, refused in one line (``1e400`` too)."""
-    from mrm.cli._operation import check_parameter_text
-    from mrm.ops.base import coerce_params
-    from mrm.ops.boolean import COREFINE_SPEC
+def _direct(a: Any, b: Any, model: str, params: dict[str, Any], limit: int) -> Any:
+    """EDco(_α) without its account (``--no-measure``): the whole outcome, label map included."""
+    from mrm.ops.boolean import euclidean_discrete_corefinement
 
-    check_parameter_text(COREFINE_SPEC, {"alpha": text})
-    coerce_params(COREFINE_SPEC, {"alpha": text})  # the declared range
-    return positive_number(text, "alpha")  # the exact value, as the operation reads it
+    return euclidean_discrete_corefinement(a.value, b.value, model, params["alpha"], limit=limit)
 
 
-def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Co-refine, write the parts, return the summary (the numbers are the model's account of the result)."""
-    from mrm.errors import MRMError
-    from mrm.ops.account import account_of
-    from mrm.ops.boolean import PARTS, euclidean_discrete_corefinement
+def _finish(args: argparse.Namespace, done: TwoInputRun) -> dict[str, Any]:
+    """Write the parts and return the summary (the numbers are the model's account of the result)."""
+    from mrm.ops.boolean import PARTS
 
-    alpha = None if args.alpha is None else _read_alpha(args.alpha)
     kind, files = _targets(str(args.output))
-    a, b, model = read_two(args)
-    alpha_json = None if alpha is None else number_to_json(alpha)
-    prov = two_input_provenance("corefine", {"model": model, "alpha": alpha_json}, a, b)
-    t0 = time.perf_counter()
-    acc = account_of(prov, measure=not args.no_measure, limit=args.limit)
-    if acc.error:
-        raise MRMError(acc.error)
-    out = acc.outcome
-    if out is None:  # not measured: the account holds the bounds only
-        out = euclidean_discrete_corefinement(a.value, b.value, model, alpha, limit=args.limit)
-    seconds = time.perf_counter() - t0
+    acc, model, alpha_json = done.account, done.model, done.params["alpha"]
+    out = acc.outcome if done.computed is None else done.computed
     if files:  # a folder target is created only now, when there is something to write into it
         Path(next(iter(files.values()))).parent.mkdir(parents=True, exist_ok=True)
-    georef = two_input_georef("corefine", a, b)
-    _write(kind, files, str(args.output), out.result, out.extra["label_map"], model, georef)
+    _write(kind, files, str(args.output), out.result, out.extra["label_map"], model, done.georef)
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary.update(operation="corefine", alpha=alpha_json)
     if files:
         summary["files"] = files
     pixels = dict(out.extra["pixels"])
-    if alpha is not None:  # the parts' own discretizations, on the unscaled grid
+    if alpha_json is not None:  # the parts' own discretizations, on the unscaled grid
         from mrm.geometry.discretize import discretize
 
         pixels = {p: discretize(out.result[p], model, limit=args.limit) for p in PARTS}
@@ -180,10 +143,20 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         summary["measured"] = None if any(v is None for v in values) else max(values)
         summary["reference_exact"] = acc.reference_exact
     summary["parts"] = parts
-    summary["seconds"] = seconds
-    summary.update(georef_summary(georef))
+    summary["seconds"] = done.seconds
+    summary.update(georef_summary(done.georef))
     if not args.json:
         print_table({k: v for k, v in summary.items() if k not in ("parts", "chain", "input_chains")})
         for part, info in parts.items():
             print(f"{part}: {info.get('vertices')} vertices, measured {info.get('measured')}")
     return summary
+
+
+# A, B, --object, --alpha (from EDco's registry spec: its help and declared range), -o, --limit, --no-measure.
+add_arguments, run = two_input_command(
+    "corefine",
+    "OUT.geojson (one FeatureCollection), OUT.png/.npz (the label map), OUT.wkt/.svg (one file per part) "
+    "or a prefix (OUT-a_minus_b.geojson, …)",
+    _finish,
+    _direct,
+)

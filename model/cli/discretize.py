@@ -31,16 +31,16 @@ from mrm.cli._common import (
     add_inputs_argument,
     add_jobs_argument,
     add_limit_argument,
+    add_output_argument,
     batch_outputs,
     discretize_geometry,
     expand_inputs,
     extension_of,
     finite_float,
     load_object,
-    print_table,
-    progress,
     project_objects,
-    run_batch,
+    refuse_failures,
+    run_inputs,
 )
 from mrm.cli._project_input import add_object_argument
 from mrm.errors import FileFormatError, ParameterError, SizeLimitError
@@ -86,13 +86,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="XMIN,YMIN,XMAX,YMAX",
         help="the world box the --resolution grid covers",
     )
-    parser.add_argument(
-        "-o",
-        "--output",
-        required=True,
-        metavar="OUT",
-        help="the pixel file to write (.png .pbm .pgm .npz; .svg draws the pixels with the input outlined); "
-        "for several inputs a directory or a pattern holding {stem}",
+    add_output_argument(
+        parser, "the pixel file to write (.png .pbm .pgm .npz; .svg draws the pixels with the input outlined)"
     )
     add_limit_argument(parser)
 
@@ -216,13 +211,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         (i, o, args.object, args.model, args.limit, args.like, args.resolution, args.extent)
         for i, o in zip(inputs, outputs, strict=True)
     ]
-    if len(jobs) == 1:
-        with progress(args, desc=f"discretize {inputs[0]}"):
-            summary = discretize_file(*jobs[0])
-        if not args.json:
-            print_table(summary)
-        return summary
-    files, errors = run_batch(args, discretize_file, jobs, _line, desc="discretize")
-    if errors:
-        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
-    return {"inputs": len(jobs), "pixels": sum(f["pixels"] for f in files), "files": files}
+
+    def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
+        refuse_failures(errors, len(jobs))
+        return {"inputs": len(jobs), "pixels": sum(f["pixels"] for f in files), "files": files}
+
+    return run_inputs(args, discretize_file, jobs, _line, total, first=f"discretize {inputs[0]}")

@@ -23,13 +23,12 @@ from mrm.cli._common import (
     expand_inputs,
     extension_of,
     load_object,
-    print_table,
-    progress,
     project_objects,
-    run_batch,
+    refuse_failures,
+    run_inputs,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import FileFormatError, ParameterError
+from mrm.errors import ParameterError
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import VECTOR_EXTENSIONS
 from mrm.reps.pixels import PixelSet
@@ -86,16 +85,12 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     """Read the inputs and return the summary (see :func:`mrm.summary.summarize`)."""
     inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
     jobs = [(i, args.object, args.model, args.threshold, args.invert, args.limit) for i in inputs]
-    if len(jobs) == 1:
-        with progress(args, desc=f"info {inputs[0]}"):
-            summary = info_file(*jobs[0])
-        if not args.json:
-            print_table(summary)
-        return summary
-    files, errors = run_batch(args, info_file, jobs, _line, desc="info")
-    if errors:
-        raise FileFormatError(f"{len(errors)} of {len(jobs)} inputs failed: " + "; ".join(errors))
-    return {"inputs": len(jobs), "files": files}
+
+    def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
+        refuse_failures(errors, len(jobs))
+        return {"inputs": len(jobs), "files": files}
+
+    return run_inputs(args, info_file, jobs, _line, total, first=f"info {inputs[0]}")
 
 
 def _summary(source: Any, model: str, limit: int) -> dict[str, Any]:

@@ -26,16 +26,12 @@ from pathlib import Path
 from typing import Any
 
 from mrm.cli._common import (
-    add_inputs_argument,
-    add_jobs_argument,
+    add_batch_arguments,
     add_limit_argument,
-    batch_outputs,
     batch_total,
-    expand_inputs,
     extension_of,
-    print_table,
-    progress,
-    run_batch,
+    inputs_and_outputs,
+    run_inputs,
 )
 from mrm.errors import FileFormatError, InvalidGeometryError
 from mrm.io.atomic import atomic_open
@@ -51,15 +47,9 @@ OUTPUTS = (".geojson", ".json")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the inputs, ``-o OUT``, ``--jobs`` and ``--limit``."""
-    add_inputs_argument(parser, "label images (.png grey or palette, .pgm, .npz)")
-    parser.add_argument(
-        "-o",
-        "--output",
-        required=True,
-        metavar="OUT",
-        help="the GeoJSON file to write; for several inputs a directory or a pattern holding {stem}",
+    add_batch_arguments(
+        parser, "label images (.png grey or palette, .pgm, .npz)", "the GeoJSON file to write"
     )
-    add_jobs_argument(parser)
     add_limit_argument(parser)
 
 
@@ -146,17 +136,11 @@ def _line(f: dict[str, Any]) -> str:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Polygonize every label image and write the features; return the summary."""
-    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
-    for i in inputs:
-        extension_of(i, INPUTS, "label image")
-    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".geojson", "GeoJSON output file")
-    jobs = [(i, o, args.model, args.limit) for i, o in zip(inputs, outputs, strict=True)]
-    if len(jobs) == 1:
-        with progress(args, desc=f"polygonize {Path(inputs[0]).name}"):
-            summary = polygonize_file(*jobs[0])
-        if not args.json:
-            print_table(summary)
-        return summary
-    files, errors = run_batch(args, polygonize_file, jobs, _line, desc="polygonize")
-    head = {"model": args.model or "gauss"}
-    return batch_total(args, head, len(jobs), files, errors, ("regions", "pixels", "vertices", "seconds"))
+    pairs = inputs_and_outputs(args, INPUTS, "label image", OUTPUTS, ".geojson", "GeoJSON output file")
+    jobs = [(i, o, args.model, args.limit) for i, o in pairs]
+
+    def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
+        head = {"model": args.model or "gauss"}
+        return batch_total(args, head, len(jobs), files, errors, ("regions", "pixels", "vertices", "seconds"))
+
+    return run_inputs(args, polygonize_file, jobs, _line, total, first=f"polygonize {Path(pairs[0][0]).name}")

@@ -26,18 +26,13 @@ from typing import Any
 
 from mrm.cli._common import (
     PROJECT_EXTENSION,
+    add_batch_arguments,
     add_image_arguments,
-    add_inputs_argument,
-    add_jobs_argument,
     add_limit_argument,
-    batch_outputs,
     batch_total,
-    expand_inputs,
-    extension_of,
-    print_table,
-    progress,
+    inputs_and_outputs,
     read_input,
-    run_batch,
+    run_inputs,
 )
 from mrm.errors import FileFormatError, ParameterError
 from mrm.io.georef import georef_summary
@@ -62,16 +57,11 @@ _SUM_KEYS = ("pixels", "components", "holes", "euler", "boundary_chains", "segme
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the inputs, ``-o OUT``, ``--jobs``, ``--threshold``, ``--invert`` and ``--limit``."""
-    add_inputs_argument(parser, "pixel files (.png .pbm .pgm .npz) or projects (.mrm)")
-    parser.add_argument(
-        "-o",
-        "--output",
-        required=True,
-        metavar="OUT",
-        help="the vector file (.geojson .json .wkt .svg); for several inputs a directory or a pattern "
-        "holding {stem}",
+    add_batch_arguments(
+        parser,
+        "pixel files (.png .pbm .pgm .npz) or projects (.mrm)",
+        "the vector file (.geojson .json .wkt .svg)",
     )
-    add_jobs_argument(parser)
     add_image_arguments(parser)
     parser.add_argument(
         "--features",
@@ -176,20 +166,14 @@ def _line(f: dict[str, Any]) -> str:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Reconstruct every input and write it; return the summary (see the module docstring)."""
-    inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
-    for i in inputs:
-        extension_of(i, INPUTS, "supported input file")
-    outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".geojson", "vector output file")
-    jobs = [
-        (i, o, args.model, args.threshold, args.limit, args.invert, args.features)
-        for i, o in zip(inputs, outputs, strict=True)
-    ]
-    if len(jobs) == 1:
-        with progress(args, desc=f"reconstruct {Path(inputs[0]).name}") as bar:
-            summary = reconstruct_file(*jobs[0], bar=bar)
-        if not args.json:
-            print_table(summary)
-        return summary
-    files, errors = run_batch(args, reconstruct_file, jobs, _line, desc="reconstruct")
-    head = {"model": args.model or (files[0]["model"] if files else "standard")}
-    return batch_total(args, head, len(jobs), files, errors, _SUM_KEYS)
+    pairs = inputs_and_outputs(
+        args, INPUTS, "supported input file", OUTPUTS, ".geojson", "vector output file"
+    )
+    jobs = [(i, o, args.model, args.threshold, args.limit, args.invert, args.features) for i, o in pairs]
+
+    def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
+        head = {"model": args.model or (files[0]["model"] if files else "standard")}
+        return batch_total(args, head, len(jobs), files, errors, _SUM_KEYS)
+
+    first = f"reconstruct {Path(pairs[0][0]).name}"
+    return run_inputs(args, reconstruct_file, jobs, _line, total, first=first, bar=True)

@@ -363,6 +363,8 @@ def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int
         why = EXACT_OPERATIONS[prov.operation]
         return Account(prov.operation, chain=(_link(prov),), no_bound=f"no error to bound: {why}")
     spec, params, part = _spec_params(prov)
+    if len(prov.inputs) != spec.arity:  # a hand-edited record: say so rather than fail on the missing input
+        raise ParameterError(f"{spec.name} takes {spec.arity} input(s), the record names {len(prov.inputs)}")
     if not prov.pinned:
         return Account(
             spec.name,
@@ -433,7 +435,7 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
         # Sp_α∘Sp_α = Sp_α: Sp_α of the result as stored (float64) is exactly the exact result.
         again = simplification(result, pj["alpha"], pj.get("center"), model, limit=limit)
         idempotent = again.euclidean == outcome.euclidean
-    start = convert_for(origin, read_of(records[0].operation), model, limit)
+    start = convert_for(origin, read_of(read[0][0].name), model, limit)
     a_first = ExactShape.from_geometry(convert_for(start, "euclidean", model, limit))
     t_first = a_first.map(transform)
     if progress is not None:
@@ -455,7 +457,7 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
 
 def read_of(operation: str) -> str:
     """The representation a chain operation reads: ``discrete`` or ``euclidean``."""
-    return "discrete" if operation in ("dss", "discrete_rotation") else "euclidean"
+    return _CHAIN_READS[operation]
 
 
 def _replace(acc: Account, **kw: Any) -> Account:

@@ -23,13 +23,17 @@ import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Literal, Protocol, TypeAlias, runtime_checkable
+from typing import TYPE_CHECKING, Any, Literal, Protocol, TypeAlias, runtime_checkable
 
 from shapely.geometry.base import BaseGeometry
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
 from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
 from mrm.reps.pixels import PixelSet
+
+if TYPE_CHECKING:
+    from mrm.geometry.discretize.rational import ProgressLike as StepProgress
+    from mrm.ops.outcome import StepOutcome
 
 __all__ = [
     "NO_PROGRESS",
@@ -567,6 +571,8 @@ class OperationResult:
 
 RunFn = Callable[[Sequence[Output], Any, ProgressLike], OperationResult]
 EstimateFn = Callable[[Sequence[Output], Any], int]
+#: ``step(source, params, *, limit, progress, estimated=False) -> StepOutcome`` (see OperationSpec.step).
+StepFn = Callable[..., "StepOutcome"]
 
 
 @dataclass(frozen=True)
@@ -599,6 +605,11 @@ class OperationSpec:
         an operation that is no step of a one-object chain.
     aliases : tuple of str
         Other names a chain's text or the CLI may use (``DSS``, ``ROT``, ``SP``…).
+    step : callable, optional
+        ``step(source, params, *, limit, progress, estimated=False) -> StepOutcome``: the operation on one
+        object with what a chain needs besides the result (its exact Euclidean image); the chain runner and
+        the account call it through :meth:`outcome`. ``estimated`` says the caller checked the size
+        estimate already. None for an operation that is no step of a one-object chain.
     """
 
     name: str
@@ -613,11 +624,25 @@ class OperationSpec:
     chain_step: Callable[[Any], ChainStep] | None = None
     similarity: Callable[[Any], Any] | None = None
     aliases: tuple[str, ...] = ()
+    step: StepFn | None = None
 
     @property
     def reads(self) -> Kind:
         """The representation the operation reads: ``discrete``, ``euclidean`` or ``any``."""
         return self.input_kind
+
+    def outcome(
+        self,
+        source: Any,
+        params: Any,
+        *,
+        limit: int | None = DEFAULT_PIXEL_LIMIT,
+        progress: StepProgress | None = None,
+    ) -> StepOutcome:
+        """Run the operation as a chain step on ``source`` (already in the representation it reads)."""
+        if self.step is None:
+            raise ParameterError(f"{self.name} is no step of a one-object chain")
+        return self.step(source, params, limit=limit, progress=progress)
 
     def default_params(self) -> Any:
         """The parameters with their defaults."""

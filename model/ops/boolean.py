@@ -357,37 +357,47 @@ def run_corefine(
     )
 
 
+def _register_pair(
+    name: str, title: str, params: type, run: Any, estimate: Any, chain_step: Any, **declared: Any
+) -> OperationSpec:
+    """Register a two-object operation: it reads either representation and makes Euclidean parts."""
+    return register(
+        OperationSpec(
+            name,
+            title,
+            2,
+            params,
+            run,
+            "any",
+            "euclidean",
+            estimate=estimate,
+            chain_step=chain_step,
+            **declared,
+        )
+    )
+
+
 UNION = "union"
 COREFINE = "corefine"
-UNION_SPEC = register(
-    OperationSpec(
-        name=UNION,
-        title="Euclidean-discrete union EDu",
-        arity=2,
-        params=UnionParams,
-        run=run_union,
-        input_kind="any",
-        output_kind="euclidean",
-        help="EDu(E, E′) = R(D(E) ∪ D(E′)): a robust union made in the discrete space (paper, Def. 17).",
-        estimate=estimate_union,
-        chain_step=union_chain_step,
-        aliases=("EDu",),
-    )
+UNION_SPEC = _register_pair(
+    UNION,
+    "Euclidean-discrete union EDu",
+    UnionParams,
+    run_union,
+    estimate_union,
+    union_chain_step,
+    help="EDu(E, E′) = R(D(E) ∪ D(E′)): a robust union made in the discrete space (paper, Def. 17).",
+    aliases=("EDu",),
 )
-COREFINE_SPEC = register(
-    OperationSpec(
-        name=COREFINE,
-        title="Euclidean-discrete co-refinement EDco",
-        arity=2,
-        params=CorefineParams,
-        run=run_corefine,
-        input_kind="any",
-        output_kind="euclidean",
-        help="EDco(E, E′): the parts A ∖ B, A ∩ B, B ∖ A made in the discrete space (paper, Defs. 18–19).",
-        estimate=estimate_corefine,
-        chain_step=corefine_chain_step,
-        aliases=("EDco", "corefinement", "co_refinement"),
-    )
+COREFINE_SPEC = _register_pair(
+    COREFINE,
+    "Euclidean-discrete co-refinement EDco",
+    CorefineParams,
+    run_corefine,
+    estimate_corefine,
+    corefine_chain_step,
+    help="EDco(E, E′): the parts A ∖ B, A ∩ B, B ∖ A made in the discrete space (paper, Defs. 18–19).",
+    aliases=("EDco", "corefinement", "co_refinement"),
 )
 
 

@@ -178,7 +178,24 @@ def _params_dict(params: Any) -> dict[str, Any]:
 
 
 def step_params(operation: str, params: Any) -> tuple[dict[str, Any], Any]:
-    """Validate a step's parameters: (JSON parameters, the bounds module's ChainStep)."""
+    """Validate a step's parameters: (JSON parameters, the bounds module's ChainStep).
+
+    The numbers are read exactly, then checked against the ranges the operation's registry spec declares
+    (:func:`mrm.ops.base.coerce_params`): a chain refuses what the panel and the command line refuse, with
+    the same message.
+    """
+    pj, step = _read_step_params(operation, params)
+    import dataclasses
+
+    from mrm.ops.base import coerce_params, get_operation
+
+    spec = get_operation(operation)
+    fields = {f.name for f in dataclasses.fields(spec.params)}
+    coerce_params(spec, {k: v for k, v in pj.items() if k in fields and v is not None})
+    return pj, step
+
+
+def _read_step_params(operation: str, params: Any) -> tuple[dict[str, Any], Any]:
     from mrm.geometry.hausdorff import bounds
 
     p = _params_dict(params)
@@ -212,34 +229,21 @@ def run_step(
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
 ) -> StepOutcome:
-    """Apply one chain operation to a source of the representation it reads (already converted)."""
-    from mrm.ops.rotation import discrete_rotation
-    from mrm.ops.scaling import discrete_smooth_scaling
-    from mrm.ops.simplify import simplification
+    """Apply one chain operation to a source of the representation it reads (already converted).
 
-    center = params.get("center")
-    if operation == "dss":
-        return discrete_smooth_scaling(source, params["alpha"], center, model, limit=limit, progress=progress)
-    if operation == "discrete_rotation":
-        return discrete_rotation(source, params["angle"], center, model, limit=limit, progress=progress)
-    if operation == "simplify":
-        return simplification(source, params["alpha"], center, model, limit=limit, progress=progress)
-    if operation == "scale":
-        sim = Similarity.scaling(positive_number(params["factor"], "factor"), exact_point(center, "center"))
-    elif operation == "rotate":
-        sim = Similarity.rotation(exact_number(params["angle"], "angle"), exact_point(center, "center"))
-    else:
-        sim = Similarity.translation(exact_number(params["dx"], "dx"), exact_number(params["dy"], "dy"))
-    return euclidean_similarity(source, sim, model, limit=limit)
+    ``params`` are the step's JSON parameters (:func:`step_params`); the operation is its registry spec's
+    step (:meth:`mrm.ops.base.OperationSpec.outcome`), the same code the panel and the CLI run.
+    """
+    import dataclasses
 
+    from mrm.ops.base import get_operation
 
-def euclidean_similarity(source: Any, sim: Similarity, model: str, *, limit: int | None) -> StepOutcome:
-    """An exact Euclidean similarity of a polygon, rounded once to float64 (no discretization)."""
-    from mrm.ops.simplify import euclidean_input
-
-    exact = ExactShape.from_geometry(euclidean_input(source, model)).map(sim)
-    geom = exact.to_geometry()
-    return StepOutcome(geom, sim, exact, PixelSet.empty())
+    spec = get_operation(operation)
+    fields = {f.name for f in dataclasses.fields(spec.params)}
+    given = {k: v for k, v in params.items() if k in fields}
+    if "model" in fields:
+        given["model"] = model
+    return spec.outcome(source, spec.params(**given), limit=limit, progress=progress)
 
 
 def convert_for(current: Any, wanted: str, model: str, limit: int | None) -> Any:

@@ -8,24 +8,34 @@ discretization (or its exact Euclidean result): :class:`StepOutcome` carries the
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
 from mrm.geometry.discretize.exact_shape import (
     ExactShape,
+    Point,
     Similarity,
     box_area,
+    exact_number,
+    exact_point,
     mapped_bounds,
+    number_to_json,
     pixel_box,
+    positive_number,
     voxel_bounds,
 )
 from mrm.geometry.discretize.rational import ProgressLike, discretize_exact, discretize_image
-from mrm.ops.base import param
+from mrm.geometry.hausdorff.bounds import ChainStep
+from mrm.ops.base import OperationSpec, param
 from mrm.reps.pixels import Box, PixelSet
+
+T = TypeVar("T")
 
 #: The discretization models an operation accepts.
 MODELS = ("standard", "supercover", "gauss")
@@ -262,42 +272,94 @@ def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | N
     return PixelSet(pooled, (qx0, qy0))
 
 
+def factor_params(name: str, doc: str, factor: str, declared: Any, centre: str, module: str) -> type:
+    """The parameters dataclass of a one-factor similarity operation: ``factor``, ``center``, ``model``.
+
+    DSS_α, dR_θ,C and Sp_α take their number (declared with :func:`alpha_param` or :func:`angle_param`), an
+    optional centre (help text ``centre``) and the model, in that order; the class is frozen, named ``name``
+    in ``module`` (so that it pickles to a worker process), and read by :func:`mrm.ops.base.param_specs`.
+    """
+    fields = [
+        (factor, float, declared),
+        ("center", tuple[float, float] | None, center_param(centre)),
+        ("model", str, model_param()),
+    ]
+    cls = dataclasses.make_dataclass(name, fields, frozen=True, namespace={"__doc__": doc})
+    cls.__module__ = module
+    return cls
+
+
+def factor_map(
+    factor: str, make: Callable[[Fraction, Point | None], T], *, signed: bool = False
+) -> Callable[[Any], T]:
+    """``params ↦ make(q, C)``: an operation's number ``factor`` and its ``center``, read exactly.
+
+    The one reading of a similarity's parameters (DESIGN §8): a float is the decimal it prints as (0.4 is
+    2/5), a ``signed`` number (an angle) may be any finite value, any other must be positive. DSS_α, dR_θ,C,
+    Sp_α and the Euclidean scale and rotate make their exact similarity and their bound step through it, so
+    the registry's run, the chain, the bound rule and the account read the same numbers, with the same
+    messages.
+    """
+    read = exact_number if signed else positive_number
+
+    def of(params: Any) -> T:
+        return make(read(getattr(params, factor), factor), exact_point(params.center, "center"))
+
+    return of
+
+
 def register_discrete_similarity(
     *,
     name: str,
     title: str,
     params: type,
-    similarity: Any,
-    chain_step: Any,
-    label: Any,
+    factor: str,
+    similarity: Callable[[Fraction, Point | None], Similarity],
+    bound: Callable[[Fraction, Point | None], ChainStep],
+    label: str,
+    what: str,
     help: str,
     aliases: tuple[str, ...],
-) -> Any:
+    signed: bool = False,
+) -> OperationSpec:
     """Register a ``D∘T∘R`` operation (DSS_α, dR_θ,C) from its declarations alone.
 
-    ``similarity(params)`` is the exact T, ``chain_step(params)`` its place in the bound rule and
-    ``label(params)`` the result's name (``DSS 0.2``); the size estimate and the run are the same for every
-    such operation, so they are written here once.
+    ``params`` carries the number ``factor`` (and ``center``, ``model``); ``similarity(q, C)`` makes the exact
+    T and ``bound(q, C)`` its step in the bound rule, both read by :func:`factor_map`. ``label`` names the
+    result and ``what`` the operation in a refusal, each with ``{}`` for the number (``"DSS {}"`` gives
+    ``DSS 0.2``). The size estimate, the step and the run are the same for every such operation, so they are
+    written here once; the module's public function is the step.
     """
-    from mrm.ops.base import OperationResult, OperationSpec, register
+    from mrm.ops.base import OperationResult, register
+
+    sim_of = factor_map(factor, similarity, signed=signed)
+    read = exact_number if signed else positive_number
+
+    def number(p: Any) -> Any:
+        return number_to_json(read(getattr(p, factor), factor))
 
     def estimate(inputs: Any, p: Any) -> int:
-        return estimated_pixels(inputs[0], similarity(p), p.model)
+        return estimated_pixels(inputs[0], sim_of(p), p.model)
+
+    def step(
+        source: Any,
+        p: Any,
+        *,
+        limit: int | None = DEFAULT_PIXEL_LIMIT,
+        progress: ProgressLike | None = None,
+        estimated: bool = False,
+    ) -> StepOutcome:
+        sim = sim_of(p)
+        ps = discrete_of(source, p.model, limit)
+        return discrete_similarity(
+            ps, sim, p.model, limit=limit, progress=progress, what=what.format(number(p)), estimated=estimated
+        )
 
     def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> Any:
         # run_operation validated the parameters, checked the size (estimate above) and stamps provenance
         # and bound: the estimate is not made a second time.
-        ps = discrete_of(inputs[0], p.model, DEFAULT_PIXEL_LIMIT)
-        out = discrete_similarity(
-            ps,
-            similarity(p),
-            p.model,
-            limit=DEFAULT_PIXEL_LIMIT,
-            progress=progress,
-            what=label(p),
-            estimated=True,
-        )
-        return OperationResult(outputs=[(label(p), out.result)])
+        out = step(inputs[0], p, progress=progress, estimated=True)
+        return OperationResult(outputs=[(label.format(number(p)), out.result)])
 
     return register(
         OperationSpec(
@@ -310,9 +372,10 @@ def register_discrete_similarity(
             output_kind="discrete",
             help=help,
             estimate=estimate,
-            chain_step=chain_step,
-            similarity=similarity,
+            chain_step=factor_map(factor, bound, signed=signed),
+            similarity=sim_of,
             aliases=aliases,
+            step=step,
         )
     )
 
@@ -345,10 +408,6 @@ def discrete_of(source: Any, model: str, limit: int | None) -> PixelSet:
 
 def params_json(params: Any) -> dict[str, Any]:
     """A parameter dataclass (or mapping) as JSON data: tuples become lists, Fractions exact numbers."""
-    from fractions import Fraction
-
-    from mrm.geometry.discretize.exact_shape import number_to_json
-
     raw = (
         {k: getattr(params, k) for k in params.__dataclass_fields__}
         if hasattr(params, "__dataclass_fields__")
@@ -376,8 +435,6 @@ def source_box(source: Any, sim: Similarity, model: str) -> Box | None:
         return pixel_box(mapped_bounds(voxel_bounds(source.bbox), sim), model)
     if source is None or source.is_empty:
         return None
-    from fractions import Fraction
-
     x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
     return pixel_box(mapped_bounds((x0, y0, x1, y1), sim), model)
 

@@ -18,27 +18,43 @@ corners, and since R keeps its boundary away from every tie (DESIGN §3.6), dR_9
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.geometry.discretize.exact_shape import Similarity, exact_number, exact_point, number_to_json
+from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.geometry.discretize.rational import ProgressLike
 from mrm.geometry.hausdorff import bounds
-from mrm.geometry.hausdorff.bounds import ChainStep
-from mrm.ops.outcome import (
-    StepOutcome,
-    angle_param,
-    center_param,
-    discrete_similarity,
-    model_param,
-    register_discrete_similarity,
-)
+from mrm.ops.outcome import StepOutcome, angle_param, factor_params, register_discrete_similarity
 from mrm.reps.pixels import PixelSet
 
+#: θ in degrees (read exactly), the centre C, the model.
+RotationParams = factor_params(
+    "RotationParams",
+    "Parameters of dR_θ,C.",
+    "angle",
+    angle_param(
+        30.0, "Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact."
+    ),
+    "Centre C of the rotation (default: origin).",
+    __name__,
+)
 
-def rotation_similarity(angle: object, center: object = None) -> Similarity:
-    """The exact rotation by ``angle`` degrees (counter-clockwise, y up) about ``center`` (origin if None)."""
-    return Similarity.rotation(exact_number(angle, "angle"), exact_point(center, "center"))
+
+NAME = "discrete_rotation"
+#: dR_θ,C, declared once: the panel, the CLI, the chain, the bound rule and the account read this spec.
+SPEC = register_discrete_similarity(
+    name=NAME,
+    title="Discrete-Euclidean rotation dR_θ,C",
+    params=RotationParams,
+    factor="angle",
+    signed=True,
+    similarity=Similarity.rotation,
+    bound=bounds.rot,
+    label="dR {}°",
+    what="dR with θ = {}°",
+    help="dR_θ,C(A) = D(rot_θ,C(R(A))): rotate the continuation exactly, discretize it (paper, Def. 11).",
+    aliases=("ROT", "dR", "rotation"),
+)
+#: Run dR_θ,C on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
+run = SPEC.run
 
 
 def discrete_rotation(
@@ -79,43 +95,4 @@ def discrete_rotation(
     SizeLimitError
         The result would exceed ``limit`` pixels.
     """
-    sim = rotation_similarity(angle, center)
-    what = f"dR with θ = {number_to_json(exact_number(angle, 'angle'))}°"
-    return discrete_similarity(ps, sim, model, limit=limit, progress=progress, what=what)
-
-
-# ---------------------------------------------------------------------------------------------- the spec
-@dataclass(frozen=True)
-class RotationParams:
-    """Parameters of dR_θ,C."""
-
-    angle: float = angle_param(
-        30.0, "Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact."
-    )
-    center: tuple[float, float] | None = center_param("Centre C of the rotation (default: origin).")
-    model: str = model_param()
-
-
-def chain_step(params: RotationParams) -> ChainStep:
-    """dR_θ,C in the bound model of DESIGN §8."""
-    return bounds.rot(exact_number(params.angle, "angle"), exact_point(params.center, "center"))
-
-
-def similarity(params: RotationParams) -> Similarity:
-    """The exact rational rotation by θ about C."""
-    return rotation_similarity(params.angle, params.center)
-
-
-NAME = "discrete_rotation"
-SPEC = register_discrete_similarity(
-    name=NAME,
-    title="Discrete-Euclidean rotation dR_θ,C",
-    params=RotationParams,
-    similarity=similarity,
-    chain_step=chain_step,
-    label=lambda p: f"dR {number_to_json(exact_number(p.angle, 'angle'))}°",
-    help="dR_θ,C(A) = D(rot_θ,C(R(A))): rotate the continuation exactly, discretize it (paper, Def. 11).",
-    aliases=("ROT", "dR", "rotation"),
-)
-#: Run dR_θ,C on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
-run = SPEC.run
+    return SPEC.outcome(ps, SPEC.params(angle, center, model), limit=limit, progress=progress)

@@ -12,27 +12,42 @@ object is refused at once, with the number of pixels it would have had.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.geometry.discretize.exact_shape import Similarity, exact_point, number_to_json, positive_number
+from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.geometry.discretize.rational import ProgressLike
 from mrm.geometry.hausdorff import bounds
-from mrm.geometry.hausdorff.bounds import ChainStep
-from mrm.ops.outcome import (
-    StepOutcome,
-    alpha_param,
-    center_param,
-    discrete_similarity,
-    model_param,
-    register_discrete_similarity,
-)
+from mrm.ops.outcome import StepOutcome, alpha_param, factor_params, register_discrete_similarity
 from mrm.reps.pixels import PixelSet
 
+#: α (read exactly), the centre, the model.
+DSSParams = factor_params(
+    "DSSParams",
+    "Parameters of DSS_α.",
+    "alpha",
+    alpha_param(
+        2.0, "Scale factor α, read exactly (0.2 is 1/5); the result's size is checked before running."
+    ),
+    "Centre of the scaling (default: origin).",
+    __name__,
+)
 
-def scaling_similarity(alpha: object, center: object = None) -> Similarity:
-    """The exact ``Sc_α`` about ``center`` (the origin when None); refuses α ≤ 0, NaN and infinities."""
-    return Similarity.scaling(positive_number(alpha, "alpha"), exact_point(center, "center"))
+
+NAME = "dss"
+#: DSS_α, declared once: the panel, the CLI, the chain, the bound rule and the account read this spec.
+SPEC = register_discrete_similarity(
+    name=NAME,
+    title="Discrete smooth scaling DSS_α",
+    params=DSSParams,
+    factor="alpha",
+    similarity=Similarity.scaling,
+    bound=bounds.dss,
+    label="DSS {}",
+    what="DSS with α = {}",
+    help="DSS_α(A) = D(Sc_α(R(A))): scale the continuation exactly and discretize it (paper, Def. 3).",
+    aliases=("DSS", "discrete_smooth_scaling", "smooth_scaling"),
+)
+#: Run DSS_α on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
+run = SPEC.run
 
 
 def discrete_smooth_scaling(
@@ -74,43 +89,4 @@ def discrete_smooth_scaling(
     SizeLimitError
         The result would exceed ``limit`` pixels (the message gives its estimated size).
     """
-    sim = scaling_similarity(alpha, center)
-    what = f"DSS with α = {number_to_json(sim.ratio)}"
-    return discrete_similarity(ps, sim, model, limit=limit, progress=progress, what=what)
-
-
-# ---------------------------------------------------------------------------------------------- the spec
-@dataclass(frozen=True)
-class DSSParams:
-    """Parameters of DSS_α."""
-
-    alpha: float = alpha_param(
-        2.0, "Scale factor α, read exactly (0.2 is 1/5); the result's size is checked before running."
-    )
-    center: tuple[float, float] | None = center_param("Centre of the scaling (default: origin).")
-    model: str = model_param()
-
-
-def chain_step(params: DSSParams) -> ChainStep:
-    """DSS_α in the bound model of DESIGN §8."""
-    return bounds.dss(positive_number(params.alpha, "alpha"), exact_point(params.center, "center"))
-
-
-def similarity(params: DSSParams) -> Similarity:
-    """Sc_α about the centre, exact."""
-    return scaling_similarity(params.alpha, params.center)
-
-
-NAME = "dss"
-SPEC = register_discrete_similarity(
-    name=NAME,
-    title="Discrete smooth scaling DSS_α",
-    params=DSSParams,
-    similarity=similarity,
-    chain_step=chain_step,
-    label=lambda p: f"DSS {number_to_json(positive_number(p.alpha, 'alpha'))}",
-    help="DSS_α(A) = D(Sc_α(R(A))): scale the continuation exactly and discretize it (paper, Def. 3).",
-    aliases=("DSS", "discrete_smooth_scaling", "smooth_scaling"),
-)
-#: Run DSS_α on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
-run = SPEC.run
+    return SPEC.outcome(ps, SPEC.params(alpha, center, model), limit=limit, progress=progress)

@@ -7,11 +7,14 @@ bound of the steps around it: a union of discrete sets is the discrete step of t
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import operator
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from mrm.geometry.discretize.exact_shape import box_area
 from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, register
+from mrm.ops.outcome import joint_box
 from mrm.reps.pixels import PixelSet
 
 __all__ = ["DIFFERENCE", "INTERSECTION", "UNION", "SetOpParams"]
@@ -30,67 +33,46 @@ def _pair(inputs: Sequence[Output]) -> tuple[PixelSet, PixelSet]:
 
 def _estimate(inputs: Sequence[Output], params: Any) -> int:
     # A union covers at most the joint bounding box; intersections and differences are smaller.
-    boxes = [p.bbox for p in inputs if isinstance(p, PixelSet) and p.bbox is not None]
-    if not boxes:
-        return 0
-    x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
-    x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
-    return (x1 - x0 + 1) * (y1 - y0 + 1)
+    return box_area(joint_box([p.bbox for p in inputs if isinstance(p, PixelSet)]))
 
 
-def _run_union(inputs: Sequence[Output], params: Any, progress: ProgressLike) -> OperationResult:
-    a, b = _pair(inputs)
-    return OperationResult(outputs=[("union", a | b)])
+def _set_operation(
+    name: str, title: str, output: str, combine: Callable[[PixelSet, PixelSet], PixelSet], help: str
+) -> OperationSpec:
+    """Register the exact set operation ``combine`` of two pixel sets; its result is named ``output``."""
 
+    def run(inputs: Sequence[Output], params: Any, progress: ProgressLike) -> OperationResult:
+        return OperationResult(outputs=[(output, combine(*_pair(inputs)))])
 
-def _run_intersection(inputs: Sequence[Output], params: Any, progress: ProgressLike) -> OperationResult:
-    a, b = _pair(inputs)
-    return OperationResult(outputs=[("intersection", a & b)])
-
-
-def _run_difference(inputs: Sequence[Output], params: Any, progress: ProgressLike) -> OperationResult:
-    a, b = _pair(inputs)
-    return OperationResult(outputs=[("difference", a - b)])
-
-
-UNION = register(
-    OperationSpec(
-        name="discrete_union",
-        title="Union (discrete)",
-        arity=2,
-        params=SetOpParams,
-        run=_run_union,
-        input_kind="discrete",
-        output_kind="discrete",
-        help="The pixels in either set (exact).",
-        estimate=_estimate,
+    return register(
+        OperationSpec(
+            name=name,
+            title=title,
+            arity=2,
+            params=SetOpParams,
+            run=run,
+            input_kind="discrete",
+            output_kind="discrete",
+            help=help,
+            estimate=_estimate,
+        )
     )
+
+
+UNION = _set_operation(
+    "discrete_union", "Union (discrete)", "union", operator.or_, "The pixels in either set (exact)."
 )
-
-INTERSECTION = register(
-    OperationSpec(
-        name="discrete_intersection",
-        title="Intersection (discrete)",
-        arity=2,
-        params=SetOpParams,
-        run=_run_intersection,
-        input_kind="discrete",
-        output_kind="discrete",
-        help="The pixels in both sets (exact).",
-        estimate=_estimate,
-    )
+INTERSECTION = _set_operation(
+    "discrete_intersection",
+    "Intersection (discrete)",
+    "intersection",
+    operator.and_,
+    "The pixels in both sets (exact).",
 )
-
-DIFFERENCE = register(
-    OperationSpec(
-        name="discrete_difference",
-        title="Difference (discrete)",
-        arity=2,
-        params=SetOpParams,
-        run=_run_difference,
-        input_kind="discrete",
-        output_kind="discrete",
-        help="The pixels of the first set that are not in the second (exact).",
-        estimate=_estimate,
-    )
+DIFFERENCE = _set_operation(
+    "discrete_difference",
+    "Difference (discrete)",
+    "difference",
+    operator.sub,
+    "The pixels of the first set that are not in the second (exact).",
 )

@@ -22,7 +22,7 @@ once — the same numbers as the chain steps of the same names.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -33,15 +33,11 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 
 from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.geometry.discretize.exact_shape import (
-    ExactShape,
-    Similarity,
-    exact_number,
-    exact_point,
-    positive_number,
-)
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, exact_number
 from mrm.geometry.hausdorff import bounds as chain
 from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, param, register
+from mrm.ops.outcome import StepOutcome, factor_map
+from mrm.reps.pixels import PixelSet
 
 F64 = npt.NDArray[np.float64]
 
@@ -225,25 +221,9 @@ class RotateParams:
     center: tuple[float, float] = param((0.0, 0.0), label="centre", unit="px", help="The centre of rotation.")
 
 
-def _result(name: str, geom: BaseGeometry) -> OperationResult:
-    return OperationResult(outputs=[(name, geom)])
-
-
 # One arithmetic for every path (DESIGN §8): the registry's similarities read their parameters as the chain
 # steps of the same names do — a float as the decimal it prints as (0.4 is 2/5), the exact rational rotation —
 # apply them exactly and round each coordinate once.
-
-
-def _translate_similarity(p: TranslateParams) -> Similarity:
-    return Similarity.translation(exact_number(p.dx, "dx"), exact_number(p.dy, "dy"))
-
-
-def _scale_similarity(p: ScaleParams) -> Similarity:
-    return Similarity.scaling(positive_number(p.factor, "factor"), exact_point(p.center, "center"))
-
-
-def _rotate_similarity(p: RotateParams) -> Similarity:
-    return Similarity.rotation(exact_number(p.angle, "angle"), exact_point(p.center, "center"))
 
 
 def _exact_map(geom: BaseGeometry, sim: Similarity) -> BaseGeometry:
@@ -255,63 +235,71 @@ def _exact_map(geom: BaseGeometry, sim: Similarity) -> BaseGeometry:
     return _checked(ExactShape.from_geometry(geom).map(sim).to_geometry(), geom)
 
 
-def _run_translate(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
-    return _result("translated", _exact_map(inputs[0], _translate_similarity(p)))
+def euclidean_step(source: Any, sim: Similarity) -> StepOutcome:
+    """A Euclidean similarity as a chain step: the exact image (kept for the next step), rounded once."""
+    exact = ExactShape.from_geometry(source).map(sim)
+    return StepOutcome(exact.to_geometry(), sim, exact, PixelSet.empty())
 
 
-def _run_scale(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
-    return _result("scaled", _exact_map(inputs[0], _scale_similarity(p)))
+def _similarity_operation(
+    name: str, params: type, similarity: Callable[[Any], Similarity], output: str, **declared: Any
+) -> OperationSpec:
+    """Register a Euclidean similarity: ``similarity(params)`` is its exact map, ``output`` names the result.
 
+    ``declared`` is the rest of its :class:`OperationSpec` (title, help, chain_step, aliases).
+    """
 
-def _run_rotate(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
-    return _result("rotated", _exact_map(inputs[0], _rotate_similarity(p)))
+    def run(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
+        return OperationResult(outputs=[(output, _exact_map(inputs[0], similarity(p)))])
 
+    def step(source: Any, p: Any, **_: Any) -> StepOutcome:
+        return euclidean_step(source, similarity(p))
 
-TRANSLATE = register(
-    OperationSpec(
-        name="translate",
-        title="Translate",
-        arity=1,
-        params=TranslateParams,
-        run=_run_translate,
-        input_kind="euclidean",
-        output_kind="euclidean",
-        help="Move a Euclidean object by (dx, dy), exactly, each coordinate rounded once.",
-        chain_step=lambda p: chain.translate(exact_number(p.dx, "dx"), exact_number(p.dy, "dy")),
-        similarity=_translate_similarity,
+    return register(
+        OperationSpec(
+            name=name,
+            arity=1,
+            params=params,
+            run=run,
+            input_kind="euclidean",
+            output_kind="euclidean",
+            similarity=similarity,
+            step=step,
+            **declared,
+        )
     )
+
+
+def _translation(p: TranslateParams) -> Similarity:
+    return Similarity.translation(exact_number(p.dx, "dx"), exact_number(p.dy, "dy"))
+
+
+TRANSLATE = _similarity_operation(
+    "translate",
+    TranslateParams,
+    _translation,
+    "translated",
+    title="Translate",
+    help="Move a Euclidean object by (dx, dy), exactly, each coordinate rounded once.",
+    chain_step=lambda p: chain.translate(exact_number(p.dx, "dx"), exact_number(p.dy, "dy")),
 )
-
-SCALE = register(
-    OperationSpec(
-        name="scale",
-        title="Scale (Euclidean)",
-        arity=1,
-        params=ScaleParams,
-        run=_run_scale,
-        input_kind="euclidean",
-        output_kind="euclidean",
-        help="Scale a Euclidean object about a centre, exactly (0.4 is 2/5), each coordinate rounded once.",
-        chain_step=lambda p: chain.scale(
-            positive_number(p.factor, "factor"), exact_point(p.center, "center")
-        ),
-        similarity=_scale_similarity,
-        aliases=("SCALE", "sc"),
-    )
+SCALE = _similarity_operation(
+    "scale",
+    ScaleParams,
+    factor_map("factor", Similarity.scaling),
+    "scaled",
+    title="Scale (Euclidean)",
+    help="Scale a Euclidean object about a centre, exactly (0.4 is 2/5), each coordinate rounded once.",
+    chain_step=factor_map("factor", chain.scale),
+    aliases=("SCALE", "sc"),
 )
-
-ROTATE = register(
-    OperationSpec(
-        name="rotate",
-        title="Rotate (Euclidean)",
-        arity=1,
-        params=RotateParams,
-        run=_run_rotate,
-        input_kind="euclidean",
-        output_kind="euclidean",
-        help="Rotate a Euclidean object about a centre by the exact rational rotation, rounded once.",
-        chain_step=lambda p: chain.erot(exact_number(p.angle, "angle"), exact_point(p.center, "center")),
-        similarity=_rotate_similarity,
-        aliases=("EROT",),
-    )
+ROTATE = _similarity_operation(
+    "rotate",
+    RotateParams,
+    factor_map("angle", Similarity.rotation, signed=True),
+    "rotated",
+    title="Rotate (Euclidean)",
+    help="Rotate a Euclidean object about a centre by the exact rational rotation, rounded once.",
+    chain_step=factor_map("angle", chain.erot, signed=True),
+    aliases=("EROT",),
 )

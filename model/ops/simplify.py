@@ -16,7 +16,6 @@ factors.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
@@ -24,24 +23,21 @@ from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
     box_area,
-    exact_point,
     number_to_json,
     pixel_box,
-    positive_number,
 )
 from mrm.geometry.discretize.rational import ProgressLike, discretize_exact
 from mrm.geometry.hausdorff import bounds
-from mrm.geometry.hausdorff.bounds import ChainStep
 from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.outcome import (
     StepOutcome,
     alpha_param,
-    center_param,
     check_limit,
     check_model,
     check_size,
     estimate_source,
-    model_param,
+    factor_map,
+    factor_params,
     sub_progress,
 )
 from mrm.reps.pixels import PixelSet
@@ -96,8 +92,8 @@ def simplification(
     """
     check_model(model)
     check_limit(limit)
-    a = positive_number(alpha, "alpha")
-    sc = Similarity.scaling(a, exact_point(center, "center"))
+    sc = _scaling(SPEC.params(alpha, center, model))
+    a = sc.ratio
     geom = euclidean_input(source, model)
     shape = ExactShape.from_geometry(geom).map(sc)
     what = f"Sp with α = {number_to_json(a)} (the discretization at scale α)"
@@ -146,43 +142,46 @@ def _rounding_may_matter(result: Any, alpha: Any) -> bool:
 
 
 # ---------------------------------------------------------------------------------------------- the spec
-@dataclass(frozen=True)
-class SimplifyParams:
-    """Parameters of Sp_α."""
-
-    alpha: float = alpha_param(
-        0.5, "The grid spacing is 1/α; details below it are simplified away (error ≤ √2/α)."
-    )
-    center: tuple[float, float] | None = center_param("Centre of the scalings (default: origin).")
-    model: str = model_param()
-
-
-def chain_step(params: SimplifyParams) -> ChainStep:
-    """Sp_α in the bound model of DESIGN §8."""
-    return bounds.sp(positive_number(params.alpha, "alpha"), exact_point(params.center, "center"))
+#: α (read exactly), the centre of both scalings, the model.
+SimplifyParams = factor_params(
+    "SimplifyParams",
+    "Parameters of Sp_α.",
+    "alpha",
+    alpha_param(0.5, "The grid spacing is 1/α; details below it are simplified away (error ≤ √2/α)."),
+    "Centre of the scalings (default: origin).",
+    __name__,
+)
 
 
-def estimate(inputs: Sequence[Any], params: SimplifyParams) -> int:
+#: Sc_α about the centre, read as every path reads it (:func:`mrm.ops.outcome.factor_map`).
+_scaling = factor_map("alpha", Similarity.scaling)
+
+
+def estimate(inputs: Sequence[Any], params: Any) -> int:
     """The size of the discretization D(Sc_α(E)) from the input's bounding box alone."""
-    sim = Similarity.scaling(positive_number(params.alpha, "alpha"), exact_point(params.center, "center"))
-    return estimate_source(inputs[0], sim, params.model)
+    return estimate_source(inputs[0], _scaling(params), params.model)
 
 
-def run(
-    inputs: Sequence[Any], params: SimplifyParams, progress: ProgressLike | None = None
-) -> OperationResult:
+def step(
+    source: Any,
+    params: Any,
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+    progress: ProgressLike | None = None,
+    estimated: bool = False,
+) -> StepOutcome:
+    """Sp_α as a chain step (its own size check is of D(Sc_α(E)), made again: it costs a box)."""
+    return simplification(source, params.alpha, params.center, params.model, limit=limit, progress=progress)
+
+
+def run(inputs: Sequence[Any], params: Any, progress: ProgressLike | None = None) -> OperationResult:
     """Run Sp_α on one object (a pixel set A is read as its Euclidean representation R(A))."""
-    a = positive_number(params.alpha, "alpha")
-    out = simplification(inputs[0], a, params.center, params.model, progress=progress)
-    return OperationResult(outputs=[(f"Sp {number_to_json(a)}", out.result)])
-
-
-def similarity(params: SimplifyParams) -> Similarity:
-    """Sp_α applies Sc_α and Sc_1/α around its round trip: as a whole, the identity."""
-    return Similarity.identity()
+    out = step(inputs[0], params, progress=progress)
+    return OperationResult(outputs=[(f"Sp {number_to_json(_scaling(params).ratio)}", out.result)])
 
 
 NAME = "simplify"
+#: Sp_α, declared once: the panel, the CLI, the chain, the bound rule and the account read this spec.
 SPEC = register(
     OperationSpec(
         name=NAME,
@@ -194,8 +193,10 @@ SPEC = register(
         output_kind="euclidean",
         help="Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): simplify on a grid of spacing 1/α (paper, Def. 14).",
         estimate=estimate,
-        chain_step=chain_step,
-        similarity=similarity,
+        chain_step=factor_map("alpha", bounds.sp),
+        # Sp_α applies Sc_α and Sc_1/α around its round trip: as a whole, the identity.
+        similarity=lambda params: Similarity.identity(),
         aliases=("SP", "simplification"),
+        step=step,
     )
 )

@@ -355,3 +355,74 @@ def test_hostile_provenance_in_a_project_file_loads_and_is_explained(tmp_path):
         loads(bad.replace(f'"input_contents": ["{digest}"]', '"input_contents": ["0000"]').encode())
     with pytest.raises(FileFormatError, match="does not match its digest"):
         loads(bad.replace(f'"{digest}": {{', '"ffff": {').replace(digest, "ffff").encode())
+
+
+# ------------------------------------------------------------------------------------------- every operation
+def _registered() -> list[str]:
+    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.base import operations
+
+    load_paper_operations()
+    return [spec.name for spec in operations()]
+
+
+@pytest.mark.parametrize("name", _registered())
+@pytest.mark.parametrize("model", ["standard", "supercover", "gauss"])
+def test_every_operation_has_an_account_with_a_bound_or_words_for_why_not(name, model):
+    """No registered operation is left without an account: a bound in a stated direction, or why not."""
+    from mrm.ops.base import get_operation, params_to_dict
+
+    spec = get_operation(name)
+    params = params_to_dict(spec.default_params())
+    if "model" in params:
+        params["model"] = model
+    a = PixelSet.box(0, 0, 3, 3) if spec.input_kind == "discrete" else shapely.box(0, 0, 3.5, 3)
+    b = PixelSet.box(2, 2, 5, 5) if spec.input_kind == "discrete" else shapely.box(2, 1.5, 5, 5)
+    sources = (a, b)[: spec.arity]
+    parts = ["a_minus_b", "a_and_b", "b_minus_a"] if name == "corefine" else [None]
+    for part in parts:
+        p = params if part is None else {**params, "part": part}
+        prov = Provenance(name, p, tuple(range(1, spec.arity + 1)), sources, (None,) * spec.arity)
+        acc = account_of(prov, measure=False)
+        assert acc.error == "", (name, acc.error)
+        if acc.bound is not None and acc.bound.directions:
+            assert acc.no_bound == "" and acc.bound.guarantee
+        else:
+            assert len(acc.no_bound.split()) >= 4, (name, part, acc.no_bound)  # a sentence, not a code
+
+
+hostile_values = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.integers(-(10**400), 10**400),
+    st.text(max_size=12),
+    st.lists(st.one_of(st.floats(), st.text(max_size=4), st.integers()), max_size=3),
+    st.dictionaries(st.text(max_size=3), st.integers(), max_size=2),
+)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.sampled_from([*_registered(), "blur", ""]),
+    st.dictionaries(
+        st.sampled_from(["alpha", "angle", "factor", "center", "model", "part", "dx", "colour"]),
+        hostile_values,
+        max_size=4,
+    ),
+)
+def test_any_recorded_parameters_give_an_account_or_a_message_never_an_exception(name, params):
+    """A project whose result records anything as its operation and parameters: a message, never a crash."""
+    doc, a = _doc(PixelSet.box(0, 0, 3, 3))
+    (b,) = apply_operation(doc, "dss", [a], {"alpha": 2.0})
+    data = json.loads(dumps(doc))
+    (record,) = [o for o in data["objects"] if o["id"] == b]
+    record["provenance"].update(operation=name, params=params)
+    try:
+        back = loads(json.dumps(data).encode())
+    except FileFormatError as e:  # refused on load, in one message
+        assert str(e).startswith("project")
+        return
+    acc = account_of(back.get(b).provenance, measure=False)
+    assert acc.error or acc.bound is not None or acc.no_bound
+    assert json.loads(json.dumps(acc.summary())) is not None

@@ -295,6 +295,48 @@ def test_bad_parameters_are_refused_before_running() -> None:
     assert calls == []
 
 
+def _bounded_numbers() -> list[tuple[str, str]]:
+    from mrm.ops.apply import load_paper_operations
+
+    load_paper_operations()
+    return [
+        (spec.name, p.name)
+        for spec in operations()
+        for p in spec.param_specs()
+        if p.kind in ("float", "int") and (p.minimum is not None or p.maximum is not None)
+    ]
+
+
+@pytest.mark.parametrize(("operation", "name"), _bounded_numbers())
+@settings(max_examples=15, deadline=None)
+@given(excess=st.floats(min_value=1e-3, max_value=1e12), above=st.booleans())
+def test_every_number_outside_its_declared_range_is_refused_with_the_range(
+    operation: str, name: str, excess: float, above: bool
+) -> None:
+    """The registry declares each range once; every operation refuses beyond it and says what is allowed."""
+    from mrm.ops.base import range_text
+
+    spec = get_operation(operation)
+    p = next(q for q in spec.param_specs() if q.name == name)
+    edge = p.maximum if above else p.minimum
+    if edge is None:  # open on that side: any value there is allowed
+        edge, above = (p.minimum, False) if above else (p.maximum, True)
+    assert edge is not None
+    value = edge + excess * max(1.0, abs(edge)) if above else edge - excess * max(1.0, abs(edge))
+    inputs = [box(0, 0, 2, 2) if spec.input_kind == "euclidean" else PixelSet.box(0, 0, 2, 2)] * spec.arity
+    with pytest.raises(ParameterError) as info:
+        run_operation(spec, inputs, {name: value})
+    assert f"parameter {name!r}" in str(info.value)
+    assert f"(allowed: {range_text(p)})" in str(info.value)
+
+
+def test_the_declared_ranges_are_the_papers_operations_ones() -> None:
+    # The list above is not empty: α of DSS, Sp, EDco; θ of dR and rotate; the Euclidean scale factor.
+    assert {"dss", "discrete_rotation", "simplify", "corefine", "scale", "rotate"} <= {
+        op for op, _ in _bounded_numbers()
+    }
+
+
 # ----------------------------------------------------------------------------------------------------------
 # Running, provenance, registry
 # ----------------------------------------------------------------------------------------------------------

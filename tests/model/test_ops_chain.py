@@ -167,6 +167,13 @@ def test_bad_chains_are_refused_with_a_message():
         run_chain(a, [("dss", {"alpha": 2}), ("dss", {"alpha": -1})])
     with pytest.raises(ParameterError, match="second one"):
         parse_steps("DSS 2, UNION")
+    # The ranges the registry declares hold for a chain too, with the same message as the panel's.
+    with pytest.raises(
+        ParameterError, match=r"'angle' \(θ\) must be ≤ 3600, got 7200 \(allowed: -3600 ≤ θ ≤ 3600\)"
+    ):
+        run_chain(a, [("discrete_rotation", {"angle": 7200})], measure=False)
+    with pytest.raises(ParameterError, match=r"allowed: 1e-06 ≤ α ≤ 1e\+06"):
+        run_chain(a, [("SP", {"alpha": "1/2000000"})], measure=False)
 
 
 class CancelAfter:

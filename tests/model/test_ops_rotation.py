@@ -13,7 +13,7 @@ from mrm.errors import ParameterError
 from mrm.geometry.discretize.exact_shape import rotation_cos_sin
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.base import run_operation
-from mrm.ops.rotation import RotationParams, discrete_rotation, rotation_similarity
+from mrm.ops.rotation import RotationParams, discrete_rotation
 from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import (
     MODELS,
@@ -79,8 +79,9 @@ def test_discrete_rotation_is_exactly_D_of_the_rotated_continuation(a, deg, cent
 
 
 def test_rotating_back_composes_to_the_identity_exactly():
-    fwd = rotation_similarity(37.5, (3, -1))
-    back = rotation_similarity(-37.5, (3, -1))
+    a = PixelSet.box(0, 0, 3, 1)
+    fwd = discrete_rotation(a, 37.5, (3, -1)).transform
+    back = discrete_rotation(a, -37.5, (3, -1)).transform
     assert fwd.then(back).is_identity
 
 

@@ -195,3 +195,46 @@ def test_the_registry_and_the_chain_read_parameters_the_same_way() -> None:
     assert rot.output.equals_exact(exact.to_geometry(), 0.0)
     chained = run_chain(g, [("rotate", {"angle": 30.0, "center": (1.0, 1.0)})], "standard", measure=False)
     assert rot.output.equals_exact(chained.result, 0.0)
+
+
+decimal_factor = st.integers(1, 10**6).map(lambda n: n / 1000)  # 0.001 … 1000 as the user types them
+decimal_angle = st.integers(-36000, 36000).map(lambda n: n / 10)
+
+
+@settings(max_examples=60, deadline=None)
+@given(dyadic, dyadic, st.integers(1, 40), st.integers(1, 40), decimal_factor, dyadic, dyadic)
+def test_the_registry_scale_reads_the_decimal_and_rounds_once(x0, y0, w, h, factor, cx, cy) -> None:
+    """``scale`` by 0.4 is the exact scaling by 2/5, each coordinate rounded once, as the chain's step."""
+    from mrm.ops.chain import run_chain
+
+    g = box(x0, y0, x0 + w, y0 + h)
+    res = run_operation("scale", [g], {"factor": factor, "center": (cx, cy)})
+    q = Fraction(repr(factor))
+    expected = {(exact_image(x, cx, q, cx), exact_image(y, cy, q, cy)) for x, y in coords(g)}
+    assert {tuple(v) for v in coords(res.output)} == expected
+    chained = run_chain(g, [("scale", {"factor": factor, "center": (cx, cy)})], measure=False)
+    assert res.output.equals_exact(chained.result, 0.0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(dyadic, dyadic, st.integers(1, 40), st.integers(1, 40), decimal_angle, dyadic, dyadic)
+def test_the_registry_rotate_is_the_exact_rational_rotation_rounded_once(x0, y0, w, h, angle, cx, cy) -> None:
+    """``rotate`` applies the chain step's exact rational rotation (rational cos, sin), rounded once."""
+    from mrm.geometry.discretize.exact_shape import rotation_cos_sin
+    from mrm.ops.chain import run_chain
+
+    g = box(x0, y0, x0 + w, y0 + h)
+    res = run_operation("rotate", [g], {"angle": angle, "center": (cx, cy)})
+    c, s = rotation_cos_sin(Fraction(repr(angle)))
+    assert c * c + s * s == 1  # an isometry, exactly
+    fx, fy = Fraction(cx), Fraction(cy)
+    expected = {
+        (
+            float(fx + c * (Fraction(x) - fx) - s * (Fraction(y) - fy)),
+            float(fy + s * (Fraction(x) - fx) + c * (Fraction(y) - fy)),
+        )
+        for x, y in coords(g)
+    }
+    assert {tuple(v) for v in coords(res.output)} == expected
+    chained = run_chain(g, [("rotate", {"angle": angle, "center": (cx, cy)})], measure=False)
+    assert res.output.equals_exact(chained.result, 0.0)
