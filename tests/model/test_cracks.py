@@ -10,7 +10,7 @@ from hypothesis.extra.numpy import arrays
 from skimage.measure import label as sk_label
 
 from mrm.geometry.topology.cracks import fill_rings, trace_mask
-from mrm.geometry.topology.labeling import label, label_runs
+from mrm.geometry.topology.labeling import label, label_regions, label_runs
 
 DX = {0: 1, 1: 0, 2: -1, 3: 0}
 DY = {0: 0, 1: 1, 2: 0, 3: -1}
@@ -184,3 +184,25 @@ def test_full_and_single_row_masks() -> None:
     assert our_rings(np.ones((1, 4), bool)) == {((0, 0), "0000122223")}
     r = trace_mask(np.array([[1, 0, 1, 1, 0, 1]], bool))
     assert r.sx.tolist() == [0, 2, 5] and r.comp.tolist() == [1, 2, 3]
+
+
+@settings(max_examples=200)
+@given(
+    st.integers(0, 2**32 - 1),
+    st.tuples(st.integers(0, 20), st.integers(0, 20)),
+    st.sampled_from([2, 3, 6, 300]),
+)
+def test_label_regions_are_the_four_components_of_each_label(
+    seed: int, shape: tuple[int, int], k: int
+) -> None:
+    # Against scikit-image, label by label: the regions' labels, sizes and first pixels, in raster order.
+    labels = np.random.default_rng(seed).integers(0, k, size=shape).astype(np.int32)
+    got = label_regions(labels)
+    want = []
+    for v in np.unique(labels[labels != 0]).tolist():
+        comp = sk_label(labels == v, connectivity=1)
+        for c in range(1, int(comp.max()) + 1):
+            rows, cols = np.nonzero(comp == c)
+            want.append((int(rows[0]), int(cols[0]), v, rows.size))
+    want.sort()
+    assert list(zip(got.first_row, got.first_col, got.label, got.pixels, strict=True)) == want

@@ -22,11 +22,13 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.errors import ParameterError
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct.subdivision import subdivide
+from mrm.geometry.topology.labeling import label_regions
 from mrm.reps.pixels import LabelMap
 
 logger = logging.getLogger(__name__)
@@ -93,16 +95,38 @@ def polygonize(
         except ValueError as e:
             raise ParameterError(str(e)) from None
     sd = subdivide(lm, "gauss")
+    # The subdivision gives one polygon per region, D_gauss of it exactly the region's pixels (its contract,
+    # proven and tested in mrm.geometry.reconstruct.subdivision): a polygon is the region whose first pixel's
+    # centre it holds, and the labelling gives each region's size and order.
+    reg = label_regions(lm.labels)
+    x0, y0 = lm.origin
     out: list[Region] = []
     for label, geom in sd.parts.items():
         polys = list(geom.geoms) if isinstance(geom, MultiPolygon) else ([geom] if not geom.is_empty else [])
-        regions = []
-        for p in polys:
-            # The exact discretization gives each polygon's pixels (and proves it covers one region).
-            ps = discretize(p, "gauss", limit=None)
-            first = ps.points()
-            key = (int(first[:, 1].min()), int(first[first[:, 1] == first[:, 1].min(), 0].min()))
-            regions.append((key, Region(int(label), len(ps), p)))
-        out.extend(r for _k, r in sorted(regions, key=lambda kr: kr[0]))
+        mine = np.flatnonzero(reg.label == label)  # this label's regions, in the output order
+        centres = shapely.points(x0 + reg.first_col[mine], y0 + reg.first_row[mine])
+        which, poly = shapely.STRtree(polys).query(centres, predicate="within")
+        if which.size != mine.size or np.unique(poly).size != len(polys) or len(polys) != mine.size:
+            logger.error(
+                "label %d: %d polygons for %d regions; counting them exactly", label, len(polys), mine.size
+            )
+            out.extend(_regions_by_discretization(int(label), polys))
+            continue
+        by_region = np.empty(mine.size, np.int64)
+        by_region[which] = poly
+        out.extend(
+            Region(int(label), int(reg.pixels[r]), polys[p]) for r, p in zip(mine, by_region, strict=True)
+        )
     logger.debug("polygonized %d regions of %d labels", len(out), len(sd.parts))
     return out
+
+
+def _regions_by_discretization(label: int, polys: list[Polygon]) -> list[Region]:
+    # Each polygon's pixels by the exact discretization (slow: one D per polygon), in region order.
+    regions = []
+    for p in polys:
+        ps = discretize(p, "gauss", limit=None)
+        first = ps.points()
+        key = (int(first[:, 1].min()), int(first[first[:, 1] == first[:, 1].min(), 0].min()))
+        regions.append((key, Region(label, len(ps), p)))
+    return [r for _k, r in sorted(regions, key=lambda kr: kr[0])]

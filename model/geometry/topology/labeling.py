@@ -356,3 +356,78 @@ def group_by_label(labels: npt.NDArray[np.int32]) -> tuple[list[int], list[Int64
     vals, first = np.unique(flat[order], return_index=True)
     bounds = np.append(first, flat.size)
     return vals.tolist(), [order[bounds[i] : bounds[i + 1]] for i in range(vals.size)]
+
+
+class LabelRegions(NamedTuple):
+    """The regions of a label image: 4-connected components of equal non-zero labels (:func:`label_regions`).
+
+    Regions are numbered in raster order of their first pixel (lowest row, then lowest column; row 0 is the
+    lowest y). ``first_row`` / ``first_col`` give that pixel, ``label`` the region's label and ``pixels``
+    its number of pixels.
+    """
+
+    label: Int64Array
+    pixels: Int64Array
+    first_row: Int64Array
+    first_col: Int64Array
+
+
+@numba.njit(cache=True, nogil=True)
+def _label_regions(
+    lab: Int32Array,
+) -> tuple[Int64Array, Int64Array, Int64Array, Int64Array]:  # pragma: no cover
+    # Union-find over the pixels, 4-adjacency between equal labels; the smaller index stays the root, so a
+    # region's root is its first pixel in raster order.
+    h, w = lab.shape
+    parent = np.empty(h * w, np.int64)
+    for k in range(h * w):
+        parent[k] = k
+    for r in range(h):
+        for c in range(w):
+            v = lab[r, c]
+            if v == 0:
+                continue
+            k = r * w + c
+            if c > 0 and lab[r, c - 1] == v:
+                _union(parent, k - 1, k)
+            if r > 0 and lab[r - 1, c] == v:
+                _union(parent, k - w, k)
+    index = np.full(h * w, -1, np.int64)
+    n = 0
+    for k in range(h * w):
+        if lab[k // w, k % w] != 0 and _find(parent, k) == k:
+            index[k] = n
+            n += 1
+    label = np.empty(n, np.int64)
+    pixels = np.zeros(n, np.int64)
+    first_row = np.empty(n, np.int64)
+    first_col = np.empty(n, np.int64)
+    for k in range(h * w):
+        if lab[k // w, k % w] == 0:
+            continue
+        i = index[_find(parent, k)]
+        if pixels[i] == 0:
+            label[i] = lab[k // w, k % w]
+            first_row[i] = k // w
+            first_col[i] = k % w
+        pixels[i] += 1
+    return label, pixels, first_row, first_col
+
+
+def label_regions(labels: npt.ArrayLike) -> LabelRegions:
+    """Return the regions (4-connected components of equal non-zero labels) of a label image.
+
+    Parameters
+    ----------
+    labels : array_like of int, shape (rows, cols)
+        The label image; 0 is the background; row 0 is the lowest y.
+
+    Returns
+    -------
+    LabelRegions
+        One entry per region, in raster order of the regions' first pixels.
+    """
+    lab = np.ascontiguousarray(labels, dtype=np.int32)
+    if lab.ndim != 2:
+        raise ValueError(f"a label image must be 2-D, got shape {lab.shape}")
+    return LabelRegions(*_label_regions(lab))
