@@ -269,3 +269,20 @@ def test_cell_tracing_without_the_jit_gives_the_compiled_cells(seed: int) -> Non
     plain = _trace_cells.py_func(lab)
     for a, b in zip(compiled, plain, strict=True):
         assert np.array_equal(a, b)
+
+
+def test_a_polygon_the_labelling_cannot_place_is_counted_by_its_exact_discretization(monkeypatch) -> None:
+    # If a region's first pixel ever fell in no polygon (or two), the label's regions are counted by the exact
+    # discretization instead: the same regions, sizes and order.
+    import mrm.geometry.reconstruct.polygonize as pz
+
+    lm = MAPS[5]
+    want = [(r.label, r.pixels, r.geometry.wkb) for r in polygonize(lm)]
+    real = pz.label_regions
+
+    def shifted(labels):  # first pixels one column off: centres that no longer sit in their polygons
+        reg = real(labels)
+        return reg._replace(first_col=reg.first_col + 10_000)
+
+    monkeypatch.setattr(pz, "label_regions", shifted)
+    assert [(r.label, r.pixels, r.geometry.wkb) for r in polygonize(lm)] == want
