@@ -280,7 +280,7 @@ def test_a_polygon_the_labelling_cannot_place_is_counted_by_its_exact_discretiza
     want = [(r.label, r.pixels, r.geometry.wkb) for r in polygonize(lm)]
     real = pz.label_regions
 
-    def shifted(labels):  # first pixels one column off: centres that no longer sit in their polygons
+    def shifted(labels):  # first pixels moved far off: centres that sit in no polygon
         reg = real(labels)
         return reg._replace(first_col=reg.first_col + 10_000)
 
