@@ -46,14 +46,14 @@ class Runs(NamedTuple):
 
 
 @numba.njit(cache=True, nogil=True)
-def _find_runs(
-    m: npt.NDArray[np.uint8], m64: npt.NDArray[np.uint64]
-) -> tuple[Int32Array, Int32Array, Int64Array]:  # pragma: no cover
-    # The runs of non-zero bytes of each row. m64 is the same memory as 8-byte words (:func:`_words`): a
-    # word of eight background bytes, or of eight 1s inside a run, is passed at once, four words at a time
-    # where they can be (large smooth masks: this scan is most of R's time at 8192²).
+def _find_runs(m: npt.NDArray[np.uint8]) -> tuple[Int32Array, Int32Array, Int64Array]:  # pragma: no cover
+    # The runs of non-zero bytes of each row of a C-contiguous mask. The mask's memory is also read as 8-byte
+    # words: a word of eight background bytes, or of eight 1s inside a run, is passed at once, four words at
+    # a time where they can be (large smooth masks: this scan is most of R's time at 8192²). Words are
+    # counted over the whole buffer (rows need not start on a word boundary), so the kernel has one type.
     h, w = m.shape
-    nw = m64.shape[1]
+    nb = h * w
+    words = m.reshape(nb)[: 8 * (nb // 8)].view(np.uint64)
     zero = np.uint64(0)
     ones = np.uint64(0x0101010101010101)
     cap = max(1, h * ((w + 1) // 2))
@@ -64,26 +64,27 @@ def _find_runs(
     for r in range(h):
         ptr[r] = n
         row = m[r]
-        words = m64[r]
+        b0 = r * w  # the row's first byte in the buffer
+        kend = (b0 + w) >> 3  # words wholly before the row's end
         c = 0
         while c < w:
-            if (c & 7) == 0:
-                k = c >> 3
-                while k + 4 <= nw and (words[k] | words[k + 1] | words[k + 2] | words[k + 3]) == zero:
+            if ((b0 + c) & 7) == 0:
+                k = (b0 + c) >> 3
+                while k + 4 <= kend and (words[k] | words[k + 1] | words[k + 2] | words[k + 3]) == zero:
                     k += 4
-                while k < nw and words[k] == zero:
+                while k < kend and words[k] == zero:
                     k += 1
-                c = k << 3
+                c = (k << 3) - b0
                 if c >= w:
                     break
             if row[c]:
                 s = c
                 c += 1
                 while c < w and row[c]:
-                    if (c & 7) == 0:
-                        k = c >> 3
+                    if ((b0 + c) & 7) == 0:
+                        k = (b0 + c) >> 3
                         while (
-                            k + 4 <= nw
+                            k + 4 <= kend
                             and (
                                 (words[k] ^ ones)
                                 | (words[k + 1] ^ ones)
@@ -93,9 +94,9 @@ def _find_runs(
                             == zero
                         ):
                             k += 4
-                        while k < nw and words[k] == ones:
+                        while k < kend and words[k] == ones:
                             k += 1
-                        c = k << 3
+                        c = (k << 3) - b0
                         if c >= w or not row[c]:
                             break
                     c += 1
@@ -106,13 +107,6 @@ def _find_runs(
                 c += 1
     ptr[h] = n
     return rs[:n], re[:n], ptr
-
-
-def _words(m: npt.NDArray[np.uint8]) -> npt.NDArray[np.uint64]:
-    # The first 8·(w // 8) bytes of each row of a C-contiguous mask as uint64 words (a view; rows need not
-    # start on an 8-byte boundary, numpy and numba read unaligned words).
-    h, w = m.shape
-    return np.ndarray(shape=(h, w // 8), dtype=np.uint64, buffer=m, offset=0, strides=(w, 8))
 
 
 @numba.njit(cache=True, nogil=True)
@@ -281,7 +275,7 @@ def label_runs(mask: npt.ArrayLike, connectivity: int = 4) -> Runs:
     if connectivity not in (4, 8):
         raise ValueError(f"connectivity must be 4 or 8, got {connectivity}")
     m = as_u8(mask)
-    rs, re, ptr = _find_runs(m, _words(m))
+    rs, re, ptr = _find_runs(m)
     label, nlab, counts, bg_label, nbg, bg_counts = _label_runs(
         rs, re, ptr, m.shape[1], int(connectivity == 8)
     )
