@@ -82,7 +82,7 @@ def _check_model(model: str) -> None:
 class _Run:
     # Everything the four kernel phases produce for one pixel set (array coordinates, Q-units).
     rings: Any
-    corridor: tuple[Any, ...]
+    corridor: _k.Corridors
     reach: IntArray
     lines: FloatArray
     xy: FloatArray
@@ -127,33 +127,11 @@ def _run(ps: PixelSet, model: str) -> _Run:
         cor = _dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
     else:
         cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
-    (
-        eoff,
-        ec,
-        er,
-        _edin,
-        _edout,
-        _enl,
-        cnt,
-        r0off,
-        r0,
-        r0t,
-        poff,
-        rect,
-        pel,
-        gp,
-        gq,
-        gdir,
-        kmax,
-        special,
-        full,
-    ) = cor
-    reach, lines = _k.reach_all(eoff, ec, er, cnt, poff, pel, rect, gp, gq, gdir, special, full)
-    ga = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, True)
-    gb = _k.greedy_all(poff, reach, lines, rect, gp, gq, special, False)
-    xy, roff, status, src, win = _k.finish_all(
-        eoff, ec, er, reach, poff, rect, gp, gq, gdir, kmax, special, r0off, r0, r0t, *ga, *gb, x0, y0
-    )
+    # phases 2-4 on the corridors: reach and lines, the V4 greedy (two closing rules), finishing
+    reach, lines = _k.reach_all(cor)
+    ga = _k.greedy_all(cor, reach, lines, True)
+    gb = _k.greedy_all(cor, reach, lines, False)
+    xy, roff, status, src, win = _k.finish_all(cor, reach, ga, gb, x0, y0)
     if gauss:
         xy -= 0.5  # dual frame → plane (exact: |coordinates| < 2⁵⁰)
     return _Run(rings, cor, reach, lines, xy, roff, status, src, win)
@@ -303,8 +281,8 @@ def reconstruct_detailed(ps: PixelSet, model: str = "standard") -> Reconstructio
     run = _run(ps, model)
     rings = run.rings
     x0, y0 = ps.origin
-    poff = run.corridor[10]
-    rect = run.corridor[11]
+    poff = run.corridor.poff
+    rect = run.corridor.rect
     text = (rings.codes + np.uint8(48)).tobytes().decode("ascii")
     # gauss works in the dual frame, half a pixel up and right of the plane
     d = 2 if model == "gauss" else 0

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from mrm.geometry._jit import njit
@@ -64,3 +66,71 @@ def _grow2(a: np.ndarray, n: int, cap: int) -> np.ndarray:  # pragma: no cover
         for j in range(a.shape[1]):
             b[i, j] = a[i, j]
     return b
+
+
+# ============================================================================================ stage records
+# The arrays one phase hands to the next, grouped (numba compiles and caches NamedTuples of arrays): the
+# *_all drivers take and return these instead of a dozen positional arrays each.
+
+
+class Corridors(NamedTuple):
+    """Phase 1's output for every ring (:func:`._kernels.corridors_all`, :func:`._dual.dual_corridors_all`).
+
+    Ring k has elements ``eoff[k] … eoff[k+1]−1`` (``ec``, ``er`` their pixel or pointel in array
+    coordinates, ``edin`` / ``edout`` the codes into and out of it, ``enl`` its linels, ``cnt`` how many
+    elements share its pixel, saturated at 2), pieces ``poff[k] … poff[k+1]−1`` (``rect`` [x0, x1, y0, y1]
+    in Q-units, ``pel`` each piece's element (local index), ``gp`` / ``gq`` the left / right end of the
+    gate into it, ``gdir`` the crossing direction) and safety-net vertices ``r0off[k] …`` (``r0``, ``r0t``
+    their local piece); ``kmax`` its snapping depth, ``special`` 1 for an isolated pixel (no pieces), 2 for
+    two pixels visited once each (cover models), else 0, and ``full`` 1 when every piece is a whole square.
+    """
+
+    eoff: np.ndarray
+    ec: np.ndarray
+    er: np.ndarray
+    edin: np.ndarray
+    edout: np.ndarray
+    enl: np.ndarray
+    cnt: np.ndarray
+    r0off: np.ndarray
+    r0: np.ndarray
+    r0t: np.ndarray
+    poff: np.ndarray
+    rect: np.ndarray
+    pel: np.ndarray
+    gp: np.ndarray
+    gq: np.ndarray
+    gdir: np.ndarray
+    kmax: np.ndarray
+    special: np.ndarray
+    full: np.ndarray
+
+
+class Greedy(NamedTuple):
+    """Phase 3's output (:func:`._kernels.greedy_all`): the V4 greedy rings, concatenated.
+
+    ``xy`` the float vertices (Q-units), ``piece`` their (unwrapped) pieces, ``source`` and ``line`` the
+    vertex source and the window of the edge leaving each vertex; ring k is ``off[k] … off[k+1]−1``, and
+    ``ok[k]`` says whether its greedy succeeded.
+    """
+
+    xy: np.ndarray
+    piece: np.ndarray
+    source: np.ndarray
+    line: np.ndarray
+    off: np.ndarray
+    ok: np.ndarray
+
+
+class Rings(NamedTuple):
+    """Phase 4's output (:func:`._kernels.finish_all`): closed rings in plane coordinates.
+
+    ``xy`` the vertices (each ring closed by a repeat of its first), ring k is ``roff[k] … roff[k+1]−1``;
+    ``status`` per ring (``RING_*``), ``src`` and ``win`` per vertex (−1 on the closing repeats).
+    """
+
+    xy: np.ndarray
+    roff: np.ndarray
+    status: np.ndarray
+    src: np.ndarray
+    win: np.ndarray

@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from mrm.geometry.reconstruct._base import _DX, _DY, _cp1, _cp2
+from mrm.geometry.reconstruct._base import _DX, _DY, Corridors, _cp1, _cp2
 from mrm.geometry.reconstruct._corridor import _rect_of, element_visits, side_gate
 from mrm.geometry.reconstruct._kernels import _kmax_for
 
@@ -144,28 +144,8 @@ def dual_pieces(
 @njit(cache=True)
 def dual_corridors_all(
     codes: np.ndarray, off: np.ndarray, sx: np.ndarray, sy: np.ndarray, h: int, w: int, kcap: int
-) -> tuple[
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-]:  # pragma: no cover
-    """Phase 1 under ``gauss``: the same 19 arrays as :func:`._kernels.corridors_all`.
+) -> Corridors:  # pragma: no cover
+    """Phase 1 under ``gauss``: the same :class:`._base.Corridors` as :func:`._kernels.corridors_all`.
 
     Everything is in the dual frame (pointel (i, j) at (4i, 4j) Q-units); ``special`` is 0 for every ring.
     """
@@ -203,7 +183,7 @@ def dual_corridors_all(
         nv += rt.size
         poff[k + 1] = pos
         r0off[k + 1] = nv
-    return (
+    return Corridors(
         eoff,
         ec,
         er,

@@ -62,6 +62,9 @@ from mrm.geometry.reconstruct._base import (
     SRC_PATCH,
     SRC_SINGLE,
     SRC_SPLICE,
+    Corridors,
+    Greedy,
+    Rings,
     _cp1,
     _cp2,
     _grow1,
@@ -154,6 +157,9 @@ __all__ = [
     "_RELINK_MAX",
     "_SMALL",
     "_SMALL_POLY",
+    "Corridors",
+    "Greedy",
+    "Rings",
     "_best_line",
     "_chord_point",
     "_clip",
@@ -294,33 +300,10 @@ def _net_ring(
 @njit(cache=True)
 def corridors_all(
     codes: np.ndarray, off: np.ndarray, sx: np.ndarray, sy: np.ndarray, h: int, w: int, kcap: int
-) -> tuple[
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-]:  # pragma: no cover
+) -> Corridors:  # pragma: no cover
     """Phase 1: border-path elements, visit counts, pieces, gates and net vertices of every ring.
 
-    Returns (eoff, ec, er, edin, edout, enl, cnt, r0off, r0, r0t, poff, rect, pel, gp, gq, gdir, kmax,
-    special, full). Ring k has pieces poff[k] … poff[k+1]−1 (``pel`` local element indices) and net
-    vertices r0off[k] … with ``r0t`` their local piece; ``special`` is 1 for an isolated pixel (no pieces),
-    2 for two pixels visited once each (cover models), else 0.
+    See :class:`._base.Corridors` for what each array holds.
     """
     eoff, ec, er, edin, edout, enl, r0off, r0, r0e = build_elements(codes, off, sx, sy)
     cnt = element_visits(ec, er, h, w)
@@ -362,7 +345,7 @@ def corridors_all(
         _cp1(r0t, r0off[k], net_pieces(r0[r0off[k] : r0off[k + 1]], r0l, rc, pl))
         pos += n
         poff[k + 1] = pos
-    return (
+    return Corridors(
         eoff,
         ec,
         er,
@@ -386,21 +369,10 @@ def corridors_all(
 
 
 @njit(cache=True)
-def reach_all(
-    eoff: np.ndarray,
-    ec: np.ndarray,
-    er: np.ndarray,
-    cnt: np.ndarray,
-    poff: np.ndarray,
-    pel: np.ndarray,
-    rect: np.ndarray,
-    gp: np.ndarray,
-    gq: np.ndarray,
-    gdir: np.ndarray,
-    special: np.ndarray,
-    full: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover
+def reach_all(cor: Corridors) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover
     """Phase 2: the reach table and the central lines of every ring's pieces."""
+    eoff, ec, er, cnt, poff, pel, rect = cor.eoff, cor.ec, cor.er, cor.cnt, cor.poff, cor.pel, cor.rect
+    gp, gq, gdir, special, full = cor.gp, cor.gq, cor.gdir, cor.special, cor.full
     npc = gdir.size
     reach = np.zeros(npc, np.int64)
     lines = np.zeros((npc, 4), np.float64)
@@ -429,20 +401,10 @@ def reach_all(
 
 @njit(cache=True)
 def greedy_all(
-    poff: np.ndarray,
-    reach: np.ndarray,
-    lines: np.ndarray,
-    rect: np.ndarray,
-    gp: np.ndarray,
-    gq: np.ndarray,
-    special: np.ndarray,
-    periodic: bool,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
-    """Phase 3: the V4 greedy on every ring (one closing rule).
-
-    Returns the float vertices, their pieces,
-    sources and edge windows (concatenated), the ring offsets and a success flag per ring.
-    """
+    cor: Corridors, reach: np.ndarray, lines: np.ndarray, periodic: bool
+) -> Greedy:  # pragma: no cover
+    """Phase 3: the V4 greedy on every ring (one closing rule): see :class:`._base.Greedy`."""
+    poff, rect, gp, gq, special = cor.poff, cor.rect, cor.gp, cor.gq, cor.special
     nr = poff.size - 1
     cap = 16
     fv = np.empty((cap, 2), np.float64)
@@ -473,7 +435,7 @@ def greedy_all(
                 pos += m
                 ok[k] = True
         voff[k + 1] = pos
-    return fv[:pos], vt[:pos], vs[:pos], vl[:pos], voff, ok
+    return Greedy(fv[:pos], vt[:pos], vs[:pos], vl[:pos], voff, ok)
 
 
 @njit(cache=True)
@@ -512,42 +474,19 @@ def _push(
 
 @njit(cache=True)
 def finish_all(
-    eoff: np.ndarray,
-    ec: np.ndarray,
-    er: np.ndarray,
-    reach: np.ndarray,
-    poff: np.ndarray,
-    rect: np.ndarray,
-    gp: np.ndarray,
-    gq: np.ndarray,
-    gdir: np.ndarray,
-    kmax: np.ndarray,
-    special: np.ndarray,
-    r0off: np.ndarray,
-    r0: np.ndarray,
-    r0t: np.ndarray,
-    fa: np.ndarray,
-    ta: np.ndarray,
-    sa: np.ndarray,
-    la: np.ndarray,
-    oa: np.ndarray,
-    ka: np.ndarray,
-    fb: np.ndarray,
-    tb: np.ndarray,
-    sb: np.ndarray,
-    lb: np.ndarray,
-    ob: np.ndarray,
-    kb: np.ndarray,
-    x0: int,
-    y0: int,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
+    cor: Corridors, reach: np.ndarray, ga: Greedy, gb: Greedy, x0: int, y0: int
+) -> Rings:  # pragma: no cover
     """Phase 4: snap, verify, prune and (locally) repair every ring; emit closed rings in plane coordinates.
 
     Two greedy results per ring (a: periodic closing, b: closing on the first line): the one with fewer
     vertices is tried first, then the other; if neither verifies, the better one is repaired with the safety
-    net. Returns ``xy`` (closed rings), ``roff`` (ring offsets into xy), ``status`` per ring, ``src`` and
-    ``win`` per vertex (−1 on the closing repeats).
+    net. See :class:`._base.Rings` for what it returns.
     """
+    eoff, ec, er, poff, rect = cor.eoff, cor.ec, cor.er, cor.poff, cor.rect
+    gp, gq, gdir, kmax, special = cor.gp, cor.gq, cor.gdir, cor.kmax, cor.special
+    r0off, r0, r0t = cor.r0off, cor.r0, cor.r0t
+    fa, ta, sa, la, oa, ka = ga
+    fb, tb, sb, lb, ob, kb = gb
     nr = eoff.size - 1
     cap = 4 * r0.shape[0] + 8 * nr + 16
     xy = np.empty((cap, 2), np.float64)
@@ -718,7 +657,7 @@ def finish_all(
             )
             status[k] = RING_NET
         roff[k + 1] = pos
-    return xy[:pos], roff, status, src[:pos], win[:pos]
+    return Rings(xy[:pos], roff, status, src[:pos], win[:pos])
 
 
 @njit(cache=True)
