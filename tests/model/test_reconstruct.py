@@ -614,6 +614,28 @@ def test_the_sliding_pass_gives_the_reaches_and_lines_of_the_per_window_preimage
         assert np.array_equal(got_lines[todo], want_lines[todo])
 
 
+def test_the_sliding_pass_refuses_polygons_beyond_its_capacity_and_general_reach_takes_over() -> None:
+    # With room for 4 vertices per polygon (a gate's own) the pass must stop (False), never write past its
+    # buffers; the per-window preimage then gives the answer, as ring_reach does.
+    from mrm.geometry.reconstruct import _kernels as k
+    from mrm.geometry.reconstruct._sliding import sliding_reach
+
+    m = np.zeros((5, 60), bool)
+    m[2] = True
+    m[1, 30:] = True
+    cor = _corridor_arrays(PixelSet(m), False)
+    a, b = int(cor.poff[0]), int(cor.poff[1])
+    n = b - a
+    todo = np.ones(n, bool)
+    args = (cor.gp[a:b], cor.gq[a:b], cor.gdir[a:b], todo)
+    assert not sliding_reach(*args, np.zeros(n, np.int64), np.zeros((n, 4)), 2)
+    want_reach, want_lines = np.zeros(n, np.int64), np.zeros((n, 4))
+    k.general_reach(*args, want_reach, want_lines)
+    got_reach, got_lines = np.zeros(n, np.int64), np.zeros((n, 4))
+    assert sliding_reach(*args, got_reach, got_lines)
+    assert np.array_equal(got_reach, want_reach) and np.array_equal(got_lines, want_lines)
+
+
 def test_a_long_one_pixel_line_is_exact_and_compact_under_every_model() -> None:
     # 3,000 pixels in a row: every window runs the length of the line (quadratic one window at a time).
     m = np.zeros((3, 3000), bool)

@@ -182,15 +182,22 @@ def _meet_front(
 
 @njit(cache=True)
 def sliding_reach(
-    gp: np.ndarray, gq: np.ndarray, gdir: np.ndarray, todo: np.ndarray, reach: np.ndarray, lines: np.ndarray
+    gp: np.ndarray,
+    gq: np.ndarray,
+    gdir: np.ndarray,
+    todo: np.ndarray,
+    reach: np.ndarray,
+    lines: np.ndarray,
+    cap: int = CAP,
 ) -> bool:  # pragma: no cover
     """Reach and central lines of the starts with ``todo[i]``, by one sliding pass over the ring.
 
-    Same reach as :func:`._reach.general_reach` (see the module docstring for the lines). Returns False,
-    leaving ``reach`` and ``lines`` partly written, if some preimage polygon outgrew :data:`CAP` vertices;
-    the caller then uses :func:`._reach.general_reach`.
+    Same reach and lines as :func:`._reach.general_reach` (see the module docstring). Returns False,
+    leaving ``reach`` and ``lines`` partly written, if some preimage polygon outgrew ``cap`` vertices; the
+    caller then uses :func:`._reach.general_reach`.
     """
     n = gdir.size
+    cap = max(cap, 2)  # a gate's own polygon has up to four vertices
     # gate ends over two laps: the windows of the starts 0 … n−1 end before gate 2n
     ptx = np.empty(4 * n + 4, np.int64)
     pty = np.empty(4 * n + 4, np.int64)
@@ -200,28 +207,28 @@ def sliding_reach(
         pty[2 * k] = gp[g, 1]
         ptx[2 * k + 1] = gq[g, 0]
         pty[2 * k + 1] = gq[g, 1]
-    sg = np.empty(CAP + 2, np.int64)
+    sg = np.empty(cap + 2, np.int64)
     # working polygons: W (a suffix met with the front) and F (the front), double-buffered for _clip
-    wbuf = np.empty((4, 2, CAP + 2), np.int64)
-    wvb = np.empty((4, 2, CAP + 2, 4), np.int64)
+    wbuf = np.empty((4, 2, cap + 2), np.int64)
+    wvb = np.empty((4, 2, cap + 2, 4), np.int64)
     wcur = np.zeros(4, np.int64)
     wsize = np.zeros(4, np.int64)
-    fbuf = np.empty((4, 2, CAP + 2), np.int64)
-    fvb = np.empty((4, 2, CAP + 2, 4), np.int64)
+    fbuf = np.empty((4, 2, cap + 2), np.int64)
+    fvb = np.empty((4, 2, cap + 2, 4), np.int64)
     fcur = np.zeros(4, np.int64)
     fsize = np.zeros(4, np.int64)
     ffull = True  # F has no gate yet (the whole plane)
     # the suffixes B_x, x in [base, m): gates x+1 … m
     blen = 16
-    bbuf = np.empty((blen, 4, CAP + 2), np.int64)
-    bvb = np.empty((blen, 4, CAP + 2, 4), np.int64)
+    bbuf = np.empty((blen, 4, cap + 2), np.int64)
+    bvb = np.empty((blen, 4, cap + 2, 4), np.int64)
     bsize = np.zeros((blen, 4), np.int64)
     base = 0
     m = 0  # no block yet
     j = 0
     line = np.empty(4, np.float64)
     best = np.empty(4, np.float64)
-    ida = np.empty(CAP + 2, np.int64)
+    ida = np.empty(cap + 2, np.int64)
     cand = np.empty(256, np.float64)
     last = -1
     for i in range(n):
@@ -235,8 +242,8 @@ def sliding_reach(
             j = m
             if m - i > blen:
                 blen = 2 * (m - i)
-                bbuf = np.empty((blen, 4, CAP + 2), np.int64)
-                bvb = np.empty((blen, 4, CAP + 2, 4), np.int64)
+                bbuf = np.empty((blen, 4, cap + 2), np.int64)
+                bvb = np.empty((blen, 4, cap + 2, 4), np.int64)
                 bsize = np.zeros((blen, 4), np.int64)
             base = i
             for q in range(4):
