@@ -94,6 +94,7 @@ from mrm.geometry.reconstruct._greedy import (
     ring_reach,
     v4_greedy,
 )
+from mrm.geometry.reconstruct._minlink import minlink_ring
 from mrm.geometry.reconstruct._reach import (
     _QUAD_X,
     _QUAD_Y,
@@ -201,6 +202,7 @@ __all__ = [
     "general_reach",
     "greedy_all",
     "merge_ring",
+    "minlink_ring",
     "net_pieces",
     "prune_ring",
     "reach_all",
@@ -659,6 +661,12 @@ def finish_all(
                             pl = np.full(nvv, -1, np.int64)
                             break
                 px, py, pt, ps, pl = straighten_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
+                # ---- minimum-link ring (ADR 0031), only where the ring is still above its window bound
+                if px.size > 4 and px.size > window_bound(reach[a:b]):
+                    mx, my, mt, ms, ml = minlink_ring(px, py, pt, ps, pl, rc, p, q, g, reach[a:b], kk)
+                    if mt.size < px.size:
+                        px, py, pt, ps, pl = straighten_ring(mx, my, mt, ms, ml, rc, p, q, g, kk)
+                # ----
                 xy, src, win, pos = _push(xy, src, win, pos, px, py, ps, pl, kk, x0, y0)
                 status[k] = RING_V4
                 done = True
