@@ -479,10 +479,12 @@ def _seen_from(
     w0: np.ndarray,
     w1: np.ndarray,
     sg: np.ndarray,
+    reach: np.ndarray,
 ) -> bool:  # pragma: no cover
     # Whether some part of window k has a stretch (not just a point) that sees x.
+    n = sg.shape[0]
     for p in range(woff[k], woff[k + 1]):
-        if wt[p] >= tx:
+        if wt[p] >= tx or wt[p] + reach[wt[p] % n] < tx:
             continue
         lo, hi = _back_interval(xx, xy, tx, wcx[k], wcy[k], wdx[k], wdy[k], wt[p], w0[p], w1[p], sg)
         if hi - lo > 1e-7 * (1.0 + abs(hi)):
@@ -516,6 +518,7 @@ def _back_onto(
     w1: np.ndarray,
     sg: np.ndarray,
     rect: np.ndarray,
+    reach: np.ndarray,
 ) -> tuple[float, float, int, int]:  # pragma: no cover
     # The first candidate vertex, from number c0 on, on window k that sees x (in piece tx) and is itself seen
     # from window k − 1 (from s when k = 1). Candidates are points of the interval of
@@ -532,7 +535,7 @@ def _back_onto(
     for pi in range(c0 // _NCAND, np_):
         p = woff[k] + pi
         t = wt[p]
-        if t >= tx:
+        if t >= tx or t + reach[t % n] < tx:
             continue
         lo, hi = _back_interval(xx, xy, tx, wcx[k], wcy[k], dx, dy, t, w0[p], w1[p], sg)
         if hi <= lo:
@@ -549,7 +552,7 @@ def _back_onto(
             if k == 1:
                 if _sees(sx, sy, t0, x, y, t, sg):
                     return x, y, t, pi * _NCAND + c
-            elif _seen_from(x, y, t, k - 1, wcx, wcy, wdx, wdy, woff, wt, w0, w1, sg):
+            elif _seen_from(x, y, t, k - 1, wcx, wcy, wdx, wdy, woff, wt, w0, w1, sg, reach):
                 return x, y, t, pi * _NCAND + c
     return 0.0, 0.0, 0, -1
 
@@ -684,7 +687,7 @@ def _forward(
             kend = k
             direct = False
             _x, _y, _t, cdir = _back_onto(
-                sx, sy, tend, k, 0, sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect
+                sx, sy, tend, k, 0, sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect, reach
             )
             direct = cdir >= 0
             if not direct and bside == 0:
@@ -788,7 +791,7 @@ def minlink_from(
     # step finds none (within a budget of candidate searches)
     cand = np.zeros(kend + 2, np.int64)
     k = kend
-    budget = 8 * kend + 16
+    budget = 2 * kend + 8
     while k >= 1:
         if k < kend:
             xx = ox[k + 1, 0]
@@ -804,7 +807,7 @@ def minlink_from(
             tx = tend
         budget -= 1
         fx, fy, ft, c = _back_onto(
-            xx, xy, tx, k, cand[k], sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect
+            xx, xy, tx, k, cand[k], sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect, reach
         )
         if c < 0:
             if DEBUG:
