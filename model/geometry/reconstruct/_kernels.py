@@ -30,7 +30,8 @@ The pipeline for one crack ring (object on the left):
 
 Where each step lives: elements and pieces in :mod:`._corridor`, the reach in :mod:`._reach`, the
 greedy in :mod:`._greedy`, snapping and the exact checks in :mod:`._check`, splicing, pruning, merging,
-relinking and the small-corridor searches in :mod:`._repair`, straightening in :mod:`._straighten`,
+relinking and the small-corridor searches in :mod:`._repair`, straightening in :mod:`._straighten`, the
+minimum-link rings (Suri's windows, tried on rings still above their window bound) in :mod:`._minlink`,
 shared constants in :mod:`._base`; this module runs them over all rings (the ``*_all`` phases) and
 re-exports them, so callers import one module.
 

@@ -37,10 +37,9 @@ _GATE_EPS = 1.0 / 32.0  # Q-units each gate is shrunk by at both ends while sear
 _PUSH = 1.0 / 32.0  # Q-units a vertex is pushed off its window into the reachable side (at most)
 _MARGIN = 1.0 / 512.0  # Q-units a vertex keeps from the sides of its piece (room for snapping)
 _PCAP = 96  # vertices of a line-space polygon (a preimage has a handful; more aborts the search)
-_BOX_A = 64.0
-_INSET = 0.3  # how far a window line is moved from the extreme line towards the centroid
-DEBUG = False
-_STARTS = 3  # starts tried (vertices 0, m/3, 2m/3) while the windows promise fewer vertices  # |slope| bound of the initial line-space box (frame chosen so that real slopes are small)
+_BOX_A = 64.0  # |slope| bound of the initial line-space box (the frame keeps real slopes small)
+_INSET = 0.3  # how far a window's line moves from the extreme line towards the polygon's centroid
+_STARTS = 3  # starts tried (vertices 0, m/3, 2m/3) while the windows promise fewer vertices
 
 
 @njit(cache=True)
@@ -221,11 +220,11 @@ def _pre_reach(
     # Lines that have l strictly on their left and r on their right (the oriented crossing of a part of a
     # window, in piece t) and then cross the shrunk gates t+1, … in order: follow their polygon in line
     # space (frame u from :func:`_frame`, origin o the midpoint of l and r; a line is y' = a·x' + b) while
-    # it is non-empty, up to piece tmax. Returns the last piece J, how the gate J+1 is missed (0: up to
-    # tmax; 1: a right turn; 2: a left turn; −1: failure), the extreme line towards that gate as a world
-    # point and unit direction, how far it misses (Q-units at the gate's end, smaller is nearer), and the
-    # line-space centroid at J as (a, b) with the frame (returned through the last values: ux, uy).
-    # bufa / bufb: (4, _PCAP) scratch.
+    # it is non-empty, up to piece tmax. Returns the last piece J, how the gate J+1 is missed (0: not, up
+    # to tmax; 1: a right turn; 2: a left turn; −1: failure), the extreme line towards that gate (a world
+    # point and unit direction), how far it misses the gate's end (smaller is nearer to turning the
+    # corner), and the line the next window runs on: the extreme line moved by _INSET towards the polygon's
+    # centroid (at tmax, both lines are the centroid's). bufa / bufb: (3, _PCAP) scratch.
     n = sg.shape[0]
     ux, uy = _frame(t, tmax, reach, gdir)
     vx = -uy  # left normal
@@ -250,15 +249,11 @@ def _pre_reach(
     xl = (lx - ox) * ux + (ly - oy) * uy
     yl = (lx - ox) * vx + (ly - oy) * vy
     m = _halfplane(pa, pb, m, -xl, -1.0, yl, qa, qb)
-    if DEBUG and m <= 0:
-        print("   l empty", xl, yl, ux, uy)
     if m <= 0:
         return t, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     xr = (rx - ox) * ux + (ry - oy) * uy
     yr = (rx - ox) * vx + (ry - oy) * vy
     m = _halfplane(qa, qb, m, xr, 1.0, -yr, pa, pb)
-    if DEBUG and m <= 0:
-        print("   r empty", xr, yr, ux, uy)
     if m <= 0:
         return t, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     ja = t
@@ -273,8 +268,6 @@ def _pre_reach(
         if m1 > 0:
             m2 = _halfplane(qa, qb, m1, xq, 1.0, -yq, bufa[2], bufb[2])
         if m1 < 0 or m2 < 0:
-            if DEBUG:
-                print("   overflow", m, k)
             return ja, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         if m2 == 0:
             # missed: the gate lies right of every line (P never left: a right turn) or left of all
@@ -662,8 +655,6 @@ def _forward(
                 lx, ly, rx_, ry_, t, tend, sg, reach, gdir, bufa, bufb
             )
             if sd < 0:
-                if DEBUG:
-                    print("  part fail", t, "jj", jj, "l", lx, ly, "r", rx_, ry_)
                 continue
             if jj > jbest or (jj == jbest and miss < bmiss):
                 jbest = jj
@@ -678,8 +669,6 @@ def _forward(
                 biy = iy_
                 bidx = idx_
                 bidy = idy_
-        if DEBUG:
-            print("layer", k, "parts", woff[k + 1] - woff[k], "jbest", jbest, "side", bside, "miss", bmiss)
         if jbest < 0:
             break
         if jbest >= tend:
@@ -733,13 +722,9 @@ def _forward(
         wsg[k + 1] = 1.0 if bside == 1 else -1.0
         if woff[k + 1] + 2 * (jbest - t + 2) > pcap:
             break
-        woff[k + 2] = _window_parts(
-            wcx[k + 1], wcy[k + 1], bdx, bdy, jbest, t, rect, wt, w0, w1, woff[k + 1]
-        )
+        woff[k + 2] = _window_parts(wcx[k + 1], wcy[k + 1], bdx, bdy, jbest, t, rect, wt, w0, w1, woff[k + 1])
         if woff[k + 2] == woff[k + 1]:
             break
-    if DEBUG:
-        print("kend", kend, "last_t", last_t)
     return kend, last_x, last_y, last_t, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1
 
 
@@ -810,8 +795,6 @@ def minlink_from(
             xx, xy, tx, k, cand[k], sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect, reach
         )
         if c < 0:
-            if DEBUG:
-                print("back fail at", k, "target", xx, xy, tx, "parts", woff[k + 1] - woff[k])
             if k == kend or budget <= 0:
                 return np.empty((0, 2), np.float64), np.empty(0, np.int64), 2
             k += 1
@@ -846,11 +829,26 @@ def minlink_ring(
     reach: np.ndarray,
     kmax: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
-    """A verified ring with fewer vertices than the given one, through its vertex 0, or the given ring.
+    """A ring of the corridor with fewer vertices than the given verified ring, or the given ring itself.
 
-    The ring of :func:`minlink_from` from vertex 0 (integer coordinates scaled by 2^kmax, pieces
-    unwrapped) is snapped (:func:`snap_ring`) and verified exactly (:func:`verify_ring`); it replaces the
-    input only when it verifies and has fewer vertices, so the result is always a verified ring.
+    Parameters
+    ----------
+    ix, iy, vt, vs, vl : ndarray of int64
+        The ring: vertices in integer coordinates scaled by 2^kmax (Q-units), their pieces (unwrapped,
+        non-decreasing, within one lap), sources and edge windows (as in :func:`._repair.merge_ring`).
+    rect, gp, gq, gdir, reach : ndarray
+        The corridor: pieces, gate ends and directions, and the reach table of its windows.
+    kmax : int
+        The ring's snapping depth.
+
+    Returns
+    -------
+    tuple of ndarray
+        The ring of :func:`minlink_from` through vertex 0 of the input (then through vertices m/3 and 2m/3
+        while the windows promise fewer vertices but the backward pass finds none), snapped
+        (:func:`._check.snap_ring`) and verified exactly (:func:`._check.verify_ring`), with sources
+        ``SRC_LINES`` and no edge windows; the input arrays themselves when no such ring snaps, verifies
+        and has fewer vertices. Exactness never depends on this search.
     """
     n = gdir.size
     m = ix.size
