@@ -661,13 +661,11 @@ def finish_all(
                             ps = np.full(nvv, SRC_LINES, np.int64)
                             pl = np.full(nvv, -1, np.int64)
                             break
-                px, py, pt, ps, pl = straighten_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
                 # ---- minimum-link ring (ADR 0031), only where the ring is still above its window bound
                 if px.size > 4 and px.size > window_bound(reach[a:b]):
-                    mx, my, mt, ms, ml = minlink_ring(px, py, pt, ps, pl, rc, p, q, g, reach[a:b], kk)
-                    if mt.size < px.size:
-                        px, py, pt, ps, pl = straighten_ring(mx, my, mt, ms, ml, rc, p, q, g, kk)
+                    px, py, pt, ps, pl = minlink_ring(px, py, pt, ps, pl, rc, p, q, g, reach[a:b], kk)
                 # ----
+                px, py, pt, ps, pl = straighten_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
                 xy, src, win, pos = _push(xy, src, win, pos, px, py, ps, pl, kk, x0, y0)
                 status[k] = RING_V4
                 done = True
