@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 
 from mrm.geometry._jit import njit
-from mrm.geometry.reconstruct._base import SRC_LINES
+from mrm.geometry.reconstruct._base import SRC_LINES, _grow1
 from mrm.geometry.reconstruct._check import snap_ring, verify_ring
 
 _GATE_EPS = 1.0 / 32.0  # Q-units each gate is shrunk by at both ends while searching
@@ -589,7 +589,7 @@ def _forward(
     wdy = np.empty(wcap, np.float64)
     wsg = np.empty(wcap, np.float64)
     woff = np.zeros(wcap + 1, np.int64)
-    pcap = 16 * wcap + 64
+    pcap = max(16 * wcap, tend - t0) + 64  # grown below when a window runs through more pieces
     wt = np.empty(pcap, np.int64)
     w0 = np.empty(pcap, np.float64)
     w1 = np.empty(pcap, np.float64)
@@ -674,7 +674,6 @@ def _forward(
         if jbest >= tend:
             # s one lap later is weakly visible from W_k, or one more vertex is needed
             kend = k
-            direct = False
             _x, _y, _t, cdir = _back_onto(
                 sx, sy, tend, k, 0, sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect, reach
             )
@@ -720,8 +719,12 @@ def _forward(
         bdx = bidx
         bdy = bidy
         wsg[k + 1] = 1.0 if bside == 1 else -1.0
-        if woff[k + 1] + 2 * (jbest - t + 2) > pcap:
-            break
+        need = woff[k + 1] + jbest - t + 2  # at most one part per piece the window runs through
+        if need > wt.size:
+            cap = max(2 * wt.size, need + 64)
+            wt = _grow1(wt, woff[k + 1], cap)
+            w0 = _grow1(w0, woff[k + 1], cap)
+            w1 = _grow1(w1, woff[k + 1], cap)
         woff[k + 2] = _window_parts(wcx[k + 1], wcy[k + 1], bdx, bdy, jbest, t, rect, wt, w0, w1, woff[k + 1])
         if woff[k + 2] == woff[k + 1]:
             break
