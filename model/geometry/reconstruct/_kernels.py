@@ -662,7 +662,7 @@ def finish_all(
                             pl = np.full(nvv, -1, np.int64)
                             break
                 # ---- minimum-link ring (ADR 0031), only where the ring is still above its window bound
-                if px.size > 4 and px.size > window_bound(reach[a:b]):
+                if px.size > 4 and b - a > _SMALL_POLY and px.size > window_bound(reach[a:b]):
                     px, py, pt, ps, pl = minlink_ring(px, py, pt, ps, pl, rc, p, q, g, reach[a:b], kk)
                 # ----
                 px, py, pt, ps, pl = straighten_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
