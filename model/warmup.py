@@ -39,6 +39,7 @@ KERNEL_MODULES = (
     "geometry/reconstruct/_check.py",
     "geometry/reconstruct/_repair.py",
     "geometry/reconstruct/_straighten.py",
+    "geometry/reconstruct/_minlink.py",
     "geometry/reconstruct/_dual.py",
     "geometry/reconstruct/_subdivision_kernels.py",
     "geometry/discretize/rational_kernels.py",

@@ -30,7 +30,8 @@ The pipeline for one crack ring (object on the left):
 
 Where each step lives: elements and pieces in :mod:`._corridor`, the reach in :mod:`._reach`, the
 greedy in :mod:`._greedy`, snapping and the exact checks in :mod:`._check`, splicing, pruning, merging,
-relinking and the small-corridor searches in :mod:`._repair`, straightening in :mod:`._straighten`,
+relinking and the small-corridor searches in :mod:`._repair`, straightening in :mod:`._straighten`, the
+minimum-link rings (Suri's windows, tried on rings still above their window bound) in :mod:`._minlink`,
 shared constants in :mod:`._base`; this module runs them over all rings (the ``*_all`` phases) and
 re-exports them, so callers import one module.
 
@@ -97,6 +98,7 @@ from mrm.geometry.reconstruct._greedy import (
     ring_reach,
     v4_greedy,
 )
+from mrm.geometry.reconstruct._minlink import minlink_ring
 from mrm.geometry.reconstruct._reach import (
     _QUAD_X,
     _QUAD_Y,
@@ -207,6 +209,7 @@ __all__ = [
     "general_reach",
     "greedy_all",
     "merge_ring",
+    "minlink_ring",
     "net_pieces",
     "prune_ring",
     "reach_all",
@@ -597,6 +600,10 @@ def finish_all(
                             ps = np.full(nvv, SRC_LINES, np.int64)
                             pl = np.full(nvv, -1, np.int64)
                             break
+                # ---- minimum-link ring (ADR 0031), only where the ring is still above its window bound
+                if px.size > 4 and b - a > _SMALL_POLY and px.size > window_bound(reach[a:b]):
+                    px, py, pt, ps, pl = minlink_ring(px, py, pt, ps, pl, rc, p, q, g, reach[a:b], kk)
+                # ----
                 px, py, pt, ps, pl = straighten_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
                 xy, src, win, pos = _push(xy, src, win, pos, px, py, ps, pl, kk, x0, y0)
                 status[k] = RING_V4
