@@ -8,7 +8,9 @@ progress message when :func:`is_warm` says the stamp is missing, and the command
 stderr before a first-run compile (:func:`announce_if_cold`).
 
 The stamp is keyed by the numba and Python versions and by the text of every module holding kernels: an
-edited kernel or a new numba makes the cache cold again, which is exactly when numba recompiles.
+edited kernel or a new numba makes the cache cold again. numba itself recompiles a cached kernel only when
+its own module changed, not when a kernel it calls in another module did, so ``python -m mrm.warmup``
+removes the cached code of every kernel module before compiling again (:func:`clear_kernel_caches`).
 """
 
 from __future__ import annotations
@@ -337,8 +339,34 @@ def main(argv: list[str] | None = None) -> int:
     def show(done: int, total: int, what: str) -> None:
         print(f"mrm: warm-up {done}/{total}: {what}", flush=True)
 
+    cleared = clear_kernel_caches()
+    if cleared:
+        log.info("removed %d cached kernel files compiled from other sources", cleared)
     warm_up(show)
     return 0
+
+
+def clear_kernel_caches() -> int:
+    """Remove numba's cached code of every kernel module (next to the sources); return how many files.
+
+    numba checks a cached kernel against its own module's file only: a kernel whose callee, in another
+    module, was edited would keep running the old callee from the cache. When the kernel sources differ from
+    the stamp's, the warm-up therefore compiles everything anew. (``NUMBA_CACHE_DIR`` keeps its own layout,
+    which this leaves alone.)
+    """
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return 0
+    root = _package_root()
+    removed = 0
+    for rel in KERNEL_MODULES:
+        p = root / rel
+        for f in (p.parent / "__pycache__").glob(f"{p.stem}.*.nb[ic]"):
+            try:
+                f.unlink()
+                removed += 1
+            except OSError as exc:  # a read-only install: numba recompiles in memory, which is correct
+                log.warning("cannot remove the cached kernel %s: %s", f, exc)
+    return removed
 
 
 if __name__ == "__main__":

@@ -63,3 +63,28 @@ def test_an_unreadable_stamp_is_cold(fake_root: Path) -> None:
     warmup.stamp_path().write_text("{not json", encoding="utf-8")
     assert not warmup.is_warm()
     assert warmup.main(["--check"]) == 1
+
+
+def test_a_warm_up_after_an_edit_drops_every_cached_kernel_first(
+    fake_root: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # numba would keep a caller's cached code when only its callee's module changed: after an edit the
+    # warm-up removes the cached code of every kernel module (not only the edited one) before compiling.
+    seen: list[list[Path]] = []
+    monkeypatch.setattr(
+        warmup,
+        "warm_up",
+        lambda progress=None: seen.append(sorted(fake_root.rglob("*.nb[ic]"))) or warmup._write_stamp(),
+    )
+    warmup._write_stamp()
+    p = fake_root / "geometry" / "reconstruct/_minlink.py"
+    p.write_text(p.read_text(encoding="utf-8") + "\n# edited\n", encoding="utf-8")
+    before = sorted(fake_root.rglob("*.nbi"))
+    assert len(before) == len(warmup.KERNEL_MODULES)
+    assert warmup.main([]) == 0
+    assert seen == [[]]  # nothing cached was left when the warm-up compiled
+    unrelated = fake_root / "geometry" / "__pycache__" / "other.cpython-311.pyc"
+    unrelated.write_bytes(b"")
+    p.write_text(p.read_text(encoding="utf-8") + "\n# edited again\n", encoding="utf-8")
+    assert warmup.main([]) == 0
+    assert unrelated.exists()  # only numba's kernel files go
