@@ -69,7 +69,6 @@ class StatusBar(QtWidgets.QStatusBar):
         self.addPermanentWidget(self.figures)
         self.addPermanentWidget(self.cursor_label)
         self.addPermanentWidget(self.model_label)
-        self._counted: tuple[Any, int] | None = None  # (pixel set, its count)
         self._vertices: tuple[Any, int] | None = None  # (geometry, its vertex count)
         self._show_timer = QtCore.QTimer(self)
         self._show_timer.setSingleShot(True)
@@ -108,11 +107,7 @@ class StatusBar(QtWidgets.QStatusBar):
         }
         ps = s.get(obj_id, "discrete")
         if ps is not None:
-            # Counting 10⁸ pixels takes ~0.2 s: once per pixel set, not at every status update.
-            cached = self._counted
-            if cached is None or cached[0] is not ps:
-                cached = self._counted = (ps, ps.count)
-            out["pixels"] = cached[1]
+            out["pixels"] = ps.count  # counted once per pixel set (on the worker that made its region)
         region = s.get(obj_id, "region")
         if region is not None:
             out["components"] = region.n_components

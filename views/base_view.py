@@ -90,6 +90,7 @@ class RepresentationView(QtWidgets.QFrame):
         self.header_layout = hl
         lay.addWidget(self.header)
         self.plane = PlaneView(self.name, self)
+        self.plane.runner = getattr(scene, "runner", None)
         lay.addWidget(self.plane, 1)
         self.legend_label = QtWidgets.QLabel(self.legend, self)
         self.legend_label.setObjectName("viewLegend")
@@ -215,7 +216,12 @@ class RepresentationView(QtWidgets.QFrame):
 
     def is_preparing(self) -> bool:
         runner = getattr(self.scene, "runner", None)
-        return runner is not None and any(runner.is_busy(s) for s in self._preparing)
+        if runner is None:
+            return False
+        # The exact detail of a coarse image, zoomed in (MaskItem.update_detail), is drawing data too.
+        return any(runner.is_busy(s) for s in self._preparing) or runner.is_busy_prefix(
+            f"detail:{self.name}:"
+        )
 
     def _update_status(self) -> None:
         errors = []

@@ -63,7 +63,7 @@ class PixelSet:
     immutable: the mask is a read-only array and every operation returns a new set.
     """
 
-    __slots__ = ("_hash", "_mask", "_origin")
+    __slots__ = ("_count", "_hash", "_mask", "_origin")
 
     def __init__(self, mask: npt.ArrayLike, origin: tuple[int, int] = (0, 0)) -> None:
         m = np.asarray(mask)
@@ -84,6 +84,7 @@ class PixelSet:
             self._mask = _frozen(m, fresh=fresh)
             self._origin = (x0 + c0, y0 + r0)
         self._hash: int | None = None
+        self._count: int | None = None
 
     @classmethod
     def _canonical(cls, mask: BoolArray, origin: tuple[int, int]) -> PixelSet:
@@ -92,6 +93,7 @@ class PixelSet:
         ps._mask = mask
         ps._origin = origin
         ps._hash = None
+        ps._count = None
         return ps
 
     @classmethod
@@ -239,11 +241,15 @@ class PixelSet:
         return (int(self._mask.shape[0]), int(self._mask.shape[1]))
 
     def __len__(self) -> int:
-        return int(np.count_nonzero(self._mask))
+        # Counted once (the mask is immutable): 10⁸ pixels take tens of milliseconds, and views read the
+        # count at every refresh (the status bar, the inspector's chain).
+        if self._count is None:
+            self._count = int(np.count_nonzero(self._mask))
+        return self._count
 
     @property
     def count(self) -> int:
-        """Number of pixels in the set."""
+        """Number of pixels in the set (counted once)."""
         return len(self)
 
     def is_empty(self) -> bool:
@@ -390,7 +396,9 @@ class PixelSet:
         """Return the set moved by the integer vector (dx, dy)."""
         if self.is_empty():
             return self
-        return PixelSet._canonical(self._mask, (self._origin[0] + int(dx), self._origin[1] + int(dy)))
+        moved = PixelSet._canonical(self._mask, (self._origin[0] + int(dx), self._origin[1] + int(dy)))
+        moved._count = self._count
+        return moved
 
     def crop(self, box: Box) -> PixelSet:
         """Return the pixels of this set inside ``box`` = (xmin, ymin, xmax, ymax)."""
