@@ -8,7 +8,7 @@ from typing import Any
 from PySide6 import QtCore, QtWidgets
 
 from mrm.views.geometry_edit import pixel_at, vertex_count
-from mrm.views.scene import Scene
+from mrm.views.scene import Scene, pixel_count
 
 #: A count the user cancelled (shown "not computed", never "…" as if it were on its way).
 CANCELLED = object()
@@ -107,7 +107,7 @@ class StatusBar(QtWidgets.QStatusBar):
         }
         ps = s.get(obj_id, "discrete")
         if ps is not None:
-            out["pixels"] = ps.count  # counted once per pixel set (on the worker that made its region)
+            out["pixels"] = pixel_count(ps)
         region = s.get(obj_id, "region")
         if region is not None:
             out["components"] = region.n_components
@@ -122,7 +122,8 @@ class StatusBar(QtWidgets.QStatusBar):
             if vc is None or vc[0] is not geom:
                 vc = self._vertices = (geom, vertex_count(geom))
             out["vertices"] = vc[1]
-        for key, rep in (("pixels", "discrete"), ("components", "region"), ("holes", "region"),
+        # A big set is counted with its region (views.scene.pixel_count).
+        for key, rep in (("pixels", "region"), ("components", "region"), ("holes", "region"),
                          ("segments", "analytical"), ("vertices", "euclidean")):  # fmt: skip
             if out[key] is None and (s.is_cancelled(obj_id, rep) or s.is_cancelled(obj_id, "discrete")):
                 out[key] = CANCELLED

@@ -252,6 +252,11 @@ class PixelSet:
         """Number of pixels in the set (counted once)."""
         return len(self)
 
+    @property
+    def known_count(self) -> int | None:
+        """The number of pixels if it was counted already (:attr:`count`), else None; never counts."""
+        return self._count
+
     def is_empty(self) -> bool:
         """True when the set holds no pixel."""
         return self._mask.size == 0

@@ -40,6 +40,8 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
     item = layer.mask
     assert item.image.size <= LOD_PIXELS and item.scale_factor == 2
+    # The status bar gives its pixel count, counted on the worker that made its region.
+    assert f"{ps.count:,} pixels".replace(",", "\u2009") in win.status.figures.text()
     r = item.mapRectToParent(item.boundingRect())
     assert (r.left(), r.bottom() if r.bottom() > r.top() else r.top()) == (-100.5, 40 - 0.5 + 2000)
     assert r.width() == 2500
