@@ -129,6 +129,25 @@ class StatusBar(QtWidgets.QStatusBar):
                 out[key] = CANCELLED
         return out
 
+    def label_map_figures(self, obj_id: int) -> str:
+        """A label map's figures (ADR 0033), from what the workers derived: nothing is counted here."""
+        s = self.scene
+        lm = s.source(obj_id)
+        h, w = lm.shape
+        out = [f"label map {_int(w)} × {_int(h)}"]
+        cells = s.get(obj_id, "region")
+        sd = s.get(obj_id, "euclidean")
+        out.append(f"{_int(len(sd.parts))} labels" if sd is not None else "… labels")
+        out.append(f"{_int(len(cells.one_cells))} 1-cells" if cells is not None else "… 1-cells")
+        if sd is not None:
+            vc = self._vertices
+            if vc is None or vc[0] is not sd:
+                vc = self._vertices = (sd, sd.n_vertices)
+            out.append(f"{_int(vc[1])} vertices (gauss subdivision)")
+        else:
+            out.append("… vertices")
+        return " · ".join(out)
+
     def update_figures(self) -> None:
         doc = self.scene.doc
         self.model_label.setText(f"model: {doc.model}")
@@ -136,6 +155,9 @@ class StatusBar(QtWidgets.QStatusBar):
         if obj is None:
             n = len(doc)
             self.figures.setText(f"{n} object{'s' if n != 1 else ''}" if n else "")
+            return
+        if obj.kind == "labels":
+            self.figures.setText(f"<b>{obj.name}</b>: {self.label_map_figures(obj.id)}")
             return
         f = self.figures_of(obj.id)
 

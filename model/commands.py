@@ -137,7 +137,7 @@ def _not_a_label_map(obj: DocObject, what: str) -> None:
     """Refuse a pixel or polygon edit on a label map, saying what to do instead (ADR 0033)."""
     if isinstance(obj.source, LabelMap):
         raise NotApplicableError(
-            f"{obj.name!r} is a label map: {what} apply to pixel and polygon objects; Object ▸ Split into "
+            f"{obj.name!r} is a label map: {what} apply to pixel and polygon objects; Edit ▸ Split into "
             "Objects makes one pixel object per label"
         )
 

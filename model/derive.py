@@ -93,7 +93,7 @@ def subdivision_of_labels(lm: LabelMap) -> Any:
 #: Why a label map has no analytical representation of its own (the analytical view says it).
 NO_LABEL_SEGMENTS = (
     "a label map's boundaries are shared by two regions each: its digital straight segments are those of "
-    "each object after Object ▸ Split into Objects"
+    "each object after Edit ▸ Split into Objects"
 )
 
 

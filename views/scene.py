@@ -61,6 +61,13 @@ DERIVATION_STEPS: dict[str, dict[str, tuple[Rep, ...]]] = {
         "region": ("discrete", "region"),
         "analytical": ("discrete", "region", "analytical"),
     },
+    # A label map (ADR 0033): its cells, its gauss subdivision; no analytical representation.
+    "labels": {
+        "discrete": ("discrete",),
+        "euclidean": ("euclidean",),
+        "region": ("region",),
+        "analytical": ("analytical",),
+    },
 }
 #: The text a view shows for a representation whose computation was cancelled.
 CANCELLED = "not computed (cancelled)"

@@ -544,6 +544,31 @@ class LabelMap:
         """(rows, cols) of the label array."""
         return (int(self._labels.shape[0]), int(self._labels.shape[1]))
 
+    def is_empty(self) -> bool:
+        """True when no pixel carries a non-zero label."""
+        return self._labels.size == 0
+
+    def label_at(self, p: tuple[int, int]) -> int:
+        """The label of pixel ``p`` = (x, y): 0 outside the map or on its background."""
+        x, y = int(p[0]) - self._origin[0], int(p[1]) - self._origin[1]
+        h, w = self.shape
+        return int(self._labels[y, x]) if 0 <= x < w and 0 <= y < h else 0
+
+    def __contains__(self, p: object) -> bool:
+        """True when pixel ``p`` = (x, y) carries a non-zero label."""
+        if not (isinstance(p, tuple) and len(p) == 2):
+            return False
+        return self.label_at(p) != 0
+
+    @property
+    def bbox(self) -> Box | None:
+        """(xmin, ymin, xmax, ymax) of the labelled pixels, bounds included, or None when empty."""
+        if self.is_empty():
+            return None
+        x0, y0 = self._origin
+        h, w = self.shape
+        return (x0, y0, x0 + w - 1, y0 + h - 1)
+
     def label_values(self) -> list[int]:
         """The distinct non-zero labels, sorted."""
         v = np.unique(self._labels)
