@@ -236,8 +236,8 @@ class RepresentationView(QtWidgets.QFrame):
         errors = []
         cancelled = []
         for obj in self.scene.objects():
-            if not obj.style.visible:
-                continue
+            if not obj.style.visible or (obj.kind == "labels" and self.rep == "analytical"):
+                continue  # (a label map has no segments: label_map_note says so, neutrally)
             if self.scene.is_cancelled(obj.id, self.rep) or self.scene.is_cancelled(obj.id, "discrete"):
                 cancelled.append(obj.name)
                 continue

@@ -445,7 +445,8 @@ class LodPathItem(PathItem):
         # the chunks in view only. Dashes are left whole (their stroker skips what is off-screen itself,
         # and cut paths would restart the pattern).
         cut = self.tiled and pen.style() == QtCore.Qt.PenStyle.SolidLine
-        view = visible_rect(painter, pen.widthF() + 2.0) if cut else None
+        seen = visible_rect(painter, pen.widthF() + 2.0)
+        view = seen if cut else None
         small = []
         for level in self.levels:
             if level.extent * scale < DOT_PX:
@@ -469,9 +470,22 @@ class LodPathItem(PathItem):
         if not small or pen.style() == QtCore.Qt.PenStyle.NoPen:
             return
         c = np.concatenate(small)
+        if seen is not None:  # the dots in view only: zoomed in, most are elsewhere
+            c = c[
+                (c[:, 0] >= seen.left())
+                & (c[:, 0] <= seen.right())
+                & (c[:, 1] >= seen.top())
+                & (c[:, 1] <= seen.bottom())
+            ]
+            if not len(c):
+                return
         m = np.array([[tr.m11(), tr.m12()], [tr.m21(), tr.m22()]])
-        dev = np.floor(c @ m + np.array([tr.dx(), tr.dy()]))
-        dev = np.unique(dev, axis=0)  # one dot per screen pixel
+        dev = np.floor(c @ m + np.array([tr.dx(), tr.dy()])).astype(np.int64)
+        # One dot per screen pixel: a 1-D unique of one key per pixel (a row-wise unique sorts 3× slower).
+        lo = dev.min(axis=0)
+        span = int(dev[:, 1].max() - lo[1]) + 1
+        keys = np.unique((dev[:, 0] - lo[0]) * span + (dev[:, 1] - lo[1]))
+        dev = np.stack([keys // span + lo[0], keys % span + lo[1]], axis=1).astype(float)
         dot = QtGui.QPen(pen.color())
         dot.setCosmetic(True)
         dot.setWidthF(max(1.0, min(pen.widthF(), 2.0)))

@@ -153,7 +153,9 @@ def draw_labels(view: Any, layer: LabelLayer, obj: Any, rep: str, selected: bool
             fill.setAlphaF(min(1.0, base) * 0.75)
             item.set_style(fill, None)
         line = QtGui.QColor("#e8e8e8") if dark else QtGui.QColor("#1d1d1d")
-        layer.lines.set_style(None, line, 2.0 if selected else 1.2)
+        # A hairline, the selection told by colour: a one-pixel cosmetic pen is Qt's fast stroke (50× a
+        # wider one), and a map of 10⁴ regions has 10⁶ boundary elements.
+        layer.lines.set_style(None, QtGui.QColor("#d35400") if selected else line, 1.0)
         layer.points.set_colours(line, QtGui.QColor("#e15759"))
         layer.key = key
     layer.image.setVisible(rep in ("discrete", "region") and layer.image.image is not None)
