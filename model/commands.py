@@ -741,7 +741,33 @@ class ApplyResults(Command):
         return COMMAND_OVERHEAD + sum(source_nbytes(o.source) for o in objs)
 
 
-class MergeObjects(Command):
+class _Replacing(Command):
+    """A command whose effect is an :class:`ApplyResults` built on its first run (objects in, objects out)."""
+
+    label = ""
+    _inner: ApplyResults | None = None
+
+    def _build(self, doc: Document) -> ApplyResults:
+        raise NotImplementedError
+
+    def do(self, doc: Document) -> None:
+        """Build the replacement (first call) and apply it."""
+        if self._inner is None:
+            self._inner = self._build(doc)
+            self.label = self._inner.label
+        self._inner.do(doc)
+
+    def undo(self, doc: Document) -> None:
+        """Bring back what was replaced."""
+        assert self._inner is not None
+        self._inner.undo(doc)
+
+    def byte_size(self) -> int:
+        """The new and removed sources."""
+        return self._inner.byte_size() if self._inner is not None else COMMAND_OVERHEAD
+
+
+class MergeObjects(_Replacing):
     """Merge objects into one whose discrete source is the union of their discrete representations.
 
     The union is taken on pixels because D is union-stable (D(E ∪ F) = D(E) ∪ D(F)), so the merged object
@@ -756,43 +782,30 @@ class MergeObjects(Command):
             raise ParameterError("merging needs at least two objects")
         self.name = name
         self.label = f"Merge {len(self.ids)} objects"
-        self._inner: ApplyResults | None = None
 
-    def do(self, doc: Document) -> None:
-        """Build the merged object (first call) and apply it."""
-        if self._inner is None:
-            from mrm.document import Provenance
-            from mrm.io.georef import result_georef
+    def _build(self, doc: Document) -> ApplyResults:
+        from mrm.document import Provenance
+        from mrm.io.georef import result_georef
 
-            objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
-            parts = [discrete_of(doc, o) for o in objs]
-            _check_union_box([p.bbox for p in parts], "the merged object")  # before allocating it
-            union = PixelSet.empty()
-            for part in parts:
-                union = union | part
-            merged = DocObject(
-                id=doc.new_id(),
-                name=self.name if self.name is not None else objs[0].name,
-                source=union,
-                style=objs[0].style,
-                provenance=Provenance("merge", {}, tuple(o.id for o in objs)),
-                georef=result_georef("merge", {}, [o.georef for o in objs]),  # one grid: kept (ADR 0021)
-            )
-            index = doc.index_of(objs[0].id)
-            self._inner = ApplyResults(self.label, add=[merged], remove=[o.id for o in objs], index=index)
-        self._inner.do(doc)
-
-    def undo(self, doc: Document) -> None:
-        """Bring the inputs back."""
-        assert self._inner is not None
-        self._inner.undo(doc)
-
-    def byte_size(self) -> int:
-        """The merged and removed sources."""
-        return self._inner.byte_size() if self._inner is not None else COMMAND_OVERHEAD
+        objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
+        parts = [discrete_of(doc, o) for o in objs]
+        _check_union_box([p.bbox for p in parts], "the merged object")  # before allocating it
+        union = PixelSet.empty()
+        for part in parts:
+            union = union | part
+        merged = DocObject(
+            id=doc.new_id(),
+            name=self.name if self.name is not None else objs[0].name,
+            source=union,
+            style=objs[0].style,
+            provenance=Provenance("merge", {}, tuple(o.id for o in objs)),
+            georef=result_georef("merge", {}, [o.georef for o in objs]),  # one grid: kept (ADR 0021)
+        )
+        index = doc.index_of(objs[0].id)
+        return ApplyResults(self.label, add=[merged], remove=[o.id for o in objs], index=index)
 
 
-class SplitLabelMap(Command):
+class SplitLabelMap(_Replacing):
     """Replace a label map object by one pixel object per label (named ``<name> label <v>``), in its place.
 
     What importing a label image "one object per label" gives, from a label map already in the document
@@ -802,38 +815,24 @@ class SplitLabelMap(Command):
     def __init__(self, obj_id: int) -> None:
         self.obj_id = obj_id
         self.label = "Split label map"
-        self._inner: ApplyResults | None = None
 
-    def do(self, doc: Document) -> None:
-        """Build the objects (first call) and apply the replacement."""
-        if self._inner is None:
-            obj = doc.get(self.obj_id)
-            if not isinstance(obj.source, LabelMap):
-                raise NotApplicableError(f"{obj.name!r} is not a label map: there is nothing to split")
-            lm = obj.source
-            parts = [
-                DocObject(
-                    id=doc.new_id(),
-                    name=f"{obj.name} label {v}",
-                    source=lm.pixel_set(v),
-                    style=dataclasses.replace(obj.style, fill=PALETTE[k % len(PALETTE)]),
-                    georef=obj.georef,
-                )
-                for k, v in enumerate(lm.label_values())
-            ]
-            self.label = f"Split {obj.name} into {len(parts)} objects"
-            index = doc.index_of(obj.id)
-            self._inner = ApplyResults(self.label, add=parts, remove=[obj.id], index=index, select=True)
-        self._inner.do(doc)
-
-    def undo(self, doc: Document) -> None:
-        """Bring the label map back."""
-        assert self._inner is not None
-        self._inner.undo(doc)
-
-    def byte_size(self) -> int:
-        """The new and removed sources."""
-        return self._inner.byte_size() if self._inner is not None else COMMAND_OVERHEAD
+    def _build(self, doc: Document) -> ApplyResults:
+        obj = doc.get(self.obj_id)
+        if not isinstance(obj.source, LabelMap):
+            raise NotApplicableError(f"{obj.name!r} is not a label map: there is nothing to split")
+        lm = obj.source
+        parts = [
+            DocObject(
+                id=doc.new_id(),
+                name=f"{obj.name} label {v}",
+                source=lm.pixel_set(v),
+                style=dataclasses.replace(obj.style, fill=PALETTE[k % len(PALETTE)]),
+                georef=obj.georef,
+            )
+            for k, v in enumerate(lm.label_values())
+        ]
+        label = f"Split {obj.name} into {len(parts)} objects"
+        return ApplyResults(label, add=parts, remove=[obj.id], index=doc.index_of(obj.id), select=True)
 
 
 class ChangeSettings(Command):

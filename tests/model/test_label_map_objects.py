@@ -158,3 +158,12 @@ def test_export_writes_one_feature_per_region_as_mrm_polygonize_does(tmp_path):
     assert {p["label"] for p in props} == set(lm.label_values())
     for v in lm.label_values():
         assert sum(p["pixels"] for p in props if p["label"] == v) == lm.pixel_set(v).count
+
+
+def test_a_label_maps_pixels_are_looked_up_like_a_pixel_sets():
+    lm = LabelMap(np.array([[0, 3], [5, 0]], np.int32), (10, 20))
+    assert lm.bbox == (10, 20, 11, 21) and lm.bbox == lm.support().bbox
+    assert [lm.label_at(p) for p in ((11, 20), (10, 21), (10, 20), (12, 20))] == [3, 5, 0, 0]
+    assert (11, 20) in lm and (11.0, 20) in lm and (10, 20) not in lm
+    for odd in ((11.5, 20), ("11", 20), (11,), None):
+        assert odd not in lm and odd not in lm.support()
