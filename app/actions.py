@@ -58,6 +58,12 @@ SPECS: tuple[ActionSpec, ...] = (
     ),
     ActionSpec("edit.delete", "&Delete Object", "Del", "Delete the selected object", icon="edit-delete"),
     ActionSpec("edit.duplicate", "D&uplicate Object", "Ctrl+D", "Copy the selected object"),
+    ActionSpec(
+        "edit.split_labels",
+        "Split into O&bjects",
+        "",
+        "Replace the selected label map by one pixel object per label",
+    ),
     ActionSpec("edit.rename", "Re&name Object…", "F2", "Rename the selected object"),
     ActionSpec("edit.colour", "Object Co&lour…", "Ctrl+Shift+L", "Choose the colour of the selected object"),
     ActionSpec(

@@ -165,7 +165,9 @@ class ClipboardController(QtCore.QObject):
         for o in doc.objects:
             if o.id in ids:
                 part.insert_object(o, None)
-        named = [(doc.get(i).name, self.win.scene.get(i, "euclidean")) for i in ids]
+        # As GeoJSON text, the shapes: a label map (its subdivision, ADR 0033) is copied as an object only.
+        shapes = [i for i in ids if doc.get(i).kind != "labels"]
+        named = [(doc.get(i).name, self.win.scene.get(i, "euclidean")) for i in shapes]
         n = len(ids)
 
         def work(_progress: Any) -> tuple[bytes, str]:

@@ -31,6 +31,7 @@ OBJECT_ITEMS: tuple[str | None, ...] = (
     "edit.paste",
     "edit.duplicate",
     "edit.delete",
+    "edit.split_labels",
     None,
     "view.fit_selection",
     "view.fit_differences",
@@ -66,7 +67,7 @@ class ContextMenus(QtCore.QObject):
         for aid in OBJECT_ITEMS:
             if aid is None:
                 m.addSeparator()
-            else:
+            elif aid != "edit.split_labels" or self.win.registry[aid].isEnabled():  # label maps only
                 m.addAction(self.win.registry[aid])
 
     def _here(self, m: QtWidgets.QMenu, text: str, name: str, slot: Any, enabled: bool, tip: str) -> None:
@@ -129,7 +130,7 @@ class ContextMenus(QtCore.QObject):
         """
         doc, scene = self.win.doc, self.win.scene
         for obj in [scene.primary(), *reversed(doc.objects)]:
-            if obj is None or not obj.style.visible:
+            if obj is None or not obj.style.visible or obj.kind == "labels":  # its "region" is its cells
                 continue
             entry = scene.entry(obj.id)
             ps = obj.source if obj.kind == "discrete" else entry.peek("discrete")

@@ -56,14 +56,17 @@ def document_weight(doc: Any) -> int:
     """A cheap size estimate of a document's file: pixels of pixel sources plus coordinates of polygons."""
     import shapely
 
-    from mrm.reps.pixels import PixelSet
+    from mrm.reps.pixels import LabelMap, PixelSet
 
     total = 0
     for o in doc.objects:
         src = o.source
-        total += (
-            src.mask.size // 4 if isinstance(src, PixelSet) else 40 * int(shapely.get_num_coordinates(src))
-        )
+        if isinstance(src, PixelSet):
+            total += src.mask.size // 4
+        elif isinstance(src, LabelMap):
+            total += src.labels.size  # zlib of int32 labels: about a byte a pixel or less
+        else:
+            total += 40 * int(shapely.get_num_coordinates(src))
     return total
 
 
@@ -457,10 +460,10 @@ class FileController(QtCore.QObject):
         chosen, self._chosen = self._chosen, {}
         return self._import(paths, chosen)
 
-    def _ask_image(self, paths: list[Path], k: int, grey: Any, labels_ok: bool) -> None:
+    def _ask_image(self, paths: list[Path], k: int, grey: Any, labels_ok: bool, labels_first: bool) -> None:
         from mrm.app.import_dialog import ImageImportDialog
 
-        dlg = ImageImportDialog(paths[k], grey, labels_ok, self.win)
+        dlg = ImageImportDialog(paths[k], grey, labels_ok, labels_first, self.win)
         self.import_dialog = dlg
 
         def done(result: int) -> None:
@@ -538,6 +541,8 @@ class FileController(QtCore.QObject):
         p = Path(path)
         ext = p.suffix.lower()
         entry = self.doc.derived(obj_id)
+        if self.doc.get(obj_id).kind == "labels":
+            return self._export_label_map(obj_id, p)
         try:
             if ext == ".tif" or (
                 self.doc.get(obj_id).georef is not None and ext in (".png", ".geojson", ".json", ".wkt")
@@ -569,6 +574,55 @@ class FileController(QtCore.QObject):
             return False
         self.prefs.last_directory = str(p.resolve().parent)
         self.win.show_message(f"Exported {p.name}", 3000)
+        return True
+
+    def _export_label_map(self, obj_id: int, p: Path) -> bool:
+        """Write a label map: its labels (.png, .npz) or one GeoJSON Feature per region, on a worker.
+
+        The regions are those of ``mrm polygonize`` (label, pixels, polygon; the gauss subdivision), which
+        takes seconds on a big map: the window stays live and the status bar says when it is written.
+        """
+        obj = self.doc.get(obj_id)
+        lm = obj.source
+        ext = p.suffix.lower()
+        if ext in (".png", ".npz"):
+            from mrm.io.pixel_files import write_label_map
+
+            def work(_progress: Any) -> None:
+                write_label_map(lm, p)
+        elif ext in (".geojson", ".json"):
+            from mrm.geometry.reconstruct.polygonize import polygonize
+            from mrm.io.vector_files import write_regions_geojson
+
+            def work(progress: Any) -> None:
+                progress.update(0.0, f"{obj.name}: polygonizing its regions")
+                write_regions_geojson(polygonize(lm), p)
+        else:
+            self._error(
+                "Cannot export",
+                f"{obj.name} is a label map: it exports as GeoJSON (one feature per region, with its label "
+                f"and pixel count) or as a PNG or NPZ label image, not as '{ext}'. Edit ▸ Split into Objects "
+                "gives one object per label for the other formats.",
+            )
+            return False
+
+        def done(_r: Any) -> None:
+            self.prefs.last_directory = str(p.resolve().parent)
+            self.win.show_message(f"Exported {p.name}", 3000)
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            self._error("Cannot export", describe_error(e))
+
+        self.win.runner.submit(
+            f"export:{obj_id}",
+            work,
+            on_result=done,
+            on_error=failed,
+            label=f"Exporting {p.name}",
+            show_progress=True,
+        )
         return True
 
     # ------------------------------------------------------------------ drag and drop

@@ -2,7 +2,8 @@
 
 A binary image (two values) imports as it is. Any other image opens this dialog: a threshold (Otsu's value
 proposed and shown, adjustable with a slider and a field), an Invert box, a preview of the pixels that would
-be imported — or, for a grey or indexed image, one object per label (each non-zero value). The pixels
+be imported — or, for a grey or indexed image or an NPZ label array, one label map object (ADR 0033) or
+one object per label (each non-zero value). The pixels
 themselves are read by the model (:func:`mrm.io.pixel_files.read_pixels` with the chosen threshold,
 :func:`mrm.io.pixel_files.read_label_map`); the dialog only reads the image's values for the preview.
 """
@@ -18,18 +19,22 @@ from PySide6 import QtCore, QtGui, QtWidgets
 PREVIEW_SIZE = 220
 
 
-def image_values(path: Path) -> tuple[np.ndarray, bool] | None:
-    """The grey values of an image (rows top first) and whether labels make sense; None if binary.
+def image_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
+    """``(values, labels_ok, labels_first)`` of an image; None if binary (imported with no question).
 
+    The values are the grey values, rows top first; ``labels_ok`` says whether labels make sense,
+    ``labels_first`` whether they are the image's meaning (an indexed PNG, an NPZ ``labels`` array).
     Colour images give their luminance (the model's :func:`~mrm.io.threshold.luminance`); labels are
-    offered for grey and indexed images only.
+    offered for grey and indexed images and NPZ label arrays only.
     """
     from PIL import Image
 
     from mrm.io.threshold import luminance
 
+    if path.suffix.lower() == ".npz":
+        return _npz_labels(path)
     if path.suffix.lower() != ".png":
-        return None  # PBM is binary; PGM and NPZ keep the model's own rules
+        return None  # PBM is binary; PGM keeps the model's own rules
     with Image.open(path) as im:
         mode = im.mode
         if mode == "1":
@@ -43,14 +48,35 @@ def image_values(path: Path) -> tuple[np.ndarray, bool] | None:
     values = np.unique(grey)
     if len(values) <= 2 and (len(values) < 2 or values[0] == 0):
         return None  # binary: imported as it is, no question
-    return grey, labels_ok
+    return grey, labels_ok, mode == "P" and labels_ok
+
+
+def _npz_labels(path: Path) -> tuple[np.ndarray, bool, bool] | None:
+    """An NPZ holding a ``labels`` array: its labels (rows top first); None for a pixel set's NPZ."""
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(path) as z:
+            if "labels.npy" not in z.namelist():
+                return None
+    except (OSError, zipfile.BadZipFile):
+        return None  # the model's reader says what is wrong
+    from mrm.io.pixel_files import read_label_map
+
+    lm = read_label_map(path)
+    return np.asarray(lm.labels[::-1], dtype=np.int64), True, True
 
 
 class ImageImportDialog(QtWidgets.QDialog):
-    """Threshold (Otsu shown), invert, preview — or one object per label."""
+    """Threshold (Otsu shown), invert, preview — or one label map object, or one object per label."""
 
     def __init__(
-        self, path: Path, grey: np.ndarray, labels_ok: bool, parent: QtWidgets.QWidget | None
+        self,
+        path: Path,
+        grey: np.ndarray,
+        labels_ok: bool,
+        labels_first: bool = False,
+        parent: QtWidgets.QWidget | None = None,
     ) -> None:
         super().__init__(parent)
         from mrm.io.threshold import otsu_threshold
@@ -73,12 +99,23 @@ class ImageImportDialog(QtWidgets.QDialog):
         )
         self.threshold_mode = QtWidgets.QRadioButton("Pixels brighter than a threshold", self)
         self.threshold_mode.setObjectName("thresholdMode")
-        self.threshold_mode.setChecked(True)
+        # An NPZ label array has no brightness to cut; an indexed image's values are labels first.
+        self.threshold_mode.setEnabled(path.suffix.lower() != ".npz")
+        self.map_mode = QtWidgets.QRadioButton(
+            "One label map object: its labels, cells and watertight polygons (gauss)", self
+        )
+        self.map_mode.setObjectName("labelMapMode")
+        self.map_mode.setToolTip(
+            "Every non-zero value is a label; regions sharing a boundary share one polyline. "
+            "Edit ▸ Split into Objects later gives one object per label"
+        )
         self.labels_mode = QtWidgets.QRadioButton("One object per label (each non-zero value)", self)
         self.labels_mode.setObjectName("labelsMode")
-        self.labels_mode.setEnabled(labels_ok)
-        if not labels_ok:
-            self.labels_mode.setToolTip("Labels need a grey or indexed image")
+        for w in (self.map_mode, self.labels_mode):
+            w.setEnabled(labels_ok)
+            if not labels_ok:
+                w.setToolTip("Labels need a grey or indexed image")
+        (self.map_mode if labels_ok and labels_first else self.threshold_mode).setChecked(True)
         lay.addWidget(self.threshold_mode)
         row = QtWidgets.QHBoxLayout()
         self.slider = QtWidgets.QSlider(QtCore.Qt.Orientation.Horizontal, self)
@@ -106,8 +143,10 @@ class ImageImportDialog(QtWidgets.QDialog):
         self.invert.setObjectName("invertBox")
         self.invert.toggled.connect(lambda _v: self.update_preview())
         lay.addWidget(self.invert)
+        lay.addWidget(self.map_mode)
         lay.addWidget(self.labels_mode)
         self.threshold_mode.toggled.connect(lambda _v: self.update_preview())
+        self.map_mode.toggled.connect(lambda _v: self.update_preview())
         self.preview = QtWidgets.QLabel(self)
         self.preview.setObjectName("importPreview")
         self.preview.setAlignment(QtCore.Qt.AlignmentFlag.AlignCenter)
@@ -143,7 +182,11 @@ class ImageImportDialog(QtWidgets.QDialog):
             n = int((vals != 0).sum())
             img = (255 - (self.grey * 37 % 200)).astype(np.uint8)
             img[self.grey == 0] = 255
-            self.summary.setText(f"{n} objects, one per non-zero value")
+            self.summary.setText(
+                f"1 label map object: {n} labels"
+                if self.map_mode.isChecked()
+                else f"{n} objects, one per non-zero value"
+            )
         h, w = img.shape
         q = QtGui.QImage(np.ascontiguousarray(img).data, w, h, w, QtGui.QImage.Format.Format_Grayscale8)
         pm = QtGui.QPixmap.fromImage(q.copy()).scaled(
@@ -155,10 +198,12 @@ class ImageImportDialog(QtWidgets.QDialog):
         self.preview.setPixmap(pm)
 
     def read_objects(self) -> list[tuple[str, Any]]:
-        """The (name, pixel set) pairs of the choice, read by the model."""
+        """The (name, pixel set or label map) pairs of the choice, read by the model."""
         from mrm.io.pixel_files import read_label_map, read_pixels
 
         stem = self.path.stem
+        if self.map_mode.isChecked():
+            return [(stem, read_label_map(self.path))]
         if self.labels_mode.isChecked():
             lm = read_label_map(self.path)
             return [(f"{stem} label {v}", lm.pixel_set(v)) for v in lm.label_values() if v != 0]

@@ -210,6 +210,7 @@ class MainWindow(QtWidgets.QMainWindow):
         m = mb.addMenu("&Edit")
         a.menu(m, ["edit.undo", "edit.redo", None, "edit.copy", "edit.paste", None])
         a.menu(m, ["edit.rename", "edit.colour", "edit.properties", "edit.duplicate", "edit.delete", None])
+        a.menu(m, ["edit.split_labels", None])
         a.menu(m, ["edit.select_previous", "edit.select_next"])
         self.model_menu = m.addMenu("Discretization &Model")
         self._model_group = QtGui.QActionGroup(self)
@@ -305,6 +306,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("file.quit", self.close)
         a.connect("edit.delete", self.delete_selection)
         a.connect("edit.duplicate", self.duplicate_selection)
+        a.connect("edit.split_labels", self.split_label_map)
         a.connect("edit.rename", self.rename_selection)
         a.connect("edit.copy", self.clipboard.copy)
         a.connect("edit.paste", self.clipboard.paste)
@@ -369,6 +371,7 @@ class MainWindow(QtWidgets.QMainWindow):
             a[aid].setEnabled(bool(sel))
         primary = self.scene.primary()
         a["view.fit_differences"].setEnabled(primary is not None and primary.provenance is not None)
+        a["edit.split_labels"].setEnabled(primary is not None and primary.kind == "labels")
         a["measure.hausdorff"].setEnabled(len(self.doc) >= 2)
 
     def update_title(self) -> None:
@@ -477,6 +480,20 @@ class MainWindow(QtWidgets.QMainWindow):
 
         if self.doc.selection:
             self.doc.push(RemoveObjects(list(self.doc.selection)))
+
+    def split_label_map(self) -> None:
+        """Replace the selected label map by one pixel object per label (one undo step, ADR 0033)."""
+        from mrm.commands import SplitLabelMap
+        from mrm.errors import MRMError
+
+        obj = self.scene.primary()
+        if obj is None or obj.kind != "labels":
+            self.show_message("select a label map to split it into one object per label", 4000)
+            return
+        try:
+            self.doc.push(SplitLabelMap(obj.id))
+        except MRMError as e:
+            self.show_message(str(e), 8000)
 
     def duplicate_selection(self) -> None:
         from mrm.commands import AddObject

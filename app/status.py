@@ -8,7 +8,7 @@ from typing import Any
 from PySide6 import QtCore, QtWidgets
 
 from mrm.views.geometry_edit import pixel_at, vertex_count
-from mrm.views.scene import Scene
+from mrm.views.scene import Scene, pixel_count
 
 #: A count the user cancelled (shown "not computed", never "…" as if it were on its way).
 CANCELLED = object()
@@ -69,7 +69,6 @@ class StatusBar(QtWidgets.QStatusBar):
         self.addPermanentWidget(self.figures)
         self.addPermanentWidget(self.cursor_label)
         self.addPermanentWidget(self.model_label)
-        self._counted: tuple[Any, int] | None = None  # (pixel set, its count)
         self._vertices: tuple[Any, int] | None = None  # (geometry, its vertex count)
         self._show_timer = QtCore.QTimer(self)
         self._show_timer.setSingleShot(True)
@@ -108,11 +107,7 @@ class StatusBar(QtWidgets.QStatusBar):
         }
         ps = s.get(obj_id, "discrete")
         if ps is not None:
-            # Counting 10⁸ pixels takes ~0.2 s: once per pixel set, not at every status update.
-            cached = self._counted
-            if cached is None or cached[0] is not ps:
-                cached = self._counted = (ps, ps.count)
-            out["pixels"] = cached[1]
+            out["pixels"] = pixel_count(ps)
         region = s.get(obj_id, "region")
         if region is not None:
             out["components"] = region.n_components
@@ -127,11 +122,31 @@ class StatusBar(QtWidgets.QStatusBar):
             if vc is None or vc[0] is not geom:
                 vc = self._vertices = (geom, vertex_count(geom))
             out["vertices"] = vc[1]
-        for key, rep in (("pixels", "discrete"), ("components", "region"), ("holes", "region"),
+        # A big set is counted with its region (views.scene.pixel_count).
+        for key, rep in (("pixels", "region"), ("components", "region"), ("holes", "region"),
                          ("segments", "analytical"), ("vertices", "euclidean")):  # fmt: skip
             if out[key] is None and (s.is_cancelled(obj_id, rep) or s.is_cancelled(obj_id, "discrete")):
                 out[key] = CANCELLED
         return out
+
+    def label_map_figures(self, obj_id: int) -> str:
+        """A label map's figures (ADR 0033), from what the workers derived: nothing is counted here."""
+        s = self.scene
+        lm = s.source(obj_id)
+        h, w = lm.shape
+        out = [f"label map {_int(w)} × {_int(h)}"]
+        cells = s.get(obj_id, "region")
+        sd = s.get(obj_id, "euclidean")
+        out.append(f"{_int(len(sd.parts))} labels" if sd is not None else "… labels")
+        out.append(f"{_int(len(cells.one_cells))} 1-cells" if cells is not None else "… 1-cells")
+        if sd is not None:
+            vc = self._vertices
+            if vc is None or vc[0] is not sd:
+                vc = self._vertices = (sd, sd.n_vertices)
+            out.append(f"{_int(vc[1])} vertices (gauss subdivision)")
+        else:
+            out.append("… vertices")
+        return " · ".join(out)
 
     def update_figures(self) -> None:
         doc = self.scene.doc
@@ -140,6 +155,9 @@ class StatusBar(QtWidgets.QStatusBar):
         if obj is None:
             n = len(doc)
             self.figures.setText(f"{n} object{'s' if n != 1 else ''}" if n else "")
+            return
+        if obj.kind == "labels":
+            self.figures.setText(f"<b>{obj.name}</b>: {self.label_map_figures(obj.id)}")
             return
         f = self.figures_of(obj.id)
 

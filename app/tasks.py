@@ -189,6 +189,10 @@ class TaskRunner(QtCore.QObject):
         """True while a task (of ``slot``) has not been delivered."""
         return any(slot is None or t.slot == slot for t in self._running)
 
+    def is_busy_prefix(self, prefix: str) -> bool:
+        """True while a task whose slot starts with ``prefix`` has not been delivered."""
+        return any(t.slot.startswith(prefix) for t in self._running)
+
     def pending(self) -> int:
         return len(self._running)
 

@@ -21,6 +21,7 @@ edits clear its provenance (undo brings it back).
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from typing import Any
 
@@ -28,11 +29,11 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
-from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.document import PALETTE, DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
+from mrm.errors import InvalidGeometryError, NotApplicableError, ParameterError
 from mrm.history import COMMAND_OVERHEAD, Command
 from mrm.limits import check_name, check_pixel_extent
-from mrm.reps.pixels import PixelSet
+from mrm.reps.pixels import LabelMap, PixelSet
 
 #: A vertex of a Euclidean source: (polygon index in a MultiPolygon (0 for a Polygon), ring (0 = exterior,
 #: k = k-th hole), vertex index in the ring, the closing point not counted).
@@ -43,6 +44,8 @@ def source_nbytes(source: Source) -> int:
     """Approximate memory of a source value."""
     if isinstance(source, PixelSet):
         return int(source.mask.nbytes) + 64
+    if isinstance(source, LabelMap):
+        return int(source.labels.nbytes) + 64
     import shapely
 
     return int(shapely.get_num_coordinates(source)) * 16 + 64
@@ -52,8 +55,8 @@ def same_source(a: Source, b: Source) -> bool:
     """True when two sources are identical bit for bit (unlike ``==``, this tells 0.0 from -0.0)."""
     if a is b:
         return True
-    if isinstance(a, PixelSet) or isinstance(b, PixelSet):
-        return isinstance(a, PixelSet) and isinstance(b, PixelSet) and a == b
+    if isinstance(a, PixelSet | LabelMap) or isinstance(b, PixelSet | LabelMap):
+        return type(a) is type(b) and a == b
     import shapely
 
     return bool(shapely.to_wkb(a) == shapely.to_wkb(b))
@@ -130,8 +133,18 @@ def _check_union_box(boxes: Sequence[tuple[int, int, int, int] | None], what: st
     check_pixel_extent((x0, y0), (y1 - y0 + 1, x1 - x0 + 1), what)
 
 
+def _not_a_label_map(obj: DocObject, what: str) -> None:
+    """Refuse a pixel or polygon edit on a label map, saying what to do instead (ADR 0033)."""
+    if isinstance(obj.source, LabelMap):
+        raise NotApplicableError(
+            f"{obj.name!r} is a label map: {what} apply to pixel and polygon objects; Edit ▸ Split into "
+            "Objects makes one pixel object per label"
+        )
+
+
 def discrete_of(doc: Document, obj: DocObject) -> PixelSet:
     """The discrete representation of ``obj`` under the document's model (its source, or D(source))."""
+    _not_a_label_map(obj, "pixel edits, merges and operations")
     if isinstance(obj.source, PixelSet):
         return obj.source
     ps = doc.cache.entry(obj.source, doc.model).get("discrete")
@@ -141,6 +154,7 @@ def discrete_of(doc: Document, obj: DocObject) -> PixelSet:
 
 def euclidean_of(doc: Document, obj: DocObject) -> Geometry:
     """The Euclidean representation of ``obj`` (its source, or R(source))."""
+    _not_a_label_map(obj, "vertex edits")
     if not isinstance(obj.source, PixelSet):
         return obj.source
     return validate_geometry(doc.cache.entry(obj.source, doc.model).get("euclidean"))
@@ -727,7 +741,33 @@ class ApplyResults(Command):
         return COMMAND_OVERHEAD + sum(source_nbytes(o.source) for o in objs)
 
 
-class MergeObjects(Command):
+class _Replacing(Command):
+    """A command whose effect is an :class:`ApplyResults` built on its first run (objects in, objects out)."""
+
+    label = ""
+    _inner: ApplyResults | None = None
+
+    def _build(self, doc: Document) -> ApplyResults:
+        raise NotImplementedError
+
+    def do(self, doc: Document) -> None:
+        """Build the replacement (first call) and apply it."""
+        if self._inner is None:
+            self._inner = self._build(doc)
+            self.label = self._inner.label
+        self._inner.do(doc)
+
+    def undo(self, doc: Document) -> None:
+        """Bring back what was replaced."""
+        assert self._inner is not None
+        self._inner.undo(doc)
+
+    def byte_size(self) -> int:
+        """The new and removed sources."""
+        return self._inner.byte_size() if self._inner is not None else COMMAND_OVERHEAD
+
+
+class MergeObjects(_Replacing):
     """Merge objects into one whose discrete source is the union of their discrete representations.
 
     The union is taken on pixels because D is union-stable (D(E ∪ F) = D(E) ∪ D(F)), so the merged object
@@ -742,40 +782,57 @@ class MergeObjects(Command):
             raise ParameterError("merging needs at least two objects")
         self.name = name
         self.label = f"Merge {len(self.ids)} objects"
-        self._inner: ApplyResults | None = None
 
-    def do(self, doc: Document) -> None:
-        """Build the merged object (first call) and apply it."""
-        if self._inner is None:
-            from mrm.document import Provenance
-            from mrm.io.georef import result_georef
+    def _build(self, doc: Document) -> ApplyResults:
+        from mrm.document import Provenance
+        from mrm.io.georef import result_georef
 
-            objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
-            parts = [discrete_of(doc, o) for o in objs]
-            _check_union_box([p.bbox for p in parts], "the merged object")  # before allocating it
-            union = PixelSet.empty()
-            for part in parts:
-                union = union | part
-            merged = DocObject(
+        objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
+        parts = [discrete_of(doc, o) for o in objs]
+        _check_union_box([p.bbox for p in parts], "the merged object")  # before allocating it
+        union = PixelSet.empty()
+        for part in parts:
+            union = union | part
+        merged = DocObject(
+            id=doc.new_id(),
+            name=self.name if self.name is not None else objs[0].name,
+            source=union,
+            style=objs[0].style,
+            provenance=Provenance("merge", {}, tuple(o.id for o in objs)),
+            georef=result_georef("merge", {}, [o.georef for o in objs]),  # one grid: kept (ADR 0021)
+        )
+        index = doc.index_of(objs[0].id)
+        return ApplyResults(self.label, add=[merged], remove=[o.id for o in objs], index=index)
+
+
+class SplitLabelMap(_Replacing):
+    """Replace a label map object by one pixel object per label (named ``<name> label <v>``), in its place.
+
+    What importing a label image "one object per label" gives, from a label map already in the document
+    (ADR 0033). The objects keep the map's georeference; undo brings the map back.
+    """
+
+    def __init__(self, obj_id: int) -> None:
+        self.obj_id = obj_id
+        self.label = "Split label map"
+
+    def _build(self, doc: Document) -> ApplyResults:
+        obj = doc.get(self.obj_id)
+        if not isinstance(obj.source, LabelMap):
+            raise NotApplicableError(f"{obj.name!r} is not a label map: there is nothing to split")
+        lm = obj.source
+        parts = [
+            DocObject(
                 id=doc.new_id(),
-                name=self.name if self.name is not None else objs[0].name,
-                source=union,
-                style=objs[0].style,
-                provenance=Provenance("merge", {}, tuple(o.id for o in objs)),
-                georef=result_georef("merge", {}, [o.georef for o in objs]),  # one grid: kept (ADR 0021)
+                name=f"{obj.name} label {v}",
+                source=lm.pixel_set(v),
+                style=dataclasses.replace(obj.style, fill=PALETTE[k % len(PALETTE)]),
+                georef=obj.georef,
             )
-            index = doc.index_of(objs[0].id)
-            self._inner = ApplyResults(self.label, add=[merged], remove=[o.id for o in objs], index=index)
-        self._inner.do(doc)
-
-    def undo(self, doc: Document) -> None:
-        """Bring the inputs back."""
-        assert self._inner is not None
-        self._inner.undo(doc)
-
-    def byte_size(self) -> int:
-        """The merged and removed sources."""
-        return self._inner.byte_size() if self._inner is not None else COMMAND_OVERHEAD
+            for k, v in enumerate(lm.label_values())
+        ]
+        label = f"Split {obj.name} into {len(parts)} objects"
+        return ApplyResults(label, add=parts, remove=[obj.id], index=doc.index_of(obj.id), select=True)
 
 
 class ChangeSettings(Command):

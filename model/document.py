@@ -34,7 +34,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm import limits
 from mrm.derive import DerivationCache, Derived
-from mrm.errors import InvalidGeometryError, LimitError, ParameterError
+from mrm.errors import InvalidGeometryError, LimitError, ParameterError, SizeLimitError
 from mrm.history import Command, History
 from mrm.io.georef import GeoRef, result_georef
 
@@ -42,13 +42,13 @@ from mrm.io.georef import GeoRef, result_georef
 from mrm.limits import COORDINATE_LIMIT as COORDINATE_LIMIT
 from mrm.limits import PARAMS_MAX_CHARS as PARAMS_MAX_CHARS
 from mrm.limits import PARAMS_MAX_DEPTH as PARAMS_MAX_DEPTH
-from mrm.reps.pixels import PixelSet
+from mrm.reps.pixels import LabelMap, PixelSet
 
 #: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
 Geometry: TypeAlias = Polygon | MultiPolygon
-#: What an object's source can be.
-Source: TypeAlias = PixelSet | Polygon | MultiPolygon
-SourceKind = Literal["euclidean", "discrete"]
+#: What an object's source can be: pixels, polygons, or a label map (ADR 0033).
+Source: TypeAlias = PixelSet | Polygon | MultiPolygon | LabelMap
+SourceKind = Literal["euclidean", "discrete", "labels"]
 
 #: The discretization models (DESIGN §2).
 MODELS = ("standard", "supercover", "gauss")
@@ -103,6 +103,12 @@ def _source_cost(source: Source) -> tuple[int, int]:
         limits.check_pixel_extent(source.origin, source.shape, "the pixel object")
         n = source.shape[0] * source.shape[1]
         return n, limits.source_file_bytes("discrete", pixels=n)
+    if isinstance(source, LabelMap):
+        limits.check_pixel_extent(source.origin, source.shape, "the label map")
+        n = source.shape[0] * source.shape[1]
+        if n > limits.MAX_LABEL_PIXELS:
+            raise SizeLimitError(n, limits.MAX_LABEL_PIXELS, "the label map")
+        return n, limits.source_file_bytes("labels", pixels=n)
     n = int(shapely.get_num_coordinates(source))
     limits.check_vertices(n, "the polygon object")
     parts = shapely.get_parts(source)
@@ -111,13 +117,15 @@ def _source_cost(source: Source) -> tuple[int, int]:
 
 
 def source_kind(source: Source) -> SourceKind:
-    """'discrete' for a pixel set, 'euclidean' for a geometry."""
-    return "discrete" if isinstance(source, PixelSet) else "euclidean"
+    """'discrete' for a pixel set, 'euclidean' for a geometry, 'labels' for a label map."""
+    if isinstance(source, PixelSet):
+        return "discrete"
+    return "labels" if isinstance(source, LabelMap) else "euclidean"
 
 
 def validate_source(source: object) -> Source:
-    """Return ``source`` checked: a :class:`PixelSet`, or a geometry passing :func:`validate_geometry`."""
-    if isinstance(source, PixelSet):
+    """Return ``source`` checked: a pixel set, a label map, or a geometry :func:`validate_geometry` takes."""
+    if isinstance(source, PixelSet | LabelMap):
         return source
     return validate_geometry(source)
 
@@ -214,6 +222,10 @@ def content_digest(source: Any) -> str:
         h.update(b"discrete:")
         h.update(np.asarray([*source.origin, *source.shape], dtype=np.int64).tobytes())
         h.update(np.packbits(source.mask, axis=None).tobytes())
+    elif isinstance(source, LabelMap):
+        h.update(b"labels:")
+        h.update(np.asarray([*source.origin, *source.shape], dtype=np.int64).tobytes())
+        h.update(source.labels.astype("<i4", copy=False).tobytes())
     else:
         h.update(b"euclidean:")
         h.update(shapely.to_wkb(source, byte_order=1))
@@ -416,7 +428,7 @@ class DocObject:
 
     @property
     def kind(self) -> SourceKind:
-        """'discrete' or 'euclidean': which representation is the source."""
+        """'discrete', 'euclidean' or 'labels' (a label map, ADR 0033): which representation is the source."""
         return source_kind(self.source)
 
     def with_(self, **changes: Any) -> DocObject:

@@ -58,3 +58,11 @@ class LimitError(MRMError, ValueError):
 
     Raised before anything is changed or written, so the document and the files stay as they were.
     """
+
+
+class NotApplicableError(MRMError, ValueError):
+    """What was asked does not apply to an object of this kind; the message says what to do instead.
+
+    A label map has no pixels to paint, no digital straight segments of its own, and is no input of the
+    paper's operations.
+    """

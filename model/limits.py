@@ -239,11 +239,15 @@ def json_bytes(value: Any) -> int:
 def source_file_bytes(kind: str, *, pixels: int = 0, coordinates: int = 0, rings: int = 0) -> int:
     """Upper bound of the bytes a source takes in a project file.
 
-    A discrete source is its packed mask in base64 (exact) plus its origin and shape; a Euclidean source
-    at most :data:`_POSITION_BYTES` per coordinate plus brackets per ring.
+    A discrete source is its packed mask in base64 (exact) plus its origin and shape; a label map its
+    zlib-compressed int32 labels in base64 (zlib's worst case: the raw bytes and 5 bytes per 16 KB block); a
+    Euclidean source at most :data:`_POSITION_BYTES` per coordinate plus brackets per ring.
     """
     if kind == "discrete":
         return 4 * (((pixels + 7) // 8 + 2) // 3) + 120
+    if kind == "labels":
+        raw = 4 * pixels
+        return 4 * ((raw + 5 * (raw // 16_384 + 1) + 6 + 2) // 3) + 160
     return _POSITION_BYTES * coordinates + 8 * rings + 120
 
 

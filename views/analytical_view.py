@@ -268,6 +268,14 @@ class AnalyticalView(RepresentationView):
         layer.key = key
         return True
 
+    def label_map_note(self) -> str | None:
+        obj = self.scene.primary()
+        if obj is None or obj.kind != "labels":
+            return None
+        from mrm.views.label_maps import NO_SEGMENTS_NOTE
+
+        return NO_SEGMENTS_NOTE
+
     # ------------------------------------------------------------------ selected segment
     def after_refresh(self) -> None:
         obj_id, ci, k = self.scene.segment

@@ -90,6 +90,7 @@ class RepresentationView(QtWidgets.QFrame):
         self.header_layout = hl
         lay.addWidget(self.header)
         self.plane = PlaneView(self.name, self)
+        self.plane.runner = getattr(scene, "runner", None)
         lay.addWidget(self.plane, 1)
         self.legend_label = QtWidgets.QLabel(self.legend, self)
         self.legend_label.setObjectName("viewLegend")
@@ -155,19 +156,28 @@ class RepresentationView(QtWidgets.QFrame):
         self._dirty.clear()
         selected = set(doc.selection)
         order = {obj.id: k for k, obj in enumerate(objects)}
+        from mrm.views.label_maps import LabelLayer, draw_labels  # it imports this module
+
         for obj in objects:
             if obj.id not in todo:
                 continue
             layer = self._layers.get(obj.id)
+            # A label map object has its own items in every view (ADR 0033).
+            labels = obj.kind == "labels"
+            if layer is not None and isinstance(layer, LabelLayer) != labels:
+                self._remove_layer(obj.id)
+                layer = None
             if layer is None:
-                layer = self._layers[obj.id] = self.make_layer(obj.id)
+                layer = self._layers[obj.id] = LabelLayer(obj.id) if labels else self.make_layer(obj.id)
                 self.plane.vb.addItem(layer)
             layer.setZValue(order[obj.id] * 2 + (1 if obj.id in selected else 0))
             layer.setVisible(obj.style.visible and not self.hidden_while_editing(obj.id))
-            if obj.style.visible:
-                layer.waiting = not self.update_layer(layer, obj, obj.id in selected)
-            else:
+            if not obj.style.visible:
                 layer.waiting = False
+            elif isinstance(layer, LabelLayer):
+                layer.waiting = not draw_labels(self, layer, obj, self.rep, obj.id in selected)
+            else:
+                layer.waiting = not self.update_layer(layer, obj, obj.id in selected)
         self._update_status()
         self.after_refresh()
         self.refreshed.emit()
@@ -215,14 +225,19 @@ class RepresentationView(QtWidgets.QFrame):
 
     def is_preparing(self) -> bool:
         runner = getattr(self.scene, "runner", None)
-        return runner is not None and any(runner.is_busy(s) for s in self._preparing)
+        if runner is None:
+            return False
+        # The exact detail of a coarse image, zoomed in (MaskItem.update_detail), is drawing data too.
+        return any(runner.is_busy(s) for s in self._preparing) or runner.is_busy_prefix(
+            f"detail:{self.name}:"
+        )
 
     def _update_status(self) -> None:
         errors = []
         cancelled = []
         for obj in self.scene.objects():
-            if not obj.style.visible:
-                continue
+            if not obj.style.visible or (obj.kind == "labels" and self.rep == "analytical"):
+                continue  # (a label map has no segments: label_map_note says so, neutrally)
             if self.scene.is_cancelled(obj.id, self.rep) or self.scene.is_cancelled(obj.id, "discrete"):
                 cancelled.append(obj.name)
                 continue
@@ -238,12 +253,25 @@ class RepresentationView(QtWidgets.QFrame):
         elif any(layer.waiting for layer in self._layers.values()):
             self.status_label.setText("computing…")
             self.status_label.setToolTip("")
+        elif (note := self.label_map_note()) is not None:
+            self.status_label.setText(f"<span style='color:#7f7f7f'>{note}</span>")
+            self.status_label.setToolTip(note)
         else:
             self.status_label.setText("")
             self.status_label.setToolTip("")
+        from mrm.views.label_maps import LABEL_LEGEND
+
+        maps = any(o.kind == "labels" and o.style.visible for o in self.scene.doc.objects)
+        extra = LABEL_LEGEND.get(self.name) if maps else None
+        self.legend_label.setText(f"{self.legend}<br>{extra}" if extra else self.legend)
+        self.legend_label.setVisible(bool(self.legend_label.text()))
         self.resume_button.setVisible(bool(cancelled) and not errors)
         # An empty status takes no room: the subtitle ("components, holes, cracks") is then shown whole.
         self.status_label.setVisible(bool(self.status_label.text()))
+
+    def label_map_note(self) -> str | None:
+        """What the view says, neutrally, of a selected label map it does not draw (the analytical view)."""
+        return None
 
     def layer(self, obj_id: int) -> Layer | None:
         return self._layers.get(obj_id)

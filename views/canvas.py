@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pyqtgraph as pg
@@ -206,9 +207,16 @@ def lod_image(data: np.ndarray, limit: int = LOD_PIXELS) -> tuple[np.ndarray, in
     if data.size <= limit:
         return data, 1
     f = math.ceil(math.sqrt(data.size / limit))
+    return max_pool(data, f), f
+
+
+def max_pool(data: np.ndarray, f: int) -> np.ndarray:
+    """The f × f max-pooled image of ``data`` (bool or uint8; padded with 0 to multiples of f; any thread)."""
+    src = data.view(np.uint8) if data.dtype == np.bool_ else data
+    if f == 1:
+        return src
     h, w = data.shape
     hh, ww = -(-h // f) * f, -(-w // f) * f
-    src = data.view(np.uint8) if data.dtype == np.bool_ else data
     pad = np.zeros((hh, ww), src.dtype)
     pad[:h, :w] = src
     # Rows, then columns, one strided elementwise maximum per offset: four times faster than a 4-D
@@ -219,7 +227,7 @@ def lod_image(data: np.ndarray, limit: int = LOD_PIXELS) -> tuple[np.ndarray, in
     out = np.ascontiguousarray(rows[:, 0::f])
     for k in range(1, f):
         np.maximum(out, rows[:, k::f], out=out)
-    return out, f
+    return out
 
 
 def opaque_lut(lut: np.ndarray) -> tuple[np.ndarray, float]:
@@ -274,6 +282,12 @@ def make_picture(image: np.ndarray, lut: np.ndarray) -> Picture:
     return Picture(image, table.tobytes(), argb, qimage)
 
 
+def detail_picture(full: np.ndarray, box: tuple[int, int, int, int, int], lut: np.ndarray) -> Picture:
+    """The picture of ``full[y0:y1, x0:x1]`` max-pooled g × g; ``box`` is (x0, x1, y0, y1, g) (any thread)."""
+    x0, x1, y0, y1, g = box
+    return make_picture(max_pool(full[y0:y1, x0:x1], g), lut)
+
+
 def pictured(lod: tuple[np.ndarray, int], lut: np.ndarray) -> tuple[np.ndarray, int, Picture]:
     """A level-of-detail image ``(image, f)`` (:func:`lod_image`) with its picture (:func:`make_picture`)."""
     return lod[0], lod[1], make_picture(lod[0], lut)
@@ -326,6 +340,7 @@ class MaskItem(ArgbImageItem):
         self.scale_factor = 1
         self._full: np.ndarray | None = None  # the exact image behind a coarse one
         self._detail: ArgbImageItem | None = None  # its visible part, when zoomed in enough
+        self._detail_box: tuple[int, int, int, int, int] | None = None  # what the detail shows or will
         # Pixels must stay sharp squares at every zoom.
         self.setAutoDownsample(False)
 
@@ -347,6 +362,8 @@ class MaskItem(ArgbImageItem):
         was made with the table shown, and the paint converts ``data`` itself otherwise.
         """
         self.scale_factor = scale
+        if full is not self._full:
+            self._hide_detail()  # it shows pixels that are no more
         self._full = full if scale > 1 else None
         if lut is not None:
             self._set_table(lut)
@@ -382,37 +399,112 @@ class MaskItem(ArgbImageItem):
         self.update_detail()
 
     def update_detail(self) -> None:
-        """Show the exact pixels of the visible part of a coarse (level-of-detail) image when few enough."""
-        detail = getattr(self, "_detail", None)
+        """Show the exact pixels of the visible part of a coarse (level-of-detail) image, as the screen can.
+
+        Needed once a coarse pixel (f × f) covers two screen pixels or more. The detail image is the view's
+        part of the exact image widened by a quarter of the view on each side (a pan inside that margin
+        costs nothing), max-pooled g × g with the smallest g that covers a screen pixel (so at most 2.25
+        times the view's own pixels), and made ready to draw (:func:`detail_picture`) on the view's task
+        runner: cropping and converting millions of pixels at every zoom step stalled the window. Until it
+        arrives the
+        coarse image and the previous detail stay drawn; both are true where they show.
+        """
         full = getattr(self, "_full", None)
         vb = self.getViewBox() if full is not None else None
         if full is None or vb is None or not self.isVisible():
-            if detail is not None:
-                detail.setVisible(False)
+            self._hide_detail()
             return
         r = vb.viewRect()
+        px = float(vb.width()) / r.width() if r.width() > 0 else 0.0
+        # Pooled g × g with g screen pixels at least: a pixel drawn smaller than a screen pixel may be skipped
+        # (a one-pixel line would vanish), a pooled one never is.
+        g = max(1, math.ceil(1.0 / px - 1e-9)) if px > 0 else self.scale_factor
+        if g >= self.scale_factor:
+            self._hide_detail()  # the coarse image is as fine as the screen can show
+            return
         ox, oy = self._origin[0] - 0.5, self._origin[1] - 0.5
         h, w = full.shape
-        x0, x1 = max(0, math.floor(r.left() - ox)), min(w, math.ceil(r.right() - ox))
-        y0, y1 = (
-            max(0, math.floor(min(r.top(), r.bottom()) - oy)),
-            min(h, math.ceil(max(r.top(), r.bottom()) - oy)),
+        left, right = r.left() - ox, r.right() - ox
+        bottom, top = min(r.top(), r.bottom()) - oy, max(r.top(), r.bottom()) - oy
+        seen = (
+            max(0, math.floor(left)),
+            min(w, math.ceil(right)),
+            max(0, math.floor(bottom)),
+            min(h, math.ceil(top)),
         )
-        if x1 <= x0 or y1 <= y0 or (x1 - x0) * (y1 - y0) > LOD_PIXELS:
-            if detail is not None:
-                detail.setVisible(False)
+        if seen[1] <= seen[0] or seen[3] <= seen[2]:
+            return  # the image is out of view: whatever detail there is stays as it is
+        shown = self._detail_box
+        if (
+            shown is not None
+            and shown[4] == g
+            and shown[0] <= seen[0]
+            and seen[1] <= shown[1]
+            and shown[2] <= seen[2]
+            and seen[3] <= shown[3]
+        ):
+            return  # a pan inside the margin, or a change of another view's range
+        mx, my = (right - left) / 4, (top - bottom) / 4
+        box = (
+            max(0, math.floor((left - mx) / g) * g),
+            min(w, math.ceil(right + mx)),
+            max(0, math.floor((bottom - my) / g) * g),
+            min(h, math.ceil(top + my)),
+            g,
+        )
+        self._detail_box = box
+        table = self._table
+        view = self.getViewWidget()
+        runner = getattr(view, "runner", None)
+        if runner is None:
+            self._show_detail(full, box, detail_picture(full, box, table))
             return
+        runner.submit(
+            f"detail:{getattr(view, 'name', '')}:{id(self)}",
+            lambda _p: detail_picture(full, box, table),
+            on_result=lambda shown, full=full, box=box: self._show_detail(full, box, shown),
+        )
+
+    def _hide_detail(self) -> None:
+        self._detail_box = None
+        detail = getattr(self, "_detail", None)
+        if detail is not None and detail.isVisible():
+            detail.setVisible(False)
+            self.update()  # the coarse image was clipped around it
+
+    def _show_detail(self, full: np.ndarray, box: tuple[int, int, int, int, int], shown: Picture) -> None:
+        """Draw a detail picture made for ``box`` of ``full``, if that is still what is wanted."""
+        if full is not self._full or box != self._detail_box:
+            return  # a newer image or view asked for another part
+        detail = getattr(self, "_detail", None)
         if detail is None:
             detail = self._detail = ArgbImageItem(axisOrder="row-major")
             detail.setAutoDownsample(False)
             detail.setParentItem(self.parentItem())
             detail.setOpacity(self._opacity)
         detail.setZValue(self.zValue() + 0.01)
-        crop = full[y0:y1, x0:x1]
-        img = crop.view(np.uint8) if crop.dtype == np.bool_ else crop.astype(np.uint8)
-        detail.setImage(np.ascontiguousarray(img), autoLevels=False, levels=None, lut=self._table)
-        detail.setRect(QtCore.QRectF(ox + x0, oy + y0, x1 - x0, y1 - y0))
+        detail.setImage(shown.image, autoLevels=False, levels=None, lut=self._table)
+        detail.picture = shown
+        detail._pictured = detail.image
+        x0, _x1, y0, _y1, g = box
+        h, w = shown.image.shape
+        ox, oy = self._origin[0] - 0.5, self._origin[1] - 0.5
+        detail.setRect(QtCore.QRectF(ox + x0, oy + y0, w * g, h * g))
         detail.setVisible(True)
+        self.update()
+
+    def paint(self, p: QtGui.QPainter, *args: object) -> None:
+        detail = getattr(self, "_detail", None)
+        if detail is not None and detail.isVisible():
+            # Under the exact pixels nothing of the coarse image may show: a pixel the detail leaves
+            # transparent (a thin gap, a hole) is one the coarse image fills.
+            inside = self.mapRectFromItem(detail, detail.boundingRect())
+            keep = QtGui.QPainterPath()
+            keep.addRect(self.boundingRect())
+            cut = QtGui.QPainterPath()
+            cut.addRect(inside)
+            p.setClipPath(keep.subtracted(cut), QtCore.Qt.ClipOperation.IntersectClip)
+        super().paint(p, *args)
 
     def detach(self) -> None:
         """Remove the exact-detail image (a sibling item) from the view: call before removing this item."""
@@ -440,7 +532,9 @@ class MaskItem(ArgbImageItem):
             self.setLookupTable(self._table)
         detail = getattr(self, "_detail", None)
         if detail is not None and detail.image is not None:
-            detail.setLookupTable(self._table)
+            detail.setLookupTable(self._table)  # converted by its paint until its new picture arrives
+            self._detail_box = None
+            self.update_detail()
 
 
 # ---------------------------------------------------------------------------------------------- view
@@ -564,6 +658,8 @@ class PlaneView(pg.PlotWidget):
         self.vb = vb
         self.setObjectName(f"view_{name}")
         self.name = name
+        #: Where the items of this view prepare pictures off the GUI thread (a TaskRunner; None: at once).
+        self.runner: Any = None
         pi = self.getPlotItem()
         pi.hideButtons()
         pi.setMenuEnabled(False)

@@ -165,21 +165,97 @@ class PathItem(QtWidgets.QGraphicsPathItem):
 DOT_PX = 4.0
 
 
+class Tiles(NamedTuple):
+    """Polylines cut into chunks by grid cell (:func:`tile_polylines`), to stroke only what is in view.
+
+    Chunk k runs through the points ``start[k]`` … ``end[k]`` (the last point of a chunk is the first of the
+    next one when the polyline goes on) and lies within ``box[k]`` (x0, y0, x1, y1).
+    """
+
+    xy: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    box: np.ndarray
+
+    def path_in(self, rect: QtCore.QRectF) -> QtGui.QPainterPath | None:
+        """The polylines through every chunk that meets ``rect``, or None when that is every chunk.
+
+        Consecutive chunks are joined again, so a polyline is cut only where it leaves the rectangle: what
+        lies inside is stroked exactly as the whole path strokes it (joins, caps, antialiasing).
+        """
+        b = self.box
+        sel = (b[:, 0] <= rect.right()) & (b[:, 2] >= rect.left()) & (b[:, 1] <= rect.bottom())
+        sel &= b[:, 3] >= rect.top()
+        if sel.all():
+            return None
+        idx = np.flatnonzero(sel)
+        if not len(idx):
+            return QtGui.QPainterPath()
+        starts, ends = self.start[idx], self.end[idx]
+        first = np.r_[True, starts[1:] != ends[:-1]]  # a chunk that does not go on from the one before
+        run_start = starts[first]
+        run_end = ends[np.r_[first[1:], True]]
+        lens = run_end - run_start + 1
+        offsets = np.cumsum(lens) - lens
+        points = np.arange(int(lens.sum())) + np.repeat(run_start - offsets, lens)
+        xy = self.xy[points]
+        connect = np.ones(len(xy), dtype=np.int32)
+        connect[offsets + lens - 1] = 0
+        return pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect)
+
+
+#: Paths with more elements than this are also cut into chunks by grid cell (:class:`Tiles`).
+TILE_ELEMENTS = 2000
+#: Grid cells along the longer side of a size class's box: zoomed in on a long outline, a paint strokes
+#: the few cells in view, not the whole outline (Qt's stroker handles every element, off-screen ones too).
+TILE_CELLS = 64
+
+
+def tile_polylines(xy: np.ndarray, connect: np.ndarray) -> Tiles | None:
+    """:class:`Tiles` of polylines given as :func:`stroke_levels` takes them, or None when small (any thread).
+
+    A segment belongs to the grid cell of its first point; a chunk is a run of consecutive segments of one
+    polyline in one cell. The cells are 1/:data:`TILE_CELLS` of the box's longer side.
+    """
+    if len(xy) <= TILE_ELEMENTS:
+        return None
+    lo = xy.min(axis=0)
+    cell = max(float((xy.max(axis=0) - lo).max()) / TILE_CELLS, 1.0)
+    ij = np.floor((xy - lo) / cell).astype(np.int64)
+    key = ij[:, 0] * (TILE_CELLS + 1) + ij[:, 1]
+    seg = np.flatnonzero(np.asarray(connect[:-1]) != 0)  # segment j joins point j to point j + 1
+    if not len(seg):
+        return None
+    first = np.r_[True, (seg[1:] != seg[:-1] + 1) | (key[seg[1:]] != key[seg[:-1]])]
+    heads = np.flatnonzero(first)
+    a, b = xy[seg], xy[seg + 1]
+    box = np.concatenate(
+        [np.minimum.reduceat(np.minimum(a, b), heads), np.maximum.reduceat(np.maximum(a, b), heads)], axis=1
+    )
+    return Tiles(xy, seg[first], seg[np.r_[first[1:], True]] + 1, box)
+
+
 class StrokeLevel(NamedTuple):
     """One size class of components (:func:`stroke_levels`)."""
 
     extent: float  # the class's components are smaller than this (plane units)
     path: QtGui.QPainterPath  # their outlines in full
     centres: np.ndarray  # (n, 2): where their dots go when they are drawn smaller than DOT_PX
-    coarse: tuple[tuple[float, QtGui.QPainterPath], ...]  # (tolerance, simplified outlines), coarsest last
+    # (tolerance, simplified outlines, their tiles), coarsest last
+    coarse: tuple[tuple[float, QtGui.QPainterPath, Tiles | None], ...]
+    tiles: Tiles | None = None  # of the full outlines
+
+    def strokes_at(self, scale: float) -> tuple[QtGui.QPainterPath, Tiles | None]:
+        """The outlines to stroke at ``scale`` screen pixels per unit, with their tiles (:meth:`path_at`)."""
+        best = self.path, self.tiles
+        for tolerance, path, tiles in self.coarse:
+            if tolerance * scale <= COARSE_PX:
+                best = path, tiles
+        return best
 
     def path_at(self, scale: float) -> QtGui.QPainterPath:
         """The outlines to stroke at ``scale`` screen pixels per unit: the coarsest still exact on screen."""
-        best = self.path
-        for tolerance, path in self.coarse:
-            if tolerance * scale <= COARSE_PX:
-                best = path
-        return best
+        return self.strokes_at(scale)[0]
 
 
 def ring_groups(rings: Sequence[np.ndarray], group: Sequence[int] | np.ndarray) -> tuple[np.ndarray, ...]:
@@ -231,9 +307,10 @@ def stroke_levels(
         coarse = coarse_paths(cxy, cc, float(2.0 ** (k + 1)))
         if fill_rule is not None:
             path.setFillRule(fill_rule)
-            for _t, p in coarse:
+            for _t, p, _tiles in coarse:
                 p.setFillRule(fill_rule)
-        out.append(StrokeLevel(float(2.0 ** (k + 1)), path, centres[cls == k], tuple(coarse)))
+        tiles = tile_polylines(cxy, cc)
+        out.append(StrokeLevel(float(2.0 ** (k + 1)), path, centres[cls == k], tuple(coarse), tiles))
     return out
 
 
@@ -244,15 +321,15 @@ COARSE_PX = 0.5
 
 def coarse_paths(
     xy: np.ndarray, connect: np.ndarray, extent: float
-) -> list[tuple[float, QtGui.QPainterPath]]:
-    """``(tolerance, path)``: polylines simplified by 1, 2, 4, … plane units (Douglas–Peucker), coarsest last.
+) -> list[tuple[float, QtGui.QPainterPath, Tiles | None]]:
+    """``(tolerance, path, tiles)``: polylines simplified by 1, 2, 4, … units (Douglas–Peucker), finest first.
 
     Polylines as :func:`stroke_levels` takes them. A level is kept only if it has at most 2/3 of the elements
     of the one before (a crack staircase loses most of its corners at a tolerance of one pixel); the
     tolerances stop below ``extent`` / 4, where the component is drawn as a dot anyway. Shapely's calls run
     without the GIL.
     """
-    out: list[tuple[float, QtGui.QPainterPath]] = []
+    out: list[tuple[float, QtGui.QPainterPath, Tiles | None]] = []
     if len(xy) < 8:
         return out
     line = np.cumsum(np.r_[0, connect[:-1] == 0])  # polyline of each point
@@ -272,7 +349,7 @@ def coarse_paths(
             continue
         cc = np.ones(len(pts), dtype=np.int32)
         cc[np.flatnonzero(np.r_[idx[1:] != idx[:-1], True])] = 0
-        out.append((tolerance, pg.arrayToQPath(pts[:, 0], pts[:, 1], connect=cc)))
+        out.append((tolerance, pg.arrayToQPath(pts[:, 0], pts[:, 1], connect=cc), tile_polylines(pts, cc)))
         elements = len(pts)
         tolerance *= 2
     return out
@@ -335,12 +412,24 @@ class LodPathItem(PathItem):
             self.levels = []  # a plain path replaces the classes
         super().setPath(path)
 
-    def drawn(self, scale: float) -> tuple[int, int]:
-        """(path elements stroked, dots) at ``scale`` screen pixels per unit: what :meth:`paint` draws."""
+    #: Cut strokes to the view (:class:`Tiles`); off, every paint strokes whole paths (the reference).
+    tiled = True
+
+    def drawn(self, scale: float, rect: QtCore.QRectF | None = None) -> tuple[int, int]:
+        """(path elements stroked, dots) at ``scale`` screen pixels per unit: what :meth:`paint` draws.
+
+        With ``rect`` (plane units), what a paint of that part of the plane strokes.
+        """
         if not self.levels:
             return self.path().elementCount(), 0
-        paths = sum(lv.path_at(scale).elementCount() for lv in self.levels if lv.extent * scale >= DOT_PX)
-        dots = sum(len(lv.centres) for lv in self.levels if lv.extent * scale < DOT_PX)
+        paths = dots = 0
+        for lv in self.levels:
+            if lv.extent * scale < DOT_PX:
+                dots += len(lv.centres)
+                continue
+            path, tiles = lv.strokes_at(scale)
+            part = tiles.path_in(rect) if rect is not None and tiles is not None and self.tiled else None
+            paths += (path if part is None else part).elementCount()
         return paths, dots
 
     def paint(self, painter: QtGui.QPainter, option: object, widget: object = None) -> None:
@@ -350,20 +439,53 @@ class LodPathItem(PathItem):
         tr = painter.transform()
         scale = math.hypot(tr.m11(), tr.m12())
         pen = self.pen()
-        painter.setPen(pen)
-        painter.setBrush(self.brush())
+        brush = self.brush()
+        # Zoomed in on a long outline, the stroke of the whole path costs 20–70 ms per item (Qt's stroker
+        # handles every element, off-screen ones too, for pens wider than one pixel): a solid pen strokes
+        # the chunks in view only. Dashes are left whole (their stroker skips what is off-screen itself,
+        # and cut paths would restart the pattern).
+        cut = self.tiled and pen.style() == QtCore.Qt.PenStyle.SolidLine
+        seen = visible_rect(painter, pen.widthF() + 2.0)
+        view = seen if cut else None
         small = []
         for level in self.levels:
-            if level.extent * scale >= DOT_PX:
-                painter.drawPath(level.path_at(scale))
-            elif len(level.centres):
-                small.append(level.centres)
+            if level.extent * scale < DOT_PX:
+                if len(level.centres):
+                    small.append(level.centres)
+                continue
+            path, tiles = level.strokes_at(scale)
+            part = tiles.path_in(view) if view is not None and tiles is not None else None
+            if part is None:
+                painter.setPen(pen)
+                painter.setBrush(brush)
+                painter.drawPath(path)
+                continue
+            if brush.style() != QtCore.Qt.BrushStyle.NoBrush:
+                painter.setPen(QtCore.Qt.PenStyle.NoPen)  # a fill needs the whole outline (it is cheap)
+                painter.setBrush(brush)
+                painter.drawPath(path)
+            painter.setPen(pen)
+            painter.setBrush(QtCore.Qt.BrushStyle.NoBrush)
+            painter.drawPath(part)
         if not small or pen.style() == QtCore.Qt.PenStyle.NoPen:
             return
         c = np.concatenate(small)
+        if seen is not None:  # the dots in view only: zoomed in, most are elsewhere
+            c = c[
+                (c[:, 0] >= seen.left())
+                & (c[:, 0] <= seen.right())
+                & (c[:, 1] >= seen.top())
+                & (c[:, 1] <= seen.bottom())
+            ]
+            if not len(c):
+                return
         m = np.array([[tr.m11(), tr.m12()], [tr.m21(), tr.m22()]])
-        dev = np.floor(c @ m + np.array([tr.dx(), tr.dy()]))
-        dev = np.unique(dev, axis=0)  # one dot per screen pixel
+        dev = np.floor(c @ m + np.array([tr.dx(), tr.dy()])).astype(np.int64)
+        # One dot per screen pixel: a 1-D unique of one key per pixel (a row-wise unique sorts 3× slower).
+        lo = dev.min(axis=0)
+        span = int(dev[:, 1].max() - lo[1]) + 1
+        keys = np.unique((dev[:, 0] - lo[0]) * span + (dev[:, 1] - lo[1]))
+        dev = np.stack([keys // span + lo[0], keys % span + lo[1]], axis=1).astype(float)
         dot = QtGui.QPen(pen.color())
         dot.setCosmetic(True)
         dot.setWidthF(max(1.0, min(pen.widthF(), 2.0)))
@@ -371,8 +493,24 @@ class LodPathItem(PathItem):
         painter.save()
         painter.resetTransform()
         painter.setPen(dot)
-        painter.drawPoints(QtGui.QPolygonF([QtCore.QPointF(x + 0.5, y + 0.5) for x, y in dev]))
+        painter.drawPoints(pg.functions.arrayToQPolygonF(dev[:, 0] + 0.5, dev[:, 1] + 0.5))
         painter.restore()
+
+
+def visible_rect(painter: QtGui.QPainter, margin_px: float = 0.0) -> QtCore.QRectF | None:
+    """The part of the item's plane a paint can reach: its device (or clip), widened by ``margin_px``.
+
+    None when the painter's transform cannot be inverted. In an item's paint the device is the view or the
+    item's device-pixel cache, which Qt keeps to the viewport.
+    """
+    inverse, ok = painter.transform().inverted()
+    if not ok:
+        return None
+    r = QtCore.QRectF(painter.viewport())
+    if painter.hasClipping():
+        r = r.intersected(painter.transform().mapRect(painter.clipBoundingRect()))
+    r.adjust(-margin_px, -margin_px, margin_px, margin_px)
+    return inverse.mapRect(r)
 
 
 def distinguishable(dev: np.ndarray, size: float) -> np.ndarray:

@@ -324,6 +324,13 @@ class MeasurePanel(QtWidgets.QWidget):
             self.result_label.setText("choose two objects")
             return
         oa, ob = doc.get(a), doc.get(b)
+        maps = [o.name for o in (oa, ob) if o.kind == "labels"]
+        if maps:  # ADR 0033: a subdivision is many polygons, the distance is between two shapes
+            self.result_label.setText(
+                f"{maps[0]} is a label map: the Hausdorff distance is measured between two shapes; "
+                "Edit ▸ Split into Objects gives one per label"
+            )
+            return
         # The derived entries are pinned to the objects' current sources: safe to read on a worker.
         ea, eb = doc.derived(a), doc.derived(b)
         self.result_label.setText(f"computing H({oa.name}, {ob.name})…")

@@ -22,7 +22,7 @@ _ROOT = QtCore.QModelIndex()  # the invalid index: the model's root
 COL_VISIBLE, COL_COLOUR, COL_NAME, COL_SOURCE = range(4)
 HEADERS = ("", "", "Name", "Source")
 
-SOURCE_TEXT = {"euclidean": "polygon", "discrete": "pixels"}
+SOURCE_TEXT = {"euclidean": "polygon", "discrete": "pixels", "labels": "label map"}
 
 #: How the Source column names the operation that made an object (its parameters follow).
 OPERATION_TEXT = {
@@ -112,7 +112,9 @@ class ObjectListModel(QtCore.QAbstractTableModel):
             text = SOURCE_TEXT[o.kind]
             return f"{text} · {provenance_text(o.provenance)}" if o.provenance is not None else text
         if role == R.ToolTipRole:
-            rep = "Euclidean (polygons)" if o.kind == "euclidean" else "discrete (pixels)"
+            rep = {"euclidean": "Euclidean (polygons)", "labels": "label map (labels)"}.get(
+                o.kind, "discrete (pixels)"
+            )
             tip = f"{o.name}\nsource: the {rep} representation"
             if o.provenance is not None:
                 tip += f"\nproduced by {provenance_text(o.provenance)}"

@@ -484,13 +484,21 @@ class OperationPanel(QtWidgets.QWidget):
 
     def _refill_inputs(self) -> None:
         doc = self.scene.doc
-        sel = list(doc.selection)
+        # A label map is no input of the paper's operations (ADR 0033): it is not offered, and selecting
+        # one says why.
+        sel = [i for i in doc.selection if i in doc and doc.get(i).kind != "labels"]
+        if any(i in doc and doc.get(i).kind == "labels" for i in doc.selection):
+            self.status.setText(
+                "A label map is no input of the operations: Edit ▸ Split into Objects gives one pixel "
+                "object per label"
+            )
         for k, cb in enumerate(self.inputs):
             current = cb.currentData()
             cb.blockSignals(True)
             cb.clear()
             for o in reversed(doc.objects):
-                cb.addItem(o.name, o.id)
+                if o.kind != "labels":
+                    cb.addItem(o.name, o.id)
             want = sel[k] if k < len(sel) else current
             if want is None and cb.count() > k:
                 want = cb.itemData(k)

@@ -214,6 +214,14 @@ class PropertiesPanel(QtWidgets.QWidget):
             | QtWidgets.QAbstractItemView.EditTrigger.AnyKeyPressed
         )
         lay.addWidget(self.table, 1)
+        # A label map's legend (ADR 0033): each label's colour and pixel count, instead of a vertex table.
+        self.legend = QtWidgets.QTreeWidget(self)
+        self.legend.setObjectName("propLegend")
+        self.legend.setRootIsDecorated(False)
+        self.legend.setHeaderLabels(["label", "pixels"])
+        self.legend.setVisible(False)
+        lay.addWidget(self.legend, 1)
+        self._legend_for: Any = None
         self.status = QtWidgets.QLabel("", self)
         self.status.setObjectName("propStatus")
         self.status.setWordWrap(True)
@@ -247,6 +255,8 @@ class PropertiesPanel(QtWidgets.QWidget):
                 self.source_label.clear()
                 self.vertex_note.clear()
                 self.vertices.set_geometry(None)
+                self.legend.setVisible(False)
+                self.table.setVisible(True)
                 return
             self.title.setText(f"<b>{obj.name}</b>")
             if not self.name_edit.hasFocus():
@@ -263,6 +273,13 @@ class PropertiesPanel(QtWidgets.QWidget):
             self.source_label.setText(
                 f"{src} · {provenance_text(obj.provenance)}" if obj.provenance is not None else src
             )
+            labels = obj.kind == "labels"
+            self.table.setVisible(not labels)
+            self.legend.setVisible(labels)
+            if labels:
+                self.vertices.set_geometry(None)
+                self._show_legend(obj)
+                return
             geom = self.scene.get(obj.id, "euclidean")
             if geom is not None and self._table_on_worker(geom):
                 self.vertices.set_geometry(None)
@@ -283,6 +300,47 @@ class PropertiesPanel(QtWidgets.QWidget):
                 )
         finally:
             self._syncing = False
+
+    #: Label maps with more pixels than this get their legend counted on a worker; at most this many labels
+    #: are listed (the views colour the others alike: the colours cycle).
+    LEGEND_SYNC = 1_000_000
+    LEGEND_ROWS = 1000
+
+    def _show_legend(self, obj: Any) -> None:
+        """List a label map's labels with their colours and pixel counts (counted on a worker if big)."""
+        from mrm.views.label_maps import legend_rows
+
+        lm = obj.source
+        if self._legend_for is lm:
+            return
+        self._legend_for = lm
+        self.legend.clear()
+        self.vertex_note.setText("counting the labels…")
+
+        def show(rows: list[tuple[int, str, int]]) -> None:
+            if self._legend_for is not lm:
+                return
+            items = []
+            for label, colour, pixels in rows[: self.LEGEND_ROWS]:
+                item = QtWidgets.QTreeWidgetItem([str(label), f"{pixels:,}"])
+                pm = QtGui.QPixmap(12, 12)
+                pm.fill(QtGui.QColor(colour))
+                item.setIcon(0, QtGui.QIcon(pm))
+                items.append(item)
+            self.legend.addTopLevelItems(items)
+            more = len(rows) - self.LEGEND_ROWS
+            self.vertex_note.setText(
+                f"Label map: {len(rows):,} labels, colours by label"
+                + (f" (the first {self.LEGEND_ROWS:,} listed; {more:,} more)" if more > 0 else "")
+                + ". Its polygons are its gauss subdivision; Edit ▸ Split into Objects gives one object "
+                "per label."
+            )
+
+        runner = getattr(self.scene, "runner", None)
+        if runner is None or lm.labels.size <= self.LEGEND_SYNC:
+            show(legend_rows(lm))
+        else:
+            runner.submit("properties:legend", lambda _p: legend_rows(lm), on_result=show)
 
     #: Geometries with more coordinates than this get their vertex table made on a worker (about 50 ms on
     #: the GUI thread at this size).

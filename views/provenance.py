@@ -26,8 +26,12 @@ class Row:
 
 def _count(source: Any) -> str:
     from mrm.reps.pixels import PixelSet
+    from mrm.views.scene import pixel_count
 
-    return f"{source.count:,}" if isinstance(source, PixelSet) else "polygon"
+    if not isinstance(source, PixelSet):
+        return "polygon"
+    n = pixel_count(source)
+    return "…" if n is None else f"{n:,}"
 
 
 def _name(doc: Any, oid: int | None, digest: str | None, pinned: Any = None) -> str:

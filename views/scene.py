@@ -9,7 +9,7 @@ otherwise computed by the task runner off the GUI thread, the newest request win
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from PySide6 import QtCore
 
@@ -17,11 +17,27 @@ from mrm.derive import SYNC_COST, Derived, Rep
 from mrm.document import Changes, DocObject, Document, Source, Style
 from mrm.errors import MRMError
 
+if TYPE_CHECKING:
+    from mrm.reps.pixels import PixelSet
+
 #: The one look of every previewed result (a "ghost"): a neutral grey no object is given (not in the
 #: palette of new objects), half transparent; the Euclidean view also draws its outline dashed. Ghosts are
 #: drawn only in the discrete and Euclidean views, listed nowhere and never counted by Fit All.
 GHOST_FILL = "#9a9a9a"
 GHOST_STYLE = Style(fill=GHOST_FILL, opacity=0.5)
+
+
+#: Pixel sets with boxes up to this many pixels are counted on the GUI thread when asked (a millisecond).
+COUNT_SYNC = 4_000_000
+
+
+def pixel_count(ps: PixelSet) -> int | None:
+    """The number of pixels of ``ps`` for a label on the GUI thread; None while a worker has not counted it.
+
+    Counting 10⁸ pixels takes tens of milliseconds: a big set is counted on the worker that makes its
+    region (:func:`mrm.derive.region_from_pixels`), and kept by the set.
+    """
+    return ps.count if ps.mask.size <= COUNT_SYNC else ps.known_count
 
 
 #: What each representation is called in the status bar's progress.
@@ -44,6 +60,13 @@ DERIVATION_STEPS: dict[str, dict[str, tuple[Rep, ...]]] = {
         "euclidean": ("euclidean",),
         "region": ("discrete", "region"),
         "analytical": ("discrete", "region", "analytical"),
+    },
+    # A label map (ADR 0033): its cells, its gauss subdivision; no analytical representation.
+    "labels": {
+        "discrete": ("discrete",),
+        "euclidean": ("euclidean",),
+        "region": ("region",),
+        "analytical": ("analytical",),
     },
 }
 #: The text a view shows for a representation whose computation was cancelled.

@@ -213,6 +213,13 @@ class SegmentTable(QtWidgets.QWidget):
             self._show_preimage(None, -1)
             return
         self.obj_id = obj.id
+        if obj.kind == "labels":  # no segments of its own (ADR 0033): not even asked for
+            from mrm.views.label_maps import NO_SEGMENTS_NOTE
+
+            self.model.set_analytical(None)
+            self.caption.setText(f"<b>{obj.name}</b>: {NO_SEGMENTS_NOTE}")
+            self._show_preimage(None, -1)
+            return
         ana = self.scene.get(obj.id, "analytical")
         if ana is None:
             err = self.scene.error(obj.id, "analytical")

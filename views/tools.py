@@ -38,6 +38,8 @@ E = QtCore.QEvent.Type
 
 #: Hit radius of vertices and edges, in screen pixels.
 HIT_PX = 8.0
+#: What the pixel tools say on a label map (ADR 0033).
+LABEL_MAP_EDIT = "a label map is not painted: Edit ▸ Split into Objects gives one pixel object per label"
 _drag_ids = itertools.count(1)
 
 
@@ -425,7 +427,7 @@ class PolygonTool(Tool):
         hole = shapely.Polygon(ring)
         candidates = [self.scene.primary(), *list(reversed(doc.objects))]
         for obj in candidates:
-            if obj is None or not obj.style.visible:
+            if obj is None or not obj.style.visible or obj.kind == "labels":  # a subdivision: no holes drawn
                 continue
             geom = self.scene.get(obj.id, "euclidean")
             if geom is None or not geom.contains(hole):
@@ -485,7 +487,7 @@ class VertexTool(Tool):
 
     def _geometry(self) -> tuple[DocObject, shapely.Geometry] | None:
         obj = self.scene.primary()
-        if obj is None:
+        if obj is None or obj.kind == "labels":  # its polygons are derived from its labels (ADR 0033)
             return None
         geom = self.scene.get(obj.id, "euclidean")
         if geom is None or geom.is_empty:
@@ -762,6 +764,9 @@ class BrushTool(Tool):
                 self.host.message.emit("select an object to erase from", 3000)
                 return True
         base = PixelSet.empty()
+        if obj is not None and obj.kind == "labels":
+            self.host.message.emit(LABEL_MAP_EDIT, 5000)
+            return True
         if obj is not None:
             ps = (
                 self.scene.entry(obj.id).get("discrete")
@@ -908,6 +913,8 @@ class FillHoleTool(_ClickPixelTool):
             if obj.id in tried:
                 continue
             tried.add(obj.id)
+            if obj.kind == "labels":
+                continue  # a label map's holes are regions of label 0, not holes to fill
             ps = self.scene.get(obj.id, "discrete")
             b = ps.bbox if ps is not None else None
             if b is None or not obj.style.visible or px in ps:

@@ -11,7 +11,7 @@ panel, measures through the Measure panel), waits until every view and backgroun
 its picture is drawn over the window's at the place it opened.
 
 Pictures (docs/img): ``analytical-segment.png``, ``inspector.png``, ``dark.png``, ``properties-panel.png``,
-``context-menu.png``, ``measure.png``.
+``context-menu.png``, ``measure.png``, ``label-map.png``.
 """
 
 from __future__ import annotations
@@ -187,7 +187,38 @@ def measure(app: Any) -> Path:
     return _save(app, win, "measure.png")
 
 
+def _parcels_png(path: Path) -> None:
+    """An indexed PNG of 24 "parcels" (Voronoi cells of random seeds, labels 1–24) around an empty pond."""
+    import numpy as np
+    from PIL import Image
+
+    rng = np.random.default_rng(11)
+    h, w = 72, 96
+    yy, xx = np.mgrid[0:h, 0:w]
+    seeds = rng.integers(0, (w, h), size=(24, 2))
+    d = (xx[..., None] - seeds[:, 0]) ** 2 + (yy[..., None] - seeds[:, 1]) ** 2
+    lab = (np.argmin(d, axis=2) + 1).astype(np.uint8)
+    lab[(xx - 60) ** 2 + (yy - 30) ** 2 < 60] = 0  # a pond: a hole in the parcels around it
+    im = Image.fromarray(lab, "P")
+    im.putpalette([v for k in range(256) for v in (k * 9 % 256, k * 5 % 256, k * 3 % 256)])
+    im.save(path)
+
+
+def label_map(app: Any) -> Path:
+    """A label image imported as one label map: labels, cells, the subdivision, the legend in Properties."""
+    win = _window()
+    png = Path(tempfile.mkdtemp(prefix="mrm-fig-")) / "parcels.png"
+    _parcels_png(png)
+    win.files.import_files([png])  # the dialog proposes the label map for an indexed image
+    win.files.import_dialog.accept()
+    _settle(app, win)
+    win.doc.set_selection([win.doc.objects[0].id])
+    win.show_properties()
+    return _save(app, win, "label-map.png")
+
+
 FIGURES: dict[str, Callable[[Any], Path]] = {
+    "label-map": label_map,
     "analytical-segment": analytical_segment,
     "inspector": inspector,
     "dark": dark,

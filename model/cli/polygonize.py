@@ -19,7 +19,6 @@ input's line is printed when it is done; ``--json`` then gives ``inputs``, the s
 from __future__ import annotations
 
 import argparse
-import json
 import time
 import zipfile
 from pathlib import Path
@@ -33,8 +32,7 @@ from mrm.cli._common import (
     inputs_and_outputs,
     run_inputs,
 )
-from mrm.errors import FileFormatError, InvalidGeometryError
-from mrm.io.atomic import atomic_open
+from mrm.errors import FileFormatError
 from mrm.reps.pixels import LabelMap
 from mrm.summary import count_vertices
 
@@ -96,28 +94,14 @@ def read_labels(path: str, limit: int) -> LabelMap:
 def polygonize_file(path: str, output: str, model: str | None, limit: int) -> dict[str, Any]:
     """Polygonize one label image and write its features; return its summary (batch workers call it)."""
     from mrm.geometry.reconstruct.polygonize import polygonize
-    from mrm.io.vector_files import _geojson_of
+    from mrm.io.vector_files import write_regions_geojson
 
     lm = read_labels(path, limit)
     chosen = model or "gauss"
     t0 = time.perf_counter()
     regions = polygonize(lm, model=chosen)
     seconds = time.perf_counter() - t0
-    features = [
-        {
-            "type": "Feature",
-            "properties": {"label": r.label, "pixels": r.pixels},
-            "geometry": _geojson_of(r.geometry),
-        }
-        for r in regions
-    ]
-    try:
-        text = json.dumps({"type": "FeatureCollection", "features": features}, allow_nan=False)
-    except ValueError:
-        raise InvalidGeometryError(f"{output}: cannot write NaN or infinite coordinates") from None
-    Path(output).parent.mkdir(parents=True, exist_ok=True)
-    with atomic_open(output, "w") as fh:
-        fh.write(text + "\n")
+    write_regions_geojson(regions, output)
     return {
         "input": str(path),
         "output": str(output),

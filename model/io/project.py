@@ -1,10 +1,10 @@
 """Project files (``*.mrm``): one versioned JSON document, validated on load, written atomically.
 
-Schema version 3::
+Schema version 4::
 
     {
      "format": "mrm-project",
-     "schema_version": 3,
+     "schema_version": 4,
      "generator": "MR Modeler 0.1.0",                      (optional, informative)
      "settings": {"model": "standard"},
      "selection": [2],                                      (optional; ids of selected objects)
@@ -21,7 +21,9 @@ Schema version 3::
                   "geometry": {"type": "Polygon", "coordinates": [[[0.0, 0.0], [4.5, 0.0], ...]]}}},
       {"id": 3, ..., "georef": {"transform": [30.0, 0.0, 500000.0, 0.0, -30.0, 4200000.0],
                                 "width": 64, "height": 48, "crs": "EPSG:32633", "origin": [0, 0]},
-       "source": {"kind": "discrete", ...}}
+       "source": {"kind": "discrete", ...}},
+      {"id": 4, ..., "source": {"kind": "labels", "origin": [0, 0], "shape": [480, 640],
+                                "labels": "<base64 of zlib of int32 little-endian>"}}
      ]
     }
 
@@ -37,6 +39,8 @@ Schema version 3::
   (:class:`mrm.io.georef.GeoRef`, ADR 0021). Absent for an object on a plain grid.
 * A discrete source is its canonical (cropped) mask, ``np.packbits`` row-major (row 0 = lowest y, big-endian
   bit order) in base64, with its origin and shape: compact, and valid JSON.
+* A label map (``kind: "labels"``, schema 4, ADR 0033) is its canonical (cropped) int32 label array,
+  row-major (row 0 = lowest y), little-endian, zlib-compressed, in base64, with its origin and shape.
 * A Euclidean source is GeoJSON-like: Polygon or MultiPolygon coordinates, rings closed, float coordinates
   written with ``repr`` so that every float64 comes back bit for bit. Integers (ids, origins, shapes) stay
   integers.
@@ -55,6 +59,7 @@ import functools
 import json
 import math
 import os
+import zlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -82,12 +87,12 @@ from mrm.document import (
 from mrm.errors import FileFormatError as FileFormatError
 from mrm.errors import MRMError
 from mrm.io.georef import GeoRef
-from mrm.reps.pixels import PixelSet
+from mrm.reps.pixels import LabelMap, PixelSet
 
 #: The value of the "format" key.
 FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
-SCHEMA_VERSION = 3
+SCHEMA_VERSION = 4
 #: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
 MAX_CRS_CHARS = 100_000
 # The limits are those of the document (mrm.limits, ADR 0010), so that the loader accepts every file the
@@ -141,6 +146,12 @@ MIGRATIONS: tuple[Migration, ...] = (
         "file has none, so it reads unchanged",
         lambda data: {**data, "schema_version": 3},
     ),
+    Migration(
+        3,
+        "an object's source may be a label map (kind 'labels': zlib-compressed int32 labels); a version 3 "
+        "file has none, so it reads unchanged",
+        lambda data: {**data, "schema_version": 4},
+    ),
 )
 
 
@@ -176,6 +187,17 @@ def _encode_pixels(ps: PixelSet) -> dict[str, Any]:
     }
 
 
+def _encode_labels(lm: LabelMap) -> dict[str, Any]:
+    h, w = lm.shape
+    raw = zlib.compress(lm.labels.astype("<i4", copy=False).tobytes(), 6) if lm.labels.size else b""
+    return {
+        "kind": "labels",
+        "origin": [int(lm.origin[0]), int(lm.origin[1])],
+        "shape": [h, w],
+        "labels": base64.b64encode(raw).decode("ascii"),
+    }
+
+
 def _ring_list(coords: Any) -> list[list[float]]:
     a = np.asarray(coords, dtype=np.float64)[:, :2]
     return a.tolist()  # type: ignore[no-any-return]  # Python floats: json writes their repr
@@ -196,6 +218,8 @@ def _encode_geometry(geom: Geometry) -> dict[str, Any]:
 def _encode_source(source: Source) -> dict[str, Any]:
     if isinstance(source, PixelSet):
         return _encode_pixels(source)
+    if isinstance(source, LabelMap):
+        return _encode_labels(source)
     return {"kind": "euclidean", "geometry": _encode_geometry(source)}
 
 
@@ -403,8 +427,10 @@ class _Checker:
                 self.fail(p, f"number {self.show(x)} is too large")
 
 
-def _decode_bits(c: _Checker, src: dict[str, Any], path: str) -> PixelSet:
-    c.obj(src, path, ("kind", "origin", "shape", "bits"))
+def _decode_box(
+    c: _Checker, src: dict[str, Any], path: str, limit: int, what: str = "mask"
+) -> tuple[int, int, int, int]:
+    """(x0, y0, rows, cols) of a discrete source or label map, within the coordinate and size limits."""
     origin = c.list_(src["origin"], f"{path}.origin")
     if len(origin) != 2:
         c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
@@ -418,16 +444,46 @@ def _decode_bits(c: _Checker, src: dict[str, Any], path: str) -> PixelSet:
     w = c.int_(shape[1], f"{path}.shape[1]", 0, lim)
     if h and w and max(x0 + w - 1, y0 + h - 1) > lim:
         c.fail(f"{path}.shape", f"the mask reaches pixel coordinates beyond ±{lim:,}")
-    if h * w > limits.MAX_OBJECT_PIXELS:
-        c.fail(
-            f"{path}.shape",
-            f"a {h} x {w} mask holds more than the limit of {limits.MAX_OBJECT_PIXELS:,} pixels",
-        )
+    if h * w > limit:
+        c.fail(f"{path}.shape", f"a {h} x {w} {what} holds more than the limit of {limit:,} pixels")
     c.mask_pixels += h * w
     if c.mask_pixels > limits.MAX_FILE_PIXELS:
         c.fail(
             f"{path}.shape", f"the masks of the file hold more than {limits.MAX_FILE_PIXELS:,} pixels in all"
         )
+    return x0, y0, h, w
+
+
+def _decode_labels(c: _Checker, src: dict[str, Any], path: str) -> LabelMap:
+    c.obj(src, path, ("kind", "origin", "shape", "labels"))
+    x0, y0, h, w = _decode_box(c, src, path, limits.MAX_LABEL_PIXELS, "label map")
+    text = c.str_(src["labels"], f"{path}.labels", max_len=limits.MAX_FILE_BYTES)
+    try:
+        packed = base64.b64decode(text, validate=True)
+    except (binascii.Error, ValueError):
+        c.fail(f"{path}.labels", "not valid base64")
+    n = 4 * h * w
+    if n == 0:
+        if packed:
+            c.fail(f"{path}.labels", "an empty label map has no labels")
+        return LabelMap(np.zeros((0, 0), np.int32))
+    # Never more than the declared size is inflated (a small file cannot claim gigabytes).
+    inflate = zlib.decompressobj()
+    try:
+        raw = inflate.decompress(packed, n)
+    except zlib.error as e:
+        c.fail(f"{path}.labels", f"not valid zlib data ({e})")
+    if len(raw) != n or inflate.unconsumed_tail or not inflate.eof:
+        c.fail(f"{path}.labels", f"expected {n} bytes of int32 labels for a {h} x {w} map")
+    labels = np.frombuffer(raw, dtype="<i4").reshape(h, w)
+    if labels.size and int(labels.min()) < 0:
+        c.fail(f"{path}.labels", "labels must be non-negative")
+    return LabelMap(labels.astype(np.int32), (x0, y0))
+
+
+def _decode_bits(c: _Checker, src: dict[str, Any], path: str) -> PixelSet:
+    c.obj(src, path, ("kind", "origin", "shape", "bits"))
+    x0, y0, h, w = _decode_box(c, src, path, limits.MAX_OBJECT_PIXELS)
     bits = c.str_(src["bits"], f"{path}.bits", max_len=limits.MAX_FILE_BYTES)
     n = h * w
     nbytes = (n + 7) // 8
@@ -503,14 +559,16 @@ def _decode_geometry(c: _Checker, g: Any, path: str) -> Geometry:
 
 
 def _decode_source(c: _Checker, src: Any, path: str) -> Source:
-    c.obj(src, path, ("kind",), ("origin", "shape", "bits", "geometry"))
+    c.obj(src, path, ("kind",), ("origin", "shape", "bits", "geometry", "labels"))
     kind = src["kind"]
     if kind == "discrete":
         return _decode_bits(c, src, path)
+    if kind == "labels":
+        return _decode_labels(c, src, path)
     if kind == "euclidean":
         c.obj(src, path, ("kind", "geometry"))
         return _decode_geometry(c, src["geometry"], f"{path}.geometry")
-    c.fail(f"{path}.kind", f"expected 'discrete' or 'euclidean', got {c.show(kind)}")
+    c.fail(f"{path}.kind", f"expected 'discrete', 'labels' or 'euclidean', got {c.show(kind)}")
 
 
 def _decode_style(c: _Checker, s: Any, path: str) -> Style:

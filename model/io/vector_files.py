@@ -537,6 +537,36 @@ def write_geojson(
         fh.write(text + "\n")
 
 
+def write_regions_geojson(
+    regions: Iterable[Any], path: PathLike, *, members: Mapping[str, Any] | None = None
+) -> None:
+    """Write a label map's regions as a FeatureCollection, atomically: one Feature per region.
+
+    ``regions`` are those of :func:`mrm.geometry.reconstruct.polygonize.polygonize` (label, pixels, geometry);
+    each Feature has the properties ``label`` and ``pixels``. What ``mrm polygonize`` and the application's
+    export of a label map object write (ADR 0033).
+    """
+    regions = list(regions)
+    _check_geometry_output([r.geometry for r in regions], path)
+    try:
+        with paused_gc():
+            features = [
+                {
+                    "type": "Feature",
+                    "properties": {"label": r.label, "pixels": r.pixels},
+                    "geometry": _geojson_of(r.geometry),
+                }
+                for r in regions
+            ]
+            text = json.dumps({"type": "FeatureCollection", **dict(members or {}), "features": features},
+                              allow_nan=False)  # fmt: skip
+    except ValueError:
+        raise InvalidGeometryError(f"{os.fspath(path)}: cannot write NaN or infinite coordinates") from None
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with atomic_open(path, "w") as fh:
+        fh.write(text + "\n")
+
+
 def wkt_of(g: BaseGeometry) -> str:
     """Return the WKT of a 2-D geometry with every coordinate written exactly (``repr``)."""
 

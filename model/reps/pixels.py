@@ -46,6 +46,30 @@ def _crop_bounds(mask: BoolArray) -> tuple[int, int, int, int] | None:
     return int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1
 
 
+def _box(origin: tuple[int, int], shape: tuple[int, ...]) -> Box:
+    """(xmin, ymin, xmax, ymax) of a non-empty array placed at ``origin``."""
+    x0, y0 = origin
+    return (x0, y0, x0 + int(shape[1]) - 1, y0 + int(shape[0]) - 1)
+
+
+def _cell(p: object, origin: tuple[int, int], shape: tuple[int, ...]) -> tuple[int, int] | None:
+    """(row, col) of pixel ``p`` = (x, y) in an array placed at ``origin``, or None when it is none of its.
+
+    Like a Python set of integer tuples: (1.0, 2) is (1, 2), but (1.5, 2) or ("1", 2) is no pixel.
+    """
+    if not isinstance(p, tuple) or len(p) != 2:
+        return None
+    x, y = p
+    try:
+        xi, yi = int(x), int(y)
+        if xi != x or yi != y:
+            return None
+    except (TypeError, ValueError, OverflowError):
+        return None
+    r, c = yi - origin[1], xi - origin[0]
+    return (r, c) if 0 <= r < shape[0] and 0 <= c < shape[1] else None
+
+
 class PixelSet:
     """A finite set of pixels: an integer origin plus a read-only boolean mask, always canonical.
 
@@ -63,7 +87,7 @@ class PixelSet:
     immutable: the mask is a read-only array and every operation returns a new set.
     """
 
-    __slots__ = ("_hash", "_mask", "_origin")
+    __slots__ = ("_count", "_hash", "_mask", "_origin")
 
     def __init__(self, mask: npt.ArrayLike, origin: tuple[int, int] = (0, 0)) -> None:
         m = np.asarray(mask)
@@ -84,6 +108,7 @@ class PixelSet:
             self._mask = _frozen(m, fresh=fresh)
             self._origin = (x0 + c0, y0 + r0)
         self._hash: int | None = None
+        self._count: int | None = None
 
     @classmethod
     def _canonical(cls, mask: BoolArray, origin: tuple[int, int]) -> PixelSet:
@@ -92,6 +117,7 @@ class PixelSet:
         ps._mask = mask
         ps._origin = origin
         ps._hash = None
+        ps._count = None
         return ps
 
     @classmethod
@@ -239,12 +265,21 @@ class PixelSet:
         return (int(self._mask.shape[0]), int(self._mask.shape[1]))
 
     def __len__(self) -> int:
-        return int(np.count_nonzero(self._mask))
+        # Counted once (the mask is immutable): 10⁸ pixels take tens of milliseconds, and views read the
+        # count at every refresh (the status bar, the inspector's chain).
+        if self._count is None:
+            self._count = int(np.count_nonzero(self._mask))
+        return self._count
 
     @property
     def count(self) -> int:
-        """Number of pixels in the set."""
+        """Number of pixels in the set (counted once)."""
         return len(self)
+
+    @property
+    def known_count(self) -> int | None:
+        """The number of pixels if it was counted already (:attr:`count`), else None; never counts."""
+        return self._count
 
     def is_empty(self) -> bool:
         """True when the set holds no pixel."""
@@ -256,11 +291,7 @@ class PixelSet:
     @property
     def bbox(self) -> Box | None:
         """(xmin, ymin, xmax, ymax), bounds included, or None for the empty set."""
-        if self.is_empty():
-            return None
-        h, w = self.shape
-        x0, y0 = self._origin
-        return (x0, y0, x0 + w - 1, y0 + h - 1)
+        return None if self.is_empty() else _box(self._origin, self._mask.shape)
 
     def points(self) -> IntArray:
         """All pixels as an (N, 2) int64 array of (x, y), sorted by y then x."""
@@ -275,18 +306,8 @@ class PixelSet:
             yield (int(x), int(y))
 
     def __contains__(self, p: object) -> bool:
-        if not isinstance(p, tuple) or len(p) != 2 or self.is_empty():
-            return False
-        x, y = p
-        try:
-            xi, yi = int(x), int(y)
-            # Like a Python set of integer tuples: (1.0, 2) is (1, 2), but (1.5, 2) is no pixel.
-            if xi != x or yi != y:
-                return False
-        except (TypeError, ValueError, OverflowError):
-            return False
-        c, r = xi - self._origin[0], yi - self._origin[1]
-        return 0 <= r < self._mask.shape[0] and 0 <= c < self._mask.shape[1] and bool(self._mask[r, c])
+        rc = _cell(p, self._origin, self._mask.shape)
+        return rc is not None and bool(self._mask[rc])
 
     def to_array(self, box: Box) -> BoolArray:
         """Return a new writable mask over ``box`` = (xmin, ymin, xmax, ymax), indexed ``[row, col]``."""
@@ -390,7 +411,9 @@ class PixelSet:
         """Return the set moved by the integer vector (dx, dy)."""
         if self.is_empty():
             return self
-        return PixelSet._canonical(self._mask, (self._origin[0] + int(dx), self._origin[1] + int(dy)))
+        moved = PixelSet._canonical(self._mask, (self._origin[0] + int(dx), self._origin[1] + int(dy)))
+        moved._count = self._count
+        return moved
 
     def crop(self, box: Box) -> PixelSet:
         """Return the pixels of this set inside ``box`` = (xmin, ymin, xmax, ymax)."""
@@ -530,6 +553,24 @@ class LabelMap:
     def shape(self) -> tuple[int, int]:
         """(rows, cols) of the label array."""
         return (int(self._labels.shape[0]), int(self._labels.shape[1]))
+
+    def is_empty(self) -> bool:
+        """True when no pixel carries a non-zero label."""
+        return self._labels.size == 0
+
+    def label_at(self, p: tuple[int, int]) -> int:
+        """The label of pixel ``p`` = (x, y): 0 outside the map, on its background, or for no pixel."""
+        rc = _cell(p, self._origin, self._labels.shape)
+        return 0 if rc is None else int(self._labels[rc])
+
+    def __contains__(self, p: object) -> bool:
+        """True when pixel ``p`` = (x, y) carries a non-zero label."""
+        return self.label_at(p) != 0  # type: ignore[arg-type]
+
+    @property
+    def bbox(self) -> Box | None:
+        """(xmin, ymin, xmax, ymax) of the labelled pixels, bounds included, or None when empty."""
+        return None if self.is_empty() else _box(self._origin, self._labels.shape)
 
     def label_values(self) -> list[int]:
         """The distinct non-zero labels, sorted."""

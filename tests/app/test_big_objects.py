@@ -28,6 +28,7 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     win = make_window(threaded=True)
     m = np.ones((2000, 2500), bool)
     m[470:480, 210:230] = False  # a hole, seen when zoomed in at x 110 … 129, y 510 … 519
+    m[495, 200:260] = False  # a one-pixel gap at y 535, which the coarse image (2 × 2 maxima) fills
     ps = PixelSet(m, (-100, 40))
     obj = win.doc.make_object(ps, name="big")
     win.doc.push(AddObject(obj, select=True))
@@ -39,6 +40,8 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
     item = layer.mask
     assert item.image.size <= LOD_PIXELS and item.scale_factor == 2
+    # The status bar gives its pixel count, counted on the worker that made its region.
+    assert f"{ps.count:,} pixels".replace(",", "\u2009") in win.status.figures.text()
     r = item.mapRectToParent(item.boundingRect())
     assert (r.left(), r.bottom() if r.bottom() > r.top() else r.top()) == (-100.5, 40 - 0.5 + 2000)
     assert r.width() == 2500
@@ -46,6 +49,7 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     from tests.app.helpers import zoom_to
 
     zoom_to(win, 100, 500, 160, 540)
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)  # the detail is cropped and pooled on a worker
     detail = item._detail
     assert detail is not None and detail.isVisible()
     d = detail.mapRectToParent(detail.boundingRect())
@@ -55,6 +59,14 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     exact = ps.to_array((x0, y0, x0 + w - 1, y0 + h - 1))
     assert not exact.all()  # the hole is in view
     assert np.array_equal(detail.image.astype(bool), exact)
+    # And that is what the view shows: the gap and the hole are not filled in by the coarse image below.
+    from tests.app.helpers import colour_at, grab, is_background
+
+    shown = grab(dv)
+    assert is_background(dv, colour_at(dv, 130, 535, shown))
+    assert is_background(dv, colour_at(dv, 120, 515, shown))
+    assert not is_background(dv, colour_at(dv, 130, 533, shown))
+    assert not is_background(dv, colour_at(dv, 130, 537, shown))
     # The other views drew it too, with their own prepared data.
     assert win.views.region.layer(obj.id).components.image.size <= LOD_PIXELS
     assert not win.views.euclidean.layer(obj.id).polygon.path().isEmpty()
@@ -139,3 +151,47 @@ def test_big_images_are_made_ready_to_draw_on_workers_and_look_the_same(make_win
     after = {v.name: grab(v) for v in win.views.views[:3]}
     for name, img in before.items():
         assert img == after[name], name
+
+
+def test_part_way_zoomed_in_the_detail_is_as_fine_as_the_screen(make_window, qtbot):
+    """Between fit-all and one screen pixel per pixel the exact detail is pooled to the screen's resolution.
+
+    The issue: zoomed in, every view change cropped and converted up to 4 M pixels on the GUI thread. Here a
+    coarse image of 3 × 3 maxima, zoomed to 1–2 units per screen pixel, gets a detail of 2 × 2 maxima made on
+    a worker, no bigger than a few times the view, and the one-pixel line still shows where it is.
+    """
+    from mrm.views.canvas import max_pool
+    from tests.app.helpers import colour_at, grab, is_background
+
+    win = make_window(threaded=True)
+    m = np.zeros((4500, 4000), bool)
+    m[:3500, :] = True
+    m[3800, 100:3900] = True  # a one-pixel line at y = 3800
+    m[-1, -1] = True
+    ps = PixelSet(m, (0, 0))
+    obj = win.doc.make_object(ps, name="big")
+    win.doc.push(AddObject(obj, select=False))
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    dv = win.views.discrete
+    item = dv.layer(obj.id).mask
+    assert item.scale_factor == 3
+    from tests.app.helpers import zoom_to
+
+    zoom_to(win, 1700, 3550, 2150, 4050)
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    px = dv.plane.pixels_per_unit()
+    assert 1 / 2 <= px < 1
+    detail = item._detail
+    assert detail is not None and detail.isVisible()
+    d = detail.mapRectToParent(detail.boundingRect())
+    x0, y0 = round(d.left() + 0.5), round(min(d.top(), d.bottom()) + 0.5)
+    h, w = detail.image.shape
+    assert d.width() == 2 * w  # each detail pixel is 2 × 2 pixels of the plane
+    view_pixels = dv.plane.viewport().width() * dv.plane.viewport().height()
+    assert detail.image.size <= 4 * view_pixels
+    exact = ps.to_array((x0, y0, x0 + 2 * w - 1, y0 + 2 * h - 1))
+    assert np.array_equal(detail.image, max_pool(exact, 2))
+    shown = grab(dv)
+    # The line: drawn within a screen pixel (two units) of where it is.
+    assert any(not is_background(dv, colour_at(dv, 1900, y, shown)) for y in np.arange(3798, 3802.1, 0.5))
+    assert is_background(dv, colour_at(dv, 1900, 3700, shown))

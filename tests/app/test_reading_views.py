@@ -6,6 +6,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
+from PySide6 import QtGui
 from shapely.geometry import Polygon
 
 from mrm.commands import AddObject
@@ -13,7 +14,7 @@ from mrm.document import Style
 from mrm.reps.pixels import PixelSet
 from mrm.views.region_view import colour_distance
 from mrm.views.segment_table import linear
-from tests.app.helpers import click, wait_drawn, zoom_to
+from tests.app.helpers import click, grab, wait_drawn, zoom_to
 
 
 def _two_objects(win):  # type: ignore[no-untyped-def]
@@ -227,3 +228,64 @@ def test_the_discrete_outline_has_the_same_level_of_detail_and_stays_exact_on_sc
             exact, shown = _polylines(level.path), _polylines(level.path_at(scale))
             assert shown.hausdorff_distance(exact) <= COARSE_PX / scale + 1e-9
             assert level.path_at(scale).elementCount() < level.path.elementCount()
+
+
+def _grabs(win):  # type: ignore[no-untyped-def]
+    """What each view shows now, as arrays (the paint of every item done afresh)."""
+    from PySide6 import QtWidgets
+
+    out = {}
+    for v in win.views.visible_views():
+        for item in v.plane.scene().items():
+            item.update()  # drops Qt's device-pixel cache: the next paint strokes again
+        QtWidgets.QApplication.processEvents()
+        img = grab(v).convertToFormat(QtGui.QImage.Format.Format_ARGB32)
+        out[v.name] = np.frombuffer(img.constBits(), np.uint8).reshape(img.height(), img.width(), 4).copy()
+    return out
+
+
+def test_zoomed_in_a_long_outline_is_stroked_in_view_only_and_drawn_as_in_full(
+    make_window, qtbot, monkeypatch
+):
+    """Zoomed in on part of a long outline, the views stroke only what is in view (its chunks) and show
+    exactly what stroking every outline in full shows, after a zoom and after a pan."""
+    from mrm.views.items import LodPathItem
+
+    win = make_window()
+    yy, xx = np.mgrid[0:1200, 0:1200]
+    r2 = (xx - 600) ** 2 + (yy - 600) ** 2
+    # A ring with a rough outer boundary: thousands of crack corners, and as many slanted polygon edges.
+    t = np.arctan2(yy - 600, xx - 600)
+    wave = 560 + 8 * np.sin(57 * t) + 6 * np.sin(211 * t) + 4 * np.sin(503 * t) + 3 * np.sin(1009 * t)
+    mask = (r2 < wave**2) & (r2 > 300**2)
+    obj = win.doc.make_object(PixelSet(mask, (0, 0)), name="wavy ring")
+    win.doc.push(AddObject(obj, select=True))
+    zoom_to(win, 0, 0, 1200, 1200)
+    wait_drawn(qtbot, win, timeout=60_000)
+    v = win.views
+    items = [
+        (v.discrete, v.discrete.layer(obj.id).outline),
+        (v.region, v.region.layer(obj.id).outer),
+        (v.euclidean, v.euclidean.layer(obj.id).polygon),
+        *((v.analytical, c) for c in v.analytical.layer(obj.id).cracks[:2]),
+    ]
+    for where in ((1130, 560, 1190, 620), (1100, 600, 1180, 680)):  # a zoom in, then a pan
+        zoom_to(win, *where)
+        wait_drawn(qtbot, win, timeout=60_000)
+        scale = win.views.camera.scale
+        assert scale > 2  # the pens are 2 to 3 screen pixels wide, not hairlines
+        for view, item in items:
+            stroked, _dots = item.drawn(scale, view.plane.vb.viewRect())
+            full, _ = item.drawn(scale)
+            assert 0 < stroked < full / 4, item  # the outline crosses the view; most of it is elsewhere
+        shown = _grabs(win)
+        monkeypatch.setattr(LodPathItem, "tiled", False)
+        reference = _grabs(win)
+        monkeypatch.setattr(LodPathItem, "tiled", True)
+        for name, img in shown.items():
+            background = (img == img[0, 0]).all(axis=2)
+            assert not background.all(), name  # the outline and the pixels are in view
+            assert np.array_equal(img, reference[name]), (
+                name,
+                int((img != reference[name]).any(axis=2).sum()),
+            )

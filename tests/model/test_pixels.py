@@ -176,6 +176,23 @@ def test_translate(pts, dx, dy):
     assert moved.translate(-dx, -dy) == ps
 
 
+@given(point_sets, st.integers(-50, 50), st.integers(-50, 50))
+def test_the_pixel_count_is_the_number_of_pixels_however_the_set_was_made(pts, dx, dy):
+    """The count is kept once computed (the set is immutable): it stays right through every way of making
+    a set from another."""
+    ps = ps_of(pts)
+    assert ps.count == len(pts)  # counted, then kept
+    made = (
+        ps.translate(dx, dy),
+        pickle.loads(pickle.dumps(ps)),
+        PixelSet.taking_over(np.array(ps.mask), ps.origin),
+        ps.union(ps.translate(dx, dy)),
+        ps.rotate90(1),
+    )
+    expected = (len(pts), len(pts), len(pts), len(pts | {(x + dx, y + dy) for x, y in pts}), len(pts))
+    assert [m.count for m in made] == list(expected)
+
+
 @given(point_sets, st.integers(-6, 6), point)
 def test_rotate90_matches_complex_rotation(pts, k, center):
     ps = ps_of(pts)

@@ -257,7 +257,7 @@ HOSTILE = {
     ),
     "unknown source kind": (
         mutated(_set(["objects", 0, "source", "kind"], "voxels")),
-        r"\$\.objects\[0\]\.source\.kind: expected 'discrete' or 'euclidean'",
+        r"\$\.objects\[0\]\.source\.kind: expected 'discrete', 'labels' or 'euclidean'",
     ),
     "shape wrong length": (
         mutated(_set(["objects", 0, "source", "shape"], [5])),

@@ -1,0 +1,191 @@
+"""A label image imported as one label map object (ADR 0033), driven through the real dialog and views.
+
+Its discrete view colours the labels, its region view shows its cells (1-cells and 0-cells), its Euclidean
+view the watertight gauss subdivision (each shared boundary stroked once), the analytical view says it has
+no segments of its own; it is saved and reopened, exported as one GeoJSON Feature per region, split into one
+object per label, and the edits that do not apply say so.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+from PIL import Image
+from PySide6 import QtCore, QtWidgets
+
+from mrm.commands import AddObject
+from mrm.geometry.discretize import discretize
+from mrm.reps.cells import cells_of
+from mrm.reps.pixels import LabelMap
+from mrm.views.label_maps import label_colour
+from tests.app.helpers import click, colour_at, grab, is_background, wait_drawn, zoom_to
+
+Qt = QtCore.Qt
+
+
+def _label_png(path):  # type: ignore[no-untyped-def]
+    """An indexed PNG: labels 1, 2 (two regions), 3 around a hole, 7 next to 3; rows top first."""
+    lab = np.zeros((16, 20), np.uint8)
+    lab[1:7, 1:9] = 1
+    lab[1:7, 9:18] = 2
+    lab[9:15, 1:5] = 2  # a second region of label 2
+    lab[8:15, 6:13] = 3
+    lab[10:12, 8:10] = 0  # a hole in label 3
+    lab[8:15, 13:19] = 7
+    im = Image.fromarray(lab, "P")
+    im.putpalette([v for k in range(256) for v in (k, 255 - k, (k * 7) % 256)])
+    im.save(path)
+    return LabelMap(lab[::-1].astype(np.int32), (0, 0))
+
+
+def _import_map(win, qtbot, tmp_path):  # type: ignore[no-untyped-def]
+    lm = _label_png(tmp_path / "parcels.png")
+    assert win.files.import_files([tmp_path / "parcels.png"]) is False  # the dialog asks
+    dlg = win.files.import_dialog
+    assert dlg is not None and dlg.isVisible()
+    # An indexed image's values are labels first: the label map is proposed, and the preview says so.
+    assert dlg.map_mode.isChecked() and "1 label map object: 4 labels" in dlg.summary.text()
+    qtbot.mouseClick(dlg.findChild(QtWidgets.QPushButton, "importButton"), Qt.MouseButton.LeftButton)
+    assert len(win.doc) == 1
+    obj = win.doc.objects[0]
+    assert obj.kind == "labels" and obj.name == "parcels" and obj.source == lm
+    return obj, lm
+
+
+def test_a_label_image_imports_as_one_label_map_drawn_in_every_view(make_window, qtbot, tmp_path):
+    win = make_window()
+    obj, lm = _import_map(win, qtbot, tmp_path)
+    assert win.doc.history.undo_label() == "Import parcels"
+    zoom_to(win, -1, -1, 21, 17)
+    wait_drawn(qtbot, win, timeout=30_000)
+    v = win.views
+    # Discrete: every pixel in its label's colour, the background left empty.
+    shown = grab(v.discrete)
+    for x, y in ((3, 12), (12, 12), (2, 3), (7, 4), (15, 4)):
+        label = lm.label_at((x, y))
+        c = colour_at(v.discrete, x, y, shown)
+        assert not is_background(v.discrete, c), (x, y)
+        want = QtWidgetsColour(label_colour(label))
+        assert _hue_close(c, want), (x, y, label)
+    assert is_background(v.discrete, colour_at(v.discrete, 8, 4, shown))  # the hole in label 3
+    # Region: the 1-cells and 0-cells of the map.
+    cells = cells_of(lm)
+    layer = v.region.layer(obj.id)
+    assert len(_subpaths(layer.lines.path())) == len(cells.one_cells)
+    assert len(layer.points.points()) == len(cells.zero_cells) > 0
+    # Euclidean: each label's part filled in its colour, each shared boundary stroked once.
+    sd = win.scene.get(obj.id, "euclidean")
+    assert sorted(sd.parts) == [1, 2, 3, 7]
+    for label, part in sd.parts.items():
+        assert discretize(part, "gauss") == lm.pixel_set(label)
+    elayer = v.euclidean.layer(obj.id)
+    assert len(_subpaths(elayer.lines.path())) == len(sd.polylines) == len(cells.one_cells)
+    eshown = grab(v.euclidean)
+    c = colour_at(v.euclidean, 12, 12, eshown)
+    assert _hue_close(c, QtWidgetsColour(label_colour(2)))
+    # Analytical: nothing drawn, and the view says why.
+    click(qtbot, v.discrete, 3, 12)
+    assert win.doc.selection == (obj.id,)
+    v.analytical.refresh()
+    assert "Split into Objects" in v.analytical.status_label.text()
+    assert "label map" in v.euclidean.legend_label.text()
+    assert "label map" in win.status.figures.text() and "4 labels" in win.status.figures.text()
+    # One undo step removes the import; redo brings it back.
+    win.registry["edit.undo"].trigger()
+    assert len(win.doc) == 0
+    win.registry["edit.redo"].trigger()
+    assert win.doc.objects[0].source == lm
+
+
+def QtWidgetsColour(name):  # type: ignore[no-untyped-def]
+    from PySide6 import QtGui
+
+    return QtGui.QColor(name)
+
+
+def _hue_close(a, b) -> bool:  # type: ignore[no-untyped-def]
+    """The same colour seen through some transparency over a light background (hue within 12°)."""
+    ha, hb = a.hsvHue(), b.hsvHue()
+    return ha >= 0 and hb >= 0 and min(abs(ha - hb), 360 - abs(ha - hb)) <= 12
+
+
+def _subpaths(path):  # type: ignore[no-untyped-def]
+    """The polylines of a QPainterPath, as lists of points."""
+    out, cur = [], []
+    for k in range(path.elementCount()):
+        e = path.elementAt(k)
+        if e.isMoveTo() and cur:
+            out.append(cur)
+            cur = []
+        cur.append((e.x, e.y))
+    if cur:
+        out.append(cur)
+    return [p for p in out if len(p) > 1]
+
+
+def test_split_save_reopen_and_export(make_window, qtbot, tmp_path):
+    win = make_window()
+    obj, lm = _import_map(win, qtbot, tmp_path)
+    wait_drawn(qtbot, win, timeout=30_000)
+    # Saved and reopened as it was.
+    path = tmp_path / "parcels.mrm"
+    assert win.files.save_as(path)
+    qtbot.waitUntil(lambda: not win.runner.is_busy("file"), timeout=30_000)
+    win2 = make_window()
+    assert win2.files.open(path, ask=False)
+    qtbot.waitUntil(lambda: len(win2.doc) == 1, timeout=30_000)
+    assert win2.doc.objects[0].kind == "labels" and win2.doc.objects[0].source == lm
+    # Exported as one GeoJSON Feature per region, with its label and pixel count.
+    out = tmp_path / "parcels.geojson"
+    assert win.files.export(obj.id, out)
+    qtbot.waitUntil(lambda: out.exists(), timeout=30_000)
+    fc = json.loads(out.read_text())
+    regions = sorted((f["properties"]["label"], f["properties"]["pixels"]) for f in fc["features"])
+    assert [r[0] for r in regions] == [1, 2, 2, 3, 7]  # label 2 has two regions
+    assert sum(p for lab, p in regions if lab == 2) == lm.pixel_set(2).count
+    # A format without labels is refused with what to do instead.
+    refused: list[str] = []
+    win.files._error = lambda title, text: refused.append(text)  # type: ignore[method-assign]
+    assert not win.files.export(obj.id, tmp_path / "parcels.svg")
+    assert "GeoJSON" in refused[0] and "Split into Objects" in refused[0]
+    # Split into objects: one pixel object per label, one undo step.
+    win.doc.set_selection([obj.id])
+    win.update_action_states()
+    assert win.registry["edit.split_labels"].isEnabled()
+    win.registry["edit.split_labels"].trigger()
+    assert sorted(o.name for o in win.doc.objects) == [f"parcels label {v}" for v in (1, 2, 3, 7)]
+    for o in win.doc.objects:
+        assert o.kind == "discrete" and o.source == lm.pixel_set(int(o.name.rsplit(" ", 1)[1]))
+    wait_drawn(qtbot, win, timeout=30_000)
+    win.registry["edit.undo"].trigger()
+    assert [o.id for o in win.doc.objects] == [obj.id]
+
+
+def test_what_does_not_apply_to_a_label_map_says_so(make_window, qtbot, tmp_path):
+    win = make_window()
+    obj, _lm = _import_map(win, qtbot, tmp_path)
+    box = win.doc.make_object(LabelMap(np.ones((2, 2), np.int32), (30, 30)).pixel_set(1), name="box")
+    win.doc.push(AddObject(box))
+    win.doc.set_selection([obj.id])
+    wait_drawn(qtbot, win, timeout=30_000)
+    messages: list[str] = []
+    win.statusBar().messageChanged.connect(lambda m: messages.append(m) if m else None)
+    # The brush.
+    win.registry["tool.paint"].trigger()
+    vp = win.views.discrete.plane.viewport()
+    from tests.app.helpers import widget_pos
+
+    qtbot.mouseClick(vp, Qt.MouseButton.LeftButton, pos=widget_pos(win.views.discrete, 3, 12))
+    assert any("label map" in m and "Split into Objects" in m for m in messages), messages
+    assert win.doc.get(obj.id).source is obj.source  # unchanged
+    # The operations: a label map is no input, and the panel says why.
+    panel = win.operations
+    assert all(cb.findData(obj.id) < 0 for cb in panel.inputs)
+    assert "no input of the operations" in panel.status.text()
+    # The Properties panel lists the labels (the legend) instead of vertices.
+    win.registry["edit.properties"].trigger()
+    props = win.properties
+    assert props.legend.isVisible() and not props.table.isVisible()
+    rows = [props.legend.topLevelItem(k).text(0) for k in range(props.legend.topLevelItemCount())]
+    assert rows == ["1", "2", "3", "7"]
