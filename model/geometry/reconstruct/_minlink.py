@@ -40,6 +40,7 @@ _PCAP = 96  # vertices of a line-space polygon (a preimage has a handful; more a
 _BOX_A = 64.0  # |slope| bound of the initial line-space box (the frame keeps real slopes small)
 _INSET = 0.3  # how far a window's line moves from the extreme line towards the polygon's centroid
 _STARTS = 3  # starts tried (vertices 0, m/3, 2m/3) while the windows promise fewer vertices
+_MANY_STARTS_PIECES = 1024  # … on corridors of at most this many pieces; larger ones try vertex 0 only
 
 
 @njit(cache=True)
@@ -858,8 +859,11 @@ def minlink_ring(
     sc = 1 << kmax
     fsc = float(sc)
     sg = shrunk_gates(gp, gq)
-    for si in range(_STARTS):
-        i0 = (si * m) // _STARTS
+    # other starts: only on rings small enough for them to be cheap (on the benchmark images every vertex
+    # but one was gained from the first start, and on the 1024² blob three failing starts cost 14 ms)
+    starts = _STARTS if n <= _MANY_STARTS_PIECES else 1
+    for si in range(starts):
+        i0 = (si * m) // starts
         fv, ft, status = minlink_from(ix[i0] / fsc, iy[i0] / fsc, vt[i0] % n, rect, sg, reach, gdir, m)
         if status == 1:
             break  # the windows promise nothing from here: other starts rarely do better
