@@ -34,7 +34,11 @@ pipeline runs on it, and consecutive lines meet across pixel sides where the cov
 
 from __future__ import annotations
 
+import os
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from itertools import pairwise
 from typing import Any
 
 import numpy as np
@@ -115,6 +119,54 @@ def _scale_cap(ps: PixelSet) -> int:
     return KCAP
 
 
+#: Pieces (over all rings) from which R splits its rings between threads, and the most threads it uses.
+PARALLEL_PIECES = 4000
+MAX_THREADS = 4
+
+_pool: ThreadPoolExecutor | None = None
+
+
+def _threads() -> int:
+    try:
+        return max(1, min(MAX_THREADS, len(os.sched_getaffinity(0))))
+    except AttributeError:  # not on Linux
+        return max(1, min(MAX_THREADS, os.cpu_count() or 1))
+
+
+def _ring_chunks(poff: IntArray) -> list[tuple[int, int]]:
+    # Consecutive ring ranges of about equal numbers of pieces, one per thread; one range when the set is
+    # small or one ring holds most of it (starting a thread would cost more than it saves).
+    nr = poff.size - 1
+    total = int(poff[-1])
+    n = _threads()
+    if n < 2 or nr < 2 or total < PARALLEL_PIECES or int(np.diff(poff).max()) > 0.6 * total:
+        return [(0, nr)]
+    cuts = np.searchsorted(poff, [total * c // n for c in range(1, n)]).tolist()
+    bounds = sorted({0, nr, *[min(max(int(c), 1), nr - 1) for c in cuts]})
+    return list(pairwise(bounds))
+
+
+def _in_threads(work: Callable[[int, int], Any], chunks: list[tuple[int, int]]) -> list[Any]:
+    # The kernels release the GIL (mrm.geometry._jit), so the chunks run on as many cores.
+    global _pool
+    if len(chunks) == 1:
+        return [work(*chunks[0])]
+    if _pool is None:
+        _pool = ThreadPoolExecutor(max_workers=MAX_THREADS, thread_name_prefix="mrm-R")
+    futures = [_pool.submit(work, k0, k1) for k0, k1 in chunks[1:]]
+    first = work(*chunks[0])  # this thread takes a chunk too
+    return [first, *(f.result() for f in futures)]
+
+
+def _forget_pool() -> None:
+    # A forked child has none of its parent's threads: it makes its own pool when it needs one.
+    global _pool
+    _pool = None
+
+
+os.register_at_fork(after_in_child=_forget_pool)
+
+
 def _run(ps: PixelSet, model: str) -> _Run:
     m = np.ascontiguousarray(ps.mask.view(np.uint8))
     kcap = _scale_cap(ps)
@@ -127,11 +179,42 @@ def _run(ps: PixelSet, model: str) -> _Run:
         cor = _dk.dual_corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
     else:
         cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
-    # phases 2-4 on the corridors: reach and lines, the V4 greedy (two closing rules), finishing
-    reach, lines = _k.reach_all(cor)
-    ga = _k.greedy_all(cor, reach, lines, True)
-    gb = _k.greedy_all(cor, reach, lines, False)
-    xy, roff, status, src, win = _k.finish_all(cor, reach, ga, gb, x0, y0)
+
+    def rings_from(k0: int, k1: int) -> tuple[Any, ...]:
+        # Phases 2-4 (reach and lines, the V4 greedy under two closing rules, finishing) for rings
+        # k0 … k1−1: each ring depends only on its own corridor, so the kernels take the rings' slice of
+        # the per-ring arrays and read the shared per-element and per-piece arrays at its offsets.
+        part = cor._replace(
+            eoff=cor.eoff[k0 : k1 + 1],
+            r0off=cor.r0off[k0 : k1 + 1],
+            poff=cor.poff[k0 : k1 + 1],
+            kmax=cor.kmax[k0:k1],
+            special=cor.special[k0:k1],
+            full=cor.full[k0:k1],
+        )
+        reach, lines = _k.reach_all(part)
+        ga = _k.greedy_all(part, reach, lines, True)
+        gb = _k.greedy_all(part, reach, lines, False)
+        return reach, lines, _k.finish_all(part, reach, ga, gb, x0, y0)
+
+    chunks = _ring_chunks(cor.poff)
+    parts = _in_threads(rings_from, chunks)
+    reach, lines, (xy, roff, status, src, win) = parts[0]
+    if len(parts) > 1:
+        # the chunks' rings follow each other: their pieces' slices of reach / lines, their rings joined
+        for (k0, k1), (r, li, _) in zip(chunks, parts, strict=True):
+            a, b = int(cor.poff[k0]), int(cor.poff[k1])
+            reach[a:b] = r[a:b]
+            lines[a:b] = li[a:b]
+        out = [p[2] for p in parts]
+        shift = np.cumsum([0] + [o.xy.shape[0] for o in out[:-1]])
+        xy = np.concatenate([o.xy for o in out])
+        roff = np.concatenate(
+            [out[0].roff] + [o.roff[1:] + s for o, s in zip(out[1:], shift[1:], strict=True)]
+        )
+        status = np.concatenate([o.status for o in out])
+        src = np.concatenate([o.src for o in out])
+        win = np.concatenate([o.win for o in out])
     if gauss:
         xy -= 0.5  # dual frame → plane (exact: |coordinates| < 2⁵⁰)
     return _Run(rings, cor, reach, lines, xy, roff, status, src, win)
