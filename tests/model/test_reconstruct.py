@@ -813,3 +813,30 @@ def test_cli_reconstruct_writes_one_feature_per_component(capsys, tmp_path) -> N
         assert [f["properties"]["part"] for f in feats] == list(range(region.n_components))
         for f, comp in zip(feats, region.components, strict=True):
             assert discretize(shape(f["geometry"]), model) == region.labels.pixel_set(comp.label)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_rings_split_between_threads_give_the_single_thread_result(model: str, monkeypatch) -> None:
+    # R shares the rings of a large set between threads (the kernels release the GIL); the chunks'
+    # rings are joined in order, so the polygons are the very same as one thread's.
+    import mrm.geometry.reconstruct as rec
+
+    rng = np.random.default_rng(21)
+    ps = PixelSet(rng.random((90, 110)) < 0.55)
+    monkeypatch.setattr(rec, "MAX_THREADS", 3)
+    monkeypatch.setattr(rec, "_threads", lambda: 3)
+    chunks = rec._ring_chunks(rec._k.corridors_all(*_rings_arrays(ps)).poff)
+    assert len(chunks) == 3
+    threaded = reconstruct(ps, model)
+    monkeypatch.setattr(rec, "_threads", lambda: 1)
+    assert shapely.to_wkb(reconstruct(ps, model)) == shapely.to_wkb(threaded)
+    detail = reconstruct_detailed(ps, model)
+    assert shapely.to_wkb(detail.geometry) == shapely.to_wkb(threaded)
+
+
+def _rings_arrays(ps: PixelSet) -> tuple[object, ...]:
+    from mrm.geometry.topology.cracks import trace_mask
+
+    m = np.ascontiguousarray(ps.mask.view(np.uint8))
+    r = trace_mask(m)
+    return r.codes, r.off, r.sx, r.sy, m.shape[0], m.shape[1], 10
