@@ -328,6 +328,11 @@ def _call(
         return None, "not enough memory"
 
 
+def _one_thread_each() -> None:
+    # A batch already spreads its inputs over the cores: R in each worker runs on one thread.
+    os.environ["MRM_THREADS"] = "1"
+
+
 def run_batch(
     args: argparse.Namespace,
     func: Callable[..., dict[str, Any]],
@@ -378,7 +383,7 @@ def run_batch(
             for i, job in enumerate(jobs):
                 report(i, _call((func, tuple(job))), bar)
         else:
-            pool = ProcessPoolExecutor(max_workers=n_workers)
+            pool = ProcessPoolExecutor(max_workers=n_workers, initializer=_one_thread_each)
             try:
                 pending: dict[Future[Any], int] = {
                     pool.submit(_call, (func, tuple(job))): i for i, job in enumerate(jobs)

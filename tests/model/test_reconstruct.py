@@ -840,3 +840,15 @@ def _rings_arrays(ps: PixelSet) -> tuple[object, ...]:
     m = np.ascontiguousarray(ps.mask.view(np.uint8))
     r = trace_mask(m)
     return r.codes, r.off, r.sx, r.sy, m.shape[0], m.shape[1], 10
+
+
+def test_mrm_threads_1_keeps_r_on_one_thread(monkeypatch) -> None:
+    # A batch of processes (mrm … --jobs N) sets it so that its workers do not each start threads.
+    import mrm.geometry.reconstruct as rec
+
+    rng = np.random.default_rng(21)
+    poff = rec._k.corridors_all(*_rings_arrays(PixelSet(rng.random((90, 110)) < 0.55))).poff
+    monkeypatch.setenv("MRM_THREADS", "2")
+    assert rec._threads() == 2 and len(rec._ring_chunks(poff)) == 2
+    monkeypatch.setenv("MRM_THREADS", "1")
+    assert rec._threads() == 1 and rec._ring_chunks(poff) == [(0, poff.size - 1)]

@@ -127,6 +127,11 @@ _pool: ThreadPoolExecutor | None = None
 
 
 def _threads() -> int:
+    # The cores this process may use, at most MAX_THREADS; MRM_THREADS=n sets it (1: no threads, e.g. when
+    # many processes run R side by side).
+    wanted = os.environ.get("MRM_THREADS", "")
+    if wanted.isdigit():
+        return max(1, min(MAX_THREADS, int(wanted)))
     try:
         return max(1, min(MAX_THREADS, len(os.sched_getaffinity(0))))
     except AttributeError:  # not on Linux
