@@ -192,12 +192,12 @@ def _step_reconstruct() -> None:
             reconstruct(ps, model)  # type: ignore[arg-type]
     import numpy as np
 
-    from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
+    from mrm.geometry.reconstruct.polygonize import polygonize
     from mrm.reps.pixels import LabelMap
 
     yy, xx = np.mgrid[0:14, 0:14]
     two = ((xx - 6.5) ** 2 + (yy - 6.5) ** 2 <= 36).astype(np.int32) + (xx + 2 * yy > 14)
-    reconstruct_label_map(LabelMap(two.astype(np.int32)))  # the subdivision's polyline kernels
+    polygonize(LabelMap(two.astype(np.int32)))  # the subdivision's polyline kernels and the region labelling
 
 
 def _step_regions() -> None:

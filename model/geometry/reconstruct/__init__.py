@@ -185,7 +185,12 @@ def _run(ps: PixelSet, model: str) -> _Run:
     else:
         cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
 
-    def rings_from(k0: int, k1: int) -> tuple[Any, ...]:
+    # one reach table and one set of lines for all rings: each thread writes its rings' pieces
+    npc = cor.gdir.size
+    reach = np.zeros(npc, np.int64)
+    lines = np.zeros((npc, 4), np.float64)
+
+    def rings_from(k0: int, k1: int) -> _k.Rings:
         # Phases 2-4 (reach and lines, the V4 greedy under two closing rules, finishing) for rings
         # k0 … k1−1: each ring depends only on its own corridor, so the kernels take the rings' slice of
         # the per-ring arrays and read the shared per-element and per-piece arrays at its offsets.
@@ -197,21 +202,15 @@ def _run(ps: PixelSet, model: str) -> _Run:
             special=cor.special[k0:k1],
             full=cor.full[k0:k1],
         )
-        reach, lines = _k.reach_all(part)
+        _k.reach_all(part, reach, lines)
         ga = _k.greedy_all(part, reach, lines, True)
         gb = _k.greedy_all(part, reach, lines, False)
-        return reach, lines, _k.finish_all(part, reach, ga, gb, x0, y0)
+        return _k.finish_all(part, reach, ga, gb, x0, y0)
 
-    chunks = _ring_chunks(cor.poff)
-    parts = _in_threads(rings_from, chunks)
-    reach, lines, (xy, roff, status, src, win) = parts[0]
-    if len(parts) > 1:
-        # the chunks' rings follow each other: their pieces' slices of reach / lines, their rings joined
-        for (k0, k1), (r, li, _) in zip(chunks, parts, strict=True):
-            a, b = int(cor.poff[k0]), int(cor.poff[k1])
-            reach[a:b] = r[a:b]
-            lines[a:b] = li[a:b]
-        out = [p[2] for p in parts]
+    out = _in_threads(rings_from, _ring_chunks(cor.poff))
+    xy, roff, status, src, win = out[0]
+    if len(out) > 1:
+        # the chunks' rings follow each other: their rings joined in order
         shift = np.cumsum([0] + [o.xy.shape[0] for o in out[:-1]])
         xy = np.concatenate([o.xy for o in out])
         roff = np.concatenate(

@@ -372,13 +372,13 @@ def corridors_all(
 
 
 @njit(cache=True)
-def reach_all(cor: Corridors) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover
-    """Phase 2: the reach table and the central lines of every ring's pieces."""
+def reach_all(cor: Corridors, reach: np.ndarray, lines: np.ndarray) -> None:  # pragma: no cover
+    """Phase 2: the reach table and the central lines of every ring's pieces, into ``reach``, ``lines``.
+
+    Both have a row per piece of all rings; only the rings of ``cor`` are written (threads share them).
+    """
     eoff, ec, er, cnt, poff, pel, rect = cor.eoff, cor.ec, cor.er, cor.cnt, cor.poff, cor.pel, cor.rect
     gp, gq, gdir, special, full = cor.gp, cor.gq, cor.gdir, cor.special, cor.full
-    npc = gdir.size
-    reach = np.zeros(npc, np.int64)
-    lines = np.zeros((npc, 4), np.float64)
     for k in range(eoff.size - 1):
         a = poff[k]
         b = poff[k + 1]
@@ -399,7 +399,6 @@ def reach_all(cor: Corridors) -> tuple[np.ndarray, np.ndarray]:  # pragma: no co
             reach[a:b],
             lines[a:b],
         )
-    return reach, lines
 
 
 @njit(cache=True)
