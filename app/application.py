@@ -45,6 +45,10 @@ def create_application(argv: list[str] | None = None, *, offscreen: bool = False
         return existing
     if offscreen and not os.environ.get("QT_QPA_PLATFORM"):
         os.environ["QT_QPA_PLATFORM"] = "offscreen"
+    # R on one thread in the window's process and its workers (which inherit this): on two cores, R's
+    # threads (mrm.geometry.reconstruct) took the core the GUI thread paints on, and a derivation of a
+    # 77 M-pixel result stalled it 208-233 ms where one thread left it at 34-96 ms. The user can override.
+    os.environ.setdefault("MRM_THREADS", "1")
     # Fractional scale factors (150 %) render crisply only without rounding; set before the app exists.
     QtGui.QGuiApplication.setHighDpiScaleFactorRoundingPolicy(
         QtCore.Qt.HighDpiScaleFactorRoundingPolicy.PassThrough
