@@ -88,9 +88,13 @@ def blocky(draw: st.DrawFn) -> np.ndarray:
 
 
 @settings(max_examples=300)
-@given(blocky())
-def test_runs_are_the_maximal_non_zero_stretches_of_each_row(mask: np.ndarray) -> None:
-    # The run scan passes whole 8-byte words of background or of 1s at once: against a per-row reference.
+@given(blocky(), st.integers(0, 7))
+def test_runs_are_the_maximal_non_zero_stretches_of_each_row(mask: np.ndarray, shift: int) -> None:
+    # The run scan passes whole 8-byte words of background or of 1s at once: against a per-row reference,
+    # also for a mask whose memory does not start on a word boundary.
+    shifted = np.zeros(mask.size + shift, np.uint8)[shift:].reshape(mask.shape)
+    shifted[:] = mask
+    mask = shifted
     runs = label_runs(mask)
     for r in range(mask.shape[0]):
         d = np.diff(np.concatenate(([0], (mask[r] != 0).astype(np.int8), [0])))
