@@ -217,6 +217,9 @@ def sliding_reach(
     fvb = np.empty((4, 2, cap + 2, 4), np.int64)
     fcur = np.zeros(4, np.int64)
     fsize = np.zeros(4, np.int64)
+    sbuf = np.empty((4, cap + 2), np.int64)  # a snapshot of W
+    svb = np.empty((4, cap + 2, 4), np.int64)
+    ssize = np.zeros(4, np.int64)
     ffull = True  # F has no gate yet (the whole plane)
     # the suffixes B_x, x in [base, m): gates x+1 … m
     blen = 16
@@ -235,6 +238,10 @@ def sliding_reach(
         if todo[i]:
             last = i
     for i in range(last + 1):
+        if not todo[i]:
+            # nothing to compute: window [i', j] still admits a line for the next start i' wanted (a
+            # window with fewer gates), and its suffix B_i' is stored or built then
+            continue
         # ---- the window [i, j] admits a line and B_i is stored (or i == m: B is the whole plane)
         if j < i + 1 or i >= m:
             # rebuild the block: suffixes of gates up to m = max(j, i + 1), built backwards
@@ -261,9 +268,11 @@ def sliding_reach(
         _copy_poly(bbuf[i - base], bvb[i - base], bsize[i - base], wbuf, wvb, wcur, wsize)
         if not ffull and _meet_front(wbuf, wvb, wcur, wsize, fbuf, fcur, fsize, ptx, pty, sg) < 0:
             return False
-        spoiled = False  # W lost to a failed clip (its buffers are reused), to be rebuilt for the line
+        spoiled = False  # W lost to a failed clip (its buffers are reused): back from the snapshot
         while j < i + n - 1:
             g = j + 1
+            # the line needs W as it was before the gate that is one too many
+            _store_poly(wbuf, wvb, wcur, wsize, sbuf, svb, ssize)
             alive = 0
             for q in range(4):
                 for pt in range(2):
@@ -285,14 +294,10 @@ def sliding_reach(
                         if not _clip_in(fbuf, fvb, fcur, fsize, q, 2 * g + pt, ptx, pty, sg):
                             return False
             j = g
-        if not todo[i]:
-            continue
         reach[i] = j - i
         # the window's polygon W = B_i ∩ F, and its central line in general_reach's order of quadrants
         if spoiled:
-            _copy_poly(bbuf[i - base], bvb[i - base], bsize[i - base], wbuf, wvb, wcur, wsize)
-            if not ffull and _meet_front(wbuf, wvb, wcur, wsize, fbuf, fcur, fsize, ptx, pty, sg) < 0:
-                return False
+            _copy_poly(sbuf, svb, ssize, wbuf, wvb, wcur, wsize)
         d0 = gdir[(i + 1) % n]
         bm = -_BIG
         for k in range(2):
