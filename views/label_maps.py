@@ -9,6 +9,7 @@ says so. The drawing data is made here on any thread, like the other views' (``p
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -30,13 +31,52 @@ from mrm.views.items import (
 )
 from mrm.views.region_view import COMPONENT_COLOURS, chain_xy
 
-#: The colours of the labels, in turn: label v has ``LABEL_COLOURS[(v - 1) % len(LABEL_COLOURS)]``.
+#: The colours labels are drawn with (:func:`label_palette` gives each label one).
 LABEL_COLOURS = COMPONENT_COLOURS
 
 
-def label_colour(label: int) -> str:
-    """The colour label ``label`` (non-zero) is drawn with in every view (the legend's)."""
-    return LABEL_COLOURS[(label - 1) % len(LABEL_COLOURS)]
+@lru_cache(maxsize=4)
+def label_palette(lm: LabelMap) -> tuple[np.ndarray, np.ndarray]:
+    """The labels of a map (increasing) and each one's index in :data:`LABEL_COLOURS` (any thread).
+
+    Label v takes colour ``(v − 1) mod`` the palette, as many as it can; where a touching region (at a side
+    or a corner) already has it, the first colour none of its neighbours has (a greedy colouring of the
+    labels' adjacency, in increasing label order), so two neighbouring regions never read as one.
+    Cached for the last few maps: the three views and the legend ask for the same one.
+    """
+    lab = lm.labels
+    values = np.unique(lab[lab != 0]).astype(np.int64)
+    n_col = len(LABEL_COLOURS)
+    pairs = []
+    for a, b in (
+        (lab[:, 1:], lab[:, :-1]),
+        (lab[1:, :], lab[:-1, :]),
+        (lab[1:, 1:], lab[:-1, :-1]),
+        (lab[1:, :-1], lab[:-1, 1:]),
+    ):
+        touch = (a != b) & (a != 0) & (b != 0)
+        lo = np.minimum(a[touch], b[touch]).astype(np.int64)
+        hi = np.maximum(a[touch], b[touch]).astype(np.int64)
+        pairs.append(np.unique(lo << 32 | hi))
+    keys = np.unique(np.concatenate(pairs)) if pairs else np.zeros(0, np.int64)
+    lo_i = np.searchsorted(values, keys >> 32)
+    hi_i = np.searchsorted(values, keys & 0xFFFFFFFF)
+    neighbours: list[list[int]] = [[] for _ in range(values.size)]
+    for i, j in zip(lo_i.tolist(), hi_i.tolist(), strict=True):
+        neighbours[j].append(i)  # j > i: i is coloured first
+    colour = np.empty(values.size, np.int64)
+    for j in range(values.size):
+        used = {int(colour[i]) for i in neighbours[j]}
+        own = (int(values[j]) - 1) % n_col
+        free = [k for k in range(n_col) if k not in used]
+        colour[j] = own if own not in used or not free else free[0]
+    return values, colour
+
+
+def label_colour(lm: LabelMap, label: int) -> str:
+    """The colour label ``label`` (non-zero) of ``lm`` is drawn with in every view (the legend's)."""
+    values, colour = label_palette(lm)
+    return LABEL_COLOURS[int(colour[np.searchsorted(values, label)])]
 
 
 def label_lut(alpha: int) -> np.ndarray:
@@ -53,7 +93,9 @@ def label_image(lm: LabelMap, lut: np.ndarray) -> tuple[np.ndarray, int, Any, np
     ``full`` is the exact index image, which the views show cropped when zoomed in (:class:`MaskItem`).
     """
     lab = lm.labels
-    full = np.where(lab > 0, (lab - 1) % len(LABEL_COLOURS) + 1, 0).astype(np.uint8)
+    values, colour = label_palette(lm)
+    index = np.searchsorted(values, lab)  # a label's place among the map's labels (0 also lands on 0)
+    full = np.where(lab > 0, colour[np.minimum(index, values.size - 1)] + 1, 0).astype(np.uint8)
     img, f, picture = pictured(lod_image(full), lut)
     return img, f, picture, full
 
@@ -67,16 +109,18 @@ def cells_drawing(cells: Any) -> tuple[list[StrokeLevel], QtGui.QPainterPath, np
 
 
 def subdivision_drawing(
-    sd: Any,
+    sd: Any, palette: tuple[np.ndarray, np.ndarray]
 ) -> tuple[list[tuple[int, QtGui.QPainterPath]], list[StrokeLevel], QtGui.QPainterPath]:
     """Each colour's parts as one fill path, and the shared polylines by size class (any thread).
 
     Every boundary between two regions is one polyline of the subdivision: it is stroked once, not once
     per part, so what is drawn is the coverage itself.
     """
+    values, colour = palette
     by_colour: dict[int, list[np.ndarray]] = {}
     for label, part in sd.parts.items():
-        by_colour.setdefault((label - 1) % len(LABEL_COLOURS), []).extend(polygon_rings(part))
+        k = int(colour[np.searchsorted(values, label)])
+        by_colour.setdefault(k, []).extend(polygon_rings(part))
     fills = [(k, rings_path(rings)) for k, rings in sorted(by_colour.items())]
     # A 1-cell that meets no 0-cell is a ring, given without its closing point.
     zero = {z.point for z in sd.cells.zero_cells}
@@ -136,7 +180,9 @@ def draw_labels(view: Any, layer: LabelLayer, obj: Any, rep: str, selected: bool
             layer.lines.set_levels(cells[0], cells[1])
             layer.points.set_points(cells[2])
         if rep == "euclidean":
-            sub = view.prepared(obj.id, "subdivision", value, size, lambda: subdivision_drawing(value))
+            sub = view.prepared(
+                obj.id, "subdivision", value, size, lambda: subdivision_drawing(value, label_palette(lm))
+            )
             if sub is None:
                 return False
             for item in layer.fills:
@@ -180,4 +226,4 @@ LABEL_LEGEND = {
 def legend_rows(lm: LabelMap) -> list[tuple[int, str, int]]:
     """``(label, colour, pixels)`` of every label of a label map, by label (the Properties panel's legend)."""
     values, counts = np.unique(lm.labels, return_counts=True)
-    return [(int(v), label_colour(int(v)), int(n)) for v, n in zip(values, counts, strict=True) if v != 0]
+    return [(int(v), label_colour(lm, int(v)), int(n)) for v, n in zip(values, counts, strict=True) if v != 0]

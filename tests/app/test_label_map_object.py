@@ -11,6 +11,8 @@ from __future__ import annotations
 import json
 
 import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from PIL import Image
 from PySide6 import QtCore, QtWidgets
 
@@ -66,7 +68,7 @@ def test_a_label_image_imports_as_one_label_map_drawn_in_every_view(make_window,
         label = lm.label_at((x, y))
         c = colour_at(v.discrete, x, y, shown)
         assert not is_background(v.discrete, c), (x, y)
-        want = QtWidgetsColour(label_colour(label))
+        want = QtWidgetsColour(label_colour(lm, label))
         assert _hue_close(c, want), (x, y, label)
     assert is_background(v.discrete, colour_at(v.discrete, 8, 4, shown))  # the hole in label 3
     # Region: the 1-cells and 0-cells of the map.
@@ -83,7 +85,7 @@ def test_a_label_image_imports_as_one_label_map_drawn_in_every_view(make_window,
     assert len(_subpaths(elayer.lines.path())) == len(sd.polylines) == len(cells.one_cells)
     eshown = grab(v.euclidean)
     c = colour_at(v.euclidean, 12, 12, eshown)
-    assert _hue_close(c, QtWidgetsColour(label_colour(2)))
+    assert _hue_close(c, QtWidgetsColour(label_colour(lm, 2)))
     # Analytical: nothing drawn, and the view says why.
     click(qtbot, v.discrete, 3, 12)
     assert win.doc.selection == (obj.id,)
@@ -189,3 +191,24 @@ def test_what_does_not_apply_to_a_label_map_says_so(make_window, qtbot, tmp_path
     assert props.legend.isVisible() and not props.table.isVisible()
     rows = [props.legend.topLevelItem(k).text(0) for k in range(props.legend.topLevelItemCount())]
     assert rows == ["1", "2", "3", "7"]
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(2, 11), st.tuples(st.integers(1, 14), st.integers(1, 14)))
+def test_touching_labels_get_different_colours(seed: int, k: int, shape: tuple[int, int]) -> None:
+    # Labels 1 and 11 used to share a colour (label mod the palette): any two labels whose regions touch,
+    # at a side or a corner, are now coloured apart whenever the palette has a colour left for them.
+    from mrm.views.label_maps import LABEL_COLOURS
+
+    rng = np.random.default_rng(seed)
+    labels = rng.choice(np.array([0, *rng.choice(np.arange(1, 40), size=k - 1, replace=False)]), size=shape)
+    lm = LabelMap(labels.astype(np.int32))
+    lab = lm.labels
+    h, w = lab.shape
+    room = len(lm.label_values()) <= len(LABEL_COLOURS)  # then a free colour always exists
+    for r in range(h):
+        for c in range(w):
+            for dr, dc in ((0, 1), (1, 0), (1, 1), (1, -1)):
+                r2, c2 = r + dr, c + dc
+                if room and 0 <= r2 < h and 0 <= c2 < w and 0 != lab[r, c] != lab[r2, c2] != 0:
+                    assert label_colour(lm, int(lab[r, c])) != label_colour(lm, int(lab[r2, c2]))
