@@ -317,18 +317,29 @@ class Heartbeat:
 
     With ``trace``, a sampler thread looks at the GUI thread every 10 ms and, while a tick is more than
     ``trace_after`` seconds late, records where the GUI thread is (``sys._current_frames``);
-    :meth:`report` sums the samples up per section (:meth:`mark`).
+    :meth:`report` sums the samples up per section (:meth:`mark`). A second thread sleeps 1 ms at a time:
+    when it wakes more than ``gil_after`` late, some thread held the GIL that long (a C call that does not
+    release it; at the 1 ms switch interval a thread running Python gives it up within a millisecond), and
+    where the other threads are then is recorded (the holder is on the line of that call).
+
+    ``worst_cpu`` is the GUI thread's own CPU time in the longest stall: close to the stall, the GUI thread
+    was working (painting); far below it, it was waiting (for the GIL, or for a core).
     """
 
-    def __init__(self, interval_ms: int = 10, trace: bool = False, trace_after: float = 0.05) -> None:
+    def __init__(
+        self, interval_ms: int = 10, trace: bool = False, trace_after: float = 0.05, gil_after: float = 0.01
+    ) -> None:
         import threading
 
         from PySide6 import QtCore
 
         self.interval = interval_ms / 1000
         self.trace_after = trace_after
+        self.gil_after = gil_after
         self.samples: dict[str, dict[str, int]] = {}
         self._section: dict[str, int] | None = None
+        self.holds: dict[str, dict[str, list[float]]] = {}  # section -> where -> GIL waits (s)
+        self._holds: dict[str, list[float]] | None = None
         self.timer = QtCore.QTimer()
         self.timer.setTimerType(QtCore.Qt.TimerType.PreciseTimer)
         self.timer.setInterval(interval_ms)
@@ -338,22 +349,54 @@ class Heartbeat:
         if trace:
             self._gui = threading.get_ident()
             threading.Thread(target=self._sample, daemon=True).start()
+            threading.Thread(target=self._probe_gil, daemon=True).start()
 
     def reset(self) -> None:
         self.last = time.perf_counter()
+        self.last_cpu = time.thread_time()
         self.worst = 0.0
+        self.worst_cpu = 0.0
         self.lates: list[float] = []
 
     def mark(self, label: str) -> None:
         """Start a new section of the samples."""
         self._section = self.samples.setdefault(label, {})
+        self._holds = self.holds.setdefault(label, {})
 
     def _tick(self) -> None:
         now = time.perf_counter()
+        cpu = time.thread_time()  # the GUI thread's own
         late = max(0.0, now - self.last - self.interval)
         self.lates.append(late)
-        self.worst = max(self.worst, late)
+        if late > self.worst:
+            self.worst = late
+            self.worst_cpu = cpu - self.last_cpu
         self.last = now
+        self.last_cpu = cpu
+
+    def _probe_gil(self) -> None:
+        import threading
+        import traceback
+
+        me = threading.get_ident()
+        while True:
+            t0 = time.perf_counter()
+            time.sleep(0.001)
+            waited = time.perf_counter() - t0 - 0.001
+            holds = self._holds
+            if holds is None or waited < self.gil_after:
+                continue
+            for ident, frame in sys._current_frames().items():
+                if ident in (me, self._gui):
+                    continue
+                stack = traceback.extract_stack(frame)[::-1]
+                own = [f for f in stack if _is_own(f.filename)] or stack
+                if not own or "threading.py" in own[0].filename:
+                    continue  # an idle pool thread
+                where = f"{stack[0].name} | " + " < ".join(
+                    f"{Path(f.filename).name}:{f.lineno} {f.name}" for f in own[:3]
+                )
+                holds.setdefault(where, []).append(waited)
 
     def _sample(self) -> None:
         import threading
@@ -382,6 +425,12 @@ class Heartbeat:
                 out.append(f"   {label}: {sum(c.values())} samples of 10 ms")
                 for stack, n in sorted(c.items(), key=lambda kv: -kv[1])[:top]:
                     out.append(f"      {n:4d}  {stack}")
+        for label, h in self.holds.items():
+            if h:
+                head = f"GIL waits over {self.gil_after * 1000:.0f} ms of a probe thread"
+                out.append(f"   {label}: {head}, where the other threads were (count, longest, total ms)")
+                for where, w in sorted(h.items(), key=lambda kv: -max(kv[1]))[:top]:
+                    out.append(f"      {len(w):4d} {max(w) * 1000:6.0f} {sum(w) * 1000:7.0f}  {where}")
         return "\n".join(out)
 
 
@@ -482,7 +531,8 @@ def bench_stalls(
         size = f"{ps.count:,} pixels" if ps is not None else ""
         out.append((label, beat.worst, time.perf_counter() - t if took else 0.0, size))
         print(f"   {label:<44} longest stall {beat.worst * 1000:8.1f} ms   ({time.perf_counter() - t:6.1f} s"
-              f"{', ' + size if size else ''})", flush=True)  # fmt: skip
+              f"{', ' + size if size else ''}; the GUI thread's CPU in it {beat.worst_cpu * 1000:.0f} ms)",
+              flush=True)  # fmt: skip
         note = panel.status.text()
         if note:
             print(f"      panel: {note}", flush=True)
