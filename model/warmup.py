@@ -212,12 +212,15 @@ def _step_regions() -> None:
 
 def warm_pools(labels: Any, mask: Any) -> None:
     """Call the level-of-detail pools as the views call them (:mod:`.geometry.topology.labeling`)."""
-    from mrm.geometry.topology.labeling import max_pool, pooled_holes, pooled_labels
+    import numpy as np
+
+    from mrm.geometry.topology.labeling import lookup, max_pool, pooled_holes, pooled_labels
 
     pooled_labels(labels, 2)
     pooled_holes(mask, 2)
     max_pool(mask, 2)
     max_pool(mask[:, 1:], 2)  # a crop: the exact detail of a view
+    lookup(np.zeros(256, np.uint32), max_pool(mask, 1))  # the pictures of big images
 
 
 def _step_operations() -> None:

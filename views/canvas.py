@@ -260,6 +260,11 @@ class Picture:
     qimage: QtGui.QImage
 
 
+#: Pictures of more pixels are made by a compiled lookup (:func:`make_picture`); smaller ones, which may be
+#: made on the GUI thread, by numpy (no kernel to load there).
+PICTURE_KERNEL_PIXELS = 1_000_000
+
+
 def make_picture(image: np.ndarray, lut: np.ndarray) -> Picture:
     """The ``ARGB32_Premultiplied`` picture of a label image (bool or uint8) through ``lut`` (any thread).
 
@@ -275,7 +280,12 @@ def make_picture(image: np.ndarray, lut: np.ndarray) -> Picture:
     a = table[:, 3].astype(np.uint32)
     premultiplied = (table[:, :3].astype(np.uint32) * a[:, None] + 127) // 255
     words = (a << 24) | (premultiplied[:, 0] << 16) | (premultiplied[:, 1] << 8) | premultiplied[:, 2]
-    argb = np.take(words, np.ascontiguousarray(img))
+    if img.size > PICTURE_KERNEL_PIXELS:  # on a worker: a compiled lookup, without an int64 copy of img
+        from mrm.geometry.topology.labeling import lookup
+
+        argb = lookup(words, img)
+    else:
+        argb = np.take(words, np.ascontiguousarray(img))
     h, w = argb.shape
     qimage = QtGui.QImage(argb.data, w, h, 4 * w, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
     return Picture(image, table.tobytes(), argb, qimage)

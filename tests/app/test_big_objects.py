@@ -71,6 +71,32 @@ def test_the_region_views_coarse_images_are_pooled_in_one_pass_as_before():
     )
 
 
+def test_big_pictures_and_the_border_image_are_made_without_full_size_temporaries(monkeypatch):
+    """A big picture comes from a compiled lookup (numpy's take first copied the indices to int64), the
+    analytical view's border image straight at its level of detail; both are what they were.
+    """
+    import mrm.views.canvas as canvas
+    from mrm.reps.analytical import analytical_of
+    from mrm.reps.region import region_of
+    from mrm.views.analytical_view import segment_pixel_image
+
+    rng = np.random.default_rng(2)
+    img = rng.integers(0, 4, (300, 200)).astype(np.uint8)
+    lut = rng.integers(0, 256, (4, 4)).astype(np.uint8)
+    want = canvas.make_picture(img, lut)
+    monkeypatch.setattr(canvas, "PICTURE_KERNEL_PIXELS", 100)
+    got = canvas.make_picture(img, lut)
+    assert np.array_equal(got.argb, want.argb) and got.qimage == want.qimage
+    for _ in range(5):
+        m = rng.random((50, 70)) < 0.6
+        ana = analytical_of(region_of(PixelSet(m, (3, -8))))
+        full, origin, f = segment_pixel_image(ana, 10**9)
+        assert f == 1
+        for limit in (1000, 300, 100):
+            pooled, o, f = segment_pixel_image(ana, limit)
+            assert o == origin and f > 1 and np.array_equal(pooled, _padded_max_pool(full, f))
+
+
 def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_window, qtbot):
     win = make_window(threaded=True)
     m = np.ones((2000, 2500), bool)

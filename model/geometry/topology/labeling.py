@@ -527,3 +527,32 @@ def pooled_holes(mask: npt.ArrayLike, f: int = 1) -> npt.NDArray[np.uint8]:
     m = as_u8(mask)
     runs = label_runs(m, 4)
     return _pool_holes(runs.start, runs.end, runs.ptr, runs.bg_label, m.shape[1], max(1, int(f)))
+
+
+@numba.njit(cache=True, nogil=True)
+def _lookup(
+    table: npt.NDArray[np.uint32], img: npt.NDArray[np.uint8]
+) -> npt.NDArray[np.uint32]:  # pragma: no cover
+    h, w = img.shape
+    out = np.empty((h, w), np.uint32)
+    for r in range(h):
+        row = img[r]
+        orow = out[r]
+        for c in range(w):
+            orow[c] = table[row[c]]
+    return out
+
+
+def lookup(table: npt.ArrayLike, img: npt.ArrayLike) -> npt.NDArray[np.uint32]:
+    """``table[img]`` for a uint8 image and a 256-entry uint32 table (any thread).
+
+    numpy's take or fancy index first casts the uint8 indices to a full-size int64 array (32 MB per
+    4 M-pixel picture) of fresh memory.
+    """
+    t = np.ascontiguousarray(table, dtype=np.uint32)
+    if t.shape != (256,):
+        raise ValueError(f"a lookup table has 256 entries, got shape {t.shape}")
+    m = np.asarray(img)
+    if m.dtype != np.uint8 or m.ndim != 2:
+        raise ValueError(f"lookup takes a 2-D uint8 image, got {m.dtype} {m.shape}")
+    return _lookup(_read_only(t), _read_only(m))
