@@ -530,8 +530,7 @@ class LodPathItem(PathItem):
             ]
             if not len(c):
                 return
-        m = np.array([[tr.m11(), tr.m12()], [tr.m21(), tr.m22()]])
-        dev = np.floor(c @ m + np.array([tr.dx(), tr.dy()])).astype(np.int64)
+        dev = np.floor(to_device(c, tr)).astype(np.int64)
         # One dot per screen pixel: a 1-D unique of one key per pixel (a row-wise unique sorts 3× slower).
         lo = dev.min(axis=0)
         span = int(dev[:, 1].max() - lo[1]) + 1
@@ -546,6 +545,19 @@ class LodPathItem(PathItem):
         painter.setPen(dot)
         painter.drawPoints(pg.functions.arrayToQPolygonF(dev[:, 0] + 0.5, dev[:, 1] + 0.5))
         painter.restore()
+
+
+def to_device(xy: np.ndarray, tr: QtGui.QTransform) -> np.ndarray:
+    """Points (n, 2) through an affine transform, as ``xy @ [[m11, m12], [m21, m22]] + (dx, dy)``.
+
+    Elementwise, not a matrix product: numpy hands ``@`` to OpenBLAS, whose threads then spin for a while
+    after each call, on the cores the window shares with the workers (seen at every paint of dots).
+    """
+    x, y = xy[:, 0], xy[:, 1]
+    out = np.empty((len(xy), 2))
+    out[:, 0] = x * tr.m11() + y * tr.m21() + tr.dx()
+    out[:, 1] = x * tr.m12() + y * tr.m22() + tr.dy()
+    return out
 
 
 def visible_rect(painter: QtGui.QPainter, margin_px: float = 0.0) -> QtCore.QRectF | None:
@@ -654,9 +666,8 @@ class MarkersItem(pg.GraphicsObject):
         if not len(self._xy):
             return
         tr = painter.transform()
-        # Map all points to device space with one matrix product, then draw in device pixels.
-        m = np.array([[tr.m11(), tr.m12()], [tr.m21(), tr.m22()]])
-        dev = self._xy @ m + np.array([tr.dx(), tr.dy()])
+        # Map all points to device space at once, then draw in device pixels.
+        dev = to_device(self._xy, tr)
         painter.save()
         painter.resetTransform()
         painter.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, self.symbol == "circle")
