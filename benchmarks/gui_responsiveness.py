@@ -17,8 +17,9 @@ Measured, each over many repeats (medians, with the 90th percentile):
    thread and the workers are every 10 ms of a stall and prints it, with the GIL waits of a probe thread, what
    the GUI thread did in each workflow's longest stall (paints, refreshes, deliveries, camera moves, garbage
    collections: wall and CPU ms) and the gaps of a probe in another process (the machine's own lateness,
-   no GIL involved); every run prints the GUI thread's CPU time in the longest stall (near the stall: it was
-   working; far below: it was waiting, for the GIL or a core); ``--steps 3`` stops after DSS 4.5. Pan and
+   no GIL involved); ``--timeline`` prints only those two, which cost the GUI thread less. Every run prints
+   the GUI thread's CPU time in the longest stall (near the stall: it was working; far below: it was
+   waiting, for the GIL or a core). ``--steps 3`` stops after DSS 4.5. Pan and
    zoom move the shared camera every 100 ms (a wheel step with a drag: all views follow, the event loop
    repaints them); ``--forced-repaint`` moves each view alone and repaints it at once instead (the gesture of
    the previous sessions' figures).
@@ -606,7 +607,10 @@ def bench_stalls(
 
     timeline: list[tuple[float, float, float, str]] = []
     probe = None
-    if trace:
+    # --timeline: only what the GUI thread did in the longest stalls, and the other process's probe (the
+    # sampler and GIL probe threads of --trace take the GIL themselves and change the timing a little).
+    timed = trace or "--timeline" in sys.argv
+    if timed:
         _time_gui_work(timeline)
         probe = SystemProbe()
     app, win = make_window()
@@ -640,7 +644,7 @@ def bench_stalls(
         t = time.perf_counter()
         action()
         took = run_until_drawn(app, win, beat, timeout, during)
-        if trace:
+        if timed:
             w0, w1 = beat.worst_window
             inside = [e for e in timeline if e[1] > w0 and e[0] < w1]
             work = "; ".join(f"{lab} {(b - a) * 1000:.0f}/{c * 1000:.0f}" for a, b, c, lab in inside)

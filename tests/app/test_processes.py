@@ -182,3 +182,23 @@ def test_a_received_pixel_set_keeps_the_received_memory_and_pickles_at_every_pro
     for protocol in range(2, pickle.HIGHEST_PROTOCOL + 1):
         back = pickle.loads(pickle.dumps(ps, protocol=protocol))
         assert back == ps and not back.mask.flags.writeable
+
+
+def test_freed_memory_is_kept_for_the_next_arrays_in_the_window_and_its_workers(monkeypatch):
+    """Unmapping every freed array made each derivation fault gigabytes in again, which on a VM reporting
+    free pages to its host stalled the whole machine: the window keeps freed memory, and passes the
+    setting on to its worker processes; MRM_KEEP_MEMORY=0 turns it off."""
+    import ctypes.util
+    import sys
+
+    from mrm.app.application import MALLOC_ENV, keep_freed_memory
+
+    for key in MALLOC_ENV:
+        monkeypatch.delenv(key, raising=False)
+    monkeypatch.setenv("MRM_KEEP_MEMORY", "0")
+    assert not keep_freed_memory() and not any(k in os.environ for k in MALLOC_ENV)
+    monkeypatch.delenv("MRM_KEEP_MEMORY")
+    glibc = sys.platform.startswith("linux") and "libc" in (ctypes.util.find_library("c") or "")
+    assert keep_freed_memory() == glibc
+    if glibc:
+        assert all(os.environ[k] == v for k, v in MALLOC_ENV.items())  # what a child process starts with
