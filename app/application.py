@@ -29,6 +29,35 @@ def has_display() -> bool:
     return True
 
 
+#: glibc's malloc settings for the window's process and its worker processes (which inherit them): big blocks
+#: from the heap, not from their own mappings, and freed memory kept for the next ones.
+MALLOC_ENV = {"MALLOC_MMAP_MAX_": "0", "MALLOC_TRIM_THRESHOLD_": str(1 << 36)}
+
+
+def keep_freed_memory() -> bool:
+    """Keep the memory of freed big arrays in the process for the next ones (Linux, glibc); True if set.
+
+    Each big numpy array used to be a mapping of its own, unmapped when freed, so every derivation of a
+    10⁸-pixel object page-faulted gigabytes of fresh memory in again. On a virtual machine that reports
+    freed pages to its host (virtio-balloon free page reporting) those faults stalled the whole machine for
+    20-90 ms at a time — the window included, whatever its threads did: a probe in another process saw the
+    same gaps. Kept by the allocator, freed memory is reused without a fault. The cost: a process keeps
+    about its peak size (the window returns free heap beyond 2 GB). ``MRM_KEEP_MEMORY=0`` turns it off.
+    """
+    if not sys.platform.startswith("linux") or os.environ.get("MRM_KEEP_MEMORY", "1") == "0":
+        return False
+    import ctypes
+
+    try:
+        mallopt = ctypes.CDLL(None).mallopt
+    except (OSError, AttributeError):  # not glibc
+        return False
+    for key, value in MALLOC_ENV.items():
+        os.environ.setdefault(key, value)  # the worker processes read these when they start
+    m_trim_threshold, m_mmap_max = -1, -4  # glibc's <malloc.h>
+    return bool(mallopt(m_mmap_max, 0)) and bool(mallopt(m_trim_threshold, 2**31 - 1))
+
+
 def create_application(argv: list[str] | None = None, *, offscreen: bool = False) -> QtWidgets.QApplication:
     """Return the process's QApplication, creating and configuring it on the first call.
 
@@ -49,6 +78,7 @@ def create_application(argv: list[str] | None = None, *, offscreen: bool = False
     # threads (mrm.geometry.reconstruct) took the core the GUI thread paints on, and a derivation of a
     # 77 M-pixel result stalled it 208-233 ms where one thread left it at 34-96 ms. The user can override.
     os.environ.setdefault("MRM_THREADS", "1")
+    keep_freed_memory()
     # Fractional scale factors (150 %) render crisply only without rounding; set before the app exists.
     QtGui.QGuiApplication.setHighDpiScaleFactorRoundingPolicy(
         QtCore.Qt.HighDpiScaleFactorRoundingPolicy.PassThrough

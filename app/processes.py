@@ -75,24 +75,26 @@ def _spill(raw: memoryview) -> str:
 
 
 def _unspill(path: str) -> Any:
-    import numpy as np
+    import mmap
 
     size = os.path.getsize(path)
-    # Not bytearray(size): it zero-fills the whole buffer with the GIL held (tens of ms at 77 MB); an
-    # empty array's pages are touched by the read below, with the GIL released.
-    data = np.empty(size, dtype=np.uint8)
+    # Anonymous memory, not bytearray(size): that zero-fills the whole buffer with the GIL held (tens of ms
+    # at 77 MB); these pages are touched by the read below, with the GIL released. And not a numpy array:
+    # an array unpickled from this buffer then belongs to no other array, so a pixel set keeps it as its
+    # mask without a copy (PixelSet.__reduce_ex__).
+    data = mmap.mmap(-1, max(1, size))
     view = memoryview(data)
     try:
         with open(path, "rb", buffering=0) as fh:
             done = 0
             while done < size:
-                n = fh.readinto(view[done:])
+                n = fh.readinto(view[done:size])
                 if not n:
                     raise EOFError(f"{path}: {done} of {size} bytes")
                 done += n
     finally:
         os.unlink(path)
-    return data
+    return view[:size]
 
 
 def send_obj(conn: Any, obj: Any) -> list[str]:

@@ -106,7 +106,7 @@ def load_view_kernels() -> None:
     from mrm.reps.pixels import PixelSet
     from mrm.reps.region import region_of
     from mrm.views.region_view import region_drawing
-    from mrm.warmup import STEPS
+    from mrm.warmup import STEPS, warm_pools
 
     for what, step in STEPS:
         if what == "file decoders":
@@ -114,7 +114,10 @@ def load_view_kernels() -> None:
     yy, xx = np.mgrid[0:9, 0:9]
     ring = ((xx - 4) ** 2 + (yy - 4) ** 2 <= 12) & ((xx - 4) ** 2 + (yy - 4) ** 2 > 2)
     black = np.array([[0, 0, 0, 0], [0, 0, 0, 255]])
-    region_drawing(region_of(PixelSet(ring, (0, 0))), black, black)
+    region = region_of(PixelSet(ring, (0, 0)))
+    region_drawing(region, black, black)
+    # The pools of big objects' level-of-detail images: a kernel's first call holds the GIL while it loads.
+    warm_pools(region.labels.labels, ring)
 
 
 def when_exposed(win: Any, fn: Callable[[], Any], *, poll_ms: int = 15) -> None:

@@ -14,7 +14,12 @@ Measured, each over many repeats (medians, with the 90th percentile):
    17 M-pixel object, saving and opening the project — target ≤ 100 ms in every workflow. The peer is the
    heartbeat's lateness on the same event loop left idle. ``--stalls`` runs only this part; ``--scale F``
    shrinks every workflow's object linearly by F (F = 1: the issue's sizes); ``--trace`` samples where the GUI
-   thread and the workers are every 10 ms of a stall and prints it; ``--steps 3`` stops after DSS 4.5. Pan and
+   thread and the workers are every 10 ms of a stall and prints it, with the GIL waits of a probe thread, what
+   the GUI thread did in each workflow's longest stall (paints, refreshes, deliveries, camera moves, garbage
+   collections: wall and CPU ms) and the gaps of a probe in another process (the machine's own lateness,
+   no GIL involved); ``--timeline`` prints only those two, which cost the GUI thread less. Every run prints
+   the GUI thread's CPU time in the longest stall (near the stall: it was working; far below: it was
+   waiting, for the GIL or a core). ``--steps 3`` stops after DSS 4.5. Pan and
    zoom move the shared camera every 100 ms (a wheel step with a drag: all views follow, the event loop
    repaints them); ``--forced-repaint`` moves each view alone and repaints it at once instead (the gesture of
    the previous sessions' figures).
@@ -317,18 +322,29 @@ class Heartbeat:
 
     With ``trace``, a sampler thread looks at the GUI thread every 10 ms and, while a tick is more than
     ``trace_after`` seconds late, records where the GUI thread is (``sys._current_frames``);
-    :meth:`report` sums the samples up per section (:meth:`mark`).
+    :meth:`report` sums the samples up per section (:meth:`mark`). A second thread sleeps 1 ms at a time:
+    when it wakes more than ``gil_after`` late, some thread held the GIL that long (a C call that does not
+    release it; at the 1 ms switch interval a thread running Python gives it up within a millisecond), and
+    where the other threads are then is recorded (the holder is on the line of that call).
+
+    ``worst_cpu`` is the GUI thread's own CPU time in the longest stall: close to the stall, the GUI thread
+    was working (painting); far below it, it was waiting (for the GIL, or for a core).
     """
 
-    def __init__(self, interval_ms: int = 10, trace: bool = False, trace_after: float = 0.05) -> None:
+    def __init__(
+        self, interval_ms: int = 10, trace: bool = False, trace_after: float = 0.05, gil_after: float = 0.01
+    ) -> None:
         import threading
 
         from PySide6 import QtCore
 
         self.interval = interval_ms / 1000
         self.trace_after = trace_after
+        self.gil_after = gil_after
         self.samples: dict[str, dict[str, int]] = {}
         self._section: dict[str, int] | None = None
+        self.holds: dict[str, dict[str, list[float]]] = {}  # section -> where -> GIL waits (s)
+        self._holds: dict[str, list[float]] | None = None
         self.timer = QtCore.QTimer()
         self.timer.setTimerType(QtCore.Qt.TimerType.PreciseTimer)
         self.timer.setInterval(interval_ms)
@@ -338,22 +354,73 @@ class Heartbeat:
         if trace:
             self._gui = threading.get_ident()
             threading.Thread(target=self._sample, daemon=True).start()
+            threading.Thread(target=self._probe_gil, daemon=True).start()
+            import gc
+
+            self._gc_start = 0.0
+            self._ident = threading.get_ident
+            gc.callbacks.append(self._gc)
 
     def reset(self) -> None:
         self.last = time.perf_counter()
+        self.last_cpu = time.thread_time()
         self.worst = 0.0
+        self.worst_cpu = 0.0
+        self.worst_window = (self.last, self.last)
         self.lates: list[float] = []
 
     def mark(self, label: str) -> None:
         """Start a new section of the samples."""
         self._section = self.samples.setdefault(label, {})
+        self._holds = self.holds.setdefault(label, {})
 
     def _tick(self) -> None:
         now = time.perf_counter()
+        cpu = time.thread_time()  # the GUI thread's own
         late = max(0.0, now - self.last - self.interval)
         self.lates.append(late)
-        self.worst = max(self.worst, late)
+        if late > self.worst:
+            self.worst = late
+            self.worst_cpu = cpu - self.last_cpu
+            self.worst_window = (self.last, now)
         self.last = now
+        self.last_cpu = cpu
+
+    def _gc(self, phase: str, info: dict[str, int]) -> None:
+        """Record the cyclic collector's passes over 5 ms: they hold the GIL, in whichever thread ran them."""
+        if phase == "start":
+            self._gc_start = time.perf_counter()
+            return
+        took = time.perf_counter() - self._gc_start
+        holds = self._holds
+        if holds is not None and took >= 0.005:
+            who = "GUI" if self._ident() == self._gui else "a worker"
+            where = f"gc generation {info.get('generation')} ({who} thread)"
+            holds.setdefault(where, []).append(took)
+
+    def _probe_gil(self) -> None:
+        import threading
+        import traceback
+
+        me = threading.get_ident()
+        while True:
+            t0 = time.perf_counter()
+            time.sleep(0.001)
+            waited = time.perf_counter() - t0 - 0.001
+            holds = self._holds
+            if holds is None or waited < self.gil_after:
+                continue
+            for ident, frame in sys._current_frames().items():
+                if ident in (me, self._gui):
+                    continue
+                stack = traceback.extract_stack(frame)[::-1]
+                own = [f for f in stack if _is_own(f.filename)] or stack
+                if not own or "threading.py" in own[0].filename:
+                    continue  # an idle pool thread
+                where = f"{stack[0].name} | " + " < ".join(
+                    f"{Path(f.filename).name}:{f.lineno} {f.name}" for f in own[:3]
+                )
+                holds.setdefault(where, []).append(waited)
 
     def _sample(self) -> None:
         import threading
@@ -382,6 +449,12 @@ class Heartbeat:
                 out.append(f"   {label}: {sum(c.values())} samples of 10 ms")
                 for stack, n in sorted(c.items(), key=lambda kv: -kv[1])[:top]:
                     out.append(f"      {n:4d}  {stack}")
+        for label, h in self.holds.items():
+            if h:
+                head = f"GIL waits over {self.gil_after * 1000:.0f} ms of a probe thread"
+                out.append(f"   {label}: {head}, where the other threads were (count, longest, total ms)")
+                for where, w in sorted(h.items(), key=lambda kv: -max(kv[1]))[:top]:
+                    out.append(f"      {len(w):4d} {max(w) * 1000:6.0f} {sum(w) * 1000:7.0f}  {where}")
         return "\n".join(out)
 
 
@@ -436,6 +509,92 @@ def run_until_drawn(app, win, beat, timeout, during=None):  # type: ignore[no-un
 
 _BEAT: list[Heartbeat] = []
 
+_SYSTEM_PROBE = r"""
+import sys, time
+last = time.perf_counter()
+while True:
+    time.sleep(0.001)
+    now = time.perf_counter()
+    if now - last > 0.011:
+        print(f"{last:.6f} {now - last - 0.001:.6f}", flush=True)
+    last = now
+"""
+
+
+class SystemProbe:
+    """A separate interpreter sleeping 1 ms at a time: its lateness is the machine's, not the GIL's.
+
+    It shares no GIL with the window, so a gap there means no core ran it (the cores busy at a higher
+    priority, or the virtual machine's cores held up): the window's timers are late for the same reason.
+    ``time.perf_counter`` is the same clock in both processes (``CLOCK_MONOTONIC``).
+    """
+
+    def __init__(self) -> None:
+        import threading
+
+        self.gaps: list[tuple[float, float]] = []
+        self.proc = subprocess.Popen([sys.executable, "-c", _SYSTEM_PROBE], stdout=subprocess.PIPE, text=True)
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self) -> None:
+        assert self.proc.stdout is not None
+        for line in self.proc.stdout:
+            t, g = line.split()
+            self.gaps.append((float(t), float(g)))
+
+    def summary(self, since: float, w0: float, w1: float) -> str:
+        """The probe's gaps over 10 ms since ``since``, and those overlapping the window [w0, w1]."""
+        gaps = [(t, g) for t, g in self.gaps if t >= since]
+        inside = [g for t, g in gaps if t < w1 and t + g > w0]
+        worst = max((g for _t, g in gaps), default=0.0)
+        shown = ", ".join(f"{g * 1000:.0f}" for g in inside) or "none"
+        head = f"system probe (another process): {len(gaps)} gaps over 10 ms, longest {worst * 1000:.0f} ms"
+        return f"{head}; in the longest stall: {shown}"
+
+
+def _time_gui_work(timeline: list[tuple[float, float, float, str]]) -> None:
+    """Record (start, end, GUI-thread CPU, what) of the GUI thread's paints, view refreshes, task deliveries,
+    camera moves and garbage collections, to say what a stall was made of (``--trace``)."""
+    import gc
+    import threading
+
+    import pyqtgraph as pg
+
+    from mrm.app.tasks import TaskRunner
+    from mrm.views.base_view import RepresentationView
+    from mrm.views.canvas import Camera
+
+    def timed(cls, name, label):  # type: ignore[no-untyped-def]
+        orig = getattr(cls, name)
+
+        def wrapper(self, *a, **k):  # type: ignore[no-untyped-def]
+            t0, c0 = time.perf_counter(), time.thread_time()
+            try:
+                return orig(self, *a, **k)
+            finally:
+                timeline.append((t0, time.perf_counter(), time.thread_time() - c0, label(self, *a)))
+
+        setattr(cls, name, wrapper)
+
+    # Before the window exists: PySide looks a Python override up once per object.
+    timed(pg.GraphicsView, "paintEvent", lambda v, *_a: f"paint {getattr(v, 'name', type(v).__name__)}")
+    timed(RepresentationView, "refresh", lambda v, *_a: f"refresh {v.name}")
+    timed(TaskRunner, "_deliver", lambda _r, task, *_a: f"deliver {task.slot}")
+    timed(Camera, "set", lambda *_a: "camera move")
+    gui = threading.get_ident()
+    started = [0.0, 0.0]
+
+    def collected(phase: str, info: dict[str, int]) -> None:
+        if threading.get_ident() != gui:
+            return
+        if phase == "start":
+            started[:] = [time.perf_counter(), time.thread_time()]
+        else:
+            timeline.append((started[0], time.perf_counter(), time.thread_time() - started[1],
+                             f"gc{info['generation']}"))  # fmt: skip
+
+    gc.callbacks.append(collected)
+
 
 def bench_stalls(
     scale: float = 1.0, timeout: float = 900.0, trace: bool = False
@@ -446,6 +605,14 @@ def bench_stalls(
 
     from mrm.app.startup import preload
 
+    timeline: list[tuple[float, float, float, str]] = []
+    probe = None
+    # --timeline: only what the GUI thread did in the longest stalls, and the other process's probe (the
+    # sampler and GIL probe threads of --trace take the GIL themselves and change the timing a little).
+    timed = trace or "--timeline" in sys.argv
+    if timed:
+        _time_gui_work(timeline)
+        probe = SystemProbe()
     app, win = make_window()
     beat = Heartbeat(trace=trace)
     _BEAT[:] = [beat]
@@ -477,12 +644,22 @@ def bench_stalls(
         t = time.perf_counter()
         action()
         took = run_until_drawn(app, win, beat, timeout, during)
+        if timed:
+            w0, w1 = beat.worst_window
+            inside = [e for e in timeline if e[1] > w0 and e[0] < w1]
+            work = "; ".join(f"{lab} {(b - a) * 1000:.0f}/{c * 1000:.0f}" for a, b, c, lab in inside)
+            gap = f"{(w1 - w0) * 1000:.0f} ms between ticks"
+            print(f"      in the longest stall ({gap}), GUI work (wall/CPU ms): {work or 'none'}")
+            if probe is not None:
+                print(f"      {probe.summary(t, w0, w1)}")
+            timeline.clear()
         obj = win.scene.primary()
         ps = win.doc.derived(obj.id).peek("discrete") if obj is not None else None
         size = f"{ps.count:,} pixels" if ps is not None else ""
         out.append((label, beat.worst, time.perf_counter() - t if took else 0.0, size))
         print(f"   {label:<44} longest stall {beat.worst * 1000:8.1f} ms   ({time.perf_counter() - t:6.1f} s"
-              f"{', ' + size if size else ''})", flush=True)  # fmt: skip
+              f"{', ' + size if size else ''}; the GUI thread's CPU in it {beat.worst_cpu * 1000:.0f} ms)",
+              flush=True)  # fmt: skip
         note = panel.status.text()
         if note:
             print(f"      panel: {note}", flush=True)
@@ -517,6 +694,8 @@ def bench_stalls(
     step("DSS 4.5 of the result, panning and zooming", lambda: apply("dss", 4.5, "alpha"), pan_zoom)
     if steps <= 3:
         win.close_now()
+        if probe is not None:
+            probe.proc.kill()
         return out
     huge = win.scene.primary()
     if big is not None:
@@ -530,6 +709,8 @@ def bench_stalls(
     del huge
     beat.mark("closing (not measured)")
     win.close_now()
+    if probe is not None:
+        probe.proc.kill()
     return out
 
 

@@ -23,7 +23,7 @@ import platform
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import TextIO
+from typing import Any, TextIO
 
 log = logging.getLogger(__name__)
 
@@ -205,7 +205,22 @@ def _step_regions() -> None:
     from mrm.reps.region import region_of
 
     for ps in _pixel_sets():
-        analytical_of(region_of(ps))  # type: ignore[arg-type]
+        region = region_of(ps)  # type: ignore[arg-type]
+        analytical_of(region)
+        warm_pools(region.labels.labels, ps.mask)  # type: ignore[attr-defined]
+
+
+def warm_pools(labels: Any, mask: Any) -> None:
+    """Call the level-of-detail pools as the views call them (:mod:`.geometry.topology.labeling`)."""
+    import numpy as np
+
+    from mrm.geometry.topology.labeling import lookup, max_pool, pooled_holes, pooled_labels
+
+    pooled_labels(labels, 2)
+    pooled_holes(mask, 2)
+    max_pool(mask, 2)
+    max_pool(mask[:, 1:], 2)  # a crop: the exact detail of a view
+    lookup(np.zeros(256, np.uint32), max_pool(mask, 1))  # the pictures of big images
 
 
 def _step_operations() -> None:

@@ -17,7 +17,7 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
+from mrm.views.canvas import LOD_PIXELS, MaskItem, lod_factor, lod_image, pictured, qcolor
 from mrm.views.items import (
     LodPathItem,
     MarkersItem,
@@ -52,8 +52,13 @@ def left_pixels(chain: Any) -> np.ndarray:
     return np.stack([pts[:, 0] + lx[codes], pts[:, 1] + ly[codes]], axis=1)
 
 
-def segment_pixel_image(ana: Any) -> tuple[np.ndarray, tuple[int, int]] | None:
-    """A label image of the border pixels: value 1 + colour index of the segment each pixel belongs to."""
+def segment_pixel_image(ana: Any, limit: int = LOD_PIXELS) -> tuple[np.ndarray, tuple[int, int], int] | None:
+    """A label image of the border pixels: value 1 + colour index of the segment each pixel belongs to.
+
+    ``(image, origin, f)``: at its level of detail (:func:`~mrm.views.canvas.lod_image`), f × f max-pooled
+    beyond ``limit`` pixels. The pooled image is made from the border pixels themselves: the full-size image
+    of a 10⁸-pixel object was 100 MB of fresh memory for a few million border pixels.
+    """
     pix: list[np.ndarray] = []
     lab: list[np.ndarray] = []
     for chain in ana.chains:
@@ -74,9 +79,20 @@ def segment_pixel_image(ana: Any) -> tuple[np.ndarray, tuple[int, int]] | None:
     v = np.concatenate(lab)
     x0, y0 = p.min(axis=0)
     x1, y1 = p.max(axis=0)
-    img = np.zeros((int(y1 - y0 + 1), int(x1 - x0 + 1)), dtype=np.uint8)
-    img[p[:, 1] - y0, p[:, 0] - x0] = v
-    return img, (int(x0), int(y0))
+    h, w = int(y1 - y0 + 1), int(x1 - x0 + 1)
+    ys, xs = p[:, 1] - y0, p[:, 0] - x0
+    f = lod_factor(h * w, limit)
+    if f > 1:
+        # What pooling the full image gives: a pixel of two segments has the value written last, a block the
+        # largest value of its pixels (written last, in ascending order).
+        key = ys * w + xs
+        last = len(key) - 1 - np.unique(key[::-1], return_index=True)[1]
+        order = last[np.argsort(v[last], kind="stable")]
+        ys, xs, v = ys[order] // f, xs[order] // f, v[order]
+        h, w = -(-h // f), -(-w // f)
+    img = np.zeros((h, w), dtype=np.uint8)
+    img[ys, xs] = v
+    return img, (int(x0), int(y0)), f
 
 
 def segment_cracks(ana: Any) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray, np.ndarray]:
@@ -167,7 +183,7 @@ def analytical_drawing(ana: Any, lut: np.ndarray) -> tuple[Any, list[Any], np.nd
     """
     img = segment_pixel_image(ana)
     if img is not None:
-        coarse, f, picture = pictured(lod_image(img[0]), lut)
+        coarse, f, picture = pictured((img[0], img[2]), lut)
         img = (coarse, img[1], f, picture)
     polylines, extents, ends = segment_cracks(ana)
     # A chain's colours are split across the three items: its size class comes from all its points, so

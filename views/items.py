@@ -1,7 +1,7 @@
 """Graphics items and path builders for plane geometry: polygons, crack edges, vertex handles, markers.
 
-Paths are built from numpy arrays in one call (``pg.arrayToQPath``), never point by point in Python, so a
-polygon with thousands of vertices or the crack boundary of a 2048² mask redraws within a frame.
+Paths are built from numpy arrays (:func:`array_path`), never point by point in Python, so a polygon with
+thousands of vertices or the crack boundary of a 2048² mask redraws within a frame.
 """
 
 from __future__ import annotations
@@ -15,8 +15,59 @@ import pyqtgraph as pg
 import shapely
 from PySide6 import QtCore, QtGui, QtWidgets
 
-
 # ---------------------------------------------------------------------------------------------- paths
+#: Elements a path is built from per call into Qt (:func:`array_path`).
+PATH_CHUNK = 32_768
+_ELEMENT = np.dtype([("c", ">i4"), ("x", ">f8"), ("y", ">f8")])
+
+
+def _streamed_path(kind: np.ndarray, x: np.ndarray, y: np.ndarray) -> QtGui.QPainterPath:
+    """A path of elements ``kind[i]`` (0 move to, 1 line to) at (x[i], y[i]), read from Qt's stream format."""
+    n = len(kind)
+    raw = bytearray(4 + 20 * n + 8)  # count, elements, then cStart and the fill rule (both 0: odd-even)
+    raw[:4] = n.to_bytes(4, "big")
+    arr = np.frombuffer(raw, dtype=_ELEMENT, count=n, offset=4)
+    arr["c"] = kind
+    arr["x"] = x
+    arr["y"] = y
+    path = QtGui.QPainterPath()
+    QtCore.QDataStream(QtCore.QByteArray(raw)) >> path
+    return path
+
+
+def array_path(x: np.ndarray, y: np.ndarray, connect: np.ndarray) -> QtGui.QPainterPath:
+    """``pg.arrayToQPath(x, y, connect=connect)`` (point i joins point i + 1 when ``connect[i]``; any thread).
+
+    Built :data:`PATH_CHUNK` elements at a time: Qt reads a path from its stream format with the GIL held,
+    about 70 ns an element, so a worker building the 2 M-element outline of a 10⁸-pixel object in one call
+    held it 120–160 ms, and every paint of the window waited that long. Each chunk holds it 2–3 ms. The
+    elements are the same as those of one call (a chunk may begin with a line to; a path read from the
+    stream is not checked for a leading move to), so the path draws the same.
+    """
+    n = len(x)
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    if n <= PATH_CHUNK or not (np.isfinite(x).all() and np.isfinite(y).all()):
+        return pg.arrayToQPath(x, y, connect=np.asarray(connect, dtype=np.int32))
+    kind = np.empty(n, dtype=np.int32)
+    kind[0] = 0
+    kind[1:] = np.asarray(connect[:-1]) != 0
+    path = QtGui.QPainterPath()
+    path.reserve(n)
+    start = 0
+    while start < n:
+        end = min(n, start + PATH_CHUNK)
+        # addPath drops a trailing move to of the path it adds to: a chunk never ends on one. It also drops
+        # a path of one move to: the last point is never a chunk of its own.
+        while end < n and kind[end - 1] == 0:
+            end += 1
+        if n - end == 1:
+            end = n
+        path.addPath(_streamed_path(kind[start:end], x[start:end], y[start:end]))
+        start = end
+    return path
+
+
 def rings_path(rings: Sequence[np.ndarray], close: bool = True) -> QtGui.QPainterPath:
     """One path of several rings (arrays of (x, y)); the odd-even rule makes holes of inner rings."""
     rings = [np.asarray(r, dtype=float).reshape(-1, 2) for r in rings if len(r)]
@@ -28,7 +79,7 @@ def rings_path(rings: Sequence[np.ndarray], close: bool = True) -> QtGui.QPainte
     connect = np.ones(len(xy), dtype=np.int32)
     ends = np.cumsum([len(r) for r in rings]) - 1
     connect[ends] = 0
-    path = pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect)
+    path = array_path(xy[:, 0], xy[:, 1], connect)
     path.setFillRule(QtCore.Qt.FillRule.OddEvenFill)
     return path
 
@@ -201,7 +252,7 @@ class Tiles(NamedTuple):
         xy = self.xy[points]
         connect = np.ones(len(xy), dtype=np.int32)
         connect[offsets + lens - 1] = 0
-        return pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect)
+        return array_path(xy[:, 0], xy[:, 1], connect)
 
 
 #: Paths with more elements than this are also cut into chunks by grid cell (:class:`Tiles`).
@@ -303,7 +354,7 @@ def stroke_levels(
     for k in np.unique(cls):
         sel = point_cls == k
         cxy, cc = xy[sel], connect[sel]
-        path = pg.arrayToQPath(cxy[:, 0], cxy[:, 1], connect=cc)
+        path = array_path(cxy[:, 0], cxy[:, 1], cc)
         coarse = coarse_paths(cxy, cc, float(2.0 ** (k + 1)))
         if fill_rule is not None:
             path.setFillRule(fill_rule)
@@ -349,7 +400,7 @@ def coarse_paths(
             continue
         cc = np.ones(len(pts), dtype=np.int32)
         cc[np.flatnonzero(np.r_[idx[1:] != idx[:-1], True])] = 0
-        out.append((tolerance, pg.arrayToQPath(pts[:, 0], pts[:, 1], connect=cc), tile_polylines(pts, cc)))
+        out.append((tolerance, array_path(pts[:, 0], pts[:, 1], cc), tile_polylines(pts, cc)))
         elements = len(pts)
         tolerance *= 2
     return out
@@ -479,8 +530,7 @@ class LodPathItem(PathItem):
             ]
             if not len(c):
                 return
-        m = np.array([[tr.m11(), tr.m12()], [tr.m21(), tr.m22()]])
-        dev = np.floor(c @ m + np.array([tr.dx(), tr.dy()])).astype(np.int64)
+        dev = np.floor(to_device(c, tr)).astype(np.int64)
         # One dot per screen pixel: a 1-D unique of one key per pixel (a row-wise unique sorts 3× slower).
         lo = dev.min(axis=0)
         span = int(dev[:, 1].max() - lo[1]) + 1
@@ -495,6 +545,19 @@ class LodPathItem(PathItem):
         painter.setPen(dot)
         painter.drawPoints(pg.functions.arrayToQPolygonF(dev[:, 0] + 0.5, dev[:, 1] + 0.5))
         painter.restore()
+
+
+def to_device(xy: np.ndarray, tr: QtGui.QTransform) -> np.ndarray:
+    """Points (n, 2) through an affine transform, as ``xy @ [[m11, m12], [m21, m22]] + (dx, dy)``.
+
+    Elementwise, not a matrix product: numpy hands ``@`` to OpenBLAS, whose threads then spin for a while
+    after each call, on the cores the window shares with the workers (seen at every paint of dots).
+    """
+    x, y = xy[:, 0], xy[:, 1]
+    out = np.empty((len(xy), 2))
+    out[:, 0] = x * tr.m11() + y * tr.m21() + tr.dx()
+    out[:, 1] = x * tr.m12() + y * tr.m22() + tr.dy()
+    return out
 
 
 def visible_rect(painter: QtGui.QPainter, margin_px: float = 0.0) -> QtCore.QRectF | None:
@@ -603,9 +666,8 @@ class MarkersItem(pg.GraphicsObject):
         if not len(self._xy):
             return
         tr = painter.transform()
-        # Map all points to device space with one matrix product, then draw in device pixels.
-        m = np.array([[tr.m11(), tr.m12()], [tr.m21(), tr.m22()]])
-        dev = self._xy @ m + np.array([tr.dx(), tr.dy()])
+        # Map all points to device space at once, then draw in device pixels.
+        dev = to_device(self._xy, tr)
         painter.save()
         painter.resetTransform()
         painter.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, self.symbol == "circle")

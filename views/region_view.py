@@ -14,7 +14,7 @@ from PySide6 import QtCore, QtGui
 
 from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
-from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
+from mrm.views.canvas import LOD_PIXELS, MaskItem, lod_factor, pictured, qcolor
 from mrm.views.items import LodPathItem, MarkersItem, StrokeLevel, levels_path, ring_groups, stroke_levels
 
 #: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
@@ -36,12 +36,9 @@ def hole_mask(mask: np.ndarray) -> np.ndarray:
     """Pixels of the bounded 8-components of the complement of ``mask`` (same shape as ``mask``)."""
     if mask.size == 0:
         return np.zeros_like(mask, dtype=bool)
-    from mrm.geometry.topology.labeling import label  # numba: loaded on first use, not at start-up
+    from mrm.geometry.topology.labeling import pooled_holes  # numba: loaded on first use, not at start-up
 
-    outside = np.pad(~mask.astype(bool), 1, constant_values=True)
-    lab, _n = label(outside, connectivity=8)
-    unbounded = lab[0, 0]
-    return ((lab != unbounded) & (lab > 0))[1:-1, 1:-1]
+    return pooled_holes(mask.astype(bool, copy=False)).view(bool)
 
 
 def chain_xy(chain: Any) -> np.ndarray:
@@ -66,24 +63,30 @@ def junctions(chains: list[Any]) -> np.ndarray:
 
 
 def region_drawing(
-    region: Any, component_lut: np.ndarray, hole_lut: np.ndarray
+    region: Any, component_lut: np.ndarray, hole_lut: np.ndarray, limit: int = LOD_PIXELS
 ) -> tuple[Any, Any, Any, Any, Any]:
     """What the region view draws of a region (any thread): labels, hole mask, boundary paths, junctions.
 
     The label and hole images come with their pictures through the given tables (:func:`pictured`).
     """
+    from mrm.geometry.topology.labeling import pooled_holes, pooled_labels  # numba: loaded on first use
+
     data = region.labels.labels
-    # Labels beyond 255 cycle through the palette: colour, not identity, is what is shown.
-    img = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8) if data.size else data
-    holes = hole_mask(data > 0).astype(np.uint8) if data.size else data
+    # Both images straight at their level of detail, in one pass each: at 10⁸ pixels the full-size label
+    # arithmetic and the label image of the complement were 2 GB of temporaries, whose fresh memory cost
+    # seconds of page faults on the cores the window shares. Labels beyond 255 cycle through the palette:
+    # colour, not identity, is what is shown.
+    f = lod_factor(data.size, limit)
+    img = (pooled_labels(data, f), f) if data.size else (np.zeros((0, 0), np.uint8), 1)
+    holes = (pooled_holes(data > 0, f), f) if data.size else (np.zeros((0, 0), np.uint8), 1)
     outer = [chain_xy(c.outer) for c in region.components]
     inner = [chain_xy(h.boundary) for c in region.components for h in c.holes]
     # By component size class (stroke_levels): thousands of tiny components are dots at fit-all zoom.
     outer_levels = stroke_levels(*ring_groups(outer, np.arange(len(outer))))
     inner_levels = stroke_levels(*ring_groups(inner, np.arange(len(inner))))
     return (
-        pictured(lod_image(img), component_lut),
-        pictured(lod_image(holes), hole_lut),
+        pictured(img, component_lut),
+        pictured(holes, hole_lut),
         (outer_levels, levels_path(outer_levels)),
         (inner_levels, levels_path(inner_levels)),
         junctions(list(region.boundary_chains)),

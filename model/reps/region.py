@@ -295,7 +295,12 @@ def _paint_labels(components: tuple[Component, ...]) -> LabelMap:
     if not closed:
         raise InvalidGeometryError("cannot paint the labels: a crack chain does not come back to its start")
     image = paint_rings(codes, off, sx, sy, weights, (xmin, ymin, xmax - 1, ymax - 1))
-    return LabelMap(image, (xmin, ymin))
+    if image.size and int(image.min()) < 0:
+        return LabelMap(image, (xmin, ymin))  # which says what is wrong
+    # Painted over the chains' own box, so the labels touch its four sides: taken as they are. The
+    # constructor's check and private copy were a second full-size label image (300 MB at 10⁸ pixels) of
+    # fresh memory, page-faulted in on the cores the window shares.
+    return LabelMap._canonical(image, (xmin, ymin))
 
 
 def _empty_region() -> Region:

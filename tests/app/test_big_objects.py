@@ -11,7 +11,7 @@ import numpy as np
 
 from mrm.commands import AddObject
 from mrm.reps.pixels import PixelSet
-from mrm.views.canvas import LOD_PIXELS, lod_image
+from mrm.views.canvas import LOD_PIXELS, lod_factor, lod_image
 
 
 def test_lod_image_keeps_every_pixel_visible():
@@ -22,6 +22,79 @@ def test_lod_image_keeps_every_pixel_visible():
     assert f == 3 and img.size <= 1_000_000
     assert img[500].all()  # the line is still drawn across
     assert img[7 // 3, 9 // 3] == 1 and img.sum() == img.shape[1] + 1
+
+
+def _padded_max_pool(img: np.ndarray, f: int) -> np.ndarray:
+    """The reference: pad with 0 to multiples of f, then the maximum of each f × f block."""
+    h, w = img.shape
+    pad = np.zeros((-(-h // f) * f, -(-w // f) * f), np.uint8)
+    pad[:h, :w] = img
+    return pad.reshape(pad.shape[0] // f, f, pad.shape[1] // f, f).max(axis=(1, 3))
+
+
+def test_the_region_views_coarse_images_are_pooled_in_one_pass_as_before():
+    """The region view's images come pooled straight from the labels and the runs (no full-size temporaries:
+    at 10⁸ pixels they were 2 GB of fresh memory), and are what the full-size arithmetic gave: labels beyond
+    255 cycled through 1 … 255 and max-pooled, the holes (bounded 8-components of the complement) max-pooled.
+    """
+    from mrm.reps.region import region_of
+    from mrm.views.canvas import max_pool
+    from mrm.views.region_view import hole_mask, region_drawing
+
+    rng = np.random.default_rng(11)
+    for limit in (10**9, 900, 250):
+        m = rng.random((61, 47)) < 0.55
+        m[20:30, 10:25] = True
+        m[24:26, 15:18] = False  # a hole
+        region = region_of(PixelSet(m, (5, -3)))
+        lut = np.zeros((256, 4), np.uint8)
+        (img, f, _p), (holes, hf, _hp), *_rest = region_drawing(region, lut, lut, limit)
+        data = region.labels.labels
+        assert f == hf == lod_factor(data.size, limit) and (f > 1 or limit > data.size)
+        cycled = np.where(data > 0, (data - 1) % 255 + 1, 0).astype(np.uint8)
+        assert np.array_equal(img, _padded_max_pool(cycled, f))
+        # The complement's bounded 8-components, the old way: labelling the padded complement.
+        from mrm.geometry.topology.labeling import label
+
+        lab, _n = label(np.pad(data == 0, 1, constant_values=True), connectivity=8)
+        expected = ((lab != lab[0, 0]) & (lab > 0))[1:-1, 1:-1]
+        assert expected.any() and np.array_equal(hole_mask(data > 0), expected)
+        assert np.array_equal(holes, _padded_max_pool(expected.view(np.uint8), f))
+        # A crop, read in place (the exact detail of a view), pools as its copy does.
+        assert np.array_equal(max_pool(m[3:50, 1:40], 3), _padded_max_pool(m[3:50, 1:40].view(np.uint8), 3))
+    big = np.zeros((1000, 300), np.int32)
+    big[::7, ::3] = 300  # beyond 255: cycles to 45
+    from mrm.geometry.topology.labeling import pooled_labels
+
+    assert np.array_equal(
+        pooled_labels(big, 4), _padded_max_pool(np.where(big > 0, 45, 0).astype(np.uint8), 4)
+    )
+
+
+def test_big_pictures_and_the_border_image_are_made_without_full_size_temporaries(monkeypatch):
+    """A big picture comes from a compiled lookup (numpy's take first copied the indices to int64), the
+    analytical view's border image straight at its level of detail; both are what they were.
+    """
+    import mrm.views.canvas as canvas
+    from mrm.reps.analytical import analytical_of
+    from mrm.reps.region import region_of
+    from mrm.views.analytical_view import segment_pixel_image
+
+    rng = np.random.default_rng(2)
+    img = rng.integers(0, 4, (300, 200)).astype(np.uint8)
+    lut = rng.integers(0, 256, (4, 4)).astype(np.uint8)
+    want = canvas.make_picture(img, lut)
+    monkeypatch.setattr(canvas, "PICTURE_KERNEL_PIXELS", 100)
+    got = canvas.make_picture(img, lut)
+    assert np.array_equal(got.argb, want.argb) and got.qimage == want.qimage
+    for _ in range(5):
+        m = rng.random((50, 70)) < 0.6
+        ana = analytical_of(region_of(PixelSet(m, (3, -8))))
+        full, origin, f = segment_pixel_image(ana, 10**9)
+        assert f == 1
+        for limit in (1000, 300, 100):
+            pooled, o, f = segment_pixel_image(ana, limit)
+            assert o == origin and f > 1 and np.array_equal(pooled, _padded_max_pool(full, f))
 
 
 def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_window, qtbot):

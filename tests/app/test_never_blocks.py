@@ -35,9 +35,9 @@ def test_the_difference_picture_is_made_on_a_worker_and_drawn(make_window, qtbot
     threads: list[bool] = []
     original = mrm.views.inspector.diff_picture
 
-    def recording(m):  # type: ignore[no-untyped-def]
+    def recording(m, *rest):  # type: ignore[no-untyped-def]
         threads.append(threading.current_thread() is threading.main_thread())
-        return original(m)
+        return original(m, *rest)
 
     monkeypatch.setattr(mrm.views.inspector, "diff_picture", recording)
     win = make_window(threaded=True, size=(1400, 900))
@@ -47,6 +47,9 @@ def test_the_difference_picture_is_made_on_a_worker_and_drawn(make_window, qtbot
     assert threads and not any(threads), "the picture was made on the GUI thread"
     m = insp.measurement
     light, dark = m.difference.light, m.difference.dark
+    # Drawn from pictures made there too: converting a 4 M-pixel image in the first paint took 80 ms.
+    assert insp.result_item.picture is not None and insp.result_item.picture is insp.picture.result_picture
+    assert insp.picture.diff is None or insp.diff_item.picture is insp.picture.diff_picture is not None
     # The counts are in the text, the pixels in the picture, in the paper's two greys.
     assert f"{len(light):,} pixels only in the result" in insp.measured_label.text()
     assert not (light.is_empty() and dark.is_empty())
@@ -303,3 +306,33 @@ def test_a_big_outline_is_drawn_through_a_cache_and_follows_a_pan(make_window, q
         cam.set(cam.cx + dx, cam.cy + dx / 3, cam.scale)
         QtCore.QCoreApplication.processEvents()
         assert edge_is_outlined()
+
+
+def test_a_long_path_is_built_in_short_reads_and_is_the_same_path(monkeypatch):
+    """Qt reads a path from its stream with the GIL held (120–160 ms for 2 M elements on a worker, the
+    window waiting meanwhile): :func:`array_path` reads it in chunks, and the path is the one of one read.
+    """
+    import pyqtgraph as pg
+
+    from mrm.views import items
+
+    reads: list[int] = []
+    streamed = items._streamed_path
+    monkeypatch.setattr(items, "_streamed_path", lambda k, x, y: reads.append(len(k)) or streamed(k, x, y))
+    monkeypatch.setattr(items, "PATH_CHUNK", 16)
+    rng = np.random.default_rng(3)
+    for n in (10, 17, 200, 1000):
+        xy = rng.normal(size=(n, 2)) * 50
+        connect = (rng.random(n) > 0.15).astype(np.int32)
+        connect[n // 2 : n // 2 + 3] = 0  # lone points: consecutive move-tos
+        connect[-2:] = 0
+        reads.clear()
+        got = items.array_path(xy[:, 0], xy[:, 1], connect)
+        want = pg.arrayToQPath(xy[:, 0], xy[:, 1], connect=connect)
+        assert got.elementCount() == want.elementCount() == n
+        for i in range(n):
+            a, b = got.elementAt(i), want.elementAt(i)
+            assert (a.type, a.x, a.y) == (b.type, b.x, b.y), i
+        assert got.boundingRect() == want.boundingRect() and got.fillRule() == want.fillRule()
+        # In chunks of about PATH_CHUNK (longer only by the move-tos a chunk may not end on).
+        assert sum(reads) == (n if n > 16 else 0) and all(r <= 16 + 4 for r in reads)

@@ -156,3 +156,49 @@ def test_spill_files_of_ended_processes_are_removed_at_start(tmp_path):  # type:
     finally:
         processes.close_pool()
         processes.remove_spills([stale, live])
+
+
+def test_a_received_pixel_set_keeps_the_received_memory_and_pickles_at_every_protocol():
+    """A 77 M-pixel result was copied twice on its way (sender and receiver, 77 MB of fresh memory each): now
+    its mask travels as a buffer and the receiver keeps the memory it read the spill into."""
+    import mmap
+    import pickle
+    from multiprocessing import Pipe
+
+    rng = np.random.default_rng(4)
+    m = rng.random((1500, 900)) < 0.5  # 1.35 MB: spilled (over SPILL_BYTES)
+    m[0, 0] = m[-1, -1] = True
+    ps = PixelSet(m, (-7, 12))
+    a, b = Pipe()
+    sender = threading.Thread(target=lambda: processes.send_obj(a, ("result", ps, "")))
+    sender.start()
+    _kind, got, _text = processes.recv_obj(b)
+    sender.join()
+    assert got == ps and got.origin == ps.origin and not got.mask.flags.writeable
+    root = got.mask
+    while isinstance(root, np.ndarray) and root.base is not None:
+        root = root.base
+    assert isinstance(root, mmap.mmap)  # the spill's memory itself, not a copy of it
+    for protocol in range(2, pickle.HIGHEST_PROTOCOL + 1):
+        back = pickle.loads(pickle.dumps(ps, protocol=protocol))
+        assert back == ps and not back.mask.flags.writeable
+
+
+def test_freed_memory_is_kept_for_the_next_arrays_in_the_window_and_its_workers(monkeypatch):
+    """Unmapping every freed array made each derivation fault gigabytes in again, which on a VM reporting
+    free pages to its host stalled the whole machine: the window keeps freed memory, and passes the
+    setting on to its worker processes; MRM_KEEP_MEMORY=0 turns it off."""
+    import ctypes.util
+    import sys
+
+    from mrm.app.application import MALLOC_ENV, keep_freed_memory
+
+    for key in MALLOC_ENV:
+        monkeypatch.delenv(key, raising=False)
+    monkeypatch.setenv("MRM_KEEP_MEMORY", "0")
+    assert not keep_freed_memory() and not any(k in os.environ for k in MALLOC_ENV)
+    monkeypatch.delenv("MRM_KEEP_MEMORY")
+    glibc = sys.platform.startswith("linux") and "libc" in (ctypes.util.find_library("c") or "")
+    assert keep_freed_memory() == glibc
+    if glibc:
+        assert all(os.environ[k] == v for k, v in MALLOC_ENV.items())  # what a child process starts with

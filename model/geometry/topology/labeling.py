@@ -15,7 +15,7 @@ by (row, col) of their lowest-leftmost pixel (row 0 is the lowest y). Background
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numba
 import numpy as np
@@ -425,3 +425,134 @@ def label_regions(labels: npt.ArrayLike) -> LabelRegions:
     if lab.ndim != 2:
         raise ValueError(f"a label image must be 2-D, got shape {lab.shape}")
     return LabelRegions(*_label_regions(lab))
+
+
+# ---------------------------------------------------------------------------------------------- pooling
+# Level-of-detail images of big masks and label images, f × f max-pooled in one pass: no padded copy and no
+# full-size temporaries. At 10⁸ pixels each full-size temporary is hundreds of megabytes of fresh memory,
+# whose first touch (page faults) cost more than the arithmetic, on the core the window shares.
+
+
+@numba.njit(cache=True, nogil=True)
+def _max_pool(src: npt.NDArray[np.uint8], f: int) -> npt.NDArray[np.uint8]:  # pragma: no cover
+    h, w = src.shape
+    out = np.zeros(((h + f - 1) // f, (w + f - 1) // f), np.uint8)
+    for r in range(h):
+        row = src[r]
+        orow = out[r // f]
+        for oc in range(orow.size):
+            m = orow[oc]
+            for c in range(oc * f, min(w, oc * f + f)):
+                if row[c] > m:
+                    m = row[c]
+            orow[oc] = m
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _pool_labels(labels: Int32Array, f: int) -> npt.NDArray[np.uint8]:  # pragma: no cover
+    h, w = labels.shape
+    out = np.zeros(((h + f - 1) // f, (w + f - 1) // f), np.uint8)
+    for r in range(h):
+        row = labels[r]
+        orow = out[r // f]
+        for oc in range(orow.size):
+            m = orow[oc]
+            for c in range(oc * f, min(w, oc * f + f)):
+                v = row[c]
+                if v > 0:
+                    u = (v - 1) % 255 + 1
+                    if u > m:
+                        m = u
+            orow[oc] = m
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _pool_holes(
+    rs: Int32Array, re: Int32Array, ptr: Int64Array, bg_label: Int32Array, w: int, f: int
+) -> npt.NDArray[np.uint8]:  # pragma: no cover
+    h = ptr.size - 1
+    out = np.zeros(((h + f - 1) // f, (w + f - 1) // f), np.uint8)
+    for r in range(h):
+        k = ptr[r + 1] - ptr[r]
+        g0 = ptr[r] + r
+        orow = out[r // f]
+        for t in range(k + 1):
+            if bg_label[g0 + t] == 0:
+                continue  # the unbounded background
+            s = re[ptr[r] + t - 1] + 1 if t > 0 else 0
+            e = rs[ptr[r] + t] - 1 if t < k else w - 1
+            if e >= s:
+                for oc in range(s // f, e // f + 1):
+                    orow[oc] = 1
+    return out
+
+
+def _read_only(a: npt.NDArray[Any]) -> npt.NDArray[Any]:
+    """A read-only view: numba compiles a kernel once per writeable flag, so the pools see one kind."""
+    v = a.view()
+    v.flags.writeable = False
+    return v
+
+
+def max_pool(mask: npt.ArrayLike, f: int) -> npt.NDArray[np.uint8]:
+    """The f × f max-pooled image of a bool or uint8 image (beyond its edges: 0), as uint8 (any thread)."""
+    m = np.asarray(mask)
+    src = m.view(np.uint8) if m.dtype == np.bool_ else m
+    if src.dtype != np.uint8 or src.ndim != 2:
+        raise ValueError(f"max_pool takes a 2-D bool or uint8 image, got {src.dtype} {src.shape}")
+    if f == 1:
+        return src
+    return _max_pool(_read_only(src), int(f))  # a strided crop is read in place (a specialisation of its own)
+
+
+def pooled_labels(labels: npt.ArrayLike, f: int = 1) -> npt.NDArray[np.uint8]:
+    """The label image as uint8 (labels beyond 255 cycle through 1 … 255), f × f max-pooled (any thread).
+
+    For drawing: each component gets one of 255 colours. Equal to max-pooling ``(labels − 1) % 255 + 1``
+    (0 off the set), without its three full-size int32 temporaries.
+    """
+    lab = np.ascontiguousarray(labels, dtype=np.int32)
+    if lab.ndim != 2:
+        raise ValueError(f"a label image must be 2-D, got shape {lab.shape}")
+    return _pool_labels(_read_only(lab), max(1, int(f)))
+
+
+def pooled_holes(mask: npt.ArrayLike, f: int = 1) -> npt.NDArray[np.uint8]:
+    """1 on the holes of a mask (bounded 8-components of its complement), f × f max-pooled (any thread).
+
+    From the runs of the mask (:func:`label_runs`): no label image of the complement is painted.
+    """
+    m = as_u8(mask)
+    runs = label_runs(m, 4)
+    return _pool_holes(runs.start, runs.end, runs.ptr, runs.bg_label, m.shape[1], max(1, int(f)))
+
+
+@numba.njit(cache=True, nogil=True)
+def _lookup(
+    table: npt.NDArray[np.uint32], img: npt.NDArray[np.uint8]
+) -> npt.NDArray[np.uint32]:  # pragma: no cover
+    h, w = img.shape
+    out = np.empty((h, w), np.uint32)
+    for r in range(h):
+        row = img[r]
+        orow = out[r]
+        for c in range(w):
+            orow[c] = table[row[c]]
+    return out
+
+
+def lookup(table: npt.ArrayLike, img: npt.ArrayLike) -> npt.NDArray[np.uint32]:
+    """``table[img]`` for a uint8 image and a 256-entry uint32 table (any thread).
+
+    numpy's take or fancy index first casts the uint8 indices to a full-size int64 array (32 MB per
+    4 M-pixel picture) of fresh memory.
+    """
+    t = np.ascontiguousarray(table, dtype=np.uint32)
+    if t.shape != (256,):
+        raise ValueError(f"a lookup table has 256 entries, got shape {t.shape}")
+    m = np.asarray(img)
+    if m.dtype != np.uint8 or m.ndim != 2:
+        raise ValueError(f"lookup takes a 2-D uint8 image, got {m.dtype} {m.shape}")
+    return _lookup(_read_only(t), _read_only(m))
