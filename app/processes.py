@@ -193,6 +193,23 @@ def recv_obj(conn: Any) -> Any:
 _CANCEL = threading.Event()  # in a child: set by SIGUSR1, the parent's Cancel
 
 
+def _portable(exc: BaseException) -> BaseException:
+    """``exc`` if it comes back from pickling as itself, else an error of the same kind carrying its text.
+
+    An exception whose constructor takes other arguments than its message pickles but does not unpickle;
+    the window would get a TypeError instead of the user's message. A user error stays a user error.
+    """
+    try:
+        pickle.loads(pickle.dumps(exc, protocol=5))
+        return exc
+    except Exception:
+        from mrm.errors import MRMError
+
+        log.warning("%s does not travel between processes; sent as its text", type(exc).__name__)
+        kind = MRMError if isinstance(exc, MRMError) else RuntimeError
+        return kind(str(exc) if kind is MRMError else f"{type(exc).__name__}: {exc}")
+
+
 def _child_progress(conn: Any) -> Any:
     """The progress a job sees in the child: reports go to the parent, a Cancel comes as a signal."""
     from mrm.app.progress import TaskProgress
@@ -222,10 +239,7 @@ def _child_main(fd_in: int, fd_out: int) -> None:
             result = fn(*args, progress)
         except BaseException as exc:
             text = traceback.format_exc()
-            try:
-                send_obj(conn_out, ("error", exc, text))
-            except Exception:  # an exception that does not pickle: its text does
-                send_obj(conn_out, ("error", RuntimeError(f"{type(exc).__name__}: {exc}"), text))
+            send_obj(conn_out, ("error", _portable(exc), text))
         else:
             send_obj(conn_out, ("result", result, ""))
 

@@ -31,10 +31,16 @@ class SizeLimitError(MRMError):
     def __init__(self, estimated: int, limit: int, what: str = "result") -> None:
         self.estimated = int(estimated)
         self.limit = int(limit)
+        self.what = what
         super().__init__(
             f"{what} would cover {self.estimated:,} pixels, more than the limit of {self.limit:,}; "
             "reduce the scale or raise the limit"
         )
+
+    def __reduce__(self) -> tuple[type[SizeLimitError], tuple[int, int, str]]:
+        # Pickled with its own arguments: the worker processes send it to the window (the default
+        # reduction passes the message alone, which this constructor cannot take).
+        return (type(self), (self.estimated, self.limit, self.what))
 
 
 class FileFormatError(MRMError):

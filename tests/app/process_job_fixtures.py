@@ -64,3 +64,20 @@ def spilling_then_deaf(seconds: float, progress: Any) -> str:
     processes._spill(memoryview(np.zeros(2 * processes.SPILL_BYTES, np.uint8)))
     time.sleep(seconds)
     return "finished"
+
+
+def over_limit(progress: Any) -> None:
+    """Raise the size-limit error an operation raises before allocating a too-big result."""
+    from mrm.errors import SizeLimitError
+
+    raise SizeLimitError(158_000_000, 100_000_000, "DSS_4.5")
+
+
+class _Stubborn(Exception):
+    def __init__(self, a: int, b: int) -> None:  # the default reduction passes the message alone
+        super().__init__(f"stubborn {a} {b}")
+
+
+def unpicklable_error(progress: Any) -> None:
+    """Raise an exception that pickles but cannot be unpickled."""
+    raise _Stubborn(1, 2)

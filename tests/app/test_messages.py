@@ -4,6 +4,7 @@ never lost); the pixel-limit message points at a Preferences entry that exists a
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import AddObject
@@ -57,10 +58,13 @@ def test_a_self_crossing_drawing_can_be_kept_for_editing(make_window, qtbot):
     assert len(win.doc) == 1 and win.doc.objects[0].source.area == 100.0
 
 
-def test_the_pixel_limit_message_points_at_a_preference_that_works(make_window, prefs, qtbot):
+@pytest.mark.parametrize("threaded", [False, True], ids=["in-process", "worker-process"])
+def test_the_pixel_limit_message_points_at_a_preference_that_works(make_window, prefs, qtbot, threaded):
+    # With the real runner the refusal comes from a worker process: the error must cross back intact
+    # (it once arrived as a TypeError about SizeLimitError's constructor, and no message was shown).
     from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL, PreferencesDialog
 
-    win = make_window()
+    win = make_window(threaded=threaded)
     a = win.doc.make_object(PixelSet(np.ones((10, 10), bool)), name="A")
     win.doc.push(AddObject(a, select=True))
     # Lower the limit in the dialog, as a user does.

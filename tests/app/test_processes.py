@@ -202,3 +202,17 @@ def test_freed_memory_is_kept_for_the_next_arrays_in_the_window_and_its_workers(
     assert keep_freed_memory() == glibc
     if glibc:
         assert all(os.environ[k] == v for k, v in MALLOC_ENV.items())  # what a child process starts with
+
+
+def test_a_size_limit_error_reaches_the_window_with_its_message(pool):  # type: ignore[no-untyped-def]
+    # It used to arrive as "TypeError: SizeLimitError.__init__() missing … 'limit'" (DSS 4.5 of DSS 20 of
+    # the horse in the window), a traceback instead of the message that says what to change.
+    from mrm.errors import SizeLimitError
+
+    with pytest.raises(SizeLimitError, match=r"DSS_4\.5 would cover 158,000,000 pixels") as info:
+        pool.run(jobs.over_limit, (), TaskProgress())
+    assert (info.value.estimated, info.value.limit) == (158_000_000, 100_000_000)
+    # An exception the window cannot rebuild comes back as its text; the pool goes on working.
+    with pytest.raises(RuntimeError, match="_Stubborn: stubborn 1 2"):
+        pool.run(jobs.unpicklable_error, (), TaskProgress())
+    assert pool.run(jobs.whoami, (), TaskProgress()) != os.getpid()
