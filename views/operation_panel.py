@@ -737,7 +737,9 @@ class OperationPanel(QtWidgets.QWidget):
                         "raise the limit",
                         f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
                     )
-            self.status.setText(f"<span style='color:#c0392b'>{op.title}: {text}</span>")
+            if not text.startswith(op.title):  # the model's message often names the operation already
+                text = f"{op.title}: {text}"
+            self.status.setText(f"<span style='color:#c0392b'>{text}</span>")
 
         def cancelled() -> None:
             self._finished()

@@ -84,6 +84,7 @@ def test_the_pixel_limit_message_points_at_a_preference_that_works(make_window, 
     assert len(win.doc) == n
     msg = panel.status.text()
     assert "5,000" in msg and f"Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}" in msg
+    assert msg.count(panel.op.title) == 1  # named once, not "DSS_α: DSS_α result would…"
     # Raised again, the same operation runs.
     prefs.pixel_limit = 1_000_000
     qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
