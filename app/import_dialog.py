@@ -2,10 +2,10 @@
 
 A binary image (two values) imports as it is. Any other image opens this dialog: a threshold (Otsu's value
 proposed and shown, adjustable with a slider and a field), an Invert box, a preview of the pixels that would
-be imported — or, for a grey or indexed image or an NPZ label array, one label map object (ADR 0033) or
-one object per label (each non-zero value). The pixels
-themselves are read by the model (:func:`mrm.io.pixel_files.read_pixels` with the chosen threshold,
-:func:`mrm.io.pixel_files.read_label_map`); the dialog only reads the image's values for the preview.
+be imported — or, for a grey (PNG or PGM) or indexed image or an NPZ label array, one label map object
+(ADR 0033) or one object per label (each non-zero value). The pixels themselves are read by the model
+(:func:`mrm.io.pixel_files.read_pixels` with the chosen threshold, :func:`mrm.io.pixel_files.read_label_map`);
+the dialog only reads the image's values for the preview.
 """
 
 from __future__ import annotations
@@ -31,10 +31,13 @@ def image_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
 
     from mrm.io.threshold import luminance
 
-    if path.suffix.lower() == ".npz":
+    suffix = path.suffix.lower()
+    if suffix == ".npz":
         return _npz_labels(path)
-    if path.suffix.lower() != ".png":
-        return None  # PBM is binary; PGM keeps the model's own rules
+    if suffix == ".pgm":
+        return _netpbm_values(path)
+    if suffix != ".png":
+        return None  # PBM is binary; a GeoTIFF keeps the model's own rules
     with Image.open(path) as im:
         mode = im.mode
         if mode == "1":
@@ -45,10 +48,33 @@ def image_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
             grey = luminance(rgb)
         else:
             grey = np.asarray(im, dtype=np.int64)  # grey values, or palette indices
-    values = np.unique(grey)
-    if len(values) <= 2 and (len(values) < 2 or values[0] == 0):
+    if _binary(grey):
         return None  # binary: imported as it is, no question
     return grey, labels_ok, mode == "P" and labels_ok
+
+
+def _binary(values: np.ndarray) -> bool:
+    v = np.unique(values)
+    return len(v) <= 2 and (len(v) < 2 or v[0] == 0)
+
+
+def _netpbm_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
+    """A PGM's grey values (labels offered), read by the model's reader; None if binary or unreadable."""
+    from mrm import limits
+    from mrm.errors import FileFormatError
+    from mrm.io.netpbm import read_netpbm
+    from mrm.io.threshold import grey_of
+
+    try:
+        with open(path, "rb") as fh:
+            img = read_netpbm(fh, path.name, limits.MAX_LABEL_PIXELS)
+    except (OSError, FileFormatError):
+        return None  # the model's reader says what is wrong when the file is imported
+    if img.samples.dtype == np.bool_:
+        return None
+    colour = img.samples.ndim == 3
+    grey = np.asarray(grey_of(img.samples) if colour else img.samples, dtype=np.int64)
+    return None if _binary(grey) else (grey, not colour, False)
 
 
 def _npz_labels(path: Path) -> tuple[np.ndarray, bool, bool] | None:

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import time
-import zipfile
 from pathlib import Path
 from typing import Any
 
@@ -32,14 +31,14 @@ from mrm.cli._common import (
     inputs_and_outputs,
     run_inputs,
 )
-from mrm.errors import FileFormatError
+from mrm.io.pixel_files import LABEL_READ_EXTENSIONS, read_label_map
 from mrm.reps.pixels import LabelMap
 from mrm.summary import count_vertices
 
 NAME = "polygonize"
 HELP = "label image (.png .pgm .npz) to one polygon per region, boundaries shared exactly (.geojson)"
 
-INPUTS = (".png", ".pgm", ".npz")
+INPUTS = LABEL_READ_EXTENSIONS
 OUTPUTS = (".geojson", ".json")
 
 
@@ -51,44 +50,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_limit_argument(parser)
 
 
-def _npz_has(path: str, member: str) -> bool:
-    try:
-        with zipfile.ZipFile(path) as zf:
-            return member in zf.namelist()
-    except (zipfile.BadZipFile, OSError):
-        return True  # let the reader give its message
-
-
 def read_labels(path: str, limit: int) -> LabelMap:
-    """Read an integer label image (see the module docstring)."""
-    ext = extension_of(path, INPUTS, "label image")
-    name = Path(path).name
-    if ext == ".npz" and not _npz_has(path, "origin.npy"):
-        # ``labels`` alone: placed at the origin (read without unpickling, header checked first)
-        from mrm.io.pixel_files import _read_npz_arrays
-
-        with open(path, "rb") as fh:
-            a = _read_npz_arrays(fh, name, ("labels",), limit)["labels"]
-        if a.ndim != 2 or a.dtype.kind not in "iu":
-            raise FileFormatError(
-                f"{name}: 'labels' must be a 2-D integer array, found dtype {a.dtype} and shape {a.shape}"
-            )
-        try:
-            return LabelMap(a, (0, 0))
-        except ValueError as e:
-            raise FileFormatError(f"{name}: {e}") from None
-    if ext != ".pgm":
-        from mrm.io.pixel_files import read_label_map
-
-        return read_label_map(path, limit=limit)
-    from mrm.io.netpbm import read_netpbm
-    from mrm.io.pixel_files import _netpbm_origin
-
-    with open(path, "rb") as fh:
-        img = read_netpbm(fh, name, limit)
-    if img.magic not in ("P2", "P5"):
-        raise FileFormatError(f"{name}: a label image must be a grey PGM (P2 or P5), not {img.magic}")
-    return LabelMap(img.samples[::-1], _netpbm_origin(img.comments, name))
+    """Read an integer label image (see the module docstring): the library's reader, the GUI's too."""
+    extension_of(path, INPUTS, "label image")
+    return read_label_map(path, limit=limit)
 
 
 def polygonize_file(path: str, output: str, model: str | None, limit: int) -> dict[str, Any]:

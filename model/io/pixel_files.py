@@ -50,8 +50,10 @@ PathLike = str | os.PathLike[str]
 
 #: Extensions read and written by :func:`read_pixels` / :func:`write_pixels`.
 PIXEL_EXTENSIONS = (".png", ".pbm", ".pgm", ".npz", ".tif", ".tiff")  # GeoTIFF: mrm.io.georef
-#: Extensions read and written by :func:`read_label_map` / :func:`write_label_map`.
+#: Extensions written by :func:`write_label_map`.
 LABEL_EXTENSIONS = (".png", ".npz")
+#: Extensions read by :func:`read_label_map` (the GUI's import and ``mrm polygonize``).
+LABEL_READ_EXTENSIONS = (".png", ".pgm", ".npz")
 #: The PNG text chunk keyword (and Netpbm comment) holding the origin.
 ORIGIN_KEY = "mrm:origin"
 #: Pixel coordinates stay within the document's limit (±2³¹, :data:`mrm.limits.PIXEL_COORDINATE_LIMIT`), so
@@ -276,9 +278,12 @@ _NPZ_ROLES = {
 
 
 def _read_npz_arrays(
-    fh: BinaryIO, name: str, keys: tuple[str, ...], limit: int
+    fh: BinaryIO, name: str, keys: tuple[str, ...], limit: int, optional: tuple[str, ...] = ()
 ) -> dict[str, npt.NDArray[Any]]:
-    """Read the named arrays of an .npz, checking each header before its data and never unpickling."""
+    """Read the named arrays of an .npz, checking each header before its data and never unpickling.
+
+    A key in ``optional`` that the archive does not hold is left out of the result instead of refused.
+    """
     try:
         zf = zipfile.ZipFile(fh)
     except (zipfile.BadZipFile, OSError, ValueError, EOFError):
@@ -292,6 +297,8 @@ def _read_npz_arrays(
         for key in keys:
             member = f"{key}.npy"
             if member not in members:
+                if key in optional:
+                    continue
                 found = ", ".join(sorted(m.removesuffix(".npy") for m in members)) or "nothing"
                 raise FileFormatError(f"{name}: the NPZ archive has no '{key}' array (it holds: {found})")
             try:
@@ -471,10 +478,12 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
 
 # ---------------------------------------------------------------------------------------------- label maps
 def read_label_map(path: PathLike, *, limit: int = limits.MAX_LABEL_PIXELS) -> LabelMap:
-    """Read a label map from a grey or indexed .png or an .npz (``labels`` + ``origin``).
+    """Read a label map from a grey or indexed .png, a grey .pgm or an .npz (``labels``, optional ``origin``).
 
-    A PNG's grey value (8 or 16 bits) or palette index is the label; 0 is the background. Row 0 of the image
-    is the top row and the ``mrm:origin`` chunk gives the bottom-left pixel, as for pixel sets.
+    A PNG's grey value (8 or 16 bits) or palette index, or a PGM's grey value (P2 or P5), is the label; 0 is
+    the background. Row 0 of the image is the top row and the ``mrm:origin`` chunk (PNG) or comment (PGM)
+    gives the bottom-left pixel, as for pixel sets; without one, and for an .npz without ``origin``, the
+    map is placed at the origin.
 
     Raises
     ------
@@ -482,9 +491,14 @@ def read_label_map(path: PathLike, *, limit: int = limits.MAX_LABEL_PIXELS) -> L
         Unknown extension; a corrupt, truncated, colour or too large image; bad arrays in the .npz.
     """
     name = _name(path)
-    ext = _extension(path, LABEL_EXTENSIONS, "label map")
+    ext = _extension(path, LABEL_READ_EXTENSIONS, "label map")
     with open_regular(path, name) as fh:  # a FIFO or device is refused, never waited on
-        if ext == ".png":
+        if ext == ".pgm":
+            img = read_netpbm(fh, name, limit)
+            if img.magic not in ("P2", "P5"):
+                raise FileFormatError(f"{name}: a label map must be a grey PGM (P2 or P5), not {img.magic}")
+            labels, origin = img.samples[::-1], _netpbm_origin(img.comments, name)
+        elif ext == ".png":
             im, origin = _open_png(fh, name, limit)
             if im.mode not in ("1", "L", "P", "I", "I;16", "I;16B", "I;16L", "I;16N"):
                 raise FileFormatError(
@@ -495,14 +509,14 @@ def read_label_map(path: PathLike, *, limit: int = limits.MAX_LABEL_PIXELS) -> L
                 rows = rows.astype(np.uint8)
             labels = rows[::-1]
         else:
-            arrays = _read_npz_arrays(fh, name, ("labels", "origin"), limit)
+            arrays = _read_npz_arrays(fh, name, ("labels", "origin"), limit, optional=("origin",))
             labels = arrays["labels"]
             if labels.ndim != 2 or labels.dtype.kind not in "iu":
                 raise FileFormatError(
                     f"{name}: 'labels' must be a 2-D integer array, found dtype {labels.dtype} "
                     f"and shape {labels.shape}"
                 )
-            origin = _npz_origin(arrays["origin"], name)
+            origin = _npz_origin(arrays["origin"], name) if "origin" in arrays else (0, 0)
     _check_extent(origin, labels.shape, name)
     try:
         return LabelMap(labels, origin)
@@ -542,6 +556,7 @@ def write_label_map(lm: LabelMap, path: PathLike) -> None:
 
 __all__ = [
     "LABEL_EXTENSIONS",
+    "LABEL_READ_EXTENSIONS",
     "PIXEL_EXTENSIONS",
     "parse_origin",
     "read_label_map",

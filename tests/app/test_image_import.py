@@ -88,6 +88,31 @@ def test_one_object_per_label(make_window, qtbot, tmp_path):
         assert o.name == f"labels label {v}"
 
 
+def test_a_grey_pgm_asks_too_and_its_labels_import(make_window, qtbot, tmp_path):
+    # A grey PGM was Otsu-thresholded with no question (the dialog looked at PNG and NPZ only).
+    win = make_window()
+    lab = np.zeros((6, 9), np.uint8)
+    lab[1:3, 1:4] = 3
+    lab[3:5, 5:8] = 9
+    lab[0, 8] = 200
+    (tmp_path / "grey.pgm").write_bytes(b"P5 9 6 255\n" + lab.tobytes())
+    assert win.files.import_files([tmp_path / "grey.pgm"]) is False  # waits for the answer
+    dlg = _dialog(win)
+    assert dlg.labels_mode.isEnabled() and dlg.map_mode.isEnabled()
+    _click(qtbot, dlg.labels_mode)
+    assert "3 objects" in dlg.summary.text()
+    qtbot.mouseClick(dlg.findChild(QtWidgets.QPushButton, "importButton"), Qt.MouseButton.LeftButton)
+    assert [o.name for o in win.doc.objects] == ["grey label 3", "grey label 9", "grey label 200"]
+    for o, v in zip(win.doc.objects, (3, 9, 200), strict=True):
+        assert o.source == _expected(lab, lab == v)
+    # The same file as a threshold: the pixels above it, as PNG gives them.
+    win.files.import_files([tmp_path / "grey.pgm"])
+    dlg = _dialog(win)
+    dlg.spin.setValue(5)
+    qtbot.mouseClick(dlg.findChild(QtWidgets.QPushButton, "importButton"), Qt.MouseButton.LeftButton)
+    assert win.doc.objects[-1].source == _expected(lab, lab > 5)
+
+
 def test_a_colour_image_offers_no_labels_and_cancel_adds_nothing(make_window, qtbot, tmp_path):
     win = make_window()
     rgb = np.zeros((8, 8, 3), np.uint8)

@@ -654,3 +654,20 @@ def test_atomic_write_replaces_keeps_mode_and_follows_symlinks(tmp_path):
         fh.write("é\n")
     assert (tmp_path / "t.txt").read_bytes() == "é\n".encode()
     assert sorted(os.listdir(tmp_path)) == ["f.bin", "link.bin", "t.txt"]
+
+
+def test_label_map_reads_a_grey_pgm_and_an_npz_without_origin(tmp_path):
+    # One reader for the application's import and `mrm polygonize`: a PGM's grey values are the labels
+    # (16-bit too), its origin comment places it; an NPZ holding `labels` alone sits at the origin.
+    rows = np.array([[0, 0, 300], [7, 7, 0]], dtype=">u2")  # row 0 is the top row
+    p = tmp_path / "l.pgm"
+    p.write_bytes(b"P5\n# mrm:origin -4 9\n3 2 65535\n" + rows.tobytes())
+    assert read_label_map(p) == LabelMap(np.array([[7, 7, 0], [0, 0, 300]]), (-4, 9))
+    plain = tmp_path / "plain.pgm"
+    plain.write_bytes(b"P2 2 1 9 0 5")
+    assert read_label_map(plain) == LabelMap(np.array([[0, 5]]), (0, 0))
+    np.savez(tmp_path / "bare.npz", labels=np.array([[1, 0], [0, 2]], dtype=np.int16))
+    assert read_label_map(tmp_path / "bare.npz") == LabelMap(np.array([[1, 0], [0, 2]]), (0, 0))
+    (tmp_path / "bits.pgm").write_bytes(b"P4 8 1 \xff")  # a bitmap is not a label image
+    with pytest.raises(FileFormatError, match="grey PGM"):
+        read_label_map(tmp_path / "bits.pgm")
