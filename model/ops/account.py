@@ -48,9 +48,10 @@ from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, MRMError, ParameterError
 from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
-from mrm.ops.base import ProgressLike, coerce_params, get_operation, params_to_dict
+from mrm.ops.base import coerce_params, get_operation, params_to_dict
 from mrm.ops.chain import CHAIN_OPERATIONS as _CHAIN_READS
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
+from mrm.progress import ProgressLike, sub_progress
 from mrm.reps.pixels import PixelSet
 
 log = logging.getLogger(__name__)
@@ -384,7 +385,6 @@ def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int
 
 
 def _sub(progress: ProgressLike | None, lo: float, hi: float) -> Any:
-    from mrm.ops.outcome import sub_progress
 
     return None if progress is None else sub_progress(progress, lo, hi)
 

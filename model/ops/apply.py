@@ -15,7 +15,8 @@ from collections.abc import Sequence
 from typing import Any
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.ops.base import Plan, ProgressLike, plan_operation
+from mrm.ops.base import Plan, plan_operation
+from mrm.progress import ProgressLike
 
 #: The modules that register the paper's operations (``dss``, ``discrete_rotation``, ``simplify``, ``union``,
 #: ``corefine``) when imported.

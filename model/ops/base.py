@@ -19,20 +19,19 @@ from __future__ import annotations
 import dataclasses
 import math
 import numbers
-import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any, Literal, Protocol, TypeAlias, runtime_checkable
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 from shapely.geometry.base import BaseGeometry
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
+from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
 from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
+from mrm.progress import NO_PROGRESS, NullProgress, Progress, ProgressLike, SubProgress
 from mrm.reps.pixels import PixelSet
 
 if TYPE_CHECKING:
-    from mrm.geometry.discretize.rational import ProgressLike as StepProgress
     from mrm.ops.outcome import StepOutcome
 
 __all__ = [
@@ -68,134 +67,6 @@ __all__ = [
 # ============================================================================================================
 # Progress and cancel
 # ============================================================================================================
-
-
-@runtime_checkable
-class ProgressLike(Protocol):
-    """What an operation needs from a progress object."""
-
-    def update(self, fraction: float | None = None, message: str | None = None) -> None:
-        """Report ``fraction`` in [0, 1] and a message; raise Cancelled after a cancel."""
-
-    @property
-    def cancelled(self) -> bool:
-        """True once the work was cancelled."""
-
-
-class Progress:
-    """Thread-safe progress with prompt cancellation.
-
-    Parameters
-    ----------
-    callback : callable, optional
-        ``callback(fraction, message)``, called on every update (from the working thread).
-
-    Notes
-    -----
-    ``cancel()`` may be called from any thread; the next ``update()`` (or ``check()``) in the working thread
-    raises :class:`mrm.errors.Cancelled`. Fractions are clamped to [0, 1] and never go backwards.
-    """
-
-    def __init__(self, callback: Callable[[float, str], None] | None = None) -> None:
-        self._lock = threading.Lock()
-        self._event = threading.Event()
-        self._callback = callback
-        self._fraction = 0.0
-        self._message = ""
-
-    @property
-    def fraction(self) -> float:
-        """The last reported fraction, in [0, 1]."""
-        with self._lock:
-            return self._fraction
-
-    @property
-    def message(self) -> str:
-        """The last reported message."""
-        with self._lock:
-            return self._message
-
-    @property
-    def cancelled(self) -> bool:
-        """True once :meth:`cancel` was called."""
-        return self._event.is_set()
-
-    def cancel(self) -> None:
-        """Ask the work to stop at its next report (any thread)."""
-        self._event.set()
-
-    def check(self) -> None:
-        """Raise :class:`Cancelled` if the work was cancelled."""
-        if self._event.is_set():
-            raise Cancelled("cancelled")
-
-    def update(self, fraction: float | None = None, message: str | None = None) -> None:
-        """Report progress; raise :class:`Cancelled` after a cancel.
-
-        Parameters
-        ----------
-        fraction : float, optional
-            Done so far, in [0, 1] (clamped; NaN ignored).
-        message : str, optional
-            What is being done.
-        """
-        self.check()
-        with self._lock:
-            if fraction is not None and fraction == fraction:
-                self._fraction = max(self._fraction, min(1.0, max(0.0, float(fraction))))
-            if message is not None:
-                self._message = str(message)
-            snapshot = (self._fraction, self._message)
-        if self._callback is not None:
-            self._callback(*snapshot)
-
-    def sub(self, start: float, stop: float) -> SubProgress:
-        """A progress for a part of the work that maps its [0, 1] onto [start, stop] of this one."""
-        return SubProgress(self, start, stop)
-
-
-class SubProgress:
-    """The part [start, stop] of a parent progress (cancellation is the parent's)."""
-
-    def __init__(self, parent: ProgressLike, start: float, stop: float) -> None:
-        self._parent = parent
-        self._start = float(start)
-        self._stop = float(stop)
-
-    @property
-    def cancelled(self) -> bool:
-        """True once the parent was cancelled."""
-        return bool(self._parent.cancelled)
-
-    def update(self, fraction: float | None = None, message: str | None = None) -> None:
-        """Report ``fraction`` of this part to the parent; raise Cancelled after a cancel."""
-        mapped = None
-        if fraction is not None and fraction == fraction:
-            f = min(1.0, max(0.0, float(fraction)))
-            mapped = self._start + f * (self._stop - self._start)
-        self._parent.update(mapped, message)
-
-    def sub(self, start: float, stop: float) -> SubProgress:
-        """A nested part."""
-        span = self._stop - self._start
-        return SubProgress(self._parent, self._start + start * span, self._start + stop * span)
-
-
-class NullProgress:
-    """A progress that records nothing and is never cancelled: for scripts and tests."""
-
-    cancelled = False
-
-    def update(self, fraction: float | None = None, message: str | None = None) -> None:
-        """Do nothing."""
-
-    def sub(self, start: float, stop: float) -> NullProgress:
-        """Itself."""
-        return self
-
-
-#: The shared no-op progress.
-NO_PROGRESS = NullProgress()
 
 
 # ============================================================================================================
@@ -637,7 +508,7 @@ class OperationSpec:
         params: Any,
         *,
         limit: int | None = DEFAULT_PIXEL_LIMIT,
-        progress: StepProgress | None = None,
+        progress: ProgressLike | None = None,
     ) -> StepOutcome:
         """Run the operation as a chain step on ``source`` (already in the representation it reads)."""
         if self.step is None:

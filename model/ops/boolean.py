@@ -33,7 +33,7 @@ from mrm.geometry.discretize.exact_shape import (
     number_to_json,
     positive_number,
 )
-from mrm.geometry.discretize.rational import ProgressLike, discretize_exact, discretize_image
+from mrm.geometry.discretize.rational import discretize_exact, discretize_image
 from mrm.geometry.hausdorff import bounds
 from mrm.geometry.hausdorff.bounds import ChainStep, CorefinePart
 from mrm.ops.base import OperationResult, OperationSpec, register
@@ -46,9 +46,9 @@ from mrm.ops.outcome import (
     joint_box,
     model_param,
     source_box,
-    sub_progress,
 )
 from mrm.ops.simplify import euclidean_input
+from mrm.progress import ProgressLike, sub_progress
 from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.summary import optional_function
 

@@ -50,9 +50,10 @@ from mrm.geometry.discretize.exact_shape import (
     number_to_json,
     positive_number,
 )
-from mrm.geometry.discretize.rational import ProgressLike, discretize_exact
+from mrm.geometry.discretize.rational import discretize_exact
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
-from mrm.ops.outcome import StepOutcome, check_limit, check_model, sub_progress
+from mrm.ops.outcome import StepOutcome, check_limit, check_model
+from mrm.progress import ProgressLike, sub_progress
 from mrm.reps.pixels import PixelSet
 
 #: The operations a chain may hold, and the representation each reads.

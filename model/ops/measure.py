@@ -30,7 +30,7 @@ from fractions import Fraction
 from typing import Any, Literal
 
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
-from mrm.geometry.discretize.rational import ProgressLike
+from mrm.progress import ProgressLike
 from mrm.reps.pixels import PixelSet
 
 Direction = Literal["both", "result_within", "source_within"]

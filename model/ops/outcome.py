@@ -30,9 +30,10 @@ from mrm.geometry.discretize.exact_shape import (
     positive_number,
     voxel_bounds,
 )
-from mrm.geometry.discretize.rational import ProgressLike, discretize_exact, discretize_image
+from mrm.geometry.discretize.rational import discretize_exact, discretize_image
 from mrm.geometry.hausdorff.bounds import ChainStep
 from mrm.ops.base import OperationSpec, param
+from mrm.progress import ProgressLike, sub_progress
 from mrm.reps.pixels import Box, PixelSet
 
 T = TypeVar("T")
@@ -200,7 +201,9 @@ def discrete_similarity(
     result = discretize_image(euclid, sim, model, limit=limit, what=what, valid=True)  # R's output is valid
     if result is None:
         exact = image()
-        result = discretize_exact(exact, model, limit=limit, progress=_Scaled(progress, 0.3, 1.0), what=what)
+        result = discretize_exact(
+            exact, model, limit=limit, progress=sub_progress(progress, 0.3, 1.0), what=what
+        )
         return StepOutcome(result, sim, exact, result)
     if progress is not None:
         progress.update(1.0, "done")
@@ -378,23 +381,6 @@ def register_discrete_similarity(
             step=step,
         )
     )
-
-
-class _Scaled:
-    """A progress that maps [0, 1] into [lo, hi] of another one."""
-
-    def __init__(self, inner: ProgressLike | None, lo: float, hi: float) -> None:
-        self.inner, self.lo, self.hi = inner, lo, hi
-
-    def update(self, fraction: float | None = None, message: str | None = None) -> None:
-        if self.inner is not None:
-            f = None if fraction is None else self.lo + (self.hi - self.lo) * max(0.0, min(1.0, fraction))
-            self.inner.update(f, message)
-
-
-def sub_progress(inner: ProgressLike | None, lo: float, hi: float) -> ProgressLike:
-    """A progress for a sub-task that reports into [lo, hi] of ``inner`` (and checks its cancel)."""
-    return _Scaled(inner, lo, hi)
 
 
 def discrete_of(source: Any, model: str, limit: int | None) -> PixelSet:

@@ -13,8 +13,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from mrm.geometry.discretize.exact_shape import box_area
-from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, register
+from mrm.ops.base import OperationResult, OperationSpec, Output, register
 from mrm.ops.outcome import joint_box
+from mrm.progress import ProgressLike
 from mrm.reps.pixels import PixelSet
 
 __all__ = ["DIFFERENCE", "INTERSECTION", "UNION", "SetOpParams"]

@@ -35,8 +35,9 @@ from shapely.geometry.base import BaseGeometry
 from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, exact_number
 from mrm.geometry.hausdorff import bounds as chain
-from mrm.ops.base import OperationResult, OperationSpec, Output, ProgressLike, param, register
+from mrm.ops.base import OperationResult, OperationSpec, Output, param, register
 from mrm.ops.outcome import StepOutcome, factor_map
+from mrm.progress import ProgressLike
 from mrm.reps.pixels import PixelSet
 
 F64 = npt.NDArray[np.float64]

@@ -26,7 +26,7 @@ from mrm.geometry.discretize.exact_shape import (
     number_to_json,
     pixel_box,
 )
-from mrm.geometry.discretize.rational import ProgressLike, discretize_exact
+from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.hausdorff import bounds
 from mrm.ops.base import OperationResult, OperationSpec, register
 from mrm.ops.outcome import (
@@ -38,8 +38,8 @@ from mrm.ops.outcome import (
     estimate_source,
     factor_map,
     factor_params,
-    sub_progress,
 )
+from mrm.progress import ProgressLike, sub_progress
 from mrm.reps.pixels import PixelSet
 
 

@@ -432,3 +432,27 @@ def test_set_operations_are_the_set_operations(pa: set[tuple[int, int]], pb: set
         out = run_operation(name, [a, b]).output
         assert isinstance(out, PixelSet)
         assert {tuple(map(int, p)) for p in out.points()} == expected
+
+
+def test_one_progress_protocol_for_the_library_the_cli_and_the_window() -> None:
+    # The geometry kernels, the operations and the window's tasks take the same object: the window's
+    # TaskProgress is the library's Progress, throttled to what a progress bar can show, and a sub-range
+    # of a parent that has no progress at all is a valid progress.
+    from mrm.app.progress import TaskProgress
+    from mrm.progress import sub_progress
+
+    seen: list[tuple[float, str]] = []
+    p = TaskProgress(lambda f, m: seen.append((f, m)))
+    assert isinstance(p, Progress) and isinstance(p, ProgressLike)
+    for i in range(1, 200):
+        p.update(i / 400, "working")  # within one throttle interval: one report
+    p.update(1.0, "done")  # the end always goes through
+    assert seen[0] == (1 / 400, "working") and seen[-1] == (1.0, "done") and len(seen) < 10
+    free = sub_progress(None, 0.2, 0.4)
+    free.update(0.5, "x")
+    assert not free.cancelled
+    shared = threading.Event()
+    q = TaskProgress(event=shared)
+    shared.set()  # a worker's signal handler sets the shared flag
+    with pytest.raises(Cancelled):
+        q.update(0.1)

@@ -24,12 +24,13 @@ from __future__ import annotations
 import logging
 import math
 from fractions import Fraction
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 
 from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
 from mrm.geometry.discretize.exact_shape import ExactShape, box_area, pixel_box
+from mrm.progress import ProgressLike
 from mrm.reps.pixels import Box, PixelSet
 
 MODELS = ("standard", "supercover", "gauss")
@@ -38,13 +39,6 @@ log = logging.getLogger(__name__)
 
 IntEdge = tuple[int, int, int, int]
 _Triple = tuple[int, int, int]
-
-
-class ProgressLike(Protocol):
-    """What the operations call: ``update(fraction, message)`` raises ``Cancelled`` after a cancel."""
-
-    def update(self, fraction: float | None = None, message: str | None = None) -> None:
-        """Report progress (fraction in [0, 1] or None) and check for a cancel."""
 
 
 def _tick(progress: ProgressLike | None, fraction: float | None, message: str | None = None) -> None:

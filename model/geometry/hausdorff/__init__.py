@@ -68,7 +68,7 @@ import itertools
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -78,15 +78,12 @@ from shapely.geometry.base import BaseGeometry
 from shapely.geometry.polygon import orient
 
 from mrm.errors import InvalidGeometryError
+from mrm.progress import ProgressLike
 
 __all__ = ["HausdorffDistance", "directed_hausdorff", "hausdorff_distance"]
 
 _INF = math.inf
 _MAXF = 1.7976931348623157e308
-
-
-class _Progress(Protocol):
-    def update(self, fraction: float | None = None, message: str | None = None) -> None: ...
 
 
 # ============================================================================================================
@@ -810,7 +807,7 @@ class _Run:
     b: _Shape
     k: int
     t: _Tower
-    progress: _Progress | None
+    progress: ProgressLike | None
     best: _Best = field(default_factory=_Best)
     ticks: int = 0
 
@@ -1607,7 +1604,7 @@ def _setup(a: BaseGeometry, b: BaseGeometry) -> tuple[_Shape, _Shape, int]:
     return _prepare(ra, k), _prepare(rb, k), k
 
 
-def _directed_on(sa: _Shape, sb: _Shape, k: int, t: _Tower, progress: _Progress | None) -> _Best | None:
+def _directed_on(sa: _Shape, sb: _Shape, k: int, t: _Tower, progress: ProgressLike | None) -> _Best | None:
     if not sa.edges:
         return _Best(0)
     if not sb.edges:
@@ -1621,7 +1618,7 @@ _INFINITE = HausdorffDistance(_INF, None, "", 0, 0)
 
 
 def directed_hausdorff(
-    a: BaseGeometry, b: BaseGeometry, *, progress: _Progress | None = None
+    a: BaseGeometry, b: BaseGeometry, *, progress: ProgressLike | None = None
 ) -> HausdorffDistance:
     """Exact directed Hausdorff distance ``h(A, B) = max_{x ∈ A} d(x, B)`` between filled polygonal sets.
 
@@ -1651,7 +1648,7 @@ def directed_hausdorff(
 
 
 def hausdorff_distance(
-    a: BaseGeometry, b: BaseGeometry, *, progress: _Progress | None = None
+    a: BaseGeometry, b: BaseGeometry, *, progress: ProgressLike | None = None
 ) -> HausdorffDistance:
     """Exact Hausdorff distance ``H(A, B) = max(h(A, B), h(B, A))`` between filled polygonal sets.
 
