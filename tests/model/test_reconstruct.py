@@ -166,6 +166,36 @@ def test_far_from_the_origin_coordinates_stay_exact() -> None:
             reconstruct(ps.translate(*t))
 
 
+def test_border_paths_and_corridors_far_from_the_origin_are_translated() -> None:
+    # The kernels hold element coordinates as int32: border.py works relative to the chains' lowest start.
+    ps = disk(6.3) | ps_of(["###"], (6, 0))
+    t = (3 * 2**30 + 1, -(2**39) + 5)
+    near, far = region_of(ps).boundary_chains, region_of(ps.translate(*t)).boundary_chains
+    shift = np.array(t)
+    for a, b in zip(border_paths(near), border_paths(far), strict=True):
+        assert np.array_equal(b.pixels, a.pixels + shift) and b.pixels.dtype == np.int64
+        assert np.array_equal(b.kinds, a.kinds) and np.array_equal(b.step_in, a.step_in)
+    for model in MODELS:
+        for a, b in zip(corridors(near, model), corridors(far, model), strict=True):
+            assert np.array_equal(b.pieces, a.pieces + np.repeat(shift, 2))
+            assert np.array_equal(b.gate_left, a.gate_left + shift) and np.array_equal(b.gate_dir, a.gate_dir)
+
+
+def test_sets_beyond_the_int32_tables_are_refused(monkeypatch) -> None:
+    # R's corridor tables are int32 (_base.Corridors): a set too wide or with too many linels is refused with
+    # a message (the limits are lowered here: no test can hold a mask 2^28 pixels wide).
+    import mrm.geometry.reconstruct as rec
+
+    ps = disk(9.3)
+    monkeypatch.setattr(rec, "INT32_SIDE", 10)
+    with pytest.raises(ParameterError, match="too large"):
+        reconstruct(ps)
+    monkeypatch.setattr(rec, "INT32_SIDE", 2**28)
+    monkeypatch.setattr(rec, "INT32_LINELS", 10)
+    with pytest.raises(ParameterError, match="too large"):
+        reconstruct(ps)
+
+
 def test_coordinates_are_coarse_dyadic_rationals() -> None:
     g = reconstruct(disk(30.5))
     c = shapely.get_coordinates(g).ravel()

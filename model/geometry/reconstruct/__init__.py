@@ -119,6 +119,11 @@ def _scale_cap(ps: PixelSet) -> int:
     return KCAP
 
 
+#: The largest side of A's array and the most linels R takes: its corridor tables hold Q-units (4 per
+#: pixel) and element and piece indices (up to two elements per linel, two pieces per element) as int32.
+INT32_SIDE = 2**28
+INT32_LINELS = 2**28
+
 #: Pieces (over all rings) from which R splits its rings between threads, and the most threads it uses.
 PARALLEL_PIECES = 4000
 MAX_THREADS = 4
@@ -176,6 +181,12 @@ def _run(ps: PixelSet, model: str) -> _Run:
     m = np.ascontiguousarray(ps.mask.view(np.uint8))
     kcap = _scale_cap(ps)
     rings = trace_mask(m)
+    if max(m.shape) > INT32_SIDE or rings.codes.size > INT32_LINELS:
+        # the corridor tables are int32 (Q-units up to 4 × side, elements up to 2 × linels: _base.Corridors)
+        raise ParameterError(
+            f"a {m.shape[1]:,} × {m.shape[0]:,} pixel set with {rings.codes.size:,} linels is too large "
+            f"for R (at most {INT32_SIDE:,} pixels a side and {INT32_LINELS:,} linels)"
+        )
     x0, y0 = ps.origin
     gauss = model == "gauss"
     h, w = m.shape

@@ -83,6 +83,11 @@ class Corridors(NamedTuple):
     gate into it, ``gdir`` the crossing direction) and safety-net vertices ``r0off[k] …`` (``r0``, ``r0t``
     their local piece); ``kmax`` its snapping depth, ``special`` 1 for an isolated pixel (no pieces), 2 for
     two pixels visited once each (cover models), else 0, and ``full`` 1 when every piece is a whole square.
+
+    The per-element, per-piece and per-net-vertex arrays are int32 (coordinates, indices) and int8 (codes,
+    linel counts, directions), not int64: they are most of what R holds (half its peak memory on the
+    camera image with int64). Numba widens them to int64 in every expression, so no product overflows;
+    :func:`mrm.geometry.reconstruct._run` refuses arrays whose Q-units or element counts would not fit.
     """
 
     eoff: np.ndarray

@@ -26,14 +26,14 @@ def build_elements(
     nr = off.size - 1
     lt = codes.size
     cap = 2 * lt + nr + 1
-    ec = np.empty(cap, np.int64)
-    er = np.empty(cap, np.int64)
-    edin = np.empty(cap, np.int64)
-    edout = np.empty(cap, np.int64)
-    enl = np.empty(cap, np.int64)
+    ec = np.empty(cap, np.int32)
+    er = np.empty(cap, np.int32)
+    edin = np.empty(cap, np.int8)
+    edout = np.empty(cap, np.int8)
+    enl = np.empty(cap, np.int8)
     eoff = np.zeros(nr + 1, np.int64)
-    r0 = np.empty((lt + 1, 2), np.int64)
-    r0e = np.empty(lt + 1, np.int64)
+    r0 = np.empty((lt + 1, 2), np.int32)
+    r0e = np.empty(lt + 1, np.int32)
     r0off = np.zeros(nr + 1, np.int64)
     ne = 0
     nv = 0
@@ -127,7 +127,7 @@ def element_visits(ec: np.ndarray, er: np.ndarray, h: int, w: int) -> np.ndarray
     for r in range(h):
         start[r + 1] += start[r]
     fill = start[:-1].copy()
-    order = np.empty(ne, np.int64)
+    order = np.empty(ne, np.int32)
     for k in range(ne):
         order[fill[er[k]]] = k
         fill[er[k]] += 1
@@ -219,9 +219,9 @@ def build_pieces(
     """
     ne = e1 - e0
     cap = 2 * ne + 2
-    rect = np.empty((cap, 4), np.int64)
-    pel = np.empty(cap, np.int64)
-    internal = np.zeros(cap, np.int64)  # 1: the gate before this piece is inside its pixel
+    rect = np.empty((cap, 4), np.int32)
+    pel = np.empty(cap, np.int32)
+    internal = np.zeros(cap, np.int8)  # 1: the gate before this piece is inside its pixel
     n = 0
     full = 1
     for k in range(ne):
@@ -266,9 +266,9 @@ def build_pieces(
             pel[n] = k
             internal[n] = 1
             n += 1
-    gp = np.empty((n, 2), np.int64)
-    gq = np.empty((n, 2), np.int64)
-    gdir = np.empty(n, np.int64)
+    gp = np.empty((n, 2), np.int32)
+    gq = np.empty((n, 2), np.int32)
+    gdir = np.empty(n, np.int8)
     for k in range(n):
         a = (k - 1) % n
         if internal[k] == 1:
@@ -295,7 +295,7 @@ def net_pieces(
     first = np.full(pel[n - 1] + 2, -1, np.int64)
     for k in range(n - 1, -1, -1):
         first[pel[k]] = k
-    out = np.full(r0.shape[0], -1, np.int64)
+    out = np.full(r0.shape[0], -1, np.int32)
     for v in range(r0.shape[0]):
         k = first[r0e_local[v]]
         while 0 <= k < n and pel[k] == r0e_local[v]:

@@ -62,11 +62,11 @@ def dual_elements(
     """
     nr = off.size - 1
     lt = codes.size
-    ec = np.empty(lt, np.int64)
-    er = np.empty(lt, np.int64)
-    edin = np.empty(lt, np.int64)
-    edout = np.empty(lt, np.int64)
-    enl = np.ones(lt, np.int64)
+    ec = np.empty(lt, np.int32)
+    er = np.empty(lt, np.int32)
+    edin = np.empty(lt, np.int8)
+    edout = np.empty(lt, np.int8)
+    enl = np.ones(lt, np.int8)
     eoff = np.zeros(nr + 1, np.int64)
     for k in range(nr):
         o0 = off[k]
@@ -104,10 +104,10 @@ def dual_pieces(
     vertices, (m, 2)) and ``r0t`` (the local piece of each net vertex).
     """
     n = e1 - e0
-    rect = np.empty((n, 4), np.int64)
-    pel = np.empty(n, np.int64)
-    r0 = np.empty((n, 2), np.int64)
-    r0t = np.empty(n, np.int64)
+    rect = np.empty((n, 4), np.int32)
+    pel = np.empty(n, np.int32)
+    r0 = np.empty((n, 2), np.int32)
+    r0t = np.empty(n, np.int32)
     full = 1
     nv = 0
     for k in range(n):
@@ -134,9 +134,9 @@ def dual_pieces(
             r0[nv, 1] = 4 * r + (1 if hy > 0 else -1)
             r0t[nv] = k
             nv += 1
-    gp = np.empty((n, 2), np.int64)
-    gq = np.empty((n, 2), np.int64)
-    gdir = np.empty(n, np.int64)
+    gp = np.empty((n, 2), np.int32)
+    gq = np.empty((n, 2), np.int32)
+    gdir = np.empty(n, np.int8)
     _gates(rect, gp, gq, gdir)
     return rect, pel, gp, gq, gdir, np.array([full], np.int64), r0[:nv], r0t[:nv]
 
@@ -152,13 +152,13 @@ def dual_corridors_all(
     eoff, ec, er, edin, edout, enl, cnt = dual_elements(codes, off, sx, sy, h, w)
     nr = off.size - 1
     cap = ec.size
-    rect = np.empty((cap, 4), np.int64)
-    pel = np.empty(cap, np.int64)
-    gp = np.empty((cap, 2), np.int64)
-    gq = np.empty((cap, 2), np.int64)
-    gdir = np.empty(cap, np.int64)
-    r0 = np.empty((cap, 2), np.int64)
-    r0t = np.empty(cap, np.int64)
+    rect = np.empty((cap, 4), np.int32)
+    pel = np.empty(cap, np.int32)
+    gp = np.empty((cap, 2), np.int32)
+    gq = np.empty((cap, 2), np.int32)
+    gdir = np.empty(cap, np.int8)
+    r0 = np.empty((cap, 2), np.int32)
+    r0t = np.empty(cap, np.int32)
     poff = np.zeros(nr + 1, np.int64)
     r0off = np.zeros(nr + 1, np.int64)
     kmax = np.zeros(nr, np.int64)

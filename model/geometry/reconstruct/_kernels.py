@@ -312,16 +312,16 @@ def corridors_all(
     cnt = element_visits(ec, er, h, w)
     nr = off.size - 1
     cap = 2 * ec.size + 2 * nr + 2
-    rect = np.empty((cap, 4), np.int64)
-    pel = np.empty(cap, np.int64)
-    gp = np.empty((cap, 2), np.int64)
-    gq = np.empty((cap, 2), np.int64)
-    gdir = np.empty(cap, np.int64)
+    rect = np.empty((cap, 4), np.int32)
+    pel = np.empty(cap, np.int32)
+    gp = np.empty((cap, 2), np.int32)
+    gq = np.empty((cap, 2), np.int32)
+    gdir = np.empty(cap, np.int8)
     poff = np.zeros(nr + 1, np.int64)
     kmax = np.zeros(nr, np.int64)
     special = np.zeros(nr, np.int64)
     full = np.zeros(nr, np.int64)
-    r0t = np.full(r0.shape[0], -1, np.int64)
+    r0t = np.full(r0.shape[0], -1, np.int32)
     pos = 0
     for k in range(nr):
         e0 = eoff[k]
@@ -342,7 +342,7 @@ def corridors_all(
         if e1 - e0 == 2 and fl[0] == 1:
             special[k] = 2
         kmax[k] = min(_kmax_for(rc), kcap)
-        r0l = np.empty(r0off[k + 1] - r0off[k], np.int64)
+        r0l = np.empty(r0off[k + 1] - r0off[k], np.int32)
         for i in range(r0l.size):
             r0l[i] = r0e[r0off[k] + i] - e0
         _cp1(r0t, r0off[k], net_pieces(r0[r0off[k] : r0off[k + 1]], r0l, rc, pl))

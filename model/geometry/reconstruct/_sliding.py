@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from mrm.geometry._jit import njit
-from mrm.geometry.reconstruct._base import _BIG
+from mrm.geometry.reconstruct._base import _BIG, _grow1, _grow2
 from mrm.geometry.reconstruct._reach import _QUAD_X, _QUAD_Y, _best_line, _clip, _vline
 
 #: Most vertices a polygon of the sliding pass may have; a ring that needs more is left to
@@ -147,6 +147,61 @@ def _store_poly(
 
 
 @njit(cache=True)
+def _pack_poly(
+    buf: np.ndarray,
+    vb: np.ndarray,
+    cur: np.ndarray,
+    size: np.ndarray,
+    pid: np.ndarray,
+    pvb: np.ndarray,
+    pos: int,
+    poff: np.ndarray,
+    psize: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, int]:  # pragma: no cover
+    # A working polygon's live buffers appended to the packed store (pid, pvb) from pos, quadrant q at
+    # poff[q] with psize[q] vertices; the store grows when full. Returns it and the new end.
+    need = pos + size[0] + size[1] + size[2] + size[3]
+    if need > pid.size:
+        ncap = max(2 * pid.size, need)
+        pid = _grow1(pid, pos, ncap)
+        pvb = _grow2(pvb, pos, ncap)
+    for q in range(4):
+        sz = size[q]
+        poff[q] = pos
+        psize[q] = sz
+        c = cur[q]
+        for v in range(sz):
+            pid[pos + v] = buf[q, c, v]
+            for u in range(4):
+                pvb[pos + v, u] = vb[q, c, v, u]
+        pos += sz
+    return pid, pvb, pos
+
+
+@njit(cache=True)
+def _unpack_poly(
+    pid: np.ndarray,
+    pvb: np.ndarray,
+    poff: np.ndarray,
+    psize: np.ndarray,
+    dbuf: np.ndarray,
+    dvb: np.ndarray,
+    dcur: np.ndarray,
+    dsize: np.ndarray,
+) -> None:  # pragma: no cover
+    # A polygon of the packed store into buffer 0 of a working one.
+    for q in range(4):
+        sz = psize[q]
+        o = poff[q]
+        dsize[q] = sz
+        dcur[q] = 0
+        for v in range(sz):
+            dbuf[q, 0, v] = pid[o + v]
+            for u in range(4):
+                dvb[q, 0, v, u] = pvb[o + v, u]
+
+
+@njit(cache=True)
 def _meet_front(
     wbuf: np.ndarray,
     wvb: np.ndarray,
@@ -221,11 +276,15 @@ def sliding_reach(
     svb = np.empty((4, cap + 2, 4), np.int64)
     ssize = np.zeros(4, np.int64)
     ffull = True  # F has no gate yet (the whole plane)
-    # the suffixes B_x, x in [base, m): gates x+1 … m
+    # the suffixes B_x, x in [base, m): gates x+1 … m, packed one after the other (quadrant q of B_x is
+    # bsize[x − base, q] vertices from boff[x − base, q] in bid, bvb): they have 3 to 8 vertices, so a
+    # slot of cap vertices per quadrant each would take ~25 times the memory (2.8 MB on the camera image)
     blen = 16
-    bbuf = np.empty((blen, 4, cap + 2), np.int64)
-    bvb = np.empty((blen, 4, cap + 2, 4), np.int64)
     bsize = np.zeros((blen, 4), np.int64)
+    boff = np.zeros((blen, 4), np.int64)
+    bid = np.empty(16 * blen, np.int64)
+    bvb = np.empty((16 * blen, 4), np.int64)
+    bpos = 0
     base = 0
     m = 0  # no block yet
     j = 0
@@ -249,23 +308,27 @@ def sliding_reach(
             j = m
             if m - i > blen:
                 blen = 2 * (m - i)
-                bbuf = np.empty((blen, 4, cap + 2), np.int64)
-                bvb = np.empty((blen, 4, cap + 2, 4), np.int64)
                 bsize = np.zeros((blen, 4), np.int64)
+                boff = np.zeros((blen, 4), np.int64)
             base = i
+            bpos = 0
             for q in range(4):
                 wcur[q] = 0
                 wsize[q] = _init_gate(wbuf, wvb, q, 0, 2 * m, ptx, pty)
-            _store_poly(wbuf, wvb, wcur, wsize, bbuf[m - 1 - base], bvb[m - 1 - base], bsize[m - 1 - base])
+            bid, bvb, bpos = _pack_poly(
+                wbuf, wvb, wcur, wsize, bid, bvb, bpos, boff[m - 1 - base], bsize[m - 1 - base]
+            )
             for x in range(m - 2, i - 1, -1):
                 for pt in range(2):
                     for q in range(4):
                         if not _clip_in(wbuf, wvb, wcur, wsize, q, 2 * (x + 1) + pt, ptx, pty, sg):
                             return False
-                _store_poly(wbuf, wvb, wcur, wsize, bbuf[x - base], bvb[x - base], bsize[x - base])
+                bid, bvb, bpos = _pack_poly(
+                    wbuf, wvb, wcur, wsize, bid, bvb, bpos, boff[x - base], bsize[x - base]
+                )
             ffull = True
         # ---- W = B_i ∩ F, then extend j while W ∩ (gate j+1) is not empty; F grows with j
-        _copy_poly(bbuf[i - base], bvb[i - base], bsize[i - base], wbuf, wvb, wcur, wsize)
+        _unpack_poly(bid, bvb, boff[i - base], bsize[i - base], wbuf, wvb, wcur, wsize)
         if not ffull and _meet_front(wbuf, wvb, wcur, wsize, fbuf, fcur, fsize, ptx, pty, sg) < 0:
             return False
         spoiled = False  # W lost to a failed clip (its buffers are reused): back from the snapshot

@@ -115,12 +115,17 @@ def _chains_arrays(
     return np.ascontiguousarray(codes), off, sx, sy
 
 
-def _elements(chains: Sequence[CrackChain]) -> tuple[IntArray, ...]:
+def _elements(chains: Sequence[CrackChain]) -> tuple[tuple[IntArray, ...], int, int]:
+    # The elements relative to the chains' lowest start (mx, my): the kernel stores coordinates as int32
+    # (._base.Corridors); the chains of one pixel set lie anywhere up to ±2⁴⁰ but span far less.
     for c in chains:
         if not c.is_closed():
             raise ValueError(f"crack chain {c} is not closed")
     codes, off, sx, sy = _chains_arrays(chains)
-    return tuple(_k.build_elements(codes, off, sx, sy))
+    mx, my = int(sx.min()), int(sy.min())
+    if max(int(sx.max()) - mx, int(sy.max()) - my) + int(np.diff(off).max()) > 2**28:
+        raise ValueError("the crack chains spread over more than 2^28 pixels")
+    return tuple(_k.build_elements(codes, off, sx - mx, sy - my)), mx, my
 
 
 def border_paths(chains: Sequence[CrackChain]) -> list[BorderPath]:
@@ -133,16 +138,16 @@ def border_paths(chains: Sequence[CrackChain]) -> list[BorderPath]:
     """
     if not chains:
         return []
-    eoff, ec, er, edin, edout, enl, *_ = _elements(chains)
+    (eoff, ec, er, edin, edout, enl, *_), mx, my = _elements(chains)
     out = []
     for k in range(len(chains)):
         a, b = int(eoff[k]), int(eoff[k + 1])
         out.append(
             BorderPath(
-                np.stack([ec[a:b], er[a:b]], axis=1),
-                edin[a:b].copy(),
-                edout[a:b].copy(),
-                enl[a:b].copy(),
+                np.stack([ec[a:b].astype(np.int64) + mx, er[a:b].astype(np.int64) + my], axis=1),
+                edin[a:b].astype(np.int64),
+                edout[a:b].astype(np.int64),
+                enl[a:b].astype(np.int64),
             )
         )
     return out
@@ -178,18 +183,19 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
         return []
     if model == "gauss":
         return _dual_corridors(chains)
-    eoff, ec, er, edin, edout, enl, _r0off, _r0, _r0e = _elements(chains)
+    (eoff, ec, er, edin, edout, enl, _r0off, _r0, _r0e), ox, oy = _elements(chains)
     # Shift to non-negative array indices for the visit counter.
-    mx, my = int(ec.min()), int(er.min())
-    cx = ec - mx
-    cy = er - my
+    dx, dy = int(ec.min()), int(er.min())
+    cx = ec - np.int32(dx)
+    cy = er - np.int32(dy)
+    mx, my = ox + dx, oy + dy
     cnt = _k.element_visits(cx, cy, int(cy.max()) + 1, int(cx.max()) + 1)
     out = []
     for k in range(len(chains)):
         a, b = int(eoff[k]), int(eoff[k + 1])
         if b - a == 1 and enl[a] == 4:
             # an isolated pixel: one piece, its open square, no gate
-            x, y = int(ec[a]), int(er[a])
+            x, y = int(ec[a]) + ox, int(er[a]) + oy
             out.append(
                 Corridor(
                     np.array([[x - 0.5, x + 0.5, y - 0.5, y + 0.5]]),
@@ -206,10 +212,10 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
         out.append(
             Corridor(
                 (rect + shift) / 4.0,
-                pel.copy(),
+                pel.astype(np.int64),
                 (gp + shift[[0, 2]]) / 4.0,
                 (gq + shift[[0, 2]]) / 4.0,
-                gdir.copy(),
+                gdir.astype(np.int64),
                 bool(full[0]),
             )
         )
@@ -236,10 +242,10 @@ def _dual_corridors(chains: Sequence[CrackChain]) -> list[Corridor]:
         out.append(
             Corridor(
                 (rect + shift) / 4.0,
-                pel.copy(),
+                pel.astype(np.int64),
                 (gp + shift[[0, 2]]) / 4.0,
                 (gq + shift[[0, 2]]) / 4.0,
-                gdir.copy(),
+                gdir.astype(np.int64),
                 bool(full[0]),
             )
         )
