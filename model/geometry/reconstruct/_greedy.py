@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import _BIG, _EPS, SRC_LINES, SRC_PATCH
 from mrm.geometry.reconstruct._reach import dss_reach, general_reach
 from mrm.geometry.reconstruct._sliding import sliding_reach
@@ -73,7 +73,7 @@ def ring_reach(
     general_reach(gp, gq, gdir, todo, reach, lines)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _gate_param(line: np.ndarray, gp: np.ndarray, gq: np.ndarray, k: int) -> float:  # pragma: no cover
     # Parameter (Q-units along the unit direction) where the line meets the gate's supporting line.
     if gp[k, 0] == gq[k, 0]:
@@ -85,12 +85,12 @@ def _gate_param(line: np.ndarray, gp: np.ndarray, gq: np.ndarray, k: int) -> flo
     return float((gp[k, 1] - line[1]) / line[3])
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _inside_rect(rect: np.ndarray, k: int, x: float, y: float, eps: float) -> bool:  # pragma: no cover
     return bool(rect[k, 0] + eps < x < rect[k, 1] - eps and rect[k, 2] + eps < y < rect[k, 3] - eps)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _locate(
     lines: np.ndarray,
     s: int,
@@ -125,7 +125,7 @@ def _locate(
     return t, lam, ok
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[float, float, bool]:  # pragma: no cover
     den = l1[2] * l2[3] - l1[3] * l2[2]
     if abs(den) < 1e-12:
@@ -136,7 +136,7 @@ def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[float, float, bool]:  # pragm
     return l1[0] + lam * l1[2], l1[1] + lam * l1[3], True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _chord_point(
     ln: np.ndarray, rect: np.ndarray, k: int, lam_min: float, lam_max: float
 ) -> tuple[float, float, bool]:  # pragma: no cover

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import _DX, _DY, SRC_LINES, SRC_NET, SRC_SPLICE
 from mrm.geometry.reconstruct._check import _in_piece, edge_ok, gate_rays, rays_admit, verify_ring
 
 # ============================================================================================ repair
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _seg_point_in_rect(
     ax: float, ay: float, bx: float, by: float, rect: np.ndarray, k: int, frac: float
 ) -> tuple[float, float, bool]:  # pragma: no cover
@@ -39,7 +39,7 @@ def _seg_point_in_rect(
     return ax + t * (bx - ax), ay + t * (by - ay), True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _net_crossing(
     r0: np.ndarray, r0t: np.ndarray, k: int, n: int, gp: np.ndarray, gdir: np.ndarray
 ) -> tuple[int, int, int]:  # pragma: no cover
@@ -267,7 +267,7 @@ def prune_ring(
     return ix, iy, vt, vs, vl
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _clip_poly(
     px: np.ndarray,
     py: np.ndarray,
@@ -299,7 +299,7 @@ def _clip_poly(
     return m
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _cone_fwd(
     ax: int,
     ay: int,
@@ -345,7 +345,7 @@ def _cone_fwd(
         okc[row, k] = ok
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _cone_bwd(
     bx: int,
     by: int,
@@ -390,7 +390,7 @@ def _cone_bwd(
         okc[row, k] = ok
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _merge_cones(
     ax: int,
     ay: int,
@@ -484,7 +484,7 @@ def _merge_cones(
     return 0, 0, 0, False
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _sees_piece(
     rect: np.ndarray,
     r: int,
@@ -519,7 +519,7 @@ def _sees_piece(
     return nv >= 3
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _merge_pair(
     ax: int,
     ay: int,
@@ -722,7 +722,7 @@ def small_triangle(
     return tx, ty, tt, False
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def window_bound(reach: np.ndarray) -> int:  # pragma: no cover
     """A lower bound on the vertices of any ring of the corridor: the fewest windows covering one lap.
 
@@ -905,7 +905,7 @@ def small_polygon(
     return tx, ty, tt, False
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _unwrap6(t: np.ndarray, i: int, n: int, jj: np.ndarray, tt: np.ndarray) -> None:  # pragma: no cover
     # Indices of vertices i-2 … i+3 (cyclic) and their pieces unwrapped from the first.
     m = t.size

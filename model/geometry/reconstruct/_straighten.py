@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import _DX, _DY
 from mrm.geometry.reconstruct._check import (
     _in_piece,
@@ -19,7 +19,7 @@ from mrm.geometry.reconstruct._check import (
 # ============================================================================================ straightening
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _window_fit(
     dx: int, dy: int, gp: np.ndarray, gq: np.ndarray, g0: int, g1: int, n: int
 ) -> tuple[int, int, int, int]:  # pragma: no cover
@@ -46,7 +46,7 @@ def _window_fit(
     return lo, hi, glo, ghi
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def simplest_line(
     gp: np.ndarray, gq: np.ndarray, g0: int, g1: int, n: int, ex: int, ey: int, depth: int
 ) -> tuple[bool, int, int, int]:  # pragma: no cover
@@ -124,7 +124,7 @@ def simplest_line(
     return False, 0, 0, 0
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _vget(
     x: np.ndarray, y: np.ndarray, t: np.ndarray, m: int, n: int, j: int
 ) -> tuple[int, int, int]:  # pragma: no cover
@@ -133,7 +133,7 @@ def _vget(
     return x[b], y[b], t[b] + n * ((j - b) // m)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _edge_line(
     x: np.ndarray,
     y: np.ndarray,
@@ -168,7 +168,7 @@ def _meet_int(
     return (fc1 * d2x - d1x * fc2) / den, (fc1 * d2y - d1y * fc2) / den, True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _piece_of(
     fx: float, fy: float, tlo: int, thi: int, rect: np.ndarray, n: int, sc: int
 ) -> int:  # pragma: no cover
@@ -185,7 +185,7 @@ def _piece_of(
     return t
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _place(
     fx: float,
     fy: float,
@@ -244,7 +244,7 @@ def _place(
     return 0, 0, 0, False
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _local_ok(
     x: np.ndarray, y: np.ndarray, t: np.ndarray, m: int, n: int, i: int
 ) -> bool:  # pragma: no cover
@@ -280,7 +280,7 @@ def _local_ok(
     return True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _simplest_edge_line(
     x: np.ndarray,
     y: np.ndarray,
