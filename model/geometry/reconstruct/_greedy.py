@@ -12,7 +12,7 @@ from mrm.geometry.reconstruct._sliding import sliding_reach
 # ============================================================================================ V4 greedy
 
 #: Windows (gates) per start above which a ring's preimages are computed in one sliding pass.
-_SLIDE_RATIO = 20
+_SLIDE_RATIO = 14
 
 
 @njit(cache=True)
@@ -66,8 +66,9 @@ def ring_reach(
         else:
             work += rd[k]
             starts += 1
-    # measured break-even: windows of about 17 gates on average (text's largest ring; camera's, at 38,
-    # takes 4.6 ms one way against 10.8 the other)
+    # measured break-even: windows of about 17 gates on average when both passes counted references
+    # (camera's largest ring, at 38, took 4.6 ms one way against 10.8 the other); without the counting
+    # (leaf_njit) the sliding pass gained more, and text's largest ring (about 17) is 1 ms faster sliding
     if work > _SLIDE_RATIO * starts and sliding_reach(gp, gq, gdir, todo, reach, lines):
         return
     general_reach(gp, gq, gdir, todo, reach, lines)
