@@ -723,6 +723,26 @@ def small_triangle(
 
 
 @leaf_njit(cache=True)
+def _window_bound_walk(reach: np.ndarray, s0: int) -> int:  # pragma: no cover
+    # window_bound by walking the greedy chain from every start of the window s0 … s0 + reach[s0].
+    n = reach.size
+    best = 1 << 30
+    for s in range(s0, s0 + reach[s0] + 1):
+        t = s
+        c = 0
+        while t < s + n and c < best:
+            step = reach[t % n]
+            if step <= 0:
+                c = 1 << 30
+                break
+            t += step
+            c += 1
+        if c < best:
+            best = c
+    return best
+
+
+@njit(cache=True)
 def window_bound(reach: np.ndarray) -> int:  # pragma: no cover
     """A lower bound on the vertices of any ring of the corridor: the fewest windows covering one lap.
 
@@ -730,17 +750,56 @@ def window_bound(reach: np.ndarray) -> int:  # pragma: no cover
     pieces of consecutive vertices advance by one lap in total, so a ring of m vertices is a cyclic chain of
     m windows, each starting where the last one ends. Starts are tried across the longest window (every
     chain has a vertex there); the greedy longest jump is optimal for a fixed start.
+
+    The chains of the starts soon land on a piece the chain of the first start visits, and from there follow
+    it: that chain is walked once (far enough for every start's lap) with each piece's index on it, and a
+    later chain stops at the first piece it shares, its remaining count read by bisection on the first
+    one's pieces. Same value as walking every chain to its end (:func:`_window_bound_walk`, kept for small
+    corridors), which on a large ring with a long window cost (longest window) × (bound) steps: 194,000 on
+    camera's outer ring, now about 5,000.
     """
     n = reach.size
     s0 = 0
     for i in range(n):
         if reach[i] > reach[s0]:
             s0 = i
+    r0 = reach[s0]
+    if r0 <= 0 or n <= 64:
+        return _window_bound_walk(reach, s0)
+    lim = s0 + r0 + n  # the last start's lap ends here
+    idx = np.full(r0 + 2 * n + 1, -1, np.int64)  # piece − s0 → its index on the first chain, −1: off it
+    pos = np.empty(r0 + n + 2, np.int64)
+    t = s0
+    last = 0
+    while True:
+        pos[last] = t
+        idx[t - s0] = last
+        if t >= lim:
+            break
+        step = reach[t % n]
+        if step <= 0:
+            break  # a dead end: no chain through it reaches its lap
+        t += step
+        last += 1
     best = 1 << 30
-    for s in range(s0, s0 + reach[s0] + 1):
+    for s in range(s0, s0 + r0 + 1):
+        tgt = s + n
         t = s
         c = 0
-        while t < s + n and c < best:
+        while t < tgt and c < best:
+            i = idx[t - s0]
+            if i >= 0:
+                # from here on the first chain: its first piece at or past tgt
+                lo = i
+                hi = last + 1
+                while lo < hi:
+                    mid = (lo + hi) // 2
+                    if pos[mid] >= tgt:
+                        hi = mid
+                    else:
+                        lo = mid + 1
+                c = 1 << 30 if lo > last else c + lo - i
+                break
             step = reach[t % n]
             if step <= 0:
                 c = 1 << 30
