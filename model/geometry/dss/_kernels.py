@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 
 A, B, LO, HI = 0, 1, 2, 3
 FX, FY, LX, LY = 4, 5, 6, 7
@@ -149,7 +149,7 @@ def shift_of(a: int, b: int, adj: int) -> tuple[int, int]:
     return -1, 0
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def init_state(st: np.ndarray, x: int, y: int, idx: int) -> None:
     """Make ``st`` the one-point DSS {(x, y)} at chain index ``idx``."""
     for k in range(STATE_SIZE):
@@ -161,12 +161,12 @@ def init_state(st: np.ndarray, x: int, y: int, idx: int) -> None:
     st[LI] = idx
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def _rem(st: np.ndarray, x: int, y: int) -> int:
     return int(st[A] * x - st[B] * y)
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def is_extendable_front(st: np.ndarray, qx: int, qy: int, adj: int) -> int:
     """DGtal's case code for adding (qx, qy) at the front: 0 = rejected, 1-9 = how to update."""
     dx = qx - st[LX]
@@ -205,7 +205,7 @@ def is_extendable_front(st: np.ndarray, qx: int, qy: int, adj: int) -> int:
     return 0
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _set_steps_shift(st: np.ndarray, adj: int) -> None:
     s1x, s1y, s2x, s2y = steps_of(st[A], st[B], adj)
     st[S1X] = s1x
@@ -214,7 +214,7 @@ def _set_steps_shift(st: np.ndarray, adj: int) -> None:
     st[S2Y] = s2y
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def extend_front(st: np.ndarray, qx: int, qy: int, qi: int, adj: int) -> bool:
     """Add (qx, qy), chain index ``qi``, at the front if the result is still a DSS; return whether it was."""
     c = is_extendable_front(st, qx, qy, adj)
@@ -224,7 +224,7 @@ def extend_front(st: np.ndarray, qx: int, qy: int, qi: int, adj: int) -> bool:
     return True
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def apply_front(st: np.ndarray, c: int, qx: int, qy: int, qi: int, adj: int) -> None:
     """Add (qx, qy) at the front given its non-zero case code ``c`` from :func:`is_extendable_front`."""
     # The frequent cases (the slope does not change) stay here, small enough to be inlined by LLVM;
@@ -247,7 +247,7 @@ def apply_front(st: np.ndarray, c: int, qx: int, qy: int, qi: int, adj: int) -> 
     st[LI] = qi
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _apply_slope_change(st: np.ndarray, c: int, qx: int, qy: int, adj: int) -> None:
     # cases 1, 3, 4, 7, 8 of DGtal's extendFront (the front point L is updated by the caller)
     if c == 1:
@@ -308,7 +308,7 @@ def _apply_slope_change(st: np.ndarray, c: int, qx: int, qy: int, adj: int) -> N
         st[UFY] = st[ULY]
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def negate(st: np.ndarray) -> None:
     """Reverse the orientation of the DSS in place (DGtal ``negate``): back and front swap."""
     a = st[A]
@@ -331,7 +331,7 @@ def negate(st: np.ndarray) -> None:
     st[LI] = t
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def extend_back(st: np.ndarray, qx: int, qy: int, qi: int, adj: int) -> bool:
     """Add (qx, qy), chain index ``qi``, at the back if the result is still a DSS."""
     negate(st)
@@ -340,7 +340,7 @@ def extend_back(st: np.ndarray, qx: int, qy: int, qi: int, adj: int) -> bool:
     return ok
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _retract_update_params(st: np.ndarray, ndx: int, ndy: int, adj: int) -> None:
     st[A] = ndy
     st[B] = ndx
@@ -353,7 +353,7 @@ def _retract_update_params(st: np.ndarray, ndx: int, ndy: int, adj: int) -> None
         st[SHY] = sy
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _retract_upper_turn(st: np.ndarray, nx: int, ny: int, adj: int) -> None:
     # The back is the only upper leaning point Uf and the lower side has a single leaning point too:
     # the new slope is the vector from the Bezout point Uf + shift to Lf.
@@ -371,7 +371,7 @@ def _retract_upper_turn(st: np.ndarray, nx: int, ny: int, adj: int) -> None:
     _retract_update_params(st, ndx, ndy, adj)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _retract_lower_turn(st: np.ndarray, nx: int, ny: int, adj: int) -> None:
     # The mirror case: the back is Lf, alone on its side; the slope turns to Uf − (Lf − shift).
     bx = st[LFX] - st[SHX]
@@ -388,7 +388,7 @@ def _retract_lower_turn(st: np.ndarray, nx: int, ny: int, adj: int) -> None:
     _retract_update_params(st, ndx, ndy, adj)
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def retract_back(st: np.ndarray, nx: int, ny: int, ni: int, adj: int) -> bool:
     """Remove the back point; (nx, ny), chain index ``ni``, is the point that follows it in the DSS.
 
@@ -433,7 +433,7 @@ def _wrap(k: int, m: int) -> int:
     return k
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def check_chain(pts: np.ndarray, closed: bool, adj: int) -> int:
     """Return the first index k whose step to the next point is not one elementary step, or −1."""
     n = pts.shape[0]
@@ -445,7 +445,7 @@ def check_chain(pts: np.ndarray, closed: bool, adj: int) -> int:
     return -1
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _write_segment(out: np.ndarray, k: int, st: np.ndarray) -> None:
     out[k, 0] = st[FI]
     out[k, 1] = st[LI]
@@ -486,7 +486,7 @@ def greedy_kernel(pts: np.ndarray, m: int, last_index: int, adj: int) -> np.ndar
     return out[:k]
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _extend_front_max(st: np.ndarray, pts: np.ndarray, m: int, limit: int, adj: int) -> None:
     # Extend while the next point keeps a DSS, never beyond index ``limit``.
     e = st[LI]
@@ -497,7 +497,7 @@ def _extend_front_max(st: np.ndarray, pts: np.ndarray, m: int, limit: int, adj: 
         e += 1
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def _retract_once(st: np.ndarray, pts: np.ndarray, m: int, adj: int) -> None:
     ni = st[FI] + 1
     q = _wrap(ni, m)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 
 # ============================================================================================ exact checks
 
@@ -45,7 +45,7 @@ def segments_meet(
     return o4 == 0 and _on_seg(cx, cy, dx, dy, bx, by)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def edge_ok(
     ux: int,
     uy: int,
@@ -113,7 +113,7 @@ def edge_ok(
     return True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def gate_rays(
     ox: int, oy: int, t0: int, t1: int, fwd: bool, gp: np.ndarray, gq: np.ndarray, sc: int
 ) -> tuple[int, int, int, int, bool]:  # pragma: no cover
@@ -169,12 +169,12 @@ def rays_admit(
     return cr < 0 < cl
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _in_piece(rect: np.ndarray, t: int, x: int, y: int, sc: int) -> bool:  # pragma: no cover
     return bool(rect[t, 0] * sc < x < rect[t, 1] * sc and rect[t, 2] * sc < y < rect[t, 3] * sc)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def verify_ring(
     vx: np.ndarray,
     vy: np.ndarray,
@@ -264,7 +264,7 @@ def verify_ring(
 # ============================================================================================ snapping
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def snap_ring(
     fx: np.ndarray,
     fy: np.ndarray,

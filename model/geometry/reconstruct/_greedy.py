@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import _BIG, _EPS, SRC_LINES, SRC_PATCH
 from mrm.geometry.reconstruct._reach import dss_reach, general_reach
 from mrm.geometry.reconstruct._sliding import sliding_reach
@@ -12,7 +12,7 @@ from mrm.geometry.reconstruct._sliding import sliding_reach
 # ============================================================================================ V4 greedy
 
 #: Windows (gates) per start above which a ring's preimages are computed in one sliding pass.
-_SLIDE_RATIO = 20
+_SLIDE_RATIO = 14
 
 
 @njit(cache=True)
@@ -66,14 +66,15 @@ def ring_reach(
         else:
             work += rd[k]
             starts += 1
-    # measured break-even: windows of about 17 gates on average (text's largest ring; camera's, at 38,
-    # takes 4.6 ms one way against 10.8 the other)
+    # measured break-even: windows of about 17 gates on average when both passes counted references
+    # (camera's largest ring, at 38, took 4.6 ms one way against 10.8 the other); without the counting
+    # (leaf_njit) the sliding pass gained more, and text's largest ring (about 17) is 1 ms faster sliding
     if work > _SLIDE_RATIO * starts and sliding_reach(gp, gq, gdir, todo, reach, lines):
         return
     general_reach(gp, gq, gdir, todo, reach, lines)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _gate_param(line: np.ndarray, gp: np.ndarray, gq: np.ndarray, k: int) -> float:  # pragma: no cover
     # Parameter (Q-units along the unit direction) where the line meets the gate's supporting line.
     if gp[k, 0] == gq[k, 0]:
@@ -85,12 +86,12 @@ def _gate_param(line: np.ndarray, gp: np.ndarray, gq: np.ndarray, k: int) -> flo
     return float((gp[k, 1] - line[1]) / line[3])
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _inside_rect(rect: np.ndarray, k: int, x: float, y: float, eps: float) -> bool:  # pragma: no cover
     return bool(rect[k, 0] + eps < x < rect[k, 1] - eps and rect[k, 2] + eps < y < rect[k, 3] - eps)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _locate(
     lines: np.ndarray,
     s: int,
@@ -125,7 +126,7 @@ def _locate(
     return t, lam, ok
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[float, float, bool]:  # pragma: no cover
     den = l1[2] * l2[3] - l1[3] * l2[2]
     if abs(den) < 1e-12:
@@ -136,7 +137,7 @@ def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[float, float, bool]:  # pragm
     return l1[0] + lam * l1[2], l1[1] + lam * l1[3], True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _chord_point(
     ln: np.ndarray, rect: np.ndarray, k: int, lam_min: float, lam_max: float
 ) -> tuple[float, float, bool]:  # pragma: no cover

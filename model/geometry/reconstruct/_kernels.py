@@ -585,11 +585,15 @@ def finish_all(
             if good:
                 px, py, pt, ps, pl = prune_ring(ix, iy, vt, vs, vl, rc, p, q, g, sc)
                 px, py, pt, ps, pl = merge_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
-                if 6 <= px.size <= _RELINK_MAX and px.size > window_bound(reach[a:b]):
+                # the window bound depends only on the reach table: computed once per ring, for the three
+                # searches below (on large rings it walks the greedy chain from every start of the longest
+                # window); each of them needs more than three vertices
+                wb = window_bound(reach[a:b]) if px.size > 3 else 0
+                if 6 <= px.size <= _RELINK_MAX and px.size > wb:
                     px, py, pt, ps, pl = relink_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
                 if px.size > 3 and b - a <= _SMALL_POLY:
                     # a small corridor: search for the fewest vertices its windows allow (3 or 4)
-                    lbv = max(3, window_bound(reach[a:b]))
+                    lbv = max(3, wb)
                     for nvv in range(lbv, min(px.size - 1, 4) + 1):
                         tx, ty, tt, okt = small_polygon(rc, p, q, g, reach[a:b], kk, nvv)
                         if okt:
@@ -600,7 +604,7 @@ def finish_all(
                             pl = np.full(nvv, -1, np.int64)
                             break
                 # ---- minimum-link ring (ADR 0031), only where the ring is still above its window bound
-                if px.size > 4 and b - a > _SMALL_POLY and px.size > window_bound(reach[a:b]):
+                if px.size > 4 and b - a > _SMALL_POLY and px.size > wb:
                     px, py, pt, ps, pl = minlink_ring(px, py, pt, ps, pl, rc, p, q, g, reach[a:b], kk)
                 # ----
                 px, py, pt, ps, pl = straighten_ring(px, py, pt, ps, pl, rc, p, q, g, kk)

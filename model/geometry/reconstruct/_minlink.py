@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import SRC_LINES, _grow1
 from mrm.geometry.reconstruct._check import snap_ring, verify_ring
 
@@ -64,7 +64,7 @@ def shrunk_gates(gp: np.ndarray, gq: np.ndarray) -> np.ndarray:  # pragma: no co
     return out
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _cone(
     ox: float, oy: float, t0: int, tmax: int, sg: np.ndarray
 ) -> tuple[int, float, float, int, int]:  # pragma: no cover
@@ -103,7 +103,7 @@ def _cone(
     return tmax, 0.0, 0.0, 0, -1
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _sees(
     ax: float, ay: float, ta: int, bx: float, by: float, tb: int, sg: np.ndarray
 ) -> bool:  # pragma: no cover
@@ -122,7 +122,7 @@ def _sees(
     return True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _span(
     ox: float, oy: float, dx: float, dy: float, rect: np.ndarray, t: int
 ) -> tuple[float, float]:  # pragma: no cover
@@ -147,12 +147,12 @@ def _span(
     return lo, hi
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _inside(rect: np.ndarray, t: int, x: float, y: float, m: float) -> bool:  # pragma: no cover
     return bool(rect[t, 0] + m < x < rect[t, 1] - m and rect[t, 2] + m < y < rect[t, 3] - m)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _halfplane(
     pa: np.ndarray, pb: np.ndarray, m: int, ca: float, cb: float, cc: float, oa: np.ndarray, ob: np.ndarray
 ) -> int:  # pragma: no cover
@@ -179,7 +179,7 @@ def _halfplane(
     return k if k >= 3 else 0
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _frame(t: int, tmax: int, reach: np.ndarray, gdir: np.ndarray) -> tuple[float, float]:  # pragma: no cover
     # A unit direction u that every line crossing gates t+1 … (its window) in order points along (u · d > 0):
     # the gates' common crossing direction, or the diagonal between the two perpendicular ones. Slopes
@@ -204,7 +204,7 @@ def _frame(t: int, tmax: int, reach: np.ndarray, gdir: np.ndarray) -> tuple[floa
     return ux / ln, uy / ln
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _pre_reach(
     lx: float,
     ly: float,
@@ -340,7 +340,7 @@ def _pre_reach(
     return ja, 0, x, y, dx, dy, 0.0, x, y, dx, dy
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _contact(
     wx: float,
     wy: float,
@@ -377,7 +377,7 @@ def _contact(
     return best
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _window_parts(
     cx: float,
     cy: float,
@@ -413,7 +413,7 @@ def _window_parts(
     return k
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _back_interval(
     xx: float,
     xy: float,
@@ -458,7 +458,7 @@ def _back_interval(
     return lo, hi
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _seen_from(
     xx: float,
     xy: float,
@@ -491,7 +491,7 @@ _NPUSH = 3  # pushes tried per position: the largest, then a quarter, then a six
 _NCAND = _BACK_F.size * _NPUSH  # candidates per window part
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _back_onto(
     xx: float,
     xy: float,

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.dss._kernels import reach_kernel
 from mrm.geometry.reconstruct._base import _BIG
 
 # ============================================================================================ preimage
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def _vline(
     a: int,
     b: int,
@@ -52,7 +52,7 @@ def _vline(
     vb[q, w, k, 3] = dy
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def _clip(
     buf: np.ndarray,
     vb: np.ndarray,
@@ -114,7 +114,7 @@ def _clip(
     return cnt + 1
 
 
-@njit(cache=True, inline="always")
+@leaf_njit(cache=True)
 def _init_poly(
     buf: np.ndarray, q: int, sgx: int, sgy: int, ptx: np.ndarray, pty: np.ndarray
 ) -> int:  # pragma: no cover
@@ -143,7 +143,7 @@ def _init_poly(
     return 3
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _best_line(
     buf: np.ndarray,
     q0: int,

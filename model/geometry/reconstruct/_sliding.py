@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import _BIG, _grow1, _grow2
 from mrm.geometry.reconstruct._reach import _QUAD_X, _QUAD_Y, _best_line, _clip, _vline
 
@@ -43,7 +43,7 @@ def _quadrant(sgx: int, sgy: int) -> int:  # pragma: no cover
     return 1 if sgy > 0 else 2
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _init_gate(
     buf: np.ndarray, vb: np.ndarray, q: int, w: int, pid: int, ptx: np.ndarray, pty: np.ndarray
 ) -> int:  # pragma: no cover
@@ -78,7 +78,7 @@ def _init_gate(
     return sz
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _clip_in(
     buf: np.ndarray,
     vb: np.ndarray,
@@ -104,7 +104,7 @@ def _clip_in(
     return True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _copy_poly(
     sbuf: np.ndarray,
     svb: np.ndarray,
@@ -125,7 +125,7 @@ def _copy_poly(
                 dvb[q, 0, v, u] = svb[q, v, u]
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _store_poly(
     buf: np.ndarray,
     vb: np.ndarray,
@@ -201,7 +201,7 @@ def _unpack_poly(
                 dvb[q, 0, v, u] = pvb[o + v, u]
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _meet_front(
     wbuf: np.ndarray,
     wvb: np.ndarray,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import _DX, _DY
 from mrm.geometry.reconstruct._check import (
     _in_piece,
@@ -19,7 +19,7 @@ from mrm.geometry.reconstruct._check import (
 # ============================================================================================ straightening
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _window_fit(
     dx: int, dy: int, gp: np.ndarray, gq: np.ndarray, g0: int, g1: int, n: int
 ) -> tuple[int, int, int, int]:  # pragma: no cover
@@ -46,7 +46,7 @@ def _window_fit(
     return lo, hi, glo, ghi
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def simplest_line(
     gp: np.ndarray, gq: np.ndarray, g0: int, g1: int, n: int, ex: int, ey: int, depth: int
 ) -> tuple[bool, int, int, int]:  # pragma: no cover
@@ -124,7 +124,7 @@ def simplest_line(
     return False, 0, 0, 0
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _vget(
     x: np.ndarray, y: np.ndarray, t: np.ndarray, m: int, n: int, j: int
 ) -> tuple[int, int, int]:  # pragma: no cover
@@ -133,7 +133,7 @@ def _vget(
     return x[b], y[b], t[b] + n * ((j - b) // m)
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _edge_line(
     x: np.ndarray,
     y: np.ndarray,
@@ -168,13 +168,32 @@ def _meet_int(
     return (fc1 * d2x - d1x * fc2) / den, (fc1 * d2y - d1y * fc2) / den, True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _piece_of(
-    fx: float, fy: float, tlo: int, thi: int, rect: np.ndarray, n: int, sc: int
+    fx: float, fy: float, tlo: int, thi: int, hint: int, rect: np.ndarray, n: int, sc: int
 ) -> int:  # pragma: no cover
     # The first piece of tlo … thi holding (fx, fy) (scaled units), thi + 1 if none (nor for far points).
     # A float test: only a shortcut, the grid points :func:`_place` takes are checked exactly.
     if abs(fx) > 4.0e9 or abs(fy) > 4.0e9:
+        return thi + 1
+    if thi - tlo < n:
+        # Within one lap the pieces are disjoint open rectangles, so at most one holds the point: searched
+        # outwards from hint (the piece of the vertex the point replaces, where it nearly always lies), it
+        # is found in a few steps instead of a scan over the pieces of two or three edges from tlo.
+        h = min(max(hint, tlo), thi)
+        for d in range(thi - tlo + 1):
+            up = h + d
+            dn = h - 1 - d
+            if up > thi and dn < tlo:
+                break
+            if up <= thi:
+                r = up % n
+                if rect[r, 0] * sc < fx < rect[r, 1] * sc and rect[r, 2] * sc < fy < rect[r, 3] * sc:
+                    return up
+            if dn >= tlo:
+                r = dn % n
+                if rect[r, 0] * sc < fx < rect[r, 1] * sc and rect[r, 2] * sc < fy < rect[r, 3] * sc:
+                    return dn
         return thi + 1
     t = tlo
     while t <= thi:
@@ -185,12 +204,13 @@ def _piece_of(
     return t
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _place(
     fx: float,
     fy: float,
     tlo: int,
     thi: int,
+    hint: int,
     ax: int,
     ay: int,
     ta: int,
@@ -206,11 +226,12 @@ def _place(
     kmax: int,
 ) -> tuple[int, int, int, bool]:  # pragma: no cover
     # A vertex near (fx, fy) (scaled units): the point itself when it is on the grid (an exact meeting
-    # point stays exact), else the coarsest dyadic grid point; inside a piece of tlo … thi, the edge from
-    # (ax, ay) valid and, with check_next, the edge to (bx, by) too.
+    # point stays exact), else the coarsest dyadic grid point; inside a piece of tlo … thi (hint: the piece
+    # of the vertex it replaces, where :func:`_piece_of` looks first), the edge from (ax, ay) valid and, with
+    # check_next, the edge to (bx, by) too.
     n = gdir.size
     sc = 1 << kmax
-    t = _piece_of(fx, fy, tlo, thi, rect, n, sc)
+    t = _piece_of(fx, fy, tlo, thi, hint, rect, n, sc)
     if t > thi:
         return 0, 0, 0, False
     # A quick necessary test before the exact edge checks (which cost the length of the edge each): the
@@ -244,7 +265,7 @@ def _place(
     return 0, 0, 0, False
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _local_ok(
     x: np.ndarray, y: np.ndarray, t: np.ndarray, m: int, n: int, i: int
 ) -> bool:  # pragma: no cover
@@ -280,7 +301,7 @@ def _local_ok(
     return True
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _simplest_edge_line(
     x: np.ndarray,
     y: np.ndarray,
@@ -348,15 +369,19 @@ def _ring_attempt(
         if not okm:
             return ox, oy, ot, False
         _xa, _ya, ta = _vget(x, y, t, m, n, i - 1)
+        _xb, _yb, tb = _vget(x, y, t, m, n, i)
         _xc, _yc, tc = _vget(x, y, t, m, n, i + 1)
         if i == 0:
-            nx, ny, nt, ok = _place(fx, fy, ta, tc, 0, 0, 0, False, False, 0, 0, 0, rect, gp, gq, gdir, kmax)
+            nx, ny, nt, ok = _place(
+                fx, fy, ta, tc, tb, 0, 0, 0, False, False, 0, 0, 0, rect, gp, gq, gdir, kmax
+            )
         elif i < m - 1:
             nx, ny, nt, ok = _place(
                 fx,
                 fy,
                 ot[i - 1],
                 tc,
+                tb,
                 ox[i - 1],
                 oy[i - 1],
                 ot[i - 1],
@@ -377,6 +402,7 @@ def _ring_attempt(
                 fy,
                 ot[i - 1],
                 min(tc, ot[0] + n),
+                tb,
                 ox[i - 1],
                 oy[i - 1],
                 ot[i - 1],
@@ -501,15 +527,15 @@ def straighten_ring(
             if not (ok1 and ok2):
                 continue
             # the second vertex is placed in a piece of (first's piece ≥ ta) … td: none there, no try
-            if _piece_of(f2x, f2y, ta, td, rect, n, sc) > td:
+            if _piece_of(f2x, f2y, ta, td, tc, rect, n, sc) > td:
                 continue
             nbx, nby, nbt, okb = _place(
-                f1x, f1y, ta, tc, xa, ya, ta, True, False, 0, 0, 0, rect, gp, gq, gdir, kmax
+                f1x, f1y, ta, tc, tb, xa, ya, ta, True, False, 0, 0, 0, rect, gp, gq, gdir, kmax
             )
             if not okb:
                 continue
             ncx, ncy, nct, okc = _place(
-                f2x, f2y, nbt, td, nbx, nby, nbt, True, True, xd, yd, td, rect, gp, gq, gdir, kmax
+                f2x, f2y, nbt, td, tc, nbx, nby, nbt, True, True, xd, yd, td, rect, gp, gq, gdir, kmax
             )
             if not okc:
                 continue
