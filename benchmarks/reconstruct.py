@@ -14,7 +14,8 @@ step (crack linel); the time per step on the horse upscaled from 1024Â² to 8192Â
 warm (cache on disk).
 
 Run: ``.venv/bin/python benchmarks/reconstruct.py`` (``--quick`` skips the two largest disks and potrace on
-big inputs; ``--rings`` adds the per-ring excess over the window bound).
+big inputs; ``--rings`` adds the per-ring excess over the window bound; ``--only memory`` (repeatable) runs
+one section: vertices, speed, scaling, memory, labels, first-call; ``--help`` lists them).
 """
 
 from __future__ import annotations
@@ -497,17 +498,37 @@ def first_call() -> None:
     )
 
 
+SECTIONS = ("vertices", "speed", "scaling", "memory", "labels", "first-call")
+
+
 def main() -> None:
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument(
+        "--quick", action="store_true", help="skip the two largest disks and the biggest inputs"
+    )
+    parser.add_argument("--rings", action="store_true", help="add the per-ring excess over the window bound")
+    parser.add_argument(
+        "--only", choices=SECTIONS, action="append", help="run only this section (repeatable); all by default"
+    )
+    args = parser.parse_args()
+    only = set(args.only or SECTIONS)
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2-core machine shared with others)")
-    compactness(shapes())
-    if "--rings" in sys.argv:
-        excess_by_ring([s for s in shapes() if not s[0].startswith("disk")])
-    speed()
-    if not QUICK:
+    if "vertices" in only:
+        compactness(shapes())
+        if args.rings:
+            excess_by_ring([s for s in shapes() if not s[0].startswith("disk")])
+    if "speed" in only:
+        speed()
+    if "scaling" in only and not QUICK:
         scaling()
-    peak_memory()
-    label_maps()
-    first_call()
+    if "memory" in only:
+        peak_memory()
+    if "labels" in only:
+        label_maps()
+    if "first-call" in only:
+        first_call()
 
 
 if __name__ == "__main__":
