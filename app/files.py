@@ -405,9 +405,15 @@ class FileController(QtCore.QObject):
         )
         return self.import_files([Path(f) for f in files]) if files else False
 
-    def read_objects(self, path: Path) -> list[tuple[str, Any]]:
-        """The (name, source) pairs a file brings in; raises on a bad file (nothing is added then)."""
+    def read_objects(self, path: Path, model: str | None = None) -> list[tuple[str, Any]]:
+        """The (name, source) pairs a file brings in; raises on a bad file (nothing is added then).
+
+        Touches no widget and no document state (lines and points are discretized under ``model``, the
+        document's by default), so the import runs it on a worker thread.
+        """
         from mrm.document import validate_geometry
+
+        model = self.doc.model if model is None else model
         from mrm.limits import clean_name
 
         ext = path.suffix.lower()
@@ -429,7 +435,7 @@ class FileController(QtCore.QObject):
                     # Lines and points cannot be polygon sources; their discretization is a pixel object.
                     from mrm.geometry.discretize import discretize
 
-                    out.append((str(label), discretize(g, self.doc.model)))
+                    out.append((str(label), discretize(g, model)))
             return out
         from mrm.errors import FileFormatError
 
@@ -472,10 +478,7 @@ class FileController(QtCore.QObject):
                 self._chosen = {}
                 self.win.show_message(f"import of {paths[k].name} cancelled; nothing was added", 4000)
                 return
-            try:
-                self._chosen[k] = dlg.read_objects()
-            except (MRMError, OSError, ValueError) as e:
-                self._chosen[k] = e
+            self._chosen[k] = dlg.reader()  # the choices, read now; the file, on the import's worker
             self.import_files(paths)
 
         dlg.finished.connect(done)
@@ -483,22 +486,49 @@ class FileController(QtCore.QObject):
         dlg.open()
 
     def _import(self, paths: list[Path], chosen: dict[int, Any]) -> bool:
-        items: list[tuple[str, Any, Any]] = []
-        errors = []
-        for k, p in enumerate(paths):
-            try:
-                got = chosen.get(k)
-                if isinstance(got, BaseException):
-                    raise got
-                pairs = got if got is not None else self.read_objects(p)
-                georef = None
-                if p.suffix.lower() in IMAGE_EXTS:  # a GeoTIFF's or a world file's place stays on the object
-                    from mrm.io.georef import read_georef
+        """Read the files on a worker, then add their objects on the GUI thread as one undo step.
 
-                    georef = read_georef(p)
-                items += [(name, src, georef) for name, src in pairs]
-            except (MRMError, OSError, ValueError) as e:
-                errors.append(describe_error(e))
+        Decoding a 10⁸-pixel image takes seconds. True when something was added or is being read.
+        """
+        model = self.doc.model
+
+        def read(progress: Any) -> tuple[list[tuple[str, Any, Any]], list[str]]:
+            items: list[tuple[str, Any, Any]] = []
+            errors = []
+            for k, p in enumerate(paths):
+                progress.update(k / len(paths), f"reading {p.name}")
+                try:
+                    reader = chosen.get(k)
+                    pairs = reader() if reader is not None else self.read_objects(p, model)
+                    georef = None
+                    if (
+                        p.suffix.lower() in IMAGE_EXTS
+                    ):  # a GeoTIFF's or world file's place stays on the object
+                        from mrm.io.georef import read_georef
+
+                        georef = read_georef(p)
+                    items += [(name, src, georef) for name, src in pairs]
+                except (MRMError, OSError, ValueError) as e:
+                    errors.append(describe_error(e))
+            return items, errors
+
+        outcome: list[bool] = []
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            outcome.append(False)
+            self._error("Cannot import", describe_error(e))
+
+        names = ", ".join(p.name for p in paths)
+        self.win.runner.submit(
+            "import", read, on_result=lambda r: outcome.append(self._add_imported(paths, *r)),
+            on_error=failed, on_cancel=lambda: self.win.show_message("import cancelled; nothing added", 4000),
+            label=f"Importing {names}", show_progress=True,
+        )  # fmt: skip
+        return outcome[0] if outcome else True  # the synchronous runner has finished already
+
+    def _add_imported(self, paths: list[Path], items: list[tuple[str, Any, Any]], errors: list[str]) -> bool:
         if items:
             objs = []
             for k, (name, src, georef) in enumerate(items):

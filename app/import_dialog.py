@@ -10,6 +10,7 @@ the dialog only reads the image's values for the preview.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -225,17 +226,29 @@ class ImageImportDialog(QtWidgets.QDialog):
 
     def read_objects(self) -> list[tuple[str, Any]]:
         """The (name, pixel set or label map) pairs of the choice, read by the model."""
+        return self.reader()()
+
+    def reader(self) -> Callable[[], list[tuple[str, Any]]]:
+        """The choice made in the dialog, as a function that reads the file.
+
+        It holds the choice's values, not the widgets, so it runs on any thread (the import's worker).
+        """
         from mrm.io.pixel_files import read_label_map, read_pixels
 
-        stem = self.path.stem
-        if self.map_mode.isChecked():
-            return [(stem, read_label_map(self.path))]
-        if self.labels_mode.isChecked():
-            lm = read_label_map(self.path)
-            return [(f"{stem} label {v}", lm.pixel_set(v)) for v in lm.label_values() if v != 0]
-        t = self.spin.value()
-        ps = read_pixels(self.path, threshold=t)
-        if self.invert.isChecked():
-            full = read_pixels(self.path, threshold=-1)  # every pixel: the image's box at its origin
-            ps = full.difference(ps)
-        return [(stem, ps)]
+        path, stem = self.path, self.path.stem
+        as_map, per_label = self.map_mode.isChecked(), self.labels_mode.isChecked()
+        t, invert = self.spin.value(), self.invert.isChecked()
+
+        def read() -> list[tuple[str, Any]]:
+            if as_map:
+                return [(stem, read_label_map(path))]
+            if per_label:
+                lm = read_label_map(path)
+                return [(f"{stem} label {v}", lm.pixel_set(v)) for v in lm.label_values() if v != 0]
+            ps = read_pixels(path, threshold=t)
+            if invert:
+                full = read_pixels(path, threshold=-1)  # every pixel: the image's box at its origin
+                ps = full.difference(ps)
+            return [(stem, ps)]
+
+        return read
