@@ -7,6 +7,7 @@ validated completely: a corrupt or hostile file leaves the open document exactly
 
 from __future__ import annotations
 
+import itertools
 import os
 from collections.abc import Iterable
 from pathlib import Path
@@ -98,6 +99,8 @@ class FileController(QtCore.QObject):
         self.doc: Document = window.doc
         self.prefs = window.prefs
         self._chosen: dict[int, Any] = {}  # answers of the image import dialog, by file index
+        # Each import and each export is a task of its own slot: a second one must not cancel the first.
+        self._imports = itertools.count()
         self.import_dialog: Any = None
         from mrm.io.autosave import Autosaver
 
@@ -521,8 +524,9 @@ class FileController(QtCore.QObject):
             self._error("Cannot import", describe_error(e))
 
         names = ", ".join(p.name for p in paths)
+        slot = f"import {next(self._imports)}"
         self.win.runner.submit(
-            "import", read, on_result=lambda r: outcome.append(self._add_imported(paths, *r)),
+            slot, read, on_result=lambda r: outcome.append(self._add_imported(paths, *r)),
             on_error=failed, on_cancel=lambda: self.win.show_message("import cancelled; nothing added", 4000),
             label=f"Importing {names}", show_progress=True,
         )  # fmt: skip
@@ -573,13 +577,16 @@ class FileController(QtCore.QObject):
         entry = self.doc.derived(obj_id)
         if self.doc.get(obj_id).kind == "labels":
             return self._export_label_map(obj_id, p)
-        try:
-            if ext == ".tif" or (
-                self.doc.get(obj_id).georef is not None and ext in (".png", ".geojson", ".json", ".wkt")
-            ):
+        obj = self.doc.get(obj_id)
+        doc = self.doc
+
+        def write(_progress: Any) -> None:
+            # On a worker: encoding 10⁸ pixels, or continuing them first (R), takes seconds. It reads the
+            # object's immutable source and its derived entry, and writes atomically.
+            if ext == ".tif" or (obj.georef is not None and ext in (".png", ".geojson", ".json", ".wkt")):
                 from mrm.io.export import export_object
 
-                export_object(self.doc, obj_id, p)  # where it lies on the Earth (ADR 0021)
+                export_object(doc, obj_id, p)  # where it lies on the Earth (ADR 0021)
             elif ext in (".png", ".pbm", ".npz"):
                 from mrm.io.pixel_files import write_pixels
 
@@ -587,24 +594,36 @@ class FileController(QtCore.QObject):
             elif ext == ".svg":
                 from mrm.io.vector_files import write_svg
 
-                style = self.doc.get(obj_id).style
-                write_svg(entry.get("euclidean"), p, colour=style.fill[:7], opacity=style.opacity)
+                write_svg(entry.get("euclidean"), p, colour=obj.style.fill[:7], opacity=obj.style.opacity)
             elif ext in (".geojson", ".json"):
                 from mrm.io.vector_files import write_geojson
 
-                write_geojson(entry.get("euclidean"), p, {"name": self.doc.get(obj_id).name})
+                write_geojson(entry.get("euclidean"), p, {"name": obj.name})
             elif ext == ".wkt":
                 from mrm.io.vector_files import write_wkt
 
                 write_wkt(entry.get("euclidean"), p)
             else:
                 raise ValueError(f"{p.name}: cannot export '{ext}'; use " + ", ".join(EXPORT_FILTERS))
-        except (MRMError, OSError, ValueError) as e:
+
+        outcome: list[bool] = []
+
+        def written(_r: Any) -> None:
+            outcome.append(True)
+            self.prefs.last_directory = str(p.resolve().parent)
+            self.win.show_message(f"Exported {p.name}", 3000)
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            outcome.append(False)
             self._error("Cannot export", describe_error(e))
-            return False
-        self.prefs.last_directory = str(p.resolve().parent)
-        self.win.show_message(f"Exported {p.name}", 3000)
-        return True
+
+        self.win.runner.submit(
+            f"export {p}", write, on_result=written, on_error=failed, label=f"Exporting {p.name}",
+            show_progress=True,
+        )  # fmt: skip
+        return outcome[0] if outcome else True  # the synchronous runner has finished already
 
     def _export_label_map(self, obj_id: int, p: Path) -> bool:
         """Write a label map: its labels (.png, .npz) or one GeoJSON Feature per region, on a worker.

@@ -260,3 +260,25 @@ def test_a_geotiff_keeps_its_place_through_the_window(make_window, tmp_path):
     with rasterio.open(tmp_path / "back.tif") as ds:
         assert ds.transform == t and ds.crs.to_epsg() == 32633 and (ds.width, ds.height) == (12, 10)
         assert (ds.read(1) == mask).all()
+
+
+def test_export_and_import_run_on_workers_and_round_trip(make_window, qtbot, tmp_path):
+    # With the real runner, export and import return at once and finish on a worker (a 10⁸-pixel PNG takes
+    # seconds to encode or decode); the file and the objects are the same as with the synchronous runner.
+    win = make_window(threaded=True)
+    _populate(win)
+    square, blob = win.doc.objects
+    for ext in (".png", ".geojson"):
+        assert win.files.export(square.id, tmp_path / f"sq{ext}") is True
+    # Two exports in a row both finish: the second does not cancel the first.
+    qtbot.waitUntil(lambda: all((tmp_path / f"sq{e}").exists() for e in (".png", ".geojson")), timeout=30_000)
+    assert win.files.export(blob.id, tmp_path / "blob.png") is True
+    qtbot.waitUntil(lambda: (tmp_path / "blob.png").exists(), timeout=30_000)
+    win2 = make_window(threaded=True)
+    win2.files.import_files([tmp_path / "sq.png", tmp_path / "sq.geojson", tmp_path / "blob.png"])
+    qtbot.waitUntil(lambda: len(win2.doc) == 3, timeout=30_000)
+    objs = win2.doc.objects
+    assert objs[0].source == win.doc.derived(square.id).get("discrete")
+    assert shapely.normalize(objs[1].source).equals_exact(shapely.normalize(SQUARE), 0)
+    assert objs[2].source == blob.source
+    assert win2.doc.history.index == 1  # one undo step for the whole import
