@@ -451,23 +451,44 @@ class FileController(QtCore.QObject):
         """Import every file as new objects, in one undo step; a bad file is reported and skipped.
 
         A grey, colour or label image first asks (once, window-modal, without blocking) how to turn it
-        into objects; the import then happens when the dialog is accepted, and this returns False.
+        into objects; the import then happens when the dialog is accepted, and this returns False. The
+        files are looked at and read on workers: with the threaded runner this returns True at once.
         """
         paths = [Path(p) for p in paths]
         from mrm.app.import_dialog import image_values
 
-        for k, p in enumerate(paths):
-            if p.suffix.lower() not in IMAGE_EXTS or k in self._chosen:
-                continue
-            try:
-                values = image_values(p)
-            except (OSError, ValueError):
-                values = None  # the model's reader reports what is wrong with the file
-            if values is not None:
-                self._ask_image(paths, k, *values)
-                return False
-        chosen, self._chosen = self._chosen, {}
-        return self._import(paths, chosen)
+        todo = [k for k, p in enumerate(paths) if p.suffix.lower() in IMAGE_EXTS and k not in self._chosen]
+        if not todo:
+            chosen, self._chosen = self._chosen, {}
+            return self._import(paths, chosen)
+
+        def look(_progress: Any) -> tuple[int, Any] | None:
+            # On a worker: a grey image's values are decoded in full to decide whether to ask (seconds at
+            # 10⁸ pixels). The first image that needs an answer, with its values; None if none does.
+            for k in todo:
+                try:
+                    values = image_values(paths[k])
+                except (OSError, ValueError):
+                    values = None  # the model's reader reports what is wrong with the file
+                if values is not None:
+                    return k, values
+            return None
+
+        outcome: list[bool] = []
+
+        def looked(found: tuple[int, Any] | None) -> None:
+            if found is not None:
+                self._ask_image(paths, found[0], *found[1])
+                outcome.append(False)
+                return
+            chosen, self._chosen = self._chosen, {}
+            outcome.append(self._import(paths, chosen))
+
+        self.win.runner.submit(
+            f"import {next(self._imports)}", look, on_result=looked, label="Reading the images",
+            show_progress=True,
+        )  # fmt: skip
+        return outcome[0] if outcome else True  # the synchronous runner has finished already
 
     def _ask_image(self, paths: list[Path], k: int, grey: Any, labels_ok: bool, labels_first: bool) -> None:
         from mrm.app.import_dialog import ImageImportDialog

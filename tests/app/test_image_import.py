@@ -61,7 +61,8 @@ def test_a_grey_image_asks_for_the_threshold_with_otsu_shown(make_window, qtbot,
 def test_invert_imports_the_dark_pixels(make_window, qtbot, tmp_path):
     win = make_window()
     g = _grey_png(tmp_path / "grey.png")
-    win.files.import_files([tmp_path / "grey.png"])
+    win.files.import_files([tmp_path / "grey.png"])  # its values are looked at on a worker too
+    qtbot.waitUntil(lambda: win.files.import_dialog is not None, timeout=30_000)
     dlg = _dialog(win)
     _click(qtbot, dlg.invert)
     assert dlg.invert.isChecked()
@@ -148,7 +149,8 @@ def test_a_big_image_is_read_on_a_worker_and_added_as_one_step(make_window, qtbo
     assert win.doc.objects[0].source == _expected(disc, disc)
     assert win.doc.history.undo_label() == "Import big"
     g = _grey_png(tmp_path / "grey.png")
-    win.files.import_files([tmp_path / "grey.png"])
+    win.files.import_files([tmp_path / "grey.png"])  # its values are looked at on a worker too
+    qtbot.waitUntil(lambda: win.files.import_dialog is not None, timeout=30_000)
     dlg = _dialog(win)
     _click(qtbot, dlg.invert)
     t = dlg.spin.value()
