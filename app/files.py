@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import itertools
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -99,8 +99,9 @@ class FileController(QtCore.QObject):
         self.doc: Document = window.doc
         self.prefs = window.prefs
         self._chosen: dict[int, Any] = {}  # answers of the image import dialog, by file index
-        # Each import and each export is a task of its own slot: a second one must not cancel the first.
-        self._imports = itertools.count()
+        # Each import is a task of its own slot (an export's is its path): a second one must not cancel
+        # the first.
+        self._tasks = itertools.count()
         self.import_dialog: Any = None
         from mrm.io.autosave import Autosaver
 
@@ -415,10 +416,9 @@ class FileController(QtCore.QObject):
         document's by default), so the import runs it on a worker thread.
         """
         from mrm.document import validate_geometry
-
-        model = self.doc.model if model is None else model
         from mrm.limits import clean_name
 
+        model = self.doc.model if model is None else model
         ext = path.suffix.lower()
         if ext in IMAGE_EXTS:
             from mrm.io.pixel_files import read_pixels
@@ -447,6 +447,30 @@ class FileController(QtCore.QObject):
             "use PNG, PBM, PGM, NPZ, GeoJSON or WKT"
         )
 
+    def _in_background(
+        self, slot: str, fn: Callable[[Any], Any], done: Callable[[Any], bool], error_title: str, label: str
+    ) -> bool:
+        """Run ``fn(progress)`` on a worker, then ``done(result)`` on the GUI thread.
+
+        Progress and Cancel are in the status bar; a user error is shown under ``error_title``. Returns
+        ``done``'s answer when the runner has finished already (the tests' synchronous runner), else True:
+        the work has started.
+        """
+        outcome: list[bool] = []
+
+        def failed(e: BaseException) -> None:
+            if not isinstance(e, MRMError | OSError | ValueError):
+                raise e
+            outcome.append(False)
+            self._error(error_title, describe_error(e))
+
+        self.win.runner.submit(
+            slot, fn, on_result=lambda r: outcome.append(done(r)), on_error=failed,
+            on_cancel=lambda: self.win.show_message(f"{label} cancelled; nothing changed", 4000),
+            label=label, show_progress=True,
+        )  # fmt: skip
+        return outcome[0] if outcome else True
+
     def import_files(self, paths: Iterable[str | os.PathLike[str]]) -> bool:
         """Import every file as new objects, in one undo step; a bad file is reported and skipped.
 
@@ -474,21 +498,16 @@ class FileController(QtCore.QObject):
                     return k, values
             return None
 
-        outcome: list[bool] = []
-
-        def looked(found: tuple[int, Any] | None) -> None:
+        def looked(found: tuple[int, Any] | None) -> bool:
             if found is not None:
                 self._ask_image(paths, found[0], *found[1])
-                outcome.append(False)
-                return
+                return False
             chosen, self._chosen = self._chosen, {}
-            outcome.append(self._import(paths, chosen))
+            return self._import(paths, chosen)
 
-        self.win.runner.submit(
-            f"import {next(self._imports)}", look, on_result=looked, label="Reading the images",
-            show_progress=True,
-        )  # fmt: skip
-        return outcome[0] if outcome else True  # the synchronous runner has finished already
+        return self._in_background(
+            f"import {next(self._tasks)}", look, looked, "Cannot import", "Reading images"
+        )
 
     def _ask_image(self, paths: list[Path], k: int, grey: Any, labels_ok: bool, labels_first: bool) -> None:
         from mrm.app.import_dialog import ImageImportDialog
@@ -525,9 +544,7 @@ class FileController(QtCore.QObject):
                     reader = chosen.get(k)
                     pairs = reader() if reader is not None else self.read_objects(p, model)
                     georef = None
-                    if (
-                        p.suffix.lower() in IMAGE_EXTS
-                    ):  # a GeoTIFF's or world file's place stays on the object
+                    if p.suffix.lower() in IMAGE_EXTS:  # a GeoTIFF's or world file's place stays with it
                         from mrm.io.georef import read_georef
 
                         georef = read_georef(p)
@@ -536,22 +553,14 @@ class FileController(QtCore.QObject):
                     errors.append(describe_error(e))
             return items, errors
 
-        outcome: list[bool] = []
-
-        def failed(e: BaseException) -> None:
-            if not isinstance(e, MRMError | OSError | ValueError):
-                raise e
-            outcome.append(False)
-            self._error("Cannot import", describe_error(e))
-
         names = ", ".join(p.name for p in paths)
-        slot = f"import {next(self._imports)}"
-        self.win.runner.submit(
-            slot, read, on_result=lambda r: outcome.append(self._add_imported(paths, *r)),
-            on_error=failed, on_cancel=lambda: self.win.show_message("import cancelled; nothing added", 4000),
-            label=f"Importing {names}", show_progress=True,
-        )  # fmt: skip
-        return outcome[0] if outcome else True  # the synchronous runner has finished already
+        return self._in_background(
+            f"import {next(self._tasks)}",
+            read,
+            lambda r: self._add_imported(paths, *r),
+            "Cannot import",
+            f"Importing {names}",
+        )
 
     def _add_imported(self, paths: list[Path], items: list[tuple[str, Any, Any]], errors: list[str]) -> bool:
         if items:
@@ -627,24 +636,12 @@ class FileController(QtCore.QObject):
             else:
                 raise ValueError(f"{p.name}: cannot export '{ext}'; use " + ", ".join(EXPORT_FILTERS))
 
-        outcome: list[bool] = []
-
-        def written(_r: Any) -> None:
-            outcome.append(True)
+        def written(_r: Any) -> bool:
             self.prefs.last_directory = str(p.resolve().parent)
             self.win.show_message(f"Exported {p.name}", 3000)
+            return True
 
-        def failed(e: BaseException) -> None:
-            if not isinstance(e, MRMError | OSError | ValueError):
-                raise e
-            outcome.append(False)
-            self._error("Cannot export", describe_error(e))
-
-        self.win.runner.submit(
-            f"export {p}", write, on_result=written, on_error=failed, label=f"Exporting {p.name}",
-            show_progress=True,
-        )  # fmt: skip
-        return outcome[0] if outcome else True  # the synchronous runner has finished already
+        return self._in_background(f"export {p}", write, written, "Cannot export", f"Exporting {p.name}")
 
     def _export_label_map(self, obj_id: int, p: Path) -> bool:
         """Write a label map: its labels (.png, .npz) or one GeoJSON Feature per region, on a worker.
