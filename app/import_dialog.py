@@ -61,14 +61,13 @@ def _binary(values: np.ndarray) -> bool:
 
 def _netpbm_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
     """A PGM's grey values (labels offered), read by the model's reader; None if binary or unreadable."""
-    from mrm import limits
-    from mrm.errors import FileFormatError
+    from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError
     from mrm.io.netpbm import read_netpbm
     from mrm.io.threshold import grey_of
 
     try:
         with open(path, "rb") as fh:
-            img = read_netpbm(fh, path.name, limits.MAX_LABEL_PIXELS)
+            img = read_netpbm(fh, path.name, DEFAULT_PIXEL_LIMIT)  # what read_pixels accepts
     except (OSError, FileFormatError):
         return None  # the model's reader says what is wrong when the file is imported
     if img.samples.dtype == np.bool_:
@@ -224,12 +223,8 @@ class ImageImportDialog(QtWidgets.QDialog):
         )
         self.preview.setPixmap(pm)
 
-    def read_objects(self) -> list[tuple[str, Any]]:
-        """The (name, pixel set or label map) pairs of the choice, read by the model."""
-        return self.reader()()
-
     def reader(self) -> Callable[[], list[tuple[str, Any]]]:
-        """The choice made in the dialog, as a function that reads the file.
+        """The choice made in the dialog, as a function that reads the file's (name, source) pairs.
 
         It holds the choice's values, not the widgets, so it runs on any thread (the import's worker).
         """
