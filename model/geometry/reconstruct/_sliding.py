@@ -104,48 +104,6 @@ def _clip_in(
     return True
 
 
-@leaf_njit(cache=True)
-def _copy_poly(
-    sbuf: np.ndarray,
-    svb: np.ndarray,
-    ssize: np.ndarray,
-    dbuf: np.ndarray,
-    dvb: np.ndarray,
-    dcur: np.ndarray,
-    dsize: np.ndarray,
-) -> None:  # pragma: no cover
-    # A stored polygon (sbuf[q, :], svb[q, :, :], ssize[q]) into buffer 0 of a working one.
-    for q in range(4):
-        sz = ssize[q]
-        dsize[q] = sz
-        dcur[q] = 0
-        for v in range(sz):
-            dbuf[q, 0, v] = sbuf[q, v]
-            for u in range(4):
-                dvb[q, 0, v, u] = svb[q, v, u]
-
-
-@leaf_njit(cache=True)
-def _store_poly(
-    buf: np.ndarray,
-    vb: np.ndarray,
-    cur: np.ndarray,
-    size: np.ndarray,
-    sbuf: np.ndarray,
-    svb: np.ndarray,
-    ssize: np.ndarray,
-) -> None:  # pragma: no cover
-    # A working polygon's live buffers into storage.
-    for q in range(4):
-        sz = size[q]
-        ssize[q] = sz
-        c = cur[q]
-        for v in range(sz):
-            sbuf[q, v] = buf[q, c, v]
-            for u in range(4):
-                svb[q, v, u] = vb[q, c, v, u]
-
-
 @njit(cache=True)
 def _pack_poly(
     buf: np.ndarray,
@@ -165,6 +123,23 @@ def _pack_poly(
         ncap = max(2 * pid.size, need)
         pid = _grow1(pid, pos, ncap)
         pvb = _grow2(pvb, pos, ncap)
+    return pid, pvb, _write_packed(buf, vb, cur, size, pid, pvb, pos, poff, psize)
+
+
+@leaf_njit(cache=True)
+def _write_packed(
+    buf: np.ndarray,
+    vb: np.ndarray,
+    cur: np.ndarray,
+    size: np.ndarray,
+    pid: np.ndarray,
+    pvb: np.ndarray,
+    pos: int,
+    poff: np.ndarray,
+    psize: np.ndarray,
+) -> int:  # pragma: no cover
+    # A working polygon's live buffers written at pos of a packed store with room for them (quadrant q at
+    # poff[q], psize[q] vertices); returns the new end. Also the snapshot of W (a store of one polygon).
     for q in range(4):
         sz = size[q]
         poff[q] = pos
@@ -175,7 +150,7 @@ def _pack_poly(
             for u in range(4):
                 pvb[pos + v, u] = vb[q, c, v, u]
         pos += sz
-    return pid, pvb, pos
+    return pos
 
 
 @njit(cache=True)
@@ -272,8 +247,9 @@ def sliding_reach(
     fvb = np.empty((4, 2, cap + 2, 4), np.int64)
     fcur = np.zeros(4, np.int64)
     fsize = np.zeros(4, np.int64)
-    sbuf = np.empty((4, cap + 2), np.int64)  # a snapshot of W
-    svb = np.empty((4, cap + 2, 4), np.int64)
+    sid = np.empty(4 * (cap + 2), np.int64)  # a snapshot of W, packed like the suffixes
+    svb = np.empty((4 * (cap + 2), 4), np.int64)
+    soff = np.zeros(4, np.int64)
     ssize = np.zeros(4, np.int64)
     ffull = True  # F has no gate yet (the whole plane)
     # the suffixes B_x, x in [base, m): gates x+1 … m, packed one after the other (quadrant q of B_x is
@@ -335,7 +311,7 @@ def sliding_reach(
         while j < i + n - 1:
             g = j + 1
             # the line needs W as it was before the gate that is one too many
-            _store_poly(wbuf, wvb, wcur, wsize, sbuf, svb, ssize)
+            _write_packed(wbuf, wvb, wcur, wsize, sid, svb, 0, soff, ssize)
             alive = 0
             for q in range(4):
                 for pt in range(2):
@@ -360,7 +336,7 @@ def sliding_reach(
         reach[i] = j - i
         # the window's polygon W = B_i ∩ F, and its central line in general_reach's order of quadrants
         if spoiled:
-            _copy_poly(sbuf, svb, ssize, wbuf, wvb, wcur, wsize)
+            _unpack_poly(sid, svb, soff, ssize, wbuf, wvb, wcur, wsize)
         d0 = gdir[(i + 1) % n]
         bm = -_BIG
         for k in range(2):
