@@ -42,6 +42,7 @@ KERNEL_MODULES = (
     "geometry/reconstruct/_repair.py",
     "geometry/reconstruct/_straighten.py",
     "geometry/reconstruct/_minlink.py",
+    "geometry/reconstruct/_twins.py",
     "geometry/reconstruct/_dual.py",
     "geometry/reconstruct/_subdivision_kernels.py",
     "geometry/discretize/rational_kernels.py",

@@ -855,7 +855,7 @@ def test_rings_split_between_threads_give_the_single_thread_result(model: str, m
     ps = PixelSet(rng.random((90, 110)) < 0.55)
     monkeypatch.setattr(rec, "MAX_THREADS", 3)
     monkeypatch.setattr(rec, "_threads", lambda: 3)
-    chunks = rec._ring_chunks(rec._k.corridors_all(*_rings_arrays(ps)).poff)
+    chunks = rec._ring_chunks(np.diff(rec._k.corridors_all(*_rings_arrays(ps)).poff))
     assert len(chunks) == 3
     threaded = reconstruct(ps, model)
     monkeypatch.setattr(rec, "_threads", lambda: 1)
@@ -879,6 +879,42 @@ def test_mrm_threads_1_keeps_r_on_one_thread(monkeypatch) -> None:
     rng = np.random.default_rng(21)
     poff = rec._k.corridors_all(*_rings_arrays(PixelSet(rng.random((90, 110)) < 0.55))).poff
     monkeypatch.setenv("MRM_THREADS", "2")
-    assert rec._threads() == 2 and len(rec._ring_chunks(poff)) == 2
+    assert rec._threads() == 2 and len(rec._ring_chunks(np.diff(poff))) == 2
     monkeypatch.setenv("MRM_THREADS", "1")
-    assert rec._threads() == 1 and rec._ring_chunks(poff) == [(0, poff.size - 1)]
+    assert rec._threads() == 1 and rec._ring_chunks(np.diff(poff)) == [(0, poff.size - 1)]
+
+
+@pytest.mark.parametrize("model", MODELS)
+@settings(max_examples=60, deadline=None)
+@given(
+    shape=st.lists(st.lists(st.booleans(), min_size=5, max_size=5), min_size=5, max_size=5),
+    places=st.lists(st.tuples(st.integers(0, 19), st.integers(0, 19)), min_size=2, max_size=4, unique=True),
+)
+def test_the_same_shape_anywhere_in_an_image_gets_the_same_polygon_moved(
+    model: str, shape: list[list[bool]], places: list[tuple[int, int]]
+) -> None:
+    # A shape repeated across an image (specks, letters, dots) is reconstructed once and moved (ADR 0036):
+    # every copy's polygon is the first copy's translated exactly, and the whole stays reversible.
+    tile = np.array(shape, dtype=bool)
+    if not tile.any():
+        return
+    m = np.zeros((20 * 7, 20 * 7), dtype=bool)
+    for c, r in places:
+        m[7 * r : 7 * r + 5, 7 * c : 7 * c + 5] = tile
+    ps = PixelSet(m, (-3000, 41))
+    g = reconstruct(ps, model)
+    assert discretize(g, model) == ps
+    lone = polygons(reconstruct(PixelSet(tile), model))
+    polys = polygons(g)
+    assert len(polys) == len(lone) * len(places)
+    # the copies' polygons, grouped by copy: each component's lowest-leftmost pixel tells which copy it is in
+    by_copy: dict[tuple[int, int], list[np.ndarray]] = {}
+    for p in polys:
+        x0, y0 = p.bounds[0] + 3000, p.bounds[1] - 41
+        key = (int(x0 + 1) // 7, int(y0 + 1) // 7)
+        by_copy.setdefault(key, []).append(shapely.get_coordinates(p) - (7 * key[0] - 3000, 7 * key[1] + 41))
+    first, *others = by_copy.values()
+    for other in others:
+        assert len(other) == len(first)
+        for a, b in zip(first, other, strict=True):
+            assert np.array_equal(a, b)

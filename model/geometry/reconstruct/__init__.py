@@ -49,6 +49,7 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.errors import ParameterError
 from mrm.geometry.reconstruct import _dual as _dk
 from mrm.geometry.reconstruct import _kernels as _k
+from mrm.geometry.reconstruct import _twins as _tw
 from mrm.geometry.topology.cracks import trace_mask
 from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain
@@ -143,15 +144,18 @@ def _threads() -> int:
         return max(1, min(MAX_THREADS, os.cpu_count() or 1))
 
 
-def _ring_chunks(poff: IntArray) -> list[tuple[int, int]]:
-    # Consecutive ring ranges of about equal numbers of pieces, one per thread; one range when the set is
-    # small or one ring holds most of it (starting a thread would cost more than it saves).
-    nr = poff.size - 1
-    total = int(poff[-1])
+def _ring_chunks(pieces: IntArray) -> list[tuple[int, int]]:
+    # Consecutive ring ranges of about equal numbers of pieces to work on (``pieces`` per ring, 0 for a
+    # twin), one per thread; one range when the set is small or one ring holds most of it (starting a
+    # thread would cost more than it saves).
+    nr = pieces.size
+    cum = np.zeros(nr + 1, dtype=np.int64)
+    np.cumsum(pieces, out=cum[1:])
+    total = int(cum[-1])
     n = _threads()
-    if n < 2 or nr < 2 or total < PARALLEL_PIECES or int(np.diff(poff).max()) > 0.6 * total:
+    if n < 2 or nr < 2 or total < PARALLEL_PIECES or int(pieces.max()) > 0.6 * total:
         return [(0, nr)]
-    cuts = np.searchsorted(poff, [total * c // n for c in range(1, n)]).tolist()
+    cuts = np.searchsorted(cum, [total * c // n for c in range(1, n)]).tolist()
     bounds = sorted({0, nr, *[min(max(int(c), 1), nr - 1) for c in cuts]})
     return list(pairwise(bounds))
 
@@ -196,6 +200,15 @@ def _run(ps: PixelSet, model: str) -> _Run:
     else:
         cor = _k.corridors_all(rings.codes, rings.off, rings.sx, rings.sy, h, w, kcap)
 
+    # a ring that translates an earlier one is left to it (ADR 0036): its phases are skipped and its
+    # ring, reach and lines are the earlier one's, moved
+    rep = _tw.ring_twins(rings.codes, rings.off, cor.eoff, cor.cnt, cor.special)
+    twins = rep != np.arange(rep.size)
+    if twins.any():
+        special = cor.special.copy()
+        special[twins] = _tw.TWIN
+        cor = cor._replace(special=special)
+
     # one reach table and one set of lines for all rings: each thread writes its rings' pieces
     npc = cor.gdir.size
     reach = np.zeros(npc, np.int64)
@@ -218,7 +231,7 @@ def _run(ps: PixelSet, model: str) -> _Run:
         gb = _k.greedy_all(part, reach, lines, False)
         return _k.finish_all(part, reach, ga, gb, x0, y0)
 
-    out = _in_threads(rings_from, _ring_chunks(cor.poff))
+    out = _in_threads(rings_from, _ring_chunks(np.where(twins, 0, np.diff(cor.poff))))
     xy, roff, status, src, win = out[0]
     if len(out) > 1:
         # the chunks' rings follow each other: their rings joined in order
@@ -230,6 +243,10 @@ def _run(ps: PixelSet, model: str) -> _Run:
         status = np.concatenate([o.status for o in out])
         src = np.concatenate([o.src for o in out])
         win = np.concatenate([o.win for o in out])
+    if twins.any():
+        xy, roff, status, src, win = _tw.fill_twins(
+            rep, rings.sx, rings.sy, cor.poff, reach, lines, xy, roff, status, src, win
+        )
     if gauss:
         xy -= 0.5  # dual frame → plane (exact: |coordinates| < 2⁵⁰)
     return _Run(rings, cor, reach, lines, xy, roff, status, src, win)

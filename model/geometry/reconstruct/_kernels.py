@@ -135,6 +135,7 @@ from mrm.geometry.reconstruct._straighten import (
     simplest_line,
     straighten_ring,
 )
+from mrm.geometry.reconstruct._twins import TWIN
 
 # The phases live in the sibling _base, _check, _corridor, … modules; this module runs them and keeps one
 # import for callers.
@@ -382,7 +383,7 @@ def reach_all(cor: Corridors, reach: np.ndarray, lines: np.ndarray) -> None:  # 
     for k in range(eoff.size - 1):
         a = poff[k]
         b = poff[k + 1]
-        if special[k] == 1 or b == a:
+        if special[k] == 1 or special[k] == TWIN or b == a:
             continue
         ring_reach(
             eoff[k],
@@ -503,6 +504,9 @@ def finish_all(
         b = poff[k + 1]
         kk = kmax[k]
         sc = 1 << kk
+        if special[k] == TWIN:
+            roff[k + 1] = pos  # its twin's ring, moved, replaces this empty one (._twins.fill_twins)
+            continue
         if special[k] == 1:
             cx = 4 * ec[e0]
             cy = 4 * er[e0]
@@ -590,7 +594,7 @@ def finish_all(
                 # window); each of them needs more than three vertices
                 wb = window_bound(reach[a:b]) if px.size > 3 else 0
                 if 6 <= px.size <= _RELINK_MAX and px.size > wb:
-                    px, py, pt, ps, pl = relink_ring(px, py, pt, ps, pl, rc, p, q, g, kk)
+                    px, py, pt, ps, pl = relink_ring(px, py, pt, ps, pl, rc, p, q, g, reach[a:b], kk)
                 if px.size > 3 and b - a <= _SMALL_POLY:
                     # a small corridor: search for the fewest vertices its windows allow (3 or 4)
                     lbv = max(3, wb)

@@ -865,6 +865,13 @@ def small_polygon(
             smin = i
     for ta0 in range(smin, smin + reach[smin] + 1):
         ta = ta0 % n
+        # nv windows from ta must close the lap (the greedy longest jumps go farthest): else no ring
+        # starts here, and the cones of its candidates are not worth computing
+        far = ta
+        for _j in range(nv):
+            far += max(reach[far % n], 0)
+        if far < ta + n:
+            continue
         for u in range(per):
             _cone_fwd(cx[per * ta + u], cy[per * ta + u], ta, n - 1, gp, gq, fsc, ai, oai, u)
             if nv == 4:
@@ -988,6 +995,7 @@ def relink_ring(
     gp: np.ndarray,
     gq: np.ndarray,
     gdir: np.ndarray,
+    reach: np.ndarray,
     kmax: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover
     """Replace four consecutive vertices by three where the two outer neighbours allow it.
@@ -995,8 +1003,9 @@ def relink_ring(
     For vertices a, c1, v, v', c3, b: c1 is moved among its own position and nine points of its piece that
     a sees, c3 likewise towards b, and one point w replacing v, v' is placed by :func:`_merge_pair`. This
     undoes what :func:`merge_ring` cannot (two vertices close together that one vertex would replace only if
-    both neighbours moved). Every change is verified exactly on the whole ring, so the ring stays valid; the
-    scan stops after a lap without change.
+    both neighbours moved); ``reach`` (the ring's reach table) rules out most positions at once. Every
+    change is verified exactly on the whole ring, so the ring stays valid; the scan stops after a lap
+    without change.
     """
     n = gdir.size
     sc = 1 << kmax
@@ -1038,7 +1047,11 @@ def relink_ring(
         steps += 1
         _unwrap6(t[:m], i, n, jj, tt)
         ok = False
-        if tt[5] - tt[0] < n:
+        # The reach table first (exact, and far cheaper than the candidates): c1 stays in piece tt[1], c3
+        # in tt[4], w goes to a piece of tt[2] … tt[3], and an edge from piece u ends at most at
+        # u + reach[u], which never decreases with u; so w's farthest allowed piece is the one to test.
+        wfar = min(tt[3], tt[1] + reach[tt[1] % n])
+        if tt[5] - tt[0] < n and wfar >= tt[2] and wfar + reach[wfar % n] >= tt[4]:
             ax = x[jj[0]]
             ay = y[jj[0]]
             bx = x[jj[5]]
