@@ -378,7 +378,11 @@ if who == "gdal":
 else:
     from mrm.geometry.reconstruct import reconstruct
     ps = PixelSet(m)
-    reconstruct(PixelSet(np.eye(5, dtype=bool)), who)  # load the kernels first
+    # load the kernels first: single pixels, and two equal squares (a twin ring, ADR 0036)
+    warm = np.zeros((5, 12), dtype=bool)
+    warm[np.arange(5), np.arange(5)] = True
+    warm[1:3, 6:8] = warm[1:3, 9:11] = True
+    reconstruct(PixelSet(warm), who)
     reset_peak(); base = kb("VmRSS")
     reconstruct(ps, who)
 print(kb("VmHWM") - base)
