@@ -864,6 +864,25 @@ def test_rings_split_between_threads_give_the_single_thread_result(model: str, m
     assert shapely.to_wkb(detail.geometry) == shapely.to_wkb(threaded)
 
 
+@pytest.mark.parametrize("model", MODELS)
+def test_rings_taken_a_batch_at_a_time_give_the_same_polygons(model: str, monkeypatch) -> None:
+    # R keeps the reach table and the lines of one batch of rings at a time (40 bytes a piece: 40 MB on a
+    # 1024² noise image); batches of any size, with threads or not, give the very same polygons, and
+    # reconstruct_detailed (which keeps the whole tables) too.
+    import mrm.geometry.reconstruct as rec
+
+    rng = np.random.default_rng(5)
+    ps = PixelSet(rng.random((80, 120)) < 0.5) | disk(30).translate(60, 40)
+    whole = shapely.to_wkb(reconstruct(ps, model))
+    poff = rec._k.corridors_all(*_rings_arrays(ps)).poff
+    for size, threads in ((40, 1), (333, 2), (2000, 3)):
+        monkeypatch.setattr(rec, "BATCH_PIECES", size)
+        monkeypatch.setattr(rec, "_threads", lambda threads=threads: threads)
+        assert len(rec._batches(poff, 0, poff.size - 1)) > 2
+        assert shapely.to_wkb(reconstruct(ps, model)) == whole
+        assert shapely.to_wkb(reconstruct_detailed(ps, model).geometry) == whole
+
+
 def _rings_arrays(ps: PixelSet) -> tuple[object, ...]:
     from mrm.geometry.topology.cracks import trace_mask
 

@@ -25,7 +25,7 @@ from tests.model.test_reconstruct_properties import pixel_sets
 
 def corridor_rings(ps: PixelSet, model: str) -> list[dict[str, Any]]:
     """Every ring of R(A) with its corridor: pieces, gates, reach, scale and the ring in scaled integers."""
-    run = _run(ps, model)
+    run = _run(ps, model, tables=True)
     cor = run.corridor
     poff, rect, gp, gq, gdir, kmax, special = cor[10], cor[11], cor[13], cor[14], cor[15], cor[16], cor[17]
     x0, y0 = ps.origin

@@ -55,7 +55,7 @@ def test_window_bound_on_image_rings(model: str) -> None:
     from skimage.filters import threshold_otsu
 
     img = skimage.data.camera()
-    run = _run(PixelSet(np.asarray(img > threshold_otsu(img))[::-1]), model)
+    run = _run(PixelSet(np.asarray(img > threshold_otsu(img))[::-1]), model, tables=True)
     poff = run.corridor.poff
     for k in range(poff.size - 1):
         reach = run.reach[poff[k] : poff[k + 1]]

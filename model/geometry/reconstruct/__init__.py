@@ -181,7 +181,68 @@ def _forget_pool() -> None:
 os.register_at_fork(after_in_child=_forget_pool)
 
 
-def _run(ps: PixelSet, model: str) -> _Run:
+#: Pieces in one batch of rings: its reach table and lines (40 bytes a piece) are all R keeps of them at
+#: a time (a ring with more pieces is a batch of its own).
+BATCH_PIECES = 1 << 16
+
+
+def _batches(poff: IntArray, k0: int, k1: int) -> list[tuple[int, int]]:
+    # Consecutive ring ranges of k0 … k1−1 with at most BATCH_PIECES pieces each (or one larger ring).
+    out = []
+    b0 = k0
+    while b0 < k1:
+        b1 = int(np.searchsorted(poff, poff[b0] + BATCH_PIECES, side="right")) - 1
+        b1 = min(max(b1, b0 + 1), k1)
+        out.append((b0, b1))
+        b0 = b1
+    return out
+
+
+def _batch(cor: _k.Corridors, k0: int, k1: int) -> tuple[_k.Corridors, int, int]:
+    # Rings k0 … k1−1 as a corridor of their own (offsets from their first element, piece and net vertex),
+    # and the range of their pieces in the whole.
+    e0, e1 = int(cor.eoff[k0]), int(cor.eoff[k1])
+    p0, p1 = int(cor.poff[k0]), int(cor.poff[k1])
+    n0, n1 = int(cor.r0off[k0]), int(cor.r0off[k1])
+    part = _k.Corridors(
+        cor.eoff[k0 : k1 + 1] - e0,
+        cor.ec[e0:e1],
+        cor.er[e0:e1],
+        cor.edin[e0:e1],
+        cor.edout[e0:e1],
+        cor.enl[e0:e1],
+        cor.cnt[e0:e1],
+        cor.r0off[k0 : k1 + 1] - n0,
+        cor.r0[n0:n1],
+        cor.r0t[n0:n1],
+        cor.poff[k0 : k1 + 1] - p0,
+        cor.rect[p0:p1],
+        cor.pel[p0:p1],
+        cor.gp[p0:p1],
+        cor.gq[p0:p1],
+        cor.gdir[p0:p1],
+        cor.kmax[k0:k1],
+        cor.special[k0:k1],
+        cor.full[k0:k1],
+    )
+    return part, p0, p1
+
+
+def _joined(parts: list[_k.Rings]) -> _k.Rings:
+    # Rings of consecutive ring ranges, joined in order.
+    if len(parts) == 1:
+        return parts[0]
+    shift = np.cumsum([0] + [o.xy.shape[0] for o in parts[:-1]])
+    return _k.Rings(
+        np.concatenate([o.xy for o in parts]),
+        np.concatenate([parts[0].roff] + [o.roff[1:] + s for o, s in zip(parts[1:], shift[1:], strict=True)]),
+        np.concatenate([o.status for o in parts]),
+        np.concatenate([o.src for o in parts]),
+        np.concatenate([o.win for o in parts]),
+    )
+
+
+def _run(ps: PixelSet, model: str, tables: bool = False) -> _Run:
     m = np.ascontiguousarray(ps.mask.view(np.uint8))
     kcap = _scale_cap(ps)
     rings = trace_mask(m)
@@ -209,40 +270,30 @@ def _run(ps: PixelSet, model: str) -> _Run:
         special[twins] = _tw.TWIN
         cor = cor._replace(special=special)
 
-    # one reach table and one set of lines for all rings: each thread writes its rings' pieces
+    # The reach table and the central lines (40 bytes a piece) are needed ring by ring: R keeps them for a
+    # batch of rings at a time, unless the caller wants the whole tables (reconstruct_detailed)
     npc = cor.gdir.size
-    reach = np.zeros(npc, np.int64)
-    lines = np.zeros((npc, 4), np.float64)
+    reach = np.zeros(npc if tables else 0, np.int64)
+    lines = np.zeros((npc if tables else 0, 4), np.float64)
 
-    def rings_from(k0: int, k1: int) -> _k.Rings:
+    def rings_from(k0: int, k1: int) -> list[_k.Rings]:
         # Phases 2-4 (reach and lines, the V4 greedy under two closing rules, finishing) for rings
-        # k0 … k1−1: each ring depends only on its own corridor, so the kernels take the rings' slice of
-        # the per-ring arrays and read the shared per-element and per-piece arrays at its offsets.
-        part = cor._replace(
-            eoff=cor.eoff[k0 : k1 + 1],
-            r0off=cor.r0off[k0 : k1 + 1],
-            poff=cor.poff[k0 : k1 + 1],
-            kmax=cor.kmax[k0:k1],
-            special=cor.special[k0:k1],
-            full=cor.full[k0:k1],
-        )
-        _k.reach_all(part, reach, lines)
-        ga = _k.greedy_all(part, reach, lines, True)
-        gb = _k.greedy_all(part, reach, lines, False)
-        return _k.finish_all(part, reach, ga, gb, x0, y0)
+        # k0 … k1−1, a batch at a time: each ring depends only on its own corridor.
+        done = []
+        for b0, b1 in _batches(cor.poff, k0, k1):
+            part, p0, p1 = _batch(cor, b0, b1)
+            if tables:
+                r, ln = reach[p0:p1], lines[p0:p1]  # this batch's rows of the whole tables
+            else:
+                r, ln = np.zeros(p1 - p0, np.int64), np.zeros((p1 - p0, 4), np.float64)
+            _k.reach_all(part, r, ln)
+            ga = _k.greedy_all(part, r, ln, True)
+            gb = _k.greedy_all(part, r, ln, False)
+            done.append(_k.finish_all(part, r, ga, gb, x0, y0))
+        return done
 
-    out = _in_threads(rings_from, _ring_chunks(np.where(twins, 0, np.diff(cor.poff))))
-    xy, roff, status, src, win = out[0]
-    if len(out) > 1:
-        # the chunks' rings follow each other: their rings joined in order
-        shift = np.cumsum([0] + [o.xy.shape[0] for o in out[:-1]])
-        xy = np.concatenate([o.xy for o in out])
-        roff = np.concatenate(
-            [out[0].roff] + [o.roff[1:] + s for o, s in zip(out[1:], shift[1:], strict=True)]
-        )
-        status = np.concatenate([o.status for o in out])
-        src = np.concatenate([o.src for o in out])
-        win = np.concatenate([o.win for o in out])
+    chunks = _in_threads(rings_from, _ring_chunks(np.where(twins, 0, np.diff(cor.poff))))
+    xy, roff, status, src, win = _joined([batch for chunk in chunks for batch in chunk])
     if twins.any():
         xy, roff, status, src, win = _tw.fill_twins(
             rep, rings.sx, rings.sy, cor.poff, reach, lines, xy, roff, status, src, win
@@ -393,7 +444,7 @@ def reconstruct_detailed(ps: PixelSet, model: str = "standard") -> Reconstructio
     _check_model(model)
     if ps.is_empty():
         return Reconstruction(Polygon(), model, ())
-    run = _run(ps, model)
+    run = _run(ps, model, tables=True)
     rings = run.rings
     x0, y0 = ps.origin
     poff = run.corridor.poff

@@ -94,7 +94,7 @@ def fill_twins(
 
     ``xy`` … ``win`` hold an empty ring for each twin; returns them with the twins' rings in place (plane
     coordinates: the move is a whole number of pixels, exact). ``reach`` and ``lines`` (per piece, lines
-    in Q-units) are filled in place.
+    in Q-units) are filled in place when they hold every piece (empty: R kept them a batch at a time).
     """
     nr = rep.size
     length = np.empty(nr, np.int64)
@@ -117,7 +117,7 @@ def fill_twins(
             nsrc[noff[k] + i] = src[roff[r] + i]
             nwin[noff[k] + i] = win[roff[r] + i]
         nstatus[k] = status[r]
-        if r != k:
+        if r != k and reach.size > 0:
             for i in range(poff[k + 1] - poff[k]):
                 reach[poff[k] + i] = reach[poff[r] + i]
                 lines[poff[k] + i, 0] = lines[poff[r] + i, 0] + 4.0 * dx
