@@ -183,7 +183,7 @@ os.register_at_fork(after_in_child=_forget_pool)
 
 #: Pieces in one batch of rings: its reach table and lines (40 bytes a piece) are all R keeps of them at
 #: a time (a ring with more pieces is a batch of its own).
-BATCH_PIECES = 1 << 16
+BATCH_PIECES = 1 << 18
 
 
 def _batches(poff: IntArray, k0: int, k1: int) -> list[tuple[int, int]]:
