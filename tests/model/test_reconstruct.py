@@ -873,6 +873,10 @@ def test_rings_taken_a_batch_at_a_time_give_the_same_polygons(model: str, monkey
 
     rng = np.random.default_rng(5)
     ps = PixelSet(rng.random((80, 120)) < 0.5) | disk(30).translate(60, 40)
+    # every table of the corridor is sliced with its batch (a new one must be classified too)
+    sliced = (*rec._PER_RING, *rec._PER_ELEMENT, *rec._PER_PIECE, *rec._PER_NET_VERTEX)
+    sliced += ("eoff", "poff", "r0off")
+    assert sorted(sliced) == sorted(rec._k.Corridors._fields)
     whole = shapely.to_wkb(reconstruct(ps, model))
     poff = rec._k.corridors_all(*_rings_arrays(ps)).poff
     for size, threads in ((40, 1), (333, 2), (2000, 3)):

@@ -198,32 +198,28 @@ def _batches(poff: IntArray, k0: int, k1: int) -> list[tuple[int, int]]:
     return out
 
 
+#: Corridors' tables by what their rows are (see :class:`._base.Corridors`), for slicing a batch of rings.
+_PER_RING = ("kmax", "special", "full")
+_PER_ELEMENT = ("ec", "er", "edin", "edout", "enl", "cnt")
+_PER_PIECE = ("rect", "pel", "gp", "gq", "gdir")
+_PER_NET_VERTEX = ("r0", "r0t")
+
+
 def _batch(cor: _k.Corridors, k0: int, k1: int) -> tuple[_k.Corridors, int, int]:
     # Rings k0 … k1−1 as a corridor of their own (offsets from their first element, piece and net vertex),
     # and the range of their pieces in the whole.
     e0, e1 = int(cor.eoff[k0]), int(cor.eoff[k1])
     p0, p1 = int(cor.poff[k0]), int(cor.poff[k1])
     n0, n1 = int(cor.r0off[k0]), int(cor.r0off[k1])
-    part = _k.Corridors(
-        cor.eoff[k0 : k1 + 1] - e0,
-        cor.ec[e0:e1],
-        cor.er[e0:e1],
-        cor.edin[e0:e1],
-        cor.edout[e0:e1],
-        cor.enl[e0:e1],
-        cor.cnt[e0:e1],
-        cor.r0off[k0 : k1 + 1] - n0,
-        cor.r0[n0:n1],
-        cor.r0t[n0:n1],
-        cor.poff[k0 : k1 + 1] - p0,
-        cor.rect[p0:p1],
-        cor.pel[p0:p1],
-        cor.gp[p0:p1],
-        cor.gq[p0:p1],
-        cor.gdir[p0:p1],
-        cor.kmax[k0:k1],
-        cor.special[k0:k1],
-        cor.full[k0:k1],
+    rows = {f: getattr(cor, f)[k0:k1] for f in _PER_RING}
+    rows |= {f: getattr(cor, f)[e0:e1] for f in _PER_ELEMENT}
+    rows |= {f: getattr(cor, f)[p0:p1] for f in _PER_PIECE}
+    rows |= {f: getattr(cor, f)[n0:n1] for f in _PER_NET_VERTEX}
+    part = cor._replace(
+        eoff=cor.eoff[k0 : k1 + 1] - e0,
+        poff=cor.poff[k0 : k1 + 1] - p0,
+        r0off=cor.r0off[k0 : k1 + 1] - n0,
+        **rows,
     )
     return part, p0, p1
 
