@@ -180,7 +180,7 @@ def _pixel_sets() -> list[object]:
     ring = disc & ((xx - 6.5) ** 2 + (yy - 6.5) ** 2 > 6)
     two = np.zeros((6, 12), bool)
     two[1:5, 1:4] = True
-    two[1:5, 7:11] = True
+    two[1:5, 7:10] = True  # the same block again: a twin ring (ADR 0036), so fill_twins compiles here too
     return [PixelSet(disc), PixelSet(ring, (-3, 5)), PixelSet(two)]
 
 

@@ -88,3 +88,22 @@ def test_a_warm_up_after_an_edit_drops_every_cached_kernel_first(
     p.write_text(p.read_text(encoding="utf-8") + "\n# edited again\n", encoding="utf-8")
     assert warmup.main([]) == 0
     assert unrelated.exists()  # only numba's kernel files go
+
+
+def test_the_warm_up_sets_reach_every_path_of_r(monkeypatch: pytest.MonkeyPatch) -> None:
+    # A kernel the warm-up never calls compiles for the first user who needs it (a minute's wait, in a
+    # worker): the warm-up's pixel sets must hold a ring R computes and one it copies from its twin
+    # (ADR 0036), so that fill_twins is compiled too.
+    import mrm.geometry.reconstruct as rec
+
+    fill = rec._tw.fill_twins
+    calls = []
+
+    def counted(*args: object) -> object:
+        calls.append(1)
+        return fill(*args)
+
+    monkeypatch.setattr(rec._tw, "fill_twins", counted)
+    for ps in warmup._pixel_sets():
+        rec.reconstruct(ps)  # type: ignore[arg-type]
+    assert calls
