@@ -855,13 +855,41 @@ def test_rings_split_between_threads_give_the_single_thread_result(model: str, m
     ps = PixelSet(rng.random((90, 110)) < 0.55)
     monkeypatch.setattr(rec, "MAX_THREADS", 3)
     monkeypatch.setattr(rec, "_threads", lambda: 3)
-    chunks = rec._ring_chunks(np.diff(rec._k.corridors_all(*_rings_arrays(ps)).poff))
-    assert len(chunks) == 3
+    plan = rec._ring_plan(np.diff(rec._k.corridors_all(*_rings_arrays(ps)).poff))
+    assert len(plan) == 3
     threaded = reconstruct(ps, model)
     monkeypatch.setattr(rec, "_threads", lambda: 1)
     assert shapely.to_wkb(reconstruct(ps, model)) == shapely.to_wkb(threaded)
     detail = reconstruct_detailed(ps, model)
     assert shapely.to_wkb(detail.geometry) == shapely.to_wkb(threaded)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_a_big_ring_among_small_ones_gets_a_thread_to_itself(model: str, monkeypatch) -> None:
+    # One large object among many small ones (camera, 4096² blobs): cut into consecutive halves, the
+    # thread that took the big ring with its neighbours did most of the work. The big ring is a share of
+    # its own, the threads' work is balanced to within one ring, and the polygons are one thread's.
+    import mrm.geometry.reconstruct as rec
+
+    rng = np.random.default_rng(8)
+    small = PixelSet(rng.random((8, 300)) < 0.15)
+    ps = small | disk(300).translate(300, 320) | small.translate(0, 640)
+    pieces = np.diff(rec._k.corridors_all(*_rings_arrays(ps)).poff)
+    big = int(np.argmax(pieces))
+    assert pieces[big] > 0.5 * pieces.sum()  # a big ring in the middle of the ring order
+    assert 0 < big < pieces.size - 1
+    monkeypatch.setattr(rec, "_threads", lambda: 2)
+    monkeypatch.setattr(rec, "PARALLEL_PIECES", 100)
+    plan = rec._ring_plan(pieces)
+    assert any((big, big + 1) in share for share in plan)
+    covered = sorted(k for share in plan for a, b in share for k in range(a, b))
+    assert covered == list(range(pieces.size))
+    cost = np.where(pieces > 0, pieces + rec.RING_COST, 0)
+    loads = [sum(int(cost[a:b].sum()) for a, b in share) for share in plan]
+    assert max(loads) - min(loads) <= max(int(cost[a:b].sum()) for share in plan for a, b in share)
+    threaded = shapely.to_wkb(reconstruct(ps, model))
+    monkeypatch.setattr(rec, "_threads", lambda: 1)
+    assert shapely.to_wkb(reconstruct(ps, model)) == threaded
 
 
 @pytest.mark.parametrize("model", MODELS)
@@ -902,9 +930,9 @@ def test_mrm_threads_1_keeps_r_on_one_thread(monkeypatch) -> None:
     rng = np.random.default_rng(21)
     poff = rec._k.corridors_all(*_rings_arrays(PixelSet(rng.random((90, 110)) < 0.55))).poff
     monkeypatch.setenv("MRM_THREADS", "2")
-    assert rec._threads() == 2 and len(rec._ring_chunks(np.diff(poff))) == 2
+    assert rec._threads() == 2 and len(rec._ring_plan(np.diff(poff))) == 2
     monkeypatch.setenv("MRM_THREADS", "1")
-    assert rec._threads() == 1 and rec._ring_chunks(np.diff(poff)) == [(0, poff.size - 1)]
+    assert rec._threads() == 1 and rec._ring_plan(np.diff(poff)) == [[(0, poff.size - 1)]]
 
 
 @pytest.mark.parametrize("model", MODELS)

@@ -144,32 +144,69 @@ def _threads() -> int:
         return max(1, min(MAX_THREADS, os.cpu_count() or 1))
 
 
-def _ring_chunks(pieces: IntArray) -> list[tuple[int, int]]:
-    # Consecutive ring ranges of about equal numbers of pieces to work on (``pieces`` per ring, 0 for a
-    # twin), one per thread; one range when the set is small or one ring holds most of it (starting a
-    # thread would cost more than it saves).
+#: What one ring costs R besides its pieces (its kernels' calls and small arrays), in pieces' worth of work:
+#: about 10 µs a ring against 1 µs a piece on the benchmark images.
+RING_COST = 10
+
+
+def _ring_plan(pieces: IntArray) -> list[list[tuple[int, int]]]:
+    # The ring ranges each thread works on (``pieces`` per ring, 0 for a twin): consecutive ranges of about
+    # 1/n of the work, except that a ring worth more than 1/(2n) of it is a range of its own; the ranges
+    # then go, largest first, to the thread with the least work so far. Isolating the large rings is what
+    # balances an image with one big object: cut into consecutive halves, camera's big ring and its
+    # neighbours were one thread's 6,116 of 9,123 pieces. Measured against that split (same process,
+    # alternating): 4096² blobs 165 → 128 ms, camera 7.4 → 7.2 ms (gauss 6.7 → 5.7), the rest within ±2 %.
+    # Every range costs a few kernel calls, so sets without a big ring keep one range per thread. One range
+    # when the set is small (starting a thread would cost more than it saves).
     nr = pieces.size
-    cum = np.zeros(nr + 1, dtype=np.int64)
-    np.cumsum(pieces, out=cum[1:])
-    total = int(cum[-1])
     n = _threads()
-    if n < 2 or nr < 2 or total < PARALLEL_PIECES or int(pieces.max()) > 0.6 * total:
-        return [(0, nr)]
-    cuts = np.searchsorted(cum, [total * c // n for c in range(1, n)]).tolist()
-    bounds = sorted({0, nr, *[min(max(int(c), 1), nr - 1) for c in cuts]})
-    return list(pairwise(bounds))
+    if n < 2 or nr < 2 or int(pieces.sum()) < PARALLEL_PIECES:
+        return [[(0, nr)]]
+    cost = np.where(pieces > 0, pieces + RING_COST, 0)
+    total = int(cost.sum())
+    share = total / n
+    big = np.flatnonzero(cost > share / 2).tolist()
+    # with big rings alone, the others in ranges of half a share, for the threads to even out
+    unit = share / 2 if big else share
+    ranges: list[tuple[int, int, int]] = []  # (first ring, end, cost)
+    start = 0
+    for k in [*big, nr]:
+        # the rings start … k−1 in consecutive ranges of about one unit, then (big) ring k alone
+        if k > start:
+            cum = np.cumsum(cost[start:k])
+            cuts = np.searchsorted(cum, unit * np.arange(1, int(cum[-1] // unit) + 1)) + 1
+            bounds = sorted({0, k - start, *[int(c) for c in cuts if c < k - start]})
+            for b0, b1 in pairwise(bounds):
+                ranges.append((start + b0, start + b1, int(cum[b1 - 1]) - (int(cum[b0 - 1]) if b0 else 0)))
+        if k < nr:
+            ranges.append((k, k + 1, int(cost[k])))
+        start = k + 1
+    load = [0] * n
+    plan: list[list[tuple[int, int]]] = [[] for _ in range(n)]
+    for a, b, c in sorted(ranges, key=lambda r: -r[2]):
+        i = load.index(min(load))
+        load[i] += c
+        plan[i].append((a, b))
+    return [p for p in plan if p]
 
 
-def _in_threads(work: Callable[[int, int], Any], chunks: list[tuple[int, int]]) -> list[Any]:
-    # The kernels release the GIL (mrm.geometry._jit), so the chunks run on as many cores.
+def _in_threads(work: Callable[[int, int], Any], plan: list[list[tuple[int, int]]]) -> list[Any]:
+    # Each thread works through its ranges (the kernels release the GIL, mrm.geometry._jit); the results
+    # come back in ring order.
     global _pool
-    if len(chunks) == 1:
-        return [work(*chunks[0])]
+    if len(plan) == 1:
+        return [work(a, b) for a, b in plan[0]]
     if _pool is None:
         _pool = ThreadPoolExecutor(max_workers=MAX_THREADS, thread_name_prefix="mrm-R")
-    futures = [_pool.submit(work, k0, k1) for k0, k1 in chunks[1:]]
-    first = work(*chunks[0])  # this thread takes a chunk too
-    return [first, *(f.result() for f in futures)]
+
+    def share(ranges: list[tuple[int, int]]) -> list[tuple[int, Any]]:
+        return [(a, work(a, b)) for a, b in ranges]
+
+    futures = [_pool.submit(share, ranges) for ranges in plan[1:]]
+    done = share(plan[0])  # this thread takes a share too
+    for f in futures:
+        done += f.result()
+    return [result for _a, result in sorted(done, key=lambda d: d[0])]
 
 
 def _forget_pool() -> None:
@@ -288,7 +325,7 @@ def _run(ps: PixelSet, model: str, tables: bool = False) -> _Run:
             done.append(_k.finish_all(part, r, ga, gb, x0, y0))
         return done
 
-    chunks = _in_threads(rings_from, _ring_chunks(np.where(twins, 0, np.diff(cor.poff))))
+    chunks = _in_threads(rings_from, _ring_plan(np.where(twins, 0, np.diff(cor.poff))))
     xy, roff, status, src, win = _joined([batch for chunk in chunks for batch in chunk])
     if twins.any():
         xy, roff, status, src, win = _tw.fill_twins(
