@@ -27,7 +27,7 @@ of polygons and of slivers (area < 10⁻⁶), the smallest area, the vertex coun
 distance between our result and GEOS's (a sampled estimate).
 
 Run:  .venv/bin/python benchmarks/operations.py [--repeats 7] [--no-cold]
-      [--only dss1024|scaling|rotation|boolean|boolean5000|robustness]
+      [--only dss1024|scaling|rotation|boolean|boolean5000|robustness] (repeatable)
 """
 
 from __future__ import annotations
@@ -592,18 +592,20 @@ def main() -> None:
     parser.add_argument(
         "--only",
         choices=("dss1024", "scaling", "rotation", "boolean", "boolean5000", "robustness"),
-        default=None,
+        action="append",
+        help="run only this section (repeatable)",
     )
     args = parser.parse_args()
-    if args.only is not None:
+    if args.only:
         repeats = max(5, args.repeats)
-        {
-            "dss1024": bench_dss_1024,
-            "scaling": bench_scaling,
-            "rotation": bench_rotation,
-            "boolean": bench_boolean,
-            "boolean5000": bench_boolean_5000,
-        }.get(args.only, lambda r: bench_robustness(8))(repeats)
+        for section in args.only:
+            {
+                "dss1024": bench_dss_1024,
+                "scaling": bench_scaling,
+                "rotation": bench_rotation,
+                "boolean": bench_boolean,
+                "boolean5000": bench_boolean_5000,
+            }.get(section, lambda r: bench_robustness(8))(repeats)
         return
     repeats = max(5, args.repeats)
     if not args.no_cold and None not in (DSS, ROTATE, COREFINE):
