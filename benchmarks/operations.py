@@ -254,6 +254,13 @@ def bench_dss_1024(repeats: int) -> None:
                 f"÷ float composition {m_ours / m_comp:.2f}",
             )
             t.add(f"float composition R → shapely scale → D, {model}", None, m_comp, same)
+            if alpha > 1:
+                # where the time goes: R(A) (one ring here: its threads have nothing to share) and D
+                _, m_r, euclid = timed(lambda model=model: reconstruct(ps, model), repeats)
+                scaled = shapely.affinity.scale(euclid, alpha, alpha, origin=(0, 0))
+                _, m_d, _ = timed(lambda model=model, e=scaled: discretize(e, model), repeats)
+                t.add(f"  of which R(A), {model}", None, m_r, "")
+                t.add(f"  of which D of the scaled polygon, {model}", None, m_d, "")
         t.add("peer cv2.resize INTER_NEAREST", None, t_near, "")
         t.add("peer skimage rescale order=1 + threshold", None, t_sk, "")
         t.peer = t_sk
