@@ -892,6 +892,29 @@ def test_a_big_ring_among_small_ones_gets_a_thread_to_itself(model: str, monkeyp
     assert shapely.to_wkb(reconstruct(ps, model)) == threaded
 
 
+@settings(max_examples=200, deadline=None)
+@given(
+    pieces=st.lists(st.one_of(st.integers(0, 40), st.integers(0, 30_000)), min_size=1, max_size=400),
+    threads=st.integers(1, 4),
+)
+def test_the_thread_plan_takes_every_ring_once(pieces: list[int], threads: int) -> None:
+    # Whatever the ring sizes (twins count 0), the threads' ranges cover the rings exactly once, each
+    # range is consecutive, and no thread is left with nothing while another has two ranges.
+    from unittest import mock
+
+    import mrm.geometry.reconstruct as rec
+
+    arr = np.array(pieces, dtype=np.int64)
+    with mock.patch.object(rec, "_threads", lambda: threads):
+        plan = rec._ring_plan(arr)
+    assert 1 <= len(plan) <= threads
+    covered = sorted(k for share in plan for a, b in share for k in range(a, b))
+    assert covered == list(range(arr.size))
+    assert all(a < b for share in plan for a, b in share)
+    if arr.sum() >= rec.PARALLEL_PIECES and arr.size >= threads:
+        assert len(plan) == threads or all(len(share) == 1 for share in plan)
+
+
 @pytest.mark.parametrize("model", MODELS)
 def test_rings_taken_a_batch_at_a_time_give_the_same_polygons(model: str, monkeypatch) -> None:
     # R keeps the reach table and the lines of one batch of rings at a time (40 bytes a piece: 40 MB on a
