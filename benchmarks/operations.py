@@ -605,14 +605,16 @@ def main() -> None:
     args = parser.parse_args()
     if args.only:
         repeats = max(5, args.repeats)
+        sections = {
+            "dss1024": bench_dss_1024,
+            "scaling": bench_scaling,
+            "rotation": bench_rotation,
+            "boolean": bench_boolean,
+            "boolean5000": bench_boolean_5000,
+            "robustness": lambda r: bench_robustness(8),
+        }
         for section in args.only:
-            {
-                "dss1024": bench_dss_1024,
-                "scaling": bench_scaling,
-                "rotation": bench_rotation,
-                "boolean": bench_boolean,
-                "boolean5000": bench_boolean_5000,
-            }.get(section, lambda r: bench_robustness(8))(repeats)
+            sections[section](repeats)
         return
     repeats = max(5, args.repeats)
     if not args.no_cold and None not in (DSS, ROTATE, COREFINE):

@@ -881,9 +881,8 @@ def test_a_big_ring_among_small_ones_gets_a_thread_to_itself(model: str, monkeyp
     monkeypatch.setattr(rec, "_threads", lambda: 2)
     monkeypatch.setattr(rec, "PARALLEL_PIECES", 100)
     plan = rec._ring_plan(pieces)
+    # (that every ring is taken once: test_the_thread_plan_takes_every_ring_once)
     assert any((big, big + 1) in share for share in plan)
-    covered = sorted(k for share in plan for a, b in share for k in range(a, b))
-    assert covered == list(range(pieces.size))
     cost = np.where(pieces > 0, pieces + rec.RING_COST, 0)
     loads = [sum(int(cost[a:b].sum()) for a, b in share) for share in plan]
     assert max(loads) - min(loads) <= max(int(cost[a:b].sum()) for share in plan for a, b in share)
