@@ -58,6 +58,7 @@ from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.pixels import PixelSet
 from mrm.summary import optional_function
+from tests.oracles.geometry_strategies import noisy_star
 
 # The operations are looked up, not imported, so the script also runs while they are being written; a row
 # whose operation is missing is reported as such and the composition rows still run.
@@ -71,17 +72,6 @@ SLIVER = 1e-6
 
 
 # ------------------------------------------------------------------------------------------------ inputs
-def noisy_star(n: int, radius: float, seed: int, centre: tuple[float, float] = (0.0, 0.0)) -> Polygon:
-    """A star-shaped polygon with n vertices: a smooth random radius plus ±2 % noise per vertex."""
-    rng = np.random.default_rng(seed)
-    ang = np.sort(rng.uniform(0.0, 2 * np.pi, n))
-    smooth = sum(rng.uniform(0.02, 0.08) * np.sin(k * ang + rng.uniform(0, 6.3)) for k in (2, 3, 5, 7))
-    r = radius * (0.8 + smooth + rng.uniform(-0.02, 0.02, n))
-    poly = Polygon(np.c_[centre[0] + r * np.cos(ang), centre[1] + r * np.sin(ang)])
-    assert poly.is_valid
-    return poly
-
-
 def horse() -> tuple[np.ndarray, PixelSet]:
     """The horse silhouette: image (True = object, row 0 on top) and the pixel set (y up)."""
     img = ~skdata.horse()

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
 import shapely
 from hypothesis import assume
 from hypothesis import strategies as st
@@ -204,3 +205,18 @@ def polygonal() -> Any:
         grazing_polygons(),
         moved(star_polygons(max_radius=4.0)),
     )
+
+
+def noisy_star(n: int, radius: float, seed: int, centre: tuple[float, float] = (0.0, 0.0)) -> Any:
+    """A star-shaped polygon with n vertices: a smooth random radius plus ±2 % noise per vertex.
+
+    Discretized, its boundary has long straight stretches broken by one-pixel arms and notches (the
+    benchmarks' 1024² blob is one; the minimum-link tests use smaller ones).
+    """
+    rng = np.random.default_rng(seed)
+    ang = np.sort(rng.uniform(0.0, 2 * np.pi, n))
+    smooth = sum(rng.uniform(0.02, 0.08) * np.sin(k * ang + rng.uniform(0, 6.3)) for k in (2, 3, 5, 7))
+    r = radius * (0.8 + smooth + rng.uniform(-0.02, 0.02, n))
+    poly = shapely.Polygon(np.c_[centre[0] + r * np.cos(ang), centre[1] + r * np.sin(ang)])
+    assert poly.is_valid
+    return poly

@@ -34,6 +34,15 @@ from mrm.geometry.reconstruct._base import SRC_LINES, _grow1
 from mrm.geometry.reconstruct._check import snap_ring, verify_ring
 
 _GATE_EPS = 1.0 / 32.0  # Q-units each gate is shrunk by at both ends while searching
+# A window's line must be free to move sideways by _ROOM Q-units among the lines of its step, or the step is
+# taken again with the gates shrunk by _ROOMY_EPS: a window resting on a sliver of lines (slopes within 1 %
+# of each other through a one-pixel arm, thinner than the snapping grid) promises a ring the backward pass
+# cannot place. When the backward pass fails all the same, the search runs once more with _ROOM_AGAIN.
+# Measured on the benchmark images and noisy stars: _ROOM = 1/512 from the start costs the images 1-4
+# vertices each; 1/16384, then 1/512, costs camera one and gains the stars 3-6 % (docs/adr/0038).
+_ROOMY_EPS = 1.0 / 16.0
+_ROOM = 1.0 / 16384.0
+_ROOM_AGAIN = 1.0 / 512.0
 _PUSH = 1.0 / 32.0  # Q-units a vertex is pushed off its window into the reachable side (at most)
 _MARGIN = 1.0 / 512.0  # Q-units a vertex keeps from the sides of its piece (room for snapping)
 _PCAP = 96  # vertices of a line-space polygon (a preimage has a handful; more aborts the search)
@@ -44,8 +53,8 @@ _MANY_STARTS_PIECES = 1024  # … on corridors of at most this many pieces; larg
 
 
 @njit(cache=True)
-def shrunk_gates(gp: np.ndarray, gq: np.ndarray) -> np.ndarray:  # pragma: no cover
-    """Gate ends moved towards each other by :data:`_GATE_EPS` (or a quarter of the gate): (n, 4) floats."""
+def shrunk_gates(gp: np.ndarray, gq: np.ndarray, eps: float) -> np.ndarray:  # pragma: no cover
+    """Gate ends moved towards each other by ``eps`` Q-units (or a quarter of the gate): (n, 4) floats."""
     n = gp.shape[0]
     out = np.empty((n, 4), np.float64)
     for g in range(n):
@@ -54,7 +63,7 @@ def shrunk_gates(gp: np.ndarray, gq: np.ndarray) -> np.ndarray:  # pragma: no co
         qx = float(gq[g, 0])
         qy = float(gq[g, 1])
         ln = abs(qx - px) + abs(qy - py)  # gates are axis-parallel
-        e = min(_GATE_EPS, 0.25 * ln)
+        e = min(eps, 0.25 * ln)
         ux = (qx - px) / ln
         uy = (qy - py) / ln
         out[g, 0] = px + e * ux
@@ -205,6 +214,31 @@ def _frame(t: int, tmax: int, reach: np.ndarray, gdir: np.ndarray) -> tuple[floa
 
 
 @leaf_njit(cache=True)
+def _room(pa: np.ndarray, pb: np.ndarray, m: int, a: float, b: float) -> float:  # pragma: no cover
+    # How far the line (a, b) of line space is from the boundary of the convex polygon (pa, pb)[:m] along
+    # the offset axis: the smaller of b − (lowest b of the polygon at slope a) and (highest b) − b.
+    lo = 1e300
+    hi = -1e300
+    for i in range(m):
+        j = i + 1 if i + 1 < m else 0
+        a0 = pa[i]
+        a1 = pa[j]
+        if (a0 - a) * (a1 - a) > 0.0:
+            continue  # this edge does not span slope a
+        if a1 == a0:
+            c0 = min(pb[i], pb[j])
+            c1 = max(pb[i], pb[j])
+        else:
+            c0 = pb[i] + (a - a0) / (a1 - a0) * (pb[j] - pb[i])
+            c1 = c0
+        lo = min(lo, c0)
+        hi = max(hi, c1)
+    if hi < lo:
+        return 0.0
+    return max(0.0, min(b - lo, hi - b))
+
+
+@leaf_njit(cache=True)
 def _pre_reach(
     lx: float,
     ly: float,
@@ -217,7 +251,9 @@ def _pre_reach(
     gdir: np.ndarray,
     bufa: np.ndarray,
     bufb: np.ndarray,
-) -> tuple[int, int, float, float, float, float, float, float, float, float, float]:  # pragma: no cover
+) -> tuple[
+    int, int, float, float, float, float, float, float, float, float, float, float
+]:  # pragma: no cover
     # Lines that have l strictly on their left and r on their right (the oriented crossing of a part of a
     # window, in piece t) and then cross the shrunk gates t+1, … in order: follow their polygon in line
     # space (frame u from :func:`_frame`, origin o the midpoint of l and r; a line is y' = a·x' + b) while
@@ -225,7 +261,8 @@ def _pre_reach(
     # to tmax; 1: a right turn; 2: a left turn; −1: failure), the extreme line towards that gate (a world
     # point and unit direction), how far it misses the gate's end (smaller is nearer to turning the
     # corner), and the line the next window runs on: the extreme line moved by _INSET towards the polygon's
-    # centroid (at tmax, both lines are the centroid's). bufa / bufb: (3, _PCAP) scratch.
+    # centroid (at tmax, both lines are the centroid's), and that line's room: how far it can move
+    # sideways before it leaves the polygon (Q-units; 1e300 at tmax). bufa / bufb: (3, _PCAP) scratch.
     n = sg.shape[0]
     ux, uy = _frame(t, tmax, reach, gdir)
     vx = -uy  # left normal
@@ -251,12 +288,12 @@ def _pre_reach(
     yl = (lx - ox) * vx + (ly - oy) * vy
     m = _halfplane(pa, pb, m, -xl, -1.0, yl, qa, qb)
     if m <= 0:
-        return t, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return t, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     xr = (rx - ox) * ux + (ry - oy) * uy
     yr = (rx - ox) * vx + (ry - oy) * vy
     m = _halfplane(qa, qb, m, xr, 1.0, -yr, pa, pb)
     if m <= 0:
-        return t, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return t, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     ja = t
     for k in range(t + 1, tmax + 1):
         g = k % n
@@ -269,7 +306,7 @@ def _pre_reach(
         if m1 > 0:
             m2 = _halfplane(qa, qb, m1, xq, 1.0, -yq, bufa[2], bufb[2])
         if m1 < 0 or m2 < 0:
-            return ja, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            return ja, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         if m2 == 0:
             # missed: the gate lies right of every line (P never left: a right turn) or left of all
             vpmax = -1e300
@@ -318,6 +355,7 @@ def _pre_reach(
                 oy + b2 * vy,
                 (ux + a2 * vx) / dl2,
                 (uy + a2 * vy) / dl2,
+                _room(pa, pb, m, a2, b2) / dl2,
             )
         for i in range(m2):
             pa[i] = bufa[2, i]
@@ -337,7 +375,7 @@ def _pre_reach(
     y = oy + cb * vy
     dx = (ux + ca * vx) / dl
     dy = (uy + ca * vy) / dl
-    return ja, 0, x, y, dx, dy, 0.0, x, y, dx, dy
+    return ja, 0, x, y, dx, dy, 0.0, x, y, dx, dy, 1e300
 
 
 @leaf_njit(cache=True)
@@ -551,6 +589,58 @@ def _back_onto(
     return 0.0, 0.0, 0, -1
 
 
+@leaf_njit(cache=True)
+def _best_part(
+    k: int,
+    wcx: np.ndarray,
+    wcy: np.ndarray,
+    wdx: np.ndarray,
+    wdy: np.ndarray,
+    wsg: np.ndarray,
+    woff: np.ndarray,
+    wt: np.ndarray,
+    w0: np.ndarray,
+    w1: np.ndarray,
+    tend: int,
+    sg: np.ndarray,
+    reach: np.ndarray,
+    gdir: np.ndarray,
+    bufa: np.ndarray,
+    bufb: np.ndarray,
+) -> tuple[int, float, float, float, float, int, int, float, float, float, float, float]:  # pragma: no cover
+    # The part of window k whose lines reach farthest (ties: the one that misses the next gate by least),
+    # with what :func:`_pre_reach` says of it: the last piece (−1: none), the extreme line, the side, the
+    # part, the next window's line and its room.
+    n = sg.shape[0]
+    jbest = -1
+    bmiss = 1e300
+    best = (0.0, 0.0, 0.0, 0.0, 0, -1, 0.0, 0.0, 0.0, 0.0, 0.0)
+    for p in range(woff[k], woff[k + 1]):
+        t = wt[p]
+        if t + reach[t % n] < jbest:
+            continue  # no line from piece t gets as far (the reach table is exact)
+        c0x = wcx[k] + w0[p] * wdx[k]
+        c0y = wcy[k] + w0[p] * wdy[k]
+        c1x = wcx[k] + w1[p] * wdx[k]
+        c1y = wcy[k] + w1[p] * wdy[k]
+        # crossing from the reachable side: for a window with it on the left, the far end is left
+        if wsg[k] > 0.0:
+            lx, ly, rx_, ry_ = c1x, c1y, c0x, c0y
+        else:
+            lx, ly, rx_, ry_ = c0x, c0y, c1x, c1y
+        jj, sd, ex, ey, edx, edy, miss, ix_, iy_, idx_, idy_, room = _pre_reach(
+            lx, ly, rx_, ry_, t, tend, sg, reach, gdir, bufa, bufb
+        )
+        if sd < 0:
+            continue
+        if jj > jbest or (jj == jbest and miss < bmiss):
+            jbest = jj
+            bmiss = miss
+            best = (ex, ey, edx, edy, sd, p, ix_, iy_, idx_, idy_, room)
+    ex, ey, edx, edy, sd, p, ix_, iy_, idx_, idy_, room = best
+    return jbest, ex, ey, edx, edy, sd, p, ix_, iy_, idx_, idy_, room
+
+
 @njit(cache=True)
 def _forward(
     sx: float,
@@ -558,6 +648,8 @@ def _forward(
     t0: int,
     rect: np.ndarray,
     sg: np.ndarray,
+    sgr: np.ndarray,
+    room: float,
     reach: np.ndarray,
     gdir: np.ndarray,
     limit: int,
@@ -579,7 +671,8 @@ def _forward(
     # The windows W_1, W_2, … from s (in piece t0) until one sees s one lap later (or needs one more
     # vertex, returned as last_x, last_y, last_t with last_t >= 0). Returns kend (−1: failed), that extra
     # vertex, and the windows: start point (wcx, wcy), unit direction (wdx, wdy), reachable side (wsg: +1 on
-    # the left), and their parts woff[k] … woff[k+1]−1 (piece wt, parameter interval w0 … w1).
+    # the left), and their parts woff[k] … woff[k+1]−1 (piece wt, parameter interval w0 … w1). sg: the
+    # shrunk gates; sgr: gates shrunk more, for the steps whose lines are a sliver (empty: none).
     n = rect.shape[0]
     tend = t0 + n
     # windows: start point, unit direction, reachable side, and their parts (piece, λ interval)
@@ -626,50 +719,17 @@ def _forward(
         jw = wt[woff[k]]
         if jw < tend and k + jumps[jw - t0] >= limit:
             break
-        # link k + 1 from the parts of W_k
-        jbest = -1
-        bmiss = 1e300
-        bx_ = 0.0
-        by_ = 0.0
-        bdx = 0.0
-        bdy = 0.0
-        bside = 0
-        bpart = -1
-        bix = 0.0
-        biy = 0.0
-        bidx = 0.0
-        bidy = 0.0
-        for p in range(woff[k], woff[k + 1]):
-            t = wt[p]
-            if t + reach[t % n] < jbest:
-                continue  # no line from piece t gets as far (the reach table is exact)
-            c0x = wcx[k] + w0[p] * wdx[k]
-            c0y = wcy[k] + w0[p] * wdy[k]
-            c1x = wcx[k] + w1[p] * wdx[k]
-            c1y = wcy[k] + w1[p] * wdy[k]
-            # crossing from the reachable side: for a window with it on the left, the far end is left
-            if wsg[k] > 0.0:
-                lx, ly, rx_, ry_ = c1x, c1y, c0x, c0y
-            else:
-                lx, ly, rx_, ry_ = c0x, c0y, c1x, c1y
-            jj, sd, ex, ey, edx, edy, miss, ix_, iy_, idx_, idy_ = _pre_reach(
-                lx, ly, rx_, ry_, t, tend, sg, reach, gdir, bufa, bufb
-            )
-            if sd < 0:
-                continue
-            if jj > jbest or (jj == jbest and miss < bmiss):
-                jbest = jj
-                bmiss = miss
-                bx_ = ex
-                by_ = ey
-                bdx = edx
-                bdy = edy
-                bside = sd
-                bpart = p
-                bix = ix_
-                biy = iy_
-                bidx = idx_
-                bidy = idy_
+        # link k + 1 from the parts of W_k; when its lines are a sliver (the next window's line could not
+        # move sideways by ``room`` without leaving them), again with the roomier gates
+        jbest, bx_, by_, bdx, bdy, bside, bpart, bix, biy, bidx, bidy, broom = _best_part(
+            k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sg, reach, gdir, bufa, bufb
+        )
+        gates = sg
+        if bside > 0 and broom < room and sgr.shape[0] == n:
+            alt = _best_part(k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sgr, reach, gdir, bufa, bufb)
+            if alt[0] >= 0:
+                jbest, bx_, by_, bdx, bdy, bside, bpart, bix, biy, bidx, bidy, broom = alt
+                gates = sgr
         if jbest < 0:
             break
         if jbest >= tend:
@@ -706,7 +766,7 @@ def _forward(
             lx, ly, rx_, ry_ = c1x, c1y, c0x, c0y
         else:
             lx, ly, rx_, ry_ = c0x, c0y, c1x, c1y
-        lam = _contact(bx_, by_, bdx, bdy, bside, lx, ly, rx_, ry_, t, jbest, sg)
+        lam = _contact(bx_, by_, bdx, bdy, bside, lx, ly, rx_, ry_, t, jbest, gates)
         if lam < -1e299:
             break
         # the window runs on the inset line, from the point nearest the contact
@@ -739,11 +799,17 @@ def minlink_from(
     t0: int,
     rect: np.ndarray,
     sg: np.ndarray,
+    sgr: np.ndarray,
+    room: float,
     reach: np.ndarray,
     gdir: np.ndarray,
     limit: int,
 ) -> tuple[np.ndarray, np.ndarray, int]:  # pragma: no cover
     """A ring of fewest vertices through s (Q-units, in piece t0), by Suri's windows (module docstring).
+
+    ``sg`` are the gates shrunk by :data:`_GATE_EPS` (:func:`shrunk_gates`), ``sgr`` by :data:`_ROOMY_EPS`
+    (or an empty array): the forward pass takes a step again with ``sgr`` when the lines of its step with
+    ``sg`` are a sliver, so that the backward pass finds room on every window.
 
     Returns the vertices (m, 2), their pieces (unwrapped from t0, increasing) and a status: 0 found, 1 the
     windows need ``limit`` vertices or more (or a float step of the forward pass failed), 2 the windows
@@ -752,7 +818,7 @@ def minlink_from(
     n = rect.shape[0]
     tend = t0 + n
     kend, last_x, last_y, last_t, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1 = _forward(
-        sx, sy, t0, rect, sg, reach, gdir, limit
+        sx, sy, t0, rect, sg, sgr, room, reach, gdir, limit
     )
     if kend < 0:
         return np.empty((0, 2), np.float64), np.empty(0, np.int64), 1
@@ -780,7 +846,7 @@ def minlink_from(
     # step finds none (within a budget of candidate searches)
     cand = np.zeros(kend + 2, np.int64)
     k = kend
-    budget = 2 * kend + 8
+    budget = kend + kend // 4 + 8
     while k >= 1:
         if k < kend:
             xx = ox[k + 1, 0]
@@ -858,13 +924,19 @@ def minlink_ring(
     m = ix.size
     sc = 1 << kmax
     fsc = float(sc)
-    sg = shrunk_gates(gp, gq)
+    sg = shrunk_gates(gp, gq, _GATE_EPS)
     # other starts: only on rings small enough for them to be cheap (on the benchmark images every vertex
     # but one was gained from the first start, and on the 1024² blob three failing starts cost 14 ms)
     starts = _STARTS if n <= _MANY_STARTS_PIECES else 1
+    roomy = shrunk_gates(gp, gq, _ROOMY_EPS)
     for si in range(starts):
         i0 = (si * m) // starts
-        fv, ft, status = minlink_from(ix[i0] / fsc, iy[i0] / fsc, vt[i0] % n, rect, sg, reach, gdir, m)
+        sx = ix[i0] / fsc
+        sy = iy[i0] / fsc
+        fv, ft, status = minlink_from(sx, sy, vt[i0] % n, rect, sg, roomy, _ROOM, reach, gdir, m)
+        if status == 2:
+            # the windows promised more than the backward pass could place: again, with more room
+            fv, ft, status = minlink_from(sx, sy, vt[i0] % n, rect, sg, roomy, _ROOM_AGAIN, reach, gdir, m)
         if status == 1:
             break  # the windows promise nothing from here: other starts rarely do better
         if status != 0 or ft.size < 3:
