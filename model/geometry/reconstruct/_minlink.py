@@ -34,13 +34,13 @@ from mrm.geometry.reconstruct._base import SRC_LINES, _grow1
 from mrm.geometry.reconstruct._check import snap_ring, verify_ring
 
 _GATE_EPS = 1.0 / 32.0  # Q-units each gate is shrunk by at both ends while searching
-# A window's line must be free to move sideways by _ROOM Q-units among the lines of its step, or the step is
-# taken again with the gates shrunk by _ROOMY_EPS: a window resting on a sliver of lines (slopes within 1 %
-# of each other through a one-pixel arm, thinner than the snapping grid) promises a ring the backward pass
-# cannot place. When the backward pass fails all the same, the search runs once more with _ROOM_AGAIN.
-# Measured on the benchmark images and noisy stars: _ROOM = 1/512 from the start costs the images 1-4
-# vertices each; 1/16384, then 1/512, costs camera one and gains the stars 3-6 % (docs/adr/0038).
-_ROOMY_EPS = 1.0 / 16.0
+# A window's line must be free to move sideways by _ROOM Q-units among the lines of its step, or the step
+# is taken again with the gates shrunk by _ROOMY_EXTRA more: a window resting on a sliver of lines (slopes
+# within 1 % of each other through a one-pixel arm, thinner than the snapping grid) promises a ring the
+# backward pass cannot place. When the backward pass fails all the same, the search runs once more with
+# _ROOM_AGAIN. Measured on the benchmark images and noisy stars: _ROOM = 1/512 from the start costs the
+# images 1-4 vertices each; 1/16384, then 1/512, costs camera one and gains the stars 3-7 % (ADR 0038).
+_ROOMY_EXTRA = 1.0 / 32.0
 _ROOM = 1.0 / 16384.0
 _ROOM_AGAIN = 1.0 / 512.0
 _PUSH = 1.0 / 32.0  # Q-units a vertex is pushed off its window into the reachable side (at most)
@@ -214,6 +214,25 @@ def _frame(t: int, tmax: int, reach: np.ndarray, gdir: np.ndarray) -> tuple[floa
 
 
 @leaf_njit(cache=True)
+def _gate(sg: np.ndarray, g: int, extra: float) -> tuple[float, float, float, float]:  # pragma: no cover
+    # Gate g's ends P, Q, shrunk by ``extra`` more Q-units (or a quarter of what is left) at both ends.
+    px = sg[g, 0]
+    py = sg[g, 1]
+    qx = sg[g, 2]
+    qy = sg[g, 3]
+    if extra > 0.0:
+        ln = abs(qx - px) + abs(qy - py)  # gates are axis-parallel
+        e = min(extra, 0.25 * ln) / ln
+        ux = (qx - px) * e
+        uy = (qy - py) * e
+        px += ux
+        py += uy
+        qx -= ux
+        qy -= uy
+    return px, py, qx, qy
+
+
+@leaf_njit(cache=True)
 def _room(pa: np.ndarray, pb: np.ndarray, m: int, a: float, b: float) -> float:  # pragma: no cover
     # How far the line (a, b) of line space is from the boundary of the convex polygon (pa, pb)[:m] along
     # the offset axis: the smaller of b − (lowest b of the polygon at slope a) and (highest b) − b.
@@ -247,6 +266,7 @@ def _pre_reach(
     t: int,
     tmax: int,
     sg: np.ndarray,
+    extra: float,
     reach: np.ndarray,
     gdir: np.ndarray,
     bufa: np.ndarray,
@@ -297,10 +317,11 @@ def _pre_reach(
     ja = t
     for k in range(t + 1, tmax + 1):
         g = k % n
-        xp = (sg[g, 0] - ox) * ux + (sg[g, 1] - oy) * uy
-        yp = (sg[g, 0] - ox) * vx + (sg[g, 1] - oy) * vy
-        xq = (sg[g, 2] - ox) * ux + (sg[g, 3] - oy) * uy
-        yq = (sg[g, 2] - ox) * vx + (sg[g, 3] - oy) * vy
+        gpx, gpy, gqx, gqy = _gate(sg, g, extra)
+        xp = (gpx - ox) * ux + (gpy - oy) * uy
+        yp = (gpx - ox) * vx + (gpy - oy) * vy
+        xq = (gqx - ox) * ux + (gqy - oy) * uy
+        yq = (gqx - ox) * vx + (gqy - oy) * vy
         m1 = _halfplane(pa, pb, m, -xp, -1.0, yp, qa, qb)
         m2 = 0
         if m1 > 0:
@@ -392,6 +413,7 @@ def _contact(
     t: int,
     j: int,
     sg: np.ndarray,
+    extra: float,
 ) -> float:  # pragma: no cover
     # Where the extreme line w + λd last touches the inside of the turn (the right-hand points — the part's
     # r end and the gates' Q ends — for a right turn, the left-hand ones for a left turn): the largest λ of
@@ -405,8 +427,9 @@ def _contact(
             y = ry if side == 1 else ly
         else:
             g = k % n
-            x = sg[g, 2] if side == 1 else sg[g, 0]
-            y = sg[g, 3] if side == 1 else sg[g, 1]
+            gpx, gpy, gqx, gqy = _gate(sg, g, extra)
+            x = gqx if side == 1 else gpx
+            y = gqy if side == 1 else gpy
         off = (x - wx) * dy - (y - wy) * dx
         if abs(off) < tol * (1.0 + abs(x - wx) + abs(y - wy)):
             lam = (x - wx) * dx + (y - wy) * dy
@@ -603,14 +626,15 @@ def _best_part(
     w1: np.ndarray,
     tend: int,
     sg: np.ndarray,
+    extra: float,
     reach: np.ndarray,
     gdir: np.ndarray,
     bufa: np.ndarray,
     bufb: np.ndarray,
 ) -> tuple[int, float, float, float, float, int, int, float, float, float, float, float]:  # pragma: no cover
     # The part of window k whose lines reach farthest (ties: the one that misses the next gate by least),
-    # with what :func:`_pre_reach` says of it: the last piece (−1: none), the extreme line, the side, the
-    # part, the next window's line and its room.
+    # with what :func:`_pre_reach` says of it (gates shrunk by ``extra`` more): the last piece (−1: none),
+    # the extreme line, the side, the part, the next window's line and its room.
     n = sg.shape[0]
     jbest = -1
     bmiss = 1e300
@@ -629,7 +653,7 @@ def _best_part(
         else:
             lx, ly, rx_, ry_ = c0x, c0y, c1x, c1y
         jj, sd, ex, ey, edx, edy, miss, ix_, iy_, idx_, idy_, room = _pre_reach(
-            lx, ly, rx_, ry_, t, tend, sg, reach, gdir, bufa, bufb
+            lx, ly, rx_, ry_, t, tend, sg, extra, reach, gdir, bufa, bufb
         )
         if sd < 0:
             continue
@@ -648,7 +672,6 @@ def _forward(
     t0: int,
     rect: np.ndarray,
     sg: np.ndarray,
-    sgr: np.ndarray,
     room: float,
     reach: np.ndarray,
     gdir: np.ndarray,
@@ -672,7 +695,8 @@ def _forward(
     # vertex, returned as last_x, last_y, last_t with last_t >= 0). Returns kend (−1: failed), that extra
     # vertex, and the windows: start point (wcx, wcy), unit direction (wdx, wdy), reachable side (wsg: +1 on
     # the left), and their parts woff[k] … woff[k+1]−1 (piece wt, parameter interval w0 … w1). sg: the
-    # shrunk gates; sgr: gates shrunk more, for the steps whose lines are a sliver (empty: none).
+    # shrunk gates; a step whose next window's line could not move sideways by ``room`` among its lines is
+    # taken again with the gates shrunk by _ROOMY_EXTRA more.
     n = rect.shape[0]
     tend = t0 + n
     # windows: start point, unit direction, reachable side, and their parts (piece, λ interval)
@@ -722,14 +746,16 @@ def _forward(
         # link k + 1 from the parts of W_k; when its lines are a sliver (the next window's line could not
         # move sideways by ``room`` without leaving them), again with the roomier gates
         jbest, bx_, by_, bdx, bdy, bside, bpart, bix, biy, bidx, bidy, broom = _best_part(
-            k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sg, reach, gdir, bufa, bufb
+            k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sg, 0.0, reach, gdir, bufa, bufb
         )
-        gates = sg
-        if bside > 0 and broom < room and sgr.shape[0] == n:
-            alt = _best_part(k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sgr, reach, gdir, bufa, bufb)
+        extra = 0.0
+        if bside > 0 and broom < room:
+            alt = _best_part(
+                k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sg, _ROOMY_EXTRA, reach, gdir, bufa, bufb
+            )
             if alt[0] >= 0:
                 jbest, bx_, by_, bdx, bdy, bside, bpart, bix, biy, bidx, bidy, broom = alt
-                gates = sgr
+                extra = _ROOMY_EXTRA
         if jbest < 0:
             break
         if jbest >= tend:
@@ -766,7 +792,7 @@ def _forward(
             lx, ly, rx_, ry_ = c1x, c1y, c0x, c0y
         else:
             lx, ly, rx_, ry_ = c0x, c0y, c1x, c1y
-        lam = _contact(bx_, by_, bdx, bdy, bside, lx, ly, rx_, ry_, t, jbest, gates)
+        lam = _contact(bx_, by_, bdx, bdy, bside, lx, ly, rx_, ry_, t, jbest, sg, extra)
         if lam < -1e299:
             break
         # the window runs on the inset line, from the point nearest the contact
@@ -799,7 +825,6 @@ def minlink_from(
     t0: int,
     rect: np.ndarray,
     sg: np.ndarray,
-    sgr: np.ndarray,
     room: float,
     reach: np.ndarray,
     gdir: np.ndarray,
@@ -807,9 +832,10 @@ def minlink_from(
 ) -> tuple[np.ndarray, np.ndarray, int]:  # pragma: no cover
     """A ring of fewest vertices through s (Q-units, in piece t0), by Suri's windows (module docstring).
 
-    ``sg`` are the gates shrunk by :data:`_GATE_EPS` (:func:`shrunk_gates`), ``sgr`` by :data:`_ROOMY_EPS`
-    (or an empty array): the forward pass takes a step again with ``sgr`` when the lines of its step with
-    ``sg`` are a sliver, so that the backward pass finds room on every window.
+    ``sg`` are the gates shrunk by :data:`_GATE_EPS` (:func:`shrunk_gates`). The forward pass takes a step
+    again with the gates shrunk by :data:`_ROOMY_EXTRA` more when the next window's line could not move
+    sideways by ``room`` Q-units among the lines of its step (0: never), so that the backward pass finds
+    room on every window.
 
     Returns the vertices (m, 2), their pieces (unwrapped from t0, increasing) and a status: 0 found, 1 the
     windows need ``limit`` vertices or more (or a float step of the forward pass failed), 2 the windows
@@ -818,7 +844,7 @@ def minlink_from(
     n = rect.shape[0]
     tend = t0 + n
     kend, last_x, last_y, last_t, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1 = _forward(
-        sx, sy, t0, rect, sg, sgr, room, reach, gdir, limit
+        sx, sy, t0, rect, sg, room, reach, gdir, limit
     )
     if kend < 0:
         return np.empty((0, 2), np.float64), np.empty(0, np.int64), 1
@@ -928,15 +954,14 @@ def minlink_ring(
     # other starts: only on rings small enough for them to be cheap (on the benchmark images every vertex
     # but one was gained from the first start, and on the 1024² blob three failing starts cost 14 ms)
     starts = _STARTS if n <= _MANY_STARTS_PIECES else 1
-    roomy = shrunk_gates(gp, gq, _ROOMY_EPS)
     for si in range(starts):
         i0 = (si * m) // starts
         sx = ix[i0] / fsc
         sy = iy[i0] / fsc
-        fv, ft, status = minlink_from(sx, sy, vt[i0] % n, rect, sg, roomy, _ROOM, reach, gdir, m)
+        fv, ft, status = minlink_from(sx, sy, vt[i0] % n, rect, sg, _ROOM, reach, gdir, m)
         if status == 2:
             # the windows promised more than the backward pass could place: again, with more room
-            fv, ft, status = minlink_from(sx, sy, vt[i0] % n, rect, sg, roomy, _ROOM_AGAIN, reach, gdir, m)
+            fv, ft, status = minlink_from(sx, sy, vt[i0] % n, rect, sg, _ROOM_AGAIN, reach, gdir, m)
         if status == 1:
             break  # the windows promise nothing from here: other starts rarely do better
         if status != 0 or ft.size < 3:
