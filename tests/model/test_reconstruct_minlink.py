@@ -109,6 +109,24 @@ def test_minlink_ring_verifies_and_never_adds_vertices(model: str, ps: PixelSet)
             assert np.array_equal(ox, ring["ix"]) and np.array_equal(oy, ring["iy"])
 
 
+def search_from_vertex_0(ring: dict[str, Any], room: float) -> tuple[np.ndarray, int]:
+    """The minimum-link search from the ring's vertex 0, with no vertex limit: its pieces and status."""
+    n = ring["rect"].shape[0]
+    sc = float(1 << ring["kk"])
+    _v, vt, status = minlink_from(
+        ring["ix"][0] / sc,
+        ring["iy"][0] / sc,
+        int(ring["vt"][0]) % n,
+        ring["rect"],
+        shrunk_gates(ring["gp"], ring["gq"], _GATE_EPS),
+        room,
+        ring["reach"],
+        ring["gdir"],
+        1 << 20,
+    )
+    return vt, int(status)
+
+
 def brute_links(ring: dict[str, Any], per: int = 3) -> int:
     """Fewest links of a closed path from vertex 0 back to it whose other vertices are grid points.
 
@@ -161,18 +179,7 @@ def test_minlink_count_matches_a_brute_force_search_on_small_corridors() -> None
                 n = ring["rect"].shape[0]
                 if n > 40:
                     continue
-                sc = float(1 << ring["kk"])
-                _v, vt, status = minlink_from(
-                    ring["ix"][0] / sc,
-                    ring["iy"][0] / sc,
-                    int(ring["vt"][0]) % n,
-                    ring["rect"],
-                    shrunk_gates(ring["gp"], ring["gq"], _GATE_EPS),
-                    _ROOM,
-                    ring["reach"],
-                    ring["gdir"],
-                    1 << 20,
-                )
+                vt, status = search_from_vertex_0(ring, _ROOM)
                 if status != 0:
                     continue  # no ring proposed (a backward step failed): R keeps its own
                 ref = brute_links(ring)
@@ -200,18 +207,6 @@ def test_r_keeps_what_the_windows_promise_on_noisy_stars(
     # spare, no limit), and that search places its ring.
     ps = discretize(noisy_star(vertices, radius, seed=seed), "standard")
     ring = max(corridor_rings(ps, model), key=lambda r: r["rect"].shape[0])
-    n = ring["rect"].shape[0]
-    sc = float(1 << ring["kk"])
-    _v, vt, status = minlink_from(
-        ring["ix"][0] / sc,
-        ring["iy"][0] / sc,
-        int(ring["vt"][0]) % n,
-        ring["rect"],
-        shrunk_gates(ring["gp"], ring["gq"], _GATE_EPS),
-        _ROOM_AGAIN,
-        ring["reach"],
-        ring["gdir"],
-        1 << 20,
-    )
+    vt, status = search_from_vertex_0(ring, _ROOM_AGAIN)
     assert status == 0
     assert ring["ix"].size <= vt.size

@@ -27,11 +27,33 @@ ends while searching and vertices are pushed off their windows, so a proposal ra
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.reconstruct._base import SRC_LINES, _grow1
 from mrm.geometry.reconstruct._check import snap_ring, verify_ring
+
+
+class Windows(NamedTuple):
+    """The windows W_1, W_2, … of one search (row k is W_k; row 0 unused).
+
+    Window k runs from the point (cx, cy) along the unit direction (dx, dy), its reachable side on the
+    left when side[k] = +1 (right: −1); its parts are off[k] … off[k+1]−1, each a piece t and a parameter
+    interval l0 … l1 along the window.
+    """
+
+    cx: np.ndarray
+    cy: np.ndarray
+    dx: np.ndarray
+    dy: np.ndarray
+    side: np.ndarray
+    off: np.ndarray
+    t: np.ndarray
+    l0: np.ndarray
+    l1: np.ndarray
+
 
 _GATE_EPS = 1.0 / 32.0  # Q-units each gate is shrunk by at both ends while searching
 # A window's line must be free to move sideways by _ROOM Q-units among the lines of its step, or the step
@@ -525,23 +547,17 @@ def _seen_from(
     xy: float,
     tx: int,
     k: int,
-    wcx: np.ndarray,
-    wcy: np.ndarray,
-    wdx: np.ndarray,
-    wdy: np.ndarray,
-    woff: np.ndarray,
-    wt: np.ndarray,
-    w0: np.ndarray,
-    w1: np.ndarray,
+    w: Windows,
     sg: np.ndarray,
     reach: np.ndarray,
 ) -> bool:  # pragma: no cover
     # Whether some part of window k has a stretch (not just a point) that sees x.
     n = sg.shape[0]
-    for p in range(woff[k], woff[k + 1]):
-        if wt[p] >= tx or wt[p] + reach[wt[p] % n] < tx:
+    for p in range(w.off[k], w.off[k + 1]):
+        t = w.t[p]
+        if t >= tx or t + reach[t % n] < tx:
             continue
-        lo, hi = _back_interval(xx, xy, tx, wcx[k], wcy[k], wdx[k], wdy[k], wt[p], w0[p], w1[p], sg)
+        lo, hi = _back_interval(xx, xy, tx, w.cx[k], w.cy[k], w.dx[k], w.dy[k], t, w.l0[p], w.l1[p], sg)
         if hi - lo > 1e-7 * (1.0 + abs(hi)):
             return True
     return False
@@ -562,15 +578,7 @@ def _back_onto(
     sx: float,
     sy: float,
     t0: int,
-    wcx: np.ndarray,
-    wcy: np.ndarray,
-    wdx: np.ndarray,
-    wdy: np.ndarray,
-    wsg: np.ndarray,
-    woff: np.ndarray,
-    wt: np.ndarray,
-    w0: np.ndarray,
-    w1: np.ndarray,
+    w: Windows,
     sg: np.ndarray,
     rect: np.ndarray,
     reach: np.ndarray,
@@ -582,17 +590,17 @@ def _back_onto(
     # from painting itself into a corner, and the caller backtracks from c + 1 when a later step fails.
     # Returns the point, its piece and its candidate number (−1: none).
     n = rect.shape[0]
-    dx = wdx[k]
-    dy = wdy[k]
-    nx = -dy * wsg[k]
-    ny = dx * wsg[k]
-    np_ = woff[k + 1] - woff[k]
+    dx = w.dx[k]
+    dy = w.dy[k]
+    nx = -dy * w.side[k]
+    ny = dx * w.side[k]
+    np_ = w.off[k + 1] - w.off[k]
     for pi in range(c0 // _NCAND, np_):
-        p = woff[k] + pi
-        t = wt[p]
+        p = w.off[k] + pi
+        t = w.t[p]
         if t >= tx or t + reach[t % n] < tx:
             continue
-        lo, hi = _back_interval(xx, xy, tx, wcx[k], wcy[k], dx, dy, t, w0[p], w1[p], sg)
+        lo, hi = _back_interval(xx, xy, tx, w.cx[k], w.cy[k], dx, dy, t, w.l0[p], w.l1[p], sg)
         if hi <= lo:
             continue
         push0 = min(_PUSH, 0.25 * (hi - lo))
@@ -600,30 +608,35 @@ def _back_onto(
         for c in range(cstart, _NCAND):
             lam = lo + _BACK_F[c // _NPUSH] * (hi - lo)
             push = push0 / float(1 << (2 * (c % _NPUSH)))
-            x = wcx[k] + lam * dx + push * nx
-            y = wcy[k] + lam * dy + push * ny
+            x = w.cx[k] + lam * dx + push * nx
+            y = w.cy[k] + lam * dy + push * ny
             if not (_inside(rect, t % n, x, y, _MARGIN) and _sees(x, y, t, xx, xy, tx, sg)):
                 continue
             if k == 1:
                 if _sees(sx, sy, t0, x, y, t, sg):
                     return x, y, t, pi * _NCAND + c
-            elif _seen_from(x, y, t, k - 1, wcx, wcy, wdx, wdy, woff, wt, w0, w1, sg, reach):
+            elif _seen_from(x, y, t, k - 1, w, sg, reach):
                 return x, y, t, pi * _NCAND + c
     return 0.0, 0.0, 0, -1
 
 
 @leaf_njit(cache=True)
+def _crossing(w: Windows, k: int, p: int) -> tuple[float, float, float, float]:  # pragma: no cover
+    # The ends l, r of part p of window k, ordered as lines crossing it from its reachable side see them:
+    # l on their left (for a window with the reachable side on its left, the far end).
+    c0x = w.cx[k] + w.l0[p] * w.dx[k]
+    c0y = w.cy[k] + w.l0[p] * w.dy[k]
+    c1x = w.cx[k] + w.l1[p] * w.dx[k]
+    c1y = w.cy[k] + w.l1[p] * w.dy[k]
+    if w.side[k] > 0.0:
+        return c1x, c1y, c0x, c0y
+    return c0x, c0y, c1x, c1y
+
+
+@leaf_njit(cache=True)
 def _best_part(
     k: int,
-    wcx: np.ndarray,
-    wcy: np.ndarray,
-    wdx: np.ndarray,
-    wdy: np.ndarray,
-    wsg: np.ndarray,
-    woff: np.ndarray,
-    wt: np.ndarray,
-    w0: np.ndarray,
-    w1: np.ndarray,
+    w: Windows,
     tend: int,
     sg: np.ndarray,
     extra: float,
@@ -639,19 +652,11 @@ def _best_part(
     jbest = -1
     bmiss = 1e300
     best = (0.0, 0.0, 0.0, 0.0, 0, -1, 0.0, 0.0, 0.0, 0.0, 0.0)
-    for p in range(woff[k], woff[k + 1]):
-        t = wt[p]
+    for p in range(w.off[k], w.off[k + 1]):
+        t = w.t[p]
         if t + reach[t % n] < jbest:
             continue  # no line from piece t gets as far (the reach table is exact)
-        c0x = wcx[k] + w0[p] * wdx[k]
-        c0y = wcy[k] + w0[p] * wdy[k]
-        c1x = wcx[k] + w1[p] * wdx[k]
-        c1y = wcy[k] + w1[p] * wdy[k]
-        # crossing from the reachable side: for a window with it on the left, the far end is left
-        if wsg[k] > 0.0:
-            lx, ly, rx_, ry_ = c1x, c1y, c0x, c0y
-        else:
-            lx, ly, rx_, ry_ = c0x, c0y, c1x, c1y
+        lx, ly, rx_, ry_ = _crossing(w, k, p)
         jj, sd, ex, ey, edx, edy, miss, ix_, iy_, idx_, idy_, room = _pre_reach(
             lx, ly, rx_, ry_, t, tend, sg, extra, reach, gdir, bufa, bufb
         )
@@ -676,57 +681,44 @@ def _forward(
     reach: np.ndarray,
     gdir: np.ndarray,
     limit: int,
-) -> tuple[
-    int,
-    float,
-    float,
-    int,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-    np.ndarray,
-]:  # pragma: no cover
+) -> tuple[int, float, float, int, Windows]:  # pragma: no cover
     # The windows W_1, W_2, … from s (in piece t0) until one sees s one lap later (or needs one more
     # vertex, returned as last_x, last_y, last_t with last_t >= 0). Returns kend (−1: failed), that extra
-    # vertex, and the windows: start point (wcx, wcy), unit direction (wdx, wdy), reachable side (wsg: +1 on
-    # the left), and their parts woff[k] … woff[k+1]−1 (piece wt, parameter interval w0 … w1). sg: the
+    # vertex, and the windows (:class:`Windows`). sg: the
     # shrunk gates; a step whose next window's line could not move sideways by ``room`` among its lines is
     # taken again with the gates shrunk by _ROOMY_EXTRA more.
     n = rect.shape[0]
     tend = t0 + n
     # windows: start point, unit direction, reachable side, and their parts (piece, λ interval)
     wcap = limit + 2
-    wcx = np.empty(wcap, np.float64)
-    wcy = np.empty(wcap, np.float64)
-    wdx = np.empty(wcap, np.float64)
-    wdy = np.empty(wcap, np.float64)
-    wsg = np.empty(wcap, np.float64)
-    woff = np.zeros(wcap + 1, np.int64)
-    pcap = max(16 * wcap, tend - t0) + 64  # grown below when a window runs through more pieces
-    wt = np.empty(pcap, np.int64)
-    w0 = np.empty(pcap, np.float64)
-    w1 = np.empty(pcap, np.float64)
+    pcap = max(16 * wcap, tend - t0) + 64  # parts; grown below when a window runs through more pieces
+    w = Windows(
+        np.empty(wcap, np.float64),
+        np.empty(wcap, np.float64),
+        np.empty(wcap, np.float64),
+        np.empty(wcap, np.float64),
+        np.empty(wcap, np.float64),
+        np.zeros(wcap + 1, np.int64),
+        np.empty(pcap, np.int64),
+        np.empty(pcap, np.float64),
+        np.empty(pcap, np.float64),
+    )
     bufa = np.empty((3, _PCAP), np.float64)
     bufb = np.empty((3, _PCAP), np.float64)
     # W_1, from the cone of s
     j, rx, ry, side, gc = _cone(sx, sy, t0, tend, sg)
     if side == 0:
-        return -1, 0.0, 0.0, -1, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1
+        return -1, 0.0, 0.0, -1, w
     dl = np.hypot(rx, ry)
-    wcx[1] = sx + rx
-    wcy[1] = sy + ry
-    wdx[1] = rx / dl
-    wdy[1] = ry / dl
-    wsg[1] = 1.0 if side == 1 else -1.0
-    woff[1] = 0
-    woff[2] = _window_parts(wcx[1], wcy[1], wdx[1], wdy[1], j, gc - 1, rect, wt, w0, w1, 0)
-    if woff[2] == 0:
-        return -1, 0.0, 0.0, -1, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1
+    w.cx[1] = sx + rx
+    w.cy[1] = sy + ry
+    w.dx[1] = rx / dl
+    w.dy[1] = ry / dl
+    w.side[1] = 1.0 if side == 1 else -1.0
+    w.off[1] = 0
+    w.off[2] = _window_parts(w.cx[1], w.cy[1], w.dx[1], w.dy[1], j, gc - 1, rect, w.t, w.l0, w.l1, 0)
+    if w.off[2] == 0:
+        return -1, 0.0, 0.0, -1, w
     # jumps[t - t0]: the fewest windows from piece t to the end piece (greedy longest jumps, exact for the
     # reach table): links still needed from a window whose parts lie in pieces up to t, at least
     jumps = np.zeros(n + 1, np.int64)
@@ -740,19 +732,17 @@ def _forward(
     for k in range(1, limit - 1):
         # a ring through s has k + 1 vertices up to W_k (in pieces up to its first part's) and needs at
         # least jumps more links, the last of them ending on s: give up when that is no gain
-        jw = wt[woff[k]]
+        jw = w.t[w.off[k]]
         if jw < tend and k + jumps[jw - t0] >= limit:
             break
         # link k + 1 from the parts of W_k; when its lines are a sliver (the next window's line could not
         # move sideways by ``room`` without leaving them), again with the roomier gates
         jbest, bx_, by_, bdx, bdy, bside, bpart, bix, biy, bidx, bidy, broom = _best_part(
-            k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sg, 0.0, reach, gdir, bufa, bufb
+            k, w, tend, sg, 0.0, reach, gdir, bufa, bufb
         )
         extra = 0.0
         if bside > 0 and broom < room:
-            alt = _best_part(
-                k, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, tend, sg, _ROOMY_EXTRA, reach, gdir, bufa, bufb
-            )
+            alt = _best_part(k, w, tend, sg, _ROOMY_EXTRA, reach, gdir, bufa, bufb)
             if alt[0] >= 0:
                 jbest, bx_, by_, bdx, bdy, bside, bpart, bix, biy, bidx, bidy, broom = alt
                 extra = _ROOMY_EXTRA
@@ -761,14 +751,12 @@ def _forward(
         if jbest >= tend:
             # s one lap later is weakly visible from W_k, or one more vertex is needed
             kend = k
-            _x, _y, _t, cdir = _back_onto(
-                sx, sy, tend, k, 0, sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect, reach
-            )
+            _x, _y, _t, cdir = _back_onto(sx, sy, tend, k, 0, sx, sy, t0, w, sg, rect, reach)
             direct = cdir >= 0
             if not direct and bside == 0:
                 # a point on the central line of the best part's lines, in one of the last pieces, that
                 # sees s: the ring then has one more vertex
-                for t in range(tend - 1, max(wt[bpart], tend - 8), -1):
+                for t in range(tend - 1, max(w.t[bpart], tend - 8), -1):
                     lo, hi = _span(bx_, by_, bdx, bdy, rect, t % n)
                     if hi - lo <= 1e-6:
                         continue
@@ -782,16 +770,8 @@ def _forward(
                         break
             break
         # W_{k+1}: the extreme line from its last contact with the inside of the turn
-        p = bpart
-        t = wt[p]
-        c0x = wcx[k] + w0[p] * wdx[k]
-        c0y = wcy[k] + w0[p] * wdy[k]
-        c1x = wcx[k] + w1[p] * wdx[k]
-        c1y = wcy[k] + w1[p] * wdy[k]
-        if wsg[k] > 0.0:
-            lx, ly, rx_, ry_ = c1x, c1y, c0x, c0y
-        else:
-            lx, ly, rx_, ry_ = c0x, c0y, c1x, c1y
+        t = w.t[bpart]
+        lx, ly, rx_, ry_ = _crossing(w, k, bpart)
         lam = _contact(bx_, by_, bdx, bdy, bside, lx, ly, rx_, ry_, t, jbest, sg, extra)
         if lam < -1e299:
             break
@@ -799,23 +779,32 @@ def _forward(
         cx_ = bx_ + lam * bdx
         cy_ = by_ + lam * bdy
         lam2 = (cx_ - bix) * bidx + (cy_ - biy) * bidy
-        wcx[k + 1] = bix + lam2 * bidx
-        wcy[k + 1] = biy + lam2 * bidy
-        wdx[k + 1] = bidx
-        wdy[k + 1] = bidy
+        w.cx[k + 1] = bix + lam2 * bidx
+        w.cy[k + 1] = biy + lam2 * bidy
+        w.dx[k + 1] = bidx
+        w.dy[k + 1] = bidy
         bdx = bidx
         bdy = bidy
-        wsg[k + 1] = 1.0 if bside == 1 else -1.0
-        need = woff[k + 1] + jbest - t + 2  # at most one part per piece the window runs through
-        if need > wt.size:
-            cap = max(2 * wt.size, need + 64)
-            wt = _grow1(wt, woff[k + 1], cap)
-            w0 = _grow1(w0, woff[k + 1], cap)
-            w1 = _grow1(w1, woff[k + 1], cap)
-        woff[k + 2] = _window_parts(wcx[k + 1], wcy[k + 1], bdx, bdy, jbest, t, rect, wt, w0, w1, woff[k + 1])
-        if woff[k + 2] == woff[k + 1]:
+        w.side[k + 1] = 1.0 if bside == 1 else -1.0
+        e = w.off[k + 1]
+        need = e + jbest - t + 2  # at most one part per piece the window runs through
+        if need > w.t.size:
+            cap = max(2 * w.t.size, need + 64)
+            w = Windows(
+                w.cx,
+                w.cy,
+                w.dx,
+                w.dy,
+                w.side,
+                w.off,
+                _grow1(w.t, e, cap),
+                _grow1(w.l0, e, cap),
+                _grow1(w.l1, e, cap),
+            )
+        w.off[k + 2] = _window_parts(w.cx[k + 1], w.cy[k + 1], bdx, bdy, jbest, t, rect, w.t, w.l0, w.l1, e)
+        if w.off[k + 2] == e:
             break
-    return kend, last_x, last_y, last_t, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1
+    return kend, last_x, last_y, last_t, w
 
 
 @njit(cache=True)
@@ -843,9 +832,7 @@ def minlink_from(
     """
     n = rect.shape[0]
     tend = t0 + n
-    kend, last_x, last_y, last_t, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1 = _forward(
-        sx, sy, t0, rect, sg, room, reach, gdir, limit
-    )
+    kend, last_x, last_y, last_t, w = _forward(sx, sy, t0, rect, sg, room, reach, gdir, limit)
     if kend < 0:
         return np.empty((0, 2), np.float64), np.empty(0, np.int64), 1
     # backwards: the target, then a vertex on each window W_kend … W_1 that sees the one after it
@@ -887,9 +874,7 @@ def minlink_from(
             xy = sy
             tx = tend
         budget -= 1
-        fx, fy, ft, c = _back_onto(
-            xx, xy, tx, k, cand[k], sx, sy, t0, wcx, wcy, wdx, wdy, wsg, woff, wt, w0, w1, sg, rect, reach
-        )
+        fx, fy, ft, c = _back_onto(xx, xy, tx, k, cand[k], sx, sy, t0, w, sg, rect, reach)
         if c < 0:
             if k == kend or budget <= 0:
                 return np.empty((0, 2), np.float64), np.empty(0, np.int64), 2
