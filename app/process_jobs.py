@@ -28,14 +28,19 @@ def measure(provenance: Any, progress: Any) -> Any:
     return account_of(provenance, measure=True, progress=progress)
 
 
-def plan(inputs: list[Any], op_name: str, params: Any, limit: int | None, progress: Any) -> Any:
-    """An operation planned on document objects (:func:`mrm.ops.base.plan_operation`)."""
+def plan(
+    inputs: list[Any], op_name: str, params: Any, limit: int | None, held: list[Any], progress: Any
+) -> Any:
+    """An operation planned on document objects (:func:`mrm.ops.base.plan_operation`).
+
+    ``held``: (input index, model, R(A)) for inputs whose R(A) the window holds already.
+    """
     from mrm.ops.apply import load_paper_operations
     from mrm.ops.base import plan_operation
 
     load_paper_operations()
     kw = {} if limit is None else {"limit": limit}
-    return plan_operation(inputs, op_name, params, progress, **kw)
+    return plan_operation(inputs, op_name, params, progress, held=held, **kw)
 
 
 def read_project(path: str, progress: Any) -> Any:

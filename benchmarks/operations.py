@@ -55,6 +55,7 @@ from skimage import transform as sktransform
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import held as held_reconstructions
 from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.pixels import PixelSet
 from mrm.summary import optional_function
@@ -96,6 +97,13 @@ def nudged(poly: Polygon, ulps: int, seed: int) -> Polygon:
 
 
 # ------------------------------------------------------------------------------------------------ timing
+def held_op(op: Callable[[], Any], ps: PixelSet, model: str, euclid: Any) -> Any:
+    """``op()`` with R(ps) held, as for a document object its Euclidean view has shown (plan_operation's
+    ``held``)."""
+    with held_reconstructions([(ps, model, euclid)]):
+        return op()
+
+
 def timed(f: Callable[[], Any], repeats: int) -> tuple[float, float, Any]:
     """(first call, median of the next ``repeats`` calls, result) in seconds."""
     gc.collect()
@@ -221,6 +229,7 @@ def bench_dss_1024(repeats: int) -> None:
         )
         _, t_sk, _ = timed(lambda a=alpha: sktransform.rescale(f64, a, order=1) >= 0.5, repeats)
         rows: list[tuple[str, float]] = []
+        held_rows: list[tuple[str, float]] = []
         for model in ("standard", "gauss"):
 
             def ours(model: str = model, a: float = alpha) -> Any:
@@ -251,6 +260,15 @@ def bench_dss_1024(repeats: int) -> None:
                 _, m_d, _ = timed(lambda model=model, e=scaled: discretize(e, model), repeats)
                 t.add(f"  of which R(A), {model}", None, m_r, "")
                 t.add(f"  of which D of the scaled polygon, {model}", None, m_d, "")
+
+                # a document object whose Euclidean view has shown it: the operation takes the R(A) held
+                def ours_held(model: str = model, a: float = alpha, e: Any = euclid) -> Any:
+                    return held_op(lambda: ours(model, a), ps, model, e)
+
+                _, m_held, r_held = timed(ours_held, repeats)
+                assert r_held == r_ours
+                t.add(f"ours, R(A) held (a document object), {model}", None, m_held, "same pixels")
+                held_rows.append((model, m_held))
         t.add("peer cv2.resize INTER_NEAREST", None, t_near, "")
         t.add("peer skimage rescale order=1 + threshold", None, t_sk, "")
         t.peer = t_sk
@@ -260,6 +278,8 @@ def bench_dss_1024(repeats: int) -> None:
                 f"  ratio {model}: ÷ skimage {m / t_sk:.2f} (target ≤ 1), "
                 f"÷ cv2 nearest {m / t_near:.1f} (≤ 10)"
             )
+        for model, m in held_rows:
+            print(f"  ratio {model}, R(A) held: ÷ skimage {m / t_sk:.2f}, ÷ cv2 nearest {m / t_near:.1f}")
 
 
 def bench_rotation(repeats: int) -> None:
@@ -278,6 +298,7 @@ def bench_rotation(repeats: int) -> None:
     _, t_near, _ = timed(lambda: cv2.warpAffine(u8, rot, (1024, 1024), flags=cv2.INTER_NEAREST), repeats)
     t.peer = t_near
     rows: list[tuple[str, float, float]] = []
+    held_rows: list[tuple[str, float]] = []
     for model in ("standard", "gauss"):
 
         def composition(model: str = model) -> PixelSet:
@@ -296,6 +317,19 @@ def bench_rotation(repeats: int) -> None:
             )
             t.add(f"ours (mrm.ops) dR_30°, {model}", f, m, f"{len(out.result)} px (exact rational rotation)")
             rows.append((model, m, m_comp))
+            euclid = reconstruct(ps, model)
+            _, m_held, r_held = timed(
+                lambda model=model, e=euclid: held_op(
+                    lambda: ROTATE(ps, angle, centre, model).result,
+                    ps,
+                    model,
+                    e,  # type: ignore[misc]
+                ),
+                repeats,
+            )
+            assert r_held == out.result
+            t.add(f"ours, R(A) held (a document object), {model}", None, m_held, "same pixels")
+            held_rows.append((model, m_held))
         else:
             fc, m_comp, comp = timed(composition, repeats)
             same = ""
@@ -315,6 +349,8 @@ def bench_rotation(repeats: int) -> None:
             f"  ratio {model}: ÷ float composition {m / m_comp:.2f} (target ≤ {target}), "
             f"÷ cv2 nearest {m / t_near:.1f} (≤ 10)"
         )
+    for model, m in held_rows:
+        print(f"  ratio {model}, R(A) held: ÷ cv2 nearest {m / t_near:.1f}")
 
 
 def corefine_composition(e: Polygon, f: Polygon, alpha: int, model: str) -> list[Any]:

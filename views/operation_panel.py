@@ -17,6 +17,7 @@ from PySide6 import QtCore, QtWidgets
 from mrm.app import process_jobs
 from mrm.commands import ApplyResults
 from mrm.errors import MRMError, SizeLimitError
+from mrm.ops.apply import held_euclidean
 from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations
 from mrm.views.scene import Scene
 
@@ -662,6 +663,7 @@ class OperationPanel(QtWidgets.QWidget):
         self.runner.cancel("preview")
         doc = self.scene.doc
         inputs = [doc.get(i) for i in ids]  # immutable values read by the worker
+        held = held_euclidean(doc, ids)  # R(A) the views computed already: the worker uses it
         limit = self._prefs.pixel_limit if self._prefs is not None else None
         self.apply_button.setEnabled(False)
         self.cancel_button.setEnabled(True)
@@ -748,7 +750,9 @@ class OperationPanel(QtWidgets.QWidget):
         self.runner.submit(
             "operation",
             # Operations are Python-heavy (exact rationals): in a worker process, off the GIL (ADR 0025).
-            lambda progress: self.runner.call(process_jobs.plan, (inputs, op.name, params, limit), progress),
+            lambda progress: self.runner.call(
+                process_jobs.plan, (inputs, op.name, params, limit, held), progress
+            ),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

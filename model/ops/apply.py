@@ -68,8 +68,26 @@ def apply_operation(
         Before anything is changed.
     """
     load_paper_operations()
-    plan = plan_operation([doc.get(int(i)) for i in input_ids], operation, params, progress, limit=limit)
+    ids = [int(i) for i in input_ids]
+    plan = plan_operation(
+        [doc.get(i) for i in ids], operation, params, progress, limit=limit, held=held_euclidean(doc, ids)
+    )
     return push_plan(doc, plan)
+
+
+def held_euclidean(doc: Any, input_ids: Sequence[int]) -> list[tuple[int, str, Any]]:
+    """R(A) that ``doc`` holds already for the pixel inputs: (input index, model, R(A)), for plan_operation.
+
+    Only what the document has computed (its Euclidean views, :meth:`mrm.derive.Derived.peek`); nothing is
+    computed here.
+    """
+    held = []
+    for k, i in enumerate(input_ids):
+        derived = doc.derived(int(i))
+        euclid = derived.peek("euclidean") if derived.kind == "discrete" else None
+        if euclid is not None:
+            held.append((k, derived.model, euclid))
+    return held
 
 
 def push_plan(doc: Any, plan: Plan, styles: Sequence[Any] | None = None) -> list[int]:

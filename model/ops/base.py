@@ -686,6 +686,7 @@ def plan_operation(
     progress: ProgressLike | None = None,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
+    held: Sequence[tuple[int, str, Any]] = (),
 ) -> Plan:
     """Run an operation on document objects without touching any document: a pure function.
 
@@ -698,6 +699,10 @@ def plan_operation(
     params : parameters dataclass or mapping, optional
     progress : progress object, optional
     limit : int or None
+    held : sequence of (int, str, geometry), optional
+        R(A) the caller holds already, as (input index, model, R(A)) for inputs whose source is a pixel set A
+        (a document keeps each object's Euclidean representation): the operation uses it instead of
+        computing R(A) again (:func:`mrm.geometry.reconstruct.held`). The result is the same either way.
 
     Returns
     -------
@@ -708,10 +713,14 @@ def plan_operation(
         for r in plan.results]))``, as :func:`mrm.ops.apply.apply_operation` does.
     """
     from mrm.document import Provenance
+    from mrm.geometry.reconstruct import held as held_reconstructions
 
     spec = get_operation(name) if isinstance(name, str) else name
     params = coerce_params(spec, params)
-    out = run_operation(spec, [o.source for o in inputs], params, progress=progress, limit=limit)
+    sources = [o.source for o in inputs]
+    known = [(sources[i], model, geom) for i, model, geom in held if isinstance(sources[i], PixelSet)]
+    with held_reconstructions(known):
+        out = run_operation(spec, sources, params, progress=progress, limit=limit)
     base = params_to_dict(params)
     results = []
     for part, source in out.outputs:

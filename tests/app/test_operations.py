@@ -135,3 +135,28 @@ def test_cancel_a_long_operation_from_the_panel(make_window, qtbot):
     assert "cancelled" in panel.status.text()
     assert len(doc.objects) == n
     assert panel.apply_button.isEnabled()
+
+
+def test_apply_hands_the_worker_the_r_the_euclidean_view_computed(make_window, qtbot):
+    # The Euclidean view shows R(A) of a pixel object; applying DSS to it must not compute R(A) a second
+    # time on the worker: the panel hands the worker the R(A) the document holds (plan_operation's held).
+    win = make_window()
+    doc = win.doc
+    a = doc.make_object(_diamond(), name="A")
+    doc.push(AddObject(a, select=True))
+    qtbot.waitUntil(lambda: doc.derived(a.id).is_ready("euclidean"), timeout=60_000)
+    shown = doc.derived(a.id).peek("euclidean")
+    runner = win.operations.runner
+    calls = []
+    real_call = runner.call
+
+    def spy(fn, args, progress):  # type: ignore[no-untyped-def]
+        calls.append((fn.__name__, args))
+        return real_call(fn, args, progress)
+
+    runner.call = spy
+    result = _apply_dss_from_panel(win, qtbot, "5")
+    (held,) = [args[-1] for name, args in calls if name == "plan"]
+    assert [(k, model) for k, model, _g in held] == [(0, doc.model)]
+    assert held[0][2].equals_exact(shown, 0.0)
+    assert doc.get(result).source == _dss(a.source, 5.0)

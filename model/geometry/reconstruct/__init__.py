@@ -35,8 +35,10 @@ pipeline runs on it, and consecutive lines meet across pixel sides where the cov
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any
@@ -368,9 +370,36 @@ def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon
     _check_model(model)
     if ps.is_empty():
         return Polygon()
+    for known_ps, known_model, geom in _HELD.get():
+        if known_ps is ps and known_model == model:
+            return geom
     run = _run(ps, model)
     rings = run.rings
     return _assemble(run.xy, run.roff, rings.comp, rings.area2 < 0, rings.sx, rings.sy)
+
+
+#: R(A) already known to the caller (:func:`held`): (A, model, R(A)) in the current context.
+_HELD: ContextVar[tuple[tuple[PixelSet, str, Any], ...]] = ContextVar("mrm_held_reconstructions", default=())
+
+
+@contextmanager
+def held(known: Iterable[tuple[PixelSet, str, Polygon | MultiPolygon]]) -> Iterator[None]:
+    """Within the block, :func:`reconstruct` of one of these very pixel sets returns the geometry given.
+
+    For callers that hold R(A) already — a document keeps each object's Euclidean representation — so that
+    an operation on the object does not compute it again (R is deterministic: the held geometry is the one
+    R would return). Matched by identity of the pixel set and by model; the current thread and context only.
+
+    Parameters
+    ----------
+    known : iterable of (PixelSet, str, Polygon or MultiPolygon)
+        Pixel sets A, the model, and R(A) under that model as :func:`reconstruct` returned it.
+    """
+    token = _HELD.set(_HELD.get() + tuple(known))
+    try:
+        yield
+    finally:
+        _HELD.reset(token)
 
 
 def _assemble(
