@@ -633,10 +633,12 @@ class OperationPanel(QtWidgets.QWidget):
             self.scene.set_phantoms([])
             self.status.setText(f"<span style='color:#c0392b'>{exc}</span>")
 
+        held = held_euclidean(self.scene.doc, _ids)  # R(A) the views computed: not computed again
+
         def work(progress: Any) -> list[tuple[str | None, Any]]:
             from mrm.ops.base import run_operation
 
-            return normalise_results(run_operation(op.spec, sources, params, progress=progress))
+            return normalise_results(run_operation(op.spec, sources, params, progress=progress, held=held))
 
         self.runner.submit(
             "preview",

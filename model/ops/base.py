@@ -595,6 +595,7 @@ def run_operation(
     progress: ProgressLike | None = None,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     model: str | None = None,
+    held: Sequence[tuple[int, str, Any]] = (),
 ) -> OperationResult:
     """Validate, guard, run ``spec`` and stamp the result with its provenance and bound: the one place.
 
@@ -612,6 +613,11 @@ def run_operation(
         The largest result allowed, in pixels (None: no limit), checked on the estimate before running.
     model : str, optional
         The discretization model of the bound for operations whose parameters carry none.
+    held : sequence of (int, str, geometry), optional
+        R(A) the caller holds already, as (input index, model, R(A)) for inputs that are pixel sets A (a
+        document keeps each object's Euclidean representation, :func:`mrm.ops.apply.held_euclidean`): the
+        operation uses it instead of computing R(A) again (:func:`mrm.geometry.reconstruct.held`). The
+        result is the same either way.
 
     Raises
     ------
@@ -626,7 +632,14 @@ def run_operation(
         check_pixel_limit(spec.estimate(inputs, params), limit, f"{spec.title} result")
     progress = NO_PROGRESS if progress is None else progress
     progress.update(0.0, spec.title)
-    result = spec.run(inputs, params, progress)
+    known = [(inputs[i], m, geom) for i, m, geom in held if isinstance(inputs[i], PixelSet)]
+    if known:
+        from mrm.geometry.reconstruct import held as held_reconstructions
+
+        with held_reconstructions(known):
+            result = spec.run(inputs, params, progress)
+    else:
+        result = spec.run(inputs, params, progress)
     progress.update(1.0, spec.title)
     provenance = {
         "operation": spec.name,
@@ -700,9 +713,7 @@ def plan_operation(
     progress : progress object, optional
     limit : int or None
     held : sequence of (int, str, geometry), optional
-        R(A) the caller holds already, as (input index, model, R(A)) for inputs whose source is a pixel set A
-        (a document keeps each object's Euclidean representation): the operation uses it instead of
-        computing R(A) again (:func:`mrm.geometry.reconstruct.held`). The result is the same either way.
+        R(A) the caller holds already for inputs whose source is a pixel set (:func:`run_operation`).
 
     Returns
     -------
@@ -713,14 +724,10 @@ def plan_operation(
         for r in plan.results]))``, as :func:`mrm.ops.apply.apply_operation` does.
     """
     from mrm.document import Provenance
-    from mrm.geometry.reconstruct import held as held_reconstructions
 
     spec = get_operation(name) if isinstance(name, str) else name
     params = coerce_params(spec, params)
-    sources = [o.source for o in inputs]
-    known = [(sources[i], model, geom) for i, model, geom in held if isinstance(sources[i], PixelSet)]
-    with held_reconstructions(known):
-        out = run_operation(spec, sources, params, progress=progress, limit=limit)
+    out = run_operation(spec, [o.source for o in inputs], params, progress=progress, limit=limit, held=held)
     base = params_to_dict(params)
     results = []
     for part, source in out.outputs:
