@@ -633,7 +633,7 @@ class OperationPanel(QtWidgets.QWidget):
             self.scene.set_phantoms([])
             self.status.setText(f"<span style='color:#c0392b'>{exc}</span>")
 
-        held = held_euclidean(self.scene.doc, _ids)  # R(A) the views computed: not computed again
+        held = held_euclidean(self.scene.doc, _ids)  # R(A) the views computed: not again
 
         def work(progress: Any) -> list[tuple[str | None, Any]]:
             from mrm.ops.base import run_operation

@@ -70,16 +70,22 @@ def apply_operation(
     load_paper_operations()
     ids = [int(i) for i in input_ids]
     plan = plan_operation(
-        [doc.get(i) for i in ids], operation, params, progress, limit=limit, held=held_euclidean(doc, ids)
+        [doc.get(i) for i in ids],
+        operation,
+        params,
+        progress,
+        limit=limit,
+        held=held_euclidean(doc, ids),
     )
     return push_plan(doc, plan)
 
 
 def held_euclidean(doc: Any, input_ids: Sequence[int]) -> list[tuple[int, str, Any]]:
-    """R(A) that ``doc`` holds already for the pixel inputs: (input index, model, R(A)), for plan_operation.
+    """R(A) that ``doc`` holds already for its pixel objects ``input_ids``: (input index, model, R(A)).
 
-    Only what the document has computed (its Euclidean views, :meth:`mrm.derive.Derived.peek`); nothing is
-    computed here.
+    For :func:`mrm.ops.base.run_operation`'s ``held``: every operation reads R(A) of a pixel input (DSS_α
+    and dR_θ,C transform it, Sp_α and the boolean operations start from it). Only what the document has
+    computed (its Euclidean views, :meth:`mrm.derive.Derived.peek`); nothing is computed here.
     """
     held = []
     for k, i in enumerate(input_ids):
