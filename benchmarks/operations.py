@@ -15,9 +15,11 @@ a change of load hits both alike; the load is printed with those tables. The ras
 several threads, so their times — and every ratio to them — move with the machine's load more than ours.
 
 "ours (mrm.ops)" rows call the operations as the application does (exact rational similarities, exact
-discretization). "ours (composition)" rows chain the same pieces directly — discretize ∘ shapely.affinity ∘
-reconstruct — which is exact for α = 4 and 8 (power-of-two factors keep float64 vertices exact) but rounds the
-rotated vertices once (shapely's float rotation).
+discretization), from the pixels. "ours, R(A) held" rows run the same call with R(A) already known, as for a
+document object whose Euclidean view has drawn it (plan_operation's ``held``, ADR 0039); their pixels are
+asserted equal to the first rows'. "ours (composition)" rows chain the same pieces directly — discretize ∘
+shapely.affinity ∘ reconstruct — which is exact for α = 4 and 8 (power-of-two factors keep float64 vertices
+exact) but rounds the rotated vertices once (shapely's float rotation).
 
 Robustness: shapely's overlay on nearly coincident input — shared edges and vertices a few ulps apart
 (np.nextafter), a copy rotated by 10⁻⁹ degree, a zigzag of one-ulp teeth along a side. For each case and
