@@ -20,7 +20,6 @@ from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import MODELS, _run
 from mrm.geometry.reconstruct._check import edge_ok, verify_ring
 from mrm.geometry.reconstruct._minlink import (
-    _GATE_EPS,
     _ROOM,
     _ROOM_AGAIN,
     minlink_from,
@@ -118,7 +117,7 @@ def search_from_vertex_0(ring: dict[str, Any], room: float) -> tuple[np.ndarray,
         ring["iy"][0] / sc,
         int(ring["vt"][0]) % n,
         ring["rect"],
-        shrunk_gates(ring["gp"], ring["gq"], _GATE_EPS),
+        shrunk_gates(ring["gp"], ring["gq"]),
         room,
         ring["reach"],
         ring["gdir"],

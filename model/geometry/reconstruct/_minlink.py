@@ -75,8 +75,8 @@ _MANY_STARTS_PIECES = 1024  # … on corridors of at most this many pieces; larg
 
 
 @njit(cache=True)
-def shrunk_gates(gp: np.ndarray, gq: np.ndarray, eps: float) -> np.ndarray:  # pragma: no cover
-    """Gate ends moved towards each other by ``eps`` Q-units (or a quarter of the gate): (n, 4) floats."""
+def shrunk_gates(gp: np.ndarray, gq: np.ndarray) -> np.ndarray:  # pragma: no cover
+    """Gate ends moved towards each other by :data:`_GATE_EPS` (or a quarter of the gate): (n, 4) floats."""
     n = gp.shape[0]
     out = np.empty((n, 4), np.float64)
     for g in range(n):
@@ -85,7 +85,7 @@ def shrunk_gates(gp: np.ndarray, gq: np.ndarray, eps: float) -> np.ndarray:  # p
         qx = float(gq[g, 0])
         qy = float(gq[g, 1])
         ln = abs(qx - px) + abs(qy - py)  # gates are axis-parallel
-        e = min(eps, 0.25 * ln)
+        e = min(_GATE_EPS, 0.25 * ln)
         ux = (qx - px) / ln
         uy = (qy - py) / ln
         out[g, 0] = px + e * ux
@@ -684,9 +684,9 @@ def _forward(
 ) -> tuple[int, float, float, int, Windows]:  # pragma: no cover
     # The windows W_1, W_2, … from s (in piece t0) until one sees s one lap later (or needs one more
     # vertex, returned as last_x, last_y, last_t with last_t >= 0). Returns kend (−1: failed), that extra
-    # vertex, and the windows (:class:`Windows`). sg: the
-    # shrunk gates; a step whose next window's line could not move sideways by ``room`` among its lines is
-    # taken again with the gates shrunk by _ROOMY_EXTRA more.
+    # vertex, and the windows (:class:`Windows`). sg: the shrunk gates; a step whose next window's line
+    # could not move sideways by ``room`` among its lines is taken again with the gates shrunk by
+    # _ROOMY_EXTRA more.
     n = rect.shape[0]
     tend = t0 + n
     # windows: start point, unit direction, reachable side, and their parts (piece, λ interval)
@@ -935,7 +935,7 @@ def minlink_ring(
     m = ix.size
     sc = 1 << kmax
     fsc = float(sc)
-    sg = shrunk_gates(gp, gq, _GATE_EPS)
+    sg = shrunk_gates(gp, gq)
     # other starts: only on rings small enough for them to be cheap (on the benchmark images every vertex
     # but one was gained from the first start, and on the 1024² blob three failing starts cost 14 ms)
     starts = _STARTS if n <= _MANY_STARTS_PIECES else 1
