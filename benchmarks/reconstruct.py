@@ -14,7 +14,8 @@ step (crack linel); the time per step on the horse upscaled from 1024Â² to 8192Â
 warm (cache on disk).
 
 Run: ``.venv/bin/python benchmarks/reconstruct.py`` (``--quick`` skips the two largest disks and potrace on
-big inputs; ``--rings`` adds the per-ring excess over the window bound; ``--only memory`` (repeatable) runs
+big inputs; ``--rings`` adds the per-ring excess over the window bound; ``--starts`` what the minimum-link
+windows reach from many starts per ring; ``--only memory`` (repeatable) runs
 one section: vertices, speed, scaling, memory, labels, first-call; ``--help`` lists them).
 """
 
@@ -269,6 +270,67 @@ def excess_by_ring(items: list[tuple[str, PixelSet]]) -> None:
     table(
         "R's vertices above the window bound, per ring class (rings: excess)",
         ["image", "model", "vertices", *classes],
+        rows,
+    )
+
+
+def fewest_from_starts(items: list[tuple[str, PixelSet]], per_ring: int = 200) -> None:
+    """How many vertices fewer than R the minimum-link windows reach from many starts, per image and model.
+
+    For every ring of four pieces or more, the forward pass of the minimum-link search (Suri's windows,
+    ``_minlink._forward``, without room, so optimistic: a proposal still has to snap and verify) from five
+    points in each of up to ``per_ring`` pieces; the fewest windows any start needs, against R's vertices.
+    R runs the search from one start (vertex 0 of its ring): this says what other starts could still gain.
+    """
+    from mrm.geometry import reconstruct as rmod
+    from mrm.geometry.reconstruct import _minlink as ml
+
+    spots = ((0.5, 0.5), (0.25, 0.25), (0.75, 0.75), (0.25, 0.75), (0.75, 0.25))
+    rows = []
+    for name, ps in items:
+        for model in ("standard", "gauss"):  # supercover has the standard polygons
+            run = rmod._run(ps, model, tables=True)
+            cor = run.corridor
+            pieces = np.diff(cor.poff)
+            verts = np.diff(run.roff) - 1  # rings are closed
+            searched = ours = fewest = gained = starts = 0
+            for k in range(pieces.size):
+                if cor.special[k] in (1, 2) or pieces[k] < 4:
+                    continue
+                a, b = int(cor.poff[k]), int(cor.poff[k + 1])
+                rect, gdir, reach = cor.rect[a:b], cor.gdir[a:b], run.reach[a:b]
+                sg = ml.shrunk_gates(cor.gp[a:b], cor.gq[a:b])
+                best = 1 << 60
+                for t in range(0, b - a, max(1, (b - a) // per_ring)):
+                    for fx, fy in spots:
+                        x = rect[t, 0] + fx * (rect[t, 1] - rect[t, 0])
+                        y = rect[t, 2] + fy * (rect[t, 3] - rect[t, 2])
+                        kend, _x, _y, last_t, _w = ml._forward(
+                            float(x), float(y), t, rect, sg, 0.0, reach, gdir, int(verts[k]) + 2
+                        )
+                        starts += 1
+                        if kend >= 0:
+                            best = min(best, kend + 1 + (1 if last_t >= 0 else 0))
+                if best < 1 << 60:
+                    searched += 1
+                    ours += int(verts[k])
+                    fewest += min(best, int(verts[k]))
+                    gained += int(verts[k] > best)
+            total = int(verts.sum())
+            rows.append([name, model, total, searched, ours, fewest, gained, total - ours + fewest, starts])
+    table(
+        "fewest vertices the minimum-link windows reach from many starts (optimistic) against R's",
+        [
+            "image",
+            "model",
+            "R",
+            "rings searched",
+            "R there",
+            "fewest there",
+            "rings with fewer",
+            "R - gain",
+            "starts",
+        ],
         rows,
     )
 
@@ -530,6 +592,11 @@ def main() -> None:
     )
     parser.add_argument("--rings", action="store_true", help="add the per-ring excess over the window bound")
     parser.add_argument(
+        "--starts",
+        action="store_true",
+        help="add the fewest vertices the minimum-link windows reach from many starts (about 20 s)",
+    )
+    parser.add_argument(
         "--only", choices=SECTIONS, action="append", help="run only this section (repeatable); all by default"
     )
     args = parser.parse_args()
@@ -539,6 +606,8 @@ def main() -> None:
         compactness(shapes())
         if args.rings:
             excess_by_ring([s for s in shapes() if not s[0].startswith("disk")])
+        if args.starts:
+            fewest_from_starts([s for s in shapes() if not s[0].startswith("disk")])
     if "speed" in only:
         speed()
     if "scaling" in only and not QUICK:
