@@ -581,20 +581,24 @@ def merge_ring(
     okc = np.zeros((2, n + 1), np.bool_)
     poly = np.empty((4, 16), np.float64)
     for rnd in range(2):
+        # The ring's vertices are x[0 … i] (looked at) followed by x[j … last] (not yet): a merge drops
+        # x[j] instead of shifting the rest down, so a round costs O(m), not O(merges · m).
+        last = m - 1
         i = 0
+        j = 1
         while i < m - 1 and m > 3:
-            # vertices i and i+1 (never across the end of the arrays: the second round runs on the ring
-            # rotated by half a turn); unwrapped pieces of the neighbours
-            ta = t[i - 1] if i > 0 else t[m - 1] - n
-            tb = t[i + 2] if i + 2 < m else t[0] + n
-            xa = x[i - 1] if i > 0 else x[m - 1]
-            ya = y[i - 1] if i > 0 else y[m - 1]
-            xb = x[i + 2] if i + 2 < m else x[0]
-            yb = y[i + 2] if i + 2 < m else y[0]
+            # vertices i and i+1 = x[j] (never across the end of the arrays: the second round runs on the
+            # ring rotated by half a turn); unwrapped pieces of the neighbours, vertex m−1 being x[last]
+            ta = t[i - 1] if i > 0 else t[last] - n
+            tb = t[j + 1] if j < last else t[0] + n
+            xa = x[i - 1] if i > 0 else x[last]
+            ya = y[i - 1] if i > 0 else y[last]
+            xb = x[j + 1] if j < last else x[0]
+            yb = y[j + 1] if j < last else y[0]
             merged = False
             if tb - ta < n:
                 wx, wy, tt, ok = _merge_pair(
-                    xa, ya, ta, xb, yb, tb, t[i], t[i + 1], rect, gp, gq, gdir, kmax, cone, okc, poly
+                    xa, ya, ta, xb, yb, tb, t[i], t[j], rect, gp, gq, gdir, kmax, cone, okc, poly
                 )
                 if ok:
                     x[i] = wx
@@ -602,16 +606,24 @@ def merge_ring(
                     t[i] = tt
                     s[i] = SRC_LINES
                     ln[i] = -1
-                    for q in range(i + 1, m - 1):
-                        x[q] = x[q + 1]
-                        y[q] = y[q + 1]
-                        t[q] = t[q + 1]
-                        s[q] = s[q + 1]
-                        ln[q] = ln[q + 1]
+                    j += 1
                     m -= 1
                     merged = True
             if not merged:
                 i += 1
+                x[i] = x[j]
+                y[i] = y[j]
+                t[i] = t[j]
+                s[i] = s[j]
+                ln[i] = ln[j]
+                j += 1
+        # the vertices not looked at (when m reached 3) follow vertex i again
+        for q in range(j, last + 1):
+            x[i + 1 + q - j] = x[q]
+            y[i + 1 + q - j] = y[q]
+            t[i + 1 + q - j] = t[q]
+            s[i + 1 + q - j] = s[q]
+            ln[i + 1 + q - j] = ln[q]
         if rnd == 0 and m > 3:
             # rotate by half a turn, keeping the pieces non-decreasing from vertex 0
             h = m // 2
