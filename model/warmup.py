@@ -122,12 +122,15 @@ def is_warm() -> bool:
 
     A stale stamp (a kernel module edited since) still counts as warm when numba's cache holds an index for
     every kernel module: only the edited kernels recompile then, on first use, which no notice announces.
-    ``python -m mrm.warmup`` does not take that shortcut: it compiles again unless the stamp is current.
+    A current stamp without those indexes (the cache files deleted, the stamp left) is cold.
+    ``python -m mrm.warmup`` compiles again unless the stamp is current and the indexes are there.
     """
     stamp = _read_stamp()
     if stamp is None:
         return False
-    return bool(stamp == cache_key()) or _indexes_present()
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return bool(stamp == cache_key())  # another layout: the stamp alone decides
+    return _indexes_present()  # a current stamp without the cache files (deleted by hand) is cold
 
 
 def _indexes_present() -> bool:
@@ -348,7 +351,7 @@ def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
     if "--check" in args:
         return 0 if is_warm() else 1
-    if _stamp_is_current():
+    if _stamp_is_current() and (os.environ.get("NUMBA_CACHE_DIR") or _indexes_present()):
         print("mrm: the geometry kernels are already compiled")
         return 0
 

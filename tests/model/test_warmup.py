@@ -33,16 +33,33 @@ def fake_root(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
         dst.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(src, dst)
         (dst.parent / "__pycache__").mkdir(exist_ok=True)
-        (dst.parent / "__pycache__" / f"{dst.stem}.kernel-1.py311.nbi").write_bytes(b"")
+    _index_files(tmp_path)
     monkeypatch.setattr(warmup, "_package_root", lambda: tmp_path)
     return tmp_path
+
+
+def _index_files(root: Path) -> None:
+    # What numba leaves after compiling: an index beside each kernel module.
+    for rel in warmup.KERNEL_MODULES:
+        p = root / rel
+        (p.parent / "__pycache__" / f"{p.stem}.kernel-1.py311.nbi").write_bytes(b"")
+
+
+def _fake_warm_up(root: Path, runs: list[int]) -> object:
+    # warm_up without compiling: the cache files and the stamp it leaves behind.
+    def fake(progress: object = None) -> None:
+        runs.append(1)
+        _index_files(root)
+        warmup._write_stamp()
+
+    return fake
 
 
 def test_warmup_compiles_again_after_a_kernel_module_is_edited(
     fake_root: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     runs: list[int] = []
-    monkeypatch.setattr(warmup, "warm_up", lambda progress=None: runs.append(1) or warmup._write_stamp())
+    monkeypatch.setattr(warmup, "warm_up", _fake_warm_up(fake_root, runs))
     warmup._write_stamp()
     assert warmup.main([]) == 0
     assert runs == []
@@ -56,6 +73,25 @@ def test_warmup_compiles_again_after_a_kernel_module_is_edited(
     # and after that warm-up the stamp is current again
     assert warmup.main([]) == 0
     assert runs == [1]
+
+
+def test_a_current_stamp_without_the_cache_files_is_cold(
+    fake_root: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # The cache files deleted by hand and the stamp left: "already compiled" would be a lie, and every
+    # kernel would compile on first use instead (a minute, with no notice).
+    runs: list[int] = []
+    monkeypatch.setattr(warmup, "warm_up", _fake_warm_up(fake_root, runs))
+    warmup._write_stamp()
+    assert warmup.is_warm()
+    for f in fake_root.rglob("*.nbi"):
+        f.unlink()
+    assert not warmup.is_warm()
+    assert warmup.main(["--check"]) == 1
+    assert warmup.main([]) == 0
+    assert runs == [1]
+    assert "already compiled" not in capsys.readouterr().out
+    assert warmup.is_warm()  # the warm-up left its cache files
 
 
 def test_an_unreadable_stamp_is_cold(fake_root: Path) -> None:
