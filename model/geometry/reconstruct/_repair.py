@@ -870,6 +870,8 @@ def small_polygon(
     ty = np.empty(nv, np.int64)
     tt = np.empty(nv, np.int64)
     bad = np.zeros(nv, np.bool_)
+    rays = np.empty((per, 4), np.int64)
+    raysok = np.zeros(per, np.bool_)
     # every window chain has a vertex in every window (i + reach[i] never decreases): start in the shortest
     smin = 0
     for i in range(n):
@@ -913,10 +915,27 @@ def small_polygon(
                 _cone_bwd(cx[c], cy[c], tc, tc - ta, gp, gq, fsc, bc, obc, v)
                 if nv == 4:
                     _cone_fwd(cx[c], cy[c], tc, ta + n - tc, gp, gq, fsc, ac, oac, v)
+            if nv == 3:
+                # the tightest rays from each candidate through the gates of the closing edge: a quick
+                # necessary test before its exact check (gate_rays, as _place does)
+                for v in range(per):
+                    c = per * (tc % n) + v
+                    r0x, r0y, r1x, r1y, rok = gate_rays(cx[c], cy[c], tc, ta + n, True, gp, gq, sc)
+                    rays[v, 0] = r0x
+                    rays[v, 1] = r0y
+                    rays[v, 2] = r1x
+                    rays[v, 3] = r1y
+                    raysok[v] = rok
             for i in range(per * ta, per * ta + per):
                 for c in range(per * (tc % n), per * (tc % n) + per):
-                    if nv == 3 and not edge_ok(cx[c], cy[c], tc, cx[i], cy[i], ta + n, gp, gq, gdir, sc):
-                        continue
+                    if nv == 3:
+                        v = c - per * (tc % n)
+                        if raysok[v] and not rays_admit(
+                            cx[c], cy[c], rays[v, 0], rays[v, 1], rays[v, 2], rays[v, 3], True, cx[i], cy[i]
+                        ):
+                            continue
+                        if not edge_ok(cx[c], cy[c], tc, cx[i], cy[i], ta + n, gp, gq, gdir, sc):
+                            continue
                     wx, wy, tw, ok = _merge_cones(
                         cx[i],
                         cy[i],
