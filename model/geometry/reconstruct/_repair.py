@@ -580,6 +580,14 @@ def merge_ring(
     cone = np.empty((2, 4, n + 1), np.float64)
     okc = np.zeros((2, n + 1), np.bool_)
     poly = np.empty((4, 16), np.float64)
+    # Which vertex each slot holds (a merged vertex is a new one), and for each vertex v the pair tried
+    # in the first round that failed: (v's predecessor, v's successor, the one after). The second round
+    # meets most pairs again with the same four vertices, only a lap further round (pieces shifted by n),
+    # which _merge_pair does not see: it fails again, so it is not tried (85 % of the second round's pairs
+    # on the 1024² blob).
+    vid = np.arange(m)
+    nid = m
+    failed = np.full((2 * m, 3), -1, np.int64)
     for rnd in range(2):
         # The ring's vertices are x[0 … i] (looked at) followed by x[j … last] (not yet): a merge drops
         # x[j] instead of shifting the rest down, so a round costs O(m), not O(merges · m).
@@ -596,7 +604,10 @@ def merge_ring(
             xb = x[j + 1] if j < last else x[0]
             yb = y[j + 1] if j < last else y[0]
             merged = False
-            if tb - ta < n:
+            va = vid[i - 1] if i > 0 else vid[last]
+            vb = vid[j + 1] if j < last else vid[0]
+            again = failed[vid[i], 0] == va and failed[vid[i], 1] == vid[j] and failed[vid[i], 2] == vb
+            if tb - ta < n and not again:
                 wx, wy, tt, ok = _merge_pair(
                     xa, ya, ta, xb, yb, tb, t[i], t[j], rect, gp, gq, gdir, kmax, cone, okc, poly
                 )
@@ -606,9 +617,15 @@ def merge_ring(
                     t[i] = tt
                     s[i] = SRC_LINES
                     ln[i] = -1
+                    vid[i] = nid
+                    nid += 1
                     j += 1
                     m -= 1
                     merged = True
+                elif rnd == 0:
+                    failed[vid[i], 0] = va
+                    failed[vid[i], 1] = vid[j]
+                    failed[vid[i], 2] = vb
             if not merged:
                 i += 1
                 x[i] = x[j]
@@ -616,6 +633,7 @@ def merge_ring(
                 t[i] = t[j]
                 s[i] = s[j]
                 ln[i] = ln[j]
+                vid[i] = vid[j]
                 j += 1
         # the vertices not looked at (when m reached 3) follow vertex i again
         for q in range(j, last + 1):
@@ -624,6 +642,7 @@ def merge_ring(
             t[i + 1 + q - j] = t[q]
             s[i + 1 + q - j] = s[q]
             ln[i + 1 + q - j] = ln[q]
+            vid[i + 1 + q - j] = vid[q]
         if rnd == 0 and m > 3:
             # rotate by half a turn, keeping the pieces non-decreasing from vertex 0
             h = m // 2
@@ -632,8 +651,10 @@ def merge_ring(
             rt = np.empty(m, np.int64)
             rs = np.empty(m, np.int64)
             rl = np.empty(m, np.int64)
+            rv = np.empty(m, np.int64)
             for q in range(m):
                 src = (h + q) % m
+                rv[q] = vid[src]
                 rx[q] = x[src]
                 ry[q] = y[src]
                 rt[q] = t[src] + (n if src < h else 0)
@@ -646,6 +667,7 @@ def merge_ring(
                 t[q] = rt[q] - base
                 s[q] = rs[q]
                 ln[q] = rl[q]
+                vid[q] = rv[q]
     if m == ix.size:
         return ix, iy, vt, vs, vl
     ox = x[:m].copy()
