@@ -55,11 +55,18 @@ def _fake_warm_up(root: Path, runs: list[int]) -> object:
     return fake
 
 
-def test_warmup_compiles_again_after_a_kernel_module_is_edited(
-    fake_root: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
-) -> None:
+@pytest.fixture
+def warm_ups(fake_root: Path, monkeypatch: pytest.MonkeyPatch) -> list[int]:
+    """The warm-up replaced by :func:`_fake_warm_up`; the list grows by one each time it runs."""
     runs: list[int] = []
     monkeypatch.setattr(warmup, "warm_up", _fake_warm_up(fake_root, runs))
+    return runs
+
+
+def test_warmup_compiles_again_after_a_kernel_module_is_edited(
+    fake_root: Path, warm_ups: list[int], capsys: pytest.CaptureFixture[str]
+) -> None:
+    runs = warm_ups
     warmup._write_stamp()
     assert warmup.main([]) == 0
     assert runs == []
@@ -76,12 +83,11 @@ def test_warmup_compiles_again_after_a_kernel_module_is_edited(
 
 
 def test_a_current_stamp_without_the_cache_files_is_cold(
-    fake_root: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+    fake_root: Path, warm_ups: list[int], capsys: pytest.CaptureFixture[str]
 ) -> None:
     # The cache files deleted by hand and the stamp left: "already compiled" would be a lie, and every
     # kernel would compile on first use instead (a minute, with no notice).
-    runs: list[int] = []
-    monkeypatch.setattr(warmup, "warm_up", _fake_warm_up(fake_root, runs))
+    runs = warm_ups
     warmup._write_stamp()
     assert warmup.is_warm()
     for f in fake_root.rglob("*.nbi"):
