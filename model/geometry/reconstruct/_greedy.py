@@ -50,7 +50,7 @@ def ring_reach(
     ld = np.empty((ne, 4), np.float64)
     dss_reach(e0, ec, er, ne, rd, ld)
     # split elements, prefix counts over two laps
-    pre = np.zeros(2 * ne + 1, np.int64)
+    pre = np.zeros(2 * ne + 1, np.int32)  # counts < 2 × linels (int32, INT32_LINELS)
     for k in range(2 * ne):
         kk = k % ne
         pre[k + 1] = pre[k] + (1 if cnt[e0 + kk] >= 2 else 0)

@@ -240,8 +240,8 @@ def general_reach(
     orientation tests.
     """
     n = gdir.size
-    ptx = np.empty(2 * n + 2, np.int64)
-    pty = np.empty(2 * n + 2, np.int64)
+    ptx = np.empty(2 * n + 2, np.int32)  # int32 as gp, gq: half the scratch of the largest ring
+    pty = np.empty(2 * n + 2, np.int32)
     cap = 2 * n + 8
     buf = np.empty((2, 2, cap), np.int64)  # [quadrant, buffer, edge]
     vbuf = np.empty((2, 2, cap, 4), np.int64)  # vertex lines

@@ -229,8 +229,8 @@ def sliding_reach(
     n = gdir.size
     cap = max(cap, 2)  # a gate's own polygon has up to four vertices
     # gate ends over two laps: the windows of the starts 0 … n−1 end before gate 2n
-    ptx = np.empty(4 * n + 4, np.int64)
-    pty = np.empty(4 * n + 4, np.int64)
+    ptx = np.empty(4 * n + 4, np.int32)  # int32 as gp, gq: half the scratch of the largest ring
+    pty = np.empty(4 * n + 4, np.int32)
     for k in range(2 * n + 2):
         g = k % n
         ptx[2 * k] = gp[g, 0]
