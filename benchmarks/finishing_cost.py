@@ -82,10 +82,11 @@ CHILD = """
 import json, sys
 sys.path.insert(0, {copy!r})
 sys.path.insert(1, {bench!r})
-import numpy as np, rasterio.features, shapely
+import numpy as np, rasterio.features
 from reconstruct import median_ms, speed_inputs
 from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.pixels import PixelSet
+from mrm.summary import count_vertices
 assert reconstruct.__code__.co_filename.startswith({copy!r})
 for name, m in speed_inputs():
     image = name.split()[0]
@@ -95,11 +96,9 @@ for name, m in speed_inputs():
     m8 = np.ascontiguousarray(m.astype(np.uint8))
     gdal = median_ms(lambda: list(rasterio.features.shapes(m8, mask=m, connectivity=4)), {reps})
     for model in {models!r}:
-        g = reconstruct(ps, model)
-        rings = sum(1 + len(p.interiors) for p in getattr(g, "geoms", [g]))
+        nv = count_vertices(reconstruct(ps, model))
         ms = median_ms(lambda: reconstruct(ps, model), {reps})
-        print(json.dumps(dict(image=image, model=model, vertices=int(shapely.get_num_coordinates(g)) - rings,
-                              ms=ms, gdal=gdal)), flush=True)
+        print(json.dumps(dict(image=image, model=model, vertices=nv, ms=ms, gdal=gdal)), flush=True)
 """
 
 
