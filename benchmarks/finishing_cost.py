@@ -80,6 +80,7 @@ def patched_copy(dest: Path) -> None:
 
 CHILD = """
 import json, sys
+sys.argv.append("--quick")  # speed_inputs without the 4096² blobs, which are not timed here
 sys.path.insert(0, {copy!r})
 sys.path.insert(1, {bench!r})
 import numpy as np, rasterio.features
@@ -102,13 +103,18 @@ for name, m in speed_inputs():
 """
 
 
-def run_variant(copy: Path, cache: Path, skip: int, reps: int) -> list[dict]:
-    """One fresh process of one variant: a row per image and model."""
+def child(copy: Path, cache: Path, skip: int, images: tuple[str, ...], reps: int) -> dict:
+    """The arguments of subprocess.run / Popen for one fresh process of one variant."""
     code = CHILD.format(
-        copy=str(copy), bench=str(ROOT / "benchmarks"), images=IMAGES, models=MODELS, reps=reps
+        copy=str(copy), bench=str(ROOT / "benchmarks"), images=images, models=MODELS, reps=reps
     )
     env = dict(os.environ, MRM_SKIP=str(skip), NUMBA_CACHE_DIR=str(cache))
-    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    return dict(args=[sys.executable, "-c", code], env=env)
+
+
+def run_variant(copy: Path, cache: Path, skip: int, reps: int) -> list[dict]:
+    """One fresh process of one variant: a row per image and model."""
+    out = subprocess.run(**child(copy, cache, skip, IMAGES, reps), capture_output=True, text=True, check=True)
     return [json.loads(line) for line in out.stdout.splitlines() if line.startswith("{")]
 
 
@@ -118,7 +124,8 @@ def main() -> None:
     ap.add_argument("--reps", type=int, default=15, help="calls per median in each run")
     args = ap.parse_args()
     sys.path.insert(0, str(ROOT / "benchmarks"))
-    from reconstruct import peer_potrace, speed_inputs
+    sys.argv.append("--quick")  # speed_inputs without the 4096² blobs
+    from reconstruct import peer_potrace, speed_inputs, table
 
     from mrm.reps.pixels import PixelSet
 
@@ -132,15 +139,10 @@ def main() -> None:
         # compile every variant (one run on the horse fills its cache), two at a time
         items = list(VARIANTS.items())
         for i in range(0, len(items), 2):
-            procs = []
-            for v, skip in items[i : i + 2]:
-                code = CHILD.format(
-                    copy=str(copy), bench=str(ROOT / "benchmarks"), images=("horse",), models=MODELS, reps=1
-                )
-                env = dict(os.environ, MRM_SKIP=str(skip), NUMBA_CACHE_DIR=str(caches[v]))
-                procs.append(
-                    subprocess.Popen([sys.executable, "-c", code], env=env, stdout=subprocess.DEVNULL)
-                )
+            procs = [
+                subprocess.Popen(**child(copy, caches[v], skip, ("horse",), 1), stdout=subprocess.DEVNULL)
+                for v, skip in items[i : i + 2]
+            ]
             for p in procs:
                 if p.wait() != 0:
                     raise SystemExit("a variant failed to compile")
@@ -149,26 +151,23 @@ def main() -> None:
             for v, skip in VARIANTS.items():
                 for r in run_variant(copy, caches[v], skip, args.reps):
                     rows.setdefault((v, r["image"], r["model"]), []).append(r)
-    print(f"\nR with optional finishing steps left out (medians of {args.rounds} alternating fresh runs)")
-    print("cells: vertices (÷ potrace) · R ms (÷ GDAL polygonize, same process)")
     for model in MODELS:
-        print(f"\n{model}")
-        head = ["image", "potrace", *VARIANTS]
-        lines = [head]
+        cells = []
         for image in IMAGES:
-            cells = [image, str(potrace[image])]
+            row = [image, potrace[image]]
             for v in VARIANTS:
                 rs = rows[(v, image, model)]
                 nv = rs[0]["vertices"]
                 ms = statistics.median(r["ms"] for r in rs)
                 ratio = statistics.median(r["ms"] / r["gdal"] for r in rs)
-                cells.append(f"{nv} ({nv / potrace[image]:.3f}) · {ms:.2f} ({ratio:.2f})")
-            lines.append(cells)
-        widths = [max(len(c[i]) for c in lines) for i in range(len(head))]
-        for k, c in enumerate(lines):
-            print("  ".join(x.rjust(w) for x, w in zip(c, widths, strict=True)))
-            if k == 0:
-                print("  ".join("-" * w for w in widths))
+                row.append(f"{nv} ({nv / potrace[image]:.3f}) · {ms:.2f} ({ratio:.2f})")
+            cells.append(row)
+        table(
+            f"{model}: R with optional finishing steps left out, medians of {args.rounds} alternating runs "
+            "(vertices (÷ potrace) · R ms (÷ GDAL polygonize, same process))",
+            ["image", "potrace", *VARIANTS],
+            cells,
+        )
 
 
 if __name__ == "__main__":
