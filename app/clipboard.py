@@ -26,8 +26,8 @@ from typing import Any
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.commands import ApplyResults
+from mrm.core.errors import MRMError
 from mrm.document import DocObject, Document, Settings
-from mrm.errors import MRMError
 
 log = logging.getLogger(__name__)
 
@@ -88,7 +88,7 @@ def mime_payload(md: QtCore.QMimeData) -> tuple[bytes, str]:
     MRMError
         Nothing usable on the clipboard.
     """
-    from mrm.errors import FileFormatError
+    from mrm.core.errors import FileFormatError
 
     if md.hasFormat(MIME):
         return bytes(md.data(MIME).data()), ".mrm"
@@ -113,7 +113,7 @@ def objects_from_payload(doc: Document, data: bytes, suffix: str) -> list[DocObj
 
     Any thread: the document only gives fresh ids.
     """
-    from mrm.errors import FileFormatError
+    from mrm.core.errors import FileFormatError
     from mrm.io.imports import objects_from_file
 
     fd, path = tempfile.mkstemp(prefix="mrm-paste-", suffix=suffix)

@@ -16,7 +16,7 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.errors import MRMError
+from mrm.core.errors import MRMError
 from mrm.views import geometry_edit as ge
 
 log = logging.getLogger(__name__)

@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING, Any
 from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import AddObject
+from mrm.core.errors import MRMError
 from mrm.document import Document, Settings
-from mrm.errors import MRMError
 
 if TYPE_CHECKING:
     from mrm.app.main_window import MainWindow
@@ -57,7 +57,7 @@ def document_weight(doc: Any) -> int:
     """A cheap size estimate of a document's file: pixels of pixel sources plus coordinates of polygons."""
     import shapely
 
-    from mrm.reps.pixels import LabelMap, PixelSet
+    from mrm.core.grids import LabelMap, PixelSet
 
     total = 0
     for o in doc.objects:
@@ -415,8 +415,8 @@ class FileController(QtCore.QObject):
         Touches no widget and no document state (lines and points are discretized under ``model``, the
         document's by default), so the import runs it on a worker thread.
         """
+        from mrm.core.limits import clean_name
         from mrm.document import validate_geometry
-        from mrm.limits import clean_name
 
         model = self.doc.model if model is None else model
         ext = path.suffix.lower()
@@ -440,7 +440,7 @@ class FileController(QtCore.QObject):
 
                     out.append((str(label), discretize(g, model)))
             return out
-        from mrm.errors import FileFormatError
+        from mrm.core.errors import FileFormatError
 
         raise FileFormatError(
             f"{path.name}: cannot import '{ext or 'no extension'}' files; "

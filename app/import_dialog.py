@@ -25,12 +25,12 @@ def image_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
 
     The values are the grey values, rows top first; ``labels_ok`` says whether labels make sense,
     ``labels_first`` whether they are the image's meaning (an indexed PNG, an NPZ ``labels`` array).
-    Colour images give their luminance (the model's :func:`~mrm.io.threshold.luminance`); labels are
+    Colour images give their luminance (the model's :func:`~mrm.core.threshold.luminance`); labels are
     offered for grey and indexed images and NPZ label arrays only.
     """
     from PIL import Image
 
-    from mrm.io.threshold import luminance
+    from mrm.core.threshold import luminance
 
     suffix = path.suffix.lower()
     if suffix == ".npz":
@@ -61,9 +61,9 @@ def _binary(values: np.ndarray) -> bool:
 
 def _netpbm_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
     """A PGM's grey values (labels offered), read by the model's reader; None if binary or unreadable."""
-    from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError
+    from mrm.core.errors import DEFAULT_PIXEL_LIMIT, FileFormatError
+    from mrm.core.threshold import grey_of
     from mrm.io.netpbm import read_netpbm
-    from mrm.io.threshold import grey_of
 
     try:
         with open(path, "rb") as fh:
@@ -105,7 +105,7 @@ class ImageImportDialog(QtWidgets.QDialog):
         parent: QtWidgets.QWidget | None = None,
     ) -> None:
         super().__init__(parent)
-        from mrm.io.threshold import otsu_threshold
+        from mrm.core.threshold import otsu_threshold
 
         self.setObjectName("imageImportDialog")
         self.setWindowTitle(f"Import {path.name}")

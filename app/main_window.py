@@ -484,7 +484,7 @@ class MainWindow(QtWidgets.QMainWindow):
     def split_label_map(self) -> None:
         """Replace the selected label map by one pixel object per label (one undo step, ADR 0033)."""
         from mrm.commands import SplitLabelMap
-        from mrm.errors import MRMError
+        from mrm.core.errors import MRMError
 
         obj = self.scene.primary()
         if obj is None or obj.kind != "labels":
@@ -567,7 +567,7 @@ class MainWindow(QtWidgets.QMainWindow):
             )
 
         def failed(exc: BaseException) -> None:
-            from mrm.errors import MRMError
+            from mrm.core.errors import MRMError
 
             if not isinstance(exc, MRMError):
                 raise exc

@@ -7,7 +7,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from mrm.app.actions import ActionRegistry
 from mrm.app.application import theme_controller
 from mrm.app.settings import MODELS, Preferences
-from mrm.limits import MAX_OBJECT_PIXELS
+from mrm.core.limits import MAX_OBJECT_PIXELS
 
 #: The entry the pixel-limit message points at (File ▸ Preferences ▸ General).
 PIXEL_LIMIT_LABEL = "Largest operation result"

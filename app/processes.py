@@ -28,7 +28,7 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
-from mrm.errors import Cancelled
+from mrm.core.errors import Cancelled
 
 log = logging.getLogger(__name__)
 
@@ -203,7 +203,7 @@ def _portable(exc: BaseException) -> BaseException:
         pickle.loads(pickle.dumps(exc, protocol=5))
         return exc
     except Exception:
-        from mrm.errors import MRMError
+        from mrm.core.errors import MRMError
 
         log.warning("%s does not travel between processes; sent as its text", type(exc).__name__)
         kind = MRMError if isinstance(exc, MRMError) else RuntimeError

@@ -5,11 +5,11 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 
-from mrm.progress import Progress
+from mrm.core.progress import Progress
 
 
 class TaskProgress(Progress):
-    """The library's :class:`~mrm.progress.Progress`, with the reports a window's progress bar wants.
+    """The library's :class:`~mrm.core.progress.Progress`, with the reports a window's progress bar wants.
 
     ``report(fraction, message)`` is called at most every :attr:`MIN_INTERVAL` seconds (and always when
     the work is done); ``event`` is the cancel flag, shared with a worker process's signal handler there.

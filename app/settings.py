@@ -196,8 +196,8 @@ class Preferences(QtCore.QObject):
     @property
     def pixel_limit(self) -> int:
         """The largest operation result allowed, in pixels (Preferences ▸ General ▸ Largest result)."""
-        from mrm.errors import DEFAULT_PIXEL_LIMIT
-        from mrm.limits import MAX_OBJECT_PIXELS
+        from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+        from mrm.core.limits import MAX_OBJECT_PIXELS
 
         # Never beyond the largest pixel object a document holds: a result over it would be refused anyway.
         v = self._get("operations/pixel_limit", DEFAULT_PIXEL_LIMIT, int)
@@ -205,7 +205,7 @@ class Preferences(QtCore.QObject):
 
     @pixel_limit.setter
     def pixel_limit(self, v: int) -> None:
-        from mrm.limits import MAX_OBJECT_PIXELS
+        from mrm.core.limits import MAX_OBJECT_PIXELS
 
         self._set("operations/pixel_limit", min(MAX_OBJECT_PIXELS, max(1_000, int(v))))
 

@@ -103,7 +103,7 @@ def load_view_kernels() -> None:
     """
     import numpy as np
 
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
     from mrm.reps.region import region_of
     from mrm.views.region_view import region_drawing
     from mrm.warmup import STEPS, warm_pools

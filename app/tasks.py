@@ -4,7 +4,7 @@ A task is a callable ``fn(progress) -> result`` submitted into a named *slot* ("
 "operation"). A new request in the same slot cancels the previous one; a result is delivered on the GUI thread
 only if its task is still the newest of its slot and, when a document revision was given, the document has not
 changed since. The callable reports progress with ``progress.update(fraction, message)``, which raises
-:class:`mrm.errors.Cancelled` once the task is cancelled — the contract of the model's operations.
+:class:`mrm.core.errors.Cancelled` once the task is cancelled — the contract of the model's operations.
 
 :class:`SynchronousTaskRunner` runs every task at once in the calling thread: tests use it to make the GUI
 deterministic, and it shows that nothing in the GUI depends on the threading.
@@ -24,7 +24,7 @@ from typing import Any
 from PySide6 import QtCore
 
 from mrm.app.progress import TaskProgress
-from mrm.errors import Cancelled
+from mrm.core.errors import Cancelled
 
 Fn = Callable[["TaskProgress"], Any]
 

@@ -30,8 +30,8 @@ from rasterio.transform import Affine
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import MODELS, discretize
-from mrm.reps.pixels import PixelSet
 
 PEER_OF = {"standard": False, "supercover": True, "gauss": False}  # GDAL all_touched closest to each model
 

@@ -39,9 +39,9 @@ if ROOT not in sys.path:
 from shapely.geometry import Polygon  # noqa: E402
 
 from mrm.commands import AddObject, MoveVertex, PaintPixels  # noqa: E402
+from mrm.core.grids import PixelSet  # noqa: E402
 from mrm.document import Document  # noqa: E402
 from mrm.io.project import dumps, read_project, save_project  # noqa: E402
-from mrm.reps.pixels import PixelSet  # noqa: E402
 
 
 def median_time(fn: Callable[[], object], repeat: int) -> float:

@@ -86,7 +86,7 @@ sys.path.insert(1, {bench!r})
 import numpy as np, rasterio.features
 from reconstruct import median_ms, speed_inputs
 from mrm.geometry.reconstruct import reconstruct
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from mrm.summary import count_vertices
 assert reconstruct.__code__.co_filename.startswith({copy!r})
 for name, m in speed_inputs():
@@ -127,7 +127,7 @@ def main() -> None:
     sys.argv.append("--quick")  # speed_inputs without the 4096² blobs
     from reconstruct import peer_potrace, speed_inputs, table
 
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
 
     potrace = {
         n.split()[0]: peer_potrace(PixelSet(m))[1] for n, m in speed_inputs() if n.split()[0] in IMAGES

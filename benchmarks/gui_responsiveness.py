@@ -141,7 +141,7 @@ def bench_brush(dabs: int = 80) -> list[float]:
     from PySide6 import QtCore
 
     from mrm.commands import AddObject
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
 
     app, win = make_window()
     yy, xx = np.mgrid[0:2048, 0:2048]
@@ -623,7 +623,7 @@ def bench_stalls(
     # The largest result the preference allows: the document's own limit on a pixel object (ADR 0010). At
     # --scale 1 DSS 3 of the DSS 20 result (a box of about 180 M pixels estimated, 70 M set) stays within it;
     # DSS 4.5, the step of earlier sessions, is a box of 404 M pixels estimated, and refused.
-    from mrm.limits import MAX_OBJECT_PIXELS
+    from mrm.core.limits import MAX_OBJECT_PIXELS
 
     win.prefs.pixel_limit = MAX_OBJECT_PIXELS
     # The peer: the same heartbeat on the same loop, idle for 2 s.

@@ -56,10 +56,10 @@ from skimage import transform as sktransform
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import held as held_reconstructions
 from mrm.geometry.reconstruct import reconstruct
-from mrm.reps.pixels import PixelSet
 from mrm.summary import optional_function
 from tests.oracles.geometry_strategies import noisy_star
 
@@ -586,7 +586,7 @@ COLD = """
 import time
 t0 = time.perf_counter()
 import numpy as np, shapely
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from mrm.ops.scaling import discrete_smooth_scaling
 from mrm.ops.rotation import discrete_rotation
 from mrm.ops.boolean import euclidean_discrete_corefinement

@@ -30,8 +30,8 @@ from numba.core.registry import CPUDispatcher
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.reconstruct import reconstruct
-from mrm.reps.pixels import PixelSet
 
 
 def pixel_set(name: str) -> PixelSet:

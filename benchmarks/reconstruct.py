@@ -35,10 +35,10 @@ from shapely.geometry import MultiPolygon, Polygon
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
 from mrm.geometry.reconstruct import MODELS, reconstruct
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from mrm.summary import count_vertices
 
@@ -417,7 +417,7 @@ def scaling(sizes: tuple[int, ...] = (1024, 2048, 4096, 8192)) -> None:
 _PEAK = """
 import sys, numpy as np
 sys.path.insert(0, {root!r})
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 
 def kb(key):
     for line in open("/proc/self/status"):
@@ -496,8 +496,8 @@ def label_maps() -> None:
     import rasterio.features
     import skimage.data
 
+    from mrm.core.grids import LabelMap
     from mrm.geometry.reconstruct.polygonize import polygonize
-    from mrm.reps.pixels import LabelMap
 
     img = skimage.data.coins()[::-1][:128, :160]
     labels = (img // 64).astype(np.int32) + 1  # four grey levels, labels 1..4
@@ -559,7 +559,7 @@ def first_call() -> None:
         "import time; t = time.perf_counter();"
         "import numpy as np;"
         "from mrm.geometry.reconstruct import reconstruct;"
-        "from mrm.reps.pixels import PixelSet;"
+        "from mrm.core.grids import PixelSet;"
         "ps = PixelSet(np.eye(7, dtype=bool) | np.eye(7, dtype=bool)[::-1]);"
         "[reconstruct(ps, m) for m in ('standard', 'gauss')];"
         "print(time.perf_counter() - t)"

@@ -80,12 +80,12 @@ def make_masks(n: int) -> dict[str, np.ndarray]:
 def method(name: str) -> tuple[Callable[[np.ndarray], object], Callable[[np.ndarray], object]]:
     """Return (prepare, run) for a method: prepare converts the mask outside the timing."""
     if name == "ours":
-        from mrm.reps.pixels import PixelSet
+        from mrm.core.grids import PixelSet
         from mrm.reps.region import region_of
 
         return PixelSet, region_of  # type: ignore[return-value]
     if name == "ours+lab":
-        from mrm.reps.pixels import PixelSet
+        from mrm.core.grids import PixelSet
         from mrm.reps.region import region_of
 
         return PixelSet, lambda ps: region_of(ps).labels  # type: ignore[return-value]
@@ -177,7 +177,7 @@ def main() -> None:
         child(*args.child)
         return
 
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
     from mrm.reps.region import region_of
 
     print(f"first call of region_of + labels (numba compile or cache load): {warm_up() * 1000:.0f} ms")

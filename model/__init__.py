@@ -33,15 +33,15 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         simplify,
         union,
     )
-    from mrm.errors import MRMError
+    from mrm.core.errors import MRMError
+    from mrm.core.grids import LabelMap, PixelSet
     from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
     from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
-    from mrm.reps.pixels import LabelMap, PixelSet
 
 #: public name → the module that defines it (imported when the name is first used).
 _LAZY = {
-    "PixelSet": "mrm.reps.pixels",
-    "LabelMap": "mrm.reps.pixels",
+    "PixelSet": "mrm.core.grids",
+    "LabelMap": "mrm.core.grids",
     "read_pixels": "mrm.io.pixel_files",
     "write_pixels": "mrm.io.pixel_files",
     "read_label_map": "mrm.io.pixel_files",
@@ -49,7 +49,7 @@ _LAZY = {
     "read_geometry": "mrm.io.vector_files",
     "write_geojson": "mrm.io.vector_files",
     "write_wkt": "mrm.io.vector_files",
-    "MRMError": "mrm.errors",
+    "MRMError": "mrm.core.errors",
     **{
         name: "mrm.api"
         for name in (

@@ -1,6 +1,6 @@
 """The functions of the curated library API (``import mrm``), as thin, documented wrappers.
 
-Each function takes numpy arrays, :class:`~mrm.reps.pixels.PixelSet` / :class:`~mrm.reps.pixels.LabelMap`
+Each function takes numpy arrays, :class:`~mrm.core.grids.PixelSet` / :class:`~mrm.core.grids.LabelMap`
 objects and shapely geometries, and returns the same kinds: no Qt, no project, no file. Arrays given where a
 pixel set is expected are **images** (row 0 at the top, as numpy, Pillow and matplotlib hold them) and go
 through :meth:`PixelSet.from_image`, so a picture never comes out upside down.
@@ -17,8 +17,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT
-from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.grids import LabelMap, PixelSet
 
 __all__ = [
     "bound",
@@ -174,7 +174,7 @@ def segment(
     >>> [s.as_list() for s in mrm.segment("00100100")]
     [[0, 8, 1, 2, 0, 3]]
     """
-    from mrm.errors import ParameterError
+    from mrm.core.errors import ParameterError
     from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 
     if isinstance(chain, str):

@@ -29,11 +29,11 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
+from mrm.core.errors import InvalidGeometryError, NotApplicableError, ParameterError
+from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import check_name, check_pixel_extent
 from mrm.document import PALETTE, DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
-from mrm.errors import InvalidGeometryError, NotApplicableError, ParameterError
 from mrm.history import COMMAND_OVERHEAD, Command
-from mrm.limits import check_name, check_pixel_extent
-from mrm.reps.pixels import LabelMap, PixelSet
 
 #: A vertex of a Euclidean source: (polygon index in a MultiPolygon (0 for a Polygon), ring (0 = exterior,
 #: k = k-th hole), vertex index in the ring, the closing point not counted).

@@ -16,8 +16,8 @@ from collections import OrderedDict
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any, Literal
 
-from mrm.errors import MRMError, NotApplicableError
-from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.core.errors import MRMError, NotApplicableError
+from mrm.core.grids import LabelMap, PixelSet
 
 if TYPE_CHECKING:
     pass
@@ -41,11 +41,11 @@ def discretize_source(geom: Any, model: str) -> PixelSet:
 def reconstruct_source(ps: PixelSet, model: str) -> Any:
     """R(ps) under ``model`` (:func:`mrm.geometry.reconstruct.reconstruct`).
 
-    Raises :class:`~mrm.errors.LimitError` before any work when the boundary of ``ps`` is longer than
-    :data:`mrm.limits.MAX_CRACK_STEPS` (its cost is bounded up front, issue 11).
+    Raises :class:`~mrm.core.errors.LimitError` before any work when the boundary of ``ps`` is longer than
+    :data:`mrm.core.limits.MAX_CRACK_STEPS` (its cost is bounded up front, issue 11).
     """
+    from mrm.core.limits import check_reconstruct
     from mrm.geometry.reconstruct import reconstruct
-    from mrm.limits import check_reconstruct
 
     check_reconstruct(ps)
     return reconstruct(ps, model)
@@ -107,14 +107,14 @@ class Derived:
         The object's source representation (immutable). For a label map (ADR 0033) the discrete
         representation is the label map itself, the region one its cells (:func:`cells_of_labels`), the
         Euclidean one its subdivision (:func:`subdivision_of_labels`); it has no analytical one
-        (:class:`~mrm.errors.NotApplicableError`).
+        (:class:`~mrm.core.errors.NotApplicableError`).
     model : str
         The discretization model.
 
     Notes
     -----
     Thread-safe: each representation has its own lock, so a worker computing R(A) never blocks a caller
-    asking for the discrete representation. An :class:`~mrm.errors.MRMError` raised by a derivation (e.g.
+    asking for the discrete representation. An :class:`~mrm.core.errors.MRMError` raised by a derivation (e.g.
     a result over the pixel limit) is remembered and raised again on every request.
     """
 

@@ -2,7 +2,7 @@
 
 An object (:class:`DocObject`) is an immutable value: an id, a name, a :class:`Style`, an optional
 :class:`Provenance`, and its **source** — either a Euclidean geometry (shapely Polygon / MultiPolygon, always
-valid) or a discrete :class:`~mrm.reps.pixels.PixelSet`. The other representations are *derived* from the
+valid) or a discrete :class:`~mrm.core.grids.PixelSet`. The other representations are *derived* from the
 source under the document's discretization model and cached by :mod:`mrm.derive`:
 
 * Euclidean source E: discrete = D(E), Euclidean = E;
@@ -32,17 +32,17 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm import limits
+from mrm.core import limits
+from mrm.core.errors import InvalidGeometryError, LimitError, ParameterError, SizeLimitError
+from mrm.core.grids import LabelMap, PixelSet
+
+# Declared once in mrm.core.limits; re-exported here for the modules that imported them from this one.
+from mrm.core.limits import COORDINATE_LIMIT as COORDINATE_LIMIT
+from mrm.core.limits import PARAMS_MAX_CHARS as PARAMS_MAX_CHARS
+from mrm.core.limits import PARAMS_MAX_DEPTH as PARAMS_MAX_DEPTH
 from mrm.derive import DerivationCache, Derived
-from mrm.errors import InvalidGeometryError, LimitError, ParameterError, SizeLimitError
 from mrm.history import Command, History
 from mrm.io.georef import GeoRef, result_georef
-
-# Declared once in mrm.limits; re-exported here for the modules that imported them from this one.
-from mrm.limits import COORDINATE_LIMIT as COORDINATE_LIMIT
-from mrm.limits import PARAMS_MAX_CHARS as PARAMS_MAX_CHARS
-from mrm.limits import PARAMS_MAX_DEPTH as PARAMS_MAX_DEPTH
-from mrm.reps.pixels import LabelMap, PixelSet
 
 #: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
 Geometry: TypeAlias = Polygon | MultiPolygon
@@ -532,7 +532,7 @@ class Document:
         # new_id may be called from a worker (objects read off the GUI thread, e.g. a paste): no two
         # callers may get the same id.
         self._id_lock = threading.Lock()
-        # Running totals of the per-file limits (mrm.limits): pixels of the discrete sources' boxes and
+        # Running totals of the per-file limits (mrm.core.limits): pixels of the discrete sources' boxes and
         # the bytes of the project file, kept by the low-level mutations.
         self._mask_pixels = 0
         self._file_bytes = 0
@@ -740,7 +740,7 @@ class Document:
 
     # ------------------------------------------------------------------ limits
     def check_capacity(self, add: Iterable[DocObject] = (), remove: Iterable[int] = ()) -> None:
-        """Refuse an edit that would take the document beyond the per-file limits (:mod:`mrm.limits`).
+        """Refuse an edit that would take the document beyond the per-file limits (:mod:`mrm.core.limits`).
 
         Commands call this before they change anything, with the objects they will insert (or the new
         versions of objects they replace) and the ids they will remove or replace; the project file of the

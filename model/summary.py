@@ -16,7 +16,7 @@ from typing import Any
 
 import shapely
 
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 
 
 def optional_function(module: str, name: str) -> Callable[..., Any] | None:

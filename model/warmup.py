@@ -176,7 +176,7 @@ def _step_discretize() -> None:
 def _pixel_sets() -> list[object]:
     import numpy as np
 
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
 
     yy, xx = np.mgrid[0:14, 0:14]
     disc = (xx - 6.5) ** 2 + (yy - 6.5) ** 2 <= 36
@@ -196,8 +196,8 @@ def _step_reconstruct() -> None:
             reconstruct(ps, model)  # type: ignore[arg-type]
     import numpy as np
 
+    from mrm.core.grids import LabelMap
     from mrm.geometry.reconstruct.polygonize import polygonize
-    from mrm.reps.pixels import LabelMap
 
     yy, xx = np.mgrid[0:14, 0:14]
     two = ((xx - 6.5) ** 2 + (yy - 6.5) ** 2 <= 36).astype(np.int32) + (xx + 2 * yy > 14)

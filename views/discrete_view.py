@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 from PySide6 import QtGui
 
+from mrm.core.grids import PixelSet
 from mrm.document import DocObject
-from mrm.reps.pixels import PixelSet
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
 from mrm.views.items import LodPathItem, crack_segments, segments_path

@@ -38,7 +38,7 @@ def build(multi: bool, polys: list[list[np.ndarray]]) -> shapely.Geometry:
     built = []
     for rings in polys:
         if any(len(r) < 3 for r in rings):
-            from mrm.errors import InvalidGeometryError
+            from mrm.core.errors import InvalidGeometryError
 
             raise InvalidGeometryError("a polygon ring needs at least 3 vertices")
         built.append(Polygon(np.vstack([rings[0], rings[0][:1]]), [np.vstack([h, h[:1]]) for h in rings[1:]]))

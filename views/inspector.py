@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.errors import MRMError
+from mrm.core.errors import MRMError
 from mrm.ops.account import Account, account_of, rerun_request
 from mrm.ops.outcome import joint_box
 from mrm.views.canvas import Camera, MaskItem, Picture, PlaneView, lod_image, make_picture, qcolor

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from PySide6 import QtGui
 
-from mrm.reps.pixels import LabelMap
+from mrm.core.grids import LabelMap
 from mrm.views.base_view import Layer
 from mrm.views.canvas import MaskItem, lod_image, pictured, qcolor
 from mrm.views.items import (

@@ -18,7 +18,7 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.errors import MRMError
+from mrm.core.errors import MRMError
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
 from mrm.views.tools import Tool, ToolHost, _accent, _pen, _screen_square, snap_mode

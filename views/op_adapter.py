@@ -151,7 +151,7 @@ def operations() -> list[OpInfo]:
 
 def normalise_results(out: Any) -> list[tuple[str | None, Any]]:
     """(part, source) pairs from whatever an operation returns."""
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
 
     def source_of(r: Any) -> Any:
         for attr in ("source", "result", "value", "geometry", "pixels"):

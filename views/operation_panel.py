@@ -16,7 +16,7 @@ from PySide6 import QtCore, QtWidgets
 
 from mrm.app import process_jobs
 from mrm.commands import ApplyResults
-from mrm.errors import MRMError, SizeLimitError
+from mrm.core.errors import MRMError, SizeLimitError
 from mrm.ops.apply import held_euclidean
 from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations
 from mrm.views.scene import Scene
@@ -129,7 +129,7 @@ class NumberField(QtWidgets.QLineEdit):
             if self.info.kind == "int" and v != int(v):
                 raise ValueError
             if self.spec is not None:
-                from mrm.errors import MRMError
+                from mrm.core.errors import MRMError
                 from mrm.ops.base import _check_number
 
                 try:
@@ -728,7 +728,7 @@ class OperationPanel(QtWidgets.QWidget):
             text = str(exc)
             if isinstance(exc, SizeLimitError):
                 from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
-                from mrm.limits import MAX_OBJECT_PIXELS
+                from mrm.core.limits import MAX_OBJECT_PIXELS
 
                 if exc.limit >= MAX_OBJECT_PIXELS:
                     # No preference goes higher: the document's own limit (ADR 0010).

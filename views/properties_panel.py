@@ -19,7 +19,7 @@ from typing import Any
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.commands import DeleteVertex, MoveVertex, RenameObject, RestyleObject
-from mrm.errors import MRMError
+from mrm.core.errors import MRMError
 from mrm.views import geometry_edit as ge
 from mrm.views.measure import num_text
 

@@ -25,7 +25,7 @@ class Row:
 
 
 def _count(source: Any) -> str:
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
     from mrm.views.scene import pixel_count
 
     if not isinstance(source, PixelSet):

@@ -13,12 +13,12 @@ from typing import TYPE_CHECKING, Any
 
 from PySide6 import QtCore
 
+from mrm.core.errors import MRMError
 from mrm.derive import SYNC_COST, Derived, Rep
 from mrm.document import Changes, DocObject, Document, Source, Style
-from mrm.errors import MRMError
 
 if TYPE_CHECKING:
-    from mrm.reps.pixels import PixelSet
+    from mrm.core.grids import PixelSet
 
 #: The one look of every previewed result (a "ghost"): a neutral grey no object is given (not in the
 #: palette of new objects), half transparent; the Euclidean view also draws its outline dashed. Ghosts are
@@ -84,7 +84,7 @@ class Phantom:
 
     @property
     def kind(self) -> str:
-        from mrm.reps.pixels import PixelSet
+        from mrm.core.grids import PixelSet
 
         return "discrete" if isinstance(self.source, PixelSet) else "euclidean"
 

@@ -26,9 +26,9 @@ from mrm.commands import (
     PaintPixels,
     SetSource,
 )
+from mrm.core.errors import MRMError, ParameterError
+from mrm.core.grids import PixelSet
 from mrm.document import DocObject, Style
-from mrm.errors import MRMError, ParameterError
-from mrm.reps.pixels import PixelSet
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
 from mrm.views.scene import Scene

@@ -23,8 +23,8 @@ from shapely.geometry import LineString, Polygon
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
+from mrm.core.grids import PixelSet  # noqa: E402
 from mrm.geometry.discretize import discretize  # noqa: E402
-from mrm.reps.pixels import PixelSet  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
 

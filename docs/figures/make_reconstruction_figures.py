@@ -22,12 +22,12 @@ from PIL import Image, ImageDraw, ImageFont
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
+from mrm.core.grids import PixelSet  # noqa: E402
 from mrm.geometry.discretize import discretize  # noqa: E402
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation  # noqa: E402
 from mrm.geometry.reconstruct import reconstruct_detailed  # noqa: E402
 from mrm.geometry.reconstruct.border import border_paths, corridors  # noqa: E402
 from mrm.geometry.reconstruct.safety_net import eroded_net  # noqa: E402
-from mrm.reps.pixels import PixelSet  # noqa: E402
 from mrm.reps.region import region_of  # noqa: E402
 from mrm.summary import count_vertices  # noqa: E402
 

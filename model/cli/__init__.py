@@ -17,7 +17,7 @@ Conventions every subcommand gets from this layer (docs/adr/0011):
 * The folder an output file goes into is created when missing, by every subcommand alike; a run that fails
   removes the folders it created when nothing was written into them.
 * Errors are one line ``mrm NAME: error: message`` on stderr with exit status 2, never a traceback: every
-  :class:`mrm.errors.MRMError`, every ``OSError`` (read-only file system, full disk, symlink loop, name too
+  :class:`mrm.core.errors.MRMError`, every ``OSError`` (read-only file system, full disk, symlink loop, name too
   long, a path through a regular file, …) and every number out of range.
 * A closed standard output (``mrm … | head``) ends the command quietly with status 141 (128 + SIGPIPE, what a
   shell reports for a program killed by the closed pipe).
@@ -40,7 +40,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
-from mrm.errors import MRMError
+from mrm.core.errors import MRMError
 
 #: The discretization models, in the order the CLI lists them.
 MODEL_CHOICES = ("standard", "supercover", "gauss")

@@ -47,10 +47,10 @@ from mrm.cli._common import (
     run_inputs,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
-from mrm.reps.pixels import PixelSet
 from mrm.summary import summarize
 
 #: Input file types.
@@ -515,7 +515,7 @@ def two_input_command(
         add_common(parser, output_help)
 
     def run(args: argparse.Namespace) -> dict[str, Any]:
-        from mrm.errors import MRMError
+        from mrm.core.errors import MRMError
         from mrm.geometry.discretize.exact_shape import exact_number, number_to_json
         from mrm.ops.account import account_of
         from mrm.ops.base import coerce_params

@@ -17,7 +17,7 @@ import os
 from pathlib import Path
 from typing import Any, Literal
 
-from mrm.errors import FileFormatError, ParameterError
+from mrm.core.errors import FileFormatError, ParameterError
 
 Kind = Literal["discrete", "euclidean"]
 

@@ -11,7 +11,7 @@ import argparse
 from typing import Any
 
 from mrm.cli._common import print_table
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
 
 NAME = "account"
 HELP = "the error account of an object of a project: chain, bound, exact measured error, differing pixels"

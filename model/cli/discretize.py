@@ -43,10 +43,10 @@ from mrm.cli._common import (
     run_inputs,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import FileFormatError, ParameterError, SizeLimitError
+from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
-from mrm.reps.pixels import PixelSet
 from mrm.summary import summarize
 
 if TYPE_CHECKING:

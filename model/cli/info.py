@@ -28,10 +28,10 @@ from mrm.cli._common import (
     run_inputs,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import VECTOR_EXTENSIONS
-from mrm.reps.pixels import PixelSet
 from mrm.summary import summarize
 
 NAME = "info"

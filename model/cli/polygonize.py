@@ -31,8 +31,8 @@ from mrm.cli._common import (
     inputs_and_outputs,
     run_inputs,
 )
+from mrm.core.grids import LabelMap
 from mrm.io.pixel_files import LABEL_READ_EXTENSIONS, read_label_map
-from mrm.reps.pixels import LabelMap
 from mrm.summary import count_vertices
 
 NAME = "polygonize"

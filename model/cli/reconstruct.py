@@ -34,7 +34,8 @@ from mrm.cli._common import (
     read_input,
     run_inputs,
 )
-from mrm.errors import FileFormatError, ParameterError
+from mrm.core.errors import FileFormatError, ParameterError
+from mrm.core.grids import PixelSet
 from mrm.io.georef import georef_summary
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import (
@@ -44,7 +45,6 @@ from mrm.io.vector_files import (
     write_svg,
     write_wkt,
 )
-from mrm.reps.pixels import PixelSet
 from mrm.summary import count_vertices, summarize
 
 NAME = "reconstruct"
@@ -134,11 +134,11 @@ def reconstruct_file(
     bar: Any = None,
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
+    from mrm.core.limits import check_reconstruct
     from mrm.geometry.reconstruct import reconstruct
-    from mrm.limits import check_reconstruct
 
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
-    check_reconstruct(ps, f"{path}")  # boundary length bounded before any work (mrm.limits)
+    check_reconstruct(ps, f"{path}")  # boundary length bounded before any work (mrm.core.limits)
     georef = None
     if Path(path).suffix.lower() in PIXEL_EXTENSIONS:
         from mrm.io.georef import read_georef

@@ -12,7 +12,7 @@ import argparse
 import sys
 from typing import Any
 
-from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.core.errors import InvalidGeometryError, ParameterError
 
 #: Largest |x| or |y| of a chain point.
 CHAIN_COORD_LIMIT = 2**31

@@ -90,7 +90,7 @@ class Recovery:
     def restore(self) -> Document:
         """Load the autosaved document: its path is :attr:`project` (None for an orphan), marked modified.
 
-        Raises :class:`~mrm.errors.FileFormatError` if the side file is damaged (offer :meth:`discard`).
+        Raises :class:`~mrm.core.errors.FileFormatError` if the side file is damaged (offer :meth:`discard`).
         """
         return read_project(self.path).to_document(self.project, clean=False)
 

@@ -31,9 +31,9 @@ from typing import Any, Literal
 
 import numpy as np
 
+from mrm.core.errors import FileFormatError, ParameterError
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.document import Document
-from mrm.errors import FileFormatError, ParameterError
-from mrm.reps.pixels import LabelMap, PixelSet
 
 PathLike = str | os.PathLike[str]
 
@@ -187,8 +187,8 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
         return LabelMap(np.zeros((0, 0), dtype=np.int32)), mapping
     x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
     x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
-    from mrm.errors import SizeLimitError
-    from mrm.limits import MAX_LABEL_PIXELS
+    from mrm.core.errors import SizeLimitError
+    from mrm.core.limits import MAX_LABEL_PIXELS
 
     area = (x1 - x0 + 1) * (y1 - y0 + 1)
     if area > MAX_LABEL_PIXELS:  # four bytes a pixel: the label map limit, not the pixel set one

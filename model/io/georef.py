@@ -38,8 +38,8 @@ from typing import Any, TypeAlias
 
 import numpy as np
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, MRMError, ParameterError, SizeLimitError
-from mrm.reps.pixels import PixelSet
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, MRMError, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
 
 log = logging.getLogger(__name__)
 
@@ -472,7 +472,7 @@ def read_raster(
     georef : GeoRef or None
         None for a TIFF without georeference.
     """
-    from mrm.io.threshold import binarize
+    from mrm.core.threshold import binarize
 
     rasterio = _rasterio()
     name = Path(path).name
@@ -640,7 +640,7 @@ def write_georeferenced(ps: PixelSet, path: PathLike, georef: GeoRef) -> GeoRef:
         raise ParameterError(
             f"{os.fspath(path)}: a georeferenced result is written as .tif or .png (+ world file)"
         )
-    from mrm.limits import check_pixel_extent
+    from mrm.core.limits import check_pixel_extent
 
     grid = georef.covering(ps.bbox)
     check_pixel_extent((grid.frame[0], grid.frame[1]), (grid.height, grid.width), f"{Path(path).name}")

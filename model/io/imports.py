@@ -15,9 +15,9 @@ from pathlib import Path
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.commands import ApplyResults
+from mrm.core.errors import FileFormatError
+from mrm.core.limits import clean_name
 from mrm.document import DocObject, Document, Provenance, validate_geometry
-from mrm.errors import FileFormatError
-from mrm.limits import clean_name
 
 PathLike = str | os.PathLike[str]
 

@@ -17,7 +17,7 @@ from typing import BinaryIO
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import FileFormatError
+from mrm.core.errors import FileFormatError
 
 #: The longest header read (magic, comments, sizes); real headers are a few dozen bytes.
 HEADER_LIMIT = 64 * 1024

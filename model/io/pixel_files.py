@@ -17,7 +17,7 @@ Formats, chosen by the file extension:
     ``mask`` (bool, [row, col], y growing with the row — the in-memory layout) and ``origin`` (int64 x0, y0);
     label maps store ``labels`` (int32) instead of ``mask``. Nothing is ever unpickled.
 
-Grey and colour images are thresholded on import as :mod:`mrm.io.threshold` describes (pixels **brighter
+Grey and colour images are thresholded on import as :mod:`mrm.core.threshold` describes (pixels **brighter
 than** the threshold are in the set; Otsu's threshold by default; binary images and 1-bit images keep their
 non-zero pixels). Every file this module writes reads back as an equal object, and a PNG written here gives
 the same bytes when read and written again. Writes are atomic (:mod:`mrm.io.atomic`).
@@ -38,13 +38,13 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, PngImagePlugin, UnidentifiedImageError
 
-from mrm import limits
-from mrm.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError
+from mrm.core import limits
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError
+from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.threshold import binarize, grey_of
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.netpbm import encode_pbm, encode_pgm, read_netpbm
 from mrm.io.reading import open_regular
-from mrm.io.threshold import binarize, grey_of
-from mrm.reps.pixels import LabelMap, PixelSet
 
 PathLike = str | os.PathLike[str]
 
@@ -56,7 +56,7 @@ LABEL_EXTENSIONS = (".png", ".npz")
 LABEL_READ_EXTENSIONS = (".png", ".pgm", ".npz")
 #: The PNG text chunk keyword (and Netpbm comment) holding the origin.
 ORIGIN_KEY = "mrm:origin"
-#: Pixel coordinates stay within the document's limit (±2³¹, :data:`mrm.limits.PIXEL_COORDINATE_LIMIT`), so
+#: Pixel coordinates stay within the document's limit (±2³¹, :data:`mrm.core.limits.PIXEL_COORDINATE_LIMIT`), so
 #: that an imported image can always be saved in a project and reopened.
 COORD_LIMIT = limits.PIXEL_COORDINATE_LIMIT
 
@@ -102,7 +102,7 @@ def parse_origin(text: str, name: str) -> tuple[int, int]:
 
 
 def _check_extent(origin: tuple[int, int], shape: tuple[int, ...], name: str) -> None:
-    """Refuse an image whose pixels would lie beyond the document's pixel coordinates (mrm.limits)."""
+    """Refuse an image whose pixels would lie beyond the document's pixel coordinates (mrm.core.limits)."""
     x0, y0 = origin
     h, w = shape[0], shape[1]
     lim = limits.PIXEL_COORDINATE_LIMIT
@@ -224,8 +224,8 @@ PILLOW_PNG_PIXELS = 10_000_000
 
 def _read_png_pixels(fh: BinaryIO, name: str, limit: int, threshold: float | None) -> PixelSet:
     """A PNG's pixel set, decoded by :mod:`mrm.io.png_stream` at one byte per pixel (ADR 0010)."""
+    from mrm.core.threshold import _check_threshold
     from mrm.io.png_stream import read_png_mask
-    from mrm.io.threshold import _check_threshold
 
     head = fh.read(29)
     if not head.startswith(_PNG_SIGNATURE):
@@ -453,7 +453,7 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
     FileFormatError
         For an extension that is not a pixel file type.
     LimitError, SizeLimitError
-        For a set with pixels beyond ±2³¹ or a box over the pixel limit (:mod:`mrm.limits`).
+        For a set with pixels beyond ±2³¹ or a box over the pixel limit (:mod:`mrm.core.limits`).
     """
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
     # What this module writes it reads back: pixels beyond the document's coordinates are refused here too.

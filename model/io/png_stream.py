@@ -4,14 +4,14 @@ Pillow decodes a whole image into its own buffer — four bytes per pixel for gr
 paletted images, and numpy conversions then widened that to int64 arrays (a 762 KB all-zero RGBA PNG of
 14000² peaked at 9 GB). This reader parses the chunks itself, inflates the image data with a bounded
 ``zlib`` stream a strip of rows at a time, undoes the row filters (a numba kernel) and turns each strip into
-the grey values of :mod:`mrm.io.threshold` at once. The only full-size array is the boolean result.
+the grey values of :mod:`mrm.core.threshold` at once. The only full-size array is the boolean result.
 
 The thresholding rules need the whole image (Otsu's histogram; whether the visible pixels share one colour),
 so the image data is read twice: a first pass gathers the histograms, the second writes the mask. The
 result is exactly what the Pillow path gave: same luminance, same alpha rules, same scaling of 2- and 4-bit
 grey (×85, ×17), same use of the high byte of 16-bit colour samples, palette transparency applied.
 
-Every structural problem is a :class:`~mrm.errors.FileFormatError`: bad CRC, missing or truncated chunks,
+Every structural problem is a :class:`~mrm.core.errors.FileFormatError`: bad CRC, missing or truncated chunks,
 image data that ends before the last row (rows are never filled in blank) or holds more than the image,
 unknown filter types. Interlaced (Adam7) images are left to Pillow by the caller.
 """
@@ -27,7 +27,7 @@ import numpy as np
 import numpy.typing as npt
 from numba import njit
 
-from mrm.errors import FileFormatError
+from mrm.core.errors import FileFormatError
 
 _SIGNATURE = b"\x89PNG\r\n\x1a\n"
 #: Channels per colour type.
@@ -430,7 +430,7 @@ def read_png_mask(
         else:
             hist = hist_plain
         if t is None:
-            from mrm.io.threshold import _otsu_sparse
+            from mrm.core.threshold import _otsu_sparse
 
             occupied = np.flatnonzero(hist)
             vals = [int(v) for v in occupied]

@@ -68,7 +68,10 @@ from typing import Any, NoReturn
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm import limits
+from mrm.core import limits
+from mrm.core.errors import FileFormatError as FileFormatError
+from mrm.core.errors import MRMError
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.document import (
     COORDINATE_LIMIT,
     MODELS,
@@ -84,10 +87,7 @@ from mrm.document import (
     content_digest,
     validate_geometry,
 )
-from mrm.errors import FileFormatError as FileFormatError
-from mrm.errors import MRMError
 from mrm.io.georef import GeoRef
-from mrm.reps.pixels import LabelMap, PixelSet
 
 #: The value of the "format" key.
 FORMAT = "mrm-project"
@@ -95,9 +95,9 @@ FORMAT = "mrm-project"
 SCHEMA_VERSION = 4
 #: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
 MAX_CRS_CHARS = 100_000
-# The limits are those of the document (mrm.limits, ADR 0010), so that the loader accepts every file the
+# The limits are those of the document (mrm.core.limits, ADR 0010), so that the loader accepts every file the
 # saver can write: the document refuses the edit that would exceed them. The loader reads them from
-# mrm.limits when it runs; these names are kept for callers that imported them from here.
+# mrm.core.limits when it runs; these names are kept for callers that imported them from here.
 #: Files larger than this are refused before being read.
 MAX_FILE_BYTES = limits.MAX_FILE_BYTES
 #: A discrete source's bounding box may hold at most this many pixels.

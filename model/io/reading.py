@@ -12,7 +12,7 @@ import os
 import stat
 from typing import BinaryIO
 
-from mrm.errors import FileFormatError
+from mrm.core.errors import FileFormatError
 
 PathLike = str | os.PathLike[str]
 

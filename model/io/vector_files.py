@@ -35,11 +35,11 @@ from shapely.geometry import (
 )
 from shapely.geometry.base import BaseGeometry
 
-from mrm.errors import FileFormatError, InvalidGeometryError
-from mrm.gc_pause import paused_gc
+from mrm.core.errors import FileFormatError, InvalidGeometryError
+from mrm.core.gc_pause import paused_gc
+from mrm.core.grids import PixelSet
+from mrm.core.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, check_output_bytes, clean_name
 from mrm.io.atomic import atomic_open
-from mrm.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, check_output_bytes, clean_name
-from mrm.reps.pixels import PixelSet
 
 PathLike = str | os.PathLike[str]
 NamedGeometry = tuple[str | None, BaseGeometry]
@@ -251,7 +251,7 @@ def _feature_name(feature: dict[str, Any]) -> str | None:
 
 
 def _clean_label(label: str | None) -> str | None:
-    """A feature name made storable: no lone surrogate, at most the name limit (mrm.limits)."""
+    """A feature name made storable: no lone surrogate, at most the name limit (mrm.core.limits)."""
     return None if label is None else clean_name(label)
 
 
@@ -469,7 +469,7 @@ _BYTES_PER_RUN = 80
 
 
 def _check_geometry_output(geoms: Iterable[BaseGeometry], path: PathLike) -> None:
-    """Refuse, before building any text, a vector file larger than :data:`mrm.limits.MAX_OUTPUT_BYTES`."""
+    """Refuse, before building any text, a vector file larger than :data:`mrm.core.limits.MAX_OUTPUT_BYTES`."""
     n = sum(int(shapely.get_num_coordinates(g)) for g in geoms)
     check_output_bytes(n * _BYTES_PER_POSITION, f"{os.fspath(path)} ({n:,} positions)")
 

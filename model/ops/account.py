@@ -46,13 +46,13 @@ import logging
 from dataclasses import dataclass, field
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, MRMError, ParameterError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, MRMError, ParameterError
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
 from mrm.ops.base import coerce_params, get_operation, params_to_dict
 from mrm.ops.chain import CHAIN_OPERATIONS as _CHAIN_READS
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
-from mrm.progress import ProgressLike, sub_progress
-from mrm.reps.pixels import PixelSet
 
 log = logging.getLogger(__name__)
 
@@ -344,7 +344,7 @@ def account_of(
     try:
         return _account(provenance, measure, progress, limit)
     except MRMError as e:
-        from mrm.errors import Cancelled
+        from mrm.core.errors import Cancelled
 
         if isinstance(e, Cancelled):
             raise

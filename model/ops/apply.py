@@ -14,9 +14,9 @@ import importlib
 from collections.abc import Sequence
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.progress import ProgressLike
 from mrm.ops.base import Plan, plan_operation
-from mrm.progress import ProgressLike
 
 #: The modules that register the paper's operations (``dss``, ``discrete_rotation``, ``simplify``, ``union``,
 #: ``corefine``) when imported.

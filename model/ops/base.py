@@ -9,7 +9,7 @@ from :func:`param_specs`; scripts and the CLI call :func:`run_operation`, which 
 parameters, inputs) so that any chain can be replayed and bounded.
 
 Long work reports through a progress object: ``update(fraction, message)`` raises
-:class:`mrm.errors.Cancelled` once ``cancel()`` was called (from any thread), so an operation stops at its
+:class:`mrm.core.errors.Cancelled` once ``cancel()`` was called (from any thread), so an operation stops at its
 next report. :class:`Progress` is the thread-safe implementation, :data:`NO_PROGRESS` the no-op one for
 scripts; the GUI's task runner passes its own object with the same two methods.
 """
@@ -26,10 +26,10 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 from shapely.geometry.base import BaseGeometry
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
+from mrm.core.progress import NO_PROGRESS, NullProgress, Progress, ProgressLike, SubProgress
 from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
-from mrm.progress import NO_PROGRESS, NullProgress, Progress, ProgressLike, SubProgress
-from mrm.reps.pixels import PixelSet
 
 if TYPE_CHECKING:
     from mrm.ops.outcome import StepOutcome

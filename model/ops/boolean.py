@@ -25,7 +25,9 @@ from typing import Any
 
 import numpy as np
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
@@ -48,8 +50,6 @@ from mrm.ops.outcome import (
     source_box,
 )
 from mrm.ops.simplify import euclidean_input
-from mrm.progress import ProgressLike, sub_progress
-from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.summary import optional_function
 
 #: The parts of a co-refinement, in label order (label = index + 1), as files and properties name them.

@@ -41,7 +41,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
@@ -53,8 +55,6 @@ from mrm.geometry.discretize.exact_shape import (
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
 from mrm.ops.outcome import StepOutcome, check_limit, check_model
-from mrm.progress import ProgressLike, sub_progress
-from mrm.reps.pixels import PixelSet
 
 #: The operations a chain may hold, and the representation each reads.
 CHAIN_OPERATIONS = {

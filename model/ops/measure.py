@@ -29,9 +29,9 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Literal
 
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
-from mrm.progress import ProgressLike
-from mrm.reps.pixels import PixelSet
 
 Direction = Literal["both", "result_within", "source_within"]
 

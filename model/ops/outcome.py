@@ -16,7 +16,9 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
+from mrm.core.grids import Box, PixelSet
+from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Point,
@@ -33,8 +35,6 @@ from mrm.geometry.discretize.exact_shape import (
 from mrm.geometry.discretize.rational import discretize_exact, discretize_image
 from mrm.geometry.hausdorff.bounds import ChainStep
 from mrm.ops.base import OperationSpec, param
-from mrm.progress import ProgressLike, sub_progress
-from mrm.reps.pixels import Box, PixelSet
 
 T = TypeVar("T")
 

@@ -18,12 +18,12 @@ corners, and since R keeps its boundary away from every tie (DESIGN §3.6), dR_9
 
 from __future__ import annotations
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.geometry.hausdorff import bounds
 from mrm.ops.outcome import StepOutcome, angle_param, factor_params, register_discrete_similarity
-from mrm.progress import ProgressLike
-from mrm.reps.pixels import PixelSet
 
 #: θ in degrees (read exactly), the centre C, the model.
 RotationParams = factor_params(

@@ -12,12 +12,12 @@ object is refused at once, with the number of pixels it would have had.
 
 from __future__ import annotations
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.geometry.hausdorff import bounds
 from mrm.ops.outcome import StepOutcome, alpha_param, factor_params, register_discrete_similarity
-from mrm.progress import ProgressLike
-from mrm.reps.pixels import PixelSet
 
 #: α (read exactly), the centre, the model.
 DSSParams = factor_params(

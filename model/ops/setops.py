@@ -12,11 +12,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import box_area
 from mrm.ops.base import OperationResult, OperationSpec, Output, register
 from mrm.ops.outcome import joint_box
-from mrm.progress import ProgressLike
-from mrm.reps.pixels import PixelSet
 
 __all__ = ["DIFFERENCE", "INTERSECTION", "UNION", "SetOpParams"]
 

@@ -32,13 +32,13 @@ import numpy.typing as npt
 import shapely
 from shapely.geometry.base import BaseGeometry
 
-from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, exact_number
 from mrm.geometry.hausdorff import bounds as chain
 from mrm.ops.base import OperationResult, OperationSpec, Output, param, register
 from mrm.ops.outcome import StepOutcome, factor_map
-from mrm.progress import ProgressLike
-from mrm.reps.pixels import PixelSet
 
 F64 = npt.NDArray[np.float64]
 

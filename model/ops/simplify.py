@@ -18,7 +18,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError
+from mrm.core.grids import PixelSet
+from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_shape import (
     ExactShape,
     Similarity,
@@ -39,8 +41,6 @@ from mrm.ops.outcome import (
     factor_map,
     factor_params,
 )
-from mrm.progress import ProgressLike, sub_progress
-from mrm.reps.pixels import PixelSet
 
 
 def euclidean_input(source: Any, model: str) -> Any:

@@ -26,8 +26,8 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.gc_pause import paused_gc
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.gc_pause import paused_gc
 from mrm.geometry.dss import Segment
 from mrm.geometry.dss import _kernels as K
 from mrm.geometry.dss.preimage import Preimage, segment_preimage

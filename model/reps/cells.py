@@ -22,10 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mrm.gc_pause import paused_gc
+from mrm.core.gc_pause import paused_gc
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.geometry.topology.cracks import trace_cells
 from mrm.geometry.topology.labeling import group_by_label
-from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.reps.region import CrackChain, Region, region_of
 
 

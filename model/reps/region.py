@@ -24,8 +24,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.gc_pause import paused_gc
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.gc_pause import paused_gc
+from mrm.core.grids import Box, LabelMap, PixelSet
 from mrm.geometry.topology.cracks import (
     DX,
     DY,
@@ -38,7 +39,6 @@ from mrm.geometry.topology.cracks import (
     ring_extent,
     trace_mask,
 )
-from mrm.reps.pixels import Box, LabelMap, PixelSet
 
 IntArray = npt.NDArray[np.int64]
 

@@ -22,11 +22,11 @@ import numpy as np
 from shapely.geometry import Polygon
 
 from mrm.commands import AddObject
+from mrm.core.grids import PixelSet
 from mrm.document import Document
 from mrm.io.project import save_project
 from mrm.ops.apply import apply_operation, load_paper_operations
 from mrm.ops.base import get_operation
-from mrm.reps.pixels import PixelSet
 
 HERE = Path(__file__).parent
 

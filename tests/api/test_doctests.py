@@ -7,7 +7,7 @@ import importlib
 
 import pytest
 
-MODULES = ["mrm.api", "mrm.reps.pixels"]
+MODULES = ["mrm.api", "mrm.core.grids"]
 
 
 @pytest.mark.parametrize("name", MODULES)

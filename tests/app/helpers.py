@@ -8,7 +8,7 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.app.main_window import MainWindow
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from mrm.views.base_view import RepresentationView
 
 Qt = QtCore.Qt

@@ -35,7 +35,7 @@ def dying(progress: Any) -> None:
 
 def refusing(progress: Any) -> None:
     """Raise a user error."""
-    from mrm.errors import ParameterError
+    from mrm.core.errors import ParameterError
 
     raise ParameterError("α must be positive, got -3")
 
@@ -68,7 +68,7 @@ def spilling_then_deaf(seconds: float, progress: Any) -> str:
 
 def over_limit(progress: Any) -> None:
     """Raise the size-limit error an operation raises before allocating a too-big result."""
-    from mrm.errors import SizeLimitError
+    from mrm.core.errors import SizeLimitError
 
     raise SizeLimitError(158_000_000, 100_000_000, "DSS_4.5")
 

@@ -12,7 +12,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from mrm.app.actions import SPECS
 from mrm.app.gui import default_example
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 
 ROOT = Path(__file__).resolve().parents[2]
 Qt = QtCore.Qt

@@ -7,10 +7,10 @@ import subprocess
 import sys
 
 from mrm.commands import AddObject, RenameObject
+from mrm.core.grids import PixelSet
 from mrm.document import Document
 from mrm.io import autosave
 from mrm.io.project import dumps
-from mrm.reps.pixels import PixelSet
 from tests.app.helpers import answer_dialog
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from mrm.views.canvas import LOD_PIXELS, lod_factor, lod_image
 
 

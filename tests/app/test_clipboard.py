@@ -11,8 +11,8 @@ from shapely.geometry import Polygon
 
 from mrm.app.clipboard import MIME
 from mrm.commands import AddObject
+from mrm.core.grids import PixelSet
 from mrm.document import Style
-from mrm.reps.pixels import PixelSet
 
 Qt = QtCore.Qt
 CTRL = Qt.KeyboardModifier.ControlModifier

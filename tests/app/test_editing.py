@@ -7,8 +7,8 @@ from PySide6 import QtCore
 from shapely.geometry import Polygon
 
 from mrm.commands import AddObject
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
-from mrm.reps.pixels import PixelSet
 from tests.app.helpers import click, colour_at, drag, is_background, press_key, wait_drawn, zoom_to
 
 Qt = QtCore.Qt

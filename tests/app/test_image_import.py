@@ -7,8 +7,8 @@ import numpy as np
 from PIL import Image
 from PySide6 import QtCore, QtWidgets
 
-from mrm.io.threshold import otsu_threshold
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
+from mrm.core.threshold import otsu_threshold
 
 Qt = QtCore.Qt
 

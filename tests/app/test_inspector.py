@@ -16,11 +16,11 @@ from PySide6 import QtCore
 from shapely import affinity
 
 from mrm.commands import AddObject, PaintPixels
+from mrm.core.grids import PixelSet
 from mrm.document import Provenance
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.account import account_of
-from mrm.reps.pixels import PixelSet
 from tests.app.helpers import colour_at, wait_drawn
 
 

@@ -17,9 +17,9 @@ from PIL import Image
 from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import AddObject
+from mrm.core.grids import LabelMap
 from mrm.geometry.discretize import discretize
 from mrm.reps.cells import cells_of
-from mrm.reps.pixels import LabelMap
 from mrm.views.label_maps import label_colour
 from tests.app.helpers import click, colour_at, grab, is_background, wait_drawn, zoom_to
 

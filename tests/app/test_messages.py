@@ -8,7 +8,7 @@ import pytest
 from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from tests.app.helpers import click, press_key, zoom_to
 
 Qt = QtCore.Qt
@@ -91,7 +91,7 @@ def test_the_pixel_limit_message_points_at_a_preference_that_works(make_window, 
     qtbot.waitUntil(lambda: len(win.doc) == n + 1, timeout=30_000)
     # The preference stops at the largest pixel object a document holds; beyond it the message says so
     # instead of pointing at a setting that cannot help.
-    from mrm.limits import MAX_OBJECT_PIXELS
+    from mrm.core.limits import MAX_OBJECT_PIXELS
 
     dlg = PreferencesDialog(prefs, win.registry, win)
     field = dlg.findChild(QtWidgets.QDoubleSpinBox, "prefPixelLimit")

@@ -6,7 +6,7 @@ import numpy as np
 from PySide6 import QtCore
 
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from tests.app.helpers import click, square, type_into, zoom_to
 
 Qt = QtCore.Qt

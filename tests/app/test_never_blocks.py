@@ -16,7 +16,7 @@ from PySide6 import QtCore
 import mrm.derive
 import mrm.views.inspector
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from tests.app.helpers import colour_at, is_background, wait_drawn
 from tests.app.test_inspector import _chain
 

@@ -13,9 +13,9 @@ import numpy as np
 from PySide6 import QtCore
 
 from mrm.commands import AddObject
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
-from mrm.reps.pixels import PixelSet
 from tests.app.helpers import type_into
 
 Qt = QtCore.Qt

@@ -10,7 +10,7 @@ from __future__ import annotations
 from PySide6 import QtCore
 
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from mrm.views.scene import GHOST_FILL, GHOST_STYLE
 from tests.app.helpers import square, type_into
 

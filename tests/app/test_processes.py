@@ -15,8 +15,8 @@ import pytest
 
 from mrm.app import processes
 from mrm.app.tasks import TaskProgress
-from mrm.errors import Cancelled, ParameterError
-from mrm.reps.pixels import PixelSet
+from mrm.core.errors import Cancelled, ParameterError
+from mrm.core.grids import PixelSet
 from tests.app import process_job_fixtures as jobs
 
 
@@ -207,7 +207,7 @@ def test_freed_memory_is_kept_for_the_next_arrays_in_the_window_and_its_workers(
 def test_a_size_limit_error_reaches_the_window_with_its_message(pool):  # type: ignore[no-untyped-def]
     # It used to arrive as "TypeError: SizeLimitError.__init__() missing … 'limit'" (DSS 4.5 of DSS 20 of
     # the horse in the window), a traceback instead of the message that says what to change.
-    from mrm.errors import SizeLimitError
+    from mrm.core.errors import SizeLimitError
 
     with pytest.raises(SizeLimitError, match=r"DSS_4\.5 would cover 158,000,000 pixels") as info:
         pool.run(jobs.over_limit, (), TaskProgress())

@@ -7,7 +7,7 @@ from PySide6 import QtCore, QtWidgets
 from shapely.geometry import Polygon
 
 from mrm.commands import AddObject
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from tests.app.helpers import type_into
 
 Qt = QtCore.Qt

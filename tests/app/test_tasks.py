@@ -8,7 +8,7 @@ import pytest
 from PySide6 import QtCore
 
 from mrm.app.tasks import SynchronousTaskRunner, TaskRunner
-from mrm.errors import Cancelled
+from mrm.core.errors import Cancelled
 
 
 def _spin(progress, steps=10_000, gate=None):  # type: ignore[no-untyped-def]

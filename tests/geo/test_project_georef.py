@@ -18,14 +18,14 @@ from rasterio.features import rasterize
 from shapely.geometry import shape
 
 from mrm.commands import MergeObjects, PaintPixels, RenameObject
+from mrm.core.errors import FileFormatError
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Settings
-from mrm.errors import FileFormatError
 from mrm.io.export import export_object, export_objects_geojson
 from mrm.io.georef import GeoRef, read_georef
 from mrm.io.imports import import_file
 from mrm.io.project import load_project, loads, save_project
 from mrm.ops.apply import apply_operation
-from mrm.reps.pixels import PixelSet
 from tests.geo.test_georef import CRS, T, blobs, write_tif
 
 GOLDEN = Path(__file__).parents[1] / "model" / "golden"

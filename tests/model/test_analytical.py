@@ -9,11 +9,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import PixelSet
 from mrm.geometry.dss.preimage import median_parameters
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 from mrm.reps.analytical import Analytical, analytical_of
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain, region_of
 
 

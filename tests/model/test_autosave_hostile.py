@@ -11,13 +11,13 @@ from pathlib import Path
 import pytest
 
 from mrm.commands import AddObject, RenameObject
+from mrm.core.errors import FileFormatError
+from mrm.core.grids import PixelSet
 from mrm.document import Document
-from mrm.errors import FileFormatError
 from mrm.io import autosave
 from mrm.io.atomic import atomic_write_bytes, remove_stale_temps
 from mrm.io.autosave import Autosaver, find_orphans, find_recovery, side_file
 from mrm.io.project import dumps, save_project
-from mrm.reps.pixels import PixelSet
 
 
 class Clock:

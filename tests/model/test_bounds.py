@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mrm.cli import run_cli
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
 from mrm.geometry.hausdorff.bounds import (
     bound_of_chain,
     corefine,

@@ -7,8 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.reps.cells import Cells, OneCell, ZeroCell, cells_of, region_of_labels
-from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.reps.region import CrackChain, fill, region_of
 
 

@@ -14,8 +14,8 @@ import pytest
 from PIL import Image, PngImagePlugin
 
 from mrm.cli import run_cli
+from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import read_pixels, write_pixels
-from mrm.reps.pixels import PixelSet
 
 INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}
 

@@ -10,11 +10,11 @@ import pytest
 from shapely.geometry import Polygon, box
 
 from mrm.cli import run_cli
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Settings
 from mrm.geometry.discretize import discretize
 from mrm.io.pixel_files import read_pixels
 from mrm.io.project import read_project, save_project
-from mrm.reps.pixels import PixelSet
 
 EXAMPLES = sorted((Path(__file__).parents[2] / "resources" / "examples").glob("*.mrm"))
 INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}

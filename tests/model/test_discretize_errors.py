@@ -11,7 +11,13 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, MRMError, ParameterError, SizeLimitError
+from mrm.core.errors import (
+    DEFAULT_PIXEL_LIMIT,
+    InvalidGeometryError,
+    MRMError,
+    ParameterError,
+    SizeLimitError,
+)
 from mrm.geometry.discretize import (
     MODELS,
     _ring_proved_simple,

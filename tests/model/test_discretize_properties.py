@@ -11,8 +11,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from scipy import ndimage
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import MODELS, discretize, discretize_segment
-from mrm.reps.pixels import PixelSet
 from tests.oracles.discretize_reference import reference_discretize, standard_line_inequality
 from tests.oracles.geometry_strategies import (
     floats,
@@ -246,7 +246,7 @@ def test_the_validity_check_stays_on_by_default() -> None:
     """A bow-tie is still refused unless the caller says it knows the polygon valid."""
     import pytest
 
-    from mrm.errors import InvalidGeometryError
+    from mrm.core.errors import InvalidGeometryError
 
     bowtie = shapely.Polygon([(0, 0), (4, 4), (4, 0), (0, 4)])
     with pytest.raises(InvalidGeometryError):

@@ -25,10 +25,10 @@ from mrm.commands import (
     RestyleObject,
     SetSource,
 )
+from mrm.core.errors import InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
 from mrm.derive import DerivationCache
 from mrm.document import Changes, DocObject, Document, Provenance, Settings, Style, validate_geometry
-from mrm.errors import InvalidGeometryError, ParameterError, SizeLimitError
-from mrm.reps.pixels import PixelSet
 
 
 def tri(x: float = 0.0, y: float = 0.0) -> Polygon:

@@ -19,12 +19,12 @@ from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
 import mrm.geometry.discretize.rational_kernels as grd
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, rotation_cos_sin
 from mrm.geometry.discretize.rational import discretize_exact, discretize_image
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.rotation import discrete_rotation
 from mrm.ops.scaling import discrete_smooth_scaling
-from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import (
     MODELS,

@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, MultiPolygon, Point, Polygon, box
 
-from mrm.errors import Cancelled, InvalidGeometryError
+from mrm.core.errors import Cancelled, InvalidGeometryError
 from mrm.geometry import hausdorff as H
 from mrm.geometry.hausdorff import directed_hausdorff, hausdorff_distance
 from mrm.ops.similarity import rotate_geometry, scale_geometry, translate_geometry

@@ -28,11 +28,11 @@ from mrm.commands import (
     RestyleObject,
     SetSource,
 )
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Provenance, Style
-from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.history import Command
 from mrm.io.project import dumps
-from mrm.reps.pixels import PixelSet
 
 
 def state(doc: Document) -> bytes:

@@ -33,11 +33,11 @@ from mrm.commands import (
     RestyleObject,
     SetSource,
 )
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Style
-from mrm.errors import InvalidGeometryError, ParameterError
 from mrm.history import Command
 from mrm.io.project import dumps, loads
-from mrm.reps.pixels import PixelSet
 
 half = st.integers(-16, 16).map(lambda v: v / 2)  # centres and sides of pixels: where ties are decided
 anywhere = st.floats(-8, 8, allow_nan=False).map(lambda v: round(v, 3))

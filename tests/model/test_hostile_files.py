@@ -21,16 +21,16 @@ import numpy as np
 import pytest
 from PIL import Image
 
-import mrm.limits as limits
+import mrm.core.limits as limits
 from mrm.commands import AddObject
+from mrm.core.errors import FileFormatError, LimitError, MRMError
+from mrm.core.grids import PixelSet
+from mrm.core.threshold import binarize, grey_of
 from mrm.document import Document, Provenance
-from mrm.errors import FileFormatError, LimitError, MRMError
 from mrm.io.imports import import_file
 from mrm.io.pixel_files import read_label_map, read_pixels
 from mrm.io.project import dumps, parse_project, read_project, save_project
-from mrm.io.threshold import binarize, grey_of
 from mrm.io.vector_files import read_geometries
-from mrm.reps.pixels import PixelSet
 
 HERE = Path(__file__).parent
 
@@ -248,7 +248,7 @@ def test_streamed_png_matches_the_documented_rules_applied_to_pillows_decoding(t
         im.info["transparency"] = bytes(int(v) for v in rng.integers(0, 256, 7))
     p = tmp_path / "x.png"
     im.save(p, optimize=bool(seed % 2))
-    # The reference: Pillow's full decoding, then grey_of and binarize as mrm.io.threshold documents them.
+    # The reference: Pillow's full decoding, then grey_of and binarize as mrm.core.threshold documents them.
     ref = Image.open(p)
     ref.load()
     if ref.mode == "1":

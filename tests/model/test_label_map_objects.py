@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 
 from mrm.commands import AddObject, FillHole, PaintPixels, SplitLabelMap
+from mrm.core.errors import NotApplicableError
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.document import Document, Settings
-from mrm.errors import NotApplicableError
 from mrm.geometry.discretize import discretize
 from mrm.io.project import dumps, loads, read_project
 from mrm.reps.cells import Cells
-from mrm.reps.pixels import LabelMap, PixelSet
 
 GOLDEN = Path(__file__).parent / "golden"
 
@@ -107,7 +107,7 @@ def test_golden_v4_label_map_reads_as_written_down_here():
     ],
 )
 def test_a_damaged_label_map_in_a_project_file_is_refused_with_its_path(labels, message):
-    from mrm.errors import FileFormatError
+    from mrm.core.errors import FileFormatError
 
     raw = json.loads((GOLDEN / "v4-label-map.mrm").read_bytes())
     src = raw["objects"][0]["source"]

@@ -9,12 +9,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
-import mrm.limits as limits
+import mrm.core.limits as limits
 from mrm.commands import AddObject, ApplyResults, MergeObjects, PaintPixels, RenameObject
+from mrm.core.errors import LimitError, MRMError, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Provenance
-from mrm.errors import LimitError, MRMError, ParameterError, SizeLimitError
 from mrm.io.project import dumps, loads, parse_project, save_project
-from mrm.reps.pixels import PixelSet
 
 LIM = 2**31
 

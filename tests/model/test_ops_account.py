@@ -23,8 +23,9 @@ from hypothesis import strategies as st
 
 from mrm.cli import run_cli
 from mrm.commands import AddObject, PaintPixels, RemoveObjects
+from mrm.core.errors import FileFormatError, ParameterError
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Provenance, Settings, content_digest
-from mrm.errors import FileFormatError, ParameterError
 from mrm.geometry.hausdorff import hausdorff_distance
 from mrm.geometry.reconstruct import reconstruct
 from mrm.io.pixel_files import write_pixels
@@ -32,7 +33,6 @@ from mrm.io.project import dumps, load_project, loads, save_project
 from mrm.ops.account import account_of, changed_inputs, rerun_request
 from mrm.ops.apply import apply_operation, push_plan
 from mrm.ops.base import plan_operation
-from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import as_mask_set, polygons_of, reference_discretize_rings, rotated, scaled
 
 EXAMPLES = Path(__file__).parents[2] / "resources" / "examples"

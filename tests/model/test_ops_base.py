@@ -15,7 +15,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import box
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, Cancelled, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
 from mrm.ops import setops, similarity
 from mrm.ops.base import (
     NO_PROGRESS,
@@ -37,7 +38,6 @@ from mrm.ops.base import (
     run_operation,
     validate_params,
 )
-from mrm.reps.pixels import PixelSet
 
 # ----------------------------------------------------------------------------------------------------------
 # Progress and cancel
@@ -439,7 +439,7 @@ def test_one_progress_protocol_for_the_library_the_cli_and_the_window() -> None:
     # TaskProgress is the library's Progress, throttled to what a progress bar can show, and a sub-range
     # of a parent that has no progress at all is a valid progress.
     from mrm.app.progress import TaskProgress
-    from mrm.progress import sub_progress
+    from mrm.core.progress import sub_progress
 
     seen: list[tuple[float, str]] = []
     p = TaskProgress(lambda f, m: seen.append((f, m)))

@@ -10,7 +10,8 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.apply import load_paper_operations
@@ -24,7 +25,6 @@ from mrm.ops.boolean import (
     euclidean_discrete_union,
     run_corefine,
 )
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, pixel_sets, polygons_of, reference_discretize_rings, scaled
@@ -163,8 +163,8 @@ def test_the_reconstruction_of_a_union_is_the_continuation_of_the_pixels():
 @settings(max_examples=100, deadline=None)
 @given(pixel_sets(max_side=9), pixel_sets(max_side=9))
 def test_the_parts_label_map_labels_each_part(a, b):
+    from mrm.core.grids import LabelMap
     from mrm.ops.boolean import parts_label_map
-    from mrm.reps.pixels import LabelMap
 
     lm = parts_label_map(a, b)
     checked = LabelMap.from_pixel_sets([a - b, a & b, b - a])  # through the validating constructor

@@ -11,12 +11,12 @@ import shapely
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from mrm.core.errors import Cancelled, ParameterError
+from mrm.core.grids import PixelSet
 from mrm.document import Provenance
-from mrm.errors import Cancelled, ParameterError
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.chain import parse_steps, run_chain
-from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import COVERS, objects, polygons_of, reference_discretize_rings, scaled
 
 SQRT2 = math.sqrt(2)

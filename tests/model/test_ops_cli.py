@@ -13,6 +13,7 @@ import shapely
 from shapely.geometry import box
 
 from mrm.cli import run_cli
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Settings
 from mrm.geometry.discretize import discretize
 from mrm.io.pixel_files import read_label_map, read_pixels, write_pixels
@@ -21,7 +22,6 @@ from mrm.io.vector_files import read_geometries, read_geometry
 from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
 from mrm.ops.rotation import discrete_rotation
 from mrm.ops.scaling import discrete_smooth_scaling
-from mrm.reps.pixels import PixelSet
 
 INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}
 OP_KEYS = INFO_KEYS | {"bound", "measured"}

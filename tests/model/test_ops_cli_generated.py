@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 
 from mrm.cli import build_parser, run_cli
+from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import write_pixels
 from mrm.ops.base import get_operation, range_text
-from mrm.reps.pixels import PixelSet
 
 
 @pytest.mark.parametrize(

@@ -10,8 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mrm.geometry.reconstruct as reconstruct_module
+from mrm.core.errors import Cancelled, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
 from mrm.document import Document
-from mrm.errors import Cancelled, ParameterError, SizeLimitError
 from mrm.geometry.discretize import discretize
 from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.ops.apply import apply_operation
@@ -24,7 +25,6 @@ from mrm.ops.outcome import estimated_pixels
 from mrm.ops.rotation import RotationParams, discrete_rotation
 from mrm.ops.scaling import DSSParams, discrete_smooth_scaling
 from mrm.ops.simplify import SimplifyParams, simplification
-from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, objects
 

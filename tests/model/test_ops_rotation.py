@@ -9,12 +9,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize.exact_shape import rotation_cos_sin
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.base import run_operation
 from mrm.ops.rotation import RotationParams, discrete_rotation
-from mrm.reps.pixels import PixelSet
 from tests.oracles.ops_reference import (
     MODELS,
     objects,

@@ -10,8 +10,9 @@ import shapely
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.document import Provenance
-from mrm.errors import ParameterError
 from mrm.geometry.discretize import discretize
 from mrm.geometry.discretize.exact_shape import ExactShape
 from mrm.geometry.discretize.rational import discretize_exact
@@ -19,7 +20,6 @@ from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.apply import load_paper_operations
 from mrm.ops.base import run_operation
 from mrm.ops.scaling import DSSParams, discrete_smooth_scaling, run
-from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, objects, polygons_of, reference_discretize_rings, scaled
 

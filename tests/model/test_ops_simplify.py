@@ -11,13 +11,13 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.base import run_operation
 from mrm.ops.measure import measured_error
 from mrm.ops.simplify import SimplifyParams, simplification
-from mrm.reps.pixels import PixelSet
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import COVERS, MODELS, polygons_of, reference_discretize_rings, scaled
 

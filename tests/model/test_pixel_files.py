@@ -19,11 +19,11 @@ from hypothesis import strategies as st
 from PIL import Image, PngImagePlugin
 from skimage.filters import threshold_otsu
 
-from mrm.errors import FileFormatError, ParameterError
+from mrm.core.errors import FileFormatError, ParameterError
+from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.threshold import luminance, otsu_threshold
 from mrm.io.atomic import atomic_open, atomic_write_bytes
 from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
-from mrm.io.threshold import luminance, otsu_threshold
-from mrm.reps.pixels import LabelMap, PixelSet
 
 PIXEL_EXTS = [".png", ".pbm", ".pgm", ".npz"]
 
@@ -65,7 +65,7 @@ def write(path: Path, data: bytes) -> Path:
 
 
 # ---------------------------------------------------------------------------------------------- round trips
-# Every pixel of a file stays within the document's ±2^31 (mrm.limits), so it can be saved in a project.
+# Every pixel of a file stays within the document's ±2^31 (mrm.core.limits), so it can be saved in a project.
 coords = st.integers(-(2**31), 2**31 - 30)
 point_sets = st.builds(
     lambda pts, dx, dy: {(x + dx, y + dy) for x, y in pts},

@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.errors import SizeLimitError
-from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.core.errors import SizeLimitError
+from mrm.core.grids import LabelMap, PixelSet
 
 # ---------------------------------------------------------------------------------------------- strategies
 coord = st.integers(-12, 12)

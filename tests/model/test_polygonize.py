@@ -29,11 +29,11 @@ from affine import Affine
 from PIL import Image
 from shapely.geometry import Polygon, shape
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import LabelMap
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct.polygonize import Region, polygonize
 from mrm.geometry.topology.labeling import label
-from mrm.reps.pixels import LabelMap
 
 
 def random_map(seed: int) -> LabelMap:

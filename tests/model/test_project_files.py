@@ -15,8 +15,9 @@ from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.commands import AddObject, PaintPixels, RenameObject
+from mrm.core.errors import FileFormatError, MRMError
+from mrm.core.grids import PixelSet
 from mrm.document import Document, Provenance, Settings, Style, content_digest
-from mrm.errors import FileFormatError, MRMError
 from mrm.io import autosave
 from mrm.io.project import (
     SCHEMA_VERSION,
@@ -28,7 +29,6 @@ from mrm.io.project import (
     read_project,
     save_project,
 )
-from mrm.reps.pixels import PixelSet
 
 GOLDEN = Path(__file__).parent / "golden"
 EXAMPLES = Path(__file__).parents[2] / "resources" / "examples"
@@ -364,7 +364,7 @@ def test_the_cli_reports_hostile_projects_with_exit_status_2(case, tmp_path, cap
 
 
 def test_the_masks_of_a_file_have_a_total_budget(monkeypatch):
-    import mrm.limits as limits
+    import mrm.core.limits as limits
 
     monkeypatch.setattr(limits, "MAX_FILE_PIXELS", 30)  # the golden masks hold 25 + 0 + 6 pixels
     with pytest.raises(

@@ -9,14 +9,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
 from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
 from mrm.geometry.reconstruct.border import KIND_NAMES, border_path, border_paths, corridors, visit_counts
 from mrm.geometry.reconstruct.safety_net import eroded_net, net_ring, safety_net, staircase
 from mrm.geometry.reconstruct.verify import verify
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain, region_of
 from mrm.summary import count_vertices
 from tests.oracles.gauss_contract import check_gauss_containment

@@ -21,8 +21,8 @@ import shapely
 from affine import Affine
 from hypothesis import given, settings
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.reconstruct import MODELS, reconstruct
-from mrm.reps.pixels import PixelSet
 from tests.model.test_reconstruct_images import IMAGES, image
 from tests.model.test_reconstruct_properties import pixel_sets
 

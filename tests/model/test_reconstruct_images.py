@@ -17,12 +17,12 @@ import skimage.data
 from shapely.geometry import MultiPolygon
 from skimage.filters import threshold_otsu
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
 from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
 from mrm.geometry.reconstruct.safety_net import eroded_net
 from mrm.geometry.reconstruct.verify import verify
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from mrm.summary import count_vertices
 from tests.oracles.gauss_contract import check_gauss_containment

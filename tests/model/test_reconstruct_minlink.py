@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import MODELS, _run
 from mrm.geometry.reconstruct._check import edge_ok, verify_ring
@@ -26,7 +27,6 @@ from mrm.geometry.reconstruct._minlink import (
     minlink_ring,
     shrunk_gates,
 )
-from mrm.reps.pixels import PixelSet
 from tests.model.test_reconstruct_properties import pixel_sets
 from tests.oracles.geometry_strategies import noisy_star
 

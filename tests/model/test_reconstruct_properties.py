@@ -20,9 +20,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import MODELS, reconstruct
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 from mrm.summary import count_vertices
 from tests.oracles.discretize_reference import reference_discretize

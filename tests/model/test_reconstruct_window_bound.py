@@ -13,9 +13,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.reconstruct import MODELS, _run
 from mrm.geometry.reconstruct._repair import window_bound
-from mrm.reps.pixels import PixelSet
 
 
 def walked(reach: list[int]) -> int:

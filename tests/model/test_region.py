@@ -12,8 +12,8 @@ from skimage.filters import threshold_otsu
 from skimage.measure import euler_number
 from skimage.measure import label as sk_label
 
-from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.reps.pixels import LabelMap, PixelSet
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.reps.region import CrackChain, Region, fill, fill_chains, region_of
 
 # ---------------------------------------------------------------------------------------------- helpers

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.errors import InvalidGeometryError
+from mrm.core.errors import InvalidGeometryError
 from mrm.geometry.dss import recognize
 from mrm.geometry.dss.segmentation import (
     chain_points,

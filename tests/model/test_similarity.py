@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from shapely import affinity
 from shapely.geometry import MultiPolygon, Polygon, box
 
-from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.ops import similarity
 from mrm.ops.base import run_operation
 from mrm.ops.similarity import rotate_geometry, scale_geometry, translate_geometry

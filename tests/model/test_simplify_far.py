@@ -14,7 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely import affinity
 
-from mrm.errors import MRMError
+from mrm.core.errors import MRMError
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, positive_number
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.ops.simplify import simplification

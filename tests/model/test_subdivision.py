@@ -29,11 +29,11 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import greedy_segmentation
 from mrm.geometry.reconstruct.subdivision import reconstruct_label_map, subdivide, watertight_parts
-from mrm.reps.pixels import LabelMap, PixelSet
 from mrm.reps.region import region_of
 from tests.oracles.discretize_reference import reference_discretize
 from tests.oracles.geometry_strategies import star_polygons
@@ -555,7 +555,7 @@ def test_the_checker_catches_independent_reconstructions_and_moved_vertices() ->
 def test_a_vertex_without_an_exact_float64_value_is_refused_with_a_message() -> None:
     # Far from the origin a fine dyadic vertex cannot be written in float64: a ParameterError that says
     # so (the audit found an AssertionError from `mrm corefine --model gauss` at x = 2^45).
-    from mrm.errors import ParameterError
+    from mrm.core.errors import ParameterError
     from mrm.geometry.reconstruct.subdivision import _Chain, _to_plane
 
     pts = np.array([[2**45, 0], [2**45 + 1, 0], [2**45 + 2, 0]], dtype=np.int64)

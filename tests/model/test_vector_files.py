@@ -27,7 +27,8 @@ from shapely.geometry import (
     box,
 )
 
-from mrm.errors import FileFormatError, InvalidGeometryError
+from mrm.core.errors import FileFormatError, InvalidGeometryError
+from mrm.core.grids import PixelSet
 from mrm.io.vector_files import (
     MAX_VECTOR_FILE_BYTES,
     combine,
@@ -37,7 +38,6 @@ from mrm.io.vector_files import (
     write_svg,
     write_wkt,
 )
-from mrm.reps.pixels import PixelSet
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -553,8 +553,8 @@ def test_svg_both_draws_every_pixel_once_and_the_polygon_exactly(pts, corners):
 
 def test_export_of_both_representations_to_svg(tmp_path):
     from mrm.commands import AddObject
+    from mrm.core.errors import ParameterError
     from mrm.document import Document, Settings
-    from mrm.errors import ParameterError
     from mrm.io.export import export_object
 
     square = Polygon([(0.5, -0.5), (2.5, -0.5), (2.5, 1.5), (0.5, 1.5)])  # the voxels of x = 1, 2; y = 0, 1

@@ -19,8 +19,8 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
-from mrm.reps.pixels import PixelSet
 
 
 def border_pixels(ps: PixelSet) -> PixelSet:

@@ -16,8 +16,8 @@ import numpy as np
 import shapely
 from hypothesis import strategies as st
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
-from mrm.reps.pixels import PixelSet
 from tests.oracles.discretize_reference import inside_tau, kernel_box, segment_meets
 from tests.oracles.geometry_strategies import star_polygons
 

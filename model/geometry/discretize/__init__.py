@@ -43,7 +43,8 @@ import numpy as np
 import numpy.typing as npt
 import shapely
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.core.grids import Box, PixelSet
 from mrm.geometry.discretize import _kernels as _k
 from mrm.geometry.discretize.exact import (
     MAX_ABS_COORD,
@@ -53,7 +54,6 @@ from mrm.geometry.discretize.exact import (
     closed_cell_range,
     float_predicates_are_exact,
 )
-from mrm.reps.pixels import Box, PixelSet
 
 #: The discretization models, the default first.
 MODELS = ("standard", "supercover", "gauss")

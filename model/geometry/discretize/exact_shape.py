@@ -39,8 +39,8 @@ from typing import Any
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.errors import InvalidGeometryError, ParameterError
-from mrm.reps.pixels import Box
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import Box
 
 Point = tuple[Fraction, Fraction]
 Ring = tuple[Point, ...]

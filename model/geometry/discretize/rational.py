@@ -28,10 +28,10 @@ from typing import Any
 
 import numpy as np
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
+from mrm.core.grids import Box, PixelSet
+from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import ExactShape, box_area, pixel_box
-from mrm.progress import ProgressLike
-from mrm.reps.pixels import Box, PixelSet
 
 MODELS = ("standard", "supercover", "gauss")
 
@@ -260,7 +260,7 @@ def discretize_image(
     return PixelSet.taking_over(mask, (box[0], box[1]))
 
 
-#: The float-filtered path works on coordinates below this magnitude (far beyond the limits of mrm.limits,
+#: The float-filtered path works on coordinates below this magnitude (far beyond the limits of mrm.core.limits,
 #: ±2³¹): every rounding bound below is then far above the subnormal range and far below overflow.
 _FILTER_MAGNITUDE = 2.0**40
 _U = 2.0**-53

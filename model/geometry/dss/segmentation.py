@@ -25,7 +25,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import InvalidGeometryError, ParameterError
+from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.geometry.dss import Segment
 from mrm.geometry.dss import _kernels as K
 

@@ -77,8 +77,8 @@ from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.geometry.polygon import orient
 
-from mrm.errors import InvalidGeometryError
-from mrm.progress import ProgressLike
+from mrm.core.errors import InvalidGeometryError
+from mrm.core.progress import ProgressLike
 
 __all__ = ["HausdorffDistance", "directed_hausdorff", "hausdorff_distance"]
 

@@ -68,7 +68,7 @@ from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Literal
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
 
 #: The dimension of the space: every round trip adds √N_DIM.
 N_DIM = 2
@@ -516,7 +516,7 @@ def bound_of_chain(
     steps = tuple(steps)
     if not steps:
         raise ParameterError("the chain is empty")
-    from mrm.limits import check_chain_steps
+    from mrm.core.limits import check_chain_steps
 
     check_chain_steps(len(steps))  # exact arithmetic grows with the chain: bounded up front (issue 11)
 

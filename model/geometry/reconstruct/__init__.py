@@ -48,12 +48,12 @@ import numpy.typing as npt
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import PixelSet
 from mrm.geometry.reconstruct import _dual as _dk
 from mrm.geometry.reconstruct import _kernels as _k
 from mrm.geometry.reconstruct import _twins as _tw
 from mrm.geometry.topology.cracks import trace_mask
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import CrackChain
 
 FloatArray = npt.NDArray[np.float64]

@@ -25,11 +25,11 @@ import numpy.typing as npt
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
+from mrm.core.grids import LabelMap
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct.subdivision import subdivide
 from mrm.geometry.topology.labeling import label_regions
-from mrm.reps.pixels import LabelMap
 
 logger = logging.getLogger(__name__)
 

@@ -23,7 +23,7 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.reps.pixels import PixelSet
+from mrm.core.grids import PixelSet
 from mrm.reps.region import CrackChain, region_of
 
 FloatArray = npt.NDArray[np.float64]

@@ -126,15 +126,15 @@ import numpy.typing as npt
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.errors import ParameterError
-from mrm.gc_pause import paused_gc
+from mrm.core.errors import ParameterError
+from mrm.core.gc_pause import paused_gc
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.dss.segmentation import standard_dss_reach_table
 from mrm.geometry.topology.cracks import DX, DY
 from mrm.geometry.topology.labeling import group_by_label
 from mrm.geometry.topology.labeling import label as label_components
 from mrm.reps.cells import Cells, cells_of
-from mrm.reps.pixels import LabelMap, PixelSet
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]

@@ -38,9 +38,9 @@ import numpy as np
 import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 
+from mrm.core.grids import PixelSet
 from mrm.geometry.reconstruct import _kernels as _k
 from mrm.geometry.reconstruct.border import Corridor, corridors
-from mrm.reps.pixels import PixelSet
 from mrm.reps.region import region_of
 
 FloatArray = npt.NDArray[np.float64]

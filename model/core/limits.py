@@ -1,8 +1,8 @@
 """The limits of what a document can hold, declared once (ADR 0010).
 
 Whatever a document can hold, its project file can hold and reopen: the same limits are checked at the edit,
-operation or import that would exceed them (with a :class:`~mrm.errors.LimitError` or
-:class:`~mrm.errors.SizeLimitError` naming the limit) and again by the project loader, which therefore never
+operation or import that would exceed them (with a :class:`~mrm.core.errors.LimitError` or
+:class:`~mrm.core.errors.SizeLimitError` naming the limit) and again by the project loader, which therefore never
 refuses a file this program wrote. The costs of work whose size does not follow from the pixel count —
 reconstruction (boundary length in crack steps), vector output (vertices), written files (bytes) — are
 computed here from the input before the work starts.
@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, LimitError, SizeLimitError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, LimitError, SizeLimitError
 
 # ---------------------------------------------------------------------------------------------- the limits
 #: Largest absolute coordinate of a Euclidean source. Beyond it pixel indices leave the int32 range the

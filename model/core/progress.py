@@ -1,7 +1,7 @@
 """Progress and cancellation: the one protocol every long computation of the library reports through.
 
 A computation takes ``progress`` (anything with ``update(fraction, message)``, see :class:`ProgressLike`),
-calls it now and then, and stops with :class:`mrm.errors.Cancelled` when ``update`` raises it. The
+calls it now and then, and stops with :class:`mrm.core.errors.Cancelled` when ``update`` raises it. The
 geometry kernels, the exact operations, the account, the CLI's bar and the application's task progress
 (``mrm.app.progress.TaskProgress``) all speak this protocol; :class:`Progress` is the library's own
 thread-safe implementation, :class:`SubProgress` maps a part of the work onto a range of its parent, and
@@ -15,7 +15,7 @@ import time
 from collections.abc import Callable
 from typing import Protocol, runtime_checkable
 
-from mrm.errors import Cancelled
+from mrm.core.errors import Cancelled
 
 __all__ = ["NO_PROGRESS", "NullProgress", "Progress", "ProgressLike", "SubProgress", "sub_progress"]
 
@@ -45,7 +45,7 @@ class Progress:
     Notes
     -----
     ``cancel()`` may be called from any thread; the next ``update()`` (or ``check()``) in the working thread
-    raises :class:`mrm.errors.Cancelled`. Fractions are clamped to [0, 1] and never go backwards.
+    raises :class:`mrm.core.errors.Cancelled`. Fractions are clamped to [0, 1] and never go backwards.
     """
 
     def __init__(

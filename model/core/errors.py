@@ -60,7 +60,7 @@ DEFAULT_PIXEL_LIMIT = 200_000_000
 
 
 class LimitError(MRMError, ValueError):
-    """An edit, operation, import or export would go beyond one of the limits of :mod:`mrm.limits`.
+    """An edit, operation, import or export would go beyond one of the limits of :mod:`mrm.core.limits`.
 
     Raised before anything is changed or written, so the document and the files stay as they were.
     """

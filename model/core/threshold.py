@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import ParameterError
+from mrm.core.errors import ParameterError
 
 BoolArray = npt.NDArray[np.bool_]
 

@@ -15,7 +15,7 @@ from typing import Any, SupportsIndex, cast
 import numpy as np
 import numpy.typing as npt
 
-from mrm.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
+from mrm.core.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
 
 BoolArray = npt.NDArray[np.bool_]
 IntArray = npt.NDArray[np.int64]
@@ -208,7 +208,7 @@ class PixelSet:
         >>> bool((ps.to_image() == img).all())
         True
         """
-        from mrm.io.threshold import binarize, grey_of
+        from mrm.core.threshold import binarize, grey_of
 
         a = np.asarray(image)
         if a.ndim == 3 and a.shape[2] in (3, 4):
