@@ -25,9 +25,9 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.commands import ApplyResults
 from mrm.core.errors import MRMError
 from mrm.document import DocObject, Document, Settings
+from mrm.document.commands import ApplyResults
 
 log = logging.getLogger(__name__)
 

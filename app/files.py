@@ -15,9 +15,9 @@ from typing import TYPE_CHECKING, Any
 
 from PySide6 import QtCore, QtWidgets
 
-from mrm.commands import AddObject
 from mrm.core.errors import MRMError
 from mrm.document import Document, Settings
+from mrm.document.commands import AddObject
 
 if TYPE_CHECKING:
     from mrm.app.main_window import MainWindow

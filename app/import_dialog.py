@@ -61,7 +61,8 @@ def _binary(values: np.ndarray) -> bool:
 
 def _netpbm_values(path: Path) -> tuple[np.ndarray, bool, bool] | None:
     """A PGM's grey values (labels offered), read by the model's reader; None if binary or unreadable."""
-    from mrm.core.errors import DEFAULT_PIXEL_LIMIT, FileFormatError
+    from mrm.core.errors import FileFormatError
+    from mrm.core.limits import DEFAULT_PIXEL_LIMIT
     from mrm.core.threshold import grey_of
     from mrm.io.netpbm import read_netpbm
 

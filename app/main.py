@@ -1,15 +1,55 @@
-"""Entry point of the ``mrm`` command: the GUI without arguments, headless subcommands otherwise.
+"""Entry point of the ``mrm`` command: the desktop application without a subcommand, headless otherwise.
 
-The dispatch lives in :func:`mrm.cli.main` so that the command works without the ``gui`` extra (Qt).
+This module is the composition root's front door and imports no Qt itself, so ``mrm scale …`` works without
+the ``gui`` extra: subcommands, ``--version`` and (without Qt) ``--help`` go to :mod:`mrm.cli`; anything else
+starts the application (:func:`mrm.app.gui.run_gui`), which needs PySide6 and pyqtgraph.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import sys
 
-from mrm.cli import main
+from mrm.cli import EXIT_BROKEN_PIPE, SUBCOMMANDS, build_parser, run_cli, silence_stdout, version_text
 
 __all__ = ["main"]
+
+
+def _gui_available() -> bool:
+    return all(importlib.util.find_spec(m) is not None for m in ("PySide6", "pyqtgraph"))
+
+
+def main(argv: list[str] | None = None) -> int:
+    """The ``mrm`` command: a subcommand, ``--version``, or the desktop application (``gui`` extra)."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        if args and args[0] in SUBCOMMANDS:
+            return run_cli(args)
+        if args[:1] in (["--version"], ["-V"]):
+            print(version_text(), flush=True)
+            return 0
+        if not _gui_available():
+            if args[:1] in (["-h"], ["--help"], ["--help-commands"]):
+                build_parser().print_help()
+                sys.stdout.flush()
+                return 0
+            print(
+                "mrm: the desktop application needs the gui extra: pip install 'mr-modeler[gui]'. "
+                "The headless subcommands work without it: mrm --help",
+                file=sys.stderr,
+            )
+            return 2
+        # Qt is imported only here, when the application really starts (the headless paths above never
+        # load it: the gui extra is optional).
+        from mrm.app.gui import run_gui
+
+        status: int = run_gui(args)
+        sys.stdout.flush()
+        return status
+    except BrokenPipeError:
+        silence_stdout()
+        return EXIT_BROKEN_PIPE
+
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -14,6 +14,7 @@ from mrm.app.settings import Preferences
 from mrm.app.status import StatusBar
 from mrm.app.tasks import TaskRunner
 from mrm.app.undo import UndoAdapter
+from mrm.core.models import Model
 from mrm.document import Changes, Document, Settings
 from mrm.views.object_list import ObjectList
 from mrm.views.scene import Scene
@@ -214,7 +215,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, ["edit.select_previous", "edit.select_next"])
         self.model_menu = m.addMenu("Discretization &Model")
         self._model_group = QtGui.QActionGroup(self)
-        for name in ("standard", "supercover", "gauss"):
+        for name in Model.names():
             act = self.model_menu.addAction(name)
             act.setCheckable(True)
             act.setObjectName(f"model.{name}")
@@ -437,7 +438,7 @@ class MainWindow(QtWidgets.QMainWindow):
 
     # ------------------------------------------------------------------ commands
     def set_model(self, name: str) -> None:
-        from mrm.commands import ChangeSettings
+        from mrm.document.commands import ChangeSettings
 
         if name != self.doc.model:
             self.doc.push(ChangeSettings.model(self.doc, name))
@@ -476,15 +477,15 @@ class MainWindow(QtWidgets.QMainWindow):
         self.inspector.cancel()
 
     def delete_selection(self) -> None:
-        from mrm.commands import RemoveObjects
+        from mrm.document.commands import RemoveObjects
 
         if self.doc.selection:
             self.doc.push(RemoveObjects(list(self.doc.selection)))
 
     def split_label_map(self) -> None:
         """Replace the selected label map by one pixel object per label (one undo step, ADR 0033)."""
-        from mrm.commands import SplitLabelMap
         from mrm.core.errors import MRMError
+        from mrm.document.commands import SplitLabelMap
 
         obj = self.scene.primary()
         if obj is None or obj.kind != "labels":
@@ -496,7 +497,7 @@ class MainWindow(QtWidgets.QMainWindow):
             self.show_message(str(e), 8000)
 
     def duplicate_selection(self) -> None:
-        from mrm.commands import AddObject
+        from mrm.document.commands import AddObject
 
         obj = self.scene.primary()
         if obj is None:
@@ -586,7 +587,7 @@ class MainWindow(QtWidgets.QMainWindow):
         """Show or hide the selected objects, one undo step."""
         from dataclasses import replace
 
-        from mrm.commands import RestyleObject
+        from mrm.document.commands import RestyleObject
 
         ids = [i for i in self.doc.selection if i in self.doc and self.doc.get(i).style.visible != visible]
         if not ids:

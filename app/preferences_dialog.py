@@ -6,8 +6,9 @@ from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.app.actions import ActionRegistry
 from mrm.app.application import theme_controller
-from mrm.app.settings import MODELS, Preferences
+from mrm.app.settings import Preferences
 from mrm.core.limits import MAX_OBJECT_PIXELS
+from mrm.core.models import Model
 
 #: The entry the pixel-limit message points at (File ▸ Preferences ▸ General).
 PIXEL_LIMIT_LABEL = "Largest operation result"
@@ -45,12 +46,9 @@ class PreferencesDialog(QtWidgets.QDialog):
         f = QtWidgets.QFormLayout(w)
         self.model = QtWidgets.QComboBox(w)
         self.model.setObjectName("prefModel")
-        self.model.addItems(list(MODELS))
+        self.model.addItems(list(Model.names()))
         self.model.setCurrentText(self.prefs.default_model)
-        self.model.setToolTip(
-            "standard: open square shifted by τ (no bubbles, the default); supercover: closed square; "
-            "gauss: pixel centres (partitions the plane)"
-        )
+        self.model.setToolTip("; ".join(f"{m}: {m.kernel}" for m in Model))
         f.addRow("Discretization model of new projects", self.model)
         self.brush = QtWidgets.QSpinBox(w)
         self.brush.setObjectName("prefBrush")

@@ -13,10 +13,10 @@ from typing import Any
 def warm(progress: Any) -> None:
     """Load the operations and the cached kernels (a child's first job, while the window is idle)."""
     from mrm.ops.account import account_of  # noqa: F401
-    from mrm.ops.apply import load_paper_operations
+    from mrm.ops.registry import operations
     from mrm.warmup import is_warm, load_kernels
 
-    load_paper_operations()
+    operations()  # every operation module imported, the registry complete
     if is_warm():  # else the window's own warm-up is compiling them: not twice at once
         load_kernels()
 
@@ -31,14 +31,12 @@ def measure(provenance: Any, progress: Any) -> Any:
 def plan(
     inputs: list[Any], op_name: str, params: Any, limit: int | None, held: list[Any], progress: Any
 ) -> Any:
-    """An operation planned on document objects (:func:`mrm.ops.base.plan_operation`).
+    """An operation planned on document objects (:func:`mrm.ops.registry.plan_operation`).
 
     ``held``: (input index, model, R(A)) for inputs whose R(A) the window holds already.
     """
-    from mrm.ops.apply import load_paper_operations
-    from mrm.ops.base import plan_operation
+    from mrm.ops.registry import plan_operation
 
-    load_paper_operations()
     kw = {} if limit is None else {"limit": limit}
     return plan_operation(inputs, op_name, params, progress, held=held, **kw)
 

@@ -15,8 +15,7 @@ from typing import Any
 from PySide6 import QtCore, QtGui
 
 from mrm.app.application import APPLICATION, ORGANIZATION
-
-MODELS = ("standard", "supercover", "gauss")
+from mrm.core.models import DEFAULT_MODEL, Model
 
 #: Colours given to new objects in turn (colour-blind-safe, after Okabe & Ito / Tableau).
 DEFAULT_OBJECT_COLOURS = (
@@ -83,12 +82,12 @@ class Preferences(QtCore.QObject):
     @property
     def default_model(self) -> str:
         """Discretization model of new projects."""
-        m = self._get("project/default_model", "standard", str)
-        return m if m in MODELS else "standard"
+        m = self._get("project/default_model", str(DEFAULT_MODEL), str)
+        return m if m in Model.names() else str(DEFAULT_MODEL)
 
     @default_model.setter
     def default_model(self, m: str) -> None:
-        self._set("project/default_model", m if m in MODELS else "standard")
+        self._set("project/default_model", m if m in Model.names() else str(DEFAULT_MODEL))
 
     @property
     def autosave_seconds(self) -> int:
@@ -196,8 +195,7 @@ class Preferences(QtCore.QObject):
     @property
     def pixel_limit(self) -> int:
         """The largest operation result allowed, in pixels (Preferences ▸ General ▸ Largest result)."""
-        from mrm.core.errors import DEFAULT_PIXEL_LIMIT
-        from mrm.core.limits import MAX_OBJECT_PIXELS
+        from mrm.core.limits import DEFAULT_PIXEL_LIMIT, MAX_OBJECT_PIXELS
 
         # Never beyond the largest pixel object a document holds: a result over it would be refused anyway.
         v = self._get("operations/pixel_limit", DEFAULT_PIXEL_LIMIT, int)

@@ -10,7 +10,7 @@ from mrm.document import Document
 
 
 class UndoAdapter(QtCore.QObject):
-    """Keeps the actions' enabled state and text ("Undo Paint") in step with :class:`mrm.history.History`.
+    """Keeps the actions' enabled state and text ("Undo Paint") in step with the document's history.
 
     Signals
     -------

@@ -31,7 +31,10 @@ from rasterio.transform import Affine
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from mrm.core.grids import PixelSet
-from mrm.geometry.discretize import MODELS, discretize
+from mrm.core.models import Model
+from mrm.geometry.discretize import discretize
+
+MODELS = Model.names()
 
 PEER_OF = {"standard": False, "supercover": True, "gauss": False}  # GDAL all_touched closest to each model
 

@@ -38,9 +38,9 @@ if ROOT not in sys.path:
 
 from shapely.geometry import Polygon  # noqa: E402
 
-from mrm.commands import AddObject, MoveVertex, PaintPixels  # noqa: E402
 from mrm.core.grids import PixelSet  # noqa: E402
 from mrm.document import Document  # noqa: E402
+from mrm.document.commands import AddObject, MoveVertex, PaintPixels  # noqa: E402
 from mrm.io.project import dumps, read_project, save_project  # noqa: E402
 
 
@@ -155,7 +155,7 @@ def star(n_vertices: int, size: int, phase: float = 0.0) -> Polygon:
 
 
 def bench_edit(repeat: int) -> None:
-    from mrm.derive import REPS
+    from mrm.document.derive import REPS
 
     size = 1024
     poly = star(500, size)

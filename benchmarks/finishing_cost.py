@@ -87,7 +87,7 @@ import numpy as np, rasterio.features
 from reconstruct import median_ms, speed_inputs
 from mrm.geometry.reconstruct import reconstruct
 from mrm.core.grids import PixelSet
-from mrm.summary import count_vertices
+from mrm.reps.summary import count_vertices
 assert reconstruct.__code__.co_filename.startswith({copy!r})
 for name, m in speed_inputs():
     image = name.split()[0]

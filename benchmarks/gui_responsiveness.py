@@ -100,7 +100,7 @@ def bench_vertex_drag(moves: int = 60) -> tuple[list[float], list[float]]:
     from PySide6 import QtCore
     from shapely.geometry import Polygon
 
-    from mrm.commands import AddObject
+    from mrm.document.commands import AddObject
 
     app, win = make_window()
     k = np.arange(500)
@@ -140,8 +140,8 @@ def bench_vertex_drag(moves: int = 60) -> tuple[list[float], list[float]]:
 def bench_brush(dabs: int = 80) -> list[float]:
     from PySide6 import QtCore
 
-    from mrm.commands import AddObject
     from mrm.core.grids import PixelSet
+    from mrm.document.commands import AddObject
 
     app, win = make_window()
     yy, xx = np.mgrid[0:2048, 0:2048]

@@ -60,7 +60,7 @@ from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import held as held_reconstructions
 from mrm.geometry.reconstruct import reconstruct
-from mrm.summary import optional_function
+from mrm.reps.summary import optional_function
 from tests.oracles.geometry_strategies import noisy_star
 
 # The operations are looked up, not imported, so the script also runs while they are being written; a row

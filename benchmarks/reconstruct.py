@@ -36,11 +36,14 @@ from shapely.geometry import MultiPolygon, Polygon
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from mrm.core.grids import PixelSet
+from mrm.core.models import Model
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
-from mrm.geometry.reconstruct import MODELS, reconstruct
+from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.region import region_of
-from mrm.summary import count_vertices
+from mrm.reps.summary import count_vertices
+
+MODELS = Model.names()
 
 QUICK = "--quick" in sys.argv
 

@@ -1,4 +1,7 @@
-"""``python -m mrm``: the same as the ``mrm`` command (headless subcommands, or the GUI without one)."""
+"""``python -m mrm``: the headless subcommands (``python -m mrm scale …``).
+
+The desktop application is ``python -m mrm.app`` (or ``mrm`` without a subcommand).
+"""
 
 import sys
 

@@ -5,7 +5,7 @@ objects and shapely geometries, and returns the same kinds: no Qt, no project, n
 pixel set is expected are **images** (row 0 at the top, as numpy, Pillow and matplotlib hold them) and go
 through :meth:`PixelSet.from_image`, so a picture never comes out upside down.
 
-The operations are the paper's (DESIGN §5–§8); each wrapper calls the one implementation in
+The operations are the paper's (docs/design.md §5–§8); each wrapper calls the one implementation in
 :mod:`mrm.ops` or :mod:`mrm.geometry` and adds nothing but the conversion of its inputs.
 """
 
@@ -17,8 +17,18 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.errors import ParameterError
 from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.models import DEFAULT_MODEL, Model
+from mrm.geometry.discretize import discretize as _discretize
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
+from mrm.geometry.hausdorff import hausdorff_distance
+from mrm.geometry.reconstruct import reconstruct as _reconstruct
+from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
+from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
+from mrm.ops.chain import chain_bound, parse_chain
+from mrm.ops.registry import get_operation
 
 __all__ = [
     "bound",
@@ -49,14 +59,16 @@ def _as_object(obj: Any) -> Any:
     return PixelSet.from_image(obj)
 
 
-def discretize(geom: Any, model: str = "standard", *, limit: int | None = DEFAULT_PIXEL_LIMIT) -> PixelSet:
+def discretize(
+    geom: Any, model: Model | str = DEFAULT_MODEL, *, limit: int | None = DEFAULT_PIXEL_LIMIT
+) -> PixelSet:
     """Return the exact discretization D(E) of a shapely geometry under ``model`` (DESIGN §2).
 
     Parameters
     ----------
     geom : shapely geometry
         Polygons, lines and points (any mix); coordinates are pixel units, pixel (x, y) is centred on (x, y).
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     limit : int or None
         Largest bounding box (in pixels) of the result, checked before any work.
 
@@ -72,19 +84,17 @@ def discretize(geom: Any, model: str = "standard", *, limit: int | None = DEFAUL
     >>> sorted(mrm.discretize(box(0, 0, 3, 2), "gauss"))
     [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)]
     """
-    from mrm.geometry.discretize import discretize as _discretize
-
     return _discretize(geom, model, limit=limit)
 
 
-def reconstruct(pixels: PixelSet | npt.ArrayLike, model: str = "standard") -> Any:
+def reconstruct(pixels: PixelSet | npt.ArrayLike, model: Model | str = DEFAULT_MODEL) -> Any:
     """Return the reversible continuation R(A): a polygon whose discretization is exactly A (DESIGN §3).
 
     Parameters
     ----------
     pixels : PixelSet or array_like
         The pixel set, or an image (row 0 at the top; see :meth:`PixelSet.from_image`).
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
 
     Returns
     -------
@@ -99,13 +109,11 @@ def reconstruct(pixels: PixelSet | npt.ArrayLike, model: str = "standard") -> An
     >>> mrm.discretize(poly, "gauss") == mrm.PixelSet.from_image(img)
     True
     """
-    from mrm.geometry.reconstruct import reconstruct as _reconstruct
-
     return _reconstruct(as_pixels(pixels), model)
 
 
 def polygonize(
-    labels: LabelMap | npt.ArrayLike, model: str = "gauss", *, origin: tuple[int, int] = (0, 0)
+    labels: LabelMap | npt.ArrayLike, model: Model | str = Model.GAUSS, *, origin: tuple[int, int] = (0, 0)
 ) -> dict[int, Any]:
     """Reconstruct every label of a label map as a watertight subdivision: one polygon per label.
 
@@ -130,8 +138,6 @@ def polygonize(
     >>> sorted(parts), parts[1].intersection(parts[2]).area
     ([1, 2], 0.0)
     """
-    from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
-
     if not isinstance(labels, LabelMap):
         a = np.asarray(labels)
         if a.ndim != 2 or a.dtype.kind not in "iub":
@@ -174,9 +180,6 @@ def segment(
     >>> [s.as_list() for s in mrm.segment("00100100")]
     [[0, 8, 1, 2, 0, 3]]
     """
-    from mrm.core.errors import ParameterError
-    from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
-
     if isinstance(chain, str):
         bad = chain.translate(str.maketrans("", "", "0123"))
         if bad:
@@ -196,17 +199,16 @@ def _result_of(name: str, obj: Any, limit: int | None, *params: object) -> Any:
 
     An array is an image; ``params`` are the operation's parameters in the order its spec declares them.
     """
-    from mrm.ops.base import get_operation
-
     spec = get_operation(name)
-    return spec.outcome(_as_object(obj), spec.params(*params), limit=limit).result
+    values = dict(zip([s.name for s in spec.params.specs()], params, strict=False))
+    return spec.outcome(_as_object(obj), spec.params.read(**values), limit=limit).result
 
 
 def scale(
     obj: Any,
     alpha: object,
     center: object = None,
-    model: str = "standard",
+    model: Model | str = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
 ) -> PixelSet:
@@ -220,7 +222,7 @@ def scale(
         α > 0; a float is read as the decimal it prints as (``0.2`` is 1/5), ``"1/3"`` and Fractions too.
     center : pair of numbers, optional
         The centre of the scaling (the origin by default).
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     limit : int or None
         Largest result (pixels of its bounding box), estimated before the work.
 
@@ -244,7 +246,7 @@ def rotate(
     obj: Any,
     angle: object,
     center: object = None,
-    model: str = "standard",
+    model: Model | str = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
 ) -> PixelSet:
@@ -256,7 +258,7 @@ def rotate(
     angle : number
         Degrees, counter-clockwise (y up).
     center : pair of numbers, optional
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     limit : int or None
 
     Returns
@@ -277,7 +279,7 @@ def simplify(
     obj: Any,
     alpha: object,
     center: object = None,
-    model: str = "standard",
+    model: Model | str = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
 ) -> Any:
@@ -290,7 +292,7 @@ def simplify(
     alpha : number
         α > 0.
     center : pair of numbers, optional
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     limit : int or None
 
     Returns
@@ -309,14 +311,14 @@ def simplify(
 
 
 def union(
-    first: Any, second: Any, model: str = "standard", *, limit: int | None = DEFAULT_PIXEL_LIMIT
+    first: Any, second: Any, model: Model | str = DEFAULT_MODEL, *, limit: int | None = DEFAULT_PIXEL_LIMIT
 ) -> Any:
     """Euclidean-discrete union EDu(E, E′) = R(D(E) ∪ D(E′)) (paper §6).
 
     Parameters
     ----------
     first, second : shapely geometry, PixelSet or array_like image
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     limit : int or None
 
     Returns
@@ -331,15 +333,13 @@ def union(
     >>> len(mrm.discretize(u, "gauss"))
     7
     """
-    from mrm.ops.boolean import euclidean_discrete_union
-
     return euclidean_discrete_union(_as_object(first), _as_object(second), model, limit=limit).result
 
 
 def corefine(
     first: Any,
     second: Any,
-    model: str = "standard",
+    model: Model | str = DEFAULT_MODEL,
     alpha: object = None,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
@@ -349,7 +349,7 @@ def corefine(
     Parameters
     ----------
     first, second : shapely geometry, PixelSet or array_like image
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     alpha : number, optional
         The precision factor α > 0.
     limit : int or None
@@ -367,21 +367,21 @@ def corefine(
     >>> sorted(parts)
     ['a_and_b', 'a_minus_b', 'b_minus_a']
     """
-    from mrm.ops.boolean import euclidean_discrete_corefinement
-
     out = euclidean_discrete_corefinement(_as_object(first), _as_object(second), model, alpha, limit=limit)
     return dict(out.result)
 
 
-def bound(chain: str | Sequence[Any], model: str = "standard", *, exact_identities: bool = False) -> Any:
+def bound(
+    chain: str | Sequence[Any], model: Model | str = DEFAULT_MODEL, *, exact_identities: bool = False
+) -> Any:
     """Return the error bound of a chain of operations (DESIGN §8), exactly.
 
     Parameters
     ----------
-    chain : str or sequence of ChainStep
-        E.g. ``"DSS 5, DSS 2, DSS 0.5, DSS 0.2"`` (applied left to right), or steps from
-        :mod:`mrm.geometry.hausdorff.bounds`.
-    model : {"standard", "supercover", "gauss"}
+    chain : str or sequence of Link
+        E.g. ``"DSS 5, DSS 2, DSS 0.5, DSS 0.2"`` (applied left to right), or links
+        (:meth:`mrm.ops.chain.Link.of`: ``Link.of("dss", alpha=5)``).
+    model : Model or str
     exact_identities : bool
         Merge round trips separated by an exact identity.
 
@@ -397,20 +397,18 @@ def bound(chain: str | Sequence[Any], model: str = "standard", *, exact_identiti
     >>> b.coefficient, round(b.bound, 4)
     (Fraction(1, 2), 0.7071)
     """
-    from mrm.geometry.hausdorff.bounds import bound_of_chain, parse_chain
-
-    steps = parse_chain(chain) if isinstance(chain, str) else list(chain)
-    return bound_of_chain(steps, model, exact_identities=exact_identities)
+    links = parse_chain(chain) if isinstance(chain, str) else list(chain)
+    return chain_bound(links, model, exact_identities=exact_identities)
 
 
-def hausdorff(first: Any, second: Any, model: str = "standard") -> Any:
+def hausdorff(first: Any, second: Any, model: Model | str = DEFAULT_MODEL) -> Any:
     """Return the exact Hausdorff distance between two filled polygonal sets.
 
     Parameters
     ----------
     first, second : shapely Polygon / MultiPolygon, PixelSet or array_like image
         A pixel set (or image) stands for its continuation R(A) under ``model``.
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
         Only used for pixel inputs.
 
     Returns
@@ -426,8 +424,6 @@ def hausdorff(first: Any, second: Any, model: str = "standard") -> Any:
     >>> mrm.hausdorff(box(0, 0, 1, 1), box(0, 0, 4, 1)).value
     3.0
     """
-    from mrm.geometry.hausdorff import hausdorff_distance
-
     a, b = (_as_object(x) for x in (first, second))
     a, b = (reconstruct(x, model) if isinstance(x, PixelSet) else x for x in (a, b))
     return hausdorff_distance(a, b)

@@ -164,11 +164,11 @@ def _shapes() -> tuple[object, object]:
 
 
 def _step_discretize() -> None:
-    from mrm.document import MODELS
+    from mrm.core.models import Model
     from mrm.geometry.discretize import discretize
 
     poly, multi = _shapes()
-    for model in MODELS:
+    for model in Model:
         discretize(poly, model)
         discretize(multi, model)
 
@@ -188,10 +188,10 @@ def _pixel_sets() -> list[object]:
 
 
 def _step_reconstruct() -> None:
-    from mrm.document import MODELS
+    from mrm.core.models import Model
     from mrm.geometry.reconstruct import reconstruct
 
-    for model in MODELS:
+    for model in Model:
         for ps in _pixel_sets():
             reconstruct(ps, model)  # type: ignore[arg-type]
     import numpy as np
@@ -228,16 +228,14 @@ def warm_pools(labels: Any, mask: Any) -> None:
 
 
 def _step_operations() -> None:
-    from mrm.ops.apply import load_paper_operations
-    from mrm.ops.base import operations, run_operation
+    from mrm.ops.registry import operations, run_operation
 
-    load_paper_operations()
     poly, _multi = _shapes()
     pixels = _pixel_sets()
     for spec in operations():
         inputs: list[object] = []
         for i in range(spec.arity):
-            inputs.append(poly if spec.input_kind == "euclidean" else pixels[i % len(pixels)])
+            inputs.append(poly if spec.reads == "euclidean" else pixels[i % len(pixels)])
         try:
             run_operation(spec, inputs)
         except Exception as exc:

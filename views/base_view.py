@@ -12,8 +12,8 @@ from typing import Any
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.derive import Rep
 from mrm.document import Changes, DocObject
+from mrm.document.derive import Rep
 from mrm.views.canvas import PlaneView
 from mrm.views.scene import CANCELLED, Phantom, Scene
 

@@ -1,6 +1,7 @@
 """Pure helpers for the editing tools: vertex references, hit tests, the preview of a vertex edit, brush dabs.
 
-Vertex references follow :mod:`mrm.commands` (``VertexRef`` = (polygon, ring, index), closing point not
+Vertex references follow :mod:`mrm.document.commands` (``VertexRef`` = (polygon, ring, index), closing point
+not
 counted, polygons in MultiPolygon order, ring 0 the exterior), so a preview computed here and the command
 pushed on release describe the same edit.
 """
@@ -15,6 +16,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.polygon import orient
 
+from mrm.core.models import cell_of
 from mrm.document import validate_geometry
 
 VertexRef = tuple[int, int, int]
@@ -197,15 +199,21 @@ def new_polygon(ring: np.ndarray) -> shapely.Geometry:
 def snap(x: float, y: float, mode: str | None) -> tuple[float, float]:
     """'centre': nearest pixel centre (integers); 'corner': nearest pixel corner (half-integers)."""
     if mode == "centre":
-        return float(math.floor(x + 0.5)), float(math.floor(y + 0.5))
+        cx, cy = cell_of((x, y))
+        return float(cx), float(cy)
     if mode == "corner":
         return math.floor(x) + 0.5, math.floor(y) + 0.5
     return x, y
 
 
 def pixel_at(x: float, y: float) -> tuple[int, int]:
-    """The pixel whose voxel holds the plane point (x, y) (a point on a side goes to the upper/right one)."""
-    return math.floor(x + 0.5), math.floor(y + 0.5)
+    """The pixel under the plane point (x, y): the one tie rule of the product.
+
+    A point on a pixel side goes to the pixel on its left or below, as D_standard of a point does
+    (:func:`mrm.core.models.cell_of`).
+    """
+    px, py = cell_of((x, y))
+    return px, py
 
 
 # ---------------------------------------------------------------------------------------------- brush
@@ -222,7 +230,8 @@ def dab_offsets(size: int, shape: str = "round") -> np.ndarray:
 def dab_origin(x: float, y: float, size: int) -> tuple[int, int]:
     """Pixel of footprint[0, 0] for a dab centred on the plane point (x, y)."""
     c = (max(1, int(size)) - 1) / 2.0
-    return math.floor(x - c + 0.5), math.floor(y - c + 0.5)
+    px, py = cell_of((x - c, y - c))
+    return px, py
 
 
 def stroke_centres(a: tuple[float, float], b: tuple[float, float], size: int) -> list[tuple[float, float]]:

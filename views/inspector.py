@@ -17,7 +17,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.core.errors import MRMError
 from mrm.ops.account import Account, account_of, rerun_request
-from mrm.ops.outcome import joint_box
+from mrm.ops.estimate import joint_box
 from mrm.views.canvas import Camera, MaskItem, Picture, PlaneView, lod_image, make_picture, qcolor
 from mrm.views.provenance import bound_text, chain_rows, changes_text, measured_text
 from mrm.views.scene import Scene
@@ -262,7 +262,7 @@ class ErrorInspector(QtWidgets.QWidget):
         except MRMError as e:
             self.changes_label.setText(f"<span style='color:#c0392b'>{e}</span>")
             return
-        from mrm.ops.apply import push_plan
+        from mrm.document.apply import push_plan
 
         inputs = request.inputs
 

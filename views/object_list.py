@@ -11,9 +11,9 @@ from dataclasses import replace
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.commands import RemoveObjects, RenameObject, ReorderObjects, RestyleObject
 from mrm.core.errors import MRMError
 from mrm.document import Changes, DocObject, Document
+from mrm.document.commands import RemoveObjects, RenameObject, ReorderObjects, RestyleObject
 
 MIME = "application/x-mrm-object-ids"
 

@@ -10,15 +10,17 @@ from __future__ import annotations
 
 import math
 import time
+from fractions import Fraction
 from typing import Any
 
 from PySide6 import QtCore, QtWidgets
 
 from mrm.app import process_jobs
-from mrm.commands import ApplyResults
 from mrm.core.errors import MRMError, SizeLimitError
-from mrm.ops.apply import held_euclidean
-from mrm.views.op_adapter import OpInfo, ParamInfo, normalise_results, operations
+from mrm.core.numbers import spell
+from mrm.document.apply import held_euclidean
+from mrm.document.commands import ApplyResults
+from mrm.views.op_adapter import OpInfo, ParamInfo, operations
 from mrm.views.scene import Scene
 
 SLIDER_STEPS = 1000
@@ -62,57 +64,50 @@ def _num_text(v: float) -> str:
     return f"{v:g}".replace("-", "−")
 
 
-def parse_number(text: str) -> float:
-    """A number as a person types it: ``1e9``, ``−3`` (typographic minus), ``2,5``, a trailing unit."""
-    t = text.strip().replace("−", "-").replace("\u2009", "").replace(" ", "")
-    t = t.rstrip("×°px%")
-    if t.count(",") == 1 and "." not in t:
-        t = t.replace(",", ".")
-    return float(t)
-
-
 class NumberField(QtWidgets.QLineEdit):
-    """A number typed as text, checked against the parameter's allowed range and never rewritten.
+    """A number typed as text, read exactly by its parameter's declaration and never rewritten.
 
-    The check runs when the text is committed (Enter or leaving the field). An invalid entry stays as
-    typed, marked red with the reason; the panel refuses to preview or apply until it is corrected.
+    The text is read when it is committed (Enter or leaving the field) by :meth:`ParamSpec.read`, the one
+    reading every path shares: ``0.2`` is 1/5, ``1/3`` a third, ``−2,5°`` is −5/2. An invalid entry stays as
+    typed, marked red with the declaration's reason; the panel refuses to preview or apply until it is
+    corrected.
     """
 
-    valueChanged = QtCore.Signal(float)
+    #: The exact value after a commit (a Fraction or an int), or None when the text is invalid or empty.
+    valueChanged = QtCore.Signal(object)
     #: The text was committed: (valid, message).
     validated = QtCore.Signal(bool, str)
 
-    def __init__(self, info: ParamInfo, spec: Any, parent: QtWidgets.QWidget | None = None) -> None:
+    def __init__(self, info: ParamInfo, parent: QtWidgets.QWidget | None = None) -> None:
         super().__init__(parent)
         self.info = info
-        self.spec = spec
-        self._value: float | None = None
+        self._value: Fraction | int | None = None
         self.error = ""
         self.setObjectName(f"field_{info.name}")
         self.setPlaceholderText("default" if info.optional else "")
         self.editingFinished.connect(self._commit)
-        self.setToolTip(f"{info.label}: {range_text(spec) if spec is not None else ''}")
+        self.setToolTip(f"{info.label}: {range_text(info.spec)}")
 
     def suffix(self) -> str:
         return f" {self.info.unit}" if self.info.unit else ""
 
-    def value(self) -> float | None:
+    def value(self) -> Fraction | int | None:
         return self._value
 
     def is_valid(self) -> bool:
         return not self.error
 
-    def setValue(self, v: float | None) -> None:
-        self._value = None if v is None else float(v)
-        self.setText("" if v is None else _format_value(float(v), self.info.kind))
+    def setValue(self, v: object) -> None:
+        """Show ``v`` (read exactly: a float is the decimal it prints as) as the field's exact value."""
+        self._value = None if v is None else self.info.spec.read(v)
+        self.setText("" if self._value is None else spell(Fraction(self._value)))
         self._mark("")
 
     def _mark(self, error: str) -> None:
         self.error = error
         self.setProperty("invalid", bool(error))
         self.setStyleSheet("QLineEdit { border: 2px solid #c0392b; }" if error else "")
-        rng = range_text(self.spec) if self.spec is not None else ""
-        self.setToolTip(error or f"{self.info.label}: {rng}")
+        self.setToolTip(error or f"{self.info.label}: {range_text(self.info.spec)}")
 
     def _commit(self) -> None:
         text = self.text()
@@ -122,27 +117,17 @@ class NumberField(QtWidgets.QLineEdit):
             self._mark("")
             if changed:
                 self.validated.emit(True, "")
-                self.valueChanged.emit(float("nan"))
+                self.valueChanged.emit(None)
             return
         try:
-            v = parse_number(text)
-            if self.info.kind == "int" and v != int(v):
-                raise ValueError
-            if self.spec is not None:
-                from mrm.core.errors import MRMError
-                from mrm.ops.base import _check_number
-
-                try:
-                    _check_number(self.spec, int(v) if self.info.kind == "int" else v)
-                except MRMError as e:
-                    raise ValueError(str(e).replace("parameter ", "", 1)) from None
-        except ValueError as e:
-            msg = str(e) if str(e) and "could not convert" not in str(e) else ""
-            kind = "a whole number" if self.info.kind == "int" else "a number"
-            rng = range_text(self.spec) if self.spec is not None else ""
-            self._mark(msg or f"{self.info.label}: {text.strip()!r} is not {kind} in {rng}")
+            v = self.info.spec.read(text)
+        except MRMError as e:
+            message = str(e).replace("parameter ", "", 1)
+            if "allowed" not in message:  # say what is allowed, not only what is wrong
+                message += f" (allowed: {range_text(self.info.spec)})"
+            self._mark(message)
             self.validated.emit(False, self.error)
-            self.valueChanged.emit(float("nan"))
+            self.valueChanged.emit(None)
             return
         was_error = bool(self.error)
         self._mark("")
@@ -150,12 +135,6 @@ class NumberField(QtWidgets.QLineEdit):
             self._value = v
             self.validated.emit(True, "")
             self.valueChanged.emit(v)
-
-
-def _format_value(v: float, kind: str) -> str:
-    if kind == "int":
-        return str(int(v))
-    return f"{v:.6g}"
 
 
 class ParamControl(QtWidgets.QWidget):
@@ -167,10 +146,9 @@ class ParamControl(QtWidgets.QWidget):
     #: A point parameter's Pick button: the next click in a view gives the point.
     pickRequested = QtCore.Signal()
 
-    def __init__(self, info: ParamInfo, parent: QtWidgets.QWidget | None = None, spec: Any = None) -> None:
+    def __init__(self, info: ParamInfo, parent: QtWidgets.QWidget | None = None) -> None:
         super().__init__(parent)
         self.info = info
-        self.spec = spec  # the model's ParamSpec: the allowed range (the slider covers a useful part)
         self.setObjectName(f"param_{info.name}")
         lay = QtWidgets.QHBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
@@ -179,16 +157,16 @@ class ParamControl(QtWidgets.QWidget):
         tip = info.help + (f" ({info.unit})" if info.unit else "")
         self.setToolTip(tip)
         k = info.kind
-        if k in ("float", "int"):
+        if k in ("number", "int"):
             lo = info.minimum if info.minimum is not None else (0.0 if k == "int" else -1000.0)
             hi = info.maximum if info.maximum is not None else (lo + 100.0)
             self._lo, self._hi = float(lo), float(hi)
             self._log = info.log or (self._lo > 0 and self._hi / self._lo >= 100)
-            f = NumberField(info, spec, self)
+            f = NumberField(info, self)
             self.field = f
             # The allowed range and the unit, always in sight (the slider spans only a useful part of it).
             self.range_label = QtWidgets.QLabel(
-                (f"{info.unit} " if info.unit else "") + (range_text(spec) if spec is not None else ""), self
+                (f"{info.unit} " if info.unit else "") + range_text(info.spec), self
             )
             self.range_label.setObjectName(f"range_{info.name}")
             self.range_label.setStyleSheet("color: palette(placeholder-text);")
@@ -210,7 +188,7 @@ class ParamControl(QtWidgets.QWidget):
             self.field = QtWidgets.QCheckBox(self)
             self.field.toggled.connect(lambda _v: self.changed.emit())
             lay.addWidget(self.field)
-        elif k == "choice":
+        elif k in ("choice", "model"):
             self.field = QtWidgets.QComboBox(self)
             for c in info.choices:
                 self.field.addItem(str(c), c)
@@ -263,7 +241,7 @@ class ParamControl(QtWidgets.QWidget):
         v = math.exp(math.log(lo) + t * (math.log(hi) - math.log(lo))) if self._log else lo + t * (hi - lo)
         # Round to a readable value: the parameter becomes exactly what the field shows.
         digits = max(0, 3 - math.floor(math.log10(abs(v)))) if v else 0
-        return round(v, digits) if self.info.kind == "float" else float(round(v))
+        return round(v, digits) if self.info.kind == "number" else float(round(v))
 
     def _slider_moved(self, i: int) -> None:
         if self._syncing:
@@ -281,13 +259,13 @@ class ParamControl(QtWidgets.QWidget):
     def error(self) -> str:
         return self.field.error if isinstance(self.field, NumberField) else ""
 
-    def _field_changed(self, v: float) -> None:
+    def _field_changed(self, v: object) -> None:
         if self._syncing:
             return
         self._syncing = True
         try:
-            if self.slider is not None and not math.isnan(v):
-                self.slider.setValue(self._to_slider(float(v)))
+            if self.slider is not None and v is not None:
+                self.slider.setValue(self._to_slider(float(v)))  # type: ignore[arg-type]
         finally:
             self._syncing = False
         self.changed.emit()
@@ -295,15 +273,11 @@ class ParamControl(QtWidgets.QWidget):
     # ------------------------------------------------------------------ value
     def value(self) -> Any:
         k = self.info.kind
-        if k == "float":
-            v = self.field.value()
-            return None if v is None else float(v)
-        if k == "int":
-            v = self.field.value()
-            return None if v is None else int(v)
+        if k in ("number", "int"):
+            return self.field.value()  # exact: read once, when the text was committed
         if k == "bool":
             return bool(self.field.isChecked())
-        if k == "choice":
+        if k in ("choice", "model"):
             return self.field.currentData()
         if k == "point":
             p = (float(self.xs.value()), float(self.ys.value()))
@@ -315,17 +289,17 @@ class ParamControl(QtWidgets.QWidget):
         k = self.info.kind
         self._syncing = True
         try:
-            if k == "float" and v is None and self.info.optional:
+            if k == "number" and v is None and self.info.optional:
                 self.field.setValue(None)
                 if self.slider is not None:
                     self.slider.setValue(0)
-            elif k in ("float", "int") and v is not None:
+            elif k in ("number", "int") and v is not None:
                 self.field.setValue(v)
                 if self.slider is not None:
                     self.slider.setValue(self._to_slider(float(v)))
             elif k == "bool":
                 self.field.setChecked(bool(v))
-            elif k == "choice":
+            elif k in ("choice", "model"):
                 i = self.field.findData(v)
                 self.field.setCurrentIndex(max(0, i))
             elif k == "point":
@@ -461,9 +435,8 @@ class OperationPanel(QtWidgets.QWidget):
             cb.currentIndexChanged.connect(lambda _i: self.request_preview())
             self.inputs.append(cb)
             self.form.addRow("Input" if self.op.arity == 1 else f"Input {'AB'[k] if k < 2 else k + 1}", cb)
-        specs = {s.name: s for s in self.op.spec.param_specs()} if self.op.spec is not None else {}
         for p in self.op.params:
-            c = ParamControl(p, self.form_box, specs.get(p.name))
+            c = ParamControl(p, self.form_box)
             if p.name == "model" and self.scene.doc.model in p.choices:
                 # Results keep D(Euclidean) = discrete under the document's model.
                 c.set_value(self.scene.doc.model)
@@ -635,10 +608,8 @@ class OperationPanel(QtWidgets.QWidget):
 
         held = held_euclidean(self.scene.doc, _ids)  # R(A) the views computed: not again
 
-        def work(progress: Any) -> list[tuple[str | None, Any]]:
-            from mrm.ops.base import run_operation
-
-            return normalise_results(run_operation(op.spec, sources, params, progress=progress, held=held))
+        def work(progress: Any) -> list[tuple[str, Any]]:
+            return op.run(sources, params, progress, held)
 
         self.runner.submit(
             "preview",

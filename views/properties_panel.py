@@ -18,8 +18,9 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.commands import DeleteVertex, MoveVertex, RenameObject, RestyleObject
 from mrm.core.errors import MRMError
+from mrm.core.numbers import read_number
+from mrm.document.commands import DeleteVertex, MoveVertex, RenameObject, RestyleObject
 from mrm.views import geometry_edit as ge
 from mrm.views.measure import num_text
 
@@ -94,13 +95,12 @@ class VertexModel(QtCore.QAbstractTableModel):
     ) -> bool:
         if not index.isValid() or role != Qt.ItemDataRole.EditRole or index.column() < 3:
             return False
-        from mrm.views.operation_panel import parse_number
-
         r = index.row()
         try:
-            v = parse_number(str(value))
-        except ValueError:
-            self.refused.emit(f"{str(value).strip()!r} is not a number")
+            # The one reader of numbers (mrm.core.numbers), rounded once to the float64 a vertex holds.
+            v = float(read_number(str(value), "a coordinate"))
+        except (MRMError, OverflowError) as e:
+            self.refused.emit(str(e))
             return False
         x, y = float(self.xy[r, 0]), float(self.xy[r, 1])
         if index.column() == 3:

@@ -35,7 +35,7 @@ def _count(source: Any) -> str:
 
 
 def _name(doc: Any, oid: int | None, digest: str | None, pinned: Any = None) -> str:
-    from mrm.document import content_digest
+    from mrm.ops.provenance import content_digest
 
     if oid is None:
         return "?"

@@ -14,8 +14,8 @@ from typing import TYPE_CHECKING, Any
 from PySide6 import QtCore
 
 from mrm.core.errors import MRMError
-from mrm.derive import SYNC_COST, Derived, Rep
 from mrm.document import Changes, DocObject, Document, Source, Style
+from mrm.document.derive import SYNC_COST, Derived, Rep
 
 if TYPE_CHECKING:
     from mrm.core.grids import PixelSet
@@ -35,7 +35,7 @@ def pixel_count(ps: PixelSet) -> int | None:
     """The number of pixels of ``ps`` for a label on the GUI thread; None while a worker has not counted it.
 
     Counting 10⁸ pixels takes tens of milliseconds: a big set is counted on the worker that makes its
-    region (:func:`mrm.derive.region_from_pixels`), and kept by the set.
+    region (:func:`mrm.document.derive.region_from_pixels`), and kept by the set.
     """
     return ps.count if ps.mask.size <= COUNT_SYNC else ps.known_count
 

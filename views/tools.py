@@ -16,7 +16,10 @@ import numpy as np
 import shapely
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from mrm.commands import (
+from mrm.core.errors import MRMError, ParameterError
+from mrm.core.grids import PixelSet
+from mrm.document import DocObject, Style
+from mrm.document.commands import (
     AddObject,
     DeleteComponent,
     DeleteVertex,
@@ -26,9 +29,6 @@ from mrm.commands import (
     PaintPixels,
     SetSource,
 )
-from mrm.core.errors import MRMError, ParameterError
-from mrm.core.grids import PixelSet
-from mrm.document import DocObject, Style
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
 from mrm.views.scene import Scene

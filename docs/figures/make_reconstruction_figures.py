@@ -29,7 +29,7 @@ from mrm.geometry.reconstruct import reconstruct_detailed  # noqa: E402
 from mrm.geometry.reconstruct.border import border_paths, corridors  # noqa: E402
 from mrm.geometry.reconstruct.safety_net import eroded_net  # noqa: E402
 from mrm.reps.region import region_of  # noqa: E402
-from mrm.summary import count_vertices  # noqa: E402
+from mrm.reps.summary import count_vertices  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
 SS = 4

@@ -1,4 +1,4 @@
-"""The headless ``mrm`` subcommands (DESIGN §9) and the ``mrm`` entry point.
+"""The headless ``mrm`` subcommands (docs/design.md §9).
 
 Each subcommand lives in its own module of this package and defines::
 
@@ -17,7 +17,8 @@ Conventions every subcommand gets from this layer (docs/adr/0011):
 * The folder an output file goes into is created when missing, by every subcommand alike; a run that fails
   removes the folders it created when nothing was written into them.
 * Errors are one line ``mrm NAME: error: message`` on stderr with exit status 2, never a traceback: every
-  :class:`mrm.core.errors.MRMError`, every ``OSError`` (read-only file system, full disk, symlink loop, name too
+  :class:`mrm.core.errors.MRMError`, every ``OSError`` (read-only file system, full disk, symlink loop, name
+  too
   long, a path through a regular file, …) and every number out of range.
 * A closed standard output (``mrm … | head``) ends the command quietly with status 141 (128 + SIGPIPE, what a
   shell reports for a program killed by the closed pipe).
@@ -41,9 +42,9 @@ from types import ModuleType
 from typing import Any
 
 from mrm.core.errors import MRMError
-
-#: The discretization models, in the order the CLI lists them.
-MODEL_CHOICES = ("standard", "supercover", "gauss")
+from mrm.core.models import Model
+from mrm.core.version import installed_version
+from mrm.warmup import announce_if_cold
 
 #: Exit status after a closed standard output.
 EXIT_BROKEN_PIPE = 141
@@ -94,9 +95,7 @@ class _Parser(argparse.ArgumentParser):
 
 def version_text() -> str:
     """``mrm X.Y.Z`` (the installed distribution's version)."""
-    import mrm
-
-    return f"mrm {mrm.__version__}"
+    return f"mrm {installed_version()}"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -108,7 +107,7 @@ def build_parser() -> argparse.ArgumentParser:
         p = sub.add_parser(name, help=getattr(mod, "HELP", ""), description=getattr(mod, "HELP", ""))
         p.add_argument(
             "--model",
-            choices=MODEL_CHOICES,
+            choices=Model.names(),
             default=None,
             help="discretization model (default: the project's, or 'standard')",
         )
@@ -141,7 +140,7 @@ def _json_default(o: Any) -> Any:
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
-def _silence_stdout() -> None:
+def silence_stdout() -> None:
     """Point stdout at devnull so that the interpreter's final flush prints no BrokenPipeError either."""
     with contextlib.suppress(OSError, ValueError):
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
@@ -288,7 +287,7 @@ def run_cli(argv: list[str]) -> int:
     try:
         return _run_cli(argv)
     except BrokenPipeError:
-        _silence_stdout()
+        silence_stdout()
         return EXIT_BROKEN_PIPE
 
 
@@ -300,8 +299,6 @@ def _run_cli(argv: list[str]) -> int:
         return 2
     streams = _Streams()
     if args.command not in NO_KERNELS:
-        from mrm.warmup import announce_if_cold
-
         announce_if_cold()  # one line before numba compiles for a minute on a fresh install
     created: list[Path] = []
     status = 2
@@ -341,14 +338,12 @@ def _fail(command: str, message: str) -> int:
     return 2
 
 
-def _gui_available() -> bool:
-    import importlib.util
-
-    return all(importlib.util.find_spec(m) is not None for m in ("PySide6", "pyqtgraph"))
-
-
 def main(argv: list[str] | None = None) -> int:
-    """The ``mrm`` command: a subcommand, ``--version``, or the desktop application (``gui`` extra)."""
+    """``python -m mrm``: a headless subcommand, ``--version`` or ``--help``.
+
+    The ``mrm`` command is :func:`mrm.app.main.main`, which also starts the desktop application (the ``gui``
+    extra); this layer never imports it.
+    """
     args = list(sys.argv[1:] if argv is None else argv)
     try:
         if args and args[0] in SUBCOMMANDS:
@@ -356,22 +351,9 @@ def main(argv: list[str] | None = None) -> int:
         if args[:1] in (["--version"], ["-V"]):
             print(version_text(), flush=True)
             return 0
-        if not _gui_available():
-            if args[:1] in (["-h"], ["--help"], ["--help-commands"]):
-                build_parser().print_help()
-                sys.stdout.flush()
-                return 0
-            print(
-                "mrm: the desktop application needs the gui extra: pip install 'mr-modeler[gui]'. "
-                "The headless subcommands work without it: mrm --help",
-                file=sys.stderr,
-            )
-            return 2
-        from mrm.app.gui import run_gui
-
-        status: int = run_gui(args)
+        build_parser().print_help()
         sys.stdout.flush()
-        return status
+        return 0 if args[:1] in (["-h"], ["--help"]) else 2
     except BrokenPipeError:
-        _silence_stdout()
+        silence_stdout()
         return EXIT_BROKEN_PIPE

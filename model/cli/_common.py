@@ -30,8 +30,9 @@ from pathlib import Path
 from typing import Any
 
 from mrm.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, MRMError, ParameterError
+from mrm.core.errors import FileFormatError, MRMError, ParameterError
 from mrm.core.grids import PixelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, read_geometry
 

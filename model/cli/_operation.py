@@ -19,7 +19,7 @@ A georeferenced input (a GeoTIFF, an image with a world file, a project object w
 georeferenced result (ADR 0021): the input's grid for rotate and simplify, the grid scaled by α for scale;
 a .tif or .png (+ world file) result is written on that grid, a vector result in world coordinates.
 
-``--json`` prints the info keys of the result (:func:`mrm.summary.summarize`) plus ``bound`` (the error
+``--json`` prints the info keys of the result (:func:`mrm.reps.summary.summarize`) plus ``bound`` (the error
 bound of the operation as a chain, null where the model gives none) and ``measured`` (the exact Hausdorff
 distance between the composite Euclidean transform of A_first and A_last; null with ``--no-measure``).
 """
@@ -27,7 +27,6 @@ distance between the composite Euclidean transform of A_first and A_last; null w
 from __future__ import annotations
 
 import argparse
-import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -46,23 +45,30 @@ from mrm.cli._common import (
     load_object,
     run_inputs,
 )
-from mrm.cli._project_input import add_object_argument
-from mrm.core.errors import ParameterError
+from mrm.cli._project_input import add_object_argument, project_object
+from mrm.core.errors import MRMError, ParameterError
 from mrm.core.grids import PixelSet
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.io.georef import (
+    GEOREFERENCED_EXTENSIONS,
+    geojson_members,
+    georef_summary,
+    read_georef,
+    write_georeferenced,
+)
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
-from mrm.summary import summarize
+from mrm.ops.account import account_of
+from mrm.ops.georef import result_georef
+from mrm.ops.provenance import Provenance
+from mrm.ops.registry import get_operation, run_operation
+from mrm.reps.summary import summarize
 
 #: Input file types.
 INPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".mrm")
 #: Output file types of a single result.
 OUTPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".svg")
-
-
-def add_input(parser: argparse.ArgumentParser) -> None:
-    """One input IN with ``--object``."""
-    parser.add_argument("input", metavar="IN", help="a pixel file, a vector file or a project (.mrm)")
-    add_object_argument(parser)
 
 
 def add_two_inputs(parser: argparse.ArgumentParser) -> None:
@@ -87,14 +93,6 @@ def add_common(parser: argparse.ArgumentParser, output_help: str, *, batch: bool
         action="store_true",
         help="skip the exact Hausdorff distance (measured: null); it can take seconds on large objects",
     )
-
-
-def parse_point(text: str) -> tuple[str, str]:
-    """Argparse type: ``X,Y`` (kept as text, read exactly by the operation)."""
-    parts = [p.strip() for p in text.split(",")]
-    if len(parts) != 2 or not all(parts):
-        raise argparse.ArgumentTypeError(f"expected X,Y (two numbers), got {text!r}")
-    return parts[0], parts[1]
 
 
 @dataclass(frozen=True)
@@ -124,8 +122,6 @@ def read_one(
     """Read one input of an operation (a pixel file, a vector file or one object of a project)."""
     ext = extension_of(path, INPUTS, "supported input file")
     if ext == ".mrm":
-        from mrm.cli._project_input import project_object
-
         if invert:
             raise ParameterError(f"{path}: --invert applies to image inputs only")
         if not Path(path).exists():
@@ -135,8 +131,6 @@ def read_one(
     _, value, chosen = load_object(path, object_name, model, threshold=threshold, invert=invert, limit=limit)
     georef = None
     if ext in PIXEL_EXTENSIONS and ext != ".npz":
-        from mrm.io.georef import read_georef
-
         georef = read_georef(path)
     return OperationInput(value, chosen, georef=georef)
 
@@ -173,8 +167,6 @@ def read_two(args: argparse.Namespace) -> tuple[OperationInput, OperationInput, 
 
 def two_input_provenance(operation: str, params: dict[str, Any], a: OperationInput, b: OperationInput) -> Any:
     """The provenance of a two-input result: both inputs, with a project input's own chain."""
-    from mrm.document import Provenance
-
     ids = (a.id or 1, b.id or 2)
     return Provenance(operation, params, ids, (a.value, b.value), (a.provenance, b.provenance))
 
@@ -194,11 +186,7 @@ def write_result(
     ext = extension_of(path, OUTPUTS, "output file")
     if ext in PIXEL_EXTENSIONS:
         if not isinstance(result, PixelSet):
-            from mrm.geometry.discretize import discretize
-
             result = discretize(result, model)
-        from mrm.io.georef import GEOREFERENCED_EXTENSIONS, write_georeferenced
-
         if georef is not None and ext in GEOREFERENCED_EXTENSIONS:
             write_georeferenced(result, path, georef)
         else:
@@ -208,16 +196,12 @@ def write_result(
         write_svg(result, path)
         return
     if isinstance(result, PixelSet):
-        from mrm.geometry.reconstruct import reconstruct
-
         result = reconstruct(result, model)
     if georef is not None:
         result = georef.to_world(result)
     if ext == ".wkt":
         write_wkt(result, path)
     else:
-        from mrm.io.georef import geojson_members
-
         write_geojson(
             result,
             path,
@@ -228,8 +212,6 @@ def write_result(
 
 def two_input_georef(operation: str, a: OperationInput, b: OperationInput) -> Any:
     """The georeference of a two-input result (ADR 0021): both inputs' grid when they share one, else None."""
-    from mrm.io.georef import result_georef
-
     return result_georef(operation, {}, [a.georef, b.georef])
 
 
@@ -252,25 +234,16 @@ def unary_file(
 ) -> dict[str, Any]:
     """Run one unary operation on one input and write its result; return its summary (batch workers call it).
 
-    The parameters are read and range-checked by the registry (:func:`mrm.ops.base.coerce_params`); the
-    numbers are :meth:`mrm.ops.account.Account.summary`, the same as the inspector's and ``mrm account``'s
-    for the same chain (a project input's own chain is part of it).
+    The parameters are read and range-checked by the operation's parameters (once, by their declarations);
+    the numbers are :meth:`mrm.ops.account.Account.summary`, the same as the inspector's and
+    ``mrm account``'s for the same chain (a project input's own chain is part of it).
     """
-    import dataclasses
-
-    from mrm.document import Provenance
-    from mrm.io.georef import result_georef
-    from mrm.ops.account import account_of
-    from mrm.ops.apply import load_paper_operations
-    from mrm.ops.base import coerce_params, get_operation, params_to_dict, run_operation
-
-    load_paper_operations()
     spec = get_operation(operation)
-    checked = coerce_params(spec, params)
+    checked = spec.read_params(params)
     given = read_one(path, object_name, model, limit, threshold, invert)
     source, chosen, georef = given.value, given.model, given.georef
-    checked = dataclasses.replace(checked, model=chosen)
-    prov = Provenance(spec.name, params_to_dict(checked), (given.id,), (source,), (given.provenance,))
+    checked = checked.replace(model=chosen)
+    prov = Provenance(spec.name, checked.to_json(), (given.id,), (source,), (given.provenance,))
     t0 = time.perf_counter()
     if no_measure:
         result = run_operation(spec, [source], checked, limit=limit).output
@@ -281,18 +254,16 @@ def unary_file(
             raise ParameterError(acc.error)
         result = acc.output
     seconds = time.perf_counter() - t0
-    out_georef = result_georef(spec.name, params_to_dict(checked), [georef])
+    out_georef = result_georef(spec.name, checked, [georef])
     Path(output).parent.mkdir(parents=True, exist_ok=True)  # a batch's directory: when the first file is
     write_result(result, output, chosen, {"operation": spec.name}, out_georef)
     summary: dict[str, Any] = {"input": str(path), "output": str(output), "operation": spec.name}
-    summary["params"] = params_to_dict(checked)
+    summary["params"] = checked.to_json()
     pixels = acc.result if acc.result is not None else _pixels_of(result, chosen, limit)
     summary.update(result_summary(result, pixels, chosen))
     summary["account"] = acc.summary()
     summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})
     summary["seconds"] = seconds
-    from mrm.io.georef import georef_summary
-
     summary.update(georef_summary(out_georef))
     return summary
 
@@ -312,14 +283,11 @@ def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) 
     :data:`_SUM_KEYS` and ``files``, the per-input summaries in input order; an input that fails is reported
     on stderr when it fails, the others go on, and the command then exits with status 2.
     """
-    from mrm.ops.base import coerce_params, get_operation
-
     spec = get_operation(operation)
     given = {k: v for k, v in params.items() if v is not None}
-    check_parameter_text(spec, given)
-    coerce_params(spec, given)  # refused before any input is read
+    spec.read_params(given)  # refused before any input is read
     image = (args.threshold, args.invert)
-    default_ext = ".png" if spec.output_kind == "discrete" else ".geojson"
+    default_ext = ".png" if spec.produces == "discrete" else ".geojson"
     pairs = inputs_and_outputs(args, INPUTS, "supported input file", OUTPUTS, default_ext, "output file")
     jobs = [
         (i, o, spec.name, given, args.object, args.model, args.limit, args.no_measure, *image)
@@ -334,100 +302,26 @@ def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) 
 
 
 def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:
-    if isinstance(result, PixelSet):
-        return result
-    from mrm.geometry.discretize import discretize
-
-    return discretize(result, model, limit=limit)
-
-
-def _approx(text: str) -> float | None:
-    """A float close to the number ``text`` writes (``1e400`` → inf, ``1e-400`` → the least subnormal).
-
-    None for text that is not a decimal or ``p/q`` (the registry says what is wrong with it).
-    """
-    t = text.strip()
-    if "/" in t:
-        num, den = (_approx(x) for x in t.split("/", 1))
-        if num is None or den is None or den == 0 or (math.isinf(num) and math.isinf(den)):
-            return None
-        return num / den
-    try:
-        f = float(t)
-    except ValueError:
-        return None
-    if math.isnan(f) or (math.isinf(f) and not any(ch.isdigit() for ch in t)):
-        return None  # nan, inf: "must be finite", from the registry
-    mantissa = t.lower().split("e", 1)[0]
-    if f == 0 and any(ch in "123456789" for ch in mantissa):
-        return math.copysign(5e-324, -1.0 if t.startswith("-") else 1.0)  # below every float: not zero
-    return f
-
-
-def check_parameter_text(spec: Any, given: dict[str, Any]) -> None:
-    """Refuse, in one short line showing the declared range, a number too large or too small for a float.
-
-    The registry reads parameters exactly, so ``--angle 1e400`` would become a 400-digit Fraction before its
-    range check; this looks at the text first. Values a float can hold are left to the registry's own
-    checks (:func:`mrm.ops.base.validate_params`), which give the same kind of message.
-    """
-    from mrm.ops.base import POINT_LIMIT, range_text
-
-    for p in spec.param_specs():
-        value = given.get(p.name)
-        texts = value if isinstance(value, tuple) else (value,)
-        for t in texts:
-            if not isinstance(t, str):
-                continue
-            f = _approx(t)
-            if f is None:
-                continue
-            shown = t.strip() if len(t.strip()) <= 24 else t.strip()[:21] + "..."
-            what = f"parameter {p.name!r}" + (f" ({p.label})" if p.label and p.label != p.name else "")
-            if p.kind == "point":
-                if math.isinf(f):
-                    raise ParameterError(
-                        f"{what} must have coordinates between {-POINT_LIMIT:g} and {POINT_LIMIT:g}, "
-                        f"got {shown}"
-                    )
-                continue
-            lo, hi = p.minimum, p.maximum
-            allowed = f" (allowed: {range_text(p)})" if lo is not None or hi is not None else ""
-            if math.isinf(f) and f > 0 and hi is not None:
-                need = f"{'≤' if p.max_inclusive else '<'} {hi:g}"
-            elif math.isinf(f) and f < 0 and lo is not None:
-                need = f"{'≥' if p.min_inclusive else '>'} {lo:g}"
-            elif math.isinf(f):
-                need = "within ±1.8e308"
-            elif abs(f) == 5e-324 and lo is not None and lo > 0:
-                need = f"{'≥' if p.min_inclusive else '>'} {lo:g}"
-            else:
-                continue
-            raise ParameterError(f"{what} must be {need}, got {shown}{allowed}")
+    return result if isinstance(result, PixelSet) else discretize(result, model, limit=limit)
 
 
 def _parameter_fields(operation: str) -> tuple[Any, list[Any]]:
     """The registry spec of ``operation`` and its parameters that become options (all but ``model``)."""
-    from mrm.ops.apply import load_paper_operations
-    from mrm.ops.base import get_operation
-
-    load_paper_operations()
     spec = get_operation(operation)
-    return spec, [p for p in spec.param_specs() if p.name != "model"]
+    return spec, [p for p in spec.params.specs() if p.kind != "model"]
 
 
 def add_parameter_options(parser: argparse.ArgumentParser, fields: list[Any]) -> None:
-    """One option per parameter (``--alpha``, ``--angle``, ``--center X,Y``): label, unit, help, range."""
-    from mrm.ops.base import range_text
+    """One option per parameter (``--alpha``, ``--angle``, ``--center X,Y``): label, unit, help, range.
 
+    The values stay text: the operation's parameters read them, exactly, as every other path's.
+    """
     for p in fields:
         unit = f" [{p.unit}]" if p.unit and p.unit != "×" else ""
         if p.kind == "point":
-            parser.add_argument(
-                f"--{p.name}", type=parse_point, default=None, metavar="X,Y", help=f"{p.help}{unit}"
-            )
+            parser.add_argument(f"--{p.name}", default=None, metavar="X,Y", help=f"{p.help}{unit}")
         else:
-            allowed = f" ({range_text(p)})" if p.minimum is not None or p.maximum is not None else ""
+            allowed = f" ({p.range_text()})" if p.minimum is not None or p.maximum is not None else ""
             parser.add_argument(
                 f"--{p.name}",
                 required=not p.optional,
@@ -441,7 +335,9 @@ def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
 
     Every parameter of the spec's dataclass becomes an option (``--alpha``, ``--angle``, ``--center X,Y``)
     with its label, unit, help and declared range; ``model`` is the common ``--model``. The values are read
-    exactly and range-checked by the registry (:func:`mrm.ops.base.coerce_params`), as the panel's are.
+    exactly and range-checked by the operation's parameters
+    (:meth:`mrm.ops.registry.OperationSpec.read_params`),
+    as the panel's are.
     """
     spec, fields = _parameter_fields(operation)
 
@@ -515,20 +411,12 @@ def two_input_command(
         add_common(parser, output_help)
 
     def run(args: argparse.Namespace) -> dict[str, Any]:
-        from mrm.core.errors import MRMError
-        from mrm.geometry.discretize.exact_shape import exact_number, number_to_json
-        from mrm.ops.account import account_of
-        from mrm.ops.base import coerce_params
-
         if outputs is not None:
             extension_of(args.output, outputs, "output file")
         given = {p.name: getattr(args, p.name) for p in fields if getattr(args, p.name) is not None}
-        check_parameter_text(spec, given)
-        coerce_params(spec, given)  # the declared ranges, before any input is read
-        values = {p.name: given.get(p.name) for p in fields}
-        exact = {k: None if v is None else number_to_json(exact_number(v, k)) for k, v in values.items()}
+        checked = spec.read_params(given)  # the declared ranges, before any input is read
         a, b, model = read_two(args)
-        params = {"model": model, **exact}
+        params = checked.replace(model=model).to_json()
         t0 = time.perf_counter()
         acc = account_of(
             two_input_provenance(spec.name, params, a, b), measure=not args.no_measure, limit=args.limit

@@ -18,6 +18,8 @@ from pathlib import Path
 from typing import Any, Literal
 
 from mrm.core.errors import FileFormatError, ParameterError
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
 
 Kind = Literal["discrete", "euclidean"]
 
@@ -141,8 +143,6 @@ def load_input(
                 + ", ".join(PIXEL_EXTENSIONS + VECTOR_EXTENSIONS + PROJECT_EXTENSIONS)
             )
     if want is not None and want != kind:
-        from mrm.derive import discretize_source, reconstruct_source
-
-        value = discretize_source(value, model) if want == "discrete" else reconstruct_source(value, model)
+        value = discretize(value, model) if want == "discrete" else reconstruct(value, model)
         kind = want
     return kind, value, model

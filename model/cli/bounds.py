@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from mrm.geometry.hausdorff.bounds import bound_of_chain, parse_chain
+from mrm.core.models import DEFAULT_MODEL
+from mrm.ops.chain import chain_bound, parse_chain
 
 NAME = "bounds"
 HELP = 'error bound of a chain of operations, e.g. "DSS 5, DSS 2, DSS 0.5, DSS 0.2" (applied left to right)'
@@ -17,7 +18,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "chain",
         help=(
             "steps separated by commas, applied left to right: DSS α, ROT θ [about x,y], SP α, SCALE s, "
-            "EROT θ, TRANSLATE dx,dy, UNION, COREFINE [α] [common|first|second]"
+            "EROT θ, TRANSLATE dx,dy, EDu, EDco [α] [common|first|second]"
         ),
     )
     parser.add_argument(
@@ -29,10 +30,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Print the bound (or, with --json, return it as the summary)."""
-    model = args.model or "standard"
-    result = bound_of_chain(parse_chain(args.chain), model, exact_identities=args.exact_identities)
+    model = args.model or DEFAULT_MODEL
+    result = chain_bound(parse_chain(args.chain), model, exact_identities=args.exact_identities)
     if not args.json:
-        print(f"chain:   {', '.join(s.label() for s in result.steps)}")
+        print(f"chain:   {', '.join(s.label for s in result.steps)}")
         print(f"bound:   {result.formula}")
         print(f"meaning: {result.guarantee}")
         for t in result.terms:

@@ -32,7 +32,7 @@ from mrm.cli._operation import TwoInputRun, result_summary, two_input_command
 from mrm.io.georef import georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
-from mrm.summary import count_vertices, summarize
+from mrm.reps.summary import count_vertices, summarize
 
 NAME = "corefine"
 HELP = "Euclidean-discrete co-refinement EDco(_α) of two objects: the parts A∖B, A∩B, B∖A"

@@ -47,10 +47,10 @@ from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
 from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
-from mrm.summary import summarize
+from mrm.reps.summary import summarize
 
 if TYPE_CHECKING:
-    from mrm.io.georef import GeoRef
+    from mrm.core.georef import GeoRef
 
 NAME = "discretize"
 HELP = (
@@ -121,7 +121,8 @@ def parse_extent(text: str) -> tuple[float, float, float, float]:
 
 def _grid(path: str, geom: Any, like: str | None, resolution: float | None, extent: Any) -> GeoRef | None:
     """The georeferenced grid to burn on (None: the plain pixel grid of the input's coordinates)."""
-    from mrm.io.georef import GeoRef, read_geojson_crs, read_georef, same_crs
+    from mrm.core.georef import GeoRef
+    from mrm.io.georef import read_geojson_crs, read_georef, same_crs
 
     if like is None and resolution is None:
         if extent is not None:

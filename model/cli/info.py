@@ -32,7 +32,7 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import VECTOR_EXTENSIONS
-from mrm.summary import summarize
+from mrm.reps.summary import summarize
 
 NAME = "info"
 HELP = "summarise the four representations of a pixel, vector or project file"
@@ -82,7 +82,7 @@ def _line(s: dict[str, Any]) -> str:
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Read the inputs and return the summary (see :func:`mrm.summary.summarize`)."""
+    """Read the inputs and return the summary (see :func:`mrm.reps.summary.summarize`)."""
     inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
     jobs = [(i, args.object, args.model, args.threshold, args.invert, args.limit) for i in inputs]
 

@@ -33,7 +33,7 @@ from mrm.cli._common import (
 )
 from mrm.core.grids import LabelMap
 from mrm.io.pixel_files import LABEL_READ_EXTENSIONS, read_label_map
-from mrm.summary import count_vertices
+from mrm.reps.summary import count_vertices
 
 NAME = "polygonize"
 HELP = "label image (.png .pgm .npz) to one polygon per region, boundaries shared exactly (.geojson)"

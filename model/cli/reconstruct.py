@@ -45,7 +45,7 @@ from mrm.io.vector_files import (
     write_svg,
     write_wkt,
 )
-from mrm.summary import count_vertices, summarize
+from mrm.reps.summary import count_vertices, summarize
 
 NAME = "reconstruct"
 HELP = "reversible continuation of pixel files (.png .pbm .pgm .npz .mrm) into polygons (.geojson .wkt .svg)"

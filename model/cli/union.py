@@ -20,7 +20,7 @@ HELP = "Euclidean-discrete union EDu of two objects: R(D(A) ∪ D(B))"
 
 def _direct(a: Any, b: Any, model: str, params: dict[str, Any], limit: int) -> Any:
     """EDu without its account (``--no-measure``)."""
-    from mrm.ops.base import run_operation
+    from mrm.ops.registry import run_operation
 
     return run_operation("union", [a.value, b.value], params, limit=limit).output
 

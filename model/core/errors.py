@@ -55,10 +55,6 @@ class Cancelled(MRMError):
     """Raised by a progress object's ``update()`` after the user cancelled the task."""
 
 
-#: Default maximum number of pixels of a discretization or operation result (DESIGN §2 / issue 2).
-DEFAULT_PIXEL_LIMIT = 200_000_000
-
-
 class LimitError(MRMError, ValueError):
     """An edit, operation, import or export would go beyond one of the limits of :mod:`mrm.core.limits`.
 

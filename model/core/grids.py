@@ -15,13 +15,21 @@ from typing import Any, SupportsIndex, cast
 import numpy as np
 import numpy.typing as npt
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, SizeLimitError
+from mrm.core.errors import SizeLimitError
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
 
 BoolArray = npt.NDArray[np.bool_]
 IntArray = npt.NDArray[np.int64]
 
 #: A box of pixels (xmin, ymin, xmax, ymax), bounds included.
 Box = tuple[int, int, int, int]
+
+
+def box_area(box: Box | None) -> int:
+    """The number of pixels of a box ``(x0, y0, x1, y1)`` (0 for None or an empty box)."""
+    if box is None:
+        return 0
+    return max(0, box[2] - box[0] + 1) * max(0, box[3] - box[1] + 1)
 
 
 def _frozen(a: npt.NDArray[Any], *, fresh: bool = False) -> npt.NDArray[Any]:

@@ -2,7 +2,8 @@
 
 Whatever a document can hold, its project file can hold and reopen: the same limits are checked at the edit,
 operation or import that would exceed them (with a :class:`~mrm.core.errors.LimitError` or
-:class:`~mrm.core.errors.SizeLimitError` naming the limit) and again by the project loader, which therefore never
+:class:`~mrm.core.errors.SizeLimitError` naming the limit) and again by the project loader, which therefore
+never
 refuses a file this program wrote. The costs of work whose size does not follow from the pixel count —
 reconstruction (boundary length in crack steps), vector output (vertices), written files (bytes) — are
 computed here from the input before the work starts.
@@ -18,9 +19,12 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, LimitError, SizeLimitError
+from mrm.core.errors import LimitError, ParameterError, SizeLimitError
 
 # ---------------------------------------------------------------------------------------------- the limits
+#: Default maximum number of pixels of a discretization or an operation's result (a preference in the GUI,
+#: ``--limit`` on the command line, ``limit=`` in the library).
+DEFAULT_PIXEL_LIMIT = 200_000_000
 #: Largest absolute coordinate of a Euclidean source. Beyond it pixel indices leave the int32 range the
 #: kernels use, and float64 spacing there exceeds a millionth of a pixel, so nothing exact could follow.
 COORDINATE_LIMIT = float(2**31)
@@ -199,6 +203,27 @@ def check_reconstruct(ps: Any, what: str = "the pixel set") -> int:
     return steps
 
 
+def check_pixels(estimated: int, limit: int | None, what: str) -> None:
+    """The one size check: refuse work whose result would cover more than ``limit`` pixels, before any of it.
+
+    ``estimated`` is an upper bound of the pixels the work would make (an operation's
+    :attr:`~mrm.ops.registry.OperationSpec.estimate`, a discretization's box); None lifts the limit.
+
+    Raises
+    ------
+    SizeLimitError
+        With the size the result would have had and the limit, for the message.
+    ParameterError
+        When ``limit`` is neither None nor a non-negative integer.
+    """
+    if limit is None:
+        return
+    if isinstance(limit, bool) or not isinstance(limit, int) or limit < 0:
+        raise ParameterError(f"the pixel limit must be a non-negative integer or None, got {limit!r}")
+    if estimated > limit:
+        raise SizeLimitError(int(estimated), int(limit), what)
+
+
 # ---------------------------------------------------------------------------------------------- output
 def check_output_bytes(estimate: int, what: str) -> None:
     """Refuse a file whose estimated size exceeds :data:`MAX_OUTPUT_BYTES`, before it is built."""
@@ -292,6 +317,7 @@ def describe_limits() -> list[tuple[str, str]]:
 
 __all__ = [name for name in dir() if name.isupper() and not name.startswith("_")] + [
     "check_chain_steps",
+    "check_pixels",
     "check_document_totals",
     "check_name",
     "check_output_bytes",

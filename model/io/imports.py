@@ -14,10 +14,12 @@ from pathlib import Path
 
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.commands import ApplyResults
 from mrm.core.errors import FileFormatError
 from mrm.core.limits import clean_name
-from mrm.document import DocObject, Document, Provenance, validate_geometry
+from mrm.document import DocObject, Document, validate_geometry
+from mrm.document.commands import ApplyResults
+from mrm.geometry.discretize import discretize
+from mrm.ops.provenance import Provenance
 
 PathLike = str | os.PathLike[str]
 
@@ -54,8 +56,6 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
         ps, georef = read_pixels_georef(p, threshold=threshold)
         return [doc.make_object(ps, stem, georef=georef)]
     if ext in VECTOR_EXTENSIONS:
-        from mrm.derive import discretize_source
-
         geoms = read_geometries(p)
         out = []
         for k, (name, g) in enumerate(geoms):
@@ -63,7 +63,7 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
             if isinstance(g, Polygon | MultiPolygon) or g.is_empty:
                 out.append(doc.make_object(validate_geometry(g), label))
             else:
-                out.append(doc.make_object(discretize_source(g, doc.model), label))
+                out.append(doc.make_object(discretize(g, doc.model), label))
         return out
     shown = f"'{ext}'" if ext else "no extension"
     raise FileFormatError(

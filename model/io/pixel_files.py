@@ -39,8 +39,9 @@ import numpy.typing as npt
 from PIL import Image, PngImagePlugin, UnidentifiedImageError
 
 from mrm.core import limits
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, FileFormatError, ParameterError
+from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
 from mrm.core.threshold import binarize, grey_of
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.netpbm import encode_pbm, encode_pgm, read_netpbm
@@ -56,7 +57,8 @@ LABEL_EXTENSIONS = (".png", ".npz")
 LABEL_READ_EXTENSIONS = (".png", ".pgm", ".npz")
 #: The PNG text chunk keyword (and Netpbm comment) holding the origin.
 ORIGIN_KEY = "mrm:origin"
-#: Pixel coordinates stay within the document's limit (±2³¹, :data:`mrm.core.limits.PIXEL_COORDINATE_LIMIT`), so
+#: Pixel coordinates stay within the document's limit (±2³¹, :data:`mrm.core.limits.PIXEL_COORDINATE_LIMIT`),
+#: so
 #: that an imported image can always be saved in a project and reopened.
 COORD_LIMIT = limits.PIXEL_COORDINATE_LIMIT
 

@@ -71,23 +71,12 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.core import limits
 from mrm.core.errors import FileFormatError as FileFormatError
 from mrm.core.errors import MRMError
+from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap, PixelSet
-from mrm.document import (
-    COORDINATE_LIMIT,
-    MODELS,
-    PARAMS_MAX_DEPTH,
-    PROVENANCE_MAX_DEPTH,
-    DocObject,
-    Document,
-    Geometry,
-    Provenance,
-    Settings,
-    Source,
-    Style,
-    content_digest,
-    validate_geometry,
-)
-from mrm.io.georef import GeoRef
+from mrm.core.limits import COORDINATE_LIMIT, PARAMS_MAX_DEPTH
+from mrm.core.models import Model
+from mrm.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
+from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance, content_digest
 
 #: The value of the "format" key.
 FORMAT = "mrm-project"
@@ -771,9 +760,11 @@ def parse_project(
         c.str_(raw["generator"], "$.generator", 200)
     st = c.obj(raw["settings"], "$.settings", ("model",))
     model = c.str_(st["model"], "$.settings.model", 40)
-    if model not in MODELS:
-        c.fail("$.settings.model", f"unknown model {c.show(model)}; expected one of {', '.join(MODELS)}")
-    settings = Settings(model=model)
+    if model not in Model.names():
+        c.fail(
+            "$.settings.model", f"unknown model {c.show(model)}; expected one of {', '.join(Model.names())}"
+        )
+    settings = Settings(model=Model(model))
     contents: dict[str, Source] = {}
     if "contents" in raw:  # the pinned input contents of the provenance records, each stored once
         keys = tuple(raw["contents"]) if isinstance(raw["contents"], dict) else ()

@@ -469,7 +469,7 @@ _BYTES_PER_RUN = 80
 
 
 def _check_geometry_output(geoms: Iterable[BaseGeometry], path: PathLike) -> None:
-    """Refuse, before building any text, a vector file larger than :data:`mrm.core.limits.MAX_OUTPUT_BYTES`."""
+    """Refuse, before building any text, a file larger than :data:`mrm.core.limits.MAX_OUTPUT_BYTES`."""
     n = sum(int(shapely.get_num_coordinates(g)) for g in geoms)
     check_output_bytes(n * _BYTES_PER_POSITION, f"{os.fspath(path)} ({n:,} positions)")
 

@@ -4,7 +4,8 @@ One function, :func:`account_of`, computes it from a result's pinned provenance
 (:class:`mrm.document.Provenance`: the operation, its parameters, and the content and provenance its inputs
 had when the result was made). The inspector, ``mrm account … --json``, ``mrm scale … --json`` and scripts all
 call it, so they print the same numbers (:meth:`Account.summary`). Nothing is guessed from names: the
-operation is looked up in the registry (:mod:`mrm.ops.base`), its parameters are read and range-checked by its
+operation is looked up in the registry (:mod:`mrm.ops.registry`), its parameters are read and range-checked
+by its
 parameters dataclass, its place in the bound rule and its similarity come from its spec.
 
 The chain (DESIGN §8)
@@ -15,7 +16,7 @@ drawn, imported, or made by a two-object operation (EDu, EDco): that object is `
 
 * ``A_first`` is ``R(A₀)`` (``A₀`` itself when the first step reads the Euclidean representation, ``R(D(E₀))``
   when a discrete step starts from a polygon), exactly;
-* ``T`` is the composite of the steps' exact similarities (:attr:`mrm.ops.base.OperationSpec.similarity`);
+* ``T`` is the composite of the steps' exact similarities (:attr:`mrm.ops.registry.OperationSpec.similarity`);
 * ``A_last`` is the exact Euclidean object just before the last discretization (``T_k(R(A_{k−1}))`` for
   DSS and dR, the exact Sp result, the exact image of a Euclidean similarity), recomputed from the pinned
   input of the last step — the object the result was really made from;
@@ -42,30 +43,47 @@ unknown operation, parameters out of range, a chain that mixes models) gives an 
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from dataclasses import dataclass, field
 from typing import Any
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, MRMError, ParameterError
+from mrm.core.errors import Cancelled, MRMError, ParameterError
 from mrm.core.grids import PixelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.models import DEFAULT_MODEL, Model
+from mrm.core.numbers import fraction_text
 from mrm.core.progress import ProgressLike, sub_progress
-from mrm.geometry.hausdorff.bounds import BoundResult, ChainStep, bound_of_chain
-from mrm.ops.base import coerce_params, get_operation, params_to_dict
-from mrm.ops.chain import CHAIN_OPERATIONS as _CHAIN_READS
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.discretize.rational import discretize_exact
+from mrm.geometry.hausdorff.bounds import BoundResult
+from mrm.ops.boolean import (
+    PARTS,
+    euclidean_discrete_corefinement,
+    euclidean_discrete_union,
+    reference_parts,
+)
+from mrm.ops.chain import Link as ChainLink
+from mrm.ops.chain import chain_bound
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
+from mrm.ops.provenance import content_digest
+from mrm.ops.registry import get_operation, plan_operation
+from mrm.ops.representations import discrete_of, euclidean_of
+from mrm.ops.simplify import simplification
 
 log = logging.getLogger(__name__)
 
-#: The operations of a one-object chain: they have a similarity and a place in the bound rule (declared once,
-#: with the representation each reads, in mrm.ops.chain).
-CHAIN_OPERATIONS = tuple(_CHAIN_READS)
-#: Exact operations on pixel sets or objects: no discretization, no continuation, so no error.
-EXACT_OPERATIONS = {
-    "discrete_union": "a union of pixel sets is exact",
-    "discrete_intersection": "an intersection of pixel sets is exact",
-    "discrete_difference": "a difference of pixel sets is exact",
-    "merge": "merging objects copies their content exactly",
-}
+#: Edits of a document recorded as provenance that are no operation of the registry, and why they make no
+#: error (the registry's exact operations say it themselves: :attr:`OperationSpec.exact`).
+EXACT_EDITS = {"merge": "merging objects copies their content exactly"}
+
+
+def is_chain_operation(name: str) -> bool:
+    """True for a registered one-object operation with a similarity: a link of a one-object chain."""
+    try:
+        return get_operation(name).is_chain_step
+    except ParameterError:
+        return False
 
 
 @dataclass(frozen=True)
@@ -215,7 +233,7 @@ def _bound_dict(b: BoundResult) -> dict[str, Any]:
     return {
         "bound": b.bound,
         "bound_one_sided": b.one_sided,
-        "bound_coefficient": _fraction_text(b.coefficient),
+        "bound_coefficient": fraction_text(b.coefficient),
         "bound_formula": b.formula,
         "directions": list(b.directions),
         "guarantee": b.guarantee,
@@ -247,45 +265,37 @@ def _within(m: MeasuredError, b: BoundResult) -> bool | None:
     return not any(m.exceeds(b.coefficient, b.n, d) for d in b.directions)
 
 
-def _fraction_text(q: Any) -> str:
-    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
-
-
 # ============================================================================================================
 # Reading a provenance record
 # ============================================================================================================
 
 
-def _spec_params(prov: Any) -> tuple[Any, Any, str]:
-    """(spec, validated parameters dataclass, part) of a provenance record; ParameterError if unreadable."""
+def _link_of(prov: Any) -> ChainLink:
+    """The chain link a provenance record stands for (operation, parameters, part).
+
+    Raises ParameterError when the record cannot be read.
+    """
     spec = get_operation(prov.operation)
     raw = dict(prov.params)
     part = raw.pop("part", "")
     if not isinstance(part, str):
         raise ParameterError(f"the part of a {spec.name} result must be a name, got {part!r}")
-    if spec.name == "corefine" and part and part not in ("a_minus_b", "a_and_b", "b_minus_a"):
-        raise ParameterError(f"unknown co-refinement part {part!r}")
+    if part and part not in spec.parts:
+        raise ParameterError(f"unknown {spec.name} part {part!r}")
     try:
-        params = coerce_params(spec, raw)
+        params = spec.read_params(raw)
     except (TypeError, ValueError) as e:  # a dataclass refusing an argument
         raise ParameterError(f"{spec.name}: {e}") from None
-    return spec, params, part
+    return ChainLink(spec, params, part)
 
 
-def _label(spec: Any, params: Any) -> str:
-    if spec.chain_step is not None and spec.name in CHAIN_OPERATIONS:
-        step: ChainStep = spec.chain_step(params)
-        return str(step.label())
-    aliases = {"union": "EDu", "corefine": "EDco"}
-    if spec.name == "corefine" and getattr(params, "alpha", None) is not None:
-        return f"EDco {float(params.alpha):g}"
-    return aliases.get(spec.name, str(spec.name))
+def _label(link: ChainLink) -> str:
+    return link.label if link.spec.bound is not None else link.spec.title
 
 
 def _link(prov: Any) -> Link:
     try:
-        spec, params, _ = _spec_params(prov)
-        label = _label(spec, params)
+        label = _label(_link_of(prov))
     except MRMError:
         label = prov.operation
     return Link(prov.operation, label, dict(prov.params), tuple(prov.inputs), tuple(prov.digests))
@@ -296,11 +306,11 @@ def chain_of(prov: Any) -> list[Any]:
     records = [prov]
     cur = prov
     while (
-        cur.operation in CHAIN_OPERATIONS
+        is_chain_operation(cur.operation)
         and cur.pinned
         and cur.parents
         and cur.parents[0] is not None
-        and cur.parents[0].operation in CHAIN_OPERATIONS
+        and is_chain_operation(cur.parents[0].operation)
         and len(records) < 100_000
     ):
         cur = cur.parents[0]
@@ -344,8 +354,6 @@ def account_of(
     try:
         return _account(provenance, measure, progress, limit)
     except MRMError as e:
-        from mrm.core.errors import Cancelled
-
         if isinstance(e, Cancelled):
             raise
         log.info("no account for a %s result: %s", op, e)
@@ -360,10 +368,13 @@ def _safe_link(prov: Any) -> Link:
 
 
 def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int | None) -> Account:
-    if prov.operation in EXACT_OPERATIONS:
-        why = EXACT_OPERATIONS[prov.operation]
+    if prov.operation in EXACT_EDITS:
+        why = EXACT_EDITS[prov.operation]
         return Account(prov.operation, chain=(_link(prov),), no_bound=f"no error to bound: {why}")
-    spec, params, part = _spec_params(prov)
+    link = _link_of(prov)
+    spec = link.spec
+    if spec.exact:
+        return Account(spec.name, chain=(_link(prov),), no_bound=f"no error to bound: {spec.exact}")
     if len(prov.inputs) != spec.arity:  # a hand-edited record: say so rather than fail on the missing input
         raise ParameterError(f"{spec.name} takes {spec.arity} input(s), the record names {len(prov.inputs)}")
     if not prov.pinned:
@@ -373,14 +384,14 @@ def _account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int
             error="the content of this result's inputs was not recorded (the file predates pinned "
             "provenance and no longer holds them): nothing can be measured",
         )
-    if spec.name in CHAIN_OPERATIONS:
+    if spec.is_chain_step:
         return _chain_account(prov, measure, progress, limit)
-    if spec.name in ("union", "corefine"):
-        return _binary_account(prov, spec, params, part, measure, progress, limit)
+    if spec.arity == 2 and spec.bound is not None:
+        return _binary_account(prov, link, measure, progress, limit)
     return Account(
         spec.name,
         chain=(_link(prov),),
-        no_bound=f"{spec.title} has no place in the paper's bound rule (DESIGN §8)",
+        no_bound=f"{spec.title} has no place in the paper's bound rule (docs/design.md §8)",
     )
 
 
@@ -389,54 +400,54 @@ def _sub(progress: ProgressLike | None, lo: float, hi: float) -> Any:
     return None if progress is None else sub_progress(progress, lo, hi)
 
 
-def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int | None) -> Account:
-    from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
-    from mrm.geometry.discretize.rational import discretize_exact
-    from mrm.ops.chain import convert_for, run_step, step_params
-    from mrm.ops.simplify import simplification
+def _reads(link: ChainLink, source: Any, model: Model, limit: int | None) -> Any:
+    """The representation the link's step works in, of ``source`` (D(E) or R(A), as the document does)."""
+    if link.bound_step().reads == "discrete":
+        return discrete_of(source, model, limit=limit)
+    return euclidean_of(source, model)
 
+
+def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limit: int | None) -> Account:
     records = chain_of(prov)
-    links = tuple(_link(r) for r in records)
-    read = [_spec_params(r) for r in records]
-    models = {getattr(p, "model", "standard") for _, p, _ in read}
+    links = [_link_of(r) for r in records]
+    # Exact Euclidean similarities discretize nothing and carry no model: the steps that do decide it.
+    models = {link.params.model for link in links if hasattr(link.params, "model")}
     if len(models) > 1:
         raise ParameterError(f"the chain mixes discretization models ({', '.join(sorted(models))})")
-    model = models.pop()
-    steps = [spec.chain_step(p) for spec, p, _ in read]
-    bound = bound_of_chain(steps, model)
+    model = models.pop() if models else DEFAULT_MODEL
+    bound = chain_bound(links, model)
     first = records[0]
     origin = first.sources[0]
     origin_chain = input_chain(first.parents[0]) if first.parents else ()
     transform = Similarity.identity()
-    for spec, p, _ in read:
-        transform = transform.then(spec.similarity(p))
+    for link in links:
+        assert link.spec.similarity is not None
+        transform = transform.then(link.spec.similarity(link.params))
     acc = Account(
         prov.operation,
         model=model,
-        chain=links,
+        chain=tuple(_link(r) for r in records),
         input_chains=(origin_chain,) if origin_chain else (),
         origin_digest=first.digests[0],
         bound=bound,
     )
     if not measure:
         return acc
-    last_spec, last_params, _ = read[-1]
-    pj, _ = step_params(last_spec.name, params_to_dict(last_params))
+    last = links[-1]
     if progress is not None:
         progress.update(0.0, "recomputing the last step from its recorded input")
-    source = convert_for(prov.sources[0], read_of(last_spec.name), model, limit)
-    outcome = run_step(last_spec.name, source, pj, model, limit=limit, progress=_sub(progress, 0.0, 0.3))
+    source = _reads(last, prov.sources[0], model, limit)
+    outcome = last.spec.outcome(source, last.params, limit=limit, progress=_sub(progress, 0.0, 0.3))
     result = outcome.result
     pixels = (
         result if isinstance(result, PixelSet) else discretize_exact(outcome.euclidean, model, limit=limit)
     )
     idempotent = None
-    if last_spec.name == "simplify":
+    if last.spec.name == "simplify":
         # Sp_α∘Sp_α = Sp_α: Sp_α of the result as stored (float64) is exactly the exact result.
-        again = simplification(result, pj["alpha"], pj.get("center"), model, limit=limit)
+        again = simplification(result, last.params.alpha, last.params.center, model, limit=limit)
         idempotent = again.euclidean == outcome.euclidean
-    start = convert_for(origin, read_of(read[0][0].name), model, limit)
-    a_first = ExactShape.from_geometry(convert_for(start, "euclidean", model, limit))
+    a_first = ExactShape.from_geometry(euclidean_of(_reads(links[0], origin, model, limit), model))
     t_first = a_first.map(transform)
     if progress is not None:
         progress.update(0.3, "the direct result D(T(A_first))")
@@ -444,7 +455,7 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     if progress is not None:
         progress.update(0.5, "measuring the Hausdorff distance")
     measured = measured_error(t_first, outcome.euclidean, progress=_sub(progress, 0.5, 1.0))
-    return _replace(
+    return dataclasses.replace(
         acc,
         measured=measured,
         direct=direct,
@@ -455,68 +466,48 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     )
 
 
-def read_of(operation: str) -> str:
-    """The representation a chain operation reads: ``discrete`` or ``euclidean``."""
-    return _CHAIN_READS[operation]
-
-
-def _replace(acc: Account, **kw: Any) -> Account:
-    import dataclasses
-
-    return dataclasses.replace(acc, **kw)
-
-
 def _binary_account(
     prov: Any,
-    spec: Any,
-    params: Any,
-    part: str,
+    link: ChainLink,
     measure: bool,
     progress: ProgressLike | None,
     limit: int | None,
 ) -> Account:
-    from mrm.geometry.hausdorff import bounds as B
-    from mrm.ops.boolean import (
-        BOUND_PART,
-        PARTS,
-        euclidean_discrete_corefinement,
-        euclidean_discrete_union,
-        reference_parts,
-    )
-
+    spec, params = link.spec, link.params
     model = params.model
     first, second = prov.sources
     chains = tuple(input_chain(p) for p in prov.parents)
-    link = _link(prov)
-    if spec.name == "union":
-        bound = bound_of_chain([B.union()], model)
-        acc = Account("union", model=model, chain=(link,), input_chains=chains, bound=bound)
+    own = _link(prov)
+    if not spec.parts:  # EDu
+        bound = chain_bound([link], model)
+        acc = Account(spec.name, model=model, chain=(own,), input_chains=chains, bound=bound)
         if not measure:
             return acc
         out = euclidean_discrete_union(first, second, model, limit=limit, progress=_sub(progress, 0, 0.4))
         refs, exact = reference_parts(first, second, model)
         m = measured_error(refs["union"], out.euclidean, progress=_sub(progress, 0.4, 1.0))
-        return _replace(
+        return dataclasses.replace(
             acc, measured=m, reference_exact=exact, result=out.discrete, output=out.result, outcome=out
         )
-    alpha = params.alpha
-    part = part or PARTS[0]
-    part_bounds = {p: bound_of_chain([B.corefine(_alpha(alpha), BOUND_PART[p])], model) for p in PARTS}
+    part = link.part or PARTS[0]
+    part_bounds = {p: chain_bound([ChainLink(spec, params, p)], model) for p in PARTS}
     acc = Account(
-        "corefine",
+        spec.name,
         model=model,
-        chain=(link,),
+        chain=(own,),
         input_chains=chains,
         bound=part_bounds[part],
         part=part,
         parts=tuple(PartAccount(p, part_bounds[p], None) for p in PARTS),
     )
     if not part_bounds[part].directions:
-        acc = _replace(acc, no_bound=f"no direction of the Hausdorff distance holds for {part} under {model}")
+        acc = dataclasses.replace(
+            acc, no_bound=f"no direction of the Hausdorff distance holds for {part} under {model}"
+        )
     if not measure:
         return acc
     out = euclidean_discrete_corefinement(
-        first, second, model, alpha, limit=limit, progress=_sub(progress, 0, 0.4)
+        first, second, model, params.alpha, limit=limit, progress=_sub(progress, 0, 0.4)
     )
     refs, exact = reference_parts(first, second, model)
     parts = []
@@ -524,22 +515,16 @@ def _binary_account(
         sub = _sub(progress, 0.4 + 0.2 * k, 0.6 + 0.2 * k)
         m = measured_error(refs[p], out.extra["exact"][p], progress=sub)
         parts.append(PartAccount(p, part_bounds[p], m))
-    own = next(pa for pa in parts if pa.part == part)
-    return _replace(
+    mine = next(pa for pa in parts if pa.part == part)
+    return dataclasses.replace(
         acc,
         parts=tuple(parts),
-        measured=own.measured,
+        measured=mine.measured,
         reference_exact=exact,
         result=out.extra["pixels"][part],
         output=out.result,
         outcome=out,
     )
-
-
-def _alpha(alpha: Any) -> Any:
-    from mrm.geometry.discretize.exact_shape import positive_number
-
-    return None if alpha is None else positive_number(alpha, "alpha")
 
 
 # ============================================================================================================
@@ -570,8 +555,6 @@ def changed_inputs(doc: Any, provenance: Any) -> list[InputChange]:
 
     Inputs that were intermediate results of a re-run (id 0: never in the document) are not reported.
     """
-    from mrm.document import content_digest
-
     out: list[InputChange] = []
     if provenance is None or not provenance.pinned:
         return out
@@ -620,8 +603,6 @@ class RerunRequest:
         Intermediate results are not added to the document: the final result's provenance pins them, with
         id 0 ("made by a re-run, not kept").
         """
-        from mrm.ops.base import plan_operation
-
         inputs = list(self.inputs)
         plan = None
         for i, (name, params) in enumerate(self.steps):
@@ -637,7 +618,7 @@ def rerun_request(doc: Any, obj_id: int) -> RerunRequest:
     """Re-run a result on the current content of its inputs: from the oldest step whose input changed.
 
     Hand the request to a worker (:meth:`RerunRequest.plan`) and push the plan as a new result
-    (:func:`mrm.ops.apply.push_plan`); the old result keeps its account.
+    (:func:`mrm.document.apply.push_plan`); the old result keeps its account.
 
     Raises
     ------
@@ -658,13 +639,12 @@ def rerun_request(doc: Any, obj_id: int) -> RerunRequest:
         raise ParameterError(f"input #{missing[0]} was deleted: there is nothing to re-run on")
     steps = []
     for r in records[start:]:
-        spec, params, _ = _spec_params(r)
-        steps.append((spec.name, params))
+        link = _link_of(r)
+        steps.append((link.spec.name, link.params))
     return RerunRequest([doc.get(i) for i in first.inputs], steps)
 
 
 __all__ = [
-    "CHAIN_OPERATIONS",
     "Account",
     "InputChange",
     "Link",
@@ -674,5 +654,6 @@ __all__ = [
     "chain_of",
     "changed_inputs",
     "input_chain",
+    "is_chain_operation",
     "rerun_request",
 ]

@@ -21,66 +21,43 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import partial
 from typing import Any
 
 import numpy as np
+import shapely
+from shapely import affinity
+from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, PixelSet, box_area
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
+from mrm.core.models import Model
+from mrm.core.numbers import spell
+from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike, sub_progress
-from mrm.geometry.discretize.exact_shape import (
-    ExactShape,
-    Similarity,
-    box_area,
-    number_to_json,
-    positive_number,
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.hausdorff.bounds import (
+    BoundResult,
+    BoundStep,
+    CorefinePart,
+    bound_of_chain,
+    corefine_step,
+    union_step,
 )
-from mrm.geometry.discretize.rational import discretize_exact, discretize_image
-from mrm.geometry.hausdorff import bounds
-from mrm.geometry.hausdorff.bounds import ChainStep, CorefinePart
-from mrm.ops.base import OperationResult, OperationSpec, register
-from mrm.ops.outcome import (
-    StepOutcome,
-    alpha_param,
-    check_limit,
-    check_model,
-    check_size,
-    joint_box,
-    model_param,
-    source_box,
-)
-from mrm.ops.simplify import euclidean_input
-from mrm.summary import optional_function
+from mrm.geometry.reconstruct import reconstruct
+from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
+from mrm.ops.declare import alpha_param, model_param
+from mrm.ops.estimate import estimated_pixels, joint_box
+from mrm.ops.outcome import StepOutcome
+from mrm.ops.registry import OperationResult, OperationSpec, register
+from mrm.ops.representations import discrete_of, euclidean_of
 
 #: The parts of a co-refinement, in label order (label = index + 1), as files and properties name them.
 PARTS = ("a_minus_b", "a_and_b", "b_minus_a")
-#: The part of each in :mod:`mrm.geometry.hausdorff.bounds` terms.
+#: The part of each in :mod:`mrm.geometry.hausdorff.bounds` terms, and how a chain's text writes it.
 BOUND_PART: dict[str, CorefinePart] = {"a_minus_b": "first", "a_and_b": "common", "b_minus_a": "second"}
 #: What each part is.
 PART_TITLES = {"a_minus_b": "A ∖ B", "a_and_b": "A ∩ B", "b_minus_a": "B ∖ A"}
-
-
-def discrete_input(
-    source: Any, model: str, sim: Similarity | None, limit: int | None, progress: ProgressLike | None
-) -> PixelSet:
-    """D(T(E)) for a polygon E, or A itself for a pixel set A when T is the identity (None)."""
-    if isinstance(source, PixelSet) and sim is None:
-        return source
-    geom = euclidean_input(source, model)
-    if sim is None and not isinstance(geom, ExactShape):
-        from mrm.geometry.discretize import discretize
-
-        return discretize(geom, model, limit=limit)  # float64 input: the compiled exact discretization
-    if sim is not None and not isinstance(geom, ExactShape):
-        fast = discretize_image(geom, sim, model, limit=limit, what="the discretization of an input")
-        if fast is not None:  # int64 kernels, no Fraction (the same pixels)
-            return fast
-    shape = ExactShape.from_geometry(geom)
-    if sim is not None:
-        shape = shape.map(sim)
-    return discretize_exact(
-        shape, model, limit=limit, progress=progress, what="the discretization of an input"
-    )
 
 
 def parts_label_map(a: PixelSet, b: PixelSet) -> LabelMap:
@@ -102,7 +79,7 @@ def parts_label_map(a: PixelSet, b: PixelSet) -> LabelMap:
 def euclidean_discrete_union(
     first: Any,
     second: Any,
-    model: str = "standard",
+    model: Model | str = Model.STANDARD,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
@@ -113,7 +90,7 @@ def euclidean_discrete_union(
     ----------
     first, second : shapely Polygon / MultiPolygon, or PixelSet
         E and E′ (a pixel set stands for itself as D(E)).
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     limit : int or None
         Largest discretization of an input and largest union (pixels of their bounding boxes).
     progress : object with ``update(fraction, message)``, optional
@@ -123,26 +100,23 @@ def euclidean_discrete_union(
     StepOutcome
         ``result`` (the polygon), ``discrete`` (D(E) ∪ D(E′)), ``euclidean`` (the result, exact).
     """
-    check_model(model)
-    check_limit(limit)
-    a = discrete_input(first, model, None, limit, sub_progress(progress, 0.0, 0.2))
-    b = discrete_input(second, model, None, limit, sub_progress(progress, 0.2, 0.4))
-    check_size(box_area(joint_box([a.bbox, b.bbox])), limit, "the union")
+    model = Model.parse(model)
+    a = discrete_of(first, model, limit=limit, progress=sub_progress(progress, 0.0, 0.2))
+    b = discrete_of(second, model, limit=limit, progress=sub_progress(progress, 0.2, 0.4))
+    check_pixels(box_area(joint_box([a.bbox, b.bbox])), limit, "the union")
     union = a | b
     if progress is not None:
         progress.update(0.5, "continuing the union")
-    from mrm.geometry.reconstruct import reconstruct
-
     geom = reconstruct(union, model)
     if progress is not None:
         progress.update(1.0, "done")
-    return StepOutcome(geom, Similarity.identity(), lambda: ExactShape.from_geometry(geom), union)
+    return StepOutcome(geom, Similarity.identity(), partial(ExactShape.from_geometry, geom), union)
 
 
 def euclidean_discrete_corefinement(
     first: Any,
     second: Any,
-    model: str = "standard",
+    model: Model | str = Model.STANDARD,
     alpha: object = None,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
@@ -155,7 +129,7 @@ def euclidean_discrete_corefinement(
     ----------
     first, second : shapely Polygon / MultiPolygon, or PixelSet
         E and E′.
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     alpha : number, optional
         The precision factor α > 0 of the precise co-refinement (None: plain EDco, α = 1).
     limit : int or None
@@ -173,18 +147,17 @@ def euclidean_discrete_corefinement(
         ``pixels`` (part → PixelSet), ``exact`` (part → ExactShape before rounding), ``alpha`` and
         ``watertight`` (whether the joint gauss reconstruction was used).
     """
-    check_model(model)
-    check_limit(limit)
+    params = CorefineParams.read(alpha=alpha, model=model)
+    model = params.model
     sim = None
-    if alpha is not None:
-        a_q = positive_number(alpha, "alpha")
-        sim = Similarity.scaling(a_q)
-        what = f"the discretization at scale α = {number_to_json(a_q)}"
+    if params.alpha is not None:
+        sim = Similarity.scaling(params.alpha)
+        what = f"the discretization at scale α = {spell(params.alpha)}"
         if not estimated:  # from the bounding boxes, before anything is discretized or continued
-            check_size(_estimate_pair([first, second], sim, model), limit, what)
-    a = discrete_input(first, model, sim, limit, sub_progress(progress, 0.0, 0.2))
-    b = discrete_input(second, model, sim, limit, sub_progress(progress, 0.2, 0.4))
-    check_size(box_area(joint_box([a.bbox, b.bbox])), limit, "the co-refinement")
+            check_pixels(estimated_pixels([first, second], sim, model), limit, what)
+    a = discrete_of(first, model, limit=limit, sim=sim, progress=sub_progress(progress, 0.0, 0.2))
+    b = discrete_of(second, model, limit=limit, sim=sim, progress=sub_progress(progress, 0.2, 0.4))
+    check_pixels(box_area(joint_box([a.bbox, b.bbox])), limit, "the co-refinement")
     pixels = {"a_minus_b": a - b, "a_and_b": a & b, "b_minus_a": b - a}
     label_map = parts_label_map(a, b)
     if progress is not None:
@@ -195,8 +168,6 @@ def euclidean_discrete_corefinement(
     if _is_dyadic_scaling(back):
         # Scaling back by a power of two is exact in float64: the parts need no Fraction; their exact form
         # is made only when asked for (the account measures it).
-        from shapely import affinity
-
         r = float(back.ratio)
         result = {p: geoms[p] if r == 1 else affinity.scale(geoms[p], r, r, origin=(0, 0)) for p in PARTS}
         exact = _LazyExact(result)
@@ -212,11 +183,12 @@ def euclidean_discrete_corefinement(
         "alpha": None if sim is None else sim.ratio,
         "watertight": watertight,
     }
+    return StepOutcome(result, Similarity.identity(), partial(_all_parts, exact), a | b, extra)
 
-    def union() -> ExactShape:
-        return ExactShape(tuple(poly for p in PARTS for poly in exact[p].polygons))
 
-    return StepOutcome(result, Similarity.identity(), union, a | b, extra)
+def _all_parts(exact: Mapping[str, ExactShape]) -> ExactShape:
+    """The parts together, exact: a co-refinement's Euclidean object (made when the account asks for it)."""
+    return ExactShape(tuple(poly for p in PARTS for poly in exact[p].polygons))
 
 
 def _is_dyadic_scaling(sim: Similarity) -> bool:
@@ -249,15 +221,9 @@ def _reconstruct_parts(
     pixels: dict[str, PixelSet], label_map: LabelMap, model: str, progress: ProgressLike | None
 ) -> tuple[dict[str, Any], bool]:
     """R of each part; under gauss the joint (watertight) reconstruction of the label map when available."""
-    if model == "gauss":
-        joint = optional_function("mrm.geometry.reconstruct.subdivision", "reconstruct_label_map")
-        if joint is not None:
-            by_label = joint(label_map, model)
-            from shapely.geometry import Polygon
-
-            return {p: by_label.get(i + 1, Polygon()) for i, p in enumerate(PARTS)}, True
-    from mrm.geometry.reconstruct import reconstruct
-
+    if model == Model.GAUSS:
+        by_label = reconstruct_label_map(label_map, model)
+        return {p: by_label.get(i + 1, Polygon()) for i, p in enumerate(PARTS)}, True
     out = {}
     for i, p in enumerate(PARTS):
         out[p] = reconstruct(pixels[p], model)
@@ -268,22 +234,22 @@ def _reconstruct_parts(
 
 # ---------------------------------------------------------------------------------------------- the specs
 @dataclass(frozen=True)
-class UnionParams:
+class UnionParams(Parameters):
     """Parameters of EDu."""
 
-    model: str = model_param()
+    model: Model = model_param()
 
 
 @dataclass(frozen=True)
-class CorefineParams:
+class CorefineParams(Parameters):
     """Parameters of EDco and EDco_α."""
 
-    alpha: float | None = alpha_param(
+    alpha: Fraction | None = alpha_param(
         None,
         "Precision factor α of the precise co-refinement (error ≤ √2/α); empty: plain EDco.",
         optional=True,
     )
-    model: str = model_param()
+    model: Model = model_param()
 
 
 @dataclass(frozen=True)
@@ -301,35 +267,34 @@ class CorefineResult(OperationResult):
     """
 
     label_map: LabelMap | None = None
-    part_bounds: dict[str, Any] = field(default_factory=dict)
+    part_bounds: dict[str, BoundResult] = field(default_factory=dict)
     watertight: bool = False
 
 
-def _estimate_pair(inputs: Sequence[Any], sim: Similarity | None, model: str) -> int:
-    """The size of the joint box of the (scaled) discretizations, from bounding boxes alone."""
-    return box_area(joint_box([source_box(src, sim or Similarity.identity(), model) for src in inputs]))
+def _scaling(params: CorefineParams) -> Similarity | None:
+    return None if params.alpha is None else Similarity.scaling(params.alpha)
 
 
 def estimate_union(inputs: Sequence[Any], params: UnionParams) -> int:
     """An upper bound of the pixels of D(E) ∪ D(E′)."""
-    return _estimate_pair(inputs, None, params.model)
+    return estimated_pixels(inputs, None, params.model)
 
 
 def estimate_corefine(inputs: Sequence[Any], params: CorefineParams) -> int:
     """An upper bound of the pixels of the (scaled) discretizations."""
-    sim = None if params.alpha is None else Similarity.scaling(positive_number(params.alpha, "alpha"))
-    return _estimate_pair(inputs, sim, params.model)
+    return estimated_pixels(inputs, _scaling(params), params.model)
 
 
-def union_chain_step(params: UnionParams) -> ChainStep:
-    """EDu in the bound model of DESIGN §8."""
-    return bounds.union()
+def union_bound(params: UnionParams, part: str) -> BoundStep:
+    """EDu in the bound rule: one round trip of the union."""
+    return union_step(UNION_SPEC.label(params))
 
 
-def corefine_chain_step(params: CorefineParams, part: str = "a_minus_b") -> ChainStep:
-    """EDco(_α) in the bound model; a chain continues with the first output, A ∖ B."""
-    alpha = None if params.alpha is None else positive_number(params.alpha, "alpha")
-    return bounds.corefine(alpha, BOUND_PART[part])
+def corefine_bound(params: CorefineParams, part: str) -> BoundStep:
+    """EDco(_α) in the bound rule, following ``part``."""
+    return corefine_step(
+        COREFINE_SPEC.label(params, part), _scaling(params) or Similarity.identity(), BOUND_PART[part]
+    )
 
 
 def run_union(
@@ -347,7 +312,7 @@ def run_corefine(
     out = euclidean_discrete_corefinement(
         inputs[0], inputs[1], params.model, params.alpha, progress=progress, estimated=True
     )
-    part_bounds = {p: bounds.bound_of_chain([corefine_chain_step(params, p)], params.model) for p in PARTS}
+    part_bounds = {p: bound_of_chain([corefine_bound(params, p)], params.model) for p in PARTS}
     return CorefineResult(
         outputs=[(p, out.result[p]) for p in PARTS],
         bound=part_bounds[PARTS[0]],
@@ -357,56 +322,50 @@ def run_corefine(
     )
 
 
-def _register_pair(
-    name: str, title: str, params: type, run: Any, estimate: Any, chain_step: Any, **declared: Any
-) -> OperationSpec:
-    """Register a two-object operation: it reads either representation and makes Euclidean parts."""
-    return register(
-        OperationSpec(
-            name,
-            title,
-            2,
-            params,
-            run,
-            "any",
-            "euclidean",
-            estimate=estimate,
-            chain_step=chain_step,
-            **declared,
-        )
-    )
-
-
 UNION = "union"
 COREFINE = "corefine"
-UNION_SPEC = _register_pair(
-    UNION,
-    "Euclidean-discrete union EDu",
-    UnionParams,
-    run_union,
-    estimate_union,
-    union_chain_step,
-    help="EDu(E, E′) = R(D(E) ∪ D(E′)): a robust union made in the discrete space (paper, Def. 17).",
-    aliases=("EDu",),
+UNION_SPEC = register(
+    OperationSpec(
+        name=UNION,
+        title="Euclidean-discrete union EDu",
+        arity=2,
+        params=UnionParams,
+        run=run_union,
+        reads="any",
+        produces="euclidean",
+        help="EDu(E, E′) = R(D(E) ∪ D(E′)): a robust union made in the discrete space (paper, Def. 17).",
+        estimate=estimate_union,
+        bound=union_bound,
+        symbol="EDu",
+        aliases=("union",),
+        grid="same",
+    )
 )
-COREFINE_SPEC = _register_pair(
-    COREFINE,
-    "Euclidean-discrete co-refinement EDco",
-    CorefineParams,
-    run_corefine,
-    estimate_corefine,
-    corefine_chain_step,
-    help="EDco(E, E′): the parts A ∖ B, A ∩ B, B ∖ A made in the discrete space (paper, Defs. 18–19).",
-    aliases=("EDco", "corefinement", "co_refinement"),
+COREFINE_SPEC = register(
+    OperationSpec(
+        name=COREFINE,
+        title="Euclidean-discrete co-refinement EDco",
+        arity=2,
+        params=CorefineParams,
+        run=run_corefine,
+        reads="any",
+        produces="euclidean",
+        help="EDco(E, E′): the parts A ∖ B, A ∩ B, B ∖ A made in the discrete space (paper, Defs. 18–19).",
+        estimate=estimate_corefine,
+        bound=corefine_bound,
+        symbol="EDco",
+        aliases=("corefine", "co-refine", "corefinement", "co_refinement"),
+        parts=PARTS,
+        part_words=BOUND_PART,
+        default_part="a_and_b",
+        grid="same",
+    )
 )
 
 
 # ---------------------------------------------------------------------------------------------- measuring
 def _polygonal(geom: Any) -> Any:
     """The polygonal part of an overlay result, as a valid Polygon / MultiPolygon."""
-    import shapely
-    from shapely.geometry import MultiPolygon, Polygon
-
     if not geom.is_valid:
         geom = shapely.make_valid(geom)
     polys = [g for g in shapely.get_parts(geom) if isinstance(g, Polygon) and not g.is_empty]
@@ -425,10 +384,7 @@ def reference_parts(first: Any, second: Any, model: str) -> tuple[dict[str, Any]
     cross; the flag says whether the reference is exact (the inputs' interiors and boundaries are disjoint:
     then no new vertex is made).
     """
-    import shapely
-    from shapely.geometry import MultiPolygon, Polygon
-
-    e1, e2 = euclidean_input(first, model), euclidean_input(second, model)
+    e1, e2 = euclidean_of(first, model), euclidean_of(second, model)
     if shapely.disjoint(e1, e2):
         parts1 = list(e1.geoms) if isinstance(e1, MultiPolygon) else [e1] if not e1.is_empty else []
         parts2 = list(e2.geoms) if isinstance(e2, MultiPolygon) else [e2] if not e2.is_empty else []

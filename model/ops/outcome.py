@@ -8,74 +8,25 @@ discretization (or its exact Euclidean result): :class:`StepOutcome` carries the
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, TypeVar
+from functools import partial
+from typing import Any
 
 import numpy as np
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
-from mrm.core.grids import Box, PixelSet
+from mrm.core.grids import PixelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
+from mrm.core.models import Model
 from mrm.core.progress import ProgressLike, sub_progress
-from mrm.geometry.discretize.exact_shape import (
-    ExactShape,
-    Point,
-    Similarity,
-    box_area,
-    exact_number,
-    exact_point,
-    mapped_bounds,
-    number_to_json,
-    pixel_box,
-    positive_number,
-    voxel_bounds,
-)
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
 from mrm.geometry.discretize.rational import discretize_exact, discretize_image
-from mrm.geometry.hausdorff.bounds import ChainStep
-from mrm.ops.base import OperationSpec, param
-
-T = TypeVar("T")
-
-#: The discretization models an operation accepts.
-MODELS = ("standard", "supercover", "gauss")
-
-
-def model_param() -> Any:
-    """The ``model`` field every operation's parameters carry: the discretization model of D and R."""
-    return param("standard", choices=MODELS, label="model", help="Discretization model of D and R.")
-
-
-#: The range of every scale and precision factor α (DSS_α, Sp_α, EDco_α), declared once: beyond it a result
-#: is either below one pixel or beyond any pixel limit, and the exact arithmetic would only spend time.
-ALPHA_MIN, ALPHA_MAX = 1e-6, 1e6
-#: The range of every rotation angle, in degrees (ten turns either way).
-ANGLE_LIMIT = 3600.0
-
-
-def alpha_param(default: float | None, help: str, *, optional: bool = False) -> Any:
-    """A factor α with its declared range [ALPHA_MIN, ALPHA_MAX], read exactly (0.2 is 1/5)."""
-    return param(
-        default,
-        kind="float",
-        label="α",
-        unit="×",
-        minimum=ALPHA_MIN,
-        maximum=ALPHA_MAX,
-        optional=optional,
-        help=help,
-    )
-
-
-def angle_param(default: float, help: str) -> Any:
-    """A rotation angle in degrees with its declared range [−ANGLE_LIMIT, ANGLE_LIMIT]."""
-    return param(default, label="θ", unit="°", minimum=-ANGLE_LIMIT, maximum=ANGLE_LIMIT, help=help)
-
-
-def center_param(help: str) -> Any:
-    """An optional centre (a point; None means the origin), as DSS_α, dR_θ,C and Sp_α take."""
-    return param(None, kind="point", optional=True, label="centre", unit="px", help=help)
+from mrm.geometry.hausdorff.bounds import BoundStep, discrete_similarity_step
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.estimate import estimated_pixels
+from mrm.ops.registry import OperationResult, OperationSpec, register
+from mrm.ops.representations import discrete_of
 
 
 @dataclass(frozen=True)
@@ -100,7 +51,10 @@ class StepOutcome:
 
     result: Any
     transform: Similarity
-    exact_image: Any  # an ExactShape, or a function making it on first use (it costs Fraction arithmetic)
+    # An ExactShape, or a picklable function making it on first use (it costs Fraction arithmetic): a module
+    # function bound with functools.partial, never a closure, so that an outcome can cross to a worker
+    # process.
+    exact_image: Any
     discrete: PixelSet
     extra: dict[str, Any] = field(default_factory=dict)
 
@@ -115,52 +69,10 @@ class StepOutcome:
         return value
 
 
-def check_model(model: str) -> str:
-    """Return ``model`` if it is a discretization model, else raise ParameterError."""
-    if model not in MODELS:
-        raise ParameterError(f"unknown discretization model {model!r}; choose one of {', '.join(MODELS)}")
-    return model
-
-
-def check_limit(limit: int | None) -> None:
-    """Refuse a pixel limit that is not a non-negative integer (None = no limit)."""
-    if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int) or limit < 0):
-        raise ParameterError(f"the pixel limit must be a non-negative integer or None, got {limit!r}")
-
-
-def check_size(estimated: int, limit: int | None, what: str) -> None:
-    """Raise SizeLimitError when ``estimated`` pixels exceed ``limit`` (before anything is computed)."""
-    if limit is not None and estimated > limit:
-        raise SizeLimitError(estimated, int(limit), what)
-
-
-def estimated_pixels(source: Any, sim: Similarity, model: str) -> int:
-    """An upper bound of the pixels of D(T(R(A))), A an object's discrete representation (nothing computed).
-
-    A pixel set is A itself; for a polygon E, A = D(E) lies in the closed cells of E's bounding box (the
-    supercover box). Under the covers R(A) ⊂ V(A) ⊂ V(bbox(A)); under gauss ∂R(A) stays within the voxels
-    of the border pixels on either side (DESIGN §3.2), so R(A) lies in V(bbox(A)) grown by one pixel.
-    T(R(A)) lies in the box of T's image of that rectangle. The one estimate of DSS_α and dR_θ,C: the
-    registry's guard (run_operation) and the direct calls both use it.
-    """
-    if source is None:
-        return 0
-    if isinstance(source, PixelSet):
-        box = source.bbox
-    elif source.is_empty:
-        return 0
-    else:
-        x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
-        box = pixel_box((x0, y0, x1, y1), "supercover")
-    if box is not None and model == "gauss":
-        box = (box[0] - 1, box[1] - 1, box[2] + 1, box[3] + 1)
-    return box_area(pixel_box(mapped_bounds(voxel_bounds(box), sim), model))
-
-
 def discrete_similarity(
     ps: PixelSet,
     sim: Similarity,
-    model: str,
+    model: Model | str,
     *,
     limit: int | None,
     progress: ProgressLike | None,
@@ -172,31 +84,21 @@ def discrete_similarity(
     The size of the result is estimated from A's bounding box first (:func:`estimated_pixels`) and refused
     beyond ``limit``, unless the caller did so already (``estimated``: run_operation's guard).
     """
-    check_model(model)
-    check_limit(limit)
     if not estimated:
-        check_size(estimated_pixels(ps, sim, model), limit, what)
-    from mrm.geometry.reconstruct import reconstruct
-
+        check_pixels(estimated_pixels([ps], sim, model, reads="discrete"), limit, what)
     pooled = scaling_by_pixels(ps, sim, model)
     if pooled is not None:
         # The pixels of A decide every result pixel (see scaling_by_pixels); R(A) and T(R(A)) are still the
         # chain's Euclidean object, made on first use only.
-        def lazy_image() -> ExactShape:
-            return ExactShape.from_geometry(reconstruct(ps, model)).map(sim)
-
         if progress is not None:
             progress.update(1.0, "done")
-        return StepOutcome(pooled, sim, lazy_image, pooled)
+        return StepOutcome(pooled, sim, partial(continued_image, ps, sim, model), pooled)
     if progress is not None:
         progress.update(0.0, "continuing R(A)")
     euclid = reconstruct(ps, model)
     if progress is not None:
         progress.update(0.3, "applying the similarity")
-
-    def image() -> ExactShape:
-        return ExactShape.from_geometry(euclid).map(sim)
-
+    image = partial(mapped_image, euclid, sim)
     # Scalings and translations of float64 vertices: integer arithmetic and compiled kernels, no Fraction.
     result = discretize_image(euclid, sim, model, limit=limit, what=what, valid=True)  # R's output is valid
     if result is None:
@@ -208,6 +110,16 @@ def discrete_similarity(
     if progress is not None:
         progress.update(1.0, "done")
     return StepOutcome(result, sim, image, result)
+
+
+def mapped_image(geom: Any, sim: Similarity) -> ExactShape:
+    """T(E), exact, for a float64 polygon E: a step's Euclidean object, made when the account asks for it."""
+    return ExactShape.from_geometry(geom).map(sim)
+
+
+def continued_image(ps: PixelSet, sim: Similarity, model: Any) -> ExactShape:
+    """T(R(A)), exact: the Euclidean object of a step that never needed R(A) to make its result."""
+    return mapped_image(reconstruct(ps, model), sim)
 
 
 def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | None:
@@ -275,74 +187,29 @@ def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | N
     return PixelSet(pooled, (qx0, qy0))
 
 
-def factor_params(name: str, doc: str, factor: str, declared: Any, centre: str, module: str) -> type:
-    """The parameters dataclass of a one-factor similarity operation: ``factor``, ``center``, ``model``.
-
-    DSS_α, dR_θ,C and Sp_α take their number (declared with :func:`alpha_param` or :func:`angle_param`), an
-    optional centre (help text ``centre``) and the model, in that order; the class is frozen, named ``name``
-    in ``module`` (so that it pickles to a worker process), and read by :func:`mrm.ops.base.param_specs`.
-    """
-    fields = [
-        (factor, float, declared),
-        ("center", tuple[float, float] | None, center_param(centre)),
-        ("model", str, model_param()),
-    ]
-    cls = dataclasses.make_dataclass(name, fields, frozen=True, namespace={"__doc__": doc})
-    cls.__module__ = module
-    return cls
-
-
-def factor_map(
-    factor: str, make: Callable[[Fraction, Point | None], T], *, signed: bool = False
-) -> Callable[[Any], T]:
-    """``params ↦ make(q, C)``: an operation's number ``factor`` and its ``center``, read exactly.
-
-    The one reading of a similarity's parameters (DESIGN §8): a float is the decimal it prints as (0.4 is
-    2/5), a ``signed`` number (an angle) may be any finite value, any other must be positive. DSS_α, dR_θ,C,
-    Sp_α and the Euclidean scale and rotate make their exact similarity and their bound step through it, so
-    the registry's run, the chain, the bound rule and the account read the same numbers, with the same
-    messages.
-    """
-    read = exact_number if signed else positive_number
-
-    def of(params: Any) -> T:
-        return make(read(getattr(params, factor), factor), exact_point(params.center, "center"))
-
-    return of
-
-
 def register_discrete_similarity(
     *,
     name: str,
     title: str,
     params: type,
-    factor: str,
-    similarity: Callable[[Fraction, Point | None], Similarity],
-    bound: Callable[[Fraction, Point | None], ChainStep],
-    label: str,
-    what: str,
+    similarity: Callable[[Any], Similarity],
+    symbol: str,
+    result_name: Callable[[Any], str],
+    what: Callable[[Any], str],
     help: str,
     aliases: tuple[str, ...],
-    signed: bool = False,
+    grid: Any,
 ) -> OperationSpec:
     """Register a ``D∘T∘R`` operation (DSS_α, dR_θ,C) from its declarations alone.
 
-    ``params`` carries the number ``factor`` (and ``center``, ``model``); ``similarity(q, C)`` makes the exact
-    T and ``bound(q, C)`` its step in the bound rule, both read by :func:`factor_map`. ``label`` names the
-    result and ``what`` the operation in a refusal, each with ``{}`` for the number (``"DSS {}"`` gives
-    ``DSS 0.2``). The size estimate, the step and the run are the same for every such operation, so they are
+    ``params`` is its parameters dataclass (with ``center`` and ``model``), ``similarity(params)`` its exact
+    T. ``result_name(params)`` names the result (``DSS 0.2``) and ``what(params)`` the operation in a refusal.
+    The size estimate, the step, the run and the bound are the same for every such operation, so they are
     written here once; the module's public function is the step.
     """
-    from mrm.ops.base import OperationResult, register
-
-    sim_of = factor_map(factor, similarity, signed=signed)
-    read = exact_number if signed else positive_number
-
-    def number(p: Any) -> Any:
-        return number_to_json(read(getattr(p, factor), factor))
 
     def estimate(inputs: Any, p: Any) -> int:
-        return estimated_pixels(inputs[0], sim_of(p), p.model)
+        return estimated_pixels(inputs[:1], similarity(p), p.model, reads="discrete")
 
     def step(
         source: Any,
@@ -352,87 +219,35 @@ def register_discrete_similarity(
         progress: ProgressLike | None = None,
         estimated: bool = False,
     ) -> StepOutcome:
-        sim = sim_of(p)
-        ps = discrete_of(source, p.model, limit)
+        ps = discrete_of(source, p.model, limit=limit)
         return discrete_similarity(
-            ps, sim, p.model, limit=limit, progress=progress, what=what.format(number(p)), estimated=estimated
+            ps, similarity(p), p.model, limit=limit, progress=progress, what=what(p), estimated=estimated
         )
 
-    def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> Any:
-        # run_operation validated the parameters, checked the size (estimate above) and stamps provenance
+    def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> OperationResult:
+        # run_operation read the parameters, checked the size (estimate above) and stamps provenance
         # and bound: the estimate is not made a second time.
         out = step(inputs[0], p, progress=progress, estimated=True)
-        return OperationResult(outputs=[(label.format(number(p)), out.result)])
+        return OperationResult(outputs=[(result_name(p), out.result)])
 
-    return register(
-        OperationSpec(
-            name=name,
-            title=title,
-            arity=1,
-            params=params,
-            run=run,
-            input_kind="any",
-            output_kind="discrete",
-            help=help,
-            estimate=estimate,
-            chain_step=factor_map(factor, bound, signed=signed),
-            similarity=sim_of,
-            aliases=aliases,
-            step=step,
-        )
+    def bound(p: Any, part: str) -> BoundStep:
+        return discrete_similarity_step(spec.label(p), similarity(p))
+
+    spec = OperationSpec(
+        name=name,
+        title=title,
+        arity=1,
+        params=params,
+        run=run,
+        reads="any",
+        produces="discrete",
+        help=help,
+        estimate=estimate,
+        bound=bound,
+        similarity=similarity,
+        step=step,
+        symbol=symbol,
+        aliases=aliases,
+        grid=grid,
     )
-
-
-def discrete_of(source: Any, model: str, limit: int | None) -> PixelSet:
-    """The discrete representation of an object's source: A itself, or D(E) for a polygon E."""
-    if isinstance(source, PixelSet):
-        return source
-    from mrm.geometry.discretize import discretize
-
-    return discretize(source, model, limit=limit)
-
-
-def params_json(params: Any) -> dict[str, Any]:
-    """A parameter dataclass (or mapping) as JSON data: tuples become lists, Fractions exact numbers."""
-    raw = (
-        {k: getattr(params, k) for k in params.__dataclass_fields__}
-        if hasattr(params, "__dataclass_fields__")
-        else dict(params)
-    )
-
-    def conv(v: Any) -> Any:
-        if isinstance(v, Fraction):
-            return number_to_json(v)
-        if isinstance(v, tuple | list):
-            return [conv(x) for x in v]
-        return v
-
-    return {k: conv(v) for k, v in raw.items()}
-
-
-def provenance(operation: str, params: Any, inputs: tuple[int, ...] = ()) -> dict[str, Any]:
-    """``{"operation", "params", "inputs"}`` as :meth:`mrm.document.Provenance.from_json` reads it."""
-    return {"operation": operation, "params": params_json(params), "inputs": list(inputs)}
-
-
-def source_box(source: Any, sim: Similarity, model: str) -> Box | None:
-    """A pixel box holding D(T(X)) for an object X (a pixel set: from its voxels; a polygon: its bounds)."""
-    if isinstance(source, PixelSet):
-        return pixel_box(mapped_bounds(voxel_bounds(source.bbox), sim), model)
-    if source is None or source.is_empty:
-        return None
-    x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
-    return pixel_box(mapped_bounds((x0, y0, x1, y1), sim), model)
-
-
-def estimate_source(source: Any, sim: Similarity, model: str) -> int:
-    """An upper bound of the pixels of D(T(X)) for an object X, before anything is computed."""
-    return box_area(source_box(source, sim, model))
-
-
-def joint_box(boxes: list[Box | None]) -> Box | None:
-    """The smallest box holding every given box (None when there is none)."""
-    real = [b for b in boxes if b is not None]
-    if not real:
-        return None
-    return min(b[0] for b in real), min(b[1] for b in real), max(b[2] for b in real), max(b[3] for b in real)
+    return register(spec)

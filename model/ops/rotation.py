@@ -18,24 +18,29 @@ corners, and since R keeps its boundary away from every tie (DESIGN §3.6), dR_9
 
 from __future__ import annotations
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from dataclasses import dataclass
+from fractions import Fraction
+
 from mrm.core.grids import PixelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.models import Model
+from mrm.core.numbers import Point, spell
+from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import Similarity
-from mrm.geometry.hausdorff import bounds
-from mrm.ops.outcome import StepOutcome, angle_param, factor_params, register_discrete_similarity
+from mrm.ops.declare import angle_param, center_param, model_param
+from mrm.ops.outcome import StepOutcome, register_discrete_similarity
 
-#: θ in degrees (read exactly), the centre C, the model.
-RotationParams = factor_params(
-    "RotationParams",
-    "Parameters of dR_θ,C.",
-    "angle",
-    angle_param(
-        30.0, "Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact."
-    ),
-    "Centre C of the rotation (default: origin).",
-    __name__,
-)
+
+@dataclass(frozen=True)
+class RotationParams(Parameters):
+    """Parameters of dR_θ,C: θ in degrees (read exactly), the centre C, the model."""
+
+    angle: Fraction = angle_param(
+        30, "Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact."
+    )
+    center: Point | None = center_param("Centre C of the rotation (default: origin).")
+    model: Model = model_param()
 
 
 NAME = "discrete_rotation"
@@ -44,14 +49,13 @@ SPEC = register_discrete_similarity(
     name=NAME,
     title="Discrete-Euclidean rotation dR_θ,C",
     params=RotationParams,
-    factor="angle",
-    signed=True,
-    similarity=Similarity.rotation,
-    bound=bounds.rot,
-    label="dR {}°",
-    what="dR with θ = {}°",
+    similarity=lambda p: Similarity.rotation(p.angle, p.center),
+    symbol="ROT",
+    result_name=lambda p: f"dR {spell(p.angle)}°",
+    what=lambda p: f"dR with θ = {spell(p.angle)}°",
     help="dR_θ,C(A) = D(rot_θ,C(R(A))): rotate the continuation exactly, discretize it (paper, Def. 11).",
-    aliases=("ROT", "dR", "rotation"),
+    aliases=("dR", "rotation"),
+    grid="same",
 )
 #: Run dR_θ,C on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
 run = SPEC.run
@@ -61,7 +65,7 @@ def discrete_rotation(
     ps: PixelSet,
     angle: object,
     center: object = None,
-    model: str = "standard",
+    model: Model | str = Model.STANDARD,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
@@ -76,7 +80,7 @@ def discrete_rotation(
         θ in degrees, counter-clockwise (y up); any finite value.
     center : pair of numbers, optional
         The centre C (the origin by default).
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
         The discretization model of D and R.
     limit : int or None
         Largest result (pixels of its bounding box), estimated before running.
@@ -95,4 +99,5 @@ def discrete_rotation(
     SizeLimitError
         The result would exceed ``limit`` pixels.
     """
-    return SPEC.outcome(ps, SPEC.params(angle, center, model), limit=limit, progress=progress)
+    params = RotationParams.read(angle=angle, center=center, model=model)
+    return SPEC.outcome(ps, params, limit=limit, progress=progress)

@@ -12,24 +12,29 @@ object is refused at once, with the number of pixels it would have had.
 
 from __future__ import annotations
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from dataclasses import dataclass
+from fractions import Fraction
+
 from mrm.core.grids import PixelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.models import Model
+from mrm.core.numbers import Point, spell
+from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import Similarity
-from mrm.geometry.hausdorff import bounds
-from mrm.ops.outcome import StepOutcome, alpha_param, factor_params, register_discrete_similarity
+from mrm.ops.declare import alpha_param, center_param, model_param
+from mrm.ops.outcome import StepOutcome, register_discrete_similarity
 
-#: α (read exactly), the centre, the model.
-DSSParams = factor_params(
-    "DSSParams",
-    "Parameters of DSS_α.",
-    "alpha",
-    alpha_param(
-        2.0, "Scale factor α, read exactly (0.2 is 1/5); the result's size is checked before running."
-    ),
-    "Centre of the scaling (default: origin).",
-    __name__,
-)
+
+@dataclass(frozen=True)
+class DSSParams(Parameters):
+    """Parameters of DSS_α: α (read exactly), the centre, the model."""
+
+    alpha: Fraction = alpha_param(
+        2, "Scale factor α, read exactly (0.2 is 1/5); the result's size is checked before running."
+    )
+    center: Point | None = center_param("Centre of the scaling (default: origin).")
+    model: Model = model_param()
 
 
 NAME = "dss"
@@ -38,13 +43,13 @@ SPEC = register_discrete_similarity(
     name=NAME,
     title="Discrete smooth scaling DSS_α",
     params=DSSParams,
-    factor="alpha",
-    similarity=Similarity.scaling,
-    bound=bounds.dss,
-    label="DSS {}",
-    what="DSS with α = {}",
+    similarity=lambda p: Similarity.scaling(p.alpha, p.center),
+    symbol="DSS",
+    result_name=lambda p: f"DSS {spell(p.alpha)}",
+    what=lambda p: f"DSS with α = {spell(p.alpha)}",
     help="DSS_α(A) = D(Sc_α(R(A))): scale the continuation exactly and discretize it (paper, Def. 3).",
-    aliases=("DSS", "discrete_smooth_scaling", "smooth_scaling"),
+    aliases=("discrete_smooth_scaling", "smooth_scaling"),
+    grid="scaled",
 )
 #: Run DSS_α on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
 run = SPEC.run
@@ -54,7 +59,7 @@ def discrete_smooth_scaling(
     ps: PixelSet,
     alpha: object,
     center: object = None,
-    model: str = "standard",
+    model: Model | str = Model.STANDARD,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
@@ -69,7 +74,7 @@ def discrete_smooth_scaling(
         The scale factor α > 0 (a float is read as the decimal it prints as; Fractions and ``"p/q"`` too).
     center : pair of numbers, optional
         The centre of the scaling (the origin by default).
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
         The discretization model of D and R.
     limit : int or None
         Largest result (pixels of its bounding box); estimated from A's bounding box before running.
@@ -89,4 +94,6 @@ def discrete_smooth_scaling(
     SizeLimitError
         The result would exceed ``limit`` pixels (the message gives its estimated size).
     """
-    return SPEC.outcome(ps, SPEC.params(alpha, center, model), limit=limit, progress=progress)
+    return SPEC.outcome(
+        ps, DSSParams.read(alpha=alpha, center=center, model=model), limit=limit, progress=progress
+    )

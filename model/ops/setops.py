@@ -13,16 +13,16 @@ from dataclasses import dataclass
 from typing import Any
 
 from mrm.core.grids import PixelSet
+from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike
-from mrm.geometry.discretize.exact_shape import box_area
-from mrm.ops.base import OperationResult, OperationSpec, Output, register
-from mrm.ops.outcome import joint_box
+from mrm.ops.estimate import estimated_pixels
+from mrm.ops.registry import OperationResult, OperationSpec, Output, register
 
 __all__ = ["DIFFERENCE", "INTERSECTION", "UNION", "SetOpParams"]
 
 
 @dataclass(frozen=True)
-class SetOpParams:
+class SetOpParams(Parameters):
     """Discrete set operations take no parameters."""
 
 
@@ -34,11 +34,16 @@ def _pair(inputs: Sequence[Output]) -> tuple[PixelSet, PixelSet]:
 
 def _estimate(inputs: Sequence[Output], params: Any) -> int:
     # A union covers at most the joint bounding box; intersections and differences are smaller.
-    return box_area(joint_box([p.bbox for p in inputs if isinstance(p, PixelSet)]))
+    return estimated_pixels(inputs, None, "standard")
 
 
 def _set_operation(
-    name: str, title: str, output: str, combine: Callable[[PixelSet, PixelSet], PixelSet], help: str
+    name: str,
+    title: str,
+    output: str,
+    combine: Callable[[PixelSet, PixelSet], PixelSet],
+    help: str,
+    exact: str,
 ) -> OperationSpec:
     """Register the exact set operation ``combine`` of two pixel sets; its result is named ``output``."""
 
@@ -52,16 +57,22 @@ def _set_operation(
             arity=2,
             params=SetOpParams,
             run=run,
-            input_kind="discrete",
-            output_kind="discrete",
+            reads="discrete",
+            produces="discrete",
             help=help,
             estimate=_estimate,
+            exact=exact,
         )
     )
 
 
 UNION = _set_operation(
-    "discrete_union", "Union (discrete)", "union", operator.or_, "The pixels in either set (exact)."
+    "discrete_union",
+    "Union (discrete)",
+    "union",
+    operator.or_,
+    "The pixels in either set (exact).",
+    "a union of pixel sets is exact",
 )
 INTERSECTION = _set_operation(
     "discrete_intersection",
@@ -69,6 +80,7 @@ INTERSECTION = _set_operation(
     "intersection",
     operator.and_,
     "The pixels in both sets (exact).",
+    "an intersection of pixel sets is exact",
 )
 DIFFERENCE = _set_operation(
     "discrete_difference",
@@ -76,4 +88,5 @@ DIFFERENCE = _set_operation(
     "difference",
     operator.sub,
     "The pixels of the first set that are not in the second (exact).",
+    "a difference of pixel sets is exact",
 )

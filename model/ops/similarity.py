@@ -30,15 +30,19 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 import shapely
+from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.base import BaseGeometry
 
 from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.core.grids import PixelSet
+from mrm.core.numbers import Point
+from mrm.core.params import Parameters, param
 from mrm.core.progress import ProgressLike
-from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, exact_number
-from mrm.geometry.hausdorff import bounds as chain
-from mrm.ops.base import OperationResult, OperationSpec, Output, param, register
-from mrm.ops.outcome import StepOutcome, factor_map
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.hausdorff.bounds import BoundStep, euclidean_similarity_step
+from mrm.ops.declare import alpha_param, angle_param, center_param
+from mrm.ops.outcome import StepOutcome
+from mrm.ops.registry import OperationResult, OperationSpec, Output, register
 
 F64 = npt.NDArray[np.float64]
 
@@ -192,45 +196,45 @@ def rotate_geometry(
 
 
 @dataclass(frozen=True)
-class TranslateParams:
-    """Parameters of a Euclidean translation."""
+class TranslateParams(Parameters):
+    """Parameters of a Euclidean translation: the offset (written ``TRANSLATE dx,dy`` in a chain's text)."""
 
-    dx: float = param(0.0, label="dx", unit="px", help="Horizontal offset (x grows to the right).")
-    dy: float = param(0.0, label="dy", unit="px", help="Vertical offset (y grows upwards).")
+    dx: Fraction = param(
+        0,
+        kind="number",
+        label="dx",
+        unit="px",
+        positional=True,
+        help="Horizontal offset (x grows to the right).",
+    )
+    dy: Fraction = param(
+        0, kind="number", label="dy", unit="px", positional=True, help="Vertical offset (y grows upwards)."
+    )
 
 
 @dataclass(frozen=True)
-class ScaleParams:
+class ScaleParams(Parameters):
     """Parameters of a Euclidean scaling."""
 
-    factor: float = param(2.0, label="factor", positive=True, maximum=1e6, help="Scale factor (> 0).")
-    center: tuple[float, float] = param((0.0, 0.0), label="centre", unit="px", help="The fixed point.")
+    factor: Fraction = alpha_param(2, "Scale factor (> 0).", label="factor")
+    center: Point = center_param("The fixed point.", default=(0, 0))
 
 
 @dataclass(frozen=True)
-class RotateParams:
+class RotateParams(Parameters):
     """Parameters of a Euclidean rotation."""
 
-    angle: float = param(
-        0.0,
-        label="angle",
-        unit="°",
-        minimum=-3600.0,
-        maximum=3600.0,
-        help="Counter-clockwise angle in degrees.",
-    )
-    center: tuple[float, float] = param((0.0, 0.0), label="centre", unit="px", help="The centre of rotation.")
+    angle: Fraction = angle_param(0, "Counter-clockwise angle in degrees.")
+    center: Point = center_param("The centre of rotation.", default=(0, 0))
 
 
-# One arithmetic for every path (DESIGN §8): the registry's similarities read their parameters as the chain
-# steps of the same names do — a float as the decimal it prints as (0.4 is 2/5), the exact rational rotation —
-# apply them exactly and round each coordinate once.
+# One arithmetic for every path (docs/design.md §8): the registry's similarities read their parameters as the
+# chain's steps do — a float as the decimal it prints as (0.4 is 2/5), the exact rational rotation — apply
+# them exactly and round each coordinate once.
 
 
 def _exact_map(geom: BaseGeometry, sim: Similarity) -> BaseGeometry:
     """The exact image of a polygonal geometry, each coordinate rounded once to float64."""
-    from shapely.geometry import MultiPolygon, Polygon
-
     if not isinstance(geom, Polygon | MultiPolygon):
         raise InvalidGeometryError(f"expected a polygon, got a {geom.geom_type}")
     return _checked(ExactShape.from_geometry(geom).map(sim).to_geometry(), geom)
@@ -247,7 +251,7 @@ def _similarity_operation(
 ) -> OperationSpec:
     """Register a Euclidean similarity: ``similarity(params)`` is its exact map, ``output`` names the result.
 
-    ``declared`` is the rest of its :class:`OperationSpec` (title, help, chain_step, aliases).
+    ``declared`` is the rest of its :class:`OperationSpec` (title, help, symbol, aliases).
     """
 
     def run(inputs: Sequence[Output], p: Any, progress: ProgressLike) -> OperationResult:
@@ -256,51 +260,51 @@ def _similarity_operation(
     def step(source: Any, p: Any, **_: Any) -> StepOutcome:
         return euclidean_step(source, similarity(p))
 
-    return register(
-        OperationSpec(
-            name=name,
-            arity=1,
-            params=params,
-            run=run,
-            input_kind="euclidean",
-            output_kind="euclidean",
-            similarity=similarity,
-            step=step,
-            **declared,
-        )
+    def bound(p: Any, part: str) -> BoundStep:
+        return euclidean_similarity_step(spec.label(p), similarity(p))
+
+    spec = OperationSpec(
+        name=name,
+        arity=1,
+        params=params,
+        run=run,
+        reads="euclidean",
+        produces="euclidean",
+        similarity=similarity,
+        step=step,
+        bound=bound,
+        **declared,
     )
-
-
-def _translation(p: TranslateParams) -> Similarity:
-    return Similarity.translation(exact_number(p.dx, "dx"), exact_number(p.dy, "dy"))
+    return register(spec)
 
 
 TRANSLATE = _similarity_operation(
     "translate",
     TranslateParams,
-    _translation,
+    lambda p: Similarity.translation(p.dx, p.dy),
     "translated",
     title="Translate",
     help="Move a Euclidean object by (dx, dy), exactly, each coordinate rounded once.",
-    chain_step=lambda p: chain.translate(exact_number(p.dx, "dx"), exact_number(p.dy, "dy")),
+    symbol="TRANSLATE",
+    aliases=("tr", "move"),
 )
 SCALE = _similarity_operation(
     "scale",
     ScaleParams,
-    factor_map("factor", Similarity.scaling),
+    lambda p: Similarity.scaling(p.factor, p.center),
     "scaled",
     title="Scale (Euclidean)",
     help="Scale a Euclidean object about a centre, exactly (0.4 is 2/5), each coordinate rounded once.",
-    chain_step=factor_map("factor", chain.scale),
-    aliases=("SCALE", "sc"),
+    symbol="SCALE",
+    aliases=("sc",),
 )
 ROTATE = _similarity_operation(
     "rotate",
     RotateParams,
-    factor_map("angle", Similarity.rotation, signed=True),
+    lambda p: Similarity.rotation(p.angle, p.center),
     "rotated",
     title="Rotate (Euclidean)",
     help="Rotate a Euclidean object about a centre by the exact rational rotation, rounded once.",
-    chain_step=factor_map("angle", chain.erot, signed=True),
-    aliases=("EROT",),
+    symbol="EROT",
+    aliases=("erotate",),
 )

@@ -16,51 +16,49 @@ factors.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError
-from mrm.core.grids import PixelSet
+from mrm.core.errors import ParameterError
+from mrm.core.grids import box_area
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
+from mrm.core.models import Model
+from mrm.core.numbers import Point, spell
+from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike, sub_progress
-from mrm.geometry.discretize.exact_shape import (
-    ExactShape,
-    Similarity,
-    box_area,
-    number_to_json,
-    pixel_box,
-)
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, pixel_box
 from mrm.geometry.discretize.rational import discretize_exact
-from mrm.geometry.hausdorff import bounds
-from mrm.ops.base import OperationResult, OperationSpec, register
-from mrm.ops.outcome import (
-    StepOutcome,
-    alpha_param,
-    check_limit,
-    check_model,
-    check_size,
-    estimate_source,
-    factor_map,
-    factor_params,
-)
+from mrm.geometry.hausdorff.bounds import BoundStep, simplification_step
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.declare import alpha_param, center_param, model_param
+from mrm.ops.estimate import estimated_pixels
+from mrm.ops.outcome import StepOutcome
+from mrm.ops.registry import OperationResult, OperationSpec, register
+from mrm.ops.representations import euclidean_of
 
 
-def euclidean_input(source: Any, model: str) -> Any:
-    """The Euclidean representation of an object's source: E itself, or R(A) for a pixel set A.
+@dataclass(frozen=True)
+class SimplifyParams(Parameters):
+    """Parameters of Sp_α: α (read exactly), the centre of both scalings, the model."""
 
-    E may be a shapely polygon or an exact :class:`~mrm.geometry.discretize.exact_shape.ExactShape` (kept as
-    it is).
-    """
-    if isinstance(source, PixelSet):
-        from mrm.geometry.reconstruct import reconstruct
+    alpha: Fraction = alpha_param(
+        0.5, "The grid spacing is 1/α; details below it are simplified away (error ≤ √2/α)."
+    )
+    center: Point | None = center_param("Centre of the scalings (default: origin).")
+    model: Model = model_param()
 
-        return reconstruct(source, model)
-    return source
+
+def _scaling(params: SimplifyParams) -> Similarity:
+    """Sc_α about the centre."""
+    return Similarity.scaling(params.alpha, params.center)
 
 
 def simplification(
     source: Any,
     alpha: object,
     center: object = None,
-    model: str = "standard",
+    model: Model | str = Model.STANDARD,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
@@ -75,7 +73,7 @@ def simplification(
         α > 0: the voxel size of the simplification is 1/α.
     center : pair of numbers, optional
         The centre of both scalings (the origin by default; it changes where the grid falls).
-    model : {"standard", "supercover", "gauss"}
+    model : Model or str
     limit : int or None
         Largest discretization D(Sc_α(E)) (pixels of its bounding box), checked before it is computed.
     progress : object with ``update(fraction, message)``, optional
@@ -90,19 +88,17 @@ def simplification(
     ------
     ParameterError, SizeLimitError, InvalidGeometryError
     """
-    check_model(model)
-    check_limit(limit)
-    sc = _scaling(SPEC.params(alpha, center, model))
+    params = SimplifyParams.read(alpha=alpha, center=center, model=model)
+    model = params.model
+    sc = _scaling(params)
     a = sc.ratio
-    geom = euclidean_input(source, model)
+    geom = euclidean_of(source, model)
     shape = ExactShape.from_geometry(geom).map(sc)
-    what = f"Sp with α = {number_to_json(a)} (the discretization at scale α)"
-    check_size(box_area(pixel_box(shape.bounds(), model)), limit, what)
+    what = f"Sp with α = {spell(a)} (the discretization at scale α)"
+    check_pixels(box_area(pixel_box(shape.bounds(), model)), limit, what)
     scaled = discretize_exact(shape, model, limit=limit, progress=sub_progress(progress, 0.0, 0.4), what=what)
     if progress is not None:
         progress.update(0.4, "continuing")
-    from mrm.geometry.reconstruct import reconstruct
-
     back = sc.inverse()
     exact = ExactShape.from_geometry(reconstruct(scaled, model)).map(back)
     if progress is not None:
@@ -142,29 +138,14 @@ def _rounding_may_matter(result: Any, alpha: Any) -> bool:
 
 
 # ---------------------------------------------------------------------------------------------- the spec
-#: α (read exactly), the centre of both scalings, the model.
-SimplifyParams = factor_params(
-    "SimplifyParams",
-    "Parameters of Sp_α.",
-    "alpha",
-    alpha_param(0.5, "The grid spacing is 1/α; details below it are simplified away (error ≤ √2/α)."),
-    "Centre of the scalings (default: origin).",
-    __name__,
-)
-
-
-#: Sc_α about the centre, read as every path reads it (:func:`mrm.ops.outcome.factor_map`).
-_scaling = factor_map("alpha", Similarity.scaling)
-
-
-def estimate(inputs: Sequence[Any], params: Any) -> int:
+def estimate(inputs: Sequence[Any], params: SimplifyParams) -> int:
     """The size of the discretization D(Sc_α(E)) from the input's bounding box alone."""
-    return estimate_source(inputs[0], _scaling(params), params.model)
+    return estimated_pixels(inputs[:1], _scaling(params), params.model)
 
 
 def step(
     source: Any,
-    params: Any,
+    params: SimplifyParams,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     progress: ProgressLike | None = None,
@@ -174,10 +155,17 @@ def step(
     return simplification(source, params.alpha, params.center, params.model, limit=limit, progress=progress)
 
 
-def run(inputs: Sequence[Any], params: Any, progress: ProgressLike | None = None) -> OperationResult:
+def run(
+    inputs: Sequence[Any], params: SimplifyParams, progress: ProgressLike | None = None
+) -> OperationResult:
     """Run Sp_α on one object (a pixel set A is read as its Euclidean representation R(A))."""
     out = step(inputs[0], params, progress=progress)
-    return OperationResult(outputs=[(f"Sp {number_to_json(_scaling(params).ratio)}", out.result)])
+    return OperationResult(outputs=[(f"Sp {spell(params.alpha)}", out.result)])
+
+
+def bound(params: SimplifyParams, part: str) -> BoundStep:
+    """Sp_α in the bound rule: a round trip at scale α."""
+    return simplification_step(SPEC.label(params), _scaling(params))
 
 
 NAME = "simplify"
@@ -189,14 +177,16 @@ SPEC = register(
         arity=1,
         params=SimplifyParams,
         run=run,
-        input_kind="any",
-        output_kind="euclidean",
+        reads="any",
+        produces="euclidean",
         help="Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): simplify on a grid of spacing 1/α (paper, Def. 14).",
         estimate=estimate,
-        chain_step=factor_map("alpha", bounds.sp),
+        bound=bound,
         # Sp_α applies Sc_α and Sc_1/α around its round trip: as a whole, the identity.
         similarity=lambda params: Similarity.identity(),
-        aliases=("SP", "simplification"),
         step=step,
+        symbol="SP",
+        aliases=("simplification",),
+        grid="same",
     )
 )

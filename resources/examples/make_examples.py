@@ -1,6 +1,6 @@
 """Write the example projects that reproduce the paper's figures, by running the operations of ``mrm.ops``.
 
-Every derived object is made by :func:`mrm.ops.apply.apply_operation`, so it carries its provenance
+Every derived object is made by :func:`mrm.document.apply.apply_operation`, so it carries its provenance
 (operation, parameters, inputs) and the error inspector shows the paper's bound for its chain.
 
 * ``fig12-dss-combinations.mrm``: a digital diamond A, then DSS 1.25 → DSS 5 → DSS 0.2 → DSS 0.8 (Fig. 12);
@@ -21,12 +21,12 @@ from pathlib import Path
 import numpy as np
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
 from mrm.document import Document
+from mrm.document.apply import apply_operation
+from mrm.document.commands import AddObject
 from mrm.io.project import save_project
-from mrm.ops.apply import apply_operation, load_paper_operations
-from mrm.ops.base import get_operation
+from mrm.ops.registry import get_operation
 
 HERE = Path(__file__).parent
 
@@ -42,7 +42,7 @@ def _add(doc: Document, source: object, name: str) -> int:
 
 
 def _rename_last(doc: Document, ids: list[int], name: str) -> int:
-    from mrm.commands import RenameObject
+    from mrm.document.commands import RenameObject
 
     doc.push(RenameObject(ids[0], name))
     return ids[0]
@@ -120,7 +120,6 @@ EXAMPLES = {
 
 def main() -> None:
     """Write every example next to this script."""
-    load_paper_operations()
     for name, make in EXAMPLES.items():
         doc = make()
         doc.set_selection([])

@@ -11,8 +11,8 @@ from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.app.actions import SPECS
 from mrm.app.gui import default_example
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 
 ROOT = Path(__file__).resolve().parents[2]
 Qt = QtCore.Qt
@@ -33,7 +33,7 @@ def test_screenshot_of_a_project(tmp_path):
     example = default_example()
     assert example is not None  # `mrm` without arguments has a project to open
     r = subprocess.run(
-        [sys.executable, "-m", "mrm", "--screenshot", str(out), "--size", "1000x700", str(example)],
+        [sys.executable, "-m", "mrm.app", "--screenshot", str(out), "--size", "1000x700", str(example)],
         capture_output=True, text=True, timeout=300, cwd=ROOT, env=_env(tmp_path),
     )  # fmt: skip
     assert r.returncode == 0, r.stderr
@@ -46,7 +46,7 @@ def test_screenshot_of_a_project(tmp_path):
 
 def test_gui_without_display_says_so(tmp_path):
     r = subprocess.run(
-        [sys.executable, "-m", "mrm"],
+        [sys.executable, "-m", "mrm.app"],
         capture_output=True,
         text=True,
         timeout=120,
@@ -56,7 +56,7 @@ def test_gui_without_display_says_so(tmp_path):
     assert r.returncode == 2
     assert "no display" in r.stderr and "--screenshot" in r.stderr
     r = subprocess.run(
-        [sys.executable, "-m", "mrm", "--screenshot", str(tmp_path / "x.png"), "missing.mrm"],
+        [sys.executable, "-m", "mrm.app", "--screenshot", str(tmp_path / "x.png"), "missing.mrm"],
         capture_output=True, text=True, timeout=120, cwd=ROOT, env=_env(tmp_path),
     )  # fmt: skip
     assert r.returncode == 2 and "missing.mrm" in r.stderr and "Traceback" not in r.stderr
@@ -64,7 +64,7 @@ def test_gui_without_display_says_so(tmp_path):
 
 def test_help_lists_the_window_options_and_the_subcommands(tmp_path):
     r = subprocess.run(
-        [sys.executable, "-m", "mrm", "--help"], capture_output=True, text=True, timeout=120, cwd=ROOT,
+        [sys.executable, "-m", "mrm.app", "--help"], capture_output=True, text=True, timeout=120, cwd=ROOT,
         env=_env(tmp_path),
     )  # fmt: skip
     assert r.returncode == 0

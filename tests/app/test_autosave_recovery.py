@@ -6,9 +6,9 @@ from __future__ import annotations
 import subprocess
 import sys
 
-from mrm.commands import AddObject, RenameObject
 from mrm.core.grids import PixelSet
 from mrm.document import Document
+from mrm.document.commands import AddObject, RenameObject
 from mrm.io import autosave
 from mrm.io.project import dumps
 from tests.app.helpers import answer_dialog

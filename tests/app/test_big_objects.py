@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from mrm.views.canvas import LOD_PIXELS, lod_factor, lod_image
 
 

@@ -10,9 +10,9 @@ from PySide6 import QtCore, QtGui
 from shapely.geometry import Polygon
 
 from mrm.app.clipboard import MIME
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
 from mrm.document import Style
+from mrm.document.commands import AddObject
 
 Qt = QtCore.Qt
 CTRL = Qt.KeyboardModifier.ControlModifier

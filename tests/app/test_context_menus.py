@@ -6,8 +6,8 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from tests.app.helpers import click, square, wait_drawn, zoom_to
 
 Qt = QtCore.Qt

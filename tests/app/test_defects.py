@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 from PySide6 import QtCore, QtWidgets
 
-from mrm.commands import AddObject
+from mrm.document.commands import AddObject
 from tests.app.helpers import square, type_into
 
 Qt = QtCore.Qt
@@ -101,8 +101,8 @@ def test_the_panel_model_follows_edit_discretization_model(make_window, qtbot):
 
 # ---------------------------------------------------------------------------------------------- export
 def test_svg_export_uses_the_objects_colour(make_window, tmp_path: Path):
-    from mrm.commands import RestyleObject
     from mrm.document import Style
+    from mrm.document.commands import RestyleObject
 
     win = make_window()
     a = _with_object(win)

@@ -11,8 +11,8 @@ import shapely
 from PySide6 import QtCore, QtGui, QtWidgets
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject, RenameObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject, RenameObject
 from tests.app.helpers import answer_dialog, colour_at, is_background, wait_drawn
 
 SQUARE = Polygon([(0, 0), (12, 0), (12, 9), (0, 9)], [[(3, 3), (6, 3), (6, 6), (3, 6)]])

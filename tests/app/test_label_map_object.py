@@ -16,8 +16,8 @@ from hypothesis import strategies as st
 from PIL import Image
 from PySide6 import QtCore, QtWidgets
 
-from mrm.commands import AddObject
 from mrm.core.grids import LabelMap
+from mrm.document.commands import AddObject
 from mrm.geometry.discretize import discretize
 from mrm.reps.cells import cells_of
 from mrm.views.label_maps import label_colour

@@ -8,7 +8,7 @@ from fractions import Fraction
 from PySide6 import QtCore
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject, RenameObject, SetSource
+from mrm.document.commands import AddObject, RenameObject, SetSource
 from tests.app.helpers import click, colour_at, press_key, zoom_to
 
 Qt = QtCore.Qt

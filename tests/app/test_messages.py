@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from PySide6 import QtCore, QtWidgets
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from tests.app.helpers import click, press_key, zoom_to
 
 Qt = QtCore.Qt

@@ -13,10 +13,10 @@ import threading
 import numpy as np
 from PySide6 import QtCore
 
-import mrm.derive
+import mrm.document.derive
 import mrm.views.inspector
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from tests.app.helpers import colour_at, is_background, wait_drawn
 from tests.app.test_inspector import _chain
 
@@ -97,14 +97,14 @@ def _gate_regions(monkeypatch):  # type: ignore[no-untyped-def]
     """Make computing regions wait until the returned event is set (the derivation is then 'long')."""
     gate = threading.Event()
     started = threading.Event()
-    original = mrm.derive.region_from_pixels
+    original = mrm.document.derive.region_from_pixels
 
     def slow(ps):  # type: ignore[no-untyped-def]
         started.set()
         gate.wait(60)
         return original(ps)
 
-    monkeypatch.setattr(mrm.derive, "region_from_pixels", slow)
+    monkeypatch.setattr(mrm.document.derive, "region_from_pixels", slow)
     return gate, started
 
 
@@ -167,7 +167,7 @@ def test_an_edit_after_a_cancel_computes_afresh(make_window, qtbot, monkeypatch)
     qtbot.waitUntil(lambda: not win.runner.is_busy(), timeout=60_000)
     assert win.scene.is_cancelled(obj.id, "analytical")
     # A new version of the object (its pixels shifted) is not the cancelled one: it is computed.
-    from mrm.commands import SetSource
+    from mrm.document.commands import SetSource
 
     win.doc.push(SetSource(obj.id, _big_disk().translate(3, 0)))
     qtbot.waitUntil(lambda: win.scene.get(obj.id, "analytical") is not None, timeout=120_000)

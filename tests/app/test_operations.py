@@ -8,12 +8,13 @@ DSS steps with ratios s_i is bounded by √2 · Σ_{i=2..k} Π_{j=i..k} s_j; for
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 from PySide6 import QtCore
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from tests.app.helpers import type_into
@@ -40,7 +41,7 @@ def _apply_dss_from_panel(win, qtbot, alpha_text: str) -> int:  # type: ignore[n
     n = len(win.doc.objects)
     panel.select_operation("dss")
     type_into(qtbot, panel.control("alpha").field, alpha_text)
-    assert panel.values()["alpha"] == float(alpha_text)
+    assert panel.values()["alpha"] == Fraction(alpha_text)  # the typed decimal, exactly (0.2 is 1/5)
     qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
     qtbot.waitUntil(lambda: len(win.doc.objects) == n + 1, timeout=60_000)
     return int(win.doc.objects[-1].id)

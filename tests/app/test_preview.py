@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from PySide6 import QtCore
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from mrm.views.scene import GHOST_FILL, GHOST_STYLE
 from tests.app.helpers import square, type_into
 
@@ -22,7 +22,7 @@ def _click_live(qtbot, panel) -> None:  # type: ignore[no-untyped-def]
 
 
 def _dss_result(panel, src: PixelSet, alpha: float) -> PixelSet:  # type: ignore[no-untyped-def]
-    from mrm.ops.base import run_operation
+    from mrm.ops.registry import run_operation
 
     spec = panel.op.spec
     return run_operation(spec, [src], spec.params(alpha=alpha)).outputs[0][1]

@@ -82,7 +82,7 @@ def test_errors_come_back_as_themselves_and_a_dead_child_is_replaced(pool):  # t
 
 
 def test_the_window_applies_an_operation_in_a_worker_process(make_window, qtbot):  # type: ignore[no-untyped-def]
-    from mrm.commands import AddObject
+    from mrm.document.commands import AddObject
     from tests.app.helpers import colour_at, is_background
 
     win = make_window(threaded=True)

@@ -6,8 +6,8 @@ import numpy as np
 from PySide6 import QtCore, QtWidgets
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from tests.app.helpers import type_into
 
 Qt = QtCore.Qt
@@ -74,7 +74,7 @@ def test_a_coordinate_that_makes_the_polygon_cross_itself_is_refused(make_window
     assert win.doc.history.undo_label() == steps  # nothing recorded
     assert win.properties.table.model().index(1, 3).data() == "4"  # the table shows what is stored
     _edit_cell(qtbot, win.properties.table, 2, 4, "abc")
-    assert "not a number" in win.properties.status.text()
+    assert "a coordinate must be a number, got 'abc'" in win.properties.status.text()
     assert win.doc.get(oid).source.equals_exact(sq, 0)
 
 

@@ -9,9 +9,9 @@ import numpy as np
 from PySide6 import QtGui
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
 from mrm.document import Style
+from mrm.document.commands import AddObject
 from mrm.views.region_view import colour_distance
 from mrm.views.segment_table import linear
 from tests.app.helpers import click, grab, wait_drawn, zoom_to

@@ -79,7 +79,7 @@ def _stop(proc: subprocess.Popen[bytes]) -> None:
 
 def _mrm_command() -> list[str]:
     script = Path(sys.executable).with_name("mrm")
-    return [str(script)] if script.exists() else [sys.executable, "-m", "mrm"]
+    return [str(script)] if script.exists() else [sys.executable, "-m", "mrm.app"]
 
 
 @pytest.fixture

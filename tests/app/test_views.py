@@ -7,8 +7,8 @@ import numpy as np
 from PySide6 import QtCore, QtGui
 from shapely.geometry import Polygon
 
-from mrm.commands import AddObject
 from mrm.core.grids import PixelSet
+from mrm.document.commands import AddObject
 from mrm.reps.region import region_of
 from tests.app.helpers import click, colour_at, is_background, wait_drawn, widget_pos, zoom_to
 

@@ -19,7 +19,8 @@ from rasterio.transform import from_origin
 from shapely.geometry import box, shape
 
 import mrm
-from mrm.io.georef import GeoRef, parse_world_file, world_file_text
+from mrm.core.georef import GeoRef
+from mrm.io.georef import parse_world_file, world_file_text
 
 PY = sys.executable
 T = from_origin(500_000.0, 4_200_000.0, 30.0, 30.0)  # UTM 33N, 30 m pixels

@@ -17,15 +17,16 @@ import rasterio
 from rasterio.features import rasterize
 from shapely.geometry import shape
 
-from mrm.commands import MergeObjects, PaintPixels, RenameObject
 from mrm.core.errors import FileFormatError
+from mrm.core.georef import GeoRef
 from mrm.core.grids import PixelSet
 from mrm.document import Document, Settings
+from mrm.document.apply import apply_operation
+from mrm.document.commands import MergeObjects, PaintPixels, RenameObject
 from mrm.io.export import export_object, export_objects_geojson
-from mrm.io.georef import GeoRef, read_georef
+from mrm.io.georef import read_georef
 from mrm.io.imports import import_file
 from mrm.io.project import load_project, loads, save_project
-from mrm.ops.apply import apply_operation
 from tests.geo.test_georef import CRS, T, blobs, write_tif
 
 GOLDEN = Path(__file__).parents[1] / "model" / "golden"
@@ -168,7 +169,7 @@ def test_rotation_and_union_keep_the_grid_and_mixed_grids_drop_it(tmp_path):
     (uni,) = apply_operation(doc, "union", [oid, rot], {"model": "gauss"})
     assert doc.get(uni).georef == g
     plain = doc.make_object(PixelSet.from_points([(0, 0)]), "plain")
-    from mrm.commands import AddObject
+    from mrm.document.commands import AddObject
 
     doc.push(AddObject(plain))
     (mixed,) = apply_operation(doc, "union", [oid, plain.id], {"model": "gauss"})
@@ -181,7 +182,7 @@ def test_rotation_and_union_keep_the_grid_and_mixed_grids_drop_it(tmp_path):
 def test_several_objects_in_one_geojson_need_one_crs(tmp_path):
     doc, oid = imported(tmp_path, blobs(16, 16, 6))
     plain = doc.make_object(PixelSet.from_points([(0, 0)]), "plain")
-    from mrm.commands import AddObject
+    from mrm.document.commands import AddObject
 
     doc.push(AddObject(plain))
     with pytest.raises(Exception, match="not all georeferenced in one CRS"):

@@ -10,10 +10,10 @@ from pathlib import Path
 
 import pytest
 
-from mrm.commands import AddObject, RenameObject
 from mrm.core.errors import FileFormatError
 from mrm.core.grids import PixelSet
 from mrm.document import Document
+from mrm.document.commands import AddObject, RenameObject
 from mrm.io import autosave
 from mrm.io.atomic import atomic_write_bytes, remove_stale_temps
 from mrm.io.autosave import Autosaver, find_orphans, find_recovery, side_file

@@ -14,7 +14,8 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.geometry.discretize import MODELS, _discretize_pieces, _take_apart, discretize, discretize_segment
+from mrm.core.models import Model
+from mrm.geometry.discretize import _discretize_pieces, _take_apart, discretize, discretize_segment
 from mrm.geometry.discretize import _kernels as kernels
 from mrm.geometry.discretize.exact import cell_index, closed_cell_range, float_predicates_are_exact
 from tests.oracles.discretize_reference import reference_discretize, reference_segment
@@ -28,6 +29,8 @@ from tests.oracles.geometry_strategies import (
     snapper,
     star_polygons,
 )
+
+MODELS = Model.names()
 
 
 def as_set(ps):  # type: ignore[no-untyped-def]

@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 from scipy import ndimage
 
 from mrm.core.grids import PixelSet
-from mrm.geometry.discretize import MODELS, discretize, discretize_segment
+from mrm.core.models import Model
+from mrm.geometry.discretize import discretize, discretize_segment
 from tests.oracles.discretize_reference import reference_discretize, standard_line_inequality
 from tests.oracles.geometry_strategies import (
     floats,
@@ -23,6 +24,8 @@ from tests.oracles.geometry_strategies import (
     snapper,
     star_polygons,
 )
+
+MODELS = Model.names()
 
 FOUR = np.array([[0, 1, 0], [1, 1, 1], [0, 1, 0]])
 

@@ -13,8 +13,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, MultiPolygon, Point, Polygon
 
-import mrm.derive as derive
-from mrm.commands import (
+import mrm.document.derive as derive
+from mrm.core.errors import InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.core.grids import PixelSet
+from mrm.document import Changes, DocObject, Document, Settings, Style, validate_geometry
+from mrm.document.commands import (
     AddObject,
     ChangeSettings,
     MoveVertex,
@@ -25,10 +28,8 @@ from mrm.commands import (
     RestyleObject,
     SetSource,
 )
-from mrm.core.errors import InvalidGeometryError, ParameterError, SizeLimitError
-from mrm.core.grids import PixelSet
-from mrm.derive import DerivationCache
-from mrm.document import Changes, DocObject, Document, Provenance, Settings, Style, validate_geometry
+from mrm.document.derive import DerivationCache
+from mrm.ops.provenance import Provenance
 
 
 def tri(x: float = 0.0, y: float = 0.0) -> Polygon:
@@ -216,13 +217,13 @@ def test_region_and_analytical_come_from_the_discrete_representation():
 
 def test_analytical_representation_is_derived_once_from_the_region(monkeypatch):
     seen = []
-    real = derive.analytical_from_region
+    real = derive.analytical_of
 
     def spy(region):
         seen.append(region)
         return real(region)
 
-    monkeypatch.setattr(derive, "analytical_from_region", spy)
+    monkeypatch.setattr(derive, "analytical_of", spy)
     doc = Document()
     o = doc.make_object(tri())
     doc.push(AddObject(o))
@@ -253,7 +254,7 @@ def test_derivation_errors_are_remembered_not_recomputed(monkeypatch):
         calls.append(model)
         raise SizeLimitError(10**12, 10**8, "the discretization")
 
-    monkeypatch.setattr(derive, "discretize_source", refuse)
+    monkeypatch.setattr(derive, "discretize", refuse)
     doc = Document()
     o = doc.make_object(tri())
     doc.push(AddObject(o))

@@ -10,13 +10,14 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.commands import AddObject
 from mrm.core.errors import MRMError
 from mrm.core.grids import PixelSet
-from mrm.document import Document, Provenance
+from mrm.document import Document
+from mrm.document.commands import AddObject
 from mrm.io.pixel_files import read_pixels, write_pixels
 from mrm.io.project import dumps, parse_project
 from mrm.io.vector_files import read_geometries, write_geojson, write_wkt
+from mrm.ops.provenance import Provenance
 
 HOSTILE = [
     b"\\ud800",

@@ -9,7 +9,10 @@ from hypothesis import event, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.commands import (
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import PixelSet
+from mrm.document import Document, Style
+from mrm.document.commands import (
     AddObject,
     ApplyResults,
     ChangeSettings,
@@ -28,11 +31,9 @@ from mrm.commands import (
     RestyleObject,
     SetSource,
 )
-from mrm.core.errors import InvalidGeometryError, ParameterError
-from mrm.core.grids import PixelSet
-from mrm.document import Document, Provenance, Style
-from mrm.history import Command
+from mrm.document.history import Command
 from mrm.io.project import dumps
+from mrm.ops.provenance import Provenance
 
 
 def state(doc: Document) -> bytes:

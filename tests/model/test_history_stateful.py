@@ -17,7 +17,10 @@ from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, invariant, precondition, rule
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.commands import (
+from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.grids import PixelSet
+from mrm.document import Document, Style
+from mrm.document.commands import (
     AddObject,
     ChangeSettings,
     DeleteComponent,
@@ -33,10 +36,7 @@ from mrm.commands import (
     RestyleObject,
     SetSource,
 )
-from mrm.core.errors import InvalidGeometryError, ParameterError
-from mrm.core.grids import PixelSet
-from mrm.document import Document, Style
-from mrm.history import Command
+from mrm.document.history import Command
 from mrm.io.project import dumps, loads
 
 half = st.integers(-16, 16).map(lambda v: v / 2)  # centres and sides of pixels: where ties are decided

@@ -22,15 +22,16 @@ import pytest
 from PIL import Image
 
 import mrm.core.limits as limits
-from mrm.commands import AddObject
 from mrm.core.errors import FileFormatError, LimitError, MRMError
 from mrm.core.grids import PixelSet
 from mrm.core.threshold import binarize, grey_of
-from mrm.document import Document, Provenance
+from mrm.document import Document
+from mrm.document.commands import AddObject
 from mrm.io.imports import import_file
 from mrm.io.pixel_files import read_label_map, read_pixels
 from mrm.io.project import dumps, parse_project, read_project, save_project
 from mrm.io.vector_files import read_geometries
+from mrm.ops.provenance import Provenance
 
 HERE = Path(__file__).parent
 
@@ -287,12 +288,12 @@ def test_a_14000_squared_all_zero_rgba_png_stays_far_under_1_gb(tmp_path):
 
 
 def test_reconstruct_of_a_checkerboard_is_refused_before_work():
-    from mrm.derive import reconstruct_source
+    from mrm.geometry.reconstruct import reconstruct
 
     ps = PixelSet(hostile.checkerboard(2048))
     t = time.perf_counter()
     with pytest.raises(LimitError, match="boundary of 8,388,608 pixel edges, more than the 2,000,000"):
-        reconstruct_source(ps, "standard")
+        reconstruct(ps, "standard")  # R's one entry point applies its limit, for every caller
     assert time.perf_counter() - t < 5
 
 
@@ -359,12 +360,12 @@ def test_project_validation_is_linear_in_the_number_of_keys(n):
 
 
 def test_a_chain_of_14000_steps_is_refused_up_front():
-    from mrm.geometry.hausdorff.bounds import bound_of_chain, parse_chain
+    from mrm.ops.chain import chain_bound, parse_chain
 
     steps = parse_chain(", ".join(["DSS 1.25", "DSS 0.8"] * 7000))
     t = time.perf_counter()
     with pytest.raises(LimitError, match="14,000 steps, more than the limit of 256"):
-        bound_of_chain(steps, "standard")
+        chain_bound(steps, "standard")
     assert time.perf_counter() - t < 1
 
 

@@ -11,15 +11,16 @@ import pytest
 from shapely.geometry import LineString, Polygon
 
 from mrm.cli._project_input import load_input
-from mrm.commands import AddObject
 from mrm.core.errors import FileFormatError, MRMError, ParameterError
 from mrm.core.grids import PixelSet
-from mrm.document import Document, Provenance, Settings
+from mrm.document import Document, Settings
+from mrm.document.commands import AddObject
 from mrm.io.export import export_label_map, export_object, export_objects_geojson, label_map_of
 from mrm.io.imports import import_file
 from mrm.io.pixel_files import read_label_map, read_pixels, write_pixels
 from mrm.io.project import save_project
 from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
+from mrm.ops.provenance import Provenance
 
 POLY = Polygon([(0.25, 0.5), (9.75, 1.125), (4.0, 7.5)], [[(3.0, 2.0), (4.5, 3.5), (5.0, 2.0)]])
 PIXELS = PixelSet.box(-3, 10, 2, 14) - PixelSet.from_points([(0, 12)])

@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mrm.commands import AddObject, FillHole, PaintPixels, SplitLabelMap
 from mrm.core.errors import NotApplicableError
 from mrm.core.grids import LabelMap, PixelSet
 from mrm.document import Document, Settings
+from mrm.document.commands import AddObject, FillHole, PaintPixels, SplitLabelMap
 from mrm.geometry.discretize import discretize
 from mrm.io.project import dumps, loads, read_project
 from mrm.reps.cells import Cells

@@ -10,11 +10,12 @@ from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
 import mrm.core.limits as limits
-from mrm.commands import AddObject, ApplyResults, MergeObjects, PaintPixels, RenameObject
 from mrm.core.errors import LimitError, MRMError, ParameterError, SizeLimitError
 from mrm.core.grids import PixelSet
-from mrm.document import Document, Provenance
+from mrm.document import Document
+from mrm.document.commands import AddObject, ApplyResults, MergeObjects, PaintPixels, RenameObject
 from mrm.io.project import dumps, loads, parse_project, save_project
+from mrm.ops.provenance import Provenance
 
 LIM = 2**31
 
@@ -35,7 +36,7 @@ def reopened(doc: Document, tmp_path) -> Document:
 
 # ---------------------------------------------------------------------------------------------- examples
 def test_dss_of_an_object_far_out_is_refused_by_the_operation_and_the_document_is_untouched():
-    from mrm.ops.apply import apply_operation
+    from mrm.document.apply import apply_operation
     from mrm.ops.scaling import DSSParams
 
     doc = Document()
@@ -228,7 +229,7 @@ def _polygon(x: float, y: float, n: int) -> Polygon:
 
 
 def _apply(doc: Document, a: tuple) -> None:
-    from mrm.ops.apply import apply_operation
+    from mrm.document.apply import apply_operation
     from mrm.ops.scaling import DSSParams
 
     kind = a[0]

@@ -14,8 +14,6 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
-from mrm.ops.apply import load_paper_operations
-from mrm.ops.base import run_operation
 from mrm.ops.boolean import (
     PARTS,
     CorefineParams,
@@ -25,6 +23,7 @@ from mrm.ops.boolean import (
     euclidean_discrete_union,
     run_corefine,
 )
+from mrm.ops.registry import run_operation
 from mrm.reps.region import region_of
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, pixel_sets, polygons_of, reference_discretize_rings, scaled
@@ -145,7 +144,6 @@ def test_specs_give_named_parts_with_provenance():
         run_operation("union", [e1], UnionParams())
     with pytest.raises(ParameterError, match="alpha"):
         run_corefine([e1, e2], CorefineParams(alpha=float("nan")))
-    load_paper_operations()
     with pytest.raises(ParameterError, match="alpha"):
         run_operation("corefine", [e1, e2], CorefineParams(alpha=-1.0))
     # a chain of the framework continues with the first part, A ∖ B

@@ -179,8 +179,8 @@ def test_corefine_refuses_alpha_out_of_range_in_one_short_line(capsys, files, al
 
 @pytest.mark.parametrize(("model", "alpha"), [("standard", None), ("gauss", "1.25"), ("supercover", "2")])
 def test_corefine_prints_the_numbers_of_the_one_account(capsys, files, model, alpha):
-    from mrm.document import Provenance
     from mrm.ops.account import account_of
+    from mrm.ops.provenance import Provenance
 
     extra = [] if alpha is None else ["--alpha", alpha]
     s = run_json(
@@ -237,7 +237,7 @@ def test_project_inputs_with_object_names(capsys, project, tmp_path):
             ["scale", "{png}", "--alpha", "0", "-o", "{dir}/o.png"],
             "'alpha' (α) must be ≥ 1e-06, got 0 (allowed: 1e-06 ≤ α ≤ 1e+06)",
         ),
-        (["scale", "{png}", "--alpha", "nan", "-o", "{dir}/o.png"], "'alpha' must be a finite number"),
+        (["scale", "{png}", "--alpha", "nan", "-o", "{dir}/o.png"], "'alpha' (α) must be a finite number"),
         (["scale", "{png}", "--alpha", "1e6", "-o", "{dir}/o.png"], "would cover"),
         (["rotate", "{png}", "--angle", "inf", "-o", "{dir}/o.png"], "angle"),
         (["simplify", "{tri}", "--alpha", "-1", "-o", "{dir}/o.wkt"], "alpha"),

@@ -7,7 +7,7 @@ import pytest
 from mrm.cli import build_parser, run_cli
 from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import write_pixels
-from mrm.ops.base import get_operation, range_text
+from mrm.ops.registry import get_operation
 
 
 @pytest.mark.parametrize(
@@ -24,12 +24,12 @@ def test_every_parameter_of_the_spec_is_an_option_with_its_range(command, operat
     with pytest.raises(SystemExit):
         build_parser().parse_args([command, "--help"])
     text = " ".join(capsys.readouterr().out.split())
-    for p in get_operation(operation).param_specs():
-        if p.name == "model":
+    for p in get_operation(operation).params.specs():
+        if p.kind == "model":
             continue
         assert f"--{p.name}" in text
         if p.minimum is not None:
-            assert range_text(p) in text
+            assert p.range_text() in text
 
 
 def test_an_out_of_range_value_is_refused_with_the_declared_range(tmp_path, capsys):
@@ -46,7 +46,7 @@ def test_corefine_refuses_an_alpha_out_of_range_before_reading_its_inputs(tmp_pa
     missing = str(tmp_path / "none.png")
     assert run_cli(["corefine", missing, missing, "--alpha", "2e6", "-o", str(tmp_path / "o.geojson")]) == 2
     err = capsys.readouterr().err
-    assert "'alpha' (α) must be ≤ 1e+06, got 2e+06 (allowed: 1e-06 ≤ α ≤ 1e+06)" in err
+    assert "'alpha' (α) must be ≤ 1e+06, got 2e6 (allowed: 1e-06 ≤ α ≤ 1e+06)" in err
     assert not list(tmp_path.iterdir())
 
 

@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import pytest
 
-from mrm.commands import AddObject
 from mrm.document import Document, Settings
+from mrm.document.apply import apply_operation
+from mrm.document.commands import AddObject
 from mrm.geometry import reconstruct as reconstruct_module
 from mrm.geometry.discretize import discretize
-from mrm.ops.apply import apply_operation
-from mrm.ops.base import plan_operation
+from mrm.ops.registry import plan_operation
 from tests.oracles.geometry_strategies import noisy_star
 
 

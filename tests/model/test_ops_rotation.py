@@ -13,7 +13,7 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
 from mrm.geometry.discretize.exact_shape import rotation_cos_sin
 from mrm.geometry.reconstruct import reconstruct
-from mrm.ops.base import run_operation
+from mrm.ops.registry import run_operation
 from mrm.ops.rotation import RotationParams, discrete_rotation
 from tests.oracles.ops_reference import (
     MODELS,

@@ -12,13 +12,12 @@ from hypothesis import strategies as st
 
 from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
-from mrm.document import Provenance
 from mrm.geometry.discretize import discretize
 from mrm.geometry.discretize.exact_shape import ExactShape
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.reconstruct import reconstruct
-from mrm.ops.apply import load_paper_operations
-from mrm.ops.base import run_operation
+from mrm.ops.provenance import Provenance
+from mrm.ops.registry import run_operation
 from mrm.ops.scaling import DSSParams, discrete_smooth_scaling, run
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import MODELS, objects, polygons_of, reference_discretize_rings, scaled
@@ -108,7 +107,6 @@ def test_integer_path_agrees_with_the_compiled_discretization(poly, model):
 
 # ---------------------------------------------------------------------------------------------- the operation
 def test_the_registered_operation_gives_one_result_with_its_provenance():
-    load_paper_operations()
     a = PixelSet.box(0, 0, 3, 2)
     res = run_operation("dss", [a], DSSParams(alpha=0.5, center=(1.0, 1.0), model="supercover"))
     assert res.outputs == [("DSS 0.5", discrete_smooth_scaling(a, 0.5, (1, 1), "supercover").result)]

@@ -15,8 +15,8 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
-from mrm.ops.base import run_operation
 from mrm.ops.measure import measured_error
+from mrm.ops.registry import run_operation
 from mrm.ops.simplify import SimplifyParams, simplification
 from tests.oracles.geometry_strategies import star_polygons
 from tests.oracles.ops_reference import COVERS, MODELS, polygons_of, reference_discretize_rings, scaled

@@ -189,7 +189,7 @@ def test_polygonize_accepts_an_array_with_an_origin() -> None:
     ("arg", "message"),
     [
         ({"model": "standard"}, "needs the gauss model"),
-        ({"model": "nope"}, "unknown model"),
+        ({"model": "nope"}, "unknown discretization model"),
         ({"labels": np.zeros((2, 2, 2), dtype=np.int32)}, "2-D integer array"),
         ({"labels": np.array([[-1, 2]])}, "non-negative"),
     ],

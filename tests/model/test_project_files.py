@@ -14,10 +14,10 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.commands import AddObject, PaintPixels, RenameObject
 from mrm.core.errors import FileFormatError, MRMError
 from mrm.core.grids import PixelSet
-from mrm.document import Document, Provenance, Settings, Style, content_digest
+from mrm.document import Document, Settings, Style
+from mrm.document.commands import AddObject, PaintPixels, RenameObject
 from mrm.io import autosave
 from mrm.io.project import (
     SCHEMA_VERSION,
@@ -29,6 +29,7 @@ from mrm.io.project import (
     read_project,
     save_project,
 )
+from mrm.ops.provenance import Provenance, content_digest
 
 GOLDEN = Path(__file__).parent / "golden"
 EXAMPLES = Path(__file__).parents[2] / "resources" / "examples"

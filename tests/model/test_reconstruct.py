@@ -11,15 +11,18 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
+from mrm.core.models import Model
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
-from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
+from mrm.geometry.reconstruct import reconstruct, reconstruct_detailed
 from mrm.geometry.reconstruct.border import KIND_NAMES, border_path, border_paths, corridors, visit_counts
 from mrm.geometry.reconstruct.safety_net import eroded_net, net_ring, safety_net, staircase
 from mrm.geometry.reconstruct.verify import verify
 from mrm.reps.region import CrackChain, region_of
-from mrm.summary import count_vertices
+from mrm.reps.summary import count_vertices
 from tests.oracles.gauss_contract import check_gauss_containment
+
+MODELS = Model.names()
 
 
 def ps_of(rows: list[str], origin: tuple[int, int] = (0, 0)) -> PixelSet:
@@ -96,7 +99,7 @@ def test_empty_set_gives_an_empty_polygon() -> None:
 
 
 def test_unknown_model_is_a_parameter_error() -> None:
-    with pytest.raises(ParameterError, match="unknown model"):
+    with pytest.raises(ParameterError, match="unknown discretization model"):
         reconstruct(ps_of(["#"]), "nearest")
 
 

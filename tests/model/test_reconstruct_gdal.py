@@ -22,9 +22,12 @@ from affine import Affine
 from hypothesis import given, settings
 
 from mrm.core.grids import PixelSet
-from mrm.geometry.reconstruct import MODELS, reconstruct
+from mrm.core.models import Model
+from mrm.geometry.reconstruct import reconstruct
 from tests.model.test_reconstruct_images import IMAGES, image
 from tests.model.test_reconstruct_properties import pixel_sets
+
+MODELS = Model.names()
 
 
 def burn(geom: object, ps: PixelSet, all_touched: bool) -> np.ndarray:

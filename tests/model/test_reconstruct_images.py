@@ -18,14 +18,17 @@ from shapely.geometry import MultiPolygon
 from skimage.filters import threshold_otsu
 
 from mrm.core.grids import PixelSet
+from mrm.core.models import Model
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation
-from mrm.geometry.reconstruct import MODELS, reconstruct, reconstruct_detailed
+from mrm.geometry.reconstruct import reconstruct, reconstruct_detailed
 from mrm.geometry.reconstruct.safety_net import eroded_net
 from mrm.geometry.reconstruct.verify import verify
 from mrm.reps.region import region_of
-from mrm.summary import count_vertices
+from mrm.reps.summary import count_vertices
 from tests.oracles.gauss_contract import check_gauss_containment
+
+MODELS = Model.names()
 
 
 def _otsu(img: np.ndarray) -> np.ndarray:

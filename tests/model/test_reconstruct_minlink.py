@@ -17,8 +17,9 @@ import pytest
 from hypothesis import given, settings
 
 from mrm.core.grids import PixelSet
+from mrm.core.models import Model
 from mrm.geometry.discretize import discretize
-from mrm.geometry.reconstruct import MODELS, _run
+from mrm.geometry.reconstruct import _run
 from mrm.geometry.reconstruct._check import edge_ok, verify_ring
 from mrm.geometry.reconstruct._minlink import (
     _ROOM,
@@ -29,6 +30,8 @@ from mrm.geometry.reconstruct._minlink import (
 )
 from tests.model.test_reconstruct_properties import pixel_sets
 from tests.oracles.geometry_strategies import noisy_star
+
+MODELS = Model.names()
 
 
 def corridor_rings(ps: PixelSet, model: str) -> list[dict[str, Any]]:

@@ -21,12 +21,15 @@ from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.grids import PixelSet
+from mrm.core.models import Model
 from mrm.geometry.discretize import discretize
-from mrm.geometry.reconstruct import MODELS, reconstruct
+from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.region import region_of
-from mrm.summary import count_vertices
+from mrm.reps.summary import count_vertices
 from tests.oracles.discretize_reference import reference_discretize
 from tests.oracles.gauss_contract import check_gauss_containment
+
+MODELS = Model.names()
 
 # ---------------------------------------------------------------------------------------------- generators
 

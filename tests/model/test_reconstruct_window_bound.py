@@ -14,8 +14,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mrm.core.grids import PixelSet
-from mrm.geometry.reconstruct import MODELS, _run
+from mrm.core.models import Model
+from mrm.geometry.reconstruct import _run
 from mrm.geometry.reconstruct._repair import window_bound
+
+MODELS = Model.names()
 
 
 def walked(reach: list[int]) -> int:

@@ -15,7 +15,7 @@ from shapely.geometry import MultiPolygon, Polygon, box
 
 from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.ops import similarity
-from mrm.ops.base import run_operation
+from mrm.ops.registry import get_operation, run_operation
 from mrm.ops.similarity import rotate_geometry, scale_geometry, translate_geometry
 
 finite = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False, allow_infinity=False)
@@ -171,10 +171,16 @@ def test_as_operations() -> None:
     assert res.bound is not None and res.bound.bound == 0.0
     res = run_operation("scale", [g], similarity.ScaleParams(factor=0.5, center=(0.0, 0.0)))
     assert res.output.equals(box(0, 0, 1, 0.5))
-    with pytest.raises(ParameterError, match=r"'factor'.*positive"):
+    with pytest.raises(ParameterError, match=r"'factor' must be ≥ 1e-06, got -2"):
         run_operation("scale", [g], similarity.ScaleParams(factor=-2.0))
     with pytest.raises(ParameterError, match="'angle'"):
         run_operation("rotate", [g], similarity.RotateParams(angle=float("nan")))
+
+
+def chain_step(operation: str, geom: object, **params: object) -> object:
+    """The operation as a step of a chain (what the account recomputes), read from JSON-like values."""
+    spec = get_operation(operation)
+    return spec.outcome(geom, spec.read_params(params)).result
 
 
 def test_the_registry_and_the_chain_read_parameters_the_same_way() -> None:
@@ -182,19 +188,17 @@ def test_the_registry_and_the_chain_read_parameters_the_same_way() -> None:
     from fractions import Fraction
 
     from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
-    from mrm.ops.chain import run_chain
 
     g = box(0, 0, 3, 3)
     res = run_operation("scale", [g], similarity.ScaleParams(factor=0.4, center=(0.0, 0.0)))
     assert res.output.bounds == (0.0, 0.0, 1.2, 1.2)  # the float nearest to 3·2/5, not 3·fl(0.4)
-    chained = run_chain(g, [("scale", {"factor": 0.4})], "standard", measure=False)
-    assert res.output.equals_exact(chained.result, 0.0)
-    assert res.bound is not None and res.bound.steps[0].value == Fraction(2, 5)
+    assert res.output.equals_exact(chain_step("scale", g, factor=0.4), 0.0)
+    assert res.bound is not None and res.bound.steps[0].label == "SCALE 0.4"
+    assert similarity.ScaleParams(factor=0.4).factor == Fraction(2, 5)
     rot = run_operation("rotate", [g], similarity.RotateParams(angle=30.0, center=(1.0, 1.0)))
     exact = ExactShape.from_geometry(g).map(Similarity.rotation(Fraction(30), (Fraction(1), Fraction(1))))
     assert rot.output.equals_exact(exact.to_geometry(), 0.0)
-    chained = run_chain(g, [("rotate", {"angle": 30.0, "center": (1.0, 1.0)})], "standard", measure=False)
-    assert rot.output.equals_exact(chained.result, 0.0)
+    assert rot.output.equals_exact(chain_step("rotate", g, angle=30.0, center=(1.0, 1.0)), 0.0)
 
 
 decimal_factor = st.integers(1, 10**6).map(lambda n: n / 1000)  # 0.001 … 1000 as the user types them
@@ -205,15 +209,12 @@ decimal_angle = st.integers(-36000, 36000).map(lambda n: n / 10)
 @given(dyadic, dyadic, st.integers(1, 40), st.integers(1, 40), decimal_factor, dyadic, dyadic)
 def test_the_registry_scale_reads_the_decimal_and_rounds_once(x0, y0, w, h, factor, cx, cy) -> None:
     """``scale`` by 0.4 is the exact scaling by 2/5, each coordinate rounded once, as the chain's step."""
-    from mrm.ops.chain import run_chain
-
     g = box(x0, y0, x0 + w, y0 + h)
     res = run_operation("scale", [g], {"factor": factor, "center": (cx, cy)})
     q = Fraction(repr(factor))
     expected = {(exact_image(x, cx, q, cx), exact_image(y, cy, q, cy)) for x, y in coords(g)}
     assert {tuple(v) for v in coords(res.output)} == expected
-    chained = run_chain(g, [("scale", {"factor": factor, "center": (cx, cy)})], measure=False)
-    assert res.output.equals_exact(chained.result, 0.0)
+    assert res.output.equals_exact(chain_step("scale", g, factor=factor, center=(cx, cy)), 0.0)
 
 
 @settings(max_examples=60, deadline=None)
@@ -221,7 +222,6 @@ def test_the_registry_scale_reads_the_decimal_and_rounds_once(x0, y0, w, h, fact
 def test_the_registry_rotate_is_the_exact_rational_rotation_rounded_once(x0, y0, w, h, angle, cx, cy) -> None:
     """``rotate`` applies the chain step's exact rational rotation (rational cos, sin), rounded once."""
     from mrm.geometry.discretize.exact_shape import rotation_cos_sin
-    from mrm.ops.chain import run_chain
 
     g = box(x0, y0, x0 + w, y0 + h)
     res = run_operation("rotate", [g], {"angle": angle, "center": (cx, cy)})
@@ -236,5 +236,4 @@ def test_the_registry_rotate_is_the_exact_rational_rotation_rounded_once(x0, y0,
         for x, y in coords(g)
     }
     assert {tuple(v) for v in coords(res.output)} == expected
-    chained = run_chain(g, [("rotate", {"angle": angle, "center": (cx, cy)})], measure=False)
-    assert res.output.equals_exact(chained.result, 0.0)
+    assert res.output.equals_exact(chain_step("rotate", g, angle=angle, center=(cx, cy)), 0.0)

@@ -15,7 +15,8 @@ from hypothesis import strategies as st
 from shapely import affinity
 
 from mrm.core.errors import MRMError
-from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, positive_number
+from mrm.core.numbers import read_positive
+from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.ops.simplify import simplification
 from tests.oracles.geometry_strategies import star_polygons
@@ -43,6 +44,6 @@ def test_far_from_the_origin_sp_is_idempotent_or_refused_with_a_message(poly, k,
         assert str(e)  # a message the user can read, never an assertion
         return
     # the result is a fixed point: its discretization at scale α is the one Sp started from, exactly
-    sc = Similarity.scaling(positive_number(alpha, "alpha"), None)
+    sc = Similarity.scaling(read_positive(alpha, "alpha"), None)
     assert discretize_exact(ExactShape.from_geometry(once.result).map(sc), model) == once.discrete
     assert np.array_equal(coords(once.result), coords(twice))

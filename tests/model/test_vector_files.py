@@ -552,9 +552,9 @@ def test_svg_both_draws_every_pixel_once_and_the_polygon_exactly(pts, corners):
 
 
 def test_export_of_both_representations_to_svg(tmp_path):
-    from mrm.commands import AddObject
     from mrm.core.errors import ParameterError
     from mrm.document import Document, Settings
+    from mrm.document.commands import AddObject
     from mrm.io.export import export_object
 
     square = Polygon([(0.5, -0.5), (2.5, -0.5), (2.5, 1.5), (0.5, 1.5)])  # the voxels of x = 1, 2; y = 0, 1

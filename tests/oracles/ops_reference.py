@@ -17,11 +17,12 @@ import shapely
 from hypothesis import strategies as st
 
 from mrm.core.grids import PixelSet
+from mrm.core.models import Model
 from mrm.geometry.discretize import discretize
 from tests.oracles.discretize_reference import inside_tau, kernel_box, segment_meets
 from tests.oracles.geometry_strategies import star_polygons
 
-MODELS = ("standard", "supercover", "gauss")
+MODELS = Model.names()
 COVERS = ("standard", "supercover")
 
 Q = Fraction

@@ -43,20 +43,20 @@ import numpy as np
 import numpy.typing as npt
 import shapely
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, InvalidGeometryError, ParameterError, SizeLimitError
-from mrm.core.grids import Box, PixelSet
+from mrm.core.errors import InvalidGeometryError
+from mrm.core.grids import Box, PixelSet, box_area
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
+from mrm.core.models import Model, cell_index
 from mrm.geometry.discretize import _kernels as _k
 from mrm.geometry.discretize.exact import (
     MAX_ABS_COORD,
     MIN_ABS_COORD,
-    cell_index,
     check_coordinate_range,
     closed_cell_range,
     float_predicates_are_exact,
 )
 
 #: The discretization models, the default first.
-MODELS = ("standard", "supercover", "gauss")
 
 Floats = npt.NDArray[np.float64]
 Ints = npt.NDArray[np.int64]
@@ -149,8 +149,7 @@ def discretize(
     SizeLimitError
         The result's bounding box would exceed ``limit`` pixels.
     """
-    _check_model(model)
-    _check_limit(limit)
+    model = Model.parse(model)
     pieces = _take_apart(geom, check_validity=check_validity)
     return _discretize_pieces(pieces, model, limit)
 
@@ -168,8 +167,7 @@ def discretize_segment(
     per diagonal index); ``"supercover"`` adds the bubbles at pixel corners and both sides of a segment that
     runs along a grid line; ``"gauss"`` gives the empty set (a segment holds no shifted centre).
     """
-    _check_model(model)
-    _check_limit(limit)
+    model = Model.parse(model)
     arr = np.array([p[0], p[1], q[0], q[1]], dtype=np.float64)
     _check_values(arr, "segment")
     one = np.zeros(1, dtype=np.float64)
@@ -196,8 +194,7 @@ def discretization_box(geom: Any, model: str = "standard") -> Box | None:
     points, and the extreme coordinates' cells are reached. For ``"gauss"`` it is the standard box, which
     contains the result. Validates coordinates but not polygon validity.
     """
-    _check_model(model)
-    return _box(_take_apart(geom, check_validity=False), model)
+    return _box(_take_apart(geom, check_validity=False), Model.parse(model))
 
 
 def estimate_pixels(geom: Any, model: str = "supercover") -> int:
@@ -205,22 +202,10 @@ def estimate_pixels(geom: Any, model: str = "supercover") -> int:
 
     The default model gives the largest box of the three, an upper bound for any model.
     """
-    return _box_area(discretization_box(geom, model))
+    return box_area(discretization_box(geom, model))
 
 
 # ------------------------------------------------------------------------------------------- checks
-def _check_model(model: str) -> None:
-    if model not in MODELS:
-        raise ParameterError(f"unknown discretization model {model!r}; choose one of {', '.join(MODELS)}")
-
-
-def _check_limit(limit: int | None) -> None:
-    if limit is not None and (
-        isinstance(limit, bool) or not isinstance(limit, int | np.integer) or limit < 0
-    ):
-        raise ParameterError(f"the pixel limit must be a non-negative integer or None, got {limit!r}")
-
-
 def _check_values(values: Floats, what: str, coords: Floats | None = None) -> None:
     """Refuse NaN, infinite, too large and too tiny coordinates, naming the vertex."""
     found = check_coordinate_range(values)
@@ -397,12 +382,6 @@ def _box(pieces: _Pieces, model: str) -> Box | None:
     return cell_index(xmin), cell_index(ymin), cell_index(xmax), cell_index(ymax)
 
 
-def _box_area(box: Box | None) -> int:
-    if box is None:
-        return 0
-    return (box[2] - box[0] + 1) * (box[3] - box[1] + 1)
-
-
 # ---------------------------------------------------------------------------------------- computing
 def _discretize_pieces(
     pieces: _Pieces, model: str, limit: int | None, exact_mode: bool | None = None
@@ -417,9 +396,7 @@ def _discretize_pieces(
     box = _box(pieces, model)
     if box is None:
         return PixelSet.empty()
-    estimated = _box_area(box)
-    if limit is not None and estimated > limit:
-        raise SizeLimitError(estimated, int(limit), "discretization")
+    check_pixels(box_area(box), limit, "discretization")
     if exact_mode is None:
         exact_mode = float_predicates_are_exact(pieces.coordinates(with_thin=not gauss))
     x0, y0, x1, y1 = box

@@ -5,15 +5,16 @@ that cannot round (comparing a float with a half-integer that is itself a float)
 a given float computation is free of rounding. Nothing here uses an epsilon.
 
 The pixel p = (i, j) is centred on (i, j). Its *standard cell* is the half-open square
-(i − ½, i + ½] × (j − ½, j + ½]: the cells partition the plane and a point belongs to exactly one of them.
+(i − ½, i + ½] × (j − ½, j + ½]: the cells partition the plane and a point belongs to exactly one of them
+(:func:`mrm.core.models.cell_index`, the one tie rule of the product).
 """
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import numpy.typing as npt
+
+from mrm.core.models import cell_index
 
 #: Largest supported |coordinate|. Beyond it pixel indices and half-integers stop being exact floats
 #: (2^53 is the last integer with a unit gap), and the exact predicates need a little headroom.
@@ -28,37 +29,10 @@ MIN_ABS_COORD = 2.0**-400
 _EXACT_UNITS = 2.0**25
 
 
-def cell_index(u: float) -> int:
-    """Return the integer k with u ∈ (k − ½, k + ½], exactly.
-
-    Parameters
-    ----------
-    u : float
-        A finite coordinate with |u| ≤ :data:`MAX_ABS_COORD`.
-
-    Returns
-    -------
-    int
-        The index of the standard cell that holds ``u`` (a point on a cell side goes to the cell on its left
-        or below, the side being that cell's right or top side).
-    """
-    k = math.floor(u + 0.5)  # may be off by one after rounding; fixed below with exact comparisons
-    while u > k + 0.5:
-        k += 1
-    while u <= k - 0.5:
-        k -= 1
-    return k
-
-
 def closed_cell_range(u: float) -> tuple[int, int]:
     """Return (lo, hi): the indices k whose closed interval [k − ½, k + ½] holds ``u`` (one or two)."""
     k = cell_index(u)
     return (k, k + 1) if u == k + 0.5 else (k, k)
-
-
-def standard_cell(x: float, y: float) -> tuple[int, int]:
-    """Return the pixel whose standard cell (x−½, x+½] × (y−½, y+½] holds the point (x, y)."""
-    return cell_index(x), cell_index(y)
 
 
 def check_coordinate_range(values: npt.NDArray[np.float64]) -> tuple[int, float] | None:

@@ -8,10 +8,9 @@ dyadic rational), and the image is discretized exactly (:mod:`mrm.geometry.discr
 
 Numbers
 -------
-A parameter given as a float is read as the decimal it prints as (``repr``): ``0.2`` means 1/5 and ``1.25``
-means 5/4, which is what a user typing them means, and what :mod:`mrm.geometry.hausdorff.bounds` reads from a
-chain's text. So ``DSS 5`` followed by ``DSS 0.2`` scales by exactly 1. Integers, Fractions and strings
-(``"1/3"``) are read exactly as they are.
+Every number here is a :class:`fractions.Fraction`, read once by :func:`mrm.core.numbers.read_number` where
+a user gave it (a float is the decimal it prints as: ``0.2`` means 1/5, so ``DSS 5`` followed by ``DSS 0.2``
+scales by exactly 1).
 
 Rotations
 ---------
@@ -39,117 +38,16 @@ from typing import Any
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.core.errors import InvalidGeometryError
 from mrm.core.grids import Box
+from mrm.core.numbers import Point, is_float
 
-Point = tuple[Fraction, Fraction]
 Ring = tuple[Point, ...]
 PolygonRings = tuple[Ring, ...]
 
 _ZERO = Fraction(0)
 _ONE = Fraction(1)
 _HALF = Fraction(1, 2)
-
-
-# ---------------------------------------------------------------------------------------------- numbers
-def exact_number(value: object, name: str) -> Fraction:
-    """Return ``value`` as an exact Fraction; a float is read as the decimal it prints as.
-
-    Parameters
-    ----------
-    value : int, float, Fraction, str or numpy number
-        The parameter's value.
-    name : str
-        The parameter's name, for the message.
-
-    Raises
-    ------
-    ParameterError
-        For NaN, infinities, booleans and anything that is not a number; the message names the parameter.
-    """
-    if isinstance(value, bool) or value is None:
-        raise ParameterError(f"{name} must be a number, got {value!r}")
-    if isinstance(value, Fraction):
-        return value
-    if isinstance(value, int):
-        return Fraction(value)
-    if hasattr(value, "dtype") and hasattr(value, "item"):  # numpy scalars
-        return exact_number(value.item(), name)
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise ParameterError(f"{name} must be a finite number, got {value!r}")
-        return Fraction(repr(value))
-    if isinstance(value, str):
-        text = value.strip()
-        low = text.lower().lstrip("+-")
-        if low in ("nan", "inf", "infinity"):
-            raise ParameterError(f"{name} must be a finite number, got {text!r}")
-        try:
-            return Fraction(text)
-        except (ValueError, ZeroDivisionError):
-            raise ParameterError(f"{name} must be a number, got {text!r}") from None
-    raise ParameterError(f"{name} must be a number, got {value!r}")
-
-
-def positive_number(value: object, name: str) -> Fraction:
-    """Return ``value`` as an exact Fraction, refusing zero and negative values (see :func:`exact_number`)."""
-    q = exact_number(value, name)
-    if q <= 0:
-        raise ParameterError(f"{name} must be positive, got {number_to_json(q)}")
-    return q
-
-
-def exact_point(value: object, name: str) -> Point | None:
-    """Return a pair of numbers as exact Fractions (None stays None); ``"x,y"`` strings are accepted."""
-    if value is None:
-        return None
-    if isinstance(value, str):
-        parts = [p for p in value.replace(";", ",").split(",")]
-        if len(parts) != 2:
-            raise ParameterError(f"{name} must be two numbers 'x,y', got {value!r}")
-        value = (parts[0], parts[1])
-    if not isinstance(value, tuple | list) or len(value) != 2:
-        raise ParameterError(f"{name} must be a pair of numbers (x, y), got {value!r}")
-    return exact_number(value[0], f"{name} x"), exact_number(value[1], f"{name} y")
-
-
-def number_to_json(q: Fraction) -> float | int | str:
-    """A JSON value that :func:`exact_number` reads back as ``q``: an int, a float or ``"p/q"``."""
-    if q.denominator == 1:
-        return int(q.numerator)
-    f = float(q)
-    if math.isfinite(f) and Fraction(repr(f)) == q:
-        return f
-    fraction = f"{q.numerator}/{q.denominator}"
-    decimal = _scientific(q)
-    return decimal if decimal is not None and len(decimal) < len(fraction) else fraction
-
-
-def _scientific(q: Fraction) -> str | None:
-    """``q`` as an exact ``"me-k"`` text when it is a decimal (``1e-400`` instead of a 401-digit fraction)."""
-    d, twos, fives = q.denominator, 0, 0
-    while d % 2 == 0:
-        d //= 2
-        twos += 1
-    while d % 5 == 0:
-        d //= 5
-        fives += 1
-    if d != 1:
-        return None
-    k = max(twos, fives)
-    m = q.numerator * 10**k // q.denominator
-    return f"{m}e-{k}"
-
-
-def is_float_exact(q: Fraction) -> bool:
-    """True when ``q`` is exactly a float64 value."""
-    d = q.denominator
-    if d & (d - 1):
-        return False  # not dyadic
-    try:
-        return Fraction(float(q)) == q
-    except OverflowError:
-        return False
 
 
 # ---------------------------------------------------------------------------------------------- similarities
@@ -304,7 +202,7 @@ class ExactShape:
 
     def is_float_exact(self) -> bool:
         """True when every coordinate is a float64: :meth:`to_geometry` is then exact."""
-        return all(is_float_exact(c) for c in self.coordinates())
+        return all(is_float(c) for c in self.coordinates())
 
     def to_geometry(self) -> Polygon | MultiPolygon:
         """The shapely geometry, each coordinate rounded once to the nearest float64 (exact when it is one).
@@ -355,13 +253,6 @@ def pixel_box(bounds: tuple[Fraction, Fraction, Fraction, Fraction] | None, mode
     x0, x1 = cell_range(bounds[0], bounds[2], model)
     y0, y1 = cell_range(bounds[1], bounds[3], model)
     return x0, y0, x1, y1
-
-
-def box_area(box: Box | None) -> int:
-    """The number of pixels of a box (0 for None)."""
-    if box is None:
-        return 0
-    return max(0, box[2] - box[0] + 1) * max(0, box[3] - box[1] + 1)
 
 
 def voxel_bounds(box: Box | None) -> tuple[Fraction, Fraction, Fraction, Fraction] | None:

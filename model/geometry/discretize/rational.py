@@ -28,12 +28,11 @@ from typing import Any
 
 import numpy as np
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT, ParameterError, SizeLimitError
-from mrm.core.grids import Box, PixelSet
+from mrm.core.grids import Box, PixelSet, box_area
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
+from mrm.core.models import Model
 from mrm.core.progress import ProgressLike
-from mrm.geometry.discretize.exact_shape import ExactShape, box_area, pixel_box
-
-MODELS = ("standard", "supercover", "gauss")
+from mrm.geometry.discretize.exact_shape import ExactShape, pixel_box
 
 log = logging.getLogger(__name__)
 
@@ -89,14 +88,11 @@ def discretize_exact(
     SizeLimitError
         The result's bounding box would exceed ``limit`` pixels.
     """
-    if model not in MODELS:
-        raise ParameterError(f"unknown discretization model {model!r}; choose one of {', '.join(MODELS)}")
+    model = Model.parse(model)
     box = pixel_box(shape.bounds(), "supercover" if model == "supercover" else "standard")
     if box is None:
         return PixelSet.empty()
-    estimated = box_area(box)
-    if limit is not None and estimated > limit:
-        raise SizeLimitError(estimated, int(limit), what)
+    check_pixels(box_area(box), limit, what)
     _tick(progress, None, "discretizing")
     if not force_integer and shape.is_float_exact():
         from mrm.geometry.discretize import discretize
@@ -253,14 +249,13 @@ def discretize_image(
     )
     box = pixel_box(bounds, "supercover" if model == "supercover" else "standard")
     assert box is not None
-    estimated = box_area(box)
-    if limit is not None and estimated > limit:
-        raise SizeLimitError(estimated, int(limit), what)
+    check_pixels(box_area(box), limit, what)
     mask = discretize_integer_edges(e, g, box, model)
     return PixelSet.taking_over(mask, (box[0], box[1]))
 
 
-#: The float-filtered path works on coordinates below this magnitude (far beyond the limits of mrm.core.limits,
+#: The float-filtered path works on coordinates below this magnitude (far beyond the limits of
+#: mrm.core.limits,
 #: ±2³¹): every rounding bound below is then far above the subnormal range and far below overflow.
 _FILTER_MAGNITUDE = 2.0**40
 _U = 2.0**-53
@@ -322,7 +317,7 @@ def filtered_exact(
     keeps the factor 2 of slack the kernels rely on. The edges with a near-tie are decided from the exact
     coordinates by the integer definitions.
     """
-    pts: list[tuple[Fraction, Fraction]] = []
+    pts: list[tuple[Fraction, ...]] = []
     first: list[int] = []
     second: list[int] = []
     for poly in shape.polygons:

@@ -62,182 +62,121 @@ Chains are written in the order the steps are applied (left first): the paper's
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from decimal import Decimal, localcontext
 from fractions import Fraction
-from typing import Literal
+from typing import Literal, TypeAlias
 
 from mrm.core.errors import ParameterError
+from mrm.core.limits import check_chain_steps
+from mrm.core.models import Model
+from mrm.core.numbers import fraction_text
+from mrm.geometry.discretize.exact_shape import Similarity
 
-#: The dimension of the space: every round trip adds √N_DIM.
+#: The dimension of the plane: every round trip adds √N_DIM (a step made in 3D passes n = 3).
 N_DIM = 2
 
-#: The discretization models whose round trips keep both directions of the Hausdorff distance.
-COVER_MODELS = ("standard", "supercover")
-#: Every discretization model the bound knows.
-MODELS = ("standard", "supercover", "gauss")
-
-StepKind = Literal["DSS", "ROT", "SP", "SCALE", "EROT", "TRANSLATE", "UNION", "COREFINE"]
 #: The parts of a co-refinement: E∩E′ ("common"), E∖E′ ("first"), E′∖E ("second").
 CorefinePart = Literal["common", "first", "second"]
 Direction = Literal["result_within", "source_within"]
-Point = tuple[Fraction, Fraction]
+Representation = Literal["discrete", "euclidean"]
 
-_KIND_INPUT = {"DSS": "discrete", "ROT": "discrete"}
+
+# --------------------------------------------------------------------------------------------------------
+# What a step is made of
+# --------------------------------------------------------------------------------------------------------
 
 
 @dataclass(frozen=True)
-class ChainStep:
-    """One operation of a chain, with exact parameters.
+class Discretize:
+    """``D``: the step discretizes."""
 
-    Parameters
-    ----------
-    kind : str
-        ``DSS`` (discrete smooth scaling, ratio ``value``), ``ROT`` (discrete-Euclidean rotation by ``value``
-        degrees), ``SP`` (discrete-based simplification, factor ``value``), ``SCALE`` (Euclidean scaling by
-        ``value``), ``EROT`` (Euclidean rotation by ``value`` degrees), ``TRANSLATE`` (Euclidean translation
-        by ``offset``), ``UNION`` (Euclidean-discrete union with another object), ``COREFINE``
-        (Euclidean-discrete co-refinement, precise when ``value`` is given).
-    value : Fraction or None
-        The scale factor or angle (None for TRANSLATE, UNION and a plain COREFINE).
-    center : tuple of Fraction or None
-        The centre of a scaling or rotation (None: the origin).
-    offset : tuple of Fraction or None
-        The vector of a translation.
-    part : str
-        For COREFINE, the part the chain follows: ``common`` (E∩E′), ``first`` (E∖E′), ``second`` (E′∖E).
-    """
 
-    kind: StepKind
-    value: Fraction | None = None
-    center: Point | None = None
-    offset: Point | None = None
+@dataclass(frozen=True)
+class Continue:
+    """``R``: the step continues a discrete object (D(R(A)) = A)."""
+
+
+@dataclass(frozen=True)
+class Similar:
+    """A Euclidean similarity of ratio ``ratio``; ``exact`` is the exact map when it is known."""
+
+    ratio: Fraction
+    exact: Similarity | None = None
+
+
+@dataclass(frozen=True)
+class Unite:
+    """The discrete union with another object (EDu): ratio 1 both ways."""
+
+
+@dataclass(frozen=True)
+class CorefinePartOf:
+    """The discrete Boolean part a co-refinement continues, and the chain follows."""
+
     part: CorefinePart = "common"
 
-    @property
-    def input_kind(self) -> str:
-        """``discrete`` or ``euclidean``: the representation the step reads."""
-        return _KIND_INPUT.get(self.kind, "euclidean")
 
-    @property
-    def output_kind(self) -> str:
-        """``discrete`` or ``euclidean``: the representation the step produces."""
-        return "discrete" if self.kind in ("DSS", "ROT") else "euclidean"
-
-    def label(self) -> str:
-        """The step as the parser reads it, e.g. ``DSS 5`` or ``ROT 30 about 1,2``."""
-        parts: list[str] = [self.kind]
-        if self.value is not None:
-            parts.append(_fmt_number(self.value))
-        if self.offset is not None:
-            parts.append(f"{_fmt_number(self.offset[0])},{_fmt_number(self.offset[1])}")
-        if self.kind == "COREFINE" and self.part != "common":
-            parts.append(self.part)
-        if self.center is not None:
-            parts.append(f"about {_fmt_number(self.center[0])},{_fmt_number(self.center[1])}")
-        return " ".join(parts)
-
-    def ratio(self) -> Fraction:
-        """The ratio of the step's Euclidean similarity (1 for rotations, translations and unions)."""
-        if self.kind in ("DSS", "SCALE") and self.value is not None:
-            return self.value
-        return Fraction(1)
+Primitive: TypeAlias = Discretize | Continue | Similar | Unite | CorefinePartOf
 
 
-# --------------------------------------------------------------------------------------------------------
-# Constructors with validation
-# --------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BoundStep:
+    """One operation of a chain as the bound rule sees it: what it is made of, in application order.
+
+    The operations declare their step (:attr:`mrm.ops.registry.OperationSpec.bound`); this module knows
+    nothing of their names. ``reads`` and ``produces`` are the representations the step takes and gives
+    (a conversion is inserted where consecutive steps disagree, as the document does).
+
+    Attributes
+    ----------
+    label : str
+        The step as a chain's text writes it (``DSS 5``, ``ROT 30 about 1,2``), for the terms' descriptions.
+    reads, produces : str
+        ``discrete`` or ``euclidean``.
+    primitives : tuple
+        ``Discretize``, ``Continue``, ``Similar``, ``Unite`` and ``CorefinePartOf`` in application order.
+    """
+
+    label: str
+    reads: Representation
+    produces: Representation
+    primitives: tuple[Primitive, ...]
 
 
-def _exact(value: object, what: str) -> Fraction:
-    """Return ``value`` as an exact Fraction; refuse non-finite and non-numeric values."""
-    if isinstance(value, bool):
-        raise ParameterError(f"{what} must be a number, got {value!r}")
-    if isinstance(value, Fraction):
-        q = value
-    elif isinstance(value, int):
-        q = Fraction(value)
-    elif isinstance(value, float):
-        if not math.isfinite(value):
-            raise ParameterError(f"{what} must be finite, got {value!r}")
-        q = Fraction(value)
-    elif isinstance(value, (str, Decimal)):
-        text = str(value).strip()
-        try:
-            q = Fraction(text)
-        except (ValueError, ZeroDivisionError):
-            low = text.lower().lstrip("+-")
-            if low in ("inf", "infinity", "nan"):
-                raise ParameterError(f"{what} must be finite, got {text!r}") from None
-            raise ParameterError(f"{what} must be a number, got {text!r}") from None
-    else:
-        raise ParameterError(f"{what} must be a number, got {value!r}")
-    try:
-        finite = math.isfinite(float(q))
-    except OverflowError:
-        finite = False
-    if not finite:
-        raise ParameterError(f"{what} must be finite, got {value!r} (too large)")
-    return q
+def discrete_similarity_step(label: str, sim: Similarity) -> BoundStep:
+    """``D∘T∘R`` (DSS_α, dR_θ,C): a similarity between a continuation and a discretization."""
+    return BoundStep(label, "discrete", "discrete", (Continue(), Similar(sim.ratio, sim), Discretize()))
 
 
-def _positive(value: object, what: str) -> Fraction:
-    q = _exact(value, what)
-    if q <= 0:
-        raise ParameterError(f"{what} must be positive, got {_fmt_number(q)}")
-    return q
+def euclidean_similarity_step(label: str, sim: Similarity) -> BoundStep:
+    """An exact Euclidean similarity (scale, rotate, translate): no round trip."""
+    return BoundStep(label, "euclidean", "euclidean", (Similar(sim.ratio, sim),))
 
 
-def _point(p: object, what: str) -> Point | None:
-    if p is None:
-        return None
-    if not isinstance(p, (tuple, list)) or len(p) != 2:
-        raise ParameterError(f"{what} must be a pair of numbers, got {p!r}")
-    return (_exact(p[0], f"{what} x"), _exact(p[1], f"{what} y"))
+def simplification_step(label: str, sim: Similarity) -> BoundStep:
+    """``T⁻¹∘R∘D∘T`` (Sp_α with T = Sc_α): a round trip at the scale of ``sim``."""
+    back = sim.inverse()
+    prims = (Similar(sim.ratio, sim), Discretize(), Continue(), Similar(back.ratio, back))
+    return BoundStep(label, "euclidean", "euclidean", prims)
 
 
-def dss(alpha: object, center: object = None) -> ChainStep:
-    """Discrete smooth scaling ``D∘Sc_α∘R`` (α > 0), optionally about ``center``."""
-    return ChainStep("DSS", _positive(alpha, "DSS factor α"), _point(center, "DSS centre"))
+def union_step(label: str) -> BoundStep:
+    """``R(D(E) ∪ D(E′))`` (EDu): one round trip of the union."""
+    return BoundStep(label, "euclidean", "euclidean", (Unite(), Discretize(), Continue()))
 
 
-def rot(angle_deg: object, center: object = None) -> ChainStep:
-    """Discrete-Euclidean rotation ``D∘rot_θ,C∘R`` by ``angle_deg`` degrees about ``center``."""
-    return ChainStep("ROT", _exact(angle_deg, "ROT angle"), _point(center, "ROT centre"))
-
-
-def sp(alpha: object, center: object = None) -> ChainStep:
-    """Discrete-based simplification ``Sc_1/α∘R∘D∘Sc_α`` (α > 0)."""
-    return ChainStep("SP", _positive(alpha, "SP factor α"), _point(center, "SP centre"))
-
-
-def scale(factor: object, center: object = None) -> ChainStep:
-    """Euclidean scaling by ``factor`` > 0 (exact, no discretization)."""
-    return ChainStep("SCALE", _positive(factor, "SCALE factor"), _point(center, "SCALE centre"))
-
-
-def erot(angle_deg: object, center: object = None) -> ChainStep:
-    """Euclidean rotation by ``angle_deg`` degrees about ``center`` (exact map, no discretization)."""
-    return ChainStep("EROT", _exact(angle_deg, "EROT angle"), _point(center, "EROT centre"))
-
-
-def translate(dx: object, dy: object) -> ChainStep:
-    """Euclidean translation by (dx, dy) (exact, no discretization)."""
-    return ChainStep("TRANSLATE", offset=(_exact(dx, "TRANSLATE dx"), _exact(dy, "TRANSLATE dy")))
-
-
-def union() -> ChainStep:
-    """Euclidean-discrete union ``R(D(E) ∪ D(E′))`` with another object."""
-    return ChainStep("UNION")
-
-
-def corefine(alpha: object = None, part: CorefinePart = "common") -> ChainStep:
-    """Euclidean-discrete co-refinement (precise when ``alpha`` is given); the chain follows ``part``."""
-    if part not in ("common", "first", "second"):
-        raise ParameterError(f"COREFINE part must be common, first or second, got {part!r}")
-    value = None if alpha is None else _positive(alpha, "COREFINE factor α")
-    return ChainStep("COREFINE", value, part=part)
+def corefine_step(label: str, sim: Similarity, part: CorefinePart) -> BoundStep:
+    """``T⁻¹∘R∘(part of D∘T)`` (EDco, EDco_α with T = Sc_α): the chain follows ``part``."""
+    back = sim.inverse()
+    prims = (
+        Similar(sim.ratio, sim),
+        CorefinePartOf(part),
+        Discretize(),
+        Continue(),
+        Similar(back.ratio, back),
+    )
+    return BoundStep(label, "euclidean", "euclidean", prims)
 
 
 # --------------------------------------------------------------------------------------------------------
@@ -276,7 +215,7 @@ class BoundTerm:
             "round_trip": self.round_trip,
             "step": self.step,
             "description": self.description,
-            "factor": _fmt_fraction(self.factor),
+            "factor": fraction_text(self.factor),
             "value": self.value(n),
         }
 
@@ -316,9 +255,9 @@ class BoundResult:
     formula: str
     directions: tuple[Direction, ...]
     one_sided: float | None
-    model: str
+    model: Model
     guarantee: str
-    steps: tuple[ChainStep, ...] = field(default=())
+    steps: tuple[BoundStep, ...] = field(default=())
 
     @property
     def value(self) -> float:
@@ -338,7 +277,7 @@ class BoundResult:
         """A JSON-ready summary (the ``mrm bounds --json`` payload)."""
         return {
             "bound": self.bound,
-            "coefficient": _fmt_fraction(self.coefficient),
+            "coefficient": fraction_text(self.coefficient),
             "coefficient_float": float(self.coefficient),
             "n": self.n,
             "sqrt_n": self.sqrt_n,
@@ -347,9 +286,9 @@ class BoundResult:
             "formula": self.formula,
             "directions": list(self.directions),
             "one_sided": self.one_sided,
-            "model": self.model,
+            "model": str(self.model),
             "guarantee": self.guarantee,
-            "chain": [s.label() for s in self.steps],
+            "chain": [s.label for s in self.steps],
         }
 
 
@@ -363,111 +302,36 @@ def sqrt_multiple(coefficient: Fraction, n: int = N_DIM) -> float:
     return float(d)
 
 
-@dataclass(frozen=True)
-class _Map:
-    """An exact similarity ``z ↦ a·z + b`` of the complex plane with Gaussian-rational a and b."""
-
-    ar: Fraction
-    ai: Fraction
-    br: Fraction
-    bi: Fraction
-
-    def then(self, o: _Map) -> _Map:
-        """``o ∘ self``."""
-        ar = o.ar * self.ar - o.ai * self.ai
-        ai = o.ar * self.ai + o.ai * self.ar
-        br = o.ar * self.br - o.ai * self.bi + o.br
-        bi = o.ar * self.bi + o.ai * self.br + o.bi
-        return _Map(ar, ai, br, bi)
-
-    def commutes_with_round_trips(self) -> bool:
-        """The identity or an integer translation: then ``R∘D∘T∘R∘D = T∘R∘D`` (D(R(A)) = A, covariance)."""
-        return self.ar == 1 and self.ai == 0 and self.br.denominator == 1 and self.bi.denominator == 1
+def _commutes_with_round_trips(t: Similarity) -> bool:
+    """The identity or an integer translation: then ``R∘D∘T∘R∘D = T∘R∘D`` (D(R(A)) = A, covariance)."""
+    return t.a == 1 and t.b == 0 and t.tx.denominator == 1 and t.ty.denominator == 1
 
 
-_IDENTITY = _Map(Fraction(1), Fraction(0), Fraction(0), Fraction(0))
+# A reduced chain: round trips ("RT", continuing step), similarities ("S", Similar), union and co-refinement
+# markers ("U", None), ("C", part); each with the 1-based index of its step.
+_Atom = tuple[str, object, int]
 
 
-def _about(ar: Fraction, ai: Fraction, c: Point | None) -> _Map:
-    """``z ↦ c + a·(z − c)``."""
-    cr, ci = c if c is not None else (Fraction(0), Fraction(0))
-    return _Map(ar, ai, cr - (ar * cr - ai * ci), ci - (ar * ci + ai * cr))
-
-
-def _scaling(s: Fraction, c: Point | None) -> _Map:
-    return _about(s, Fraction(0), c)
-
-
-def _rotation(theta: Fraction | None, c: Point | None) -> _Map | None:
-    """Exact for multiples of 90°; None (not representable) otherwise."""
-    if theta is None or theta % 90:
-        return None
-    ar, ai = [(1, 0), (0, 1), (-1, 0), (0, -1)][int(theta // 90) % 4]
-    return _about(Fraction(ar), Fraction(ai), c)
-
-
-# Primitive operations a step is made of, in application order.
-_D = ("D",)
-_R = ("R",)
-
-
-def _primitives(step: ChainStep, index: int) -> list[tuple[object, ...]]:
-    """Expand ``step`` into primitives, in application order.
-
-    ("D",), ("R",), ("S", ratio, exact map or None), and the markers of unions ("U",) and co-refinements
-    ("C", part).
-    """
-    k = step.kind
-    if k == "DSS":
-        return [_R, ("S", step.ratio(), _scaling(step.ratio(), step.center)), _D]
-    if k == "ROT":
-        return [_R, ("S", Fraction(1), _rotation(step.value, step.center)), _D]
-    if k == "SP":
-        assert step.value is not None
-        a = step.value
-        return [("S", a, _scaling(a, step.center)), _D, _R, ("S", 1 / a, _scaling(1 / a, step.center))]
-    if k == "SCALE":
-        return [("S", step.ratio(), _scaling(step.ratio(), step.center))]
-    if k == "EROT":
-        return [("S", Fraction(1), _rotation(step.value, step.center))]
-    if k == "TRANSLATE":
-        assert step.offset is not None
-        return [("S", Fraction(1), _Map(Fraction(1), Fraction(0), *step.offset))]
-    if k == "UNION":
-        return [("U",), _D, _R]
-    # COREFINE: Sc_α, then D of both inputs, the discrete Boolean part, R, Sc_1/α.
-    alpha = step.value if step.value is not None else Fraction(1)
-    return [
-        ("S", alpha, _scaling(alpha, None)),
-        ("C", step.part),
-        _D,
-        _R,
-        ("S", 1 / alpha, _scaling(1 / alpha, None)),
-    ]
-
-
-def _merge_exact_round_trips(
-    atoms: list[tuple[str, object, int]], discrete_start: bool
-) -> list[tuple[str, object, int]]:
+def _merge_exact_round_trips(atoms: list[_Atom], discrete_start: bool) -> list[_Atom]:
     """Drop the round trips that exact identities make free.
 
     A round trip is dropped when the similarities since the previous one compose to the identity or to an
     integer translation T: ``R∘D∘T∘R∘D = T∘R∘D`` because ``D(R(A)) = A`` and ``R(A + t) = R(A) + t``. A
     discrete start counts as a round trip: ``A_first = R(A)`` is already a continuation.
     """
-    out: list[tuple[str, object, int]] = []
+    out: list[_Atom] = []
     # The composite since the last round trip kept (None: unknown, or no round trip yet).
-    since: _Map | None = _IDENTITY if discrete_start else None
+    since: Similarity | None = Similarity.identity() if discrete_start else None
     for atom in atoms:
         kind, arg, _ = atom
         if kind == "RT":
-            if since is not None and since.commutes_with_round_trips():
+            if since is not None and _commutes_with_round_trips(since):
                 continue  # merged into the previous round trip
             out.append(atom)
-            since = _IDENTITY
+            since = Similarity.identity()
         elif kind == "S":
-            m = arg[1]  # type: ignore[index]
-            since = since.then(m) if since is not None and m is not None else None
+            assert isinstance(arg, Similar)
+            since = since.then(arg.exact) if since is not None and arg.exact is not None else None
             out.append(atom)
         else:  # a union or a co-refinement changes the object: no identity across it
             since = None
@@ -476,27 +340,28 @@ def _merge_exact_round_trips(
 
 
 def bound_of_chain(
-    steps: list[ChainStep] | tuple[ChainStep, ...],
-    model: str = "standard",
+    steps: list[BoundStep] | tuple[BoundStep, ...],
+    model: Model | str = Model.STANDARD,
     *,
     n: int = N_DIM,
     exact_identities: bool = False,
 ) -> BoundResult:
-    """Return the error bound of a chain of operations (DESIGN §8), exactly.
+    """Return the error bound of a chain of operations (docs/design.md §8), exactly.
 
     Parameters
     ----------
-    steps : sequence of ChainStep
-        The operations in the order they are applied (see :func:`parse_chain`).
-    model : str
+    steps : sequence of BoundStep
+        The operations in the order they are applied, as they declare themselves
+        (:func:`mrm.ops.chain.chain_bound` makes them from a chain's text or a result's provenance).
+    model : Model or str
         ``standard``, ``supercover`` or ``gauss``: which directions of the bound hold (module docstring).
     n : int
-        The dimension (2).
+        The dimension (2 for pixels, 3 for voxels).
     exact_identities : bool
         Also use that a round trip followed, through similarities composing to the identity or to an integer
         translation, by another round trip is a single one (``D(R(A)) = A``; ``R`` commutes with integer
         translations). This gives ``Sp_α∘Sp_α = Sp_α`` its exact bound ``√n/α`` and ``DSS_1`` none. Off by
-        default: the paper's theorems count every round trip, and so does DESIGN §8's rule.
+        default: the paper's theorems count every round trip, and so does the rule of docs/design.md §8.
 
     Returns
     -------
@@ -509,73 +374,74 @@ def bound_of_chain(
     ParameterError
         An empty chain, an unknown model or a non-positive dimension.
     """
-    if model not in MODELS:
-        raise ParameterError(f"unknown discretization model {model!r} (expected one of {', '.join(MODELS)})")
+    model = Model.parse(model)
     if n < 1:
         raise ParameterError(f"the dimension must be positive, got {n}")
     steps = tuple(steps)
     if not steps:
         raise ParameterError("the chain is empty")
-    from mrm.core.limits import check_chain_steps
-
     check_chain_steps(len(steps))  # exact arithmetic grows with the chain: bounded up front (issue 11)
 
     # Expand into primitives, converting between the representations where a step needs the other one.
-    prims: list[tuple[tuple[object, ...], int]] = []
-    current = steps[0].input_kind
+    prims: list[tuple[Primitive, int]] = []
+    current = steps[0].reads
     for i, step in enumerate(steps, start=1):
-        if step.input_kind != current:
-            prims.append((_D if current == "euclidean" else _R, i))
-        prims.extend((p, i) for p in _primitives(step, i))
-        current = step.output_kind
+        if step.reads != current:
+            prims.append((Discretize() if current == "euclidean" else Continue(), i))
+        prims.extend((p, i) for p in step.primitives)
+        current = step.produces
     # A_first = R(A) for a discrete start; A_last is just before a final discretization.
-    if prims and prims[0][0] == _R:
+    if prims and isinstance(prims[0][0], Continue):
         prims = prims[1:]
-    if prims and prims[-1][0] == _D:
+    if prims and isinstance(prims[-1][0], Discretize):
         prims = prims[:-1]
 
     # Reduce: D then R is a round trip; R then D is the identity (D(R(A)) = A exactly).
-    atoms: list[tuple[str, object, int]] = []
+    atoms: list[_Atom] = []
     j = 0
     while j < len(prims):
         p, i = prims[j]
         nxt = prims[j + 1][0] if j + 1 < len(prims) else None
-        if p == _D and nxt == _R:
+        if isinstance(p, Discretize) and isinstance(nxt, Continue):
             atoms.append(("RT", prims[j + 1][1], i))
             j += 2
-        elif p == _R and nxt == _D:
+        elif isinstance(p, Continue) and isinstance(nxt, Discretize):
             j += 2
         else:
-            arg: object = p[1:] if p[0] == "S" else (p[1] if len(p) > 1 else None)
-            atoms.append((str(p[0]), arg, i))
+            if isinstance(p, Similar):
+                atoms.append(("S", p, i))
+            elif isinstance(p, Unite):
+                atoms.append(("U", None, i))
+            elif isinstance(p, CorefinePartOf):
+                atoms.append(("C", p.part, i))
+            else:  # pragma: no cover - a lone D or R cannot remain after the conversions above
+                raise AssertionError(p)
             j += 1
     if exact_identities:
-        atoms = _merge_exact_round_trips(atoms, steps[0].input_kind == "discrete")
+        atoms = _merge_exact_round_trips(atoms, steps[0].reads == "discrete")
 
     # Propagate: the coefficient of √n, and which directions still hold.
     coef = Fraction(0)
-    cover = model in COVER_MODELS
     fwd = True  # every point of A_last within coef·√n of T(A_first)
     bwd = True  # every point of T(A_first) within coef·√n of A_last
     pending_corefine: str | None = None
     rts: list[tuple[int, int, Fraction]] = []  # (discretizing step, continuing step, factor so far)
     for kind, arg, i in atoms:
         if kind == "S":
-            ratio = arg[0]  # type: ignore[index]
-            assert isinstance(ratio, Fraction)
-            coef *= ratio
-            rts = [(a, b, f * ratio) for a, b, f in rts]
+            assert isinstance(arg, Similar)
+            coef *= arg.ratio
+            rts = [(a, b, f * arg.ratio) for a, b, f in rts]
         elif kind == "U":
             pass  # h(X ∪ Y, I ∪ Y) ≤ h(X, I) both ways: ratio 1
         elif kind == "C":
             pending_corefine = str(arg)
             if coef != 0:  # a co-refinement of an already inexact object: no direction survives
                 fwd = bwd = False
-        elif kind == "RT":
+        else:  # "RT"
             assert isinstance(arg, int)
             coef += 1
             rts.append((i, arg, Fraction(1)))
-            if not cover:
+            if not model.is_cover:
                 bwd = False
             if pending_corefine is not None:
                 if pending_corefine == "common":
@@ -583,15 +449,13 @@ def bound_of_chain(
                 else:
                     bwd = False
                 pending_corefine = None
-        else:  # pragma: no cover - the reduction leaves only the kinds above
-            raise AssertionError(kind)
 
     terms: list[BoundTerm] = []
     for idx, (a, b, f) in enumerate(rts, start=1):
         if a == b:
-            where = f"R∘D inside step {a} ({steps[a - 1].label()})"
+            where = f"R∘D inside step {a} ({steps[a - 1].label})"
         else:
-            where = f"R∘D between step {a} ({steps[a - 1].label()}) and step {b} ({steps[b - 1].label()})"
+            where = f"R∘D between step {a} ({steps[a - 1].label}) and step {b} ({steps[b - 1].label})"
         terms.append(BoundTerm(idx, a, where, f))
     assert sum((t.factor for t in terms), Fraction(0)) == coef
 
@@ -636,215 +500,10 @@ def _guarantee(directions: tuple[Direction, ...], model: str, value: float) -> s
 # --------------------------------------------------------------------------------------------------------
 
 
-def _fmt_fraction(q: Fraction) -> str:
-    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
-
-
-def _fmt_number(q: Fraction) -> str:
-    """A short exact spelling of ``q``: a decimal when it terminates, else p/q."""
-    if q.denominator == 1:
-        return str(q.numerator)
-    d = q.denominator
-    while d % 2 == 0:
-        d //= 2
-    while d % 5 == 0:
-        d //= 5
-    if d == 1:
-        s = format(Decimal(q.numerator) / Decimal(q.denominator), "f")
-        return s
-    return f"{q.numerator}/{q.denominator}"
-
-
 def _formula(terms: list[BoundTerm], coef: Fraction, n: int) -> str:
     root = f"√{n}"
     if not terms:
         return "0 (no round trip: the chain is exact)"
-    inner = " + ".join(_fmt_fraction(t.factor) for t in terms)
-    total = root if coef == 1 else f"{_fmt_fraction(coef)}·{root}"
+    inner = " + ".join(fraction_text(t.factor) for t in terms)
+    total = root if coef == 1 else f"{fraction_text(coef)}·{root}"
     return f"{root}·({inner}) = {total} ≈ {sqrt_multiple(coef, n):.4f}"
-
-
-# --------------------------------------------------------------------------------------------------------
-# Parser
-# --------------------------------------------------------------------------------------------------------
-
-_ALIASES: dict[str, StepKind] = {
-    "dss": "DSS",
-    "rot": "ROT",
-    "rotate": "ROT",
-    "dr": "ROT",
-    "sp": "SP",
-    "simplify": "SP",
-    "scale": "SCALE",
-    "sc": "SCALE",
-    "erot": "EROT",
-    "erotate": "EROT",
-    "translate": "TRANSLATE",
-    "tr": "TRANSLATE",
-    "move": "TRANSLATE",
-    "union": "UNION",
-    "edu": "UNION",
-    "corefine": "COREFINE",
-    "co-refine": "COREFINE",
-    "edco": "COREFINE",
-}
-_PARTS = ("common", "first", "second")
-
-_TOKEN = re.compile(
-    r"\s*(?:"
-    r"(?P<num>[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?(?:/\d+)?|[-+]?(?:inf(?:inity)?|nan)\b)"
-    r"|(?P<word>[A-Za-z][A-Za-z_\-]*)"
-    r"|(?P<punct>[,;()@])"
-    r")",
-    re.IGNORECASE,
-)
-
-
-def _tokenize(text: str) -> list[tuple[str, str, int]]:
-    tokens: list[tuple[str, str, int]] = []
-    pos = 0
-    while pos < len(text):
-        if text[pos:].strip() == "":
-            break
-        m = _TOKEN.match(text, pos)
-        if m is None or m.end() == pos:
-            bad = text[pos:].strip()[:12]
-            raise ParameterError(f"cannot read {bad!r} at position {pos + 1} of the chain")
-        kind = m.lastgroup
-        assert kind is not None
-        start = m.start(kind)
-        tokens.append((kind, m.group(kind), start))
-        pos = m.end()
-    return tokens
-
-
-class _Parser:
-    def __init__(self, text: str) -> None:
-        self.text = text
-        self.tokens = _tokenize(text)
-        self.i = 0
-
-    def peek(self) -> tuple[str, str, int] | None:
-        return self.tokens[self.i] if self.i < len(self.tokens) else None
-
-    def take(self) -> tuple[str, str, int]:
-        tok = self.peek()
-        assert tok is not None
-        self.i += 1
-        return tok
-
-    def at_punct(self, chars: str) -> bool:
-        tok = self.peek()
-        return tok is not None and tok[0] == "punct" and tok[1] in chars
-
-    def number(self, what: str) -> str:
-        tok = self.peek()
-        if tok is None or tok[0] != "num":
-            got = "the end of the chain" if tok is None else repr(tok[1])
-            raise ParameterError(f"{what}: expected a number, got {got}")
-        self.i += 1
-        return tok[1]
-
-    def pair(self, what: str) -> tuple[str, str]:
-        paren = self.at_punct("(")
-        if paren:
-            self.take()
-        x = self.number(what)
-        if self.at_punct(","):
-            self.take()
-        y = self.number(what)
-        if paren:
-            if not self.at_punct(")"):
-                raise ParameterError(f"{what}: expected ')'")
-            self.take()
-        return x, y
-
-    def centre(self, label: str) -> tuple[str, str] | None:
-        tok = self.peek()
-        if tok is not None and ((tok[0] == "word" and tok[1].lower() in ("about", "at")) or tok[1] == "@"):
-            self.take()
-            return self.pair(f"{label} centre")
-        return None
-
-    def step(self) -> ChainStep:
-        tok = self.peek()
-        if tok is None:
-            raise ParameterError("expected an operation at the end of the chain")
-        if tok[0] == "punct":
-            raise ParameterError(f"empty step at position {tok[2] + 1} of the chain")
-        if tok[0] != "word" or tok[1].lower() not in _ALIASES:
-            names = "DSS, ROT, SP, SCALE, EROT, TRANSLATE, UNION, COREFINE"
-            raise ParameterError(
-                f"unknown operation {tok[1]!r} at position {tok[2] + 1} (expected one of {names})"
-            )
-        self.take()
-        kind = _ALIASES[tok[1].lower()]
-        if kind == "DSS":
-            a = self.number("DSS factor α")
-            return dss(a, self.centre("DSS"))
-        if kind == "ROT":
-            a = self.number("ROT angle (degrees)")
-            return rot(a, self.centre("ROT"))
-        if kind == "SP":
-            a = self.number("SP factor α")
-            return sp(a, self.centre("SP"))
-        if kind == "SCALE":
-            a = self.number("SCALE factor")
-            return scale(a, self.centre("SCALE"))
-        if kind == "EROT":
-            a = self.number("EROT angle (degrees)")
-            return erot(a, self.centre("EROT"))
-        if kind == "TRANSLATE":
-            dx, dy = self.pair("TRANSLATE offset")
-            return translate(dx, dy)
-        if kind == "UNION":
-            return union()
-        alpha = self.number("COREFINE factor α") if (p := self.peek()) is not None and p[0] == "num" else None
-        part: CorefinePart = "common"
-        p = self.peek()
-        if p is not None and p[0] == "word" and p[1].lower() in _PARTS:
-            self.take()
-            part = p[1].lower()  # type: ignore[assignment]
-        return corefine(alpha, part)
-
-    def chain(self) -> list[ChainStep]:
-        if not self.tokens:
-            raise ParameterError("the chain is empty")
-        steps = [self.step()]
-        while self.peek() is not None:
-            if not self.at_punct(",;"):
-                tok = self.peek()
-                assert tok is not None
-                raise ParameterError(
-                    f"unexpected {tok[1]!r} at position {tok[2] + 1} after {steps[-1].label()!r} "
-                    "(steps are separated by commas)"
-                )
-            self.take()
-            if self.peek() is None:
-                break  # a trailing separator is harmless
-            steps.append(self.step())
-        return steps
-
-
-def parse_chain(text: str) -> list[ChainStep]:
-    """Read a chain such as ``"DSS 1.25, DSS 5, DSS 0.2, DSS 0.8"`` (applied left to right).
-
-    Grammar (case-insensitive; steps separated by ``,`` or ``;``)::
-
-        DSS α [about cx,cy]    ROT θ [about cx,cy]    SP α [about cx,cy]    SCALE s [about cx,cy]
-        EROT θ [about cx,cy]   TRANSLATE dx,dy        UNION                 COREFINE [α] [common|first|second]
-
-    ``ROT`` is the discrete-Euclidean rotation ``dR`` (a discrete operation); ``SCALE``, ``EROT`` and
-    ``TRANSLATE`` are exact Euclidean maps.
-
-    Numbers are read exactly: decimals (``1.25``, ``2e-1``) and fractions (``1/5``). A pair may be written
-    ``x,y``, ``x y`` or ``(x, y)``; ``at`` and ``@`` are synonyms of ``about``.
-
-    Raises
-    ------
-    ParameterError
-        On an unknown operation, a missing or malformed number, a non-finite value or a non-positive factor.
-    """
-    if not isinstance(text, str):
-        raise ParameterError(f"a chain is a string, got {type(text).__name__}")
-    return _Parser(text).chain()

@@ -50,6 +50,8 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
+from mrm.core.limits import check_reconstruct
+from mrm.core.models import Model
 from mrm.geometry.reconstruct import _dual as _dk
 from mrm.geometry.reconstruct import _kernels as _k
 from mrm.geometry.reconstruct import _twins as _tw
@@ -58,9 +60,6 @@ from mrm.reps.region import CrackChain
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
-
-#: The models R is associated with.
-MODELS = ("standard", "supercover", "gauss")
 
 #: Names of the vertex sources in :class:`RingDetail`.
 SOURCE_NAMES = {
@@ -78,11 +77,6 @@ STATUS_NAMES = {
     _k.RING_NET: "net",
     _k.RING_SINGLE: "single",
 }
-
-
-def _check_model(model: str) -> None:
-    if model not in MODELS:
-        raise ParameterError(f"unknown model {model!r}; expected one of {', '.join(MODELS)}")
 
 
 @dataclass(frozen=True)
@@ -370,12 +364,13 @@ def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon
         For an unknown model, or pixel coordinates beyond ±2⁴⁰ (where 2⁻¹² of a pixel is no longer
         exact float64 numbers).
     """
-    _check_model(model)
+    model = Model.parse(model)
     if ps.is_empty():
         return Polygon()
     for known_ps, known_model, geom in _HELD.get():
         if known_ps is ps and known_model == model:
             return geom
+    check_reconstruct(ps)  # its cost is bounded up front (issue 11): the one entry point applies the limit
     run = _run(ps, model)
     rings = run.rings
     return _assemble(run.xy, run.roff, rings.comp, rings.area2 < 0, rings.sx, rings.sy)
@@ -506,7 +501,7 @@ def reconstruct_detailed(ps: PixelSet, model: str = "standard") -> Reconstructio
 
     The geometry is the same as :func:`reconstruct` returns.
     """
-    _check_model(model)
+    model = Model.parse(model)
     if ps.is_empty():
         return Reconstruction(Polygon(), model, ())
     run = _run(ps, model, tables=True)

@@ -27,6 +27,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import ParameterError
 from mrm.core.grids import LabelMap
+from mrm.core.models import Model
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct.subdivision import subdivide
 from mrm.geometry.topology.labeling import label_regions
@@ -77,13 +78,11 @@ def polygonize(
     ParameterError
         For a model other than ``gauss``, or an array that is not a 2-D integer array.
     """
-    if model != "gauss":
-        if model in ("standard", "supercover"):
-            raise ParameterError(
-                f"polygonize needs the gauss model, not {model!r}: under a cover model two regions sharing a "
-                "boundary would both claim the pixels along it (use 'mrm reconstruct' per label instead)"
-            )
-        raise ParameterError(f"unknown model {model!r}; expected 'gauss'")
+    if Model.parse(model).is_cover:
+        raise ParameterError(
+            f"polygonize needs the gauss model, not {model!r}: under a cover model two regions sharing a "
+            "boundary would both claim the pixels along it (use 'mrm reconstruct' per label instead)"
+        )
     if isinstance(labels, LabelMap):
         lm = labels
     else:

@@ -129,6 +129,7 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.core.errors import ParameterError
 from mrm.core.gc_pause import paused_gc
 from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.models import Model
 from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.dss.segmentation import standard_dss_reach_table
 from mrm.geometry.topology.cracks import DX, DY
@@ -582,15 +583,12 @@ class Subdivision:
         return total
 
 
-def _check_model(model: str) -> None:
-    if model == "gauss":
-        return
-    if model in ("standard", "supercover"):
+def _check_model(model: Model | str) -> None:
+    if Model.parse(model).is_cover:
         raise ParameterError(
             f"a watertight subdivision exists only under the gauss model, not {model!r}: under a cover model "
             "two parts sharing an edge would both claim the pixels along it"
         )
-    raise ParameterError(f"unknown model {model!r}; expected 'gauss'")
 
 
 def _split(loop: list[tuple[_Directed, tuple[int, int]]]) -> list[list[_Directed]]:

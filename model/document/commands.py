@@ -32,8 +32,12 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.core.errors import InvalidGeometryError, NotApplicableError, ParameterError
 from mrm.core.grids import LabelMap, PixelSet
 from mrm.core.limits import check_name, check_pixel_extent
-from mrm.document import PALETTE, DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
-from mrm.history import COMMAND_OVERHEAD, Command
+from mrm.core.models import Model
+from mrm.document.document import Document
+from mrm.document.history import COMMAND_OVERHEAD, Command
+from mrm.document.objects import PALETTE, DocObject, Geometry, Settings, Source, Style, validate_geometry
+from mrm.ops.georef import common_grid
+from mrm.ops.provenance import Provenance
 
 #: A vertex of a Euclidean source: (polygon index in a MultiPolygon (0 for a Polygon), ring (0 = exterior,
 #: k = k-th hole), vertex index in the ring, the closing point not counted).
@@ -784,9 +788,6 @@ class MergeObjects(_Replacing):
         self.label = f"Merge {len(self.ids)} objects"
 
     def _build(self, doc: Document) -> ApplyResults:
-        from mrm.document import Provenance
-        from mrm.io.georef import result_georef
-
         objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
         parts = [discrete_of(doc, o) for o in objs]
         _check_union_box([p.bbox for p in parts], "the merged object")  # before allocating it
@@ -799,7 +800,7 @@ class MergeObjects(_Replacing):
             source=union,
             style=objs[0].style,
             provenance=Provenance("merge", {}, tuple(o.id for o in objs)),
-            georef=result_georef("merge", {}, [o.georef for o in objs]),  # one grid: kept (ADR 0021)
+            georef=common_grid([o.georef for o in objs], "a merge"),  # one grid: kept (ADR 0021)
         )
         index = doc.index_of(objs[0].id)
         return ApplyResults(self.label, add=[merged], remove=[o.id for o in objs], index=index)
@@ -846,12 +847,11 @@ class ChangeSettings(Command):
         self.label = "Change settings"
 
     @classmethod
-    def model(cls, doc: Document, model: str) -> ChangeSettings:
-        """The command switching the discretization model."""
-        from dataclasses import replace
-
-        cmd = cls(replace(doc.settings, model=model))
-        cmd.label = f"Use the {model} model"
+    def model(cls, doc: Document, model: Model | str) -> ChangeSettings:
+        """The command switching the discretization model (its name is read by :meth:`Model.parse`)."""
+        chosen = Model.parse(model)
+        cmd = cls(dataclasses.replace(doc.settings, model=chosen))
+        cmd.label = f"Use the {chosen} model"
         return cmd
 
     def do(self, doc: Document) -> None:

@@ -1,7 +1,8 @@
 """Running an operation on a document's objects: all results in one undo step, or nothing at all.
 
 :func:`apply_operation` reads the sources of the input objects, runs the operation (which never touches the
-document), and only when it has finished pushes one :class:`~mrm.commands.ApplyResults` command that adds
+document), and only when it has finished pushes one :class:`~mrm.document.commands.ApplyResults` command that
+adds
 the results with their provenance — the operation's name, its parameters, the ids of its inputs and their
 content at that moment (pinned: editing an input later never changes a result's account). A
 failure (bad parameter, size limit, invalid geometry) or a cancel raises before that push, so the document,
@@ -10,27 +11,19 @@ its history and its selection are exactly as they were: nothing is lost.
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Sequence
 from typing import Any
 
-from mrm.core.errors import DEFAULT_PIXEL_LIMIT
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.models import Model
 from mrm.core.progress import ProgressLike
-from mrm.ops.base import Plan, plan_operation
-
-#: The modules that register the paper's operations (``dss``, ``discrete_rotation``, ``simplify``, ``union``,
-#: ``corefine``) when imported.
-PAPER_OPERATIONS = ("mrm.ops.scaling", "mrm.ops.rotation", "mrm.ops.simplify", "mrm.ops.boolean")
-
-
-def load_paper_operations() -> None:
-    """Import the modules of the paper's operations, so that the registry holds them."""
-    for mod in PAPER_OPERATIONS:
-        importlib.import_module(mod)
+from mrm.document.commands import ApplyResults
+from mrm.document.document import Document
+from mrm.ops.registry import Plan, plan_operation
 
 
 def apply_operation(
-    doc: Any,
+    doc: Document,
     operation: str,
     input_ids: Sequence[int],
     params: Any = None,
@@ -40,7 +33,7 @@ def apply_operation(
 ) -> list[int]:
     """Run ``operation`` on the objects ``input_ids`` of ``doc`` and add its results as one undo step.
 
-    :func:`mrm.ops.base.plan_operation` does the work (it never touches the document); this pushes its
+    :func:`mrm.ops.registry.plan_operation` does the work (it never touches the document); this pushes its
     results. The GUI runs ``plan_operation`` on a worker and pushes on its own thread.
 
     Parameters
@@ -67,7 +60,6 @@ def apply_operation(
     ParameterError, SizeLimitError, InvalidGeometryError, Cancelled
         Before anything is changed.
     """
-    load_paper_operations()
     ids = [int(i) for i in input_ids]
     plan = plan_operation(
         [doc.get(i) for i in ids],
@@ -80,12 +72,12 @@ def apply_operation(
     return push_plan(doc, plan)
 
 
-def held_euclidean(doc: Any, input_ids: Sequence[int]) -> list[tuple[int, str, Any]]:
+def held_euclidean(doc: Document, input_ids: Sequence[int]) -> list[tuple[int, Model, Any]]:
     """R(A) that ``doc`` holds already for its pixel objects ``input_ids``: (input index, model, R(A)).
 
-    For :func:`mrm.ops.base.run_operation`'s ``held``: every operation reads R(A) of a pixel input (DSS_α
+    For :func:`mrm.ops.registry.run_operation`'s ``held``: every operation reads R(A) of a pixel input (DSS_α
     and dR_θ,C transform it, Sp_α and the boolean operations start from it). Only what the document has
-    computed (its Euclidean views, :meth:`mrm.derive.Derived.peek`); nothing is computed here.
+    computed (its Euclidean views, :meth:`mrm.document.derive.Derived.peek`); nothing is computed here.
     """
     held = []
     for k, i in enumerate(input_ids):
@@ -96,10 +88,8 @@ def held_euclidean(doc: Any, input_ids: Sequence[int]) -> list[tuple[int, str, A
     return held
 
 
-def push_plan(doc: Any, plan: Plan, styles: Sequence[Any] | None = None) -> list[int]:
+def push_plan(doc: Document, plan: Plan, styles: Sequence[Any] | None = None) -> list[int]:
     """Add the results of a plan to ``doc`` as one undo step; the ids of the new objects."""
-    from mrm.commands import ApplyResults
-
     objects = [
         doc.make_object(
             r.source, r.name, provenance=r.provenance, style=styles[k] if styles is not None else None

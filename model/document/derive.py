@@ -1,12 +1,9 @@
 """Derived representations: a lazy cache per (source, model).
 
 For an object whose source is a Euclidean geometry E, the discrete representation is D(E); for a discrete
-source A, the Euclidean one is R(A) (DESIGN §7). Region and analytical representations always come from the
-discrete one. Sources are immutable values, so a :class:`Derived` entry can be keyed by the identity of its
-source and shared between threads: whatever it computes stays true for that source forever.
-
-The algorithms are looked up when first needed (not at import time), so this module works while parts of the
-geometry package are still missing and never creates import cycles.
+source A, the Euclidean one is R(A) (docs/design.md §7). Region and analytical representations always come
+from the discrete one. Sources are immutable values, so a :class:`Derived` entry can be keyed by the identity
+of its source and shared between threads: whatever it computes stays true for that source forever.
 """
 
 from __future__ import annotations
@@ -14,13 +11,17 @@ from __future__ import annotations
 import threading
 from collections import OrderedDict
 from collections.abc import Iterable
-from typing import TYPE_CHECKING, Any, Literal
+from typing import Any, Literal
 
 from mrm.core.errors import MRMError, NotApplicableError
 from mrm.core.grids import LabelMap, PixelSet
-
-if TYPE_CHECKING:
-    pass
+from mrm.core.models import Model
+from mrm.geometry.discretize import discretize
+from mrm.geometry.reconstruct import reconstruct
+from mrm.geometry.reconstruct.subdivision import subdivide
+from mrm.reps.analytical import analytical_of
+from mrm.reps.cells import cells_of
+from mrm.reps.region import region_of
 
 Rep = Literal["discrete", "euclidean", "region", "analytical"]
 #: The four representations, in the order they are usually derived.
@@ -31,63 +32,14 @@ SYNC_COST = 250_000
 
 
 # ---------------------------------------------------------------------------------------------- algorithms
-def discretize_source(geom: Any, model: str) -> PixelSet:
-    """D(geom) under ``model`` (:func:`mrm.geometry.discretize.discretize`)."""
-    from mrm.geometry.discretize import discretize
-
-    return discretize(geom, model)
-
-
-def reconstruct_source(ps: PixelSet, model: str) -> Any:
-    """R(ps) under ``model`` (:func:`mrm.geometry.reconstruct.reconstruct`).
-
-    Raises :class:`~mrm.core.errors.LimitError` before any work when the boundary of ``ps`` is longer than
-    :data:`mrm.core.limits.MAX_CRACK_STEPS` (its cost is bounded up front, issue 11).
-    """
-    from mrm.core.limits import check_reconstruct
-    from mrm.geometry.reconstruct import reconstruct
-
-    check_reconstruct(ps)
-    return reconstruct(ps, model)
-
-
 def region_from_pixels(ps: PixelSet) -> Any:
     """The region representation of a pixel set (:func:`mrm.reps.region.region_of`).
 
     Also counts the pixels, which the set keeps: done here on the worker, the count costs the status bar
     and the error inspector nothing on the GUI thread (tens of milliseconds at 10⁸ pixels).
     """
-    from mrm.reps.region import region_of
-
     ps.count  # noqa: B018 - counted for its cache
     return region_of(ps)
-
-
-def analytical_from_region(region: Any) -> Any:
-    """The analytical representation of a region (:func:`mrm.reps.analytical.analytical_of`)."""
-    from mrm.reps.analytical import analytical_of
-
-    return analytical_of(region)
-
-
-def cells_of_labels(lm: LabelMap) -> Any:
-    """The region representation of a label map: its cells (:func:`mrm.reps.cells.cells_of`)."""
-    from mrm.reps.cells import cells_of
-
-    return cells_of(lm)
-
-
-def subdivision_of_labels(lm: LabelMap) -> Any:
-    """The Euclidean representation of a label map: its watertight gauss subdivision, under any model.
-
-    :func:`mrm.geometry.reconstruct.subdivision.subdivide`: one part per label, each boundary between two
-    regions one polyline used by both, D_gauss(part of L) = the pixels of L. Only ``gauss`` admits such a
-    coverage (under a cover model two parts would both claim the pixels along their common edge), so a label
-    map is polygonized under ``gauss`` whatever the document's model (ADR 0033).
-    """
-    from mrm.geometry.reconstruct.subdivision import subdivide
-
-    return subdivide(lm, "gauss")
 
 
 #: Why a label map has no analytical representation of its own (the analytical view says it).
@@ -105,8 +57,9 @@ class Derived:
     ----------
     source : PixelSet, LabelMap or shapely Polygon / MultiPolygon
         The object's source representation (immutable). For a label map (ADR 0033) the discrete
-        representation is the label map itself, the region one its cells (:func:`cells_of_labels`), the
-        Euclidean one its subdivision (:func:`subdivision_of_labels`); it has no analytical one
+        representation is the label map itself, the region one its cells (:func:`mrm.reps.cells.cells_of`),
+        the Euclidean one its watertight gauss subdivision
+        (:func:`mrm.geometry.reconstruct.subdivision.subdivide`); it has no analytical one
         (:class:`~mrm.core.errors.NotApplicableError`).
     model : str
         The discretization model.
@@ -118,9 +71,9 @@ class Derived:
     a result over the pixel limit) is remembered and raised again on every request.
     """
 
-    def __init__(self, source: Any, model: str) -> None:
+    def __init__(self, source: Any, model: Model | str) -> None:
         self.source = source
-        self.model = model
+        self.model = Model.parse(model)
         self.kind: Literal["discrete", "euclidean", "labels"] = (
             "discrete"
             if isinstance(source, PixelSet)
@@ -162,17 +115,22 @@ class Derived:
     def _compute(self, what: Rep) -> Any:
         if self.kind == "labels":
             if what == "region":
-                return cells_of_labels(self.source)
+                return cells_of(self.source)
             if what == "euclidean":
-                return subdivision_of_labels(self.source)
+                # A label map is polygonized under gauss whatever the document's model: only gauss admits a
+                # watertight coverage (under a cover model two parts would both claim the pixels along their
+                # common edge), ADR 0033.
+                return subdivide(self.source, Model.GAUSS)
             raise NotApplicableError(NO_LABEL_SEGMENTS)
+        # D and R through their one entry points, which apply their limits (the pixel limit, the boundary
+        # length of issue 11) before any work.
         if what == "discrete":
-            return discretize_source(self.source, self.model)
+            return discretize(self.source, self.model)
         if what == "euclidean":
-            return reconstruct_source(self.source, self.model)
+            return reconstruct(self.source, self.model)
         if what == "region":
             return region_from_pixels(self.get("discrete"))
-        return analytical_from_region(self.get("region"))
+        return analytical_of(self.get("region"))
 
     def estimated_cost(self, what: Rep) -> float:
         """A rough cost of computing ``what`` now, in pixels touched (0 when ready)."""

@@ -10,7 +10,7 @@ A :class:`Command` knows how to apply itself to a document (:meth:`Command.do`) 
 * **listeners** — the GUI's undo/redo actions and the window's "modified" mark subscribe to state changes.
 
 Derived representations never enter the history: commands hold only source data (immutable values, or the
-compact deltas of :mod:`mrm.commands`), so undo is a swap of references or an XOR of a small mask.
+compact deltas of :mod:`mrm.document.commands`), so undo is a swap of references or an XOR of a small mask.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from mrm.document import Document
+    from mrm.document.document import Document
 
 #: Bytes charged for a command's own bookkeeping (object header, references), on top of its payload.
 COMMAND_OVERHEAD = 128
