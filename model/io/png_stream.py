@@ -25,9 +25,9 @@ from typing import Any, BinaryIO
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 
 from mrm.errors import FileFormatError
+from mrm.geometry._jit import njit
 
 _SIGNATURE = b"\x89PNG\r\n\x1a\n"
 #: Channels per colour type.
