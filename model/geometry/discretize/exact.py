@@ -56,11 +56,6 @@ def closed_cell_range(u: float) -> tuple[int, int]:
     return (k, k + 1) if u == k + 0.5 else (k, k)
 
 
-def standard_cell(x: float, y: float) -> tuple[int, int]:
-    """Return the pixel whose standard cell (x−½, x+½] × (y−½, y+½] holds the point (x, y)."""
-    return cell_index(x), cell_index(y)
-
-
 def check_coordinate_range(values: npt.NDArray[np.float64]) -> tuple[int, float] | None:
     """Return (index, value) of the first coordinate outside the supported range, or None.
 

@@ -38,7 +38,6 @@ MODELS = ("standard", "supercover", "gauss")
 log = logging.getLogger(__name__)
 
 IntEdge = tuple[int, int, int, int]
-_Triple = tuple[int, int, int]
 
 
 def _tick(progress: ProgressLike | None, fraction: float | None, message: str | None = None) -> None:
