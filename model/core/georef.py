@@ -106,12 +106,6 @@ class GeoRef:
         x0, y0 = self.origin
         return (x0, y0, x0 + self.width - 1, y0 + self.height - 1)
 
-    @property
-    def pixel_area(self) -> float:
-        """The area of one pixel in world units."""
-        a, b, _c, d, e, _f = self.transform
-        return abs(a * e - b * d)
-
     def as_dict(self) -> dict[str, Any]:
         """JSON form: ``transform``, ``width``, ``height``, ``crs``, ``origin`` (what project files store)."""
         return {

@@ -57,10 +57,6 @@ LABEL_EXTENSIONS = (".png", ".npz")
 LABEL_READ_EXTENSIONS = (".png", ".pgm", ".npz")
 #: The PNG text chunk keyword (and Netpbm comment) holding the origin.
 ORIGIN_KEY = "mrm:origin"
-#: Pixel coordinates stay within the document's limit (±2³¹, :data:`mrm.core.limits.PIXEL_COORDINATE_LIMIT`),
-#: so
-#: that an imported image can always be saved in a project and reopened.
-COORD_LIMIT = limits.PIXEL_COORDINATE_LIMIT
 
 _PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 _PNG_IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"  # the whole (empty) IEND chunk with its CRC

@@ -25,11 +25,10 @@ from typing import Any, BinaryIO
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 
 from mrm.core.errors import FileFormatError
+from mrm.geometry._jit import njit
 
-_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 #: Channels per colour type.
 _CHANNELS = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}
 _DEPTHS = {0: (1, 2, 4, 8, 16), 2: (8, 16), 3: (1, 2, 4, 8), 4: (8, 16), 6: (8, 16)}

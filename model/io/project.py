@@ -84,20 +84,10 @@ FORMAT = "mrm-project"
 SCHEMA_VERSION = 4
 #: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
 MAX_CRS_CHARS = 100_000
-# The limits are those of the document (mrm.core.limits, ADR 0010), so that the loader accepts every file the
-# saver can write: the document refuses the edit that would exceed them. The loader reads them from
-# mrm.core.limits when it runs; these names are kept for callers that imported them from here.
-#: Files larger than this are refused before being read.
-MAX_FILE_BYTES = limits.MAX_FILE_BYTES
-#: A discrete source's bounding box may hold at most this many pixels.
-MAX_MASK_PIXELS = limits.MAX_OBJECT_PIXELS
-#: All the discrete sources of a file together hold at most this many pixels (their bounding boxes): a file
-#: cannot make us allocate more than about 1 GB of masks, whatever it claims.
-MAX_TOTAL_MASK_PIXELS = limits.MAX_FILE_PIXELS
-#: Largest magnitude of an integer coordinate (origins, shapes).
-MAX_INT_COORD = limits.PIXEL_COORDINATE_LIMIT
-#: Longest object name accepted.
-MAX_NAME_CHARS = limits.MAX_NAME_CHARS
+# The other limits are those of the document (mrm.core.limits, ADR 0010), so that the loader accepts every
+# file
+# the saver can write: the document refuses the edit that would exceed them. The loader reads them from
+# mrm.core.limits when it runs.
 
 
 @dataclass(frozen=True)

@@ -21,8 +21,20 @@ from hypothesis import strategies as st
 from shapely.geometry import LineString, MultiPolygon, Point, Polygon, box
 
 from mrm.core.errors import Cancelled, InvalidGeometryError
-from mrm.geometry import hausdorff as H
-from mrm.geometry.hausdorff import directed_hausdorff, hausdorff_distance
+from mrm.geometry.hausdorff import HausdorffDistance, directed_hausdorff, hausdorff_distance
+from mrm.geometry.hausdorff.branch_and_bound import _Run
+from mrm.geometry.hausdorff.equidistant import _equidistant, _line
+from mrm.geometry.hausdorff.exact_numbers import (
+    Num,
+    _cmp,
+    _enclose,
+    _inv,
+    _mul,
+    _sign,
+    _solve_quadratic,
+    _Tower,
+)
+from mrm.geometry.hausdorff.shapes import _setup, _Shape
 from mrm.ops.similarity import rotate_geometry, scale_geometry, translate_geometry
 
 # ----------------------------------------------------------------------------------------------------------
@@ -164,49 +176,49 @@ def test_disjoint_convex_sets_match_shapely_from_below(offset: tuple[float, floa
 # ----------------------------------------------------------------------------------------------------------
 
 
-def _closed_contains(s: H._Shape, x: H.Num, y: H.Num) -> bool:
+def _closed_contains(s: _Shape, x: Num, y: Num) -> bool:
     """Crossing number over every edge, boundary included (exact)."""
     inside = False
     for ax, ay, bx, by in s.edges:
         cross = (bx - ax) * (y - ay) - (by - ay) * (x - ax)
-        sc = H._sign(cross)
-        in_x = H._cmp(x, min(ax, bx)) >= 0 and H._cmp(x, max(ax, bx)) <= 0
-        if sc == 0 and in_x and H._cmp(y, min(ay, by)) >= 0 and H._cmp(y, max(ay, by)) <= 0:
+        sc = _sign(cross)
+        in_x = _cmp(x, min(ax, bx)) >= 0 and _cmp(x, max(ax, bx)) <= 0
+        if sc == 0 and in_x and _cmp(y, min(ay, by)) >= 0 and _cmp(y, max(ay, by)) <= 0:
             return True
-        if (H._cmp(y, ay) < 0) != (H._cmp(y, by) < 0) and ((by > ay and sc > 0) or (by < ay and sc < 0)):
+        if (_cmp(y, ay) < 0) != (_cmp(y, by) < 0) and ((by > ay and sc > 0) or (by < ay and sc < 0)):
             inside = not inside
     return inside
 
 
-def _f2(s: H._Shape, x: H.Num, y: H.Num) -> H.Num:
+def _f2(s: _Shape, x: Num, y: Num) -> Num:
     """The definition: 0 inside, else the least squared distance to a vertex or to an edge (in its slab)."""
     if _closed_contains(s, x, y):
         return 0
-    best: H.Num | None = None
+    best: Num | None = None
     for vx, vy in s.vertices:
         d = (x - vx) * (x - vx) + (y - vy) * (y - vy)
-        best = d if best is None or H._cmp(d, best) < 0 else best
+        best = d if best is None or _cmp(d, best) < 0 else best
     for e, (ux, uy, wx, wy) in enumerate(s.edges):
         mx, my = wx - ux, wy - uy
         proj = (x - ux) * mx + (y - uy) * my
-        if H._sign(proj) >= 0 and H._cmp(proj, s.norms[e]) <= 0:
+        if _sign(proj) >= 0 and _cmp(proj, s.norms[e]) <= 0:
             c = mx * (y - uy) - my * (x - ux)
             d = c * c * Fraction(1, s.norms[e])
-            best = d if best is None or H._cmp(d, best) < 0 else best
+            best = d if best is None or _cmp(d, best) < 0 else best
     assert best is not None
     return best
 
 
-def reference_directed(a: Polygon | MultiPolygon, b: Polygon | MultiPolygon) -> tuple[H.Num, int]:
+def reference_directed(a: Polygon | MultiPolygon, b: Polygon | MultiPolygon) -> tuple[Num, int]:
     """max over A of d(·, B) by brute force over every candidate of the argument in the module docstring:
     the vertices of A, every crossing of an edge of A with a bisector of two features of ∂B or with a slab
     side, and every point equidistant from three features. No pruning, no index, no float filter."""
-    sa, sb, k = H._setup(a, b)
-    t = H._Tower()
-    run = H._Run(sa, sb, k, t, None)
+    sa, sb, k = _setup(a, b)
+    t = _Tower()
+    run = _Run(sa, sb, k, t, None)
     feats: list[tuple[str, object, int, int]] = [("v", v, 0, 0) for v in sb.vertices]
     feats += [("e", i, 0, 0) for i in range(len(sb.edges))]
-    cands: list[tuple[H.Num, H.Num]] = [(Fraction(x), Fraction(y)) for x, y in sa.vertices]
+    cands: list[tuple[Num, Num]] = [(Fraction(x), Fraction(y)) for x, y in sa.vertices]
     for px, py, qx, qy in sa.edges:
         dx, dy = qx - px, qy - py
         quads = []
@@ -227,33 +239,33 @@ def reference_directed(a: Polygon | MultiPolygon, b: Polygon | MultiPolygon) -> 
                         if 0 <= tt <= 1:
                             cands.append((px + tt * dx, py + tt * dy))
         for f, g in itertools.combinations(quads, 2):
-            for tt in H._solve_quadratic(t, f[0] - g[0], f[1] - g[1], f[2] - g[2]) or ():
-                if H._sign(tt) >= 0 and H._cmp(tt, 1) <= 0:
+            for tt in _solve_quadratic(t, f[0] - g[0], f[1] - g[1], f[2] - g[2]) or ():
+                if _sign(tt) >= 0 and _cmp(tt, 1) <= 0:
                     cands.append((px + tt * dx, py + tt * dy))
     for trio in itertools.combinations(feats, 3):
-        for x, y in H._equidistant(run, trio, t):  # type: ignore[arg-type]
+        for x, y in _equidistant(run, trio, t):  # type: ignore[arg-type]
             ds = []
             for kind, f, _, _ in trio:
                 if kind == "v":
                     ds.append((x - f[0]) * (x - f[0]) + (y - f[1]) * (y - f[1]))  # type: ignore[index]
                 else:
-                    la, lb, lc, n = H._line(sb, f)  # type: ignore[arg-type]
+                    la, lb, lc, n = _line(sb, f)  # type: ignore[arg-type]
                     ell = la * x + lb * y + lc
                     ds.append(ell * ell * Fraction(1, n))
-            assert H._cmp(ds[0], ds[1]) == 0 and H._cmp(ds[0], ds[2]) == 0  # the solver's own check
+            assert _cmp(ds[0], ds[1]) == 0 and _cmp(ds[0], ds[2]) == 0  # the solver's own check
             if _closed_contains(sa, x, y):
                 cands.append((x, y))
-    best: H.Num = 0
+    best: Num = 0
     for x, y in cands:
         v = _f2(sb, x, y)
-        if H._cmp(v, best) > 0:
+        if _cmp(v, best) > 0:
             best = v
     return best, k
 
 
-def assert_same(ours: H.HausdorffDistance, ref: tuple[H.Num, int]) -> None:
+def assert_same(ours: HausdorffDistance, ref: tuple[Num, int]) -> None:
     value, k = ref
-    lo, hi = H._enclose(value, 200)
+    lo, hi = _enclose(value, 200)
     s = Fraction(1, 1 << (2 * k))
     olo, ohi = ours.squared_enclosure(200)
     assert olo <= hi * s and lo * s <= ohi, (float(olo), float(lo * s))
@@ -432,16 +444,16 @@ def test_a_larger_pair_of_near_copies() -> None:
 
 
 def test_tower_decides_exact_zeros() -> None:
-    t = H._Tower()
+    t = _Tower()
     r2, r3, r6 = t.sqrt(2), t.sqrt(3), t.sqrt(6)
-    assert H._sign(r2 * r3 - r6) == 0  # three independent generators, yet √2·√3 = √6
-    assert H._sign((1 + r2) * (1 + r2) - (3 + 2 * r2)) == 0
-    assert H._sign(t.sqrt(3 + 2 * r2) - (1 + r2)) == 0  # a nested root: √(3 + 2√2) = 1 + √2
-    assert H._sign(r2 + r3 - t.sqrt(10)) < 0  # 3.1462… < 3.1623…
-    assert H._sign(H._mul(r2 + r3, H._inv(r2 + r3)) - 1) == 0
+    assert _sign(r2 * r3 - r6) == 0  # three independent generators, yet √2·√3 = √6
+    assert _sign((1 + r2) * (1 + r2) - (3 + 2 * r2)) == 0
+    assert _sign(t.sqrt(3 + 2 * r2) - (1 + r2)) == 0  # a nested root: √(3 + 2√2) = 1 + √2
+    assert _sign(r2 + r3 - t.sqrt(10)) < 0  # 3.1462… < 3.1623…
+    assert _sign(_mul(r2 + r3, _inv(r2 + r3)) - 1) == 0
     assert t.sqrt(Fraction(9, 4)) == Fraction(3, 2) and t.sqrt(0) == 0
     with pytest.raises(ZeroDivisionError):
-        H._inv(r2 * r3 - r6)
+        _inv(r2 * r3 - r6)
 
 
 @settings(max_examples=80)
@@ -452,7 +464,7 @@ def test_tower_decides_exact_zeros() -> None:
 )
 def test_tower_signs_match_high_precision(c1: list[int], c2: list[int], pq: tuple[int, int]) -> None:
     p, q = pq
-    t = H._Tower()
+    t = _Tower()
     rp, rq = t.sqrt(p), t.sqrt(q)
     rpq = t.sqrt(p * q)
     x = c1[0] + c1[1] * rp + c1[2] * rq + c1[3] * rpq
@@ -465,7 +477,7 @@ def test_tower_signs_match_high_precision(c1: list[int], c2: list[int], pq: tupl
         prod = dx * dy
         nested = (dx * dx + 1).sqrt()
     for value, expected in ((x * y, prod), (t.sqrt(x * x + 1) - x, nested - dx)):
-        s = H._sign(value)
+        s = _sign(value)
         if abs(expected) < Decimal("1e-40"):
             assert s == 0
         else:

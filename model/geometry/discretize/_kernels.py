@@ -21,14 +21,11 @@ partial sum is a multiple of 2^-904: far above the subnormal range, hence comput
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import Any, TypeVar, cast
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 
-_F = TypeVar("_F", bound=Callable[..., Any])
+from mrm.geometry._jit import njit
 
 BoolMask = npt.NDArray[np.bool_]
 Floats = npt.NDArray[np.float64]
@@ -44,12 +41,8 @@ _CROSS_BOUND = 8.0 * _EPS
 SCRATCH_SIZE = 40
 
 
-def _jit(f: _F) -> _F:
-    return cast(_F, njit(cache=True, nogil=True)(f))
-
-
 # -------------------------------------------------------------------------------------- exact signs
-@_jit
+@njit(cache=True)
 def _two_sum(a: float, b: float) -> tuple[float, float]:
     x = a + b
     bv = x - a
@@ -57,7 +50,7 @@ def _two_sum(a: float, b: float) -> tuple[float, float]:
     return x, (a - av) + (b - bv)
 
 
-@_jit
+@njit(cache=True)
 def _two_diff(a: float, b: float) -> tuple[float, float]:
     x = a - b
     bv = a - x
@@ -65,14 +58,14 @@ def _two_diff(a: float, b: float) -> tuple[float, float]:
     return x, (a - av) + (bv - b)
 
 
-@_jit
+@njit(cache=True)
 def _split(a: float) -> tuple[float, float]:
     c = _SPLITTER * a
     hi = c - (c - a)
     return hi, a - hi
 
 
-@_jit
+@njit(cache=True)
 def _two_prod(a: float, b: float) -> tuple[float, float]:
     x = a * b
     ahi, alo = _split(a)
@@ -83,7 +76,7 @@ def _two_prod(a: float, b: float) -> tuple[float, float]:
     return x, alo * blo - err
 
 
-@_jit
+@njit(cache=True)
 def _grow(e: Floats, m: int, b: float) -> int:
     """Add ``b`` to the expansion e[:m] in place (Shewchuk's grow-expansion with zero elimination).
 
@@ -103,7 +96,7 @@ def _grow(e: Floats, m: int, b: float) -> int:
     return k
 
 
-@_jit
+@njit(cache=True)
 def _add_product(e: Floats, m: int, x: float, y: float, sign: float) -> int:
     """Add sign·x·y (exactly) to the expansion e[:m]; return its new length."""
     if x == 0.0 or y == 0.0:
@@ -113,7 +106,7 @@ def _add_product(e: Floats, m: int, x: float, y: float, sign: float) -> int:
     return _grow(e, m, sign * p)
 
 
-@_jit
+@njit(cache=True)
 def _det_sign_exact(
     p1: float, p2: float, q1: float, q2: float, r1: float, r2: float, s1: float, s2: float, e: Floats
 ) -> int:
@@ -139,7 +132,7 @@ def _det_sign_exact(
 UNDECIDED = 2
 
 
-@_jit
+@njit(cache=True)
 def _det_filter(
     p1: float, p2: float, q1: float, q2: float, r1: float, r2: float, s1: float, s2: float, exact: bool
 ) -> int:
@@ -164,7 +157,7 @@ def _det_filter(
     return UNDECIDED
 
 
-@_jit
+@njit(cache=True)
 def det_sign(
     p1: float,
     p2: float,
@@ -185,7 +178,7 @@ def det_sign(
 
 
 # -------------------------------------------------------------------------------------------- cells
-@_jit
+@njit(cache=True)
 def cell(u: float) -> int:
     """Return k with u ∈ (k − ½, k + ½] (exact: k ± ½ are floats, comparisons never round)."""
     k = np.floor(u + 0.5)
@@ -196,7 +189,7 @@ def cell(u: float) -> int:
     return int(k)
 
 
-@_jit
+@njit(cache=True)
 def _put(mask: BoolMask, x0: int, y0: int, i: int, j: int) -> int:
     """Set pixel (i, j); return 1 if it falls outside the array (a bug upstream), else 0."""
     r = j - y0
@@ -208,7 +201,7 @@ def _put(mask: BoolMask, x0: int, y0: int, i: int, j: int) -> int:
     return 1
 
 
-@_jit
+@njit(cache=True)
 def _put_closed_cells(mask: BoolMask, x0: int, y0: int, u: float, v: float) -> int:
     """Set every pixel whose closed square holds the point (u, v): one, two or four of them."""
     i = cell(u)
@@ -223,7 +216,7 @@ def _put_closed_cells(mask: BoolMask, x0: int, y0: int, u: float, v: float) -> i
 
 
 # ----------------------------------------------------------------------------------------- segments
-@_jit
+@njit(cache=True)
 def _walk(
     mask: BoolMask,
     x0: int,
@@ -303,7 +296,7 @@ def _walk(
     return bad
 
 
-@_jit
+@njit(cache=True)
 def walk_segments(
     mask: BoolMask,
     x0: int,
@@ -323,7 +316,7 @@ def walk_segments(
     return bad
 
 
-@_jit
+@njit(cache=True)
 def mark_points(mask: BoolMask, x0: int, y0: int, px: Floats, py: Floats, supercover: bool) -> int:
     """Discretize isolated points: their standard cell, or all closed cells holding them (supercover)."""
     bad = 0
@@ -336,7 +329,7 @@ def mark_points(mask: BoolMask, x0: int, y0: int, px: Floats, py: Floats, superc
 
 
 # --------------------------------------------------------------------------------------- gauss fill
-@_jit
+@njit(cache=True)
 def _crossing_bounds(lx: float, ly: float, slope: float, j: int) -> tuple[float, float]:
     """Integers lo ≤ ⌈X⌉ ≤ hi for X the abscissa where the edge from (lx, ly) with slope dx/dy meets y = j.
 
@@ -349,7 +342,7 @@ def _crossing_bounds(lx: float, ly: float, slope: float, j: int) -> tuple[float,
     return np.ceil(x - d), np.ceil(x + d)
 
 
-@_jit
+@njit(cache=True)
 def _crossing_exact(
     lx: float, ly: float, hx: float, hy: float, j: int, lo: float, hi: float, exact: bool, scratch: Floats
 ) -> int:
@@ -369,7 +362,7 @@ def _crossing_exact(
     return int(hi)
 
 
-@_jit
+@njit(cache=True)
 def _fill_group(
     mask: BoolMask,
     x0: int,
@@ -483,7 +476,7 @@ def _fill_group(
     return bad
 
 
-@_jit
+@njit(cache=True)
 def fill_groups(
     mask: BoolMask,
     x0: int,
@@ -511,7 +504,7 @@ def fill_groups(
 
 
 # ---------------------------------------------------------------------------------- ring simplicity
-@_jit
+@njit(cache=True)
 def _turn(ax: float, ay: float, bx: float, by: float, cx: float, cy: float) -> int:
     """Exact sign of the turn a → b → c (> 0: c on the left of a→b). Scalars only: a cheap call."""
     s = _det_filter(bx, ax, cy, ay, by, ay, cx, ax, False)
@@ -520,19 +513,19 @@ def _turn(ax: float, ay: float, bx: float, by: float, cx: float, cy: float) -> i
     return s
 
 
-@_jit
+@njit(cache=True)
 def _orient(xs: Floats, ys: Floats, a: int, b: int, c: int) -> int:
     """Exact sign of the turn through vertices a → b → c of a ring."""
     return _turn(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
 
 
-@_jit
+@njit(cache=True)
 def _within(ax: float, ay: float, bx: float, by: float, px: float, py: float) -> bool:
     """Tell whether p, collinear with a and b, lies within the closed segment [a, b]."""
     return min(ax, bx) <= px and px <= max(ax, bx) and min(ay, by) <= py and py <= max(ay, by)
 
 
-@_jit
+@njit(cache=True)
 def _segments_meet(
     ax: float, ay: float, bx: float, by: float, cx: float, cy: float, dx: float, dy: float
 ) -> bool:
@@ -551,7 +544,7 @@ def _segments_meet(
     )
 
 
-@_jit
+@njit(cache=True)
 def _edges_meet(xs: Floats, ys: Floats, n: int, e: int, f: int) -> bool:
     """True when ring edges e and f meet anywhere they should not (conservative: True when unsure)."""
     a1, a2 = e, (e + 1) % n
@@ -564,7 +557,7 @@ def _edges_meet(xs: Floats, ys: Floats, n: int, e: int, f: int) -> bool:
     return _segments_meet(xs[a1], ys[a1], xs[a2], ys[a2], xs[b1], ys[b1], xs[b2], ys[b2])
 
 
-@_jit
+@njit(cache=True)
 def ring_is_simple(xs: Floats, ys: Floats, order: Ints) -> bool:
     """Prove that the closed ring through xs, ys (no closing repeat, no equal consecutive vertices) is simple.
 

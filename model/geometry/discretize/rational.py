@@ -37,7 +37,6 @@ from mrm.geometry.discretize.exact_shape import ExactShape, pixel_box
 log = logging.getLogger(__name__)
 
 IntEdge = tuple[int, int, int, int]
-_Triple = tuple[int, int, int]
 
 
 def _tick(progress: ProgressLike | None, fraction: float | None, message: str | None = None) -> None:

@@ -23,10 +23,9 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 from numba.extending import register_jitable
 
-from mrm.geometry._jit import py_func
+from mrm.geometry._jit import njit, py_func
 
 Ints = npt.NDArray[np.int64]
 Floats = npt.NDArray[np.float64]
@@ -61,7 +60,7 @@ def _count_crossings(edges: Ints, g: int) -> int:
     return total
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def crossings_kernel(edges: Ints, g: int, x0: int, x1: int) -> tuple[Ints, Ints]:
     """The fill crossings ``(row j, m)`` of every edge, ``m = ⌈X⌉ − 1`` clipped to ``[x0 − 1, x1]``.
 
@@ -96,7 +95,7 @@ def crossings_kernel(edges: Ints, g: int, x0: int, x1: int) -> tuple[Ints, Ints]
     return rows, xs
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def _fill_spans(mask: npt.NDArray[np.bool_], rows: Ints, xs: Ints, x0: int, y0: int) -> None:
     """Fill row by row from the crossings ``(rows, xs)``, ``xs`` clipped to ``[x0 − 1, x1]``.
 
@@ -185,7 +184,7 @@ def _meets_standard(ax: int, ay: int, dx: int, dy: int, i: int, j: int, g: int, 
     return True
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def walks_kernel(mask: npt.NDArray[np.bool_], edges: Ints, g: int, x0: int, y0: int, standard: bool) -> None:
     """Mark the pixels whose kernel meets an edge (closed square; open square + τ for ``standard``)."""
     h = g // 2
@@ -314,7 +313,7 @@ def _sure_ceil(v: float, e: float) -> tuple[bool, int]:
     return True, int(lo)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def filtered_crossings(
     ax: Floats, ay: Floats, bx: Floats, by: Floats, delta: float, x0: int, x1: int
 ) -> tuple[Ints, Ints, npt.NDArray[np.bool_]]:
@@ -364,7 +363,7 @@ def filtered_crossings(
     return rows[:t].copy(), xs[:t].copy(), ok
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def filtered_spans(mask: npt.NDArray[np.bool_], rows: Ints, xs: Ints, x0: int, y0: int) -> None:
     """Fill ``mask`` from crossings (:func:`filtered_crossings` plus the exact ones of flagged edges)."""
     _fill_spans(mask, rows, xs, x0, y0)
@@ -432,7 +431,7 @@ def _walk_major(
     return sure
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def filtered_walks(
     mask: npt.NDArray[np.bool_],
     ax: Floats,

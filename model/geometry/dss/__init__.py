@@ -252,10 +252,6 @@ class ArithmeticalDSS:
         for k in self.__slots__:
             setattr(self, k, getattr(other, k))
 
-    def is_extendable_back(self, q: Point) -> int:
-        """Return the case code for adding q before the back (0 if impossible)."""
-        return self.negate().is_extendable_front(q)
-
     def extend_back(self, q: Point) -> bool:
         """Add q before the back if the points still form a DSS; return whether q was added."""
         opp = self.negate()

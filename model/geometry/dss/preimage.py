@@ -115,12 +115,6 @@ class Preimage:
         self._clip(s, -1, Fraction(-y) + _HALF)
         return bool(self.vertices)
 
-    def add_all(self, points: Iterable[Sequence[int]]) -> bool:
-        """Add several pixels; return whether the preimage is still non-empty."""
-        for p in points:
-            self.add(p)
-        return not self.is_empty
-
     def _clip(self, cu: int, cw: int, c0: Fraction) -> None:
         # Keep the half-plane cu·u + cw·w + c0 >= 0 (Sutherland-Hodgman on a convex polygon, exact).
         vs = self.vertices

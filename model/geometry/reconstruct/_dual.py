@@ -31,8 +31,8 @@ corner at a twice-met pointel moved a quarter pixel diagonally into that visit's
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from mrm.geometry._jit import njit
 from mrm.geometry.reconstruct._base import _DX, _DY, Corridors, _cp1, _cp2
 from mrm.geometry.reconstruct._corridor import _rect_of, element_visits, side_gate
 from mrm.geometry.reconstruct._kernels import _kmax_for

@@ -45,9 +45,6 @@ FloatArray = npt.NDArray[np.float64]
 #: Names of the element kinds (``BorderPath.kinds``): the number of linels of a run, 0 for an elbow.
 KIND_NAMES = {0: "elbow", 1: "straight", 2: "convex corner", 3: "tip", 4: "isolated pixel"}
 
-#: Freeman steps 0 = E, 1 = N, 2 = W, 3 = S.
-STEPS = np.array([[1, 0], [0, 1], [-1, 0], [0, -1]], dtype=np.int64)
-
 
 @dataclass(frozen=True)
 class BorderPath:
@@ -57,8 +54,8 @@ class BorderPath:
     ----------
     pixels : ndarray of int64, shape (m, 2)
         The path's pixels (x, y), in order; consecutive ones (cyclically) are 4-adjacent.
-    step_in, step_out : ndarray of int64, shape (m,)
-        Freeman direction of the step into and out of each element.
+    step_in : ndarray of int64, shape (m,)
+        Freeman direction of the step into each element.
     kinds : ndarray of int64, shape (m,)
         0 for an elbow (right turn of the crack), else the number of linels of the run: 1 straight, 2 convex
         corner, 3 tip of a one-pixel-wide arm, 4 isolated pixel (see :data:`KIND_NAMES`).
@@ -66,7 +63,6 @@ class BorderPath:
 
     pixels: IntArray
     step_in: IntArray
-    step_out: IntArray
     kinds: IntArray
 
     def __len__(self) -> int:
@@ -81,8 +77,6 @@ class Corridor:
     ----------
     pieces : ndarray of float64, shape (n, 4)
         Open rectangles [xmin, xmax, ymin, ymax] in path order.
-    element : ndarray of int64, shape (n,)
-        The border-path element each piece belongs to.
     gate_left, gate_right : ndarray of float64, shape (n, 2)
         Gate k, between piece k−1 and piece k (gate 0 closes the ring), is the open segment from
         ``gate_left[k]`` to ``gate_right[k]``: the left and right ends as seen when crossing it.
@@ -93,7 +87,6 @@ class Corridor:
     """
 
     pieces: FloatArray
-    element: IntArray
     gate_left: FloatArray
     gate_right: FloatArray
     gate_dir: IntArray
@@ -138,7 +131,7 @@ def border_paths(chains: Sequence[CrackChain]) -> list[BorderPath]:
     """
     if not chains:
         return []
-    (eoff, ec, er, edin, edout, enl, *_), mx, my = _elements(chains)
+    (eoff, ec, er, edin, _edout, enl, *_), mx, my = _elements(chains)
     out = []
     for k in range(len(chains)):
         a, b = int(eoff[k]), int(eoff[k + 1])
@@ -146,7 +139,6 @@ def border_paths(chains: Sequence[CrackChain]) -> list[BorderPath]:
             BorderPath(
                 np.stack([ec[a:b].astype(np.int64) + mx, er[a:b].astype(np.int64) + my], axis=1),
                 edin[a:b].astype(np.int64),
-                edout[a:b].astype(np.int64),
                 enl[a:b].astype(np.int64),
             )
         )
@@ -199,7 +191,6 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
             out.append(
                 Corridor(
                     np.array([[x - 0.5, x + 0.5, y - 0.5, y + 0.5]]),
-                    np.zeros(1, np.int64),
                     np.zeros((0, 2)),
                     np.zeros((0, 2)),
                     np.zeros(0, np.int64),
@@ -207,12 +198,11 @@ def corridors(chains: Sequence[CrackChain], model: str = "standard") -> list[Cor
                 )
             )
             continue
-        rect, pel, gp, gq, gdir, full = _k.build_pieces(a, b, cx, cy, edin, edout, enl, cnt)
+        rect, _pel, gp, gq, gdir, full = _k.build_pieces(a, b, cx, cy, edin, edout, enl, cnt)
         shift = np.array([4 * mx, 4 * mx, 4 * my, 4 * my], dtype=np.int64)
         out.append(
             Corridor(
                 (rect + shift) / 4.0,
-                pel.astype(np.int64),
                 (gp + shift[[0, 2]]) / 4.0,
                 (gq + shift[[0, 2]]) / 4.0,
                 gdir.astype(np.int64),
@@ -236,13 +226,12 @@ def _dual_corridors(chains: Sequence[CrackChain]) -> list[Corridor]:
     out = []
     for k in range(len(chains)):
         a, b = int(eoff[k]), int(eoff[k + 1])
-        rect, pel, gp, gq, gdir, full, _r0, _r0t = _dk.dual_pieces(a, b, ec, er, edin, edout, cnt)
+        rect, _pel, gp, gq, gdir, full, _r0, _r0t = _dk.dual_pieces(a, b, ec, er, edin, edout, cnt)
         # dual Q-units → plane: pointel (i, j) is (i − ½, j − ½)
         shift = np.array([4 * mx - 2, 4 * mx - 2, 4 * my - 2, 4 * my - 2], dtype=np.int64)
         out.append(
             Corridor(
                 (rect + shift) / 4.0,
-                pel.astype(np.int64),
                 (gp + shift[[0, 2]]) / 4.0,
                 (gq + shift[[0, 2]]) / 4.0,
                 gdir.astype(np.int64),

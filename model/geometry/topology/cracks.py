@@ -17,10 +17,10 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-import numba
 import numpy as np
 import numpy.typing as npt
 
+from mrm.geometry._jit import njit
 from mrm.geometry.topology.labeling import Runs, as_u8, label_runs
 
 U8Array = npt.NDArray[np.uint8]
@@ -57,7 +57,7 @@ class Rings(NamedTuple):
     runs: Runs
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _count_linels(rs: I32Array, re: I32Array, ptr: I64Array) -> int:  # pragma: no cover
     # Vertical linels: two per run. Horizontal ones between rows r-1 and r: |row r xor row r-1|.
     h = ptr.size - 1
@@ -88,12 +88,12 @@ def _count_linels(rs: I32Array, re: I32Array, ptr: I64Array) -> int:  # pragma: 
     return total
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _inside(m: U8Array, x: int, y: int) -> bool:  # pragma: no cover
     return 0 <= y < m.shape[0] and 0 <= x < m.shape[1] and bool(m[y, x] != 0)
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _reverse(a: U8Array, i: int, j: int) -> None:  # pragma: no cover
     # Reverse a[i:j] in place.
     j -= 1
@@ -105,7 +105,7 @@ def _reverse(a: U8Array, i: int, j: int) -> None:  # pragma: no cover
         j -= 1
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _gap(rs: I32Array, ptr: I64Array, c: int, r: int) -> int:  # pragma: no cover
     # Index of the background run (gap) holding the background pixel (c, r) of row r (0 <= r < h).
     lo = ptr[r]
@@ -119,7 +119,7 @@ def _gap(rs: I32Array, ptr: I64Array, c: int, r: int) -> int:  # pragma: no cove
     return int(lo + r)
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _bottom_edges(
     rs: I32Array, re: I32Array, ptr: I64Array
 ) -> tuple[I64Array, I64Array, I64Array, I64Array, I64Array]:  # pragma: no cover
@@ -158,7 +158,7 @@ def _bottom_edges(
     return bs[:nb], be[:nb], brun[:nb], bidx[: nb + 1], bptr
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _bottom_edge(bs: I64Array, bidx: I64Array, bptr: I64Array, x: int, y: int) -> int:  # pragma: no cover
     # The flat index of the bottom boundary linel of pixel (x, y) (one of :func:`_bottom_edges`).
     lo = bptr[y]
@@ -172,7 +172,7 @@ def _bottom_edge(bs: I64Array, bidx: I64Array, bptr: I64Array, x: int, y: int) -
     return int(bidx[lo] + x - bs[lo])
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _trace_mask(
     m: U8Array,
     rs: I32Array,
@@ -301,7 +301,7 @@ def trace_mask(mask: npt.ArrayLike) -> Rings:
 # ---------------------------------------------------------------------------------------------- fill
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _ring_extent(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array
 ) -> tuple[int, int, int, int, bool]:  # pragma: no cover
@@ -341,7 +341,7 @@ def _ring_extent(
     return xmin, ymin, xmax, ymax, closed
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _winding_diff(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array, wt: I32Array, x0: int, y0: int, w: int, h: int
 ) -> I32Array:  # pragma: no cover
@@ -370,7 +370,7 @@ def _winding_diff(
     return diff
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _fill(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array, x0: int, y0: int, w: int, h: int
 ) -> tuple[BoolArray, bool]:  # pragma: no cover
@@ -387,7 +387,7 @@ def _fill(
     return out, ok
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _paint_rings(
     codes: U8Array, off: I64Array, sx: I64Array, sy: I64Array, wt: I32Array, x0: int, y0: int, w: int, h: int
 ) -> I32Array:  # pragma: no cover
@@ -483,7 +483,7 @@ class CellChains(NamedTuple):
     right: I32Array
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _trace_cells(
     lab: I32Array,
 ) -> tuple[I64Array, I64Array, U8Array, I64Array, I64Array, I64Array, I32Array, I32Array]:  # pragma: no cover

@@ -17,9 +17,10 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
-import numba
 import numpy as np
 import numpy.typing as npt
+
+from mrm.geometry._jit import njit
 
 Int32Array = npt.NDArray[np.int32]
 Int64Array = npt.NDArray[np.int64]
@@ -45,7 +46,7 @@ class Runs(NamedTuple):
     bg_counts: Int64Array
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _find_runs(m: npt.NDArray[np.uint8]) -> tuple[Int32Array, Int32Array, Int64Array]:  # pragma: no cover
     # The runs of non-zero bytes of each row of a C-contiguous mask. The mask's memory is also read as 8-byte
     # words: a word of eight background bytes, or of eight 1s inside a run, is passed at once, four words at
@@ -109,7 +110,7 @@ def _find_runs(m: npt.NDArray[np.uint8]) -> tuple[Int32Array, Int32Array, Int64A
     return rs[:n], re[:n], ptr
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _find(parent: Int64Array, x: int) -> int:  # pragma: no cover
     while parent[x] != x:
         parent[x] = parent[parent[x]]
@@ -117,7 +118,7 @@ def _find(parent: Int64Array, x: int) -> int:  # pragma: no cover
     return x
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _union(parent: Int64Array, a: int, b: int) -> None:  # pragma: no cover
     # The smaller index stays the root, so a component's root is its first run in raster order.
     a = _find(parent, a)
@@ -128,7 +129,7 @@ def _union(parent: Int64Array, a: int, b: int) -> None:  # pragma: no cover
         parent[a] = b
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _label_runs(
     rs: Int32Array, re: Int32Array, ptr: Int64Array, w: int, obj_diag: int
 ) -> tuple[Int32Array, int, Int64Array, Int32Array, int, Int64Array]:  # pragma: no cover
@@ -225,7 +226,7 @@ def _label_runs(
     return label, nlab, counts, bg_label, nbg, bg_counts
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _paint(
     rs: Int32Array, re: Int32Array, ptr: Int64Array, label: Int32Array, w: int
 ) -> Int32Array:  # pragma: no cover
@@ -309,7 +310,7 @@ def label(mask: npt.ArrayLike, connectivity: int = 4) -> tuple[Int32Array, int]:
     return paint(runs, m.shape[1]), runs.n_labels
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _group_by_label(flat: Int32Array, vmax: int) -> tuple[Int64Array, Int64Array]:  # pragma: no cover
     # Counting sort of the pixel indices by label: pixels of label v are order[start[v]:start[v+1]].
     start = np.zeros(vmax + 2, np.int64)
@@ -366,7 +367,7 @@ class LabelRegions(NamedTuple):
     first_col: Int64Array
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _label_regions(
     lab: Int32Array,
 ) -> tuple[Int64Array, Int64Array, Int64Array, Int64Array]:  # pragma: no cover
@@ -433,7 +434,7 @@ def label_regions(labels: npt.ArrayLike) -> LabelRegions:
 # whose first touch (page faults) cost more than the arithmetic, on the core the window shares.
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _max_pool(src: npt.NDArray[np.uint8], f: int) -> npt.NDArray[np.uint8]:  # pragma: no cover
     h, w = src.shape
     out = np.zeros(((h + f - 1) // f, (w + f - 1) // f), np.uint8)
@@ -449,7 +450,7 @@ def _max_pool(src: npt.NDArray[np.uint8], f: int) -> npt.NDArray[np.uint8]:  # p
     return out
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _pool_labels(labels: Int32Array, f: int) -> npt.NDArray[np.uint8]:  # pragma: no cover
     h, w = labels.shape
     out = np.zeros(((h + f - 1) // f, (w + f - 1) // f), np.uint8)
@@ -468,7 +469,7 @@ def _pool_labels(labels: Int32Array, f: int) -> npt.NDArray[np.uint8]:  # pragma
     return out
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _pool_holes(
     rs: Int32Array, re: Int32Array, ptr: Int64Array, bg_label: Int32Array, w: int, f: int
 ) -> npt.NDArray[np.uint8]:  # pragma: no cover
@@ -529,7 +530,7 @@ def pooled_holes(mask: npt.ArrayLike, f: int = 1) -> npt.NDArray[np.uint8]:
     return _pool_holes(runs.start, runs.end, runs.ptr, runs.bg_label, m.shape[1], max(1, int(f)))
 
 
-@numba.njit(cache=True, nogil=True)
+@njit(cache=True)
 def _lookup(
     table: npt.NDArray[np.uint32], img: npt.NDArray[np.uint8]
 ) -> npt.NDArray[np.uint32]:  # pragma: no cover
