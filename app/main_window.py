@@ -204,6 +204,9 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, ["file.new", "file.open"])
         self.recent_menu = m.addMenu("Open &Recent")
         self.recent_menu.setObjectName("recentMenu")
+        self.examples_menu = m.addMenu("Open E&xample")
+        self.examples_menu.setObjectName("examplesMenu")
+        self._fill_examples_menu()
         a.menu(m, [None, "file.save", "file.save_as", None, "file.import", "file.export", "file.screenshot"])
         a.menu(m, [None, "file.preferences", None, "file.quit"])
         self.update_recent_menu()
@@ -375,17 +378,29 @@ class MainWindow(QtWidgets.QMainWindow):
         a["measure.hausdorff"].setEnabled(len(self.doc) >= 2)
 
     def update_title(self) -> None:
-        name = self.doc.path.name if self.doc.path else "Untitled"
-        self.setWindowTitle(f"{name}[*] — MR Modeler")
+        self.setWindowTitle(f"{self.files.document_name()}[*] — MR Modeler")
         self.setWindowModified(self.doc.is_modified)
         self.setWindowFilePath(str(self.doc.path) if self.doc.path else "")
+
+    def _fill_examples_menu(self) -> None:
+        """File ▸ Open Example: the bundled examples; each opens as an untitled copy."""
+        from mrm.resources import example_projects
+
+        m = self.examples_menu
+        for p in example_projects():
+            act = m.addAction(p.stem)
+            act.setObjectName(f"example.{p.stem}")
+            act.setStatusTip(f"Open a copy of the example {p.name}")
+            act.triggered.connect(lambda _c=False, path=p: self.files.open(path))
+        m.setEnabled(bool(m.actions()))
 
     def update_recent_menu(self) -> None:
         m = self.recent_menu
         m.clear()
         files = self.prefs.recent_files()
         for k, f in enumerate(files):
-            act = m.addAction(f"&{k + 1} {Path(f).name}")
+            # A literal & in a file name is && in a menu text (a single & marks the accelerator key).
+            act = m.addAction(f"&{k + 1} {recent_text(f).replace('&', '&&')}")
             act.setToolTip(f)
             act.setStatusTip(f)
             act.triggered.connect(lambda _c=False, p=f: self.files.open(p))
@@ -737,6 +752,16 @@ class MainWindow(QtWidgets.QMainWindow):
         self.undo.close()
         self.scene.close()
         self.prefs.sync()
+
+
+def recent_text(path: str) -> str:
+    """A recent file as a menu shows it: ``name.mrm — ~/folder`` (two files of one name differ by folder)."""
+    p = Path(path)
+    folder = str(p.parent)
+    home = str(Path.home())
+    if folder == home or folder.startswith(home + os.sep):
+        folder = "~" + folder[len(home) :]
+    return f"{p.name} — {folder}"
 
 
 def _scrolled(panel: QtWidgets.QWidget) -> QtWidgets.QScrollArea:

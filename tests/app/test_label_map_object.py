@@ -44,7 +44,7 @@ def _label_png(path):  # type: ignore[no-untyped-def]
 def _import_map(win, qtbot, tmp_path):  # type: ignore[no-untyped-def]
     lm = _label_png(tmp_path / "parcels.png")
     assert win.files.import_files([tmp_path / "parcels.png"]) is False  # the dialog asks
-    dlg = win.files.import_dialog
+    dlg = win.files.image_dialog
     assert dlg is not None and dlg.isVisible()
     # An indexed image's values are labels first: the label map is proposed, and the preview says so.
     assert dlg.map_mode.isChecked() and "1 label map object: 4 labels" in dlg.summary.text()
