@@ -350,6 +350,10 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("help.guide", self.show_guide)
         a.connect("help.about", self.show_about)
         self.prefs.changed.connect(self._pref_changed)
+        for d in self.findChildren(QtWidgets.QDockWidget):
+            d.visibilityChanged.connect(lambda shown, dock=d: shown or self._keep_keys_in_sight(dock))
+        QtWidgets.QApplication.instance().focusChanged.connect(self._focus_changed)  # type: ignore[union-attr]
+        self._watching_focus = True
 
     # ------------------------------------------------------------------ state
     def _on_changes(self, ch: Changes) -> None:
@@ -408,6 +412,32 @@ class MainWindow(QtWidgets.QMainWindow):
             m.addSeparator()
             m.addAction("Clear Recent Files", self._clear_recent)
         m.setEnabled(bool(files))
+
+    # ------------------------------------------------------------------ keyboard focus
+    def _focus_changed(self, _old: QtWidgets.QWidget | None, new: QtWidgets.QWidget | None) -> None:
+        if new is None or new.window() is not self:
+            return
+        w: QtWidgets.QWidget | None = new
+        while w is not None and not isinstance(w, QtWidgets.QDockWidget):
+            w = w.parentWidget()
+        if w is not None:
+            self._keep_keys_in_sight(w)
+
+    def _keep_keys_in_sight(self, dock: QtWidgets.QDockWidget) -> None:
+        """Give the keyboard to the views when it is in a dock out of sight (a tab behind another).
+
+        Qt keeps a tabbed-away dock "visible" (only moved out of the window), so its fields stay in the
+        focus chain: a disabled button handed the focus to the hidden Properties name field, which then
+        took the tool keys and renamed whatever was selected when it lost the focus (issue 27).
+        """
+        focus = QtWidgets.QApplication.focusWidget()
+        if focus is None or not dock.isAncestorOf(focus):
+            return
+        if dock.isVisible() and not dock.visibleRegion().isEmpty():
+            return
+        views = self.views.visible_views()
+        if views:
+            views[0].plane.setFocus(QtCore.Qt.FocusReason.OtherFocusReason)
 
     def _clear_recent(self) -> None:
         self.prefs.clear_recent_files()
@@ -746,6 +776,9 @@ class MainWindow(QtWidgets.QMainWindow):
     def _shutdown(self, *, discard_autosave: bool) -> None:
         geometry, state = self.saveGeometry(), self.saveState()
         self.prefs.set_window_state(geometry, state)
+        if self._watching_focus:
+            self._watching_focus = False
+            QtWidgets.QApplication.instance().focusChanged.disconnect(self._focus_changed)  # type: ignore[union-attr]
         self.tools.cancel()
         self.runner.shutdown()
         self.files.close(discard_autosave=discard_autosave)

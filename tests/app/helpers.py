@@ -157,3 +157,15 @@ def type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
     qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
     qtbot.keyClicks(field, text)
     qtbot.keyClick(field, Qt.Key.Key_Return)
+
+
+def click_object(qtbot, win: MainWindow, name: str, modifiers=Qt.KeyboardModifier.NoModifier) -> None:  # type: ignore[no-untyped-def]
+    """Click the object named ``name`` in the object list (its Name cell)."""
+    from mrm.views.object_list import COL_NAME
+
+    (obj,) = win.doc.find(name)
+    model, view = win.object_list.model, win.object_list.view
+    index = model.index(model.row_of(obj.id), COL_NAME)
+    view.scrollTo(index)
+    pos = view.visualRect(index).center()
+    qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, modifiers, pos)
