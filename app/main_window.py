@@ -32,6 +32,11 @@ TOOL_ACTIONS = {
     "tool.measure": "measure",
 }
 
+#: The first window's size, made smaller on a smaller screen (:meth:`MainWindow.fit_to_screen`).
+DEFAULT_SIZE = (1360, 880)
+#: Room left for the window's frame and title bar while the window manager has not said how big they are.
+FRAME_ALLOWANCE = (16, 48)
+
 #: Side panels' widths at the default size and their least useful widths (the views get the rest).
 LEFT_WIDTH, RIGHT_WIDTH = 230, 300
 LEFT_MIN, RIGHT_MIN = 170, 230
@@ -83,7 +88,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self._build_toolbars()
         self._connect()
         self.setAcceptDrops(True)
-        self.resize(1360, 880)
+        self.resize(*DEFAULT_SIZE)
+        self.fit_to_screen()
         self.views.set_layout_mode(prefs.layout)
         self.registry["view.grid_layout" if prefs.layout == "grid" else "view.tabs_layout"].setChecked(True)
         self.registry["view.pixel_grid"].setChecked(True)
@@ -137,6 +143,40 @@ class MainWindow(QtWidgets.QMainWindow):
             [self.operations_dock, self.inspector_dock], [300, 480], QtCore.Qt.Orientation.Vertical
         )
         self._fit_side_panels(1360)
+
+    def fit_to_screen(self) -> None:
+        """Make the window, its frame included, fit the available area of the screen it is on.
+
+        A 1360×880 window on a 1024×700 screen had its right column and status bar off the screen; a saved
+        geometry from a bigger screen is fitted the same way.
+        """
+        screen = QtGui.QGuiApplication.screenAt(self.geometry().center()) or self.screen()
+        if screen is None:
+            return
+        avail = screen.availableGeometry()
+        frame = self.frameGeometry()
+        extra_w, extra_h = frame.width() - self.width(), frame.height() - self.height()
+        if extra_w == 0 and extra_h == 0 and not self.isVisible():
+            extra_w, extra_h = FRAME_ALLOWANCE
+        least = self.minimumSizeHint()
+        w = max(least.width(), min(self.width(), avail.width() - extra_w))
+        h = max(least.height(), min(self.height(), avail.height() - extra_h))
+        if (w, h) != (self.width(), self.height()):
+            self.resize(w, h)
+        # Then keep it on the screen: its frame's top-left moved in just enough.
+        x = max(avail.left(), min(frame.left(), avail.right() + 1 - (w + extra_w)))
+        y = max(avail.top(), min(frame.top(), avail.bottom() + 1 - (h + extra_h)))
+        if (x, y) != (frame.left(), frame.top()):
+            self.move(x, y)
+
+    def restore_window_state(self) -> None:
+        """The window's saved geometry and dock layout (from the last session), fitted to this screen."""
+        geometry, state = self.prefs.window_state()
+        if geometry is not None:
+            self.restoreGeometry(geometry)
+        if state is not None:
+            self.restoreState(state)
+        self.fit_to_screen()
 
     def _fit_side_panels(self, window_width: int) -> None:
         """Side panels at their default widths, narrowed on a small window so the views keep 55 % of it."""
