@@ -43,6 +43,7 @@ def test_a_grey_image_asks_for_the_threshold_with_otsu_shown(make_window, qtbot,
     assert win.files.import_files([tmp_path / "grey.png"]) is False  # waits for the answer
     dlg = _dialog(win)
     otsu = otsu_threshold(np.bincount(g.ravel(), minlength=256))
+    assert dlg.description.text().startswith("grey.png is a grey image (30 × 20")
     assert dlg.otsu_button.text() == f"Otsu: {otsu}" and dlg.spin.value() == otsu
     before = dlg.summary.text()
     # Adjust: a threshold above 120 keeps only the bright disc; the preview says so before importing.
