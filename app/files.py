@@ -88,7 +88,13 @@ def user_documents() -> str:
 
 
 def ask_paths(
-    parent: QtWidgets.QWidget, name: str, title: str, start: str, filters: str, *, save: bool = False,
+    parent: QtWidgets.QWidget,
+    name: str,
+    title: str,
+    start: str,
+    filters: str,
+    *,
+    save: bool = False,
     many: bool = False,
 ) -> tuple[list[str], str]:
     """Ask for files with a file dialog; the chosen paths ([] when cancelled) and the chosen filter.

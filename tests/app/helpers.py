@@ -139,7 +139,8 @@ def answer_file_dialog(qtbot, object_name: str, path=None) -> dict[str, object]:
         dlg.selectFile(str(path))
         box = dlg.findChild(QtWidgets.QDialogButtonBox)
         assert box is not None, "not Qt's own file dialog (a native one?)"
-        (ok,) = [b for b in box.buttons() if box.buttonRole(b) == QtWidgets.QDialogButtonBox.ButtonRole.AcceptRole]
+        accept = QtWidgets.QDialogButtonBox.ButtonRole.AcceptRole
+        (ok,) = [b for b in box.buttons() if box.buttonRole(b) == accept]
         qtbot.mouseClick(ok, Qt.MouseButton.LeftButton)
 
     _when_modal(QtWidgets.QFileDialog, object_name, act)

@@ -288,7 +288,7 @@ def test_export_and_import_run_on_workers_and_round_trip(make_window, qtbot, tmp
 
 # ---------------------------------------------------------------------------------------------- issue 27
 def test_ctrl_i_opens_the_import_dialog_and_imports_the_chosen_file(make_window, qtbot, tmp_path):
-    """Issue 27: File ▸ Import… and Ctrl+I did nothing (a TypeError: the method was hidden by an attribute)."""
+    """Issue 27: File ▸ Import… and Ctrl+I did nothing (TypeError: an attribute hid the method)."""
     (tmp_path / "triangle.wkt").write_text("POLYGON ((0 0, 8 0, 0 6, 0 0))")
     win = make_window()
     win.prefs.last_directory = str(tmp_path)
