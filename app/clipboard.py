@@ -34,6 +34,10 @@ log = logging.getLogger(__name__)
 #: The clipboard format of MR Modeler objects: the bytes of a project file holding just them.
 MIME = "application/x-mrm-objects"
 
+#: The name of a pasted shape that has none (WKT, or GeoJSON without a ``name``), by kind; made unique as
+#: every pasted name is (``Pasted polygon (2)``).
+PASTED_NAMES = {"euclidean": "Pasted polygon", "discrete": "Pasted pixels", "labels": "Pasted label map"}
+
 
 def copy_payload(doc: Document, ids: Sequence[int]) -> bytes:
     """The bytes of a project file with the objects ``ids`` of ``doc`` (in drawing order)."""
@@ -125,7 +129,9 @@ def objects_from_payload(doc: Document, data: bytes, suffix: str) -> list[DocObj
         os.unlink(path)
     if not objs:
         raise FileFormatError("the clipboard holds no shapes")
-    return objs
+    # A shape without a name of its own is named after the file it came from: here a temporary one.
+    stem = os.path.splitext(os.path.basename(path))[0]
+    return [o.with_(name=PASTED_NAMES[o.kind]) if o.name.startswith(stem) else o for o in objs]
 
 
 def paste_objects(doc: Document, md: QtCore.QMimeData) -> list[int]:

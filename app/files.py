@@ -87,6 +87,38 @@ def user_documents() -> str:
     return docs if docs and Path(docs).is_dir() else str(Path.home())
 
 
+def ask_paths(
+    parent: QtWidgets.QWidget,
+    name: str,
+    title: str,
+    start: str,
+    filters: str,
+    *,
+    save: bool = False,
+    many: bool = False,
+) -> tuple[list[str], str]:
+    """Ask for files with a file dialog; the chosen paths ([] when cancelled) and the chosen filter.
+
+    The dialog is an object named ``name`` (``openDialog``, ``saveDialog``, ``importDialog``…), so a test
+    or an accessibility tool finds it as the active modal widget and answers it as a user does. ``start``
+    is a folder, or a file whose folder is shown with its name proposed.
+    """
+    dlg = QtWidgets.QFileDialog(parent, title, start, filters)
+    dlg.setObjectName(name)
+    F = QtWidgets.QFileDialog.FileMode
+    if save:
+        dlg.setAcceptMode(QtWidgets.QFileDialog.AcceptMode.AcceptSave)
+        dlg.setFileMode(F.AnyFile)
+    else:
+        dlg.setFileMode(F.ExistingFiles if many else F.ExistingFile)
+    try:
+        if dlg.exec() != QtWidgets.QDialog.DialogCode.Accepted:
+            return [], ""
+        return dlg.selectedFiles(), dlg.selectedNameFilter()
+    finally:
+        dlg.deleteLater()
+
+
 class FileController(QtCore.QObject):
     """The window's file commands; dialogs are shown only when no path is given."""
 
@@ -102,7 +134,9 @@ class FileController(QtCore.QObject):
         # Each import is a task of its own slot (an export's is its path): a second one must not cancel
         # the first.
         self._tasks = itertools.count()
-        self.import_dialog: Any = None
+        self.image_dialog: Any = None  # the open "how should this image become objects" dialog
+        #: The bundled example the untitled document was opened from (its name is in the title).
+        self.example: Path | None = None
         from mrm.io.autosave import Autosaver
 
         seconds = self.prefs.autosave_seconds
@@ -128,7 +162,7 @@ class FileController(QtCore.QObject):
         """Ask what to do with unsaved changes; False means the user cancelled."""
         if not self.doc.is_modified:
             return True
-        name = self.doc.path.name if self.doc.path else "Untitled"
+        name = self.document_name()
         box = QtWidgets.QMessageBox(self.win)
         box.setObjectName("unsavedDialog")
         box.setIcon(QtWidgets.QMessageBox.Icon.Warning)
@@ -146,10 +180,21 @@ class FileController(QtCore.QObject):
             return True
         return False
 
-    def _reset(self, doc: Document, path: Path | None, *, clean: bool = True) -> None:
+    def document_name(self) -> str:
+        """The document's name for people: its file's, or Untitled (with the example it was copied from)."""
+        if self.doc.path is not None:
+            return self.doc.path.name
+        if self.example is not None:
+            return f"Untitled (copy of the example {self.example.name})"
+        return "Untitled"
+
+    def _reset(
+        self, doc: Document, path: Path | None, *, clean: bool = True, example: Path | None = None
+    ) -> None:
         self.win.tools.cancel()
         self.doc.reset(doc.objects, doc.settings, doc.selection, clean=clean)
         self.doc.path = path
+        self.example = example
         self.autosaver.discard()
         self.autosaver.edits = 0 if clean else 1
         self.win.update_title()
@@ -168,7 +213,8 @@ class FileController(QtCore.QObject):
         p = self.doc.path
         if p is not None and not is_bundled(p):
             return str(p)
-        stem = Path(p).stem if p is not None else name
+        source = p if p is not None else self.example
+        stem = Path(source).stem if source is not None else name
         return str(Path(self._directory()) / f"{stem}.mrm")
 
     # ------------------------------------------------------------------ new / open
@@ -179,35 +225,44 @@ class FileController(QtCore.QObject):
         return True
 
     def open(self, path: str | os.PathLike[str] | None = None, *, ask: bool = True) -> bool:
-        """Open a project (a dialog when ``path`` is None); False when nothing was opened."""
+        """Open a project (a dialog when ``path`` is None); False when nothing was opened.
+
+        A bundled example opens as an untitled copy: Save asks where to write it, so the installed file
+        is never overwritten (the title names the example it was copied from).
+        """
         if ask and not self.maybe_save():
             return False
         if path is None:
-            fn, _ = QtWidgets.QFileDialog.getOpenFileName(
-                self.win, "Open project", self._directory(), "MR Modeler projects (*.mrm);;All files (*)"
-            )
-            if not fn:
+            files, _ = ask_paths(
+                self.win, "openDialog", "Open project", self._directory(),
+                "MR Modeler projects (*.mrm);;All files (*)",
+            )  # fmt: skip
+            if not files:
                 return False
-            path = fn
+            path = files[0]
         p = Path(path)
         if p.suffix.lower() != PROJECT_EXT and p.suffix.lower() in IMAGE_EXTS + VECTOR_EXTS:
             return self.import_files([p])
         from mrm.io.autosave import find_recovery
         from mrm.io.project import read_project
 
+        example = is_bundled(p)
         rec = None
         try:
-            rec = find_recovery(p)
+            rec = None if example else find_recovery(p)
         except OSError:
             rec = None
         if rec is not None and self.offer_recovery(rec):
             return True
 
         def opened(project: Any) -> None:
+            if example:
+                # Listed in File ▸ Open Example, not among the recent files (it is not the user's file).
+                self._reset(project.to_document(p), None, example=p)
+                return
             self._reset(project.to_document(p), p.resolve())
             self.prefs.add_recent_file(p)
-            if not is_bundled(p):
-                self.prefs.last_directory = str(p.resolve().parent)
+            self.prefs.last_directory = str(p.resolve().parent)
             self.win.update_recent_menu()
 
         def failed(e: BaseException) -> None:
@@ -300,12 +355,12 @@ class FileController(QtCore.QObject):
     def save_as(self, path: str | os.PathLike[str] | None = None) -> bool:
         if path is None:
             start = self._save_start("untitled")
-            fn, _ = QtWidgets.QFileDialog.getSaveFileName(
-                self.win, "Save project", start, "MR Modeler projects (*.mrm)"
+            files, _ = ask_paths(
+                self.win, "saveDialog", "Save project", start, "MR Modeler projects (*.mrm)", save=True
             )
-            if not fn:
+            if not files:
                 return False
-            path = fn
+            path = files[0]
         p = Path(path)
         if p.suffix.lower() != PROJECT_EXT:
             p = p.with_name(p.name + PROJECT_EXT)
@@ -360,6 +415,7 @@ class FileController(QtCore.QObject):
             old_side.unlink(missing_ok=True)
         self.autosaver.edits = 0
         self.doc.path = p.resolve()
+        self.example = None
         self.prefs.add_recent_file(p)
         self.prefs.last_directory = str(p.resolve().parent)
         self.win.update_recent_menu()
@@ -399,13 +455,16 @@ class FileController(QtCore.QObject):
 
     # ------------------------------------------------------------------ import / export
     def import_dialog(self) -> bool:
-        files, _ = QtWidgets.QFileDialog.getOpenFileNames(
+        """File ▸ Import… (Ctrl+I): choose images or geometry files and import them as new objects."""
+        files, _ = ask_paths(
             self.win,
+            "importDialog",
             "Import",
             self._directory(),
-            "Images and geometry (*.png *.pbm *.pgm *.npz *.geojson *.json *.wkt);;"
+            "Images and geometry (*.png *.pbm *.pgm *.npz *.tif *.tiff *.geojson *.json *.wkt);;"
             "Images — pixels (*.png *.pbm *.pgm *.npz *.tif *.tiff);;"
             "Geometry — polygons (*.geojson *.json *.wkt);;All files (*)",
+            many=True,
         )
         return self.import_files([Path(f) for f in files]) if files else False
 
@@ -513,10 +572,10 @@ class FileController(QtCore.QObject):
         from mrm.app.import_dialog import ImageImportDialog
 
         dlg = ImageImportDialog(paths[k], grey, labels_ok, labels_first, self.win)
-        self.import_dialog = dlg
+        self.image_dialog = dlg
 
         def done(result: int) -> None:
-            self.import_dialog = None
+            self.image_dialog = None
             if result != QtWidgets.QDialog.DialogCode.Accepted:
                 self._chosen = {}
                 self.win.show_message(f"import of {paths[k].name} cancelled; nothing was added", 4000)
@@ -591,10 +650,10 @@ class FileController(QtCore.QObject):
             return False
         filters = ";;".join(EXPORT_FILTERS.values())
         start = str(Path(self._directory()) / f"{obj.name}.png")
-        fn, flt = QtWidgets.QFileDialog.getSaveFileName(self.win, f"Export {obj.name}", start, filters)
-        if not fn:
+        files, flt = ask_paths(self.win, "exportDialog", f"Export {obj.name}", start, filters, save=True)
+        if not files:
             return False
-        p = Path(fn)
+        p = Path(files[0])
         if p.suffix.lower() not in EXPORT_FILTERS:
             ext = next((e for e, f in EXPORT_FILTERS.items() if f == flt), ".png")
             p = p.with_name(p.name + ext)

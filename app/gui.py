@@ -109,11 +109,7 @@ def run_gui(args: list[str]) -> int:
             return 2
         win.resize(w, h)
     else:
-        geometry, state = prefs.window_state()
-        if geometry is not None:
-            win.restoreGeometry(geometry)
-        if state is not None:
-            win.restoreState(state)
+        win.restore_window_state()
     if opts.tool and opts.tool not in win.tools.tools:
         print(
             f"mrm: error: unknown tool {opts.tool!r}; choose from {', '.join(win.tools.tools)}",

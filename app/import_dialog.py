@@ -94,6 +94,32 @@ def _npz_labels(path: Path) -> tuple[np.ndarray, bool, bool] | None:
     return np.asarray(lm.labels[::-1], dtype=np.int64), True, True
 
 
+def image_kind(path: Path, labels_ok: bool) -> str:
+    """What an image holds, for people: ``indexed-colour``, ``colour``, ``grey`` or ``label`` (NPZ labels).
+
+    A PNG says it in its header (read alone: no pixel is decoded); other files go by whether labels make
+    sense for them (grey) or not (colour).
+    """
+    suffix = path.suffix.lower()
+    if suffix == ".npz":
+        return "label"
+    if suffix == ".png":
+        from PIL import Image
+
+        try:
+            with Image.open(path) as im:
+                mode = im.mode
+        except OSError:
+            mode = ""
+        if mode in ("P", "PA"):
+            return "indexed-colour"
+        if mode in ("RGB", "RGBA"):
+            return "colour"
+        if mode:
+            return "grey"
+    return "grey" if labels_ok else "colour"
+
+
 class ImageImportDialog(QtWidgets.QDialog):
     """Threshold (Otsu shown), invert, preview — or one label map object, or one object per label."""
 
@@ -116,14 +142,16 @@ class ImageImportDialog(QtWidgets.QDialog):
         hist = np.bincount(grey.ravel().astype(np.int64), minlength=top + 1)
         self.otsu = int(otsu_threshold(hist))
         lay = QtWidgets.QVBoxLayout(self)
-        kind = "colour" if grey.ndim == 2 and not labels_ok else "grey"
-        lay.addWidget(
-            QtWidgets.QLabel(
-                f"{path.name} is a {kind} image ({grey.shape[1]} × {grey.shape[0]}, values 0–{top}). "
-                "How should it become objects?",
-                self,
-            )
+        kind = image_kind(path, labels_ok)
+        article = "an" if kind[0] in "aeiou" else "a"
+        self.description = QtWidgets.QLabel(
+            f"{path.name} is {article} {kind} image ({grey.shape[1]} × {grey.shape[0]}, values 0–{top}). "
+            "How should it become objects?",
+            self,
         )
+        self.description.setObjectName("importDescription")
+        self.description.setWordWrap(True)
+        lay.addWidget(self.description)
         self.threshold_mode = QtWidgets.QRadioButton("Pixels brighter than a threshold", self)
         self.threshold_mode.setObjectName("thresholdMode")
         # An NPZ label array has no brightness to cut; an indexed image's values are labels first.

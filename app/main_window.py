@@ -33,6 +33,11 @@ TOOL_ACTIONS = {
     "tool.measure": "measure",
 }
 
+#: The first window's size, made smaller on a smaller screen (:meth:`MainWindow.fit_to_screen`).
+DEFAULT_SIZE = (1360, 880)
+#: Room left for the window's frame and title bar while the window manager has not said how big they are.
+FRAME_ALLOWANCE = (16, 48)
+
 #: Side panels' widths at the default size and their least useful widths (the views get the rest).
 LEFT_WIDTH, RIGHT_WIDTH = 230, 300
 LEFT_MIN, RIGHT_MIN = 170, 230
@@ -84,7 +89,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self._build_toolbars()
         self._connect()
         self.setAcceptDrops(True)
-        self.resize(1360, 880)
+        self.resize(*DEFAULT_SIZE)
+        self.fit_to_screen()
         self.views.set_layout_mode(prefs.layout)
         self.registry["view.grid_layout" if prefs.layout == "grid" else "view.tabs_layout"].setChecked(True)
         self.registry["view.pixel_grid"].setChecked(True)
@@ -138,6 +144,40 @@ class MainWindow(QtWidgets.QMainWindow):
             [self.operations_dock, self.inspector_dock], [300, 480], QtCore.Qt.Orientation.Vertical
         )
         self._fit_side_panels(1360)
+
+    def fit_to_screen(self) -> None:
+        """Make the window, its frame included, fit the available area of the screen it is on.
+
+        A 1360×880 window on a 1024×700 screen had its right column and status bar off the screen; a saved
+        geometry from a bigger screen is fitted the same way.
+        """
+        screen = QtGui.QGuiApplication.screenAt(self.geometry().center()) or self.screen()
+        if screen is None:
+            return
+        avail = screen.availableGeometry()
+        frame = self.frameGeometry()
+        extra_w, extra_h = frame.width() - self.width(), frame.height() - self.height()
+        if extra_w == 0 and extra_h == 0 and not self.isVisible():
+            extra_w, extra_h = FRAME_ALLOWANCE
+        least = self.minimumSizeHint()
+        w = max(least.width(), min(self.width(), avail.width() - extra_w))
+        h = max(least.height(), min(self.height(), avail.height() - extra_h))
+        if (w, h) != (self.width(), self.height()):
+            self.resize(w, h)
+        # Then keep it on the screen: its frame's top-left moved in just enough.
+        x = max(avail.left(), min(frame.left(), avail.right() + 1 - (w + extra_w)))
+        y = max(avail.top(), min(frame.top(), avail.bottom() + 1 - (h + extra_h)))
+        if (x, y) != (frame.left(), frame.top()):
+            self.move(x, y)
+
+    def restore_window_state(self) -> None:
+        """The window's saved geometry and dock layout (from the last session), fitted to this screen."""
+        geometry, state = self.prefs.window_state()
+        if geometry is not None:
+            self.restoreGeometry(geometry)
+        if state is not None:
+            self.restoreState(state)
+        self.fit_to_screen()
 
     def _fit_side_panels(self, window_width: int) -> None:
         """Side panels at their default widths, narrowed on a small window so the views keep 55 % of it."""
@@ -205,6 +245,9 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, ["file.new", "file.open"])
         self.recent_menu = m.addMenu("Open &Recent")
         self.recent_menu.setObjectName("recentMenu")
+        self.examples_menu = m.addMenu("Open E&xample")
+        self.examples_menu.setObjectName("examplesMenu")
+        self._fill_examples_menu()
         a.menu(m, [None, "file.save", "file.save_as", None, "file.import", "file.export", "file.screenshot"])
         a.menu(m, [None, "file.preferences", None, "file.quit"])
         self.update_recent_menu()
@@ -348,6 +391,10 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("help.guide", self.show_guide)
         a.connect("help.about", self.show_about)
         self.prefs.changed.connect(self._pref_changed)
+        for d in self.findChildren(QtWidgets.QDockWidget):
+            d.visibilityChanged.connect(lambda shown, dock=d: shown or self._keep_keys_in_sight(dock))
+        QtWidgets.QApplication.instance().focusChanged.connect(self._focus_changed)  # type: ignore[union-attr]
+        self._watching_focus = True
 
     # ------------------------------------------------------------------ state
     def _on_changes(self, ch: Changes) -> None:
@@ -376,17 +423,29 @@ class MainWindow(QtWidgets.QMainWindow):
         a["measure.hausdorff"].setEnabled(len(self.doc) >= 2)
 
     def update_title(self) -> None:
-        name = self.doc.path.name if self.doc.path else "Untitled"
-        self.setWindowTitle(f"{name}[*] — MR Modeler")
+        self.setWindowTitle(f"{self.files.document_name()}[*] — MR Modeler")
         self.setWindowModified(self.doc.is_modified)
         self.setWindowFilePath(str(self.doc.path) if self.doc.path else "")
+
+    def _fill_examples_menu(self) -> None:
+        """File ▸ Open Example: the bundled examples; each opens as an untitled copy."""
+        from mrm.resources import example_projects
+
+        m = self.examples_menu
+        for p in example_projects():
+            act = m.addAction(p.stem)
+            act.setObjectName(f"example.{p.stem}")
+            act.setStatusTip(f"Open a copy of the example {p.name}")
+            act.triggered.connect(lambda _c=False, path=p: self.files.open(path))
+        m.setEnabled(bool(m.actions()))
 
     def update_recent_menu(self) -> None:
         m = self.recent_menu
         m.clear()
         files = self.prefs.recent_files()
         for k, f in enumerate(files):
-            act = m.addAction(f"&{k + 1} {Path(f).name}")
+            # A literal & in a file name is && in a menu text (a single & marks the accelerator key).
+            act = m.addAction(f"&{k + 1} {recent_text(f).replace('&', '&&')}")
             act.setToolTip(f)
             act.setStatusTip(f)
             act.triggered.connect(lambda _c=False, p=f: self.files.open(p))
@@ -394,6 +453,32 @@ class MainWindow(QtWidgets.QMainWindow):
             m.addSeparator()
             m.addAction("Clear Recent Files", self._clear_recent)
         m.setEnabled(bool(files))
+
+    # ------------------------------------------------------------------ keyboard focus
+    def _focus_changed(self, _old: QtWidgets.QWidget | None, new: QtWidgets.QWidget | None) -> None:
+        if new is None or new.window() is not self:
+            return
+        w: QtWidgets.QWidget | None = new
+        while w is not None and not isinstance(w, QtWidgets.QDockWidget):
+            w = w.parentWidget()
+        if w is not None:
+            self._keep_keys_in_sight(w)
+
+    def _keep_keys_in_sight(self, dock: QtWidgets.QDockWidget) -> None:
+        """Give the keyboard to the views when it is in a dock out of sight (a tab behind another).
+
+        Qt keeps a tabbed-away dock "visible" (only moved out of the window), so its fields stay in the
+        focus chain: a disabled button handed the focus to the hidden Properties name field, which then
+        took the tool keys and renamed whatever was selected when it lost the focus (issue 27).
+        """
+        focus = QtWidgets.QApplication.focusWidget()
+        if focus is None or not dock.isAncestorOf(focus):
+            return
+        if dock.isVisible() and not dock.visibleRegion().isEmpty():
+            return
+        views = self.views.visible_views()
+        if views:
+            views[0].plane.setFocus(QtCore.Qt.FocusReason.OtherFocusReason)
 
     def _clear_recent(self) -> None:
         self.prefs.clear_recent_files()
@@ -732,12 +817,25 @@ class MainWindow(QtWidgets.QMainWindow):
     def _shutdown(self, *, discard_autosave: bool) -> None:
         geometry, state = self.saveGeometry(), self.saveState()
         self.prefs.set_window_state(geometry, state)
+        if self._watching_focus:
+            self._watching_focus = False
+            QtWidgets.QApplication.instance().focusChanged.disconnect(self._focus_changed)  # type: ignore[union-attr]
         self.tools.cancel()
         self.runner.shutdown()
         self.files.close(discard_autosave=discard_autosave)
         self.undo.close()
         self.scene.close()
         self.prefs.sync()
+
+
+def recent_text(path: str) -> str:
+    """A recent file as a menu shows it: ``name.mrm — ~/folder`` (two files of one name differ by folder)."""
+    p = Path(path)
+    folder = str(p.parent)
+    home = str(Path.home())
+    if folder == home or folder.startswith(home + os.sep):
+        folder = "~" + folder[len(home) :]
+    return f"{p.name} — {folder}"
 
 
 def _scrolled(panel: QtWidgets.QWidget) -> QtWidgets.QScrollArea:

@@ -162,7 +162,11 @@ class PropertiesPanel(QtWidgets.QWidget):
         form.setContentsMargins(0, 0, 0, 0)
         self.name_edit = QtWidgets.QLineEdit(self.form_box)
         self.name_edit.setObjectName("propName")
+        self.name_edit.setToolTip("The object's name (type it, then press Enter)")
+        self.name_edit.textEdited.connect(self._name_typed)
         self.name_edit.editingFinished.connect(self._rename)
+        #: The object a typed, not yet committed name is for (None: the field shows the stored name).
+        self._naming: int | None = None
         form.addRow("Name", self.name_edit)
         crow = QtWidgets.QHBoxLayout()
         self.colour_button = QtWidgets.QToolButton(self.form_box)
@@ -250,6 +254,7 @@ class PropertiesPanel(QtWidgets.QWidget):
         try:
             if obj is None:
                 self.title.setText("Select an object to see and edit its properties.")
+                self._naming = None
                 self.name_edit.clear()
                 self.colour_edit.clear()
                 self.source_label.clear()
@@ -259,7 +264,10 @@ class PropertiesPanel(QtWidgets.QWidget):
                 self.table.setVisible(True)
                 return
             self.title.setText(f"<b>{obj.name}</b>")
-            if not self.name_edit.hasFocus():
+            if self._naming != obj.id:
+                # Another object (or nothing typed): show its name; a name typed for another object is
+                # dropped, never given to this one.
+                self._naming = None
                 self.name_edit.setText(obj.name)
             fill = obj.style.fill[:7]
             self.colour_edit.setText(fill)
@@ -401,12 +409,21 @@ class PropertiesPanel(QtWidgets.QWidget):
             return None
         return self.scene.doc.get(self.obj_id)
 
+    def _name_typed(self, _text: str) -> None:
+        if self._naming is None:
+            self._naming = self.obj_id  # the name being typed is for the object shown now
+
     def _rename(self) -> None:
-        obj = self._current()
-        name = self.name_edit.text().strip()
-        if self._syncing or obj is None or not name or name == obj.name:
+        """Enter, or the field losing the focus: rename the object the name was typed for, if any was."""
+        target, self._naming = self._naming, None
+        if self._syncing or target is None or target not in self.scene.doc:
             return
-        self._push(RenameObject(obj.id, name))
+        obj = self.scene.doc.get(target)
+        name = self.name_edit.text().strip()
+        if name and name != obj.name:
+            self._push(RenameObject(obj.id, name))
+        if target == self.obj_id:
+            self.name_edit.setText(self.scene.doc.get(target).name)  # what is stored (an empty name: kept)
 
     def _colour_typed(self) -> None:
         obj = self._current()

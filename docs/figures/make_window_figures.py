@@ -210,7 +210,7 @@ def label_map(app: Any) -> Path:
     png = Path(tempfile.mkdtemp(prefix="mrm-fig-")) / "parcels.png"
     _parcels_png(png)
     win.files.import_files([png])  # the dialog proposes the label map for an indexed image
-    win.files.import_dialog.accept()
+    win.files.image_dialog.accept()
     _settle(app, win)
     win.doc.set_selection([win.doc.objects[0].id])
     win.show_properties()

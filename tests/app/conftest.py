@@ -49,15 +49,26 @@ WindowFactory = Callable[..., MainWindow]
 
 @pytest.fixture
 def make_window(qtbot, prefs: Preferences, autosave_dir: Path) -> Iterator[WindowFactory]:  # type: ignore[no-untyped-def]
-    """``make_window(threaded=False, size=(1200, 800))`` → a shown main window, closed at teardown."""
+    """``make_window(threaded=False, size=(1200, 800))`` → a shown main window, closed at teardown.
+
+    ``size=None`` keeps the size the window gives itself (a user's first start); ``restore=True`` restores
+    the geometry and dock layout the last window saved, before showing it, as ``mrm`` does.
+    """
     windows: list[MainWindow] = []
 
     def factory(
-        *, threaded: bool = False, size: tuple[int, int] = (1200, 800), prefs_: Preferences | None = None
+        *,
+        threaded: bool = False,
+        size: tuple[int, int] | None = (1200, 800),
+        prefs_: Preferences | None = None,
+        restore: bool = False,
     ) -> MainWindow:
         runner = TaskRunner() if threaded else SynchronousTaskRunner()
         w = MainWindow(prefs_ or prefs, runner=runner, autosave_dir=autosave_dir)
-        w.resize(*size)
+        if size is not None:
+            w.resize(*size)
+        if restore:
+            w.restore_window_state()
         w.show()
         qtbot.waitExposed(w)
         w.activateWindow()  # window shortcuts only reach the active window

@@ -84,9 +84,8 @@ def zoom_to(win: MainWindow, xmin: float, ymin: float, xmax: float, ymax: float)
     QtWidgets.QApplication.processEvents()
 
 
-def answer_dialog(qtbot, object_name: str, button_text: str) -> list[str]:  # type: ignore[no-untyped-def]
-    """Click ``button_text`` in the next modal QMessageBox named ``object_name``; returns its texts."""
-    seen: list[str] = []
+def _when_modal(kind: type, object_name: str, act) -> None:  # type: ignore[no-untyped-def]
+    """Call ``act(widget)`` once the active modal widget is a ``kind`` named ``object_name``."""
     tries = [0]
 
     def poll() -> None:
@@ -94,16 +93,57 @@ def answer_dialog(qtbot, object_name: str, button_text: str) -> list[str]:  # ty
         if tries[0] > 1000:  # ~10 s: give up rather than poll into the next test
             return
         w = QtWidgets.QApplication.activeModalWidget()
-        if isinstance(w, QtWidgets.QMessageBox) and w.objectName() == object_name:
-            seen.extend([w.text(), w.informativeText()])
-            for b in w.buttons():
-                if b.text().replace("&", "") == button_text:
-                    b.click()
-                    return
-            raise AssertionError(f"no button {button_text!r} in {[b.text() for b in w.buttons()]}")
+        if isinstance(w, kind) and w.objectName() == object_name:
+            act(w)
+            return
         QtCore.QTimer.singleShot(10, poll)
 
     QtCore.QTimer.singleShot(0, poll)
+
+
+def answer_dialog(qtbot, object_name: str, button_text: str) -> list[str]:  # type: ignore[no-untyped-def]
+    """Click ``button_text`` in the next modal QMessageBox named ``object_name``; returns its texts."""
+    seen: list[str] = []
+
+    def act(w: QtWidgets.QMessageBox) -> None:
+        seen.extend([w.text(), w.informativeText()])
+        for b in w.buttons():
+            if b.text().replace("&", "") == button_text:
+                b.click()
+                return
+        raise AssertionError(f"no button {button_text!r} in {[b.text() for b in w.buttons()]}")
+
+    _when_modal(QtWidgets.QMessageBox, object_name, act)
+    return seen
+
+
+def answer_file_dialog(qtbot, object_name: str, path=None) -> dict[str, object]:  # type: ignore[no-untyped-def]
+    """Answer the next modal file dialog named ``object_name``.
+
+    With ``path``: pick that file (its folder shown, its name in the name field) and click Open or Save;
+    with None: press Escape (cancel). Returns what the dialog showed first: ``folder`` (its directory),
+    ``name`` (the proposed file name) and ``title``, filled once it has been answered. (Typing the path
+    would be closer to a user, but the field's completer pops up when the folder listing arrives, at a
+    time no test can wait for, and takes the Enter.)
+    """
+    seen: dict[str, object] = {}
+
+    def act(dlg: QtWidgets.QFileDialog) -> None:
+        edit = dlg.findChild(QtWidgets.QLineEdit, "fileNameEdit")
+        seen["folder"] = dlg.directory().absolutePath()
+        seen["name"] = edit.text() if edit is not None else ""
+        seen["title"] = dlg.windowTitle()
+        if path is None:
+            qtbot.keyClick(dlg, Qt.Key.Key_Escape)
+            return
+        dlg.selectFile(str(path))
+        box = dlg.findChild(QtWidgets.QDialogButtonBox)
+        assert box is not None, "not Qt's own file dialog (a native one?)"
+        accept = QtWidgets.QDialogButtonBox.ButtonRole.AcceptRole
+        (ok,) = [b for b in box.buttons() if box.buttonRole(b) == accept]
+        qtbot.mouseClick(ok, Qt.MouseButton.LeftButton)
+
+    _when_modal(QtWidgets.QFileDialog, object_name, act)
     return seen
 
 
@@ -118,3 +158,15 @@ def type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
     qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
     qtbot.keyClicks(field, text)
     qtbot.keyClick(field, Qt.Key.Key_Return)
+
+
+def click_object(qtbot, win: MainWindow, name: str, modifiers=Qt.KeyboardModifier.NoModifier) -> None:  # type: ignore[no-untyped-def]
+    """Click the object named ``name`` in the object list (its Name cell)."""
+    from mrm.views.object_list import COL_NAME
+
+    (obj,) = win.doc.find(name)
+    model, view = win.object_list.model, win.object_list.view
+    index = model.index(model.row_of(obj.id), COL_NAME)
+    view.scrollTo(index)
+    pos = view.visualRect(index).center()
+    qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, modifiers, pos)

@@ -91,6 +91,18 @@ def test_paste_of_wkt_or_geojson_text_from_another_program(make_window, qtbot):
     assert win.doc.objects[-1].source.equals_exact(Polygon([(10, 0), (12.5, 0), (10, 2)]), 0)
 
 
+def test_pasted_text_shapes_get_readable_unique_names(make_window, qtbot):
+    """Issue 27: a pasted WKT polygon was named after a temporary file ("mrm-paste-lt5dwgqw")."""
+    win = make_window()
+    _clipboard().setText("POLYGON ((0 0, 3 0, 0 4, 0 0))")
+    _keys(qtbot, win, Qt.Key.Key_V)
+    _keys(qtbot, win, Qt.Key.Key_V)
+    _clipboard().setText("LINESTRING (0 10, 6 13)")  # a line is discretized: a pixel object
+    _keys(qtbot, win, Qt.Key.Key_V)
+    names = [o.name for o in win.doc.objects]
+    assert names == ["Pasted polygon", "Pasted polygon (2)", "Pasted pixels"], names
+
+
 def test_paste_of_text_that_is_no_shape_says_so_and_changes_nothing(make_window, qtbot):
     win = make_window()
     _clipboard().setText("hello, world")

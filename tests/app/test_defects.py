@@ -15,7 +15,7 @@ import pytest
 from PySide6 import QtCore, QtWidgets
 
 from mrm.document.commands import AddObject
-from tests.app.helpers import square, type_into
+from tests.app.helpers import answer_file_dialog, square, type_into
 
 Qt = QtCore.Qt
 
@@ -184,26 +184,53 @@ def test_f1_shows_the_user_guide_inside_the_application(make_window, qtbot):
     assert help_win.find_next()
 
 
+def _pictures(browser) -> list[tuple[str, float]]:  # type: ignore[no-untyped-def]
+    """(name, shown width) of every picture of a text browser's document."""
+    out = []
+    block = browser.document().begin()
+    while block.isValid():
+        it = block.begin()
+        while not it.atEnd():
+            fmt = it.fragment().charFormat()
+            if fmt.isImageFormat():
+                img = fmt.toImageFormat()
+                out.append((img.name(), img.width()))
+            it += 1
+        block = block.next()
+    return out
+
+
+def test_the_guide_pictures_fit_the_help_window(make_window, qtbot):
+    """Issue 27: the user guide's pictures were wider than the help window (a sideways scroll bar)."""
+    win = make_window()
+    qtbot.keyClick(win, Qt.Key.Key_F1)
+    help_win = win.findChild(QtWidgets.QDialog, "helpWindow")
+    browser = help_win.browser
+    for width in (520, 820):  # narrowed, then back to its own width
+        help_win.resize(width, 600)
+
+        def fitted() -> bool:
+            room = browser.viewport().width()
+            pics = _pictures(browser)
+            return bool(pics) and all(0 < w <= room for _name, w in pics)
+
+        qtbot.waitUntil(fitted, timeout=5000)
+    assert browser.horizontalScrollBar().maximum() == 0  # at its own width, nothing is wider than the window
+
+
 # ---------------------------------------------------------------------------------------------- save as
-def test_first_save_as_of_an_example_starts_in_the_users_folder(make_window, monkeypatch, tmp_path):
-    from mrm.app.gui import EXAMPLES, default_example
+def test_first_save_as_of_an_example_starts_in_the_users_folder(make_window, qtbot, monkeypatch, tmp_path):
+    from mrm.app.gui import default_example
 
     home = tmp_path / "home"
     (home / "Documents").mkdir(parents=True)
     monkeypatch.setenv("HOME", str(home))
     win = make_window()
     assert win.files.open(default_example(), ask=False)
-    seen: list[str] = []
-
-    def fake_dialog(_parent, _title, start, _filters):  # type: ignore[no-untyped-def]
-        seen.append(start)
-        return "", ""
-
-    monkeypatch.setattr(QtWidgets.QFileDialog, "getSaveFileName", fake_dialog)
-    win.registry["file.save_as"].trigger()
-    assert seen and not Path(seen[0]).resolve().is_relative_to(EXAMPLES.resolve())
-    assert Path(seen[0]).parent in (home / "Documents", home)
-    assert Path(seen[0]).name == default_example().stem + ".mrm"
+    seen = answer_file_dialog(qtbot, "saveDialog", None)  # cancelled
+    qtbot.keyClick(win, Qt.Key.Key_S, Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier)
+    assert Path(str(seen["folder"])) in (home / "Documents", home)
+    assert seen["name"] == default_example().stem + ".mrm"
 
 
 # ---------------------------------------------------------------------------------------------- source column

@@ -13,8 +13,10 @@ from shapely.geometry import Polygon
 
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject, RenameObject
-from tests.app.helpers import answer_dialog, colour_at, is_background, wait_drawn
+from tests.app.helpers import answer_dialog, answer_file_dialog, colour_at, is_background, wait_drawn
 
+Qt = QtCore.Qt
+CTRL = Qt.KeyboardModifier.ControlModifier
 SQUARE = Polygon([(0, 0), (12, 0), (12, 9), (0, 9)], [[(3, 3), (6, 3), (6, 6), (3, 6)]])
 
 
@@ -282,3 +284,105 @@ def test_export_and_import_run_on_workers_and_round_trip(make_window, qtbot, tmp
     assert shapely.normalize(objs[1].source).equals_exact(shapely.normalize(SQUARE), 0)
     assert objs[2].source == blob.source
     assert win2.doc.history.index == 1  # one undo step for the whole import
+
+
+# ---------------------------------------------------------------------------------------------- issue 27
+def test_ctrl_i_opens_the_import_dialog_and_imports_the_chosen_file(make_window, qtbot, tmp_path):
+    """Issue 27: File ▸ Import… and Ctrl+I did nothing (TypeError: an attribute hid the method)."""
+    (tmp_path / "triangle.wkt").write_text("POLYGON ((0 0, 8 0, 0 6, 0 0))")
+    win = make_window()
+    win.prefs.last_directory = str(tmp_path)
+    seen = answer_file_dialog(qtbot, "importDialog", tmp_path / "triangle.wkt")
+    qtbot.keyClick(win.views.discrete.plane, Qt.Key.Key_I, CTRL)
+    assert seen["title"] == "Import" and Path(str(seen["folder"])) == tmp_path
+    qtbot.waitUntil(lambda: len(win.doc) == 1, timeout=10_000)
+    (obj,) = win.doc.objects
+    assert obj.name == "triangle" and obj.source.equals(Polygon([(0, 0), (8, 0), (0, 6)]))
+    assert win.doc.history.undo_label() == "Import triangle"
+    # The menu entry is the same action; cancelling its dialog adds nothing and says nothing.
+    answer_file_dialog(qtbot, "importDialog", None)
+    win.registry["file.import"].trigger()
+    assert len(win.doc) == 1 and not _error_boxes(win)
+
+
+def _activate(qtbot, win) -> None:  # type: ignore[no-untyped-def]
+    """Give the window back the activation a closed dialog took (a desktop does; offscreen does not)."""
+    win.activateWindow()
+    qtbot.waitUntil(lambda: QtWidgets.QApplication.activeWindow() is win, timeout=5000)
+
+
+def _example_action(win, stem: str) -> QtGui.QAction:  # type: ignore[no-untyped-def]
+    (act,) = [a for a in win.examples_menu.actions() if a.text() == stem]
+    return act
+
+
+def test_ctrl_s_on_an_example_asks_for_a_path_and_leaves_the_bundled_file_alone(
+    make_window, qtbot, tmp_path, monkeypatch
+):
+    """Issue 27: Ctrl+S on a bundled example overwrote the installed file without a dialog."""
+    from mrm.app.gui import EXAMPLES
+
+    home = tmp_path / "home"
+    (home / "Documents").mkdir(parents=True)
+    monkeypatch.setenv("HOME", str(home))
+    bundled = EXAMPLES / "diamond.mrm"
+    before = bundled.read_bytes()
+    win = make_window()
+    _example_action(win, "diamond").trigger()  # File ▸ Open Example ▸ diamond
+    assert win.doc.path is None and len(win.doc) > 0
+    assert "Untitled" in win.windowTitle() and "diamond.mrm" in win.windowTitle()
+    n = len(win.doc)
+    # An edit: select the top object in the list and press Delete.
+    view = win.object_list.view
+    rect = view.visualRect(win.object_list.model.index(0, 2))
+    qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, pos=rect.center())
+    qtbot.keyClick(view, Qt.Key.Key_Delete)
+    assert len(win.doc) == n - 1 and win.doc.is_modified
+    seen = answer_file_dialog(qtbot, "saveDialog", None)  # Save As appears; cancelled
+    qtbot.keyClick(win.views.discrete.plane, Qt.Key.Key_S, CTRL)
+    assert seen["title"] == "Save project"
+    assert Path(str(seen["folder"])) in (home / "Documents", home) and seen["name"] == "diamond.mrm"
+    assert bundled.read_bytes() == before and win.doc.is_modified
+    mine = tmp_path / "mine.mrm"
+    _activate(qtbot, win)
+    answer_file_dialog(qtbot, "saveDialog", mine)
+    qtbot.keyClick(win.views.discrete.plane, Qt.Key.Key_S, CTRL)
+    assert mine.is_file() and bundled.read_bytes() == before
+    assert win.doc.path == mine.resolve() and not win.doc.is_modified
+    assert win.windowTitle().startswith("mine.mrm")
+    # Now titled: Ctrl+S saves in place, with no dialog.
+    _activate(qtbot, win)
+    qtbot.keyClick(win.views.discrete.plane, Qt.Key.Key_Z, CTRL)  # the deleted object is back
+    assert len(win.doc) == n and win.doc.is_modified
+    qtbot.keyClick(win.views.discrete.plane, Qt.Key.Key_S, CTRL)
+    assert not win.doc.is_modified and bundled.read_bytes() == before
+
+
+def test_open_example_lists_every_bundled_example_and_opens_an_untitled_copy(make_window, qtbot):
+    from mrm.app.gui import EXAMPLES
+    from mrm.io.project import load_project
+
+    win = make_window()
+    files = sorted(EXAMPLES.glob("*.mrm"))
+    assert len(files) >= 5
+    assert [a.text() for a in win.examples_menu.actions()] == [p.stem for p in files]
+    for p in (files[0], EXAMPLES / "two-polygons.mrm"):
+        _example_action(win, p.stem).trigger()
+        assert [o.name for o in win.doc.objects] == [o.name for o in load_project(p).objects]
+        assert win.doc.path is None and not win.doc.is_modified
+        assert win.windowTitle().startswith(f"Untitled (copy of the example {p.name})")
+    # An example is not the user's file: not among the recent files, and Save As does not start there.
+    assert not win.prefs.recent_files()
+
+
+def test_recent_files_show_their_folder(make_window, qtbot, tmp_path):
+    """Issue 27: two recent files of the same name could not be told apart."""
+    win = make_window()
+    _populate(win)
+    for d in ("first", "second"):
+        (tmp_path / d).mkdir()
+        assert win.files.save_as(tmp_path / d / "plan.mrm")
+    texts = [a.text() for a in win.recent_menu.actions() if a.text().startswith("&")]
+    assert texts == [f"&1 plan.mrm — {tmp_path / 'second'}", f"&2 plan.mrm — {tmp_path / 'first'}"]
+    tips = [a.toolTip() for a in win.recent_menu.actions() if a.text().startswith("&")]
+    assert tips == [str((tmp_path / d / "plan.mrm").resolve()) for d in ("second", "first")]

@@ -23,7 +23,7 @@ def _grey_png(path):  # type: ignore[no-untyped-def]
 
 
 def _dialog(win):  # type: ignore[no-untyped-def]
-    dlg = win.files.import_dialog
+    dlg = win.files.image_dialog
     assert dlg is not None and dlg.isVisible()
     return dlg
 
@@ -43,6 +43,7 @@ def test_a_grey_image_asks_for_the_threshold_with_otsu_shown(make_window, qtbot,
     assert win.files.import_files([tmp_path / "grey.png"]) is False  # waits for the answer
     dlg = _dialog(win)
     otsu = otsu_threshold(np.bincount(g.ravel(), minlength=256))
+    assert dlg.description.text().startswith("grey.png is a grey image (30 × 20")
     assert dlg.otsu_button.text() == f"Otsu: {otsu}" and dlg.spin.value() == otsu
     before = dlg.summary.text()
     # Adjust: a threshold above 120 keeps only the bright disc; the preview says so before importing.
@@ -55,14 +56,14 @@ def test_a_grey_image_asks_for_the_threshold_with_otsu_shown(make_window, qtbot,
     qtbot.mouseClick(dlg.findChild(QtWidgets.QPushButton, "importButton"), Qt.MouseButton.LeftButton)
     assert len(win.doc) == 1
     assert win.doc.objects[0].source == _expected(g, g > 150)
-    assert win.files.import_dialog is None  # asked once
+    assert win.files.image_dialog is None  # asked once
 
 
 def test_invert_imports_the_dark_pixels(make_window, qtbot, tmp_path):
     win = make_window()
     g = _grey_png(tmp_path / "grey.png")
     win.files.import_files([tmp_path / "grey.png"])  # its values are looked at on a worker too
-    qtbot.waitUntil(lambda: win.files.import_dialog is not None, timeout=30_000)
+    qtbot.waitUntil(lambda: win.files.image_dialog is not None, timeout=30_000)
     dlg = _dialog(win)
     _click(qtbot, dlg.invert)
     assert dlg.invert.isChecked()
@@ -133,7 +134,7 @@ def test_a_binary_image_imports_without_a_question(make_window, tmp_path):
     m[1:5, 2:4] = 255
     Image.fromarray(m, "L").save(tmp_path / "bin.png")
     assert win.files.import_files([tmp_path / "bin.png"]) is True
-    assert win.files.import_dialog is None and len(win.doc) == 1
+    assert win.files.image_dialog is None and len(win.doc) == 1
 
 
 def test_a_big_image_is_read_on_a_worker_and_added_as_one_step(make_window, qtbot, tmp_path):
@@ -150,7 +151,7 @@ def test_a_big_image_is_read_on_a_worker_and_added_as_one_step(make_window, qtbo
     assert win.doc.history.undo_label() == "Import big"
     g = _grey_png(tmp_path / "grey.png")
     win.files.import_files([tmp_path / "grey.png"])  # its values are looked at on a worker too
-    qtbot.waitUntil(lambda: win.files.import_dialog is not None, timeout=30_000)
+    qtbot.waitUntil(lambda: win.files.image_dialog is not None, timeout=30_000)
     dlg = _dialog(win)
     _click(qtbot, dlg.invert)
     t = dlg.spin.value()

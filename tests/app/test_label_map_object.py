@@ -44,7 +44,7 @@ def _label_png(path):  # type: ignore[no-untyped-def]
 def _import_map(win, qtbot, tmp_path):  # type: ignore[no-untyped-def]
     lm = _label_png(tmp_path / "parcels.png")
     assert win.files.import_files([tmp_path / "parcels.png"]) is False  # the dialog asks
-    dlg = win.files.import_dialog
+    dlg = win.files.image_dialog
     assert dlg is not None and dlg.isVisible()
     # An indexed image's values are labels first: the label map is proposed, and the preview says so.
     assert dlg.map_mode.isChecked() and "1 label map object: 4 labels" in dlg.summary.text()
@@ -53,6 +53,18 @@ def _import_map(win, qtbot, tmp_path):  # type: ignore[no-untyped-def]
     obj = win.doc.objects[0]
     assert obj.kind == "labels" and obj.name == "parcels" and obj.source == lm
     return obj, lm
+
+
+def test_the_import_dialog_calls_an_indexed_png_what_it_is(make_window, qtbot, tmp_path):
+    """Issue 27: an indexed (palette) PNG was called a "grey image" in the import dialog."""
+    win = make_window()
+    _label_png(tmp_path / "parcels.png")
+    win.files.import_files([tmp_path / "parcels.png"])
+    qtbot.waitUntil(lambda: win.files.image_dialog is not None, timeout=30_000)
+    text = win.files.image_dialog.description.text()
+    assert text.startswith("parcels.png is an indexed-colour image (20 × 16") and "grey" not in text
+    qtbot.keyClick(win.files.image_dialog, Qt.Key.Key_Escape)  # Cancel: nothing imported
+    assert win.files.image_dialog is None and len(win.doc) == 0
 
 
 def test_a_label_image_imports_as_one_label_map_drawn_in_every_view(make_window, qtbot, tmp_path):

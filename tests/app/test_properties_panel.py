@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import numpy as np
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 from shapely.geometry import Polygon
 
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
-from tests.app.helpers import type_into
+from tests.app.helpers import click_object, type_into
 
 Qt = QtCore.Qt
+CTRL_SHIFT = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
 
 
 def _window_with(make_window, source, name="obj"):  # type: ignore[no-untyped-def]
@@ -172,3 +173,110 @@ def test_a_big_polygon_is_tabled_on_a_worker_and_edits_the_right_vertex(make_win
     moved = list(win.doc.get(obj.id).source.geoms)
     assert list(moved[12_345].exterior.coords)[2] == (x + 2.5, y + 2)
     assert list(moved[12_344].exterior.coords) == list(square(12_344).exterior.coords)
+
+
+# ---------------------------------------------------------------------------------------------- issue 27
+def _renames(win) -> list[str]:  # type: ignore[no-untyped-def]
+    return [c.label for c in win.doc.history.steps() if "Rename" in c.label]
+
+
+def _two_polygons(make_window):  # type: ignore[no-untyped-def]
+    from mrm.app.gui import EXAMPLES
+
+    win = make_window()
+    assert win.files.open(EXAMPLES / "two-polygons.mrm", ask=False)
+    assert sorted(o.name for o in win.doc.objects) == ["pentagon", "tilted square"]
+    return win
+
+
+def _apply(qtbot, win) -> None:  # type: ignore[no-untyped-def]
+    n = len(win.doc)
+    qtbot.mouseClick(win.operations.apply_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) > n, timeout=30_000)
+
+
+def _operation(win, name: str) -> None:  # type: ignore[no-untyped-def]
+    """Operations ▸ <name> (a menu entry: triggered, as a menu cannot be clicked offscreen)."""
+    win.findChild(QtGui.QAction, f"op.{name}").trigger()
+
+
+def test_applying_a_rotation_twice_renames_no_object(make_window, qtbot):
+    """Issue 27: the second Apply named the first result "tilted square" (Edit showed Undo Rename)."""
+    win = _two_polygons(make_window)
+    click_object(qtbot, win, "tilted square")
+    _operation(win, "discrete_rotation")
+    _apply(qtbot, win)
+    first = win.doc.objects[-1].name
+    assert first != "tilted square"
+    _apply(qtbot, win)
+    names = [o.name for o in win.doc.objects]
+    assert len(names) == 4 and len(set(names)) == 4, names
+    assert names[:3] == ["pentagon", "tilted square", first]
+    assert _renames(win) == [] and "Rename" not in win.doc.history.undo_label()
+
+
+def test_union_then_corefinement_renames_no_part(make_window, qtbot):
+    """Issue 27: after EDu then EDco the part "A ∖ B" was named "EDu" (two objects named EDu)."""
+    win = _two_polygons(make_window)
+    click_object(qtbot, win, "tilted square")
+    click_object(qtbot, win, "pentagon", Qt.KeyboardModifier.ControlModifier)
+    _operation(win, "union")
+    _apply(qtbot, win)
+    made = [o.name for o in win.doc.objects[2:]]
+    click_object(qtbot, win, "tilted square")
+    click_object(qtbot, win, "pentagon", Qt.KeyboardModifier.ControlModifier)
+    _operation(win, "corefine")
+    _apply(qtbot, win)
+    names = [o.name for o in win.doc.objects]
+    assert len(set(names)) == len(names), names  # no two objects share a name
+    assert names[2 : 2 + len(made)] == made
+    assert _renames(win) == []
+
+
+def test_a_typed_name_goes_to_its_object_only_when_committed(make_window, qtbot):
+    win = make_window()
+    a = win.doc.make_object(Polygon([(0, 0), (4, 0), (0, 4)]), name="a")
+    b = win.doc.make_object(Polygon([(9, 0), (13, 0), (9, 4)]), name="b")
+    win.doc.push(AddObject(a))
+    win.doc.push(AddObject(b))
+    click_object(qtbot, win, "a")
+    win.registry["edit.properties"].trigger()
+    field = win.properties.name_edit
+    assert field.hasFocus() and field.text() == "a"
+    # Leaving the field untouched renames nothing; the field follows the selection.
+    click_object(qtbot, win, "b")
+    assert field.text() == "b" and _renames(win) == []
+    # Typed for b, then the selection changes without the field losing the focus (Ctrl+[): dropped.
+    field.setFocus()
+    qtbot.keyClicks(field, "XX")
+    qtbot.keyClick(field, Qt.Key.Key_BracketLeft, Qt.KeyboardModifier.ControlModifier)
+    assert win.scene.primary().name == "a" and field.text() == "a"
+    qtbot.keyClick(field, Qt.Key.Key_Tab)  # the focus leaves: nothing to commit
+    assert [o.name for o in win.doc.objects] == ["a", "b"] and _renames(win) == []
+    # Typed and committed with Enter: that object only, one undo step.
+    type_into(qtbot, field, "first")
+    assert [o.name for o in win.doc.objects] == ["first", "b"]
+    assert win.doc.history.undo_label() == "Rename"
+
+
+def _click_dock_tab(qtbot, win, title: str) -> None:  # type: ignore[no-untyped-def]
+    for bar in win.findChildren(QtWidgets.QTabBar):
+        for i in range(bar.count()):
+            if bar.tabText(i) == title and bar.isVisible():
+                qtbot.mouseClick(bar, Qt.MouseButton.LeftButton, pos=bar.tabRect(i).center())
+                return
+    raise AssertionError(f"no dock tab {title!r}")
+
+
+def test_tool_keys_reach_the_views_once_the_properties_tab_is_hidden(make_window, qtbot):
+    """Issue 27: the hidden Properties tab kept the keyboard: B over a view typed into the name field."""
+    win = make_window()
+    win.doc.push(AddObject(win.doc.make_object(Polygon([(0, 0), (4, 0), (0, 4)]), name="tri"), select=True))
+    qtbot.keyClick(win.views.discrete.plane, Qt.Key.Key_O, CTRL_SHIFT)  # Object Properties
+    assert win.properties.name_edit.hasFocus()
+    _click_dock_tab(qtbot, win, "Operations")
+    assert not win.properties.name_edit.hasFocus()
+    qtbot.mouseMove(win.views.discrete.plane.viewport())
+    qtbot.keyClick(QtWidgets.QApplication.focusWidget(), Qt.Key.Key_B)  # where the key goes
+    assert win.registry["tool.paint"].isChecked() and win.tools.tool is win.tools.tools["paint"]
+    assert [o.name for o in win.doc.objects] == ["tri"] and _renames(win) == []

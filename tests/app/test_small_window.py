@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 
 def _settle(qtbot, win, w: int, h: int) -> None:  # type: ignore[no-untyped-def]
@@ -50,3 +50,36 @@ def test_a_wide_window_keeps_the_default_panel_widths(make_window, qtbot):
     win = make_window(size=(1360, 880))
     _settle(qtbot, win, 1600, 900)
     assert win.objects_dock.width() >= 220 and win.operations_dock.width() >= 290
+
+
+def _on_screen(win) -> QtCore.QRect:  # type: ignore[no-untyped-def]
+    """The screen's available area, after checking that the window and what matters in it lie inside it."""
+    avail = win.screen().availableGeometry()
+    assert avail.contains(win.frameGeometry()), (win.frameGeometry(), avail)
+    for w in (win.statusBar(), win.inspector_dock, win.operations_dock, win.objects_dock, win.views):
+        top_left = w.mapToGlobal(QtCore.QPoint(0, 0))
+        assert avail.contains(QtCore.QRect(top_left, w.size())), (w.objectName(), top_left, w.size(), avail)
+    return avail
+
+
+def test_the_first_window_fits_the_screen(make_window, qtbot):
+    """Issue 27: on a 1024×700 screen the window opened at 1360×880, its right column and status bar off it.
+
+    The offscreen screen (800×800) is smaller than the default size: the window fits it, with room to spare
+    for nothing hidden.
+    """
+    win = make_window(size=None)
+    avail = _on_screen(win)
+    assert avail.width() < 1360 or avail.height() < 880  # the test means something on this screen
+    assert win.width() >= min(avail.width(), 1360) - 20 and win.height() >= min(avail.height(), 880) - 60
+
+
+def test_a_saved_geometry_bigger_than_the_screen_is_fitted(make_window, qtbot, prefs):
+    big = make_window(size=(1360, 880))
+    big.move(300, 200)
+    big.close_now()  # saves its geometry and docks, as quitting does
+    geometry, _state = prefs.window_state()
+    assert geometry is not None
+    win = make_window(size=None, restore=True)
+    _on_screen(win)
+    assert win.statusBar().isVisible() and win.inspector_dock.isVisible()

@@ -10,7 +10,15 @@ from shapely.geometry import Polygon
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
 from mrm.reps.region import region_of
-from tests.app.helpers import click, colour_at, is_background, wait_drawn, widget_pos, zoom_to
+from tests.app.helpers import (
+    click,
+    click_object,
+    colour_at,
+    is_background,
+    wait_drawn,
+    widget_pos,
+    zoom_to,
+)
 
 Qt = QtCore.Qt
 
@@ -207,3 +215,28 @@ def test_hidpi_grab_is_sharp(make_window, qtbot):
     outside = colour_at(win.views.discrete, 0.0, -0.55, img)
     assert not is_background(win.views.discrete, inside) and is_background(win.views.discrete, outside)
     _ = QtGui
+
+
+def test_tool_keys_work_after_a_click_in_the_object_list(make_window, qtbot):
+    """Issue 27: M did not pick the measure tool after a click in the list (its type-ahead took the key).
+
+    A text field keeps its typing: the same keys in the Properties name field are letters of the name.
+    """
+    from PySide6 import QtWidgets
+
+    win = make_window()
+    for name in ("measured", "brushed", "erased"):  # names starting with the tool keys: type-ahead bait
+        win.doc.push(AddObject(win.doc.make_object(Polygon([(0, 0), (4, 0), (0, 4)]), name=name)))
+    for key, action in ((Qt.Key.Key_M, "tool.measure"), (Qt.Key.Key_B, "tool.paint"),
+                        (Qt.Key.Key_E, "tool.erase"), (Qt.Key.Key_S, "tool.select")):  # fmt: skip
+        click_object(qtbot, win, "brushed" if key == Qt.Key.Key_M else "measured")
+        assert QtWidgets.QApplication.focusWidget() is win.object_list.view
+        selected = list(win.doc.selection)
+        qtbot.keyClick(win.object_list.view, key)
+        assert win.registry[action].isChecked(), action
+        assert list(win.doc.selection) == selected  # the list did not jump to a name starting with the key
+    win.registry["edit.properties"].trigger()
+    field = win.properties.name_edit
+    qtbot.keyClick(field, Qt.Key.Key_End)
+    qtbot.keyClicks(field, "mb")
+    assert field.text() == "measuredmb" and win.registry["tool.select"].isChecked()
