@@ -17,8 +17,8 @@ from mrm.app.undo import UndoAdapter
 from mrm.document import Changes, Document, Settings
 from mrm.views.object_list import ObjectList
 from mrm.views.scene import Scene
+from mrm.views.tool_base import ToolHost
 from mrm.views.tool_controller import ToolController
-from mrm.views.tools import ToolHost
 from mrm.views.view_area import ViewArea
 
 TOOL_ACTIONS = {
