@@ -47,6 +47,13 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec("edit.undo", "&Undo", Std.Undo, "Undo the last edit", icon="edit-undo"),
     ActionSpec("edit.redo", "&Redo", Std.Redo, "Redo the last undone edit", icon="edit-redo"),
     ActionSpec(
+        "edit.cut",
+        "Cu&t",
+        Std.Cut,
+        "Copy the selected objects to the clipboard and delete them (one undo step)",
+        icon="edit-cut",
+    ),
+    ActionSpec(
         "edit.copy", "&Copy", Std.Copy, "Copy the selected objects to the clipboard", icon="edit-copy"
     ),
     ActionSpec(
@@ -55,6 +62,9 @@ SPECS: tuple[ActionSpec, ...] = (
         Std.Paste,
         "Paste objects from the clipboard (MR Modeler objects, GeoJSON or WKT text) in place",
         icon="edit-paste",
+    ),
+    ActionSpec(
+        "edit.select_all", "Select &All", Std.SelectAll, "Select every object", icon="edit-select-all"
     ),
     ActionSpec("edit.delete", "&Delete Object", "Del", "Delete the selected object", icon="edit-delete"),
     ActionSpec("edit.duplicate", "D&uplicate Object", "Ctrl+D", "Copy the selected object"),

@@ -208,7 +208,8 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, [None, "file.preferences", None, "file.quit"])
         self.update_recent_menu()
         m = mb.addMenu("&Edit")
-        a.menu(m, ["edit.undo", "edit.redo", None, "edit.copy", "edit.paste", None])
+        a.menu(m, ["edit.undo", "edit.redo", None, "edit.cut", "edit.copy", "edit.paste", "edit.select_all"])
+        m.addSeparator()
         a.menu(m, ["edit.rename", "edit.colour", "edit.properties", "edit.duplicate", "edit.delete", None])
         a.menu(m, ["edit.split_labels", None])
         a.menu(m, ["edit.select_previous", "edit.select_next"])
@@ -308,7 +309,9 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("edit.duplicate", self.duplicate_selection)
         a.connect("edit.split_labels", self.split_label_map)
         a.connect("edit.rename", self.rename_selection)
+        a.connect("edit.cut", self.clipboard.cut)
         a.connect("edit.copy", self.clipboard.copy)
+        a.connect("edit.select_all", self.select_all)
         a.connect("edit.paste", self.clipboard.paste)
         a.connect("edit.colour", self.choose_colour)
         a.connect("edit.properties", self.show_properties)
@@ -362,6 +365,7 @@ class MainWindow(QtWidgets.QMainWindow):
         sel = [i for i in self.doc.selection if i in self.doc]
         for aid in (
             "edit.delete",
+            "edit.cut",
             "edit.copy",
             "edit.duplicate",
             "edit.rename",
@@ -373,6 +377,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a["view.fit_differences"].setEnabled(primary is not None and primary.provenance is not None)
         a["edit.split_labels"].setEnabled(primary is not None and primary.kind == "labels")
         a["measure.hausdorff"].setEnabled(len(self.doc) >= 2)
+        a["edit.select_all"].setEnabled(len(self.doc) > 0)
 
     def update_title(self) -> None:
         name = self.doc.path.name if self.doc.path else "Untitled"
@@ -517,6 +522,10 @@ class MainWindow(QtWidgets.QMainWindow):
         self.objects_dock.show()
         self.object_list.view.setCurrentIndex(idx)
         self.object_list.view.edit(idx)
+
+    def select_all(self) -> None:
+        """Select every object of the document (Ctrl+A), hidden ones too, as the Objects list shows them."""
+        self.doc.set_selection(self.doc.ids)
 
     def select_step(self, step: int) -> None:
         ids = self.object_list.model.ids()
