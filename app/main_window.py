@@ -114,10 +114,15 @@ class MainWindow(QtWidgets.QMainWindow):
         self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
         self.inspector = ErrorInspector(self.scene, self.runner, self)
         self.inspector_dock = self._dock("Error inspector", self.inspector, right)
-        # One column on the right (ADR 0020): Operations, Properties and Measure as tabs, the inspector below
-        # them, beside the operation whose result it accounts for.
+        from mrm.views.history_panel import HistoryPanel
+
+        # A click in the list undoes or redoes; a tool's gesture in progress is cancelled first (as Ctrl+Z).
+        self.history_panel = HistoryPanel(self.doc, self, before=self.tools.cancel)
+        self.history_dock = self._dock("History", self.history_panel, right)
+        # One column on the right (ADR 0020): Operations, Properties, Measure and History as tabs, the
+        # inspector below them, beside the operation whose result it accounts for.
         self.splitDockWidget(self.operations_dock, self.inspector_dock, QtCore.Qt.Orientation.Vertical)
-        for d in (self.properties_dock, self.measure_dock):
+        for d in (self.properties_dock, self.measure_dock, self.history_dock):
             self.tabifyDockWidget(self.operations_dock, d)
         self.operations_dock.raise_()
         self.operations.installEventFilter(self)  # its content grows (a status line): keep Apply in sight
@@ -238,6 +243,7 @@ class MainWindow(QtWidgets.QMainWindow):
             self.operations_dock,
             self.properties_dock,
             self.measure_dock,
+            self.history_dock,
             self.inspector_dock,
         ):
             m.addAction(d.toggleViewAction())
@@ -744,6 +750,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.runner.shutdown()
         self.files.close(discard_autosave=discard_autosave)
         self.undo.close()
+        self.history_panel.close_panel()
         self.scene.close()
         self.prefs.sync()
 
