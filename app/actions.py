@@ -157,6 +157,13 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec("view.analytical", "&Analytical View", "Ctrl+3", "Show or focus the analytical view"),
     ActionSpec("view.euclidean", "&Euclidean View", "Ctrl+4", "Show or focus the Euclidean view"),
     ActionSpec("view.pixel_grid", "Pixel &Grid", "G", "Draw the pixel grid when zoomed in", True),
+    ActionSpec(
+        "view.snap",
+        "S&nap to Objects",
+        "Shift+S",
+        "Drawn and dragged points snap to the vertices and edges of objects (hold Alt to place one freely)",
+        True,
+    ),
     # Operations / inspector
     ActionSpec("ops.panel", "&Operations", "Ctrl+R", "Show the operations panel"),
     ActionSpec("ops.apply", "&Apply Operation", "Ctrl+Return", "Apply the operation of the panel"),

@@ -65,6 +65,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.host.discrete_view = self.views.discrete
         self.host.analytical_view = self.views.analytical
         self.host.colours = prefs.object_colours()
+        self.host.snap_to_objects = prefs.snap_to_objects
         self.tools = ToolController(self.host, [v.plane for v in self.views.views], self)
         self.undo = UndoAdapter(
             self.doc, self.registry["edit.undo"], self.registry["edit.redo"], self, before=self.tools.cancel
@@ -87,6 +88,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.views.set_layout_mode(prefs.layout)
         self.registry["view.grid_layout" if prefs.layout == "grid" else "view.tabs_layout"].setChecked(True)
         self.registry["view.pixel_grid"].setChecked(True)
+        self.registry["view.snap"].setChecked(prefs.snap_to_objects)
         self.registry["tool.select"].setChecked(True)
         self.update_action_states()
         self.update_title()
@@ -234,8 +236,10 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, ["view.zoom_in", "view.zoom_out", "view.actual", None])
         a.menu(m, ["view.grid_layout", "view.tabs_layout", None])
         a.menu(
-            m, ["view.discrete", "view.region", "view.analytical", "view.euclidean", None, "view.pixel_grid"]
+            m,
+            ["view.discrete", "view.region", "view.analytical", "view.euclidean", None, "view.pixel_grid"],
         )
+        a.menu(m, ["view.snap"])
         m.addSeparator()
         for d in (
             self.objects_dock,
@@ -349,6 +353,7 @@ class MainWindow(QtWidgets.QMainWindow):
         ):
             a.connect(aid, lambda n=name: self.views.show_view(self.views.by_name(n)))
         a["view.pixel_grid"].toggled.connect(self.set_pixel_grid)
+        a["view.snap"].toggled.connect(self.set_snap_to_objects)
         a.connect("ops.panel", self.show_operations)
         a.connect("ops.apply", self.operations.apply)
         a.connect("ops.cancel", self.cancel_task)
@@ -421,6 +426,8 @@ class MainWindow(QtWidgets.QMainWindow):
             self.host.colours = self.prefs.object_colours()
         elif key == "tools/brush_size" and self.brush_spin.value() != self.prefs.brush_size:
             self.brush_spin.setValue(self.prefs.brush_size)
+        elif key == "tools/snap_to_objects":
+            self.registry["view.snap"].setChecked(self.prefs.snap_to_objects)
         elif key == "tools/brush_shape":
             self.brush_shape.setCurrentText(self.prefs.brush_shape)
         elif key == "appearance/grid_threshold":
@@ -461,6 +468,14 @@ class MainWindow(QtWidgets.QMainWindow):
         for v in self.views.views:
             v.plane.grid.enabled = on
             v.plane.grid.update()
+
+    def set_snap_to_objects(self, on: bool) -> None:
+        """Snap to objects' vertices and edges, or not (View ▸ Snap to Objects); kept in the preferences."""
+        changed = self.host.snap_to_objects != bool(on)
+        self.host.snap_to_objects = bool(on)
+        self.prefs.snap_to_objects = bool(on)
+        if changed:
+            self.show_message(f"snapping to objects {'on' if on else 'off'} (Shift+S)", 2000)
 
     def set_brush_size(self, size: int) -> None:
         self.host.brush_size = int(size)

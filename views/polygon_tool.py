@@ -12,7 +12,7 @@ from mrm.commands import AddObject, SetSource
 from mrm.errors import MRMError
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
-from mrm.views.tool_base import HIT_PX, Tool, ToolHost, accent_colour, cosmetic_pen, screen_square, snap_mode
+from mrm.views.tool_base import HIT_PX, Tool, ToolHost, accent_colour, cosmetic_pen, screen_square
 
 Qt = QtCore.Qt
 
@@ -23,7 +23,8 @@ class PolygonTool(Tool):
     hint = (
         "Click to add vertices; click the first vertex or press Enter to close, Backspace removes the last, "
         "Esc cancels. Start with Alt held to draw a hole in the polygon under it. "
-        "Shift snaps to pixel centres, Ctrl to pixel corners"
+        "Points snap to the vertices and edges of objects (Alt held: not); Shift snaps to pixel centres, "
+        "Ctrl to pixel corners"
     )
     busy_keys = (Qt.Key.Key_Return, Qt.Key.Key_Enter, Qt.Key.Key_Escape, Qt.Key.Key_Backspace)
     counter = itertools.count(1)
@@ -32,7 +33,6 @@ class PolygonTool(Tool):
         super().__init__(host)
         self.points: list[tuple[float, float]] = []
         self.hole = False
-        self._snap: str | None = None
 
     def in_gesture(self) -> bool:
         return bool(self.points)
@@ -52,8 +52,7 @@ class PolygonTool(Tool):
         if ev.button() != Qt.MouseButton.LeftButton:
             return False
         mods = ev.modifiers()
-        self._snap = snap_mode(mods)
-        x, y = ge.snap(x, y, self._snap)
+        x, y = self.snapped(view, x, y, mods)
         if not self.points:
             self.hole = bool(mods & Qt.KeyboardModifier.AltModifier)
         elif len(self.points) >= 3:
@@ -75,7 +74,7 @@ class PolygonTool(Tool):
         return self.press(view, x, y, ev)
 
     def move(self, view: PlaneView, x: float, y: float, ev: QtGui.QMouseEvent) -> bool:
-        self.hover = ge.snap(x, y, snap_mode(ev.modifiers()))
+        self.hover = self.snapped(view, x, y, ev.modifiers())
         return bool(self.points)
 
     def key(self, view: PlaneView, ev: QtGui.QKeyEvent) -> bool:
@@ -194,6 +193,8 @@ class PolygonTool(Tool):
         if self.hover is not None and not self.points:
             p.setPen(cosmetic_pen(acc, 1.0))
             screen_square(p, *self.hover, 5)
+        if self.hover is not None:
+            self.paint_snap_marker(p)
 
 
 def repair_polygon(ring: np.ndarray) -> shapely.Geometry | None:

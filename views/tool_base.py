@@ -19,12 +19,17 @@ from mrm.errors import MRMError
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
 from mrm.views.scene import Scene
+from mrm.views.snapping import ObjectSnapper, SnapExclusion, SnapTarget
 
 Qt = QtCore.Qt
 E = QtCore.QEvent.Type
 
 #: Hit radius of vertices and edges, in screen pixels.
 HIT_PX = 8.0
+#: Distance, in screen pixels, within which a drawn or dragged point snaps to an object's vertex or edge.
+SNAP_PX = 10.0
+#: The colour of the snap marker: magenta, as in QGIS, distinct from the tools' accent and the selection.
+SNAP_COLOUR = "#e6007e"
 
 
 def snap_mode(mods: Qt.KeyboardModifier) -> str | None:
@@ -54,6 +59,9 @@ class ToolHost(QtCore.QObject):
         self.discrete_view: Any = None  # set by the window: the fast path of the brush
         self.analytical_view: Any = None  # set by the window: picking segments
         self.colours: list[str] = []  # fill colours of new objects, in turn (preferences)
+        #: Snapping to the vertices and edges of objects (View ▸ Snap to Objects; Alt held suspends it).
+        self.snap_to_objects = True
+        self.snapper = ObjectSnapper(scene)
 
     def new_style(self, offset: int = 0) -> Style | None:
         """The style of the next new object (None: the model's default palette)."""
@@ -87,6 +95,8 @@ class Tool:
         self.host = host
         self.scene = host.scene
         self.hover: tuple[float, float] | None = None
+        #: The object point the last snapped position is on (drawn as the snap marker), if any.
+        self.snap_target: SnapTarget | None = None
 
     # -------------------------------------------------------------- dispatch
     def handle(self, view: PlaneView, ev: QtCore.QEvent) -> bool:
@@ -101,6 +111,7 @@ class Tool:
             return False
         if t == E.Leave:
             self.hover = None
+            self.snap_target = None
             self.leave(view)
             if self.hover_feedback:
                 self.host.overlayChanged.emit()
@@ -164,6 +175,49 @@ class Tool:
         """Draw the tool's feedback (plane coordinates; cosmetic pens)."""
 
     # -------------------------------------------------------------- helpers
+    def snapped(
+        self,
+        view: PlaneView,
+        x: float,
+        y: float,
+        mods: Qt.KeyboardModifier,
+        exclude: SnapExclusion | None = None,
+    ) -> tuple[float, float]:
+        """Where a drawn or dragged point at (x, y) goes, with the modifiers ``mods`` held.
+
+        In order: Shift or Ctrl snap to the pixel grid (centres, corners), whatever else is near; else,
+        unless snapping to objects is off or Alt is held, the nearest vertex of a visible object within
+        :data:`SNAP_PX` screen pixels, else the nearest point of an edge within that distance; else the point
+        itself. :attr:`snap_target` says which object point was taken (None: none).
+        """
+        self.snap_target = None
+        mode = snap_mode(mods)
+        if mode is not None:
+            return ge.snap(x, y, mode)
+        if self.host.snap_to_objects and not mods & Qt.KeyboardModifier.AltModifier:
+            target = self.host.snapper.find(x, y, plane_radius(view, SNAP_PX), exclude)
+            if target is not None:
+                self.snap_target = target
+                return target.x, target.y
+        return x, y
+
+    def paint_snap_marker(self, p: QtGui.QPainter) -> None:
+        """Mark the snap target: a square on a vertex, a cross on an edge (screen-sized, in every view)."""
+        t = self.snap_target
+        if t is None:
+            return
+        c = p.transform().map(QtCore.QPointF(t.x, t.y))
+        p.save()
+        p.resetTransform()
+        p.setPen(cosmetic_pen(SNAP_COLOUR, 2.0))
+        p.setBrush(Qt.BrushStyle.NoBrush)
+        if t.kind == "vertex":
+            p.drawRect(QtCore.QRectF(c.x() - 6, c.y() - 6, 12, 12))
+        else:
+            p.drawLine(c + QtCore.QPointF(-5, -5), c + QtCore.QPointF(5, 5))
+            p.drawLine(c + QtCore.QPointF(-5, 5), c + QtCore.QPointF(5, -5))
+        p.restore()
+
     def object_at(self, x: float, y: float) -> DocObject | None:
         """The topmost visible object whose discrete representation holds the pixel under (x, y)."""
         px = ge.pixel_at(x, y)

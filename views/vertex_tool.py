@@ -12,6 +12,7 @@ from mrm.document import DocObject
 from mrm.errors import MRMError
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
+from mrm.views.snapping import SnapExclusion
 from mrm.views.tool_base import HIT_PX, Tool, ToolHost, accent_colour, cosmetic_pen, screen_square, snap_mode
 
 Qt = QtCore.Qt
@@ -23,7 +24,8 @@ class VertexTool(Tool):
     cursor = Qt.CursorShape.ArrowCursor
     hint = (
         "Drag a vertex to move it; click an edge to insert a vertex; right-click a vertex (or hover it and "
-        "press Delete) to remove it. Shift snaps to pixel centres, Ctrl to pixel corners"
+        "press Delete) to remove it. A dragged vertex snaps to the vertices and edges of objects (Alt held: "
+        "not); Shift snaps to pixel centres, Ctrl to pixel corners"
     )
     busy_keys = (Qt.Key.Key_Delete, Qt.Key.Key_Backspace, Qt.Key.Key_Escape)
 
@@ -38,6 +40,8 @@ class VertexTool(Tool):
         self.hover_edge: tuple[ge.VertexRef, tuple[float, float]] | None = None
         self.current: shapely.Geometry | None = None
         self.last_xy: tuple[float, float] | None = None
+        #: What of the edited object must not attract the dragged vertex (itself, the edges it moves).
+        self.exclusion: SnapExclusion | None = None
 
     def in_gesture(self) -> bool:
         return self.ref is not None
@@ -57,7 +61,7 @@ class VertexTool(Tool):
 
     def move(self, view: PlaneView, x: float, y: float, ev: QtGui.QMouseEvent) -> bool:
         if self.ref is not None:
-            self._drag_to(ge.snap(x, y, snap_mode(ev.modifiers())))
+            self._drag_to(self.snapped(view, x, y, ev.modifiers(), self.exclusion))
             return True
         self._update_hover(view, x, y)
         return False
@@ -125,6 +129,14 @@ class VertexTool(Tool):
         self.inserting = inserting
         self.current = None
         self.last_xy = None
+        p, r, i = ref
+        refs = ge.vertex_table(geom)[1]
+        # Moving: the vertex itself and its two edges; inserting before i: the edge from vertex i − 1.
+        self.exclusion = (
+            SnapExclusion(obj_id, split=refs.index((p, r, i - 1)))
+            if inserting
+            else SnapExclusion(obj_id, moving=refs.index(ref))
+        )
 
     def _drag_to(self, xy: tuple[float, float]) -> None:
         assert self.obj_id is not None and self.ref is not None and self.base is not None
@@ -146,7 +158,8 @@ class VertexTool(Tool):
             return self.ref is not None
         if self.last_xy is not None:
             # Where the button is released counts, with the modifiers held at that moment (snapping).
-            self._drag_to(ge.snap(x, y, snap_mode(ev.modifiers())))
+            self._drag_to(self.snapped(view, x, y, ev.modifiers(), self.exclusion))
+        self.snap_target = None
         obj_id, ref, xy, inserting = self.obj_id, self.ref, self.last_xy, self.inserting
         self.ref = None
         self.obj_id = None
@@ -194,6 +207,7 @@ class VertexTool(Tool):
         self.current = None
         self.hover_vertex = None
         self.hover_edge = None
+        self.snap_target = None
 
     def leave(self, view: PlaneView) -> None:
         if self.ref is None:
@@ -205,6 +219,7 @@ class VertexTool(Tool):
         p.setPen(cosmetic_pen(acc, 1.5))
         if self.ref is not None and self.last_xy is not None:
             screen_square(p, *self.last_xy, 11, QtGui.QColor(acc))
+            self.paint_snap_marker(p)
             return
         og = self._geometry()
         if og is None:
