@@ -116,15 +116,10 @@ class MainWindow(QtWidgets.QMainWindow):
         self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
         self.inspector = ErrorInspector(self.scene, self.runner, self)
         self.inspector_dock = self._dock("Error inspector", self.inspector, right)
-        from mrm.views.history_panel import HistoryPanel
-
-        # A click in the list undoes or redoes; a tool's gesture in progress is cancelled first (as Ctrl+Z).
-        self.history_panel = HistoryPanel(self.doc, self, before=self.tools.cancel)
-        self.history_dock = self._dock("History", self.history_panel, right)
-        # One column on the right (ADR 0020): Operations, Properties, Measure and History as tabs, the
-        # inspector below them, beside the operation whose result it accounts for.
+        # One column on the right (ADR 0020): Operations, Properties and Measure as tabs, the inspector below
+        # them, beside the operation whose result it accounts for.
         self.splitDockWidget(self.operations_dock, self.inspector_dock, QtCore.Qt.Orientation.Vertical)
-        for d in (self.properties_dock, self.measure_dock, self.history_dock):
+        for d in (self.properties_dock, self.measure_dock):
             self.tabifyDockWidget(self.operations_dock, d)
         self.operations_dock.raise_()
         self.operations.installEventFilter(self)  # its content grows (a status line): keep Apply in sight
@@ -133,6 +128,16 @@ class MainWindow(QtWidgets.QMainWindow):
         self.segments_dock = self._dock(
             "Segments", self.segments, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
+        from mrm.views.history_panel import HistoryPanel
+
+        # Below the Objects list, a tab beside Segments (the right column's tabs are full). A click in the
+        # list undoes or redoes; a tool's gesture in progress is cancelled first, as Ctrl+Z does.
+        left = QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
+        self.history_panel = HistoryPanel(self.doc, self, before=self.tools.cancel)
+        self.history_dock = self._dock("History", self.history_panel, left)
+        self.tabifyDockWidget(self.segments_dock, self.history_dock)
+        self.segments_dock.raise_()
+        self.setTabPosition(left, QtWidgets.QTabWidget.TabPosition.North)
         self.setCorner(QtCore.Qt.Corner.BottomLeftCorner, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea)
         self.setDockOptions(
             QtWidgets.QMainWindow.DockOption.AnimatedDocks
