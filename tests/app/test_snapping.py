@@ -222,3 +222,24 @@ def test_a_large_object_is_indexed_on_a_worker_then_snapped_to(make_window, qtbo
     assert built_on_gui == [False]
     _click_at(qtbot, view, _near(view, *V, 3, 2))
     assert win.tools.tool.points == [V]
+
+
+def test_a_vertex_inserted_on_an_edge_is_not_held_on_that_edge(make_window, qtbot):
+    win = make_window()
+    _setup(win, qtbot)
+    b = win.doc.make_object(Polygon([(14, 1), (20, 1), (20, 7)]), name="B")
+    win.doc.push(AddObject(b, select=True))
+    wait_drawn(qtbot, win)
+    win.registry["tool.vertex"].trigger()
+    view = win.views.euclidean
+    vp = view.plane.viewport()
+    start = widget_pos(view, 17, 1)  # on the edge (14, 1) → (20, 1)
+    end = start + QtCore.QPoint(0, -6)  # 6 screen pixels off it, within the snapping distance
+    qtbot.mouseMove(vp, start)
+    qtbot.mousePress(vp, Qt.MouseButton.LeftButton, NONE, start)
+    qtbot.mouseMove(vp, end)
+    qtbot.mouseRelease(vp, Qt.MouseButton.LeftButton, NONE, end)
+    ring = list(win.doc.get(b.id).source.exterior.coords)[:-1]
+    assert len(ring) == 4
+    assert view.plane.map_to_plane(QtCore.QPointF(end)) in ring
+    assert win.doc.history.undo_label() == "Insert vertex"
