@@ -15,7 +15,7 @@ until then), so the GUI thread never spends more than a few milliseconds on it.
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -44,12 +44,14 @@ class SnapExclusion:
     """What of an object must not attract the point being moved (its own vertex, the edges it drags along).
 
     ``moving``: the row (:func:`~mrm.views.geometry_edit.vertex_table`) of the vertex being dragged, whose
-    two edges move with it; ``split``: the edge a vertex being inserted splits.
+    two edges move with it; ``split``: the edge a vertex being inserted splits; ``geom``: the geometry these
+    rows refer to (the object's shape when the drag began).
     """
 
     obj_id: int
     moving: int | None = None
     split: int | None = None
+    geom: Any = field(default=None, compare=False)
 
 
 class ObjectSnapper:
@@ -140,6 +142,8 @@ class ObjectSnapper:
             index = self._index(obj_id, geom)
             if index is not None and len(index):
                 mine = exclude if exclude is not None and exclude.obj_id == obj_id else None
+                if mine is not None and mine.geom is not None and geom is not mine.geom:
+                    mine = None  # not the geometry the rows refer to (it changed since the drag began)
                 found.append((obj_id, index, mine))
         best_v: tuple[float, int, float, float] | None = None
         for obj_id, index, mine in found:

@@ -133,9 +133,9 @@ class VertexTool(Tool):
         refs = ge.vertex_table(geom)[1]
         # Moving: the vertex itself and its two edges; inserting before i: the edge from vertex i − 1.
         self.exclusion = (
-            SnapExclusion(obj_id, split=refs.index((p, r, i - 1)))
+            SnapExclusion(obj_id, split=refs.index((p, r, i - 1)), geom=geom)
             if inserting
-            else SnapExclusion(obj_id, moving=refs.index(ref))
+            else SnapExclusion(obj_id, moving=refs.index(ref), geom=geom)
         )
 
     def _drag_to(self, xy: tuple[float, float]) -> None:
