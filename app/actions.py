@@ -47,6 +47,13 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec("edit.undo", "&Undo", Std.Undo, "Undo the last edit", icon="edit-undo"),
     ActionSpec("edit.redo", "&Redo", Std.Redo, "Redo the last undone edit", icon="edit-redo"),
     ActionSpec(
+        "edit.cut",
+        "Cu&t",
+        Std.Cut,
+        "Copy the selected objects to the clipboard and delete them (one undo step)",
+        icon="edit-cut",
+    ),
+    ActionSpec(
         "edit.copy", "&Copy", Std.Copy, "Copy the selected objects to the clipboard", icon="edit-copy"
     ),
     ActionSpec(
@@ -55,6 +62,9 @@ SPECS: tuple[ActionSpec, ...] = (
         Std.Paste,
         "Paste objects from the clipboard (MR Modeler objects, GeoJSON or WKT text) in place",
         icon="edit-paste",
+    ),
+    ActionSpec(
+        "edit.select_all", "Select &All", Std.SelectAll, "Select every object", icon="edit-select-all"
     ),
     ActionSpec("edit.delete", "&Delete Object", "Del", "Delete the selected object", icon="edit-delete"),
     ActionSpec("edit.duplicate", "D&uplicate Object", "Ctrl+D", "Copy the selected object"),
@@ -147,6 +157,13 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec("view.analytical", "&Analytical View", "Ctrl+3", "Show or focus the analytical view"),
     ActionSpec("view.euclidean", "&Euclidean View", "Ctrl+4", "Show or focus the Euclidean view"),
     ActionSpec("view.pixel_grid", "Pixel &Grid", "G", "Draw the pixel grid when zoomed in", True),
+    ActionSpec(
+        "view.snap",
+        "S&nap to Objects",
+        "Shift+S",
+        "Drawn and dragged points snap to the vertices and edges of objects (hold Alt to place one freely)",
+        True,
+    ),
     # Operations / inspector
     ActionSpec("ops.panel", "&Operations", "Ctrl+R", "Show the operations panel"),
     ActionSpec("ops.apply", "&Apply Operation", "Ctrl+Return", "Apply the operation of the panel"),

@@ -1,4 +1,4 @@
-"""Copy and paste of objects through the system clipboard (Ctrl+C, Ctrl+V).
+"""Cut, copy and paste of objects through the system clipboard (Ctrl+X, Ctrl+C, Ctrl+V).
 
 A copy puts two things on the clipboard:
 
@@ -11,7 +11,8 @@ A copy puts two things on the clipboard:
 A paste reads the MIME data when it is there, else the text as GeoJSON or WKT. Both go through the
 importer (:func:`mrm.io.imports.objects_from_file`), so a pasted payload is checked exactly as an opened
 file is (limits, hostile content). The pasted objects get fresh ids and unique names and are added in one
-undo step, selected, at the place they were copied from.
+undo step, selected, at the place they were copied from. A cut is a copy followed, once the data is on the
+clipboard, by the deletion of the objects in one undo step ("Cut").
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.core.errors import MRMError
 from mrm.document import DocObject, Document, Settings
-from mrm.document.commands import ApplyResults
+from mrm.document.commands import ApplyResults, RemoveObjects
 
 log = logging.getLogger(__name__)
 
@@ -39,15 +40,16 @@ MIME = "application/x-mrm-objects"
 PASTED_NAMES = {"euclidean": "Pasted polygon", "discrete": "Pasted pixels", "labels": "Pasted label map"}
 
 
-def copy_payload(doc: Document, ids: Sequence[int]) -> bytes:
-    """The bytes of a project file with the objects ``ids`` of ``doc`` (in drawing order)."""
-    from mrm.io.project import dumps
+def selection_part(doc: Document, ids: Sequence[int]) -> Document:
+    """A document holding just the objects ``ids`` of ``doc`` (in drawing order), as a copy puts them.
 
+    Cheap (the objects are immutable values, shared): the GUI thread makes it, a worker encodes it.
+    """
     part = Document(Settings(model=doc.model))
     for o in doc.objects:
         if o.id in ids:
             part.insert_object(o, None)
-    return dumps(part)
+    return part
 
 
 def geojson_text(named: Sequence[tuple[str, Any]]) -> str:
@@ -60,16 +62,6 @@ def geojson_text(named: Sequence[tuple[str, Any]]) -> str:
         if g is not None
     ]
     return json.dumps({"type": "FeatureCollection", "features": features}, allow_nan=False)
-
-
-def copy_objects(doc: Document, ids: Sequence[int], euclidean: Any) -> QtCore.QMimeData:
-    """Mime data for the objects ``ids``: :data:`MIME` and a GeoJSON text fallback.
-
-    ``euclidean(obj_id)`` gives an object's Euclidean representation, or None when it is not ready (a pixel
-    object whose continuation is still being computed is then left out of the text, never of :data:`MIME`).
-    """
-    named = [(doc.get(i).name, euclidean(i)) for i in ids if i in doc]
-    return mime_data(copy_payload(doc, ids), geojson_text(named))
 
 
 def mime_data(payload: bytes, text: str) -> QtCore.QMimeData:
@@ -101,17 +93,6 @@ def mime_payload(md: QtCore.QMimeData) -> tuple[bytes, str]:
     raise FileFormatError("the clipboard holds no objects, GeoJSON or WKT")
 
 
-def objects_from_mime(doc: Document, md: QtCore.QMimeData) -> list[DocObject]:
-    """New objects (fresh ids, not inserted) read from clipboard data: :data:`MIME`, else GeoJSON/WKT text.
-
-    Raises
-    ------
-    MRMError
-        Nothing usable on the clipboard, or content the importer refuses (with its message).
-    """
-    return objects_from_payload(doc, *mime_payload(md))
-
-
 def objects_from_payload(doc: Document, data: bytes, suffix: str) -> list[DocObject]:
     """New objects for ``doc`` read from clipboard bytes (:func:`mime_payload`), checked as a file is.
 
@@ -134,11 +115,6 @@ def objects_from_payload(doc: Document, data: bytes, suffix: str) -> list[DocObj
     return [o.with_(name=PASTED_NAMES[o.kind]) if o.name.startswith(stem) else o for o in objs]
 
 
-def paste_objects(doc: Document, md: QtCore.QMimeData) -> list[int]:
-    """Add the clipboard's objects to ``doc`` in one undo step ("Paste"), with unique names; their ids."""
-    return add_pasted(doc, objects_from_mime(doc, md))
-
-
 def add_pasted(doc: Document, objs: list[DocObject]) -> list[int]:
     """Add pasted objects to ``doc`` in one undo step ("Paste"), with unique names; their ids."""
     from mrm.views.operation_panel import unique_name
@@ -154,39 +130,63 @@ def add_pasted(doc: Document, objs: list[DocObject]) -> list[int]:
 
 
 class ClipboardController(QtCore.QObject):
-    """The window's Copy and Paste actions on the system clipboard."""
+    """The window's Cut, Copy and Paste actions on the system clipboard."""
 
     def __init__(self, window: Any) -> None:
         super().__init__(window)
         self.win = window
 
     def copy(self) -> bool:
+        """Copy the selected objects to the clipboard (Ctrl+C); False when nothing is selected."""
+        return self._copy(cut=False)
+
+    def cut(self) -> bool:
+        """Cut (Ctrl+X): copy the selected objects, then delete them in one undo step.
+
+        They are deleted once they are on the clipboard: a copy that fails deletes nothing, and an object
+        edited while the copy was being encoded stays (what is on the clipboard is its earlier state).
+        """
+        return self._copy(cut=True)
+
+    def _copy(self, *, cut: bool) -> bool:
         doc = self.win.doc
         ids = [i for i in doc.selection if i in doc]
+        verb = "cut" if cut else "copy"
         if not ids:
-            self.win.show_message("select the objects to copy", 3000)
+            self.win.show_message(f"select the objects to {verb}", 3000)
             return False
         # Immutable values are read here; the encoding (megabytes for a big pixel object) runs on a worker.
-        part = Document(Settings(model=doc.model))
-        for o in doc.objects:
-            if o.id in ids:
-                part.insert_object(o, None)
+        part = selection_part(doc, ids)
+        copied = part.objects
         # As GeoJSON text, the shapes: a label map (its subdivision, ADR 0033) is copied as an object only.
-        shapes = [i for i in ids if doc.get(i).kind != "labels"]
-        named = [(doc.get(i).name, self.win.scene.get(i, "euclidean")) for i in shapes]
+        named = [(o.name, self.win.scene.get(o.id, "euclidean")) for o in copied if o.kind != "labels"]
         n = len(ids)
 
         def work(_progress: Any) -> tuple[bytes, str]:
-            return copy_payload(part, [o.id for o in part.objects]), geojson_text(named)
+            from mrm.io.project import dumps
+
+            return dumps(part), geojson_text(named)
 
         def done(result: tuple[bytes, str]) -> None:
             QtGui.QGuiApplication.clipboard().setMimeData(mime_data(*result))
-            self.win.show_message(f"copied {n} object{'s' if n != 1 else ''}", 3000)
+            if not cut:
+                self.win.show_message(f"copied {n} object{'s' if n != 1 else ''}", 3000)
+                return
+            same = [o.id for o in copied if o.id in doc and doc.get(o.id) is o]
+            if same:
+                with doc.history.macro("Cut" if len(same) == 1 else f"Cut {len(same)} objects"):
+                    doc.push(RemoveObjects(same))
+            kept = n - len(same)
+            self.win.show_message(
+                f"cut {len(same)} object{'s' if len(same) != 1 else ''}"
+                + (f"; {kept} changed or removed meanwhile, left as they are" if kept else ""),
+                4000,
+            )
 
         def failed(exc: BaseException) -> None:
             if not isinstance(exc, MRMError):
                 raise exc
-            self.win.show_message(f"copy: {exc}", 6000, error=True)
+            self.win.show_message(f"{verb}: {exc}" + ("; nothing deleted" if cut else ""), 6000, error=True)
 
         self.win.runner.submit("copy", work, on_result=done, on_error=failed, label="Copying")
         return True

@@ -27,6 +27,7 @@ OBJECT_ITEMS: tuple[str | None, ...] = (
     "edit.colour",
     "edit.properties",
     None,
+    "edit.cut",
     "edit.copy",
     "edit.paste",
     "edit.duplicate",

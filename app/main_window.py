@@ -18,8 +18,8 @@ from mrm.core.models import Model
 from mrm.document import Changes, Document, Settings
 from mrm.views.object_list import ObjectList
 from mrm.views.scene import Scene
+from mrm.views.tool_base import ToolHost
 from mrm.views.tool_controller import ToolController
-from mrm.views.tools import ToolHost
 from mrm.views.view_area import ViewArea
 
 TOOL_ACTIONS = {
@@ -71,6 +71,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.host.discrete_view = self.views.discrete
         self.host.analytical_view = self.views.analytical
         self.host.colours = prefs.object_colours()
+        self.host.snap_to_objects = prefs.snap_to_objects
         self.tools = ToolController(self.host, [v.plane for v in self.views.views], self)
         self.undo = UndoAdapter(
             self.doc, self.registry["edit.undo"], self.registry["edit.redo"], self, before=self.tools.cancel
@@ -94,6 +95,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.views.set_layout_mode(prefs.layout)
         self.registry["view.grid_layout" if prefs.layout == "grid" else "view.tabs_layout"].setChecked(True)
         self.registry["view.pixel_grid"].setChecked(True)
+        self.registry["view.snap"].setChecked(prefs.snap_to_objects)
         self.registry["tool.select"].setChecked(True)
         self.update_action_states()
         self.update_title()
@@ -133,6 +135,16 @@ class MainWindow(QtWidgets.QMainWindow):
         self.segments_dock = self._dock(
             "Segments", self.segments, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
+        from mrm.views.history_panel import HistoryPanel
+
+        # Below the Objects list, a tab beside Segments (the right column's tabs are full). A click in the
+        # list undoes or redoes; a tool's gesture in progress is cancelled first, as Ctrl+Z does.
+        left = QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
+        self.history_panel = HistoryPanel(self.doc, self, before=self.tools.cancel)
+        self.history_dock = self._dock("History", self.history_panel, left)
+        self.tabifyDockWidget(self.segments_dock, self.history_dock)
+        self.segments_dock.raise_()
+        self.setTabPosition(left, QtWidgets.QTabWidget.TabPosition.North)
         self.setCorner(QtCore.Qt.Corner.BottomLeftCorner, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea)
         self.setDockOptions(
             QtWidgets.QMainWindow.DockOption.AnimatedDocks
@@ -252,7 +264,8 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, [None, "file.preferences", None, "file.quit"])
         self.update_recent_menu()
         m = mb.addMenu("&Edit")
-        a.menu(m, ["edit.undo", "edit.redo", None, "edit.copy", "edit.paste", None])
+        a.menu(m, ["edit.undo", "edit.redo", None, "edit.cut", "edit.copy", "edit.paste", "edit.select_all"])
+        m.addSeparator()
         a.menu(m, ["edit.rename", "edit.colour", "edit.properties", "edit.duplicate", "edit.delete", None])
         a.menu(m, ["edit.split_labels", None])
         a.menu(m, ["edit.select_previous", "edit.select_next"])
@@ -272,8 +285,10 @@ class MainWindow(QtWidgets.QMainWindow):
         a.menu(m, ["view.zoom_in", "view.zoom_out", "view.actual", None])
         a.menu(m, ["view.grid_layout", "view.tabs_layout", None])
         a.menu(
-            m, ["view.discrete", "view.region", "view.analytical", "view.euclidean", None, "view.pixel_grid"]
+            m,
+            ["view.discrete", "view.region", "view.analytical", "view.euclidean", None, "view.pixel_grid"],
         )
+        a.menu(m, ["view.snap"])
         m.addSeparator()
         for d in (
             self.objects_dock,
@@ -281,6 +296,7 @@ class MainWindow(QtWidgets.QMainWindow):
             self.operations_dock,
             self.properties_dock,
             self.measure_dock,
+            self.history_dock,
             self.inspector_dock,
         ):
             m.addAction(d.toggleViewAction())
@@ -352,7 +368,9 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("edit.duplicate", self.duplicate_selection)
         a.connect("edit.split_labels", self.split_label_map)
         a.connect("edit.rename", self.rename_selection)
+        a.connect("edit.cut", self.clipboard.cut)
         a.connect("edit.copy", self.clipboard.copy)
+        a.connect("edit.select_all", self.select_all)
         a.connect("edit.paste", self.clipboard.paste)
         a.connect("edit.colour", self.choose_colour)
         a.connect("edit.properties", self.show_properties)
@@ -384,6 +402,7 @@ class MainWindow(QtWidgets.QMainWindow):
         ):
             a.connect(aid, lambda n=name: self.views.show_view(self.views.by_name(n)))
         a["view.pixel_grid"].toggled.connect(self.set_pixel_grid)
+        a["view.snap"].toggled.connect(self.set_snap_to_objects)
         a.connect("ops.panel", self.show_operations)
         a.connect("ops.apply", self.operations.apply)
         a.connect("ops.cancel", self.cancel_task)
@@ -410,6 +429,7 @@ class MainWindow(QtWidgets.QMainWindow):
         sel = [i for i in self.doc.selection if i in self.doc]
         for aid in (
             "edit.delete",
+            "edit.cut",
             "edit.copy",
             "edit.duplicate",
             "edit.rename",
@@ -421,6 +441,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a["view.fit_differences"].setEnabled(primary is not None and primary.provenance is not None)
         a["edit.split_labels"].setEnabled(primary is not None and primary.kind == "labels")
         a["measure.hausdorff"].setEnabled(len(self.doc) >= 2)
+        a["edit.select_all"].setEnabled(len(self.doc) > 0)
 
     def update_title(self) -> None:
         self.setWindowTitle(f"{self.files.document_name()}[*] — MR Modeler")
@@ -496,6 +517,8 @@ class MainWindow(QtWidgets.QMainWindow):
             self.host.colours = self.prefs.object_colours()
         elif key == "tools/brush_size" and self.brush_spin.value() != self.prefs.brush_size:
             self.brush_spin.setValue(self.prefs.brush_size)
+        elif key == "tools/snap_to_objects":
+            self.registry["view.snap"].setChecked(self.prefs.snap_to_objects)
         elif key == "tools/brush_shape":
             self.brush_shape.setCurrentText(self.prefs.brush_shape)
         elif key == "appearance/grid_threshold":
@@ -536,6 +559,14 @@ class MainWindow(QtWidgets.QMainWindow):
         for v in self.views.views:
             v.plane.grid.enabled = on
             v.plane.grid.update()
+
+    def set_snap_to_objects(self, on: bool) -> None:
+        """Snap to objects' vertices and edges, or not (View ▸ Snap to Objects); kept in the preferences."""
+        changed = self.host.snap_to_objects != bool(on)
+        self.host.snap_to_objects = bool(on)
+        self.prefs.snap_to_objects = bool(on)
+        if changed:
+            self.show_message(f"snapping to objects {'on' if on else 'off'} (Shift+S)", 2000)
 
     def set_brush_size(self, size: int) -> None:
         self.host.brush_size = int(size)
@@ -603,6 +634,10 @@ class MainWindow(QtWidgets.QMainWindow):
         self.objects_dock.show()
         self.object_list.view.setCurrentIndex(idx)
         self.object_list.view.edit(idx)
+
+    def select_all(self) -> None:
+        """Select every object of the document (Ctrl+A), hidden ones too, as the Objects list shows them."""
+        self.doc.set_selection(self.doc.ids)
 
     def select_step(self, step: int) -> None:
         ids = self.object_list.model.ids()
@@ -824,6 +859,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.runner.shutdown()
         self.files.close(discard_autosave=discard_autosave)
         self.undo.close()
+        self.history_panel.close_panel()
         self.scene.close()
         self.prefs.sync()
 

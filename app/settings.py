@@ -182,6 +182,15 @@ class Preferences(QtCore.QObject):
     def brush_shape(self, v: str) -> None:
         self._set("tools/brush_shape", v)
 
+    @property
+    def snap_to_objects(self) -> bool:
+        """Whether drawn and dragged points snap to the vertices and edges of objects (on by default)."""
+        return bool(self._get("tools/snap_to_objects", True, bool))
+
+    @snap_to_objects.setter
+    def snap_to_objects(self, v: bool) -> None:
+        self._set("tools/snap_to_objects", bool(v))
+
     # ------------------------------------------------------------------ operations
     @property
     def live_preview(self) -> bool:

@@ -95,6 +95,21 @@ def _ragged(geom: shapely.Geometry) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     return coords, rings, polys
 
 
+def _rings(geom: shapely.Geometry) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The rings of a non-empty Polygon or MultiPolygon, as arrays.
+
+    (vertices (n, 2) in ring order without closing points, polygon of each ring, ring number in its polygon,
+    vertices per ring).
+    """
+    coords, rings, polys = _ragged(geom)
+    keep = np.ones(len(coords), dtype=bool)
+    keep[rings[1:] - 1] = False  # each ring's closing point
+    poly_of = np.repeat(np.arange(len(polys) - 1), np.diff(polys))
+    ring_in_poly = np.arange(len(rings) - 1) - polys[poly_of]
+    xy = np.ascontiguousarray(coords[keep, :2], dtype=np.float64)
+    return xy, poly_of, ring_in_poly, np.diff(rings) - 1
+
+
 def vertex_table(geom: shapely.Geometry) -> tuple[np.ndarray, VertexRefs]:
     """All vertices as an (n, 2) array and their references (a lazy sequence), in ring order.
 
@@ -103,13 +118,8 @@ def vertex_table(geom: shapely.Geometry) -> tuple[np.ndarray, VertexRefs]:
     """
     if geom is None or geom.is_empty:
         return np.zeros((0, 2)), VertexRefs(np.zeros(0), np.zeros(0), np.zeros(0))
-    coords, rings, polys = _ragged(geom)
-    counts = np.diff(rings)
-    keep = np.ones(len(coords), dtype=bool)
-    keep[rings[1:] - 1] = False  # each ring's closing point
-    poly_of = np.repeat(np.arange(len(polys) - 1), np.diff(polys))
-    ring_in_poly = np.arange(len(counts)) - polys[poly_of]
-    return np.ascontiguousarray(coords[keep, :2], dtype=float), VertexRefs(poly_of, ring_in_poly, counts - 1)
+    xy, poly_of, ring_in_poly, counts = _rings(geom)
+    return xy, VertexRefs(poly_of, ring_in_poly, counts)
 
 
 def vertex_count(geom: shapely.Geometry) -> int:
@@ -204,6 +214,102 @@ def snap(x: float, y: float, mode: str | None) -> tuple[float, float]:
     if mode == "corner":
         return math.floor(x) + 0.5, math.floor(y) + 0.5
     return x, y
+
+
+class SnapIndex:
+    """The vertices and edges of one polygonal geometry, sorted for the nearest one to a cursor.
+
+    Vertex ``k`` is row ``k`` of :func:`vertex_table` (ring order, closing points left out); edge ``k`` runs
+    from vertex ``k`` to the next vertex of its ring (the last one closes the ring). Built once per geometry
+    (about 0.1 s for 10⁶ vertices); a query then looks only at what lies near the cursor: the vertices and
+    the short edges are sorted by x and found by bisection, the few long edges (over the 99th percentile of
+    the edges' widths) are checked one by one.
+    """
+
+    #: Share of edges tested one by one at every query (the widest ones).
+    LONG_EDGES = 0.01
+
+    def __init__(self, geom: shapely.Geometry) -> None:
+        if geom is None or geom.is_empty:
+            xy = np.zeros((0, 2), dtype=np.float64)
+            counts = np.zeros(0, dtype=np.int64)
+        else:
+            xy, _poly, _ring, counts = _rings(geom)
+        n = len(xy)
+        starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+        nxt = np.arange(1, n + 1, dtype=np.int64)
+        if n:
+            nxt[starts + counts - 1] = starts
+        self.xy = xy
+        self.next = nxt
+        self.prev = np.empty_like(nxt)
+        self.prev[nxt] = np.arange(n, dtype=np.int64)
+        self._vorder = np.argsort(xy[:, 0], kind="stable")
+        self._vx = xy[self._vorder, 0]
+        a, b = xy, xy[nxt]
+        self._a = a
+        self._ab = b - a
+        self._lo = np.minimum(a, b)
+        self._hi = np.maximum(a, b)
+        width = self._hi[:, 0] - self._lo[:, 0]
+        self._reach = float(np.quantile(width, 1 - self.LONG_EDGES)) if n else 0.0
+        long = width > self._reach
+        self._long = np.flatnonzero(long)
+        short = np.flatnonzero(~long)
+        self._sorder = short[np.argsort(self._lo[short, 0], kind="stable")]
+        self._sx = self._lo[self._sorder, 0]
+
+    def __len__(self) -> int:
+        return len(self.xy)
+
+    def nearest_vertex(
+        self, x: float, y: float, radius: float, skip: tuple[int, ...] = ()
+    ) -> tuple[float, int] | None:
+        """(distance, row) of the vertex nearest to (x, y) within ``radius``, rows in ``skip`` left out."""
+        lo = int(np.searchsorted(self._vx, x - radius, "left"))
+        hi = int(np.searchsorted(self._vx, x + radius, "right"))
+        rows = self._vorder[lo:hi]
+        pts = self.xy[rows]
+        near = np.abs(pts[:, 1] - y) <= radius
+        rows, pts = rows[near], pts[near]
+        if skip:
+            keep = ~np.isin(rows, skip)
+            rows, pts = rows[keep], pts[keep]
+        if not len(rows):
+            return None
+        d = np.hypot(pts[:, 0] - x, pts[:, 1] - y)
+        k = int(np.argmin(d))
+        return (float(d[k]), int(rows[k])) if d[k] <= radius else None
+
+    def nearest_edge(
+        self, x: float, y: float, radius: float, skip: tuple[int, ...] = ()
+    ) -> tuple[float, int, tuple[float, float]] | None:
+        """(distance, edge, foot) of the edge point nearest to (x, y) within ``radius``, ``skip`` left out."""
+        lo = int(np.searchsorted(self._sx, x - radius - self._reach, "left"))
+        hi = int(np.searchsorted(self._sx, x + radius, "right"))
+        rows = np.concatenate([self._sorder[lo:hi], self._long])
+        box_lo, box_hi = self._lo[rows], self._hi[rows]
+        near = (
+            (box_hi[:, 0] >= x - radius)
+            & (box_lo[:, 0] <= x + radius)
+            & (box_hi[:, 1] >= y - radius)
+            & (box_lo[:, 1] <= y + radius)
+        )
+        rows = rows[near]
+        if skip:
+            rows = rows[~np.isin(rows, skip)]
+        if not len(rows):
+            return None
+        a, ab = self._a[rows], self._ab[rows]
+        ap = np.array([x, y]) - a
+        den = np.einsum("ij,ij->i", ab, ab)
+        t = np.clip(np.einsum("ij,ij->i", ap, ab) / np.where(den > 0, den, 1.0), 0.0, 1.0)
+        foot = a + ab * t[:, None]
+        d = np.hypot(foot[:, 0] - x, foot[:, 1] - y)
+        k = int(np.argmin(d))
+        if d[k] > radius:
+            return None
+        return float(d[k]), int(rows[k]), (float(foot[k, 0]), float(foot[k, 1]))
 
 
 def pixel_at(x: float, y: float) -> tuple[int, int]:

@@ -21,7 +21,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from mrm.core.errors import MRMError
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
-from mrm.views.tools import Tool, ToolHost, _accent, _pen, _screen_square, snap_mode
+from mrm.views.tool_base import Tool, ToolHost, accent_colour, cosmetic_pen, screen_square, snap_mode
 
 log = logging.getLogger(__name__)
 Qt = QtCore.Qt
@@ -141,18 +141,18 @@ class MeasureTool(Tool):
         return False
 
     def paint_overlay(self, p: QtGui.QPainter, view: PlaneView) -> None:
-        acc = _accent(view)
+        acc = accent_colour(view)
         if self.start is not None and self.hover is not None:
             a, b = self.start, self.hover
         elif self.result is not None:
             a, b = self.result.a, self.result.b
         else:
             return
-        p.setPen(_pen(acc, 1.6, Qt.PenStyle.DashLine))
+        p.setPen(cosmetic_pen(acc, 1.6, Qt.PenStyle.DashLine))
         p.drawLine(QtCore.QPointF(*a), QtCore.QPointF(*b))
-        p.setPen(_pen(acc, 1.0))
+        p.setPen(cosmetic_pen(acc, 1.0))
         for pt in (a, b):
-            _screen_square(p, pt[0], pt[1], 7, QtGui.QColor("#ffffff"))
+            screen_square(p, pt[0], pt[1], 7, QtGui.QColor("#ffffff"))
         # The length beside the line's middle, in screen space (the painter maps plane → screen).
         m = p.transform().map(QtCore.QPointF((a[0] + b[0]) / 2, (a[1] + b[1]) / 2))
         label = f"{PointMeasure(a, b).distance:.4g}"

@@ -9,7 +9,8 @@ import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
 from mrm.views.canvas import PlaneView
-from mrm.views.tools import Tool, ToolHost, make_tools
+from mrm.views.tool_base import Tool, ToolHost
+from mrm.views.tools import make_tools
 
 
 def _is_menu_key(ev: QtCore.QEvent) -> bool:

@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 import shapely
-from PySide6 import QtCore, QtGui
+from PySide6 import QtCore, QtGui, QtWidgets
 from shapely.geometry import Polygon
 
 from mrm.app.clipboard import MIME
@@ -158,3 +158,114 @@ def test_ctrl_c_in_a_text_field_copies_its_text_not_the_objects(make_window, qtb
     assert md is not None and md.text() == "tri" and not md.hasFormat(MIME)
     qtbot.keyClick(field, Qt.Key.Key_V, CTRL)  # and Ctrl+V pastes text there, not objects
     assert len(win.doc) == 1
+
+
+def _three_objects(win):  # type: ignore[no-untyped-def]
+    pixels = PixelSet(np.ones((3, 4), bool), (-6, 2))
+    poly = Polygon([(0.1, 0.2), (7 / 3, 0.0), (1e-7, 5.5)])
+    objs = [
+        win.doc.make_object(pixels, name="block"),
+        win.doc.make_object(poly, name="tri"),
+        win.doc.make_object(Polygon([(20, 0), (24, 0), (24, 3)]), name="other"),
+    ]
+    for o in objs:
+        win.doc.push(AddObject(o))
+    return objs
+
+
+def test_cut_copies_then_deletes_in_one_undo_step_and_paste_brings_them_back(make_window, qtbot):
+    win = make_window()
+    block, tri, other = _three_objects(win)
+    win.doc.set_selection([block.id, tri.id])
+    _clipboard().clear()
+    steps = win.doc.history.index
+    _keys(qtbot, win, Qt.Key.Key_X)
+    assert [o.name for o in win.doc.objects] == ["other"]
+    assert win.doc.history.index == steps + 1  # one undo step
+    assert win.doc.history.undo_label() == "Cut 2 objects"
+    md = _clipboard().mimeData()
+    assert md.hasFormat(MIME)  # Copy's format: the objects as a project file, GeoJSON as text
+    assert [f["properties"]["name"] for f in json.loads(md.text())["features"]] == ["block", "tri"]
+    _keys(qtbot, win, Qt.Key.Key_V)
+    assert [o.name for o in win.doc.objects] == ["other", "block", "tri"]  # their names are free again
+    assert win.doc.objects[1].source == block.source
+    assert shapely.to_wkb(win.doc.objects[2].source) == shapely.to_wkb(tri.source)  # bit for bit
+    assert set(win.doc.selection) == {win.doc.objects[1].id, win.doc.objects[2].id}
+    win.registry["edit.undo"].trigger()  # the paste
+    win.registry["edit.undo"].trigger()  # the cut: the very objects are back, in their places
+    assert win.doc.objects == (block, tri, other)
+    assert win.doc.history.index == steps
+
+
+def test_cut_is_in_the_edit_menu_with_the_standard_key_and_needs_a_selection(make_window, qtbot):
+    win = make_window()
+    _three_objects(win)
+    edit = next(m for m in win.menuBar().findChildren(QtWidgets.QMenu) if m.title() == "&Edit")
+    ids = [a.objectName() for a in edit.actions()]
+    assert (
+        ids.index("edit.cut")
+        < ids.index("edit.copy")
+        < ids.index("edit.paste")
+        < ids.index("edit.select_all")
+    )
+    assert win.registry["edit.cut"].shortcut().toString() == "Ctrl+X"
+    assert win.registry["edit.select_all"].shortcut().toString() == "Ctrl+A"
+    win.doc.set_selection([])
+    _keys(qtbot, win, Qt.Key.Key_X)
+    assert len(win.doc) == 3 and not win.registry["edit.cut"].isEnabled()
+
+
+def test_a_cut_whose_copy_fails_deletes_nothing(make_window, qtbot, monkeypatch):
+    import mrm.io.project
+    from mrm.core.errors import FileFormatError
+
+    def refuse(_doc):  # type: ignore[no-untyped-def]
+        raise FileFormatError("disk full")
+
+    win = make_window()
+    objs = _three_objects(win)
+    win.doc.set_selection([objs[0].id])
+    monkeypatch.setattr(mrm.io.project, "dumps", refuse)
+    steps = win.doc.history.index
+    _keys(qtbot, win, Qt.Key.Key_X)
+    assert win.doc.objects == tuple(objs)
+    assert win.doc.history.index == steps
+    assert "disk full" in win.status.currentMessage() and "nothing deleted" in win.status.currentMessage()
+
+
+def test_ctrl_a_selects_every_object_in_the_document_and_the_list(make_window, qtbot):
+    from dataclasses import replace
+
+    from mrm.document.commands import RestyleObject
+
+    win = make_window()
+    objs = _three_objects(win)
+    win.doc.push(RestyleObject(objs[2].id, replace(objs[2].style, visible=False)))  # hidden ones too
+    win.doc.set_selection([objs[0].id])
+    _keys(qtbot, win, Qt.Key.Key_A)
+    assert win.doc.selection == tuple(o.id for o in objs)
+    rows = win.object_list.view.selectionModel().selectedRows()
+    assert len(rows) == 3
+    # Then Ctrl+X cuts them all.
+    _keys(qtbot, win, Qt.Key.Key_X)
+    assert len(win.doc) == 0
+
+
+def test_text_fields_keep_their_own_ctrl_a_and_ctrl_x(make_window, qtbot):
+    win = make_window()
+    objs = _three_objects(win)
+    win.doc.set_selection([objs[1].id])
+    _clipboard().clear()
+    win.registry["edit.properties"].trigger()  # focuses the name field
+    field = win.properties.name_edit
+    qtbot.waitUntil(field.hasFocus, timeout=3000)
+    qtbot.keyClick(field, Qt.Key.Key_End)
+    assert field.selectedText() == ""
+    qtbot.keyClick(field, Qt.Key.Key_A, CTRL)
+    assert field.selectedText() == "tri"
+    assert win.doc.selection == (objs[1].id,)  # not every object
+    qtbot.keyClick(field, Qt.Key.Key_X, CTRL)
+    assert field.text() == ""
+    md = _clipboard().mimeData()
+    assert md is not None and md.text() == "tri" and not md.hasFormat(MIME)
+    assert win.doc.objects == tuple(objs)  # no object cut
