@@ -4,7 +4,7 @@ Inputs: the pointel contours of Gauss-digitized disks (r = 1000 and r = 10 000, 
 random 4-connected chain of 10⁶ steps (uniform codes, no immediate back-step: very short segments, the
 worst case per step). Each figure is the median of several runs, compile time reported separately.
 
-DGtal cannot be built here, so its speed is a *quoted* reference, not a measurement: ALGORITHMS.md §5.1
+DGtal cannot be built here, so its speed is a *quoted* reference, not a measurement: docs/algorithms.md §5.1
 reports DGtal's greedy segmentation of the 8 000-linel r = 1000 contour in 0.513 ms and its saturated
 (maximal-segment) segmentation in 2.739 ms on this machine class, i.e. about 15.6 M and 2.9 M steps/s; the
 commonly quoted round figure for DGtal's DSS recognition is 50 M steps/s. Ratios are printed against both.
@@ -25,7 +25,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-#: Quoted, not measured here: DGtal's steps per second on the r = 1000 disk contour (ALGORITHMS.md §5.1).
+#: Quoted, not measured here: DGtal's steps per second on the r = 1000 disk contour (docs/algorithms.md §5.1).
 DGTAL_QUOTED_GREEDY = 8000 / 0.513e-3
 DGTAL_QUOTED_MAXIMAL = 8000 / 2.739e-3
 #: Quoted round figure for DGtal's C++ DSS recognition (steps per second), as given in the task.
@@ -130,7 +130,7 @@ def main() -> None:
     ]
     print(
         f"quoted DGtal (not measured): greedy {DGTAL_QUOTED_GREEDY / 1e6:.1f} M steps/s, "
-        f"maximal {DGTAL_QUOTED_MAXIMAL / 1e6:.1f} M steps/s (r=1000 disk, ALGORITHMS.md §5.1); "
+        f"maximal {DGTAL_QUOTED_MAXIMAL / 1e6:.1f} M steps/s (r=1000 disk, docs/algorithms.md §5.1); "
         f"round figure {DGTAL_QUOTED_ROUND / 1e6:.0f} M steps/s"
     )
     print(

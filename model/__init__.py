@@ -1,4 +1,4 @@
-"""MR Modeler's library: exact 2D discrete geometry with four representations (DESIGN §1–§8).
+"""MR Modeler's library: exact 2D discrete geometry with four representations (docs/design.md §1–§8).
 
 ``import mrm`` is Qt-free and cheap: the names below are loaded on first use (PEP 562), so ``mrm --version``
 and the command line start fast. numpy arrays, pixel sets and shapely geometries go in and come out::
@@ -9,7 +9,8 @@ and the command line start fast. numpy arrays, pixel sets and shapely geometries
     big = mrm.scale(ps, 2, model="gauss")         # DSS_2
     mrm.hausdorff(mrm.reconstruct(big, "gauss"), ...)
 
-Pixel (x, y) is centred on the point (x, y) and y points **up** (DESIGN §1); image arrays are converted by
+Pixel (x, y) is centred on the point (x, y) and y points **up** (docs/design.md §1); image arrays are
+converted by
 :meth:`PixelSet.from_image` / :meth:`PixelSet.to_image`, never by hand. The desktop application is
 ``mrm.app`` (needs the ``gui`` extra); the command line is ``mrm.cli``.
 """

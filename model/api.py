@@ -62,7 +62,7 @@ def _as_object(obj: Any) -> Any:
 def discretize(
     geom: Any, model: Model | str = DEFAULT_MODEL, *, limit: int | None = DEFAULT_PIXEL_LIMIT
 ) -> PixelSet:
-    """Return the exact discretization D(E) of a shapely geometry under ``model`` (DESIGN §2).
+    """Return the exact discretization D(E) of a shapely geometry under ``model`` (docs/design.md §2).
 
     Parameters
     ----------
@@ -80,7 +80,7 @@ def discretize(
     --------
     >>> from shapely.geometry import box
     >>> import mrm
-    >>> # gauss takes the centres of [0, 3) × [0, 2): the crossing test is half-open (DESIGN §2)
+    >>> # gauss takes the centres of [0, 3) × [0, 2): the crossing test is half-open (docs/design.md §2)
     >>> sorted(mrm.discretize(box(0, 0, 3, 2), "gauss"))
     [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)]
     """
@@ -88,7 +88,9 @@ def discretize(
 
 
 def reconstruct(pixels: PixelSet | npt.ArrayLike, model: Model | str = DEFAULT_MODEL) -> Any:
-    """Return the reversible continuation R(A): a polygon whose discretization is exactly A (DESIGN §3).
+    """Return the reversible continuation R(A): a polygon whose discretization is exactly A.
+
+    Reference: docs/design.md §3.
 
     Parameters
     ----------
@@ -374,7 +376,7 @@ def corefine(
 def bound(
     chain: str | Sequence[Any], model: Model | str = DEFAULT_MODEL, *, exact_identities: bool = False
 ) -> Any:
-    """Return the error bound of a chain of operations (DESIGN §8), exactly.
+    """Return the error bound of a chain of operations (docs/design.md §8), exactly.
 
     Parameters
     ----------

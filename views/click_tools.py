@@ -57,7 +57,7 @@ class FillHoleTool(_ClickPixelTool):
             if not (b[0] < px[0] < b[2] and b[1] < px[1] < b[3]):
                 continue  # outside the object's box: in no hole of it
             try:
-                doc.push(FillHole(obj.id, px))  # the model's command finds the hole (DESIGN §4)
+                doc.push(FillHole(obj.id, px))  # the model's command finds the hole (docs/design.md §4)
             except ParameterError:
                 continue  # not in a hole of this object: try the next one
             doc.set_selection([obj.id])

@@ -1,4 +1,6 @@
-"""What the operation subcommands share (``mrm scale | rotate | simplify | union | corefine``, DESIGN §9).
+"""What the operation subcommands share.
+
+Reference: ``mrm scale | rotate | simplify | union | corefine``, docs/design.md §9.
 
 Inputs are pixel files (.png .pbm .pgm .npz), vector files (.geojson .json .wkt) or projects (.mrm) with
 ``--object NAME``. An operation reads the representation it needs: DSS and dR the discrete one (D(E) of a

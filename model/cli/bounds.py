@@ -1,4 +1,7 @@
-"""``mrm bounds "DSS 5, DSS 2, DSS 0.5, DSS 0.2"``: the error bound of a chain of operations (DESIGN §8)."""
+"""``mrm bounds "DSS 5, DSS 2, DSS 0.5, DSS 0.2"``: the error bound of a chain of operations.
+
+Reference: docs/design.md §8.
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,6 @@
-"""``mrm segment --chain X,Y,CODES``: cut a Freeman chain into digital straight segments (DESIGN §5, §9).
+"""``mrm segment --chain X,Y,CODES``: cut a Freeman chain into digital straight segments.
+
+Reference: docs/design.md §5, §9.
 
 The chain's points are its start (point 0) and the point after each code (point i follows code i − 1); codes
 are 0 = E, 1 = N, 2 = W, 3 = S. Segments are listed as ``[first, last, a, b, mu, omega]``: indices into those

@@ -1,4 +1,4 @@
-"""Immutable pixel sets and label maps that keep their place on the grid (DESIGN §1).
+"""Immutable pixel sets and label maps that keep their place on the grid (docs/design.md §1).
 
 A pixel p = (x, y) ∈ Z² is centred on the Euclidean point (x, y); y points up. In memory a pixel set is an
 integer origin (x0, y0) plus a boolean ``mask[row, col]`` with x = x0 + col and y = y0 + row. Two pixel sets
@@ -485,7 +485,7 @@ class PixelSet:
 
 
 class LabelMap:
-    """An immutable integer label image with an origin (DESIGN §1); label 0 is the background.
+    """An immutable integer label image with an origin (docs/design.md §1); label 0 is the background.
 
     Parameters
     ----------

@@ -15,7 +15,8 @@ edit (a vertex drag that would make the polygon cross itself) raises :class:`Inv
 leaves the document untouched.
 
 Editing an object's Euclidean shape makes the Euclidean representation its source; painting makes the
-discrete one its source (DESIGN §7). A hand-edited object is no longer what its operation produced, so these
+discrete one its source (docs/design.md §7). A hand-edited object is no longer what its operation produced,
+so these
 edits clear its provenance (undo brings it back).
 """
 
@@ -597,7 +598,8 @@ def component_pixels(ps: PixelSet, at: tuple[int, int]) -> PixelSet:
 def hole_pixels(ps: PixelSet, at: tuple[int, int] | None = None) -> PixelSet:
     """The pixels of the hole of ``ps`` holding pixel ``at`` — or of every hole when ``at`` is None.
 
-    The holes are the bounded 8-components of the complement (DESIGN §4). Filling each component's outer
+    The holes are the bounded 8-components of the complement (docs/design.md §4). Filling each component's
+    outer
     crack chain (the region representation) gives the set with every hole filled; its difference with the set
     is the union of the holes, and since distinct holes are distinct 8-components of the complement, the
     8-component of that difference holding ``at`` is exactly the hole holding ``at``.
@@ -633,7 +635,8 @@ def hole_pixels(ps: PixelSet, at: tuple[int, int] | None = None) -> PixelSet:
 class FillHole(_PixelEdit):
     """Fill the hole containing pixel ``at`` (every hole when ``at`` is None) of an object.
 
-    Holes are the bounded 8-components of the complement (DESIGN §4); the region representation finds them.
+    Holes are the bounded 8-components of the complement (docs/design.md §4); the region representation finds
+    them.
     """
 
     def __init__(self, obj_id: int, at: tuple[int, int] | None = None) -> None:

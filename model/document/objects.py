@@ -46,7 +46,8 @@ _VALIDATED_LOCK = threading.Lock()
 def validate_geometry(geom: object) -> Geometry:
     """Return ``geom`` if it can be a Euclidean source, else raise :class:`InvalidGeometryError`.
 
-    A Euclidean source is a 2-D shapely Polygon or MultiPolygon, valid in the OGC sense (DESIGN §6), with
+    A Euclidean source is a 2-D shapely Polygon or MultiPolygon, valid in the OGC sense (docs/design.md §6),
+    with
     finite coordinates of magnitude at most :data:`COORDINATE_LIMIT`. An empty geometry of any type becomes
     the empty Polygon. Coordinates are never altered.
     """
@@ -168,7 +169,7 @@ class DocObject:
     name : str
         Shown in the object list; need not be unique.
     source : PixelSet or Polygon or MultiPolygon
-        The source representation (DESIGN §7).
+        The source representation (docs/design.md §7).
     style : Style
         How it is drawn.
     provenance : Provenance or None

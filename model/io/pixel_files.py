@@ -1,4 +1,4 @@
-"""Pixel sets and label maps in image files that keep their place on the grid (DESIGN §1, §9).
+"""Pixel sets and label maps in image files that keep their place on the grid (docs/design.md §1, §9).
 
 Formats, chosen by the file extension:
 

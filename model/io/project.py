@@ -27,7 +27,7 @@ Schema version 4::
      ]
     }
 
-* Only each object's **source** representation is stored (DESIGN §7); the others are derived on load.
+* Only each object's **source** representation is stored (docs/design.md §7); the others are derived on load.
 * A provenance pins the content its inputs had when the result was made (``input_contents``: digests of
   :func:`mrm.document.content_digest`) and their own provenance then (``input_provenance``); each pinned
   content is stored once in the top-level ``"contents": {digest: source}`` table (optional), shared by every

@@ -1,4 +1,4 @@
-"""Euclidean geometry files: GeoJSON and WKT in and out, SVG out (DESIGN §9).
+"""Euclidean geometry files: GeoJSON and WKT in and out, SVG out (docs/design.md §9).
 
 Reading goes through ``json`` and shapely (``shapely.geometry.shape``, ``shapely.from_wkt``); every
 geometry is then checked (:func:`check_geometry`): finite coordinates, a supported type, validity in the OGC

@@ -8,7 +8,7 @@ operation is looked up in the registry (:mod:`mrm.ops.registry`), its parameters
 by its
 parameters dataclass, its place in the bound rule and its similarity come from its spec.
 
-The chain (DESIGN §8)
+The chain (docs/design.md §8)
 ---------------------
 A result's chain is the run of one-object operations (DSS_α, dR_θ,C, Sp_α and the exact Euclidean scale,
 rotate, translate) that led to it, followed back through the pinned first inputs to an object that was

@@ -1,4 +1,4 @@
-"""Euclidean-discrete union and co-refinement (the paper's Definitions 17–19, DESIGN §8).
+"""Euclidean-discrete union and co-refinement (the paper's Definitions 17–19, docs/design.md §8).
 
 * ``EDu(E, E′) = R(D(E) ∪ D(E′))``;
 * ``EDco(E, E′) = { R(D(E) ∖ D(E′)), R(D(E) ∩ D(E′)), R(D(E′) ∖ D(E)) }``, given as three polygons and as

@@ -1,6 +1,6 @@
 """The measured error of an operation or a chain, and the pixels that differ from the direct result.
 
-Measured error (DESIGN §8)
+Measured error (docs/design.md §8)
 --------------------------
 The paper bounds ``H(T(A_first), A_last)``: the Hausdorff distance between the composite Euclidean transform
 of the first Euclidean object and the Euclidean object just before the last discretization. Both are exact

@@ -1,7 +1,8 @@
 """What an operation hands back besides its result, the guards every one runs first, and the D∘T∘R core.
 
 Each operation is ``D∘T∘R`` (discrete → discrete), ``T⁻¹∘R∘D∘T`` (Euclidean → Euclidean) or a Boolean
-combination of discretizations. To replay a chain and measure its error (DESIGN §8) the chain runner needs,
+combination of discretizations. To replay a chain and measure its error (docs/design.md §8) the chain runner
+needs,
 for every step, the Euclidean similarity ``T`` it applies and the Euclidean object just before its final
 discretization (or its exact Euclidean result): :class:`StepOutcome` carries them, exactly.
 """
@@ -128,7 +129,7 @@ def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | N
     Applies when ``sim`` is ``Sc_α`` with α = 1/k (k a positive integer) about a centre C, and
     ``Sc_1/α = v ↦ k·v + c`` (c = (1 − k)·C) maps pixel centres to pixel centres (gauss: c ∈ Z²) or the
     kernel of every result pixel onto a k × k block of A's voxels (covers: c − (k − 1)/2 ∈ Z²); otherwise
-    returns None. Proof, from R's contract (DESIGN §3; :mod:`mrm.geometry.reconstruct`, items 1–3):
+    returns None. Proof, from R's contract (docs/design.md §3; :mod:`mrm.geometry.reconstruct`, items 1–3):
 
     * ``gauss``: q ∈ D(Sc_α(R(A))) ⟺ z + kτ ∈ R(A) with z = k·q + c, a pixel centre. No centre lies on
       ∂R(A), so that is z ∈ R(A), and since D(R(A)) = A it is z ∈ A: the result is A sampled every k

@@ -1,4 +1,4 @@
-"""Discrete-Euclidean rotation dR_θ,C(A) = D(rot_θ,C(R(A))) (the paper's Definition 11, DESIGN §8).
+"""Discrete-Euclidean rotation dR_θ,C(A) = D(rot_θ,C(R(A))) (the paper's Definition 11, docs/design.md §8).
 
 What "rotation" means for float input
 -------------------------------------
@@ -13,7 +13,8 @@ the paper (Theorems 12 and 13) hold for the rotation actually applied, and every
 bit for bit.
 
 Multiples of 90° are exact quarter turns (t = 0): about a pixel centre C they map pixel corners to pixel
-corners, and since R keeps its boundary away from every tie (DESIGN §3.6), dR_90k,C(A) = rot_90k,C(A) exactly.
+corners, and since R keeps its boundary away from every tie (docs/design.md §3.6), dR_90k,C(A) = rot_90k,C(A)
+exactly.
 """
 
 from __future__ import annotations

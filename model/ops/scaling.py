@@ -1,4 +1,4 @@
-"""Discrete smooth scaling DSS_α(A) = D(Sc_α(R(A))) (the paper's Definition 3, DESIGN §8).
+"""Discrete smooth scaling DSS_α(A) = D(Sc_α(R(A))) (the paper's Definition 3, docs/design.md §8).
 
 The continuation R(A) has float64 (dyadic) vertices; ``Sc_α`` about the centre C (the origin by default, as
 in the paper) maps a vertex v to ``C + α·(v − C)``, computed exactly with rationals

@@ -6,7 +6,8 @@ cannot hold every image exactly, so the guarantee is the best one floats allow:
 - translations, scalings and rotations by a multiple of 90° are *correctly rounded*: every output coordinate
   is the float nearest to the exact image of the input coordinate (in particular it is exact whenever the
   exact image is a float — a rotation by 90° about a pixel centre of a polygon with dyadic coordinates is
-  exact, as DESIGN §3.6 needs). The fast path computes in floats and proves, with error-free transformations
+  exact, as docs/design.md §3.6 needs). The fast path computes in floats and proves, with error-free
+  transformations
   (TwoSum, Dekker's TwoProduct), that its only rounding is the last one; the few coordinates where it cannot
   are recomputed with :class:`fractions.Fraction`;
 - other rotations use ``cos θ`` and ``sin θ`` rounded to floats, so images are within a few ulps

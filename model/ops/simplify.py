@@ -1,4 +1,6 @@
-"""Discrete-based simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))) (the paper's Definition 14, DESIGN §8).
+"""Discrete-based simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))).
+
+Reference: the paper's Definition 14, docs/design.md §8.
 
 ``Sc_α(E)`` is computed exactly with rationals and discretized exactly
 (:mod:`mrm.geometry.discretize.rational`);
@@ -8,7 +10,7 @@ vertex v — nothing is rounded at all.
 
 Idempotence: ``Sp_α ∘ Sp_α = Sp_α`` because ``D(Sc_α(Sp_α(E))) = D(R(D(Sc_α(E)))) = D(Sc_α(E))``. When the
 final rounding is exact this holds exactly. When it is not, each vertex moves by at most half a float64
-spacing, and R keeps its boundary strictly away from every tie of the model (DESIGN §3.6), so the
+spacing, and R keeps its boundary strictly away from every tie of the model (docs/design.md §3.6), so the
 discretization at scale α — and therefore the result — does not change; the tests check it for non-dyadic
 factors.
 """

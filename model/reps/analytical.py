@@ -1,4 +1,4 @@
-"""The analytical representation: every boundary chain cut into digital straight segments (DESIGN §5).
+"""The analytical representation: every boundary chain cut into digital straight segments (docs/design.md §5).
 
 For each closed crack chain of a region (outer boundaries counter-clockwise, holes clockwise, over pointels:
 pointel (i, j) is the Euclidean point (i − ½, j − ½)), the chain's pointels are segmented into standard

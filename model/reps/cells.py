@@ -1,4 +1,4 @@
-"""Cells of a label map: 0-cells, 1-cells and the region adjacency graph (DESIGN §4).
+"""Cells of a label map: 0-cells, 1-cells and the region adjacency graph (docs/design.md §4).
 
 The plane outside the label array carries label 0 (background), and 0 counts as a label like any other.
 

@@ -1,4 +1,6 @@
-"""The region representation of a pixel set: components, holes, Euler number, crack boundaries (DESIGN §4).
+"""The region representation of a pixel set: components, holes, Euler number, crack boundaries.
+
+Reference: docs/design.md §4.
 
 Topology (4, 8): the components of a pixel set A are its 4-connected components; a hole is a bounded
 8-connected component of Z² − A, attached to the component that encloses it (the one on the other side of the

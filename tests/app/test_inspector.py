@@ -1,6 +1,6 @@
 """The error inspector: the model's account of a result, pinned to the inputs as they were.
 
-DSS_α(A) = D(Sc_α(R(A))) (DESIGN §8). The chain DSS_5 then DSS_0.2 (read as 1/5) has the paper's bound
+DSS_α(A) = D(Sc_α(R(A))) (docs/design.md §8). The chain DSS_5 then DSS_0.2 (read as 1/5) has the paper's bound
 √2/5 ≈ 0.2828 (Theorem 4); the inspector must show it, the exactly measured Hausdorff distance below it, and
 the pixels that differ from the direct result in light and dark grey — and keep showing exactly that after the
 input is edited, saying that it changed and offering to re-run on the current input.

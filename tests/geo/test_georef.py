@@ -68,7 +68,8 @@ def test_reconstruct_lands_on_the_raster_and_rasterizes_back_exactly(tmp_path, s
     doc, geoms = features(tmp_path / "out.geojson")
     assert doc["crs"]["properties"]["name"] == "urn:ogc:def:crs:EPSG::32633"
     xmin, ymin, xmax, ymax = doc["bbox"]
-    # The gauss boundary stays within the voxels of the border pixels on either side (DESIGN §3.2): at most
+    # The gauss boundary stays within the voxels of the border pixels on either side (docs/design.md §3.2):
+    # at most
     # one 30 m pixel beyond the raster's edge, where a blob touches it.
     px = 30
     assert xmin >= 500_000 - px and xmax <= 500_000 + 64 * 30 + px
@@ -213,7 +214,7 @@ def test_which_model_round_trips_through_gdal_rasterize(model, all_touched):
 
 
 def test_gauss_does_not_round_trip_with_all_touched():
-    """The compact gauss R leaves the mask's voxels (DESIGN §3.2), so GDAL's -at burns pixels around it."""
+    """The compact gauss R leaves the mask's voxels (docs/design.md §3.2): GDAL's -at burns around it."""
     g = GeoRef(tuple(T)[:6], 64, 48)
     mask = blobs(48, 64, 3)
     poly = g.to_world(mrm.reconstruct(mrm.PixelSet.from_image(mask), "gauss"))

@@ -92,7 +92,7 @@ def test_lines_and_preimages():
 
 
 def test_dgtal_counts_through_the_region():
-    # ALGORITHMS.md §5.1: off-centre disk r = 100, pointel contour: maximal 108 (whatever the start),
+    # docs/algorithms.md §5.1: off-centre disk r = 100, pointel contour: maximal 108 (whatever the start),
     # greedy 44 from DGtal's start; from the region's canonical start the greedy count may differ by one.
     cx, cy, r = Fraction(1, 7), Fraction(2, 9), 100
     ps = PixelSet.from_points(

@@ -1,4 +1,4 @@
-"""The error-bound rule of DESIGN §8 against the paper's printed values and its theorems in general form."""
+"""The error-bound rule of docs/design.md §8 against the paper's printed values and its general theorems."""
 
 from __future__ import annotations
 
@@ -229,7 +229,7 @@ def test_theorem_16(a: list[Fraction]) -> None:
 def test_design_formula_for_any_chain_of_discrete_operations(
     ops: list[tuple[str, Fraction]], model: str
 ) -> None:
-    # DESIGN §8: for k discrete operations D∘T_i∘R with ratios s_i, H ≤ √n·Σ_{i=2..k} Π_{j=i..k} s_j.
+    # docs/design.md §8: for k discrete operations D∘T_i∘R with ratios s_i, H ≤ √n·Σ_{i=2..k} Π_{j=i..k} s_j.
     steps = [dss(v) if kind == "DSS" else rot(v) for kind, v in ops]
     s = [v if kind == "DSS" else Fraction(1) for kind, v in ops]
     k = len(s)

@@ -20,7 +20,7 @@ EXAMPLES = sorted((Path(__file__).parents[2] / "resources" / "examples").glob("*
 INFO_KEYS = {"model", "pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices"}
 SVG = "{http://www.w3.org/2000/svg}"
 
-# The box [0, 2] × [0, 1] has its vertices on pixel centres. By the definitions of DESIGN §2:
+# The box [0, 2] × [0, 1] has its vertices on pixel centres. By the definitions of docs/design.md §2:
 # standard: the open squares shifted by τ that meet it are those of x = 0, 1, 2 and y = 0, 1 (6 pixels);
 # gauss: the shifted centres p + τ inside it are (0, 0) and (1, 0) (p + τ leaves it at x = 2 and y = 1).
 BOX = box(0, 0, 2, 1)

@@ -30,7 +30,7 @@ def boundary_linels(a: set[tuple[int, int]]) -> set[tuple[tuple[int, int], int]]
 
 
 def reference_rings(mask: np.ndarray) -> set[tuple[tuple[int, int], str]]:
-    """The (4, 8) rings of a mask traced literally after ALGORITHMS §2.5, each from its smallest (y, x)."""
+    """The (4, 8) rings of a mask traced after docs/algorithms.md §2.5, each from its smallest (y, x)."""
     a = {(int(c), int(r)) for r, c in zip(*np.nonzero(mask), strict=True)}
     todo = boundary_linels(a)
     rings = set()

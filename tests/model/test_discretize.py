@@ -1,4 +1,5 @@
-"""The exact discretization against the Fraction reference (DESIGN §2), on random and adversarial input.
+"""The exact discretization against the Fraction reference (docs/design.md §2), on random and adversarial
+input.
 
 Each geometry is checked in the three models and along both arithmetic paths of the kernels: the automatic
 choice (plain float arithmetic when it is provably exact, e.g. for snapped input) and the forced

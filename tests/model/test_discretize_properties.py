@@ -1,4 +1,5 @@
-"""Properties of the three discretization models (DESIGN §2, ALGORITHMS §1.4): sandwich, union stability,
+"""Properties of the three discretization models (docs/design.md §2, docs/algorithms.md §1.4): sandwich,
+union stability,
 translation covariance, partition of tilings (gauss), no-bubble standard lines, 4-connectivity."""
 
 from __future__ import annotations

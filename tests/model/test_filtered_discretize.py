@@ -2,7 +2,7 @@
 
 ``mrm.geometry.discretize.rational.filtered_image`` decides D(T(E)) from float64 images of the vertices with a
 proven error bound and hands the edges with a near-tie to the integer definitions. Every test compares it
-with the slow Fraction reference of tests/oracles (the definitions of DESIGN §2 on the exact rational
+with the slow Fraction reference of tests/oracles (the definitions of docs/design.md §2 on the exact rational
 image) and with the Python-integer path, on random and adversarial input: vertices on pixel centres, sides
 and corners, near-ties, exact ties made by a Pythagorean rotation, objects far from the origin.
 """

@@ -1,4 +1,4 @@
-"""``mrm scale | rotate | simplify | union | corefine`` run as a user would (DESIGN §9)."""
+"""``mrm scale | rotate | simplify | union | corefine`` run as a user would (docs/design.md §9)."""
 
 from __future__ import annotations
 

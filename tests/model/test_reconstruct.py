@@ -153,7 +153,8 @@ def test_translation_is_exact_and_output_deterministic() -> None:
 
 
 def test_far_from_the_origin_coordinates_stay_exact() -> None:
-    # DESIGN §3 item 8: translation covariance and exactness up to the accepted limit ±2⁴⁰, refused beyond.
+    # docs/design.md §3 item 8: translation covariance and exactness up to the accepted limit ±2⁴⁰, refused
+    # beyond.
     ps = disk(9.3)
     for model in MODELS:
         g = reconstruct(ps, model)
@@ -211,7 +212,8 @@ def test_coordinates_are_coarse_dyadic_rationals() -> None:
     ("r", "limit"), [(5, 1.0), (10, 1.15), (20, 1.1), (50, 1.15), (100, 1.1), (200, 1.1), (500, 1.05)]
 )
 def test_disks_need_about_one_vertex_per_greedy_segment(r: float, limit: float) -> None:
-    # ALGORITHMS §5.2: V4 stays within a few percent of the greedy DSS count, far below MLP (~3.46 r^2/3).
+    # docs/algorithms.md §5.2: V4 stays within a few percent of the greedy DSS count, far below MLP (~3.46
+    # r^2/3).
     ps = disk(r)
     for model in ("standard", "supercover"):
         g = reconstruct(ps, model)

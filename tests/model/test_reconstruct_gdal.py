@@ -1,4 +1,4 @@
-"""GDAL burns R back: ``rasterio.features.rasterize`` of R(A) gives A (DESIGN §3, item 2).
+"""GDAL burns R back: ``rasterio.features.rasterize`` of R(A) gives A (docs/design.md §3, item 2).
 
 Under ``gauss`` no pixel centre lies on ∂R(A) and the centres of A are strictly inside, so GDAL's default
 centre rule burns exactly A. Under the cover models R(A) ⊂ V(A) crosses every pixel of A through its open

@@ -3,7 +3,7 @@
 Each image is reconstructed under the three models and checked exactly: valid geometry, D(R(A)) = A,
 R(A) ⊂ V(A) for the cover models (through the supercover) and, under ``gauss``, no centre on ∂R(A) and
 ∂R(A) within the border pixels' voxels; the (4, 8) topology, the exact corridor verifier, translation
-covariance, and the vertex counts that make R worth having (DESIGN §3, item 7).
+covariance, and the vertex counts that make R worth having (docs/design.md §3, item 7).
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ def _otsu(img: np.ndarray) -> np.ndarray:
 
 @functools.cache
 def image(name: str) -> PixelSet:
-    # Image row 0 is the top: flip so that y points up (DESIGN §1).
+    # Image row 0 is the top: flip so that y points up (docs/design.md §1).
     # (the horse is False in its array)
     m = ~skimage.data.horse() if name == "horse" else _otsu(getattr(skimage.data, name)())
     return PixelSet(m[::-1])
@@ -98,7 +98,8 @@ def test_noisy_images_stay_far_below_the_safety_net(name: str) -> None:
 
 
 def test_gauss_is_far_below_the_staircase() -> None:
-    # DESIGN §3 item 2 (revised): the gauss boundary may leave V(A) between the border centres, so it no
+    # docs/design.md §3 item 2 (revised): the gauss boundary may leave V(A) between the border centres, so it
+    # no
     # longer needs a vertex near every corner of the crack boundary (it had 1,174 of the 1,180 before).
     for name in IMAGES:
         ps = image(name)

@@ -1,4 +1,5 @@
-"""The whole contract of R (DESIGN §3) on random and structured pixel sets, with the exact D as oracle.
+"""The whole contract of R (docs/design.md §3) on random and structured pixel sets, with the exact D as
+oracle.
 
 For every generated A and each model: R(A) is a valid Polygon/MultiPolygon with float64 coordinates;
 D(R(A)) = A exactly; D_supercover(R(A)) = A too, which proves R(A) ⊂ V(A) (a point outside V(A) would put
@@ -278,7 +279,8 @@ def test_polygons_are_the_components_in_canonical_order(model: str, ps: PixelSet
 def test_far_from_the_origin_r_is_translation_covariant(
     model: str, ps: PixelSet, e: int, sx: int, sy: int
 ) -> None:
-    # DESIGN §3 item 8: offsets 2^30 … 2^40 (the accepted limit): the same polygons, translated exactly.
+    # docs/design.md §3 item 8: offsets 2^30 … 2^40 (the accepted limit): the same polygons, translated
+    # exactly.
     if ps.is_empty():
         return
     x0, y0, x1, y1 = ps.bbox  # type: ignore[misc]

@@ -1,4 +1,7 @@
-"""Region representation of pixel sets: components, holes, Euler number, crack chains, fill (DESIGN §4)."""
+"""Region representation of pixel sets: components, holes, Euler number, crack chains, fill.
+
+Reference: docs/design.md §4.
+"""
 
 from __future__ import annotations
 

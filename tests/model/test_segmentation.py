@@ -374,7 +374,7 @@ def _disk_chain(r, cx, cy):
     ],
 )
 def test_dgtal_disk_counts(r, centre, n_linels, dgtal_greedy, dgtal_maximal):
-    """ALGORITHMS.md §5.1: DGtal's counts on the pointel contour of Gauss-digitized disks.
+    """docs/algorithms.md §5.1: DGtal's counts on the pointel contour of Gauss-digitized disks.
 
     The maximal-segment count does not depend on where the contour starts or which way it runs: it must equal
     DGtal's exactly. The greedy count does; DGtal starts at the first boundary element its search finds, which

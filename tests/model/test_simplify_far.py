@@ -1,4 +1,4 @@
-"""Sp_α far from the origin (DESIGN §3 item 8): idempotent and exact, or refused with a message.
+"""Sp_α far from the origin (docs/design.md §3 item 8): idempotent and exact, or refused with a message.
 
 Near the origin the final float64 rounding of Sc_1/α is provably below R's margin; from about |α·x| = 2²⁰
 on it is not, so :func:`simplification` checks the fixed point exactly there and refuses when rounding would

@@ -1,4 +1,4 @@
-"""Reference discretization: the definitions of DESIGN §2, evaluated with fractions.Fraction.
+"""Reference discretization: the definitions of docs/design.md §2, evaluated with fractions.Fraction.
 
 D(E) = { p ∈ Z² : E ∩ K(p) ≠ ∅ } with τ = (ε, ε²), ε → 0⁺, and
 
@@ -168,7 +168,7 @@ def reference_discretize(geom: Any, model: str) -> set[tuple[int, int]]:
         half_w = (abs(dx) + abs(dy)) / 2
         for p in meets_candidates([a[0], b[0]], [a[1], b[1]]):
             # Pruning only: every kernel lies in the closed square, which the line a-b misses when
-            # |f(p)| > ω/2 (ALGORITHMS §1.1); the decision itself is segment_meets.
+            # |f(p)| > ω/2 (docs/algorithms.md §1.1); the decision itself is segment_meets.
             if abs(dy * (p[0] - a[0]) - dx * (p[1] - a[1])) > half_w:
                 continue
             if p not in out and segment_meets(a, b, kernel_box(p, model)):

@@ -1,4 +1,5 @@
-"""The containment item of DESIGN §3 for ``gauss`` (item 2), checked exactly with the project's exact D.
+"""The containment item of docs/design.md §3 for ``gauss`` (item 2), checked exactly with the project's exact
+D.
 
 R_gauss(A) need not lie inside V(A). Its boundary must
 
@@ -47,7 +48,7 @@ def half_turn(geom: Polygon | MultiPolygon, c: tuple[int, int]) -> Polygon | Mul
 
 
 def check_gauss_containment(geom: Polygon | MultiPolygon, ps: PixelSet) -> None:
-    """Assert DESIGN §3 item 2 for ``gauss`` (and D_gauss(R) = A, which it relies on)."""
+    """Assert docs/design.md §3 item 2 for ``gauss`` (and D_gauss(R) = A, which it relies on)."""
     assert discretize(geom, "gauss") == ps
     c = (ps.origin[0], ps.origin[1])
     assert discretize(half_turn(geom, c), "gauss") == ps.rotate90(2, c)

@@ -61,7 +61,7 @@ def _closed_range(lo: Fraction, hi: Fraction) -> range:
 
 
 def reference_discretize_rings(polys: list[Rings], model: str) -> PixelSet:
-    """D(∪ polys) by the definitions of DESIGN §2 (valid polygons with Fraction vertices)."""
+    """D(∪ polys) by the definitions of docs/design.md §2 (valid polygons with Fraction vertices)."""
     out: set[tuple[int, int]] = set()
     if not polys:
         return PixelSet.empty()

@@ -1,4 +1,4 @@
-"""The exact discretization D of Euclidean geometry into pixels, in three models (DESIGN §2).
+"""The exact discretization D of Euclidean geometry into pixels, in three models (docs/design.md §2).
 
 Every model is a narrow offset discretization: a kernel K(p) ⊂ V(p) is fixed for each pixel p and
 
@@ -12,7 +12,7 @@ model          K(p)                                              reads
 ``gauss``      the single point p + τ                            pixel-centre sampling with a tie rule
 ============== ================================================= ============================================
 
-How each is computed (ALGORITHMS §1.7). For a polygonal set P (rings of polygons, holes included):
+How each is computed (docs/algorithms.md §1.7). For a polygonal set P (rings of polygons, holes included):
 
 * gauss: { p : p + τ ∈ P }, an exact scanline. On row y = j an edge a→b counts when a_y ≤ j < b_y (or
   b_y ≤ j < a_y) and p_x < X strictly, X being where it crosses the row; p is inside when the count is odd.
@@ -115,7 +115,7 @@ def discretize(
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     check_validity: bool = True,
 ) -> PixelSet:
-    """Return the exact discretization D(geom) in one of the three models (DESIGN §2).
+    """Return the exact discretization D(geom) in one of the three models (docs/design.md §2).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Exact helpers for float64 geometry on the pixel grid (DESIGN §2, ALGORITHMS §1.6).
+"""Exact helpers for float64 geometry on the pixel grid (docs/design.md §2, docs/algorithms.md §1.6).
 
 Every float64 is a dyadic rational, so every decision here is made exactly: either with float comparisons
 that cannot round (comparing a float with a half-integer that is itself a float), or with an argument that

@@ -1,4 +1,6 @@
-"""Exact Euclidean geometry for the operations: rational numbers, polygons and similarities (DESIGN §8).
+"""Exact Euclidean geometry for the operations: rational numbers, polygons and similarities.
+
+Reference: docs/design.md §8.
 
 The paper's operations apply a Euclidean similarity (a scaling ``Sc_α`` about a centre, a rotation
 ``rot_θ,C``) between a continuation and a discretization. Applied to float64 vertices in floating point, a

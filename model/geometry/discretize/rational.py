@@ -1,9 +1,11 @@
-"""Exact discretization D of polygons with rational vertices (the image of a similarity, DESIGN §2 and §8).
+"""Exact discretization D of polygons with rational vertices.
+
+Reference: the image of a similarity, docs/design.md §2 and §8.
 
 :func:`mrm.geometry.discretize.discretize` is exact for float64 input. The image of a polygon under an
 exact similarity (``Sc_1/5``, a rational rotation) has rational vertices that are not float64 values; rounding
 them first could move a vertex across a pixel side. Three exact paths, all giving the pixels of the
-definitions (ALGORITHMS §1.7):
+definitions (docs/algorithms.md §1.7):
 
 * every coordinate a float64: ``discretize`` itself;
 * the integer definitions of :mod:`mrm.geometry.discretize.rational_kernels` — coordinates scaled by ``2L``
@@ -62,7 +64,7 @@ def discretize_exact(
         Valid polygons (holes allowed; the pieces of a multipolygon with disjoint interiors), e.g. the exact
         image of a valid polygon under a similarity.
     model : {"standard", "supercover", "gauss"}
-        The discretization model (DESIGN §2).
+        The discretization model (docs/design.md §2).
     limit : int or None
         Largest bounding box (in pixels) allowed for the result; checked before anything is allocated.
     progress : object with ``update(fraction, message)``, optional
@@ -170,7 +172,8 @@ def discretize_image(
     (:func:`filtered_image`). Returns None where neither applies (non-finite input, magnitudes beyond
     2⁴⁰): the caller then takes :func:`discretize_exact`, which gives the same pixels.
 
-    ``valid=True`` says E is known valid (R's output, DESIGN §3 item 1): where T(E) is computed exactly in
+    ``valid=True`` says E is known valid (R's output, docs/design.md §3 item 1): where T(E) is computed
+    exactly in
     float64, it is then valid too (a similarity maps a simple ring to a simple ring and keeps holes inside
     their shell), and D skips its own validity check (a third of its time on a 1024² object).
     """

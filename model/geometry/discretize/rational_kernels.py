@@ -1,4 +1,4 @@
-"""Exact discretization of polygons with integer vertices on a grid of spacing G (DESIGN §2, §8).
+"""Exact discretization of polygons with integer vertices on a grid of spacing G (docs/design.md §2, §8).
 
 The image of a float64 polygon under an exact rational similarity (``Sc_1/5``, ``Sc_5/4`` about a centre,
 a rotation) has rational vertices. Written over one common denominator ``D``, every vertex is ``X/D`` with

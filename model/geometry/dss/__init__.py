@@ -1,4 +1,6 @@
-"""Digital straight segments: the incremental arithmetic recognizer (DESIGN §5, ALGORITHMS.md §2.1-2.2).
+"""Digital straight segments: the incremental arithmetic recognizer.
+
+Reference: docs/design.md §5, docs/algorithms.md §2.1-2.2.
 
 Conventions are DGtal's ``ArithmeticalDSL`` / ``ArithmeticalDSS``, so results can be compared with it:
 
@@ -384,6 +386,6 @@ class Segment:
         """The median line a·x − b·y = c with c = (lo + hi) / 2 = μ + (ω − 1) / 2, as (a, b, c).
 
         Every point of the segment has |r − c| ≤ (ω − 1) / 2 < ω / 2, so for a standard segment the line
-        meets the open square of every point (ALGORITHMS.md §2.4).
+        meets the open square of every point (docs/algorithms.md §2.4).
         """
         return self.a, self.b, Fraction(2 * self.mu + self.omega - 1, 2)

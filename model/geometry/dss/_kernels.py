@@ -3,7 +3,7 @@
 These are the hot paths behind :mod:`mrm.geometry.dss.segmentation`; :mod:`mrm.geometry.dss` holds the
 readable pure-Python recognizer they mirror step for step (and that the tests compare them with). The
 algorithm is Debled-Rennesson & Reveillès' incremental recognition with Lachaud, de Vieilleville &
-Feschet's O(1) retraction, in the DGtal ``ArithmeticalDSS`` convention (ALGORITHMS.md §2.1-2.2):
+Feschet's O(1) retraction, in the DGtal ``ArithmeticalDSS`` convention (docs/algorithms.md §2.1-2.2):
 remainder r = a·x − b·y, direction (b, a), lo = μ ≤ r ≤ hi = μ + ω − 1.
 
 A DSS state is one int64 array of ``STATE_SIZE`` entries (layout below), so that kernels can pass it

@@ -1,4 +1,6 @@
-"""The preimage of a standard digital straight segment: the lines compatible with it (ALGORITHMS.md §2.4).
+"""The preimage of a standard digital straight segment: the lines compatible with it.
+
+Reference: docs/algorithms.md §2.4.
 
 Parameter space
 ---------------
@@ -19,7 +21,8 @@ with 0 ≤ u ≤ 1 — a convex polygon, kept exactly (Fractions) and updated by
 
 :class:`Preimage` stores the **closed** polygon (lines meeting every closed pixel square). The *open* preimage
 (lines crossing the open square of every pixel, :meth:`Preimage.contains_open`) is its interior plus the
-non-constraint parts of the chart sides u = 0, u = 1. The lines whose standard discretization (DESIGN §2,
+non-constraint parts of the chart sides u = 0, u = 1. The lines whose standard discretization (docs/design.md
+§2,
 the τ tie rule) contains every pixel lie between the two, and :func:`standard_contains` decides that exactly
 for any line. A 4-connected path whose steps all point into the frame's quadrant is a standard DSS iff its
 open preimage is non-empty, i.e. iff the polygon has an interior.
@@ -262,7 +265,7 @@ def standard_contains(
 ) -> bool:
     """Return whether the standard discretization of the line A·x + B·y = C contains every pixel.
 
-    DESIGN §2: with the normal oriented A > 0, or A = 0 and B > 0, pixel p is in the standard
+    docs/design.md §2: with the normal oriented A > 0, or A = 0 and B > 0, pixel p is in the standard
     discretization iff −ω/2 ≤ A·pₓ + B·p_y − C < ω/2, ω = |A| + |B|. Exact for rational A, B, C.
     """
     A, B, C = Fraction(A), Fraction(B), Fraction(C)

@@ -1,4 +1,6 @@
-"""Segmentations of chains of points into digital straight segments (DESIGN §5, ALGORITHMS.md §2.3).
+"""Segmentations of chains of points into digital straight segments.
+
+Reference: docs/design.md §5, docs/algorithms.md §2.3.
 
 A *chain* is a sequence of integer points in which consecutive points are 4-adjacent (``adjacency=4``,
 standard segments) or 8-adjacent (``adjacency=8``, naive segments). It is read as open unless

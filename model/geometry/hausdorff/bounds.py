@@ -1,4 +1,4 @@
-"""Error bounds of chains of the paper's operations: one rule for all of them (DESIGN §8).
+"""Error bounds of chains of the paper's operations: one rule for all of them (docs/design.md §8).
 
 The rule
 --------
@@ -42,7 +42,8 @@ inequality and scale with the ratio), so the module tracks both:
 - ``source within`` — every point of ``T(A_first)`` lies within the bound of ``A_last``.
 
 For ``standard`` and ``supercover`` (covers) a round trip keeps both, so :attr:`BoundResult.bound` is a
-Hausdorff bound. For ``gauss`` (a partition: thin parts may vanish) only ``result within`` holds (DESIGN §2):
+Hausdorff bound. For ``gauss`` (a partition: thin parts may vanish) only ``result within`` holds
+(docs/design.md §2):
 ``bound`` is ``None`` and :attr:`BoundResult.one_sided` carries the value with ``direction="result_within"``.
 A union keeps both directions (``h(X ∪ Y, I ∪ Y) ≤ h(X, I)``). A co-refinement part is not Lipschitz in its
 inputs: with exact inputs the common part ``R(D(E) ∩ D(E′))`` has every point of ``E ∩ E′`` within the bound

@@ -1,4 +1,4 @@
-"""The reversible continuation R: pixel set → polygons with D(R(A)) = A exactly (DESIGN §3).
+"""The reversible continuation R: pixel set → polygons with D(R(A)) = A exactly (docs/design.md §3).
 
 For every finite pixel set A, :func:`reconstruct` returns a valid shapely Polygon or MultiPolygon (an
 empty Polygon for ∅) with dyadic float64 coordinates such that
@@ -6,7 +6,7 @@ empty Polygon for ∅) with dyadic float64 coordinates such that
 1. its polygons are the 4-connected components of A and its holes the bounded 8-connected components of
    the complement; under ``standard`` and ``supercover`` R(A) ⊂ V(A); under ``gauss`` ∂R(A) separates the
    centres of A from the other centres strictly and stays within the voxels of the border pixels on either
-   side (DESIGN §3 item 2, revised);
+   side (docs/design.md §3 item 2, revised);
 2. D(R(A)) = A exactly for the chosen model; under ``standard`` and ``supercover`` the same polygons serve
    both (∂R(A) crosses between pixels only through open sides shared by two pixels of A, crosses every
    border pixel through its open square and keeps every outside centre out); under ``gauss`` every centre
@@ -17,7 +17,8 @@ empty Polygon for ∅) with dyadic float64 coordinates such that
    gives the same output;
 5. few vertices: about one per greedy digital straight segment of the boundary, in every model.
 
-How (ALGORITHMS §3.5, "V4"): each crack ring gives a corridor of pieces and gates (:mod:`.border`); the
+How (docs/algorithms.md §3.5, "V4"): each crack ring gives a corridor of pieces and gates (:mod:`.border`);
+the
 reach of one straight line from every piece is computed exactly (arithmetic standard-DSS recognition on
 full pieces, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet
 inside a piece of their overlap, or a two-vertex patch joins them; every vertex is snapped to the coarsest

@@ -1,4 +1,6 @@
-"""Numba kernels of the ``gauss`` corridor: the dual squares of the crack pointels (DESIGN §3, item 2).
+"""Numba kernels of the ``gauss`` corridor: the dual squares of the crack pointels.
+
+Reference: docs/design.md §3, item 2.
 
 Under ``gauss`` a polygon P gives back A when every centre of A is strictly inside P and every other centre
 strictly outside. The *dual square* of a pointel is the open unit square whose corners are the four pixel

@@ -261,7 +261,7 @@ def v4_greedy(
     periodic: bool,
     start: int = -1,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]:  # pragma: no cover
-    """Choose lines and vertices around the ring (ALGORITHMS §3.5, V4).
+    """Choose lines and vertices around the ring (docs/algorithms.md §3.5, V4).
 
     From the longest window, take as next line the farthest one that meets the current line inside a piece
     of their overlap (after the previous vertex); if none does, a patch (two vertices in the last piece of

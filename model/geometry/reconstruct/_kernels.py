@@ -7,7 +7,7 @@ quarter of a pixel: the centre of pixel (c, r) is (4c, 4r) and pointel (i, j), t
 The pipeline for one crack ring (object on the left):
 
 1. *elements* — the 4-connected border path: one element per maximal run of linels with the same inner
-   pixel, plus an *elbow* element at every right turn (ALGORITHMS §2.5);
+   pixel, plus an *elbow* element at every right turn (docs/algorithms.md §2.5);
 2. *pieces* — open axis-parallel rectangles the ring may pass through, in path order, and the *gates* (open
    segments) between consecutive pieces. Cover models: a pixel visited once is one full-square piece; a
    pixel visited several times (one-pixel-wide parts) gets one part per visit, the part on the outer side

@@ -1,4 +1,6 @@
-"""Border paths and corridors of crack chains: where a reversible polygon may run (ALGORITHMS §2.5, §3.4).
+"""Border paths and corridors of crack chains: where a reversible polygon may run.
+
+Reference: docs/algorithms.md §2.5, §3.4.
 
 A crack chain (object on the left) is walked linel by linel. Its **border path** is the cyclic 4-connected
 sequence of the pixels on its left, one *element* per maximal run of linels with the same inner pixel, plus

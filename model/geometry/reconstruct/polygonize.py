@@ -1,7 +1,7 @@
 """Polygonize a label map: one polygon per region, shared boundaries shared exactly (watertight).
 
 A *region* is a 4-connected component of the pixels of one non-zero label (label 0 is the background,
-DESIGN §1). :func:`polygonize` returns one :class:`Region` per region, built from the joint ``gauss``
+docs/design.md §1). :func:`polygonize` returns one :class:`Region` per region, built from the joint ``gauss``
 reconstruction of the label map (:mod:`mrm.geometry.reconstruct.subdivision`, ADR 0004):
 
 * D_gauss(region polygon) = the region's pixels exactly, so any centre-rule rasterizer (GDAL's
@@ -62,7 +62,7 @@ def polygonize(
     Parameters
     ----------
     labels : LabelMap or array_like of int, shape (rows, cols)
-        The label map; an array is read with row 0 as the lowest y (DESIGN §1), placed at ``origin``.
+        The label map; an array is read with row 0 as the lowest y (docs/design.md §1), placed at ``origin``.
     origin : (int, int)
         The plane coordinates of the array's element [0, 0] (ignored for a LabelMap, which has its own).
     model : str

@@ -1,4 +1,6 @@
-"""The trivial reversible continuations, exact (DESIGN §3, item 7; ALGORITHMS §3.5 "Fallback R0").
+"""The trivial reversible continuations, exact.
+
+Reference: docs/design.md §3, item 7; docs/algorithms.md §3.5 "Fallback R0".
 
 * :func:`eroded_net` — R0(A) = V(A) ⊖ [−¼, ¼]²: every crack ring offset inward by a quarter pixel. Each pixel
   keeps its core, the boundary stays a quarter pixel inside V(A) and away from every outside pixel, and

@@ -1,6 +1,9 @@
-"""Exact verification that a polygonal geometry is a reversible continuation of a pixel set (DESIGN §3).
+"""Exact verification that a polygonal geometry is a reversible continuation of a pixel set.
 
-The check is the corridor condition of ALGORITHMS §3.4, made exact with integers: every float64 coordinate
+Reference: docs/design.md §3.
+
+The check is the corridor condition of docs/algorithms.md §3.4, made exact with integers: every float64
+coordinate
 is a dyadic rational, so the coordinates of a ring are scaled by a power of two to integers and every test
 is a sign of a sum of products that fits in 64 bits. For a geometry P and a pixel set A, with the corridors
 of :mod:`mrm.geometry.reconstruct.border`:

@@ -1,4 +1,6 @@
-"""Crack (inter-pixel) boundary tracing into Freeman chains, and the fill back (DESIGN §4, ALGORITHMS §2.5).
+"""Crack (inter-pixel) boundary tracing into Freeman chains, and the fill back.
+
+Reference: docs/design.md §4, docs/algorithms.md §2.5.
 
 Coordinates here are *array* coordinates: pixel (c, r) is ``mask[r, c]`` and pointel (c, r) is its lower-left
 corner (row 0 is the lowest y). :mod:`mrm.reps.region` adds the origin.

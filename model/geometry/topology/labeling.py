@@ -1,4 +1,6 @@
-"""Connected-component labelling of a binary mask by runs, with the (4, 8) digital topology (DESIGN §4).
+"""Connected-component labelling of a binary mask by runs, with the (4, 8) digital topology.
+
+Reference: docs/design.md §4.
 
 The object (True pixels) is labelled with 4-connectivity and the complement with 8-connectivity — or the
 other way round — in one raster pass over *runs* (maximal horizontal segments of equal pixels) with a
