@@ -29,11 +29,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from mrm.cli import os_error_text
 from mrm.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
 from mrm.core.errors import FileFormatError, MRMError, ParameterError
 from mrm.core.grids import PixelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.geometry.discretize import discretize
+from mrm.io.georef import image_frame as frame_of
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
+from mrm.io.project import read_project
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, read_geometry
 
 PROJECT_EXTENSION = PROJECT_EXTENSIONS[0]
@@ -315,7 +319,6 @@ def _call(
 ) -> tuple[dict[str, Any] | None, str | None]:
     """Run one batch job in a worker; an input's error comes back as one line, never as a traceback."""
     func, job_args = job
-    from mrm.cli import os_error_text
 
     try:
         return func(*job_args), None
@@ -490,8 +493,6 @@ def extension_of(path: str | os.PathLike[str], allowed: tuple[str, ...], what: s
 
 def project_objects(path: str | os.PathLike[str]) -> tuple[list[Any], str]:
     """Every object of a project file (``mrm.document.DocObject``, in document order) and its model."""
-    from mrm.io.project import read_project
-
     proj = read_project(path)
     return list(proj.objects), str(proj.settings.model)
 
@@ -536,8 +537,6 @@ def read_image(
 
 def image_frame(path: str | os.PathLike[str]) -> tuple[int, int, int, int]:
     """The box of every pixel of an image file (:func:`mrm.io.georef.image_frame`, kept here for callers)."""
-    from mrm.io.georef import image_frame as frame_of
-
     return frame_of(path)
 
 
@@ -570,8 +569,6 @@ def read_input(
 
 def discretize_geometry(geom: Any, model: str, limit: int) -> PixelSet:
     """D(geom) under ``model`` with :func:`mrm.geometry.discretize.discretize`."""
-    from mrm.geometry.discretize import discretize
-
     return discretize(geom, model, limit=limit)
 
 

@@ -20,6 +20,9 @@ from typing import Any, Literal
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
+from mrm.io.pixel_files import read_pixels
+from mrm.io.project import read_project
+from mrm.io.vector_files import read_geometry
 
 Kind = Literal["discrete", "euclidean"]
 
@@ -66,8 +69,6 @@ def project_object(path: Path, object_name: str | None, model: str | None) -> tu
     The object is a :class:`mrm.document.DocObject`, so a caller also gets its id, provenance and
     georeference; the model is ``model`` if given, else the project's.
     """
-    from mrm.io.project import read_project
-
     proj = read_project(path)
     return _pick(proj.objects, object_name, path.name), model or proj.settings.model
 
@@ -129,12 +130,8 @@ def load_input(
             raise ParameterError(f"{p.name}: --object applies to project (.mrm) files only")
         model = model or "standard"
         if ext in PIXEL_EXTENSIONS:
-            from mrm.io.pixel_files import read_pixels
-
             kind, value = "discrete", read_pixels(p, threshold=threshold)
         elif ext in VECTOR_EXTENSIONS:
-            from mrm.io.vector_files import read_geometry
-
             kind, value = "euclidean", read_geometry(p)
         else:
             shown = f"'{ext}'" if ext else "no extension"

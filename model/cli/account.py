@@ -12,6 +12,8 @@ from typing import Any
 
 from mrm.cli._common import print_table
 from mrm.core.errors import ParameterError
+from mrm.io.project import read_project
+from mrm.ops.account import account_of
 
 NAME = "account"
 HELP = "the error account of an object of a project: chain, bound, exact measured error, differing pixels"
@@ -28,9 +30,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Print the account (or, with --json, return it)."""
-    from mrm.io.project import read_project
-    from mrm.ops.account import account_of
-
     objs = [o for o in read_project(args.project).objects if o.name == args.object]
     if not objs:
         raise ParameterError(f"{args.project}: no object named {args.object!r}")

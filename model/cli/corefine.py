@@ -29,9 +29,11 @@ from shapely.geometry import Polygon
 
 from mrm.cli._common import print_table
 from mrm.cli._operation import TwoInputRun, result_summary, two_input_command
-from mrm.io.georef import georef_summary
+from mrm.geometry.discretize import discretize
+from mrm.io.georef import geojson_members, georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
+from mrm.ops.boolean import PARTS, euclidean_discrete_corefinement
 from mrm.reps.summary import count_vertices, summarize
 
 NAME = "corefine"
@@ -40,8 +42,6 @@ HELP = "Euclidean-discrete co-refinement EDco(_α) of two objects: the parts A�
 
 def _targets(output: str) -> tuple[str, dict[str, str]]:
     """('collection' | 'labels' | 'files', part → path)."""
-    from mrm.ops.boolean import PARTS
-
     p = Path(output)
     if output.endswith(("/", os.sep)) or p.is_dir():  # a folder: one file per part, named after the part
         return "files", {part: str(p / f"{part}.geojson") for part in PARTS}
@@ -69,9 +69,6 @@ def _write(
 
     An SVG stays a picture and a label map stays on the pixel grid.
     """
-    from mrm.io.georef import geojson_members
-    from mrm.ops.boolean import PARTS
-
     world = {part: result[part] if georef is None else georef.to_world(result[part]) for part in PARTS}
     if kind == "collection":
         members = geojson_members(georef, shapely.GeometryCollection([world[p] for p in PARTS]))
@@ -97,15 +94,11 @@ def _write(
 
 def _direct(a: Any, b: Any, model: str, params: dict[str, Any], limit: int) -> Any:
     """EDco(_α) without its account (``--no-measure``): the whole outcome, label map included."""
-    from mrm.ops.boolean import euclidean_discrete_corefinement
-
     return euclidean_discrete_corefinement(a.value, b.value, model, params["alpha"], limit=limit)
 
 
 def _finish(args: argparse.Namespace, done: TwoInputRun) -> dict[str, Any]:
     """Write the parts and return the summary (the numbers are the model's account of the result)."""
-    from mrm.ops.boolean import PARTS
-
     kind, files = _targets(str(args.output))
     acc, model, alpha_json = done.account, done.model, done.params["alpha"]
     out = acc.outcome if done.computed is None else done.computed
@@ -118,8 +111,6 @@ def _finish(args: argparse.Namespace, done: TwoInputRun) -> dict[str, Any]:
         summary["files"] = files
     pixels = dict(out.extra["pixels"])
     if alpha_json is not None:  # the parts' own discretizations, on the unscaled grid
-        from mrm.geometry.discretize import discretize
-
         pixels = {p: discretize(out.result[p], model, limit=args.limit) for p in PARTS}
     support = pixels["a_minus_b"] | pixels["a_and_b"] | pixels["b_minus_a"]
     summary.update(summarize(support, model, geom=Polygon()))

@@ -44,7 +44,9 @@ from mrm.cli._common import (
 )
 from mrm.cli._project_input import add_object_argument
 from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
+from mrm.core.georef import GeoRef
 from mrm.core.grids import PixelSet
+from mrm.io.georef import few_pixels_warning, read_geojson_crs, read_georef, same_crs, write_georeferenced
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
 from mrm.reps.summary import summarize
@@ -121,9 +123,6 @@ def parse_extent(text: str) -> tuple[float, float, float, float]:
 
 def _grid(path: str, geom: Any, like: str | None, resolution: float | None, extent: Any) -> GeoRef | None:
     """The georeferenced grid to burn on (None: the plain pixel grid of the input's coordinates)."""
-    from mrm.core.georef import GeoRef
-    from mrm.io.georef import read_geojson_crs, read_georef, same_crs
-
     if like is None and resolution is None:
         if extent is not None:
             raise ParameterError("--extent needs --resolution (or use --like RASTER)")
@@ -158,8 +157,6 @@ def discretize_file(
     extent: tuple[float, float, float, float] | None = None,
 ) -> dict[str, Any]:
     """Read one input, discretize it, write the pixels; return the summary (batch workers call it)."""
-    from mrm.io.georef import few_pixels_warning
-
     out_ext = extension_of(output, OUTPUTS, "pixel output file")  # fail before any work
     source, chosen = _source(path, object_name, model, limit)
     geom = None if isinstance(source, PixelSet) else source
@@ -180,8 +177,6 @@ def discretize_file(
             print(f"mrm discretize: warning: {warning}", file=sys.stderr, flush=True)
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     if grid is not None and out_ext != ".svg":
-        from mrm.io.georef import write_georeferenced
-
         write_georeferenced(ps, output, grid)
     elif out_ext == ".svg":
         if geom is None:

@@ -31,7 +31,7 @@ from mrm.cli._project_input import add_object_argument
 from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
-from mrm.io.vector_files import VECTOR_EXTENSIONS
+from mrm.io.vector_files import VECTOR_EXTENSIONS, combine
 from mrm.reps.summary import summarize
 
 NAME = "info"
@@ -115,8 +115,6 @@ def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, An
         )
     all_euclidean = bool(objects) and all(not isinstance(o.source, PixelSet) for o in objects)
     if all_euclidean:
-        from mrm.io.vector_files import combine
-
         summary = summarize(union, model, geom=combine([o.source for o in objects]))
     else:
         summary = summarize(union, model)

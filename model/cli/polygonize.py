@@ -32,7 +32,9 @@ from mrm.cli._common import (
     run_inputs,
 )
 from mrm.core.grids import LabelMap
+from mrm.geometry.reconstruct.polygonize import polygonize
 from mrm.io.pixel_files import LABEL_READ_EXTENSIONS, read_label_map
+from mrm.io.vector_files import write_regions_geojson
 from mrm.reps.summary import count_vertices
 
 NAME = "polygonize"
@@ -58,9 +60,6 @@ def read_labels(path: str, limit: int) -> LabelMap:
 
 def polygonize_file(path: str, output: str, model: str | None, limit: int) -> dict[str, Any]:
     """Polygonize one label image and write its features; return its summary (batch workers call it)."""
-    from mrm.geometry.reconstruct.polygonize import polygonize
-    from mrm.io.vector_files import write_regions_geojson
-
     lm = read_labels(path, limit)
     chosen = model or "gauss"
     t0 = time.perf_counter()

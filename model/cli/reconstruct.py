@@ -30,13 +30,16 @@ from mrm.cli._common import (
     add_image_arguments,
     add_limit_argument,
     batch_total,
+    discretize_geometry,
     inputs_and_outputs,
     read_input,
     run_inputs,
 )
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
-from mrm.io.georef import georef_summary
+from mrm.core.limits import check_reconstruct
+from mrm.geometry.reconstruct import reconstruct
+from mrm.io.georef import geojson_members, georef_summary, read_georef
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import (
     MAX_VECTOR_FILE_BYTES,
@@ -83,7 +86,6 @@ def _pixels_of(
         return src.pixels, chosen
     if threshold is not None or invert:
         raise ParameterError("--threshold and --invert apply to image inputs only")
-    from mrm.cli._common import discretize_geometry
 
     union = PixelSet.empty()
     for obj in src.objects:
@@ -117,8 +119,6 @@ def _write(geom: Any, path: str, model: str, source: str, georef: Any = None, fe
         parts = list(getattr(geom, "geoms", [] if geom.is_empty else [geom]))
         write_geojson(parts, path, properties={"model": model, "source": Path(source).name})
     else:
-        from mrm.io.georef import geojson_members
-
         members = geojson_members(georef, geom)
         write_geojson(geom, path, properties={"model": model, "source": Path(source).name}, members=members)
 
@@ -134,15 +134,10 @@ def reconstruct_file(
     bar: Any = None,
 ) -> dict[str, Any]:
     """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
-    from mrm.core.limits import check_reconstruct
-    from mrm.geometry.reconstruct import reconstruct
-
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
     check_reconstruct(ps, f"{path}")  # boundary length bounded before any work (mrm.core.limits)
     georef = None
     if Path(path).suffix.lower() in PIXEL_EXTENSIONS:
-        from mrm.io.georef import read_georef
-
         georef = read_georef(path)  # a GeoTIFF's own, or a world file beside the image
     if bar is not None:
         bar.update(None, f"{len(ps):_} pixels")

@@ -15,6 +15,7 @@ import sys
 from typing import Any
 
 from mrm.core.errors import InvalidGeometryError, ParameterError
+from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 
 #: Largest |x| or |y| of a chain point.
 CHAIN_COORD_LIMIT = 2**31
@@ -85,7 +86,6 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     """Segment the chain; print a table unless ``--json``; return the JSON summary."""
     # Imported here, not at the top: the segmentation loads numba, which ``mrm --help`` and a one-line
     # usage error should not wait for (the parser imports every subcommand module).
-    from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 
     start, codes = parse_chain(args.chain)
     pts = chain_points(start, codes)

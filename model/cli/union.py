@@ -12,7 +12,9 @@ from typing import Any
 
 from mrm.cli._common import print_table
 from mrm.cli._operation import OUTPUTS, TwoInputRun, result_summary, two_input_command, write_result
+from mrm.geometry.discretize import discretize
 from mrm.io.georef import georef_summary
+from mrm.ops.registry import run_operation
 
 NAME = "union"
 HELP = "Euclidean-discrete union EDu of two objects: R(D(A) ∪ D(B))"
@@ -20,8 +22,6 @@ HELP = "Euclidean-discrete union EDu of two objects: R(D(A) ∪ D(B))"
 
 def _direct(a: Any, b: Any, model: str, params: dict[str, Any], limit: int) -> Any:
     """EDu without its account (``--no-measure``)."""
-    from mrm.ops.registry import run_operation
-
     return run_operation("union", [a.value, b.value], params, limit=limit).output
 
 
@@ -34,8 +34,6 @@ def _finish(args: argparse.Namespace, done: TwoInputRun) -> dict[str, Any]:
     summary["operation"] = "union"
     pixels = acc.result if acc.result is not None else None
     if pixels is None:
-        from mrm.geometry.discretize import discretize
-
         pixels = discretize(result, model, limit=args.limit)
     summary.update(result_summary(result, pixels, model))
     summary.update({k: v for k, v in acc.summary().items() if k not in ("operation", "model")})

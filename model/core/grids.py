@@ -17,6 +17,7 @@ import numpy.typing as npt
 
 from mrm.core.errors import SizeLimitError
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.threshold import binarize, grey_of
 
 BoolArray = npt.NDArray[np.bool_]
 IntArray = npt.NDArray[np.int64]
@@ -216,8 +217,6 @@ class PixelSet:
         >>> bool((ps.to_image() == img).all())
         True
         """
-        from mrm.core.threshold import binarize, grey_of
-
         a = np.asarray(image)
         if a.ndim == 3 and a.shape[2] in (3, 4):
             a = grey_of(a)

@@ -37,8 +37,10 @@ from mrm.core.models import Model
 from mrm.document.document import Document
 from mrm.document.history import COMMAND_OVERHEAD, Command
 from mrm.document.objects import PALETTE, DocObject, Geometry, Settings, Source, Style, validate_geometry
+from mrm.geometry.topology.labeling import label
 from mrm.ops.georef import common_grid
 from mrm.ops.provenance import Provenance
+from mrm.reps.region import fill_chains, region_of
 
 #: A vertex of a Euclidean source: (polygon index in a MultiPolygon (0 for a Polygon), ring (0 = exterior,
 #: k = k-th hole), vertex index in the ring, the closing point not counted).
@@ -586,8 +588,6 @@ def component_pixels(ps: PixelSet, at: tuple[int, int]) -> PixelSet:
     ParameterError
         When ``at`` is not a pixel of the set.
     """
-    from mrm.reps.region import region_of
-
     region = region_of(ps)
     comp = region.component_of(at[0], at[1])
     if comp is None:
@@ -609,9 +609,6 @@ def hole_pixels(ps: PixelSet, at: tuple[int, int] | None = None) -> PixelSet:
     ParameterError
         When ``at`` is given and is not in a hole.
     """
-    from mrm.geometry.topology.labeling import label
-    from mrm.reps.region import fill_chains, region_of
-
     region = region_of(ps)
     if region.n_holes == 0:
         if at is None:

@@ -35,6 +35,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 from mrm.document import Changes, Document
+from mrm.io.atomic import atomic_write_bytes
 from mrm.io.project import dumps, read_project
 
 SUFFIX = ".autosave"
@@ -292,8 +293,6 @@ class Autosaver:
         while the document changes; report its outcome with :meth:`written` or :meth:`write_failed`.
         """
         from types import SimpleNamespace
-
-        from mrm.io.atomic import atomic_write_bytes
 
         target = self.path
         if self._written is not None and self._written != target:

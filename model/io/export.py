@@ -31,9 +31,13 @@ from typing import Any, Literal
 
 import numpy as np
 
-from mrm.core.errors import FileFormatError, ParameterError
+from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
 from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import MAX_LABEL_PIXELS
 from mrm.document import Document
+from mrm.io.georef import GEOREFERENCED_EXTENSIONS, geojson_members, same_crs, write_georeferenced
+from mrm.io.pixel_files import write_label_map, write_pixels
+from mrm.io.vector_files import write_geojson, write_svg, write_wkt
 
 PathLike = str | os.PathLike[str]
 
@@ -90,36 +94,24 @@ def export_object(
     if rep is not None and rep != chosen:
         raise ParameterError(f"a {ext} file holds the {chosen} representation, not the {rep} one")
     if rep == "both" and ext in PICTURE_EXTENSIONS:
-        from mrm.io.vector_files import write_svg
-
         derived = doc.derived(obj.id)
         write_svg(derived.get("euclidean"), path, pixels=derived.get("discrete"))
         return "both"
     value = doc.derived(obj.id).get("discrete" if chosen == "discrete" else "euclidean")
     georef = obj.georef
     if ext in PIXEL_EXTENSIONS:
-        from mrm.io.georef import GEOREFERENCED_EXTENSIONS, write_georeferenced
-        from mrm.io.pixel_files import write_pixels
-
         if georef is not None and ext in GEOREFERENCED_EXTENSIONS:
             write_georeferenced(value, path, georef)
         else:
             write_pixels(value, path)
     elif ext == ".wkt":
-        from mrm.io.vector_files import write_wkt
-
         write_wkt(value if georef is None else georef.to_world(value), path)
     elif ext in VECTOR_EXTENSIONS:
-        from mrm.io.georef import geojson_members
-        from mrm.io.vector_files import write_geojson
-
         world = value if georef is None else georef.to_world(value)
         write_geojson(
             world, path, properties=_properties(doc, obj_id), members=geojson_members(georef, world)
         )
     else:
-        from mrm.io.vector_files import write_svg
-
         write_svg(value, path)
     return chosen
 
@@ -134,11 +126,8 @@ def _properties(doc: Document, obj_id: int) -> dict[str, Any]:
 
 def export_objects_geojson(doc: Document, ids: Sequence[int], path: PathLike) -> None:
     """Write several objects' Euclidean shapes to one GeoJSON file, a Feature each (``part`` = its name)."""
-    from mrm.io.vector_files import write_geojson
-
     if _ext(path) not in (".geojson", ".json"):
         raise FileFormatError(f"{os.fspath(path)}: several objects go to a .geojson file")
-    from mrm.io.georef import geojson_members, same_crs
 
     objs = [doc.get(i) for i in ids]
     georefs = [o.georef for o in objs]
@@ -187,8 +176,6 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
         return LabelMap(np.zeros((0, 0), dtype=np.int32)), mapping
     x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
     x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
-    from mrm.core.errors import SizeLimitError
-    from mrm.core.limits import MAX_LABEL_PIXELS
 
     area = (x1 - x0 + 1) * (y1 - y0 + 1)
     if area > MAX_LABEL_PIXELS:  # four bytes a pixel: the label map limit, not the pixel set one
@@ -205,8 +192,6 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
 
 def export_label_map(doc: Document, path: PathLike, ids: Sequence[int] | None = None) -> dict[int, int]:
     """Write the label map of objects (see :func:`label_map_of`) to a .png or .npz; returns label → id."""
-    from mrm.io.pixel_files import write_label_map
-
     if _ext(path) not in LABEL_EXTENSIONS:
         raise FileFormatError(f"{os.fspath(path)}: a label map goes to a .png or .npz file")
     lm, mapping = label_map_of(doc, ids)

@@ -40,7 +40,10 @@ import numpy as np
 from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
 from mrm.core.georef import GeoRef, Transform, grid_origin, unit_grid
 from mrm.core.grids import PixelSet
-from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixel_extent
+from mrm.core.threshold import binarize
+from mrm.io.atomic import atomic_open, atomic_write_bytes, atomic_write_text
+from mrm.io.pixel_files import ORIGIN_KEY, parse_origin, read_pixels
 
 log = logging.getLogger(__name__)
 
@@ -167,8 +170,6 @@ def image_frame(path: PathLike) -> tuple[int, int, int, int]:
     """
     from PIL import Image
 
-    from mrm.io.pixel_files import ORIGIN_KEY, parse_origin
-
     ext = Path(path).suffix.lower()
     if ext in GEOTIFF_EXTENSIONS:
         georef = read_georef(path)
@@ -227,8 +228,6 @@ def read_georef(path: PathLike) -> GeoRef | None:
 
 def write_world_file(path: PathLike, georef: GeoRef) -> Path:
     """Write the world file (and ``.prj`` for a CRS) beside the image ``path``; returns the world file."""
-    from mrm.io.atomic import atomic_write_text
-
     p = Path(path)
     wf = p.with_suffix(WORLD_FILE_EXTENSIONS.get(p.suffix.lower(), (".wld",))[0])
     atomic_write_text(wf, world_file_text(georef.transform))
@@ -266,8 +265,6 @@ def read_raster(
     georef : GeoRef or None
         None for a TIFF without georeference.
     """
-    from mrm.core.threshold import binarize
-
     rasterio = _rasterio()
     name = Path(path).name
     try:
@@ -299,7 +296,6 @@ def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:
     Pixels outside the frame are not written; :func:`write_georeferenced` grows the frame to hold them.
     """
     rasterio = _rasterio()
-    from mrm.io.atomic import atomic_open
 
     image = ps.to_image(georef.frame).astype(np.uint8)
     profile = {
@@ -346,8 +342,6 @@ def read_pixels_georef(
     What an import keeps on the object (``DocObject.georef``): the GeoTIFF's transform and CRS, or the world
     file's, consistent with where the pixels were placed.
     """
-    from mrm.io.pixel_files import read_pixels
-
     if Path(path).suffix.lower() in GEOTIFF_EXTENSIONS:
         return read_raster(path, threshold=threshold, limit=limit)
     ps = read_pixels(path, threshold=threshold, limit=limit)
@@ -371,7 +365,6 @@ def write_georeferenced(ps: PixelSet, path: PathLike, georef: GeoRef) -> GeoRef:
         raise ParameterError(
             f"{os.fspath(path)}: a georeferenced result is written as .tif or .png (+ world file)"
         )
-    from mrm.core.limits import check_pixel_extent
 
     grid = georef.covering(ps.bbox)
     check_pixel_extent((grid.frame[0], grid.frame[1]), (grid.height, grid.width), f"{Path(path).name}")
@@ -381,8 +374,6 @@ def write_georeferenced(ps: PixelSet, path: PathLike, georef: GeoRef) -> GeoRef:
     import io
 
     from PIL import Image
-
-    from mrm.io.atomic import atomic_write_bytes
 
     buf = io.BytesIO()
     Image.fromarray(ps.to_image(grid.frame)).save(buf, format="PNG")  # the world file's top-left pixel

@@ -19,6 +19,10 @@ from mrm.core.limits import clean_name
 from mrm.document import DocObject, Document, validate_geometry
 from mrm.document.commands import ApplyResults
 from mrm.geometry.discretize import discretize
+from mrm.io.georef import read_pixels_georef
+from mrm.io.pixel_files import PIXEL_EXTENSIONS
+from mrm.io.project import read_project
+from mrm.io.vector_files import VECTOR_EXTENSIONS, read_geometries
 from mrm.ops.provenance import Provenance
 
 PathLike = str | os.PathLike[str]
@@ -36,8 +40,6 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
     ext = p.suffix.lower()
     stem = clean_name(p.stem or p.name)  # a file name undecodable as UTF-8 holds lone surrogates
     if ext == ".mrm":
-        from mrm.io.project import read_project
-
         proj = read_project(p)
         new_ids = {o.id: doc.new_id() for o in proj.objects}
         out = []
@@ -47,9 +49,6 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
                 prov = Provenance(prov.operation, prov.params, tuple(new_ids.get(i, i) for i in prov.inputs))
             out.append(o.with_(id=new_ids[o.id], provenance=prov))
         return out
-    from mrm.io.georef import read_pixels_georef
-    from mrm.io.pixel_files import PIXEL_EXTENSIONS
-    from mrm.io.vector_files import VECTOR_EXTENSIONS, read_geometries
 
     if ext in PIXEL_EXTENSIONS:
         # A GeoTIFF's transform and CRS (or a world file's) stay on the object (ADR 0021).

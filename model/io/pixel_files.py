@@ -42,9 +42,10 @@ from mrm.core import limits
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import LabelMap, PixelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT
-from mrm.core.threshold import binarize, grey_of
+from mrm.core.threshold import _check_threshold, binarize, grey_of
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.netpbm import encode_pbm, encode_pgm, read_netpbm
+from mrm.io.png_stream import read_png_mask
 from mrm.io.reading import open_regular
 
 PathLike = str | os.PathLike[str]
@@ -222,9 +223,6 @@ PILLOW_PNG_PIXELS = 10_000_000
 
 def _read_png_pixels(fh: BinaryIO, name: str, limit: int, threshold: float | None) -> PixelSet:
     """A PNG's pixel set, decoded by :mod:`mrm.io.png_stream` at one byte per pixel (ADR 0010)."""
-    from mrm.core.threshold import _check_threshold
-    from mrm.io.png_stream import read_png_mask
-
     head = fh.read(29)
     if not head.startswith(_PNG_SIGNATURE):
         raise FileFormatError(f"{name}: not a PNG image ({_describe_content(head)})")
@@ -406,6 +404,8 @@ def read_pixels(
     name = _name(path)
     ext = _extension(path, PIXEL_EXTENSIONS, "pixel")
     if ext in (".tif", ".tiff"):  # GeoTIFF (the geo extra)
+        # A local import: mrm.io.georef builds on this module (it reads rasters through read_pixels), and a
+        # .tif is georeferenced by nature.
         from mrm.io.georef import read_pixels_tif
 
         open_regular(path, name).close()  # a FIFO or device is refused before rasterio opens it
@@ -457,7 +457,7 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
     # What this module writes it reads back: pixels beyond the document's coordinates are refused here too.
     limits.check_pixel_extent(ps.origin, ps.shape, f"{_name(path)}: the pixel set")
     if ext in (".tif", ".tiff"):  # GeoTIFF (the geo extra)
-        from mrm.io.georef import write_pixels_tif
+        from mrm.io.georef import write_pixels_tif  # local: mrm.io.georef builds on this module
 
         write_pixels_tif(ps, path)
         return

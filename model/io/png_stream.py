@@ -27,6 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.errors import FileFormatError
+from mrm.core.threshold import _otsu_sparse
 from mrm.geometry._jit import njit
 
 #: Channels per colour type.
@@ -429,8 +430,6 @@ def read_png_mask(
         else:
             hist = hist_plain
         if t is None:
-            from mrm.core.threshold import _otsu_sparse
-
             occupied = np.flatnonzero(hist)
             vals = [int(v) for v in occupied]
             counts = [int(c) for c in hist[occupied]]

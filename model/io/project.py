@@ -76,6 +76,8 @@ from mrm.core.grids import LabelMap, PixelSet
 from mrm.core.limits import COORDINATE_LIMIT, PARAMS_MAX_DEPTH
 from mrm.core.models import Model
 from mrm.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
+from mrm.io.atomic import atomic_write_bytes
+from mrm.io.reading import open_regular
 from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance, content_digest
 
 #: The value of the "format" key.
@@ -284,8 +286,6 @@ def save_project(doc: Document, path: str | os.PathLike[str], *, mark_clean: boo
     If writing fails (disk full, permission, a crash) the previous file is left intact and the document stays
     modified. ``OSError`` propagates for the caller to report.
     """
-    from mrm.io.atomic import atomic_write_bytes
-
     data = dumps(doc)
     atomic_write_bytes(path, data)
     doc.path = Path(path)
@@ -831,8 +831,6 @@ def _pin_legacy_provenance(objects: list[DocObject]) -> list[DocObject]:
 
 def read_project(path: str | os.PathLike[str], **kw: Any) -> Project:
     """Read and validate a project file (see :func:`parse_project`)."""
-    from mrm.io.reading import open_regular
-
     p = Path(path)
     name = p.name
     with open_regular(p, name) as fh:  # a FIFO or device is refused, never waited on

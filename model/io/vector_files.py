@@ -40,6 +40,7 @@ from mrm.core.gc_pause import paused_gc
 from mrm.core.grids import PixelSet
 from mrm.core.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, check_output_bytes, clean_name
 from mrm.io.atomic import atomic_open
+from mrm.io.reading import open_regular
 
 PathLike = str | os.PathLike[str]
 NamedGeometry = tuple[str | None, BaseGeometry]
@@ -159,7 +160,6 @@ def _flatten(g: BaseGeometry) -> list[BaseGeometry]:
 
 # ---------------------------------------------------------------------------------------------- reading
 def _read_text(path: PathLike) -> str:
-    from mrm.io.reading import open_regular
 
     name = os.fspath(path)
     with open_regular(path, name) as fh:  # a FIFO or device is refused, never waited on

@@ -32,6 +32,7 @@ from typing import Any, Literal
 from mrm.core.grids import PixelSet
 from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.hausdorff import directed_hausdorff
 
 Direction = Literal["both", "result_within", "source_within"]
 
@@ -112,8 +113,6 @@ def measured_error(
     progress : object with ``update(fraction, message)``, optional
         Passed to the Hausdorff computation; its ``Cancelled`` propagates.
     """
-    from mrm.geometry.hausdorff import directed_hausdorff
-
     ref = reference if isinstance(reference, ExactShape) else ExactShape.from_geometry(reference)
     res = result if isinstance(result, ExactShape) else ExactShape.from_geometry(result)
     if ref == res:  # the same polygons, vertex for vertex (e.g. a single DSS: A_last = T(A_first))

@@ -18,6 +18,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
+import mrm.geometry.discretize.rational as rational
 import mrm.geometry.discretize.rational_kernels as grd
 from mrm.core.grids import PixelSet
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, rotation_cos_sin
@@ -47,7 +48,7 @@ def _image_rings(poly, sim):
 
 
 def _counting(monkeypatch):
-    """Count the edges the filtered path hands to the exact integer definitions."""
+    """Count the edges the filtered path hands to the exact integer definitions (where it calls them)."""
     calls = {"crossings": 0, "walks": 0}
     crossings, walks = grd.integer_crossings, grd.integer_walks
 
@@ -59,8 +60,8 @@ def _counting(monkeypatch):
         calls["walks"] += 1
         return walks(*args)
 
-    monkeypatch.setattr(grd, "integer_crossings", counted_crossings)
-    monkeypatch.setattr(grd, "integer_walks", counted_walks)
+    monkeypatch.setattr(rational, "integer_crossings", counted_crossings)
+    monkeypatch.setattr(rational, "integer_walks", counted_walks)
     return calls
 
 

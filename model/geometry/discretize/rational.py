@@ -34,7 +34,17 @@ from mrm.core.grids import Box, PixelSet, box_area
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.progress import ProgressLike
+from mrm.geometry.discretize import discretize
 from mrm.geometry.discretize.exact_shape import ExactShape, pixel_box
+from mrm.geometry.discretize.rational_kernels import (
+    discretize_integer_edges,
+    filtered_crossings,
+    filtered_spans,
+    filtered_walks,
+    fits_int64,
+    integer_crossings,
+    integer_walks,
+)
 
 log = logging.getLogger(__name__)
 
@@ -96,8 +106,6 @@ def discretize_exact(
     check_pixels(box_area(box), limit, what)
     _tick(progress, None, "discretizing")
     if not force_integer and shape.is_float_exact():
-        from mrm.geometry.discretize import discretize
-
         result = discretize(shape.to_geometry(), model, limit=limit)
         _tick(progress, None)
         return result
@@ -145,8 +153,6 @@ def integer_discretization(
     The definitions run compiled on int64 when no overflow is possible (and ``compiled``), else on Python
     integers; ``progress`` is told when the work starts and ends.
     """
-    from mrm.geometry.discretize.rational_kernels import discretize_integer_edges
-
     _tick(progress, 0.0)
     mask = discretize_integer_edges(edges, g, box, model, compiled=compiled)
     _tick(progress, 1.0)
@@ -180,8 +186,6 @@ def discretize_image(
     import shapely
     from shapely.geometry import MultiPolygon, Polygon
 
-    from mrm.geometry.discretize.rational_kernels import discretize_integer_edges, fits_int64
-
     if not isinstance(geom, Polygon | MultiPolygon):
         return None
     if geom.is_empty:
@@ -202,7 +206,6 @@ def discretize_image(
         and a.denominator & (a.denominator - 1) == 0
     ):
         # A scaling about the origin by a power of two: the float64 image is exact (range checked below).
-        from mrm.geometry.discretize import discretize
 
         values = coords * float(a)
         nonzero = np.abs(values[values != 0])
@@ -232,7 +235,6 @@ def discretize_image(
     if d & (d - 1) == 0 and big < 2**52:
         # Every image coordinate is a float64 (a dyadic over a power-of-two denominator): the compiled float
         # discretization is exact on it, and faster than the integer kernels.
-        from mrm.geometry.discretize import discretize
 
         values = (img // 2).astype(np.float64) / float(d)
         image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
@@ -370,14 +372,6 @@ def _filtered(
     The float vertices ``(ix, iy)`` are each within ``delta`` of the exact vertex ``exact_point(v)``;
     ``magnitude`` bounds their coordinates.
     """
-    from mrm.geometry.discretize.rational_kernels import (
-        filtered_crossings,
-        filtered_spans,
-        filtered_walks,
-        integer_crossings,
-        integer_walks,
-    )
-
     ax, ay, bx, by = ix[first], iy[first], ix[second], iy[second]
     # A box holding every pixel D can contain (cells of the bounds, grown by one pixel for delta < 1).
     x0 = int(np.floor(ix.min() - 0.5)) - 1

@@ -26,6 +26,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Literal
 
+from mrm.geometry._jit import py_func
+from mrm.geometry.dss._kernels import shift_of as _shift_of
+from mrm.geometry.dss._kernels import steps_of as _steps_of
+
 Point = tuple[int, int]
 Adjacency = Literal[4, 8]
 
@@ -51,19 +55,13 @@ def steps_of(a: int, b: int, adjacency: int) -> tuple[Point, Point]:
     tuple of two points
         DGtal ``ArithmeticalDSLKernel::steps``: the steps that occur along a DSL of that slope.
     """
-    from mrm.geometry._jit import py_func
-    from mrm.geometry.dss._kernels import steps_of as _k
-
-    s1x, s1y, s2x, s2y = py_func(_k)(a, b, adjacency)
+    s1x, s1y, s2x, s2y = py_func(_steps_of)(a, b, adjacency)
     return (s1x, s1y), (s2x, s2y)
 
 
 def shift_of(a: int, b: int, adjacency: int) -> Point:
     """Return the shift vector of the DSLs of slope (a, b): r(p + shift) = r(p) + ω (DGtal's ``shift``)."""
-    from mrm.geometry._jit import py_func
-    from mrm.geometry.dss._kernels import shift_of as _k
-
-    x, y = py_func(_k)(a, b, adjacency)
+    x, y = py_func(_shift_of)(a, b, adjacency)
     return (x, y)
 
 

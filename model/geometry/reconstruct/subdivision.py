@@ -132,6 +132,8 @@ from mrm.core.grids import LabelMap, PixelSet
 from mrm.core.models import Model
 from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.dss.segmentation import standard_dss_reach_table
+from mrm.geometry.reconstruct import _subdivision_kernels as K
+from mrm.geometry.reconstruct._subdivision_kernels import label_boxes
 from mrm.geometry.topology.cracks import DX, DY
 from mrm.geometry.topology.labeling import group_by_label
 from mrm.geometry.topology.labeling import label as label_components
@@ -889,7 +891,6 @@ def _polylines(
         chains = [_Chain(p, c) for p, c in zip(points, closed, strict=True)]
         done = [_polyline(ch) for ch in chains]
         return [_to_plane(ch, v) for ch, (v, _) in zip(chains, done, strict=True)], [s for _, s in done]
-    from mrm.geometry.reconstruct import _subdivision_kernels as K
 
     lens = np.diff(off)
     starts = pts_all[off[:-1]]
@@ -1027,7 +1028,6 @@ def _label_pixel_sets(lm: LabelMap) -> dict[int, PixelSet]:
     lab = lm.labels
     if lab.size == 0:
         return {}
-    from mrm.geometry.reconstruct._subdivision_kernels import label_boxes
 
     x0, y0 = lm.origin
     vmax = int(lab.max())
