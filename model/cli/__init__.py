@@ -38,7 +38,6 @@ import sys
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 from mrm.core.errors import MRMError
@@ -49,35 +48,13 @@ from mrm.warmup import announce_if_cold
 #: Exit status after a closed standard output.
 EXIT_BROKEN_PIPE = 141
 
-#: What ``-o -`` writes when ``--format`` is not given (a subcommand may set ``STDOUT_FORMAT``).
-_STDOUT_FORMATS = {
-    "reconstruct": ".geojson",
-    "polygonize": ".geojson",
-    "discretize": ".png",
-    "scale": ".png",
-    "rotate": ".png",
-    "simplify": ".geojson",
-    "union": ".geojson",
-    "corefine": ".geojson",
-}
 
 #: Largest standard input read for ``-`` (the same order as the largest input files the readers take).
 MAX_STDIN_BYTES = 1 << 30
 
 
-def _command_modules() -> dict[str, ModuleType]:
-    mods: dict[str, ModuleType] = {}
-    for info in pkgutil.iter_modules(__path__):
-        if info.name.startswith("_"):
-            continue
-        mod = importlib.import_module(f"{__name__}.{info.name}")
-        name = getattr(mod, "NAME", None)
-        if isinstance(name, str):
-            mods[name] = mod
-    return dict(sorted(mods.items()))
-
-
-def _subcommand_names() -> tuple[str, ...]:
+def _file_commands() -> tuple[str, ...]:
+    """The subcommands written as modules of this package (``info``, ``reconstruct``, ``union`` …)."""
     return tuple(
         info.name.replace("_", "-")
         for info in pkgutil.iter_modules(__path__)
@@ -85,8 +62,37 @@ def _subcommand_names() -> tuple[str, ...]:
     )
 
 
-#: Names of the subcommands (module names; a module's NAME matches its file name).
-SUBCOMMANDS: tuple[str, ...] = _subcommand_names()
+def _command_modules() -> dict[str, Any]:
+    """Every subcommand: the modules of this package, and one per one-object operation of the registry.
+
+    Imported here, when a parser is built, not when the package is: ``mrm --version`` must not load numba.
+    """
+    from mrm.cli._operation import operation_command
+    from mrm.ops.registry import operations
+
+    mods: dict[str, Any] = {}
+    for info in pkgutil.iter_modules(__path__):
+        if info.name.startswith("_"):
+            continue
+        mod = importlib.import_module(f"{__name__}.{info.name}")
+        name = getattr(mod, "NAME", None)
+        if isinstance(name, str):
+            mods[name] = mod
+    for spec in operations():
+        if spec.command and spec.command not in mods and spec.arity == 1:
+            mods[spec.command] = operation_command(spec)
+    return dict(sorted(mods.items()))
+
+
+def is_subcommand(word: str) -> bool:
+    """True when ``word`` names a subcommand (a module of this package, or an operation's command)."""
+    if word in _file_commands():
+        return True
+    if not word or word.startswith("-") or "." in word or os.sep in word:
+        return False  # an option or a path: no need to load the registry to know
+    from mrm.ops.registry import operations
+
+    return any(spec.command == word for spec in operations())
 
 
 class _Parser(argparse.ArgumentParser):
@@ -122,7 +128,7 @@ def build_parser() -> argparse.ArgumentParser:
                 metavar="EXT",
                 default=None,
                 help="with -o -: the type written on stdout, e.g. .geojson, .wkt, .png "
-                f"(default {getattr(mod, 'STDOUT_FORMAT', _STDOUT_FORMATS.get(name, '.geojson'))})",
+                f"(default {getattr(mod, 'STDOUT_FORMAT', '.geojson')})",
             )
         p.set_defaults(_module=mod)
     return parser
@@ -216,9 +222,7 @@ def _bind_streams(args: argparse.Namespace, streams: _Streams) -> None:
     if getattr(args, "output", None) == "-":
         if args.json:
             raise MRMError("-o - and --json would both write on stdout; choose one")
-        ext = args.format or getattr(
-            args._module, "STDOUT_FORMAT", _STDOUT_FORMATS.get(args.command, ".geojson")
-        )
+        ext = args.format or getattr(args._module, "STDOUT_FORMAT", ".geojson")
         ext = ext if ext.startswith(".") else "." + ext
         args.output = streams.stdout(ext.lower())
     elif getattr(args, "format", None) is not None:
@@ -346,11 +350,11 @@ def main(argv: list[str] | None = None) -> int:
     """
     args = list(sys.argv[1:] if argv is None else argv)
     try:
-        if args and args[0] in SUBCOMMANDS:
-            return run_cli(args)
         if args[:1] in (["--version"], ["-V"]):
             print(version_text(), flush=True)
             return 0
+        if args and is_subcommand(args[0]):
+            return run_cli(args)
         build_parser().print_help()
         sys.stdout.flush()
         return 0 if args[:1] in (["-h"], ["--help"]) else 2

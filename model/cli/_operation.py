@@ -33,6 +33,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 from mrm.cli._common import (
@@ -64,7 +65,7 @@ from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, wri
 from mrm.ops.account import account_of
 from mrm.ops.georef import result_georef
 from mrm.ops.provenance import Provenance
-from mrm.ops.registry import get_operation, run_operation
+from mrm.ops.registry import OperationSpec, get_operation, run_operation
 from mrm.reps.summary import summarize
 
 #: Input file types.
@@ -332,16 +333,20 @@ def add_parameter_options(parser: argparse.ArgumentParser, fields: list[Any]) ->
             )
 
 
-def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
-    """``(add_arguments, run)`` of a one-object subcommand, generated from the operation's registry spec.
+def operation_command(spec: OperationSpec) -> SimpleNamespace:
+    """The subcommand of a one-object operation (``mrm scale``), generated from its registry spec alone.
 
-    Every parameter of the spec's dataclass becomes an option (``--alpha``, ``--angle``, ``--center X,Y``)
-    with its label, unit, help and declared range; ``model`` is the common ``--model``. The values are read
-    exactly and range-checked by the operation's parameters
-    (:meth:`mrm.ops.registry.OperationSpec.read_params`),
-    as the panel's are.
+    ``NAME`` is :attr:`~mrm.ops.registry.OperationSpec.command`, ``HELP`` the spec's help. Every parameter of
+    the spec's dataclass becomes an option (``--alpha``, ``--angle``, ``--center X,Y``) with its label, unit,
+    help and declared range; ``model`` is the common ``--model``. The values are read exactly and
+    range-checked by the operation's parameters (:meth:`~mrm.ops.registry.OperationSpec.read_params`), as
+    the panel's are. The output is a pixel file for an operation that makes pixels, else a vector file (each
+    writes the other kind on request: R of a pixel result, D of a Euclidean one).
     """
-    spec, fields = _parameter_fields(operation)
+    fields = [p for p in spec.params.specs() if p.kind != "model"]
+    pixels = spec.produces == "discrete"
+    kinds = ("a pixel file (.png .pbm .pgm .npz)", "a vector file (.geojson .wkt .svg)")
+    output_help = f"the result: {kinds[0] if pixels else kinds[1]} or {kinds[1] if pixels else kinds[0]}"
 
     def add_arguments(parser: argparse.ArgumentParser) -> None:
         add_inputs_argument(parser, "pixel files, vector files or projects (.mrm)")
@@ -354,7 +359,13 @@ def operation_command(operation: str, output_help: str) -> tuple[Any, Any]:
     def run(args: argparse.Namespace) -> dict[str, Any]:
         return run_unary(args, spec.name, {p.name: getattr(args, p.name) for p in fields})
 
-    return add_arguments, run
+    return SimpleNamespace(
+        NAME=spec.command,
+        HELP=spec.help,
+        add_arguments=add_arguments,
+        run=run,
+        STDOUT_FORMAT=".png" if pixels else ".geojson",
+    )
 
 
 @dataclass(frozen=True)

@@ -34,9 +34,10 @@ from mrm.io.georef import geojson_members, georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
 from mrm.ops.boolean import PARTS, euclidean_discrete_corefinement
+from mrm.ops.registry import get_operation
 from mrm.reps.summary import count_vertices, summarize
 
-NAME = "corefine"
+NAME = get_operation("corefine").command  # declared by the operation (mrm.ops.boolean)
 HELP = "Euclidean-discrete co-refinement EDco(_α) of two objects: the parts A∖B, A∩B, B∖A"
 
 

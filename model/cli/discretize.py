@@ -55,6 +55,8 @@ if TYPE_CHECKING:
     from mrm.core.georef import GeoRef
 
 NAME = "discretize"
+#: What ``-o -`` writes without ``--format``.
+STDOUT_FORMAT = ".png"
 HELP = (
     "discretize a Euclidean geometry (.geojson, .wkt, .mrm) into a pixel file (.png, .pbm, .pgm, .npz, .svg)"
 )

@@ -14,9 +14,9 @@ from mrm.cli._common import print_table
 from mrm.cli._operation import OUTPUTS, TwoInputRun, result_summary, two_input_command, write_result
 from mrm.geometry.discretize import discretize
 from mrm.io.georef import georef_summary
-from mrm.ops.registry import run_operation
+from mrm.ops.registry import get_operation, run_operation
 
-NAME = "union"
+NAME = get_operation("union").command  # declared by the operation (mrm.ops.boolean)
 HELP = "Euclidean-discrete union EDu of two objects: R(D(A) ∪ D(B))"
 
 

@@ -339,6 +339,7 @@ UNION_SPEC = register(
         symbol="EDu",
         aliases=("union",),
         grid="same",
+        command="union",
     )
 )
 COREFINE_SPEC = register(
@@ -359,6 +360,7 @@ COREFINE_SPEC = register(
         part_words=BOUND_PART,
         default_part="a_and_b",
         grid="same",
+        command="corefine",
     )
 )
 

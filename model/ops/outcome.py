@@ -200,6 +200,7 @@ def register_discrete_similarity(
     help: str,
     aliases: tuple[str, ...],
     grid: Any,
+    command: str,
 ) -> OperationSpec:
     """Register a ``D∘T∘R`` operation (DSS_α, dR_θ,C) from its declarations alone.
 
@@ -250,5 +251,6 @@ def register_discrete_similarity(
         symbol=symbol,
         aliases=aliases,
         grid=grid,
+        command=command,
     )
     return register(spec)

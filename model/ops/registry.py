@@ -143,6 +143,8 @@ class OperationSpec:
         (scaled by the operation's similarity) or None (no georeference).
     exact : str
         For an operation that makes no error (set operations), why: the account says it.
+    command : str
+        The ``mrm`` subcommand that runs it (``mrm scale`` runs DSS_α); its options are the parameters.
     """
 
     name: str
@@ -164,6 +166,7 @@ class OperationSpec:
     default_part: str = ""
     grid: Literal["same", "scaled"] | None = None
     exact: str = ""
+    command: str = ""
 
     @property
     def is_chain_step(self) -> bool:

@@ -57,6 +57,7 @@ SPEC = register_discrete_similarity(
     help="dR_θ,C(A) = D(rot_θ,C(R(A))): rotate the continuation exactly, discretize it (paper, Def. 11).",
     aliases=("dR", "rotation"),
     grid="same",
+    command="rotate",
 )
 #: Run dR_θ,C on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
 run = SPEC.run

@@ -50,6 +50,7 @@ SPEC = register_discrete_similarity(
     help="DSS_α(A) = D(Sc_α(R(A))): scale the continuation exactly and discretize it (paper, Def. 3).",
     aliases=("discrete_smooth_scaling", "smooth_scaling"),
     grid="scaled",
+    command="scale",
 )
 #: Run DSS_α on one object (a polygon input is read as its discretization D(E)); no validation or provenance.
 run = SPEC.run

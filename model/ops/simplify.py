@@ -190,5 +190,6 @@ SPEC = register(
         symbol="SP",
         aliases=("simplification",),
         grid="same",
+        command="simplify",
     )
 )
