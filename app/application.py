@@ -165,11 +165,6 @@ class ThemeController(QtCore.QObject):
         hints = QtGui.QGuiApplication.styleHints()
         hints.colorSchemeChanged.connect(self._system_changed)
 
-    @property
-    def preference(self) -> str:
-        """'system', 'light' or 'dark'."""
-        return self._preference
-
     def set_preference(self, theme: str) -> None:
         """Fix the theme ('light', 'dark') or follow the system ('system')."""
         if theme not in THEMES:

@@ -24,7 +24,7 @@ import tempfile
 from collections.abc import Sequence
 from typing import Any
 
-from PySide6 import QtCore, QtGui, QtWidgets
+from PySide6 import QtCore, QtGui
 
 from mrm.core.errors import MRMError
 from mrm.document import DocObject, Document, Settings
@@ -229,7 +229,3 @@ class ClipboardController(QtCore.QObject):
             show_progress=True,
         )
         return True
-
-    def can_paste(self) -> bool:
-        md = QtWidgets.QApplication.clipboard().mimeData()
-        return md is not None and (md.hasFormat(MIME) or (md.hasText() and bool(md.text().strip())))

@@ -14,7 +14,7 @@ from __future__ import annotations
 import logging
 from typing import Any
 
-from PySide6 import QtCore, QtGui, QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from mrm.core.errors import MRMError
 from mrm.views import geometry_edit as ge
@@ -188,11 +188,3 @@ class ContextMenus(QtCore.QObject):
         )
         m.popup(lst.view.viewport().mapToGlobal(pos))
         return m
-
-
-def action_in(menu: QtWidgets.QMenu, name: str) -> QtGui.QAction:
-    """The action of ``menu`` with object name ``name`` (registry ids are object names too)."""
-    for a in menu.actions():
-        if a.objectName() == name:
-            return a
-    raise KeyError(f"no item {name!r} in {[a.objectName() for a in menu.actions()]}")

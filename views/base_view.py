@@ -26,12 +26,6 @@ class Layer(pg.ItemGroup):
         self.obj_id = obj_id
         self.waiting = False  # True while a representation it needs is being computed
 
-    def clear_items(self) -> None:
-        for it in list(self.childItems()):
-            it.setParentItem(None)
-            if it.scene() is not None:
-                it.scene().removeItem(it)
-
 
 class RepresentationView(QtWidgets.QFrame):
     """Base class of the discrete, region, analytical and Euclidean views."""

@@ -143,7 +143,3 @@ class DiscreteView(RepresentationView):
 
     def highlight_colour(self) -> QtGui.QColor:
         return QtGui.QColor("#ffb000") if self.is_dark() else QtGui.QColor("#d35400")
-
-    def mask_item(self, obj_id: int) -> MaskItem | None:
-        layer = self.layer(obj_id)
-        return layer.mask if isinstance(layer, DiscreteLayer) else None

@@ -91,7 +91,3 @@ class EuclideanView(RepresentationView):
         else:
             layer.handles.setVisible(False)
         return True
-
-    def euclidean_layer(self, obj_id: int) -> EuclideanLayer | None:
-        layer = self.layer(obj_id)
-        return layer if isinstance(layer, EuclideanLayer) else None

@@ -180,14 +180,6 @@ def inserted_vertex(geom: shapely.Geometry, ref: VertexRef, xy: tuple[float, flo
     return build(multi, polys)
 
 
-def deleted_vertex(geom: shapely.Geometry, ref: VertexRef) -> shapely.Geometry:
-    """``geom`` without vertex ``ref`` (validated; a ring keeps at least 3 vertices)."""
-    multi, polys = rings_of(geom)
-    p, r, i = ref
-    polys[p][r] = np.delete(polys[p][r], i, axis=0)
-    return build(multi, polys)
-
-
 def with_hole(geom: shapely.Geometry, ring: np.ndarray) -> shapely.Geometry | None:
     """``geom`` with ``ring`` added as a hole of the polygon that contains it (None if none does)."""
     hole = Polygon(ring)

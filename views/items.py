@@ -97,11 +97,6 @@ def polygon_rings(geom: shapely.Geometry) -> list[np.ndarray]:
     return out
 
 
-def geometry_path(geom: shapely.Geometry) -> QtGui.QPainterPath:
-    """QPainterPath of a shapely Polygon / MultiPolygon (holes cut out)."""
-    return rings_path(polygon_rings(geom))
-
-
 def _runs(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Maximal runs of True along the last axis: (row, first, last) arrays."""
     e = edges.astype(np.int8)
@@ -138,16 +133,6 @@ def segments_path(segs: np.ndarray) -> QtGui.QPainterPath:
     x = segs[:, [0, 2]].ravel()
     y = segs[:, [1, 3]].ravel()
     return pg.arrayToQPath(x, y, connect="pairs")
-
-
-def polyline_path(xy: np.ndarray, closed: bool = False) -> QtGui.QPainterPath:
-    """Path through the points (x, y) in order."""
-    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
-    if len(xy) == 0:
-        return QtGui.QPainterPath()
-    if closed:
-        xy = np.vstack([xy, xy[:1]])
-    return pg.arrayToQPath(xy[:, 0], xy[:, 1], connect="all")
 
 
 def cosmetic_pen(
@@ -641,11 +626,6 @@ class MarkersItem(pg.GraphicsObject):
         if highlight is not None:
             self._hl_brush = QtGui.QBrush(highlight)
         self.update()
-
-    def set_highlight(self, index: int | None) -> None:
-        if index != self.highlight:
-            self.highlight = index
-            self.update()
 
     def drawn(self, scale: float) -> np.ndarray:
         """Which points a paint at ``scale`` screen pixels per unit draws (all points in view)."""

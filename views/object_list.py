@@ -376,9 +376,6 @@ class ObjectList(QtWidgets.QWidget):
         if c.isValid():
             self.model._push(RestyleObject(o.id, replace(o.style, fill=c.name())))
 
-    def selected_ids(self) -> list[int]:
-        return list(self.doc.selection)
-
     def raise_selected(self) -> None:
         self._shift(-1)
 

@@ -47,7 +47,6 @@ class ToolHost(QtCore.QObject):
     message = QtCore.Signal(str, int)  # text, milliseconds (0 = until replaced)
     error = QtCore.Signal(str)
     overlayChanged = QtCore.Signal()
-    brushChanged = QtCore.Signal()
     measured = QtCore.Signal(object)  # a PointMeasure of the measure tool
     pointPicked = QtCore.Signal(float, float)  # the pick-point tool's click
 

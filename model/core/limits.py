@@ -292,29 +292,6 @@ def check_document_totals(pixels: int, nbytes: int) -> None:
         )
 
 
-def describe_limits() -> list[tuple[str, str]]:
-    """The limits as (what, value) rows, for the user guide and ``mrm --help`` style listings."""
-
-    def n(v: float) -> str:
-        return f"{v:,.0f}"
-
-    return [
-        ("Euclidean coordinates", f"±2^31 ({n(COORDINATE_LIMIT)})"),
-        ("pixel coordinates (every pixel of a pixel object)", f"±2^31 ({n(PIXEL_COORDINATE_LIMIT)})"),
-        ("pixels in the bounding box of one pixel object", n(MAX_OBJECT_PIXELS)),
-        ("pixels of all pixel objects of a document", n(MAX_FILE_PIXELS)),
-        ("vertices of one polygon object", n(MAX_OBJECT_VERTICES)),
-        ("object name", f"{n(MAX_NAME_CHARS)} characters"),
-        ("integer in operation parameters", "±2^63"),
-        ("project file", f"{n(MAX_FILE_BYTES / 2**20)} MB"),
-        ("boundary of a pixel set turned into a polygon", f"{n(MAX_CRACK_STEPS)} pixel edges"),
-        ("exported file", f"{n(MAX_OUTPUT_BYTES / 2**20)} MB"),
-        ("label map", f"{n(MAX_LABEL_PIXELS)} pixels"),
-        ("geometry nesting in WKT / GeoJSON", str(MAX_GEOMETRY_NESTING)),
-        ("steps of an error-bound chain", n(MAX_CHAIN_STEPS)),
-    ]
-
-
 __all__ = [name for name in dir() if name.isupper() and not name.startswith("_")] + [
     "check_chain_steps",
     "check_pixels",
@@ -330,7 +307,6 @@ __all__ = [name for name in dir() if name.isupper() and not name.startswith("_")
     "clean_name",
     "clean_text",
     "crack_steps",
-    "describe_limits",
     "json_bytes",
     "object_file_bytes",
     "source_file_bytes",
