@@ -8,7 +8,8 @@ import numpy as np
 from PySide6 import QtCore, QtGui
 
 from mrm.core.grids import PixelSet
-from mrm.document.commands import AddObject, PaintPixels
+from mrm.document.commands import AddObject
+from mrm.document.edits import PaintPixels
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
 from mrm.views.tool_base import Tool, ToolHost, accent_colour, cosmetic_pen

@@ -7,7 +7,7 @@ import math
 from PySide6 import QtCore, QtGui
 
 from mrm.core.errors import ParameterError
-from mrm.document.commands import DeleteComponent, FillHole
+from mrm.document.edits import DeleteComponent, FillHole
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
 from mrm.views.tool_base import Tool, accent_colour, cosmetic_pen, snap_mode

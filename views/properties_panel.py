@@ -20,7 +20,8 @@ from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.core.errors import MRMError
 from mrm.core.numbers import read_number
-from mrm.document.commands import DeleteVertex, MoveVertex, RenameObject, RestyleObject
+from mrm.document.commands import RenameObject, RestyleObject
+from mrm.document.edits import DeleteVertex, MoveVertex
 from mrm.views import geometry_edit as ge
 from mrm.views.measure import num_text
 

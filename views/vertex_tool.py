@@ -9,7 +9,7 @@ from PySide6 import QtCore, QtGui
 
 from mrm.core.errors import MRMError
 from mrm.document import DocObject
-from mrm.document.commands import DeleteVertex, InsertVertex, MoveVertex
+from mrm.document.edits import DeleteVertex, InsertVertex, MoveVertex
 from mrm.views import geometry_edit as ge
 from mrm.views.canvas import PlaneView
 from mrm.views.snapping import SnapExclusion

@@ -159,7 +159,7 @@ def context_menu(app: Any) -> Path:
 
 
 def _a_hole_pixel(win: Any, obj_id: int) -> tuple[int, int]:
-    from mrm.document.commands import hole_pixels
+    from mrm.document.edits import hole_pixels
 
     ps = win.scene.get(obj_id, "discrete")
     x, y = next(iter(hole_pixels(ps)))

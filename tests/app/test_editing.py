@@ -254,7 +254,7 @@ def test_fill_hole_and_delete_component_by_clicking(make_window, qtbot):
     ps = win.doc.get(obj.id).source
     assert all(p in ps for p in [(2, 2), (3, 1), (3, 2), (3, 3)])
     assert win.doc.history.undo_label() == "Fill hole"
-    from mrm.document.commands import DeleteComponent, FillHole
+    from mrm.document.edits import DeleteComponent, FillHole
 
     assert isinstance(win.doc.history._steps[win.doc.history.index - 1], FillHole)  # the model's command
     assert win.doc.derived(obj.id).get("region").n_holes == 0

@@ -5,7 +5,8 @@ from __future__ import annotations
 from PySide6 import QtCore, QtWidgets
 from shapely.geometry import Polygon
 
-from mrm.document.commands import AddObject, MoveVertex
+from mrm.document.commands import AddObject
+from mrm.document.edits import MoveVertex
 from mrm.views.history_panel import INITIAL_LABEL, StateRole
 from tests.app.helpers import click, press_key, zoom_to
 

@@ -16,7 +16,8 @@ from PySide6 import QtCore
 from shapely import affinity
 
 from mrm.core.grids import PixelSet
-from mrm.document.commands import AddObject, PaintPixels
+from mrm.document.commands import AddObject
+from mrm.document.edits import PaintPixels
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.account import account_of

@@ -22,7 +22,8 @@ from mrm.core.georef import GeoRef
 from mrm.core.grids import PixelSet
 from mrm.document import Document, Settings
 from mrm.document.apply import apply_operation
-from mrm.document.commands import MergeObjects, PaintPixels, RenameObject
+from mrm.document.commands import MergeObjects, RenameObject
+from mrm.document.edits import PaintPixels
 from mrm.io.export import export_object, export_objects_geojson
 from mrm.io.georef import read_georef
 from mrm.io.imports import import_file

@@ -20,8 +20,6 @@ from mrm.document import Changes, DocObject, Document, Settings, Style, validate
 from mrm.document.commands import (
     AddObject,
     ChangeSettings,
-    MoveVertex,
-    PaintPixels,
     RemoveObjects,
     RenameObject,
     ReorderObjects,
@@ -29,6 +27,7 @@ from mrm.document.commands import (
     SetSource,
 )
 from mrm.document.derive import DerivationCache
+from mrm.document.edits import MoveVertex, PaintPixels
 from mrm.ops.provenance import Provenance
 
 

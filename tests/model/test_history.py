@@ -16,20 +16,22 @@ from mrm.document.commands import (
     AddObject,
     ApplyResults,
     ChangeSettings,
-    DeleteComponent,
-    DeleteVertex,
-    ErasePixels,
-    FillHole,
-    InsertVertex,
     MergeObjects,
-    MoveVertex,
-    PaintPixels,
-    PixelDelta,
     RemoveObjects,
     RenameObject,
     ReorderObjects,
     RestyleObject,
     SetSource,
+)
+from mrm.document.edits import (
+    DeleteComponent,
+    DeleteVertex,
+    ErasePixels,
+    FillHole,
+    InsertVertex,
+    MoveVertex,
+    PaintPixels,
+    PixelDelta,
 )
 from mrm.document.history import Command
 from mrm.io.project import dumps

@@ -23,19 +23,14 @@ from mrm.document import Document, Style
 from mrm.document.commands import (
     AddObject,
     ChangeSettings,
-    DeleteComponent,
-    DeleteVertex,
-    FillHole,
-    InsertVertex,
     MergeObjects,
-    MoveVertex,
-    PaintPixels,
     RemoveObjects,
     RenameObject,
     ReorderObjects,
     RestyleObject,
     SetSource,
 )
+from mrm.document.edits import DeleteComponent, DeleteVertex, FillHole, InsertVertex, MoveVertex, PaintPixels
 from mrm.document.history import Command
 from mrm.io.project import dumps, loads
 

@@ -16,7 +16,8 @@ import pytest
 from mrm.core.errors import NotApplicableError
 from mrm.core.grids import LabelMap, PixelSet
 from mrm.document import Document, Settings
-from mrm.document.commands import AddObject, FillHole, PaintPixels, SplitLabelMap
+from mrm.document.commands import AddObject, SplitLabelMap
+from mrm.document.edits import FillHole, PaintPixels
 from mrm.geometry.discretize import discretize
 from mrm.io.project import dumps, loads, read_project
 from mrm.reps.cells import Cells

@@ -13,7 +13,8 @@ import mrm.core.limits as limits
 from mrm.core.errors import LimitError, MRMError, ParameterError, SizeLimitError
 from mrm.core.grids import PixelSet
 from mrm.document import Document
-from mrm.document.commands import AddObject, ApplyResults, MergeObjects, PaintPixels, RenameObject
+from mrm.document.commands import AddObject, ApplyResults, MergeObjects, RenameObject
+from mrm.document.edits import PaintPixels
 from mrm.io.project import dumps, loads, parse_project, save_project
 from mrm.ops.provenance import Provenance
 

@@ -26,7 +26,8 @@ from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
 from mrm.document import Document, Settings
 from mrm.document.apply import apply_operation, push_plan
-from mrm.document.commands import AddObject, PaintPixels, RemoveObjects
+from mrm.document.commands import AddObject, RemoveObjects
+from mrm.document.edits import PaintPixels
 from mrm.geometry.hausdorff import hausdorff_distance
 from mrm.geometry.reconstruct import reconstruct
 from mrm.io.pixel_files import write_pixels

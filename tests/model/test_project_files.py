@@ -17,7 +17,8 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.core.errors import FileFormatError, MRMError
 from mrm.core.grids import PixelSet
 from mrm.document import Document, Settings, Style
-from mrm.document.commands import AddObject, PaintPixels, RenameObject
+from mrm.document.commands import AddObject, RenameObject
+from mrm.document.edits import PaintPixels
 from mrm.io import autosave
 from mrm.io.project import (
     SCHEMA_VERSION,
