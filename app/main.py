@@ -10,7 +10,7 @@ from __future__ import annotations
 import importlib.util
 import sys
 
-from mrm.cli import EXIT_BROKEN_PIPE, build_parser, is_subcommand, run_cli, silence_stdout, version_text
+from mrm.cli import EXIT_BROKEN_PIPE, build_parser, run_headless, silence_stdout
 
 __all__ = ["main"]
 
@@ -23,11 +23,9 @@ def main(argv: list[str] | None = None) -> int:
     """The ``mrm`` command: a subcommand, ``--version``, or the desktop application (``gui`` extra)."""
     args = list(sys.argv[1:] if argv is None else argv)
     try:
-        if args[:1] in (["--version"], ["-V"]):
-            print(version_text(), flush=True)
-            return 0
-        if args and is_subcommand(args[0]):
-            return run_cli(args)
+        status = run_headless(args)
+        if status is not None:
+            return status
         if not _gui_available():
             if args[:1] in (["-h"], ["--help"], ["--help-commands"]):
                 build_parser().print_help()

@@ -32,37 +32,12 @@ class ParamInfo:
     maximum: float | None = None
     log: bool = False
 
-    @property
-    def name(self) -> str:
-        return self.spec.name
-
-    @property
-    def label(self) -> str:
-        return self.spec.label
-
-    @property
-    def kind(self) -> str:
-        return self.spec.kind
-
-    @property
-    def default(self) -> Any:
-        return self.spec.default
-
-    @property
-    def unit(self) -> str:
-        return self.spec.unit
-
-    @property
-    def help(self) -> str:
-        return self.spec.help
-
-    @property
-    def optional(self) -> bool:
-        return self.spec.optional
-
-    @property
-    def choices(self) -> tuple[Any, ...]:
-        return self.spec.choices
+    def __getattr__(self, name: str) -> Any:
+        # name, label, kind, default, unit, help, optional, choices: the declaration's own. (Only called for
+        # what the instance lacks; "spec" itself is refused so that a half-made copy cannot recurse.)
+        if name == "spec":
+            raise AttributeError(name)
+        return getattr(self.spec, name)
 
 
 @dataclass(frozen=True)

@@ -342,6 +342,16 @@ def _fail(command: str, message: str) -> int:
     return 2
 
 
+def run_headless(args: list[str]) -> int | None:
+    """``--version`` or a subcommand, run; None when ``args`` are neither (the desktop's, or help)."""
+    if args[:1] in (["--version"], ["-V"]):
+        print(version_text(), flush=True)
+        return 0
+    if args and is_subcommand(args[0]):
+        return run_cli(args)
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
     """``python -m mrm``: a headless subcommand, ``--version`` or ``--help``.
 
@@ -350,11 +360,9 @@ def main(argv: list[str] | None = None) -> int:
     """
     args = list(sys.argv[1:] if argv is None else argv)
     try:
-        if args[:1] in (["--version"], ["-V"]):
-            print(version_text(), flush=True)
-            return 0
-        if args and is_subcommand(args[0]):
-            return run_cli(args)
+        status = run_headless(args)
+        if status is not None:
+            return status
         build_parser().print_help()
         sys.stdout.flush()
         return 0 if args[:1] in (["-h"], ["--help"]) else 2
