@@ -43,9 +43,10 @@ from mrm.cli._common import (
     run_inputs,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
+from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.georef import GeoRef
 from mrm.core.grids import PixelSet
+from mrm.core.limits import check_pixels
 from mrm.io.georef import few_pixels_warning, read_geojson_crs, read_georef, same_crs, write_georeferenced
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
@@ -163,8 +164,8 @@ def discretize_file(
     source, chosen = _source(path, object_name, model, limit)
     geom = None if isinstance(source, PixelSet) else source
     grid = _grid(path, geom, like, resolution, extent)
-    if grid is not None and grid.width * grid.height > limit:
-        raise SizeLimitError(grid.width * grid.height, limit, f"{output}: the grid")
+    if grid is not None:
+        check_pixels(grid.width * grid.height, limit, f"{output}: the grid")
     t0 = time.perf_counter()
     if geom is None:
         ps = source

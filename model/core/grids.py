@@ -15,8 +15,7 @@ from typing import Any, SupportsIndex, cast
 import numpy as np
 import numpy.typing as npt
 
-from mrm.core.errors import SizeLimitError
-from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.threshold import binarize, grey_of
 
 BoolArray = npt.NDArray[np.bool_]
@@ -386,10 +385,8 @@ class PixelSet:
     def _checked_joint_box(self, other: PixelSet) -> Box | None:
         box = self._joint_box(other)
         if box is not None:
-            area = (box[2] - box[0] + 1) * (box[3] - box[1] + 1)
-            if area > DEFAULT_PIXEL_LIMIT:
-                # Two small sets far apart would need a huge mask: refuse before allocating it.
-                raise SizeLimitError(area, DEFAULT_PIXEL_LIMIT, "the joint bounding box of these pixel sets")
+            # Two small sets far apart would need a huge mask: refuse before allocating it.
+            check_pixels(box_area(box), DEFAULT_PIXEL_LIMIT, "the joint bounding box of these pixel sets")
         return box
 
     def union(self, other: PixelSet) -> PixelSet:

@@ -161,8 +161,7 @@ def check_pixel_extent(origin: tuple[int, int], shape: tuple[int, ...], what: st
             f"{what} would reach pixel coordinates beyond ±2^31 (its box starts at ({x0}, {y0}) and is "
             f"{w} × {h}); move it closer to the origin or reduce the scale"
         )
-    if h * w > MAX_OBJECT_PIXELS:
-        raise SizeLimitError(h * w, MAX_OBJECT_PIXELS, what)
+    check_pixels(h * w, MAX_OBJECT_PIXELS, what)
 
 
 def crack_steps(mask: npt.NDArray[np.bool_], *, rows_per_strip: int = 1024) -> int:
@@ -283,8 +282,7 @@ def object_file_bytes(name_bytes: int, provenance_bytes: int, source_bytes: int)
 
 def check_document_totals(pixels: int, nbytes: int) -> None:
     """Refuse a document whose discrete sources or file size would exceed the per-file limits."""
-    if pixels > MAX_FILE_PIXELS:
-        raise SizeLimitError(pixels, MAX_FILE_PIXELS, "the pixel objects of the document together")
+    check_pixels(pixels, MAX_FILE_PIXELS, "the pixel objects of the document together")
     if nbytes > MAX_FILE_BYTES - FILE_BYTES_MARGIN:
         raise LimitError(
             f"the document would need a project file of about {nbytes / 2**20:,.0f} MB, more than the limit "

@@ -19,7 +19,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core import limits
-from mrm.core.errors import InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap, PixelSet
 from mrm.core.limits import COORDINATE_LIMIT
@@ -86,8 +86,7 @@ def _source_cost(source: Source) -> tuple[int, int]:
     if isinstance(source, LabelMap):
         limits.check_pixel_extent(source.origin, source.shape, "the label map")
         n = source.shape[0] * source.shape[1]
-        if n > limits.MAX_LABEL_PIXELS:
-            raise SizeLimitError(n, limits.MAX_LABEL_PIXELS, "the label map")
+        limits.check_pixels(n, limits.MAX_LABEL_PIXELS, "the label map")
         return n, limits.source_file_bytes("labels", pixels=n)
     n = int(shapely.get_num_coordinates(source))
     limits.check_vertices(n, "the polygon object")

@@ -31,9 +31,9 @@ from typing import Any, Literal
 
 import numpy as np
 
-from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
+from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import LabelMap, PixelSet
-from mrm.core.limits import MAX_LABEL_PIXELS
+from mrm.core.limits import MAX_LABEL_PIXELS, check_pixels
 from mrm.document import Document
 from mrm.io.georef import GEOREFERENCED_EXTENSIONS, geojson_members, same_crs, write_georeferenced
 from mrm.io.pixel_files import write_label_map, write_pixels
@@ -178,8 +178,7 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
     x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
 
     area = (x1 - x0 + 1) * (y1 - y0 + 1)
-    if area > MAX_LABEL_PIXELS:  # four bytes a pixel: the label map limit, not the pixel set one
-        raise SizeLimitError(area, MAX_LABEL_PIXELS, "the label map")
+    check_pixels(area, MAX_LABEL_PIXELS, "the label map")  # four bytes a pixel: not the pixel set limit
     out = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=np.int32)
     for k, p in enumerate(parts, start=1):
         if p.is_empty():

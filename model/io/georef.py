@@ -37,10 +37,10 @@ from typing import Any
 
 import numpy as np
 
-from mrm.core.errors import FileFormatError, ParameterError, SizeLimitError
+from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.georef import GeoRef, Transform, grid_origin, unit_grid
 from mrm.core.grids import PixelSet
-from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixel_extent
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixel_extent, check_pixels
 from mrm.core.threshold import binarize
 from mrm.io.atomic import atomic_open, atomic_write_bytes, atomic_write_text
 from mrm.io.pixel_files import ORIGIN_KEY, parse_origin, read_pixels
@@ -269,8 +269,7 @@ def read_raster(
     name = Path(path).name
     try:
         with rasterio.open(path) as ds:
-            if ds.width * ds.height > limit:
-                raise SizeLimitError(ds.width * ds.height, limit, f"{name}: the raster")
+            check_pixels(ds.width * ds.height, limit, f"{name}: the raster")
             band = ds.read(1)
             nodata = ds.nodata
     except rasterio.errors.RasterioIOError as e:
