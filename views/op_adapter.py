@@ -13,7 +13,7 @@ untouched.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -50,10 +50,6 @@ class OpInfo:
     params: tuple[ParamInfo, ...]
     help: str
     spec: OperationSpec
-
-    def make_params(self, values: Mapping[str, Any]) -> Any:
-        """The operation's parameters from the controls' values, read and checked (raises ParameterError)."""
-        return self.spec.params.read(**values)
 
     def run(self, inputs: Sequence[Any], params: Any, progress: Any, held: Any = ()) -> list[tuple[str, Any]]:
         """Run the operation (read, size-checked); its (part name, source) outputs."""

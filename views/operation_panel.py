@@ -542,7 +542,7 @@ class OperationPanel(QtWidgets.QWidget):
             self.status.setText(f"<span style='color:#c0392b'>{bad[0]}</span>")
             return None
         try:
-            params = op.make_params(self.values())
+            params = op.spec.params.read(**self.values())  # checked once more as they become the parameters
         except (MRMError, TypeError, ValueError) as e:
             self.status.setText(f"<span style='color:#c0392b'>{e}</span>")
             return None

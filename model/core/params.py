@@ -152,10 +152,8 @@ class ParamSpec:
 
     def _read_number(self, value: Any) -> Fraction | int:
         q = read_number(value, self.what)
-        # A message shows the number as the user wrote it when it came as text (``got 1e400``).
-        shown = _shown(value) if isinstance(value, str) else brief(q)
         if self.kind == "int" and q.denominator != 1:
-            raise ParameterError(f"{self.what} must be an integer, got {shown}")
+            raise ParameterError(f"{self.what} must be an integer, got {_shown(value, q)}")
         lo, hi = self.minimum, self.maximum
         if lo is not None and (q < lo or (q == lo and not self.min_inclusive)):
             first = (
@@ -163,11 +161,13 @@ class ParamSpec:
                 if lo == 0 and not self.min_inclusive
                 else f"{'≥' if self.min_inclusive else '>'} {_fmt(lo)}"
             )
-            raise ParameterError(f"{self.what} must be {first}, got {shown} (allowed: {self.range_text()})")
+            raise ParameterError(
+                f"{self.what} must be {first}, got {_shown(value, q)} (allowed: {self.range_text()})"
+            )
         if hi is not None and (q > hi or (q == hi and not self.max_inclusive)):
             rel = "≤" if self.max_inclusive else "<"
             raise ParameterError(
-                f"{self.what} must be {rel} {_fmt(hi)}, got {shown} (allowed: {self.range_text()})"
+                f"{self.what} must be {rel} {_fmt(hi)}, got {_shown(value, q)} (allowed: {self.range_text()})"
             )
         return int(q) if self.kind == "int" else q
 
@@ -181,8 +181,11 @@ class ParamSpec:
         return d
 
 
-def _shown(text: str) -> str:
-    t = text.strip()
+def _shown(value: Any, q: Fraction) -> str:
+    """A number in a message: as the user wrote it when it came as text (``got 1e400``), else briefly."""
+    if not isinstance(value, str):
+        return brief(q)
+    t = value.strip()
     return t if len(t) <= 24 else t[:21] + "..."
 
 
