@@ -40,8 +40,8 @@ from shapely.geometry import Polygon  # noqa: E402
 
 from mrm.core.grids import PixelSet  # noqa: E402
 from mrm.document import Document  # noqa: E402
-from mrm.document.commands import AddObject, PaintPixels  # noqa: E402
-from mrm.document.edits import MoveVertex
+from mrm.document.commands import AddObject  # noqa: E402
+from mrm.document.edits import MoveVertex, PaintPixels  # noqa: E402
 from mrm.io.project import dumps, read_project, save_project  # noqa: E402
 
 
