@@ -97,8 +97,8 @@ def _npz_labels(path: Path) -> tuple[np.ndarray, bool, bool] | None:
 def image_kind(path: Path, labels_ok: bool) -> str:
     """What an image holds, for people: ``indexed-colour``, ``colour``, ``grey`` or ``label`` (NPZ labels).
 
-    A PNG says it in its header (read alone: no pixel is decoded); other files go by whether labels make
-    sense for them (grey) or not (colour).
+    A PNG says it in its header (read alone: no pixel is decoded); other files go by whether labels make sense
+    for them (grey) or not (colour).
     """
     suffix = path.suffix.lower()
     if suffix == ".npz":

@@ -37,8 +37,8 @@ def main(argv: list[str] | None = None) -> int:
                 file=sys.stderr,
             )
             return 2
-        # Qt is imported only here, when the application really starts (the headless paths above never
-        # load it: the gui extra is optional).
+        # Qt is imported only here, when the application really starts (the headless paths above never load
+        # it: the gui extra is optional).
         from mrm.app.gui import run_gui
 
         status: int = run_gui(args)

@@ -1,14 +1,11 @@
 """The path of the Operations panel's α to the kernel, traced: files, calls, parses and checks (issue 27).
 
 The panel's α field is typed "2.5" and committed; Apply makes the parameters and runs the operation as the
-worker
-does (``plan_operation``) up to the compiled discretization. Every call into MR Modeler's code on that path is
-recorded (``sys.setprofile``); a call is on *the α's path* when one of its arguments holds the α — the text,
-the
-exact 5/2, the parameters object, the similarity made from it — and each of those calls is listed with its
-file.
-Also counted: the parses (``read_number`` given something other than a Fraction) and the range checks
-(``ParamSpec.read`` of a number).
+worker does (``plan_operation``) up to the compiled discretization. Every call into MR Modeler's code on that
+path is recorded (``sys.setprofile``); a call is on *the α's path* when one of its arguments holds the α — the
+text, the exact 5/2, the parameters object, the similarity made from it — and each of those calls is listed
+with its file. Also counted: the parses (``read_number`` given something other than a Fraction) and the range
+checks (``ParamSpec.read`` of a number).
 
 Run: ``QT_QPA_PLATFORM=offscreen .venv/bin/python benchmarks/alpha_path.py`` (prints a table; ``--json``).
 """

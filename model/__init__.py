@@ -10,9 +10,8 @@ and the command line start fast. numpy arrays, pixel sets and shapely geometries
     mrm.hausdorff(mrm.reconstruct(big, "gauss"), ...)
 
 Pixel (x, y) is centred on the point (x, y) and y points **up** (docs/design.md §1); image arrays are
-converted by
-:meth:`PixelSet.from_image` / :meth:`PixelSet.to_image`, never by hand. The desktop application is
-``mrm.app`` (needs the ``gui`` extra); the command line is ``mrm.cli``.
+converted by :meth:`PixelSet.from_image` / :meth:`PixelSet.to_image`, never by hand. The desktop application
+is ``mrm.app`` (needs the ``gui`` extra); the command line is ``mrm.cli``.
 """
 
 from __future__ import annotations

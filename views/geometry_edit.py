@@ -1,8 +1,7 @@
 """Pure helpers for the editing tools: vertex references, hit tests, the preview of a vertex edit, brush dabs.
 
 Vertex references follow :mod:`mrm.document.commands` (``VertexRef`` = (polygon, ring, index), closing point
-not
-counted, polygons in MultiPolygon order, ring 0 the exterior), so a preview computed here and the command
+not counted, polygons in MultiPolygon order, ring 0 the exterior), so a preview computed here and the command
 pushed on release describe the same edit.
 """
 

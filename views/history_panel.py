@@ -1,11 +1,10 @@
 """The History panel: the document's undo steps as a list, the current position marked; a click goes there.
 
 It reads the model's history (:class:`mrm.document.history.History`: its steps, their labels, the current
-index and the
-clean marker) and follows it live through the history's listener, which is called on every push, undo, redo,
-merge and clear (a project opened or a new one started). Choosing a row undoes or redoes, one history step at
-a time, until the document is at that row's state — so "modified", the clean marker and Redo behave exactly
-as if the user had pressed Ctrl+Z or Ctrl+Shift+Z that many times.
+index and the clean marker) and follows it live through the history's listener, which is called on every push,
+undo, redo, merge and clear (a project opened or a new one started). Choosing a row undoes or redoes, one
+history step at a time, until the document is at that row's state — so "modified", the clean marker and Redo
+behave exactly as if the user had pressed Ctrl+Z or Ctrl+Shift+Z that many times.
 """
 
 from __future__ import annotations

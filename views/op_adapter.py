@@ -1,13 +1,11 @@
 """How the GUI reads the model's operations: one place that knows the shape of :mod:`mrm.ops`.
 
 The panels are generated from the registry (:func:`mrm.ops.registry.operations`): every declared parameter
-(:meth:`mrm.core.params.Parameters.specs`) gives a control with its kind, range, unit and help. A field's
-text is
-read once, exactly, by the parameter's own declaration (:meth:`mrm.core.params.ParamSpec.read`: ``0.2`` is
-1/5);
-Apply runs the pure :func:`mrm.ops.registry.plan_operation` on a worker with the input objects (immutable
-values), and the GUI thread pushes its results as one undo step — so a cancel or an error leaves the document
-untouched.
+(:meth:`mrm.core.params.Parameters.specs`) gives a control with its kind, range, unit and help. A field's text
+is read once, exactly, by the parameter's own declaration (:meth:`mrm.core.params.ParamSpec.read`: ``0.2`` is
+1/5); Apply runs the pure :func:`mrm.ops.registry.plan_operation` on a worker with the input objects
+(immutable values), and the GUI thread pushes its results as one undo step — so a cancel or an error leaves
+the document untouched.
 """
 
 from __future__ import annotations

@@ -1,11 +1,11 @@
 """What every editing tool shares: the host (the window's side of a tool), the base class, drawing helpers.
 
 A tool receives the mouse and key events of whichever view the user works in (the four views show the same
-plane), previews its edit live through :meth:`Scene.set_preview` — so the other views follow while dragging
-or painting — and pushes exactly one command (or one macro) when the gesture ends: every edit is one undo
-step. Middle-drag pans and the wheel zooms with every tool. The tools themselves live in one module each
-(:mod:`mrm.views.select_tool`, :mod:`mrm.views.polygon_tool`, ...); :func:`mrm.views.tools.make_tools`
-makes one of each.
+plane), previews its edit live through :meth:`Scene.set_preview` — so the other views follow while dragging or
+painting — and pushes exactly one command (or one macro) when the gesture ends: every edit is one undo step.
+Middle-drag pans and the wheel zooms with every tool. The tools themselves live in one module each
+(:mod:`mrm.views.select_tool`, :mod:`mrm.views.polygon_tool`, ...); :func:`mrm.views.tools.make_tools` makes
+one of each.
 """
 
 from __future__ import annotations

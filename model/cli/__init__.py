@@ -18,8 +18,7 @@ Conventions every subcommand gets from this layer (docs/adr/0011):
   removes the folders it created when nothing was written into them.
 * Errors are one line ``mrm NAME: error: message`` on stderr with exit status 2, never a traceback: every
   :class:`mrm.core.errors.MRMError`, every ``OSError`` (read-only file system, full disk, symlink loop, name
-  too
-  long, a path through a regular file, …) and every number out of range.
+  too long, a path through a regular file, …) and every number out of range.
 * A closed standard output (``mrm … | head``) ends the command quietly with status 141 (128 + SIGPIPE, what a
   shell reports for a program killed by the closed pipe).
 """

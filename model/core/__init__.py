@@ -1,9 +1,8 @@
 """The core vocabulary of MR Modeler: what every other layer imports, and what imports nothing of theirs.
 
-The layers (docs/adr/0041, enforced by tests/test_layers.py) are, from the bottom:
-``core`` → ``geometry`` → ``reps`` → ``ops`` → ``document`` → ``io`` → ``cli`` / ``api`` / ``views`` →
-``app``.
-The core holds the notions the whole product shares, each declared once:
+The layers (docs/adr/0041, enforced by tests/test_layers.py) are, from the bottom: ``core`` → ``geometry`` →
+``reps`` → ``ops`` → ``document`` → ``io`` → ``cli`` / ``api`` / ``views`` → ``app``. The core holds the
+notions the whole product shares, each declared once:
 
 * :mod:`mrm.core.errors` — the errors a user can cause;
 * :mod:`mrm.core.limits` — the limits of what a document can hold, and the one size check;

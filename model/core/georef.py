@@ -1,11 +1,10 @@
 """Where a raster lies on the Earth: its affine transform, its size and its CRS (docs/gdal.md, ADR 0021).
 
-MR Modeler works in **grid coordinates**: pixel (x, y) is centred on the point (x, y), y up
-(docs/design.md §1). A raster of H rows whose GDAL affine transform is ``T`` (``X = a·col + b·row + c``,
-``Y = d·col + e·row + f``, with (col, row) = (0, 0) the top-left corner of the top-left pixel) is read with
-its bottom-left pixel at (0, 0), so grid point (u, v) is the raster position (col, row) = (u + ½, H − ½ − v).
-A :class:`GeoRef` is a value an object carries (ADR 0021); reading and writing georeferenced files is
-:mod:`mrm.io.georef`'s.
+MR Modeler works in **grid coordinates**: pixel (x, y) is centred on the point (x, y), y up (docs/design.md
+§1). A raster of H rows whose GDAL affine transform is ``T`` (``X = a·col + b·row + c``, ``Y = d·col + e·row +
+f``, with (col, row) = (0, 0) the top-left corner of the top-left pixel) is read with its bottom-left pixel at
+(0, 0), so grid point (u, v) is the raster position (col, row) = (u + ½, H − ½ − v). A :class:`GeoRef` is a
+value an object carries (ADR 0021); reading and writing georeferenced files is :mod:`mrm.io.georef`'s.
 """
 
 from __future__ import annotations
@@ -41,8 +40,8 @@ class GeoRef:
         The coordinate reference system as ``EPSG:n`` when it has a code, else WKT; None when unknown.
     origin : (int, int)
         The grid coordinates of the raster's bottom-left pixel: (0, 0) for a raster as it is read, (x0, y0)
-        for a unit grid read back in place (:func:`grid_origin`), anything for an object's grid after an
-        edit (:meth:`covering`, :meth:`scaled`).
+        for a unit grid read back in place (:func:`grid_origin`), anything for an object's grid after an edit
+        (:meth:`covering`, :meth:`scaled`).
     """
 
     transform: Transform
@@ -220,8 +219,8 @@ class GeoRef:
 def unit_grid(ps: PixelSet) -> GeoRef:
     """The georeference under which grid coordinates are world coordinates.
 
-    GDAL's ``from_origin(x0 − ½, y0 + H − ½, 1, 1)`` over the set's bounding box (one pixel at (0, 0) for
-    the empty set).
+    GDAL's ``from_origin(x0 − ½, y0 + H − ½, 1, 1)`` over the set's bounding box (one pixel at (0, 0) for the
+    empty set).
     """
     (x0, y0), (h, w) = ps.origin, ps.shape
     h, w = max(h, 1), max(w, 1)
@@ -231,8 +230,8 @@ def unit_grid(ps: PixelSet) -> GeoRef:
 def grid_origin(georef: GeoRef | None) -> tuple[int, int]:
     """The origin a raster's bottom-left pixel gets.
 
-    (x0, y0) for a unit grid written by :func:`unit_grid`, so that such files read back in place; (0, 0)
-    for any other georeference.
+    (x0, y0) for a unit grid written by :func:`unit_grid`, so that such files read back in place; (0, 0) for
+    any other georeference.
     """
     if georef is None:
         return (0, 0)

@@ -3,8 +3,7 @@
 Whatever a document can hold, its project file can hold and reopen: the same limits are checked at the edit,
 operation or import that would exceed them (with a :class:`~mrm.core.errors.LimitError` or
 :class:`~mrm.core.errors.SizeLimitError` naming the limit) and again by the project loader, which therefore
-never
-refuses a file this program wrote. The costs of work whose size does not follow from the pixel count —
+never refuses a file this program wrote. The costs of work whose size does not follow from the pixel count —
 reconstruction (boundary length in crack steps), vector output (vertices), written files (bytes) — are
 computed here from the input before the work starts.
 

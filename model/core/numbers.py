@@ -7,9 +7,8 @@ project file — is read here, once, into a :class:`fractions.Fraction`, and not
   what a person typing them means (the binary value of 0.2 is 3602879701896397/2⁵⁴);
 * integers, Fractions and Decimals are read exactly as they are;
 * text is a decimal (``1.25``, ``2e-1``), a fraction (``1/3``) or an integer, as people type it: spaces
-  around,
-  a typographic minus (``−3``), a decimal comma (``2,5``) and a trailing unit (``30°``, ``2×``, ``4 px``)
-  are accepted.
+  around, a typographic minus (``−3``), a decimal comma (``2,5``) and a trailing unit (``30°``, ``2×``, ``4
+  px``) are accepted.
 
 Refused, with a message that names the parameter: booleans, None, NaN, infinities, text that is no number,
 and numbers whose spelling would cost more than :data:`MAX_DIGITS` digits (``1e-1000000`` would otherwise be

@@ -2,11 +2,10 @@
 
 :func:`apply_operation` reads the sources of the input objects, runs the operation (which never touches the
 document), and only when it has finished pushes one :class:`~mrm.document.commands.ApplyResults` command that
-adds
-the results with their provenance — the operation's name, its parameters, the ids of its inputs and their
-content at that moment (pinned: editing an input later never changes a result's account). A
-failure (bad parameter, size limit, invalid geometry) or a cancel raises before that push, so the document,
-its history and its selection are exactly as they were: nothing is lost.
+adds the results with their provenance — the operation's name, its parameters, the ids of its inputs and their
+content at that moment (pinned: editing an input later never changes a result's account). A failure (bad
+parameter, size limit, invalid geometry) or a cancel raises before that push, so the document, its history and
+its selection are exactly as they were: nothing is lost.
 """
 
 from __future__ import annotations

@@ -12,9 +12,8 @@ actually flips) and replays exactly that afterwards. Each ``do`` validates befor
 edit (a vertex drag that would make the polygon cross itself) raises :class:`InvalidGeometryError` and
 leaves the document untouched.
 
-Editing an object's Euclidean shape makes the Euclidean representation its source; painting makes the
-discrete one its source (docs/design.md §7). A hand-edited object is no longer what its operation produced,
-so these
+Editing an object's Euclidean shape makes the Euclidean representation its source; painting makes the discrete
+one its source (docs/design.md §7). A hand-edited object is no longer what its operation produced, so these
 edits clear its provenance (undo brings it back).
 """
 

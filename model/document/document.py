@@ -1,8 +1,8 @@
 """The shared model: an ordered list of objects, each with one source representation (docs/design.md §7).
 
-An object (:class:`~mrm.document.objects.DocObject`) is an immutable value with one **source**
-representation — a Euclidean geometry, a discrete :class:`~mrm.core.grids.PixelSet` or a label map. The other
-representations are *derived* from the source under the document's discretization model and cached by
+An object (:class:`~mrm.document.objects.DocObject`) is an immutable value with one **source** representation
+— a Euclidean geometry, a discrete :class:`~mrm.core.grids.PixelSet` or a label map. The other representations
+are *derived* from the source under the document's discretization model and cached by
 :mod:`mrm.document.derive`:
 
 * Euclidean source E: discrete = D(E), Euclidean = E;
@@ -11,10 +11,8 @@ representations are *derived* from the source under the document's discretizatio
 so D(Euclidean) = discrete holds for every object at every moment (D(R(A)) = A is R's contract).
 
 The :class:`Document` is changed only through the commands of :mod:`mrm.document.commands`, pushed on its
-single
-:class:`~mrm.document.history.History`. Views subscribe to coarse, batched :class:`Changes` and never mutate
-the
-model themselves. Nothing here imports Qt.
+single :class:`~mrm.document.history.History`. Views subscribe to coarse, batched :class:`Changes` and never
+mutate the model themselves. Nothing here imports Qt.
 """
 
 from __future__ import annotations
@@ -109,8 +107,8 @@ class Document:
         self._revision = 0
         self._obj_rev: dict[int, int] = {}
         self._next_id = 1
-        # new_id may be called from a worker (objects read off the GUI thread, e.g. a paste): no two
-        # callers may get the same id.
+        # new_id may be called from a worker (objects read off the GUI thread, e.g. a paste): no two callers
+        # may get the same id.
         self._id_lock = threading.Lock()
         # Running totals of the per-file limits (mrm.core.limits): pixels of the discrete sources' boxes and
         # the bytes of the project file, kept by the low-level mutations.

@@ -315,10 +315,9 @@ def hole_pixels(ps: PixelSet, at: tuple[int, int] | None = None) -> PixelSet:
     """The pixels of the hole of ``ps`` holding pixel ``at`` — or of every hole when ``at`` is None.
 
     The holes are the bounded 8-components of the complement (docs/design.md §4). Filling each component's
-    outer
-    crack chain (the region representation) gives the set with every hole filled; its difference with the set
-    is the union of the holes, and since distinct holes are distinct 8-components of the complement, the
-    8-component of that difference holding ``at`` is exactly the hole holding ``at``.
+    outer crack chain (the region representation) gives the set with every hole filled; its difference with
+    the set is the union of the holes, and since distinct holes are distinct 8-components of the complement,
+    the 8-component of that difference holding ``at`` is exactly the hole holding ``at``.
 
     Raises
     ------

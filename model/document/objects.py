@@ -47,9 +47,8 @@ def validate_geometry(geom: object) -> Geometry:
     """Return ``geom`` if it can be a Euclidean source, else raise :class:`InvalidGeometryError`.
 
     A Euclidean source is a 2-D shapely Polygon or MultiPolygon, valid in the OGC sense (docs/design.md §6),
-    with
-    finite coordinates of magnitude at most :data:`COORDINATE_LIMIT`. An empty geometry of any type becomes
-    the empty Polygon. Coordinates are never altered.
+    with finite coordinates of magnitude at most :data:`COORDINATE_LIMIT`. An empty geometry of any type
+    becomes the empty Polygon. Coordinates are never altered.
     """
     if not isinstance(geom, shapely.Geometry):
         raise InvalidGeometryError(f"expected a polygon, got {type(geom).__name__}")

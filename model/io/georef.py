@@ -1,9 +1,8 @@
 """Georeferenced rasters: GeoTIFF and image + world file, their transform and CRS (docs/gdal.md, ADR 0016).
 
 MR Modeler works in **grid coordinates**: pixel (x, y) is centred on the point (x, y), y up (docs/design.md
-§1). A
-raster of H rows whose GDAL affine transform is ``T`` (``X = a·col + b·row + c``, ``Y = d·col + e·row + f``,
-with (col, row) = (0, 0) the top-left corner of the top-left pixel) is read with its bottom-left pixel at
+§1). A raster of H rows whose GDAL affine transform is ``T`` (``X = a·col + b·row + c``, ``Y = d·col + e·row +
+f``, with (col, row) = (0, 0) the top-left corner of the top-left pixel) is read with its bottom-left pixel at
 (0, 0), so grid point (u, v) is the raster position (col, row) = (u + ½, H − ½ − v) and the world point
 
     (X, Y) = T · (u + ½, H − ½ − v).

@@ -87,8 +87,7 @@ SCHEMA_VERSION = 4
 #: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
 MAX_CRS_CHARS = 100_000
 # The other limits are those of the document (mrm.core.limits, ADR 0010), so that the loader accepts every
-# file
-# the saver can write: the document refuses the edit that would exceed them. The loader reads them from
+# file the saver can write: the document refuses the edit that would exceed them. The loader reads them from
 # mrm.core.limits when it runs.
 
 

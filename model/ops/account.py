@@ -4,9 +4,8 @@ One function, :func:`account_of`, computes it from a result's pinned provenance
 (:class:`mrm.document.Provenance`: the operation, its parameters, and the content and provenance its inputs
 had when the result was made). The inspector, ``mrm account … --json``, ``mrm scale … --json`` and scripts all
 call it, so they print the same numbers (:meth:`Account.summary`). Nothing is guessed from names: the
-operation is looked up in the registry (:mod:`mrm.ops.registry`), its parameters are read and range-checked
-by its
-parameters dataclass, its place in the bound rule and its similarity come from its spec.
+operation is looked up in the registry (:mod:`mrm.ops.registry`), its parameters are read and range-checked by
+its parameters dataclass, its place in the bound rule and its similarity come from its spec.
 
 The chain (docs/design.md §8)
 ---------------------

@@ -5,19 +5,17 @@ operation, the part the chain follows. Everything about an operation comes from 
 (:class:`mrm.ops.registry.OperationSpec`): the words that name it, the numbers written after it (its
 positional parameters, read by :meth:`~mrm.core.params.ParamSpec.read` as every other path reads them), its
 part words, and its place in the bound rule (:attr:`~mrm.ops.registry.OperationSpec.bound`). So a chain's
-text,
-a result's provenance (:mod:`mrm.ops.account`) and the library (:func:`mrm.bound`) give the same bound with
-the
-same labels, and a new operation needs no edit here.
+text, a result's provenance (:mod:`mrm.ops.account`) and the library (:func:`mrm.bound`) give the same bound
+with the same labels, and a new operation needs no edit here.
 
 Grammar (case-insensitive; steps separated by ``,`` or ``;``, applied left to right)::
 
     WORD [number [, number …]] [part] [about x,y]
 
-e.g. ``DSS 1.25 about 3,4``, ``ROT -30 @ (1, 2.5)``, ``SP 1/5``, ``TRANSLATE -1,2.5``, ``EDu``,
-``COREFINE 8 first``. A pair may be written ``x,y``, ``x y`` or ``(x, y)``; ``at`` and ``@`` are synonyms of
-``about``. ``ROT`` is the discrete-Euclidean rotation dR (a discrete operation); ``SCALE``, ``EROT`` and
-``TRANSLATE`` are exact Euclidean maps.
+e.g. ``DSS 1.25 about 3,4``, ``ROT -30 @ (1, 2.5)``, ``SP 1/5``, ``TRANSLATE -1,2.5``, ``EDu``, ``COREFINE 8
+first``. A pair may be written ``x,y``, ``x y`` or ``(x, y)``; ``at`` and ``@`` are synonyms of ``about``.
+``ROT`` is the discrete-Euclidean rotation dR (a discrete operation); ``SCALE``, ``EROT`` and ``TRANSLATE``
+are exact Euclidean maps.
 """
 
 from __future__ import annotations

@@ -1,9 +1,8 @@
 """The parameters the paper's operations share, declared once: the model, a factor α, an angle θ, a centre.
 
 Each is a :func:`mrm.core.params.param` field with its range, unit and help; an operation's parameters
-dataclass
-lists the ones it takes. The ranges are the product's, not the mathematics': beyond them a result is below one
-pixel or beyond any pixel limit, and the exact arithmetic would only spend time.
+dataclass lists the ones it takes. The ranges are the product's, not the mathematics': beyond them a result is
+below one pixel or beyond any pixel limit, and the exact arithmetic would only spend time.
 """
 
 from __future__ import annotations

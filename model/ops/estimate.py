@@ -41,11 +41,9 @@ def estimated_box(
     R(A) for a pixel set A).
 
     A pixel set A with no T is its own box. R(A) lies in V(bbox(A)) under the covers, and within one more
-    pixel
-    under ``gauss`` (its boundary stays within the voxels of the border pixels on either side,
+    pixel under ``gauss`` (its boundary stays within the voxels of the border pixels on either side,
     docs/design.md §3.2); a polygon lies in its bounds, and D of it in the supercover box of those. T's image
-    of
-    that rectangle is bounded exactly, and the box is that of its pixels under ``model``.
+    of that rectangle is bounded exactly, and the box is that of its pixels under ``model``.
     """
     model = Model.parse(model)
     if source is None:

@@ -2,10 +2,9 @@
 
 An operation says how a georeferenced input's grid carries to its result (:attr:`OperationSpec.grid`):
 ``same`` (the rotation turns the shape on the grid, so it turns in the world about the centre's world point;
-the
-simplification and the co-refinement map their scaled work back; the union takes pixels) or ``scaled`` (DSS_α:
-the grid scaled by the operation's similarity, pixels α times smaller, the world outline where the input's
-was).
+the simplification and the co-refinement map their scaled work back; the union takes pixels) or ``scaled``
+(DSS_α: the grid scaled by the operation's similarity, pixels α times smaller, the world outline where the
+input's was).
 """
 
 from __future__ import annotations
@@ -26,8 +25,8 @@ __all__ = ["common_grid", "result_georef"]
 def common_grid(inputs: Sequence[GeoRef | None], what: str = "the result") -> GeoRef | None:
     """The inputs' grid when they all share one, else None (a result of several grids has none).
 
-    Mixing grids has no single right answer and MR Modeler does not resample: the result is then in plain
-    grid coordinates, as on the canvas.
+    Mixing grids has no single right answer and MR Modeler does not resample: the result is then in plain grid
+    coordinates, as on the canvas.
     """
     if not inputs or inputs[0] is None or any(g != inputs[0] for g in inputs[1:]):
         if any(g is not None for g in inputs):

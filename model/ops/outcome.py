@@ -2,9 +2,8 @@
 
 Each operation is ``D∘T∘R`` (discrete → discrete), ``T⁻¹∘R∘D∘T`` (Euclidean → Euclidean) or a Boolean
 combination of discretizations. To replay a chain and measure its error (docs/design.md §8) the chain runner
-needs,
-for every step, the Euclidean similarity ``T`` it applies and the Euclidean object just before its final
-discretization (or its exact Euclidean result): :class:`StepOutcome` carries them, exactly.
+needs, for every step, the Euclidean similarity ``T`` it applies and the Euclidean object just before its
+final discretization (or its exact Euclidean result): :class:`StepOutcome` carries them, exactly.
 """
 
 from __future__ import annotations

@@ -3,8 +3,7 @@
 Every result of an operation keeps a :class:`Provenance` (docs/design.md §8): the operation's name, its
 parameters as JSON data, the ids of its inputs and, pinned, their content and their own provenance at that
 moment, so that editing or deleting an input never changes a result's account (ADR 0008). A project file
-stores
-each pinned content once, by its :func:`content_digest`.
+stores each pinned content once, by its :func:`content_digest`.
 """
 
 from __future__ import annotations

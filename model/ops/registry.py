@@ -122,8 +122,8 @@ class OperationSpec:
         operation with no place in it.
     similarity : callable, optional
         ``similarity(params) -> Similarity``: the exact Euclidean similarity it applies (Sc_α for DSS, the
-        exact rotation for dR, the identity for Sp); the account composes them. None for an operation that
-        is no step of a one-object chain.
+        exact rotation for dR, the identity for Sp); the account composes them. None for an operation that is
+        no step of a one-object chain.
     step : callable, optional
         ``step(source, params, *, limit, progress, estimated=False) -> StepOutcome``: the operation on one
         object with its exact Euclidean image, for the account. None for an operation that is no step of a

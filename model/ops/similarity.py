@@ -7,9 +7,8 @@ cannot hold every image exactly, so the guarantee is the best one floats allow:
   is the float nearest to the exact image of the input coordinate (in particular it is exact whenever the
   exact image is a float — a rotation by 90° about a pixel centre of a polygon with dyadic coordinates is
   exact, as docs/design.md §3.6 needs). The fast path computes in floats and proves, with error-free
-  transformations
-  (TwoSum, Dekker's TwoProduct), that its only rounding is the last one; the few coordinates where it cannot
-  are recomputed with :class:`fractions.Fraction`;
+  transformations (TwoSum, Dekker's TwoProduct), that its only rounding is the last one; the few coordinates
+  where it cannot are recomputed with :class:`fractions.Fraction`;
 - other rotations use ``cos θ`` and ``sin θ`` rounded to floats, so images are within a few ulps
   (``shapely.affinity`` would also round ``cos 90°`` to ``6e-17``; here 90° multiples never touch cos/sin).
 

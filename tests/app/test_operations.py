@@ -2,8 +2,8 @@
 
 The issue's scenario: select an object, pick DSS in the panel, type α into its field, click Apply, select the
 result and read the paper's bound in the error inspector beside the measured distance (docs/design.md §8: a
-chain of
-DSS steps with ratios s_i is bounded by √2 · Σ_{i=2..k} Π_{j=i..k} s_j; for DSS_5 then DSS_α₂ that is √2·α₂).
+chain of DSS steps with ratios s_i is bounded by √2 · Σ_{i=2..k} Π_{j=i..k} s_j; for DSS_5 then DSS_α₂ that is
+√2·α₂).
 """
 
 from __future__ import annotations

@@ -10,8 +10,8 @@ dyadic rational), and the image is discretized exactly (:mod:`mrm.geometry.discr
 
 Numbers
 -------
-Every number here is a :class:`fractions.Fraction`, read once by :func:`mrm.core.numbers.read_number` where
-a user gave it (a float is the decimal it prints as: ``0.2`` means 1/5, so ``DSS 5`` followed by ``DSS 0.2``
+Every number here is a :class:`fractions.Fraction`, read once by :func:`mrm.core.numbers.read_number` where a
+user gave it (a float is the decimal it prints as: ``0.2`` means 1/5, so ``DSS 5`` followed by ``DSS 0.2``
 scales by exactly 1).
 
 Rotations

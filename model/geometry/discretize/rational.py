@@ -179,9 +179,8 @@ def discretize_image(
     2⁴⁰): the caller then takes :func:`discretize_exact`, which gives the same pixels.
 
     ``valid=True`` says E is known valid (R's output, docs/design.md §3 item 1): where T(E) is computed
-    exactly in
-    float64, it is then valid too (a similarity maps a simple ring to a simple ring and keeps holes inside
-    their shell), and D skips its own validity check (a third of its time on a 1024² object).
+    exactly in float64, it is then valid too (a similarity maps a simple ring to a simple ring and keeps holes
+    inside their shell), and D skips its own validity check (a third of its time on a 1024² object).
     """
     import shapely
     from shapely.geometry import MultiPolygon, Polygon

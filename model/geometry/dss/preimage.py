@@ -22,10 +22,9 @@ with 0 ≤ u ≤ 1 — a convex polygon, kept exactly (Fractions) and updated by
 :class:`Preimage` stores the **closed** polygon (lines meeting every closed pixel square). The *open* preimage
 (lines crossing the open square of every pixel, :meth:`Preimage.contains_open`) is its interior plus the
 non-constraint parts of the chart sides u = 0, u = 1. The lines whose standard discretization (docs/design.md
-§2,
-the τ tie rule) contains every pixel lie between the two, and :func:`standard_contains` decides that exactly
-for any line. A 4-connected path whose steps all point into the frame's quadrant is a standard DSS iff its
-open preimage is non-empty, i.e. iff the polygon has an interior.
+§2, the τ tie rule) contains every pixel lie between the two, and :func:`standard_contains` decides that
+exactly for any line. A 4-connected path whose steps all point into the frame's quadrant is a standard DSS iff
+its open preimage is non-empty, i.e. iff the polygon has an interior.
 
 Lines with a direction outside the frame's quadrant are not represented; they can meet all the pixels only
 for axis-parallel runs (a = 0 or b = 0), whose preimage is symmetric about the run's axis: it is the stored

@@ -60,11 +60,11 @@ the float nearest to it, computed from a 2⁻²⁰⁰-wide enclosure. Typical re
 vertices take a fraction of a second; a hole shaped like a regular polygon (many edges almost equidistant
 from its centre) costs a few seconds, and the cost grows with the number of edges near the farthest points.
 
-Modules: ``intervals`` (float enclosures with outward rounding), ``exact_numbers`` (the tower),
-``shapes`` (the sets on the integer grid, exact distances to their edges), ``spatial`` (the STRtree search
-and the float filters), ``branch_and_bound`` (the state the searches share), ``along_edges`` (case 2),
-``interior`` and ``equidistant`` (case 3), ``distance`` (the public functions, case 1); ``bounds`` holds the
-paper's error bounds.
+Modules: ``intervals`` (float enclosures with outward rounding), ``exact_numbers`` (the tower), ``shapes``
+(the sets on the integer grid, exact distances to their edges), ``spatial`` (the STRtree search and the float
+filters), ``branch_and_bound`` (the state the searches share), ``along_edges`` (case 2), ``interior`` and
+``equidistant`` (case 3), ``distance`` (the public functions, case 1); ``bounds`` holds the paper's error
+bounds.
 """
 
 from mrm.geometry.hausdorff.distance import HausdorffDistance, directed_hausdorff, hausdorff_distance

@@ -43,14 +43,13 @@ inequality and scale with the ratio), so the module tracks both:
 
 For ``standard`` and ``supercover`` (covers) a round trip keeps both, so :attr:`BoundResult.bound` is a
 Hausdorff bound. For ``gauss`` (a partition: thin parts may vanish) only ``result within`` holds
-(docs/design.md §2):
-``bound`` is ``None`` and :attr:`BoundResult.one_sided` carries the value with ``direction="result_within"``.
-A union keeps both directions (``h(X ∪ Y, I ∪ Y) ≤ h(X, I)``). A co-refinement part is not Lipschitz in its
-inputs: with exact inputs the common part ``R(D(E) ∩ D(E′))`` has every point of ``E ∩ E′`` within the bound
-(``source within``, covers only) but may contain points far from ``E ∩ E′`` (two disjoint objects in one
-pixel), while a difference part ``R(D(E) ∖ D(E′))`` has every one of its points within the bound of
-``E ∖ E′`` (``result within``, all models) but may lose thin parts of it; after an earlier error neither
-direction survives a co-refinement.
+(docs/design.md §2): ``bound`` is ``None`` and :attr:`BoundResult.one_sided` carries the value with
+``direction="result_within"``. A union keeps both directions (``h(X ∪ Y, I ∪ Y) ≤ h(X, I)``). A co-refinement
+part is not Lipschitz in its inputs: with exact inputs the common part ``R(D(E) ∩ D(E′))`` has every point of
+``E ∩ E′`` within the bound (``source within``, covers only) but may contain points far from ``E ∩ E′`` (two
+disjoint objects in one pixel), while a difference part ``R(D(E) ∖ D(E′))`` has every one of its points within
+the bound of ``E ∖ E′`` (``result within``, all models) but may lose thin parts of it; after an earlier error
+neither direction survives a co-refinement.
 
 The arithmetic is exact: ratios are :class:`fractions.Fraction` (decimal literals such as ``1.25`` and
 fractions such as ``1/5`` are read exactly) and the bound is ``coefficient · √n`` with a rational

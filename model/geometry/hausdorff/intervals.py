@@ -2,9 +2,9 @@
 
 Every exact number (:mod:`mrm.geometry.hausdorff.exact_numbers`) carries a float enclosure ``[lo, hi]`` built
 with these operations, and its sign is read from the enclosure whenever 0 is outside it. :class:`_IV` is an
-interval on its own: the shadow in which :func:`mrm.geometry.hausdorff.interior._may_improve` runs the
-solver of equidistant points before paying for the exact one; it raises :class:`_Undecided` where a sign is
-not certain.
+interval on its own: the shadow in which :func:`mrm.geometry.hausdorff.interior._may_improve` runs the solver
+of equidistant points before paying for the exact one; it raises :class:`_Undecided` where a sign is not
+certain.
 """
 
 from __future__ import annotations

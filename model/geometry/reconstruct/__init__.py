@@ -18,12 +18,11 @@ empty Polygon for ∅) with dyadic float64 coordinates such that
 5. few vertices: about one per greedy digital straight segment of the boundary, in every model.
 
 How (docs/algorithms.md §3.5, "V4"): each crack ring gives a corridor of pieces and gates (:mod:`.border`);
-the
-reach of one straight line from every piece is computed exactly (arithmetic standard-DSS recognition on
-full pieces, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet
-inside a piece of their overlap, or a two-vertex patch joins them; every vertex is snapped to the coarsest
-dyadic grid that keeps all constraints, and every ring is verified exactly. A failing stretch is replaced
-locally by the safety net of the corridor, never the whole result.
+the reach of one straight line from every piece is computed exactly (arithmetic standard-DSS recognition on
+full pieces, an exact preimage elsewhere) with a central line per window; consecutive chosen lines meet inside
+a piece of their overlap, or a two-vertex patch joins them; every vertex is snapped to the coarsest dyadic
+grid that keeps all constraints, and every ring is verified exactly. A failing stretch is replaced locally by
+the safety net of the corridor, never the whole result.
 
 The cover models use the border pixels' squares as pieces (:mod:`._kernels`). ``gauss`` uses
 the *dual* corridor (:mod:`._dual`, ADR 0012): the open unit squares whose corners are the four

@@ -3,10 +3,9 @@
 Reference: docs/design.md §3.
 
 The check is the corridor condition of docs/algorithms.md §3.4, made exact with integers: every float64
-coordinate
-is a dyadic rational, so the coordinates of a ring are scaled by a power of two to integers and every test
-is a sign of a sum of products that fits in 64 bits. For a geometry P and a pixel set A, with the corridors
-of :mod:`mrm.geometry.reconstruct.border`:
+coordinate is a dyadic rational, so the coordinates of a ring are scaled by a power of two to integers and
+every test is a sign of a sum of products that fits in 64 bits. For a geometry P and a pixel set A, with the
+corridors of :mod:`mrm.geometry.reconstruct.border`:
 
 * each polygon ring is matched to one crack ring of A (outer ring ↔ shell, hole ring ↔ hole of the same
   4-component, each used once), so the polygons are the 4-components and the holes the bounded
