@@ -69,8 +69,7 @@ def test_reconstruct_lands_on_the_raster_and_rasterizes_back_exactly(tmp_path, s
     assert doc["crs"]["properties"]["name"] == "urn:ogc:def:crs:EPSG::32633"
     xmin, ymin, xmax, ymax = doc["bbox"]
     # The gauss boundary stays within the voxels of the border pixels on either side (docs/design.md §3.2): at
-    # most
-    # one 30 m pixel beyond the raster's edge, where a blob touches it.
+    # most one 30 m pixel beyond the raster's edge, where a blob touches it.
     px = 30
     assert xmin >= 500_000 - px and xmax <= 500_000 + 64 * 30 + px
     assert ymin >= 4_200_000 - 48 * 30 - px and ymax <= 4_200_000 + px
