@@ -61,8 +61,7 @@ def test_fig12_chain_bound_and_measured_error():
     acc = account_of(last.provenance)
     assert [link.params["alpha"] for link in acc.chain] == [1.25, 5.0, 0.2, 0.8]
     # docs/design.md §8: √2 · Σ_{i=2..k} Π_{j=i..k} s_j with s = (1.25, 5, 0.2, 0.8), read as the decimals
-    # they are
-    # (what the operations computed with: 0.2 is 1/5).
+    # they are (what the operations computed with: 0.2 is 1/5).
     s = [Fraction(5, 4), Fraction(5), Fraction(1, 5), Fraction(4, 5)]
     assert acc.bound.coefficient == s[1] * s[2] * s[3] + s[2] * s[3] + s[3] == Fraction(44, 25)
     assert acc.within_bound is True

@@ -99,8 +99,7 @@ def test_noisy_images_stay_far_below_the_safety_net(name: str) -> None:
 
 def test_gauss_is_far_below_the_staircase() -> None:
     # docs/design.md §3 item 2 (revised): the gauss boundary may leave V(A) between the border centres, so it
-    # no
-    # longer needs a vertex near every corner of the crack boundary (it had 1,174 of the 1,180 before).
+    # no longer needs a vertex near every corner of the crack boundary (it had 1,174 of the 1,180 before).
     for name in IMAGES:
         ps = image(name)
         corners = 0

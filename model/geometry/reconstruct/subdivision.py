@@ -876,9 +876,8 @@ def _assemble_label(
 
 
 #: Build the polylines with the compiled kernels (:mod:`mrm.geometry.reconstruct._subdivision_kernels`); the
-#: Python
-#: functions above are their definition, used for the chains the kernels leave (int64 overflow) and by tests
-#: that replace a step of the construction.
+#: Python functions above are their definition, used for the chains the kernels leave (int64 overflow) and by
+#: tests that replace a step of the construction.
 _KERNEL = True
 
 
