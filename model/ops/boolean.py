@@ -21,6 +21,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -136,7 +137,7 @@ def euclidean_discrete_union(
     geom = reconstruct(union, model)
     if progress is not None:
         progress.update(1.0, "done")
-    return StepOutcome(geom, Similarity.identity(), lambda: ExactShape.from_geometry(geom), union)
+    return StepOutcome(geom, Similarity.identity(), partial(ExactShape.from_geometry, geom), union)
 
 
 def euclidean_discrete_corefinement(
@@ -212,11 +213,15 @@ def euclidean_discrete_corefinement(
         "alpha": None if sim is None else sim.ratio,
         "watertight": watertight,
     }
+    return StepOutcome(result, Similarity.identity(), partial(_joined_parts, exact), a | b, extra)
 
-    def union() -> ExactShape:
-        return ExactShape(tuple(poly for p in PARTS for poly in exact[p].polygons))
 
-    return StepOutcome(result, Similarity.identity(), union, a | b, extra)
+def _joined_parts(exact: Mapping[str, ExactShape]) -> ExactShape:
+    """The parts of a co-refinement as one exact shape (EDco's Euclidean object, made on first use).
+
+    Module-level, not a closure: the outcome is pickled to and from the window's worker processes.
+    """
+    return ExactShape(tuple(poly for p in PARTS for poly in exact[p].polygons))
 
 
 def _is_dyadic_scaling(sim: Similarity) -> bool:

@@ -12,6 +12,7 @@ import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import partial
 from typing import Any, TypeVar
 
 import numpy as np
@@ -100,7 +101,9 @@ class StepOutcome:
 
     result: Any
     transform: Similarity
-    exact_image: Any  # an ExactShape, or a function making it on first use (it costs Fraction arithmetic)
+    # An ExactShape, or a function making it on first use (it costs Fraction arithmetic); a module-level one
+    # or a partial of one, so that the outcome pickles (the window's worker processes send it back).
+    exact_image: Any
     discrete: PixelSet
     extra: dict[str, Any] = field(default_factory=dict)
 
@@ -182,21 +185,16 @@ def discrete_similarity(
     if pooled is not None:
         # The pixels of A decide every result pixel (see scaling_by_pixels); R(A) and T(R(A)) are still the
         # chain's Euclidean object, made on first use only.
-        def lazy_image() -> ExactShape:
-            return ExactShape.from_geometry(reconstruct(ps, model)).map(sim)
-
         if progress is not None:
             progress.update(1.0, "done")
-        return StepOutcome(pooled, sim, lazy_image, pooled)
+        return StepOutcome(pooled, sim, partial(_reconstructed_image, ps, sim, model), pooled)
     if progress is not None:
         progress.update(0.0, "continuing R(A)")
     euclid = reconstruct(ps, model)
     if progress is not None:
         progress.update(0.3, "applying the similarity")
 
-    def image() -> ExactShape:
-        return ExactShape.from_geometry(euclid).map(sim)
-
+    image = partial(_mapped_image, euclid, sim)
     # Scalings and translations of float64 vertices: integer arithmetic and compiled kernels, no Fraction.
     result = discretize_image(euclid, sim, model, limit=limit, what=what, valid=True)  # R's output is valid
     if result is None:
@@ -208,6 +206,22 @@ def discrete_similarity(
     if progress is not None:
         progress.update(1.0, "done")
     return StepOutcome(result, sim, image, result)
+
+
+def _mapped_image(geom: Any, sim: Similarity) -> ExactShape:
+    """``sim(geom)`` exactly: the Euclidean object of a step, made when first asked for.
+
+    A module-level function (bound with :func:`functools.partial`), never a closure: a :class:`StepOutcome`
+    holding it is pickled to and from the window's worker processes.
+    """
+    return ExactShape.from_geometry(geom).map(sim)
+
+
+def _reconstructed_image(ps: PixelSet, sim: Similarity, model: str) -> ExactShape:
+    """``sim(R(ps))`` exactly (see :func:`_mapped_image`)."""
+    from mrm.geometry.reconstruct import reconstruct
+
+    return _mapped_image(reconstruct(ps, model), sim)
 
 
 def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | None:
