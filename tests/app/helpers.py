@@ -118,3 +118,18 @@ def type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
     qtbot.keyClick(field, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
     qtbot.keyClicks(field, text)
     qtbot.keyClick(field, Qt.Key.Key_Return)
+
+
+#: How long a test waits for the signal that ends slow work before calling it a hang. A hang detector, far
+#: beyond what any machine takes (a loaded one included): the wait itself ends when the signal comes.
+HANG_MS = 900_000
+
+
+def click_object(qtbot, win: MainWindow, obj_id: int) -> None:  # type: ignore[no-untyped-def]
+    """Click the object's name in the object list, as a user selects it."""
+    from mrm.views.object_list import COL_NAME
+
+    view = win.object_list.view
+    index = view.model().index(win.object_list.model.row_of(obj_id), COL_NAME)
+    view.scrollTo(index)
+    qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, pos=view.visualRect(index).center())

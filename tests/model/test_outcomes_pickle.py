@@ -16,7 +16,12 @@ from mrm.io.project import load_project
 from mrm.ops.account import account_of
 from mrm.resources import examples_dir
 
-EXAMPLES = ["fig08-simplification", "fig09-10-union-corefinement", "fig12-dss-combinations", "fig13-rotations"]
+EXAMPLES = [
+    "fig08-simplification",
+    "fig09-10-union-corefinement",
+    "fig12-dss-combinations",
+    "fig13-rotations",
+]
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
