@@ -108,6 +108,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.objects_dock = self._dock(
             "Objects", self.object_list, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
+        from mrm.app import process_jobs
+        from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
         from mrm.views.inspector import ErrorInspector
         from mrm.views.measure import MeasurePanel
         from mrm.views.operation_panel import OperationPanel
@@ -115,13 +117,21 @@ class MainWindow(QtWidgets.QMainWindow):
         from mrm.views.segment_table import SegmentTable
 
         right = QtCore.Qt.DockWidgetArea.RightDockWidgetArea
-        self.operations = OperationPanel(self.scene, self.runner, self)
+        # The views get the jobs their runner sends to worker processes, and where a preference is set, from
+        # here: views never import app/.
+        self.operations = OperationPanel(
+            self.scene,
+            self.runner,
+            self,
+            plan_job=process_jobs.plan,
+            pixel_limit_setting=f"File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
+        )
         self.operations_dock = self._dock("Operations", _scrolled(self.operations), right)
         self.properties = PropertiesPanel(self.scene, self)
         self.properties_dock = self._dock("Properties", self.properties, right)
         self.measure = MeasurePanel(self.scene, self.runner, self)
         self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
-        self.inspector = ErrorInspector(self.scene, self.runner, self)
+        self.inspector = ErrorInspector(self.scene, self.runner, self, measure_job=process_jobs.measure)
         self.inspector_dock = self._dock("Error inspector", self.inspector, right)
         # One column on the right (ADR 0020): Operations, Properties and Measure as tabs, the inspector below
         # them, beside the operation whose result it accounts for.
@@ -354,6 +364,10 @@ class MainWindow(QtWidgets.QMainWindow):
             v.plane.cursorMoved.connect(self.status.set_cursor)
         self.runner.busyChanged.connect(self.status.set_busy)
         self.runner.progressChanged.connect(self.status.set_progress)
+        # A failure no panel reported (a bug, a broken worker): said here, never lost in a thread.
+        self.runner.taskFailed.connect(
+            lambda what, text: self.show_message(f"{what}: {text}", 15000, error=True)
+        )
         self.status.cancelRequested.connect(self.cancel_task)
         a.connect("file.new", self.files.new)
         a.connect("file.open", lambda: self.files.open())

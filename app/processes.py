@@ -13,7 +13,12 @@ go through the pipe as one message, written and read with the GIL released, and 
 The children are fresh interpreters (``python -m mrm.app.processes``; a fork of a process running Qt threads
 is unsafe), started lazily, at most :data:`MAX_PROCESSES`, each running one job at a time, at a lower
 scheduling priority than the window; a Cancel reaches them as SIGUSR1. They end with the window, or with the
-parent, whose end closes their pipe.
+parent, whose end closes their pipe. :meth:`ProcessPool.warm` starts one at the window's start-up that loads
+the operations and kernels before its first job (ADR 0041).
+
+Every failure comes back to the caller as an exception, never as a hang: a job or a result that does not
+pickle (:class:`WorkerError`, the pipe left clean), an exception of the job (itself, or its kind and text when
+it does not travel), a child that died (:class:`WorkerError` with its exit status).
 """
 
 from __future__ import annotations
@@ -97,28 +102,61 @@ def _unspill(path: str) -> Any:
     return view[:size]
 
 
+class WorkerError(RuntimeError):
+    """The worker-process machinery failed: a job or its result that does not pickle, a child that died.
+
+    Not a user error (:class:`~mrm.core.errors.MRMError`): its message says what failed, for the window's
+    status bar and inspector, and the traceback goes to the log.
+    """
+
+
+class _Encoded:
+    """An object pickled for :func:`send_obj`: its head, its out-of-band arrays, the files of the big ones.
+
+    Encoding comes first and sends nothing: an object that does not pickle fails here, with the pipe still
+    clean, so the caller can send something else instead (a child its error, the parent nothing at all).
+    """
+
+    def __init__(self, obj: Any) -> None:
+        bufs: list[pickle.PickleBuffer] = []
+        self.head = pickle.dumps(obj, protocol=5, buffer_callback=bufs.append)
+        self.raws = [b.raw() for b in bufs]
+        self.files: list[str | None] = []
+        try:
+            for r in self.raws:
+                self.files.append(_spill(r) if r.nbytes > SPILL_BYTES else None)
+        except BaseException:
+            self.discard()
+            raise
+
+    def spilled(self) -> list[str]:
+        return [f for f in self.files if f is not None]
+
+    def discard(self) -> None:
+        """Remove the spill files (nothing will read them)."""
+        remove_spills(self.spilled())
+
+    def send(self, conn: Any) -> list[str]:
+        """Send it; returns the spill files (the receiver removes them once read, the sender otherwise)."""
+        try:
+            conn.send_bytes(pickle.dumps(self.files))
+            conn.send_bytes(self.head)
+            for r, f in zip(self.raws, self.files, strict=True):
+                if f is None:
+                    conn.send_bytes(r)
+        except BaseException:
+            self.discard()  # the receiver will never read them
+            raise
+        return self.spilled()
+
+
 def send_obj(conn: Any, obj: Any) -> list[str]:
     """Send ``obj`` pickled (protocol 5); its contiguous arrays out of band, never re-encoded.
 
     An array of more than :data:`SPILL_BYTES` is written to a file in memory and only its name is sent.
     Returns those files' paths: the receiver removes them once read, the sender if it never reads them.
     """
-    bufs: list[pickle.PickleBuffer] = []
-    head = pickle.dumps(obj, protocol=5, buffer_callback=bufs.append)
-    raws = [b.raw() for b in bufs]
-    files: list[str | None] = []
-    try:
-        for r in raws:
-            files.append(_spill(r) if r.nbytes > SPILL_BYTES else None)
-        conn.send_bytes(pickle.dumps(files))
-        conn.send_bytes(head)
-        for r, f in zip(raws, files, strict=True):
-            if f is None:
-                conn.send_bytes(r)
-    except BaseException:
-        remove_spills([f for f in files if f is not None])  # the receiver will never read them
-        raise
-    return [f for f in files if f is not None]
+    return _Encoded(obj).send(conn)
 
 
 def remove_spills(paths: list[str]) -> None:
@@ -217,8 +255,34 @@ def _child_progress(conn: Any) -> Any:
     return TaskProgress(lambda fraction, message: send_obj(conn, ("progress", fraction, message)), _CANCEL)
 
 
-def _child_main(fd_in: int, fd_out: int) -> None:
-    """The loop of a child: one job at a time until the parent closes the pipe."""
+def _warm_child() -> None:
+    """Load the operations and the cached kernels before the first job (a child started ahead of need)."""
+    try:
+        from mrm.app.process_jobs import warm
+        from mrm.core.progress import NO_PROGRESS
+
+        warm(NO_PROGRESS)
+    except Exception:  # the jobs load what they need anyway; a failed warm-up only costs time
+        traceback.print_exc()
+
+
+def _outcome(fn: Any, result: Any) -> _Encoded:
+    """The message carrying a job's result, or, when the result does not pickle, an error saying so."""
+    try:
+        return _Encoded(("result", result, ""))
+    except Exception as exc:
+        text = traceback.format_exc()
+        name = getattr(fn, "__name__", "the job")
+        err = WorkerError(f"the worker process could not send back the result of {name} ({exc})")
+        return _Encoded(("error", err, text))
+
+
+def _child_main(fd_in: int, fd_out: int, warm: bool = False) -> None:
+    """The loop of a child: one job at a time until the parent closes the pipe.
+
+    With ``warm``, the child first loads what the jobs need (:func:`_warm_child`); a job sent meanwhile
+    waits in the pipe, which is sooner than starting a cold child for it.
+    """
     import signal
     from multiprocessing.connection import Connection
 
@@ -227,6 +291,8 @@ def _child_main(fd_in: int, fd_out: int) -> None:
     signal.signal(signal.SIGUSR1, lambda *_a: _CANCEL.set())
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C in a terminal is for the window, which stops us
     conn_in, conn_out = Connection(fd_in, writable=False), Connection(fd_out, readable=False)
+    if warm:
+        _warm_child()
     while True:
         try:
             head, bufs = _recv_parts(conn_in)
@@ -234,14 +300,16 @@ def _child_main(fd_in: int, fd_out: int) -> None:
             return
         _CANCEL.clear()
         progress = _child_progress(conn_out)
+        fn: Any = None
         try:
             fn, args = pickle.loads(head, buffers=bufs)  # a job that does not import is its error
             result = fn(*args, progress)
         except BaseException as exc:
             text = traceback.format_exc()
-            send_obj(conn_out, ("error", _portable(exc), text))
+            message = _Encoded(("error", _portable(exc), text))
         else:
-            send_obj(conn_out, ("result", result, ""))
+            message = _outcome(fn, result)
+        message.send(conn_out)
 
 
 # ---------------------------------------------------------------------------------------------- the parent
@@ -252,16 +320,17 @@ class _Child:
     spawn does).
     """
 
-    def __init__(self) -> None:
+    def __init__(self, warm: bool = False) -> None:
         import subprocess
         import sys
         from multiprocessing.connection import Connection
 
         to_child, from_parent = os.pipe()
         to_parent, from_child = os.pipe()
+        args = [str(to_child), str(from_child)] + (["--warm"] if warm else [])
         try:
             self.proc = subprocess.Popen(
-                [sys.executable, "-m", "mrm.app.processes", str(to_child), str(from_child)],
+                [sys.executable, "-m", "mrm.app.processes", *args],
                 pass_fds=(to_child, from_child),
                 stdin=subprocess.DEVNULL,
             )
@@ -335,8 +404,23 @@ class ProcessPool:
             self._cond.notify()
 
     def warm(self) -> None:
-        """Start a child now (the window's start-up), so that the first job does not wait for it."""
-        child = self._take()
+        """Start a child now that loads what the jobs need (the window's start-up); returns at once.
+
+        The child is idle for the pool at once: the first job goes to it, and waits in its pipe for the rest
+        of the warm-up, rather than starting a second, cold child (ADR 0041). Nothing is started when a child
+        is already there.
+        """
+        with self._cond:
+            if self._closed or self._idle or self._count >= self.size:
+                return
+            self._count += 1
+        try:
+            child = _Child(warm=True)
+        except BaseException:
+            with self._cond:
+                self._count -= 1
+                self._cond.notify()
+            raise
         self._give_back(child)
 
     def run(self, fn: Callable[..., Any], args: tuple[Any, ...], progress: Any) -> Any:
@@ -347,11 +431,20 @@ class ProcessPool:
         """
         if progress is not None:
             progress.update()
-        child = self._take()
+        name = getattr(fn, "__name__", repr(fn))
+        try:  # before a child is taken: what does not pickle costs no child
+            job = _Encoded((fn, args))
+        except Exception as exc:
+            raise WorkerError(f"{name} could not be sent to a worker process ({exc})") from exc
+        try:
+            child = self._take()
+        except BaseException:
+            job.discard()
+            raise
         ok = False
         sent: list[str] = []
         try:
-            sent = send_obj(child.send, (fn, args))
+            sent = job.send(child.send)
             self.jobs += 1
             self.pids.add(child.proc.pid)
             cancelled_at: float | None = None
@@ -361,8 +454,9 @@ class ProcessPool:
                         kind, value, text = recv_obj(child.recv)
                     except (EOFError, OSError):
                         child.proc.wait(2.0)
-                        code = child.proc.returncode
-                        raise RuntimeError(f"the worker process ended unexpectedly (exit {code})") from None
+                        if cancelled_at is not None:
+                            raise Cancelled("cancelled") from None
+                        raise WorkerError(_ended(name, child.proc.returncode)) from None
                     if kind == "progress":
                         if cancelled_at is None and progress is not None:
                             try:
@@ -380,9 +474,9 @@ class ProcessPool:
                         value.__traceback_text__ = text  # the child's traceback, for the log
                     raise value
                 if not child.alive():
-                    raise RuntimeError(
-                        f"the worker process ended unexpectedly (exit {child.proc.returncode})"
-                    )
+                    if cancelled_at is not None:
+                        raise Cancelled("cancelled")
+                    raise WorkerError(_ended(name, child.proc.returncode))
                 if cancelled_at is None and progress is not None and getattr(progress, "cancelled", False):
                     cancelled_at = time.monotonic()
                     child.cancel()
@@ -405,6 +499,11 @@ class ProcessPool:
             self._cond.notify_all()
         for c in idle:
             c.kill()
+
+
+def _ended(name: str, code: int | None) -> str:
+    how = f"killed by signal {-code}" if code is not None and code < 0 else f"exit status {code}"
+    return f"the worker process running {name} ended unexpectedly ({how})"
 
 
 _POOL: ProcessPool | None = None
@@ -433,4 +532,8 @@ def close_pool() -> None:
 if __name__ == "__main__":
     import sys
 
-    _child_main(int(sys.argv[1]), int(sys.argv[2]))
+    # Run the child's loop in the module imported by its name, not in ``__main__``: what it pickles (a
+    # WorkerError) must name a class the window can import.
+    from mrm.app import processes
+
+    processes._child_main(int(sys.argv[1]), int(sys.argv[2]), warm="--warm" in sys.argv[3:])

@@ -13,6 +13,7 @@ deterministic, and it shows that nothing in the GUI depends on the threading.
 from __future__ import annotations
 
 import itertools
+import logging
 import os
 import sys
 import threading
@@ -25,6 +26,9 @@ from PySide6 import QtCore
 
 from mrm.app.progress import TaskProgress
 from mrm.core.errors import Cancelled
+from mrm.views.failures import failure_message, log_failure
+
+log = logging.getLogger(__name__)
 
 Fn = Callable[["TaskProgress"], Any]
 
@@ -109,6 +113,9 @@ class TaskRunner(QtCore.QObject):
         Progress of the newest task with ``show_progress``.
     taskDone(str slot, str outcome)
         Any task ended: outcome is 'result', 'error', 'cancelled' or 'dropped'.
+    taskFailed(str label, str message)
+        A failure no one reported: a task's error without an error callback, or a callback that raised
+        (the window shows it in its status bar; the traceback is logged). Nothing fails silently.
     idle()
         No task is pending any more.
     """
@@ -116,6 +123,7 @@ class TaskRunner(QtCore.QObject):
     busyChanged = QtCore.Signal(bool)
     progressChanged = QtCore.Signal(str, float, str)
     taskDone = QtCore.Signal(str, str)
+    taskFailed = QtCore.Signal(str, str)
     idle = QtCore.Signal()
 
     def __init__(self, parent: QtCore.QObject | None = None, *, threads: int | None = None) -> None:
@@ -206,6 +214,12 @@ class TaskRunner(QtCore.QObject):
 
         return pool().run(fn, args, progress)
 
+    def warm_processes(self) -> None:
+        """Start a worker process now that loads what the jobs need, so the first job finds it ready."""
+        from mrm.app.processes import pool
+
+        pool().warm()
+
     def shutdown(self, timeout_ms: int = 10_000) -> None:
         """Cancel everything and wait for the threads (window closing)."""
         self._closed = True
@@ -242,20 +256,30 @@ class TaskRunner(QtCore.QObject):
             outcome = "dropped" if outcome != "cancelled" else outcome
         if outcome in ("result", "error") and task.revision is not None and self._stale_revision(task):
             outcome = "dropped"
+        what = task.label or task.slot
         try:
             if outcome == "result" and task.on_result is not None:
                 task.on_result(payload)
             elif outcome == "error" and task.on_error is not None:
-                task.on_error(payload)
+                task.on_error(payload)  # it shows the failure where the work was asked for
             elif outcome == "error":
-                raise payload
+                self._unreported(what, payload)
             elif outcome == "cancelled" and task.on_cancel is not None:
                 task.on_cancel()
+        except Exception as exc:
+            # A callback that raised (an error callback passing on what it does not handle, or a bug in one):
+            # the window still hears of it, and the traceback is logged.
+            self._unreported(what, exc)
         finally:
             self._update_busy()
             self.taskDone.emit(task.slot, outcome)
             if not self._running:
                 self.idle.emit()
+
+    def _unreported(self, what: str, exc: BaseException) -> None:
+        """A failure no callback reported: logged with its traceback, and said in the status bar."""
+        log_failure(log, what, exc)
+        self.taskFailed.emit(what, failure_message(exc))
 
     def _stale_revision(self, task: Task) -> bool:
         return self.revision_getter is not None and self.revision_getter() != task.revision
@@ -273,6 +297,9 @@ class SynchronousTaskRunner(TaskRunner):
     def call(self, fn: Callable[..., Any], args: tuple[Any, ...], progress: TaskProgress) -> Any:
         return fn(*args, progress)  # in this thread too: the same function, no process
 
+    def warm_processes(self) -> None:
+        """No worker processes here."""
+
     def _start(self, task: Task) -> None:
         try:
             task.progress.check()
@@ -280,6 +307,7 @@ class SynchronousTaskRunner(TaskRunner):
         except Cancelled:
             self._deliver(task, "cancelled", None)
         except Exception as exc:
+            exc.__traceback_text__ = traceback.format_exc()  # type: ignore[attr-defined]
             self._deliver(task, "error", exc)
         else:
             self._deliver(task, "result", result)

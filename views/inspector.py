@@ -9,6 +9,9 @@ as in the paper's Figure 12.
 
 from __future__ import annotations
 
+import html
+import logging
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -19,6 +22,7 @@ from mrm.core.errors import MRMError
 from mrm.ops.account import Account, account_of, rerun_request
 from mrm.ops.estimate import joint_box
 from mrm.views.canvas import Camera, MaskItem, Picture, PlaneView, lod_image, make_picture, qcolor
+from mrm.views.failures import failure_message, log_failure
 from mrm.views.provenance import bound_text, chain_rows, changes_text, measured_text
 from mrm.views.scene import Scene
 
@@ -26,20 +30,42 @@ LIGHT_GREY = (200, 200, 200)
 DARK_GREY = (95, 95, 95)
 DIFF_LUT = np.array([[0, 0, 0, 0], [*LIGHT_GREY, 255], [*DARK_GREY, 255]])
 
+log = logging.getLogger(__name__)
+
 
 class ErrorInspector(QtWidgets.QWidget):
-    """Dock content; follows the selected object."""
+    """Dock content; follows the selected object.
+
+    Parameters
+    ----------
+    scene : Scene
+    runner : TaskRunner
+        Runs the measurement: ``runner.call(measure_job, (provenance,), progress)`` inside a task.
+    measure_job : callable
+        ``measure_job(provenance, progress) -> Account``, a module-level function (the window's runner may
+        send it to a worker process); the window passes it in, so that this view needs nothing of app/.
+    """
 
     measured = QtCore.Signal()
+    #: A measurement ended, however: 'measured', 'failed' (its message is shown) or 'cancelled'.
+    measureEnded = QtCore.Signal(str)
     #: The picture of the differences is drawn (it is made on a worker after the measurement).
     pictured = QtCore.Signal()
     rerun_done = QtCore.Signal(list)
 
-    def __init__(self, scene: Scene, runner: Any, parent: QtWidgets.QWidget | None = None) -> None:
+    def __init__(
+        self,
+        scene: Scene,
+        runner: Any,
+        parent: QtWidgets.QWidget | None = None,
+        *,
+        measure_job: Callable[[Any, Any], Account],
+    ) -> None:
         super().__init__(parent)
         self.setObjectName("errorInspector")
         self.scene = scene
         self.runner = runner
+        self.measure_job = measure_job
         self.account: Account | None = None
         self.measurement: Account | None = None
         self.picture: DiffPicture | None = None  # the drawing of the measurement, once made
@@ -220,24 +246,32 @@ class ErrorInspector(QtWidgets.QWidget):
             self.measured_label.setText(text)
             self._show_diff()  # clears the previous picture at once
             self.measured.emit()
+            self.measureEnded.emit("measured")
             self._request_picture(m)
 
         def failed(exc: BaseException) -> None:
-            if not isinstance(exc, MRMError):
-                raise exc
-            self.measured_label.setText(f"<b>Measured</b>: {exc}")
+            # Whatever failed — the model, the worker process, the pickling of the result — is said here,
+            # and ends "computing…"; a bug's traceback goes to the log.
+            log_failure(log, f"measuring {obj.name}", exc)
+            text = failure_message(exc)
+            self.measured_label.setText(
+                f"<b>Measured</b>: could not be computed: {html.escape(text, quote=False)}"
+            )
+            self.measureEnded.emit("failed")
 
         def cancelled() -> None:
+            if self.runner.is_busy("inspect"):
+                return  # superseded: a newer measurement runs, and says how it ends
             self.measured_label.setText("<b>Measured</b>: cancelled — <i>Measure</i> computes it")
+            self.measureEnded.emit("cancelled")
 
         # The provenance is an immutable value pinning everything the account reads: safe on a worker. The
         # exact measurement is Python-heavy for minutes at 10⁸ pixels: in a worker process, so that the
         # window's painting never waits for the GIL it would hold (ADR 0025).
-        from mrm.app import process_jobs
-
+        job = self.measure_job
         self.runner.submit(
             "inspect",
-            lambda progress: _with_text(self.runner.call(process_jobs.measure, (prov,), progress)),
+            lambda progress: _with_text(self.runner.call(job, (prov,), progress)),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

@@ -8,20 +8,25 @@ one undo step, each remembering its provenance (operation, parameters, inputs).
 
 from __future__ import annotations
 
+import html
+import logging
 import math
 import time
+from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
 from PySide6 import QtCore, QtWidgets
 
-from mrm.app import process_jobs
 from mrm.core.errors import MRMError, SizeLimitError
 from mrm.core.numbers import spell
 from mrm.document.apply import held_euclidean
 from mrm.document.commands import ApplyResults
+from mrm.views.failures import failure_message, log_failure
 from mrm.views.op_adapter import OpInfo, ParamInfo, operations
 from mrm.views.scene import Scene
+
+log = logging.getLogger(__name__)
 
 SLIDER_STEPS = 1000
 
@@ -43,6 +48,22 @@ def unique_name(name: str, taken: set[str]) -> str:
     while f"{name} ({k})" in taken:
         k += 1
     return f"{name} ({k})"
+
+
+def size_limit_text(exc: SizeLimitError, setting: str | None = None) -> str:
+    """The message of a result refused for its size, from the error's fields.
+
+    ``setting`` says where the user raises the limit (the window passes the preference's place, e.g.
+    "File ▸ Preferences ▸ General ▸ Largest operation result"). At the document's own limit no preference
+    goes higher (ADR 0010): the message then says so instead of pointing at a setting that cannot help.
+    """
+    from mrm.core.limits import MAX_OBJECT_PIXELS
+
+    head = f"{exc.what} would cover {exc.estimated:,} pixels, more than the limit of {exc.limit:,}"
+    if exc.limit >= MAX_OBJECT_PIXELS:
+        return f"{head}, the largest pixel object a document holds; reduce the scale"
+    where = f" in {setting}" if setting else ""
+    return f"{head}; reduce the scale or raise the limit{where}"
 
 
 def _is_empty(source: Any) -> bool:
@@ -326,11 +347,27 @@ class OperationPanel(QtWidgets.QWidget):
     #: The Pick button of a point parameter (its name) was pressed: the window lets a view click set it.
     pickRequested = QtCore.Signal(str)
 
-    def __init__(self, scene: Scene, runner: Any, parent: QtWidgets.QWidget | None = None) -> None:
+    def __init__(
+        self,
+        scene: Scene,
+        runner: Any,
+        parent: QtWidgets.QWidget | None = None,
+        *,
+        plan_job: Callable[..., Any],
+        pixel_limit_setting: str | None = None,
+    ) -> None:
+        """The panel of ``scene``'s document.
+
+        ``plan_job(inputs, op_name, params, limit, held, progress)`` plans an operation: a module-level
+        function that ``runner.call`` may send to a worker process. ``pixel_limit_setting`` names where the
+        user raises the pixel limit. The window passes both, so that this view needs nothing of app/.
+        """
         super().__init__(parent)
         self.setObjectName("operationPanel")
         self.scene = scene
         self.runner = runner
+        self.plan_job = plan_job
+        self.pixel_limit_setting = pixel_limit_setting
         self.ops = operations()
         self.op: OpInfo | None = None
         self._cancel_requested = False
@@ -694,27 +731,14 @@ class OperationPanel(QtWidgets.QWidget):
 
         def failed(exc: BaseException) -> None:
             self._finished()
-            if not isinstance(exc, MRMError):
-                raise exc
-            text = str(exc)
+            log_failure(log, op.title, exc)  # a bug or a broken worker: its traceback
             if isinstance(exc, SizeLimitError):
-                from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
-                from mrm.core.limits import MAX_OBJECT_PIXELS
-
-                if exc.limit >= MAX_OBJECT_PIXELS:
-                    # No preference goes higher: the document's own limit (ADR 0010).
-                    text = text.replace(
-                        "; reduce the scale or raise the limit",
-                        ", the largest pixel object a document holds; reduce the scale",
-                    )
-                else:
-                    text = text.replace(
-                        "raise the limit",
-                        f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
-                    )
+                text = size_limit_text(exc, self.pixel_limit_setting)
+            else:
+                text = failure_message(exc)
             if not text.startswith(op.title):  # the model's message often names the operation already
                 text = f"{op.title}: {text}"
-            self.status.setText(f"<span style='color:#c0392b'>{text}</span>")
+            self.status.setText(f"<span style='color:#c0392b'>{html.escape(text, quote=False)}</span>")
 
         def cancelled() -> None:
             self._finished()
@@ -724,7 +748,7 @@ class OperationPanel(QtWidgets.QWidget):
             "operation",
             # Operations are Python-heavy (exact rationals): in a worker process, off the GIL (ADR 0025).
             lambda progress: self.runner.call(
-                process_jobs.plan, (inputs, op.name, params, limit, held), progress
+                self.plan_job, (inputs, op.name, params, limit, held), progress
             ),
             on_result=done,
             on_error=failed,

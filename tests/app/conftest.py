@@ -18,12 +18,34 @@ from mrm.app.application import configure
 from mrm.app.main_window import MainWindow
 from mrm.app.settings import Preferences, make_settings
 from mrm.app.tasks import SynchronousTaskRunner, TaskRunner
+from mrm.views.failures import FAILURE_RECORD
 
 
 @pytest.fixture(autouse=True)
 def _configured_app(qapp: QtWidgets.QApplication) -> QtWidgets.QApplication:
     configure(qapp)
     return qapp
+
+
+@pytest.fixture(autouse=True)
+def _no_unexpected_failure(request, caplog) -> Iterator[None]:  # type: ignore[no-untyped-def]
+    """Fail a test in which background work failed unexpectedly (a bug), unless it uses ``expect_failures``.
+
+    The window shows such a failure as a message and logs its traceback (:mod:`mrm.views.failures`) instead
+    of raising it: without this check a bug in a worker would only colour a status line red.
+    """
+    yield
+    if "expect_failures" in request.fixturenames:
+        return
+    bad = [r for r in caplog.get_records("call") if getattr(r, FAILURE_RECORD, False)]
+    if bad:
+        pytest.fail("unexpected failure in background work:\n" + "\n".join(r.getMessage() for r in bad))
+
+
+@pytest.fixture
+def expect_failures(caplog) -> Callable[[], list[str]]:  # type: ignore[no-untyped-def]
+    """For a test that provokes a failure: the check above is off; returns a function listing them."""
+    return lambda: [r.getMessage() for r in caplog.get_records("call") if getattr(r, FAILURE_RECORD, False)]
 
 
 @pytest.fixture

@@ -160,13 +160,17 @@ def type_into(qtbot, field, text: str) -> None:  # type: ignore[no-untyped-def]
     qtbot.keyClick(field, Qt.Key.Key_Return)
 
 
-def click_object(qtbot, win: MainWindow, name: str, modifiers=Qt.KeyboardModifier.NoModifier) -> None:  # type: ignore[no-untyped-def]
-    """Click the object named ``name`` in the object list (its Name cell)."""
+#: How long a test waits for the signal that ends slow work before calling it a hang. A hang detector, far
+#: beyond what any machine takes (a loaded one included): the wait itself ends when the signal comes.
+HANG_MS = 900_000
+
+
+def click_object(qtbot, win: MainWindow, obj: str | int, modifiers=Qt.KeyboardModifier.NoModifier) -> None:  # type: ignore[no-untyped-def]
+    """Click an object's name in the object list, as a user selects it (``obj``: its name or its id)."""
     from mrm.views.object_list import COL_NAME
 
-    (obj,) = win.doc.find(name)
+    obj_id = win.doc.find(obj)[0].id if isinstance(obj, str) else obj
     model, view = win.object_list.model, win.object_list.view
-    index = model.index(model.row_of(obj.id), COL_NAME)
+    index = model.index(model.row_of(obj_id), COL_NAME)
     view.scrollTo(index)
-    pos = view.visualRect(index).center()
-    qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, modifiers, pos)
+    qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, modifiers, view.visualRect(index).center())

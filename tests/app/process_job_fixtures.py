@@ -81,3 +81,18 @@ class _Stubborn(Exception):
 def unpicklable_error(progress: Any) -> None:
     """Raise an exception that pickles but cannot be unpickled."""
     raise _Stubborn(1, 2)
+
+
+def unpicklable_result(provenance: Any, progress: Any) -> Any:
+    """A measurement whose result cannot be pickled back (as an account holding a closure once was)."""
+    return lambda: provenance
+
+
+def buggy(provenance: Any, progress: Any) -> Any:
+    """A measurement that fails with a bug, not a user error."""
+    raise TypeError("unsupported operand type(s) for +: 'int' and 'str'")
+
+
+def dying_measure(provenance: Any, progress: Any) -> None:
+    """A measurement whose process ends abruptly."""
+    os._exit(3)
