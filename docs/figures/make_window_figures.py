@@ -11,7 +11,7 @@ panel, measures through the Measure panel), waits until every view and backgroun
 its picture is drawn over the window's at the place it opened.
 
 Pictures (docs/img): ``analytical-segment.png``, ``inspector.png``, ``dark.png``, ``properties-panel.png``,
-``context-menu.png``, ``measure.png``, ``label-map.png``.
+``context-menu.png``, ``measure.png``, ``label-map.png``, ``history.png``.
 """
 
 from __future__ import annotations
@@ -217,6 +217,24 @@ def label_map(app: Any) -> Path:
     return _save(app, win, "label-map.png")
 
 
+def history(app: Any) -> Path:
+    """The History panel after two operations, a rename and one undo: the undone step greyed, redo-able."""
+    from mrm.document.commands import RenameObject
+
+    win = _window()
+    win.files.open(EXAMPLES / "two-polygons.mrm", ask=False)
+    _settle(app, win)
+    pentagon = win.doc.find("pentagon")[0]
+    win.doc.set_selection([pentagon.id])
+    for alpha in ("2", "0.5"):
+        _apply(app, win, "dss", alpha=alpha)
+    win.doc.push(RenameObject(win.doc.objects[-1].id, "small pentagon"))
+    win.doc.history.undo()
+    win.history_dock.show()
+    win.history_dock.raise_()
+    return _save(app, win, "history.png")
+
+
 FIGURES: dict[str, Callable[[Any], Path]] = {
     "label-map": label_map,
     "analytical-segment": analytical_segment,
@@ -225,6 +243,7 @@ FIGURES: dict[str, Callable[[Any], Path]] = {
     "properties-panel": properties_panel,
     "context-menu": context_menu,
     "measure": measure,
+    "history": history,
 }
 
 

@@ -77,7 +77,7 @@ def refuse_label_map(obj: DocObject, what: str) -> None:
         )
 
 
-def discrete_of(doc: Document, obj: DocObject) -> PixelSet:
+def object_pixels(doc: Document, obj: DocObject) -> PixelSet:
     """The discrete representation of ``obj`` under the document's model (its source, or D(source))."""
     refuse_label_map(obj, "pixel edits, merges and operations")
     if isinstance(obj.source, PixelSet):
@@ -87,7 +87,7 @@ def discrete_of(doc: Document, obj: DocObject) -> PixelSet:
     return ps
 
 
-def euclidean_of(doc: Document, obj: DocObject) -> Geometry:
+def object_polygons(doc: Document, obj: DocObject) -> Geometry:
     """The Euclidean representation of ``obj`` (its source, or R(source))."""
     refuse_label_map(obj, "vertex edits")
     if not isinstance(obj.source, PixelSet):
@@ -439,7 +439,7 @@ class MergeObjects(_Replacing):
 
     def _build(self, doc: Document) -> ApplyResults:
         objs = sorted((doc.get(i) for i in self.ids), key=lambda o: doc.index_of(o.id))
-        parts = [discrete_of(doc, o) for o in objs]
+        parts = [object_pixels(doc, o) for o in objs]
         check_union_box([p.bbox for p in parts], "the merged object")  # before allocating it
         union = PixelSet.empty()
         for part in parts:

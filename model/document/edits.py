@@ -25,7 +25,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.core.grids import PixelSet
-from mrm.document.commands import SwapObject, check_union_box, discrete_of, euclidean_of, source_nbytes
+from mrm.document.commands import SwapObject, check_union_box, object_pixels, object_polygons, source_nbytes
 from mrm.document.document import Document
 from mrm.document.history import COMMAND_OVERHEAD, Command
 from mrm.document.objects import DocObject, Geometry, validate_geometry
@@ -146,7 +146,7 @@ class _VertexEdit(SwapObject):
         raise NotImplementedError
 
     def _build(self, doc: Document, obj: DocObject) -> DocObject:
-        multi, polys = _rings(euclidean_of(doc, obj))
+        multi, polys = _rings(object_polygons(doc, obj))
         self._edit(polys)
         return obj.with_(source=_build_geometry(multi, polys), provenance=None)
 
@@ -231,7 +231,7 @@ class _PixelEdit(Command):
     def do(self, doc: Document) -> None:
         """Apply the delta (computed on the first call from the pixels that actually change)."""
         obj = doc.get(self.obj_id)
-        base = discrete_of(doc, obj)
+        base = object_pixels(doc, obj)
         if self.delta is None:
             self.delta = PixelDelta(self._flipped(doc, base))
             self.euclidean_before = obj if not isinstance(obj.source, PixelSet) else None

@@ -360,7 +360,7 @@ class Plan:
     Attributes
     ----------
     label : str
-        The undo step's label (the operation's title).
+        The undo step's label: the step as a chain writes it (:meth:`OperationSpec.label`, ``DSS 2``).
     results : list of PlannedResult
     outcome : OperationResult
         The operation's own result (bound, part bounds…).
@@ -409,4 +409,4 @@ def plan_operation(
     for part, source in out.outputs:
         p = {**base, "part": part} if len(out.outputs) > 1 else base
         results.append(PlannedResult(part, source, Provenance.of_inputs(spec.name, p, list(inputs))))
-    return Plan(spec.title, results, out)
+    return Plan(spec.label(params), results, out)
