@@ -183,7 +183,7 @@ def write_result(
 ) -> None:
     """Write a pixel set or a polygon to ``path``, converting to the representation the extension asks for.
 
-    With a georeference (:class:`mrm.io.georef.GeoRef`), a .tif or .png is written on its grid (+ world
+    With a georeference (:class:`mrm.core.georef.GeoRef`), a .tif or .png is written on its grid (+ world
     file) and a vector file in world coordinates (GeoJSON with ``crs`` and ``bbox``); SVG stays a picture.
     """
     ext = extension_of(path, OUTPUTS, "output file")

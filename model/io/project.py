@@ -29,14 +29,14 @@ Schema version 4::
 
 * Only each object's **source** representation is stored (docs/design.md §7); the others are derived on load.
 * A provenance pins the content its inputs had when the result was made (``input_contents``: digests of
-  :func:`mrm.document.content_digest`) and their own provenance then (``input_provenance``); each pinned
+  :func:`mrm.ops.provenance.content_digest`) and their own provenance then (``input_provenance``); each pinned
   content is stored once in the top-level ``"contents": {digest: source}`` table (optional), shared by every
   result that read it, and checked against its digest on load. Version 1 files had ids only: on load their
   provenance is pinned to the objects the file holds (the best record there is).
 * ``georef`` (optional, schema 3): where the object's grid lies on the Earth, the GDAL affine
   ``transform`` (a, b, c, d, e, f, written with ``repr``: bit for bit), the raster's ``width`` and
   ``height``, its ``crs`` (``EPSG:n``, WKT or null) and the grid ``origin`` of its bottom-left pixel
-  (:class:`mrm.io.georef.GeoRef`, ADR 0021). Absent for an object on a plain grid.
+  (:class:`mrm.core.georef.GeoRef`, ADR 0021). Absent for an object on a plain grid.
 * A discrete source is its canonical (cropped) mask, ``np.packbits`` row-major (row 0 = lowest y, big-endian
   bit order) in base64, with its origin and shape: compact, and valid JSON.
 * A label map (``kind: "labels"``, schema 4, ADR 0033) is its canonical (cropped) int32 label array,
@@ -54,29 +54,25 @@ Schema version 4::
 from __future__ import annotations
 
 import base64
-import binascii
 import functools
 import json
-import math
 import os
 import zlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import Any
 
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core import limits
 from mrm.core.errors import FileFormatError as FileFormatError
-from mrm.core.errors import MRMError
-from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap, PixelSet
-from mrm.core.limits import COORDINATE_LIMIT, PARAMS_MAX_DEPTH
 from mrm.core.models import Model
-from mrm.document import DocObject, Document, Geometry, Settings, Source, Style, validate_geometry
+from mrm.document import DocObject, Document, Geometry, Settings, Source, Style
 from mrm.io.atomic import atomic_write_bytes
+from mrm.io.project_decode import Checker, decode_object, decode_source
 from mrm.io.reading import open_regular
 from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance, content_digest
 
@@ -84,8 +80,6 @@ from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance, content_digest
 FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
 SCHEMA_VERSION = 4
-#: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
-MAX_CRS_CHARS = 100_000
 # The other limits are those of the document (mrm.core.limits, ADR 0010), so that the loader accepts every
 # file the saver can write: the document refuses the edit that would exceed them. The loader reads them from
 # mrm.core.limits when it runs.
@@ -318,340 +312,6 @@ def _sniff(data: bytes) -> str | None:
     return None
 
 
-class _Checker:
-    """Validation helpers that raise FileFormatError naming the file and the JSON path."""
-
-    def __init__(self, name: str) -> None:
-        self.name = name
-        self.mask_pixels = 0  # running total of the discrete sources' bounding boxes
-
-    def fail(self, path: str, msg: str) -> NoReturn:
-        raise FileFormatError(f"{self.name}: invalid project at {path}: {msg}")
-
-    @staticmethod
-    def show(v: Any) -> str:
-        if isinstance(v, bool):
-            return "true" if v else "false"
-        if v is None:
-            return "null"
-        if isinstance(v, dict):
-            return "an object"
-        if isinstance(v, list):
-            return f"a list of {len(v)}"
-        if isinstance(v, str):
-            return repr(v if len(v) <= 40 else v[:37] + "...")
-        if isinstance(v, int) and abs(v) >= 10**15:
-            return f"an integer of {len(str(abs(v)))} digits"
-        return repr(v)
-
-    def obj(self, v: Any, path: str, required: Sequence[str], optional: Sequence[str] = ()) -> dict[str, Any]:
-        if not isinstance(v, dict):
-            self.fail(path, f"expected an object, got {self.show(v)}")
-        for k in required:
-            if k not in v:
-                self.fail(path, f"missing key {k!r}")
-        if len(v) > len(required):  # sets: linear in the number of keys, whatever it is
-            known = {*required, *optional}
-            unknown = next((k for k in v if k not in known), None)
-            if unknown is not None:
-                self.fail(path, f"unknown key {self.show(unknown)}")
-        return v
-
-    def list_(self, v: Any, path: str) -> list[Any]:
-        if not isinstance(v, list):
-            self.fail(path, f"expected a list, got {self.show(v)}")
-        return v
-
-    def int_(self, v: Any, path: str, lo: int, hi: int) -> int:
-        if isinstance(v, bool) or not isinstance(v, int):
-            self.fail(path, f"expected an integer, got {self.show(v)}")
-        if not lo <= v <= hi:
-            self.fail(path, f"integer {self.show(v)} out of range [{lo}, {hi}]")
-        return v
-
-    def num(self, v: Any, path: str, lo: float, hi: float) -> float:
-        if isinstance(v, bool) or not isinstance(v, int | float):
-            self.fail(path, f"expected a number, got {self.show(v)}")
-        if isinstance(v, int) and abs(v) > 2**53:
-            self.fail(path, f"number {self.show(v)} is too large")
-        f = float(v)
-        if not (math.isfinite(f) and lo <= f <= hi):
-            self.fail(path, f"number {self.show(v)} out of range [{lo:g}, {hi:g}]")
-        return f
-
-    def str_(self, v: Any, path: str, max_len: int | None = None) -> str:
-        if not isinstance(v, str):
-            self.fail(path, f"expected a string, got {self.show(v)}")
-        if max_len is None:
-            max_len = limits.MAX_NAME_CHARS
-        if len(v) > max_len:
-            self.fail(path, f"string of {len(v)} characters is longer than {max_len}")
-        return limits.clean_text(v)  # a JSON "\ud800" escape must not make the document unsavable
-
-    def json_value(self, v: Any, path: str) -> None:
-        """Check free-form JSON data iteratively (no recursion, whatever the nesting)."""
-        stack: list[tuple[Any, str, int]] = [(v, path, 0)]
-        while stack:
-            x, p, d = stack.pop()
-            if d > PARAMS_MAX_DEPTH:
-                self.fail(p, f"nested deeper than {PARAMS_MAX_DEPTH} levels")
-            if isinstance(x, dict):
-                stack.extend((val, f"{p}.{k}", d + 1) for k, val in x.items())
-            elif isinstance(x, list):
-                stack.extend((val, f"{p}[{i}]", d + 1) for i, val in enumerate(x))
-            elif isinstance(x, float) and not math.isfinite(x):
-                self.fail(p, "numbers must be finite")
-            elif isinstance(x, int) and not isinstance(x, bool) and abs(x) > limits.MAX_PARAM_INT:
-                self.fail(p, f"number {self.show(x)} is too large")
-
-
-def _decode_box(
-    c: _Checker, src: dict[str, Any], path: str, limit: int, what: str = "mask"
-) -> tuple[int, int, int, int]:
-    """(x0, y0, rows, cols) of a discrete source or label map, within the coordinate and size limits."""
-    origin = c.list_(src["origin"], f"{path}.origin")
-    if len(origin) != 2:
-        c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
-    lim = limits.PIXEL_COORDINATE_LIMIT
-    x0 = c.int_(origin[0], f"{path}.origin[0]", -lim, lim)
-    y0 = c.int_(origin[1], f"{path}.origin[1]", -lim, lim)
-    shape = c.list_(src["shape"], f"{path}.shape")
-    if len(shape) != 2:
-        c.fail(f"{path}.shape", f"expected [rows, cols], got {c.show(shape)}")
-    h = c.int_(shape[0], f"{path}.shape[0]", 0, lim)
-    w = c.int_(shape[1], f"{path}.shape[1]", 0, lim)
-    if h and w and max(x0 + w - 1, y0 + h - 1) > lim:
-        c.fail(f"{path}.shape", f"the mask reaches pixel coordinates beyond ±{lim:,}")
-    if h * w > limit:
-        c.fail(f"{path}.shape", f"a {h} x {w} {what} holds more than the limit of {limit:,} pixels")
-    c.mask_pixels += h * w
-    if c.mask_pixels > limits.MAX_FILE_PIXELS:
-        c.fail(
-            f"{path}.shape", f"the masks of the file hold more than {limits.MAX_FILE_PIXELS:,} pixels in all"
-        )
-    return x0, y0, h, w
-
-
-def _decode_labels(c: _Checker, src: dict[str, Any], path: str) -> LabelMap:
-    c.obj(src, path, ("kind", "origin", "shape", "labels"))
-    x0, y0, h, w = _decode_box(c, src, path, limits.MAX_LABEL_PIXELS, "label map")
-    text = c.str_(src["labels"], f"{path}.labels", max_len=limits.MAX_FILE_BYTES)
-    try:
-        packed = base64.b64decode(text, validate=True)
-    except (binascii.Error, ValueError):
-        c.fail(f"{path}.labels", "not valid base64")
-    n = 4 * h * w
-    if n == 0:
-        if packed:
-            c.fail(f"{path}.labels", "an empty label map has no labels")
-        return LabelMap(np.zeros((0, 0), np.int32))
-    # Never more than the declared size is inflated (a small file cannot claim gigabytes).
-    inflate = zlib.decompressobj()
-    try:
-        raw = inflate.decompress(packed, n)
-    except zlib.error as e:
-        c.fail(f"{path}.labels", f"not valid zlib data ({e})")
-    if len(raw) != n or inflate.unconsumed_tail or not inflate.eof:
-        c.fail(f"{path}.labels", f"expected {n} bytes of int32 labels for a {h} x {w} map")
-    labels = np.frombuffer(raw, dtype="<i4").reshape(h, w)
-    if labels.size and int(labels.min()) < 0:
-        c.fail(f"{path}.labels", "labels must be non-negative")
-    return LabelMap(labels.astype(np.int32), (x0, y0))
-
-
-def _decode_bits(c: _Checker, src: dict[str, Any], path: str) -> PixelSet:
-    c.obj(src, path, ("kind", "origin", "shape", "bits"))
-    x0, y0, h, w = _decode_box(c, src, path, limits.MAX_OBJECT_PIXELS)
-    bits = c.str_(src["bits"], f"{path}.bits", max_len=limits.MAX_FILE_BYTES)
-    n = h * w
-    nbytes = (n + 7) // 8
-    if len(bits) != 4 * ((nbytes + 2) // 3):
-        c.fail(
-            f"{path}.bits",
-            f"expected {nbytes} bytes of base64 for a {h} x {w} mask, got {len(bits)} characters",
-        )
-    try:
-        raw = base64.b64decode(bits, validate=True)
-    except (binascii.Error, ValueError):
-        c.fail(f"{path}.bits", "not valid base64")
-    if len(raw) != nbytes:
-        c.fail(f"{path}.bits", f"expected {nbytes} bytes for a {h} x {w} mask, got {len(raw)}")
-    if n == 0:
-        return PixelSet.empty()
-    mask = np.unpackbits(np.frombuffer(raw, dtype=np.uint8), count=n).reshape(h, w).view(bool)
-    return PixelSet(mask, (x0, y0))
-
-
-def _decode_ring(c: _Checker, ring: Any, path: str) -> np.ndarray[Any, np.dtype[np.float64]]:
-    c.list_(ring, path)
-    if len(ring) < 4:
-        c.fail(path, f"a ring needs at least 4 positions (closed), got {len(ring)}")
-    for k, pt in enumerate(ring):
-        if type(pt) is not list or len(pt) != 2:
-            c.fail(f"{path}[{k}]", f"expected a position [x, y], got {c.show(pt)}")
-        for j in (0, 1):
-            v = pt[j]
-            tv = type(v)
-            if tv is float:
-                if not (-COORDINATE_LIMIT <= v <= COORDINATE_LIMIT):  # also catches NaN and infinities
-                    c.fail(f"{path}[{k}][{j}]", f"coordinate {c.show(v)} outside ±{COORDINATE_LIMIT:.0f}")
-            elif tv is int:
-                if not -COORDINATE_LIMIT <= v <= COORDINATE_LIMIT:
-                    c.fail(f"{path}[{k}][{j}]", f"coordinate {c.show(v)} outside ±{COORDINATE_LIMIT:.0f}")
-            else:
-                c.fail(f"{path}[{k}][{j}]", f"expected a number, got {c.show(v)}")
-    a = np.array(ring, dtype=np.float64)
-    if not np.array_equal(a[0], a[-1]):
-        c.fail(path, "the ring is not closed (its last position must repeat the first)")
-    return a
-
-
-def _decode_geometry(c: _Checker, g: Any, path: str) -> Geometry:
-    c.obj(g, path, ("type", "coordinates"))
-    kind = g["type"]
-    coords = c.list_(g["coordinates"], f"{path}.coordinates")
-    if kind == "Polygon":
-        if not coords:
-            return Polygon()
-        polys = [coords]
-        cpaths = [f"{path}.coordinates"]
-    elif kind == "MultiPolygon":
-        polys = coords
-        cpaths = [f"{path}.coordinates[{i}]" for i in range(len(coords))]
-        if not polys:
-            return Polygon()
-    else:
-        c.fail(f"{path}.type", f"expected 'Polygon' or 'MultiPolygon', got {c.show(kind)}")
-    built = []
-    for rings, p in zip(polys, cpaths, strict=True):
-        c.list_(rings, p)
-        if not rings:
-            c.fail(p, "a polygon needs an exterior ring")
-        rs = [_decode_ring(c, r, f"{p}[{i}]") for i, r in enumerate(rings)]
-        built.append(Polygon(rs[0], rs[1:]))
-    geom: Geometry = MultiPolygon(built) if kind == "MultiPolygon" else built[0]
-    try:
-        return validate_geometry(geom)
-    except MRMError as e:
-        c.fail(path, str(e))
-
-
-def _decode_source(c: _Checker, src: Any, path: str) -> Source:
-    c.obj(src, path, ("kind",), ("origin", "shape", "bits", "geometry", "labels"))
-    kind = src["kind"]
-    if kind == "discrete":
-        return _decode_bits(c, src, path)
-    if kind == "labels":
-        return _decode_labels(c, src, path)
-    if kind == "euclidean":
-        c.obj(src, path, ("kind", "geometry"))
-        return _decode_geometry(c, src["geometry"], f"{path}.geometry")
-    c.fail(f"{path}.kind", f"expected 'discrete', 'labels' or 'euclidean', got {c.show(kind)}")
-
-
-def _decode_style(c: _Checker, s: Any, path: str) -> Style:
-    c.obj(s, path, ("fill", "stroke", "opacity", "stroke_width", "visible"))
-    fill = c.str_(s["fill"], f"{path}.fill", 9)
-    stroke = c.str_(s["stroke"], f"{path}.stroke", 9)
-    opacity = c.num(s["opacity"], f"{path}.opacity", 0.0, 1.0)
-    width = c.num(s["stroke_width"], f"{path}.stroke_width", 0.0, 100.0)
-    if not isinstance(s["visible"], bool):
-        c.fail(f"{path}.visible", f"expected true or false, got {c.show(s['visible'])}")
-    try:
-        return Style(fill=fill, stroke=stroke, opacity=opacity, stroke_width=width, visible=s["visible"])
-    except MRMError as e:
-        c.fail(path, str(e))
-
-
-def _decode_provenance(
-    c: _Checker, p: Any, path: str, contents: dict[str, Source] | None = None, depth: int = 0
-) -> Provenance | None:
-    if p is None:
-        return None
-    if depth > PROVENANCE_MAX_DEPTH:
-        c.fail(path, f"a provenance chain is longer than {PROVENANCE_MAX_DEPTH} operations")
-    c.obj(p, path, ("operation", "params", "inputs"), ("input_contents", "input_provenance"))
-    op = c.str_(p["operation"], f"{path}.operation", 200)
-    if not op:
-        c.fail(f"{path}.operation", "empty operation name")
-    params = c.obj(
-        p["params"], f"{path}.params", (), tuple(p["params"]) if isinstance(p["params"], dict) else ()
-    )
-    # The size first (one C-speed dump), so that a huge parameter set is refused before the per-value checks.
-    try:
-        size = len(json.dumps(params))
-    except (RecursionError, ValueError):
-        c.fail(f"{path}.params", f"nested deeper than {PARAMS_MAX_DEPTH} levels")
-    if size > limits.PARAMS_MAX_CHARS:
-        c.fail(f"{path}.params", f"the parameters are larger than {limits.PARAMS_MAX_CHARS:,} characters")
-    c.json_value(params, f"{path}.params")
-    params = limits.clean_json(params)
-    inputs = c.list_(p["inputs"], f"{path}.inputs")
-    # 0 names an input that was an intermediate result of a re-run, never an object of the document.
-    ids = [c.int_(v, f"{path}.inputs[{i}]", 0, 2**53) for i, v in enumerate(inputs)]
-    sources: list[Source] = []
-    parents: list[Provenance | None] = []
-    digests: list[str] = []
-    if "input_contents" in p:
-        refs = c.list_(p["input_contents"], f"{path}.input_contents")
-        if len(refs) != len(ids):
-            c.fail(f"{path}.input_contents", f"expected {len(ids)} digests (one per input), got {len(refs)}")
-        for i, d in enumerate(refs):
-            key = c.str_(d, f"{path}.input_contents[{i}]", 64)
-            if contents is None or key not in contents:
-                c.fail(f"{path}.input_contents[{i}]", f"no content {c.show(key)} in $.contents")
-            sources.append(contents[key])
-            digests.append(key)
-        ups = c.list_(p.get("input_provenance", [None] * len(ids)), f"{path}.input_provenance")
-        if len(ups) != len(ids):
-            c.fail(f"{path}.input_provenance", f"expected {len(ids)} records (one per input), got {len(ups)}")
-        parents = [
-            _decode_provenance(c, u, f"{path}.input_provenance[{i}]", contents, depth + 1)
-            for i, u in enumerate(ups)
-        ]
-    elif "input_provenance" in p:
-        c.fail(f"{path}.input_provenance", "given without input_contents")
-    try:
-        return Provenance(op, params, tuple(ids), tuple(sources), tuple(parents), tuple(digests))
-    except MRMError as e:
-        c.fail(path, str(e))
-
-
-def _decode_georef(c: _Checker, g: Any, path: str) -> GeoRef | None:
-    if g is None:
-        return None
-    c.obj(g, path, ("transform", "width", "height", "crs"), ("origin",))
-    t = c.list_(g["transform"], f"{path}.transform")
-    if len(t) != 6:
-        c.fail(f"{path}.transform", f"expected six numbers [a, b, c, d, e, f], got {c.show(t)}")
-    big = float(2**1000)  # any finite float64; only NaN, infinities and huge integers are refused
-    transform = tuple(c.num(v, f"{path}.transform[{i}]", -big, big) for i, v in enumerate(t))
-    lim = limits.PIXEL_COORDINATE_LIMIT
-    width = c.int_(g["width"], f"{path}.width", 1, 2 * lim)
-    height = c.int_(g["height"], f"{path}.height", 1, 2 * lim)
-    origin = c.list_(g.get("origin", [0, 0]), f"{path}.origin")
-    if len(origin) != 2:
-        c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
-    x0 = c.int_(origin[0], f"{path}.origin[0]", -lim, lim)
-    y0 = c.int_(origin[1], f"{path}.origin[1]", -lim, lim)
-    crs = None if g["crs"] is None else c.str_(g["crs"], f"{path}.crs", MAX_CRS_CHARS)
-    try:
-        return GeoRef(transform, width, height, crs, (x0, y0))  # type: ignore[arg-type]
-    except MRMError as e:
-        c.fail(path, str(e))
-
-
-def _decode_object(c: _Checker, o: Any, path: str, contents: dict[str, Source] | None = None) -> DocObject:
-    c.obj(o, path, ("id", "name", "style", "provenance", "source"), ("georef",))
-    oid = c.int_(o["id"], f"{path}.id", 1, 2**53)
-    name = c.str_(o["name"], f"{path}.name")
-    style = _decode_style(c, o["style"], f"{path}.style")
-    prov = _decode_provenance(c, o["provenance"], f"{path}.provenance", contents)
-    georef = _decode_georef(c, o.get("georef"), f"{path}.georef")
-    source = _decode_source(c, o["source"], f"{path}.source")
-    return DocObject(id=oid, name=name, source=source, style=style, provenance=prov, georef=georef)
-
-
 def migrate(
     data: dict[str, Any],
     name: str = "project",
@@ -659,7 +319,7 @@ def migrate(
     current: int = SCHEMA_VERSION,
 ) -> dict[str, Any]:
     """Upgrade the JSON data of a project file to schema ``current``, applying ``migrations`` in order."""
-    c = _Checker(name)
+    c = Checker(name)
     version = (
         c.int_(data.get("schema_version"), "$.schema_version", 1, 2**31) if "schema_version" in data else 0
     )
@@ -726,7 +386,7 @@ def parse_project(
         raise FileFormatError(f"{name}: the JSON is nested too deeply to be a project file") from None
     except ValueError as e:  # NaN/Infinity literals; integers with thousands of digits
         raise FileFormatError(f"{name}: unreadable number: {e}") from None
-    c = _Checker(name)
+    c = Checker(name)
     if not isinstance(raw, dict):
         raise FileFormatError(f"{name}: not an MR Modeler project (the JSON is {c.show(raw)}, not an object)")
     if raw.get("format") != FORMAT:
@@ -760,7 +420,7 @@ def parse_project(
         table = c.obj(raw["contents"], "$.contents", (), keys)
         for key, src in table.items():
             c.str_(key, "$.contents", 64)
-            value = _decode_source(c, src, f"$.contents[{key!r}]")
+            value = decode_source(c, src, f"$.contents[{key!r}]")
             if content_digest(value) != key:  # a digest names its content: a file cannot make it lie
                 c.fail(f"$.contents[{key!r}]", "the content does not match its digest")
             contents[key] = value
@@ -768,7 +428,7 @@ def parse_project(
     objects: list[DocObject] = []
     seen: dict[int, int] = {}
     for i, o in enumerate(objs_raw):
-        obj = _decode_object(c, o, f"$.objects[{i}]", contents)
+        obj = decode_object(c, o, f"$.objects[{i}]", contents)
         if obj.id in seen:
             c.fail(f"$.objects[{i}].id", f"id {obj.id} is already used by $.objects[{seen[obj.id]}]")
         seen[obj.id] = i
