@@ -81,7 +81,6 @@ class RepresentationView(QtWidgets.QFrame):
         self.resume_button.clicked.connect(lambda: self.scene.resume_derivations())
         self.resume_button.hide()
         hl.addWidget(self.resume_button)
-        self.header_layout = hl
         lay.addWidget(self.header)
         self.plane = PlaneView(self.name, self)
         self.plane.runner = getattr(scene, "runner", None)

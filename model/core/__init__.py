@@ -12,5 +12,6 @@ notions the whole product shares, each declared once:
 * :mod:`mrm.core.grids` — pixel sets and label maps (an integer origin plus an array);
 * :mod:`mrm.core.progress` — the progress and cancel protocol of long work.
 
-Nothing here imports numba, shapely or Qt: importing the core is cheap.
+Nothing here imports numba or Qt, and shapely only when a georeference maps a geometry: importing the core
+is cheap.
 """

@@ -10,7 +10,7 @@ value an object carries (ADR 0021); reading and writing georeferenced files is :
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, TypeAlias
@@ -174,20 +174,6 @@ class GeoRef:
         # u = col + x0 − ½, v = H − ½ − row + y0
         cu, rv = x0 - 0.5, h - 0.5 + y0
         return cls((A, -B, A * cu + B * rv + XO, D, -E, D * cu + E * rv + YO), x1 - x0 + 1, h, crs, (x0, y0))
-
-    @classmethod
-    def from_dict(cls, data: Mapping[str, Any]) -> GeoRef:
-        """The inverse of :meth:`as_dict` (``origin`` optional); FileFormatError on a malformed record."""
-        try:
-            return cls(
-                tuple(data["transform"]),
-                data["width"],
-                data["height"],
-                data.get("crs"),
-                tuple(data.get("origin", (0, 0))),
-            )
-        except (KeyError, TypeError, ValueError) as e:
-            raise FileFormatError(f"not a georeference record: {e}") from None
 
     # ------------------------------------------------------------------ construction
     @classmethod
