@@ -286,13 +286,15 @@ def _child_main(fd_in: int, fd_out: int, warm: bool = False) -> None:
     import signal
     from multiprocessing.connection import Connection
 
-    with contextlib.suppress(OSError):  # not permitted in some sandboxes: the child then runs at par
-        os.nice(CHILD_NICENESS)
     signal.signal(signal.SIGUSR1, lambda *_a: _CANCEL.set())
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C in a terminal is for the window, which stops us
     conn_in, conn_out = Connection(fd_in, writable=False), Connection(fd_out, readable=False)
     if warm:
+        # At the window's priority: the user's first operation waits for this, and a busy machine starved
+        # it for minutes at +10 (ADR 0041). It is a second or two of CPU, once.
         _warm_child()
+    with contextlib.suppress(OSError):  # not permitted in some sandboxes: the child then runs at par
+        os.nice(CHILD_NICENESS)
     while True:
         try:
             head, bufs = _recv_parts(conn_in)
