@@ -542,8 +542,7 @@ class MainWindow(QtWidgets.QMainWindow):
 
     # ------------------------------------------------------------------ messages
     def show_message(self, text: str, ms: int = 0, *, error: bool = False) -> None:
-        self.status.setStyleSheet("QStatusBar { color: #c0392b; }" if error else "")
-        self.status.showMessage(text, ms)
+        self.status.show_text(text, ms, error=error)
 
     def show_error(self, title: str, text: str) -> QtWidgets.QMessageBox:
         """A window-modal message that does not block the caller (so no work waits on the user)."""

@@ -14,7 +14,7 @@ The children are fresh interpreters (``python -m mrm.app.processes``; a fork of 
 is unsafe), started lazily, at most :data:`MAX_PROCESSES`, each running one job at a time, at a lower
 scheduling priority than the window; a Cancel reaches them as SIGUSR1. They end with the window, or with the
 parent, whose end closes their pipe. :meth:`ProcessPool.warm` starts one at the window's start-up that loads
-the operations and kernels before its first job (ADR 0041).
+the operations and kernels before its first job (ADR 0042).
 
 Every failure comes back to the caller as an exception, never as a hang: a job or a result that does not
 pickle (:class:`WorkerError`, the pipe left clean), an exception of the job (itself, or its kind and text when
@@ -286,13 +286,15 @@ def _child_main(fd_in: int, fd_out: int, warm: bool = False) -> None:
     import signal
     from multiprocessing.connection import Connection
 
-    with contextlib.suppress(OSError):  # not permitted in some sandboxes: the child then runs at par
-        os.nice(CHILD_NICENESS)
     signal.signal(signal.SIGUSR1, lambda *_a: _CANCEL.set())
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C in a terminal is for the window, which stops us
     conn_in, conn_out = Connection(fd_in, writable=False), Connection(fd_out, readable=False)
     if warm:
+        # At the window's priority: the user's first operation waits for this, and a busy machine starved
+        # it for minutes at +10 (ADR 0042). It is a second or two of CPU, once.
         _warm_child()
+    with contextlib.suppress(OSError):  # not permitted in some sandboxes: the child then runs at par
+        os.nice(CHILD_NICENESS)
     while True:
         try:
             head, bufs = _recv_parts(conn_in)
@@ -407,7 +409,7 @@ class ProcessPool:
         """Start a child now that loads what the jobs need (the window's start-up); returns at once.
 
         The child is idle for the pool at once: the first job goes to it, and waits in its pipe for the rest
-        of the warm-up, rather than starting a second, cold child (ADR 0041). Nothing is started when a child
+        of the warm-up, rather than starting a second, cold child (ADR 0042). Nothing is started when a child
         is already there.
         """
         with self._cond:

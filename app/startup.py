@@ -43,6 +43,7 @@ def prepare_then(win: Any, then: Callable[[], Any]) -> bool:
             progress.update(done / total, f"{PREPARING}: {what} ({step}/{total})…")
 
         warm_up(report)
+        win.runner.warm_processes()  # compiled: the worker process of the operations can load them now
 
     def failed(exc: BaseException) -> None:
         # The kernels then compile on first use instead; say so and carry on.
@@ -79,12 +80,11 @@ def preload(win: Any) -> None:
         scene.sync_cost = cost
 
     def work(p: Any) -> None:
+        # First the worker process of the operations and measurements (ADR 0025): it loads its modules and
+        # kernels meanwhile, in parallel, so that the first Apply finds it ready (ADR 0042).
+        win.runner.warm_processes()
         load_kernels()
         load_view_kernels()
-        # The worker process of the operations and measurements (ADR 0025) loads them too, meanwhile.
-        from mrm.app import process_jobs
-
-        win.runner.call(process_jobs.warm, (), p)
 
     win.runner.submit(
         "warmup",
@@ -92,6 +92,7 @@ def preload(win: Any) -> None:
         on_result=restore,
         on_error=lambda _e: restore(),
         on_cancel=restore,
+        at_par=True,  # the first drawings and operations wait for it (ADR 0042)
     )
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.views.geometry_edit import pixel_at, vertex_count
 from mrm.views.scene import Scene, pixel_count
@@ -22,8 +22,100 @@ def _int(v: int) -> str:
     return f"{v:,}".replace(",", "\u2009").replace("-", "−")
 
 
+class ElidedLabel(QtWidgets.QLabel):
+    """A one-line plain-text label that elides what does not fit (``…``), with the whole text as tooltip.
+
+    Its size hint asks for the whole text but never more than ``most`` pixels, and it may shrink to
+    ``least``: a long text cannot widen the window. A leading part may be drawn bold (:meth:`set_parts`).
+    """
+
+    def __init__(
+        self, parent: QtWidgets.QWidget | None = None, *, least: int = 0, most: int = 10_000
+    ) -> None:
+        super().__init__("", parent)
+        self.least, self.most = least, most
+        self._lead = ""  # the bold start of the text
+        self.setTextFormat(QtCore.Qt.TextFormat.PlainText)
+
+    def setText(self, text: str) -> None:
+        self.set_parts("", text)
+
+    def set_parts(self, lead: str, rest: str) -> None:
+        """Show ``lead`` in bold, then ``rest``."""
+        self._lead = lead
+        super().setText(lead + rest)
+        self._update_tip()
+        self.updateGeometry()
+
+    def _bold(self) -> QtGui.QFontMetrics:
+        font = QtGui.QFont(self.font())
+        font.setBold(True)
+        return QtGui.QFontMetrics(font)
+
+    def _pieces(self) -> tuple[str, str]:
+        """The lead and the rest as drawn in the label's width (elided where they do not fit)."""
+        width = max(0, self.contentsRect().width())
+        rest = self.text()[len(self._lead) :]
+        elide = QtCore.Qt.TextElideMode.ElideRight
+        if not self._lead:
+            return "", self.fontMetrics().elidedText(rest, elide, width)
+        bold = self._bold()
+        lead = bold.elidedText(self._lead, elide, width)
+        if lead != self._lead:
+            return lead, ""
+        return lead, self.fontMetrics().elidedText(rest, elide, width - bold.horizontalAdvance(lead))
+
+    def displayed_text(self) -> str:
+        """What is drawn: the text, elided to the label's width."""
+        return "".join(self._pieces())
+
+    def _update_tip(self) -> None:
+        self.setToolTip(self.text() if self.displayed_text() != self.text() else "")
+
+    def sizeHint(self) -> QtCore.QSize:
+        rest = self.text()[len(self._lead) :]
+        need = self._bold().horizontalAdvance(self._lead) + self.fontMetrics().horizontalAdvance(rest) + 4
+        return QtCore.QSize(min(self.most, max(self.least, need)), super().sizeHint().height())
+
+    def minimumSizeHint(self) -> QtCore.QSize:
+        return QtCore.QSize(self.least, super().minimumSizeHint().height())
+
+    def resizeEvent(self, ev: QtGui.QResizeEvent) -> None:
+        super().resizeEvent(ev)
+        self._update_tip()
+
+    def paintEvent(self, _ev: QtGui.QPaintEvent) -> None:
+        p = QtGui.QPainter(self)
+        p.setPen(self.palette().color(self.foregroundRole()))
+        rect = QtCore.QRectF(self.contentsRect())
+        flags = int(QtCore.Qt.AlignmentFlag.AlignLeft | QtCore.Qt.AlignmentFlag.AlignVCenter)
+        lead, rest = self._pieces()
+        if lead:
+            font = QtGui.QFont(self.font())
+            font.setBold(True)
+            p.setFont(font)
+            p.drawText(rect, flags, lead)
+            rect.setLeft(rect.left() + self._bold().horizontalAdvance(lead))
+            p.setFont(self.font())
+        p.drawText(rect, flags, rest)
+
+
+def progress_text(label: str, message: str) -> str:
+    """What the status bar says of a running task: its label, and what it does now when that adds to it."""
+    if not message:
+        return label
+    if not label or message.startswith(label):
+        return message
+    return f"{label}: {message}"
+
+
 class StatusBar(QtWidgets.QStatusBar):
-    """Shows messages on the left and three permanent fields on the right."""
+    """Three areas that never overlap: a hint on the left, a task's progress, the permanent fields.
+
+    The hint is the status bar's message (:meth:`showMessage`, a menu's status tip), drawn in its own widget
+    and elided at the progress and the figures instead of running into them; a running task's progress text
+    has room before the hint (ADR 0042).
+    """
 
     cancelRequested = QtCore.Signal()
 
@@ -31,9 +123,14 @@ class StatusBar(QtWidgets.QStatusBar):
         super().__init__(parent)
         self.setObjectName("statusBar")
         self.scene = scene
-        self.figures = QtWidgets.QLabel("", self)
+        self.hint = ElidedLabel(self)
+        self.hint.setObjectName("statusHint")
+        self.hint.setSizePolicy(QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Preferred)
+        self.messageChanged.connect(self.hint.setText)
+        self.hint.setMinimumWidth(self.HINT_WIDTH)
+        # The figures shrink too (elided; a long object name made them push the window wider).
+        self.figures = ElidedLabel(self, least=120)
         self.figures.setObjectName("figuresLabel")
-        self.figures.setTextFormat(QtCore.Qt.TextFormat.RichText)
         self.cursor_label = QtWidgets.QLabel("", self)
         self.cursor_label.setObjectName("cursorLabel")
         self.cursor_label.setMinimumWidth(
@@ -45,26 +142,24 @@ class StatusBar(QtWidgets.QStatusBar):
         pl = QtWidgets.QHBoxLayout(self.progress_box)
         pl.setContentsMargins(0, 0, 0, 0)
         pl.setSpacing(4)
-        self.progress_label = QtWidgets.QLabel("", self.progress_box)
-        # A long message ("DSS 4.5: computing the digital straight segments (3/3)") is cut, never allowed to
-        # widen the window while it shows.
-        self.progress_label.setSizePolicy(
-            QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Preferred
-        )
-        self.progress_label.setMinimumWidth(60)
-        self.progress_label.setMaximumWidth(240)
+        # A task's text ("Discrete smooth scaling DSS_α: continuing R(A)") gets its width before the hint
+        # does, up to a cap: a longer one is elided, never allowed to widen the window while it shows.
+        self.progress_label = ElidedLabel(self.progress_box, least=100, most=460)
+        self.progress_label.setObjectName("progressText")
         self.progress = QtWidgets.QProgressBar(self.progress_box)
         self.progress.setObjectName("taskProgress")
         self.progress.setRange(0, 1000)
-        self.progress.setMaximumWidth(160)
+        self.progress.setMaximumWidth(120)
         self.progress.setTextVisible(False)
         self.cancel_button = QtWidgets.QPushButton("Cancel", self.progress_box)
         self.cancel_button.setObjectName("cancelTask")
         self.cancel_button.clicked.connect(self.cancelRequested)
-        pl.addWidget(self.progress_label)
+        pl.addWidget(self.progress_label, 1)
         pl.addWidget(self.progress)
         pl.addWidget(self.cancel_button)
         self.progress_box.hide()
+        # All permanent, so that QStatusBar never hides one for a message: the hint takes the spare width.
+        self.addPermanentWidget(self.hint, 1)
         self.addPermanentWidget(self.progress_box)
         self.addPermanentWidget(self.figures)
         self.addPermanentWidget(self.cursor_label)
@@ -73,7 +168,7 @@ class StatusBar(QtWidgets.QStatusBar):
         self._show_timer = QtCore.QTimer(self)
         self._show_timer.setSingleShot(True)
         self._show_timer.setInterval(self.SHOW_AFTER_MS)
-        self._show_timer.timeout.connect(lambda: self.progress_box.setVisible(True))
+        self._show_timer.timeout.connect(lambda: self._show_progress(True))
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(0)
@@ -157,7 +252,7 @@ class StatusBar(QtWidgets.QStatusBar):
             self.figures.setText(f"{n} object{'s' if n != 1 else ''}" if n else "")
             return
         if obj.kind == "labels":
-            self.figures.setText(f"<b>{obj.name}</b>: {self.label_map_figures(obj.id)}")
+            self.figures.set_parts(f"{obj.name}: ", self.label_map_figures(obj.id))
             return
         f = self.figures_of(obj.id)
 
@@ -169,9 +264,10 @@ class StatusBar(QtWidgets.QStatusBar):
                 return f"{plural or unit + 's'} not computed"
             return f"{_int(val)} {unit if val == 1 else (plural or unit + 's')}"
 
-        self.figures.setText(
-            f"<b>{obj.name}</b>: {v('pixels', 'pixel')} · {v('components', 'component')} · "
-            f"{v('holes', 'hole')} · {v('segments', 'segment')} · {v('vertices', 'vertex', 'vertices')}"
+        self.figures.set_parts(
+            f"{obj.name}: ",
+            f"{v('pixels', 'pixel')} · {v('components', 'component')} · "
+            f"{v('holes', 'hole')} · {v('segments', 'segment')} · {v('vertices', 'vertex', 'vertices')}",
         )
 
     # ------------------------------------------------------------------ progress
@@ -181,18 +277,53 @@ class StatusBar(QtWidgets.QStatusBar):
     def set_busy(self, busy: bool) -> None:
         if not busy:
             self._show_timer.stop()
-            self.progress_box.setVisible(False)
+            self._show_progress(False)
             return
         if not self.progress_box.isVisible() and not self._show_timer.isActive():
             self.progress.setValue(0)
             self.progress.setRange(0, 0)  # indeterminate until the first report
             self._show_timer.start()
 
+    #: The hint's least width: a tool's hint stays readable on a 1024-pixel window.
+    HINT_WIDTH = 100
+
+    def _show_progress(self, on: bool) -> None:
+        # While a task runs its text comes first: the hint may shrink to nothing meanwhile.
+        self.hint.setMinimumWidth(0 if on else self.HINT_WIDTH)
+        self.progress_box.setVisible(on)
+
     def set_progress(self, label: str, fraction: float, message: str) -> None:
         self.progress.setRange(0, 1000)
         self.progress.setValue(round(1000 * fraction))
-        self.progress_label.setText(message or label)
-        self.progress_box.setToolTip(message or label)
+        text = progress_text(label, message)
+        if text != self.progress_label.text():
+            self.progress_label.setText(text)
+            self.progress_box.setToolTip(text)
+            # The box asks the status bar for the new width itself: a nested label's new size hint does
+            # not reach QStatusBar's layout on its own.
+            self.progress_box.updateGeometry()
+
+    # ------------------------------------------------------------------ messages
+    def show_text(self, text: str, ms: int = 0, *, error: bool = False) -> None:
+        """Show ``text`` in the hint area for ``ms`` ms (0: until the next message), red for an error."""
+        self.hint.setStyleSheet("color: #c0392b;" if error else "")
+        self.showMessage(text, ms)
+
+    def paintEvent(self, ev: QtGui.QPaintEvent) -> None:
+        # QStatusBar's own paint draws the message over the area left of the first permanent widget; here
+        # the hint widget draws it, elided. The panel and the widgets' frames as Qt draws them.
+        p = QtGui.QPainter(self)
+        opt = QtWidgets.QStyleOption()
+        opt.initFrom(self)
+        style = self.style()
+        style.drawPrimitive(QtWidgets.QStyle.PrimitiveElement.PE_PanelStatusBar, opt, p, self)
+        for w in (self.hint, self.progress_box, self.figures, self.cursor_label, self.model_label):
+            if w.isVisible():
+                item = QtWidgets.QStyleOption()
+                item.rect = w.geometry().adjusted(-2, -1, 2, 1)
+                item.palette = self.palette()
+                if ev.rect().intersects(item.rect):
+                    style.drawPrimitive(QtWidgets.QStyle.PrimitiveElement.PE_FrameStatusBarItem, item, p, w)
 
 
 def segment_count(ana: Any) -> int:

@@ -48,6 +48,7 @@ class Task:
     serial: int = 0
     progress: TaskProgress = field(default_factory=TaskProgress)
     done: bool = False
+    at_par: bool = False
 
     def cancel(self) -> None:
         self.progress.cancel()
@@ -90,7 +91,8 @@ class _Worker(QtCore.QRunnable):
         self.setAutoDelete(True)
 
     def run(self) -> None:
-        lower_thread_priority()
+        if not self.task.at_par:
+            lower_thread_priority()
         task = self.task
         try:
             task.progress.check()
@@ -131,6 +133,10 @@ class TaskRunner(QtCore.QObject):
         self._pool = QtCore.QThreadPool(self)
         if threads is not None:
             self._pool.setMaxThreadCount(max(1, threads))
+        # Threads at the window's priority, for the few tasks submitted ``at_par`` (a thread once lowered
+        # cannot be raised again without privileges, so they have their own).
+        self._par_pool = QtCore.QThreadPool(self)
+        self._par_pool.setMaxThreadCount(4)
         self._signals = _Signals(self)
         self._signals.finished.connect(self._on_finished)
         self._signals.failed.connect(self._on_failed)
@@ -154,8 +160,14 @@ class TaskRunner(QtCore.QObject):
         label: str = "",
         revision: int | None = None,
         show_progress: bool = False,
+        at_par: bool = False,
     ) -> Task:
-        """Run ``fn(progress)``; cancel whatever ran in ``slot`` before. See the module docstring."""
+        """Run ``fn(progress)``; cancel whatever ran in ``slot`` before. See the module docstring.
+
+        ``at_par``: in a thread at the window's priority, not :data:`WORKER_NICENESS` below it. For short
+        Python work the user waits for, such as loading the kernels at start-up: a lowered thread holding the
+        GIL is starved on a busy machine, and the window, waiting for the GIL, with it (ADR 0042).
+        """
         old = self._current.get(slot)
         if old is not None and not old.done:
             old.cancel()
@@ -169,6 +181,7 @@ class TaskRunner(QtCore.QObject):
             revision,
             show_progress,
             next(self._serial),
+            at_par=at_par,
         )
         if show_progress:
             task.progress = TaskProgress(lambda f, m, t=task: self._signals.progressed.emit(t, f, m))
@@ -225,6 +238,7 @@ class TaskRunner(QtCore.QObject):
         self._closed = True
         self.cancel()
         self._pool.waitForDone(timeout_ms)
+        self._par_pool.waitForDone(timeout_ms)
         # Outcomes already queued are dropped: their receivers are going away.
         for task in list(self._running):
             task.done = True
@@ -233,7 +247,7 @@ class TaskRunner(QtCore.QObject):
 
     # ------------------------------------------------------------------ internals
     def _start(self, task: Task) -> None:
-        self._pool.start(_Worker(task, self._signals))
+        (self._par_pool if task.at_par else self._pool).start(_Worker(task, self._signals))
 
     def _on_finished(self, task: Task, result: Any) -> None:
         self._deliver(task, "result", result)

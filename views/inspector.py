@@ -277,6 +277,7 @@ class ErrorInspector(QtWidgets.QWidget):
             on_cancel=cancelled,
             label=f"{obj.name}: measuring the error",
             show_progress=True,
+            at_par=True,  # its thread only waits for the worker process (ADR 0042)
         )
 
     def cancel(self) -> None:

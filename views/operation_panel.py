@@ -755,6 +755,9 @@ class OperationPanel(QtWidgets.QWidget):
             on_cancel=cancelled,
             label=op.title,
             show_progress=True,
+            # Its thread only waits for the worker process (which runs below the window's priority): at par,
+            # so that a busy machine does not starve the hand-over the user waits for (ADR 0042).
+            at_par=True,
         )
 
     def _finished(self) -> None:

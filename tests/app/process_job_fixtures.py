@@ -96,3 +96,19 @@ def buggy(provenance: Any, progress: Any) -> Any:
 def dying_measure(provenance: Any, progress: Any) -> None:
     """A measurement whose process ends abruptly."""
     os._exit(3)
+
+
+def planning_until_cancelled(
+    inputs: Any, op_name: str, params: Any, limit: Any, held: Any, progress: Any
+) -> None:
+    """An operation's plan that reports what it does ("continuing R(A)") until it is cancelled."""
+    while True:
+        progress.update(0.3, "continuing R(A)")
+        time.sleep(0.01)
+
+
+def modules_loaded(progress: Any) -> tuple[int, bool, int]:
+    """The child's pid, whether the operations were loaded before this job, and its nice level."""
+    import sys
+
+    return os.getpid(), "mrm.ops.scaling" in sys.modules, os.nice(0)

@@ -216,3 +216,23 @@ def test_a_size_limit_error_reaches_the_window_with_its_message(pool):  # type: 
     with pytest.raises(RuntimeError, match="_Stubborn: stubborn 1 2"):
         pool.run(jobs.unpicklable_error, (), TaskProgress())
     assert pool.run(jobs.whoami, (), TaskProgress()) != os.getpid()
+
+
+def test_a_warmed_child_takes_the_first_job_with_the_operations_loaded(pool):  # type: ignore[no-untyped-def]
+    """Issue 27: the first operation after a start waited for a cold child (8–9 s on 193 pixels)."""
+    pool.warm()
+    pool.warm()  # one child is there already: no second one
+    assert pool._count == 1
+    pid, loaded, nice = pool.run(jobs.modules_loaded, (), TaskProgress())
+    assert loaded  # it loaded the operations before its first job, not during it
+    assert pool.pids == {pid} and pool._count == 1  # the job went to the warmed child
+    # Its warm-up ran at the window's priority (a loaded machine starved it for minutes at +10); its jobs
+    # run below the window.
+    assert nice == min(19, os.nice(0) + processes.CHILD_NICENESS)
+    # A child started for a job does not warm up first: it is the job's own imports that load.
+    pool2 = processes.ProcessPool(1)
+    try:
+        _pid, loaded2, _nice = pool2.run(jobs.modules_loaded, (), TaskProgress())
+        assert not loaded2
+    finally:
+        pool2.close()

@@ -78,3 +78,33 @@ def test_checking_the_kernel_cache_does_not_import_numba():
     code = "import sys; from mrm.warmup import is_warm; is_warm(); print('numba' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_a_warm_start_starts_the_worker_process_of_the_operations_at_once(
+    make_window, qtbot, cold, monkeypatch
+):
+    """Issue 27: the first operation after a start waited for its worker process to start and load.
+
+    The child is started first and loads meanwhile, not after the window's own kernels are loaded.
+    """
+    from mrm.app import processes
+    from tests.app.helpers import HANG_MS
+
+    processes.close_pool()  # no child of an earlier test
+    children_then: list[int] = []
+    real = warmup.load_kernels
+
+    def load_kernels() -> None:
+        children_then.append(processes.pool()._count)
+        real()
+
+    monkeypatch.setattr(warmup, "load_kernels", load_kernels)
+    win = make_window(threaded=True)
+    warmup._write_stamp()
+    with qtbot.waitSignal(
+        win.runner.taskDone, timeout=HANG_MS, check_params_cb=lambda slot, _outcome: slot == "warmup"
+    ):
+        prepare_then(win, lambda: None)
+    assert children_then == [1]  # the worker process was on its way while the window loaded its kernels
+    pool = processes.pool()
+    assert pool._count == 1 and len(pool._idle) == 1  # idle for the first job

@@ -7,8 +7,9 @@ import threading
 import pytest
 from PySide6 import QtCore
 
-from mrm.app.tasks import SynchronousTaskRunner, TaskRunner
+from mrm.app.tasks import WORKER_NICENESS, SynchronousTaskRunner, TaskRunner
 from mrm.core.errors import Cancelled
+from tests.app.helpers import HANG_MS
 
 
 def _spin(progress, steps=10_000, gate=None):  # type: ignore[no-untyped-def]
@@ -159,4 +160,20 @@ def test_workers_run_below_the_gui_threads_priority(qtbot):
     qtbot.waitUntil(lambda: bool(seen), timeout=10_000)
     gui = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
     assert seen[0] == min(19, gui + WORKER_NICENESS)
+    runner.shutdown()
+
+
+def test_a_task_at_par_runs_at_the_windows_priority(qtbot):
+    """A lowered thread holding the GIL is starved on a busy machine, and the window with it (ADR 0042)."""
+    import os
+
+    runner = TaskRunner()
+    seen = []
+    nice = lambda p: os.getpriority(os.PRIO_PROCESS, threading.get_native_id())  # noqa: E731
+    with qtbot.waitSignal(runner.idle, timeout=HANG_MS):
+        runner.submit("par", nice, on_result=seen.append, at_par=True)
+    with qtbot.waitSignal(runner.idle, timeout=HANG_MS):
+        runner.submit("lowered", nice, on_result=seen.append)
+    gui = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
+    assert seen == [gui, min(19, gui + WORKER_NICENESS)]
     runner.shutdown()
