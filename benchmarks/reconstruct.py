@@ -254,7 +254,7 @@ def excess_by_ring(items: list[tuple[str, PixelSet]]) -> None:
     and the rest.
     """
     from mrm.geometry.reconstruct import reconstruct_detailed
-    from mrm.geometry.reconstruct._repair import window_bound
+    from mrm.geometry.reconstruct._small_search import window_bound
 
     classes = ("pieces <= 12", "pieces <= 24", "vertices <= 48", "vertices > 48")
     rows = []

@@ -1,4 +1,4 @@
-"""The window bound of R's corridors (:func:`mrm.geometry.reconstruct._repair.window_bound`).
+"""The window bound of R's corridors (:func:`mrm.geometry.reconstruct._small_search.window_bound`).
 
 It follows the greedy chain of the first start once and lets every later chain stop where it joins it; the
 value must be the one of walking every chain to its end, which decides where R searches for fewer vertices
@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from mrm.core.grids import PixelSet
 from mrm.core.models import Model
 from mrm.geometry.reconstruct import _run
-from mrm.geometry.reconstruct._repair import window_bound
+from mrm.geometry.reconstruct._small_search import window_bound
 
 MODELS = Model.names()
 

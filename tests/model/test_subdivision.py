@@ -33,6 +33,7 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import LabelMap, PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.dss.segmentation import greedy_segmentation
+from mrm.geometry.reconstruct import _cell_polylines as chains
 from mrm.geometry.reconstruct.subdivision import reconstruct_label_map, subdivide, watertight_parts
 from mrm.reps.region import region_of
 from tests.oracles.discretize_reference import reference_discretize
@@ -473,7 +474,7 @@ def test_any_polyline_the_verifier_accepts_keeps_the_subdivision_exact(
         out = [keep[0]]
         for (x, y, e), k in keep[1:-1]:
             jx, jy = rng.integers(-7, 8, 2)  # eighths of a Q unit, inside the open piece
-            out.append((sub._vertex((x << 3) + int(jx), (y << 3) + int(jy), e + 3), k))
+            out.append((chains._vertex((x << 3) + int(jx), (y << 3) + int(jy), e + 3), k))
         return [*out, keep[-1]]
 
     rejected = []
@@ -485,7 +486,7 @@ def test_any_polyline_the_verifier_accepts_keeps_the_subdivision_exact(
         return ok
 
     monkeypatch.setattr(sub, "_KERNEL", False)  # the Python construction, whose _greedy is replaced
-    monkeypatch.setattr(sub, "_greedy", random_polyline)
+    monkeypatch.setattr(chains, "_greedy", random_polyline)
     monkeypatch.setattr(sub, "_part_ok", part_ok)
     accepted = 0
     for seed in range(40):
@@ -556,7 +557,7 @@ def test_a_vertex_without_an_exact_float64_value_is_refused_with_a_message() -> 
     # Far from the origin a fine dyadic vertex cannot be written in float64: a ParameterError that says
     # so (the audit found an AssertionError from `mrm corefine --model gauss` at x = 2^45).
     from mrm.core.errors import ParameterError
-    from mrm.geometry.reconstruct.subdivision import _Chain, _to_plane
+    from mrm.geometry.reconstruct._cell_polylines import _Chain, _to_plane
 
     pts = np.array([[2**45, 0], [2**45 + 1, 0], [2**45 + 2, 0]], dtype=np.int64)
     ch = _Chain(pts, closed=False)
@@ -638,7 +639,7 @@ def test_the_staircase_is_the_chain_with_its_straight_pointels_dropped(lm: Label
         pts = [tuple(p) for p in c.chain.points().tolist()]
         closed = c.chain.start not in zero
         n = len(pts) - 1
-        ch = sub._Chain(c.chain.points(), closed)
+        ch = chains._Chain(c.chain.points(), closed)
         x0, y0 = pts[0]
 
         def straight(k: int, pts: list[tuple[int, ...]] = pts, n: int = n) -> bool:
@@ -663,7 +664,7 @@ def python_and_kernel_polylines(lm: LabelMap, limit: int) -> tuple[list[tuple[li
     zero = {z.point for z in cells.zero_cells}
     pts_all, off, points, _ = sub._cell_points(lm, cells)
     closed = np.array([c.chain.start not in zero for c in cells.one_cells], dtype=bool)
-    python = [sub._polyline(sub._Chain(p, bool(c))) for p, c in zip(points, closed, strict=True)]
+    python = [chains._polyline(chains._Chain(p, bool(c))) for p, c in zip(points, closed, strict=True)]
     loc = pts_all - np.repeat(pts_all[off[:-1]], np.diff(off), axis=0)
     status, count, verts = K.polylines_kernel(loc, off, closed, limit)
     kernel = [[tuple(v) for v in verts[off[i] : off[i] + count[i]].tolist()] for i in range(len(points))]

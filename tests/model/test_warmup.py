@@ -72,7 +72,7 @@ def test_warmup_compiles_again_after_a_kernel_module_is_edited(
     assert runs == []
     assert "already compiled" in capsys.readouterr().out
     # edit one kernel module: numba recompiles it, so the warm-up must run again
-    p = fake_root / "geometry" / "reconstruct/_repair.py"
+    p = fake_root / "geometry" / "reconstruct/_merge.py"
     p.write_text(p.read_text(encoding="utf-8") + "\n# edited\n", encoding="utf-8")
     assert warmup.main([]) == 0
     assert runs == [1]

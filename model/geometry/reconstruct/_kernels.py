@@ -29,8 +29,9 @@ The pipeline for one crack ring (object on the left):
    the whole ring becomes R0 only if that does not verify.
 
 Where each step lives: elements and pieces in :mod:`._corridor`, the reach in :mod:`._reach`, the
-greedy in :mod:`._greedy`, snapping and the exact checks in :mod:`._check`, splicing, pruning, merging,
-relinking and the small-corridor searches in :mod:`._repair`, straightening in :mod:`._straighten`, the
+greedy in :mod:`._greedy`, snapping and the exact checks in :mod:`._check`, splicing in :mod:`._splice`,
+pruning in :mod:`._prune`, merging in :mod:`._merge`, relinking in :mod:`._relink`, the window bound and the
+small-corridor searches in :mod:`._small_search`, straightening in :mod:`._straighten`, the
 minimum-link rings (Suri's windows, tried on rings still above their window bound) in :mod:`._minlink`,
 shared constants in :mod:`._base`; this module runs them over all rings (the ``*_all`` phases) and
 re-exports them, so callers import one module.
@@ -98,7 +99,9 @@ from mrm.geometry.reconstruct._greedy import (
     ring_reach,
     v4_greedy,
 )
+from mrm.geometry.reconstruct._merge import _clip_poly, _merge_pair, merge_ring
 from mrm.geometry.reconstruct._minlink import minlink_ring
+from mrm.geometry.reconstruct._prune import prune_ring
 from mrm.geometry.reconstruct._reach import (
     _QUAD_X,
     _QUAD_Y,
@@ -109,20 +112,9 @@ from mrm.geometry.reconstruct._reach import (
     dss_reach,
     general_reach,
 )
-from mrm.geometry.reconstruct._repair import (
-    _clip_poly,
-    _merge_pair,
-    _net_crossing,
-    _seg_point_in_rect,
-    _unwrap6,
-    merge_ring,
-    prune_ring,
-    relink_ring,
-    small_polygon,
-    small_triangle,
-    splice_ring,
-    window_bound,
-)
+from mrm.geometry.reconstruct._relink import _unwrap6, relink_ring
+from mrm.geometry.reconstruct._small_search import small_polygon, small_triangle, window_bound
+from mrm.geometry.reconstruct._splice import _net_crossing, _seg_point_in_rect, splice_ring
 from mrm.geometry.reconstruct._straighten import (
     _edge_line,
     _local_ok,

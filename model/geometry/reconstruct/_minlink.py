@@ -916,7 +916,7 @@ def minlink_ring(
     ----------
     ix, iy, vt, vs, vl : ndarray of int64
         The ring: vertices in integer coordinates scaled by 2^kmax (Q-units), their pieces (unwrapped,
-        non-decreasing, within one lap), sources and edge windows (as in :func:`._repair.merge_ring`).
+        non-decreasing, within one lap), sources and edge windows (as in :func:`._merge.merge_ring`).
     rect, gp, gq, gdir, reach : ndarray
         The corridor: pieces, gate ends and directions, and the reach table of its windows.
     kmax : int

@@ -1,9 +1,8 @@
 """Numba kernels for :mod:`mrm.geometry.reconstruct.subdivision`: the polylines of many 1-cells in one call.
 
-:func:`polylines_kernel` is :func:`mrm.geometry.reconstruct.subdivision._polyline` (staircase, greedy
-construction, merge
-pass, closing of a ring, exact verification) written for int64, applied to every chain of a batch. The Python
-functions stay the definition and the tests compare the two chain by chain.
+:func:`polylines_kernel` is :func:`mrm.geometry.reconstruct._cell_polylines._polyline` (staircase, greedy
+construction, merge pass, closing of a ring, exact verification) written for int64, applied to every chain of
+a batch. The Python functions stay the definition and the tests compare the two chain by chain.
 
 Exactness: every product and shift goes through :func:`_mul` / :func:`_shl`, which refuse (set the overflow
 flag ``st[0]``) any result above ``st[1]`` in absolute value (2⁶⁰ in use, so sums of a few such terms stay
@@ -172,7 +171,7 @@ def _cones(
 
 @njit(cache=True)
 def _on_line(a: int, b: int, c: int, cons: np.ndarray, m: int, out: np.ndarray, st: np.ndarray) -> bool:
-    """subdivision._on_line with the constraints cons[:m]; the point goes to out = (X·D, Y·D, D)."""
+    """_cell_polylines._on_line with the constraints cons[:m]; the point goes to out = (X·D, Y·D, D)."""
     has_lo = False
     has_hi = False
     lo0 = lo1 = hi0 = hi1 = 0
@@ -212,7 +211,7 @@ def _on_line(a: int, b: int, c: int, cons: np.ndarray, m: int, out: np.ndarray, 
 
 @njit(cache=True)
 def _square(loc: np.ndarray, q: int, e: int, cons: np.ndarray, st: np.ndarray) -> None:
-    """The open piece of pointel q as constraints cons[0:4] (subdivision._square)."""
+    """The open piece of pointel q as constraints cons[0:4] (_cell_polylines._square)."""
     vx, vy, h = _shl(loc[q, 0], e + 1, st), _shl(loc[q, 1], e + 1, st), _shl(1, e, st)
     cons[0, 0], cons[0, 1], cons[0, 2] = 1, 0, h - vx
     cons[1, 0], cons[1, 1], cons[1, 2] = -1, 0, vx + h
@@ -240,7 +239,7 @@ def _snapped(
     out: np.ndarray,
     st: np.ndarray,
 ) -> bool:
-    """subdivision._snapped; the vertex (x, y, e) in lowest terms goes to out."""
+    """_cell_polylines._snapped; the vertex (x, y, e) in lowest terms goes to out."""
     den = _shl(2 * d, e, st)
     de = _shl(d, e, st)
     for k in range(_MAX_SNAP_BITS + 1):
@@ -281,7 +280,7 @@ def _greedy(
     vk: np.ndarray,
     st: np.ndarray,
 ) -> int:
-    """subdivision._greedy: vertices (x, y, e) in vx and pieces in vk; their number, 0 when stuck."""
+    """_cell_polylines._greedy: vertices (x, y, e) in vx and pieces in vk; their number, 0 when stuck."""
     cl = np.empty((n + 1, 4), dtype=np.int64)
     cons = np.empty((6, 3), dtype=np.int64)
     pt = np.empty(3, dtype=np.int64)
@@ -357,7 +356,7 @@ def _greedy(
 
 @njit(cache=True)
 def _chain_polyline(loc: np.ndarray, closed: bool, out: np.ndarray, st: np.ndarray) -> tuple[int, int]:
-    """subdivision._polyline for one chain (pointels relative to the first): (status, vertex count)."""
+    """_cell_polylines._polyline for one chain (pointels relative to the first): (status, vertex count)."""
     n = loc.shape[0] - 1
     # the staircase
     ns = 0
@@ -421,7 +420,7 @@ def _chain_polyline(loc: np.ndarray, closed: bool, out: np.ndarray, st: np.ndarr
     nv = m - first
     if nv >= ns:
         return STAIRCASE, ns
-    # exact verification (subdivision._verify_chain), the pieces being the construction's own
+    # exact verification (_cell_polylines._verify_chain), the pieces being the construction's own
     ok = True
     if closed:
         ok = nv >= 3
@@ -502,7 +501,7 @@ def polylines_kernel(
         The number of vertices of chain i, in rows off[i] … off[i] + count[i] − 1 of ``verts``.
     verts : (N, 3) int64
         Vertices (x, y, e): the dyadic point (x / 2^e, y / 2^e) in doubled coordinates relative to the
-        chain's first pointel (the ``Vertex`` of :mod:`mrm.geometry.reconstruct.subdivision`).
+        chain's first pointel (the ``Vertex`` of :mod:`mrm.geometry.reconstruct._cell_polylines`).
     """
     m = closed.shape[0]
     status = np.empty(m, dtype=np.int8)
