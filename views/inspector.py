@@ -19,8 +19,8 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.core.errors import MRMError
+from mrm.core.grids import joint_box
 from mrm.ops.account import Account, account_of, rerun_request
-from mrm.ops.estimate import joint_box
 from mrm.views.canvas import Camera, MaskItem, Picture, PlaneView, lod_image, make_picture, qcolor
 from mrm.views.failures import failure_message, log_failure
 from mrm.views.provenance import bound_text, chain_rows, changes_text, measured_text

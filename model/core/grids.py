@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import pickle
 from collections.abc import Iterable, Iterator
-from typing import Any, SupportsIndex, cast
+from typing import Any, SupportsIndex, TypeVar, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -23,6 +23,19 @@ IntArray = npt.NDArray[np.int64]
 
 #: A box of pixels (xmin, ymin, xmax, ymax), bounds included.
 Box = tuple[int, int, int, int]
+
+_N = TypeVar("_N", int, float)
+
+
+def joint_box(boxes: Iterable[tuple[_N, _N, _N, _N] | None]) -> tuple[_N, _N, _N, _N] | None:
+    """The smallest box ``(xmin, ymin, xmax, ymax)`` holding every given box (None when there is none).
+
+    Pixel boxes and float bounds alike; a None among ``boxes`` (an empty set) is skipped.
+    """
+    real = [b for b in boxes if b is not None]
+    if not real:
+        return None
+    return min(b[0] for b in real), min(b[1] for b in real), max(b[2] for b in real), max(b[3] for b in real)
 
 
 def box_area(box: Box | None) -> int:
@@ -366,15 +379,7 @@ class PixelSet:
 
     # ------------------------------------------------------------------ set algebra
     def _joint_box(self, other: PixelSet) -> Box | None:
-        boxes = [b for b in (self.bbox, other.bbox) if b is not None]
-        if not boxes:
-            return None
-        return (
-            min(b[0] for b in boxes),
-            min(b[1] for b in boxes),
-            max(b[2] for b in boxes),
-            max(b[3] for b in boxes),
-        )
+        return joint_box([self.bbox, other.bbox])
 
     def _binary(self, other: PixelSet, op: Any, box: Box | None) -> PixelSet:
         """Apply the element-wise ``op`` over ``box``, which must hold every pixel of the result."""

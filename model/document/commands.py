@@ -23,7 +23,7 @@ import dataclasses
 from collections.abc import Sequence
 
 from mrm.core.errors import NotApplicableError, ParameterError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, PixelSet, joint_box
 from mrm.core.limits import check_name, check_pixel_extent
 from mrm.core.models import Model
 from mrm.document.document import Document
@@ -60,11 +60,10 @@ def check_union_box(boxes: Sequence[tuple[int, int, int, int] | None], what: str
 
     Two small objects 2³² pixels apart have a union whose mask would take gigabytes; the box alone says so.
     """
-    real = [b for b in boxes if b is not None]
-    if not real:
+    box = joint_box(boxes)
+    if box is None:
         return
-    x0, y0 = min(b[0] for b in real), min(b[1] for b in real)
-    x1, y1 = max(b[2] for b in real), max(b[3] for b in real)
+    x0, y0, x1, y1 = box
     check_pixel_extent((x0, y0), (y1 - y0 + 1, x1 - x0 + 1), what)
 
 

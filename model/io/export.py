@@ -32,7 +32,7 @@ from typing import Any, Literal
 import numpy as np
 
 from mrm.core.errors import FileFormatError, ParameterError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, PixelSet, joint_box
 from mrm.core.limits import MAX_LABEL_PIXELS, check_pixels
 from mrm.document import Document
 from mrm.io.georef import GEOREFERENCED_EXTENSIONS, geojson_members, same_crs, write_georeferenced
@@ -170,12 +170,11 @@ def label_map_of(doc: Document, ids: Sequence[int] | None = None) -> tuple[Label
     if len(chosen) > np.iinfo(np.int32).max:
         raise ParameterError("too many objects for a label map")
     parts: list[PixelSet] = [doc.derived(i).get("discrete") for i in chosen]
-    boxes = [p.bbox for p in parts if p.bbox is not None]
+    box = joint_box(p.bbox for p in parts)
     mapping = {k + 1: i for k, i in enumerate(chosen)}
-    if not boxes:
+    if box is None:
         return LabelMap(np.zeros((0, 0), dtype=np.int32)), mapping
-    x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
-    x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
+    x0, y0, x1, y1 = box
 
     area = (x1 - x0 + 1) * (y1 - y0 + 1)
     check_pixels(area, MAX_LABEL_PIXELS, "the label map")  # four bytes a pixel: not the pixel set limit

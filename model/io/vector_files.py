@@ -37,7 +37,7 @@ from shapely.geometry.base import BaseGeometry
 
 from mrm.core.errors import FileFormatError, InvalidGeometryError
 from mrm.core.gc_pause import paused_gc
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, joint_box
 from mrm.core.limits import MAX_GEOMETRY_NESTING, MAX_OBJECT_VERTICES, check_output_bytes, clean_name
 from mrm.io.atomic import atomic_open
 from mrm.io.reading import open_regular
@@ -667,19 +667,6 @@ def _pixel_rects(ps: PixelSet) -> list[str]:
     return out
 
 
-def _union_bounds(
-    boxes: list[tuple[float, float, float, float]],
-) -> tuple[float, float, float, float] | None:
-    if not boxes:
-        return None
-    return (
-        min(b[0] for b in boxes),
-        min(b[1] for b in boxes),
-        max(b[2] for b in boxes),
-        max(b[3] for b in boxes),
-    )
-
-
 def write_svg(
     geom_or_pixels: BaseGeometry | PixelSet | None,
     path: PathLike,
@@ -734,7 +721,7 @@ def write_svg(
     if geom is not None:
         estimate += int(shapely.get_num_coordinates(geom)) * _BYTES_PER_POSITION
     check_output_bytes(estimate, f"{os.fspath(path)} (an SVG picture)")  # before any text is built
-    bounds = _union_bounds(boxes) or (0.0, 0.0, 1.0, 1.0)
+    bounds = joint_box(boxes) or (0.0, 0.0, 1.0, 1.0)
     size = max(bounds[2] - bounds[0], bounds[3] - bounds[1], 1.0)
     body: list[str] = []
     if pixels is not None:

@@ -29,7 +29,7 @@ import shapely
 from shapely import affinity
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.core.grids import LabelMap, PixelSet, box_area
+from mrm.core.grids import LabelMap, PixelSet, box_area, joint_box
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.numbers import spell
@@ -47,7 +47,7 @@ from mrm.geometry.hausdorff.bounds import (
 from mrm.geometry.reconstruct import reconstruct
 from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
 from mrm.ops.declare import alpha_param, model_param
-from mrm.ops.estimate import estimated_pixels, joint_box
+from mrm.ops.estimate import estimated_pixels
 from mrm.ops.outcome import StepOutcome
 from mrm.ops.registry import OperationResult, OperationSpec, register
 from mrm.ops.representations import discrete_of, euclidean_of

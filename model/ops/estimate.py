@@ -13,19 +13,11 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any, Literal
 
-from mrm.core.grids import Box, PixelSet, box_area
+from mrm.core.grids import Box, PixelSet, box_area, joint_box
 from mrm.core.models import Model
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, mapped_bounds, pixel_box, voxel_bounds
 
-__all__ = ["estimated_box", "estimated_pixels", "joint_box"]
-
-
-def joint_box(boxes: Sequence[Box | None]) -> Box | None:
-    """The smallest box holding every given box (None when there is none)."""
-    real = [b for b in boxes if b is not None]
-    if not real:
-        return None
-    return min(b[0] for b in real), min(b[1] for b in real), max(b[2] for b in real), max(b[3] for b in real)
+__all__ = ["estimated_box", "estimated_pixels"]
 
 
 def estimated_box(
