@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from PySide6 import QtCore, QtWidgets
+
+from tests.app.helpers import HANG_MS, click_object, wait_drawn
+
+EXAMPLES = Path(__file__).parents[2] / "resources" / "examples"
 
 
 def _settle(qtbot, win, w: int, h: int) -> None:  # type: ignore[no-untyped-def]
@@ -83,3 +89,22 @@ def test_a_saved_geometry_bigger_than_the_screen_is_fitted(make_window, qtbot, p
     win = make_window(size=None, restore=True)
     _on_screen(win)
     assert win.statusBar().isVisible() and win.inspector_dock.isVisible()
+
+
+def test_choosing_a_result_keeps_the_fitted_window_on_the_screen(make_window, qtbot):
+    """Issue 27 (found on Xvfb at 1024×700): a click on an operation's result grew the window to 778 px.
+
+    The error inspector, filled with the result's chain, bound and picture, asked for 405 px of height and the
+    window grew past the bottom of the screen to give it, status bar and all. The inspector scrolls instead.
+    """
+    win = make_window(size=None)
+    win.files.open(EXAMPLES / "fig12-dss-combinations.mrm", ask=False)
+    wait_drawn(qtbot, win)
+    size = win.size()
+    click_object(qtbot, win, "DSS 0.2")
+    qtbot.waitUntil(lambda: "DSS 0.2" in win.inspector.title.text(), timeout=HANG_MS)
+    wait_drawn(qtbot, win)
+    for _ in range(5):
+        QtWidgets.QApplication.processEvents()
+    assert win.size() == size
+    _on_screen(win)
