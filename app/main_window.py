@@ -123,7 +123,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.measure = MeasurePanel(self.scene, self.runner, self)
         self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
         self.inspector = ErrorInspector(self.scene, self.runner, self, measure_job=process_jobs.measure)
-        self.inspector_dock = self._dock("Error inspector", self.inspector, right)
+        # Scrolled: on a short column its wrapped texts, picture and legend scroll instead of overlapping.
+        self.inspector_dock = self._dock("Error inspector", _scrolled(self.inspector), right)
         # One column on the right (ADR 0020): Operations, Properties and Measure as tabs, the inspector below
         # them, beside the operation whose result it accounts for.
         self.splitDockWidget(self.operations_dock, self.inspector_dock, QtCore.Qt.Orientation.Vertical)

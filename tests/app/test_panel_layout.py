@@ -1,0 +1,67 @@
+"""Panels that show all they hold (issue 27, item 4): the inspector, its provenance list, the Operations
+panel after a project switch, the exact vertex coordinates of the Properties panel."""
+
+from __future__ import annotations
+
+from PySide6 import QtCore, QtWidgets
+
+from mrm.commands import AddObject
+from mrm.resources import examples_dir
+from tests.app.helpers import HANG_MS, click_object, square
+
+Qt = QtCore.Qt
+FIG09 = examples_dir() / "fig09-10-union-corefinement.mrm"
+
+
+def _measured_part(make_window, qtbot):  # type: ignore[no-untyped-def]
+    win = make_window(size=(1360, 880))  # the window's default size
+    assert win.files.open(FIG09, ask=False)
+    (obj,) = win.doc.find("EDco: E ∩ E'")
+    with qtbot.waitSignal(win.inspector.measureEnded, timeout=HANG_MS) as ended:
+        click_object(qtbot, win, obj.id)
+    assert ended.args == ["measured"]
+    QtWidgets.QApplication.processEvents()
+    return win
+
+
+def test_the_inspectors_picture_and_legend_do_not_overlap(make_window, qtbot):
+    """The issue: the picture's tick labels ran under the legend below it."""
+    win = _measured_part(make_window, qtbot)
+    insp = win.inspector
+    plane, legend = insp.plane.geometry(), insp.legend.geometry()
+    assert plane.bottom() < legend.top(), (plane, legend)
+    # The bottom axis (its tick labels) is inside the picture's own widget.
+    axis = insp.plane.getPlotItem().getAxis("bottom")
+    bottom = insp.plane.mapFromScene(axis.sceneBoundingRect().bottomLeft()).y()
+    assert bottom <= insp.plane.height()
+
+
+def test_the_provenance_list_shows_whole_rows(make_window, qtbot):
+    """The issue: the list showed 2½ rows of a 3-row chain."""
+    win = _measured_part(make_window, qtbot)
+    tree = win.inspector.chain
+    vp = tree.viewport().rect()
+    rows = [tree.visualItemRect(tree.topLevelItem(k)) for k in range(tree.topLevelItemCount())]
+    assert len(rows) == 3
+    assert all(vp.top() <= r.top() and r.bottom() <= vp.bottom() for r in rows), (vp, rows)  # all whole
+    assert vp.height() - sum(r.height() for r in rows) < rows[0].height()  # and no half-empty room
+
+
+def test_a_long_chain_shows_a_whole_number_of_rows(make_window, qtbot):
+    from mrm.ops.apply import apply_operation
+    from mrm.ops.scaling import DSSParams
+
+    win = make_window(size=(1360, 880))
+    doc = win.doc
+    a = doc.make_object(square(0, 0, 8), name="A")
+    doc.push(AddObject(a))
+    last = a
+    for alpha in (2.0, 0.5) * 4:
+        (new,) = apply_operation(doc, "dss", [last.id], DSSParams(alpha=alpha))
+        last = doc.get(new)
+    with qtbot.waitSignal(win.inspector.measureEnded, timeout=HANG_MS):
+        click_object(qtbot, win, last.id)
+    tree = win.inspector.chain
+    assert tree.topLevelItemCount() == 9
+    row = tree.visualItemRect(tree.topLevelItem(0)).height()
+    assert tree.viewport().height() == 6 * row  # six whole rows; the others scroll
