@@ -7,7 +7,7 @@ from PySide6 import QtCore, QtWidgets
 
 from mrm.commands import AddObject
 from mrm.resources import examples_dir
-from tests.app.helpers import HANG_MS, click_object, square
+from tests.app.helpers import HANG_MS, answer_dialog, click_object, square, task_done
 
 Qt = QtCore.Qt
 FIG09 = examples_dir() / "fig09-10-union-corefinement.mrm"
@@ -65,3 +65,18 @@ def test_a_long_chain_shows_a_whole_number_of_rows(make_window, qtbot):
     assert tree.topLevelItemCount() == 9
     row = tree.visualItemRect(tree.topLevelItem(0)).height()
     assert tree.viewport().height() == 6 * row  # six whole rows; the others scroll
+
+
+def test_file_new_clears_the_operation_messages_of_the_previous_project(make_window, qtbot):
+    win = make_window()
+    a = win.doc.make_object(square(0, 0), name="A")
+    win.doc.push(AddObject(a, select=True))
+    panel = win.operations
+    panel.select_operation("dss")
+    with task_done(qtbot, win.runner, "operation"):
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    assert "1 object added" in panel.status.text()
+    answer_dialog(qtbot, "unsavedDialog", "Discard")
+    qtbot.keyClick(win, Qt.Key.Key_N, Qt.KeyboardModifier.ControlModifier)  # File ▸ New
+    assert len(win.doc) == 0
+    assert "added" not in panel.status.text() and "DSS" not in panel.status.text()
