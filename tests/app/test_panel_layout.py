@@ -3,7 +3,8 @@ panel after a project switch, the exact vertex coordinates of the Properties pan
 
 from __future__ import annotations
 
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
+from shapely.geometry import Polygon
 
 from mrm.commands import AddObject
 from mrm.resources import examples_dir
@@ -80,3 +81,42 @@ def test_file_new_clears_the_operation_messages_of_the_previous_project(make_win
     qtbot.keyClick(win, Qt.Key.Key_N, Qt.KeyboardModifier.ControlModifier)  # File ▸ New
     assert len(win.doc) == 0
     assert "added" not in panel.status.text() and "DSS" not in panel.status.text()
+
+
+def test_vertex_coordinates_are_shown_exactly_and_copied_exactly(make_window, qtbot):
+    """The user guide promises the stored float64; the issue saw '10.162819…'."""
+    x = 10.162819384765625  # a float64 with 17 significant digits
+    y = -3.3333333333333335
+    win = make_window(size=(1024, 700))
+    poly = Polygon([(0, 0), (x, 0.5), (x, y), (0.25, y)])
+    obj = win.doc.make_object(poly, name="P")
+    win.doc.push(AddObject(obj, select=True))
+    qtbot.keyClick(win, Qt.Key.Key_O, Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier)
+    table = win.properties.table
+    model = table.model()
+    qtbot.waitUntil(lambda: model.rowCount() == 4, timeout=HANG_MS)
+    QtWidgets.QApplication.processEvents()
+    fm = table.fontMetrics()
+    for row in range(4):
+        for col in (3, 4):
+            index = model.index(row, col)
+            text = index.data()
+            assert float(text) == float(poly.exterior.coords[row][col - 3])  # exactly the stored value
+            # Drawn whole: the cell is as wide as the text (no "…").
+            assert table.visualRect(index).width() >= fm.horizontalAdvance(text), (
+                text,
+                table.visualRect(index),
+            )
+    assert model.index(1, 3).data() == repr(x) and model.index(2, 4).data() == repr(y)
+    # Ctrl+C in the table copies the selected cells' exact text (not the object).
+    rect = table.visualRect(model.index(2, 3))
+    qtbot.mouseClick(table.viewport(), Qt.MouseButton.LeftButton, pos=rect.center())
+    qtbot.mouseClick(
+        table.viewport(),
+        Qt.MouseButton.LeftButton,
+        Qt.KeyboardModifier.ShiftModifier,
+        table.visualRect(model.index(2, 4)).center(),
+    )
+    qtbot.keyClick(table, Qt.Key.Key_C, Qt.KeyboardModifier.ControlModifier)
+    assert QtGui.QGuiApplication.clipboard().text() == f"{x!r}\t{y!r}"
+    assert len(win.doc) == 1
