@@ -110,3 +110,21 @@ def test_the_pixel_limit_message_points_at_a_preference_that_works(make_window, 
     msg = panel.status.text()
     assert f"{MAX_OBJECT_PIXELS:,}" in msg and "the largest pixel object a document holds" in msg
     assert "Preferences" not in msg
+
+
+def test_the_pixel_limit_message_is_made_from_the_errors_fields(make_window, qtbot):
+    """Not by rewriting the model's wording: reworded, the message still says where to raise the limit."""
+    from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
+    from tests.app import process_job_fixtures as jobs
+
+    win = make_window()
+    a = win.doc.make_object(PixelSet(np.ones((10, 10), bool)), name="A")
+    win.doc.push(AddObject(a, select=True))
+    panel = win.operations
+    panel.select_operation("dss")
+    panel.plan_job = jobs.over_limit_reworded  # the job the window hands the panel
+    with task_done(qtbot, win.runner, "operation"):
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    msg = panel.status.text()
+    assert "10,000 pixels, more than the limit of 5,000" in msg, msg
+    assert f"raise the limit in File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}" in msg
