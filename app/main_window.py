@@ -132,6 +132,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.measure = MeasurePanel(self.scene, self.runner, self)
         self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
         self.inspector = ErrorInspector(self.scene, self.runner, self, measure_job=process_jobs.measure)
+        # Scrolled: on a short column its wrapped texts, picture and legend scroll instead of overlapping, and
+        # a result's account never makes the window taller than the screen.
         self.inspector_dock = self._dock("Error inspector", _scrolled(self.inspector), right)
         # One column on the right (ADR 0020): Operations, Properties and Measure as tabs, the inspector below
         # them, beside the operation whose result it accounts for.
@@ -771,21 +773,13 @@ class MainWindow(QtWidgets.QMainWindow):
         self.measure.compute()
 
     def _fit(self, objs: list[Any]) -> None:
-        boxes = []
-        for o in objs:
-            src = self.scene.source(o.id)
-            if hasattr(src, "bounds"):
-                if not src.is_empty:
-                    boxes.append(tuple(src.bounds))
-            else:
-                b = src.bbox
-                if b is not None:
-                    boxes.append((b[0] - 0.5, b[1] - 0.5, b[2] + 0.5, b[3] + 0.5))
-        if not boxes:
+        from mrm.views.view_area import joint_box, object_box
+
+        box = joint_box(object_box(self.scene.source(o.id)) for o in objs)
+        if box is None:
             self.views.camera.fit((-8, -6, 24, 18))
             return
-        xs0, ys0, xs1, ys1 = zip(*boxes, strict=True)
-        self.views.camera.fit((min(xs0) - 1, min(ys0) - 1, max(xs1) + 1, max(ys1) + 1))
+        self.views.frame(box)
 
     def show_operations(self) -> None:
         self.operations_dock.show()

@@ -85,7 +85,9 @@ class ErrorInspector(QtWidgets.QWidget):
         self.chain.setObjectName("provenanceChain")
         self.chain.setHeaderLabels(["step", "object", "pixels"])
         self.chain.setRootIsDecorated(False)
-        self.chain.setMaximumHeight(130)
+        self.chain.setUniformRowHeights(True)
+        self.chain.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.chain.setSizePolicy(QtWidgets.QSizePolicy.Policy.Preferred, QtWidgets.QSizePolicy.Policy.Fixed)
         self.chain.itemDoubleClicked.connect(self._go_to)
         self.bound_label = QtWidgets.QLabel("", self)
         self.bound_label.setObjectName("boundLabel")
@@ -194,6 +196,7 @@ class ErrorInspector(QtWidgets.QWidget):
             item = QtWidgets.QTreeWidgetItem([r.step, r.name, r.pixels])
             item.setData(0, QtCore.Qt.ItemDataRole.UserRole, r.obj_id)
             self.chain.addTopLevelItem(item)
+        self._fit_chain()
         changes = changes_text(doc, obj)
         self.changes_label.setText(
             f"<span style='color:#b9770e'>{changes}</span><br><small>The account below is of the "
@@ -212,6 +215,21 @@ class ErrorInspector(QtWidgets.QWidget):
         self.measured_label.setText("<b>Measured</b>: computing…" if can_measure else measured_text(acc))
         if can_measure:
             self.start_measure()
+
+    #: The provenance list shows this many rows at least, and at most (a longer chain scrolls by rows).
+    CHAIN_ROWS = (2, 6)
+
+    def _fit_chain(self) -> None:
+        """Make the provenance list as tall as its rows (a whole number of them, within CHAIN_ROWS).
+
+        Half a row showing under a fixed height read as a table cut off.
+        """
+        tree = self.chain
+        least, most = self.CHAIN_ROWS
+        shown = min(max(tree.topLevelItemCount(), least), most)
+        row = tree.sizeHintForRow(0) if tree.topLevelItemCount() else tree.fontMetrics().height() + 4
+        header = tree.header().sizeHint().height() if not tree.isHeaderHidden() else 0
+        tree.setFixedHeight(header + shown * row + 2 * tree.frameWidth())
 
     def _can_rerun(self, obj_id: int) -> bool:
         try:

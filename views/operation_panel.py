@@ -371,6 +371,7 @@ class OperationPanel(QtWidgets.QWidget):
         self.ops = operations()
         self.op: OpInfo | None = None
         self._cancel_requested = False
+        self._project = 0  # counts the document's resets: an outcome of an earlier project is not shown
         self.controls: list[ParamControl] = []
         self.inputs: list[QtWidgets.QComboBox] = []
         lay = QtWidgets.QVBoxLayout(self)
@@ -518,6 +519,14 @@ class OperationPanel(QtWidgets.QWidget):
             cb.blockSignals(False)
 
     def _doc_changed(self, ch: Any) -> None:
+        if ch.reset:
+            # Another project (File ▸ New or Open): nothing of the previous one is said here any more, and an
+            # operation on its objects stops (its ids could name objects of the new one).
+            self._project += 1
+            self.cancel()
+            self._finished()
+            self._paused = False
+            self.status.setText("")
         if (
             ch.inserted
             or ch.removed
@@ -681,8 +690,11 @@ class OperationPanel(QtWidgets.QWidget):
         t0 = time.perf_counter()
 
         self._cancel_requested = False
+        project = self._project
 
         def done(staged: Any) -> None:
+            if project != self._project:
+                return  # of the previous project
             if self._cancel_requested:
                 # Cancel was pressed after the work's last report: the user still gets "nothing changed".
                 cancelled()
@@ -730,8 +742,10 @@ class OperationPanel(QtWidgets.QWidget):
             self.applied.emit([o.id for o in objs])
 
         def failed(exc: BaseException) -> None:
-            self._finished()
             log_failure(log, op.title, exc)  # a bug or a broken worker: its traceback
+            if project != self._project:
+                return
+            self._finished()
             if isinstance(exc, SizeLimitError):
                 text = size_limit_text(exc, self.pixel_limit_setting)
             else:
@@ -741,6 +755,8 @@ class OperationPanel(QtWidgets.QWidget):
             self.status.setText(f"<span style='color:#c0392b'>{html.escape(text, quote=False)}</span>")
 
         def cancelled() -> None:
+            if project != self._project:
+                return
             self._finished()
             self.status.setText(f"{op.title} cancelled; nothing was changed")
 

@@ -119,23 +119,89 @@ class VertexModel(QtCore.QAbstractTableModel):
 class VertexTable(QtWidgets.QTableView):
     """The vertex table, with its own keys.
 
-    Here F2 edits the current coordinate (elsewhere it renames the object) and Delete removes the current
-    vertex (elsewhere it deletes the object).
+    Here F2 edits the current coordinate (elsewhere it renames the object), Delete removes the current
+    vertex (elsewhere it deletes the object) and Ctrl+C copies the selected cells as text (elsewhere it copies
+    the object). The coordinates are shown whole — the exact float64 value, as :func:`repr` writes it — the
+    x and y columns as wide as the values in sight (the table scrolls sideways when the panel is narrow).
     """
 
     deleteRequested = QtCore.Signal(int)  # row
 
     _OWN_KEYS = (Qt.Key.Key_F2, Qt.Key.Key_Delete, Qt.Key.Key_Backspace)
+    #: The coordinate columns.
+    XY = (3, 4)
+
+    def __init__(self, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setTextElideMode(Qt.TextElideMode.ElideNone)  # never "10.162819…": the columns fit the values
+        self._fit_timer = QtCore.QTimer(self)
+        self._fit_timer.setSingleShot(True)
+        self._fit_timer.setInterval(0)
+        self._fit_timer.timeout.connect(self.fit_coordinates)
+        self.verticalScrollBar().valueChanged.connect(lambda _v: self._fit_timer.start())
+
+    def setModel(self, model: QtCore.QAbstractItemModel | None) -> None:
+        super().setModel(model)
+        if model is not None:
+            model.modelReset.connect(self._fit_timer.start)
+            model.dataChanged.connect(lambda *_a: self._fit_timer.start())
+        self._fit_timer.start()
+
+    def fit_coordinates(self) -> None:
+        """Widen the x and y columns to the widest value in sight (a few dozen rows, never all of them)."""
+        model = self.model()
+        if model is None:
+            return
+        header = self.horizontalHeader()
+        rows = model.rowCount()
+        top = max(0, self.rowAt(0))
+        bottom = self.rowAt(self.viewport().height() - 1)
+        bottom = min(rows - 1, top + 200) if bottom < 0 else bottom
+        fm = self.fontMetrics()
+        pad = 2 * self.style().pixelMetric(QtWidgets.QStyle.PixelMetric.PM_FocusFrameHMargin) + 8
+        for c in self.XY:
+            title = str(model.headerData(c, Qt.Orientation.Horizontal, Qt.ItemDataRole.DisplayRole) or "")
+            need = header.fontMetrics().horizontalAdvance(title)
+            for r in range(top, bottom + 1):
+                need = max(need, fm.horizontalAdvance(str(model.index(r, c).data() or "")))
+            if header.sectionSize(c) < need + pad:
+                header.resizeSection(c, need + pad)
+
+    def showEvent(self, ev: QtGui.QShowEvent) -> None:
+        super().showEvent(ev)
+        self._fit_timer.start()
+
+    def resizeEvent(self, ev: QtGui.QResizeEvent) -> None:
+        super().resizeEvent(ev)
+        self._fit_timer.start()
+
+    def copy_selection(self) -> str:
+        """The selected cells as text (tab between columns, a line per row), put on the clipboard."""
+        indexes = sorted(self.selectedIndexes(), key=lambda i: (i.row(), i.column()))
+        if not indexes and self.currentIndex().isValid():
+            indexes = [self.currentIndex()]
+        lines: dict[int, list[str]] = {}
+        for i in indexes:
+            lines.setdefault(i.row(), []).append(str(i.data() or ""))
+        text = "\n".join("\t".join(cells) for cells in lines.values())
+        if text:
+            QtGui.QGuiApplication.clipboard().setText(text)
+        return text
 
     def event(self, ev: QtCore.QEvent) -> bool:
         if ev.type() == QtCore.QEvent.Type.ShortcutOverride:
             assert isinstance(ev, QtGui.QKeyEvent)
-            if ev.key() in self._OWN_KEYS and ev.modifiers() == Qt.KeyboardModifier.NoModifier:
+            own = ev.key() in self._OWN_KEYS and ev.modifiers() == Qt.KeyboardModifier.NoModifier
+            if own or ev.matches(QtGui.QKeySequence.StandardKey.Copy):
                 ev.accept()
                 return True
         return super().event(ev)
 
     def keyPressEvent(self, ev: QtGui.QKeyEvent) -> None:
+        if ev.matches(QtGui.QKeySequence.StandardKey.Copy):
+            self.copy_selection()
+            ev.accept()
+            return
         if ev.key() in (Qt.Key.Key_Delete, Qt.Key.Key_Backspace) and self.state() != self.State.EditingState:
             if self.currentIndex().isValid():
                 self.deleteRequested.emit(self.currentIndex().row())
@@ -211,8 +277,9 @@ class PropertiesPanel(QtWidgets.QWidget):
         hdr = self.table.horizontalHeader()
         for c in range(3):
             hdr.setSectionResizeMode(c, QtWidgets.QHeaderView.ResizeMode.ResizeToContents)
-        for c in (3, 4):
-            hdr.setSectionResizeMode(c, QtWidgets.QHeaderView.ResizeMode.Stretch)
+        for c in VertexTable.XY:  # as wide as the exact values (VertexTable.fit_coordinates), never elided
+            hdr.setSectionResizeMode(c, QtWidgets.QHeaderView.ResizeMode.Interactive)
+        hdr.setStretchLastSection(True)
         self.table.setEditTriggers(
             QtWidgets.QAbstractItemView.EditTrigger.DoubleClicked
             | QtWidgets.QAbstractItemView.EditTrigger.EditKeyPressed

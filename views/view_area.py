@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from PySide6 import QtCore, QtWidgets
 
 from mrm.views.analytical_view import AnalyticalView
@@ -45,6 +47,42 @@ class ViewArea(QtWidgets.QWidget):
         self.set_layout_mode("grid")
         for v in self.views:
             self.camera.add_view(v.plane)
+        scene.documentChanged.connect(self._reveal_new)
+
+    # ------------------------------------------------------------------ framing
+    def visible_rect(self) -> tuple[float, float, float, float] | None:
+        """The plane rectangle every shown view shows whole (None before the views have a size)."""
+        c = self.camera
+        sizes = [v.plane.viewport_size() for v in self.visible_views() if v.isVisible()]
+        sizes = [(w, h) for w, h in sizes if w > 4 and h > 4]
+        if not sizes:
+            return None
+        hw = min(w for w, _h in sizes) / (2 * c.scale)
+        hh = min(h for _w, h in sizes) / (2 * c.scale)
+        return (c.cx - hw, c.cy - hh, c.cx + hw, c.cy + hh)
+
+    def frame(self, box: tuple[float, float, float, float]) -> None:
+        """Show ``box`` (with a pixel of room around it) whole in every view."""
+        x0, y0, x1, y1 = box
+        self.camera.fit((x0 - 1, y0 - 1, x1 + 1, y1 + 1))
+
+    def _reveal_new(self, ch: Any) -> None:
+        """Bring new objects (an operation's results, a paste, an import) into view when they are outside.
+
+        The first object is framed; a further one widens the view to take it in, keeping what was shown. An
+        object already in view moves nothing. A whole new document (File ▸ Open) is framed by the window.
+        """
+        if ch.reset or not ch.inserted:
+            return
+        doc = self.scene.doc
+        box = joint_box(object_box(self.scene.source(i)) for i in ch.inserted if i in doc)
+        shown = self.visible_rect()
+        if box is None or shown is None or _inside(box, shown):
+            return
+        if all(i in ch.inserted for i in doc.ids):
+            self.frame(box)
+        else:
+            self.camera.fit(joint_box([box, shown]) or box, margin=0.02)
 
     @property
     def layout_mode(self) -> str:
@@ -107,3 +145,27 @@ class ViewArea(QtWidgets.QWidget):
             if v.name == name:
                 return v
         raise KeyError(name)
+
+
+def object_box(source: Any) -> tuple[float, float, float, float] | None:
+    """The plane rectangle an object's source covers (a pixel is the unit square about its centre)."""
+    if hasattr(source, "bounds"):
+        return None if source.is_empty else tuple(float(v) for v in source.bounds)  # type: ignore[return-value]
+    b = getattr(source, "bbox", None)
+    if b is None:
+        return None
+    return (b[0] - 0.5, b[1] - 0.5, b[2] + 0.5, b[3] + 0.5)
+
+
+def joint_box(
+    boxes: Any,
+) -> tuple[float, float, float, float] | None:
+    """The smallest rectangle holding every box given (None boxes skipped; None if there are none)."""
+    got = [b for b in boxes if b is not None]
+    if not got:
+        return None
+    return (min(b[0] for b in got), min(b[1] for b in got), max(b[2] for b in got), max(b[3] for b in got))
+
+
+def _inside(box: tuple[float, float, float, float], rect: tuple[float, float, float, float]) -> bool:
+    return rect[0] <= box[0] and rect[1] <= box[1] and box[2] <= rect[2] and box[3] <= rect[3]

@@ -75,8 +75,9 @@ def is_background(view: RepresentationView, c: QtGui.QColor) -> bool:
     return abs(c.red() - base.red()) + abs(c.green() - base.green()) + abs(c.blue() - base.blue()) < 40
 
 
-def wait_drawn(qtbot, win: MainWindow, timeout: int = 10_000) -> None:  # type: ignore[no-untyped-def]
-    qtbot.waitUntil(win.is_drawn, timeout=timeout)
+def wait_drawn(qtbot, win: MainWindow, timeout: int | None = None) -> None:  # type: ignore[no-untyped-def]
+    """Wait until every view shows the document (its derivations done): however long a machine takes."""
+    qtbot.waitUntil(win.is_drawn, timeout=HANG_MS if timeout is None else timeout)
 
 
 def zoom_to(win: MainWindow, xmin: float, ymin: float, xmax: float, ymax: float) -> None:
@@ -174,3 +175,20 @@ def click_object(qtbot, win: MainWindow, obj: str | int, modifiers=Qt.KeyboardMo
     index = model.index(model.row_of(obj_id), COL_NAME)
     view.scrollTo(index)
     qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, modifiers, view.visualRect(index).center())
+
+
+def task_done(qtbot, runner, slot: str):  # type: ignore[no-untyped-def]
+    """``with task_done(qtbot, win.runner, "operation"): click…`` waits until the task of ``slot`` ends.
+
+    However it ends (result, error, cancel): on the runner's signal, not on the machine's speed.
+    """
+    return qtbot.waitSignal(
+        runner.taskDone, timeout=HANG_MS, check_params_cb=lambda done_slot, _outcome: done_slot == slot
+    )
+
+
+def wait_idle(qtbot, runner) -> None:  # type: ignore[no-untyped-def]
+    """Wait until the runner has no task left: on its ``idle`` signal, not on the machine's speed."""
+    if runner.is_busy():
+        with qtbot.waitSignal(runner.idle, timeout=HANG_MS):
+            pass

@@ -112,3 +112,12 @@ def modules_loaded(progress: Any) -> tuple[int, bool, int]:
     import sys
 
     return os.getpid(), "mrm.ops.scaling" in sys.modules, os.nice(0)
+
+
+def over_limit_reworded(inputs: Any, op_name: str, params: Any, limit: Any, held: Any, progress: Any) -> None:
+    """An operation refused for its size whose message the model words otherwise than the window expects."""
+    from mrm.core.errors import SizeLimitError
+
+    exc = SizeLimitError(10_000, 5_000, "DSS_α result")
+    exc.args = ("the result is too big",)  # the text changed; the fields did not
+    raise exc

@@ -12,6 +12,7 @@ import numpy as np
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
 from mrm.views.canvas import LOD_PIXELS, lod_factor, lod_image
+from tests.app.helpers import HANG_MS, task_done
 
 
 def test_lod_image_keeps_every_pixel_visible():
@@ -110,7 +111,7 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     dv.refresh()
     layer = dv.layer(obj.id)
     assert layer is not None and layer.waiting and not win.is_drawn()
-    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=HANG_MS)
     item = layer.mask
     assert item.image.size <= LOD_PIXELS and item.scale_factor == 2
     # The status bar gives its pixel count, counted on the worker that made its region.
@@ -122,7 +123,7 @@ def test_a_big_object_is_prepared_off_the_gui_thread_and_shown_coarser(make_wind
     from tests.app.helpers import zoom_to
 
     zoom_to(win, 100, 500, 160, 540)
-    qtbot.waitUntil(win.is_drawn, timeout=60_000)  # the detail is cropped and pooled on a worker
+    qtbot.waitUntil(win.is_drawn, timeout=HANG_MS)  # the detail is cropped and pooled on a worker
     detail = item._detail
     assert detail is not None and detail.isVisible()
     d = detail.mapRectToParent(detail.boundingRect())
@@ -151,15 +152,15 @@ def test_a_big_project_is_saved_and_opened_on_a_worker(make_window, qtbot, tmp_p
     m[1000:3000, 1000:3500] = False  # a frame: big, with a hole, cheap to derive
     ps = PixelSet(m, (0, 0))
     win.doc.push(AddObject(win.doc.make_object(ps, name="frame"), select=True))
-    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=HANG_MS)
     path = tmp_path / "big.mrm"
-    assert win.files.save_as(path)
-    assert win.runner.is_busy("file")  # written by a worker, the window stays live
-    qtbot.waitUntil(lambda: not win.runner.is_busy("file"), timeout=120_000)
+    with task_done(qtbot, win.runner, "file"):
+        assert win.files.save_as(path)
+        assert win.runner.is_busy("file")  # written by a worker, the window stays live
     assert path.stat().st_size > 10_000 and not win.doc.is_modified
     win2 = make_window(threaded=True)
-    assert win2.files.open(path, ask=False)
-    qtbot.waitUntil(lambda: len(win2.doc) == 1, timeout=120_000)
+    assert win2.files.open(path, ask=False)  # on a worker if the file is big, else at once
+    qtbot.waitUntil(lambda: len(win2.doc) == 1, timeout=HANG_MS)
     assert win2.doc.objects[0].source == ps
 
 
@@ -196,7 +197,7 @@ def test_big_images_are_made_ready_to_draw_on_workers_and_look_the_same(make_win
     ps = PixelSet(m, (0, 0))
     obj = win.doc.make_object(ps, name="big")
     win.doc.push(AddObject(obj, select=False))
-    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=HANG_MS)
     win.registry["view.fit"].trigger()
     items = _mask_items(win, obj.id)
     for name, item in items.items():
@@ -208,7 +209,7 @@ def test_big_images_are_made_ready_to_draw_on_workers_and_look_the_same(make_win
     opacity = {name: item.opacity() for name, item in items.items()}
     pictures = {name: item.picture for name, item in items.items()}
     win.doc.set_selection([obj.id])
-    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=HANG_MS)
     for v in win.views.views[:3]:
         grab(v)
     for name, item in items.items():
@@ -216,7 +217,7 @@ def test_big_images_are_made_ready_to_draw_on_workers_and_look_the_same(make_win
     assert items["pixels"].opacity() > opacity["pixels"] and items["body"].opacity() > opacity["body"]
     # What the GUI thread would have drawn without the pictures is the same, pixel for pixel.
     win.doc.set_selection([])
-    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=HANG_MS)
     for item in items.values():
         item.picture = None
         item.qimage = None
@@ -244,14 +245,14 @@ def test_part_way_zoomed_in_the_detail_is_as_fine_as_the_screen(make_window, qtb
     ps = PixelSet(m, (0, 0))
     obj = win.doc.make_object(ps, name="big")
     win.doc.push(AddObject(obj, select=False))
-    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=120_000)
+    qtbot.waitUntil(lambda: win.is_drawn() and not win.runner.is_busy(), timeout=HANG_MS)
     dv = win.views.discrete
     item = dv.layer(obj.id).mask
     assert item.scale_factor == 3
     from tests.app.helpers import zoom_to
 
     zoom_to(win, 1700, 3550, 2150, 4050)
-    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    qtbot.waitUntil(win.is_drawn, timeout=HANG_MS)
     px = dv.plane.pixels_per_unit()
     assert 1 / 2 <= px < 1
     detail = item._detail

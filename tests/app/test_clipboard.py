@@ -13,6 +13,7 @@ from mrm.app.clipboard import MIME
 from mrm.core.grids import PixelSet
 from mrm.document import Style
 from mrm.document.commands import AddObject
+from tests.app.helpers import HANG_MS
 
 Qt = QtCore.Qt
 CTRL = Qt.KeyboardModifier.ControlModifier
@@ -136,9 +137,9 @@ def test_copy_is_encoded_and_paste_read_on_a_worker(make_window, qtbot, monkeypa
         md = _clipboard().mimeData()
         return md is not None and md.hasFormat(MIME)
 
-    qtbot.waitUntil(copied, timeout=20_000)
+    qtbot.waitUntil(copied, timeout=HANG_MS)
     _keys(qtbot, win, Qt.Key.Key_V)
-    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=20_000)
+    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=HANG_MS)
     assert on_gui == [False], "the paste was parsed on the GUI thread"
     assert [x.name for x in win.doc.objects] == ["block", "block (2)"]
     assert win.doc.objects[-1].source == ps

@@ -13,7 +13,7 @@ from shapely.geometry import Polygon
 
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject, RenameObject
-from tests.app.helpers import answer_dialog, answer_file_dialog, colour_at, is_background, wait_drawn
+from tests.app.helpers import HANG_MS, answer_dialog, answer_file_dialog, colour_at, is_background, wait_drawn
 
 Qt = QtCore.Qt
 CTRL = Qt.KeyboardModifier.ControlModifier
@@ -273,12 +273,14 @@ def test_export_and_import_run_on_workers_and_round_trip(make_window, qtbot, tmp
     for ext in (".png", ".geojson"):
         assert win.files.export(square.id, tmp_path / f"sq{ext}") is True
     # Two exports in a row both finish: the second does not cancel the first.
-    qtbot.waitUntil(lambda: all((tmp_path / f"sq{e}").exists() for e in (".png", ".geojson")), timeout=30_000)
+    qtbot.waitUntil(
+        lambda: all((tmp_path / f"sq{e}").exists() for e in (".png", ".geojson")), timeout=HANG_MS
+    )
     assert win.files.export(blob.id, tmp_path / "blob.png") is True
-    qtbot.waitUntil(lambda: (tmp_path / "blob.png").exists(), timeout=30_000)
+    qtbot.waitUntil(lambda: (tmp_path / "blob.png").exists(), timeout=HANG_MS)
     win2 = make_window(threaded=True)
     win2.files.import_files([tmp_path / "sq.png", tmp_path / "sq.geojson", tmp_path / "blob.png"])
-    qtbot.waitUntil(lambda: len(win2.doc) == 3, timeout=30_000)
+    qtbot.waitUntil(lambda: len(win2.doc) == 3, timeout=HANG_MS)
     objs = win2.doc.objects
     assert objs[0].source == win.doc.derived(square.id).get("discrete")
     assert shapely.normalize(objs[1].source).equals_exact(shapely.normalize(SQUARE), 0)

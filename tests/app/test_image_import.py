@@ -9,6 +9,7 @@ from PySide6 import QtCore, QtWidgets
 
 from mrm.core.grids import PixelSet
 from mrm.core.threshold import otsu_threshold
+from tests.app.helpers import HANG_MS
 
 Qt = QtCore.Qt
 
@@ -146,15 +147,15 @@ def test_a_big_image_is_read_on_a_worker_and_added_as_one_step(make_window, qtbo
     Image.fromarray(disc).save(tmp_path / "big.png")
     assert win.files.import_files([tmp_path / "big.png"]) is True
     assert len(win.doc) == 0  # not read yet: the call returned at once
-    qtbot.waitUntil(lambda: len(win.doc) == 1, timeout=60_000)
+    qtbot.waitUntil(lambda: len(win.doc) == 1, timeout=HANG_MS)
     assert win.doc.objects[0].source == _expected(disc, disc)
     assert win.doc.history.undo_label() == "Import big"
     g = _grey_png(tmp_path / "grey.png")
     win.files.import_files([tmp_path / "grey.png"])  # its values are looked at on a worker too
-    qtbot.waitUntil(lambda: win.files.image_dialog is not None, timeout=30_000)
+    qtbot.waitUntil(lambda: win.files.image_dialog is not None, timeout=HANG_MS)
     dlg = _dialog(win)
     _click(qtbot, dlg.invert)
     t = dlg.spin.value()
     qtbot.mouseClick(dlg.findChild(QtWidgets.QPushButton, "importButton"), Qt.MouseButton.LeftButton)
-    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=60_000)
+    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=HANG_MS)
     assert win.doc.objects[1].source == _expected(g, g <= t)

@@ -72,7 +72,7 @@ def test_a_label_image_imports_as_one_label_map_drawn_in_every_view(make_window,
     obj, lm = _import_map(win, qtbot, tmp_path)
     assert win.doc.history.undo_label() == "Import parcels"
     zoom_to(win, -1, -1, 21, 17)
-    wait_drawn(qtbot, win, timeout=30_000)
+    wait_drawn(qtbot, win)
     v = win.views
     # Discrete: every pixel in its label's colour, the background left empty.
     shown = grab(v.discrete)
@@ -141,7 +141,7 @@ def _subpaths(path):  # type: ignore[no-untyped-def]
 def test_split_save_reopen_and_export(make_window, qtbot, tmp_path):
     win = make_window()
     obj, lm = _import_map(win, qtbot, tmp_path)
-    wait_drawn(qtbot, win, timeout=30_000)
+    wait_drawn(qtbot, win)
     # Saved and reopened as it was.
     path = tmp_path / "parcels.mrm"
     assert win.files.save_as(path)
@@ -171,7 +171,7 @@ def test_split_save_reopen_and_export(make_window, qtbot, tmp_path):
     assert sorted(o.name for o in win.doc.objects) == [f"parcels label {v}" for v in (1, 2, 3, 7)]
     for o in win.doc.objects:
         assert o.kind == "discrete" and o.source == lm.pixel_set(int(o.name.rsplit(" ", 1)[1]))
-    wait_drawn(qtbot, win, timeout=30_000)
+    wait_drawn(qtbot, win)
     win.registry["edit.undo"].trigger()
     assert [o.id for o in win.doc.objects] == [obj.id]
 
@@ -182,7 +182,7 @@ def test_what_does_not_apply_to_a_label_map_says_so(make_window, qtbot, tmp_path
     box = win.doc.make_object(LabelMap(np.ones((2, 2), np.int32), (30, 30)).pixel_set(1), name="box")
     win.doc.push(AddObject(box))
     win.doc.set_selection([obj.id])
-    wait_drawn(qtbot, win, timeout=30_000)
+    wait_drawn(qtbot, win)
     messages: list[str] = []
     win.statusBar().messageChanged.connect(lambda m: messages.append(m) if m else None)
     # The brush.

@@ -17,7 +17,7 @@ import mrm.document.derive
 import mrm.views.inspector
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
-from tests.app.helpers import colour_at, is_background, wait_drawn
+from tests.app.helpers import HANG_MS, colour_at, is_background, task_done, wait_drawn, wait_idle
 from tests.app.test_inspector import _chain
 
 Qt = QtCore.Qt
@@ -41,9 +41,10 @@ def test_the_difference_picture_is_made_on_a_worker_and_drawn(make_window, qtbot
 
     monkeypatch.setattr(mrm.views.inspector, "diff_picture", recording)
     win = make_window(threaded=True, size=(1400, 900))
-    _chain(win, (2.0, 5.0, 0.1))  # α₁ = 2 then 5, back by 1/10: pixels differ (the paper's Figure 12)
     insp = win.inspector
-    qtbot.waitUntil(lambda: insp.picture is not None and not win.runner.is_busy(), timeout=120_000)
+    with qtbot.waitSignal(insp.pictured, timeout=HANG_MS):  # the measurement, then its picture
+        _chain(win, (2.0, 5.0, 0.1))  # α₁ = 2 then 5, back by 1/10: pixels differ (the paper's Figure 12)
+    assert insp.picture is not None
     assert threads and not any(threads), "the picture was made on the GUI thread"
     m = insp.measurement
     light, dark = m.difference.light, m.difference.dark
@@ -121,7 +122,7 @@ def test_cancel_in_the_status_bar_stops_the_derivations_and_keeps_the_document(
     obj = win.doc.make_object(_big_disk(), name="disk")
     win.doc.push(AddObject(obj, select=True))
     win.fit_all()
-    qtbot.waitUntil(started.is_set, timeout=30_000)
+    qtbot.waitUntil(started.is_set, timeout=HANG_MS)
     # The derivation is in the status bar, with its progress and Cancel.
     status = win.status
     qtbot.waitUntil(lambda: status.progress_box.isVisible(), timeout=10_000)
@@ -129,8 +130,8 @@ def test_cancel_in_the_status_bar_stops_the_derivations_and_keeps_the_document(
     assert status.cancel_button.isEnabled()
     qtbot.mouseClick(status.cancel_button, Qt.MouseButton.LeftButton)
     gate.set()  # the running kernel ends; what comes after it does not run
-    qtbot.waitUntil(lambda: not win.runner.is_busy(), timeout=60_000)
-    qtbot.waitUntil(win.is_drawn, timeout=10_000)
+    wait_idle(qtbot, win.runner)
+    wait_drawn(qtbot, win)
     assert not status.progress_box.isVisible()
     # The document is intact: the object, its source, the undo history.
     assert [o.id for o in win.doc.objects] == [obj.id]
@@ -150,8 +151,8 @@ def test_cancel_in_the_status_bar_stops_the_derivations_and_keeps_the_document(
     win.views.show_view(av)
     qtbot.waitUntil(av.resume_button.isVisible, timeout=5000)
     qtbot.mouseClick(av.resume_button, Qt.MouseButton.LeftButton)
-    qtbot.waitUntil(lambda: win.scene.get(obj.id, "analytical") is not None, timeout=120_000)
-    qtbot.waitUntil(win.is_drawn, timeout=30_000)
+    qtbot.waitUntil(lambda: win.scene.get(obj.id, "analytical") is not None, timeout=HANG_MS)
+    wait_drawn(qtbot, win)
     assert "cancelled" not in av.status_label.text()
 
 
@@ -160,18 +161,18 @@ def test_an_edit_after_a_cancel_computes_afresh(make_window, qtbot, monkeypatch)
     win = make_window(threaded=True)
     obj = win.doc.make_object(_big_disk(), name="disk")
     win.doc.push(AddObject(obj, select=True))
-    qtbot.waitUntil(started.is_set, timeout=30_000)
+    qtbot.waitUntil(started.is_set, timeout=HANG_MS)
     qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=10_000)
     qtbot.mouseClick(win.status.cancel_button, Qt.MouseButton.LeftButton)
     gate.set()
-    qtbot.waitUntil(lambda: not win.runner.is_busy(), timeout=60_000)
+    wait_idle(qtbot, win.runner)
     assert win.scene.is_cancelled(obj.id, "analytical")
     # A new version of the object (its pixels shifted) is not the cancelled one: it is computed.
     from mrm.document.commands import SetSource
 
     win.doc.push(SetSource(obj.id, _big_disk().translate(3, 0)))
-    qtbot.waitUntil(lambda: win.scene.get(obj.id, "analytical") is not None, timeout=120_000)
-    qtbot.waitUntil(win.is_drawn, timeout=30_000)
+    qtbot.waitUntil(lambda: win.scene.get(obj.id, "analytical") is not None, timeout=HANG_MS)
+    wait_drawn(qtbot, win)
     assert "cancelled" not in win.views.analytical.status_label.text()
 
 
@@ -193,7 +194,7 @@ def test_the_coordinate_readout_follows_the_mouse_without_redrawing_the_views(ma
     yy, xx = np.mgrid[0:900, 0:900]
     ps = PixelSet((xx - 450) ** 2 + (yy - 450) ** 2 < 430**2, (0, 0))
     win.doc.push(AddObject(win.doc.make_object(ps, name="big"), select=True))
-    wait_drawn(qtbot, win, timeout=120_000)
+    wait_drawn(qtbot, win)
     win.views.camera.set(300.0, 300.0, 5.0)  # a pixel is 5 screen pixels wide: the readout is unambiguous
     wait_drawn(qtbot, win)
     counter = _PaintCounter()
@@ -239,8 +240,9 @@ def test_a_big_documents_autosave_is_written_by_a_worker_and_recovers_it(make_wi
     win.doc.push(AddObject(obj))
     a = win.files.autosaver
     a.interval = 0.0
-    win.files.autosave_tick()
-    qtbot.waitUntil(lambda: a.path.is_file() and not win.runner.is_busy("autosave"), timeout=120_000)
+    with task_done(qtbot, win.runner, "autosave"):
+        win.files.autosave_tick()
+    assert a.path.is_file()
     assert threads == [False], threads  # written once, not on the GUI thread
     assert a.failures == 0 and a.edits == 0
     back = load_project(a.path)
@@ -281,7 +283,7 @@ def test_a_big_outline_is_drawn_through_a_cache_and_follows_a_pan(make_window, q
     ps = PixelSet(m, (0, 0))
     obj = win.doc.make_object(ps, name="blocks")
     win.doc.push(AddObject(obj, select=True))
-    wait_drawn(qtbot, win, timeout=120_000)
+    wait_drawn(qtbot, win)
     view = win.views.discrete
     outline = view.layer(obj.id).outline
     assert outline.cacheMode() == QtWidgets.QGraphicsItem.CacheMode.DeviceCoordinateCache

@@ -18,7 +18,7 @@ from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
-from tests.app.helpers import type_into
+from tests.app.helpers import HANG_MS, task_done, type_into
 
 Qt = QtCore.Qt
 
@@ -43,8 +43,9 @@ def _apply_dss_from_panel(win, qtbot, alpha_text: str) -> int:  # type: ignore[n
     panel.select_operation("dss")
     type_into(qtbot, panel.control("alpha").field, alpha_text)
     assert panel.values()["alpha"] == Fraction(alpha_text)  # the typed decimal, exactly (0.2 is 1/5)
-    qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
-    qtbot.waitUntil(lambda: len(win.doc.objects) == n + 1, timeout=60_000)
+    with task_done(qtbot, win.runner, "operation"):
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    assert len(win.doc.objects) == n + 1
     return int(win.doc.objects[-1].id)
 
 
@@ -92,7 +93,7 @@ def test_apply_dss_from_its_panel_and_read_the_bound_in_the_inspector(make_windo
     assert panel.live.isChecked()
     type_into(qtbot, panel.control("alpha").field, "0.2")
     expected = _dss(o1.source, 0.2)
-    qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [expected], timeout=60_000)
+    qtbot.waitUntil(lambda: [p.source for p in panel.scene.phantoms()] == [expected], timeout=HANG_MS)
     assert len(doc.objects) == 2
     second = _apply_dss_from_panel(win, qtbot, "0.2")
     o2 = doc.get(second)
@@ -132,8 +133,9 @@ def test_cancel_a_long_operation_from_the_panel(make_window, qtbot):
     n = len(doc.objects)
     qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
     assert panel.is_running()
-    qtbot.mouseClick(panel.cancel_button, Qt.MouseButton.LeftButton)
-    qtbot.waitUntil(lambda: not panel.is_running(), timeout=60_000)
+    with task_done(qtbot, win.runner, "operation"):
+        qtbot.mouseClick(panel.cancel_button, Qt.MouseButton.LeftButton)
+    assert not panel.is_running()
     assert "cancelled" in panel.status.text()
     assert len(doc.objects) == n
     assert panel.apply_button.isEnabled()
@@ -146,7 +148,7 @@ def test_apply_hands_the_worker_the_r_the_euclidean_view_computed(make_window, q
     doc = win.doc
     a = doc.make_object(_diamond(), name="A")
     doc.push(AddObject(a, select=True))
-    qtbot.waitUntil(lambda: doc.derived(a.id).is_ready("euclidean"), timeout=60_000)
+    qtbot.waitUntil(lambda: doc.derived(a.id).is_ready("euclidean"), timeout=HANG_MS)
     shown = doc.derived(a.id).peek("euclidean")
     runner = win.operations.runner
     calls = []

@@ -82,8 +82,10 @@ def test_errors_come_back_as_themselves_and_a_dead_child_is_replaced(pool):  # t
 
 
 def test_the_window_applies_an_operation_in_a_worker_process(make_window, qtbot):  # type: ignore[no-untyped-def]
+    from PySide6 import QtCore
+
     from mrm.document.commands import AddObject
-    from tests.app.helpers import colour_at, is_background
+    from tests.app.helpers import colour_at, is_background, task_done, wait_drawn
 
     win = make_window(threaded=True)
     yy, xx = np.mgrid[0:60, 0:60]
@@ -93,15 +95,16 @@ def test_the_window_applies_an_operation_in_a_worker_process(make_window, qtbot)
     panel = win.operations
     panel.select_operation("dss")
     panel.control("alpha").set_value(2.0)
-    panel.apply()
-    qtbot.waitUntil(lambda: len(win.doc) == 2, timeout=120_000)
+    with task_done(qtbot, win.runner, "operation"):
+        qtbot.mouseClick(panel.apply_button, QtCore.Qt.MouseButton.LeftButton)
+    assert len(win.doc) == 2
     assert processes.pool().jobs > before
     assert os.getpid() not in processes.pool().pids
     result = win.doc.objects[-1]
     assert result.provenance is not None and result.provenance.operation == "dss"
     # Twice the size: the scaled disk covers (60, 60), which the input did not.
     win.fit_all()
-    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    wait_drawn(qtbot, win)
     assert not is_background(win.views.discrete, colour_at(win.views.discrete, 60, 60))
 
 

@@ -8,7 +8,7 @@ from shapely.geometry import Polygon
 
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
-from tests.app.helpers import click_object, type_into
+from tests.app.helpers import HANG_MS, click_object, type_into
 
 Qt = QtCore.Qt
 CTRL_SHIFT = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
@@ -157,7 +157,7 @@ def test_a_big_polygon_is_tabled_on_a_worker_and_edits_the_right_vertex(make_win
     win.registry["edit.properties"].trigger()
     panel = win.properties
     model = panel.table.model()
-    qtbot.waitUntil(lambda: model.rowCount() == 80_000, timeout=60_000)
+    qtbot.waitUntil(lambda: model.rowCount() == 80_000, timeout=HANG_MS)
     assert "80000 vertices" in panel.vertex_note.text()
     assert on_gui and not any(on_gui), "the vertex table was made on the GUI thread"
     # Row 4·k + i is vertex i of polygon k: (polygon, ring, index) and its coordinates.
@@ -166,10 +166,10 @@ def test_a_big_polygon_is_tabled_on_a_worker_and_edits_the_right_vertex(make_win
     x, y = 3.0 * (12_345 % 200), 3.0 * (12_345 // 200)
     assert [model.index(row, c).data() for c in (3, 4)] == [str(int(x + 2)), str(int(y + 2))]
     # The status bar counts the same vertices.
-    qtbot.waitUntil(lambda: "80\u2009000 vertices" in win.status.figures.text(), timeout=10_000)
+    qtbot.waitUntil(lambda: "80\u2009000 vertices" in win.status.figures.text(), timeout=HANG_MS)
     # Typing a coordinate moves that vertex of that polygon only.
     _edit_cell(qtbot, panel.table, row, 3, str(x + 2.5))
-    qtbot.waitUntil(lambda: win.doc.history.undo_label() == "Move vertex", timeout=10_000)
+    qtbot.waitUntil(lambda: win.doc.history.undo_label() == "Move vertex", timeout=HANG_MS)
     moved = list(win.doc.get(obj.id).source.geoms)
     assert list(moved[12_345].exterior.coords)[2] == (x + 2.5, y + 2)
     assert list(moved[12_344].exterior.coords) == list(square(12_344).exterior.coords)

@@ -133,7 +133,7 @@ def test_tiny_components_are_dots_at_fit_all_and_outlines_zoomed_in(make_window,
     obj = win.doc.make_object(PixelSet(mask, (0, 0)), name="speckled")
     win.doc.push(AddObject(obj, select=True))
     zoom_to(win, 0, 0, 600, 600)
-    wait_drawn(qtbot, win, timeout=60_000)
+    wait_drawn(qtbot, win)
     scale = win.views.camera.scale
     assert scale < 1.5
     for item in (*win.views.analytical.layer(obj.id).cracks, win.views.region.layer(obj.id).outer):
@@ -204,7 +204,7 @@ def test_the_discrete_outline_has_the_same_level_of_detail_and_stays_exact_on_sc
     obj = win.doc.make_object(PixelSet(mask, (0, 0)), name="ring")
     win.doc.push(AddObject(obj, select=True))
     zoom_to(win, 0, 0, 1500, 1500)
-    wait_drawn(qtbot, win, timeout=60_000)
+    wait_drawn(qtbot, win)
     scale = win.views.camera.scale
     assert scale < 0.5
     outline = win.views.discrete.layer(obj.id).outline
@@ -262,7 +262,7 @@ def test_zoomed_in_a_long_outline_is_stroked_in_view_only_and_drawn_as_in_full(
     obj = win.doc.make_object(PixelSet(mask, (0, 0)), name="wavy ring")
     win.doc.push(AddObject(obj, select=True))
     zoom_to(win, 0, 0, 1200, 1200)
-    wait_drawn(qtbot, win, timeout=60_000)
+    wait_drawn(qtbot, win)
     v = win.views
     items = [
         (v.discrete, v.discrete.layer(obj.id).outline),
@@ -272,7 +272,7 @@ def test_zoomed_in_a_long_outline_is_stroked_in_view_only_and_drawn_as_in_full(
     ]
     for where in ((1130, 560, 1190, 620), (1100, 600, 1180, 680)):  # a zoom in, then a pan
         zoom_to(win, *where)
-        wait_drawn(qtbot, win, timeout=60_000)
+        wait_drawn(qtbot, win)
         scale = win.views.camera.scale
         assert scale > 2  # the pens are 2 to 3 screen pixels wide, not hairlines
         for view, item in items:

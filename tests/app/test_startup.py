@@ -10,6 +10,7 @@ import pytest
 from mrm import warmup
 from mrm.app.gui import default_example
 from mrm.app.startup import PREPARING, prepare_then
+from tests.app.helpers import HANG_MS
 
 
 @pytest.fixture
@@ -37,15 +38,17 @@ def test_cold_start_shows_the_window_with_progress_then_opens_the_document(  # t
     example = default_example()
     assert prepare_then(win, lambda: opened.append(win.files.open(example, ask=False))) is True
     # The window is there and answers while the kernels compile: it says what it prepares, with progress.
-    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=5000)
-    qtbot.waitUntil(lambda: "discretization kernels (1/3)" in win.status.progress_label.text(), timeout=5000)
+    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=HANG_MS)
+    qtbot.waitUntil(
+        lambda: "discretization kernels (1/3)" in win.status.progress_label.text(), timeout=HANG_MS
+    )
     assert PREPARING in win.status.progress_label.text()
     assert not opened and len(win.doc) == 0
     gate.set()
-    qtbot.waitUntil(lambda: bool(opened), timeout=120_000)
+    qtbot.waitUntil(lambda: bool(opened), timeout=HANG_MS)
     assert opened == [True] and len(win.doc) > 0
     assert warmup.is_warm()  # the stamp is written: the next start goes straight to the document
-    qtbot.waitUntil(lambda: not win.status.progress_box.isVisible(), timeout=60_000)
+    qtbot.waitUntil(lambda: not win.status.progress_box.isVisible(), timeout=HANG_MS)
 
 
 def test_warm_start_opens_at_once_and_keeps_kernel_loading_off_the_gui_thread(make_window, qtbot, cold):
@@ -55,7 +58,7 @@ def test_warm_start_opens_at_once_and_keeps_kernel_loading_off_the_gui_thread(ma
     assert prepare_then(win, lambda: opened.append(True)) is False
     assert opened == [True]
     assert win.scene.sync_cost == 0  # every derivation runs on a worker until the kernels are loaded
-    qtbot.waitUntil(lambda: win.scene.sync_cost > 0, timeout=120_000)
+    qtbot.waitUntil(lambda: win.scene.sync_cost > 0, timeout=HANG_MS)
 
 
 def test_the_cli_prints_one_line_before_a_first_run_compile(cold, capsys):
@@ -88,7 +91,6 @@ def test_a_warm_start_starts_the_worker_process_of_the_operations_at_once(
     The child is started first and loads meanwhile, not after the window's own kernels are loaded.
     """
     from mrm.app import processes
-    from tests.app.helpers import HANG_MS
 
     processes.close_pool()  # no child of an earlier test
     children_then: list[int] = []

@@ -50,7 +50,7 @@ def test_a_new_request_in_the_same_slot_cancels_the_previous(qtbot):
     runner.submit("preview", lambda p: _spin(p, 10**7, gate), on_result=results.append)
     runner.submit("preview", lambda p: _spin(p, 10), on_result=results.append)
     gate.set()
-    qtbot.waitUntil(lambda: len(outcomes) == 2, timeout=20_000)
+    qtbot.waitUntil(lambda: len(outcomes) == 2, timeout=HANG_MS)
     assert results == [sum(range(10))]  # only the newest result is delivered
     assert sorted(outcomes) == ["cancelled", "result"]
     runner.shutdown()
@@ -67,7 +67,7 @@ def test_results_of_an_older_revision_are_dropped(qtbot):
     runner.submit("derive", lambda p: (gate.wait(10), "old")[1], on_result=results.append, revision=1)
     rev[0] = 2  # the document changed while the task ran
     gate.set()
-    qtbot.waitUntil(lambda: outcomes == ["dropped"], timeout=10_000)
+    qtbot.waitUntil(lambda: outcomes == ["dropped"], timeout=HANG_MS)
     assert results == []
     runner.shutdown()
 
@@ -87,12 +87,12 @@ def test_cancel_a_long_task_through_the_status_bar(make_window, qtbot):
         show_progress=True,
     )
     gate.set()
-    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=10_000)
+    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=HANG_MS)
     # The window stays responsive: progress is reported while the work runs.
-    qtbot.waitUntil(lambda: win.status.progress.value() > 0, timeout=10_000)
+    qtbot.waitUntil(lambda: win.status.progress.value() > 0, timeout=HANG_MS)
     assert "step" in win.status.progress_label.text()
     qtbot.mouseClick(win.status.cancel_button, QtCore.Qt.MouseButton.LeftButton)
-    qtbot.waitUntil(lambda: cancelled == [True], timeout=10_000)
+    qtbot.waitUntil(lambda: cancelled == [True], timeout=HANG_MS)
     assert results == []
     assert not win.status.progress_box.isVisible()
     assert not runner.is_busy()
@@ -109,10 +109,10 @@ def test_escape_cancels_the_running_task(make_window, qtbot):
         show_progress=True,
     )
     gate.set()
-    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=10_000)
+    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=HANG_MS)
     win.views.discrete.plane.setFocus()
     qtbot.keyClick(win.views.discrete.plane, QtCore.Qt.Key.Key_Escape)
-    qtbot.waitUntil(lambda: cancelled == [1], timeout=10_000)
+    qtbot.waitUntil(lambda: cancelled == [1], timeout=HANG_MS)
 
 
 def test_progress_raises_cancelled_after_cancel():
@@ -157,7 +157,7 @@ def test_workers_run_below_the_gui_threads_priority(qtbot):
     runner.submit(
         "x", lambda p: os.getpriority(os.PRIO_PROCESS, threading.get_native_id()), on_result=seen.append
     )
-    qtbot.waitUntil(lambda: bool(seen), timeout=10_000)
+    qtbot.waitUntil(lambda: bool(seen), timeout=HANG_MS)
     gui = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
     assert seen[0] == min(19, gui + WORKER_NICENESS)
     runner.shutdown()
