@@ -12,7 +12,6 @@ deterministic, and it shows that nothing in the GUI depends on the threading.
 
 from __future__ import annotations
 
-import itertools
 import logging
 import os
 import sys
@@ -45,7 +44,6 @@ class Task:
     label: str = ""
     revision: int | None = None
     show_progress: bool = False
-    serial: int = 0
     progress: TaskProgress = field(default_factory=TaskProgress)
     done: bool = False
     at_par: bool = False
@@ -143,7 +141,6 @@ class TaskRunner(QtCore.QObject):
         self._signals.progressed.connect(self._on_progress)
         self._current: dict[str, Task] = {}  # newest task per slot
         self._running: set[Task] = set()  # every task not yet delivered
-        self._serial = itertools.count(1)
         self.revision_getter: Callable[[], int] | None = None
         self._busy = False
         self._closed = False
@@ -180,7 +177,6 @@ class TaskRunner(QtCore.QObject):
             label,
             revision,
             show_progress,
-            next(self._serial),
             at_par=at_par,
         )
         if show_progress:
@@ -198,12 +194,6 @@ class TaskRunner(QtCore.QObject):
         """Cancel the task of ``slot`` (every task when None)."""
         for task in list(self._running):
             if slot is None or task.slot == slot:
-                task.cancel()
-
-    def cancel_prefix(self, prefix: str) -> None:
-        """Cancel every task whose slot starts with ``prefix``."""
-        for task in list(self._running):
-            if task.slot.startswith(prefix):
                 task.cancel()
 
     def is_busy(self, slot: str | None = None) -> bool:

@@ -400,7 +400,6 @@ class OperationPanel(QtWidgets.QWidget):
         )
         self.live.toggled.connect(self._live_toggled)
         self._paused = False  # after Apply: no preview until the user changes the input or a parameter
-        self._preview_key: tuple[Any, ...] | None = None
         lay.addWidget(self.live)
         row = QtWidgets.QHBoxLayout()
         self.apply_button = QtWidgets.QPushButton("Apply", self)
@@ -633,7 +632,6 @@ class OperationPanel(QtWidgets.QWidget):
         op, params, _ids, sources = job
         t0 = time.perf_counter()
         key = self.current_key()
-        self._preview_key = key
 
         def done(results: list[tuple[str | None, Any]]) -> None:
             if key != self.current_key() or not self.live.isChecked() or self._paused:
@@ -669,7 +667,6 @@ class OperationPanel(QtWidgets.QWidget):
     def clear_preview(self) -> None:
         self._preview_timer.stop()
         self.runner.cancel("preview")
-        self._preview_key = None
         self.scene.set_phantoms([])
 
     # ------------------------------------------------------------------ apply / cancel
