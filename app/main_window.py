@@ -10,37 +10,25 @@ from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.app.actions import ActionRegistry
 from mrm.app.files import FileController
+from mrm.app.menus import TOOL_ACTIONS, build_menus, build_toolbars
 from mrm.app.settings import Preferences
 from mrm.app.status import StatusBar
 from mrm.app.tasks import TaskRunner
 from mrm.app.undo import UndoAdapter
-from mrm.core.models import Model
+from mrm.app.window_layout import (
+    DEFAULT_SIZE,
+    fit_operations_height,
+    fit_side_panels,
+    fit_to_screen,
+    make_dock,
+    scrolled,
+)
 from mrm.document import Changes, Document, Settings
 from mrm.views.object_list import ObjectList
 from mrm.views.scene import Scene
 from mrm.views.tool_base import ToolHost
 from mrm.views.tool_controller import ToolController
 from mrm.views.view_area import ViewArea
-
-TOOL_ACTIONS = {
-    "tool.select": "select",
-    "tool.polygon": "polygon",
-    "tool.vertex": "vertex",
-    "tool.paint": "paint",
-    "tool.erase": "erase",
-    "tool.fill_hole": "fill_hole",
-    "tool.delete_component": "delete_component",
-    "tool.measure": "measure",
-}
-
-#: The first window's size, made smaller on a smaller screen (:meth:`MainWindow.fit_to_screen`).
-DEFAULT_SIZE = (1360, 880)
-#: Room left for the window's frame and title bar while the window manager has not said how big they are.
-FRAME_ALLOWANCE = (16, 48)
-
-#: Side panels' widths at the default size and their least useful widths (the views get the rest).
-LEFT_WIDTH, RIGHT_WIDTH = 230, 300
-LEFT_MIN, RIGHT_MIN = 170, 230
 
 
 class MainWindow(QtWidgets.QMainWindow):
@@ -86,8 +74,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.clipboard = ClipboardController(self)
         self.context_menu: QtWidgets.QMenu | None = None
         self.context_menus = ContextMenus(self)
-        self._build_menus()
-        self._build_toolbars()
+        build_menus(self)
+        build_toolbars(self)
         self._connect()
         self.setAcceptDrops(True)
         self.resize(*DEFAULT_SIZE)
@@ -105,8 +93,8 @@ class MainWindow(QtWidgets.QMainWindow):
     # ------------------------------------------------------------------ construction
     def _build_docks(self) -> None:
         self.object_list = ObjectList(self.doc, self)
-        self.objects_dock = self._dock(
-            "Objects", self.object_list, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
+        self.objects_dock = make_dock(
+            self, "Objects", self.object_list, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
         from mrm.app import process_jobs
         from mrm.app.preferences_dialog import PIXEL_LIMIT_LABEL
@@ -126,15 +114,15 @@ class MainWindow(QtWidgets.QMainWindow):
             plan_job=process_jobs.plan,
             pixel_limit_setting=f"File ▸ Preferences ▸ General ▸ {PIXEL_LIMIT_LABEL}",
         )
-        self.operations_dock = self._dock("Operations", _scrolled(self.operations), right)
+        self.operations_dock = make_dock(self, "Operations", scrolled(self.operations), right)
         self.properties = PropertiesPanel(self.scene, self)
-        self.properties_dock = self._dock("Properties", self.properties, right)
+        self.properties_dock = make_dock(self, "Properties", self.properties, right)
         self.measure = MeasurePanel(self.scene, self.runner, self)
-        self.measure_dock = self._dock("Measure", _scrolled(self.measure), right)
+        self.measure_dock = make_dock(self, "Measure", scrolled(self.measure), right)
         self.inspector = ErrorInspector(self.scene, self.runner, self, measure_job=process_jobs.measure)
         # Scrolled: on a short column its wrapped texts, picture and legend scroll instead of overlapping, and
         # a result's account never makes the window taller than the screen.
-        self.inspector_dock = self._dock("Error inspector", _scrolled(self.inspector), right)
+        self.inspector_dock = make_dock(self, "Error inspector", scrolled(self.inspector), right)
         # One column on the right (ADR 0020): Operations, Properties and Measure as tabs, the inspector below
         # them, beside the operation whose result it accounts for.
         self.splitDockWidget(self.operations_dock, self.inspector_dock, QtCore.Qt.Orientation.Vertical)
@@ -144,8 +132,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.operations.installEventFilter(self)  # its content grows (a status line): keep Apply in sight
         self.setTabPosition(right, QtWidgets.QTabWidget.TabPosition.North)
         self.segments = SegmentTable(self.scene, self)
-        self.segments_dock = self._dock(
-            "Segments", self.segments, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
+        self.segments_dock = make_dock(
+            self, "Segments", self.segments, QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         )
         from mrm.views.history_panel import HistoryPanel
 
@@ -153,7 +141,7 @@ class MainWindow(QtWidgets.QMainWindow):
         # list undoes or redoes; a tool's gesture in progress is cancelled first, as Ctrl+Z does.
         left = QtCore.Qt.DockWidgetArea.LeftDockWidgetArea
         self.history_panel = HistoryPanel(self.doc, self, before=self.tools.cancel)
-        self.history_dock = self._dock("History", self.history_panel, left)
+        self.history_dock = make_dock(self, "History", self.history_panel, left)
         self.tabifyDockWidget(self.segments_dock, self.history_dock)
         self.segments_dock.raise_()
         self.setTabPosition(left, QtWidgets.QTabWidget.TabPosition.North)
@@ -167,32 +155,15 @@ class MainWindow(QtWidgets.QMainWindow):
         self.resizeDocks(
             [self.operations_dock, self.inspector_dock], [300, 480], QtCore.Qt.Orientation.Vertical
         )
-        self._fit_side_panels(1360)
+        fit_side_panels(self, 1360)
 
     def fit_to_screen(self) -> None:
-        """Make the window, its frame included, fit the available area of the screen it is on.
+        """Make the window, its frame included, fit its screen's available area (:mod:`.window_layout`)."""
+        fit_to_screen(self)
 
-        A 1360×880 window on a 1024×700 screen had its right column and status bar off the screen; a saved
-        geometry from a bigger screen is fitted the same way.
-        """
-        screen = QtGui.QGuiApplication.screenAt(self.geometry().center()) or self.screen()
-        if screen is None:
-            return
-        avail = screen.availableGeometry()
-        frame = self.frameGeometry()
-        extra_w, extra_h = frame.width() - self.width(), frame.height() - self.height()
-        if extra_w == 0 and extra_h == 0 and not self.isVisible():
-            extra_w, extra_h = FRAME_ALLOWANCE
-        least = self.minimumSizeHint()
-        w = max(least.width(), min(self.width(), avail.width() - extra_w))
-        h = max(least.height(), min(self.height(), avail.height() - extra_h))
-        if (w, h) != (self.width(), self.height()):
-            self.resize(w, h)
-        # Then keep it on the screen: its frame's top-left moved in just enough.
-        x = max(avail.left(), min(frame.left(), avail.right() + 1 - (w + extra_w)))
-        y = max(avail.top(), min(frame.top(), avail.bottom() + 1 - (h + extra_h)))
-        if (x, y) != (frame.left(), frame.top()):
-            self.move(x, y)
+    def _fit_operations_height(self) -> None:
+        # A bound method, not a lambda: a timer that fires after the window is gone calls nothing.
+        fit_operations_height(self)
 
     def restore_window_state(self) -> None:
         """The window's saved geometry and dock layout (from the last session), fitted to this screen."""
@@ -203,20 +174,12 @@ class MainWindow(QtWidgets.QMainWindow):
             self.restoreState(state)
         self.fit_to_screen()
 
-    def _fit_side_panels(self, window_width: int) -> None:
-        """Side panels at their default widths, narrowed on a small window so the views keep 55 % of it."""
-        spare = max(0, window_width * 45 // 100 - 10)
-        left = max(LEFT_MIN, min(LEFT_WIDTH, spare * LEFT_WIDTH // (LEFT_WIDTH + RIGHT_WIDTH)))
-        right = max(RIGHT_MIN, min(RIGHT_WIDTH, spare - left))
-        self.resizeDocks([self.objects_dock], [left], QtCore.Qt.Orientation.Horizontal)
-        self.resizeDocks([self.operations_dock], [right], QtCore.Qt.Orientation.Horizontal)
-
     def resizeEvent(self, ev: QtGui.QResizeEvent) -> None:
         super().resizeEvent(ev)
         # Only when the window becomes narrower than the panels allow: a user's own dock widths stay.
         central = self.centralWidget()
         if central is not None and central.width() < ev.size().width() * 55 // 100 - 10:
-            self._fit_side_panels(ev.size().width())
+            fit_side_panels(self, ev.size().width())
         # Once the docks have their new sizes (the layout runs after this event).
         QtCore.QTimer.singleShot(0, self._fit_operations_height)
 
@@ -224,133 +187,6 @@ class MainWindow(QtWidgets.QMainWindow):
         if obj is getattr(self, "operations", None) and ev.type() == QtCore.QEvent.Type.LayoutRequest:
             QtCore.QTimer.singleShot(0, self._fit_operations_height)
         return super().eventFilter(obj, ev)
-
-    def _fit_operations_height(self) -> None:
-        """Give the Operations tab the height its fields and Apply need on a short window.
-
-        The inspector below it gets the rest, and keeps at least a third of the column.
-        """
-        area = self.operations_dock.widget()
-        if not isinstance(area, QtWidgets.QScrollArea) or self.inspector_dock.isFloating():
-            return
-        if self.operations_dock.isFloating() or not self.inspector_dock.isVisible():
-            return
-        panel = self.operations
-        width = area.viewport().width()
-        need = panel.heightForWidth(width) if panel.hasHeightForWidth() else panel.sizeHint().height()
-        if area.viewport().height() >= need:
-            return
-        total = self.operations_dock.height() + self.inspector_dock.height()
-        extra = self.operations_dock.height() - area.viewport().height()
-        ops = min(need + extra + 24, total * 2 // 3)  # + the tab bar: resizeDocks sizes the tab group
-        pair = [self.operations_dock, self.inspector_dock]
-        self.resizeDocks(pair, [ops, total - ops], QtCore.Qt.Orientation.Vertical)
-
-    def _dock(
-        self, title: str, widget: QtWidgets.QWidget, area: QtCore.Qt.DockWidgetArea
-    ) -> QtWidgets.QDockWidget:
-        """A movable, closable, floatable dock holding ``widget``."""
-        d = QtWidgets.QDockWidget(title, self)
-        d.setObjectName(f"dock_{title.lower().replace(' ', '_')}")
-        d.setWidget(widget)
-        widget.setMinimumWidth(min(widget.minimumSizeHint().width(), RIGHT_MIN))
-        d.setFeatures(
-            QtWidgets.QDockWidget.DockWidgetFeature.DockWidgetMovable
-            | QtWidgets.QDockWidget.DockWidgetFeature.DockWidgetClosable
-            | QtWidgets.QDockWidget.DockWidgetFeature.DockWidgetFloatable
-        )
-        self.addDockWidget(area, d)
-        return d
-
-    def _build_menus(self) -> None:
-        a = self.registry
-        mb = self.menuBar()
-        m = mb.addMenu("&File")
-        a.menu(m, ["file.new", "file.open"])
-        self.recent_menu = m.addMenu("Open &Recent")
-        self.recent_menu.setObjectName("recentMenu")
-        self.examples_menu = m.addMenu("Open E&xample")
-        self.examples_menu.setObjectName("examplesMenu")
-        self._fill_examples_menu()
-        a.menu(m, [None, "file.save", "file.save_as", None, "file.import", "file.export", "file.screenshot"])
-        a.menu(m, [None, "file.preferences", None, "file.quit"])
-        self.update_recent_menu()
-        m = mb.addMenu("&Edit")
-        a.menu(m, ["edit.undo", "edit.redo", None, "edit.cut", "edit.copy", "edit.paste", "edit.select_all"])
-        m.addSeparator()
-        a.menu(m, ["edit.rename", "edit.colour", "edit.properties", "edit.duplicate", "edit.delete", None])
-        a.menu(m, ["edit.split_labels", None])
-        a.menu(m, ["edit.select_previous", "edit.select_next"])
-        self.model_menu = m.addMenu("Discretization &Model")
-        self._model_group = QtGui.QActionGroup(self)
-        for name in Model.names():
-            act = self.model_menu.addAction(name)
-            act.setCheckable(True)
-            act.setObjectName(f"model.{name}")
-            self._model_group.addAction(act)
-            act.triggered.connect(lambda _c=False, n=name: self.set_model(n))
-        m = mb.addMenu("&Tools")
-        a.menu(m, list(TOOL_ACTIONS))
-        a.menu(m, [None, "tool.brush_larger", "tool.brush_smaller", None, "measure.hausdorff"])
-        m = mb.addMenu("&View")
-        a.menu(m, ["view.fit", "view.fit_selection", "view.fit_differences"])
-        a.menu(m, ["view.zoom_in", "view.zoom_out", "view.actual", None])
-        a.menu(m, ["view.grid_layout", "view.tabs_layout", None])
-        a.menu(
-            m,
-            ["view.discrete", "view.region", "view.analytical", "view.euclidean", None, "view.pixel_grid"],
-        )
-        a.menu(m, ["view.snap"])
-        m.addSeparator()
-        for d in (
-            self.objects_dock,
-            self.segments_dock,
-            self.operations_dock,
-            self.properties_dock,
-            self.measure_dock,
-            self.history_dock,
-            self.inspector_dock,
-        ):
-            m.addAction(d.toggleViewAction())
-        m = mb.addMenu("&Operations")
-        a.menu(m, ["ops.panel", "ops.apply", "ops.cancel", "ops.pick_centre", None, "inspect.errors"])
-        self.operations.fill_menu(m)
-        m = mb.addMenu("&Help")
-        a.menu(m, ["help.guide", "help.about"])
-
-    def _build_toolbars(self) -> None:
-        a = self.registry
-        tb = self.addToolBar("File")
-        tb.setObjectName("toolbar_file")
-        tb.setIconSize(QtCore.QSize(18, 18))
-        tb.setToolButtonStyle(QtCore.Qt.ToolButtonStyle.ToolButtonTextOnly)
-        for aid in ("file.open", "file.save", None, "edit.undo", "edit.redo", None, "view.fit"):
-            if aid is None:
-                tb.addSeparator()
-            else:
-                tb.addAction(a[aid])
-        tt = self.addToolBar("Tools")
-        tt.setObjectName("toolbar_tools")
-        tt.setToolButtonStyle(QtCore.Qt.ToolButtonStyle.ToolButtonTextOnly)
-        for aid in TOOL_ACTIONS:
-            act = a[aid]
-            tt.addAction(act)
-        tt.addSeparator()
-        tt.addWidget(QtWidgets.QLabel(" Brush ", tt))
-        self.brush_spin = QtWidgets.QSpinBox(tt)
-        self.brush_spin.setObjectName("brushSize")
-        self.brush_spin.setRange(1, 256)
-        self.brush_spin.setSuffix(" px")
-        self.brush_spin.setValue(self.host.brush_size)
-        self.brush_spin.setToolTip("Brush diameter in pixels ([ and ] change it)")
-        self.brush_spin.valueChanged.connect(self.set_brush_size)
-        tt.addWidget(self.brush_spin)
-        self.brush_shape = QtWidgets.QComboBox(tt)
-        self.brush_shape.setObjectName("brushShape")
-        self.brush_shape.addItems(["round", "square"])
-        self.brush_shape.setCurrentText(self.host.brush_shape)
-        self.brush_shape.currentTextChanged.connect(self.set_brush_shape)
-        tt.addWidget(self.brush_shape)
 
     def _connect(self) -> None:
         a = self.registry
@@ -435,7 +271,7 @@ class MainWindow(QtWidgets.QMainWindow):
     def _on_changes(self, ch: Changes) -> None:
         self.object_list.on_changes(ch)
         if ch.settings or ch.reset:
-            for act in self._model_group.actions():
+            for act in self.model_group.actions():
                 act.setChecked(act.text() == self.doc.model)
         self.update_action_states()
 
@@ -464,7 +300,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.setWindowModified(self.doc.is_modified)
         self.setWindowFilePath(str(self.doc.path) if self.doc.path else "")
 
-    def _fill_examples_menu(self) -> None:
+    def fill_examples_menu(self) -> None:
         """File ▸ Open Example: the bundled examples; each opens as an untitled copy."""
         from mrm.resources import example_projects
 
@@ -879,14 +715,3 @@ def recent_text(path: str) -> str:
     if folder == home or folder.startswith(home + os.sep):
         folder = "~" + folder[len(home) :]
     return f"{p.name} — {folder}"
-
-
-def _scrolled(panel: QtWidgets.QWidget) -> QtWidgets.QScrollArea:
-    """``panel`` in a scroll area: a narrow or short side column scrolls instead of squeezing the views."""
-    area = QtWidgets.QScrollArea()
-    area.setObjectName(f"{panel.objectName()}Scroll")
-    area.setWidget(panel)
-    area.setWidgetResizable(True)
-    area.setFrameShape(QtWidgets.QFrame.Shape.NoFrame)
-    area.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAsNeeded)
-    return area
