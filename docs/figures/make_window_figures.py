@@ -206,10 +206,14 @@ def _parcels_png(path: Path) -> None:
 
 def label_map(app: Any) -> Path:
     """A label image imported as one label map: labels, cells, the subdivision, the legend in Properties."""
+    from PySide6 import QtCore
+
     win = _window()
     png = Path(tempfile.mkdtemp(prefix="mrm-fig-")) / "parcels.png"
     _parcels_png(png)
     win.files.import_files([png])  # the dialog proposes the label map for an indexed image
+    while win.files.image_dialog is None:  # the image is read on a worker before the dialog asks
+        app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.WaitForMoreEvents, 50)
     win.files.image_dialog.accept()
     _settle(app, win)
     win.doc.set_selection([win.doc.objects[0].id])
