@@ -34,7 +34,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         union,
     )
     from mrm.core.errors import MRMError
-    from mrm.core.grids import LabelMap, PixelSet
+    from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
     from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
     from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
 
@@ -42,6 +42,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
 _LAZY = {
     "PixelSet": "mrm.core.grids",
     "LabelMap": "mrm.core.grids",
+    "VoxelSet": "mrm.core.grids",
+    "LabelVolume": "mrm.core.grids",
     "read_pixels": "mrm.io.pixel_files",
     "write_pixels": "mrm.io.pixel_files",
     "read_label_map": "mrm.io.pixel_files",
@@ -70,8 +72,10 @@ _LAZY = {
 
 __all__ = [
     "LabelMap",
+    "LabelVolume",
     "MRMError",
     "PixelSet",
+    "VoxelSet",
     "__version__",
     "bound",
     "corefine",

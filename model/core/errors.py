@@ -26,21 +26,24 @@ class SizeLimitError(MRMError):
         The limit in force.
     what : str
         A short description of what was being computed.
+    unit : str
+        What is counted: "pixels" or "voxels".
     """
 
-    def __init__(self, estimated: int, limit: int, what: str = "result") -> None:
+    def __init__(self, estimated: int, limit: int, what: str = "result", unit: str = "pixels") -> None:
         self.estimated = int(estimated)
         self.limit = int(limit)
         self.what = what
+        self.unit = unit
         super().__init__(
-            f"{what} would cover {self.estimated:,} pixels, more than the limit of {self.limit:,}; "
+            f"{what} would cover {self.estimated:,} {unit}, more than the limit of {self.limit:,}; "
             "reduce the scale or raise the limit"
         )
 
-    def __reduce__(self) -> tuple[type[SizeLimitError], tuple[int, int, str]]:
+    def __reduce__(self) -> tuple[type[SizeLimitError], tuple[int, int, str, str]]:
         # Pickled with its own arguments: the worker processes send it to the window (the default
         # reduction passes the message alone, which this constructor cannot take).
-        return (type(self), (self.estimated, self.limit, self.what))
+        return (type(self), (self.estimated, self.limit, self.what, self.unit))
 
 
 class FileFormatError(MRMError):

@@ -24,6 +24,16 @@ from mrm.core.errors import LimitError, ParameterError, SizeLimitError
 #: Default maximum number of pixels of a discretization or an operation's result (a preference in the GUI,
 #: ``--limit`` on the command line, ``limit=`` in the library).
 DEFAULT_PIXEL_LIMIT = 200_000_000
+#: Default maximum number of voxels of a voxelization or a 3D operation's result, and of the bounding box
+#: of one voxel object (a 1024³ box: 1 GiB of mask).
+DEFAULT_VOXEL_LIMIT = 1 << 30
+#: Voxels in the bounding boxes of all the voxel objects of one document together.
+MAX_FILE_VOXELS = 1 << 31
+#: Triangles of one polyhedron (a mesh read, a reconstruction's result): about 100 bytes each in memory.
+MAX_OBJECT_TRIANGLES = 20_000_000
+#: Surfels (boundary squares between a voxel of the set and one outside) of a voxel set that may be
+#: reconstructed; the 3D continuation costs tens of bytes per surfel.
+MAX_SURFELS = 50_000_000
 #: Largest absolute coordinate of a Euclidean source. Beyond it pixel indices leave the int32 range the
 #: kernels use, and float64 spacing there exceeds a millionth of a pixel, so nothing exact could follow.
 COORDINATE_LIMIT = float(2**31)
@@ -201,11 +211,12 @@ def check_reconstruct(ps: Any, what: str = "the pixel set") -> int:
     return steps
 
 
-def check_pixels(estimated: int, limit: int | None, what: str) -> None:
+def check_pixels(estimated: int, limit: int | None, what: str, *, unit: str = "pixels") -> None:
     """The one size check: refuse work whose result would cover more than ``limit`` pixels, before any of it.
 
     ``estimated`` is an upper bound of the pixels the work would make (an operation's
     :attr:`~mrm.ops.registry.OperationSpec.estimate`, a discretization's box); None lifts the limit.
+    ``unit`` names what is counted in the message ("voxels" in 3D).
 
     Raises
     ------
@@ -217,9 +228,9 @@ def check_pixels(estimated: int, limit: int | None, what: str) -> None:
     if limit is None:
         return
     if isinstance(limit, bool) or not isinstance(limit, int) or limit < 0:
-        raise ParameterError(f"the pixel limit must be a non-negative integer or None, got {limit!r}")
+        raise ParameterError(f"the {unit[:-1]} limit must be a non-negative integer or None, got {limit!r}")
     if estimated > limit:
-        raise SizeLimitError(int(estimated), int(limit), what)
+        raise SizeLimitError(int(estimated), int(limit), what, unit)
 
 
 # ---------------------------------------------------------------------------------------------- output
