@@ -37,6 +37,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
     from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
     from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
+    from mrm.io.voxel_files import read_label_volume, read_voxels, write_label_volume, write_voxels
 
 #: public name → the module that defines it (imported when the name is first used).
 _LAZY = {
@@ -51,6 +52,10 @@ _LAZY = {
     "read_geometry": "mrm.io.vector_files",
     "write_geojson": "mrm.io.vector_files",
     "write_wkt": "mrm.io.vector_files",
+    "read_voxels": "mrm.io.voxel_files",
+    "write_voxels": "mrm.io.voxel_files",
+    "read_label_volume": "mrm.io.voxel_files",
+    "write_label_volume": "mrm.io.voxel_files",
     "MRMError": "mrm.core.errors",
     **{
         name: "mrm.api"
@@ -84,7 +89,9 @@ __all__ = [
     "polygonize",
     "read_geometry",
     "read_label_map",
+    "read_label_volume",
     "read_pixels",
+    "read_voxels",
     "reconstruct",
     "rotate",
     "scale",
@@ -93,7 +100,9 @@ __all__ = [
     "union",
     "write_geojson",
     "write_label_map",
+    "write_label_volume",
     "write_pixels",
+    "write_voxels",
     "write_wkt",
 ]
 

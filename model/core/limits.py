@@ -34,6 +34,8 @@ MAX_OBJECT_TRIANGLES = 20_000_000
 #: Surfels (boundary squares between a voxel of the set and one outside) of a voxel set that may be
 #: reconstructed; the 3D continuation costs tens of bytes per surfel.
 MAX_SURFELS = 50_000_000
+#: Voxels of a label volume (four bytes each in memory).
+MAX_LABEL_VOXELS = 1 << 28
 #: Largest absolute coordinate of a Euclidean source. Beyond it pixel indices leave the int32 range the
 #: kernels use, and float64 spacing there exceeds a millionth of a pixel, so nothing exact could follow.
 COORDINATE_LIMIT = float(2**31)

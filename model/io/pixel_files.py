@@ -30,9 +30,8 @@ import io
 import os
 import re
 import warnings
-import zipfile
 from pathlib import Path
-from typing import IO, Any, BinaryIO
+from typing import Any, BinaryIO
 
 import numpy as np
 import numpy.typing as npt
@@ -45,8 +44,9 @@ from mrm.core.limits import DEFAULT_PIXEL_LIMIT
 from mrm.core.threshold import _check_threshold, binarize, grey_of
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.netpbm import encode_pbm, encode_pgm, read_netpbm
+from mrm.io.npz_arrays import npz_bytes, npz_origin, read_npz_arrays
 from mrm.io.png_stream import read_png_mask
-from mrm.io.reading import open_regular
+from mrm.io.reading import describe_content, open_regular
 
 PathLike = str | os.PathLike[str]
 
@@ -119,29 +119,6 @@ def _check_size(width: int, height: int, limit: int, name: str) -> None:
         )
 
 
-def _describe_content(head: bytes) -> str:
-    """A hint of what a file that is not the expected format holds."""
-    if head.startswith(_PNG_SIGNATURE):
-        return "it is a PNG"
-    if head[:2] in (b"P1", b"P2", b"P3", b"P4", b"P5", b"P6"):
-        return "it looks like a Netpbm image"
-    if head.startswith(b"PK\x03\x04"):
-        return "it is a zip archive"
-    if head[:3] == b"\xff\xd8\xff":
-        return "it is a JPEG"
-    if head.startswith((b"GIF87a", b"GIF89a")):
-        return "it is a GIF"
-    if head.startswith((b"II*\x00", b"MM\x00*")):
-        return "it is a TIFF"
-    if not head:
-        return "the file is empty"
-    try:
-        head.decode("utf-8")
-    except UnicodeDecodeError:
-        return "its content is not recognised"
-    return "it is a text file"
-
-
 def _rows_to_pixels(rows: npt.NDArray[Any], origin: tuple[int, int], name: str) -> PixelSet:
     """Image rows (top first) → pixel set; image row r is y = y0 + H − 1 − r."""
     _check_extent(origin, rows.shape, name)
@@ -160,7 +137,7 @@ def _open_png(fh: BinaryIO, name: str, limit: int) -> tuple[Image.Image, tuple[i
     """Open and decode a PNG, refusing huge ones from the IHDR chunk before anything is decoded."""
     head = fh.read(24)
     if not head.startswith(_PNG_SIGNATURE):
-        raise FileFormatError(f"{name}: not a PNG image ({_describe_content(head)})")
+        raise FileFormatError(f"{name}: not a PNG image ({describe_content(head)})")
     if len(head) < 24 or head[12:16] != b"IHDR":
         raise FileFormatError(f"{name}: corrupt PNG: the header (IHDR) is missing or truncated")
     _check_size(int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big"), limit, name)
@@ -225,7 +202,7 @@ def _read_png_pixels(fh: BinaryIO, name: str, limit: int, threshold: float | Non
     """A PNG's pixel set, decoded by :mod:`mrm.io.png_stream` at one byte per pixel (ADR 0010)."""
     head = fh.read(29)
     if not head.startswith(_PNG_SIGNATURE):
-        raise FileFormatError(f"{name}: not a PNG image ({_describe_content(head)})")
+        raise FileFormatError(f"{name}: not a PNG image ({describe_content(head)})")
     if len(head) < 29 or head[12:16] != b"IHDR":
         raise FileFormatError(f"{name}: corrupt PNG: the header (IHDR) is missing or truncated")
     width, height = int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
@@ -260,112 +237,6 @@ def _png_bytes(im: Image.Image, origin: tuple[int, int]) -> bytes:
     info.add_text(ORIGIN_KEY, f"{origin[0]} {origin[1]}")
     buf = io.BytesIO()
     im.save(buf, format="PNG", pnginfo=info)
-    return buf.getvalue()
-
-
-# ---------------------------------------------------------------------------------------------- NPZ
-#: Per NPZ array: the dtype kinds accepted and the most bytes read (one byte per pixel for a mask; a label
-#: map's int32 labels are bounded by the label map limit).
-_NPZ_ROLES = {
-    "mask": ("b", 2, limits.MAX_OBJECT_PIXELS, "a 2-D boolean array"),
-    "labels": ("iu", 2, 4 * limits.MAX_LABEL_PIXELS, "a 2-D integer array"),
-    "origin": ("iu", 1, 64, "two integers (x0, y0)"),
-}
-
-
-def _read_npz_arrays(
-    fh: BinaryIO, name: str, keys: tuple[str, ...], limit: int, optional: tuple[str, ...] = ()
-) -> dict[str, npt.NDArray[Any]]:
-    """Read the named arrays of an .npz, checking each header before its data and never unpickling.
-
-    A key in ``optional`` that the archive does not hold is left out of the result instead of refused.
-    """
-    try:
-        zf = zipfile.ZipFile(fh)
-    except (zipfile.BadZipFile, OSError, ValueError, EOFError):
-        head = (fh.seek(0), fh.read(16))[1]
-        raise FileFormatError(f"{name}: not an NPZ archive ({_describe_content(head)})") from None
-    except Exception as e:  # NotImplementedError for a "zip file version 9.6", RuntimeError, …
-        raise FileFormatError(f"{name}: unreadable NPZ archive: {e}") from None
-    out: dict[str, npt.NDArray[Any]] = {}
-    with zf:
-        members = set(zf.namelist())
-        for key in keys:
-            member = f"{key}.npy"
-            if member not in members:
-                if key in optional:
-                    continue
-                found = ", ".join(sorted(m.removesuffix(".npy") for m in members)) or "nothing"
-                raise FileFormatError(f"{name}: the NPZ archive has no '{key}' array (it holds: {found})")
-            try:
-                with zf.open(member) as m:
-                    out[key] = _read_npy(m, f"{name}: '{key}'", limit, _NPZ_ROLES[key])
-            except FileFormatError:
-                raise
-            except MemoryError:
-                raise FileFormatError(f"{name}: not enough memory to read '{key}'") from None
-            except Exception as e:  # zipfile/zlib errors: bad CRC, truncated or corrupt compressed data
-                raise FileFormatError(f"{name}: corrupt NPZ member '{key}': {e}") from None
-    return out
-
-
-def _read_npy(
-    m: IO[bytes],
-    what: str,
-    limit: int,
-    role: tuple[str, int, int, str] = ("biu", 2, limits.MAX_OBJECT_PIXELS, "a 2-D array"),
-) -> npt.NDArray[Any]:
-    kinds, ndim, max_bytes, desc = role
-    fmt = np.lib.format
-    try:
-        version = fmt.read_magic(m)
-        if version == (1, 0):
-            shape, fortran, dtype = fmt.read_array_header_1_0(m)
-        elif version == (2, 0):
-            shape, fortran, dtype = fmt.read_array_header_2_0(m)
-        else:
-            raise FileFormatError(f"{what}: unsupported .npy format version {version}")
-    except FileFormatError:
-        raise
-    except Exception as e:
-        raise FileFormatError(f"{what}: malformed .npy header ({e})") from None
-    if dtype.hasobject:
-        raise FileFormatError(f"{what} holds Python objects (pickled data), which are never loaded")
-    # The dtype and every dimension are checked before anything is read: (-1, 1000) must not pass as a
-    # small array (reading a negative byte count would decompress the whole member).
-    if not isinstance(shape, tuple) or any(
-        not isinstance(d, int) or isinstance(d, bool) or d < 0 for d in shape
-    ):
-        raise FileFormatError(f"{what} has the invalid shape {shape!r:.80}")
-    if dtype.kind not in kinds or dtype.itemsize > 8 or len(shape) != ndim:
-        raise FileFormatError(f"{what} must be {desc}, found dtype {dtype} and shape {shape!r:.80}")
-    count = int(np.prod(shape, dtype=object)) if shape else 1
-    if count > limit:
-        raise FileFormatError(f"{what} has {count:,} elements, more than the limit of {limit:,}")
-    nbytes = count * dtype.itemsize
-    if nbytes > max_bytes:
-        raise FileFormatError(
-            f"{what} holds {nbytes:,} bytes ({count:,} × {dtype}), more than the {max_bytes:,} accepted"
-        )
-    data = m.read(nbytes)
-    if len(data) < nbytes:
-        raise FileFormatError(f"{what} is truncated: {nbytes:,} bytes expected, {len(data):,} found")
-    if m.read(1):
-        raise FileFormatError(f"{what} has unexpected data after the array")
-    return np.frombuffer(data, dtype=dtype).reshape(shape, order="F" if fortran else "C")
-
-
-def _npz_origin(a: npt.NDArray[Any], name: str) -> tuple[int, int]:
-    if a.shape != (2,) or a.dtype.kind not in "iu":
-        raise FileFormatError(
-            f"{name}: 'origin' must be two integers (x0, y0), found dtype {a.dtype} and shape {a.shape}"
-        )
-    return int(a[0]), int(a[1])
-
-
-def _npz_bytes(**arrays: npt.NDArray[Any]) -> bytes:
-    buf = io.BytesIO()
-    np.savez_compressed(buf, allow_pickle=False, **arrays)
     return buf.getvalue()
 
 
@@ -422,13 +293,14 @@ def read_pixels(
                 grey = grey_of(img.samples) if img.samples.ndim == 3 else img.samples
                 rows = binarize(grey, threshold)
             return _rows_to_pixels(rows, origin, name)
-        arrays = _read_npz_arrays(fh, name, ("mask", "origin"), limit)
+        arrays = read_npz_arrays(fh, name, ("mask", "origin"), limit, ndim=2)
     mask, origin_arr = arrays["mask"], arrays["origin"]
     if mask.ndim != 2 or mask.dtype != np.bool_:
         raise FileFormatError(
             f"{name}: 'mask' must be a 2-D boolean array, found dtype {mask.dtype} and shape {mask.shape}"
         )
-    origin = _npz_origin(origin_arr, name)
+    x0, y0 = npz_origin(origin_arr, name, 2)
+    origin = (x0, y0)
     _check_extent(origin, mask.shape, name)
     return PixelSet(mask, origin)
 
@@ -462,7 +334,7 @@ def write_pixels(ps: PixelSet, path: PathLike) -> None:
         write_pixels_tif(ps, path)
         return
     if ext == ".npz":
-        data = _npz_bytes(mask=np.asarray(ps.mask), origin=np.array(ps.origin, dtype=np.int64))
+        data = npz_bytes(mask=np.asarray(ps.mask), origin=np.array(ps.origin, dtype=np.int64))
     else:
         rows, origin = _pixels_to_rows(ps)
         if ext == ".png":
@@ -507,14 +379,15 @@ def read_label_map(path: PathLike, *, limit: int = limits.MAX_LABEL_PIXELS) -> L
                 rows = rows.astype(np.uint8)
             labels = rows[::-1]
         else:
-            arrays = _read_npz_arrays(fh, name, ("labels", "origin"), limit, optional=("origin",))
+            arrays = read_npz_arrays(fh, name, ("labels", "origin"), limit, ndim=2, optional=("origin",))
             labels = arrays["labels"]
             if labels.ndim != 2 or labels.dtype.kind not in "iu":
                 raise FileFormatError(
                     f"{name}: 'labels' must be a 2-D integer array, found dtype {labels.dtype} "
                     f"and shape {labels.shape}"
                 )
-            origin = _npz_origin(arrays["origin"], name) if "origin" in arrays else (0, 0)
+            x0, y0 = npz_origin(arrays["origin"], name, 2) if "origin" in arrays else (0, 0)
+            origin = (x0, y0)
     _check_extent(origin, labels.shape, name)
     try:
         return LabelMap(labels, origin)
@@ -534,7 +407,7 @@ def write_label_map(lm: LabelMap, path: PathLike) -> None:
     """
     ext = _extension(path, LABEL_EXTENSIONS, "label map")
     if ext == ".npz":
-        data = _npz_bytes(labels=np.asarray(lm.labels), origin=np.array(lm.origin, dtype=np.int64))
+        data = npz_bytes(labels=np.asarray(lm.labels), origin=np.array(lm.origin, dtype=np.int64))
     else:
         if lm.shape[0] == 0:
             rows: npt.NDArray[Any] = np.zeros((1, 1), dtype=np.uint8)

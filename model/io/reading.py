@@ -74,4 +74,27 @@ def read_regular(path: PathLike, max_bytes: int, what: str, name: str | None = N
     return data
 
 
-__all__ = ["open_regular", "read_regular"]
+def describe_content(head: bytes) -> str:
+    """A hint of what a file that is not the expected format holds."""
+    if head.startswith(b"\x89PNG\r\n\x1a\n"):
+        return "it is a PNG"
+    if head[:2] in (b"P1", b"P2", b"P3", b"P4", b"P5", b"P6"):
+        return "it looks like a Netpbm image"
+    if head.startswith(b"PK\x03\x04"):
+        return "it is a zip archive"
+    if head[:3] == b"\xff\xd8\xff":
+        return "it is a JPEG"
+    if head.startswith((b"GIF87a", b"GIF89a")):
+        return "it is a GIF"
+    if head.startswith((b"II*\x00", b"MM\x00*")):
+        return "it is a TIFF"
+    if not head:
+        return "the file is empty"
+    try:
+        head.decode("utf-8")
+    except UnicodeDecodeError:
+        return "its content is not recognised"
+    return "it is a text file"
+
+
+__all__ = ["describe_content", "open_regular", "read_regular"]
