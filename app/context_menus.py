@@ -130,7 +130,7 @@ class ContextMenus(QtCore.QObject):
         derived; the Fill Hole command decides.
         """
         doc, scene = self.win.doc, self.win.scene
-        for obj in [scene.primary(), *reversed(doc.objects)]:
+        for obj in [scene.primary(), *reversed(doc.plane_objects)]:
             if obj is None or not obj.style.visible or obj.kind == "labels":  # its "region" is its cells
                 continue
             entry = scene.entry(obj.id)

@@ -54,21 +54,8 @@ BIG_FILE = 4_000_000
 
 
 def document_weight(doc: Any) -> int:
-    """A cheap size estimate of a document's file: pixels of pixel sources plus coordinates of polygons."""
-    import shapely
-
-    from mrm.core.grids import LabelMap, PixelSet
-
-    total = 0
-    for o in doc.objects:
-        src = o.source
-        if isinstance(src, PixelSet):
-            total += src.mask.size // 4
-        elif isinstance(src, LabelMap):
-            total += src.labels.size  # zlib of int32 labels: about a byte a pixel or less
-        else:
-            total += 40 * int(shapely.get_num_coordinates(src))
-    return total
+    """A cheap size estimate of a document's file, in bytes: the objects' own upper bounds (limits.py)."""
+    return sum(o.file_bytes for o in doc.objects)
 
 
 def is_bundled(path: str | os.PathLike[str]) -> bool:

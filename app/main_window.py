@@ -499,7 +499,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.doc.set_selection([ids[k % len(ids)]])
 
     def fit_all(self) -> None:
-        self._fit([o for o in self.doc.objects if o.style.visible])
+        self._fit([o for o in self.doc.plane_objects if o.style.visible])
 
     def fit_selection(self) -> None:
         """Zoom to the selected objects (all of them)."""

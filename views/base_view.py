@@ -254,7 +254,7 @@ class RepresentationView(QtWidgets.QFrame):
             self.status_label.setToolTip("")
         from mrm.views.label_maps import LABEL_LEGEND
 
-        maps = any(o.kind == "labels" and o.style.visible for o in self.scene.doc.objects)
+        maps = any(o.kind == "labels" and o.style.visible for o in self.scene.doc.plane_objects)
         extra = LABEL_LEGEND.get(self.name) if maps else None
         self.legend_label.setText(f"{self.legend}<br>{extra}" if extra else self.legend)
         self.legend_label.setVisible(bool(self.legend_label.text()))

@@ -42,7 +42,7 @@ class FillHoleTool(_ClickPixelTool):
 
     def click(self, px: tuple[int, int]) -> None:
         doc = self.scene.doc
-        cands = [o for o in ([self.scene.primary(), *list(reversed(doc.objects))]) if o is not None]
+        cands = [o for o in ([self.scene.primary(), *list(reversed(doc.plane_objects))]) if o is not None]
         tried: set[int] = set()  # the selected object first, then top to bottom, each once
         for obj in cands:
             if obj.id in tried:

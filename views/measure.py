@@ -289,7 +289,7 @@ class MeasurePanel(QtWidgets.QWidget):
             current = cb.currentData()
             cb.blockSignals(True)
             cb.clear()
-            for o in reversed(doc.objects):
+            for o in reversed(doc.plane_objects):
                 cb.addItem(o.name, o.id)
             want = current if current in doc else (sel[k] if k < len(sel) else None)
             i = cb.findData(want)

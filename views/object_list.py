@@ -23,6 +23,14 @@ COL_VISIBLE, COL_COLOUR, COL_NAME, COL_SOURCE = range(4)
 HEADERS = ("", "", "Name", "Source")
 
 SOURCE_TEXT = {"euclidean": "polygon", "discrete": "pixels", "labels": "label map"}
+#: The same for 3D objects (docs/design.md §11), which the plane views do not draw.
+SOURCE_TEXT_3D = {"discrete": "voxels (3D)", "labels": "label volume (3D)"}
+
+
+def source_text(o: DocObject) -> str:
+    """What an object's source is, as the object list and the Properties panel say it."""
+    return SOURCE_TEXT_3D[o.kind] if o.dimension == 3 else SOURCE_TEXT[o.kind]
+
 
 #: How the Source column names the operation that made an object (its parameters follow).
 OPERATION_TEXT = {
@@ -109,7 +117,7 @@ class ObjectListModel(QtCore.QAbstractTableModel):
         if c == COL_NAME and role in (R.DisplayRole, R.EditRole):
             return o.name
         if c == COL_SOURCE and role == R.DisplayRole:
-            text = SOURCE_TEXT[o.kind]
+            text = source_text(o)
             return f"{text} · {provenance_text(o.provenance)}" if o.provenance is not None else text
         if role == R.ToolTipRole:
             rep = {"euclidean": "Euclidean (polygons)", "labels": "label map (labels)"}.get(

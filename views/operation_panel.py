@@ -507,7 +507,7 @@ class OperationPanel(QtWidgets.QWidget):
             current = cb.currentData()
             cb.blockSignals(True)
             cb.clear()
-            for o in reversed(doc.objects):
+            for o in reversed(doc.plane_objects):
                 if o.kind != "labels":
                     cb.addItem(o.name, o.id)
             want = sel[k] if k < len(sel) else current

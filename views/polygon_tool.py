@@ -164,7 +164,7 @@ class PolygonTool(Tool):
     def _add_hole(self, ring: np.ndarray) -> None:
         doc = self.scene.doc
         hole = shapely.Polygon(ring)
-        candidates = [self.scene.primary(), *list(reversed(doc.objects))]
+        candidates = [self.scene.primary(), *list(reversed(doc.plane_objects))]
         for obj in candidates:
             if obj is None or not obj.style.visible or obj.kind == "labels":  # a subdivision: no holes drawn
                 continue

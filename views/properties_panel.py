@@ -343,9 +343,9 @@ class PropertiesPanel(QtWidgets.QWidget):
             pm.fill(QtGui.QColor(fill))
             self.colour_button.setIcon(QtGui.QIcon(pm))
             self.opacity.setValue(round(obj.style.opacity * 100))
-            from mrm.views.object_list import SOURCE_TEXT, provenance_text
+            from mrm.views.object_list import provenance_text, source_text
 
-            src = SOURCE_TEXT[obj.kind]
+            src = source_text(obj)
             self.source_label.setText(
                 f"{src} · {provenance_text(obj.provenance)}" if obj.provenance is not None else src
             )

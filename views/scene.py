@@ -143,8 +143,8 @@ class Scene(QtCore.QObject):
         self.documentChanged.emit(changes)
 
     def objects(self) -> tuple[DocObject | Phantom, ...]:
-        """What the views draw, bottom first: the document's objects, then the previewed results."""
-        return (*self.doc.objects, *(p for p, _ in self._phantoms.values()))
+        """What the views draw, bottom first: the document's plane objects, then the previewed results."""
+        return (*self.doc.plane_objects, *(p for p, _ in self._phantoms.values()))
 
     def has(self, obj_id: int) -> bool:
         return obj_id in self.doc or obj_id in self._phantoms
@@ -164,9 +164,10 @@ class Scene(QtCore.QObject):
         return [p for p, _ in self._phantoms.values()]
 
     def primary(self) -> DocObject | None:
-        """The selected object shown in detail (first of the selection)."""
+        """The selected object shown in detail (first of the selection), if the plane views show it."""
         sel = self.doc.selection
-        return self.doc.get(sel[0]) if sel and sel[0] in self.doc else None
+        obj = self.doc.get(sel[0]) if sel and sel[0] in self.doc else None
+        return obj if obj is not None and obj.dimension == 2 else None
 
     # ------------------------------------------------------------------ previews
     def set_preview(self, obj_id: int, source: Source | None) -> None:

@@ -129,7 +129,7 @@ class SelectTool(Tool):
         x0, y0, x1, y1 = corners
         box = (min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
         doc = self.scene.doc
-        hit = [o.id for o in doc.objects if o.style.visible and touches(o, box)]
+        hit = [o.id for o in doc.plane_objects if o.style.visible and touches(o, box)]
         if add:
             doc.set_selection([*doc.selection, *hit])
         else:

@@ -74,7 +74,7 @@ class ObjectSnapper:
             return
         targets: list[tuple[int, shapely.Geometry]] = []
         complete = True
-        for o in doc.objects:
+        for o in doc.plane_objects:
             if not o.style.visible:
                 continue
             rep = doc.derived(o.id).peek("euclidean")  # never computed here: only what is ready

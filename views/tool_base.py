@@ -220,7 +220,7 @@ class Tool:
     def object_at(self, x: float, y: float) -> DocObject | None:
         """The topmost visible object whose discrete representation holds the pixel under (x, y)."""
         px = ge.pixel_at(x, y)
-        for obj in reversed(self.scene.doc.objects):
+        for obj in reversed(self.scene.doc.plane_objects):
             if not obj.style.visible:
                 continue
             ps = self.scene.get(obj.id, "discrete")

@@ -24,11 +24,11 @@ from mrm.core.errors import LimitError, ParameterError, SizeLimitError
 #: Default maximum number of pixels of a discretization or an operation's result (a preference in the GUI,
 #: ``--limit`` on the command line, ``limit=`` in the library).
 DEFAULT_PIXEL_LIMIT = 200_000_000
-#: Default maximum number of voxels of a voxelization or a 3D operation's result, and of the bounding box
-#: of one voxel object (a 1024³ box: 1 GiB of mask).
-DEFAULT_VOXEL_LIMIT = 1 << 30
-#: Voxels in the bounding boxes of all the voxel objects of one document together.
-MAX_FILE_VOXELS = 1 << 31
+#: Default maximum number of voxels of a voxelization or a 3D operation's result (a preference, ``--limit``,
+#: ``limit=``), and of the bounding box of one voxel object: 2²⁹ (an 812³ box, 512 MB of mask).
+DEFAULT_VOXEL_LIMIT = 1 << 29
+#: Voxels in the bounding box of one voxel source.
+MAX_OBJECT_VOXELS = DEFAULT_VOXEL_LIMIT
 #: Triangles of one polyhedron (a mesh read, a reconstruction's result): about 100 bytes each in memory.
 MAX_OBJECT_TRIANGLES = 20_000_000
 #: Surfels (boundary squares between a voxel of the set and one outside) of a voxel set that may be
@@ -43,8 +43,8 @@ COORDINATE_LIMIT = float(2**31)
 PIXEL_COORDINATE_LIMIT = 2**31
 #: Pixels in the bounding box of one discrete source.
 MAX_OBJECT_PIXELS = DEFAULT_PIXEL_LIMIT
-#: Pixels in the bounding boxes of all the discrete sources of one document (one file) together: about
-#: 1 GB of masks at most, whatever a file claims.
+#: Pixels and voxels in the bounding boxes of all the grid sources (pixel and voxel sets, label maps and
+#: volumes) of one document (one file) together: about 1 GB of masks at most, whatever a file claims.
 MAX_FILE_PIXELS = 1_000_000_000
 #: Vertices (coordinates, closing points included) of one Euclidean source.
 MAX_OBJECT_VERTICES = 5_000_000
@@ -152,27 +152,41 @@ def clean_json(value: Any) -> Any:
 
 
 # ---------------------------------------------------------------------------------------------- pixels
-def check_pixel_extent(origin: tuple[int, int], shape: tuple[int, ...], what: str = "the pixel set") -> None:
-    """Refuse a box of pixels (origin (x0, y0), shape (rows, cols)) beyond the pixel limits.
+def check_pixel_extent(
+    origin: tuple[int, ...], shape: tuple[int, ...], what: str = "the pixel set", *, limit: int | None = None
+) -> None:
+    """Refuse a box of pixels or voxels (origin in coordinate order, shape in array order) beyond the limits.
+
+    Two coordinates are pixels, three are voxels; ``limit`` replaces the per-object size limit
+    (:data:`MAX_OBJECT_PIXELS` or :data:`MAX_OBJECT_VOXELS`).
 
     Raises
     ------
     LimitError
-        When a pixel of the box has a coordinate beyond ±:data:`PIXEL_COORDINATE_LIMIT`.
+        When a point of the box has a coordinate beyond ±:data:`PIXEL_COORDINATE_LIMIT`.
     SizeLimitError
-        When the box holds more than :data:`MAX_OBJECT_PIXELS` pixels.
+        When the box holds more points than the limit.
     """
-    h, w = int(shape[0]), int(shape[1])
-    if h == 0 or w == 0:
+    n = len(origin)
+    size = [int(shape[n - 1 - d]) for d in range(n)]  # coordinate order
+    if 0 in size:
         return
-    x0, y0 = int(origin[0]), int(origin[1])
+    o = [int(v) for v in origin]
     lim = PIXEL_COORDINATE_LIMIT
-    if min(x0, y0) < -lim or max(x0 + w - 1, y0 + h - 1) > lim:
+    unit = "pixel" if n == 2 else "voxel"
+    if min(o) < -lim or max(o[d] + size[d] - 1 for d in range(n)) > lim:
+        start = ", ".join(str(v) for v in o)
+        dims = " × ".join(str(v) for v in size)
         raise LimitError(
-            f"{what} would reach pixel coordinates beyond ±2^31 (its box starts at ({x0}, {y0}) and is "
-            f"{w} × {h}); move it closer to the origin or reduce the scale"
+            f"{what} would reach {unit} coordinates beyond ±2^31 (its box starts at ({start}) and is "
+            f"{dims}); move it closer to the origin or reduce the scale"
         )
-    check_pixels(h * w, MAX_OBJECT_PIXELS, what)
+    count = 1
+    for v in size:
+        count *= v
+    if limit is None:
+        limit = MAX_OBJECT_PIXELS if n == 2 else MAX_OBJECT_VOXELS
+    check_pixels(count, limit, what, unit=f"{unit}s")
 
 
 def crack_steps(mask: npt.NDArray[np.bool_], *, rows_per_strip: int = 1024) -> int:

@@ -23,7 +23,7 @@ import dataclasses
 from collections.abc import Sequence
 
 from mrm.core.errors import NotApplicableError, ParameterError
-from mrm.core.grids import LabelMap, PixelSet, joint_box
+from mrm.core.grids import GridSet, LabelGrid, LabelMap, PixelSet, joint_box
 from mrm.core.limits import check_name, check_pixel_extent
 from mrm.core.models import Model
 from mrm.document.document import Document
@@ -35,9 +35,9 @@ from mrm.ops.provenance import Provenance
 
 def source_nbytes(source: Source) -> int:
     """Approximate memory of a source value."""
-    if isinstance(source, PixelSet):
+    if isinstance(source, GridSet):
         return int(source.mask.nbytes) + 64
-    if isinstance(source, LabelMap):
+    if isinstance(source, LabelGrid):
         return int(source.labels.nbytes) + 64
     import shapely
 
@@ -48,7 +48,7 @@ def same_source(a: Source, b: Source) -> bool:
     """True when two sources are identical bit for bit (unlike ``==``, this tells 0.0 from -0.0)."""
     if a is b:
         return True
-    if isinstance(a, PixelSet | LabelMap) or isinstance(b, PixelSet | LabelMap):
+    if isinstance(a, GridSet | LabelGrid) or isinstance(b, GridSet | LabelGrid):
         return type(a) is type(b) and a == b
     import shapely
 
@@ -68,7 +68,11 @@ def check_union_box(boxes: Sequence[tuple[int, int, int, int] | None], what: str
 
 
 def refuse_label_map(obj: DocObject, what: str) -> None:
-    """Refuse a pixel or polygon edit on a label map, saying what to do instead (ADR 0033)."""
+    """Refuse a pixel or polygon edit on a label map or a 3D object, saying what to do instead (ADR 0033)."""
+    if obj.dimension == 3:
+        raise NotApplicableError(
+            f"{obj.name!r} is a 3D object: {what} apply to pixel and polygon objects (docs/design.md §11)"
+        )
     if isinstance(obj.source, LabelMap):
         raise NotApplicableError(
             f"{obj.name!r} is a label map: {what} apply to pixel and polygon objects; Edit ▸ Split into "

@@ -14,8 +14,9 @@ from collections.abc import Iterable
 from typing import Any, Literal
 
 from mrm.core.errors import MRMError, NotApplicableError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import GridSet, LabelGrid, PixelSet
 from mrm.core.models import Model
+from mrm.document.objects import source_dimension, source_kind
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.geometry.reconstruct.subdivision import subdivide
@@ -74,13 +75,9 @@ class Derived:
     def __init__(self, source: Any, model: Model | str) -> None:
         self.source = source
         self.model = Model.parse(model)
-        self.kind: Literal["discrete", "euclidean", "labels"] = (
-            "discrete"
-            if isinstance(source, PixelSet)
-            else "labels"
-            if isinstance(source, LabelMap)
-            else "euclidean"
-        )
+        self.kind: Literal["discrete", "euclidean", "labels"] = source_kind(source)
+        #: 2 for plane objects, 3 for voxel sets and label volumes (docs/design.md §11).
+        self.dimension = source_dimension(source)
         self._values: dict[str, Any] = {"discrete" if self.kind == "labels" else self.kind: source}
         self._errors: dict[str, MRMError] = {}
         self._locks = {r: threading.Lock() for r in REPS}
@@ -113,6 +110,8 @@ class Derived:
             return value
 
     def _compute(self, what: Rep) -> Any:
+        if self.dimension == 3:
+            return self._compute_3d(what)
         if self.kind == "labels":
             if what == "region":
                 return cells_of(self.source)
@@ -132,13 +131,17 @@ class Derived:
             return region_from_pixels(self.get("discrete"))
         return analytical_of(self.get("region"))
 
+    def _compute_3d(self, what: Rep) -> Any:
+        """The representations of a voxel set or label volume (docs/design.md §11)."""
+        raise NotApplicableError(f"the {what} representation of a 3D object is not available yet")
+
     def estimated_cost(self, what: Rep) -> float:
         """A rough cost of computing ``what`` now, in pixels touched (0 when ready)."""
         if self.is_ready(what):
             return 0.0
         disc = self.peek("discrete")
         if disc is not None:
-            area = float(disc.shape[0] * disc.shape[1])
+            area = float(disc.mask.size if isinstance(disc, GridSet) else disc.labels.size)
         else:
             xmin, ymin, xmax, ymax = self.source.bounds if not self.source.is_empty else (0, 0, 0, 0)
             area = (xmax - xmin + 2.0) * (ymax - ymin + 2.0)
@@ -156,9 +159,9 @@ class Derived:
         total = 0
         values = dict(self._values)  # a snapshot: a worker may be adding a value
         for v in values.values():
-            if isinstance(v, PixelSet):
+            if isinstance(v, GridSet):
                 total += int(v.mask.nbytes)
-            elif isinstance(v, LabelMap):
+            elif isinstance(v, LabelGrid):
                 total += int(v.labels.nbytes)
             else:
                 total += 4096

@@ -129,6 +129,15 @@ class Document:
         return tuple(self._objects)
 
     @property
+    def plane_objects(self) -> tuple[DocObject, ...]:
+        """The 2D objects in order (pixels, polygons, label maps): what the plane views draw and pick.
+
+        Voxel sets and label volumes (docs/design.md §11) are kept, saved and listed like any object; the
+        plane views leave them out.
+        """
+        return tuple(o for o in self._objects if o.dimension == 2)
+
+    @property
     def ids(self) -> tuple[int, ...]:
         """The object ids in order."""
         return tuple(o.id for o in self._objects)

@@ -21,15 +21,16 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.core import limits
 from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.core.georef import GeoRef
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import GridSet, LabelGrid, LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import COORDINATE_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
 from mrm.ops.provenance import Provenance
 
 #: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
 Geometry: TypeAlias = Polygon | MultiPolygon
-#: What an object's source can be: pixels, polygons, or a label map (ADR 0033).
-Source: TypeAlias = PixelSet | Polygon | MultiPolygon | LabelMap
+#: What an object's source can be: pixels, polygons, or a label map (ADR 0033); voxels or a label volume in 3D
+#: (docs/design.md §11).
+Source: TypeAlias = PixelSet | Polygon | MultiPolygon | LabelMap | VoxelSet | LabelVolume
 SourceKind = Literal["euclidean", "discrete", "labels"]
 
 _COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?$")
@@ -78,14 +79,15 @@ def validate_geometry(geom: object) -> Geometry:
 
 def _source_cost(source: Source) -> tuple[int, int]:
     """(pixels of the mask box, bytes in a file) of a source; refuses one beyond the per-object limits."""
-    if isinstance(source, PixelSet):
-        limits.check_pixel_extent(source.origin, source.shape, "the pixel object")
-        n = source.shape[0] * source.shape[1]
+    if isinstance(source, GridSet):
+        limits.check_pixel_extent(source.origin, source.shape, f"the {source.unit} object")
+        n = int(source.mask.size)
         return n, limits.source_file_bytes("discrete", pixels=n)
-    if isinstance(source, LabelMap):
-        limits.check_pixel_extent(source.origin, source.shape, "the label map")
-        n = source.shape[0] * source.shape[1]
-        limits.check_pixels(n, limits.MAX_LABEL_PIXELS, "the label map")
+    if isinstance(source, LabelGrid):
+        flat = source.set_type.ndim == 2
+        label_limit = limits.MAX_LABEL_PIXELS if flat else limits.MAX_LABEL_VOXELS
+        limits.check_pixel_extent(source.origin, source.shape, f"the {source.what}", limit=label_limit)
+        n = int(source.labels.size)
         return n, limits.source_file_bytes("labels", pixels=n)
     n = int(shapely.get_num_coordinates(source))
     limits.check_vertices(n, "the polygon object")
@@ -95,15 +97,24 @@ def _source_cost(source: Source) -> tuple[int, int]:
 
 
 def source_kind(source: Source) -> SourceKind:
-    """'discrete' for a pixel set, 'euclidean' for a geometry, 'labels' for a label map."""
-    if isinstance(source, PixelSet):
+    """'discrete' for a pixel or voxel set, 'euclidean' for a geometry, 'labels' for a label map or volume."""
+    if isinstance(source, GridSet):
         return "discrete"
-    return "labels" if isinstance(source, LabelMap) else "euclidean"
+    return "labels" if isinstance(source, LabelGrid) else "euclidean"
+
+
+def source_dimension(source: Source) -> int:
+    """2 for pixels, label maps and polygons; 3 for voxels and label volumes."""
+    if isinstance(source, GridSet):
+        return source.ndim
+    if isinstance(source, LabelGrid):
+        return source.set_type.ndim
+    return 2
 
 
 def validate_source(source: object) -> Source:
     """Return ``source`` checked: a pixel set, a label map, or a geometry :func:`validate_geometry` takes."""
-    if isinstance(source, PixelSet | LabelMap):
+    if isinstance(source, PixelSet | LabelMap | VoxelSet | LabelVolume):
         return source
     return validate_geometry(source)
 
@@ -223,6 +234,11 @@ class DocObject:
     def file_bytes(self) -> int:
         """Upper bound of the bytes this object takes in a project file."""
         return int(self.__dict__["_file_bytes"])
+
+    @property
+    def dimension(self) -> int:
+        """2 for a plane object, 3 for a voxel set or label volume (docs/design.md §11)."""
+        return source_dimension(self.source)
 
     @property
     def kind(self) -> SourceKind:

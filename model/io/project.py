@@ -1,10 +1,10 @@
 """Project files (``*.mrm``): one versioned JSON document, validated on load, written atomically.
 
-Schema version 4::
+Schema version 5::
 
     {
      "format": "mrm-project",
-     "schema_version": 4,
+     "schema_version": 5,
      "generator": "MR Modeler 0.1.0",                      (optional, informative)
      "settings": {"model": "standard"},
      "selection": [2],                                      (optional; ids of selected objects)
@@ -23,7 +23,9 @@ Schema version 4::
                                 "width": 64, "height": 48, "crs": "EPSG:32633", "origin": [0, 0]},
        "source": {"kind": "discrete", ...}},
       {"id": 4, ..., "source": {"kind": "labels", "origin": [0, 0], "shape": [480, 640],
-                                "labels": "<base64 of zlib of int32 little-endian>"}}
+                                "labels": "<base64 of zlib of int32 little-endian>"}},
+      {"id": 5, ..., "source": {"kind": "discrete", "origin": [-4, -4, -4], "shape": [9, 9, 9],
+                                "bits": "<base64>"}}
      ]
     }
 
@@ -41,6 +43,9 @@ Schema version 4::
   bit order) in base64, with its origin and shape: compact, and valid JSON.
 * A label map (``kind: "labels"``, schema 4, ADR 0033) is its canonical (cropped) int32 label array,
   row-major (row 0 = lowest y), little-endian, zlib-compressed, in base64, with its origin and shape.
+* A voxel set or label volume (schema 5, docs/design.md §11) is stored as a pixel set or label map is, with
+  three origin coordinates [x0, y0, z0] and the shape [nz, ny, nx] of its ``mask[k, j, i]``: the number of
+  origin coordinates is the dimension.
 * A Euclidean source is GeoJSON-like: Polygon or MultiPolygon coordinates, rings closed, float coordinates
   written with ``repr`` so that every float64 comes back bit for bit. Integers (ids, origins, shapes) stay
   integers.
@@ -68,7 +73,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core import limits
 from mrm.core.errors import FileFormatError as FileFormatError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import GridSet, LabelGrid
 from mrm.core.models import Model
 from mrm.document import DocObject, Document, Geometry, Settings, Source, Style
 from mrm.io.atomic import atomic_write_bytes
@@ -79,7 +84,7 @@ from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance, content_digest
 #: The value of the "format" key.
 FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
-SCHEMA_VERSION = 4
+SCHEMA_VERSION = 5
 # The other limits are those of the document (mrm.core.limits, ADR 0010), so that the loader accepts every
 # file the saver can write: the document refuses the edit that would exceed them. The loader reads them from
 # mrm.core.limits when it runs.
@@ -126,6 +131,12 @@ MIGRATIONS: tuple[Migration, ...] = (
         "file has none, so it reads unchanged",
         lambda data: {**data, "schema_version": 4},
     ),
+    Migration(
+        4,
+        "a discrete source or label map may be a voxel set or label volume (origin [x0, y0, z0], shape "
+        "[nz, ny, nx]); a version 4 file has none, so it reads unchanged",
+        lambda data: {**data, "schema_version": 5},
+    ),
 )
 
 
@@ -150,24 +161,22 @@ class Project:
 
 
 # ============================================================================================== writing
-def _encode_pixels(ps: PixelSet) -> dict[str, Any]:
-    h, w = ps.shape
+def _encode_pixels(ps: GridSet[Any, Any]) -> dict[str, Any]:
     bits = np.packbits(ps.mask, axis=None).tobytes() if ps.count else b""
     return {
         "kind": "discrete",
-        "origin": [int(ps.origin[0]), int(ps.origin[1])],
-        "shape": [h, w],
+        "origin": [int(v) for v in ps.origin],
+        "shape": [int(v) for v in ps.shape],
         "bits": base64.b64encode(bits).decode("ascii"),
     }
 
 
-def _encode_labels(lm: LabelMap) -> dict[str, Any]:
-    h, w = lm.shape
+def _encode_labels(lm: LabelGrid[Any, Any, Any]) -> dict[str, Any]:
     raw = zlib.compress(lm.labels.astype("<i4", copy=False).tobytes(), 6) if lm.labels.size else b""
     return {
         "kind": "labels",
-        "origin": [int(lm.origin[0]), int(lm.origin[1])],
-        "shape": [h, w],
+        "origin": [int(v) for v in lm.origin],
+        "shape": [int(v) for v in lm.shape],
         "labels": base64.b64encode(raw).decode("ascii"),
     }
 
@@ -190,9 +199,9 @@ def _encode_geometry(geom: Geometry) -> dict[str, Any]:
 
 
 def _encode_source(source: Source) -> dict[str, Any]:
-    if isinstance(source, PixelSet):
+    if isinstance(source, GridSet):
         return _encode_pixels(source)
-    if isinstance(source, LabelMap):
+    if isinstance(source, LabelGrid):
         return _encode_labels(source)
     return {"kind": "euclidean", "geometry": _encode_geometry(source)}
 

@@ -24,7 +24,7 @@ from mrm.core import limits
 from mrm.core.errors import FileFormatError as FileFormatError
 from mrm.core.errors import MRMError
 from mrm.core.georef import GeoRef
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import COORDINATE_LIMIT, PARAMS_MAX_DEPTH
 from mrm.document import DocObject, Geometry, Source, Style, validate_geometry
 from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance
@@ -33,6 +33,11 @@ from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance
 MAX_CRS_CHARS = 100_000
 
 __all__ = ["Checker", "decode_object", "decode_source"]
+
+
+#: The most points of one grid source, by dimension (pixels, voxels), for masks and for label grids.
+_MASK_LIMITS = {2: limits.MAX_OBJECT_PIXELS, 3: limits.MAX_OBJECT_VOXELS}
+_LABEL_LIMITS = {2: limits.MAX_LABEL_PIXELS, 3: limits.MAX_LABEL_VOXELS}
 
 
 class Checker:
@@ -130,45 +135,58 @@ class Checker:
 
 
 def _decode_box(
-    c: Checker, src: dict[str, Any], path: str, limit: int, what: str = "mask"
-) -> tuple[int, int, int, int]:
-    """(x0, y0, rows, cols) of a discrete source or label map, within the coordinate and size limits."""
+    c: Checker, src: dict[str, Any], path: str, limits_by_dim: dict[int, int], what: str = "mask"
+) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """(origin, shape) of a grid source: two origin coordinates for pixels, three for voxels (schema 5).
+
+    The shape is in array order ([rows, cols] or [nz, ny, nx]); both stay within the coordinate and size
+    limits (``limits_by_dim`` gives the most points per dimension) and the file's total.
+    """
     origin = c.list_(src["origin"], f"{path}.origin")
-    if len(origin) != 2:
-        c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
+    if len(origin) not in (2, 3):
+        c.fail(f"{path}.origin", f"expected [x0, y0] or [x0, y0, z0], got {c.show(origin)}")
+    n = len(origin)
     lim = limits.PIXEL_COORDINATE_LIMIT
-    x0 = c.int_(origin[0], f"{path}.origin[0]", -lim, lim)
-    y0 = c.int_(origin[1], f"{path}.origin[1]", -lim, lim)
+    o = tuple(c.int_(origin[d], f"{path}.origin[{d}]", -lim, lim) for d in range(n))
     shape = c.list_(src["shape"], f"{path}.shape")
-    if len(shape) != 2:
-        c.fail(f"{path}.shape", f"expected [rows, cols], got {c.show(shape)}")
-    h = c.int_(shape[0], f"{path}.shape[0]", 0, lim)
-    w = c.int_(shape[1], f"{path}.shape[1]", 0, lim)
-    if h and w and max(x0 + w - 1, y0 + h - 1) > lim:
-        c.fail(f"{path}.shape", f"the mask reaches pixel coordinates beyond ±{lim:,}")
-    if h * w > limit:
-        c.fail(f"{path}.shape", f"a {h} x {w} {what} holds more than the limit of {limit:,} pixels")
-    c.mask_pixels += h * w
+    if len(shape) != n:
+        expected = "[rows, cols]" if n == 2 else "[nz, ny, nx]"
+        c.fail(f"{path}.shape", f"expected {expected} for a {n}-coordinate origin, got {c.show(shape)}")
+    sh = tuple(c.int_(shape[a], f"{path}.shape[{a}]", 0, lim) for a in range(n))
+    unit = "pixels" if n == 2 else "voxels"
+    if all(sh) and max(o[d] + sh[n - 1 - d] - 1 for d in range(n)) > lim:
+        c.fail(f"{path}.shape", f"the {what} reaches coordinates beyond ±{lim:,}")
+    count = 1
+    for v in sh:
+        count *= v
+    if count > limits_by_dim[n]:
+        dims = " x ".join(str(v) for v in sh)
+        c.fail(f"{path}.shape", f"a {dims} {what} holds more than the limit of {limits_by_dim[n]:,} {unit}")
+    c.mask_pixels += count
     if c.mask_pixels > limits.MAX_FILE_PIXELS:
         c.fail(
-            f"{path}.shape", f"the masks of the file hold more than {limits.MAX_FILE_PIXELS:,} pixels in all"
+            f"{path}.shape",
+            f"the masks of the file hold more than {limits.MAX_FILE_PIXELS:,} pixels and voxels in all",
         )
-    return x0, y0, h, w
+    return o, sh
 
 
-def _decode_labels(c: Checker, src: dict[str, Any], path: str) -> LabelMap:
+def _decode_labels(c: Checker, src: dict[str, Any], path: str) -> LabelMap | LabelVolume:
     c.obj(src, path, ("kind", "origin", "shape", "labels"))
-    x0, y0, h, w = _decode_box(c, src, path, limits.MAX_LABEL_PIXELS, "label map")
+    origin, shape = _decode_box(c, src, path, _LABEL_LIMITS, "label map")
+    grid = LabelMap if len(origin) == 2 else LabelVolume
     text = c.str_(src["labels"], f"{path}.labels", max_len=limits.MAX_FILE_BYTES)
     try:
         packed = base64.b64decode(text, validate=True)
     except (binascii.Error, ValueError):
         c.fail(f"{path}.labels", "not valid base64")
-    n = 4 * h * w
+    count = int(np.prod(shape, dtype=np.int64))
+    n = 4 * count
+    dims = " x ".join(str(v) for v in shape)
     if n == 0:
         if packed:
             c.fail(f"{path}.labels", "an empty label map has no labels")
-        return LabelMap(np.zeros((0, 0), np.int32))
+        return grid(np.zeros((0,) * len(shape), np.int32))
     # Never more than the declared size is inflated (a small file cannot claim gigabytes).
     inflate = zlib.decompressobj()
     try:
@@ -176,34 +194,36 @@ def _decode_labels(c: Checker, src: dict[str, Any], path: str) -> LabelMap:
     except zlib.error as e:
         c.fail(f"{path}.labels", f"not valid zlib data ({e})")
     if len(raw) != n or inflate.unconsumed_tail or not inflate.eof:
-        c.fail(f"{path}.labels", f"expected {n} bytes of int32 labels for a {h} x {w} map")
-    labels = np.frombuffer(raw, dtype="<i4").reshape(h, w)
+        c.fail(f"{path}.labels", f"expected {n} bytes of int32 labels for a {dims} map")
+    labels = np.frombuffer(raw, dtype="<i4").reshape(shape)
     if labels.size and int(labels.min()) < 0:
         c.fail(f"{path}.labels", "labels must be non-negative")
-    return LabelMap(labels.astype(np.int32), (x0, y0))
+    return grid(labels.astype(np.int32), origin)
 
 
-def _decode_bits(c: Checker, src: dict[str, Any], path: str) -> PixelSet:
+def _decode_bits(c: Checker, src: dict[str, Any], path: str) -> PixelSet | VoxelSet:
     c.obj(src, path, ("kind", "origin", "shape", "bits"))
-    x0, y0, h, w = _decode_box(c, src, path, limits.MAX_OBJECT_PIXELS)
+    origin, shape = _decode_box(c, src, path, _MASK_LIMITS)
+    grid = PixelSet if len(origin) == 2 else VoxelSet
     bits = c.str_(src["bits"], f"{path}.bits", max_len=limits.MAX_FILE_BYTES)
-    n = h * w
+    n = int(np.prod(shape, dtype=np.int64))
     nbytes = (n + 7) // 8
+    dims = " x ".join(str(v) for v in shape)
     if len(bits) != 4 * ((nbytes + 2) // 3):
         c.fail(
             f"{path}.bits",
-            f"expected {nbytes} bytes of base64 for a {h} x {w} mask, got {len(bits)} characters",
+            f"expected {nbytes} bytes of base64 for a {dims} mask, got {len(bits)} characters",
         )
     try:
         raw = base64.b64decode(bits, validate=True)
     except (binascii.Error, ValueError):
         c.fail(f"{path}.bits", "not valid base64")
     if len(raw) != nbytes:
-        c.fail(f"{path}.bits", f"expected {nbytes} bytes for a {h} x {w} mask, got {len(raw)}")
+        c.fail(f"{path}.bits", f"expected {nbytes} bytes for a {dims} mask, got {len(raw)}")
     if n == 0:
-        return PixelSet.empty()
-    mask = np.unpackbits(np.frombuffer(raw, dtype=np.uint8), count=n).reshape(h, w).view(bool)
-    return PixelSet(mask, (x0, y0))
+        return grid.empty()
+    mask = np.unpackbits(np.frombuffer(raw, dtype=np.uint8), count=n).reshape(shape).view(bool)
+    return grid(mask, origin)
 
 
 def _decode_ring(c: Checker, ring: Any, path: str) -> np.ndarray[Any, np.dtype[np.float64]]:

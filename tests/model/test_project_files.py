@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import FileFormatError, MRMError
-from mrm.core.grids import PixelSet
+from mrm.core.grids import LabelVolume, PixelSet, VoxelSet
 from mrm.document import Document, Settings, Style
 from mrm.document.commands import AddObject, RenameObject
 from mrm.document.edits import PaintPixels
@@ -72,6 +72,39 @@ def test_golden_v1_reads_as_written_down_here():
     assert doc.get(10).name == "ünïcode ✓"
     assert set(doc.get(10).source) == {(100, -7), (102, -7), (101, -6)}
     assert doc.get(10).style.fill == "#937860cc"
+
+
+def test_golden_v5_holds_a_voxel_set_and_a_label_volume_as_written_down_here():
+    doc = read_project(GOLDEN / "v5-voxels.mrm").to_document()
+    octahedron = doc.get(1)
+    assert isinstance(octahedron.source, VoxelSet) and octahedron.dimension == 3
+    # "CC6CAA==" over a 3 × 3 × 3 box at (9, -21, 2): the unit octahedron centred on (10, -20, 3).
+    assert set(octahedron.source) == {
+        (10 + x, -20 + y, 3 + z)
+        for x in (-1, 0, 1)
+        for y in (-1, 0, 1)
+        for z in (-1, 0, 1)
+        if abs(x) + abs(y) + abs(z) <= 1
+    }
+    labels = doc.get(2).source
+    assert isinstance(labels, LabelVolume)
+    assert {p: labels.label_at(p) for p in [(-5, 0, 2), (-3, 1, 3), (-4, 0, 3), (-4, 1, 2)]} == {
+        (-5, 0, 2): 1,
+        (-3, 1, 3): 2,
+        (-4, 0, 3): 7,
+        (-4, 1, 2): 0,
+    }
+    assert doc.get(3).dimension == 2 and set(doc.get(3).source) == {(0, 0), (1, 0), (0, 1), (1, 1)}
+
+
+def test_a_voxel_source_beyond_the_voxel_limit_is_refused_with_its_path():
+    raw = json.loads((GOLDEN / "v5-voxels.mrm").read_text())
+    raw["objects"][0]["source"]["shape"] = [2000, 2000, 2000]
+    with pytest.raises(FileFormatError, match=r"objects\[0\]\.source\.shape.*voxels"):
+        loads(json.dumps(raw).encode())
+    raw["objects"][0]["source"]["shape"] = [3, 3]
+    with pytest.raises(FileFormatError, match=r"\[nz, ny, nx\]"):
+        loads(json.dumps(raw).encode())
 
 
 @pytest.mark.parametrize("path", sorted(GOLDEN.glob("v*.mrm")), ids=lambda p: p.name)

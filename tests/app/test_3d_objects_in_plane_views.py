@@ -1,0 +1,42 @@
+"""A project holding voxel objects (docs/design.md §11) opens in the desktop: the plane views draw its 2D
+objects and leave the 3D ones out, the object list says what they are, and saving keeps them."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from mrm.core.grids import LabelVolume, VoxelSet
+from mrm.io.project import load_project
+from mrm.views.object_list import COL_SOURCE
+from tests.app.helpers import click_object, colour_at, grab, is_background, wait_drawn, zoom_to
+
+GOLDEN_V5 = Path(__file__).parents[1] / "model" / "golden" / "v5-voxels.mrm"
+
+
+def test_a_project_with_voxel_objects_opens_draws_its_plane_objects_and_saves_them_back(
+    make_window, qtbot, tmp_path
+):
+    win = make_window()
+    assert win.files.open(GOLDEN_V5, ask=False)
+    wait_drawn(qtbot, win)
+    # The 2 × 2 pixel square is drawn in the discrete view; the octahedron's voxels are not drawn as pixels
+    # (its (x, y) = (10, -20) column would otherwise show there).
+    zoom_to(win, -4.0, -24.0, 14.0, 4.0)
+    view = win.views.discrete
+    image = grab(view)
+    assert not is_background(view, colour_at(view, 0.0, 0.0, image))
+    assert is_background(view, colour_at(view, 10.0, -20.0, image))
+    model = win.object_list.model
+    texts = {model.obj(r).name: model.data(model.index(r, COL_SOURCE)) for r in range(model.rowCount())}
+    assert texts["octahedron"] == "voxels (3D)" and texts["labels 3D"] == "label volume (3D)"
+    assert texts["square"] == "pixels"
+    # Choosing the 3D object breaks nothing: the views stay drawn and the selection is the octahedron.
+    click_object(qtbot, win, "octahedron")
+    wait_drawn(qtbot, win)
+    assert [win.doc.get(i).name for i in win.doc.selection] == ["octahedron"]
+    out = tmp_path / "again.mrm"
+    win.files.save_as(out)
+    again = load_project(out)
+    assert isinstance(again.find("octahedron")[0].source, VoxelSet)
+    assert isinstance(again.find("labels 3D")[0].source, LabelVolume)
+    assert again.find("octahedron")[0].source == win.doc.find("octahedron")[0].source
