@@ -54,8 +54,21 @@ BIG_FILE = 4_000_000
 
 
 def document_weight(doc: Any) -> int:
-    """A cheap size estimate of a document's file, in bytes: the objects' own upper bounds (limits.py)."""
-    return sum(o.file_bytes for o in doc.objects)
+    """A cheap size estimate of a document's file: points of grid sources plus coordinates of polygons."""
+    import shapely
+
+    from mrm.core.grids import GridSet, LabelGrid
+
+    total = 0
+    for o in doc.objects:
+        src = o.source
+        if isinstance(src, GridSet):
+            total += src.mask.size // 4
+        elif isinstance(src, LabelGrid):
+            total += src.labels.size  # zlib of int32 labels: about a byte a point or less
+        else:
+            total += 40 * int(shapely.get_num_coordinates(src))
+    return total
 
 
 def is_bundled(path: str | os.PathLike[str]) -> bool:
