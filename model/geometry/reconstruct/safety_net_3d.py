@@ -1,0 +1,265 @@
+"""The trivial reversible continuation in 3D: V(A) eroded by ¼ in the max norm, as a closed triangle mesh.
+
+Reference: docs/design.md §11, "Continuation R in 3D", item 7; the 2D counterpart is :mod:`.safety_net`.
+
+**The cells.** On the *doubled grid* cell 2p is the core [p − ¼, p + ¼] of voxel p along an axis and cell
+2p + 1 the seam [p + ¼, p + ¾] between voxels p and p + 1; a cell of Z³ is the product of one interval per
+axis (a core, a face seam, an edge seam or a corner seam) and touches the 1, 2, 4 or 8 voxels of the
+product. R(A) is the union of the closed cells whose voxels are all in A: V(A) eroded by ¼ in the max norm.
+Cell c spans [c/2 − ¼, c/2 + ¼] on each axis, so R(A) is a union of cubes of side ½ and every vertex of it has
+coordinates in Z + {¼, ¾} (exact in float64).
+
+**Why it is a valid solid with the (6, 26) topology.** Around any corner of the doubled grid each axis has
+one core-like and one seam-like cell, and a cell touching a subset of another's voxels is in R(A) whenever the
+other is, so the cells of R(A) around a corner form a down-set of {0, 1}³: they and the cells outside are both
+face-connected around the corner, and R(A)'s boundary is a 2-manifold there (no edge or corner where two
+cubes meet alone). Voxels of A meeting only along an edge or at a corner touch seams that also touch a voxel
+outside A, so their cores stay apart: the shells of R(A) are the 6-components of A, its inner shells the
+cavities (bounded 26-components of the complement), and R(A) retracts onto the cubical complex of A (its
+Euler characteristic, hence each shell's genus is its component's tunnels).
+
+**D(R(A)) = A in the three models.** Each core holds its voxel's centre in its interior, and a seam touches
+only the two, four or eight voxels it lies between, each in A, so R(A) ⊂ V(A) meets V(p) only for p ∈ A and
+holds every centre of A with a neighbourhood: gauss (the centres in R(A)), standard (int V(p) + τ meets R(A))
+and supercover (V(p) meets R(A)) all give A.
+
+**The mesh.** The boundary squares between a cell of R(A) and one outside are grouped by plane and outward
+normal; a **face** is a 4-connected set of them (a maximal set of coplanar edge-adjacent squares). Each row
+of a face's squares is cut into runs, and each run's rectangle is triangulated as a strip between the points
+of its bottom and top sides that are a corner of the run, a point of the face's outline, or a corner of a run
+of the next row. Every point of the grid on a face's outline is thus a vertex of the mesh, on both faces that
+share it, and every point inside a face where two rectangles meet is a vertex of both: the mesh has no
+T-junction, every edge is shared by exactly two triangles, and every vertex is in Z + {¼, ¾}. A face of w × h
+squares costs about 2(w + h) + 2h triangles instead of 2wh; a minimal triangulation (one vertex per corner
+of the solid, no T-junction) is the compact R's business.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.core.limits import check_pixels
+from mrm.geometry._jit import njit
+from mrm.geometry.topology.labeling import _find, _union
+
+FloatArray = npt.NDArray[np.float64]
+Int64Array = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+
+
+class SafetyNet3D(NamedTuple):
+    """R(A) as a closed, outward-oriented triangle mesh (:func:`safety_net_3d`).
+
+    Attributes
+    ----------
+    vertices : float64 (n, 3), (x, y, z), each in Z + {¼, ¾}, sorted by (z, y, x).
+    triangles : int64 (m, 3), counter-clockwise seen from outside.
+    face : int64 (m,), the face of each triangle (0 .. n_faces − 1).
+    n_faces : int
+        The number of faces (maximal sets of coplanar edge-adjacent triangles).
+    """
+
+    vertices: FloatArray
+    triangles: Int64Array
+    face: Int64Array
+    n_faces: int
+
+
+def _doubled(a: BoolArray, axis: int) -> BoolArray:
+    # Cells 2p (core: voxel p) and 2p + 1 (seam: voxels p and p + 1) along one axis.
+    n = a.shape[axis]
+    shape = list(a.shape)
+    shape[axis] = 2 * n - 1
+    out = np.empty(shape, bool)
+    idx: list[slice] = [slice(None)] * a.ndim
+    idx[axis] = slice(0, None, 2)
+    out[tuple(idx)] = a
+    lo: list[slice] = [slice(None)] * a.ndim
+    hi: list[slice] = [slice(None)] * a.ndim
+    lo[axis] = slice(0, n - 1)
+    hi[axis] = slice(1, n)
+    idx[axis] = slice(1, None, 2)
+    out[tuple(idx)] = a[tuple(lo)] & a[tuple(hi)]
+    return out
+
+
+@njit(cache=True)
+def _inner(bd: npt.NDArray[np.int8], p: int, r: int, u: int, sign: int) -> bool:  # pragma: no cover
+    # True when the squares u − 1 and u of row r (of plane p) both have the given sign (beyond: none).
+    R, C = bd.shape[1], bd.shape[2]
+    if r < 0 or r >= R or u < 1 or u >= C:
+        return False
+    return bool(bd[p, r, u - 1] == sign and bd[p, r, u] == sign)
+
+
+@njit(cache=True)
+def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
+    # bd (P, R, C): +1 / −1 for a boundary square of outward normal +axis / −axis in plane p, row v, column u.
+    # Returns the triangles as corner triples (plane, v, u) (int64 (m, 3, 3)), their faces, and the number
+    # of faces.
+    P, R, C = bd.shape
+    # ---- faces: 4-connected squares of one sign in one plane
+    parent = np.arange(P * R * C, dtype=np.int64)
+    for p in range(P):
+        for r in range(R):
+            for c in range(C):
+                s = bd[p, r, c]
+                if s == 0:
+                    continue
+                k = (p * R + r) * C + c
+                if c > 0 and bd[p, r, c - 1] == s:
+                    _union(parent, k - 1, k)
+                if r > 0 and bd[p, r - 1, c] == s:
+                    _union(parent, k - C, k)
+    face_of = np.full(P * R * C, -1, np.int64)
+    flat_bd = bd.reshape(P * R * C)
+    nf = 0
+    for k in range(P * R * C):
+        if flat_bd[k] != 0:
+            root = _find(parent, k)
+            if root == k:
+                face_of[k] = nf
+                nf += 1
+            else:
+                face_of[k] = face_of[root]
+    # ---- triangles
+    cap = 64
+    tri = np.empty((cap, 3, 3), np.int64)
+    tface = np.empty(cap, np.int64)
+    nt = 0
+    bot = np.empty(C + 1, np.int64)
+    top = np.empty(C + 1, np.int64)
+    for p in range(P):
+        for sign in (1, -1):
+            for r in range(R):
+                row = bd[p, r]
+                c = 0
+                while c < C:
+                    if row[c] != sign:
+                        c += 1
+                        continue
+                    c0 = c
+                    while c < C and row[c] == sign:
+                        c += 1
+                    c1 = c  # the run covers columns c0 .. c1 − 1: corners c0 .. c1
+                    nb = 0
+                    nt_top = 0
+                    for u in range(c0, c1 + 1):
+                        # a corner of the run, or a point of the face's outline, or a corner of a square
+                        # of the next row's runs: not inside two squares of the face on the other side
+                        if u in (c0, c1) or not _inner(bd, p, r - 1, u, sign):
+                            bot[nb] = u
+                            nb += 1
+                        if u in (c0, c1) or not _inner(bd, p, r + 1, u, sign):
+                            top[nt_top] = u
+                            nt_top += 1
+                    f = face_of[(p * R + r) * C + c0]
+                    # the strip between the bottom (row r) and top (row r + 1) points
+                    i = 0
+                    j = 0
+                    while i < nb - 1 or j < nt_top - 1:
+                        if nt + 1 > cap:
+                            cap *= 2
+                            t2 = np.empty((cap, 3, 3), np.int64)
+                            t2[:nt] = tri[:nt]
+                            tri = t2
+                            f2 = np.empty(cap, np.int64)
+                            f2[:nt] = tface[:nt]
+                            tface = f2
+                        adv_bottom = j == nt_top - 1 or (i < nb - 1 and bot[i + 1] <= top[j + 1])
+                        # corners as (plane, v, u); counter-clockwise in (u, v) for sign +1
+                        tri[nt, 0, 0] = p
+                        tri[nt, 0, 1] = r
+                        tri[nt, 0, 2] = bot[i]
+                        if adv_bottom:
+                            tri[nt, 1, 0] = p
+                            tri[nt, 1, 1] = r
+                            tri[nt, 1, 2] = bot[i + 1]
+                            tri[nt, 2, 0] = p
+                            tri[nt, 2, 1] = r + 1
+                            tri[nt, 2, 2] = top[j]
+                            i += 1
+                        else:
+                            tri[nt, 1, 0] = p
+                            tri[nt, 1, 1] = r + 1
+                            tri[nt, 1, 2] = top[j + 1]
+                            tri[nt, 2, 0] = p
+                            tri[nt, 2, 1] = r + 1
+                            tri[nt, 2, 2] = top[j]
+                            j += 1
+                        if sign < 0:
+                            for a in range(3):
+                                t = tri[nt, 1, a]
+                                tri[nt, 1, a] = tri[nt, 2, a]
+                                tri[nt, 2, a] = t
+                        tface[nt] = f
+                        nt += 1
+    return tri[:nt], tface[:nt], nf
+
+
+#: For each axis a (0 = x, 1 = y, 2 = z): the transpose of a (z, y, x) array to (a, v, u) with (u, v, a)
+#: right-handed, and for each of (plane, v, u) the index in (x, y, z) it stands for.
+_LAYOUT = (((2, 0, 1), (0, 2, 1)), ((1, 2, 0), (1, 0, 2)), ((0, 1, 2), (2, 1, 0)))
+
+
+def safety_net_3d(
+    mask: npt.ArrayLike, origin: tuple[int, int, int] = (0, 0, 0), limit: int | None = None
+) -> SafetyNet3D:
+    """R(A) = V(A) eroded by ¼ in the max norm, as a closed outward triangle mesh with its faces.
+
+    Parameters
+    ----------
+    mask : array_like of bool, shape (nz, ny, nx)
+        The voxel set A; ``mask[k, j, i]`` is voxel (x0 + i, y0 + j, z0 + k).
+    origin : tuple of int
+        (x0, y0, z0).
+    limit : int, optional
+        Refuse a set whose doubled grid would hold more cells than this, before allocating it.
+
+    Returns
+    -------
+    SafetyNet3D
+        Empty arrays for the empty set.
+    """
+    m = np.asarray(mask).astype(bool, copy=False)
+    if m.ndim != 3:
+        raise ValueError(f"a voxel mask must be 3-D, got shape {m.shape}")
+    empty = SafetyNet3D(np.zeros((0, 3)), np.zeros((0, 3), np.int64), np.zeros(0, np.int64), 0)
+    if not m.any():
+        return empty
+    ks, js, is_ = (np.flatnonzero(m.any(axis=a)) for a in ((1, 2), (0, 2), (0, 1)))
+    m = m[ks[0] : ks[-1] + 1, js[0] : js[-1] + 1, is_[0] : is_[-1] + 1]
+    ox, oy, oz = int(origin[0]) + int(is_[0]), int(origin[1]) + int(js[0]), int(origin[2]) + int(ks[0])
+    nz, ny, nx = (s + 2 for s in m.shape)
+    check_pixels(8 * nz * ny * nx, limit, "the safety net's doubled grid")
+    a = np.pad(m, 1)
+    s = _doubled(_doubled(_doubled(a, 0), 1), 2)  # cells, (2nz − 1, 2ny − 1, 2nx − 1)
+    tris = []
+    faces = []
+    nf_total = 0
+    for axis in range(3):
+        perm, to_xyz = _LAYOUT[axis]
+        st = np.ascontiguousarray(s.transpose(perm))
+        sa = np.pad(st, ((1, 1), (0, 0), (0, 0)))
+        # plane m lies between cells m − 1 (sa[m]) and m (sa[m + 1])
+        bd = sa[:-1].astype(np.int8) - sa[1:].astype(np.int8)
+        t, f, nf = _plane_mesh(np.ascontiguousarray(bd))
+        xyz = np.empty_like(t)
+        for k in range(3):
+            xyz[:, :, to_xyz[k]] = t[:, :, k]
+        tris.append(xyz)
+        faces.append(f + nf_total)
+        nf_total += int(nf)
+    corners = np.concatenate(tris).reshape(-1, 3)  # (mx, my, mz) corner indices
+    # Sort vertices by (z, y, x): pack the corner indices (each below 2·(n + 2) + 1 < 2**20).
+    key = (corners[:, 2] << 42) | (corners[:, 1] << 21) | corners[:, 0]
+    uniq, inverse = np.unique(key, return_inverse=True)
+    cm = np.stack([uniq & ((1 << 21) - 1), (uniq >> 21) & ((1 << 21) - 1), uniq >> 42], axis=1)
+    # corner m is at (origin − 1) + (2m − 1)/4 on its axis
+    base = np.array([ox - 1, oy - 1, oz - 1], np.float64)
+    vertices = base + (2 * cm - 1).astype(np.float64) / 4.0
+    triangles = inverse.reshape(-1, 3).astype(np.int64)
+    return SafetyNet3D(vertices, triangles, np.concatenate(faces), nf_total)
