@@ -140,6 +140,20 @@ def test_nested_island_in_a_cavity() -> None:
     assert [(s.component, s.cavity) for s in reg.surfaces] == [(1, -1), (1, 0), (2, -1)]
 
 
+def test_cavities_go_to_their_own_components() -> None:
+    m = np.zeros((5, 5, 12), bool)
+    m[:, :, :3] = True  # a solid block, first in raster order (z, y, x): no cavity
+    m[1:4, 1:4, 4:7] = True
+    m[2, 2, 5] = False  # a hollow cube, third (it starts at z = 1)
+    m[:, :, 8:] = True
+    m[1:4, 1:3, 9:11] = False  # a block with a bigger cavity, second
+    reg = check_against_reference(m)
+    assert [len(c.cavities) for c in reg.components] == [0, 1, 1]
+    assert [c.cavities[0].voxels for c in reg.components[1:]] == [12, 1]
+    assert [(s.component, s.cavity) for s in reg.surfaces] == [(1, -1), (2, -1), (2, 0), (3, -1), (3, 0)]
+    check_surfaces(m)
+
+
 def test_edge_and_corner_touching_cubes_are_apart() -> None:
     edge = np.zeros((2, 2, 2), bool)
     edge[0, 0, :] = edge[1, 1, :] = True  # two rods meeting along an edge
