@@ -32,6 +32,7 @@ from mrm.geometry.topology.labeling_3d import (
     euler_per_label,
     label_runs_3d,
     paint_3d,
+    surfel_count,
 )
 from mrm.geometry.topology.surfels import Surfels, surfels_of
 
@@ -178,6 +179,11 @@ class Region3D:
     def voxels(self) -> int:
         """The number of voxels of the set."""
         return sum(c.voxels for c in self.components)
+
+    @property
+    def n_surfels(self) -> int:
+        """The number of surfels (voxel faces between the set and the outside), counted from the runs."""
+        return surfel_count(self._runs_or_empty())
 
     def _runs_or_empty(self) -> Runs3D:
         if self._runs is None:

@@ -253,6 +253,7 @@ def check_surfaces(m: np.ndarray) -> None:
             expected.add((int(i) - 2, int(j) + 4, int(k) + 1, d))
     got = [(*map(int, v), int(d)) for s in surfaces for v, d in zip(s.voxels, s.directions, strict=True)]
     assert len(got) == len(set(got)) and set(got) == expected
+    assert reg.n_surfels == len(expected)
     if not surfaces:
         return
     labels = reg.labels()

@@ -334,6 +334,46 @@ def _euler8(
 
 
 @njit(cache=True)
+def _overlap(rs: Int32Array, re: Int32Array, a: int, a1: int, b: int, b1: int) -> int:  # pragma: no cover
+    # The number of columns covered by both row a..a1-1 and row b..b1-1.
+    total = 0
+    while a < a1 and b < b1:
+        lo = max(rs[a], rs[b])
+        hi = min(re[a], re[b])
+        if hi >= lo:
+            total += hi - lo + 1
+        if re[a] < re[b]:
+            a += 1
+        else:
+            b += 1
+    return total
+
+
+@njit(cache=True)
+def _surfel_count(
+    rs: Int32Array, re: Int32Array, ptr: Int64Array, ny: int, nz: int
+) -> int:  # pragma: no cover
+    # 6 per voxel minus 2 per pair of 6-adjacent voxels.
+    total = 0
+    for r in range(ny * nz):
+        k = r // ny
+        j = r - k * ny
+        for t in range(ptr[r], ptr[r + 1]):
+            total += 4 * (re[t] - rs[t] + 1) + 2
+        if j > 0:
+            total -= 2 * _overlap(rs, re, ptr[r - 1], ptr[r], ptr[r], ptr[r + 1])
+        if k > 0:
+            total -= 2 * _overlap(rs, re, ptr[r - ny], ptr[r - ny + 1], ptr[r], ptr[r + 1])
+    return total
+
+
+def surfel_count(runs: Runs3D) -> int:
+    """The number of surfels of the object of ``runs`` (voxel faces between the object and the outside)."""
+    nz, ny, _nx = runs.shape
+    return int(_surfel_count(runs.start, runs.end, runs.ptr, ny, nz))
+
+
+@njit(cache=True)
 def _paint_3d(
     rs: Int32Array, re: Int32Array, ptr: Int64Array, label: Int32Array, nx: int, ny: int, nz: int
 ) -> Int32Array:  # pragma: no cover
