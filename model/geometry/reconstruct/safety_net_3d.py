@@ -101,31 +101,10 @@ def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:
     # Returns the triangles as corner triples (plane, v, u) (int64 (m, 3, 3)), their faces, and the number
     # of faces.
     P, R, C = bd.shape
-    # ---- faces: 4-connected squares of one sign in one plane
-    parent = np.arange(P * R * C, dtype=np.int64)
-    for p in range(P):
-        for r in range(R):
-            for c in range(C):
-                s = bd[p, r, c]
-                if s == 0:
-                    continue
-                k = (p * R + r) * C + c
-                if c > 0 and bd[p, r, c - 1] == s:
-                    _union(parent, k - 1, k)
-                if r > 0 and bd[p, r - 1, c] == s:
-                    _union(parent, k - C, k)
-    face_of = np.full(P * R * C, -1, np.int64)
-    flat_bd = bd.reshape(P * R * C)
+    # Faces are 4-connected squares of one sign in one plane, labelled plane by plane (memory for one plane).
+    parent = np.empty(R * C, np.int64)
+    face_of = np.empty(R * C, np.int64)
     nf = 0
-    for k in range(P * R * C):
-        if flat_bd[k] != 0:
-            root = _find(parent, k)
-            if root == k:
-                face_of[k] = nf
-                nf += 1
-            else:
-                face_of[k] = face_of[root]
-    # ---- triangles
     cap = 64
     tri = np.empty((cap, 3, 3), np.int64)
     tface = np.empty(cap, np.int64)
@@ -133,6 +112,27 @@ def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:
     bot = np.empty(C + 1, np.int64)
     top = np.empty(C + 1, np.int64)
     for p in range(P):
+        plane = bd[p]
+        for k in range(R * C):
+            parent[k] = k
+        for r in range(R):
+            for c in range(C):
+                sq = plane[r, c]
+                if sq == 0:
+                    continue
+                k = r * C + c
+                if c > 0 and plane[r, c - 1] == sq:
+                    _union(parent, k - 1, k)
+                if r > 0 and plane[r - 1, c] == sq:
+                    _union(parent, k - C, k)
+        for k in range(R * C):
+            if plane[k // C, k % C] != 0:
+                root = _find(parent, k)
+                if root == k:
+                    face_of[k] = nf
+                    nf += 1
+                else:
+                    face_of[k] = face_of[root]
         for sign in (1, -1):
             for r in range(R):
                 row = bd[p, r]
@@ -156,7 +156,7 @@ def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:
                         if u in (c0, c1) or not _inner(bd, p, r + 1, u, sign):
                             top[nt_top] = u
                             nt_top += 1
-                    f = face_of[(p * R + r) * C + c0]
+                    f = face_of[r * C + c0]
                     # the strip between the bottom (row r) and top (row r + 1) points
                     i = 0
                     j = 0
