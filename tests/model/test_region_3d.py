@@ -18,28 +18,10 @@ from mrm.core.errors import SizeLimitError
 from mrm.geometry.topology.labeling_3d import euler_3d, label_3d, label_runs_3d, paint_background_3d
 from mrm.geometry.topology.surfels import DIRS, edge_sides
 from mrm.reps.region_3d import Region3D, region_3d_of
+from tests.model.voxel_shapes import ball, hollow, random_mask, solid_torus
 from tests.oracles import region_3d_reference as ref
 
-# ---------------------------------------------------------------------------------------------- shapes
-
-
-def ball(r: float, n: int) -> np.ndarray:
-    z, y, x = np.mgrid[0:n, 0:n, 0:n] - (n - 1) / 2
-    return x * x + y * y + z * z <= r * r
-
-
-def solid_torus(n: int = 15, big: float = 4.5, small: float = 2.0) -> np.ndarray:
-    z, y, x = np.mgrid[0:n, 0:n, 0:n] - (n - 1) / 2
-    return (np.hypot(x, y) - big) ** 2 + z * z <= small * small
-
-
-def hollow(n: int = 9) -> np.ndarray:
-    return ball(n / 2 - 0.5, n) & ~ball(n / 2 - 2.5, n)
-
-
-def random_mask(seed: int, shape: tuple[int, int, int], density: float) -> np.ndarray:
-    return np.random.default_rng(seed).random(shape) < density
-
+# ---------------------------------------------------------------------------------------------- helpers
 
 masks = st.builds(
     random_mask,

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from mrm.core.errors import SizeLimitError
 from mrm.geometry.reconstruct.safety_net_3d import SafetyNet3D, safety_net_3d
 from mrm.reps.region_3d import region_3d_of
-from tests.model.test_region_3d import ball, hollow, random_mask, solid_torus
+from tests.model.voxel_shapes import ball, hollow, random_mask, solid_torus
 from tests.oracles.polyhedron_reference import gauss
 
 masks = st.builds(
