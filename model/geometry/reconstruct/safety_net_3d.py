@@ -235,6 +235,8 @@ def safety_net_3d(
     ox, oy, oz = int(origin[0]) + int(is_[0]), int(origin[1]) + int(js[0]), int(origin[2]) + int(ks[0])
     nz, ny, nx = (s + 2 for s in m.shape)
     check_pixels(8 * nz * ny * nx, limit, "the safety net's doubled grid")
+    if 2 * max(nz, ny, nx) >= 1 << 21:
+        raise ValueError("the safety net takes at most 2**20 voxels along each axis")
     a = np.pad(m, 1)
     s = _doubled(_doubled(_doubled(a, 0), 1), 2)  # cells, (2nz − 1, 2ny − 1, 2nx − 1)
     tris = []
