@@ -176,8 +176,17 @@ def test_known_shapes(mask: np.ndarray, shells: int, genus: int) -> None:
 
 def test_a_box_has_six_faces() -> None:
     net = safety_net_3d(np.ones((2, 3, 4), bool))
-    assert net.n_faces == 6
-    assert len(net.triangles) < 2 * 4 * 2 * (2 * 3 + 3 * 4 + 2 * 4)  # fewer than two per half-square
+    assert (net.n_faces, len(net.triangles), len(net.vertices)) == (6, 12, 8)
+    check_mesh(net)
+
+
+def test_an_l_shape_has_no_t_junction() -> None:
+    m = np.zeros((2, 1, 2), bool)
+    m[0, 0, :] = True
+    m[1, 0, 0] = True  # the -y face is an L: its outline's corners are vertices of the faces around it
+    net = safety_net_3d(m)
+    check_mesh(net)
+    assert net.n_faces == 8
 
 
 @pytest.mark.parametrize("kind", ["edge", "corner"])

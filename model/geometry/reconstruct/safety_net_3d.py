@@ -24,14 +24,15 @@ holds every centre of A with a neighbourhood: gauss (the centres in R(A)), stand
 and supercover (V(p) meets R(A)) all give A.
 
 **The mesh.** The boundary squares between a cell of R(A) and one outside are grouped by plane and outward
-normal; a **face** is a 4-connected set of them (a maximal set of coplanar edge-adjacent squares). Each row
-of a face's squares is cut into runs, and each run's rectangle is triangulated as a strip between the points
-of its bottom and top sides that are a corner of the run, a point of the face's outline, or a corner of a run
-of the next row. Every point of the grid on a face's outline is thus a vertex of the mesh, on both faces that
-share it, and every point inside a face where two rectangles meet is a vertex of both: the mesh has no
-T-junction, every edge is shared by exactly two triangles, and every vertex is in Z + {¼, ¾}. A face of w × h
-squares costs about 2(w + h) + 2h triangles instead of 2wh; a minimal triangulation (one vertex per corner
-of the solid, no T-junction) is the compact R's business.
+normal; a **face** is a 4-connected set of them (a maximal set of coplanar edge-adjacent squares). Each face
+is cut into rectangles: a run of a row of squares, extended over the following rows with the same run while
+no *required* corner lies on its sides. A rectangle is triangulated as a strip between the points of its
+bottom and top sides that are its corners, required corners, or corners of the runs of the row on the other
+side. The required corners start empty and grow to every corner the rectangles use, until a pass adds none
+(a fixed point: the set only grows, within a finite grid). Then a face's outline is split at exactly the
+required corners on it, the same for both faces along an edge, and two rectangles of one face meeting along a
+row line share their points there: no T-junction, every edge in exactly two triangles, every vertex in
+Z + {¼, ¾}. A box is 12 triangles; blobs take about one triangle per surfel (marching cubes: two).
 """
 
 from __future__ import annotations
@@ -87,23 +88,44 @@ def _doubled(a: BoolArray, axis: int) -> BoolArray:
 
 
 @njit(cache=True)
-def _inner(bd: npt.NDArray[np.int8], p: int, r: int, u: int, sign: int) -> bool:  # pragma: no cover
-    # True when the squares u − 1 and u of row r (of plane p) both have the given sign (beyond: none).
+def _run_end(bd: npt.NDArray[np.int8], p: int, r: int, u: int, sign: int) -> bool:  # pragma: no cover
+    # True when the squares of the given sign in row r (of plane p) start or stop at corner u (beyond: none).
     R, C = bd.shape[1], bd.shape[2]
-    if r < 0 or r >= R or u < 1 or u >= C:
+    if r < 0 or r >= R:
         return False
-    return bool(bd[p, r, u - 1] == sign and bd[p, r, u] == sign)
+    a = u >= 1 and bd[p, r, u - 1] == sign
+    b = u < C and bd[p, r, u] == sign
+    return bool(a != b)
 
 
 @njit(cache=True)
-def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
-    # bd (P, R, C): +1 / −1 for a boundary square of outward normal +axis / −axis in plane p, row v, column u.
-    # Returns the triangles as corner triples (plane, v, u) (int64 (m, 3, 3)), their faces, and the number
-    # of faces.
+def _same_run(
+    bd: npt.NDArray[np.int8], p: int, r: int, c0: int, c1: int, sign: int
+) -> bool:  # pragma: no cover
+    # True when row r has a run of the given sign covering exactly the squares c0 .. c1 − 1.
+    C = bd.shape[2]
+    if c0 > 0 and bd[p, r, c0 - 1] == sign:
+        return False
+    if c1 < C and bd[p, r, c1] == sign:
+        return False
+    for c in range(c0, c1):  # noqa: SIM110 (a plain loop: no generator in a numba kernel)
+        if bd[p, r, c] != sign:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _plane_mesh(
+    bd: npt.NDArray[np.int8], req: npt.NDArray[np.uint8]
+) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
+    # bd (P, R, C): +1 / −1 for a boundary square of outward normal +axis / −axis in plane p, row v, column u;
+    # req (P, R + 1, C + 1): the corners that must be vertices. Returns the triangles as corner triples
+    # (plane, v, u) (int64 (m, 3, 3)), their faces, and the number of faces.
     P, R, C = bd.shape
     # Faces are 4-connected squares of one sign in one plane, labelled plane by plane (memory for one plane).
     parent = np.empty(R * C, np.int64)
     face_of = np.empty(R * C, np.int64)
+    covered = np.zeros(R * C, np.uint8)
     nf = 0
     cap = 64
     tri = np.empty((cap, 3, 3), np.int64)
@@ -115,6 +137,7 @@ def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:
         plane = bd[p]
         for k in range(R * C):
             parent[k] = k
+            covered[k] = 0
         for r in range(R):
             for c in range(C):
                 sq = plane[r, c]
@@ -135,7 +158,7 @@ def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:
                     face_of[k] = face_of[root]
         for sign in (1, -1):
             for r in range(R):
-                row = bd[p, r]
+                row = plane[r]
                 c = 0
                 while c < C:
                     if row[c] != sign:
@@ -145,19 +168,30 @@ def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:
                     while c < C and row[c] == sign:
                         c += 1
                     c1 = c  # the run covers columns c0 .. c1 − 1: corners c0 .. c1
+                    if covered[r * C + c0]:
+                        continue  # in a rectangle started below
+                    # the rectangle: the following rows with the same run, no required corner on its sides
+                    r1 = r + 1  # its top row line
+                    while (
+                        r1 < R
+                        and not req[p, r1, c0]
+                        and not req[p, r1, c1]
+                        and _same_run(bd, p, r1, c0, c1, sign)
+                    ):
+                        covered[r1 * C + c0] = 1
+                        r1 += 1
                     nb = 0
                     nt_top = 0
                     for u in range(c0, c1 + 1):
-                        # a corner of the run, or a point of the face's outline, or a corner of a square
-                        # of the next row's runs: not inside two squares of the face on the other side
-                        if u in (c0, c1) or not _inner(bd, p, r - 1, u, sign):
+                        # a corner, a required corner, or a corner of a run of the row on the other side
+                        if u in (c0, c1) or req[p, r, u] or _run_end(bd, p, r - 1, u, sign):
                             bot[nb] = u
                             nb += 1
-                        if u in (c0, c1) or not _inner(bd, p, r + 1, u, sign):
+                        if u in (c0, c1) or req[p, r1, u] or _run_end(bd, p, r1, u, sign):
                             top[nt_top] = u
                             nt_top += 1
                     f = face_of[r * C + c0]
-                    # the strip between the bottom (row r) and top (row r + 1) points
+                    # the strip between the bottom (row line r) and top (row line r1) points
                     i = 0
                     j = 0
                     while i < nb - 1 or j < nt_top - 1:
@@ -179,15 +213,15 @@ def _plane_mesh(bd: npt.NDArray[np.int8]) -> tuple[Int64Array, Int64Array, int]:
                             tri[nt, 1, 1] = r
                             tri[nt, 1, 2] = bot[i + 1]
                             tri[nt, 2, 0] = p
-                            tri[nt, 2, 1] = r + 1
+                            tri[nt, 2, 1] = r1
                             tri[nt, 2, 2] = top[j]
                             i += 1
                         else:
                             tri[nt, 1, 0] = p
-                            tri[nt, 1, 1] = r + 1
+                            tri[nt, 1, 1] = r1
                             tri[nt, 1, 2] = top[j + 1]
                             tri[nt, 2, 0] = p
-                            tri[nt, 2, 1] = r + 1
+                            tri[nt, 2, 1] = r1
                             tri[nt, 2, 2] = top[j]
                             j += 1
                         if sign < 0:
@@ -239,22 +273,33 @@ def safety_net_3d(
         raise ValueError("the safety net takes at most 2**20 voxels along each axis")
     a = np.pad(m, 1)
     s = _doubled(_doubled(_doubled(a, 0), 1), 2)  # cells, (2nz − 1, 2ny − 1, 2nx − 1)
-    tris = []
-    faces = []
-    nf_total = 0
+    # The required corners grow until every corner the rectangles use is required (a fixed point): then a
+    # face's outline is split at exactly the required corners on it, the same for both faces along an edge.
+    req = np.zeros((2 * nz, 2 * ny, 2 * nx), np.uint8)  # corners (mz, my, mx)
+    bds = []
     for axis in range(3):
-        perm, to_xyz = _LAYOUT[axis]
+        perm, _ = _LAYOUT[axis]
         st = np.ascontiguousarray(s.transpose(perm))
         sa = np.pad(st, ((1, 1), (0, 0), (0, 0)))
         # plane m lies between cells m − 1 (sa[m]) and m (sa[m + 1])
-        bd = sa[:-1].astype(np.int8) - sa[1:].astype(np.int8)
-        t, f, nf = _plane_mesh(np.ascontiguousarray(bd))
-        xyz = np.empty_like(t)
-        for k in range(3):
-            xyz[:, :, to_xyz[k]] = t[:, :, k]
-        tris.append(xyz)
-        faces.append(f + nf_total)
-        nf_total += int(nf)
+        bds.append(np.ascontiguousarray(sa[:-1].astype(np.int8) - sa[1:].astype(np.int8)))
+    while True:
+        tris = []
+        faces = []
+        nf_total = 0
+        for axis in range(3):
+            perm, to_xyz = _LAYOUT[axis]
+            t, f, nf = _plane_mesh(bds[axis], np.ascontiguousarray(req.transpose(perm)))
+            xyz = np.empty_like(t)
+            for k in range(3):
+                xyz[:, :, to_xyz[k]] = t[:, :, k]
+            tris.append(xyz)
+            faces.append(f + nf_total)
+            nf_total += int(nf)
+        used = np.concatenate(tris).reshape(-1, 3)
+        if bool(np.all(req[used[:, 2], used[:, 1], used[:, 0]])):
+            break
+        req[used[:, 2], used[:, 1], used[:, 0]] = 1
     corners = np.concatenate(tris).reshape(-1, 3)  # (mx, my, mz) corner indices
     # Sort vertices by (z, y, x): pack the corner indices (each below 2·(n + 2) + 1 < 2**20).
     key = (corners[:, 2] << 42) | (corners[:, 1] << 21) | corners[:, 0]
