@@ -26,6 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.limits import check_pixels
+from mrm.geometry.topology.labeling import _group_by_label
 from mrm.geometry.topology.labeling_3d import (
     Runs3D,
     as_u8_3d,
@@ -208,24 +209,21 @@ class Region3D:
     def _compute_surfaces(self) -> tuple[Surface3D, ...]:
         if not self.components:
             return ()
-        runs = self._runs_or_empty()
-        s: Surfels = surfels_of(paint_3d(runs) > 0, runs)
+        s: Surfels = surfels_of(self._runs_or_empty())
         x0, y0, z0 = self.origin
-        order = np.argsort(s.surface, kind="stable")  # surfels of each surface, in raster order
-        bounds = np.searchsorted(s.surface[order], np.arange(s.n_surfaces + 1))
+        start, order = _group_by_label(s.surface, s.n_surfaces - 1)  # each surface's surfels, in raster order
         local = np.empty(order.size, np.int64)
+        local[order] = np.arange(order.size) - np.repeat(start[:-1], np.diff(start))
         world = s.voxel + np.array([x0, y0, z0], np.int64)
-        found: dict[tuple[int, int], Surface3D] = {}
-        for t in range(s.n_surfaces):
-            idx = order[bounds[t] : bounds[t + 1]]
-            local[idx] = np.arange(idx.size)
-            comp = int(s.component[t])
-            out = int(s.outside[t])
-            cav = -1
-            if out > 0 and self._cavity_index[out - 1][0] == comp:
-                cav = self._cavity_index[out - 1][1]
-            found[(comp, cav)] = Surface3D(comp, cav, world[idx], s.direction[idx], local[s.neighbour[idx]])
-        return tuple(found[(c.label, cav)] for c in self.components for cav in range(-1, len(c.cavities)))
+        out = []
+        t = 0
+        # the surfaces come by component, the outer one then one per cavity: the order of Region3D.surfaces
+        for c in self.components:
+            for cav in range(-1, len(c.cavities)):
+                idx = order[start[t] : start[t + 1]]
+                out.append(Surface3D(c.label, cav, world[idx], s.direction[idx], local[s.neighbour[idx]]))
+                t += 1
+        return tuple(out)
 
 
 def _box(b: IntArray, origin: Origin3) -> Box3:

@@ -251,6 +251,58 @@ EULER_TABLE_6.flags.writeable = False
 
 
 @njit(cache=True)
+def _pair_seq(
+    rs: Int32Array,
+    re: Int32Array,
+    label: Int32Array,
+    a: int,
+    a1: int,
+    b: int,
+    b1: int,
+    pos: Int64Array,
+    code: Int64Array,
+    lab0: Int64Array,
+    lab1: Int64Array,
+    n: int,
+) -> int:  # pragma: no cover
+    # The columns where the pair of rows a..a1-1 (bit 1) and b..b1-1 (bit 2) changes, appended at n: from
+    # column pos[t] on, the pair's code is code[t] (labels lab0 / lab1 where a bit is set). Returns the new n.
+    ca = 0
+    cb = 0
+    la = 0
+    lb = 0
+    while a < a1 or b < b1:
+        # the next change of each row: the start of its next run, or the column after its current run
+        xa = 1 << 62
+        if a < a1:
+            xa = re[a] + 1 if ca else rs[a]
+        xb = 1 << 62
+        if b < b1:
+            xb = re[b] + 1 if cb else rs[b]
+        x = min(xa, xb)
+        if xa == x:
+            if ca:
+                ca = 0
+                a += 1
+            else:
+                ca = 1
+                la = label[a]
+        if xb == x:
+            if cb:
+                cb = 0
+                b += 1
+            else:
+                cb = 1
+                lb = label[b]
+        pos[n] = x
+        code[n] = ca | (cb << 1)
+        lab0[n] = la
+        lab1[n] = lb
+        n += 1
+    return n
+
+
+@njit(cache=True)
 def _euler8(
     rs: Int32Array,
     re: Int32Array,
@@ -261,75 +313,102 @@ def _euler8(
     nz: int,
     table: Int64Array,
 ) -> Int64Array:  # pragma: no cover
-    # Sum of the table over the windows at run ends: window (k, j, i) has rows (k, j), (k, j+1), (k+1, j),
-    # (k+1, j+1) (bits 0, 2, 4, 6 at column i; +1 at column i + 1), for k in −1..nz−1 and j in −1..ny−1.
-    # Per component: a window's cells (voxels, edges, squares, cubes of 6-adjacent voxels) each lie in one
-    # component, so its share is the sum of the table over the window restricted to each component.
+    # Sum of the table over the windows (k, j, i) of rows (k, j), (k, j+1), (k+1, j), (k+1, j+1), columns i
+    # and i + 1, for k in −1..nz−1, j in −1..ny−1. A window whose four rows do not change between its two
+    # columns adds nothing, so only the columns where one of them changes are visited: for each layer pair
+    # (k, k+1), the change columns of each row pair (k, j), (k+1, j) are listed once, then each window row
+    # merges two such lists. Per component: a window's cells (voxels, edges, squares, cubes of 6-adjacent
+    # voxels) each lie in one component, so its share is the table summed over the window restricted to each
+    # component.
     total = np.zeros(nlab + 1, np.int64)
-    lab = np.empty(4, np.int64)
-    bits = np.empty(4, np.int64)
-    lo = np.empty(4, np.int64)
-    hi = np.empty(4, np.int64)
-    p = np.empty(4, np.int64)
-    q = np.empty(4, np.int64)
+    most = 0
+    for k in range(nz):
+        most = max(most, ptr[(k + 1) * ny] - ptr[k * ny])
+    cap = 4 * most + 4
+    pos = np.empty(cap, np.int64)
+    code = np.empty(cap, np.int64)
+    lab0 = np.empty(cap, np.int64)
+    lab1 = np.empty(cap, np.int64)
+    start = np.empty(ny + 1, np.int64)
+    bl = np.empty(8, np.int64)  # the label of each set bit of a window
     for k in range(-1, nz):
+        n = 0
+        for j in range(ny):
+            start[j] = n
+            a = a1 = b = b1 = 0
+            if k >= 0:
+                a = ptr[k * ny + j]
+                a1 = ptr[k * ny + j + 1]
+            if k + 1 < nz:
+                b = ptr[(k + 1) * ny + j]
+                b1 = ptr[(k + 1) * ny + j + 1]
+            n = _pair_seq(rs, re, label, a, a1, b, b1, pos, code, lab0, lab1, n)
+        start[ny] = n
         for j in range(-1, ny):
-            for t in range(4):
-                kk = k + (t >> 1)
-                jj = j + (t & 1)
-                if 0 <= kk < nz and 0 <= jj < ny:
-                    r = kk * ny + jj
-                    lo[t] = ptr[r]
-                    hi[t] = ptr[r + 1]
-                else:
-                    lo[t] = 0
-                    hi[t] = 0
-                p[t] = lo[t]
-                q[t] = 2 * lo[t]  # event q: run q // 2, at its start − 1 (q even) or at its end (q odd)
-            if hi[0] == lo[0] and hi[1] == lo[1] and hi[2] == lo[2] and hi[3] == lo[3]:
+            # list A: row pair j (bits dy = 0), list B: row pair j + 1 (dy = 1)
+            p = start[j] if j >= 0 else 0
+            p1 = start[j + 1] if j >= 0 else 0
+            q = start[j + 1] if j + 1 < ny else 0
+            q1 = start[j + 2] if j + 1 < ny else 0
+            if p == p1 and q == q1:
                 continue
-            while True:
-                i = 1 << 62
-                for t in range(4):
-                    if q[t] < 2 * hi[t]:
-                        run = q[t] >> 1
-                        pos = rs[run] - 1 if (q[t] & 1) == 0 else re[run]
-                        if pos < i:
-                            i = pos
-                if i == 1 << 62:
-                    break
-                for t in range(4):
-                    while q[t] < 2 * hi[t]:
-                        run = q[t] >> 1
-                        pos = rs[run] - 1 if (q[t] & 1) == 0 else re[run]
-                        if pos > i:
+            ca = 0
+            cb = 0
+            a0 = 0
+            a1_ = 0
+            b0 = 0
+            b1_ = 0
+            while p < p1 or q < q1:
+                xa = pos[p] if p < p1 else 1 << 62
+                xb = pos[q] if q < q1 else 1 << 62
+                x = min(xa, xb)
+                # the column x − 1 (before the change) and x (after)
+                na, nb_ = ca, cb
+                na0, na1, nb0, nb1 = a0, a1_, b0, b1_
+                if xa == x:
+                    na = code[p]
+                    na0 = lab0[p]
+                    na1 = lab1[p]
+                    p += 1
+                if xb == x:
+                    nb_ = code[q]
+                    nb0 = lab0[q]
+                    nb1 = lab1[q]
+                    q += 1
+                # bit dx + 2 dy + 4 dz: dx = 0 is column x − 1, dx = 1 column x
+                cfg = 0
+                for dx in range(2):
+                    sa = ca if dx == 0 else na
+                    sb = cb if dx == 0 else nb_
+                    if sa & 1:
+                        cfg |= 1 << dx
+                        bl[dx] = a0 if dx == 0 else na0
+                    if sa & 2:
+                        cfg |= 1 << (dx + 4)
+                        bl[dx + 4] = a1_ if dx == 0 else na1
+                    if sb & 1:
+                        cfg |= 1 << (dx + 2)
+                        bl[dx + 2] = b0 if dx == 0 else nb0
+                    if sb & 2:
+                        cfg |= 1 << (dx + 6)
+                        bl[dx + 6] = b1_ if dx == 0 else nb1
+                for u in range(8):
+                    if not (cfg >> u) & 1:
+                        continue
+                    first = True
+                    for w in range(u):
+                        if (cfg >> w) & 1 and bl[w] == bl[u]:
+                            first = False
                             break
-                        q[t] += 1
-                    while p[t] < hi[t] and re[p[t]] < i:
-                        p[t] += 1
-                    bits[t] = 0
-                    if p[t] < hi[t]:
-                        a = rs[p[t]]
-                        b = re[p[t]]
-                        if a <= i <= b:
-                            bits[t] |= 1
-                        if a <= i + 1 <= b:
-                            bits[t] |= 2
-                        lab[t] = label[p[t]]
-                for t in range(4):
-                    if bits[t] == 0:
+                    if not first:
                         continue
-                    seen = False
-                    for u in range(t):
-                        if bits[u] != 0 and lab[u] == lab[t]:
-                            seen = True
-                    if seen:
-                        continue
-                    code = 0
-                    for u in range(t, 4):
-                        if bits[u] != 0 and lab[u] == lab[t]:
-                            code |= bits[u] << (2 * u)
-                    total[lab[t]] += table[code]
+                    sub = 0
+                    for w in range(u, 8):
+                        if (cfg >> w) & 1 and bl[w] == bl[u]:
+                            sub |= 1 << w
+                    total[bl[u]] += table[sub]
+                ca, cb = na, nb_
+                a0, a1_, b0, b1_ = na0, na1, nb0, nb1
     return total
 
 

@@ -32,7 +32,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.geometry._jit import njit, py_func
-from mrm.geometry.topology.labeling_3d import Runs3D, as_u8_3d
+from mrm.geometry.topology.labeling_3d import Runs3D
 
 Int32Array = npt.NDArray[np.int32]
 Int64Array = npt.NDArray[np.int64]
@@ -41,13 +41,16 @@ UInt8Array = npt.NDArray[np.uint8]
 #: The outward normals of the six surfel directions, as (dx, dy, dz).
 DIRS = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=np.int64)
 DIRS.flags.writeable = False
+DIRS_X = np.ascontiguousarray(DIRS[:, 0])
+DIRS_Y = np.ascontiguousarray(DIRS[:, 1])
+DIRS_Z = np.ascontiguousarray(DIRS[:, 2])
 
 
 class Surfels(NamedTuple):
     """The surfels of a voxel mask and their surfaces (:func:`surfels_of`).
 
     Surfels are in raster order of their voxel (z, y, x), then by direction. Surfaces are numbered 0, 1, …
-    in the order of their first surfel.
+    by component, each component's outer surface first, then one per cavity.
 
     Attributes
     ----------
@@ -94,79 +97,89 @@ def _lookup(keys: Int64Array, lo: int, hi: int, key: int) -> int:  # pragma: no 
 
 @njit(cache=True)
 def _surfels(
-    m: UInt8Array,
+    rs: npt.NDArray[np.int32], re: npt.NDArray[np.int32], ptr: Int64Array, nx: int, ny: int, nz: int
 ) -> tuple[Int64Array, UInt8Array, Int64Array]:  # pragma: no cover
-    nz, ny, nx = m.shape
+    # The surfels of the voxels of the runs, in raster order then by direction, and their neighbours. Only the
+    # voxels of A are visited; membership is read from a padded byte copy of the mask built from the runs.
     NX, NY, NZ = nx + 2, ny + 2, nz + 2
-    pad = np.zeros((NZ, NY, NX), np.uint8)
-    pad[1:-1, 1:-1, 1:-1] = m
-    flat = pad.reshape(NX * NY * NZ)
+    flat = np.zeros(NX * NY * NZ, np.uint8)
+    nrows = ny * nz
+    for r in range(nrows):
+        k = r // ny
+        j = r - k * ny
+        base = ((k + 1) * NY + j + 1) * NX + 1
+        for t in range(ptr[r], ptr[r + 1]):
+            for i in range(rs[t], re[t] + 1):
+                flat[base + i] = 1
     off = np.empty(6, np.int64)
     off[0], off[1], off[2], off[3], off[4], off[5] = 1, -1, NX, -NX, NX * NY, -NX * NY
-    # rows of the padded array: row R = k·NY + j holds the voxels (·, j, k); surfel key within a row: i·6 + d.
-    rowptr = np.zeros(NZ * NY + 1, np.int64)
-    for R in range(NZ * NY):
+    # surfel key within a row (k, j): i·6 + d; rowptr over the rows of the unpadded mask.
+    rowptr = np.zeros(nrows + 1, np.int64)
+    for r in range(nrows):
+        k = r // ny
+        j = r - k * ny
+        base = ((k + 1) * NY + j + 1) * NX + 1
         cnt = 0
-        base = R * NX
-        for i in range(1, NX - 1):
-            v = base + i
-            if flat[v]:
-                for d in range(6):
+        for t in range(ptr[r], ptr[r + 1]):
+            cnt += 2  # ±x at the run's ends
+            for i in range(rs[t], re[t] + 1):
+                v = base + i
+                for d in range(2, 6):
                     if not flat[v + off[d]]:
                         cnt += 1
-        rowptr[R + 1] = rowptr[R] + cnt
+        rowptr[r + 1] = rowptr[r] + cnt
     n = rowptr[-1]
     keys = np.empty(n, np.int64)
     voxel = np.empty((n, 3), np.int64)
     direction = np.empty(n, np.uint8)
-    t = 0
-    for R in range(NZ * NY):
-        base = R * NX
-        k = R // NY
-        j = R - k * NY
-        for i in range(1, NX - 1):
-            v = base + i
-            if flat[v]:
+    s = 0
+    for r in range(nrows):
+        k = r // ny
+        j = r - k * ny
+        base = ((k + 1) * NY + j + 1) * NX + 1
+        for t in range(ptr[r], ptr[r + 1]):
+            for i in range(rs[t], re[t] + 1):
+                v = base + i
                 for d in range(6):
                     if not flat[v + off[d]]:
-                        keys[t] = i * 6 + d
-                        voxel[t, 0] = i - 1
-                        voxel[t, 1] = j - 1
-                        voxel[t, 2] = k - 1
-                        direction[t] = d
-                        t += 1
+                        keys[s] = i * 6 + d
+                        voxel[s, 0] = i
+                        voxel[s, 1] = j
+                        voxel[s, 2] = k
+                        direction[s] = d
+                        s += 1
     # ---- neighbours across the four edges, by the (6, 26) rule
     neighbour = np.empty((n, 4), np.int64)
     for s in range(n):
-        i = voxel[s, 0] + 1
-        j = voxel[s, 1] + 1
-        k = voxel[s, 2] + 1
-        v = (k * NY + j) * NX + i
+        i = voxel[s, 0]
+        j = voxel[s, 1]
+        k = voxel[s, 2]
+        v = ((k + 1) * NY + j + 1) * NX + i + 1
         d = direction[s]
         sides = _sides(d)
         for e in range(4):
             tt = sides[e]
+            qi, qj, qk = i, j, k
             if flat[v + off[tt]]:
+                qi += DIRS_X[tt]
+                qj += DIRS_Y[tt]
+                qk += DIRS_Z[tt]
                 if flat[v + off[tt] + off[d]]:
-                    q = v + off[tt] + off[d]
+                    qi += DIRS_X[d]
+                    qj += DIRS_Y[d]
+                    qk += DIRS_Z[d]
                     qd = tt ^ 1
                 else:
-                    q = v + off[tt]
                     qd = d
             else:
-                q = v
                 qd = tt
-            R = q // NX
-            lo = rowptr[R]
-            hi = rowptr[R + 1]
-            key = (q - R * NX) * 6 + qd
-            idx = _lookup(keys, lo, hi, key)
-            neighbour[s, e] = idx
+            r = qk * ny + qj
+            neighbour[s, e] = _lookup(keys, rowptr[r], rowptr[r + 1], qi * 6 + qd)
     return voxel, direction, neighbour
 
 
 @njit(cache=True)
-def _pairs(
+def _surface_ids(
     voxel: Int64Array,
     direction: UInt8Array,
     rs: npt.NDArray[np.int32],
@@ -174,15 +187,18 @@ def _pairs(
     ptr: Int64Array,
     label: npt.NDArray[np.int32],
     bg_label: npt.NDArray[np.int32],
+    exterior: Int64Array,
+    first_surface: Int64Array,
+    cavity_slot: Int64Array,
     nx: int,
     ny: int,
     nz: int,
-    n_bg: int,
-) -> Int64Array:  # pragma: no cover
-    # For each surfel: (its voxel's component) · n_bg + (the background component of the voxel outside),
-    # read from the runs by binary search in the voxel's row.
+) -> Int32Array:  # pragma: no cover
+    # Each surfel's surface: its voxel's component c (binary search in the voxel's row) and the background
+    # component b of the voxel outside (the gap holding it); first_surface[c] if b is c's exterior, else
+    # first_surface[c] + cavity_slot[b].
     n = direction.size
-    out = np.empty(n, np.int64)
+    out = np.empty(n, np.int32)
     for s in range(n):
         i, j, k = voxel[s, 0], voxel[s, 1], voxel[s, 2]
         r = k * ny + j
@@ -211,13 +227,43 @@ def _pairs(
                 else:
                     hi = mid
             b = bg_label[lo + r2]
-        out[s] = c * n_bg + b
+        out[s] = first_surface[c] if b == exterior[c] else first_surface[c] + cavity_slot[b]
     return out
 
 
-DIRS_X = np.ascontiguousarray(DIRS[:, 0])
-DIRS_Y = np.ascontiguousarray(DIRS[:, 1])
-DIRS_Z = np.ascontiguousarray(DIRS[:, 2])
+@njit(cache=True)
+def _exterior(
+    rs: npt.NDArray[np.int32],
+    ptr: Int64Array,
+    label: npt.NDArray[np.int32],
+    bg_label: npt.NDArray[np.int32],
+    nlab: int,
+    ny: int,
+) -> Int64Array:  # pragma: no cover
+    # The background component outside each component: the one holding the voxel below its first voxel (the
+    # column below the lowest voxel of a component meets none of it, so that voxel is in its exterior).
+    ext = np.full(nlab + 1, -1, np.int64)
+    for r in range(ptr.size - 1):
+        k = r // ny
+        for t in range(ptr[r], ptr[r + 1]):
+            c = label[t]
+            if ext[c] >= 0:
+                continue
+            if k == 0:
+                ext[c] = 0
+                continue
+            r2 = r - ny
+            i = rs[t]
+            lo = ptr[r2]
+            hi = ptr[r2 + 1]
+            while lo < hi:
+                mid = (lo + hi) >> 1
+                if rs[mid] < i:
+                    lo = mid + 1
+                else:
+                    hi = mid
+            ext[c] = bg_label[lo + r2]
+    return ext
 
 
 def edge_sides(direction: int) -> tuple[int, int, int, int]:
@@ -229,25 +275,22 @@ def edge_sides(direction: int) -> tuple[int, int, int, int]:
     return int(a), int(b), int(c), int(d)
 
 
-def surfels_of(mask: npt.ArrayLike, runs: Runs3D) -> Surfels:
+def surfels_of(runs: Runs3D) -> Surfels:
     """The surfels of a voxel mask, linked by the (6, 26) rule and grouped into closed surfaces.
 
     Parameters
     ----------
-    mask : array_like, shape (nz, ny, nx)
-        Non-zero entries are the object.
     runs : Runs3D
         The mask's runs labelled with 6-connectivity (:func:`~.labeling_3d.label_runs_3d`).
 
     Returns
     -------
     Surfels
-        See the module docstring; voxel coordinates are array indices (i, j, k).
+        See the module docstring; voxel coordinates are array indices (i, j, k). Surfaces are numbered by
+        component, each component's outer surface first, then one per cavity in the order of their labels.
     """
-    m = as_u8_3d(mask)
-    if m.shape != runs.shape:
-        raise ValueError(f"the runs are of a {runs.shape} mask, not {m.shape}")
-    if m.size == 0 or runs.n_labels == 0:
+    nz, ny, nx = runs.shape
+    if runs.n_labels == 0:
         z = np.zeros(0, np.int64)
         return Surfels(
             np.zeros((0, 3), np.int64),
@@ -257,15 +300,35 @@ def surfels_of(mask: npt.ArrayLike, runs: Runs3D) -> Surfels:
             z,
             z,
         )
-    voxel, direction, neighbour = _surfels(m)
-    nz, ny, nx = m.shape
-    key = _pairs(
-        voxel, direction, runs.start, runs.end, runs.ptr, runs.label, runs.bg_label, nx, ny, nz, runs.n_bg
+    voxel, direction, neighbour = _surfels(runs.start, runs.end, runs.ptr, nx, ny, nz)
+    exterior = _exterior(runs.start, runs.ptr, runs.label, runs.bg_label, runs.n_labels, ny)
+    # surfaces: component c's outer one, then its cavities (background ids b with encloser[b] == c, in order)
+    n_cav = np.bincount(runs.encloser[1:], minlength=runs.n_labels + 1)
+    first_surface = np.zeros(runs.n_labels + 1, np.int64)
+    first_surface[1:] = np.cumsum(1 + n_cav[1:]) - (1 + n_cav[1:])
+    cavity_slot = np.zeros(runs.n_bg, np.int64)
+    component = np.repeat(np.arange(1, runs.n_labels + 1), 1 + n_cav[1:])
+    outside = np.empty(component.size, np.int64)
+    outside[first_surface[1:]] = exterior[1:]
+    seen = np.zeros(runs.n_labels + 1, np.int64)
+    for b in range(1, runs.n_bg):  # few: one per cavity
+        c = int(runs.encloser[b])
+        seen[c] += 1
+        cavity_slot[b] = seen[c]
+        outside[first_surface[c] + seen[c]] = b
+    surface = _surface_ids(
+        voxel,
+        direction,
+        runs.start,
+        runs.end,
+        runs.ptr,
+        runs.label,
+        runs.bg_label,
+        exterior,
+        first_surface,
+        cavity_slot,
+        nx,
+        ny,
+        nz,
     )
-    uniq, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    order = np.argsort(first, kind="stable")  # surfaces numbered by their first surfel
-    rank = np.empty_like(order)
-    rank[order] = np.arange(order.size)
-    surface = rank[inverse.ravel()].astype(np.int32)
-    keys = uniq[order]
-    return Surfels(voxel, direction, neighbour, surface, keys // runs.n_bg, keys % runs.n_bg)
+    return Surfels(voxel, direction, neighbour, surface, component, outside)
