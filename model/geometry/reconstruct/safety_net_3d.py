@@ -301,7 +301,7 @@ def safety_net_3d(
             break
         req[used[:, 2], used[:, 1], used[:, 0]] = 1
     corners = np.concatenate(tris).reshape(-1, 3)  # (mx, my, mz) corner indices
-    # Sort vertices by (z, y, x): pack the corner indices (each below 2·(n + 2) + 1 < 2**20).
+    # Sort vertices by (z, y, x): pack the corner indices (each at most 2·(n + 2) < 2**21, checked above).
     key = (corners[:, 2] << 42) | (corners[:, 1] << 21) | corners[:, 0]
     uniq, inverse = np.unique(key, return_inverse=True)
     cm = np.stack([uniq & ((1 << 21) - 1), (uniq >> 21) & ((1 << 21) - 1), uniq >> 42], axis=1)
