@@ -112,14 +112,27 @@ def check_mesh(net: SafetyNet3D) -> None:
         assert same_plane == (faces[t] == faces[o])
 
 
-def check_topology(m: np.ndarray, net: SafetyNet3D) -> None:
-    reg = region_3d_of(m)
+def check_topology(m: np.ndarray, net: SafetyNet3D, origin: tuple[int, int, int] = (0, 0, 0)) -> None:
+    reg = region_3d_of(m, origin)
     shells = Shells(net)
     outer = [s for s, vol in enumerate(shells.volume) if vol > 0]
     inner = [s for s, vol in enumerate(shells.volume) if vol < 0]
     assert len(outer) == reg.n_components and len(inner) == reg.n_cavities
     assert all(e % 2 == 0 for e in shells.euler)
     assert sum((2 - e) // 2 for e in shells.euler) == reg.n_tunnels
+    # per component: a shell's vertex v (in Z + {1/4, 3/4}) is a corner of cells that all touch the voxel
+    # round(v), so that voxel is in the shell's component; the genera of its shells add up to its tunnels
+    if reg.components:
+        labels = reg.labels()
+        ox, oy, oz = reg.origin
+        genus: dict[int, int] = {}
+        for sh in range(len(shells.ids)):
+            v = net.vertices[net.triangles[shells.shell == sh][0, 0]]
+            x, y, z = (int(np.floor(c + 0.5)) for c in v)
+            comp = int(labels[z - oz, y - oy, x - ox])
+            assert comp > 0
+            genus[comp] = genus.get(comp, 0) + (2 - shells.euler[sh]) // 2
+        assert genus == {c.label: c.tunnels for c in reg.components}
     # the volume: one eighth per cell of the doubled grid whose voxels are all in A
     a = np.pad(m, 1)
     cells = a.astype(np.int64)
@@ -169,7 +182,7 @@ def test_one_voxel_is_a_cube_of_side_one_half() -> None:
 def test_known_shapes(mask: np.ndarray, shells: int, genus: int) -> None:
     net = safety_net_3d(mask, (1, 2, 3))
     check_mesh(net)
-    check_topology(mask, net)
+    check_topology(mask, net, (1, 2, 3))
     s = Shells(net)
     assert len(s.ids) == shells and sum((2 - e) // 2 for e in s.euler) == genus
 
@@ -234,7 +247,7 @@ def test_limit_is_checked_before_the_work() -> None:
 def test_random_masks_give_valid_meshes_with_the_topology_of_a(m: np.ndarray) -> None:
     net = safety_net_3d(m, (2, -1, 0))
     check_mesh(net)
-    check_topology(m, net)
+    check_topology(m, net, (2, -1, 0))
 
 
 @settings(max_examples=25)
