@@ -19,7 +19,7 @@ from mrm.core.errors import SizeLimitError
 from mrm.geometry.reconstruct.safety_net_3d import SafetyNet3D, safety_net_3d
 from mrm.reps.region_3d import region_3d_of
 from tests.model.voxel_shapes import ball, hollow, random_mask, solid_torus
-from tests.oracles.polyhedron_reference import gauss
+from tests.oracles.polyhedron_reference import gauss, supercover
 
 masks = st.builds(
     random_mask,
@@ -262,3 +262,24 @@ def test_random_masks_give_valid_meshes_with_the_topology_of_a(m: np.ndarray) ->
 def test_gauss_discretization_of_the_net_is_a(m: np.ndarray) -> None:
     net = safety_net_3d(m, (-3, 1, 2))
     check_gauss(m, (-3, 1, 2), net)
+
+
+@settings(max_examples=15)
+@given(
+    st.builds(
+        random_mask,
+        st.integers(0, 2**32 - 1),
+        st.tuples(*[st.integers(1, 3)] * 3),
+        st.sampled_from([0.3, 0.5, 0.7]),
+    )
+)
+def test_supercover_discretization_of_the_net_is_a_hence_all_three_models(m: np.ndarray) -> None:
+    # gauss ⊆ open-square ⊆ standard ⊆ supercover (the kernels are nested: p + τ ∈ int V(p) + τ ⊂ V(p)), so
+    # gauss = supercover = A gives standard = A too.
+    origin = (4, -2, 1)
+    net = safety_net_3d(m, origin)
+    nz, ny, nx = m.shape
+    x0, y0, z0 = origin
+    got = supercover(net.vertices, net.triangles, (x0 - 1, y0 - 1, z0 - 1, x0 + nx, y0 + ny, z0 + nz))
+    assert np.array_equal(got, np.pad(m, 1))
+    check_gauss(m, origin, net)

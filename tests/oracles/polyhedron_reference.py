@@ -85,3 +85,66 @@ def gauss(
             for i in range(x1 - x0 + 1):
                 out[k, j, i] = poly.inside((x0 + i, y0 + j, z0 + k))
     return out
+
+
+def _dot(a: tuple[Fraction, ...], b: tuple[Fraction, ...]) -> Fraction:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _cross(a: tuple[Fraction, ...], b: tuple[Fraction, ...]) -> tuple[Fraction, Fraction, Fraction]:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def triangle_meets_cube(tri: Sequence[tuple[Fraction, ...]], centre: Sequence[int], half: Fraction) -> bool:
+    """True when a closed triangle and the closed cube ``centre ± half`` intersect (separating axes, exact).
+
+    Two closed convex sets are disjoint iff some axis separates their projections strictly; for a triangle and
+    a box the candidate axes are the box's three normals, the triangle's normal and the nine cross products of
+    the triangle's edges with the box's normals.
+    """
+    c = tuple(Q(v) for v in centre)
+    v = [tuple(p[i] - c[i] for i in range(3)) for p in tri]  # the cube centred at the origin
+    edges = [tuple(v[(k + 1) % 3][i] - v[k][i] for i in range(3)) for k in range(3)]
+    units = [(Q(1), Q(0), Q(0)), (Q(0), Q(1), Q(0)), (Q(0), Q(0), Q(1))]
+    axes = [*units, _cross(edges[0], edges[1])]
+    axes += [_cross(e, u) for e in edges for u in units]
+    for ax in axes:
+        if not any(ax):
+            continue
+        proj = [_dot(p, ax) for p in v]
+        r = half * (abs(ax[0]) + abs(ax[1]) + abs(ax[2]))
+        if min(proj) > r or max(proj) < -r:
+            return False
+    return True
+
+
+def supercover(
+    vertices: np.ndarray, triangles: np.ndarray, box: tuple[int, int, int, int, int, int]
+) -> np.ndarray:
+    """The voxels of the box whose closed cube V(p) meets the closed solid: mask[z, y, x].
+
+    V(p) meets the solid when it meets its boundary (a triangle) or lies inside it (then so does its centre).
+    """
+    x0, y0, z0, x1, y1, z1 = box
+    poly = Polyhedron(vertices, triangles)
+    verts = [tuple(Q(float(c)) for c in v) for v in np.asarray(vertices).tolist()]
+    tris = [tuple(verts[i] for i in t) for t in np.asarray(triangles).tolist()]
+    half = Q(1, 2)
+    out = np.zeros((z1 - z0 + 1, y1 - y0 + 1, x1 - x0 + 1), bool)
+    for k in range(z1 - z0 + 1):
+        for j in range(y1 - y0 + 1):
+            for i in range(x1 - x0 + 1):
+                p = (x0 + i, y0 + j, z0 + k)
+                hit = False
+                for t in tris:
+                    # a quick exact rejection by boxes before the separating axes
+                    if any(
+                        min(q[a] for q in t) > p[a] + half or max(q[a] for q in t) < p[a] - half
+                        for a in range(3)
+                    ):
+                        continue
+                    if triangle_meets_cube(t, p, half):
+                        hit = True
+                        break
+                out[k, j, i] = hit or poly.inside(p)
+    return out
