@@ -56,6 +56,10 @@ KERNEL_MODULES = (
     "geometry/dss/segmentation.py",
     "geometry/dss/__init__.py",
     "reps/region.py",
+    "geometry/topology/labeling_3d.py",
+    "geometry/topology/surfels.py",
+    "geometry/topology/cells_3d.py",
+    "geometry/reconstruct/safety_net_3d.py",
 )
 
 STAMP_NAME = "mrm-kernels-warm.json"
@@ -231,6 +235,20 @@ def warm_pools(labels: Any, mask: Any) -> None:
     lookup(np.zeros(256, np.uint32), max_pool(mask, 1))  # the pictures of big images
 
 
+def _step_regions_3d() -> None:
+    import numpy as np
+
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+    from mrm.reps.cells_3d import cells_3d_of
+    from mrm.reps.region_3d import region_3d_of
+
+    mask = np.ones((3, 3, 3), bool)
+    mask[1, 1, 1] = False  # a cavity
+    _ = region_3d_of(mask, (0, 0, 0)).surfaces
+    cells_3d_of(mask.astype(np.int32) + np.eye(3, dtype=np.int32)[None])
+    safety_net_3d(mask)
+
+
 def _step_operations() -> None:
     from mrm.ops.registry import operations, run_operation
 
@@ -300,6 +318,7 @@ STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("discretization kernels", _step_discretize),
     ("reconstruction kernels", _step_reconstruct),
     ("region and segment kernels", _step_regions),
+    ("3D region kernels", _step_regions_3d),
     ("operation kernels", _step_operations),
     ("file decoders", _step_files),
     ("example projects", _step_examples),
