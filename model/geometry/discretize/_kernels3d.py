@@ -370,6 +370,24 @@ def _cross_axis_separates(
     a_t = -_sgn(ws - vs)
     if a_s == 0 and a_t == 0:
         return False
+    # Float filter: the projections' centre-relative values and the cube's radius, each off by less than
+    # ``bound`` (four roundings at most per term, counted with a factor 4 of slack).
+    es = ws - vs
+    et = wt - vt
+    pvs = vs - cs
+    pvt = vt - ct
+    pos = os_ - cs
+    pot = ot - ct
+    pv = et * pvs - es * pvt
+    po = et * pos - es * pot
+    r = 0.5 * (abs(et) + abs(es))
+    bound = 16.0 * _EPS * (abs(et) * (abs(pvs) + abs(pos) + 1.0) + abs(es) * (abs(pvt) + abs(pot) + 1.0))
+    hi_v = max(pv, po)
+    lo_v = min(pv, po)
+    if hi_v + r > bound and lo_v - r < -bound:
+        return False  # the intervals overlap with room: not separated, whatever the tie rule
+    if hi_v + r < -bound or lo_v - r > bound:
+        return True  # strictly apart
     if t_first:
         lex = a_t if a_t != 0 else a_s
     else:
@@ -439,6 +457,51 @@ def _range(lo: float, hi: float, supercover: bool) -> tuple[int, int]:
 
 
 @njit(cache=True)
+def _normal_separates(
+    ax: float,
+    ay: float,
+    az: float,
+    bx: float,
+    by: float,
+    bz: float,
+    cx: float,
+    cy: float,
+    cz: float,
+    fi: float,
+    fj: float,
+    fk: float,
+    snx: int,
+    sny: int,
+    snz: int,
+    lexn: int,
+    supercover: bool,
+    exact: bool,
+    e: Floats,
+) -> bool:
+    """Does the triangle's normal n separate it from the cube centred at (fi, fj, fk)?
+
+    n·(a − m) = det[a − m; b − m; c − m] for the cube's corner m minimizing n·x: below when < 0 (or = 0 with
+    n·τ > 0 under the tie rule); the same with the maximizing corner, above.
+    """
+    if lexn == 0:
+        return False
+    mx = fi - 0.5 if snx > 0 else fi + 0.5
+    my = fj - 0.5 if sny > 0 else fj + 0.5
+    mz = fk - 0.5 if snz > 0 else fk + 0.5
+    d = det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, mx, my, mz, exact, e)
+    if d < 0 or (d == 0 and not supercover and lexn > 0):
+        return True
+    d = det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, 2.0 * fi - mx, 2.0 * fj - my, 2.0 * fk - mz, exact, e)
+    return d > 0 or (d == 0 and not supercover and lexn < 0)
+
+
+#: Narrow a column to the voxels near the triangle's plane only when the float normal is this accurate.
+_NARROW_REL = 2.0**-30
+#: ... and the triangle spans at most this many voxels (bounds the error of the float estimate, see below).
+_NARROW_SPAN = 2.0**20
+
+
+@njit(cache=True)
 def mark_triangles(
     mask: BoolMask,
     x0: int,
@@ -456,11 +519,21 @@ def mark_triangles(
 
     Separating-axis theorem (the 13 candidate axes of a box and a triangle: the 3 coordinate axes, the
     triangle's normal and the 9 products edge × axis; zero axes of degenerate triangles are skipped, and the
-    candidates stay complete for segments and points). The coordinate axes are the loops' ranges; the three
-    edge × x axes depend on (j, k) only and are tested once per column.
+    candidates stay complete for segments and points). The coordinate axes are the loops' ranges.
+
+    The voxels are visited in columns along the axis D where the float normal is largest: the three axes
+    edge × D depend on the column only and are tested once per column, and along the column only the voxels
+    whose cube can meet the triangle's plane are tested — |n_D (d − a_D) + G| ≤ h with G = n_P (p − a_P) +
+    n_Q (q − a_Q), h = ½ Σ|n|, at most 1 + Σ|n| / |n_D| ≤ 4 voxels. That range comes from float arithmetic
+    and only narrows the candidates (every decision is still exact); it is widened by a margin that bounds
+    its error, and not used at all when the float normal is not accurate enough.
     """
     nzs, nys, nxs = mask.shape
+    origin = (x0, y0, z0)
     bad = 0
+    lo = np.empty(3, np.int64)
+    hi = np.empty(3, np.int64)
+    f = np.empty(3)
     for t in range(tris.shape[0]):
         a = tris[t, 0]
         b = tris[t, 1]
@@ -472,39 +545,91 @@ def mark_triangles(
         sny = _det2(bz, az, cx, ax, bx, ax, cz, az, exact, scratch)
         snz = _det2(bx, ax, cy, ay, by, ay, cx, ax, exact, scratch)
         lexn = snx if snx != 0 else (sny if sny != 0 else snz)
-        i0, i1 = _range(min(ax, bx, cx), max(ax, bx, cx), supercover)
-        j0, j1 = _range(min(ay, by, cy), max(ay, by, cy), supercover)
-        k0, k1 = _range(min(az, bz, cz), max(az, bz, cz), supercover)
-        for k in range(k0, k1 + 1):
-            fk = float(k)
-            for j in range(j0, j1 + 1):
-                fj = float(j)
-                if _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fj, fk, 0, supercover, exact, scratch):
+        lo[0], hi[0] = _range(min(ax, bx, cx), max(ax, bx, cx), supercover)
+        lo[1], hi[1] = _range(min(ay, by, cy), max(ay, by, cy), supercover)
+        lo[2], hi[2] = _range(min(az, bz, cz), max(az, bz, cz), supercover)
+        # The float normal and a bound of its error (each component: two products, three roundings).
+        p1 = (by - ay) * (cz - az)
+        p2 = (bz - az) * (cy - ay)
+        q1 = (bz - az) * (cx - ax)
+        q2 = (bx - ax) * (cz - az)
+        r1 = (bx - ax) * (cy - ay)
+        r2 = (by - ay) * (cx - ax)
+        n0 = p1 - p2
+        n1 = q1 - q2
+        n2 = r1 - r2
+        err = 4.0 * _EPS * max(abs(p1) + abs(p2), abs(q1) + abs(q2), abs(r1) + abs(r2))
+        dd = 0
+        if abs(n1) > abs(n0):
+            dd = 1
+        if abs(n2) > max(abs(n0), abs(n1)):
+            dd = 2
+        nd = n0 if dd == 0 else (n1 if dd == 1 else n2)
+        span = max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) + 2.0
+        narrow = nd != 0.0 and err <= _NARROW_REL * abs(nd) and span <= _NARROW_SPAN
+        pp = (dd + 1) % 3
+        qq = (dd + 2) % 3
+        av = (ax, ay, az)
+        nv = (n0, n1, n2)
+        # Error of the float range (see the docstring): relative error of n below 2^-30, |n_D| ≥ Σ|n| / 3,
+        # |p − a_P|, |q − a_Q| below the span, so the quotients are off by far less than 2^-6; the rounding of
+        # a_D − quotient is below 2^-51 |a_D| + 2^-50 · span.
+        margin = 1.0 + (abs(av[dd]) + span) * 2.0**-40
+        h = 0.5 * (abs(n0) + abs(n1) + abs(n2))
+        for q in range(lo[qq], hi[qq] + 1):
+            for p in range(lo[pp], hi[pp] + 1):
+                f[pp] = float(p)
+                f[qq] = float(q)
+                if dd == 0:
+                    sep = _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, f[1], f[2], 0, supercover, exact, scratch)
+                elif dd == 1:
+                    sep = _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, f[2], f[0], 1, supercover, exact, scratch)
+                else:
+                    sep = _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, f[0], f[1], 2, supercover, exact, scratch)
+                if sep:
                     continue
-                for i in range(i0, i1 + 1):
-                    fi = float(i)
-                    if lexn != 0:
-                        # n·(a − m) for the cube's corner m minimizing n·x: below when < 0 (≤ with the tie rule)
-                        mx = fi - 0.5 if snx > 0 else fi + 0.5
-                        my = fj - 0.5 if sny > 0 else fj + 0.5
-                        mz = fk - 0.5 if snz > 0 else fk + 0.5
-                        d = det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, mx, my, mz, exact, scratch)
-                        if d < 0 or (d == 0 and not supercover and lexn > 0):
-                            continue
-                        d = det3_sign(
-                            ax, ay, az, bx, by, bz, cx, cy, cz, 2.0 * fi - mx, 2.0 * fj - my, 2.0 * fk - mz, exact, scratch
-                        )
-                        if d > 0 or (d == 0 and not supercover and lexn < 0):
-                            continue
-                    if _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fk, fi, 1, supercover, exact, scratch):
-                        continue
-                    if _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, 2, supercover, exact, scratch):
-                        continue
-                    kk = k - z0
-                    jj = j - y0
-                    ii = i - x0
+                d0 = lo[dd]
+                d1 = hi[dd]
+                if narrow:
+                    g = nv[pp] * (f[pp] - av[pp]) + nv[qq] * (f[qq] - av[qq])
+                    u1 = av[dd] - (g + h) / nd
+                    u2 = av[dd] - (g - h) / nd
+                    if u1 > u2:
+                        u1, u2 = u2, u1
+                    d0 = max(d0, int(math.ceil(u1 - margin)))
+                    d1 = min(d1, int(math.floor(u2 + margin)))
+                for d in range(d0, d1 + 1):
+                    f[dd] = float(d)
+                    fi = f[0]
+                    fj = f[1]
+                    fk = f[2]
+                    kk = int(fk) - origin[2]
+                    jj = int(fj) - origin[1]
+                    ii = int(fi) - origin[0]
                     if kk < 0 or jj < 0 or ii < 0 or kk >= nzs or jj >= nys or ii >= nxs:
                         bad += 1
+                        continue
+                    if mask[kk, jj, ii]:
+                        continue  # already in (inside the solid, or met by another triangle)
+                    # Float filter on the plane: g = n·(centre − a) against the cube's radius h on n.
+                    ui = fi - ax
+                    uj = fj - ay
+                    uk = fk - az
+                    g = n0 * ui + n1 * uj + n2 * uk
+                    gb = err * (abs(ui) + abs(uj) + abs(uk) + 1.5) + 16.0 * _EPS * (
+                        abs(n0 * ui) + abs(n1 * uj) + abs(n2 * uk) + h
+                    )
+                    if abs(g) > h + gb:
+                        continue  # the plane misses the closed cube: separated
+                    if abs(g) >= h - gb and _normal_separates(
+                        ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, fk, snx, sny, snz, lexn, supercover, exact, scratch
+                    ):
+                        continue
+                    if dd != 0 and _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fj, fk, 0, supercover, exact, scratch):
+                        continue
+                    if dd != 1 and _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fk, fi, 1, supercover, exact, scratch):
+                        continue
+                    if dd != 2 and _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, 2, supercover, exact, scratch):
                         continue
                     mask[kk, jj, ii] = True
     return bad
