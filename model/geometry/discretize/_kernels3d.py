@@ -633,3 +633,22 @@ def mark_triangles(
                         continue
                     mask[kk, jj, ii] = True
     return bad
+
+
+@njit(cache=True)
+def crop_in_place(mask: BoolMask, i0: int, j0: int, k0: int, nx: int, ny: int, nz: int) -> None:
+    """Move mask[k0:k0+nz, j0:j0+ny, i0:i0+nx] to the front of the buffer, as a C-ordered (nz, ny, nx) array.
+
+    Every element moves to a flat index no larger than its own, so an ascending copy never overwrites an
+    element not yet read. The caller then shrinks the buffer (``ndarray.resize``).
+    """
+    flat = mask.reshape(-1)
+    sy = mask.shape[2]
+    sz = mask.shape[1] * sy
+    d = 0
+    for k in range(nz):
+        for j in range(ny):
+            src = (k0 + k) * sz + (j0 + j) * sy + i0
+            for i in range(nx):
+                flat[d] = flat[src + i]
+                d += 1

@@ -175,7 +175,8 @@ def voxelization_box(vertices: npt.ArrayLike, triangles: npt.ArrayLike, model: s
     """Return the voxel box (xmin, ymin, zmin, xmax, ymax, zmax) that holds D, or None without triangles.
 
     Tight for ``"standard"`` and ``"supercover"`` (the extreme vertices' cells are reached); for ``"gauss"``
-    the standard box, which contains the result.
+    the voxels p whose p + τ lies in the vertices' extent (⌈min⌉ ≤ p ≤ ⌈max⌉ − 1), which hold the result
+    (None when there are none).
     """
     v, t = _validate(vertices, triangles)
     return _box(v, t, Model.parse(model))
@@ -250,8 +251,15 @@ def _box(v: Floats, t: Ints, model: Model) -> Box3 | None:
     hi = used.max(axis=0)
     # cell(u) = ⌈u − ½⌉ is exact for |u| ≤ 2^51 (u − ½ is a float there); the closed upper end adds one
     # voxel when the maximum is a half-integer.
-    c_lo = np.ceil(lo - 0.5).astype(np.int64)
-    c_hi = np.ceil(hi - 0.5).astype(np.int64)
+    if model is Model.GAUSS:
+        # p + τ within the extent: lo ≤ p + ε and p + ε < hi on each axis, i.e. ⌈lo⌉ ≤ p ≤ ⌈hi⌉ − 1.
+        c_lo = np.ceil(lo).astype(np.int64)
+        c_hi = np.ceil(hi).astype(np.int64) - 1
+        if (c_hi < c_lo).any():
+            return None
+    else:
+        c_lo = np.ceil(lo - 0.5).astype(np.int64)
+        c_hi = np.ceil(hi - 0.5).astype(np.int64)
     if model is Model.SUPERCOVER:
         c_hi = c_hi + (hi == c_hi + 0.5)
     return (int(c_lo[0]), int(c_lo[1]), int(c_lo[2]), int(c_hi[0]), int(c_hi[1]), int(c_hi[2]))
@@ -301,8 +309,10 @@ def _run(
             return _empty()
         g = tuple(int(u) for u in ext)
         if g != (x0, y0, z0, x1, y1, z1):
-            mask = np.ascontiguousarray(
-                mask[g[2] - z0 : g[5] - z0 + 1, g[1] - y0 : g[4] - y0 + 1, g[0] - x0 : g[3] - x0 + 1]
-            )
+            # Crop in place (a copy would double the peak memory): move the kept rows to the front of the
+            # buffer, then shrink it.
+            shape = (g[5] - g[2] + 1, g[4] - g[1] + 1, g[3] - g[0] + 1)
+            _k3.crop_in_place(mask, g[0] - x0, g[1] - y0, g[2] - z0, shape[2], shape[1], shape[0])
+            mask.resize(shape, refcheck=False)
             x0, y0, z0 = g[0], g[1], g[2]
     return mask, (x0, y0, z0)
