@@ -32,10 +32,10 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 sys.path.insert(0, os.path.dirname(__file__))
 
-from discretize import median_time, peak_memory  # noqa: E402  (the 2D benchmark's helpers)
+from discretize import median_time, peak_memory
 
-from mrm.core.models import Model  # noqa: E402
-from mrm.geometry.discretize.voxels import voxelize_solid, voxelize_triangles  # noqa: E402
+from mrm.core.models import Model
+from mrm.geometry.discretize.voxels import voxelize_solid, voxelize_triangles
 
 MODELS = Model.names()
 
@@ -65,7 +65,40 @@ def bumpy_sphere(n_phi: int = 400, n_theta: int = 128, size: int = 512) -> tuple
     return v, np.concatenate(tris).astype(np.int64)
 
 
-def in_box(mask: np.ndarray, origin: tuple[int, int, int], box: tuple[int, int, int, int, int, int]) -> np.ndarray:
+def grid_octahedron(n: int = 112, step: int = 2) -> tuple[np.ndarray, np.ndarray]:
+    """|x| + |y| + |z| ≤ n·step with each face cut into n² triangles on integer vertices: 8n² triangles.
+
+    The tie-rich case (the paper's Figure 12): every face passes through voxel centres, edges and corners.
+    """
+    r = n * step
+    verts: dict[tuple[int, int, int], int] = {}
+    tris = []
+
+    def vid(p: tuple[int, int, int]) -> int:
+        return verts.setdefault(p, len(verts))
+
+    for sx in (1, -1):
+        for sy in (1, -1):
+            for sz in (1, -1):
+
+                def pt(i: int, j: int, sx: int = sx, sy: int = sy, sz: int = sz) -> tuple[int, int, int]:
+                    return (sx * i * step, sy * j * step, sz * (r - (i + j) * step))
+
+                flip = sx * sy * sz < 0  # outward: counter-clockwise seen from outside
+                for i in range(n):
+                    for j in range(n - i):
+                        cand = [(pt(i, j), pt(i + 1, j), pt(i, j + 1))]
+                        if i + j < n - 1:
+                            cand.append((pt(i + 1, j), pt(i + 1, j + 1), pt(i, j + 1)))
+                        for a, b, c in cand:
+                            tris.append((vid(a), vid(c), vid(b)) if flip else (vid(a), vid(b), vid(c)))
+    v = np.array(sorted(verts, key=verts.__getitem__), dtype=np.float64)
+    return v, np.array(tris, dtype=np.int64)
+
+
+def in_box(
+    mask: np.ndarray, origin: tuple[int, int, int], box: tuple[int, int, int, int, int, int]
+) -> np.ndarray:
     """Our (mask[k, j, i], origin) pasted into the common box (x0, y0, z0, x1, y1, z1)."""
     x0, y0, z0, x1, y1, z1 = box
     out = np.zeros((z1 - z0 + 1, y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
@@ -101,7 +134,9 @@ def open3d_surface(v: np.ndarray, t: np.ndarray, box: tuple[int, int, int, int, 
     """Open3D's voxelization of the triangles (surface), as integer voxel centres (n, 3)."""
     import open3d as o3d
 
-    mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(v), o3d.utility.Vector3iVector(t.astype(np.int32)))
+    mesh = o3d.geometry.TriangleMesh(
+        o3d.utility.Vector3dVector(v), o3d.utility.Vector3iVector(t.astype(np.int32))
+    )
     x0, y0, z0, x1, y1, z1 = box
     grid = o3d.geometry.VoxelGrid.create_from_triangle_mesh_within_bounds(
         mesh, 1.0, np.array([x0 - 0.5, y0 - 0.5, z0 - 0.5]), np.array([x1 + 0.5, y1 + 0.5, z1 + 0.5])
@@ -124,8 +159,20 @@ def main() -> None:
     parser.add_argument("--no-trimesh", action="store_true")
     parser.add_argument("--no-open3d", action="store_true")
     args = parser.parse_args()
-    v, t = bumpy_sphere(size=args.size)
-    print(f"mesh: {len(t):,} triangles, {len(v):,} vertices, extent {v.min(0).round(2)} .. {v.max(0).round(2)}")
+    meshes = {
+        "bumpy sphere (generic floats)": bumpy_sphere(size=args.size),
+        "grid octahedron (integer vertices: ties everywhere)": grid_octahedron(),
+    }
+    for name, (v, t) in meshes.items():
+        print(f"\n==== {name}")
+        run(v, t, args)
+
+
+def run(v: np.ndarray, t: np.ndarray, args: argparse.Namespace) -> None:
+    """Time and compare ours and the peers on one mesh."""
+    print(
+        f"mesh: {len(t):,} triangles, {len(v):,} vertices, extent {v.min(0).round(2)} .. {v.max(0).round(2)}"
+    )
 
     first = {}
     for m in MODELS:
@@ -139,10 +186,16 @@ def main() -> None:
     print(f"\nours, warm median of {args.repeats} runs (solid):")
     for m in MODELS:
         mem = peak_memory(lambda m=m: voxelize_solid(v, t, m))
-        print(f"  {m:<11} {ours[m]:7.3f} s   peak memory {mem / 2**20:7.1f} MiB = {mem / box_voxels:.3f} B/voxel")
+        print(
+            f"  {m:<11} {ours[m]:7.3f} s   peak memory {mem / 2**20:7.1f} MiB"
+            f" = {mem / box_voxels:.3f} B/voxel"
+        )
     print(f"  supercover of the triangles only (surface): {surf:.3f} s")
-    print(f"  bounding box {sc_mask.shape[::-1]} = {box_voxels:,} voxels; gauss {int(results['gauss'][0].sum()):,} "
-          f"voxels, supercover {int(sc_mask.sum()):,}")
+    print(
+        f"  bounding box {sc_mask.shape[::-1]} = {box_voxels:,} voxels; "
+        f"gauss {int(results['gauss'][0].sum()):,} "
+        f"voxels, supercover {int(sc_mask.sum()):,}"
+    )
 
     x0, y0, z0 = sc_origin
     nz, ny, nx = sc_mask.shape
@@ -160,13 +213,24 @@ def main() -> None:
         else:
             tm, outside = points_in_box(pts, box)
             del pts
-            print(f"\ntrimesh voxelized(pitch=1) + fill(): {dt:.2f} s (one run) = {dt / ours['gauss']:.0f}× our gauss, "
-                  f"{dt / ours['supercover']:.0f}× our supercover; {int(tm.sum()) + outside:,} voxels")
-            print(f"  claimed but the solid does not touch the cube (not in our supercover): "
-                  f"{int((tm & ~s).sum()) + outside:,}")
+            print(
+                f"\ntrimesh voxelized(pitch=1) + fill(): {dt:.2f} s (one run) = "
+                f"{dt / ours['gauss']:.0f}× our gauss, "
+                f"{dt / ours['supercover']:.0f}× our supercover; {int(tm.sum()) + outside:,} voxels"
+            )
+            print(
+                f"  claimed but the solid does not touch the cube (not in our supercover): "
+                f"{int((tm & ~s).sum()) + outside:,}"
+            )
             print(f"  centre inside the solid but missed (in our gauss): {int((g & ~tm).sum()):,}")
-            print(f"  differs from our gauss: {int((tm ^ g).sum()) + outside:,}; "
-                  f"from our supercover: {int((tm ^ s).sum()) + outside:,}")
+            print(
+                f"  claimed, centre not inside (not in our gauss): {int((tm & ~g).sum()) + outside:,}; "
+                f"cube touched but missed (in our supercover): {int((s & ~tm).sum()):,}"
+            )
+            print(
+                f"  differs from our gauss: {int((tm ^ g).sum()) + outside:,}; "
+                f"from our supercover: {int((tm ^ s).sum()) + outside:,}"
+            )
             del tm
     if not args.no_open3d:
         try:
@@ -177,8 +241,10 @@ def main() -> None:
             surface = in_box(*voxelize_triangles(v, t, "supercover"), box)
             dt, pts = timed(lambda: open3d_surface(v, t, box))
             o3, outside = points_in_box(pts, box)
-            print(f"\nOpen3D create_from_triangle_mesh_within_bounds (surface only): {dt:.2f} s (one run) = "
-                  f"{dt / surf:.1f}× our supercover surface; {len(pts):,} voxels, ours {int(surface.sum()):,}")
+            print(
+                f"\nOpen3D create_from_triangle_mesh_within_bounds (surface only): {dt:.2f} s (one run) = "
+                f"{dt / surf:.1f}× our supercover surface; {len(pts):,} voxels, ours {int(surface.sum()):,}"
+            )
             print(f"  claimed but no triangle touches the cube: {int((o3 & ~surface).sum()) + outside:,}")
             print(f"  touched by a triangle but missed: {int((surface & ~o3).sum()):,}")
 

@@ -1,4 +1,5 @@
-"""The exact voxelization against the Fraction reference (docs/design.md §11), on random and adversarial meshes.
+"""The exact voxelization against the Fraction reference (docs/design.md §11), on random and adversarial
+meshes.
 
 Each input is checked in the three models and along both arithmetic paths of the kernels: the automatic choice
 (plain float arithmetic when it is provably exact, e.g. for snapped input) and the forced float-filter +
@@ -29,10 +30,10 @@ from mrm.geometry.discretize.voxels import (
     voxelize_triangles,
 )
 from tests.oracles.mesh_strategies import (
+    STAR_VERTICES,
     box_mesh,
     cavities,
     concat,
-    STAR_VERTICES,
     points,
     separated_pairs,
     solids,
@@ -41,7 +42,12 @@ from tests.oracles.mesh_strategies import (
     translate,
     triangle_sets,
 )
-from tests.oracles.voxelize_reference import exact_triangles, reference_voxelize, reference_voxelize_all, voxel_set
+from tests.oracles.voxelize_reference import (
+    exact_triangles,
+    reference_voxelize,
+    reference_voxelize_all,
+    voxel_set,
+)
 
 MODELS = Model.names()
 
@@ -99,7 +105,9 @@ def test_triangles_segments_points_match_reference(mesh) -> None:  # type: ignor
         tetra_mesh((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0), (0.0, 0.0, 2.0)),
         tetra_mesh((0.5, 0.5, 0.5), (2.5, 0.5, 0.5), (0.5, 2.5, 0.5), (0.5, 0.5, 2.5)),
         # a box with a cavity whose faces lie on voxel faces
-        concat(box_mesh((-2.5, -2.5, -2.5), (2.5, 2.5, 2.5)), box_mesh((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), True)),
+        concat(
+            box_mesh((-2.5, -2.5, -2.5), (2.5, 2.5, 2.5)), box_mesh((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), True)
+        ),
     ],
     ids=["on-faces", "on-centres", "on-edge", "corner-tetra", "half-tetra", "cavity-on-faces"],
 )
@@ -135,7 +143,7 @@ def test_octahedron_gauss_is_the_digital_octahedron() -> None:
 @settings(max_examples=200)
 @given(st.lists(st.tuples(*[st.integers(-8, 8).map(lambda n: n / 4)] * 3), min_size=1, max_size=5))
 def test_points_go_to_their_cell(pts) -> None:  # type: ignore[no-untyped-def]
-    """standard: the one voxel whose half-open cell (p − ½, p + ½]³ holds the point (the product's tie rule)."""
+    """standard: the one voxel whose half-open cell (p − ½, p + ½]³ holds the point (the tie rule)."""
     got = voxel_set(*voxelize_points(pts, "standard"))
     assert got == {cell_of(p) for p in pts}
     sc = voxel_set(*voxelize_points(pts, "supercover"))
@@ -226,7 +234,11 @@ def test_sandwich(tagged_mesh) -> None:  # type: ignore[no-untyped-def]
 
 # -------------------------------------------------------------------------------------------- exact signs
 @settings(max_examples=300)
-@given(st.lists(st.one_of(st.integers(-4, 4).map(lambda n: n / 2), st.floats(-1e6, 1e6)), min_size=12, max_size=12))
+@given(
+    st.lists(
+        st.one_of(st.integers(-4, 4).map(lambda n: n / 2), st.floats(-1e6, 1e6)), min_size=12, max_size=12
+    )
+)
 def test_det3_sign_is_exact(vals) -> None:  # type: ignore[no-untyped-def]
     a, b, c, d = (tuple(Fraction(u) for u in vals[i : i + 3]) for i in (0, 3, 6, 9))
     rows = [[a[i] - d[i] for i in range(3)], [b[i] - d[i] for i in range(3)], [c[i] - d[i] for i in range(3)]]

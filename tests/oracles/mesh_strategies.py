@@ -1,4 +1,4 @@
-"""Hypothesis strategies for closed triangle meshes and triangle sets, random and adversarial (docs/design.md §11).
+"""Hypothesis strategies for closed triangle meshes and triangle sets, random and adversarial (design §11).
 
 A mesh is a pair (vertices: float64 (n, 3), triangles: int64 (m, 3)), outward. Coordinates favour the grid:
 voxel centres (integers), voxel faces (half-integers), quarter-integers, and free floats; shapes include
@@ -22,7 +22,9 @@ coords = st.one_of(
     st.integers(-6, 6).map(float),
     st.integers(-12, 12).map(lambda n: n / 2),
     st.integers(-24, 24).map(lambda n: n / 4),
-    st.floats(-3.0, 3.0, allow_nan=False, allow_infinity=False).filter(lambda u: u == 0.0 or abs(u) > 2.0**-30),
+    st.floats(-3.0, 3.0, allow_nan=False, allow_infinity=False).filter(
+        lambda u: u == 0.0 or abs(u) > 2.0**-30
+    ),
 )
 points = st.tuples(coords, coords, coords)
 
@@ -32,7 +34,11 @@ def _det(a, b, c, d) -> Fraction:  # type: ignore[no-untyped-def]
     u = [Fraction(b[i]) - Fraction(a[i]) for i in range(3)]
     v = [Fraction(c[i]) - Fraction(a[i]) for i in range(3)]
     w = [Fraction(d[i]) - Fraction(a[i]) for i in range(3)]
-    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])
+    return (
+        u[0] * (v[1] * w[2] - v[2] * w[1])
+        - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0])
+    )
 
 
 def tetra_mesh(a, b, c, d) -> Mesh:  # type: ignore[no-untyped-def]

@@ -7,9 +7,9 @@ D(E) = { p ∈ Z³ : E ∩ K(p) ≠ ∅ } with τ = (ε, ε², ε³), ε → 0�
     supercover  K(p) = V(p)
     gauss       K(p) = { p + τ }
 
-Quantities that depend on ε are 4-tuples (v0, v1, v2, v3) meaning v0 + v1·ε + v2·ε² + v3·ε³; Python compares
-tuples lexicographically, which is exactly "for every sufficiently small ε > 0". Every kernel is an axis-aligned
-box lo ⋖ x ⋖ hi whose bounds are such tuples (⋖ is < for the open boxes, ≤ for the closed ones).
+Quantities that depend on ε are 4-tuples (v0, v1, v2, v3) meaning v0 + v1·ε + v2·ε² + v3·ε³; Python
+compares tuples lexicographically, which is exactly "for every sufficiently small ε > 0". Every kernel is an
+axis-aligned box lo ⋖ x ⋖ hi whose bounds are such tuples (⋖ is < for the open boxes, ≤ for the closed ones).
 
 A closed triangle abc is { a + s(b − a) + t(c − a) : s, t ≥ 0, s + t ≤ 1 }; it meets a kernel box when the
 linear system in (s, t) made of those three inequalities and the six of the box has a solution, decided by
@@ -17,9 +17,9 @@ Fourier–Motzkin elimination (strict inequalities stay strict; coefficients are
 tuples). Degenerate triangles (segments, points) need no special case.
 
 A solid P is given by its closed boundary. p + τ ∈ P is decided by the parity of the triangles crossed by the
-ray from p + τ towards +z (the kernels cast theirs towards +x): the ray's projection (p_x + ε, p_y + ε²) is never
-on a projected edge, and p + τ is never on a triangle. K(p) meets P when it meets a triangle, or else (K(p) is
-connected and misses ∂P, so it lies wholly inside or outside) when p + τ ∈ K(p) is inside.
+ray from p + τ towards +z (the kernels cast theirs towards +x): the ray's projection (p_x + ε, p_y + ε²) is
+never on a projected edge, and p + τ is never on a triangle. K(p) meets P when it meets a triangle, or else
+(K(p) is connected and misses ∂P, so it lies wholly inside or outside) when p + τ ∈ K(p) is inside.
 
 Nothing here is shared with mrm.geometry: no float filter, no separating axes, no scanline.
 """
@@ -43,8 +43,8 @@ ZERO4: Eps = (0, 0, 0, 0)
 # Speed, without changing any answer: the whole problem is scaled by S = 2·(the common denominator of the
 # coordinates), a power of two, so that every coordinate and every half-integer of the grid becomes an integer
 # and the arithmetic runs on Python ints. Scaling all real parts by S > 0 keeps every comparison; the ε
-# coefficients are left as they are (scaling the coefficients of one power of ε by a positive constant in every
-# quantity at once keeps every sign, and all quantities are combinations with positive weights).
+# coefficients are left as they are (scaling the coefficients of one power of ε by a positive constant in
+# every quantity at once keeps every sign, and all quantities are combinations with positive weights).
 
 
 def _e(v0: int, axis: int = -1) -> Eps:
@@ -92,7 +92,14 @@ def _feasible(cons: list[Constraint]) -> bool:
         for u in upper:
             for lo in lower:
                 fu, fl = -lo[var], u[var]  # positive weights that cancel the variable
-                new.append((u[0] * fu + lo[0] * fl, u[1] * fu + lo[1] * fl, _add(_scale(u[2], fu), _scale(lo[2], fl)), u[3] or lo[3]))
+                new.append(
+                    (
+                        u[0] * fu + lo[0] * fl,
+                        u[1] * fu + lo[1] * fl,
+                        _add(_scale(u[2], fu), _scale(lo[2], fl)),
+                        u[3] or lo[3],
+                    )
+                )
         cons = new
     # Only 0 ⋖ r is left.
     return all((r > ZERO4) if strict else (r >= ZERO4) for _, _, r, strict in cons)
@@ -145,7 +152,9 @@ def inside_tau(p: Voxel, tris: Iterable[Sequence[IPt]], scale: int) -> bool:
 
 
 # ------------------------------------------------------------------------------------------ entry points
-def exact_triangles(vertices: Iterable[Iterable[float]], triangles: Iterable[Iterable[int]]) -> list[list[Pt]]:
+def exact_triangles(
+    vertices: Iterable[Iterable[float]], triangles: Iterable[Iterable[int]]
+) -> list[list[Pt]]:
     """The triangles as lists of three exact points (every float64 is a rational)."""
     v = [tuple(Q(float(u)) for u in row) for row in vertices]
     return [[v[int(i)] for i in tri] for tri in triangles]  # type: ignore[misc]
@@ -156,7 +165,9 @@ def _closed_range(lo: Fraction, hi: Fraction) -> range:
     return range(math.ceil(lo - HALF), math.floor(hi + HALF) + 1)
 
 
-def reference_voxelize_all(tris: list[list[Pt]], solid: bool, models: Sequence[str] = REFERENCE_MODELS) -> dict[str, set[Voxel]]:
+def reference_voxelize_all(
+    tris: list[list[Pt]], solid: bool, models: Sequence[str] = REFERENCE_MODELS
+) -> dict[str, set[Voxel]]:
     """D(E) = { p : E ∩ K(p) ≠ ∅ } in each model, for the triangles (their union, or the solid they bound)."""
     out: dict[str, set[Voxel]] = {m: set() for m in models}
     if not tris:
@@ -165,7 +176,9 @@ def reference_voxelize_all(tris: list[list[Pt]], solid: bool, models: Sequence[s
     scale = 2 * max(q[d].denominator for q in pts for d in range(3))
     itris = [[tuple(int(q[d] * scale) for d in range(3)) for q in t] for t in tris]
     ranges = [_closed_range(min(q[d] for q in pts), max(q[d] for q in pts)) for d in range(3)]
-    boxes = [([min(q[d] for q in t) for d in range(3)], [max(q[d] for q in t) for d in range(3)]) for t in itris]
+    boxes = [
+        ([min(q[d] for q in t) for d in range(3)], [max(q[d] for q in t) for d in range(3)]) for t in itris
+    ]
     h = scale // 2
     for i in ranges[0]:
         for j in ranges[1]:

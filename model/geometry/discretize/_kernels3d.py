@@ -174,7 +174,18 @@ def det3_sign(
 
 
 @njit(cache=True)
-def _det2(p1: float, p2: float, q1: float, q2: float, r1: float, r2: float, s1: float, s2: float, exact: bool, e: Floats) -> int:
+def _det2(
+    p1: float,
+    p2: float,
+    q1: float,
+    q2: float,
+    r1: float,
+    r2: float,
+    s1: float,
+    s2: float,
+    exact: bool,
+    e: Floats,
+) -> int:
     """Exact sign of (p1 − p2)(q1 − q2) − (r1 − r2)(s1 − s2) (the 2D kernels' filter and expansion)."""
     s = _det_filter(p1, p2, q1, q2, r1, r2, s1, s2, exact)
     if s == UNDECIDED:
@@ -238,7 +249,7 @@ def _crossing_ceil(
     elif xe >= hi:
         c = hi
     else:
-        c = int(math.ceil(xe))
+        c = math.ceil(xe)
     if c < hi and s * det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, float(c), j, k, exact, e) > 0:
         lo2 = c + 1
         hi2 = hi
@@ -294,10 +305,10 @@ def fill_parity(
         s = _det2(by, ay, cz, az, bz, az, cy, ay, exact, scratch)
         if s == 0:
             continue  # seen edge-on along x: never crossed
-        jlo = int(math.ceil(min(ay, by, cy)))
-        jhi = int(math.ceil(max(ay, by, cy))) - 1
-        klo = int(math.ceil(min(az, bz, cz)))
-        khi = int(math.ceil(max(az, bz, cz))) - 1
+        jlo = math.ceil(min(ay, by, cy))
+        jhi = math.ceil(max(ay, by, cy)) - 1
+        klo = math.ceil(min(az, bz, cz))
+        khi = math.ceil(max(az, bz, cz)) - 1
         for k in range(klo, khi + 1):
             fk = float(k)
             for j in range(jlo, jhi + 1):
@@ -308,7 +319,9 @@ def fill_parity(
                     continue
                 if _edge_side(cy, cz, ay, az, fj, fk, exact, scratch) != s:
                     continue
-                ci = _crossing_ceil(ax, ay, az, bx, by, bz, cx, cy, cz, s, fj, fk, x0, x0 + nxs, exact, scratch)
+                ci = _crossing_ceil(
+                    ax, ay, az, bx, by, bz, cx, cy, cz, s, fj, fk, x0, x0 + nxs, exact, scratch
+                )
                 kk = k - z0
                 jj = j - y0
                 if kk < 0 or jj < 0 or kk >= nzs or jj >= nys:
@@ -358,7 +371,7 @@ def _cross_axis_separates(
     exact: bool,
     e: Floats,
 ) -> bool:
-    """Does the axis a = (w − v) × u separate the triangle from the kernel? (u: a coordinate axis.)
+    """Tell whether the axis a = (w − v) × u (u a coordinate axis) separates the triangle from the kernel.
 
     (s, t) are the two other coordinates, in cyclic order, so that a = (e_t, −e_s) in that plane, e = w − v.
     The triangle projects on a to {a·v = a·w, a·o}; the kernel's cube (centre c) to [a·c_min, a·c_max].
@@ -388,10 +401,8 @@ def _cross_axis_separates(
         return False  # the intervals overlap with room: not separated, whatever the tie rule
     if hi_v + r < -bound or lo_v - r > bound:
         return True  # strictly apart
-    if t_first:
-        lex = a_t if a_t != 0 else a_s
-    else:
-        lex = a_s if a_s != 0 else a_t
+    first, second = (a_t, a_s) if t_first else (a_s, a_t)
+    lex = first if first != 0 else second
     ms = cs - 0.5 if a_s > 0 else cs + 0.5
     mt = ct - 0.5 if a_t > 0 else ct + 0.5
     # a·(x − m) = e_t (x_s − m_s) − e_s (x_t − m_t)
@@ -428,7 +439,7 @@ def _plane_cross_separates(
     exact: bool,
     e: Floats,
 ) -> bool:
-    """Do the three axes edge × u separate the triangle from the cube centred at (fs, ft) in ``plane``?
+    """Tell whether an axis edge × u separates the triangle from the cube centred at (fs, ft) in ``plane``.
 
     plane 0: u = x, (s, t) = (y, z); 1: u = y, (s, t) = (z, x); 2: u = z, (s, t) = (x, y).
     """
@@ -478,7 +489,7 @@ def _normal_separates(
     exact: bool,
     e: Floats,
 ) -> bool:
-    """Does the triangle's normal n separate it from the cube centred at (fi, fj, fk)?
+    """Tell whether the triangle's normal n separates it from the cube centred at (fi, fj, fk).
 
     n·(a − m) = det[a − m; b − m; c − m] for the cube's corner m minimizing n·x: below when < 0 (or = 0 with
     n·τ > 0 under the tie rule); the same with the maximizing corner, above.
@@ -581,11 +592,17 @@ def mark_triangles(
                 f[pp] = float(p)
                 f[qq] = float(q)
                 if dd == 0:
-                    sep = _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, f[1], f[2], 0, supercover, exact, scratch)
+                    sep = _plane_cross_separates(
+                        ax, ay, az, bx, by, bz, cx, cy, cz, f[1], f[2], 0, supercover, exact, scratch
+                    )
                 elif dd == 1:
-                    sep = _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, f[2], f[0], 1, supercover, exact, scratch)
+                    sep = _plane_cross_separates(
+                        ax, ay, az, bx, by, bz, cx, cy, cz, f[2], f[0], 1, supercover, exact, scratch
+                    )
                 else:
-                    sep = _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, f[0], f[1], 2, supercover, exact, scratch)
+                    sep = _plane_cross_separates(
+                        ax, ay, az, bx, by, bz, cx, cy, cz, f[0], f[1], 2, supercover, exact, scratch
+                    )
                 if sep:
                     continue
                 d0 = lo[dd]
@@ -596,8 +613,8 @@ def mark_triangles(
                     u2 = av[dd] - (g - h) / nd
                     if u1 > u2:
                         u1, u2 = u2, u1
-                    d0 = max(d0, int(math.ceil(u1 - margin)))
-                    d1 = min(d1, int(math.floor(u2 + margin)))
+                    d0 = max(d0, math.ceil(u1 - margin))
+                    d1 = min(d1, math.floor(u2 + margin))
                 for d in range(d0, d1 + 1):
                     f[dd] = float(d)
                     fi = f[0]
@@ -622,14 +639,38 @@ def mark_triangles(
                     if abs(g) > h + gb:
                         continue  # the plane misses the closed cube: separated
                     if abs(g) >= h - gb and _normal_separates(
-                        ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, fk, snx, sny, snz, lexn, supercover, exact, scratch
+                        ax,
+                        ay,
+                        az,
+                        bx,
+                        by,
+                        bz,
+                        cx,
+                        cy,
+                        cz,
+                        fi,
+                        fj,
+                        fk,
+                        snx,
+                        sny,
+                        snz,
+                        lexn,
+                        supercover,
+                        exact,
+                        scratch,
                     ):
                         continue
-                    if dd != 0 and _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fj, fk, 0, supercover, exact, scratch):
+                    if dd != 0 and _plane_cross_separates(
+                        ax, ay, az, bx, by, bz, cx, cy, cz, fj, fk, 0, supercover, exact, scratch
+                    ):
                         continue
-                    if dd != 1 and _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fk, fi, 1, supercover, exact, scratch):
+                    if dd != 1 and _plane_cross_separates(
+                        ax, ay, az, bx, by, bz, cx, cy, cz, fk, fi, 1, supercover, exact, scratch
+                    ):
                         continue
-                    if dd != 2 and _plane_cross_separates(ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, 2, supercover, exact, scratch):
+                    if dd != 2 and _plane_cross_separates(
+                        ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, 2, supercover, exact, scratch
+                    ):
                         continue
                     mask[kk, jj, ii] = True
     return bad

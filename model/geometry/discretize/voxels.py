@@ -79,8 +79,9 @@ def voxelize_solid(
     vertices : array_like, shape (n, 3)
         float64 vertex coordinates (x, y, z).
     triangles : array_like, shape (m, 3)
-        Vertex indices of the boundary triangles, outward (counter-clockwise seen from outside). Several shells
-        and cavities (inner shells, oriented inward) are allowed; the mesh must be a valid polyhedron.
+        Vertex indices of the boundary triangles, outward (counter-clockwise seen from outside). Several
+        shells and cavities (inner shells, oriented inward) are allowed; the mesh must be a valid
+        polyhedron.
     model : {"standard", "supercover", "gauss"}
         The kernel: shifted open cube, closed cube, or shifted centre.
     limit : int or None
@@ -171,7 +172,9 @@ def voxelize_points(
     return _run(p, np.c_[idx, idx, idx], Model.parse(model), False, limit)
 
 
-def voxelization_box(vertices: npt.ArrayLike, triangles: npt.ArrayLike, model: str = "standard") -> Box3 | None:
+def voxelization_box(
+    vertices: npt.ArrayLike, triangles: npt.ArrayLike, model: str = "standard"
+) -> Box3 | None:
     """Return the voxel box (xmin, ymin, zmin, xmax, ymax, zmax) that holds D, or None without triangles.
 
     Tight for ``"standard"`` and ``"supercover"`` (the extreme vertices' cells are reached); for ``"gauss"``
@@ -228,7 +231,8 @@ def _validate(vertices: npt.ArrayLike, triangles: npt.ArrayLike) -> tuple[Floats
         row = int(np.flatnonzero(bad_mask.any(axis=1))[0])
         x, y, z = (float(u) for u in used[row])
         raise InvalidGeometryError(
-            f"a vertex ({x!r}, {y!r}, {z!r}) has a coordinate outside the supported range: coordinates must be "
+            f"a vertex ({x!r}, {y!r}, {z!r}) has a coordinate outside the supported range: coordinates "
+            "must be "
             f"finite, at most 2^51 ≈ {MAX_ABS_COORD:.3g} in absolute value, and 0 or at least 2^-250 "
             "(exact determinants must neither overflow nor underflow); repair, translate or rescale the mesh"
         )
@@ -301,7 +305,9 @@ def _run(
     if solid:
         bad += _k3.fill_parity(mask, x0, y0, z0, vx, vy, vz, t, exact_mode, scratch, ext)
     if not gauss:
-        bad += _k3.mark_triangles(mask, x0, y0, z0, vx, vy, vz, t, model is Model.SUPERCOVER, exact_mode, scratch)
+        bad += _k3.mark_triangles(
+            mask, x0, y0, z0, vx, vy, vz, t, model is Model.SUPERCOVER, exact_mode, scratch
+        )
     if bad:  # pragma: no cover - the boxes above are proven to hold every voxel
         raise RuntimeError(f"internal error: {bad} voxels fell outside the voxelization box {box}")
     if gauss:
