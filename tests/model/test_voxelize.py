@@ -81,13 +81,22 @@ def assert_matches_reference(mesh, solid: bool) -> None:  # type: ignore[no-unty
 
 
 # ------------------------------------------------------------------------------------ against the reference
-@settings(max_examples=60)
+@settings(max_examples=90)
 @given(solids())
 def test_solids_match_reference(mesh) -> None:  # type: ignore[no-untyped-def]
     assert_matches_reference(mesh, solid=True)
 
 
-@settings(max_examples=80)
+@settings(max_examples=25)
+@given(solids(), st.tuples(*[st.sampled_from([2**40 + 3, -(2**33), 2**20 - 1, 2**48])] * 3))
+def test_far_solids_match_reference(mesh, t) -> None:  # type: ignore[no-untyped-def]
+    """Coordinates far from the origin (up to 2^48 + a fraction): the float filters' error bounds grow."""
+    v, tri = mesh
+    v = np.round(v * 16) / 16 + np.array(t, dtype=np.float64)  # exact: 2^48 + k/16 is a float64
+    assert_matches_reference((v, tri), solid=True)
+
+
+@settings(max_examples=120)
 @given(triangle_sets())
 def test_triangles_segments_points_match_reference(mesh) -> None:  # type: ignore[no-untyped-def]
     assert_matches_reference(mesh, solid=False)
@@ -295,6 +304,9 @@ def test_boxes_and_estimates() -> None:
     assert voxelization_box(v, t, "standard") == (0, 0, 0, 2, 1, 0)
     assert voxelization_box(v, t, "supercover") == (0, 0, 0, 3, 1, 1)
     assert estimate_voxels(v, t) == 4 * 2 * 2
+    # gauss: p + τ within the extent, ⌈min⌉ ≤ p ≤ ⌈max⌉ − 1
+    assert voxelization_box(v, t, "gauss") == (0, 0, 0, 2, 0, 0)
+    assert voxel_set(*voxelize_solid(v, t, "gauss")) == {(0, 0, 0), (1, 0, 0), (2, 0, 0)}
     mask, origin = voxelize_triangles(v, t, "supercover")
     assert mask.shape == (2, 2, 4) and origin == (0, 0, 0)
 

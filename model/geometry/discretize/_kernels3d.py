@@ -559,7 +559,8 @@ def mark_triangles(
         lo[0], hi[0] = _range(min(ax, bx, cx), max(ax, bx, cx), supercover)
         lo[1], hi[1] = _range(min(ay, by, cy), max(ay, by, cy), supercover)
         lo[2], hi[2] = _range(min(az, bz, cz), max(az, bz, cz), supercover)
-        # The float normal and a bound of its error (each component: two products, three roundings).
+        # The float normal and a bound of its error: each component has two products of rounded
+        # differences and one subtraction, below 4u(1 + 4u)(|p1| + |p2|) off; 8u leaves room.
         p1 = (by - ay) * (cz - az)
         p2 = (bz - az) * (cy - ay)
         q1 = (bz - az) * (cx - ax)
@@ -569,7 +570,7 @@ def mark_triangles(
         n0 = p1 - p2
         n1 = q1 - q2
         n2 = r1 - r2
-        err = 4.0 * _EPS * max(abs(p1) + abs(p2), abs(q1) + abs(q2), abs(r1) + abs(r2))
+        err = 8.0 * _EPS * max(abs(p1) + abs(p2), abs(q1) + abs(q2), abs(r1) + abs(r2))
         dd = 0
         if abs(n1) > abs(n0):
             dd = 1
