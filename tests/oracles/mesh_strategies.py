@@ -17,11 +17,13 @@ from hypothesis import strategies as st
 
 Mesh = tuple[np.ndarray, np.ndarray]
 
-#: A grid-friendly coordinate: centres, faces, quarters, or a free float.
+#: A grid-friendly coordinate: centres, faces, quarters, a hair off them, or a free float.
 coords = st.one_of(
     st.integers(-6, 6).map(float),
     st.integers(-12, 12).map(lambda n: n / 2),
     st.integers(-24, 24).map(lambda n: n / 4),
+    # near-ties: a hair (2^-45) off the grid, where the float filters cannot decide and the expansions must
+    st.tuples(st.integers(-24, 24), st.integers(-2, 2)).map(lambda p: p[0] / 4 + p[1] * 2.0**-45),
     st.floats(-3.0, 3.0, allow_nan=False, allow_infinity=False).filter(
         lambda u: u == 0.0 or abs(u) > 2.0**-30
     ),

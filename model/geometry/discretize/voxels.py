@@ -46,6 +46,7 @@ from mrm.geometry.discretize.exact import EXACT_UNITS_3D, MAX_ABS_COORD, float_p
 
 __all__ = [
     "MIN_ABS_COORD_3D",
+    "estimate_voxels",
     "voxelization_box",
     "voxelize_points",
     "voxelize_segments",
