@@ -28,6 +28,10 @@ MIN_ABS_COORD = 2.0**-400
 #: differences are exact in float64 (see :func:`float_predicates_are_exact`).
 _EXACT_UNITS = 2.0**25
 
+#: The same bound for 3×3 determinants: differences below 2L, products of three below 8L³, and the sums of
+#: Shewchuk's orient3d form below 48L³ ≤ 2^53.
+EXACT_UNITS_3D = 2.0**15
+
 
 def closed_cell_range(u: float) -> tuple[int, int]:
     """Return (lo, hi): the indices k whose closed interval [k − ½, k + ½] holds ``u`` (one or two)."""
@@ -48,7 +52,7 @@ def check_coordinate_range(values: npt.NDArray[np.float64]) -> tuple[int, float]
     return i, float(values[i])
 
 
-def float_predicates_are_exact(values: npt.NDArray[np.float64]) -> bool:
+def float_predicates_are_exact(values: npt.NDArray[np.float64], units: float = _EXACT_UNITS) -> bool:
     """True when plain float64 evaluation of the grid predicates is free of rounding.
 
     Let 2^-K be the coarsest dyadic step that every value (and the half-integers of the grid) is a multiple
@@ -63,6 +67,9 @@ def float_predicates_are_exact(values: npt.NDArray[np.float64]) -> bool:
     ----------
     values : ndarray of float64
         All coordinates of a geometry (already checked finite and in range).
+    units : float
+        The bound on L; the default fits the 2×2 determinants of 2D. The 3×3 determinants of 3D (products of
+        three differences, sums of six such products) need L ≤ 2^15 (``EXACT_UNITS_3D``).
     """
     v = values[values != 0.0]
     if v.size == 0:
@@ -75,4 +82,4 @@ def float_predicates_are_exact(values: npt.NDArray[np.float64]) -> bool:
     k = max(0, int((53 - expo.astype(np.int64) - tz).max()))
     if k > 60:
         return False
-    return (float(np.abs(v).max()) + 2.0) * 2.0 ** (k + 1) <= _EXACT_UNITS
+    return (float(np.abs(v).max()) + 2.0) * 2.0 ** (k + 1) <= units
