@@ -1,0 +1,332 @@
+"""Exact self-intersection test of a closed triangle mesh: a uniform grid over bounding boxes, exact pair tests.
+
+Two triangles of a valid polyhedron meet only in what they share: nothing, one common vertex, or one common
+edge (docs/design.md §11). Every pair whose closed bounding boxes overlap is tested exactly with the
+predicates of :mod:`~mrm.geometry.polyhedra.predicates`:
+
+- **no common vertex**: two closed triangles meet iff an edge of one meets the other (when they meet, an end
+  of their intersection lies on an edge of one of them), so six closed segment–triangle tests decide;
+- **one common vertex v**, t₁ = (v, p, q), t₂ = (v, r, s): they meet beyond v iff [r, s] meets t₁ or [p, q]
+  meets t₂ (a point x ≠ v in both lies on a ray from v that leaves t₂ across [r, s] and t₁ across [p, q];
+  whichever exit comes first lies in the other triangle);
+- **a common edge** u v: they overlap iff the other two vertices are coplanar with it and on the same side of
+  it (the mesh has already been checked for consistent orientation, so the triangles fold onto each other).
+
+A segment meets a closed triangle when its ends are not strictly on one side of the triangle's plane and
+the line crosses the triangle (the three tetrahedra with the triangle's edges have no two opposite signs), or,
+in the plane, by the 2-D tests on the projection on the coordinate plane where the triangle is not flat.
+
+The geometric tests are ``register_jitable``: compiled in :func:`intersecting_pairs` (with the float-filtered
+predicates), and run as plain Python with exact Fractions for the pairs a kernel could not decide (a
+coordinate out of the compiled predicates' range).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+from numba.extending import register_jitable
+
+from mrm.geometry._jit import njit
+from mrm.geometry.polyhedra.predicates import UNKNOWN, o2, o3
+
+Floats = npt.NDArray[np.float64]
+Ints = npt.NDArray[np.int64]
+
+#: Pair test results.
+DISJOINT, INTERSECT, UNDECIDED = 0, 1, UNKNOWN
+#: The grid is coarsened until the triangles occupy at most this many cells each on average.
+_CELLS_PER_TRIANGLE = 8
+#: At most this many cells along an axis (cell keys stay far inside int64).
+_MAX_AXIS_CELLS = 1 << 20
+
+
+# ---------------------------------------------------------------------------------------------- 2-D tests
+@register_jitable
+def flat_axes(v: Floats, p: int, q: int, r: int) -> int:
+    """k such that the triangle p q r projected on the axes ((k+1)%3, (k+2)%3) is not flat; -1 if unknown."""
+    for k in range(3):
+        s = o2(v, p, q, r, (k + 1) % 3, (k + 2) % 3)
+        if s == UNKNOWN:
+            return -1
+        if s != 0:
+            return k
+    return -1  # a flat triangle: refused before any pair test
+
+
+@register_jitable
+def _point_in_triangle_2d(v: Floats, x: int, p: int, q: int, r: int, i: int, j: int) -> int:
+    s1 = o2(v, p, q, x, i, j)
+    s2 = o2(v, q, r, x, i, j)
+    s3 = o2(v, r, p, x, i, j)
+    if s1 == UNKNOWN or s2 == UNKNOWN or s3 == UNKNOWN:
+        return UNDECIDED
+    if (s1 >= 0 and s2 >= 0 and s3 >= 0) or (s1 <= 0 and s2 <= 0 and s3 <= 0):
+        return INTERSECT
+    return DISJOINT
+
+
+@register_jitable
+def _within_box(v: Floats, x: int, a: int, b: int, i: int, j: int) -> bool:
+    """For x collinear with a, b (in projection): is x on the closed segment a b?"""
+    for k in (i, j):
+        lo = min(v[a, k], v[b, k])
+        hi = max(v[a, k], v[b, k])
+        if v[x, k] < lo or v[x, k] > hi:
+            return False
+    return True
+
+
+@register_jitable
+def _segments_meet_2d(v: Floats, a: int, b: int, c: int, d: int, i: int, j: int) -> int:
+    d1 = o2(v, a, b, c, i, j)
+    d2 = o2(v, a, b, d, i, j)
+    d3 = o2(v, c, d, a, i, j)
+    d4 = o2(v, c, d, b, i, j)
+    if d1 == UNKNOWN or d2 == UNKNOWN or d3 == UNKNOWN or d4 == UNKNOWN:
+        return UNDECIDED
+    if d1 * d2 < 0 and d3 * d4 < 0:
+        return INTERSECT
+    if (
+        (d1 == 0 and _within_box(v, c, a, b, i, j))
+        or (d2 == 0 and _within_box(v, d, a, b, i, j))
+        or (d3 == 0 and _within_box(v, a, c, d, i, j))
+        or (d4 == 0 and _within_box(v, b, c, d, i, j))
+    ):
+        return INTERSECT
+    return DISJOINT
+
+
+@register_jitable
+def _segment_meets_triangle_in_plane(v: Floats, a: int, b: int, p: int, q: int, r: int) -> int:
+    k = flat_axes(v, p, q, r)
+    if k < 0:
+        return UNDECIDED
+    i, j = (k + 1) % 3, (k + 2) % 3
+    s = _point_in_triangle_2d(v, a, p, q, r, i, j)
+    if s != DISJOINT:
+        return s
+    s = _point_in_triangle_2d(v, b, p, q, r, i, j)
+    if s != DISJOINT:
+        return s
+    s = _segments_meet_2d(v, a, b, p, q, i, j)
+    if s != DISJOINT:
+        return s
+    s = _segments_meet_2d(v, a, b, q, r, i, j)
+    if s != DISJOINT:
+        return s
+    return _segments_meet_2d(v, a, b, r, p, i, j)
+
+
+# ---------------------------------------------------------------------------------------------- 3-D tests
+@register_jitable
+def segment_meets_triangle(v: Floats, a: int, b: int, p: int, q: int, r: int) -> int:
+    """Does the closed segment a b meet the closed triangle p q r? INTERSECT, DISJOINT or UNDECIDED."""
+    oa = o3(v, p, q, r, a)
+    ob = o3(v, p, q, r, b)
+    if oa == UNKNOWN or ob == UNKNOWN:
+        return UNDECIDED
+    if oa * ob > 0:
+        return DISJOINT
+    if oa == 0 and ob == 0:
+        return _segment_meets_triangle_in_plane(v, a, b, p, q, r)
+    s1 = o3(v, a, b, p, q)
+    s2 = o3(v, a, b, q, r)
+    s3 = o3(v, a, b, r, p)
+    if s1 == UNKNOWN or s2 == UNKNOWN or s3 == UNKNOWN:
+        return UNDECIDED
+    if (s1 >= 0 and s2 >= 0 and s3 >= 0) or (s1 <= 0 and s2 <= 0 and s3 <= 0):
+        return INTERSECT
+    return DISJOINT
+
+
+@register_jitable
+def triangles_meet_improperly(v: Floats, t: Ints, ta: int, tb: int) -> int:
+    """Do triangles ta and tb meet in more than their common vertices and edge? (see the module docstring)"""
+    a0, a1, a2 = t[ta, 0], t[ta, 1], t[ta, 2]
+    b0, b1, b2 = t[tb, 0], t[tb, 1], t[tb, 2]
+    shared = 0
+    for x in (a0, a1, a2):
+        if x == b0 or x == b1 or x == b2:
+            shared += 1
+    if shared == 0:
+        for e in range(3):
+            s = segment_meets_triangle(v, t[ta, e], t[ta, (e + 1) % 3], b0, b1, b2)
+            if s != DISJOINT:
+                return s
+            s = segment_meets_triangle(v, t[tb, e], t[tb, (e + 1) % 3], a0, a1, a2)
+            if s != DISJOINT:
+                return s
+        return DISJOINT
+    if shared == 1:
+        # Rotate both so that the common vertex comes first (rotation keeps the orientation).
+        while a0 != b0 and a0 != b1 and a0 != b2:
+            a0, a1, a2 = a1, a2, a0
+        while b0 != a0:
+            b0, b1, b2 = b1, b2, b0
+        s = segment_meets_triangle(v, b1, b2, a0, a1, a2)
+        if s != DISJOINT:
+            return s
+        return segment_meets_triangle(v, a1, a2, b0, b1, b2)
+    if shared == 2:
+        # a0 a1 a2 rotated so that a2 is the vertex not in tb; q is tb's vertex not in ta.
+        while a2 == b0 or a2 == b1 or a2 == b2:
+            a0, a1, a2 = a1, a2, a0
+        q = b0
+        if b1 != a0 and b1 != a1:
+            q = b1
+        elif b2 != a0 and b2 != a1:
+            q = b2
+        s = o3(v, a0, a1, a2, q)
+        if s == UNKNOWN:
+            return UNDECIDED
+        if s != 0:
+            return DISJOINT
+        k = flat_axes(v, a0, a1, a2)
+        if k < 0:
+            return UNDECIDED
+        i, j = (k + 1) % 3, (k + 2) % 3
+        sp = o2(v, a0, a1, a2, i, j)
+        sq = o2(v, a0, a1, q, i, j)
+        if sp == UNKNOWN or sq == UNKNOWN:
+            return UNDECIDED
+        return INTERSECT if sp == sq else DISJOINT
+    return INTERSECT  # the same three vertices twice
+
+
+# ---------------------------------------------------------------------------------------------- the grid
+@njit(cache=True)
+def _cell_ranges(lo: Floats, hi: Floats, origin: Floats, h: float, c0: Ints, c1: Ints) -> float:
+    """Cells of every box (floor((x − origin)/h), monotone in x); returns the total count (as a float)."""
+    total = 0.0
+    for t in range(lo.shape[0]):
+        n = 1.0
+        for k in range(3):
+            c0[t, k] = int(math.floor((lo[t, k] - origin[k]) / h))
+            c1[t, k] = int(math.floor((hi[t, k] - origin[k]) / h))
+            n *= c1[t, k] - c0[t, k] + 1
+        total += n
+    return total
+
+
+@njit(cache=True)
+def _cell_entries(c0: Ints, c1: Ints, dims: Ints, total: int) -> tuple[Ints, Ints]:
+    keys = np.empty(total, np.int64)
+    tris = np.empty(total, np.int64)
+    n = 0
+    for t in range(c0.shape[0]):
+        for z in range(c0[t, 2], c1[t, 2] + 1):
+            for y in range(c0[t, 1], c1[t, 1] + 1):
+                for x in range(c0[t, 0], c1[t, 0] + 1):
+                    keys[n] = (z * dims[1] + y) * dims[0] + x
+                    tris[n] = t
+                    n += 1
+    return keys, tris
+
+
+@njit(cache=True)
+def _test_cells(
+    v: Floats, t: Ints, lo: Floats, hi: Floats, c0: Ints, keys: Ints, tris: Ints, dims: Ints
+) -> tuple[int, int, Ints]:
+    """Test every candidate pair once (in the first cell both boxes share); the least intersecting pair.
+
+    Returns (a, b, undecided): the intersecting pair with the smallest (a, b), a < b, or (-1, -1), and the
+    pairs the compiled predicates could not decide, as a flat array a0, b0, a1, b1, ...
+    """
+    best_a, best_b = -1, -1
+    undecided = np.empty(64, np.int64)
+    nu = 0
+    n = keys.shape[0]
+    start = 0
+    while start < n:
+        end = start + 1
+        while end < n and keys[end] == keys[start]:
+            end += 1
+        key = keys[start]
+        cx = key % dims[0]
+        cy = (key // dims[0]) % dims[1]
+        cz = key // (dims[0] * dims[1])
+        for ii in range(start, end):
+            ta = tris[ii]
+            for jj in range(ii + 1, end):
+                tb = tris[jj]
+                a, b = (ta, tb) if ta < tb else (tb, ta)
+                if best_a >= 0 and (a > best_a or (a == best_a and b >= best_b)):
+                    continue
+                if (
+                    lo[a, 0] > hi[b, 0]
+                    or lo[b, 0] > hi[a, 0]
+                    or lo[a, 1] > hi[b, 1]
+                    or lo[b, 1] > hi[a, 1]
+                    or lo[a, 2] > hi[b, 2]
+                    or lo[b, 2] > hi[a, 2]
+                ):
+                    continue
+                # Tested only in the first cell the two boxes share, so every pair is tested once.
+                if (
+                    max(c0[a, 0], c0[b, 0]) != cx
+                    or max(c0[a, 1], c0[b, 1]) != cy
+                    or max(c0[a, 2], c0[b, 2]) != cz
+                ):
+                    continue
+                s = triangles_meet_improperly(v, t, a, b)
+                if s == INTERSECT:
+                    best_a, best_b = a, b
+                elif s == UNDECIDED:
+                    if nu + 2 > undecided.shape[0]:
+                        grown = np.empty(2 * undecided.shape[0], np.int64)
+                        grown[:nu] = undecided[:nu]
+                        undecided = grown
+                    undecided[nu] = a
+                    undecided[nu + 1] = b
+                    nu += 2
+        start = end
+    return best_a, best_b, undecided[:nu].copy()
+
+
+def _grid(lo: Floats, hi: Floats) -> tuple[Ints, Ints, Ints, int]:
+    """Cell ranges of the boxes on a grid fine enough to separate them, coarse enough to stay small."""
+    m = lo.shape[0]
+    origin = lo.min(axis=0)
+    span = float((hi.max(axis=0) - origin).max())
+    size = float(np.median((hi - lo).max(axis=1)))
+    h = max(2.0 * size, span / _MAX_AXIS_CELLS, np.finfo(float).tiny)
+    c0 = np.empty((m, 3), np.int64)
+    c1 = np.empty((m, 3), np.int64)
+    while True:
+        total = _cell_ranges(lo, hi, origin, h, c0, c1)
+        if total <= _CELLS_PER_TRIANGLE * m + 1024:
+            break
+        h *= 2.0  # some large triangles: coarser cells cost fewer entries than many small ones save
+    dims = c1.max(axis=0) + 1
+    return c0, c1, dims.astype(np.int64), int(total)
+
+
+def first_intersecting_pair(vertices: Floats, triangles: Ints) -> tuple[int, int] | None:
+    """The intersecting pair of triangles (a < b) with the smallest (a, b), or None if there is none.
+
+    ``vertices`` must be finite and distinct, ``triangles`` not flat and the mesh an oriented 2-manifold
+    (checked before: the pair tests rely on it).
+    """
+    if triangles.shape[0] < 2:
+        return None
+    corners = vertices[triangles]  # (m, 3, 3)
+    lo = np.ascontiguousarray(corners.min(axis=1))
+    hi = np.ascontiguousarray(corners.max(axis=1))
+    c0, c1, dims, total = _grid(lo, hi)
+    keys, tris = _cell_entries(c0, c1, dims, total)
+    order = np.argsort(keys, kind="stable")
+    a, b, undecided = _test_cells(vertices, triangles, lo, hi, c0, keys[order], tris[order], dims)
+    best = (int(a), int(b)) if a >= 0 else None
+    for ua, ub in undecided.reshape(-1, 2).tolist():
+        if best is not None and (ua, ub) >= best:
+            continue
+        # Plain Python on exact Fractions: the same test, never undecided.
+        if triangles_meet_improperly(vertices, triangles, ua, ub) == INTERSECT:
+            best = (ua, ub)
+    return best
+
+
+__all__ = ["first_intersecting_pair", "flat_axes", "segment_meets_triangle", "triangles_meet_improperly"]
