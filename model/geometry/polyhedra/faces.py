@@ -1,18 +1,17 @@
 """Faces of a polyhedron: the maximal sets of edge-adjacent triangles that are exactly coplanar (§11).
 
 Two triangles across an edge are coplanar when the far vertex of one lies exactly in the plane of the other
-(:func:`~mrm.geometry.polyhedra.predicates.o3` = 0); on a valid polyhedron they then face the same way (they do
-not overlap), so a face is a planar polygon, possibly with holes, of one orientation.
+(:func:`~mrm.geometry.polyhedra.predicates.o3` = 0); on a valid polyhedron they then face the same
+way (they do not overlap), so a face is a planar polygon, possibly with holes, of one orientation.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import numpy.typing as npt
-import scipy.sparse
-import scipy.sparse.csgraph
 
 from mrm.geometry._jit import njit
+from mrm.geometry.polyhedra.manifold import components
 from mrm.geometry.polyhedra.predicates import UNKNOWN, o3
 
 Floats = npt.NDArray[np.float64]
@@ -46,14 +45,9 @@ def face_labels(vertices: Floats, triangles: Ints, twin: Ints) -> tuple[int, Int
         q = int(triangles[g, (tw % 3 + 2) % 3])
         a, b, c = (int(x) for x in triangles[f])
         flags[he] = 1 if o3(vertices, a, b, c, q) == 0 else 0
-    he = np.flatnonzero(flags == 1)
-    graph = scipy.sparse.coo_matrix((np.ones(he.size, np.int8), (he // 3, twin[he] // 3)), shape=(m, m))
-    n, labels = scipy.sparse.csgraph.connected_components(graph, directed=False)
-    # Renumber by first triangle, so face numbers follow the triangles' order.
-    first = np.unique(labels, return_index=True)[1]
-    rank = np.empty(n, np.int64)
-    rank[np.argsort(first, kind="stable")] = np.arange(n, dtype=np.int64)
-    return int(n), rank[labels]
+    coplanar = np.flatnonzero(flags == 1)
+    n, labels = components(m, coplanar // 3, twin[coplanar] // 3)  # numbered by first triangle
+    return int(n), labels
 
 
 __all__ = ["face_labels"]

@@ -14,13 +14,47 @@ from __future__ import annotations
 
 import numpy as np
 import numpy.typing as npt
-import scipy.sparse
-import scipy.sparse.csgraph
 
 from mrm.core.errors import InvalidGeometryError
+from mrm.geometry._jit import njit
 
 Floats = npt.NDArray[np.float64]
 Ints = npt.NDArray[np.int64]
+
+
+@njit(cache=True)
+def components(n: int, a: Ints, b: Ints) -> tuple[int, Ints]:
+    """Connected components of the graph on 0 … n−1 with edges a[i]–b[i] (union–find).
+
+    Returns the number of components and every node's component, numbered in the order of their
+    smallest node (so labels follow the input's order).
+    """
+    parent = np.arange(n)
+    for e in range(a.shape[0]):
+        x, y = a[e], b[e]
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        while parent[y] != y:
+            parent[y] = parent[parent[y]]
+            y = parent[y]
+        if x != y:
+            if x < y:
+                parent[y] = x
+            else:
+                parent[x] = y
+    labels = np.empty(n, np.int64)
+    count = 0
+    for i in range(n):
+        r = i
+        while parent[r] != r:
+            r = parent[r]
+        if r == i:
+            labels[i] = count
+            count += 1
+        else:
+            labels[i] = labels[r]  # r < i: the root is the smallest node, labelled already
+    return count, labels
 
 
 def fmt_point(p: Floats) -> str:
@@ -79,7 +113,8 @@ def twin_half_edges(vertices: Floats, triangles: Ints) -> Ints:
         tris = sorted(int(t) for t in tri_of[first[g] : first[g] + counts[g]])
         raise InvalidGeometryError(
             f"non-manifold edge {_edge(vertices, int(start[he]), int(end[he]))}: it belongs to "
-            f"{len(tris)} triangles {tris[:6]}{'…' if len(tris) > 6 else ''} (a closed 2-manifold has two per edge)"
+            f"{len(tris)} triangles {tris[:6]}{'…' if len(tris) > 6 else ''} "
+            "(a closed 2-manifold has two per edge)"
         )
     e1 = order[first]
     e2 = order[first + 1]
@@ -88,9 +123,9 @@ def twin_half_edges(vertices: Floats, triangles: Ints) -> Ints:
         g = _first_bad(same)
         he = int(e1[g])
         raise InvalidGeometryError(
-            f"inconsistent orientation: triangles {int(e1[g]) // 3} and {int(e2[g]) // 3} both run along edge "
-            f"{_edge(vertices, int(start[he]), int(end[he]))} in the same direction (neighbours must traverse a "
-            "shared edge in opposite directions; flip one, or use repair())"
+            f"inconsistent orientation: triangles {int(e1[g]) // 3} and {int(e2[g]) // 3} both run along "
+            f"edge {_edge(vertices, int(start[he]), int(end[he]))} in the same direction (neighbours must "
+            "traverse a shared edge in opposite directions; flip one, or use repair())"
         )
     twin = np.empty(3 * m, np.int64)
     twin[e1] = e2
@@ -110,8 +145,7 @@ def check_vertex_fans(vertices: Floats, triangles: Ints, twin: Ints) -> None:
     # vertex is 3t' + (k'+1) % 3.
     tw = twin[he]
     other = 3 * (tw // 3) + (tw % 3 + 1) % 3
-    graph = scipy.sparse.coo_matrix((np.ones(3 * m, np.int8), (he, other)), shape=(3 * m, 3 * m))
-    ncomp, labels = scipy.sparse.csgraph.connected_components(graph, directed=False)
+    ncomp, labels = components(3 * m, he, other)
     if ncomp == n:
         return
     corner_vertex = triangles.reshape(-1)
@@ -123,8 +157,8 @@ def check_vertex_fans(vertices: Floats, triangles: Ints, twin: Ints) -> None:
     np.minimum.at(tri_of_vertex, corner_vertex, np.arange(3 * m, dtype=np.int64) // 3)
     vtx = int(bad[np.argmin(tri_of_vertex[bad])])
     raise InvalidGeometryError(
-        f"non-manifold vertex {fmt_point(vertices[vtx])}: the triangles around it form {int(fans[vtx])} separate "
-        f"fans (first at triangle {int(tri_of_vertex[vtx])}); the surface touches itself there"
+        f"non-manifold vertex {fmt_point(vertices[vtx])}: the triangles around it form {int(fans[vtx])} "
+        f"separate fans (first at triangle {int(tri_of_vertex[vtx])}); the surface touches itself there"
     )
 
 
@@ -135,9 +169,8 @@ def shells(triangles: Ints, twin: Ints) -> tuple[int, Ints]:
         return 0, np.zeros(0, np.int64)
     a = np.arange(3 * m, dtype=np.int64) // 3
     b = twin // 3
-    graph = scipy.sparse.coo_matrix((np.ones(3 * m, np.int8), (a, b)), shape=(m, m))
-    n, labels = scipy.sparse.csgraph.connected_components(graph, directed=False)
-    return int(n), labels.astype(np.int64)
+    n, labels = components(m, a, b)
+    return int(n), labels
 
 
-__all__ = ["check_vertex_fans", "fmt_point", "half_edges", "shells", "twin_half_edges"]
+__all__ = ["check_vertex_fans", "components", "fmt_point", "half_edges", "shells", "twin_half_edges"]

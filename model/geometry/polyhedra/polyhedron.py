@@ -89,14 +89,17 @@ class Polyhedron:
 
     @property
     def n_vertices(self) -> int:
+        """Number of vertices (all of them used by triangles)."""
         return int(self._vertices.shape[0])
 
     @property
     def n_triangles(self) -> int:
+        """Number of triangles."""
         return int(self._triangles.shape[0])
 
     @property
     def is_empty(self) -> bool:
+        """True for the empty solid."""
         return self.n_triangles == 0
 
     # ------------------------------------------------------------------------------------------ measures
@@ -152,7 +155,7 @@ class Polyhedron:
 
     # ------------------------------------------------------------------------------------------ transforms
     def translate(self, offset: object) -> Polyhedron:
-        """This solid moved by ``offset`` (three numbers, integers or floats).
+        """The same solid moved by ``offset`` (three numbers, integers or floats).
 
         When every moved coordinate is exact (always for integer offsets within float64's integer range on
         coordinates with few bits) the result is valid by construction; otherwise the rounded copy is

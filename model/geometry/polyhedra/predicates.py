@@ -59,7 +59,7 @@ _HIGH = 2.0**200
 # ---------------------------------------------------------------------------------------------- error-free
 @njit(cache=True, inline="always")
 def _two_sum(a: float, b: float) -> tuple[float, float]:
-    """x + y = a + b exactly, x = fl(a + b) (Knuth's branch-free two-sum)."""
+    """X + y = a + b exactly, x = fl(a + b) (Knuth's branch-free two-sum)."""
     x = a + b
     bv = x - a
     av = x - bv
@@ -68,7 +68,7 @@ def _two_sum(a: float, b: float) -> tuple[float, float]:
 
 @njit(cache=True, inline="always")
 def _two_product(a: float, b: float) -> tuple[float, float]:
-    """x + y = a·b exactly, x = fl(a·b) (Dekker's product; no overflow or underflow in range)."""
+    """X + y = a·b exactly, x = fl(a·b) (Dekker's product; no overflow or underflow in range)."""
     x = a * b
     c = _SPLITTER * a
     ahi = c - (c - a)
@@ -177,7 +177,9 @@ def orient3d(a: Floats, b: Floats, c: Floats, d: Floats) -> int:
     vxwy, vywx = vx * wy, vy * wx
     det = ux * (vywz - vzwy) + uy * (vzwx - vxwz) + uz * (vxwy - vywx)
     perm = (
-        abs(ux) * (abs(vywz) + abs(vzwy)) + abs(uy) * (abs(vzwx) + abs(vxwz)) + abs(uz) * (abs(vxwy) + abs(vywx))
+        abs(ux) * (abs(vywz) + abs(vzwy))
+        + abs(uy) * (abs(vzwx) + abs(vxwz))
+        + abs(uz) * (abs(vxwy) + abs(vywx))
     )
     bound = _O3_BOUND * perm
     if det > bound:
@@ -288,26 +290,77 @@ def o2(v: Floats, i: int, j: int, k: int, a1: int, a2: int) -> int:
     return orient2d_sign(v[i], v[j], v[k], a1, a2)
 
 
-@overload(o3, jit_options={"cache": True, "nogil": True})
+@njit(cache=True)
+def _o3_indexed(v: Floats, i: int, j: int, k: int, m: int) -> int:
+    """The filter of :func:`orient3d` on scalars read from ``v`` (no array view per call: the hot path)."""
+    ax, ay, az = v[i, 0], v[i, 1], v[i, 2]
+    ux, uy, uz = v[j, 0] - ax, v[j, 1] - ay, v[j, 2] - az
+    vx, vy, vz = v[k, 0] - ax, v[k, 1] - ay, v[k, 2] - az
+    wx, wy, wz = v[m, 0] - ax, v[m, 1] - ay, v[m, 2] - az
+    vywz, vzwy = vy * wz, vz * wy
+    vzwx, vxwz = vz * wx, vx * wz
+    vxwy, vywx = vx * wy, vy * wx
+    det = ux * (vywz - vzwy) + uy * (vzwx - vxwz) + uz * (vxwy - vywx)
+    perm = (
+        abs(ux) * (abs(vywz) + abs(vzwy))
+        + abs(uy) * (abs(vzwx) + abs(vxwz))
+        + abs(uz) * (abs(vxwy) + abs(vywx))
+    )
+    big = max(abs(ux), abs(uy), abs(uz), abs(vx), abs(vy), abs(vz), abs(wx), abs(wy), abs(wz))
+    # With differences ≤ 2³⁰⁰ nothing overflows, and an underflow (absolute error ≤ 2⁻¹⁰⁷⁴, times a
+    # difference ≤ 2³⁰⁰, a few times over) stays far below the added 2⁻⁷⁰⁰: Shewchuk's bound plus that is
+    # sound for any input. Otherwise, or near a tie, the full predicate checks its range and decides.
+    if big <= 2.0**300:
+        bound = _O3_BOUND * perm + 2.0**-700
+        if det > bound:
+            return 1
+        if det < -bound:
+            return -1
+    return orient3d(v[i], v[j], v[k], v[m])
+
+
+@njit(cache=True)
+def _o2_indexed(v: Floats, i: int, j: int, k: int, a1: int, a2: int) -> int:
+    left = (v[j, a1] - v[i, a1]) * (v[k, a2] - v[i, a2])
+    right = (v[j, a2] - v[i, a2]) * (v[k, a1] - v[i, a1])
+    det = left - right
+    perm = abs(left) + abs(right)
+    big = max(
+        abs(v[j, a1] - v[i, a1]), abs(v[k, a2] - v[i, a2]), abs(v[j, a2] - v[i, a2]), abs(v[k, a1] - v[i, a1])
+    )
+    if big <= 2.0**500:  # as in _o3_indexed: no overflow, underflow far below the added 2⁻¹⁰⁰⁰
+        bound = _O2_BOUND * perm + 2.0**-1000
+        if det > bound:
+            return 1
+        if det < -bound:
+            return -1
+    return orient2d(v[i], v[j], v[k], a1, a2)
+
+
+#: Options of the compiled forms (typed Any: numba's stubs do not list ``cache``).
+_JIT_OPTIONS: Any = {"cache": True, "nogil": True}
+
+
+@overload(o3, inline="always", jit_options=_JIT_OPTIONS)
 def _o3_compiled(v: Any, i: Any, j: Any, k: Any, m: Any) -> Any:
     def impl(v: Any, i: Any, j: Any, k: Any, m: Any) -> Any:  # pragma: no cover - compiled
-        return orient3d(v[i], v[j], v[k], v[m])
+        return _o3_indexed(v, i, j, k, m)
 
     return impl
 
 
-@overload(o2, jit_options={"cache": True, "nogil": True})
+@overload(o2, inline="always", jit_options=_JIT_OPTIONS)
 def _o2_compiled(v: Any, i: Any, j: Any, k: Any, a1: Any, a2: Any) -> Any:
     def impl(v: Any, i: Any, j: Any, k: Any, a1: Any, a2: Any) -> Any:  # pragma: no cover - compiled
-        return orient2d(v[i], v[j], v[k], a1, a2)
+        return _o2_indexed(v, i, j, k, a1, a2)
 
     return impl
 
 
 __all__ = [
+    "UNKNOWN",
     "o2",
     "o3",
-    "UNKNOWN",
     "orient2d",
     "orient2d_exact",
     "orient2d_sign",

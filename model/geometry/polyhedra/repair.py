@@ -17,10 +17,9 @@ import numpy.typing as npt
 
 from mrm.core.errors import InvalidGeometryError
 from mrm.geometry.polyhedra.manifold import check_vertex_fans, shells, twin_half_edges
+from mrm.geometry.polyhedra.predicates import UNKNOWN, o2
 from mrm.geometry.polyhedra.self_intersection import first_intersecting_pair
 from mrm.geometry.polyhedra.shells import shell_windings, volume_signs
-
-from mrm.geometry.polyhedra.predicates import UNKNOWN, o2
 from mrm.geometry.polyhedra.validation import MAX_TRIANGLES, _flat_triangles, as_arrays
 
 Floats = npt.NDArray[np.float64]
@@ -28,7 +27,8 @@ Ints = npt.NDArray[np.int64]
 
 
 def _plural(n: int, what: str) -> str:
-    return f"{n:,} {what}{'s' if n != 1 else ''}"
+    many = what[:-1] + "ices" if what.endswith("ex") else what + "s"
+    return f"{n:,} {what if n == 1 else many}"
 
 
 def repair(
@@ -60,7 +60,9 @@ def repair(
     v, t = as_arrays(vertices, triangles, limit)
     changes: list[str] = []
     if not np.isfinite(v).all():
-        raise InvalidGeometryError("vertices with NaN or infinite coordinates cannot be repaired; remove them")
+        raise InvalidGeometryError(
+            "vertices with NaN or infinite coordinates cannot be repaired; remove them"
+        )
     # Exact merge: the same float64 values (0.0 and -0.0 alike), never a tolerance.
     # Kept in the order of first occurrence, so a mesh without duplicates keeps its numbering.
     _, first_of, inverse = np.unique(v + 0.0, axis=0, return_index=True, return_inverse=True)
@@ -105,7 +107,7 @@ def repair(
 
 def _orient(v: Floats, t: Ints, changes: list[str], trimesh: Any) -> Ints:
     """Consistent winding per shell (trimesh), then each shell outward or, for a cavity, inward (exact)."""
-    mesh = trimesh.Trimesh(vertices=v, faces=t, process=False, validate=False)
+    mesh = trimesh.Trimesh(vertices=v.copy(), faces=t.copy(), process=False, validate=False)
     trimesh.repair.fix_winding(mesh)
     if not np.array_equal(np.asarray(mesh.vertices), v):  # trimesh must never move a vertex
         raise AssertionError("trimesh changed vertex coordinates during repair")
@@ -116,15 +118,20 @@ def _orient(v: Floats, t: Ints, changes: list[str], trimesh: Any) -> Ints:
         if first_intersecting_pair(v, after) is None:
             n, shell = shells(after, twin)
             signs = volume_signs(v, after, shell, n)
-            _, _, wind = shell_windings(v, after, shell, n)
-            wrong = np.flatnonzero(((wind == 0) & (signs < 0)) | ((wind == 1) & (signs > 0)))
-            flip = np.isin(shell, wrong)
-            after[flip] = after[flip][:, ::-1]
+            # All shells outward first: the winding number at a shell is then its nesting depth, and the
+            # shells at odd depths (cavities) are turned inward.
+            neg = np.isin(shell, np.flatnonzero(signs < 0))
+            after[neg] = after[neg][:, ::-1]
+            _, _, depth = shell_windings(v, after, shell, n)
+            odd = np.isin(shell, np.flatnonzero(depth % 2 == 1))
+            after[odd] = after[odd][:, ::-1]
     except InvalidGeometryError:
         pass  # open, non-manifold or self-intersecting: left to the validation's message
     reversed_ = int((after != t).any(axis=1).sum())
     if reversed_:
-        changes.append(f"reversed {_plural(reversed_, 'triangle')} to orient every shell outward (cavities inward)")
+        changes.append(
+            f"reversed {_plural(reversed_, 'triangle')} to orient every shell outward (cavities inward)"
+        )
     return after
 
 

@@ -12,8 +12,8 @@ w + o(s), so the mesh is a solid iff (o(s), w) is (+1, 0) or (−1, 1) for every
   rounded once by ``math.fsum`` (correct rounding keeps the sign), or summed as Fractions out of range.
 - **The winding number** at a vertex p of s is counted along the ray p + t·d, d = (1, ε, ε²), ε → 0⁺ (the
   τ of docs/design.md §2 and §11): every triangle a b c of another shell whose projection along d strictly
-  contains p's adds the sign of n·d (n its normal) when the crossing is ahead (t > 0). All three quantities are
-  polynomials in ε whose coefficients are exact orient2d / orient3d signs, so no ray ever grazes an edge.
+  contains p's adds the sign of n·d (n its normal) when the crossing is ahead (t > 0). All three quantities
+  are polynomials in ε whose coefficients are exact orient2d / orient3d signs, so no ray ever grazes an edge.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ from numba.extending import register_jitable
 from mrm.core.errors import InvalidGeometryError
 from mrm.geometry._jit import njit
 from mrm.geometry.polyhedra.manifold import fmt_point
-from mrm.geometry.polyhedra.predicates import _LOW, _HIGH, UNKNOWN, _push_det3, o2, o3
+from mrm.geometry.polyhedra.predicates import _HIGH, _LOW, UNKNOWN, _push_det3, o2, o3
 
 Floats = npt.NDArray[np.float64]
 Ints = npt.NDArray[np.int64]
@@ -126,7 +126,7 @@ def _leading(v: Floats, a: int, b: int, c: int) -> int:
 
 @register_jitable
 def ray_crossing(v: Floats, p: int, a: int, b: int, c: int) -> int:
-    """What triangle a b c adds to the winding number at p along p + t(1, ε, ε²), t > 0: −1, 0, 1 or UNKNOWN."""
+    """What triangle a b c adds to the winding number at p along p + t(1, ε, ε²): −1, 0, 1 or UNKNOWN."""
     s1 = _leading(v, p, a, b)
     if s1 == 0:
         return 0

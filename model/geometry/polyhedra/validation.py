@@ -1,4 +1,4 @@
-"""The exact validity check of a polyhedron's boundary mesh (docs/design.md §11), in the order users fix things.
+"""The exact validity check of a polyhedron's boundary (docs/design.md §11), in the order users fix things.
 
 1. arrays: vertices (n, 3) finite float64, triangles (m, 3) integer indices into them, within the limit;
 2. every vertex used and no two at the same point (merging them is :func:`~.repair.repair`'s job);
@@ -65,7 +65,8 @@ def as_arrays(vertices: object, triangles: object, limit: int | None = MAX_TRIAN
     if t_in.size and (int(t_in.min()) < 0 or int(t_in.max()) >= v.shape[0]):
         bad = int(np.flatnonzero(((t_in < 0) | (t_in >= v.shape[0])).any(axis=1))[0])
         raise InvalidGeometryError(
-            f"triangle {bad} refers to vertex {[int(x) for x in t_in[bad]]}, but there are {v.shape[0]} vertices"
+            f"triangle {bad} refers to vertex {[int(x) for x in t_in[bad]]}, "
+            f"but there are {v.shape[0]} vertices"
         )
     return v, np.array(t_in, dtype=np.int64, copy=True, order="C")
 
@@ -91,7 +92,9 @@ def _check_points(v: Floats, t: Ints) -> None:
     bad = ~np.isfinite(v).all(axis=1)
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise InvalidGeometryError(f"vertex {i} has a coordinate that is not a finite number: {fmt_point(v[i])}")
+        raise InvalidGeometryError(
+            f"vertex {i} has a coordinate that is not a finite number: {fmt_point(v[i])}"
+        )
     used = np.zeros(v.shape[0], bool)
     used[t.reshape(-1)] = True
     if not used.all():
@@ -99,13 +102,16 @@ def _check_points(v: Floats, t: Ints) -> None:
         raise InvalidGeometryError(
             f"vertex {i} {fmt_point(v[i])} belongs to no triangle (drop it, or use repair())"
         )
-    # -0.0 and 0.0 are the same point: compare the values, not the bits.
-    _, first, inverse = np.unique(v + 0.0, axis=0, return_index=True, return_inverse=True)
-    if first.size != v.shape[0]:
-        inverse = inverse.reshape(-1)
-        dup = np.flatnonzero(first[inverse] != np.arange(v.shape[0]))
-        j = int(dup[0])
-        i = int(first[inverse[j]])
+    # -0.0 and 0.0 are the same point: compare the values, not the bits. A lexicographic sort puts equal
+    # points side by side (np.unique(axis=0) does the same, several times slower).
+    w = v + 0.0
+    order = np.lexsort((w[:, 2], w[:, 1], w[:, 0]))
+    s = w[order]
+    same = (s[1:] == s[:-1]).all(axis=1)
+    if same.any():
+        k = np.flatnonzero(same)
+        pairs = np.sort(np.stack([order[k], order[k + 1]], axis=1), axis=1)
+        i, j = (int(x) for x in pairs[np.lexsort((pairs[:, 0], pairs[:, 1]))[0]])
         raise InvalidGeometryError(
             f"vertices {i} and {j} are both at {fmt_point(v[i])}: a point must be one vertex shared by its "
             "triangles (merge them with repair())"
@@ -127,8 +133,8 @@ def _check_triangles(v: Floats, t: Ints) -> None:
     if (flat == 1).any():
         f = int(np.flatnonzero(flat == 1)[0])
         raise InvalidGeometryError(
-            f"triangle {f} has zero area: its vertices {', '.join(fmt_point(v[x]) for x in t[f])} are collinear "
-            "(drop it with repair())"
+            f"triangle {f} has zero area: its vertices {', '.join(fmt_point(v[x]) for x in t[f])} are "
+            "collinear (drop it with repair())"
         )
 
 
