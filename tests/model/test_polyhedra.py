@@ -7,7 +7,7 @@ import pickle
 import numpy as np
 import pytest
 import trimesh
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from mrm.core.errors import InvalidGeometryError
@@ -318,3 +318,44 @@ def test_repair_only_when_asked() -> None:
     for f in ("merged 1 duplicate vertex", "zero-area", "repeated triangle", "reversed 24 triangles"):
         assert f in joined, joined
     assert repair(*cube_with_cavity())[2] == []
+
+
+@st.composite
+def triangle_pairs(draw: st.DrawFn) -> tuple[np.ndarray, np.ndarray]:
+    """Two non-flat triangles on a tiny lattice (so coplanar, collinear and touching cases are common),
+    sharing 0, 1 or 2 vertices."""
+    pt = st.tuples(*(st.integers(0, 2).map(float) for _ in range(3)))
+    pts = draw(st.lists(pt, min_size=6, max_size=6, unique=True))
+    v = np.array(pts, dtype=np.float64)
+    shared = draw(st.integers(0, 2))
+    a = [0, 1, 2]
+    b = [[3, 4, 5], [0, 4, 5], [1, 0, 5]][shared]
+    t = np.array([a, b], dtype=np.int64)
+    for tri in t:
+        p, q, r = v[tri]
+        assume(np.cross(q - p, r - p).any())
+    return v, t
+
+
+@settings(max_examples=400)
+@given(triangle_pairs())
+def test_pair_test_matches_the_reference(pair: tuple[np.ndarray, np.ndarray]) -> None:
+    from mrm.geometry.polyhedra.self_intersection import INTERSECT, triangles_meet_improperly
+
+    v, t = pair
+    expected = ref.triangles_meet_improperly(v, t[0].tolist(), t[1].tolist())
+    assert (triangles_meet_improperly(v, t, 0, 1) == INTERSECT) == expected  # plain Python, exact
+    assert (_compiled_pair(v, t) == INTERSECT) == expected
+
+
+def _compiled_pair(v: np.ndarray, t: np.ndarray) -> int:
+    from mrm.geometry.polyhedra.self_intersection import _test_cells
+
+    lo = np.ascontiguousarray(v[t].min(axis=1))
+    hi = np.ascontiguousarray(v[t].max(axis=1))
+    c0 = np.zeros((2, 3), np.int64)
+    a, _b, und = _test_cells(
+        v, t, lo, hi, c0, np.zeros(2, np.int64), np.arange(2, dtype=np.int64), np.ones(3, np.int64)
+    )
+    assert und.size == 0
+    return 1 if a >= 0 else 0

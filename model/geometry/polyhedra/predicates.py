@@ -150,6 +150,49 @@ def _exact_difference(p: Floats, q: Floats) -> bool:
     return True
 
 
+@njit(cache=True, inline="always")
+def _sign_if_unrounded(
+    ux: float, uy: float, uz: float, vx: float, vy: float, vz: float, wx: float, wy: float, wz: float
+) -> int:
+    """Sign of det[u; v; w] when its float evaluation is exact (every error term zero), else UNKNOWN.
+
+    Short coordinates (integers, halves, quarters … of moderate size) make every product and sum exact;
+    checking the error terms costs far less than an expansion and allocates nothing.
+    """
+    p1, e1 = _two_product(vy, wz)
+    p2, e2 = _two_product(vz, wy)
+    m1, f1 = _two_sum(p1, -p2)
+    p3, e3 = _two_product(vz, wx)
+    p4, e4 = _two_product(vx, wz)
+    m2, f2 = _two_sum(p3, -p4)
+    p5, e5 = _two_product(vx, wy)
+    p6, e6 = _two_product(vy, wx)
+    m3, f3 = _two_sum(p5, -p6)
+    t1, g1 = _two_product(ux, m1)
+    t2, g2 = _two_product(uy, m2)
+    t3, g3 = _two_product(uz, m3)
+    s1, h1 = _two_sum(t1, t2)
+    s2, h2 = _two_sum(s1, t3)
+    if (
+        e1 != 0.0
+        or e2 != 0.0
+        or e3 != 0.0
+        or e4 != 0.0
+        or e5 != 0.0
+        or e6 != 0.0
+        or f1 != 0.0
+        or f2 != 0.0
+        or f3 != 0.0
+        or g1 != 0.0
+        or g2 != 0.0
+        or g3 != 0.0
+        or h1 != 0.0
+        or h2 != 0.0
+    ):
+        return UNKNOWN
+    return 1 if s2 > 0.0 else (-1 if s2 < 0.0 else 0)
+
+
 # ---------------------------------------------------------------------------------------------- orient3d
 @njit(cache=True)
 def _orient3d_expansion(a: Floats, b: Floats, c: Floats, d: Floats) -> int:
@@ -188,7 +231,11 @@ def orient3d(a: Floats, b: Floats, c: Floats, d: Floats) -> int:
         return -1
     if _exact_difference(b, a) and _exact_difference(c, a) and _exact_difference(d, a):
         # The common near-tie (exactly coplanar points with short coordinates): the differences are
-        # exact, so the 3×3 determinant of them is expanded, 24 doubles instead of 96.
+        # exact. If no product or sum of the float evaluation rounded either, its sign is exact;
+        # otherwise the 3×3 determinant of the differences is expanded, 24 doubles instead of 96.
+        sign = _sign_if_unrounded(ux, uy, uz, vx, vy, vz, wx, wy, wz)
+        if sign != UNKNOWN:
+            return sign
         buf = np.empty(24)
         u = np.array((ux, uy, uz))
         v = np.array((vx, vy, vz))
@@ -225,14 +272,21 @@ def orient2d(p: Floats, q: Floats, r: Floats, i: int, j: int) -> int:
     for k in (i, j):
         if not (_in_range(p[k]) and _in_range(q[k]) and _in_range(r[k])):
             return UNKNOWN
-    left = (q[i] - p[i]) * (r[j] - p[j])
-    right = (q[j] - p[j]) * (r[i] - p[i])
-    det = left - right
+    dqi, eqi = _two_sum(q[i], -p[i])
+    drj, erj = _two_sum(r[j], -p[j])
+    dqj, eqj = _two_sum(q[j], -p[j])
+    dri, eri = _two_sum(r[i], -p[i])
+    left, el = _two_product(dqi, drj)
+    right, er = _two_product(dqj, dri)
+    det, ed = _two_sum(left, -right)
     bound = _O2_BOUND * (abs(left) + abs(right))
     if det > bound:
         return 1
     if det < -bound:
         return -1
+    if eqi == 0.0 and erj == 0.0 and eqj == 0.0 and eri == 0.0 and el == 0.0 and er == 0.0 and ed == 0.0:
+        # Nothing rounded (short coordinates: collinear points on a grid): the float value is exact.
+        return 1 if det > 0.0 else (-1 if det < 0.0 else 0)
     return _orient2d_expansion(p, q, r, i, j)
 
 
@@ -316,6 +370,24 @@ def _o3_indexed(v: Floats, i: int, j: int, k: int, m: int) -> int:
             return 1
         if det < -bound:
             return -1
+        # A near-tie, most often exact coplanarity on short coordinates: if the differences were exact
+        # and no operation rounded, the float value is the exact one (no view, no allocation).
+        small = 2.0**300
+        exact = True
+        for p, q in (
+            (v[j, 0], ax), (v[j, 1], ay), (v[j, 2], az),
+            (v[k, 0], ax), (v[k, 1], ay), (v[k, 2], az),
+            (v[m, 0], ax), (v[m, 1], ay), (v[m, 2], az),
+        ):  # fmt: skip
+            x, e = _two_sum(p, -q)
+            if e != 0.0:
+                exact = False
+            if x != 0.0:
+                small = min(small, abs(x))
+        if exact and small >= 2.0**-300:
+            sign = _sign_if_unrounded(ux, uy, uz, vx, vy, vz, wx, wy, wz)
+            if sign != UNKNOWN:
+                return sign
     return orient3d(v[i], v[j], v[k], v[m])
 
 

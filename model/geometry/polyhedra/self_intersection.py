@@ -100,11 +100,7 @@ def _segments_meet_2d(v: Floats, a: int, b: int, c: int, d: int, i: int, j: int)
 
 
 @register_jitable
-def _segment_meets_triangle_in_plane(v: Floats, a: int, b: int, p: int, q: int, r: int) -> int:
-    k = flat_axes(v, p, q, r)
-    if k < 0:
-        return UNDECIDED
-    i, j = (k + 1) % 3, (k + 2) % 3
+def _segment_meets_triangle_2d(v: Floats, a: int, b: int, p: int, q: int, r: int, i: int, j: int) -> int:
     s = _point_in_triangle_2d(v, a, p, q, r, i, j)
     if s != DISJOINT:
         return s
@@ -120,18 +116,71 @@ def _segment_meets_triangle_in_plane(v: Floats, a: int, b: int, p: int, q: int, 
     return _segments_meet_2d(v, a, b, r, p, i, j)
 
 
+@register_jitable
+def _segment_meets_triangle_in_plane(v: Floats, a: int, b: int, p: int, q: int, r: int) -> int:
+    k = flat_axes(v, p, q, r)
+    if k < 0:
+        return UNDECIDED
+    return _segment_meets_triangle_2d(v, a, b, p, q, r, (k + 1) % 3, (k + 2) % 3)
+
+
+@register_jitable
+def _beyond_an_edge(
+    v: Floats, p0: int, p1: int, p2: int, sp: int, q0: int, q1: int, q2: int, i: int, j: int
+) -> bool:
+    """Whether q0 q1 q2 lie strictly outside one edge line of p0 p1 p2 (of orientation sp ≠ 0)."""
+    for e in range(3):
+        a = p0 if e == 0 else (p1 if e == 1 else p2)
+        b = p1 if e == 0 else (p2 if e == 1 else p0)
+        s0 = o2(v, a, b, q0, i, j)
+        if s0 == UNKNOWN or s0 * sp >= 0:
+            continue
+        s1 = o2(v, a, b, q1, i, j)
+        if s1 == UNKNOWN or s1 * sp >= 0:
+            continue
+        s2 = o2(v, a, b, q2, i, j)
+        if s2 != UNKNOWN and s2 * sp < 0:
+            return True
+    return False
+
+
+@register_jitable
+def _triangles_meet_in_plane(v: Floats, a0: int, a1: int, a2: int, b0: int, b1: int, b2: int) -> int:
+    """Coplanar triangles without a common vertex: an edge of b meets a, or a lies inside b."""
+    k = flat_axes(v, a0, a1, a2)
+    if k < 0:
+        return UNDECIDED
+    i, j = (k + 1) % 3, (k + 2) % 3
+    # Quick rejection: one triangle strictly beyond an edge line of the other (the common case for
+    # neighbours in a flat region); the full test below decides the rest.
+    sa = o2(v, a0, a1, a2, i, j)
+    sb = o2(v, b0, b1, b2, i, j)
+    if sa == UNKNOWN or sb == UNKNOWN:
+        return UNDECIDED
+    if _beyond_an_edge(v, a0, a1, a2, sa, b0, b1, b2, i, j) or _beyond_an_edge(
+        v, b0, b1, b2, sb, a0, a1, a2, i, j
+    ):
+        return DISJOINT
+    s = _segment_meets_triangle_2d(v, b0, b1, a0, a1, a2, i, j)
+    if s != DISJOINT:
+        return s
+    s = _segment_meets_triangle_2d(v, b1, b2, a0, a1, a2, i, j)
+    if s != DISJOINT:
+        return s
+    s = _segment_meets_triangle_2d(v, b2, b0, a0, a1, a2, i, j)
+    if s != DISJOINT:
+        return s
+    return _point_in_triangle_2d(v, a0, b0, b1, b2, i, j)
+
+
 # ---------------------------------------------------------------------------------------------- 3-D tests
 @register_jitable
-def segment_meets_triangle(v: Floats, a: int, b: int, p: int, q: int, r: int) -> int:
-    """Does the closed segment a b meet the closed triangle p q r? INTERSECT, DISJOINT or UNDECIDED."""
-    oa = o3(v, p, q, r, a)
-    ob = o3(v, p, q, r, b)
-    if oa == UNKNOWN or ob == UNKNOWN:
-        return UNDECIDED
+def _crossing_segment_meets_triangle(
+    v: Floats, a: int, b: int, p: int, q: int, r: int, oa: int, ob: int
+) -> int:
+    """:func:`segment_meets_triangle` given the sides oa, ob of a and b (known, not both 0)."""
     if oa * ob > 0:
         return DISJOINT
-    if oa == 0 and ob == 0:
-        return _segment_meets_triangle_in_plane(v, a, b, p, q, r)
     s1 = o3(v, a, b, p, q)
     s2 = o3(v, a, b, q, r)
     s3 = o3(v, a, b, r, p)
@@ -140,6 +189,18 @@ def segment_meets_triangle(v: Floats, a: int, b: int, p: int, q: int, r: int) ->
     if (s1 >= 0 and s2 >= 0 and s3 >= 0) or (s1 <= 0 and s2 <= 0 and s3 <= 0):
         return INTERSECT
     return DISJOINT
+
+
+@register_jitable
+def segment_meets_triangle(v: Floats, a: int, b: int, p: int, q: int, r: int) -> int:
+    """Whether the closed segment a b meets the closed triangle p q r: INTERSECT, DISJOINT or UNDECIDED."""
+    oa = o3(v, p, q, r, a)
+    ob = o3(v, p, q, r, b)
+    if oa == UNKNOWN or ob == UNKNOWN:
+        return UNDECIDED
+    if oa == 0 and ob == 0:
+        return _segment_meets_triangle_in_plane(v, a, b, p, q, r)
+    return _crossing_segment_meets_triangle(v, a, b, p, q, r, oa, ob)
 
 
 @register_jitable
@@ -152,13 +213,37 @@ def triangles_meet_improperly(v: Floats, t: Ints, ta: int, tb: int) -> int:
         if x in (b0, b1, b2):
             shared += 1
     if shared == 0:
+        s0 = o3(v, a0, a1, a2, b0)
+        s1 = o3(v, a0, a1, a2, b1)
+        s2 = o3(v, a0, a1, a2, b2)
+        if s0 == UNKNOWN or s1 == UNKNOWN or s2 == UNKNOWN:
+            return UNDECIDED
+        if (s0 > 0 and s1 > 0 and s2 > 0) or (s0 < 0 and s1 < 0 and s2 < 0):
+            return DISJOINT  # tb strictly on one side of ta's plane
+        if s0 == 0 and s1 == 0 and s2 == 0:
+            return _triangles_meet_in_plane(v, a0, a1, a2, b0, b1, b2)
+        r0 = o3(v, b0, b1, b2, a0)
+        r1 = o3(v, b0, b1, b2, a1)
+        r2 = o3(v, b0, b1, b2, a2)
+        if r0 == UNKNOWN or r1 == UNKNOWN or r2 == UNKNOWN:
+            return UNDECIDED
+        if (r0 > 0 and r1 > 0 and r2 > 0) or (r0 < 0 and r1 < 0 and r2 < 0):
+            return DISJOINT
+        # Not coplanar: an edge of one meets the other; every side needed is known already.
+        sa = (r0, r1, r2)
+        sb = (s0, s1, s2)
         for e in range(3):
-            s = segment_meets_triangle(v, t[ta, e], t[ta, (e + 1) % 3], b0, b1, b2)
-            if s != DISJOINT:
-                return s
-            s = segment_meets_triangle(v, t[tb, e], t[tb, (e + 1) % 3], a0, a1, a2)
-            if s != DISJOINT:
-                return s
+            f = (e + 1) % 3
+            if not (sa[e] == 0 and sa[f] == 0):
+                s = _crossing_segment_meets_triangle(v, t[ta, e], t[ta, f], b0, b1, b2, sa[e], sa[f])
+                if s != DISJOINT:
+                    return s
+            if not (sb[e] == 0 and sb[f] == 0):
+                s = _crossing_segment_meets_triangle(v, t[tb, e], t[tb, f], a0, a1, a2, sb[e], sb[f])
+                if s != DISJOINT:
+                    return s
+            # An edge lying in the other's plane (the planes differ): the line where they meet is that
+            # edge's line, and the other triangle's edges crossing it are tested from the other side.
         return DISJOINT
     if shared == 1:
         # Rotate both so that the common vertex comes first (rotation keeps the orientation).
@@ -166,7 +251,20 @@ def triangles_meet_improperly(v: Floats, t: Ints, ta: int, tb: int) -> int:
             a0, a1, a2 = a1, a2, a0
         while b0 != a0:
             b0, b1, b2 = b1, b2, b0
-        s = segment_meets_triangle(v, b1, b2, a0, a1, a2)
+        s1 = o3(v, a0, a1, a2, b1)
+        s2 = o3(v, a0, a1, a2, b2)
+        if s1 == UNKNOWN or s2 == UNKNOWN:
+            return UNDECIDED
+        if s1 == 0 and s2 == 0:  # coplanar: both tests in the plane, with one projection
+            k = flat_axes(v, a0, a1, a2)
+            if k < 0:
+                return UNDECIDED
+            i, j = (k + 1) % 3, (k + 2) % 3
+            s = _segment_meets_triangle_2d(v, b1, b2, a0, a1, a2, i, j)
+            if s != DISJOINT:
+                return s
+            return _segment_meets_triangle_2d(v, a1, a2, b0, b1, b2, i, j)
+        s = _crossing_segment_meets_triangle(v, b1, b2, a0, a1, a2, s1, s2)
         if s != DISJOINT:
             return s
         return segment_meets_triangle(v, a1, a2, b0, b1, b2)
