@@ -15,6 +15,7 @@ removes the cached code of every kernel module before compiling again (:func:`cl
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import logging
@@ -56,6 +57,12 @@ KERNEL_MODULES = (
     "geometry/dss/segmentation.py",
     "geometry/dss/__init__.py",
     "reps/region.py",
+    "geometry/polyhedra/predicates.py",
+    "geometry/polyhedra/self_intersection.py",
+    "geometry/polyhedra/manifold.py",
+    "geometry/polyhedra/shells.py",
+    "geometry/polyhedra/faces.py",
+    "geometry/polyhedra/validation.py",
 )
 
 STAMP_NAME = "mrm-kernels-warm.json"
@@ -279,6 +286,25 @@ def _step_files() -> None:
                 log.info("warm-up of the PNG reader (%s): %s", im.mode, exc)
 
 
+def _step_polyhedra() -> None:
+    """Validate a cube with a cubic cavity (every check's kernels), a crossing pair and a flat face."""
+    import numpy as np
+
+    from mrm.core.errors import InvalidGeometryError
+    from mrm.geometry.polyhedra import Polyhedron
+
+    corners = np.array([[i & 1, i >> 1 & 1, i >> 2 & 1] for i in range(8)], dtype=np.float64)
+    tris = np.array(
+        [[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4],
+         [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]],
+        dtype=np.int64,
+    )  # fmt: skip
+    cavity = Polyhedron(np.vstack([corners * 3.0, corners + 1.0]), np.vstack([tris, tris[:, ::-1] + 8]))
+    _ = cavity.n_faces
+    with contextlib.suppress(InvalidGeometryError):  # the pair tests of a self-intersecting mesh
+        Polyhedron(np.vstack([corners, corners + 0.5]), np.vstack([tris, tris + 8]))
+
+
 def _step_examples() -> None:
     from mrm.io.project import load_project
 
@@ -302,6 +328,7 @@ STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("region and segment kernels", _step_regions),
     ("operation kernels", _step_operations),
     ("file decoders", _step_files),
+    ("polyhedron kernels", _step_polyhedra),
     ("example projects", _step_examples),
 )
 

@@ -108,3 +108,37 @@ def test_sign_conventions() -> None:
     assert orient3d_sign(a, b, c, d) == 1  # d above the counter-clockwise triangle a b c
     assert orient3d_sign(a, c, b, d) == -1
     assert orient2d_sign(a, b, c, 0, 1) == 1
+
+
+_RANGE = st.one_of(
+    st.floats(2.0**-200, 2.0**200),
+    st.floats(-(2.0**200), -(2.0**-200)),
+    st.just(0.0),
+    st.integers(-(2**53), 2**53).map(float),
+)
+
+
+@settings(max_examples=300)
+@given(_RANGE, _RANGE, _RANGE)
+def test_exact_triple_products(a: float, b: float, c: float) -> None:
+    # The expansion stage's building block: four doubles whose sum is a·b·c exactly (Dekker's products).
+    from fractions import Fraction
+
+    from mrm.geometry.polyhedra.predicates import _push_triple
+
+    buf = np.zeros(4)
+    assert _push_triple(buf, 0, -1.0, a, b, c) == 4
+    assert sum(Fraction(x) for x in buf.tolist()) == -Fraction(a) * Fraction(b) * Fraction(c)
+
+
+@settings(max_examples=300)
+@given(st.lists(_RANGE, min_size=1, max_size=40))
+def test_exact_sign_of_a_sum(terms: list[float]) -> None:
+    from fractions import Fraction
+
+    from mrm.geometry.polyhedra.predicates import _sign_of_sum
+
+    # Cancelling pairs make the exact sum tiny or zero: the case the expansion exists for.
+    terms = terms + [-x for x in terms[: len(terms) // 2]] + [2.0**-1000 if len(terms) % 3 else 0.0]
+    total = sum(Fraction(x) for x in terms)
+    assert _sign_of_sum(np.array(terms), len(terms)) == (total > 0) - (total < 0)
