@@ -35,7 +35,7 @@ from mrm.geometry.polyhedra import Polyhedron  # noqa: E402
 
 
 def meshes() -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """Closed meshes: a sphere, a torus with a cavity-like second shell, a finely triangulated cube."""
+    """Closed meshes: two spheres, a torus, a finely triangulated cube, many small cubes, a fine sphere."""
     out: dict[str, tuple[np.ndarray, np.ndarray]] = {}
     s6 = trimesh.creation.icosphere(subdivisions=6)  # 81,920
     s5 = trimesh.creation.icosphere(subdivisions=5)
@@ -51,6 +51,13 @@ def meshes() -> dict[str, tuple[np.ndarray, np.ndarray]]:
     fine = box.subdivide().subdivide().subdivide().subdivide().subdivide().subdivide()
     fine = trimesh.Trimesh(fine.vertices, fine.faces, process=True)  # merge the split edges' vertices
     out[f"flat cube {len(fine.faces) // 1000}k"] = (np.asarray(fine.vertices), np.asarray(fine.faces))
+    # Many shells: 22³ small cubes (the nesting test's worst case: every shell against every other).
+    cube = trimesh.creation.box(extents=(0.5, 0.5, 0.5))
+    offsets = np.array([(x, y, z) for x in range(22) for y in range(22) for z in range(22)], dtype=np.float64)
+    out["10,648 cubes 128k"] = (
+        (np.asarray(cube.vertices)[None] + offsets[:, None]).reshape(-1, 3),
+        (np.asarray(cube.faces)[None] + 8 * np.arange(len(offsets))[:, None, None]).reshape(-1, 3),
+    )
     s7 = trimesh.creation.icosphere(subdivisions=7)
     out["sphere 328k"] = (np.asarray(s7.vertices), np.asarray(s7.faces))
     return out

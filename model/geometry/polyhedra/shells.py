@@ -150,28 +150,41 @@ def ray_crossing(v: Floats, p: int, a: int, b: int, c: int) -> int:
 
 @njit(cache=True)
 def _windings(
-    v: Floats, t: Ints, shell: Ints, reps: Ints, lo: Floats, hi: Floats, slo: Floats, shi: Floats
+    v: Floats,
+    t: Ints,
+    order: Ints,
+    starts: Ints,
+    reps: Ints,
+    lo: Floats,
+    hi: Floats,
+    slo: Floats,
+    shi: Floats,
 ) -> tuple[Ints, Ints]:
-    """Winding number of the other shells at every shell's representative vertex; 1 where undecided."""
+    """Winding number of the other shells at every shell's representative vertex; 1 where undecided.
+
+    ``order[starts[g]:starts[g + 1]]`` are the triangles of shell g: a shell whose box the ray misses is
+    skipped whole, so many small shells cost O(shells²) box tests, not O(shells × triangles).
+    """
     ns = reps.shape[0]
     wind = np.zeros(ns, np.int64)
     unknown = np.zeros(ns, np.int64)
     for s in range(ns):
         p = reps[s]
         px, py, pz = v[p, 0], v[p, 1], v[p, 2]
-        for f in range(t.shape[0]):
-            g = shell[f]
+        for g in range(ns):
             if g == s:
                 continue
             if px >= shi[g, 0] or py < slo[g, 1] or py > shi[g, 1] or pz < slo[g, 2] or pz > shi[g, 2]:
                 continue
-            if hi[f, 0] <= px or py < lo[f, 1] or py > hi[f, 1] or pz < lo[f, 2] or pz > hi[f, 2]:
-                continue
-            c = ray_crossing(v, p, t[f, 0], t[f, 1], t[f, 2])
-            if c == UNKNOWN:
-                unknown[s] = 1
-            else:
-                wind[s] += c
+            for e in range(starts[g], starts[g + 1]):
+                f = order[e]
+                if hi[f, 0] <= px or py < lo[f, 1] or py > hi[f, 1] or pz < lo[f, 2] or pz > hi[f, 2]:
+                    continue
+                c = ray_crossing(v, p, t[f, 0], t[f, 1], t[f, 2])
+                if c == UNKNOWN:
+                    unknown[s] = 1
+                else:
+                    wind[s] += c
     return wind, unknown
 
 
@@ -190,7 +203,9 @@ def shell_windings(v: Floats, t: Ints, shell: Ints, nshells: int) -> tuple[Ints,
     shi = np.full((nshells, 3), -np.inf)
     np.minimum.at(slo, shell, lo)
     np.maximum.at(shi, shell, hi)
-    wind, unknown = _windings(v, t, shell, reps, lo, hi, slo, shi)
+    order = np.argsort(shell, kind="stable").astype(np.int64)
+    starts = np.searchsorted(shell[order], np.arange(nshells + 1)).astype(np.int64)
+    wind, unknown = _windings(v, t, order, starts, reps, lo, hi, slo, shi)
     for s in np.flatnonzero(unknown).tolist():
         # Plain Python, exact Fractions: the same crossing test over the other shells' triangles.
         p = int(reps[s])
