@@ -359,3 +359,22 @@ def _compiled_pair(v: np.ndarray, t: np.ndarray) -> int:
     )
     assert und.size == 0
     return 1 if a >= 0 else 0
+
+
+@pytest.mark.parametrize(
+    "second",
+    [
+        [[2.0, 2.0, 0.0], [0.0, 2.0, 0.0]],  # adjacent angles sharing a side ray: they overlap along it
+        [[0.0, 2.0, 0.0], [-1.0, 1.0, 0.0]],  # adjacent angles touching at v only
+        [[1.0, 3.0, 0.0], [-1.0, 1.0, 0.0]],  # an edge crossing the other triangle's far edge
+        [[3.0, 0.0, 0.0], [3.0, 3.0, 1.0]],  # not coplanar: a sheet through the other's side ray
+    ],
+)
+def test_pairs_with_one_common_vertex(second: list[list[float]]) -> None:
+    from mrm.geometry.polyhedra.self_intersection import INTERSECT, triangles_meet_improperly
+
+    v = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], *second])
+    t = np.array([[0, 1, 2], [0, 3, 4]], dtype=np.int64)
+    expected = ref.triangles_meet_improperly(v, [0, 1, 2], [0, 3, 4])
+    assert (triangles_meet_improperly(v, t, 0, 1) == INTERSECT) == expected
+    assert (_compiled_pair(v, t) == INTERSECT) == expected

@@ -125,6 +125,16 @@ def _segment_meets_triangle_in_plane(v: Floats, a: int, b: int, p: int, q: int, 
 
 
 @register_jitable
+def _ray_in_cone(v: Floats, o: int, p: int, q: int, sp: int, x: int, i: int, j: int) -> int:
+    """Whether the ray o→x lies in the closed cone at o spanned by o→p and o→q (orientation sp ≠ 0)."""
+    s1 = o2(v, o, p, x, i, j)
+    s2 = o2(v, o, x, q, i, j)
+    if s1 == UNKNOWN or s2 == UNKNOWN:
+        return UNDECIDED
+    return INTERSECT if s1 * sp >= 0 and s2 * sp >= 0 else DISJOINT
+
+
+@register_jitable
 def _beyond_an_edge(
     v: Floats, p0: int, p1: int, p2: int, sp: int, q0: int, q1: int, q2: int, i: int, j: int
 ) -> bool:
@@ -259,11 +269,22 @@ def triangles_meet_improperly(v: Floats, t: Ints, ta: int, tb: int) -> int:
             k = flat_axes(v, a0, a1, a2)
             if k < 0:
                 return UNDECIDED
+            # Near v each triangle is its angle (a convex cone under 180°): they meet beyond v iff the
+            # cones do, iff a side ray of one lies in the other (closed) cone.
             i, j = (k + 1) % 3, (k + 2) % 3
-            s = _segment_meets_triangle_2d(v, b1, b2, a0, a1, a2, i, j)
-            if s != DISJOINT:
-                return s
-            return _segment_meets_triangle_2d(v, a1, a2, b0, b1, b2, i, j)
+            sa = o2(v, a0, a1, a2, i, j)
+            sb = o2(v, b0, b1, b2, i, j)
+            if sa == UNKNOWN or sb == UNKNOWN:
+                return UNDECIDED
+            for x in (b1, b2):
+                s = _ray_in_cone(v, a0, a1, a2, sa, x, i, j)
+                if s != DISJOINT:
+                    return s
+            for x in (a1, a2):
+                s = _ray_in_cone(v, b0, b1, b2, sb, x, i, j)
+                if s != DISJOINT:
+                    return s
+            return DISJOINT
         s = _crossing_segment_meets_triangle(v, b1, b2, a0, a1, a2, s1, s2)
         if s != DISJOINT:
             return s
