@@ -272,16 +272,16 @@ def triangles_meet_improperly(v: Floats, t: Ints, ta: int, tb: int) -> int:
             # Near v each triangle is its angle (a convex cone under 180°): they meet beyond v iff the
             # cones do, iff a side ray of one lies in the other (closed) cone.
             i, j = (k + 1) % 3, (k + 2) % 3
-            sa = o2(v, a0, a1, a2, i, j)
-            sb = o2(v, b0, b1, b2, i, j)
-            if sa == UNKNOWN or sb == UNKNOWN:
+            turn_a = o2(v, a0, a1, a2, i, j)
+            turn_b = o2(v, b0, b1, b2, i, j)
+            if turn_a == UNKNOWN or turn_b == UNKNOWN:
                 return UNDECIDED
             for x in (b1, b2):
-                s = _ray_in_cone(v, a0, a1, a2, sa, x, i, j)
+                s = _ray_in_cone(v, a0, a1, a2, turn_a, x, i, j)
                 if s != DISJOINT:
                     return s
             for x in (a1, a2):
-                s = _ray_in_cone(v, b0, b1, b2, sb, x, i, j)
+                s = _ray_in_cone(v, b0, b1, b2, turn_b, x, i, j)
                 if s != DISJOINT:
                     return s
             return DISJOINT
