@@ -257,6 +257,8 @@ def read_mesh_arrays(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> tu
         _check_obj(data, name, limit)
     v, t = _decode(data, ext, name)
     del data
+    if t.shape[0] == 0:
+        raise FileFormatError(f"{name}: the file holds no triangle")
     if limit is not None and t.shape[0] > limit:
         raise FileFormatError(f"{name}: {t.shape[0]:,} triangles, more than the limit of {limit:,}")
     if ext == ".stl":

@@ -200,6 +200,7 @@ def test_obj_over_the_limit_is_refused_before_decoding(tmp_path: Path) -> None:
         ("badheader.ply", b"ply\nformat ascii 1.0\nelement vertex many\nend_header\n", "corrupt PLY header"),
         ("badcounts.off", b"OFF\nthree faces\n", "corrupt OFF header"),
         ("type.xyz", b"0 0 0\n", "unsupported mesh file type '.xyz'"),
+        ("empty.obj", b"# nothing\n", "holds no triangle"),
     ],
 )
 def test_corrupt_files(tmp_path: Path, name: str, content: bytes, fragment: str) -> None:

@@ -152,7 +152,7 @@ def test_empty() -> None:
     assert e == Polyhedron(np.zeros((0, 3)), np.zeros((0, 3), int))
 
 
-@pytest.mark.parametrize("scale", [2.0**-300, 2.0**-150, 2.0**250, 1e300])
+@pytest.mark.parametrize("scale", [2.0**-300, 2.0**-150, 2.0**250, 1e300, 5e307])
 def test_out_of_range_magnitudes_are_decided_exactly(scale: float) -> None:
     v, t = cube_with_cavity()
     p = Polyhedron(v * scale, t)

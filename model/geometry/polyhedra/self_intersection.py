@@ -416,9 +416,14 @@ def _test_cells(
 def _grid(lo: Floats, hi: Floats) -> tuple[Ints, Ints, Ints, int]:
     """Cell ranges of the boxes on a grid fine enough to separate them, coarse enough to stay small."""
     m = lo.shape[0]
+    if not np.isfinite(hi.max(axis=0) - lo.min(axis=0)).all():
+        # Coordinates near the float64 limits: the extent overflows. The grid only needs cell indices
+        # that never decrease with x, which a quarter of every coordinate still gives.
+        lo, hi = lo * 0.25, hi * 0.25
     origin = lo.min(axis=0)
     span = float((hi.max(axis=0) - origin).max())
-    size = float(np.median((hi - lo).max(axis=1)))
+    ext = (hi - lo).max(axis=1)
+    size = float(np.partition(ext, m // 2)[m // 2])  # a median that never averages (no overflow)
     h = max(2.0 * size, span / _MAX_AXIS_CELLS, np.finfo(float).tiny)
     c0 = np.empty((m, 3), np.int64)
     c1 = np.empty((m, 3), np.int64)
