@@ -378,3 +378,17 @@ def test_pairs_with_one_common_vertex(second: list[list[float]]) -> None:
     expected = ref.triangles_meet_improperly(v, [0, 1, 2], [0, 3, 4])
     assert (triangles_meet_improperly(v, t, 0, 1) == INTERSECT) == expected
     assert (_compiled_pair(v, t) == INTERSECT) == expected
+
+
+def test_repair_orients_a_flipped_triangle_and_keeps_what_it_cannot_fix() -> None:
+    v, t = cube()
+    t[5] = t[5, ::-1]
+    with pytest.raises(InvalidGeometryError, match="inconsistent orientation"):
+        Polyhedron(v, t)
+    rv, rt, changes = repair(v, t)
+    assert Polyhedron(rv, rt) == Polyhedron(*cube())
+    assert changes == ["reversed 1 triangle to orient every shell outward (cavities inward)"]
+    # An open surface stays open: repair does not invent triangles, validation still says where.
+    rv, rt, _ = repair(v[:], cube()[1][1:])
+    with pytest.raises(InvalidGeometryError, match="the surface is open"):
+        Polyhedron(rv, rt)

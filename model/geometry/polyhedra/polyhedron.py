@@ -150,7 +150,8 @@ class Polyhedron:
         if self.is_empty:
             return 0.0
         c = self._vertices[self._triangles]
-        det = np.einsum("ij,ij->i", c[:, 0], np.cross(c[:, 1], c[:, 2]))
+        with np.errstate(over="ignore", invalid="ignore"):  # coordinates near 1e308: ±inf or nan, said so
+            det = np.einsum("ij,ij->i", c[:, 0], np.cross(c[:, 1], c[:, 2]))
         return math.fsum(det.tolist()) / 6.0
 
     # ------------------------------------------------------------------------------------------ transforms
