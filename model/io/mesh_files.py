@@ -1,6 +1,7 @@
 """Triangle mesh files: OBJ, PLY, OFF and STL in, OBJ, PLY and OFF out exactly, STL out with a warning (§11).
 
-Reading goes through ``trimesh`` without processing (``process=False``: no vertex merged, moved or dropped),
+Reading goes through ``trimesh`` without processing (``process=False``: no vertex merged, moved or dropped;
+OBJ is read here, since trimesh splits its vertices by texture coordinate),
 after the checks the 2-D readers make (docs/adr/0015): a regular file, at most
 :data:`~mrm.core.limits.MAX_FILE_BYTES`, and the triangle count the header declares (PLY, OFF, binary STL) or
 the file's size implies (OBJ, ASCII STL) within the limit, all before any decoding. The result becomes a
@@ -17,6 +18,7 @@ when a coordinate does not survive the rounding. Every write is atomic (:mod:`mr
 
 from __future__ import annotations
 
+import array
 import io
 import logging
 import os
@@ -167,6 +169,8 @@ def _check_obj(data: bytes, name: str, limit: int | None) -> None:
     # OBJ declares nothing: count the face lines (a k-gon becomes k − 2 triangles, at least one).
     faces = data.count(b"\nf ") + data.startswith(b"f ")
     _refuse_count(name, "faces", faces, limit)
+    vertices = data.count(b"\nv ") + data.startswith(b"v ")
+    _refuse_count(name, "vertices", vertices, None if limit is None else 3 * limit + 3)
 
 
 # ---------------------------------------------------------------------------------------------- reading
@@ -187,7 +191,51 @@ def _read_bytes(path: PathLike, name: str) -> bytes:
     return data
 
 
+def _decode_obj(data: bytes, name: str) -> tuple[Floats, Ints]:
+    """OBJ's ``v`` and ``f`` lines, read here: trimesh splits a vertex per texture coordinate and normal.
+
+    Only the position index of ``f a/b/c`` counts; negative indices count back from the last vertex; a
+    face of k > 3 vertices becomes the fan of k − 2 triangles from its first vertex (as trimesh and most
+    readers do). Every other line (``vt``, ``vn``, ``o``, ``g``, ``usemtl`` …) is ignored.
+    """
+    # Compact buffers (8 bytes a number) and a line iterator: memory stays proportional to the mesh, not
+    # to Python objects per token.
+    coords = array.array("d")
+    faces = array.array("q")
+    n_vertices = 0
+    for number, line in enumerate(io.BytesIO(data), 1):
+        parts = line.split()
+        if not parts:
+            continue
+        if parts[0] == b"v":
+            if len(parts) < 4:
+                raise FileFormatError(f"{name}: line {number}: a vertex needs three coordinates")
+            try:
+                coords.extend((float(parts[1]), float(parts[2]), float(parts[3])))
+            except ValueError:
+                raise FileFormatError(f"{name}: line {number}: a vertex coordinate is not a number") from None
+            n_vertices += 1
+        elif parts[0] == b"f":
+            if len(parts) < 4:
+                raise FileFormatError(f"{name}: line {number}: a face needs at least three vertices")
+            try:
+                raw = [int(tok.split(b"/", 1)[0]) for tok in parts[1:]]
+            except ValueError:
+                raise FileFormatError(f"{name}: line {number}: malformed face {line[:80]!r}") from None
+            idx = [i - 1 if i > 0 else n_vertices + i for i in raw]
+            if 0 in raw or min(idx) < 0 or max(idx) >= n_vertices:
+                raise FileFormatError(
+                    f"{name}: line {number}: a face refers to a vertex not defined before it"
+                )
+            for k in range(1, len(idx) - 1):
+                faces.extend((idx[0], idx[k], idx[k + 1]))
+    v = np.frombuffer(coords, dtype=np.float64).reshape(-1, 3).copy()
+    return v, np.frombuffer(faces, dtype=np.int64).reshape(-1, 3).copy()
+
+
 def _decode(data: bytes, ext: str, name: str) -> tuple[Floats, Ints]:
+    if ext == ".obj":
+        return _decode_obj(data, name)
     try:
         import trimesh
     except ImportError:  # pragma: no cover - depends on the installation

@@ -89,6 +89,28 @@ def test_float64_round_trips_bit_for_bit(tmp_path: Path, p: Polyhedron, ext: str
     assert np.array_equal(t, p.triangles)
 
 
+def test_obj_of_other_writers(tmp_path: Path) -> None:
+    # Texture coordinates, normals, groups, materials, a quad per cube side and negative indices: one
+    # vertex per position all the same (trimesh's OBJ reader would split them by texture coordinate).
+    v, _ = cube()
+    quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
+    lines = ["mtllib x.mtl", "o box"] + [f"v {x!r} {y!r} {z!r} 0.5 0.5 0.5" for x, y, z in v.tolist()]
+    lines += ["vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1", "vn 0 0 1", "usemtl m", "s off"]
+    for k, q in enumerate(quads):
+        if k % 2:
+            lines.append("f " + " ".join(f"{i - 8}/{j + 1}/1" for j, i in enumerate(q)))
+        else:
+            lines.append("f " + " ".join(f"{i + 1}//1" for i in q))
+    path = tmp_path / "box.obj"
+    path.write_text("\n".join(lines) + "\n")
+    p = read_mesh(path)
+    assert (p.n_vertices, p.n_triangles, p.n_faces, p.signed_volume) == (8, 12, 6, 1.0)
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")
+    _refused(path, FileFormatError, "line 4", "not defined before it")
+    path.write_text("v 0 0 0\nv 1 0 zero\n")
+    _refused(path, FileFormatError, "line 2", "not a number")
+
+
 def test_stl_warns_that_it_keeps_float32_only(tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
     exact = Polyhedron(*cube_with_cavity())  # small integers: float32 holds them
     assert write_mesh(exact, tmp_path / "a.stl") is None
