@@ -392,3 +392,28 @@ def test_repair_orients_a_flipped_triangle_and_keeps_what_it_cannot_fix() -> Non
     rv, rt, _ = repair(v[:], cube()[1][1:])
     with pytest.raises(InvalidGeometryError, match="the surface is open"):
         Polyhedron(rv, rt)
+
+
+@st.composite
+def bent_octahedra(draw: st.DrawFn) -> np.ndarray:
+    """An octahedron's six vertices on a small lattice: folded, flat, crossing and inverted triangles."""
+    pt = st.tuples(*(st.integers(-2, 2).map(float) for _ in range(3)))
+    return np.array(draw(st.lists(pt, min_size=6, max_size=6, unique=True)), dtype=np.float64)
+
+
+@settings(max_examples=150)
+@given(bent_octahedra())
+def test_one_shell_accepted_iff_the_reference_says_valid(v: np.ndarray) -> None:
+    _, t = octahedron()
+    tl = t.tolist()
+    expected = (
+        not any(ref.is_flat(v, tri) for tri in tl)
+        and ref.first_intersecting_pair(v, tl) is None
+        and ref.volume6(v, tl) > 0
+    )
+    try:
+        Polyhedron(v, t)
+        accepted = True
+    except InvalidGeometryError:
+        accepted = False
+    assert accepted == expected

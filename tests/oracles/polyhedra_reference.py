@@ -143,3 +143,16 @@ def first_intersecting_pair(
             if triangles_meet_improperly(v, t[a], t[b]):
                 return a, b
     return None
+
+
+def volume6(v: Sequence[Sequence[float]], t: Sequence[Sequence[int]]) -> Fraction:
+    """Six times the signed volume, exactly: Σ det[a, b, c] over the triangles."""
+    total = Q(0)
+    for a, b, c in t:
+        total += _det3([list(q(v[a])), list(q(v[b])), list(q(v[c]))])
+    return total
+
+
+def is_flat(v: Sequence[Sequence[float]], tri: Sequence[int]) -> bool:
+    a, b, c = (q(v[i]) for i in tri)
+    return _cross(_sub(b, a), _sub(c, a)) == (0, 0, 0)
