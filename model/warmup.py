@@ -15,6 +15,7 @@ removes the cached code of every kernel module before compiling again (:func:`cl
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import logging
@@ -60,6 +61,13 @@ KERNEL_MODULES = (
     "geometry/topology/surfels.py",
     "geometry/topology/cells_3d.py",
     "geometry/reconstruct/safety_net_3d.py",
+    "geometry/polyhedra/predicates.py",
+    "geometry/polyhedra/self_intersection.py",
+    "geometry/polyhedra/manifold.py",
+    "geometry/polyhedra/shells.py",
+    "geometry/polyhedra/faces.py",
+    "geometry/polyhedra/validation.py",
+    "geometry/discretize/_kernels3d.py",
 )
 
 STAMP_NAME = "mrm-kernels-warm.json"
@@ -297,6 +305,42 @@ def _step_files() -> None:
                 log.info("warm-up of the PNG reader (%s): %s", im.mode, exc)
 
 
+def _step_polyhedra() -> None:
+    """Validate a cube with a cubic cavity (every check's kernels), a crossing pair and a flat face."""
+    import numpy as np
+
+    from mrm.core.errors import InvalidGeometryError
+    from mrm.geometry.polyhedra import Polyhedron
+
+    corners = np.array([[i & 1, i >> 1 & 1, i >> 2 & 1] for i in range(8)], dtype=np.float64)
+    tris = np.array(
+        [[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4],
+         [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]],
+        dtype=np.int64,
+    )  # fmt: skip
+    cavity = Polyhedron(np.vstack([corners * 3.0, corners + 1.0]), np.vstack([tris, tris[:, ::-1] + 8]))
+    _ = cavity.n_faces
+    with contextlib.suppress(InvalidGeometryError):  # the pair tests of a self-intersecting mesh
+        Polyhedron(np.vstack([corners, corners + 0.5]), np.vstack([tris, tris + 8]))
+
+
+def _step_voxelize() -> None:
+    """D of a tetrahedron in every model, on both arithmetic paths (snapped and free coordinates)."""
+    import numpy as np
+
+    from mrm.geometry.discretize.voxels import voxelize_solid, voxelize_triangles
+
+    tris = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
+    for verts in (
+        [[0, 0, 0], [3, 0, 0], [0, 3, 0], [0, 0, 3]],
+        [[0.1, 0.2, 0.3], [3.3, 0.1, 0], [0, 3.7, 0.2], [0, 0, 3.1]],
+    ):
+        v = np.array(verts, dtype=np.float64)
+        for model in ("standard", "supercover", "gauss"):
+            voxelize_solid(v, tris, model)
+            voxelize_triangles(v, tris, model)
+
+
 def _step_examples() -> None:
     from mrm.io.project import load_project
 
@@ -321,6 +365,8 @@ STEPS: tuple[tuple[str, Callable[[], None]], ...] = (
     ("3D region kernels", _step_regions_3d),
     ("operation kernels", _step_operations),
     ("file decoders", _step_files),
+    ("polyhedron kernels", _step_polyhedra),
+    ("voxelization kernels", _step_voxelize),
     ("example projects", _step_examples),
 )
 

@@ -9,6 +9,8 @@
                    run by ``_kernels``), its verification and safety net, and the watertight subdivision of a
                    label map (``subdivision``, ``polygonize``).
 ``hausdorff``      the exact Hausdorff distance and the paper's error bounds (``bounds``).
+``polyhedra``      the 3-D Euclidean solid (``Polyhedron``), validated exactly with filtered orient3d/orient2d
+                   (``predicates``), and its explicit ``repair``.
 =================  ==========================================================================================
 
 Each stage's main function is importable from the package itself: ``mrm.geometry.discretize.discretize``,

@@ -1,0 +1,435 @@
+"""Triangle mesh files: OBJ, PLY, OFF and STL in, OBJ, PLY and OFF out exactly, STL out with a warning (§11).
+
+Reading goes through ``trimesh`` without processing (``process=False``: no vertex merged, moved or dropped;
+OBJ is read here, since trimesh splits its vertices by texture coordinate),
+after the checks the 2-D readers make (docs/adr/0015): a regular file, at most
+:data:`~mrm.core.limits.MAX_FILE_BYTES`, and the triangle count the header declares (PLY, OFF, binary STL) or
+the file's size implies (OBJ, ASCII STL) within the limit, all before any decoding. The result becomes a
+:class:`~mrm.geometry.polyhedra.Polyhedron`, validated exactly: an invalid mesh is refused with the file's
+name and where it is wrong; :func:`~mrm.geometry.polyhedra.repair` is the user's explicit next step.
+
+STL stores every triangle with its own three float32 corners: the corners are joined by exact equality of
+their values (the format has no shared vertices; nothing is rounded or moved), in the order of first use.
+
+Writing is exact for OBJ and OFF (``repr`` of every float64, which reads back as the same float64) and PLY
+(binary little-endian doubles); STL holds float32 only, so :func:`write_mesh` returns (and logs) a warning
+when a coordinate does not survive the rounding. Every write is atomic (:mod:`mrm.io.atomic`).
+"""
+
+from __future__ import annotations
+
+import array
+import io
+import logging
+import os
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.core.errors import FileFormatError, InvalidGeometryError, MRMError
+from mrm.core.limits import MAX_FILE_BYTES, check_output_bytes
+from mrm.geometry.polyhedra import MAX_TRIANGLES, Polyhedron
+from mrm.io.atomic import atomic_open
+from mrm.io.reading import open_regular
+
+log = logging.getLogger(__name__)
+
+PathLike = str | os.PathLike[str]
+Floats = npt.NDArray[np.float64]
+Ints = npt.NDArray[np.int64]
+
+#: Extensions read by :func:`read_mesh`.
+MESH_EXTENSIONS = (".obj", ".ply", ".off", ".stl")
+#: Extensions written exactly by :func:`write_mesh` (STL is written too, rounded to float32, with a warning).
+EXACT_MESH_EXTENSIONS = (".obj", ".ply", ".off")
+#: The bytes at the start of a PLY file read for its header; a longer header is refused.
+_PLY_HEADER_BYTES = 64 * 1024
+#: Fewest bytes an OFF face takes: "3 0 1 2\n".
+_MIN_OFF_FACE_BYTES = 8
+_PLY_SIZES = {
+    "char": 1, "uchar": 1, "int8": 1, "uint8": 1, "short": 2, "ushort": 2, "int16": 2, "uint16": 2,
+    "int": 4, "uint": 4, "int32": 4, "uint32": 4, "float": 4, "float32": 4, "double": 8, "float64": 8,
+}  # fmt: skip
+
+
+def _name(path: PathLike) -> str:
+    return Path(path).name
+
+
+def _extension(path: PathLike) -> str:
+    ext = Path(path).suffix.lower()
+    if ext not in MESH_EXTENSIONS:
+        raise FileFormatError(
+            f"{_name(path)}: unsupported mesh file type {ext or '(none)'!r}; use {', '.join(MESH_EXTENSIONS)}"
+        )
+    return ext
+
+
+def _refuse_count(name: str, what: str, count: int, limit: int | None) -> None:
+    if limit is not None and count > limit:
+        raise FileFormatError(
+            f"{name}: the file declares {count:,} {what}, more than the limit of {limit:,}; "
+            "nothing was decoded"
+        )
+
+
+# ---------------------------------------------------------------------------------------------- headers
+def _check_stl(data: bytes, name: str, limit: int | None) -> bool:
+    """True for a binary STL (after checking its declared count against the size and the limit)."""
+    if len(data) >= 84:
+        count = int.from_bytes(data[80:84], "little")
+        if len(data) == 84 + 50 * count:
+            _refuse_count(name, "triangles", count, limit)
+            return True
+    if data[:5].lower() == b"solid" and b"facet" in data[:4096].lower():
+        return False
+    if len(data) < 84:
+        raise FileFormatError(f"{name}: not an STL file: {len(data)} bytes, shorter than a binary STL header")
+    count = int.from_bytes(data[80:84], "little")
+    _refuse_count(name, "triangles", count, limit)
+    raise FileFormatError(
+        f"{name}: corrupt binary STL: it declares {count:,} triangles ({84 + 50 * count:,} bytes) "
+        f"but the file has {len(data):,} bytes"
+    )
+
+
+def _check_ply(data: bytes, name: str, limit: int | None) -> None:
+    head = data[:_PLY_HEADER_BYTES]
+    end = head.find(b"end_header")
+    if not head.startswith(b"ply") or end < 0:
+        raise FileFormatError(f"{name}: not a PLY file (no 'ply' … 'end_header' header in its first 64 KB)")
+    lines = head[:end].decode("ascii", "replace").splitlines()
+    fmt = next((ln.split()[1] for ln in lines if ln.startswith("format ") and len(ln.split()) > 1), "")
+    counts: dict[str, int] = {}
+    sizes: dict[str, int] = {}
+    current = ""
+    for ln in lines:
+        parts = ln.split()
+        if len(parts) >= 3 and parts[0] == "element":
+            current = parts[1]
+            try:
+                counts[current] = int(parts[2])
+            except ValueError:
+                raise FileFormatError(f"{name}: corrupt PLY header: {ln.strip()!r:.80}") from None
+            if counts[current] < 0:
+                raise FileFormatError(f"{name}: corrupt PLY header: {ln.strip()!r:.80}")
+            sizes[current] = 0
+        elif len(parts) >= 3 and parts[0] == "property" and current:
+            # The least each record takes: a list holds at least its count (faces: count + 3 indices).
+            if parts[1] == "list" and len(parts) >= 5:
+                n = 3 if current == "face" else 0
+                sizes[current] += _PLY_SIZES.get(parts[2], 1) + n * _PLY_SIZES.get(parts[3], 1)
+            else:
+                sizes[current] += _PLY_SIZES.get(parts[1], 1)
+    _refuse_count(name, "faces", counts.get("face", 0), limit)
+    _refuse_count(name, "vertices", counts.get("vertex", 0), None if limit is None else 3 * limit + 3)
+    if fmt.startswith("binary"):
+        need = sum(counts[k] * sizes[k] for k in counts)
+        have = len(data) - (end + len(b"end_header"))
+        if need > have:
+            raise FileFormatError(
+                f"{name}: corrupt or truncated PLY: its header declares at least {need:,} bytes of data, "
+                f"the file holds {have:,}"
+            )
+    elif sum(counts.values()) * 2 > len(data):  # ASCII: at least a digit and a separator per element
+        raise FileFormatError(f"{name}: corrupt or truncated PLY: it declares more elements than it can hold")
+
+
+_OFF_COUNTS = re.compile(rb"\s*(-?\d+)\s+(-?\d+)(?:\s+(-?\d+))?")
+
+
+def _check_off(data: bytes, name: str, limit: int | None) -> None:
+    lines = (
+        ln for ln in data[:_PLY_HEADER_BYTES].splitlines() if ln.strip() and not ln.lstrip().startswith(b"#")
+    )
+    first = next(lines, b"").strip()
+    if not first.endswith(b"OFF"):
+        raise FileFormatError(f"{name}: not an OFF file (it must start with 'OFF')")
+    rest = first[: -len(b"OFF")].strip() or b""
+    m = _OFF_COUNTS.match(rest) if rest else None
+    if m is None:
+        m = _OFF_COUNTS.match(next(lines, b""))
+    if m is None:
+        raise FileFormatError(f"{name}: corrupt OFF header: no vertex and face counts")
+    nv, nf = int(m.group(1)), int(m.group(2))
+    if nv < 0 or nf < 0:
+        raise FileFormatError(f"{name}: corrupt OFF header: negative counts")
+    _refuse_count(name, "faces", nf, limit)
+    if nv * 6 + nf * _MIN_OFF_FACE_BYTES > len(data):
+        raise FileFormatError(
+            f"{name}: corrupt or truncated OFF: it declares {nv:,} vertices and {nf:,} faces, more than its "
+            f"{len(data):,} bytes can hold"
+        )
+
+
+def _check_obj(data: bytes, name: str, limit: int | None) -> None:
+    # OBJ declares nothing: count the face lines (a k-gon becomes k − 2 triangles, at least one).
+    faces = data.count(b"\nf ") + data.startswith(b"f ")
+    _refuse_count(name, "faces", faces, limit)
+    vertices = data.count(b"\nv ") + data.startswith(b"v ")
+    _refuse_count(name, "vertices", vertices, None if limit is None else 3 * limit + 3)
+
+
+# ---------------------------------------------------------------------------------------------- reading
+def _read_bytes(path: PathLike, name: str) -> bytes:
+    """The file's bytes, at most MAX_FILE_BYTES; the buffer is sized by the file, not by the limit.
+
+    (``read_regular`` asks for limit + 1 bytes, which allocates a 1 GiB buffer for every small file.)
+    """
+    with open_regular(path, name) as fh:
+        size = os.fstat(fh.fileno()).st_size
+        if size > MAX_FILE_BYTES:
+            raise FileFormatError(
+                f"{name}: the file is {size:,} bytes, more than the {MAX_FILE_BYTES:,} accepted for a mesh"
+            )
+        data = fh.read(size + 1)
+    if len(data) > size:
+        raise FileFormatError(f"{name}: the file grew while it was read")
+    return data
+
+
+def _decode_obj(data: bytes, name: str) -> tuple[Floats, Ints]:
+    """OBJ's ``v`` and ``f`` lines, read here: trimesh splits a vertex per texture coordinate and normal.
+
+    Only the position index of ``f a/b/c`` counts; negative indices count back from the last vertex; a
+    face of k > 3 vertices becomes the fan of k − 2 triangles from its first vertex (as trimesh and most
+    readers do). Every other line (``vt``, ``vn``, ``o``, ``g``, ``usemtl`` …) is ignored.
+    """
+    # Compact buffers (8 bytes a number) and a line iterator: memory stays proportional to the mesh, not
+    # to Python objects per token.
+    coords = array.array("d")
+    faces = array.array("q")
+    n_vertices = 0
+    for number, line in enumerate(io.BytesIO(data), 1):
+        parts = line.split()
+        if not parts:
+            continue
+        if parts[0] == b"v":
+            if len(parts) < 4:
+                raise FileFormatError(f"{name}: line {number}: a vertex needs three coordinates")
+            try:
+                coords.extend((float(parts[1]), float(parts[2]), float(parts[3])))
+            except ValueError:
+                raise FileFormatError(f"{name}: line {number}: a vertex coordinate is not a number") from None
+            n_vertices += 1
+        elif parts[0] == b"f":
+            if len(parts) < 4:
+                raise FileFormatError(f"{name}: line {number}: a face needs at least three vertices")
+            try:
+                raw = [int(tok.split(b"/", 1)[0]) for tok in parts[1:]]
+            except ValueError:
+                raise FileFormatError(f"{name}: line {number}: malformed face {line[:80]!r}") from None
+            idx = [i - 1 if i > 0 else n_vertices + i for i in raw]
+            if 0 in raw or min(idx) < 0 or max(idx) >= n_vertices:
+                raise FileFormatError(
+                    f"{name}: line {number}: a face refers to a vertex not defined before it"
+                )
+            for k in range(1, len(idx) - 1):
+                faces.extend((idx[0], idx[k], idx[k + 1]))
+    v = np.frombuffer(coords, dtype=np.float64).reshape(-1, 3).copy()
+    return v, np.frombuffer(faces, dtype=np.int64).reshape(-1, 3).copy()
+
+
+def _decode(data: bytes, ext: str, name: str) -> tuple[Floats, Ints]:
+    if ext == ".obj":
+        return _decode_obj(data, name)
+    try:
+        import trimesh
+    except ImportError:  # pragma: no cover - depends on the installation
+        raise MRMError("reading mesh files needs the trimesh package (pip install trimesh)") from None
+    kind = ext[1:]
+    try:
+        loaded: Any = trimesh.load(io.BytesIO(data), file_type=kind, process=False, force="mesh")
+        vertices = np.asarray(loaded.vertices)
+        faces = np.asarray(loaded.faces)
+    except MemoryError:
+        raise FileFormatError(f"{name}: not enough memory to decode this {kind.upper()} file") from None
+    except Exception as e:  # trimesh raises many types (ValueError, KeyError, IndexError, struct.error …)
+        raise FileFormatError(f"{name}: corrupt or unreadable {kind.upper()} file: {e}") from None
+    if vertices.ndim != 2 or vertices.shape[1:] != (3,) or faces.ndim != 2 or faces.shape[1:] != (3,):
+        raise FileFormatError(
+            f"{name}: no triangle mesh found in this {kind.upper()} file "
+            f"(vertices {vertices.shape}, faces {faces.shape})"
+        )
+    return vertices.astype(np.float64), faces.astype(np.int64)
+
+
+def _join_equal_corners(v: Floats, t: Ints) -> tuple[Floats, Ints]:
+    """STL: one vertex per distinct point (exact equality, -0.0 = 0.0), in the order of first use."""
+    if v.shape[0] == 0:
+        return v, t
+    w = v + 0.0
+    _, first, inverse = np.unique(w, axis=0, return_index=True, return_inverse=True)
+    order = np.argsort(first, kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)
+    return np.ascontiguousarray(v[first[order]]), rank[inverse.reshape(-1)][t].astype(np.int64)
+
+
+def read_mesh_arrays(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> tuple[Floats, Ints]:
+    """The vertices and triangles of a mesh file, as stored (STL corners joined), not validated.
+
+    Parameters
+    ----------
+    path : str or path-like
+        An ``.obj``, ``.ply``, ``.off`` or ``.stl`` (binary or ASCII) file.
+    limit : int or None
+        Most triangles accepted, checked before decoding from the header or the file's size.
+
+    Returns
+    -------
+    vertices : ndarray, float64 (n, 3)
+    triangles : ndarray, int64 (m, 3)
+
+    Raises
+    ------
+    FileFormatError
+        Unsupported extension, not a regular file, too large, a declared size beyond the limit or the file,
+        corrupt content.
+    """
+    name = _name(path)
+    ext = _extension(path)
+    data = _read_bytes(path, name)
+    if ext == ".stl":
+        binary = _check_stl(data, name, limit)
+        if not binary:  # "facet normal … endfacet": two "facet" per triangle
+            _refuse_count(name, "triangles", data.count(b"facet") // 2, limit)
+    elif ext == ".ply":
+        _check_ply(data, name, limit)
+    elif ext == ".off":
+        _check_off(data, name, limit)
+    else:
+        _check_obj(data, name, limit)
+    v, t = _decode(data, ext, name)
+    del data
+    if t.shape[0] == 0:
+        raise FileFormatError(f"{name}: the file holds no triangle")
+    if limit is not None and t.shape[0] > limit:
+        raise FileFormatError(f"{name}: {t.shape[0]:,} triangles, more than the limit of {limit:,}")
+    if ext == ".stl":
+        v, t = _join_equal_corners(v, t)
+    return v, t
+
+
+def read_mesh(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> Polyhedron:
+    """Read a mesh file as a :class:`~mrm.geometry.polyhedra.Polyhedron`, validated exactly.
+
+    Raises
+    ------
+    FileFormatError
+        The file cannot be read (see :func:`read_mesh_arrays`).
+    InvalidGeometryError
+        The mesh is not the boundary of a solid (open, non-manifold, self-intersecting, inverted, NaN or
+        infinite coordinates, zero-area triangles …): the message starts with the file's name and says
+        where. Nothing is repaired: :func:`mrm.geometry.polyhedra.repair` does it on request.
+    """
+    v, t = read_mesh_arrays(path, limit=limit)
+    try:
+        return Polyhedron(v, t, limit=limit)
+    except InvalidGeometryError as e:
+        raise InvalidGeometryError(f"{_name(path)}: {e}") from None
+
+
+# ---------------------------------------------------------------------------------------------- writing
+def _text_lines(v: Floats, t: Ints, ext: str) -> str:
+    # repr() is the shortest string that reads back as the same float64 (the 2-D vector files do the same).
+    if ext == ".obj":
+        head = "# written by MR Modeler: exact float64 coordinates\n"
+        verts = "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+        tris = "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
+    else:
+        head = f"OFF\n{v.shape[0]} {t.shape[0]} 0\n"
+        verts = "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+        tris = "".join(f"3 {a} {b} {c}\n" for a, b, c in t.tolist())
+    return head + verts + tris
+
+
+def _ply_bytes(v: Floats, t: Ints) -> bytes:
+    head = (
+        "ply\nformat binary_little_endian 1.0\ncomment written by MR Modeler: exact float64 coordinates\n"
+        f"element vertex {v.shape[0]}\nproperty double x\nproperty double y\nproperty double z\n"
+        f"element face {t.shape[0]}\nproperty list uchar int vertex_indices\nend_header\n"
+    )
+    faces = np.empty(t.shape[0], dtype=[("n", "u1"), ("i", "<i4", (3,))])
+    faces["n"] = 3
+    faces["i"] = t
+    return head.encode("ascii") + v.astype("<f8").tobytes() + faces.tobytes()
+
+
+def _stl_bytes(v: Floats, t: Ints) -> bytes:
+    corners = v[t]  # (m, 3, 3)
+    n = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    norm = np.linalg.norm(n, axis=1, keepdims=True)
+    n = np.divide(n, norm, out=np.zeros_like(n), where=norm > 0)
+    rec = np.zeros(t.shape[0], dtype=[("n", "<f4", (3,)), ("c", "<f4", (3, 3)), ("a", "<u2")])
+    rec["n"] = n
+    rec["c"] = corners
+    header = b"MR Modeler binary STL (float32 coordinates)".ljust(80, b" ")
+    return header + np.uint32(t.shape[0]).tobytes() + rec.tobytes()
+
+
+def stl_rounding_warning(vertices: Floats, name: str) -> str | None:
+    """The warning for writing ``vertices`` to STL, or None when float32 holds every coordinate exactly."""
+    with np.errstate(over="ignore"):
+        rounded = vertices.astype(np.float32).astype(np.float64)
+    moved = ~(rounded == vertices).all(axis=1)
+    if not moved.any():
+        return None
+    with np.errstate(invalid="ignore"):
+        worst = float(np.nanmax(np.abs(rounded - vertices)))
+    return (
+        f"{name}: STL keeps float32 coordinates only: {int(moved.sum()):,} of {vertices.shape[0]:,} vertices "
+        f"were rounded (by up to {worst:.3g}); the file may not be a valid solid any more. "
+        "Write OBJ, PLY or OFF to keep the coordinates exactly"
+    )
+
+
+def write_mesh(poly: Polyhedron, path: PathLike) -> str | None:
+    """Write a polyhedron to ``path`` (OBJ, PLY, OFF exactly; STL rounded to float32), atomically.
+
+    Returns
+    -------
+    str or None
+        A warning for the user when the file does not hold the coordinates exactly (STL), else None. It is
+        also logged; the command line prints it, the GUI shows it.
+
+    Raises
+    ------
+    FileFormatError
+        For an unsupported extension.
+    LimitError
+        When the file would exceed :data:`~mrm.core.limits.MAX_OUTPUT_BYTES`.
+    """
+    name = _name(path)
+    ext = _extension(path)
+    v, t = poly.vertices, poly.triangles
+    per_tri = {".obj": 30, ".off": 30, ".ply": 13, ".stl": 50}[ext]
+    check_output_bytes(v.shape[0] * 75 + t.shape[0] * per_tri, f"{name}")
+    warning = None
+    if ext == ".ply":
+        payload = _ply_bytes(v, t)
+    elif ext == ".stl":
+        if t.shape[0] >= 2**32:
+            raise FileFormatError(f"{name}: binary STL holds fewer than 2³² triangles")
+        warning = stl_rounding_warning(v, name)
+        payload = _stl_bytes(v, t)
+    else:
+        payload = _text_lines(v, t, ext).encode("ascii")
+    with atomic_open(path, "wb") as fh:
+        fh.write(payload)
+    if warning is not None:
+        log.warning("%s", warning)
+    return warning
+
+
+__all__ = [
+    "EXACT_MESH_EXTENSIONS",
+    "MESH_EXTENSIONS",
+    "read_mesh",
+    "read_mesh_arrays",
+    "stl_rounding_warning",
+    "write_mesh",
+]
