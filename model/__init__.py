@@ -35,6 +35,9 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     )
     from mrm.core.errors import MRMError
     from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
+    from mrm.geometry.discretize.voxels import voxelize
+    from mrm.geometry.polyhedra import Polyhedron
+    from mrm.io.mesh_files import read_mesh, write_mesh
     from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
     from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
     from mrm.io.voxel_files import read_label_volume, read_voxels, write_label_volume, write_voxels
@@ -53,6 +56,10 @@ _LAZY = {
     "write_geojson": "mrm.io.vector_files",
     "write_wkt": "mrm.io.vector_files",
     "read_voxels": "mrm.io.voxel_files",
+    "voxelize": "mrm.geometry.discretize.voxels",
+    "Polyhedron": "mrm.geometry.polyhedra",
+    "read_mesh": "mrm.io.mesh_files",
+    "write_mesh": "mrm.io.mesh_files",
     "write_voxels": "mrm.io.voxel_files",
     "read_label_volume": "mrm.io.voxel_files",
     "write_label_volume": "mrm.io.voxel_files",
@@ -80,6 +87,7 @@ __all__ = [
     "LabelVolume",
     "MRMError",
     "PixelSet",
+    "Polyhedron",
     "VoxelSet",
     "__version__",
     "bound",
@@ -90,6 +98,7 @@ __all__ = [
     "read_geometry",
     "read_label_map",
     "read_label_volume",
+    "read_mesh",
     "read_pixels",
     "read_voxels",
     "reconstruct",
@@ -98,9 +107,11 @@ __all__ = [
     "segment",
     "simplify",
     "union",
+    "voxelize",
     "write_geojson",
     "write_label_map",
     "write_label_volume",
+    "write_mesh",
     "write_pixels",
     "write_voxels",
     "write_wkt",

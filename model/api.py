@@ -18,12 +18,14 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.errors import ParameterError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
 from mrm.geometry.discretize import discretize as _discretize
+from mrm.geometry.discretize.voxels import voxelize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
 from mrm.geometry.hausdorff import hausdorff_distance
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct as _reconstruct
 from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
 from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
@@ -61,12 +63,15 @@ def _as_object(obj: Any) -> Any:
 
 def discretize(
     geom: Any, model: Model | str = DEFAULT_MODEL, *, limit: int | None = DEFAULT_PIXEL_LIMIT
-) -> PixelSet:
+) -> PixelSet | VoxelSet:
     """Return the exact discretization D(E) of a shapely geometry under ``model`` (docs/design.md §2).
+
+    A :class:`~mrm.geometry.polyhedra.Polyhedron` is voxelized (:func:`mrm.voxelize`, §11) and gives a
+    :class:`~mrm.core.grids.VoxelSet`.
 
     Parameters
     ----------
-    geom : shapely geometry
+    geom : shapely geometry or Polyhedron
         Polygons, lines and points (any mix); coordinates are pixel units, pixel (x, y) is centred on (x, y).
     model : Model or str
     limit : int or None
@@ -84,24 +89,26 @@ def discretize(
     >>> sorted(mrm.discretize(box(0, 0, 3, 2), "gauss"))
     [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)]
     """
+    if isinstance(geom, Polyhedron):
+        return voxelize(geom, model, limit=limit)
     return _discretize(geom, model, limit=limit)
 
 
-def reconstruct(pixels: PixelSet | npt.ArrayLike, model: Model | str = DEFAULT_MODEL) -> Any:
-    """Return the reversible continuation R(A): a polygon whose discretization is exactly A.
+def reconstruct(pixels: PixelSet | VoxelSet | npt.ArrayLike, model: Model | str = DEFAULT_MODEL) -> Any:
+    """Return the reversible continuation R(A): a polygon (polyhedron) whose discretization is exactly A.
 
-    Reference: docs/design.md §3.
+    Reference: docs/design.md §3, §11.
 
     Parameters
     ----------
-    pixels : PixelSet or array_like
-        The pixel set, or an image (row 0 at the top; see :meth:`PixelSet.from_image`).
+    pixels : PixelSet, VoxelSet or array_like
+        The pixel or voxel set, or an image (row 0 at the top; see :meth:`PixelSet.from_image`).
     model : Model or str
 
     Returns
     -------
-    shapely Polygon or MultiPolygon
-        ``discretize(reconstruct(A, m), m) == A`` for every A and model m.
+    shapely Polygon or MultiPolygon, or Polyhedron for a voxel set
+        ``discretize(reconstruct(A, m), m) == A`` for every A and model m (``voxelize`` in 3D).
 
     Examples
     --------
@@ -111,6 +118,8 @@ def reconstruct(pixels: PixelSet | npt.ArrayLike, model: Model | str = DEFAULT_M
     >>> mrm.discretize(poly, "gauss") == mrm.PixelSet.from_image(img)
     True
     """
+    if isinstance(pixels, VoxelSet):
+        return _reconstruct(pixels, model)
     return _reconstruct(as_pixels(pixels), model)
 
 

@@ -209,7 +209,7 @@ def _step_reconstruct() -> None:
 
     for model in Model:
         for ps in _pixel_sets():
-            reconstruct(ps, model)  # type: ignore[arg-type]
+            reconstruct(ps, model)  # type: ignore[call-overload]
     import numpy as np
 
     from mrm.core.grids import LabelMap

@@ -190,39 +190,55 @@ def check_pixel_extent(
 
 
 def crack_steps(mask: npt.NDArray[np.bool_], *, rows_per_strip: int = 1024) -> int:
-    """The boundary length of a mask: the pixel edges between a set pixel and an unset one (or the outside).
+    """The boundary length of a mask: pixel edges (2D) or voxel faces (3D, surfels) between the set and not.
 
-    Linear time; works in strips of rows so that it needs at most a few bytes per pixel of one strip.
+    An unset point, or the outside of the array, on the other side.
+
+    Linear time; works in strips along the first array axis so that it needs at most a few bytes per point
+    of one strip.
     """
     m = np.asarray(mask, dtype=bool)
-    if m.ndim != 2 or m.size == 0:
+    if m.ndim not in (2, 3) or m.size == 0:
         return 0
     h = m.shape[0]
     total = 0
     for r0 in range(0, h, rows_per_strip):
         s = m[r0 : r0 + rows_per_strip]
-        # Horizontal neighbours, with the outside as unset on both ends.
-        total += int(np.count_nonzero(s[:, 1:] != s[:, :-1]))
-        total += int(np.count_nonzero(s[:, 0])) + int(np.count_nonzero(s[:, -1]))
-        # Vertical neighbours inside the strip, and to the first row of the next strip (or the outside).
+        # Neighbours along every axis but the first, with the outside as unset on both ends.
+        for axis in range(1, m.ndim):
+            total += int(np.count_nonzero(np.diff(s, axis=axis)))
+            total += int(np.count_nonzero(s.take(0, axis=axis))) + int(
+                np.count_nonzero(s.take(-1, axis=axis))
+            )
+        # Along the first axis inside the strip, and to the first row of the next strip (or the outside).
         total += int(np.count_nonzero(s[1:] != s[:-1]))
-        below = m[r0 + rows_per_strip] if r0 + rows_per_strip < h else np.zeros(m.shape[1], dtype=bool)
+        below = m[r0 + rows_per_strip] if r0 + rows_per_strip < h else np.zeros(m.shape[1:], dtype=bool)
         total += int(np.count_nonzero(s[-1] != below))
-    total += int(np.count_nonzero(m[0]))  # the bottom row against the outside
+    total += int(np.count_nonzero(m[0]))  # the first row against the outside
     return total
 
 
-def check_reconstruct(ps: Any, what: str = "the pixel set") -> int:
-    """Refuse to reconstruct (R) a pixel set whose boundary is longer than :data:`MAX_CRACK_STEPS`.
+def check_reconstruct(ps: Any, what: str | None = None) -> int:
+    """Refuse to reconstruct (R) a grid set whose boundary is too long, before any work.
+
+    A pixel set's crack steps are bounded by :data:`MAX_CRACK_STEPS`, a voxel set's surfels by
+    :data:`MAX_SURFELS`.
 
     Returns the boundary length; call before any reconstruction work.
     """
     steps = crack_steps(ps.mask)
+    if ps.mask.ndim == 3:
+        if steps > MAX_SURFELS:
+            raise LimitError(
+                f"{what or 'the voxel set'} has a boundary of {steps:,} voxel faces, more than the "
+                f"{MAX_SURFELS:,} its polyhedron may have (noise?); smooth it first, or keep it as voxels"
+            )
+        return steps
     if steps > MAX_CRACK_STEPS:
         raise LimitError(
-            f"{what} has a boundary of {steps:,} pixel edges, more than the {MAX_CRACK_STEPS:,} its polygon "
-            "may have (a checkerboard-like or noisy image?); simplify or smooth it first, or keep it as "
-            "pixels"
+            f"{what or 'the pixel set'} has a boundary of {steps:,} pixel edges, more than the "
+            f"{MAX_CRACK_STEPS:,} its polygon may have (a checkerboard-like or noisy image?); simplify or "
+            "smooth it first, or keep it as pixels"
         )
     return steps
 

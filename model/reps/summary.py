@@ -4,7 +4,7 @@
 ``boundary_chains``, ``segments`` and ``vertices`` (plus ``bbox``): the region keys from
 :func:`mrm.reps.region.region_of`, ``segments`` the analytical representation's count
 (:func:`mrm.reps.analytical.segment_count`), and ``vertices`` of a discrete object its continuation
-(:func:`mrm.geometry.reconstruct.reconstruct`).
+(:func:`mrm.geometry.reconstruct.reconstruct`). :func:`summarize_voxels` gives the §11 keys of a voxel object.
 """
 
 from __future__ import annotations
@@ -13,11 +13,12 @@ from typing import Any
 
 import shapely
 
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.models import Model
 from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.analytical import segment_count
 from mrm.reps.region import region_of
+from mrm.reps.region_3d import region_3d_of
 
 
 def count_vertices(geom: Any) -> int:
@@ -81,4 +82,44 @@ def summarize(ps: PixelSet, model: Model | str, geom: Any = None) -> dict[str, A
         "boundary_chains": len(region.boundary_chains),
         "segments": segment_count(region),
         "vertices": count_vertices(geom),
+    }
+
+
+def summarize_voxels(
+    vs: VoxelSet, model: Model | str, *, faces: int | None, vertices: int | None
+) -> dict[str, Any]:
+    """Summarise a voxel object's four representations (docs/design.md §11), as ``mrm info --json`` prints it.
+
+    Parameters
+    ----------
+    vs : VoxelSet
+        The discrete representation.
+    model : str
+        The discretization model it was made with (or is read under).
+    faces, vertices : int or None
+        The Euclidean representation's counts (the polyhedron's faces and vertices), None when not computed.
+
+    Returns
+    -------
+    dict
+        ``model``; ``voxels``; ``bbox`` ([xmin, ymin, zmin, xmax, ymax, zmax] or None); ``components``,
+        ``cavities``, ``tunnels``, ``euler`` and ``surfels`` from :func:`mrm.reps.region_3d.region_3d_of`;
+        ``plane_segments`` (None: the digital plane segments come with the compact 3D continuation);
+        ``faces`` and ``vertices``.
+    """
+    model = Model.parse(model)
+    region = region_3d_of(vs.mask, vs.origin)
+    bbox = vs.bbox
+    return {
+        "model": str(model),
+        "voxels": len(vs),
+        "bbox": None if bbox is None else list(bbox),
+        "components": int(region.n_components),
+        "cavities": int(region.n_cavities),
+        "tunnels": int(region.n_tunnels),
+        "euler": int(region.euler),
+        "surfels": int(region.n_surfels),
+        "plane_segments": None,
+        "faces": faces,
+        "vertices": vertices,
     }

@@ -41,7 +41,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 from itertools import pairwise
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -49,12 +49,14 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import ParameterError
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import check_reconstruct
 from mrm.core.models import Model
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import _dual as _dk
 from mrm.geometry.reconstruct import _kernels as _k
 from mrm.geometry.reconstruct import _twins as _tw
+from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
 from mrm.geometry.topology.cracks import trace_mask
 from mrm.reps.region import CrackChain
 
@@ -342,13 +344,17 @@ def _ring_order(
     return np.lexsort((sx, sy, hole, comp)).astype(np.int64)
 
 
-def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon:
-    """Return R(A), the reversible continuation of a pixel set (see the module docstring).
+@overload
+def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon: ...
+@overload
+def reconstruct(ps: VoxelSet, model: str = "standard") -> Polyhedron: ...
+def reconstruct(ps: PixelSet | VoxelSet, model: str = "standard") -> Polygon | MultiPolygon | Polyhedron:
+    """Return R(A), the reversible continuation of a pixel or voxel set (see the module docstring).
 
     Parameters
     ----------
-    ps : PixelSet
-        The pixel set A.
+    ps : PixelSet or VoxelSet
+        The pixel set A; a voxel set's R is :func:`reconstruct_voxels`.
     model : {"standard", "supercover", "gauss"}
         The discretization model D that R inverts: D(R(A)) = A exactly.
 
@@ -364,6 +370,8 @@ def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon
         For an unknown model, or pixel coordinates beyond ±2⁴⁰ (where 2⁻¹² of a pixel is no longer
         exact float64 numbers).
     """
+    if isinstance(ps, VoxelSet):
+        return reconstruct_voxels(ps, model)
     model = Model.parse(model)
     if ps.is_empty():
         return Polygon()
@@ -374,6 +382,29 @@ def reconstruct(ps: PixelSet, model: str = "standard") -> Polygon | MultiPolygon
     run = _run(ps, model)
     rings = run.rings
     return _assemble(run.xy, run.roff, rings.comp, rings.area2 < 0, rings.sx, rings.sy)
+
+
+def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
+    """R(A) of a voxel set: a valid polyhedron P with D(P) = A exactly in any model (docs/design.md §11).
+
+    Until the compact 3D continuation, R is the safety net of §11 item 7 — V(A) eroded by ¼ in the max norm,
+    coplanar squares merged into faces (:func:`~mrm.geometry.reconstruct.safety_net_3d.safety_net_3d`) — which
+    meets the contract in all three models (ADR 0044): its shells are A's 6-components, its inner shells A's
+    cavities. The result is validated exactly (:class:`~mrm.geometry.polyhedra.Polyhedron`).
+
+    Raises
+    ------
+    LimitError
+        When A has more surfels than :data:`~mrm.core.limits.MAX_SURFELS`, before any work.
+    ParameterError
+        For an unknown model.
+    """
+    Model.parse(model)  # the same R in every model, but an unknown one is still refused
+    if vs.is_empty():
+        return Polyhedron.empty()
+    check_reconstruct(vs)
+    net = safety_net_3d(vs.mask, vs.origin)
+    return Polyhedron(net.vertices, net.triangles)
 
 
 #: R(A) already known to the caller (:func:`held`): (A, model, R(A)) in the current context.
