@@ -58,6 +58,7 @@ def document_weight(doc: Any) -> int:
     import shapely
 
     from mrm.core.grids import GridSet, LabelGrid
+    from mrm.geometry.polyhedra import Polyhedron
 
     total = 0
     for o in doc.objects:
@@ -66,6 +67,8 @@ def document_weight(doc: Any) -> int:
             total += src.mask.size // 4
         elif isinstance(src, LabelGrid):
             total += src.labels.size  # zlib of int32 labels: about a byte a point or less
+        elif isinstance(src, Polyhedron):  # three coordinates a vertex
+            total += 60 * int(src.n_vertices)
         else:
             total += 40 * int(shapely.get_num_coordinates(src))
     return total

@@ -24,7 +24,7 @@ HEADERS = ("", "", "Name", "Source")
 
 SOURCE_TEXT = {"euclidean": "polygon", "discrete": "pixels", "labels": "label map"}
 #: The same for 3D objects (docs/design.md §11), which the plane views do not draw.
-SOURCE_TEXT_3D = {"discrete": "voxels (3D)", "labels": "label volume (3D)"}
+SOURCE_TEXT_3D = {"discrete": "voxels (3D)", "labels": "label volume (3D)", "euclidean": "polyhedron (3D)"}
 
 
 def source_text(o: DocObject) -> str:

@@ -18,11 +18,14 @@ from mrm.core.grids import GridSet, LabelGrid, PixelSet
 from mrm.core.models import Model
 from mrm.document.objects import source_dimension, source_kind
 from mrm.geometry.discretize import discretize
+from mrm.geometry.discretize.voxels import voxelize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.geometry.reconstruct.subdivision import subdivide
 from mrm.reps.analytical import analytical_of
 from mrm.reps.cells import cells_of
+from mrm.reps.cells_3d import cells_3d_of
 from mrm.reps.region import region_of
+from mrm.reps.region_3d import region_3d_of
 
 Rep = Literal["discrete", "euclidean", "region", "analytical"]
 #: The four representations, in the order they are usually derived.
@@ -42,6 +45,14 @@ def region_from_pixels(ps: PixelSet) -> Any:
     ps.count  # noqa: B018 - counted for its cache
     return region_of(ps)
 
+
+#: Why a 3D object has no analytical representation yet (issue 29, the compact 3D continuation).
+NO_PLANE_SEGMENTS = (
+    "a 3D object's digital plane segments come with the compact 3D continuation; its voxels, region and "
+    "polyhedron are available"
+)
+#: Why a label volume has no Euclidean representation yet.
+NO_LABEL_MESHES = "a label volume's meshes (one closed mesh per region) come with the compact 3D continuation"
 
 #: Why a label map has no analytical representation of its own (the analytical view says it).
 NO_LABEL_SEGMENTS = (
@@ -132,8 +143,25 @@ class Derived:
         return analytical_of(self.get("region"))
 
     def _compute_3d(self, what: Rep) -> Any:
-        """The representations of a voxel set or label volume (docs/design.md §11)."""
-        raise NotApplicableError(f"the {what} representation of a 3D object is not available yet")
+        """The representations of a voxel set, label volume or polyhedron (docs/design.md §11).
+
+        D is the exact voxelizer, R the 3D continuation, the region representation the (6, 26) one; a label
+        volume's region representation is its cells. The analytical one (digital plane segments) and a
+        label volume's meshes come with the compact 3D continuation.
+        """
+        if what == "analytical":
+            raise NotApplicableError(NO_PLANE_SEGMENTS)
+        if self.kind == "labels":
+            if what == "region":
+                return cells_3d_of(self.source.labels, self.source.origin)
+            raise NotApplicableError(NO_LABEL_MESHES)
+        if what == "discrete":
+            return voxelize(self.source, self.model)
+        if what == "euclidean":
+            return reconstruct(self.get("discrete"), self.model)
+        vs = self.get("discrete")
+        vs.count  # noqa: B018 - counted for its cache, on the worker (as region_from_pixels does)
+        return region_3d_of(vs.mask, vs.origin)
 
     def estimated_cost(self, what: Rep) -> float:
         """A rough cost of computing ``what`` now, in pixels touched (0 when ready)."""

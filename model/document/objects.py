@@ -24,13 +24,14 @@ from mrm.core.georef import GeoRef
 from mrm.core.grids import GridSet, LabelGrid, LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import COORDINATE_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.ops.provenance import Provenance
 
 #: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
 Geometry: TypeAlias = Polygon | MultiPolygon
 #: What an object's source can be: pixels, polygons, or a label map (ADR 0033); voxels or a label volume in 3D
 #: (docs/design.md §11).
-Source: TypeAlias = PixelSet | Polygon | MultiPolygon | LabelMap | VoxelSet | LabelVolume
+Source: TypeAlias = PixelSet | Polygon | MultiPolygon | LabelMap | VoxelSet | LabelVolume | Polyhedron
 SourceKind = Literal["euclidean", "discrete", "labels"]
 
 _COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?$")
@@ -89,6 +90,12 @@ def _source_cost(source: Source) -> tuple[int, int]:
         limits.check_pixel_extent(source.origin, source.shape, f"the {source.what}", limit=label_limit)
         n = int(source.labels.size)
         return n, limits.source_file_bytes("labels", pixels=n)
+    if isinstance(source, Polyhedron):
+        # validated, and its triangles bounded, when it was made; here its share of a file: 3 floats a
+        # vertex, 3 integers a triangle
+        n = source.n_vertices
+        limits.check_vertices(n, "the polyhedron object")
+        return 0, limits.source_file_bytes("euclidean", coordinates=2 * n + source.n_triangles, rings=0)
     n = int(shapely.get_num_coordinates(source))
     limits.check_vertices(n, "the polygon object")
     parts = shapely.get_parts(source)
@@ -104,17 +111,17 @@ def source_kind(source: Source) -> SourceKind:
 
 
 def source_dimension(source: Source) -> int:
-    """2 for pixels, label maps and polygons; 3 for voxels and label volumes."""
+    """2 for pixels, label maps and polygons; 3 for voxels, label volumes and polyhedra."""
     if isinstance(source, GridSet):
         return source.ndim
     if isinstance(source, LabelGrid):
         return source.set_type.ndim
-    return 2
+    return 3 if isinstance(source, Polyhedron) else 2
 
 
 def validate_source(source: object) -> Source:
     """Return ``source`` checked: a pixel set, a label map, or a geometry :func:`validate_geometry` takes."""
-    if isinstance(source, PixelSet | LabelMap | VoxelSet | LabelVolume):
+    if isinstance(source, PixelSet | LabelMap | VoxelSet | LabelVolume | Polyhedron):
         return source
     return validate_geometry(source)
 

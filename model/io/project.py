@@ -25,7 +25,9 @@ Schema version 5::
       {"id": 4, ..., "source": {"kind": "labels", "origin": [0, 0], "shape": [480, 640],
                                 "labels": "<base64 of zlib of int32 little-endian>"}},
       {"id": 5, ..., "source": {"kind": "discrete", "origin": [-4, -4, -4], "shape": [9, 9, 9],
-                                "bits": "<base64>"}}
+                                "bits": "<base64>"}},
+      {"id": 6, ..., "source": {"kind": "polyhedron", "vertices": [[0.0, 0.0, 2.5], ...],
+                                "triangles": [[0, 2, 1], ...]}}
      ]
     }
 
@@ -45,7 +47,9 @@ Schema version 5::
   row-major (row 0 = lowest y), little-endian, zlib-compressed, in base64, with its origin and shape.
 * A voxel set or label volume (schema 5, docs/design.md §11) is stored as a pixel set or label map is, with
   three origin coordinates [x0, y0, z0] and the shape [nz, ny, nx] of its ``mask[k, j, i]``: the number of
-  origin coordinates is the dimension.
+  origin coordinates is the dimension. A polyhedron (``kind: "polyhedron"``, schema 5) is its float64
+  vertices (``repr``, bit for bit) and its outward triangles as vertex indices; it is validated exactly on
+  load (:class:`mrm.geometry.polyhedra.Polyhedron`).
 * A Euclidean source is GeoJSON-like: Polygon or MultiPolygon coordinates, rings closed, float coordinates
   written with ``repr`` so that every float64 comes back bit for bit. Integers (ids, origins, shapes) stay
   integers.
@@ -76,6 +80,7 @@ from mrm.core.errors import FileFormatError as FileFormatError
 from mrm.core.grids import GridSet, LabelGrid
 from mrm.core.models import Model
 from mrm.document import DocObject, Document, Geometry, Settings, Source, Style
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.project_decode import Checker, decode_object, decode_source
 from mrm.io.reading import open_regular
@@ -134,7 +139,8 @@ MIGRATIONS: tuple[Migration, ...] = (
     Migration(
         4,
         "a discrete source or label map may be a voxel set or label volume (origin [x0, y0, z0], shape "
-        "[nz, ny, nx]); a version 4 file has none, so it reads unchanged",
+        "[nz, ny, nx]), and a source may be a polyhedron (kind 'polyhedron'); a version 4 file has none, so "
+        "it reads unchanged",
         lambda data: {**data, "schema_version": 5},
     ),
 )
@@ -203,6 +209,13 @@ def _encode_source(source: Source) -> dict[str, Any]:
         return _encode_pixels(source)
     if isinstance(source, LabelGrid):
         return _encode_labels(source)
+    if isinstance(source, Polyhedron):
+        # Python floats: json writes their repr, so every float64 comes back bit for bit
+        return {
+            "kind": "polyhedron",
+            "vertices": source.vertices.tolist(),
+            "triangles": source.triangles.tolist(),
+        }
     return {"kind": "euclidean", "geometry": _encode_geometry(source)}
 
 

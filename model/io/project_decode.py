@@ -27,6 +27,7 @@ from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import COORDINATE_LIMIT, PARAMS_MAX_DEPTH
 from mrm.document import DocObject, Geometry, Source, Style, validate_geometry
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance
 
 #: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
@@ -280,10 +281,41 @@ def _decode_geometry(c: Checker, g: Any, path: str) -> Geometry:
         c.fail(path, str(e))
 
 
+def _decode_polyhedron(c: Checker, src: dict[str, Any], path: str) -> Polyhedron:
+    c.obj(src, path, ("kind", "vertices", "triangles"))
+    verts = c.list_(src["vertices"], f"{path}.vertices")
+    tris = c.list_(src["triangles"], f"{path}.triangles")
+    if len(tris) > limits.MAX_OBJECT_TRIANGLES:
+        c.fail(f"{path}.triangles", f"more than the limit of {limits.MAX_OBJECT_TRIANGLES:,} triangles")
+    if len(verts) > limits.MAX_OBJECT_VERTICES:
+        c.fail(f"{path}.vertices", f"more than the limit of {limits.MAX_OBJECT_VERTICES:,} vertices")
+    for k, pt in enumerate(verts):
+        if type(pt) is not list or len(pt) != 3:
+            c.fail(f"{path}.vertices[{k}]", f"expected a position [x, y, z], got {c.show(pt)}")
+        for j, v in enumerate(pt):
+            if type(v) not in (int, float) or not -COORDINATE_LIMIT <= v <= COORDINATE_LIMIT:
+                c.fail(
+                    f"{path}.vertices[{k}][{j}]",
+                    f"expected a number within ±{COORDINATE_LIMIT:.0f}, got {c.show(v)}",
+                )
+    n = len(verts)
+    for k, tri in enumerate(tris):
+        if type(tri) is not list or len(tri) != 3 or any(type(i) is not int or not 0 <= i < n for i in tri):
+            c.fail(f"{path}.triangles[{k}]", f"expected three vertex indices in [0, {n}), got {c.show(tri)}")
+    try:
+        return Polyhedron(
+            np.array(verts, dtype=np.float64).reshape(-1, 3), np.array(tris, dtype=np.int64).reshape(-1, 3)
+        )
+    except MRMError as e:
+        c.fail(path, str(e))
+
+
 def decode_source(c: Checker, src: Any, path: str) -> Source:
-    """An object's source (pixels, labels or a geometry) at ``path``, checked."""
-    c.obj(src, path, ("kind",), ("origin", "shape", "bits", "geometry", "labels"))
+    """An object's source (pixels, labels, a geometry or a polyhedron) at ``path``, checked."""
+    c.obj(src, path, ("kind",), ("origin", "shape", "bits", "geometry", "labels", "vertices", "triangles"))
     kind = src["kind"]
+    if kind == "polyhedron":
+        return _decode_polyhedron(c, src, path)
     if kind == "discrete":
         return _decode_bits(c, src, path)
     if kind == "labels":
@@ -291,7 +323,7 @@ def decode_source(c: Checker, src: Any, path: str) -> Source:
     if kind == "euclidean":
         c.obj(src, path, ("kind", "geometry"))
         return _decode_geometry(c, src["geometry"], f"{path}.geometry")
-    c.fail(f"{path}.kind", f"expected 'discrete', 'labels' or 'euclidean', got {c.show(kind)}")
+    c.fail(f"{path}.kind", f"expected 'discrete', 'labels', 'euclidean' or 'polyhedron', got {c.show(kind)}")
 
 
 def _decode_style(c: Checker, s: Any, path: str) -> Style:

@@ -29,7 +29,7 @@ def test_a_project_with_voxel_objects_opens_draws_its_plane_objects_and_saves_th
     model = win.object_list.model
     texts = {model.obj(r).name: model.data(model.index(r, COL_SOURCE)) for r in range(model.rowCount())}
     assert texts["octahedron"] == "voxels (3D)" and texts["labels 3D"] == "label volume (3D)"
-    assert texts["square"] == "pixels"
+    assert texts["square"] == "pixels" and texts["solid octahedron"] == "polyhedron (3D)"
     # Choosing the 3D object breaks nothing: the views stay drawn and the selection is the octahedron.
     click_object(qtbot, win, "octahedron")
     wait_drawn(qtbot, win)
@@ -40,3 +40,4 @@ def test_a_project_with_voxel_objects_opens_draws_its_plane_objects_and_saves_th
     assert isinstance(again.find("octahedron")[0].source, VoxelSet)
     assert isinstance(again.find("labels 3D")[0].source, LabelVolume)
     assert again.find("octahedron")[0].source == win.doc.find("octahedron")[0].source
+    assert again.find("solid octahedron")[0].source == win.doc.find("solid octahedron")[0].source

@@ -19,6 +19,7 @@ from mrm.core.grids import LabelVolume, PixelSet, VoxelSet
 from mrm.document import Document, Settings, Style
 from mrm.document.commands import AddObject, RenameObject
 from mrm.document.edits import PaintPixels
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.io import autosave
 from mrm.io.project import (
     SCHEMA_VERSION,
@@ -95,6 +96,29 @@ def test_golden_v5_holds_a_voxel_set_and_a_label_volume_as_written_down_here():
         (-4, 1, 2): 0,
     }
     assert doc.get(3).dimension == 2 and set(doc.get(3).source) == {(0, 0), (1, 0), (0, 1), (1, 1)}
+    solid = doc.get(4).source
+    assert isinstance(solid, Polyhedron) and doc.get(4).dimension == 3
+    assert sorted(map(tuple, solid.vertices.tolist())) == sorted(
+        [
+            (2.5, 0.0, 0.0),
+            (-2.5, 0.0, 0.0),
+            (0.0, 2.5, 0.0),
+            (0.0, -2.5, 0.0),
+            (0.0, 0.0, 2.5),
+            (0.0, 0.0, -2.5),
+        ]
+    )
+    assert solid.n_faces == 8
+
+
+def test_a_polyhedron_that_is_not_a_solid_is_refused_on_load_with_its_path():
+    raw = json.loads((GOLDEN / "v5-voxels.mrm").read_text())
+    raw["objects"][3]["source"]["triangles"][0] = [0, 4, 2]  # one triangle turned inside out
+    with pytest.raises(FileFormatError, match=r"objects\[3\]\.source"):
+        loads(json.dumps(raw).encode())
+    raw["objects"][3]["source"]["vertices"][0] = [1e300, 0, 0]
+    with pytest.raises(FileFormatError, match=r"vertices\[0\]\[0\]"):
+        loads(json.dumps(raw).encode())
 
 
 def test_a_voxel_source_beyond_the_voxel_limit_is_refused_with_its_path():
@@ -292,7 +316,7 @@ HOSTILE = {
     ),
     "unknown source kind": (
         mutated(_set(["objects", 0, "source", "kind"], "voxels")),
-        r"\$\.objects\[0\]\.source\.kind: expected 'discrete', 'labels' or 'euclidean'",
+        r"\$\.objects\[0\]\.source\.kind: expected 'discrete', 'labels', 'euclidean' or 'polyhedron'",
     ),
     "shape wrong length": (
         mutated(_set(["objects", 0, "source", "shape"], [5])),

@@ -1,0 +1,63 @@
+"""3D objects in a document (docs/design.md §11): their four representations come from the one derivation
+cache, through the exact D, the 3D R and the (6, 26) region representation."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mrm.core.errors import NotApplicableError
+from mrm.core.grids import VoxelSet
+from mrm.document.commands import ChangeSettings
+from mrm.geometry.discretize.voxels import voxelize
+from mrm.geometry.polyhedra import Polyhedron
+from mrm.io.project import load_project
+
+GOLDEN_V5 = Path(__file__).parent / "golden" / "v5-voxels.mrm"
+
+
+@pytest.fixture
+def doc():
+    return load_project(GOLDEN_V5)
+
+
+def test_a_polyhedron_object_is_voxelized_exactly_under_the_documents_model(doc):
+    solid = doc.find("solid octahedron")[0]
+    doc.push(ChangeSettings.model(doc, "gauss"))
+    d = doc.derived(solid.id)
+    # gauss: the centres p + τ inside |x| + |y| + |z| ≤ 2.5, i.e. the integer points with |x| + |y| + |z| ≤ 2
+    expected = {
+        (x, y, z)
+        for x in range(-3, 4)
+        for y in range(-3, 4)
+        for z in range(-3, 4)
+        if abs(x) + abs(y) + abs(z) <= 2
+    }
+    assert set(d.get("discrete")) == expected
+    region = d.get("region")
+    assert (region.n_components, region.n_cavities, region.euler) == (1, 0, 1)
+    assert d.get("euclidean") is solid.source
+
+
+def test_a_voxel_object_gets_a_polyhedron_that_gives_it_back(doc):
+    obj = doc.find("octahedron")[0]
+    for model in ("standard", "supercover", "gauss"):
+        doc.push(ChangeSettings.model(doc, model))
+        poly = doc.derived(obj.id).get("euclidean")
+        assert isinstance(poly, Polyhedron) and voxelize(poly, model) == obj.source
+    with pytest.raises(NotApplicableError, match="plane segments"):
+        doc.derived(obj.id).get("analytical")
+
+
+def test_a_label_volume_has_its_cells_and_says_why_it_has_no_meshes_yet(doc):
+    obj = doc.find("labels 3D")[0]
+    d = doc.derived(obj.id)
+    assert d.get("region") is not None
+    with pytest.raises(NotApplicableError, match="label volume"):
+        d.get("euclidean")
+
+
+def test_plane_objects_leave_the_3d_ones_out(doc):
+    assert [o.name for o in doc.plane_objects] == ["square"]
+    assert isinstance(doc.find("octahedron")[0].source, VoxelSet)
