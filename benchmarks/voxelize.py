@@ -16,6 +16,9 @@ Both peers put voxel centres on integer coordinates here (pitch 1; Open3D's boun
 grids coincide with ours (docs/design.md §11).
 
 Run:  .venv/bin/python benchmarks/voxelize.py [--repeats 5] [--size 512] [--no-trimesh] [--no-open3d]
+
+Open3D is large and is not installed by `.ci/setup.sh`: `.venv/bin/pip install -e '.[bench3d]'` (it needs
+Debian's libusb-1.0-0); without it the script says so and measures the rest.
 """
 
 from __future__ import annotations
