@@ -297,8 +297,9 @@ def eye() -> np.ndarray:
 def voxel_axes(fig: Any, rect: tuple[float, float, float, float], box: Sequence[int], zoom: float) -> Any:
     """A bare 3D axes over the voxels of ``box`` (x0, y0, z0, x1, y1, z1), one unit the same on every axis.
 
-    Artists are drawn in the order given (``computed_zorder=False``): mplot3d sorts polygons by depth
-    within one collection only, so a translucent solid is drawn over the voxels by adding it after them.
+    Artists are drawn by their zorder (``computed_zorder=False``), not by mplot3d's guess of their depth,
+    which fails between a large solid and small cubes: :func:`draw_voxels` orders its cubes back to front
+    itself, and what is added after them is drawn over them. The projection is orthographic.
     """
     x0, y0, z0, x1, y1, z1 = box
     ax = fig.add_axes(rect, projection="3d", computed_zorder=False)
@@ -308,6 +309,7 @@ def voxel_axes(fig: Any, rect: tuple[float, float, float, float], box: Sequence[
     ax.set_box_aspect((x1 - x0 + 1, y1 - y0 + 1, z1 - z0 + 1), zoom=zoom)
     ax.set_axis_off()
     ax.view_init(elev=ELEV, azim=AZIM)
+    ax.set_proj_type("ortho")
     return ax
 
 
@@ -327,7 +329,11 @@ def draw_voxels(ax: Any, layers: Sequence[Layer3D]) -> None:
             filled[tuple(p)] = True
             faces[tuple(p)], edges[tuple(p)] = rgb(fill), rgb(edge)
     corners = np.indices(np.array(shape) + 1).astype(float) + lo.reshape(3, 1, 1, 1) - 0.5
-    ax.voxels(*corners, filled, facecolors=faces, edgecolors=edges, linewidth=0.4)
+    cubes = ax.voxels(*corners, filled, facecolors=faces, edgecolors=edges, linewidth=0.4)
+    # back to front: equal cubes of a grid, seen orthographically, paint right in the order of their centres'
+    # distance to the camera
+    for index, cube in cubes.items():
+        cube.set_zorder(float((np.array(index) + lo) @ eye()) - 1000)
 
 
 def draw_solid(ax: Any, poly: mrm.Polyhedron, colour: tuple[int, int, int] = OUTLINE) -> None:
