@@ -4,9 +4,10 @@ Run from the repository root::
 
     .venv/bin/python docs/figures/make_discretization_figures.py
 
-It writes ``docs/img/discretization-polygon.png``, ``-segment.png`` and ``-partition.png``. Every pixel shown
-comes from :func:`mrm.geometry.discretize.discretize`; only the drawing is done here, with Pillow's
-ImageDraw (drawn at 4× and scaled down, for smooth lines). The plane has y up, as in MR Modeler.
+It writes ``docs/img/discretization-polygon.png``, ``-segment.png``, ``-partition.png`` and ``-voxels.png``.
+Every pixel shown comes from :func:`mrm.geometry.discretize.discretize` and every voxel from
+:func:`mrm.voxelize`; only the drawing is done here, with Pillow's ImageDraw in 2D (drawn at 4× and scaled
+down, for smooth lines) and matplotlib's mplot3d in 3D. The plane has y up, as in MR Modeler; in 3D, z is up.
 """
 
 from __future__ import annotations
@@ -17,13 +18,21 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import matplotlib
+import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 from shapely.geometry import LineString, Polygon
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from mrm.core.grids import PixelSet  # noqa: E402
+matplotlib.use("Agg")  # no window: the pictures go to files
+
+import matplotlib.pyplot as plt  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
+
+import mrm  # noqa: E402
+from mrm.core.grids import PixelSet, VoxelSet  # noqa: E402
 from mrm.geometry.discretize import discretize  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
@@ -269,8 +278,129 @@ def partition_figure() -> Image.Image:
     return row(panels)
 
 
+# ---------------------------------------------------------------------------------------------- 3D
+# The camera of every 3D picture: z up, looking down 24° from the side of −y, a little from +x.
+ELEV, AZIM = 24, -60
+
+
+def rgb(colour: tuple[int, int, int], alpha: float = 1.0) -> tuple[float, float, float, float]:
+    """A Pillow colour (0–255) as matplotlib's (0–1)."""
+    return (colour[0] / 255, colour[1] / 255, colour[2] / 255, alpha)
+
+
+def eye() -> np.ndarray:
+    """The unit vector from the scene towards the camera (``ELEV``, ``AZIM``), to tell front from back."""
+    e, a = np.radians(ELEV), np.radians(AZIM)
+    return np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+
+
+def voxel_axes(fig: Any, rect: tuple[float, float, float, float], box: Sequence[int], zoom: float) -> Any:
+    """A bare 3D axes over the voxels of ``box`` (x0, y0, z0, x1, y1, z1), one unit the same on every axis.
+
+    Artists are drawn by their zorder (``computed_zorder=False``), not by mplot3d's guess of their depth,
+    which fails between a large solid and small cubes: :func:`draw_voxels` orders its cubes back to front
+    itself, and what is added after them is drawn over them. The projection is orthographic.
+    """
+    x0, y0, z0, x1, y1, z1 = box
+    ax = fig.add_axes(rect, projection="3d", computed_zorder=False)
+    ax.set_xlim(x0 - 0.5, x1 + 0.5)
+    ax.set_ylim(y0 - 0.5, y1 + 0.5)
+    ax.set_zlim(z0 - 0.5, z1 + 0.5)
+    ax.set_box_aspect((x1 - x0 + 1, y1 - y0 + 1, z1 - z0 + 1), zoom=zoom)
+    ax.set_axis_off()
+    ax.view_init(elev=ELEV, azim=AZIM)
+    ax.set_proj_type("ortho")
+    return ax
+
+
+Layer3D = tuple[VoxelSet, tuple[int, int, int], tuple[int, int, int]]  # voxels, fill, edge colour
+
+
+def draw_voxels(ax: Any, layers: Sequence[Layer3D]) -> None:
+    """Draw voxel sets as shaded unit cubes centred on their voxels (later layers win where they overlap)."""
+    x0, y0, z0, x1, y1, z1 = np.array([ly[0].bbox for ly in layers]).T
+    lo = np.array([x0.min(), y0.min(), z0.min()])
+    shape = tuple(int(v) for v in np.array([x1.max(), y1.max(), z1.max()]) - lo + 1)
+    filled = np.zeros(shape, dtype=bool)
+    faces = np.empty(shape, dtype=object)
+    edges = np.empty(shape, dtype=object)
+    for vs, fill, edge in layers:
+        for p in (vs.points() - lo).tolist():
+            filled[tuple(p)] = True
+            faces[tuple(p)], edges[tuple(p)] = rgb(fill), rgb(edge)
+    corners = np.indices(np.array(shape) + 1).astype(float) + lo.reshape(3, 1, 1, 1) - 0.5
+    cubes = ax.voxels(*corners, filled, facecolors=faces, edgecolors=edges, linewidth=0.4)
+    # back to front: equal cubes of a grid, seen orthographically, paint right in the order of their centres'
+    # distance to the camera
+    for index, cube in cubes.items():
+        cube.set_zorder(float((np.array(index) + lo) @ eye()) - 1000)
+
+
+def draw_solid(ax: Any, poly: mrm.Polyhedron, colour: tuple[int, int, int] = OUTLINE) -> None:
+    """Draw a polyhedron translucent: front triangles lightly filled, edges solid in front, dashed behind."""
+    v, t, face = poly.vertices, poly.triangles, poly.face_of_triangle
+    tri = v[t]
+    front = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]) @ eye() > 0
+    # each edge with its (one or two) triangles: seen when one faces the camera; a diagonal inside a face is
+    # not an edge of the solid and is not drawn
+    around: dict[tuple[int, int], list[int]] = {}
+    for n, (a, b, c) in enumerate(t.tolist()):
+        for u, w in ((a, b), (b, c), (c, a)):
+            around.setdefault((min(u, w), max(u, w)), []).append(n)
+    ahead, back = [], []
+    for key, tris in around.items():
+        if len({int(face[n]) for n in tris}) > 1:
+            (ahead if front[tris].any() else back).append(v[list(key)])
+    ax.add_collection3d(Poly3DCollection(tri[front], facecolor=rgb(colour, 0.22), edgecolor="none"))
+    dashed = (0, (3, 2))
+    ax.add_collection3d(Line3DCollection(back, colors=[rgb(colour, 0.8)], linewidths=1.0, linestyles=dashed))
+    ax.add_collection3d(Line3DCollection(ahead, colors=[rgb(colour)], linewidths=1.8))
+
+
+def octahedron(r: float) -> mrm.Polyhedron:
+    """The octahedron |x| + |y| + |z| ≤ r: vertices (±r, 0, 0), (0, ±r, 0), (0, 0, ±r), eight triangles."""
+    v = [[r, 0, 0], [-r, 0, 0], [0, r, 0], [0, -r, 0], [0, 0, r], [0, 0, -r]]
+    t = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]
+    return mrm.Polyhedron(v, t)
+
+
+def titled(fig: Any, x: float, title: str, subtitle: str) -> None:
+    """A panel's title and subtitle at the top of the figure, from x (figure fraction) on."""
+    fig.text(x + 0.02, 0.95, title, fontsize=13, weight="bold", color=rgb(TEXT))
+    fig.text(x + 0.02, 0.89, subtitle, fontsize=10, color=rgb(SUBTEXT))
+
+
+def voxels_figure(path: Path) -> None:
+    """The octahedron |x| + |y| + |z| ≤ 3.5 in the three models, the solid drawn over its voxels.
+
+    Its six vertices lie on voxel faces (x = ±3.5 …), where the models differ most.
+    """
+    solid = octahedron(3.5)
+    std, sup, gau = (mrm.voxelize(solid, m) for m in ("standard", "supercover", "gauss"))
+    assert std.issubset(sup) and gau.issubset(std)
+    box = (-4, -4, -4, 4, 4, 4)
+    fig = plt.figure(figsize=(9.6, 3.7), dpi=100)
+    for k, (model, layers, note) in enumerate(
+        (
+            ("standard", [(std, BLUE, BLUE_EDGE)], f"{len(std)} voxels: ties go to −x, −y, −z"),
+            (
+                "supercover",
+                [(std, BLUE, BLUE_EDGE), (sup - std, AMBER, AMBER_EDGE)],
+                f"{len(sup)} voxels, {len(sup - std)} extra in amber",
+            ),
+            ("gauss", [(gau, BLUE, BLUE_EDGE)], f"{len(gau)} voxels: centres inside"),
+        )
+    ):
+        ax = voxel_axes(fig, (k / 3, 0, 1 / 3, 0.86), box, zoom=1.35)
+        draw_voxels(ax, layers)
+        draw_solid(ax, solid)
+        titled(fig, k / 3, model, note)
+    fig.savefig(path)
+    plt.close(fig)
+
+
 def main() -> None:
-    """Write the three pictures to docs/img/."""
+    """Write the four pictures to docs/img/."""
     OUT.mkdir(parents=True, exist_ok=True)
     for name, make in (
         ("polygon", polygon_figure),
@@ -280,6 +410,9 @@ def main() -> None:
         path = OUT / f"discretization-{name}.png"
         make().save(path, optimize=True)
         print(path.relative_to(ROOT))
+    path = OUT / "discretization-voxels.png"
+    voxels_figure(path)
+    print(path.relative_to(ROOT))
 
 
 if __name__ == "__main__":

@@ -6,8 +6,10 @@ Run from the repository root::
 
 It writes ``docs/img/reconstruction-*.png``. Every pixel, chain, segment, piece, line and vertex shown comes
 from MR Modeler (:mod:`mrm.geometry.reconstruct`, :mod:`mrm.geometry.reconstruct.border`,
-:mod:`mrm.geometry.dss.segmentation`, :mod:`mrm.geometry.discretize`); only the drawing is done here, with
-Pillow's ImageDraw (drawn at 4× and scaled down). The plane has y up, as in MR Modeler.
+:mod:`mrm.geometry.dss.segmentation`, :mod:`mrm.geometry.discretize`), and every voxel and face of the 3D
+picture from :func:`mrm.reconstruct`; only the drawing is done here, with Pillow's ImageDraw (drawn at 4× and
+scaled down) in 2D and with matplotlib's mplot3d in 3D (the helpers of ``make_discretization_figures.py``).
+The plane has y up, as in MR Modeler; in 3D, z is up.
 """
 
 from __future__ import annotations
@@ -21,14 +23,21 @@ from PIL import Image, ImageDraw, ImageFont
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # the 3D drawing helpers, shared with discretization
 
-from mrm.core.grids import PixelSet  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+from make_discretization_figures import draw_voxels, rgb, titled, voxel_axes  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
+
+import mrm  # noqa: E402
+from mrm.core.grids import PixelSet, VoxelSet  # noqa: E402
 from mrm.geometry.discretize import discretize  # noqa: E402
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation  # noqa: E402
 from mrm.geometry.reconstruct import reconstruct_detailed  # noqa: E402
 from mrm.geometry.reconstruct.border import border_paths, corridors  # noqa: E402
 from mrm.geometry.reconstruct.safety_net import eroded_net  # noqa: E402
 from mrm.reps.region import region_of  # noqa: E402
+from mrm.reps.region_3d import region_3d_of  # noqa: E402
 from mrm.reps.summary import count_vertices  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
@@ -408,6 +417,101 @@ def figure_gauss_disk() -> None:
     c.save("reconstruction-gauss-disk.png")
 
 
+# Face colours of the 3D picture; neighbouring faces never share one (see ``face_colours``).
+FACE_COLOURS = [
+    (31, 119, 180),
+    (255, 127, 14),
+    (44, 160, 44),
+    (214, 39, 40),
+    (148, 103, 189),
+    (23, 190, 207),
+    (188, 189, 34),
+    (227, 119, 194),
+]
+LIGHT = np.array([0.3, -0.6, 0.75]) / np.linalg.norm(
+    [0.3, -0.6, 0.75]
+)  # from the front, above, a little right
+
+
+def face_colours(poly: mrm.Polyhedron) -> list[tuple[int, int, int]]:
+    """One colour per face, greedily chosen so that two faces sharing an edge differ."""
+    face = poly.face_of_triangle.tolist()
+    owners: dict[tuple[int, int], set[int]] = {}
+    for f, (a, b, c) in zip(face, poly.triangles.tolist(), strict=True):
+        for u, w in ((a, b), (b, c), (c, a)):
+            owners.setdefault((min(u, w), max(u, w)), set()).add(f)
+    neighbours: dict[int, set[int]] = {f: set() for f in range(poly.n_faces)}
+    for fs in owners.values():
+        for f in fs:
+            neighbours[f] |= fs - {f}
+    chosen: list[int] = []
+    for f in range(poly.n_faces):
+        taken = {chosen[g] for g in neighbours[f] if g < f}
+        chosen.append(next(k for k in range(len(FACE_COLOURS)) if k not in taken))
+    return [FACE_COLOURS[k] for k in chosen]
+
+
+def split_small(tri: np.ndarray, size: float = 0.5) -> list[np.ndarray]:
+    """A triangle cut into quarters until no side is longer than ``size``.
+
+    mplot3d paints polygons back to front by their mean depth, which goes wrong for long thin triangles next
+    to small ones (the strips of a face); small pieces of nearly equal size paint in the right order.
+    """
+    out, todo = [], [np.asarray(tri, dtype=float)]
+    while todo:
+        t = todo.pop()
+        if max(np.linalg.norm(t[i] - t[i - 1]) for i in range(3)) <= size:
+            out.append(t)
+            continue
+        a, b, c = t
+        ab, bc, ca = (a + b) / 2, (b + c) / 2, (c + a) / 2
+        todo += [np.array(q) for q in ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))]
+    return out
+
+
+def figure_3d() -> None:
+    """A voxel set with a tunnel and a voxel meeting it along an edge, next to its safety net R(A)."""
+    ring = [
+        (x, y, z) for x in range(4) for y in range(4) for z in range(2) if not (1 <= x <= 2 and 1 <= y <= 2)
+    ]
+    vs = VoxelSet.from_points([*ring, (4, 1, 2)])  # (4, 1, 2) meets (3, 1, 1) along an edge only
+    reg = region_3d_of(vs.mask, vs.origin)
+    poly = mrm.reconstruct(vs)
+    for model in ("standard", "supercover", "gauss"):
+        assert mrm.voxelize(poly, model) == vs
+    colours = face_colours(poly)
+    pieces, fills = [], []
+    for t, f in zip(poly.triangles.tolist(), poly.face_of_triangle.tolist(), strict=True):
+        tri = poly.vertices[t]
+        n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
+        shade = 0.62 + 0.38 * max(0.0, float(n @ LIGHT / np.linalg.norm(n)))
+        fill = rgb(tuple(round(shade * c) for c in colours[f]))
+        for piece in split_small(tri):
+            pieces.append(piece)
+            fills.append(fill)
+    fig = plt.figure(figsize=(8.4, 3.6), dpi=100)
+    box = (*vs.bbox[:3], *vs.bbox[3:])
+    ax = voxel_axes(fig, (0, 0.0, 0.5, 0.9), box, zoom=1.2)
+    draw_voxels(ax, [(vs, BLUE, BLUE_EDGE)])
+    titled(
+        fig,
+        0,
+        f"A: {len(vs)} voxels",
+        f"{reg.n_components} components, {reg.n_tunnels} tunnel, {reg.n_cavities} cavities",
+    )
+    ax = voxel_axes(fig, (0.5, 0.0, 0.5, 0.9), box, zoom=1.2)
+    # edges in the fill colour close the hairline gaps between the pieces
+    ax.add_collection3d(Poly3DCollection(pieces, facecolors=fills, edgecolors=fills, linewidths=0.6))
+    titled(
+        fig,
+        0.5,
+        "R(A): V(A) eroded by ¼",
+        f"{poly.n_faces} faces, {poly.n_shells} shells; D(R(A)) = A in the three models",
+    )
+    fig.savefig(OUT / "reconstruction-3d.png")
+    plt.close(fig)
+
+
 def main() -> None:
     """Draw every picture."""
     OUT.mkdir(parents=True, exist_ok=True)
@@ -415,6 +519,7 @@ def main() -> None:
     figure_preimage()
     figure_models()
     figure_gauss_disk()
+    figure_3d()
 
 
 if __name__ == "__main__":

@@ -23,7 +23,13 @@ def test_tutorial_code_runs(tmp_path, capsys):
         os.chdir(here)
     out = capsys.readouterr().out
     assert "measured" in out and "<= bound" in out
+    # every output the page shows (```text blocks) is what its code printed, line for line
+    printed = out.splitlines()
+    for shown in re.findall(r"```text\n(.*?)```", text, flags=re.S):
+        for line in shown.splitlines():
+            assert line in printed, f"docs/tutorial.md shows {line!r}, the code printed {printed}"
     from PIL import Image
 
-    with Image.open(tmp_path / "dss.png") as im:  # the figure was drawn
-        assert im.size == (400, 400)
+    for figure in ("dss.png", "voxels.png"):  # the figures were drawn
+        with Image.open(tmp_path / figure) as im:
+            assert im.size == (400, 400)
