@@ -113,6 +113,28 @@ def _find_runs(m: npt.NDArray[np.uint8]) -> tuple[Int32Array, Int32Array, Int64A
 
 
 @njit(cache=True)
+def _gap_labels(bparent: Int64Array, n: int) -> tuple[npt.NDArray[np.int32], int]:  # pragma: no cover
+    """Number the background components of gaps 0..n − 1 (union-find ``bparent``; index ``n`` is the outside).
+
+    The component holding the outside gets 0, the others 1, 2, … in the order of their first gap; returns the
+    labels and one more than the largest. Shared by the 2D and 3D labelings.
+    """
+    bg_label = np.empty(n, np.int32)
+    out_root = _find(bparent, n)
+    nbg = 1
+    for g in range(n):
+        root = _find(bparent, g)
+        if root == out_root:
+            bg_label[g] = 0
+        elif root == g:
+            bg_label[g] = nbg
+            nbg += 1
+        else:
+            bg_label[g] = bg_label[root]
+    return bg_label, nbg
+
+
+@njit(cache=True)
 def _find(parent: Int64Array, x: int) -> int:  # pragma: no cover
     while parent[x] != x:
         parent[x] = parent[parent[x]]
@@ -204,18 +226,7 @@ def _label_runs(
                     a += 1
                 else:
                     b += 1
-    bg_label = np.empty(nb, np.int32)
-    out_root = _find(bparent, nb)
-    nbg = 1
-    for g in range(nb):
-        root = _find(bparent, g)
-        if root == out_root:
-            bg_label[g] = 0
-        elif root == g:
-            bg_label[g] = nbg
-            nbg += 1
-        else:
-            bg_label[g] = bg_label[root]
+    bg_label, nbg = _gap_labels(bparent, nb)
     bg_counts = np.zeros(nbg, np.int64)
     for r in range(h):
         k = ptr[r + 1] - ptr[r]

@@ -30,7 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.geometry._jit import njit
-from mrm.geometry.topology.labeling import _find, _find_runs, _union
+from mrm.geometry.topology.labeling import _find, _find_runs, _gap_labels, _union
 
 Int32Array = npt.NDArray[np.int32]
 Int64Array = npt.NDArray[np.int64]
@@ -180,18 +180,7 @@ def _label_runs_3d(
                 if k > 0:
                     q = r - ny
                     _link_rows(bparent, gs, ge, ptr[q] + q, ptr[q + 1] + q + 1, g0, g1, 0)
-    bg_label = np.empty(ng, np.int32)
-    out_root = _find(bparent, ng)
-    nbg = 1
-    for g in range(ng):
-        root = _find(bparent, g)
-        if root == out_root:
-            bg_label[g] = 0
-        elif root == g:
-            bg_label[g] = nbg
-            nbg += 1
-        else:
-            bg_label[g] = bg_label[root]
+    bg_label, nbg = _gap_labels(bparent, ng)
     bg_counts = np.zeros(nbg, np.int64)
     bg_box = np.empty((nbg, 6), np.int64)
     for c in range(nbg):
