@@ -1,0 +1,207 @@
+"""3D on the command line (issue 28 item 6): ``mrm voxelize``, ``mrm info`` and ``mrm reconstruct`` on voxel
+files and meshes, run as a user would (``run_cli``, the ``mrm`` subcommand layer, and one real subprocess).
+
+Every input is built here: meshes written with the library's exact writer (or by hand, when the point is a
+broken file), voxel sets from points.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mrm
+from mrm.cli import run_cli
+from mrm.io.voxel_files import read_voxels
+
+KEYS_3D = {
+    "model",
+    "voxels",
+    "bbox",
+    "components",
+    "cavities",
+    "tunnels",
+    "euler",
+    "surfels",
+    "plane_segments",
+    "faces",
+    "vertices",
+}
+
+
+def run(capsys, *argv: object) -> tuple[int, str, str]:
+    code = run_cli([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def fails(capsys, command: str, *argv: object) -> str:
+    """The one error line of a refused run (exit status 2, nothing on stdout, no traceback)."""
+    code, out, err = run(capsys, command, *argv)
+    assert code == 2, err
+    lines = [ln for ln in err.splitlines() if not ln.startswith("mrm: first run")]
+    assert len(lines) == 1 and lines[0].startswith(f"mrm {command}: error: "), err
+    assert "Traceback" not in err and out == ""
+    return lines[0]
+
+
+# The box [x0, x1] × [y0, y1] × [z0, z1]: eight corners, twelve triangles, outward.
+_BOX_TRIANGLES = [
+    [0, 2, 1], [0, 3, 2],  # z = z0, seen from below
+    [4, 5, 6], [4, 6, 7],  # z = z1
+    [0, 1, 5], [0, 5, 4],  # y = y0
+    [2, 3, 7], [2, 7, 6],  # y = y1
+    [1, 2, 6], [1, 6, 5],  # x = x1
+    [3, 0, 4], [3, 4, 7],  # x = x0
+]  # fmt: skip
+
+
+def box(lo: tuple[float, float, float], hi: tuple[float, float, float]) -> tuple[np.ndarray, list[list[int]]]:
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    v = [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0]]
+    v += [[x, y, z1] for x, y, _ in v]
+    return np.array(v, dtype=float), [list(t) for t in _BOX_TRIANGLES]
+
+
+def write_off(path: Path, v: np.ndarray, t: list[list[int]]) -> Path:
+    """An OFF file by hand (so that broken meshes can be written too)."""
+    lines = ["OFF", f"{len(v)} {len(t)} 0"]
+    lines += [" ".join(repr(float(c)) for c in p) for p in v]
+    lines += ["3 " + " ".join(str(i) for i in tri) for tri in t]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def box_file(path: Path, lo=(0, 0, 0), hi=(3, 2, 1)) -> Path:
+    """The box written with the library's exact writer (STL too: its corners are float32 values)."""
+    assert mrm.write_mesh(mrm.Polyhedron(*box(lo, hi)), path) is None
+    return path
+
+
+# The box [0, 3] × [0, 2] × [0, 1] has its corners on voxel centres. By docs/design.md §11, gauss keeps the
+# centres p + τ inside: x ∈ {0, 1, 2}, y ∈ {0, 1}, z = 0 (p + τ leaves it at x = 3, y = 2, z = 1); standard
+# keeps the voxels whose open cube, shifted by τ, meets it: x ∈ 0..3, y ∈ 0..2, z ∈ 0..1.
+BOX_GAUSS = {(x, y, 0) for x in range(3) for y in range(2)}
+BOX_STANDARD = {(x, y, z) for x in range(4) for y in range(3) for z in range(2)}
+
+
+def as_set(vs: mrm.VoxelSet) -> set[tuple[int, int, int]]:
+    return {(int(x), int(y), int(z)) for x, y, z in vs.points()}
+
+
+def hollow_cube() -> mrm.VoxelSet:
+    """A 3³ cube without its centre: one component, one cavity."""
+    return mrm.VoxelSet.from_points(
+        [(x, y, z) for x in range(3) for y in range(3) for z in range(3) if (x, y, z) != (1, 1, 1)]
+    )
+
+
+def ring() -> mrm.VoxelSet:
+    """A square ring of 8 voxels in the plane z = 5, far from the origin: one tunnel."""
+    return mrm.VoxelSet.from_points(
+        [(100 + x, -40 + y, 5) for x in range(3) for y in range(3) if (x, y) != (1, 1)]
+    )
+
+
+# ---------------------------------------------------------------------------------------------- voxelize
+@pytest.mark.parametrize("mesh_ext", [".obj", ".ply", ".off", ".stl"])
+@pytest.mark.parametrize("out_ext", [".npz", ".tif", ".nii.gz"])
+def test_voxelize_writes_the_exact_voxels(capsys, tmp_path, mesh_ext, out_ext):
+    mesh = box_file(tmp_path / f"box{mesh_ext}")
+    out = tmp_path / "deep" / f"box{out_ext}"
+    code, stdout, _ = run(capsys, "voxelize", mesh, "-o", out, "--model", "gauss", "--json")
+    assert code == 0
+    summary = json.loads(stdout)
+    assert as_set(read_voxels(out)) == BOX_GAUSS
+    assert set(summary) >= KEYS_3D and summary["input"] == str(mesh) and summary["output"] == str(out)
+    assert summary["voxels"] == 6 and summary["bbox"] == [0, 0, 0, 2, 1, 0]
+    assert (summary["components"], summary["cavities"], summary["tunnels"]) == (1, 0, 0)
+    assert summary["surfels"] == 2 * 6 + 2 * 3 + 2 * 2 and summary["plane_segments"] is None
+    assert (summary["faces"], summary["vertices"]) == (6, 8)  # the input box's
+
+
+def test_voxelize_default_model_is_standard_and_prints_a_table(capsys, tmp_path):
+    mesh = box_file(tmp_path / "b.off")
+    code, stdout, _ = run(capsys, "voxelize", mesh, "-o", tmp_path / "b.npz")
+    assert code == 0
+    assert as_set(read_voxels(tmp_path / "b.npz")) == BOX_STANDARD
+    assert "voxels" in stdout and "24" in stdout and "cavities" in stdout
+
+
+def test_voxelize_limit(capsys, tmp_path):
+    mesh = write_off(tmp_path / "b.off", *box((0, 0, 0), (30, 20, 10)))
+    line = fails(capsys, "voxelize", mesh, "-o", tmp_path / "out" / "b.npz", "--limit", "1000")
+    assert "1,000" in line or "1000" in line or "limit" in line
+    assert not (tmp_path / "out").exists()
+
+
+def _broken_meshes(tmp_path: Path) -> dict[str, Path]:
+    v, t = box((0, 0, 0), (2, 2, 2))
+    flipped = [list(tri) for tri in t]
+    flipped[0] = flipped[0][::-1]
+    nan = v.copy()
+    nan[3, 1] = np.nan
+    v2, t2 = box((1, 1, 1), (3, 3, 3))  # a second box overlapping the first: the surfaces cross
+    return {
+        "open": write_off(tmp_path / "open.off", v, t[:-1]),
+        "orientation": write_off(tmp_path / "flipped.off", v, flipped),
+        "nan": write_off(tmp_path / "nan.off", nan, t),
+        "intersect": write_off(
+            tmp_path / "two.off", np.vstack([v, v2]), t + [[i + 8 for i in tri] for tri in t2]
+        ),
+    }
+
+
+@pytest.mark.parametrize("kind", ["open", "orientation", "nan", "intersect"])
+def test_voxelize_refuses_an_invalid_mesh_and_writes_nothing(capsys, tmp_path, kind):
+    mesh = _broken_meshes(tmp_path)[kind]
+    out = tmp_path / "out" / "v.npz"
+    line = fails(capsys, "voxelize", mesh, "-o", out)
+    assert mesh.name in line
+    assert not out.exists() and not (tmp_path / "out").exists()  # no file, no empty folder left behind
+
+
+def test_voxelize_refuses_bad_extensions_before_reading(capsys, tmp_path):
+    mesh = write_off(tmp_path / "b.off", *box((0, 0, 0), (1, 1, 1)))
+    assert "voxel output file" in fails(capsys, "voxelize", mesh, "-o", tmp_path / "b.png")
+    (tmp_path / "b.geojson").write_text("{}")
+    assert "mesh file" in fails(capsys, "voxelize", tmp_path / "b.geojson", "-o", tmp_path / "b.npz")
+    assert not (tmp_path / "b.npz").exists() and not (tmp_path / "b.png").exists()
+
+
+def test_voxelize_several_meshes_into_a_folder(capsys, tmp_path):
+    write_off(tmp_path / "a.off", *box((0, 0, 0), (3, 2, 1)))
+    box_file(tmp_path / "b.ply", (10, 0, 0), (13, 2, 1))
+    code, stdout, _ = run(
+        capsys, "voxelize", tmp_path / "a.off", tmp_path / "b.ply", "-o", tmp_path / "vox", "--json"
+    )
+    assert code == 0
+    summary = json.loads(stdout)
+    assert summary["inputs"] == 2 and summary["voxels"] == 2 * 24
+    assert as_set(read_voxels(tmp_path / "vox" / "a.npz")) == BOX_STANDARD
+    assert as_set(read_voxels(tmp_path / "vox" / "b.npz")) == {(x + 10, y, z) for x, y, z in BOX_STANDARD}
+
+
+def test_the_entry_point_runs_voxelize_and_its_help_says_3d(tmp_path):
+    mesh = write_off(tmp_path / "b.off", *box((0, 0, 0), (3, 2, 1)))
+    done = subprocess.run(
+        [sys.executable, "-m", "mrm", "voxelize", str(mesh), "-o", "b.nii", "--model", "gauss", "--json"],
+        cwd=tmp_path,
+        capture_output=True,
+    )
+    assert done.returncode == 0, done.stderr.decode()
+    assert json.loads(done.stdout)["voxels"] == 6 and as_set(read_voxels(tmp_path / "b.nii")) == BOX_GAUSS
+    top = subprocess.run([sys.executable, "-m", "mrm", "--help"], capture_output=True, text=True).stdout
+    line = next(ln for ln in top.splitlines() if ln.strip().startswith("voxelize"))
+    assert "3D" in line
+
+
+def help_text(capsys, command: str) -> str:
+    with pytest.raises(SystemExit):
+        run_cli([command, "-h"])
+    return capsys.readouterr().out
