@@ -17,7 +17,8 @@ import pytest
 
 import mrm
 from mrm.cli import run_cli
-from mrm.io.voxel_files import read_voxels
+from mrm.io.voxel_files import read_voxels, write_voxels
+from mrm.reps.summary import summarize
 
 KEYS_3D = {
     "model",
@@ -205,3 +206,77 @@ def help_text(capsys, command: str) -> str:
     with pytest.raises(SystemExit):
         run_cli([command, "-h"])
     return capsys.readouterr().out
+
+
+# ---------------------------------------------------------------------------------------------- info
+@pytest.mark.parametrize("ext", [".npz", ".tif", ".nii", ".nii.gz"])
+def test_info_of_voxel_files(capsys, tmp_path, ext):
+    write_voxels(hollow_cube(), tmp_path / f"h{ext}")
+    write_voxels(ring(), tmp_path / f"r{ext}")
+    code, stdout, _ = run(capsys, "info", tmp_path / f"h{ext}", "--json")
+    assert code == 0
+    h = json.loads(stdout)
+    assert set(h) == KEYS_3D | {"input"}
+    assert (h["voxels"], h["components"], h["cavities"], h["tunnels"], h["euler"]) == (26, 1, 1, 0, 2)
+    assert h["surfels"] == 6 * 9 + 6 and h["plane_segments"] is None
+    r_of_a = mrm.reconstruct(hollow_cube(), "standard")
+    assert (h["faces"], h["vertices"]) == (r_of_a.n_faces, r_of_a.n_vertices)
+    code, stdout, _ = run(capsys, "info", tmp_path / f"r{ext}", "--json", "--model", "gauss")
+    r = json.loads(stdout)
+    assert (r["model"], r["voxels"], r["components"], r["cavities"], r["tunnels"], r["euler"]) == (
+        "gauss", 8, 1, 0, 1, 0,
+    )  # fmt: skip
+    assert r["bbox"] == [100, -40, 5, 102, -38, 5]
+
+
+def test_info_of_a_grey_volume_needs_a_threshold(capsys, tmp_path):
+    import nibabel as nib
+    import tifffile
+
+    grey = np.zeros((2, 3, 4), dtype=np.uint8)  # [z, y, x]
+    grey[0, 1, 1:3] = 200
+    grey[1, 1, 1] = 90
+    tifffile.imwrite(tmp_path / "g.tif", grey[:, ::-1, :], photometric="minisblack")  # pages top row first
+    nib.save(nib.Nifti1Image(grey.transpose(2, 1, 0).astype(np.float32), np.eye(4)), tmp_path / "g.nii.gz")
+    for name in ("g.tif", "g.nii.gz"):
+        line = fails(capsys, "info", tmp_path / name)
+        assert "threshold" in line
+        code, stdout, _ = run(capsys, "info", tmp_path / name, "--threshold", "100", "--json")
+        assert code == 0 and json.loads(stdout)["voxels"] == 2
+        code, stdout, _ = run(capsys, "info", tmp_path / name, "--threshold", "50", "--json")
+        assert code == 0 and json.loads(stdout)["voxels"] == 3
+    assert "--invert" in fails(capsys, "info", tmp_path / "g.tif", "--threshold", "50", "--invert")
+
+
+def test_info_of_a_mesh_summarises_its_voxelization(capsys, tmp_path):
+    mesh = box_file(tmp_path / "b.obj")
+    code, stdout, _ = run(capsys, "info", mesh, "--json", "--model", "gauss")
+    assert code == 0
+    s = json.loads(stdout)
+    assert set(s) == KEYS_3D | {"input"}
+    assert (s["voxels"], s["faces"], s["vertices"]) == (6, 6, 8)
+    code, stdout, _ = run(capsys, "info", mesh, "--json")
+    assert json.loads(stdout)["voxels"] == len(BOX_STANDARD)
+    assert "b.obj" in fails(capsys, "info", _broken_meshes(tmp_path)["open"].rename(tmp_path / "b.obj"))
+
+
+def test_info_help_says_3d(capsys):
+    text = help_text(capsys, "info")
+    assert "3D" in text and ".nii.gz" in text and ".obj" in text
+
+
+def test_info_keeps_2d_output_and_takes_both_in_one_batch(capsys, tmp_path):
+    flat = mrm.PixelSet.from_points([(0, 0), (1, 0), (0, 1)])
+    mrm.write_pixels(flat, tmp_path / "a.npz")
+    write_voxels(hollow_cube(), tmp_path / "b.npz")  # a 3-D .npz: once refused, now a voxel file
+    code, stdout, _ = run(capsys, "info", tmp_path / "a.npz", "--json")
+    assert code == 0 and json.loads(stdout) == {
+        "input": str(tmp_path / "a.npz"),
+        **summarize(flat, "standard"),
+    }
+    code, stdout, _ = run(capsys, "info", tmp_path, "--json")
+    assert code == 0
+    files = json.loads(stdout)["files"]
+    assert [f.get("pixels") for f in files] == [3, None] and [f.get("voxels") for f in files] == [None, 26]
+    code, stdout, _ = run(capsys, "info", tmp_path)
+    assert code == 0 and "26 voxels, 1 components, 1 cavities" in stdout
