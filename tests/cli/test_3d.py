@@ -280,3 +280,55 @@ def test_info_keeps_2d_output_and_takes_both_in_one_batch(capsys, tmp_path):
     assert [f.get("pixels") for f in files] == [3, None] and [f.get("voxels") for f in files] == [None, 26]
     code, stdout, _ = run(capsys, "info", tmp_path)
     assert code == 0 and "26 voxels, 1 components, 1 cavities" in stdout
+
+
+# ---------------------------------------------------------------------------------------------- reconstruct
+def noise(seed: int) -> mrm.VoxelSet:
+    rng = np.random.default_rng(seed)
+    return mrm.VoxelSet(rng.random((5, 6, 7)) < 0.45, (-1000, 7, 123))
+
+
+@pytest.mark.parametrize(
+    ("model", "mesh_ext"), [("standard", ".obj"), ("supercover", ".ply"), ("gauss", ".off")]
+)
+def test_reconstruct_writes_a_mesh_that_discretizes_back(capsys, tmp_path, model, mesh_ext):
+    a = noise(7) | hollow_cube() | ring()
+    write_voxels(a, tmp_path / "a.tif")
+    out = tmp_path / f"r{mesh_ext}"
+    code, stdout, _ = run(capsys, "reconstruct", tmp_path / "a.tif", "-o", out, "--model", model, "--json")
+    assert code == 0
+    summary = json.loads(stdout)
+    poly = mrm.read_mesh(out)  # a valid closed polyhedron, read back exactly
+    assert mrm.voxelize(poly, model) == a  # D(R(A)) = A
+    assert set(summary) >= KEYS_3D and summary["voxels"] == len(a)
+    assert (summary["faces"], summary["vertices"]) == (poly.n_faces, poly.n_vertices)
+    assert summary["seconds"] >= 0
+
+
+def test_reconstruct_of_voxels_refuses_a_vector_output_and_2d_refuses_a_mesh(capsys, tmp_path):
+    write_voxels(ring(), tmp_path / "r.nii.gz")
+    mrm.write_pixels(mrm.PixelSet.from_points([(0, 0)]), tmp_path / "p.png")
+    assert "mesh output file" in fails(
+        capsys, "reconstruct", tmp_path / "r.nii.gz", "-o", tmp_path / "r.geojson"
+    )
+    assert "vector output file" in fails(capsys, "reconstruct", tmp_path / "p.png", "-o", tmp_path / "p.obj")
+    assert not (tmp_path / "r.geojson").exists() and not (tmp_path / "p.obj").exists()
+
+
+def test_reconstruct_a_folder_of_pixels_and_voxels(capsys, tmp_path):
+    src = tmp_path / "in"
+    src.mkdir()
+    write_voxels(ring(), src / "ring.nii.gz")
+    write_voxels(hollow_cube(), src / "cube.npz")
+    mrm.write_pixels(mrm.PixelSet.from_points([(0, 0), (1, 1)]), src / "flat.png")
+    code, stdout, _ = run(capsys, "reconstruct", src, "-o", tmp_path / "out", "--model", "gauss", "--json")
+    assert code == 0
+    assert json.loads(stdout)["inputs"] == 3
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["cube.obj", "flat.geojson", "ring.obj"]
+    assert mrm.voxelize(mrm.read_mesh(tmp_path / "out" / "ring.obj"), "gauss") == ring()
+    assert mrm.voxelize(mrm.read_mesh(tmp_path / "out" / "cube.obj"), "gauss") == hollow_cube()
+
+
+def test_reconstruct_help_says_3d(capsys):
+    text = help_text(capsys, "reconstruct")
+    assert "3D" in text and ".nii.gz" in text and ".obj" in text
