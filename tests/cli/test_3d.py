@@ -17,7 +17,8 @@ import pytest
 
 import mrm
 from mrm.cli import run_cli
-from mrm.io.voxel_files import read_voxels, write_voxels
+from mrm.io.voxel_files import read_voxels, write_label_volume, write_voxels
+from mrm.reps.cells_3d import cells_3d_of
 from mrm.reps.summary import summarize
 
 KEYS_3D = {
@@ -258,6 +259,28 @@ def test_info_of_a_mesh_summarises_its_voxelization(capsys, tmp_path):
     code, stdout, _ = run(capsys, "info", mesh, "--json")
     assert json.loads(stdout)["voxels"] == len(BOX_STANDARD)
     assert "b.obj" in fails(capsys, "info", _broken_meshes(tmp_path)["open"].rename(tmp_path / "b.obj"))
+
+
+def test_info_of_a_label_volume(capsys, tmp_path):
+    # Two labels in one slice: 1 holds two separate regions (x = 0 and x = 3), 2 one region between them.
+    labels = np.array([[[1, 2, 2, 1], [0, 2, 0, 0]]], dtype=np.int32)  # [z, y, x]
+    lv = mrm.LabelVolume(labels, (10, 20, 30))
+    write_label_volume(lv, tmp_path / "l.npz")
+    write_label_volume(lv, tmp_path / "l.nii.gz")
+    code, stdout, _ = run(capsys, "info", tmp_path / "l.npz", "--json")  # .npz 'labels': a label volume
+    assert code == 0
+    s = json.loads(stdout)
+    cells = cells_3d_of(labels, (10, 20, 30))
+    assert (s["labels"], s["regions"], s["voxels"], s["bbox"]) == (2, 3, 5, [10, 20, 30, 13, 21, 30])
+    assert (s["two_cells"], s["one_cells"], s["zero_cells"], s["adjacencies"]) == (
+        len(cells.two_cells), len(cells.one_cells), len(cells.zero_cells), len(cells.adjacency),
+    )  # fmt: skip
+    assert "label" in fails(capsys, "info", tmp_path / "l.nii.gz")  # many values: a mask needs a choice
+    code, stdout, _ = run(capsys, "info", tmp_path / "l.nii.gz", "--labels", "--json")
+    assert code == 0 and json.loads(stdout) == {**s, "input": str(tmp_path / "l.nii.gz")}
+    assert "--threshold" in fails(capsys, "info", tmp_path / "l.npz", "--threshold", "1")
+    mrm.write_pixels(mrm.PixelSet.from_points([(0, 0)]), tmp_path / "p.png")
+    assert "--labels" in fails(capsys, "info", tmp_path / "p.png", "--labels")
 
 
 def test_info_help_says_3d(capsys):
