@@ -23,7 +23,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The options of the GUI start-up (the headless subcommands have their own parser)."""
     p = argparse.ArgumentParser(
         prog="mrm",
-        description="MR Modeler: multi-representation 2D discrete geometry. Without a subcommand, "
+        description="MR Modeler: multi-representation discrete geometry in 2D and 3D. Without a subcommand, "
         "start the desktop application (subcommands: see `mrm --help-commands`).",
     )
     p.add_argument(

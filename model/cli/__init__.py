@@ -105,7 +105,11 @@ def version_text() -> str:
 
 def build_parser() -> argparse.ArgumentParser:
     """Return the parser of every subcommand, each with ``--model``, ``--json`` and ``--quiet``."""
-    parser = _Parser(prog="mrm", description="MR Modeler: multi-representation 2D discrete geometry.")
+    parser = _Parser(
+        prog="mrm",
+        description="MR Modeler: multi-representation discrete geometry in 2D (pixels, polygons) "
+        "and 3D (voxels, meshes).",
+    )
     parser.add_argument("--version", action="version", version=version_text())
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, mod in _command_modules().items():

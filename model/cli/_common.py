@@ -32,8 +32,8 @@ from typing import Any
 from mrm.cli import os_error_text
 from mrm.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
 from mrm.core.errors import FileFormatError, MRMError, ParameterError
-from mrm.core.grids import PixelSet
-from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.grids import PixelSet, VoxelSet
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, DEFAULT_VOXEL_LIMIT
 from mrm.geometry.discretize import discretize
 from mrm.io.georef import image_frame as frame_of
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
@@ -157,7 +157,7 @@ def expand_inputs(items: Sequence[str], allowed: tuple[str, ...]) -> list[str]:
         if item == "-" or p.is_file():
             out.append(item)
         elif p.is_dir():
-            found = sorted(str(c) for c in p.iterdir() if c.suffix.lower() in allowed and c.is_file())
+            found = sorted(str(c) for c in p.iterdir() if has_extension(c, allowed) and c.is_file())
             if not found:
                 raise ParameterError(f"{item}: the directory holds no {' '.join(allowed)} file")
             out.extend(found)
@@ -169,6 +169,20 @@ def expand_inputs(items: Sequence[str], allowed: tuple[str, ...]) -> list[str]:
         else:
             out.append(item)  # the reader reports it (no such file, a FIFO, …) with its own message
     return out
+
+
+def has_extension(path: str | os.PathLike[str], allowed: tuple[str, ...]) -> bool:
+    """True when ``path`` ends with one of ``allowed`` (a double extension such as ``.nii.gz`` whole)."""
+    name = Path(path).name.lower()
+    return any(name.endswith(a) for a in allowed if a.count(".") > 1) or Path(path).suffix.lower() in allowed
+
+
+def stem_of(path: str | os.PathLike[str]) -> str:
+    """The file's name without its extension (``brain.nii.gz`` gives ``brain``)."""
+    name = Path(path).name
+    if name.lower().endswith(".nii.gz"):
+        return name[: -len(".nii.gz")]
+    return Path(path).stem
 
 
 def batch_outputs(
@@ -184,7 +198,7 @@ def batch_outputs(
         extension_of(output, allowed, what)
         return [output]
     if "{stem}" in output:
-        outs = [output.replace("{stem}", Path(i).stem) for i in inputs]
+        outs = [output.replace("{stem}", stem_of(i)) for i in inputs]
         for o in outs:
             extension_of(o, allowed, what)
     else:
@@ -193,7 +207,7 @@ def batch_outputs(
             raise ParameterError(
                 f"{output}: several inputs need a directory or a pattern with {{stem}} for -o"
             )
-        outs = [str(p / (Path(i).stem + default_ext)) for i in inputs]
+        outs = [str(p / (stem_of(i) + default_ext)) for i in inputs]
     if len(set(outs)) != len(outs):
         raise ParameterError("two inputs would write the same output file; use a pattern with {stem}")
     return outs
@@ -471,20 +485,41 @@ def finite_float(text: str) -> float:
     return value
 
 
-def add_limit_argument(parser: argparse.ArgumentParser) -> None:
-    """Add ``--limit N``, the largest result (in pixels) a command may create."""
+def add_limit_argument(parser: argparse.ArgumentParser, *, voxels: bool = False) -> None:
+    """Add ``--limit N``, the largest result (in pixels) a command may create.
+
+    With ``voxels`` the help also says what it bounds for 3D inputs: the voxels of a volume or of a result
+    (:data:`~mrm.core.limits.DEFAULT_VOXEL_LIMIT` when not given, see :func:`voxel_limit`).
+    """
+    more = (
+        f"; for 3D inputs, voxels of a volume or result (default {DEFAULT_VOXEL_LIMIT:_})" if voxels else ""
+    )
     parser.add_argument(
         "--limit",
         type=positive_int,
-        default=DEFAULT_PIXEL_LIMIT,
+        default=None if voxels else DEFAULT_PIXEL_LIMIT,
         metavar="N",
-        help=f"largest number of pixels of an image or result (default {DEFAULT_PIXEL_LIMIT:_})",
+        help=f"largest number of pixels of an image or result (default {DEFAULT_PIXEL_LIMIT:_}){more}",
     )
 
 
+def pixel_limit(limit: int | None) -> int:
+    """``--limit`` for a 2D input (added with ``voxels=True``, None means the default)."""
+    return DEFAULT_PIXEL_LIMIT if limit is None else limit
+
+
+def voxel_limit(limit: int | None) -> int:
+    """``--limit`` for a 3D input (added with ``voxels=True``, None means the default)."""
+    return DEFAULT_VOXEL_LIMIT if limit is None else limit
+
+
 def extension_of(path: str | os.PathLike[str], allowed: tuple[str, ...], what: str) -> str:
-    """Return the lower-case extension of ``path`` or raise a FileFormatError listing ``allowed``."""
-    ext = Path(path).suffix.lower()
+    """Return the lower-case extension of ``path`` or raise a FileFormatError listing ``allowed``.
+
+    A double extension in ``allowed`` (``.nii.gz``) is recognised whole.
+    """
+    name = Path(path).name.lower()
+    ext = next((a for a in allowed if a.count(".") > 1 and name.endswith(a)), Path(path).suffix.lower())
     if ext not in allowed:
         shown = f"'{ext}'" if ext else "no extension"
         raise FileFormatError(f"{os.fspath(path)}: {shown} is not a {what}; use {', '.join(allowed)}")
@@ -565,6 +600,24 @@ def read_input(
     if ext in VECTOR_EXTENSIONS:
         return Input("euclidean", geometry=read_geometry(path))
     raise FileFormatError(f"{os.fspath(path)}: cannot read {ext} files")  # unreachable with sane ``allowed``
+
+
+def is_3d_input(path: str | os.PathLike[str]) -> bool:
+    """True for a mesh file (by its extension) or a voxel file (:func:`mrm.io.voxel_files.is_volume_file`).
+
+    A ``.npz`` or ``.tif`` is 3D when it holds a 3-D array or a stack of pages, else it is a 2D pixel file.
+    """
+    from mrm.io.mesh_files import MESH_EXTENSIONS
+    from mrm.io.voxel_files import is_volume_file
+
+    return Path(path).suffix.lower() in MESH_EXTENSIONS or is_volume_file(path)
+
+
+def read_voxel_input(path: str | os.PathLike[str], threshold: float | None, limit: int | None) -> VoxelSet:
+    """The voxel set of a voxel file, ``--threshold`` for grey volumes, ``--limit`` (None: the default)."""
+    from mrm.io.voxel_files import read_voxels
+
+    return read_voxels(path, threshold=threshold, limit=voxel_limit(limit))
 
 
 def discretize_geometry(geom: Any, model: str, limit: int) -> PixelSet:

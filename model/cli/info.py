@@ -3,6 +3,17 @@
 Several inputs (files, directories, quoted globs; ``--jobs N`` workers) print one line per input as soon as
 it is done; ``--json`` then gives ``{"inputs": n, "files": [summary, …]}`` in input order.
 
+3D inputs: a voxel file (.npz holding a 3-D mask, a multi-page .tif/.tiff, .nii, .nii.gz; ``--threshold``
+for grey volumes) gives the keys of :func:`mrm.reps.summary.summarize_voxels` — ``voxels``, ``components``,
+``cavities``, ``tunnels``, ``euler``, ``surfels``, ``plane_segments`` (null until the digital plane segments
+arrive), and the ``faces`` and ``vertices`` of R(A); a mesh file (.obj .ply .off .stl) gives those of its
+voxelization D under the model, with the ``faces`` and ``vertices`` of the polyhedron itself.
+
+A label volume (an .npz holding ``labels``, or any voxel file with ``--labels``) gives ``model``,
+``labels`` (distinct non-zero labels), ``regions`` (6-connected components of one label), ``voxels``
+(non-zero), ``bbox``, ``two_cells``, ``one_cells``, ``zero_cells`` and ``adjacencies`` (pairs of 6-adjacent
+labels, background included) of :func:`mrm.reps.cells_3d.cells_3d_of`.
+
 For a project (.mrm) the summary is that of one object with ``--object NAME``; without it, that of the
 union of every object's pixels, with one summary per object under ``objects``. The model is ``--model``,
 else the project's, else 'standard'.
@@ -11,7 +22,12 @@ else the project's, else 'standard'.
 from __future__ import annotations
 
 import argparse
+import logging
+import sys
+from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from mrm.cli._common import (
     PROJECT_EXTENSION,
@@ -22,31 +38,58 @@ from mrm.cli._common import (
     discretize_geometry,
     expand_inputs,
     extension_of,
+    has_extension,
+    is_3d_input,
     load_object,
+    pixel_limit,
     project_objects,
+    read_voxel_input,
     refuse_failures,
     run_inputs,
+    voxel_limit,
 )
 from mrm.cli._project_input import add_object_argument
-from mrm.core.errors import ParameterError
+from mrm.core.errors import LimitError, ParameterError
 from mrm.core.grids import PixelSet
+from mrm.core.models import Model
+from mrm.geometry.discretize.voxels import voxelize
+from mrm.geometry.reconstruct import reconstruct_voxels
+from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine
-from mrm.reps.summary import summarize
+from mrm.io.voxel_files import VOXEL_EXTENSIONS, read_label_volume
+from mrm.reps.cells_3d import cells_3d_of
+from mrm.reps.summary import summarize, summarize_voxels
+
+log = logging.getLogger(__name__)
 
 NAME = "info"
-HELP = "summarise the four representations of a pixel, vector or project file"
+HELP = (
+    "summarise the four representations of a pixel, vector or project file, "
+    "or in 3D of a voxel file (.npz .tif .nii .nii.gz) or a mesh (.obj .ply .off .stl)"
+)
 
-INPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, PROJECT_EXTENSION)
+_2D = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, PROJECT_EXTENSION)
+INPUTS = tuple(dict.fromkeys((*_2D, *VOXEL_EXTENSIONS, *MESH_EXTENSIONS)))
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the inputs, ``--object``, ``--jobs``, ``--threshold``, ``--invert`` and ``--limit``."""
-    add_inputs_argument(parser, "pixel (.png .pbm .pgm .npz), vector or project files")
+    add_inputs_argument(
+        parser,
+        "pixel (.png .pbm .pgm .npz .tif), vector or project files; 3D: voxel files (.npz .tif .nii .nii.gz) "
+        "or meshes (.obj .ply .off .stl)",
+    )
     add_object_argument(parser)
     add_jobs_argument(parser)
     add_image_arguments(parser)
-    add_limit_argument(parser)
+    add_limit_argument(parser, voxels=True)
+    parser.add_argument(
+        "--labels",
+        action="store_true",
+        help="3D: read a voxel file as a label volume (0 = background; automatic for an .npz holding "
+        "'labels')",
+    )
 
 
 def info_file(
@@ -55,10 +98,22 @@ def info_file(
     model: str | None,
     threshold: float | None,
     invert: bool,
-    limit: int,
+    limit: int | None,
+    labels: bool = False,
 ) -> dict[str, Any]:
     """The summary of one input (a module-level function: batch workers call it)."""
     ext = extension_of(path, INPUTS, "supported input file")
+    if is_3d_input(path):
+        if object_name is not None:
+            raise ParameterError(f"{path}: --object applies to project (.mrm) files only")
+        if labels or _holds_labels(path):
+            if threshold is not None or invert:
+                raise ParameterError(f"{path}: --threshold and --invert do not apply to label volumes")
+            return {"input": str(path), **label_volume_info(path, model or "standard", limit)}
+        return {"input": str(path), **info_3d(path, model or "standard", threshold, invert, limit)}
+    if labels:
+        raise ParameterError(f"{path}: --labels applies to voxel files (.npz .tif .nii .nii.gz) only")
+    limit = pixel_limit(limit)
     if (threshold is not None or invert) and ext not in PIXEL_EXTENSIONS:
         raise ParameterError(f"{path}: --threshold and --invert apply to image inputs only")
     if ext == PROJECT_EXTENSION and object_name is None:
@@ -74,7 +129,69 @@ def info_file(
     return {"input": str(path), **summary}
 
 
+def info_3d(
+    path: str, model: str, threshold: float | None, invert: bool, limit: int | None
+) -> dict[str, Any]:
+    """The 3D summary of a voxel file (R(A) gives faces and vertices) or of a mesh (D under ``model``)."""
+    if invert:
+        raise ParameterError(f"{path}: --invert applies to 2D images only")
+    if Path(path).suffix.lower() in MESH_EXTENSIONS:
+        if threshold is not None:
+            raise ParameterError(f"{path}: --threshold applies to images and voxel files only")
+        poly = read_mesh(path)
+        vs = voxelize(poly, model, limit=voxel_limit(limit))
+        return summarize_voxels(vs, model, faces=poly.n_faces, vertices=poly.n_vertices)
+    vs = read_voxel_input(path, threshold, limit)
+    try:
+        poly = reconstruct_voxels(vs, model)
+    except LimitError as e:
+        # The discrete and region summaries stand without R: say why faces and vertices are missing.
+        log.info("no continuation for %s: %s", path, e)
+        print(f"mrm info: warning: {e}; faces and vertices not computed", file=sys.stderr, flush=True)
+        return summarize_voxels(vs, model, faces=None, vertices=None)
+    return summarize_voxels(vs, model, faces=poly.n_faces, vertices=poly.n_vertices)
+
+
+def _holds_labels(path: str) -> bool:
+    """True for an .npz voxel file holding ``labels`` (a label volume by its content, never a mask)."""
+    if not has_extension(path, (".npz",)):
+        return False
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(path) as zf:
+            return "labels.npy" in zf.namelist() and "mask.npy" not in zf.namelist()
+    except (OSError, zipfile.BadZipFile):
+        return False  # the voxel reader says what is wrong
+
+
+def label_volume_info(path: str, model: str, limit: int | None) -> dict[str, Any]:
+    """The summary of a label volume: its labels, regions, cells and adjacencies."""
+    Model.parse(model)
+    lv = read_label_volume(path, limit=limit)
+    cells = cells_3d_of(lv.labels, lv.origin, limit=voxel_limit(limit))
+    bbox = lv.bbox
+    return {
+        "model": model,
+        "labels": len(lv.label_values()),
+        "regions": len(cells.regions),
+        "voxels": int(np.count_nonzero(lv.labels)),
+        "bbox": None if bbox is None else list(bbox),
+        "two_cells": len(cells.two_cells),
+        "one_cells": len(cells.one_cells),
+        "zero_cells": len(cells.zero_cells),
+        "adjacencies": len(cells.adjacency),
+    }
+
+
 def _line(s: dict[str, Any]) -> str:
+    if "regions" in s:
+        return f"{s['input']}: {s['labels']} labels, {s['regions']} regions, {s['voxels']} voxels"
+    if "voxels" in s:
+        return (
+            f"{s['input']}: {s['voxels']} voxels, {s['components']} components, {s['cavities']} cavities, "
+            f"{s['tunnels']} tunnels, {s['faces']} faces"
+        )
     return (
         f"{s['input']}: {s['pixels']} pixels, {s['components']} components, {s['holes']} holes, "
         f"{s['vertices']} vertices"
@@ -84,7 +201,9 @@ def _line(s: dict[str, Any]) -> str:
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Read the inputs and return the summary (see :func:`mrm.reps.summary.summarize`)."""
     inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
-    jobs = [(i, args.object, args.model, args.threshold, args.invert, args.limit) for i in inputs]
+    jobs = [
+        (i, args.object, args.model, args.threshold, args.invert, args.limit, args.labels) for i in inputs
+    ]
 
     def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
         refuse_failures(errors, len(jobs))

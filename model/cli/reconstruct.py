@@ -11,7 +11,14 @@ as soon as it is done. ``-`` reads standard input and ``-o -`` writes on standar
 Inputs are pixel files (.png .pbm .pgm .npz: grey images are cut at Otsu's threshold unless
 ``--threshold`` is given; ``--invert`` takes the dark pixels) or projects (.mrm: the union of their
 objects' pixels under the model).
-``--json`` prints, for one input, the info keys of the result (``model``, ``pixels``, ``components``,
+3D: a voxel file (.npz holding a 3-D mask, a multi-page .tif/.tiff, .nii, .nii.gz; ``--threshold`` for grey
+volumes) gives R(A), a closed polyhedron with D(R(A)) = A in the chosen model, written as a triangle mesh
+(.obj, .ply, .off exactly; .stl rounds to float32 and warns on stderr). Each face is written as its
+triangles (one polygon per face is not written yet). Its ``--json`` summary holds the 3D keys of
+``mrm info`` (``voxels``, ``components``, ``cavities``, ``tunnels``, ``euler``, ``surfels``,
+``plane_segments``, ``faces``, ``vertices``) plus ``seconds``, ``input`` and ``output``.
+
+``--json`` prints, for one 2D input, the info keys of the result (``model``, ``pixels``, ``components``,
 ``holes``, ``euler``, ``boundary_chains``, ``segments``, ``vertices``) plus ``seconds`` (the time R took),
 ``input`` and ``output``; for several inputs, the same keys summed over the inputs plus ``files``, the list
 of the per-input summaries.
@@ -20,6 +27,7 @@ of the per-input summaries.
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 from typing import Any
@@ -31,15 +39,20 @@ from mrm.cli._common import (
     add_limit_argument,
     batch_total,
     discretize_geometry,
+    extension_of,
     inputs_and_outputs,
+    is_3d_input,
+    pixel_limit,
     read_input,
+    read_voxel_input,
     run_inputs,
 )
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
 from mrm.core.limits import check_reconstruct
-from mrm.geometry.reconstruct import reconstruct
+from mrm.geometry.reconstruct import reconstruct, reconstruct_voxels
 from mrm.io.georef import geojson_members, georef_summary, read_georef
+from mrm.io.mesh_files import MESH_EXTENSIONS, write_mesh
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import (
     MAX_VECTOR_FILE_BYTES,
@@ -48,22 +61,30 @@ from mrm.io.vector_files import (
     write_svg,
     write_wkt,
 )
-from mrm.reps.summary import count_vertices, summarize
+from mrm.io.voxel_files import VOXEL_EXTENSIONS
+from mrm.reps.summary import count_vertices, summarize, summarize_voxels
 
 NAME = "reconstruct"
-HELP = "reversible continuation of pixel files (.png .pbm .pgm .npz .mrm) into polygons (.geojson .wkt .svg)"
+HELP = (
+    "reversible continuation of pixel files (.png .pbm .pgm .npz .mrm) into polygons (.geojson .wkt .svg), "
+    "and in 3D of voxel files (.npz .tif .nii .nii.gz) into meshes (.obj .ply .off)"
+)
 
-INPUTS = (*PIXEL_EXTENSIONS, PROJECT_EXTENSION)
-OUTPUTS = (*VECTOR_EXTENSIONS, ".svg")
+INPUTS = tuple(dict.fromkeys((*PIXEL_EXTENSIONS, PROJECT_EXTENSION, *VOXEL_EXTENSIONS)))
+OUTPUTS = (*VECTOR_EXTENSIONS, ".svg", *MESH_EXTENSIONS)
 _SUM_KEYS = ("pixels", "components", "holes", "euler", "boundary_chains", "segments", "vertices", "seconds")
+_SUM_KEYS_3D = (
+    *("voxels", "components", "cavities", "tunnels", "euler", "surfels", "faces", "vertices", "seconds"),
+)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the inputs, ``-o OUT``, ``--jobs``, ``--threshold``, ``--invert`` and ``--limit``."""
     add_batch_arguments(
         parser,
-        "pixel files (.png .pbm .pgm .npz) or projects (.mrm)",
-        "the vector file (.geojson .json .wkt .svg)",
+        "pixel files (.png .pbm .pgm .npz) or projects (.mrm); 3D: voxel files (.npz .tif .nii .nii.gz)",
+        "the vector file (.geojson .json .wkt .svg); for a voxel input the mesh file (.obj .ply .off; .stl "
+        "rounds to float32)",
     )
     add_image_arguments(parser)
     parser.add_argument(
@@ -73,7 +94,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="GeoJSON: one Feature holding everything (default), or one Feature per 4-connected component "
         "(keeps large results within GDAL's object size limit)",
     )
-    add_limit_argument(parser)
+    add_limit_argument(parser, voxels=True)
 
 
 def _pixels_of(
@@ -123,17 +144,46 @@ def _write(geom: Any, path: str, model: str, source: str, georef: Any = None, fe
         write_geojson(geom, path, properties={"model": model, "source": Path(source).name}, members=members)
 
 
+def reconstruct_volume(
+    path: str, output: str, model: str | None, threshold: float | None, limit: int | None, bar: Any = None
+) -> dict[str, Any]:
+    """Read one voxel file, reconstruct it (R in 3D), write the mesh; return its summary."""
+    chosen = model or "standard"
+    extension_of(output, MESH_EXTENSIONS, "mesh output file for a voxel input")  # before any work
+    vs = read_voxel_input(path, threshold, limit)
+    check_reconstruct(vs, path)  # surfels bounded before any work (mrm.core.limits)
+    if bar is not None:
+        bar.update(None, f"{len(vs):_} voxels")
+    t0 = time.perf_counter()
+    poly = reconstruct_voxels(vs, chosen)
+    seconds = time.perf_counter() - t0
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    warning = write_mesh(poly, output)
+    if warning is not None:
+        print(f"mrm reconstruct: warning: {warning}", file=sys.stderr, flush=True)
+    summary: dict[str, Any] = {"input": str(path), "output": str(output)}
+    summary.update(summarize_voxels(vs, chosen, faces=poly.n_faces, vertices=poly.n_vertices))
+    summary["seconds"] = seconds
+    return summary
+
+
 def reconstruct_file(
     path: str,
     output: str,
     model: str | None,
     threshold: float | None,
-    limit: int,
+    limit: int | None,
     invert: bool = False,
     features: str = "one",
     bar: Any = None,
 ) -> dict[str, Any]:
-    """Read one pixel file, reconstruct it, write the result; return its summary (for the worker pool)."""
+    """Read one pixel or voxel file, reconstruct it, write the result; return its summary (for the pool)."""
+    if is_3d_input(path):
+        if invert:
+            raise ParameterError(f"{path}: --invert applies to 2D images only")
+        return reconstruct_volume(path, output, model, threshold, limit, bar)
+    extension_of(output, (*VECTOR_EXTENSIONS, ".svg"), "vector output file for a 2D input")
+    limit = pixel_limit(limit)
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
     check_reconstruct(ps, f"{path}")  # boundary length bounded before any work (mrm.core.limits)
     georef = None
@@ -156,7 +206,8 @@ def reconstruct_file(
 
 
 def _line(f: dict[str, Any]) -> str:
-    return f"{f['input']} -> {f['output']}: {f['vertices']} vertices, {f['seconds']:.3f} s"
+    faces = f" {f['faces']} faces," if "faces" in f else ""
+    return f"{f['input']} -> {f['output']}:{faces} {f['vertices']} vertices, {f['seconds']:.3f} s"
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
@@ -164,11 +215,15 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     pairs = inputs_and_outputs(
         args, INPUTS, "supported input file", OUTPUTS, ".geojson", "vector output file"
     )
+    if len(pairs) > 1 and "{stem}" not in str(args.output):
+        # A directory of outputs: a voxel input's default output is a mesh, not a GeoJSON file.
+        pairs = [(i, o[: -len(".geojson")] + ".obj" if is_3d_input(i) else o) for i, o in pairs]
     jobs = [(i, o, args.model, args.threshold, args.limit, args.invert, args.features) for i, o in pairs]
 
     def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
         head = {"model": args.model or (files[0]["model"] if files else "standard")}
-        return batch_total(args, head, len(jobs), files, errors, _SUM_KEYS)
+        three_d = bool(files) and all("voxels" in f for f in files)
+        return batch_total(args, head, len(jobs), files, errors, _SUM_KEYS_3D if three_d else _SUM_KEYS)
 
     first = f"reconstruct {Path(pairs[0][0]).name}"
     return run_inputs(args, reconstruct_file, jobs, _line, total, first=first, bar=True)
