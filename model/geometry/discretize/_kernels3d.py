@@ -35,13 +35,11 @@ import numpy.typing as npt
 
 from mrm.geometry._jit import njit
 from mrm.geometry.discretize._kernels import (
-    UNDECIDED,
-    _det_filter,
-    _det_sign_exact,
     _grow,
     _two_diff,
     _two_prod,
     cell,
+    det_sign,
 )
 
 BoolMask = npt.NDArray[np.bool_]
@@ -174,26 +172,6 @@ def det3_sign(
 
 
 @njit(cache=True)
-def _det2(
-    p1: float,
-    p2: float,
-    q1: float,
-    q2: float,
-    r1: float,
-    r2: float,
-    s1: float,
-    s2: float,
-    exact: bool,
-    e: Floats,
-) -> int:
-    """Exact sign of (p1 − p2)(q1 − q2) − (r1 − r2)(s1 − s2) (the 2D kernels' filter and expansion)."""
-    s = _det_filter(p1, p2, q1, q2, r1, r2, s1, s2, exact)
-    if s == UNDECIDED:
-        s = _det_sign_exact(p1, p2, q1, q2, r1, r2, s1, s2, e)
-    return s
-
-
-@njit(cache=True)
 def _sgn(u: float) -> int:
     return 1 if u > 0.0 else (-1 if u < 0.0 else 0)
 
@@ -205,7 +183,7 @@ def _edge_side(ay: float, az: float, by: float, bz: float, j: float, k: float, e
 
     orient = f0 + (a_z − b_z)·ε² + (b_y − a_y)·ε³ with f0 = (b_y − a_y)(k − a_z) − (b_z − a_z)(j − a_y).
     """
-    s = _det2(by, ay, k, az, bz, az, j, ay, exact, e)
+    s = det_sign(by, ay, k, az, bz, az, j, ay, exact, e)
     if s != 0:
         return s
     if az != bz:
@@ -302,7 +280,7 @@ def fill_parity(
         ax, ay, az = vx[a], vy[a], vz[a]
         bx, by, bz = vx[b], vy[b], vz[b]
         cx, cy, cz = vx[c], vy[c], vz[c]
-        s = _det2(by, ay, cz, az, bz, az, cy, ay, exact, scratch)
+        s = det_sign(by, ay, cz, az, bz, az, cy, ay, exact, scratch)
         if s == 0:
             continue  # seen edge-on along x: never crossed
         jlo = math.ceil(min(ay, by, cy))
@@ -406,16 +384,16 @@ def _cross_axis_separates(
     ms = cs - 0.5 if a_s > 0 else cs + 0.5
     mt = ct - 0.5 if a_t > 0 else ct + 0.5
     # a·(x − m) = e_t (x_s − m_s) − e_s (x_t − m_t)
-    d1 = _det2(wt, vt, vs, ms, ws, vs, vt, mt, exact, e)
+    d1 = det_sign(wt, vt, vs, ms, ws, vs, vt, mt, exact, e)
     if d1 < 0 or (d1 == 0 and not supercover and lex > 0):
-        d2 = _det2(wt, vt, os_, ms, ws, vs, ot, mt, exact, e)
+        d2 = det_sign(wt, vt, os_, ms, ws, vs, ot, mt, exact, e)
         if d2 < 0 or (d2 == 0 and not supercover and lex > 0):
             return True
     xs = 2.0 * cs - ms
     xt = 2.0 * ct - mt
-    d1 = _det2(wt, vt, vs, xs, ws, vs, vt, xt, exact, e)
+    d1 = det_sign(wt, vt, vs, xs, ws, vs, vt, xt, exact, e)
     if d1 > 0 or (d1 == 0 and not supercover and lex < 0):
-        d2 = _det2(wt, vt, os_, xs, ws, vs, ot, xt, exact, e)
+        d2 = det_sign(wt, vt, os_, xs, ws, vs, ot, xt, exact, e)
         if d2 > 0 or (d2 == 0 and not supercover and lex < 0):
             return True
     return False
@@ -552,9 +530,9 @@ def mark_triangles(
         ax, ay, az = vx[a], vy[a], vz[a]
         bx, by, bz = vx[b], vy[b], vz[b]
         cx, cy, cz = vx[c], vy[c], vz[c]
-        snx = _det2(by, ay, cz, az, bz, az, cy, ay, exact, scratch)
-        sny = _det2(bz, az, cx, ax, bx, ax, cz, az, exact, scratch)
-        snz = _det2(bx, ax, cy, ay, by, ay, cx, ax, exact, scratch)
+        snx = det_sign(by, ay, cz, az, bz, az, cy, ay, exact, scratch)
+        sny = det_sign(bz, az, cx, ax, bx, ax, cz, az, exact, scratch)
+        snz = det_sign(bx, ax, cy, ay, by, ay, cx, ax, exact, scratch)
         lexn = snx if snx != 0 else (sny if sny != 0 else snz)
         lo[0], hi[0] = _range(min(ax, bx, cx), max(ax, bx, cx), supercover)
         lo[1], hi[1] = _range(min(ay, by, cy), max(ay, by, cy), supercover)
