@@ -100,14 +100,21 @@ def parse_origin(text: str, name: str) -> tuple[int, int]:
     return x0, y0
 
 
-def _check_extent(origin: tuple[int, int], shape: tuple[int, ...], name: str) -> None:
-    """Refuse an image whose pixels would lie beyond the document's pixel coordinates (mrm.core.limits)."""
-    x0, y0 = origin
-    h, w = shape[0], shape[1]
+def check_file_extent(origin: tuple[int, ...], shape: tuple[int, ...], name: str) -> None:
+    """Refuse a file's grid whose points would lie beyond the document's coordinates (mrm.core.limits).
+
+    ``origin`` in coordinate order, ``shape`` in array order; two coordinates are pixels, three voxels (the
+    voxel files use it too).
+    """
+    n = len(origin)
     lim = limits.PIXEL_COORDINATE_LIMIT
-    if h and w and (min(x0, y0) < -lim or max(x0 + w - 1, y0 + h - 1) > lim):
+    if all(shape[:n]) and (
+        min(origin) < -lim or max(int(origin[d]) + int(shape[n - 1 - d]) - 1 for d in range(n)) > lim
+    ):
+        unit = "pixels" if n == 2 else "voxels"
+        shown = ", ".join(str(v) for v in origin)
         raise FileFormatError(
-            f"{name}: origin ({x0}, {y0}) puts pixels beyond ±2^31, the coordinates a document can hold"
+            f"{name}: origin ({shown}) puts {unit} beyond ±2^31, the coordinates a document can hold"
         )
 
 
@@ -121,7 +128,7 @@ def _check_size(width: int, height: int, limit: int, name: str) -> None:
 
 def _rows_to_pixels(rows: npt.NDArray[Any], origin: tuple[int, int], name: str) -> PixelSet:
     """Image rows (top first) → pixel set; image row r is y = y0 + H − 1 − r."""
-    _check_extent(origin, rows.shape, name)
+    check_file_extent(origin, rows.shape, name)
     return PixelSet(rows[::-1], origin)
 
 
@@ -223,7 +230,7 @@ def _read_png_pixels(fh: BinaryIO, name: str, limit: int, threshold: float | Non
     fh.seek(8)
     mask, text = read_png_mask(fh, name, threshold, _check_threshold)
     origin = parse_origin(text[ORIGIN_KEY], name) if ORIGIN_KEY in text else (0, 0)
-    _check_extent(origin, mask.shape, name)
+    check_file_extent(origin, mask.shape, name)
     return _owned_pixel_set(mask, origin)
 
 
@@ -301,7 +308,7 @@ def read_pixels(
         )
     x0, y0 = npz_origin(origin_arr, name, 2)
     origin = (x0, y0)
-    _check_extent(origin, mask.shape, name)
+    check_file_extent(origin, mask.shape, name)
     return PixelSet(mask, origin)
 
 
@@ -388,7 +395,7 @@ def read_label_map(path: PathLike, *, limit: int = limits.MAX_LABEL_PIXELS) -> L
                 )
             x0, y0 = npz_origin(arrays["origin"], name, 2) if "origin" in arrays else (0, 0)
             origin = (x0, y0)
-    _check_extent(origin, labels.shape, name)
+    check_file_extent(origin, labels.shape, name)
     try:
         return LabelMap(labels, origin)
     except ValueError as e:

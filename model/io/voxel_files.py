@@ -42,6 +42,7 @@ from mrm.core.grids import LabelVolume, VoxelSet
 from mrm.core.threshold import _check_threshold
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.npz_arrays import npz_bytes, npz_origin, read_npz_arrays
+from mrm.io.pixel_files import check_file_extent
 from mrm.io.reading import describe_content, open_regular
 
 log = logging.getLogger(__name__)
@@ -102,16 +103,6 @@ def _check_count(shape: tuple[int, ...], itemsize: int, limit: int, name: str) -
         )
     if count * itemsize > 8 * limits.DEFAULT_VOXEL_LIMIT:
         raise FileFormatError(f"{name}: the volume would take {count * itemsize:,} bytes in memory")
-
-
-def _check_extent(origin: tuple[int, ...], shape: tuple[int, ...], name: str) -> None:
-    lim = limits.PIXEL_COORDINATE_LIMIT
-    if all(shape) and (
-        min(origin) < -lim or max(o + s - 1 for o, s in zip(origin, shape[::-1], strict=True)) > lim
-    ):
-        raise FileFormatError(
-            f"{name}: origin {origin} puts voxels beyond ±2^31, the coordinates a document can hold"
-        )
 
 
 def _as_mask(data: npt.NDArray[Any], threshold: float | None, name: str) -> npt.NDArray[np.bool_]:
@@ -317,7 +308,7 @@ def _read_array(
     else:
         data, file_affine = _read_nifti(path, name, ext, limit)
         origin, affine = _split_affine(file_affine)
-    _check_extent(origin, data.shape, name)
+    check_file_extent(origin, data.shape, name)
     return data, origin, affine
 
 

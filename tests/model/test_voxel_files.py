@@ -160,3 +160,13 @@ def test_a_write_that_fails_leaves_the_old_file(tmp_path):
     with pytest.raises(FileFormatError):
         write_voxels(VoxelSet.from_points([(1, 1, 1)]), tmp_path / "keep.obj")
     assert path.read_bytes() == before
+
+
+def test_a_volume_placed_beyond_the_documents_coordinates_is_refused(tmp_path):
+    np.savez(
+        tmp_path / "far.npz",
+        mask=np.ones((1, 1, 2), dtype=bool),
+        origin=np.array([2**31, 0, 0], dtype=np.int64),  # its second voxel is at x = 2^31 + 1
+    )
+    with pytest.raises(FileFormatError, match=r"origin \(2147483648, 0, 0\) puts voxels beyond"):
+        read_voxels(tmp_path / "far.npz")
