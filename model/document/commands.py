@@ -28,8 +28,16 @@ from mrm.core.limits import check_name, check_pixel_extent
 from mrm.core.models import Model
 from mrm.document.document import Document
 from mrm.document.history import COMMAND_OVERHEAD, Command
-from mrm.document.objects import PALETTE, DocObject, Geometry, Settings, Source, Style, validate_geometry
-from mrm.geometry.polyhedra import Polyhedron
+from mrm.document.objects import (
+    PALETTE,
+    DocObject,
+    Geometry,
+    Settings,
+    Source,
+    Style,
+    is_polyhedron,
+    validate_geometry,
+)
 from mrm.ops.georef import common_grid
 from mrm.ops.provenance import Provenance
 
@@ -40,7 +48,7 @@ def source_nbytes(source: Source) -> int:
         return int(source.mask.nbytes) + 64
     if isinstance(source, LabelGrid):
         return int(source.labels.nbytes) + 64
-    if isinstance(source, Polyhedron):
+    if is_polyhedron(source):
         return int(source.vertices.nbytes + source.triangles.nbytes) + 64
     import shapely
 
@@ -51,7 +59,7 @@ def same_source(a: Source, b: Source) -> bool:
     """True when two sources are identical bit for bit (unlike ``==``, this tells 0.0 from -0.0)."""
     if a is b:
         return True
-    if isinstance(a, GridSet | LabelGrid | Polyhedron) or isinstance(b, GridSet | LabelGrid | Polyhedron):
+    if isinstance(a, GridSet | LabelGrid) or isinstance(b, GridSet | LabelGrid) or is_polyhedron(a):
         return type(a) is type(b) and a == b
     import shapely
 

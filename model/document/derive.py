@@ -18,14 +18,11 @@ from mrm.core.grids import GridSet, LabelGrid, PixelSet
 from mrm.core.models import Model
 from mrm.document.objects import source_dimension, source_kind
 from mrm.geometry.discretize import discretize
-from mrm.geometry.discretize.voxels import voxelize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.geometry.reconstruct.subdivision import subdivide
 from mrm.reps.analytical import analytical_of
 from mrm.reps.cells import cells_of
-from mrm.reps.cells_3d import cells_3d_of
 from mrm.reps.region import region_of
-from mrm.reps.region_3d import region_3d_of
 
 Rep = Literal["discrete", "euclidean", "region", "analytical"]
 #: The four representations, in the order they are usually derived.
@@ -149,6 +146,11 @@ class Derived:
         volume's region representation is its cells. The analytical one (digital plane segments) and a
         label volume's meshes come with the compact 3D continuation.
         """
+        # Imported here: a document of plane objects (the desktop's first paint) never loads the 3D kernels.
+        from mrm.geometry.discretize.voxels import voxelize
+        from mrm.reps.cells_3d import cells_3d_of
+        from mrm.reps.region_3d import region_3d_of
+
         if what == "analytical":
             raise NotApplicableError(NO_PLANE_SEGMENTS)
         if self.kind == "labels":

@@ -9,10 +9,11 @@ Every check of a source against the limits of :mod:`mrm.core.limits` happens whe
 from __future__ import annotations
 
 import re
+import sys
 import threading
 import weakref
 from dataclasses import dataclass, field, replace
-from typing import Any, Literal, TypeAlias
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, TypeGuard
 
 import numpy as np
 import shapely
@@ -24,15 +25,28 @@ from mrm.core.georef import GeoRef
 from mrm.core.grids import GridSet, LabelGrid, LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import COORDINATE_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
-from mrm.geometry.polyhedra import Polyhedron
 from mrm.ops.provenance import Provenance
+
+if TYPE_CHECKING:
+    from mrm.geometry.polyhedra import Polyhedron
 
 #: A Euclidean source: a valid shapely Polygon or MultiPolygon (possibly empty).
 Geometry: TypeAlias = Polygon | MultiPolygon
 #: What an object's source can be: pixels, polygons, or a label map (ADR 0033); voxels or a label volume in 3D
 #: (docs/design.md §11).
-Source: TypeAlias = PixelSet | Polygon | MultiPolygon | LabelMap | VoxelSet | LabelVolume | Polyhedron
+Source: TypeAlias = "PixelSet | Polygon | MultiPolygon | LabelMap | VoxelSet | LabelVolume | Polyhedron"
 SourceKind = Literal["euclidean", "discrete", "labels"]
+
+
+def is_polyhedron(value: object) -> TypeGuard[Polyhedron]:
+    """True for a :class:`~mrm.geometry.polyhedra.Polyhedron`, without importing its module.
+
+    The polyhedra's module loads a dozen compiled kernels; a document of plane objects (the desktop's first
+    paint) must not pay for them. No value can be a polyhedron before that module is loaded.
+    """
+    module = sys.modules.get("mrm.geometry.polyhedra.polyhedron")
+    return module is not None and isinstance(value, module.Polyhedron)
+
 
 _COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?$")
 
@@ -90,7 +104,7 @@ def _source_cost(source: Source) -> tuple[int, int]:
         limits.check_pixel_extent(source.origin, source.shape, f"the {source.what}", limit=label_limit)
         n = int(source.labels.size)
         return n, limits.source_file_bytes("labels", pixels=n)
-    if isinstance(source, Polyhedron):
+    if is_polyhedron(source):
         # validated, and its triangles bounded, when it was made; here its share of a file: 3 floats a
         # vertex, 3 integers a triangle
         n = source.n_vertices
@@ -116,12 +130,12 @@ def source_dimension(source: Source) -> int:
         return source.ndim
     if isinstance(source, LabelGrid):
         return source.set_type.ndim
-    return 3 if isinstance(source, Polyhedron) else 2
+    return 3 if is_polyhedron(source) else 2
 
 
 def validate_source(source: object) -> Source:
     """Return ``source`` checked: a pixel set, a label map, or a geometry :func:`validate_geometry` takes."""
-    if isinstance(source, PixelSet | LabelMap | VoxelSet | LabelVolume | Polyhedron):
+    if isinstance(source, PixelSet | LabelMap | VoxelSet | LabelVolume) or is_polyhedron(source):
         return source
     return validate_geometry(source)
 

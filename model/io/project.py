@@ -80,7 +80,7 @@ from mrm.core.errors import FileFormatError as FileFormatError
 from mrm.core.grids import GridSet, LabelGrid
 from mrm.core.models import Model
 from mrm.document import DocObject, Document, Geometry, Settings, Source, Style
-from mrm.geometry.polyhedra import Polyhedron
+from mrm.document.objects import is_polyhedron
 from mrm.io.atomic import atomic_write_bytes
 from mrm.io.project_decode import Checker, decode_object, decode_source
 from mrm.io.reading import open_regular
@@ -209,7 +209,7 @@ def _encode_source(source: Source) -> dict[str, Any]:
         return _encode_pixels(source)
     if isinstance(source, LabelGrid):
         return _encode_labels(source)
-    if isinstance(source, Polyhedron):
+    if is_polyhedron(source):
         # Python floats: json writes their repr, so every float64 comes back bit for bit
         return {
             "kind": "polyhedron",

@@ -15,7 +15,7 @@ import json
 import math
 import zlib
 from collections.abc import Sequence
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
@@ -27,8 +27,10 @@ from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import COORDINATE_LIMIT, PARAMS_MAX_DEPTH
 from mrm.document import DocObject, Geometry, Source, Style, validate_geometry
-from mrm.geometry.polyhedra import Polyhedron
 from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance
+
+if TYPE_CHECKING:
+    from mrm.geometry.polyhedra import Polyhedron
 
 #: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
 MAX_CRS_CHARS = 100_000
@@ -282,6 +284,8 @@ def _decode_geometry(c: Checker, g: Any, path: str) -> Geometry:
 
 
 def _decode_polyhedron(c: Checker, src: dict[str, Any], path: str) -> Polyhedron:
+    from mrm.geometry.polyhedra import Polyhedron  # only for a file that holds one (its kernels are many)
+
     c.obj(src, path, ("kind", "vertices", "triangles"))
     verts = c.list_(src["vertices"], f"{path}.vertices")
     tris = c.list_(src["triangles"], f"{path}.triangles")

@@ -61,3 +61,18 @@ def test_a_label_volume_has_its_cells_and_says_why_it_has_no_meshes_yet(doc):
 def test_plane_objects_leave_the_3d_ones_out(doc):
     assert [o.name for o in doc.plane_objects] == ["square"]
     assert isinstance(doc.find("octahedron")[0].source, VoxelSet)
+
+
+def test_plane_work_never_loads_the_3d_kernels():
+    # The desktop's first paint imports the document, the project codec and R: the dozen compiled 3D kernel
+    # modules (polyhedra, voxelizer, 3D regions) must wait until a 3D object is met (0.3–0.5 s of start-up).
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, mrm.document, mrm.document.derive, mrm.io.project, mrm.geometry.reconstruct; "
+        "print(sorted(m for m in sys.modules "
+        "if 'polyhedra' in m or m.endswith(('_3d', '_kernels3d', 'voxels'))))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"

@@ -41,7 +41,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 from itertools import pairwise
-from typing import Any, overload
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -52,13 +52,14 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import check_reconstruct
 from mrm.core.models import Model
-from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import _dual as _dk
 from mrm.geometry.reconstruct import _kernels as _k
 from mrm.geometry.reconstruct import _twins as _tw
-from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
 from mrm.geometry.topology.cracks import trace_mask
 from mrm.reps.region import CrackChain
+
+if TYPE_CHECKING:
+    from mrm.geometry.polyhedra import Polyhedron
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -399,6 +400,10 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     ParameterError
         For an unknown model.
     """
+    # Imported here: 2D work (and the desktop's first paint) never loads the 3D kernels.
+    from mrm.geometry.polyhedra import Polyhedron
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+
     Model.parse(model)  # the same R in every model, but an unknown one is still refused
     if vs.is_empty():
         return Polyhedron.empty()
