@@ -19,6 +19,7 @@ import numpy as np
 
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
+from mrm.core.limits import check_crs_text, check_transform
 
 __all__ = ["GeoRef", "Transform", "grid_origin", "unit_grid"]
 
@@ -59,6 +60,8 @@ class GeoRef:
         a, b, _c, d, e, _f = self.transform
         if not all(math.isfinite(v) for v in self.transform) or a * e - b * d == 0:
             raise FileFormatError(f"the raster's transform {self.transform} is not invertible")
+        # One set of limits for import, operations and the project loader (ADR 0047): what imports reopens.
+        check_transform(self.transform)
         for v in (self.width, self.height, *self.origin):
             if isinstance(v, bool) or not isinstance(v, int | np.integer):
                 raise FileFormatError(f"a raster's size and origin are integers, got {v!r}")
@@ -69,6 +72,8 @@ class GeoRef:
         object.__setattr__(self, "origin", (int(self.origin[0]), int(self.origin[1])))
         if self.crs is not None and not isinstance(self.crs, str):
             raise FileFormatError(f"a CRS is given as text (EPSG:n or WKT), got {type(self.crs).__name__}")
+        if self.crs is not None:
+            check_crs_text(self.crs)
 
     # ------------------------------------------------------------------ maps
     def grid_to_world(self) -> list[float]:

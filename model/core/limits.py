@@ -44,8 +44,13 @@ PIXEL_COORDINATE_LIMIT = 2**31
 #: Pixels in the bounding box of one discrete source.
 MAX_OBJECT_PIXELS = DEFAULT_PIXEL_LIMIT
 #: Pixels and voxels in the bounding boxes of all the grid sources (pixel and voxel sets, label maps and
-#: volumes) of one document (one file) together: about 1 GB of masks at most, whatever a file claims.
+#: volumes) of one document (one file) together: about 1 GB of masks at most, whatever a file claims. A
+#: label counts :data:`LABEL_WEIGHT` times: the budget is of memory, and compressed labels cost a file
+#: next to nothing (20 label maps in 5 MB took 4.4 GB to load, issue 32).
 MAX_FILE_PIXELS = 1_000_000_000
+#: Bytes a label takes in memory (int32) against the one byte of a mask's pixel: a label map's or volume's
+#: points count this many times toward :data:`MAX_FILE_PIXELS`.
+LABEL_WEIGHT = 4
 #: Vertices (coordinates, closing points included) of one Euclidean source.
 MAX_OBJECT_VERTICES = 5_000_000
 #: Longest object name, in characters.
@@ -71,6 +76,22 @@ MAX_OUTPUT_BYTES = 256 << 20
 MAX_LABEL_PIXELS = 50_000_000
 #: Nesting depth of geometries in WKT and GeoJSON files (a MultiPolygon in a GeometryCollection is 4).
 MAX_GEOMETRY_NESTING = 32
+#: Largest magnitude of a world coordinate of a georeferenced grid (a GeoTIFF's transform, a world file,
+#: a project's ``georef``): the world point of every pixel a document can hold (grid coordinates within
+#: ±:data:`PIXEL_COORDINATE_LIMIT`, whatever the origin) stays within it. Far beyond any coordinate system
+#: (the Earth's circumference in nanometres is 4·10¹⁶), and far enough inside float64 (±1.8·10³⁰⁸) that
+#: squares and products of two coordinates (areas, GEOS's orientation tests) stay finite: a world file of
+#: 1e308 made infinite coordinates and a GEOS exception at export (issue 32).
+MAX_WORLD_COORDINATE = 1e100
+#: Longest CRS text (WKT) of a georeference, in characters: a WKT2 definition is a few thousand.
+MAX_CRS_CHARS = 100_000
+#: Largest world file read: six numbers, a few hundred bytes at most (a 144 MB one took 3.9 GB to refuse).
+MAX_WORLD_FILE_BYTES = 4096
+#: Bytes of decoded samples a raster reader holds at once: one window of a GeoTIFF with its working copies,
+#: and at most one of its blocks (strip or tile), which GDAL decodes whole. Beside the one-byte-per-pixel
+#: mask (at most :data:`MAX_OBJECT_PIXELS`), a read then stays far under 1 GB whatever the sample type (a
+#: 14 KB complex128 GeoTIFF decoded whole took 3.7 GB, issue 32).
+MAX_DECODED_BYTES = 64 << 20
 #: Steps of an error-bound chain (``mrm bounds``): its exact rationals grow with every step (500 steps of
 #: arbitrary fractions take 2.3 s, 256 under 1 s), and real chains have a handful.
 MAX_CHAIN_STEPS = 256
@@ -265,6 +286,45 @@ def check_pixels(estimated: int, limit: int | None, what: str, *, unit: str = "p
         raise SizeLimitError(int(estimated), int(limit), what, unit)
 
 
+# ---------------------------------------------------------------------------------------------- georeference
+def check_transform(transform: tuple[float, ...], what: str = "the raster's transform") -> None:
+    """Refuse a GDAL affine transform (a, b, c, d, e, f) beyond :data:`MAX_WORLD_COORDINATE`.
+
+    Every pixel corner a document can hold has |col|, |row| ≤ 2·:data:`PIXEL_COORDINATE_LIMIT` + 1 in the
+    raster's (col, row), so its world point is within ``|c| + reach·(|a| + |b|)`` (and likewise for Y); the
+    inverse map (world to grid) must be finite too. Import, operations and the project loader all build
+    georeferences through :class:`mrm.core.georef.GeoRef`, which calls this: what imports, saves and reopens.
+
+    Raises
+    ------
+    LimitError
+        When a world coordinate could exceed the limit, or the pixels are too small to invert the map.
+    """
+    a, b, c, d, e, f = (float(v) for v in transform)
+    reach = float(2 * PIXEL_COORDINATE_LIMIT + 1)
+    worst = max(abs(c) + reach * (abs(a) + abs(b)), abs(f) + reach * (abs(d) + abs(e)))
+    shown = ", ".join(f"{v:.6g}" for v in (a, b, c, d, e, f))
+    if not worst <= MAX_WORLD_COORDINATE:  # NaN fails too
+        raise LimitError(
+            f"{what} ({shown}) would put pixels at world coordinates beyond ±{MAX_WORLD_COORDINATE:.0e}, "
+            "the limit of a georeference"
+        )
+    det = a * e - b * d
+    with np.errstate(all="ignore"):
+        inverse = np.array([e, b, d, a]) / det if det else np.array([np.inf])
+    if not np.isfinite(inverse).all():
+        raise LimitError(f"{what} ({shown}) has pixels too small (area {det:.3g}) to map back to the grid")
+
+
+def check_crs_text(crs: str, what: str = "the CRS") -> str:
+    """Refuse a CRS text longer than :data:`MAX_CRS_CHARS` characters (or one that cannot be saved)."""
+    if len(crs) > MAX_CRS_CHARS:
+        raise LimitError(
+            f"{what} is a text of {len(crs):,} characters, longer than the limit of {MAX_CRS_CHARS:,}"
+        )
+    return check_text(crs, what)
+
+
 # ---------------------------------------------------------------------------------------------- output
 def check_output_bytes(estimate: int, what: str) -> None:
     """Refuse a file whose estimated size exceeds :data:`MAX_OUTPUT_BYTES`, before it is built."""
@@ -324,7 +384,9 @@ def object_file_bytes(name_bytes: int, provenance_bytes: int, source_bytes: int)
 
 def check_document_totals(pixels: int, nbytes: int) -> None:
     """Refuse a document whose discrete sources or file size would exceed the per-file limits."""
-    check_pixels(pixels, MAX_FILE_PIXELS, "the pixel objects of the document together")
+    check_pixels(
+        pixels, MAX_FILE_PIXELS, "the pixel objects of the document together (a label counts as four pixels)"
+    )
     if nbytes > MAX_FILE_BYTES - FILE_BYTES_MARGIN:
         raise LimitError(
             f"the document would need a project file of about {nbytes / 2**20:,.0f} MB, more than the limit "
@@ -334,6 +396,7 @@ def check_document_totals(pixels: int, nbytes: int) -> None:
 
 __all__ = [name for name in dir() if name.isupper() and not name.startswith("_")] + [
     "check_chain_steps",
+    "check_crs_text",
     "check_pixels",
     "check_document_totals",
     "check_name",
@@ -342,6 +405,7 @@ __all__ = [name for name in dir() if name.isupper() and not name.startswith("_")
     "check_pixel_extent",
     "check_reconstruct",
     "check_text",
+    "check_transform",
     "check_vertices",
     "clean_json",
     "clean_name",

@@ -103,7 +103,7 @@ def _source_cost(source: Source) -> tuple[int, int]:
         label_limit = limits.MAX_LABEL_PIXELS if flat else limits.MAX_LABEL_VOXELS
         limits.check_pixel_extent(source.origin, source.shape, f"the {source.what}", limit=label_limit)
         n = int(source.labels.size)
-        return n, limits.source_file_bytes("labels", pixels=n)
+        return limits.LABEL_WEIGHT * n, limits.source_file_bytes("labels", pixels=n)
     if is_polyhedron(source):
         # validated, and its triangles bounded, when it was made; here its share of a file: 3 floats a
         # vertex, 3 integers a triangle
@@ -248,7 +248,10 @@ class DocObject:
 
     @property
     def mask_pixels(self) -> int:
-        """Pixels of the bounding box of a discrete source (0 for a Euclidean one), as files count them."""
+        """Pixels of the bounding box of a grid source (0 for a Euclidean one), as files count them.
+
+        A label map's or volume's points count :data:`~mrm.core.limits.LABEL_WEIGHT` times each (int32).
+        """
         return int(self.__dict__["_mask_pixels"])
 
     @property

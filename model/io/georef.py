@@ -26,23 +26,28 @@ Formats:
 
 from __future__ import annotations
 
+import contextlib
 import json
 import logging
 import math
 import os
 import re
+import warnings
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from mrm.core.errors import FileFormatError, ParameterError
+from mrm.core import limits
+from mrm.core.errors import FileFormatError, MRMError, ParameterError
 from mrm.core.georef import GeoRef, Transform, grid_origin, unit_grid
 from mrm.core.grids import PixelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixel_extent, check_pixels
-from mrm.core.threshold import binarize
+from mrm.core.threshold import _check_threshold, binarize
 from mrm.io.atomic import atomic_open, atomic_write_bytes, atomic_write_text
 from mrm.io.pixel_files import ORIGIN_KEY, parse_origin, read_pixels
+from mrm.io.reading import describe_content, open_regular, read_regular
 
 log = logging.getLogger(__name__)
 
@@ -72,6 +77,70 @@ def _rasterio() -> Any:
     return rasterio
 
 
+# ---------------------------------------------------------------------------------------------- opening
+#: The first four bytes of a TIFF (little- and big-endian) and of a BigTIFF: nothing else reaches GDAL.
+TIFF_MAGIC = (b"II*\x00", b"MM\x00*", b"II+\x00", b"MM\x00+")
+#: GDAL's configuration while a GeoTIFF is read (ADR 0047): the file given and nothing else. No folder
+#: listing, so no sidecar (.ovr, .msk, .aux.xml, .tfw, .tab, .imd …) is looked for; no PAM (.aux.xml read
+#: or written); the georeference from the TIFF's own tags (a world file beside it is read by
+#: :func:`read_georef`, bounded); no /vsicurl/ file; a block cache of the decoding budget, so that decoded
+#: blocks do not pile up.
+GDAL_READ_OPTIONS: dict[str, Any] = {
+    "GDAL_DISABLE_READDIR_ON_OPEN": "EMPTY_DIR",
+    "GDAL_PAM_ENABLED": "NO",
+    "GDAL_GEOREF_SOURCES": "INTERNAL",
+    "CPL_VSIL_CURL_ALLOWED_EXTENSIONS": ".mrm-none",
+    "GDAL_CACHEMAX": limits.MAX_DECODED_BYTES,
+}
+
+
+def _fd_path(fd: int, path: PathLike) -> str:
+    """A name GDAL opens that is the open file ``fd`` itself (Linux, macOS), else ``path``.
+
+    Opening ``/proc/self/fd/N`` reopens the very file that was checked, so no rename or symlink swap between
+    the check and GDAL's open can give GDAL another file; and no sidecar of the real name is ever found.
+    """
+    for folder in ("/proc/self/fd", "/dev/fd"):
+        candidate = f"{folder}/{fd}"
+        if os.path.exists(candidate):
+            return candidate
+    return os.fspath(path)  # pragma: no cover - Windows: the magic check still guards GDAL
+
+
+@contextlib.contextmanager
+def open_geotiff(path: PathLike, name: str | None = None) -> Iterator[Any]:
+    """Open a GeoTIFF with rasterio, GDAL restricted to that one real TIFF file (ADR 0047).
+
+    The file is opened first (:func:`mrm.io.reading.open_regular`: a FIFO or device is refused without
+    blocking) and its first bytes must be a TIFF's or BigTIFF's: a GDAL VRT (XML) or any other format named
+    ``.tif`` never reaches GDAL, whatever it points at (a local file, ``/dev/urandom``, a named pipe, a URL).
+    GDAL then opens that descriptor with the GTiff driver alone and the options of
+    :data:`GDAL_READ_OPTIONS`.
+
+    Raises
+    ------
+    FileFormatError
+        Not a TIFF, or a TIFF GDAL cannot read.
+    """
+    shown = os.fspath(path) if name is None else name
+    rasterio = _rasterio()
+    # A TIFF without georeference tags is an ordinary input here (a plain mask), not worth a warning line.
+    warnings.filterwarnings("ignore", category=rasterio.errors.NotGeoreferencedWarning)
+    with open_regular(path, shown) as fh:
+        head = fh.read(16)
+        if head[:4] not in TIFF_MAGIC:
+            raise FileFormatError(
+                f"{shown}: not a GeoTIFF ({describe_content(head)}); only TIFF files are read"
+            )
+        with rasterio.Env(**GDAL_READ_OPTIONS):
+            try:
+                ds = rasterio.open(_fd_path(fh.fileno(), path), driver="GTiff", sharing=False)
+            except rasterio.errors.RasterioIOError as e:
+                raise FileFormatError(f"{shown}: not a readable GeoTIFF ({e})") from None
+            with ds:
+                yield ds
+
+
 # ---------------------------------------------------------------------------------------------- CRS
 def _crs_text(crs: Any) -> str | None:
     """``EPSG:n`` when the CRS has a code, else its WKT (None for no CRS)."""
@@ -94,7 +163,7 @@ def geojson_crs_member(crs: str | None) -> dict[str, Any] | None:
 def read_geojson_crs(path: PathLike) -> str | None:
     """The CRS a GeoJSON file names in its ``crs`` member (``EPSG:n``), or None."""
     try:
-        with open(path, "rb") as fh:
+        with open_regular(path) as fh:
             doc = json.loads(fh.read(1 << 27))
     except (ValueError, RecursionError):
         return None  # the vector reader reports a malformed file
@@ -108,13 +177,28 @@ def read_geojson_crs(path: PathLike) -> str | None:
     return name
 
 
+#: CRS texts given to GDAL's general parser: an EPSG code or an OGC URN. Anything else is parsed as WKT only,
+#: because the general parser (OSRSetFromUserInput, behind rasterio's ``CRS.from_user_input``) also reads a
+#: file or fetches a URL named by the text: a ``.prj`` or a GeoJSON ``crs`` saying ``/etc/passwd`` must not.
+_CRS_CODE = re.compile(r"\s*(EPSG:[0-9]{1,9}|urn:ogc:def:crs:[A-Za-z0-9.:_-]{1,120})\s*", re.IGNORECASE)
+
+
+def parse_crs(text: str) -> Any:
+    """The rasterio CRS of a CRS text (``EPSG:n``, an OGC URN or WKT), never read from a file or a URL.
+
+    Raises whatever rasterio raises for a text it cannot parse.
+    """
+    crs = _rasterio().crs.CRS
+    m = _CRS_CODE.fullmatch(text)
+    return crs.from_user_input(m.group(1)) if m is not None else crs.from_wkt(text)
+
+
 def same_crs(a: str | None, b: str | None) -> bool:
     """Whether two CRS texts name the same system (EPSG codes compared; WKT through rasterio if present)."""
     if a is None or b is None or a == b:
         return a == b
     try:
-        rasterio = _rasterio()
-        return bool(rasterio.crs.CRS.from_user_input(a) == rasterio.crs.CRS.from_user_input(b))
+        return bool(parse_crs(a) == parse_crs(b))
     except Exception:  # unparsable CRS text: only equal texts are the same
         return False
 
@@ -154,11 +238,6 @@ def world_file_text(transform: Transform) -> str:
 _NETPBM_ORIGIN = re.compile(rb"#\s*mrm:origin\s+(-?\d+)\s+(-?\d+)")
 
 
-def _tiff_size(path: PathLike) -> tuple[int, int]:
-    with _rasterio().open(path) as ds:
-        return int(ds.width), int(ds.height)
-
-
 def image_frame(path: PathLike) -> tuple[int, int, int, int]:
     """The box (xmin, ymin, xmax, ymax) of every pixel of an image file, from its header.
 
@@ -171,20 +250,20 @@ def image_frame(path: PathLike) -> tuple[int, int, int, int]:
 
     ext = Path(path).suffix.lower()
     if ext in GEOTIFF_EXTENSIONS:
-        georef = read_georef(path)
-        if georef is not None:
-            return georef.frame
-        w, h = _tiff_size(path)
-        return 0, 0, w - 1, h - 1
+        with open_geotiff(path, Path(path).name) as ds:
+            georef = _georef_of(ds, Path(path))
+            if georef is not None:
+                return georef.frame
+            return 0, 0, int(ds.width) - 1, int(ds.height) - 1
     if ext not in (".png", ".pbm", ".pgm"):
         raise ParameterError(f"{os.fspath(path)}: --invert applies to images (PNG, Netpbm, GeoTIFF) only")
     name = Path(path).name
-    with Image.open(path) as im:  # reads the header only
+    with open_regular(path, name) as fh, Image.open(fh) as im:  # reads the header only
         width, height = im.size
         text = getattr(im, "text", {}) if ext == ".png" else {}
         origin = parse_origin(text[ORIGIN_KEY], name) if ORIGIN_KEY in text else (0, 0)
     if ext != ".png":
-        with open(path, "rb") as fh:
+        with open_regular(path, name) as fh:
             m = _NETPBM_ORIGIN.search(fh.read(4096))
         if m is not None:
             origin = (int(m.group(1)), int(m.group(2)))
@@ -195,34 +274,78 @@ def read_georef(path: PathLike) -> GeoRef | None:
     """The georeference of a raster: a GeoTIFF's own, or an image's world file (+ ``.prj``); else None.
 
     Its ``origin`` is where the pixel readers (:func:`mrm.io.pixel_files.read_pixels`) put the raster's
-    bottom-left pixel, so that ``read_georef(p).to_world`` maps what ``read_pixels(p)`` gives.
+    bottom-left pixel, so that ``read_georef(p).to_world`` maps what ``read_pixels(p)`` gives. A GeoTIFF
+    without georeference tags takes its world file's transform, as GDAL would. Every georeference is within
+    the limits of :mod:`mrm.core.limits` (world coordinates, CRS length), so what imports also saves and
+    reopens; a world file or ``.prj`` beyond them is refused with a message naming it.
     """
     p = Path(path)
     if p.suffix.lower() in GEOTIFF_EXTENSIONS:
-        rasterio = _rasterio()
-        try:
-            with rasterio.open(p) as ds:
-                t = ds.transform
-                if ds.transform.is_identity and world_file_of(p) is None:
-                    return None  # a plain TIFF without georeference
-                g = GeoRef((t.a, t.b, t.c, t.d, t.e, t.f), ds.width, ds.height, _crs_text(ds.crs))
-        except rasterio.errors.RasterioIOError as e:
-            raise FileFormatError(f"{p.name}: not a readable GeoTIFF ({e})") from None
-        origin = grid_origin(g)
-        return g if origin == (0, 0) else GeoRef(g.transform, g.width, g.height, g.crs, origin)
+        with open_geotiff(p, p.name) as ds:
+            return _georef_of(ds, p)
+    if world_file_of(p) is None:
+        return None
+    return _world_file_georef(p, image_frame(p), None)
+
+
+def _georef_of(ds: Any, p: Path) -> GeoRef | None:
+    """The georeference of an open GeoTIFF (its tags, else a world file beside it), or None."""
+    t = ds.transform
+    if t.is_identity:  # no georeference tags: a world file beside it, or none (a plain TIFF)
+        return _world_file_georef(p, (0, 0, int(ds.width) - 1, int(ds.height) - 1), _tiff_crs(ds, p))
+    g = _georef(p.name, (t.a, t.b, t.c, t.d, t.e, t.f), int(ds.width), int(ds.height), _tiff_crs(ds, p))
+    origin = grid_origin(g)
+    return g if origin == (0, 0) else GeoRef(g.transform, g.width, g.height, g.crs, origin)
+
+
+def _tiff_crs(ds: Any, p: Path) -> str | None:
+    try:
+        return _crs_text(ds.crs)
+    except Exception as e:  # a CRS GDAL read but PROJ cannot express
+        raise FileFormatError(f"{p.name}: unreadable coordinate system ({e})") from None
+
+
+def _georef(
+    name: str,
+    transform: Transform,
+    width: int,
+    height: int,
+    crs: str | None,
+    origin: tuple[int, int] = (0, 0),
+) -> GeoRef:
+    """A GeoRef read from file ``name``; a refusal (limits, a singular transform) names the file."""
+    try:
+        return GeoRef(transform, width, height, crs, origin)
+    except MRMError as e:
+        raise type(e)(f"{name}: {e}") from None
+
+
+def _world_file_georef(p: Path, frame: tuple[int, int, int, int], crs: str | None) -> GeoRef | None:
+    """The georeference of image ``p`` (pixels in ``frame``) from its world file and ``.prj``, or None.
+
+    Both files are read bounded (:data:`~mrm.core.limits.MAX_WORLD_FILE_BYTES`, the CRS limit) and only when
+    they are regular files.
+    """
     wf = world_file_of(p)
     if wf is None:
         return None
-    transform = parse_world_file(wf.read_text(encoding="ascii", errors="replace"), wf.name)
-    x0, y0, x1, y1 = image_frame(p)
+    raw = read_regular(wf, limits.MAX_WORLD_FILE_BYTES, "a world file", wf.name)
+    transform = parse_world_file(raw.decode("ascii", errors="replace"), wf.name)
     prj = p.with_suffix(".prj")
-    crs = prj.read_text(encoding="utf-8", errors="replace").strip() if prj.is_file() else None
-    if crs:
-        try:
-            crs = _crs_text(_rasterio().crs.CRS.from_wkt(crs))
-        except Exception:  # no rasterio, or a WKT it cannot parse: keep the text as it is
-            log.debug("kept the .prj text of %s as it is", p.name)
-    return GeoRef(transform, x1 - x0 + 1, y1 - y0 + 1, crs or None, (x0, y0))
+    if crs is None and prj.is_file():
+        # UTF-8 takes at most 4 bytes a character: a longer file cannot hold a CRS within the limit.
+        text = read_regular(prj, 4 * limits.MAX_CRS_CHARS, "a CRS (.prj)", prj.name)
+        crs = text.decode("utf-8", errors="replace").strip() or None
+        if crs is not None:
+            try:
+                limits.check_crs_text(crs, f"{prj.name}: the CRS")
+                crs = _crs_text(parse_crs(crs))
+            except MRMError:
+                raise
+            except Exception:  # no rasterio, or a WKT it cannot parse: keep the text as it is
+                log.debug("kept the .prj text of %s as it is", p.name)
+    x0, y0, x1, y1 = frame
+    return _georef(wf.name, transform, x1 - x0 + 1, y1 - y0 + 1, crs, (x0, y0))
 
 
 def write_world_file(path: PathLike, georef: GeoRef) -> Path:
@@ -233,7 +356,7 @@ def write_world_file(path: PathLike, georef: GeoRef) -> Path:
     if georef.crs is not None:
         text = georef.crs
         try:
-            text = _rasterio().crs.CRS.from_user_input(georef.crs).to_wkt()
+            text = parse_crs(georef.crs).to_wkt()
         except Exception:  # no rasterio: EPSG codes are written as they are
             log.debug("wrote the CRS of %s as text", p.name)
         atomic_write_text(p.with_suffix(".prj"), text + "\n")
@@ -249,6 +372,10 @@ def read_raster(
 ) -> tuple[PixelSet, GeoRef | None]:
     """Read band 1 of a GeoTIFF as a pixel set and its georeference.
 
+    The band is decoded a window of whole blocks at a time (at most
+    :data:`~mrm.core.limits.MAX_DECODED_BYTES` of samples and working copies), straight into the mask: the
+    peak is about one byte per pixel whatever the sample type (ADR 0047).
+
     Parameters
     ----------
     path : str or path-like
@@ -263,29 +390,96 @@ def read_raster(
         Placed where :func:`read_georef` says (its ``origin``: (0, 0), or (x0, y0) for a unit grid).
     georef : GeoRef or None
         None for a TIFF without georeference.
+
+    Raises
+    ------
+    FileFormatError
+        Not a TIFF (a VRT or any other file named ``.tif``), unreadable, or stored in blocks larger than the
+        decoding budget.
+    SizeLimitError
+        More pixels than ``limit``.
     """
     rasterio = _rasterio()
-    name = Path(path).name
-    try:
-        with rasterio.open(path) as ds:
-            check_pixels(ds.width * ds.height, limit, f"{name}: the raster")
-            band = ds.read(1)
-            nodata = ds.nodata
-    except rasterio.errors.RasterioIOError as e:
-        raise FileFormatError(f"{name}: not a readable GeoTIFF ({e})") from None
+    p = Path(path)
+    name = p.name
+    if threshold is not None:
+        _check_threshold(threshold)
+    with open_geotiff(p, name) as ds:
+        width, height = int(ds.width), int(ds.height)
+        check_pixels(width * height, limit, f"{name}: the raster")
+        georef = _georef_of(ds, p)
+        nodata = ds.nodata
+        mask = np.zeros((height, width), dtype=bool)  # bottom row first, as a PixelSet holds it
+        try:
+            for win in _windows(ds, name):
+                band = ds.read(1, window=win)
+                r0, c0, c1 = int(win.row_off), int(win.col_off), int(win.col_off + win.width)
+                # The working copies of a few rows at a time, within the budget too.
+                step = max(1, limits.MAX_DECODED_BYTES // (_WORKING_BYTES * band.shape[1]))
+                for k in range(0, band.shape[0], step):
+                    rows = _in_set(band[k : k + step], nodata, threshold)
+                    top = r0 + k  # image row of rows[0]; row r is mask row height − 1 − r
+                    mask[height - top - rows.shape[0] : height - top, c0:c1] = rows[::-1]
+                del band
+        except rasterio.errors.RasterioError as e:
+            raise FileFormatError(f"{name}: corrupt GeoTIFF ({e})") from None
+        except MemoryError:
+            raise FileFormatError(f"{name}: not enough memory to decode this GeoTIFF") from None
+    ps = PixelSet.taking_over(mask, (0, 0))
+    dx, dy = grid_origin(georef)
+    return (ps.translate(dx, dy) if (dx, dy) != (0, 0) else ps), georef
+
+
+#: Bytes of working copies per sample while samples are turned into mask rows (the validity mask, the
+#: comparison, int64 copies for an integer threshold): they are made a few rows at a time, within the budget.
+_WORKING_BYTES = 24
+
+
+def _windows(ds: Any, name: str) -> Iterator[Any]:
+    """Windows of band 1 covering the raster, each whole blocks of at most the decoding budget.
+
+    Refuses a raster stored in blocks (strips or tiles, which GDAL decodes whole) of more than
+    :data:`~mrm.core.limits.MAX_DECODED_BYTES`, before any is decoded.
+    """
+    from rasterio.windows import Window
+
+    budget = limits.MAX_DECODED_BYTES
+    width, height = int(ds.width), int(ds.height)
+    bh, bw = (int(v) for v in ds.block_shapes[0])
+    bh, bw = max(1, min(bh, height)), max(1, min(bw, width))
+    itemsize = np.dtype(ds.dtypes[0]).itemsize
+    # A pixel-interleaved block holds every band's sample of its pixels.
+    interleaved = ds.count > 1 and getattr(ds.interleaving, "name", "") == "pixel"
+    block_bytes = bh * bw * itemsize * (ds.count if interleaved else 1)
+    if block_bytes > budget:
+        raise FileFormatError(
+            f"{name}: the TIFF stores its samples in blocks of {bh}×{bw} pixels ({block_bytes:,} bytes "
+            f"decoded each), more than the {budget:,} read at once; rewrite it tiled or in strips "
+            "(gdal_translate -co TILED=YES)"
+        )
+    if bh * width * itemsize <= budget:  # whole rows of blocks
+        rows = bh * max(1, budget // (bh * width * itemsize))
+        for r0 in range(0, height, rows):
+            yield Window(0, r0, width, min(rows, height - r0))
+        return
+    cols = bw * max(1, budget // (bh * bw * itemsize))  # one row of blocks, a few blocks at a time
+    for r0 in range(0, height, bh):
+        for c0 in range(0, width, cols):
+            yield Window(c0, r0, min(cols, width - c0), min(bh, height - r0))
+
+
+def _in_set(band: Any, nodata: float | None, threshold: float | None) -> Any:
+    """The mask rows (top first) of a window of samples: non-zero, or above ``threshold``; never nodata."""
     valid = np.ones(band.shape, dtype=bool) if nodata is None else band != nodata
     if band.dtype.kind == "f":
         valid &= np.isfinite(band)
-        rows = (band > (0.0 if threshold is None else threshold)) & valid
-    elif threshold is None:
-        rows = (band != 0) & valid
-    else:
-        grey = np.where(valid, band, 0).astype(np.int64)
-        rows = binarize(np.clip(grey, 0, None), threshold) & valid
-    georef = read_georef(path)
-    ps = PixelSet(rows[::-1], (0, 0))
-    dx, dy = grid_origin(georef)
-    return (ps.translate(dx, dy) if (dx, dy) != (0, 0) else ps), georef
+        return (band > (0.0 if threshold is None else threshold)) & valid
+    if threshold is None:
+        return (band != 0) & valid
+    if band.dtype.kind == "c":  # a threshold compares the real part
+        return (band.real > threshold) & np.isfinite(band.real) & valid
+    grey = np.where(valid, band, 0).astype(np.int64)
+    return binarize(np.clip(grey, 0, None), threshold) & valid
 
 
 def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:

@@ -82,7 +82,7 @@ from mrm.core.models import Model
 from mrm.document import DocObject, Document, Geometry, Settings, Source, Style
 from mrm.document.objects import is_polyhedron
 from mrm.io.atomic import atomic_write_bytes
-from mrm.io.project_decode import Checker, decode_object, decode_source
+from mrm.io.project_decode import Checker, check_grid_budget, decode_object, decode_source
 from mrm.io.reading import open_regular
 from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance, content_digest
 
@@ -436,6 +436,18 @@ def parse_project(
             "$.settings.model", f"unknown model {c.show(model)}; expected one of {', '.join(Model.names())}"
         )
     settings = Settings(model=Model(model))
+    objs_raw = c.list_(raw["objects"], "$.objects")
+    table_raw = raw.get("contents")
+    check_grid_budget(
+        c,
+        [
+            (src, f"$.contents[{key!r}]")
+            for key, src in (table_raw if isinstance(table_raw, dict) else {}).items()
+        ]
+        + [
+            (o.get("source"), f"$.objects[{i}].source") for i, o in enumerate(objs_raw) if isinstance(o, dict)
+        ],
+    )
     contents: dict[str, Source] = {}
     if "contents" in raw:  # the pinned input contents of the provenance records, each stored once
         keys = tuple(raw["contents"]) if isinstance(raw["contents"], dict) else ()
@@ -446,7 +458,6 @@ def parse_project(
             if content_digest(value) != key:  # a digest names its content: a file cannot make it lie
                 c.fail(f"$.contents[{key!r}]", "the content does not match its digest")
             contents[key] = value
-    objs_raw = c.list_(raw["objects"], "$.objects")
     objects: list[DocObject] = []
     seen: dict[int, int] = {}
     for i, o in enumerate(objs_raw):

@@ -14,7 +14,7 @@ import binascii
 import json
 import math
 import zlib
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Any, NoReturn
 
 import numpy as np
@@ -32,10 +32,7 @@ from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance
 if TYPE_CHECKING:
     from mrm.geometry.polyhedra import Polyhedron
 
-#: Longest CRS text accepted in a georeference (a WKT2 definition is a few thousand characters).
-MAX_CRS_CHARS = 100_000
-
-__all__ = ["Checker", "decode_object", "decode_source"]
+__all__ = ["Checker", "check_grid_budget", "decode_object", "decode_source"]
 
 
 #: The most points of one grid source, by dimension (pixels, voxels), for masks and for label grids.
@@ -165,13 +162,51 @@ def _decode_box(
     if count > limits_by_dim[n]:
         dims = " x ".join(str(v) for v in sh)
         c.fail(f"{path}.shape", f"a {dims} {what} holds more than the limit of {limits_by_dim[n]:,} {unit}")
-    c.mask_pixels += count
+    c.mask_pixels += count * (limits.LABEL_WEIGHT if what == "label map" else 1)
     if c.mask_pixels > limits.MAX_FILE_PIXELS:
-        c.fail(
-            f"{path}.shape",
-            f"the masks of the file hold more than {limits.MAX_FILE_PIXELS:,} pixels and voxels in all",
-        )
+        c.fail(f"{path}.shape", _too_many())
     return o, sh
+
+
+def _too_many() -> str:
+    return (
+        f"the masks of the file hold more than {limits.MAX_FILE_PIXELS:,} pixels and voxels in all (label "
+        f"maps included, a label counting as {limits.LABEL_WEIGHT})"
+    )
+
+
+def check_grid_budget(c: Checker, sources: Iterable[tuple[Any, str]]) -> None:
+    """Refuse a file whose grid sources, by their declared shapes, exceed the file's budget, before decoding.
+
+    ``sources`` are the raw JSON sources with their paths. Malformed shapes are skipped: the decoder names
+    them. The decoder counts again as it goes (:func:`_decode_box`); counting first means a file of many
+    compressed label maps is refused before the first is inflated, not after gigabytes of them.
+    """
+    total = 0
+    lim = limits.PIXEL_COORDINATE_LIMIT
+    for src, path in sources:
+        if not isinstance(src, dict) or src.get("kind") not in ("discrete", "labels"):
+            continue
+        shape = src.get("shape")
+        if (
+            not isinstance(shape, list)
+            or len(shape) not in (2, 3)
+            or not all(type(v) is int and 0 <= v <= lim for v in shape)
+        ):
+            continue
+        count = 1
+        for v in shape:
+            count *= v
+        labels = src["kind"] == "labels"
+        if count > (_LABEL_LIMITS if labels else _MASK_LIMITS)[len(shape)]:
+            continue  # one object over its own limit: the decoder says so
+        total += count * (limits.LABEL_WEIGHT if labels else 1)
+        if total > limits.MAX_FILE_PIXELS:
+            c.fail(f"{path}.shape", _too_many())
+
+
+#: Bytes inflated per step while a label map is decoded straight into its array.
+_INFLATE_CHUNK = 1 << 24
 
 
 def _decode_labels(c: Checker, src: dict[str, Any], path: str) -> LabelMap | LabelVolume:
@@ -190,18 +225,29 @@ def _decode_labels(c: Checker, src: dict[str, Any], path: str) -> LabelMap | Lab
         if packed:
             c.fail(f"{path}.labels", "an empty label map has no labels")
         return grid(np.zeros((0,) * len(shape), np.int32))
-    # Never more than the declared size is inflated (a small file cannot claim gigabytes).
+    # Never more than the declared size is inflated (a small file cannot claim gigabytes), straight into the
+    # array the grid then takes over: one copy of the labels in memory, not three.
+    labels = np.empty(shape, dtype="<i4")
+    out = memoryview(labels).cast("B")  # type: ignore[arg-type]  # numpy arrays are buffers
     inflate = zlib.decompressobj()
+    pos, tail = 0, packed
     try:
-        raw = inflate.decompress(packed, n)
+        while pos < n:
+            piece = inflate.decompress(tail, min(_INFLATE_CHUNK, n - pos))
+            if not piece:
+                break
+            out[pos : pos + len(piece)] = piece
+            pos += len(piece)
+            tail = inflate.unconsumed_tail
+        extra = inflate.decompress(tail, 1) if pos == n and not inflate.eof else b""
     except zlib.error as e:
         c.fail(f"{path}.labels", f"not valid zlib data ({e})")
-    if len(raw) != n or inflate.unconsumed_tail or not inflate.eof:
+    del out
+    if pos != n or extra or inflate.unconsumed_tail or not inflate.eof:
         c.fail(f"{path}.labels", f"expected {n} bytes of int32 labels for a {dims} map")
-    labels = np.frombuffer(raw, dtype="<i4").reshape(shape)
     if labels.size and int(labels.min()) < 0:
         c.fail(f"{path}.labels", "labels must be non-negative")
-    return grid(labels.astype(np.int32), origin)
+    return grid.taking_over(labels, origin) if labels.dtype == np.int32 else grid(labels, origin)
 
 
 def _decode_bits(c: Checker, src: dict[str, Any], path: str) -> PixelSet | VoxelSet:
@@ -405,8 +451,8 @@ def _decode_georef(c: Checker, g: Any, path: str) -> GeoRef | None:
     t = c.list_(g["transform"], f"{path}.transform")
     if len(t) != 6:
         c.fail(f"{path}.transform", f"expected six numbers [a, b, c, d, e, f], got {c.show(t)}")
-    big = float(2**1000)  # any finite float64; only NaN, infinities and huge integers are refused
-    transform = tuple(c.num(v, f"{path}.transform[{i}]", -big, big) for i, v in enumerate(t))
+    # Any finite number here; GeoRef applies the limits of every georeference (limits.check_transform).
+    transform = tuple(c.num(v, f"{path}.transform[{i}]", -math.inf, math.inf) for i, v in enumerate(t))
     lim = limits.PIXEL_COORDINATE_LIMIT
     width = c.int_(g["width"], f"{path}.width", 1, 2 * lim)
     height = c.int_(g["height"], f"{path}.height", 1, 2 * lim)
@@ -415,7 +461,7 @@ def _decode_georef(c: Checker, g: Any, path: str) -> GeoRef | None:
         c.fail(f"{path}.origin", f"expected [x0, y0], got {c.show(origin)}")
     x0 = c.int_(origin[0], f"{path}.origin[0]", -lim, lim)
     y0 = c.int_(origin[1], f"{path}.origin[1]", -lim, lim)
-    crs = None if g["crs"] is None else c.str_(g["crs"], f"{path}.crs", MAX_CRS_CHARS)
+    crs = None if g["crs"] is None else c.str_(g["crs"], f"{path}.crs", limits.MAX_CRS_CHARS)
     try:
         return GeoRef(transform, width, height, crs, (x0, y0))  # type: ignore[arg-type]
     except MRMError as e:

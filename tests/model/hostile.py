@@ -102,3 +102,78 @@ def checkerboard(n: int) -> np.ndarray:
 def rows_of(mask: np.ndarray) -> Iterator[bytes]:
     for r in mask:
         yield bytes(r.astype(np.uint8))
+
+
+# ---------------------------------------------------------------------------------------------- TIFF
+_SAMPLE_FORMATS = {"u": 1, "i": 2, "f": 3, "c": 6}
+
+
+def tiff(
+    width: int,
+    height: int,
+    *,
+    dtype: str = "uint8",
+    rows_per_strip: int | None = None,
+    fill: int = 0,
+    level: int = 9,
+    geo: tuple[float, float, float, float] | None = None,
+) -> bytes:
+    """A little-endian TIFF of one band built by hand, every strip deflated and stored once.
+
+    All strips point at the same compressed bytes (a strip of samples ``fill``), so a raster of 14000² complex
+    samples (3 GB decoded) is a file of a few KB. ``geo`` = (pixel width, pixel height, X, Y of the top-left
+    corner) adds GeoTIFF's ModelPixelScale and ModelTiepoint tags.
+    """
+    dt = np.dtype(dtype)
+    rows = height if rows_per_strip is None else min(rows_per_strip, height)
+    nstrips = -(-height // rows)
+    blob = zlib.compress(np.full(rows * width, fill, dtype=dt).tobytes(), level)
+    last_rows = height - (nstrips - 1) * rows  # a shorter last strip gets its own bytes
+    last = blob if last_rows == rows else zlib.compress(np.full(last_rows * width, fill, dt).tobytes(), level)
+    entries: list[tuple[int, int, list[float]]] = [  # (tag, type, values); 3 SHORT, 4 LONG, 12 DOUBLE
+        (256, 4, [width]),
+        (257, 4, [height]),
+        (258, 3, [8 * dt.itemsize]),
+        (259, 3, [8]),  # deflate
+        (262, 3, [1]),  # min-is-black
+        (273, 4, [0] * nstrips),  # strip offsets, filled in below
+        (277, 3, [1]),
+        (278, 4, [rows]),
+        (279, 4, [len(blob)] * (nstrips - 1) + [len(last)]),
+        (284, 3, [1]),
+        (339, 3, [_SAMPLE_FORMATS[dt.kind]]),
+    ]
+    if geo is not None:
+        sx, sy, x, y = geo
+        entries += [(33550, 12, [sx, sy, 0.0]), (33922, 12, [0.0, 0.0, 0.0, x, y, 0.0])]
+    ifd_size = 2 + 12 * len(entries) + 4
+    extra = bytearray()
+    base = 8 + ifd_size
+    data_offset = base + sum(
+        len(v) * {3: 2, 4: 4, 12: 8}[t] for _, t, v in entries if len(v) * {3: 2, 4: 4, 12: 8}[t] > 4
+    )
+    last_offset = data_offset + (len(blob) if last is not blob else 0)
+    entries[5] = (273, 4, [data_offset] * (nstrips - 1) + [last_offset])
+    ifd = struct.pack("<H", len(entries))
+    for tag, typ, vals in entries:
+        fmt = {3: "H", 4: "I", 12: "d"}[typ]
+        raw = struct.pack(f"<{len(vals)}{fmt}", *vals)
+        if len(raw) <= 4:
+            ifd += struct.pack("<HHI", tag, typ, len(vals)) + raw.ljust(4, b"\0")
+        else:
+            ifd += struct.pack("<HHII", tag, typ, len(vals), base + len(extra))
+            extra += raw
+    ifd += struct.pack("<I", 0)
+    return b"II*\0" + struct.pack("<I", 8) + ifd + bytes(extra) + blob + (last if last is not blob else b"")
+
+
+def vrt(target: str, width: int = 16, height: int = 16) -> str:
+    """A GDAL VRT (XML) reading ``target`` as raw bytes: what a hostile ``.tif`` may hold instead."""
+    return (
+        f'<VRTDataset rasterXSize="{width}" rasterYSize="{height}">\n'
+        '  <VRTRasterBand dataType="Byte" band="1" subClass="VRTRawRasterBand">\n'
+        f'    <SourceFilename relativetoVRT="0">{target}</SourceFilename>\n'
+        f"    <ImageOffset>0</ImageOffset><PixelOffset>1</PixelOffset><LineOffset>{width}</LineOffset>\n"
+        "  </VRTRasterBand>\n"
+        "</VRTDataset>\n"
+    )
