@@ -61,7 +61,7 @@ class GeoRef:
         if not all(math.isfinite(v) for v in self.transform) or a * e - b * d == 0:
             raise FileFormatError(f"the raster's transform {self.transform} is not invertible")
         # One set of limits for import, operations and the project loader (ADR 0047): what imports reopens.
-        check_transform(self.transform)
+        check_transform(self.transform, tuple(self.grid_to_world()))  # an overflow (inf) is refused there
         for v in (self.width, self.height, *self.origin):
             if isinstance(v, bool) or not isinstance(v, int | np.integer):
                 raise FileFormatError(f"a raster's size and origin are integers, got {v!r}")

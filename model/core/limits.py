@@ -287,23 +287,29 @@ def check_pixels(estimated: int, limit: int | None, what: str, *, unit: str = "p
 
 
 # ---------------------------------------------------------------------------------------------- georeference
-def check_transform(transform: tuple[float, ...], what: str = "the raster's transform") -> None:
-    """Refuse a GDAL affine transform (a, b, c, d, e, f) beyond :data:`MAX_WORLD_COORDINATE`.
+def check_transform(
+    transform: tuple[float, ...], grid_map: tuple[float, ...], what: str = "the raster's transform"
+) -> None:
+    """Refuse a georeference whose pixels could lie beyond :data:`MAX_WORLD_COORDINATE` in the world.
 
-    Every pixel corner a document can hold has |col|, |row| ≤ 2·:data:`PIXEL_COORDINATE_LIMIT` + 1 in the
-    raster's (col, row), so its world point is within ``|c| + reach·(|a| + |b|)`` (and likewise for Y); the
-    inverse map (world to grid) must be finite too. Import, operations and the project loader all build
-    georeferences through :class:`mrm.core.georef.GeoRef`, which calls this: what imports, saves and reopens.
+    ``grid_map`` is its map from grid coordinates to the world, ``[A, B, D, E, X0, Y0]`` (X = A·u + B·v + X0,
+    Y = D·u + E·v + Y0); ``transform`` is GDAL's (a, b, c, d, e, f), for the message. Every pixel corner a
+    document can hold has |u|, |v| ≤ :data:`PIXEL_COORDINATE_LIMIT` + 1, so its world point is within
+    ``|X0| + reach·(|A| + |B|)`` (and likewise for Y): a property of the map, the same for every frame on it
+    (an object grown or moved on its raster's grid keeps it). The inverse map (world to grid) must be finite
+    too. Import, operations and the project loader all build georeferences through
+    :class:`mrm.core.georef.GeoRef`, which calls this: what imports also saves and reopens.
 
     Raises
     ------
     LimitError
         When a world coordinate could exceed the limit, or the pixels are too small to invert the map.
     """
-    a, b, c, d, e, f = (float(v) for v in transform)
-    reach = float(2 * PIXEL_COORDINATE_LIMIT + 1)
-    worst = max(abs(c) + reach * (abs(a) + abs(b)), abs(f) + reach * (abs(d) + abs(e)))
-    shown = ", ".join(f"{v:.6g}" for v in (a, b, c, d, e, f))
+    A, B, D, E, X0, Y0 = (float(v) for v in grid_map)
+    reach = float(PIXEL_COORDINATE_LIMIT + 1)
+    worst = max(abs(X0) + reach * (abs(A) + abs(B)), abs(Y0) + reach * (abs(D) + abs(E)))
+    a, b, _c, d, e, _f = (float(v) for v in transform)
+    shown = ", ".join(f"{float(v):.6g}" for v in transform)
     if not worst <= MAX_WORLD_COORDINATE:  # NaN fails too
         raise LimitError(
             f"{what} ({shown}) would put pixels at world coordinates beyond ±{MAX_WORLD_COORDINATE:.0e}, "

@@ -233,6 +233,10 @@ def test_georeferences_within_the_limits_save_and_reopen_and_beyond_them_are_ref
     edge = GeoRef((1e89, 0.0, 5e99, 0.0, -1e89, -5e99), 6, 6, "W" * limits.MAX_CRS_CHARS)
     doc.push(AddObject(doc.make_object(PixelSet(MASK), "edge", georef=edge)))
     assert loads(dumps(doc)).objects[0].georef == edge
+    # The limit is the map's: the frame grown to the whole grid a document can hold keeps it.
+    grown = edge.covering((-(2**31), -(2**31), 2**31, 2**31))
+    assert grown.frame == (-(2**31), -(2**31), 2**31, 2**31)
+    assert np.allclose(grown.grid_to_world(), edge.grid_to_world(), rtol=1e-12, atol=0)
     for t in ((1e89, 0.0, 1e100, 0.0, -1e89, 0.0), (1e92, 0.0, 0.0, 0.0, -1.0, 0.0)):
         with pytest.raises(LimitError, match="beyond ±1e"):
             GeoRef(t, 6, 6)
