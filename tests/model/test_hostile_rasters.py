@@ -344,3 +344,34 @@ def test_a_label_map_counts_four_bytes_a_label_in_the_documents_budget(monkeypat
     p = tmp_path / "d.mrm"
     p.write_bytes(dumps(doc))
     assert read_project(p).objects == list(doc.objects)  # the budget the document keeps, the file keeps
+
+
+@pytest.mark.parametrize("budget", [9_000, 40_000, 64 << 20])  # a block at a time, a few, all rows at once
+@pytest.mark.parametrize(("dtype", "nodata"), [("float32", -9999.0), ("int16", -1), ("float64", None)])
+def test_windowed_decoding_gives_the_documented_rules(tmp_path, monkeypatch, budget, dtype, nodata):
+    # The rules of read_raster applied to the whole band at once (as before the windows): non-zero or above
+    # the threshold, never nodata, never NaN.
+    from mrm.core.threshold import binarize
+
+    monkeypatch.setattr(limits, "MAX_DECODED_BYTES", budget)
+    rng = np.random.default_rng(7)
+    a = (rng.random((301, 257)) * 10 - 3).astype(dtype)
+    if a.dtype.kind == "f":
+        a[rng.random(a.shape) < 0.05] = np.nan
+    if nodata is not None:
+        a[rng.random(a.shape) < 0.1] = nodata
+    p = tmp_path / "n.tif"
+    with rasterio.open(
+        p, "w", driver="GTiff", width=257, height=301, count=1, dtype=dtype, nodata=nodata,
+        tiled=True, blockxsize=32, blockysize=32,
+    ) as ds:  # fmt: skip
+        ds.write(a, 1)
+    for threshold in (None, 2.5):
+        valid = np.ones(a.shape, bool) if nodata is None else a != nodata
+        if a.dtype.kind == "f":
+            rows = (a > (threshold or 0.0)) & valid & np.isfinite(a)
+        elif threshold is None:
+            rows = (a != 0) & valid
+        else:
+            rows = binarize(np.clip(np.where(valid, a, 0).astype(np.int64), 0, None), threshold) & valid
+        assert read_pixels_georef(p, threshold=threshold)[0] == PixelSet(rows[::-1])
