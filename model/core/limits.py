@@ -78,8 +78,8 @@ MAX_LABEL_PIXELS = 50_000_000
 MAX_GEOMETRY_NESTING = 32
 #: Largest magnitude of a world coordinate of a georeferenced grid (a GeoTIFF's transform, a world file,
 #: a project's ``georef``): the world point of every pixel a document can hold (grid coordinates within
-#: ±:data:`PIXEL_COORDINATE_LIMIT`, whatever the origin) stays within it. Far beyond any coordinate system
-#: (the Earth's circumference in nanometres is 4·10¹⁶), and far enough inside float64 (±1.8·10³⁰⁸) that
+#: ±:data:`PIXEL_COORDINATE_LIMIT`) stays within it under the grid-to-world map. Far beyond any
+#: coordinate system (the Earth's circumference in nanometres is 4·10¹⁶), and far enough inside float64 that
 #: squares and products of two coordinates (areas, GEOS's orientation tests) stay finite: a world file of
 #: 1e308 made infinite coordinates and a GEOS exception at export (issue 32).
 MAX_WORLD_COORDINATE = 1e100
