@@ -99,10 +99,14 @@ def polygonize(
     # centre it holds, and the labelling gives each region's size and order.
     reg = label_regions(lm.labels)
     x0, y0 = lm.origin
+    # Each label's regions in the output order, grouped once (a search per label was quadratic in labels).
+    order = np.argsort(reg.label, kind="stable")
+    starts = np.searchsorted(reg.label[order], np.asarray(list(sd.parts), dtype=np.int64))
+    ends = np.searchsorted(reg.label[order], np.asarray(list(sd.parts), dtype=np.int64), side="right")
     out: list[Region] = []
-    for label, geom in sd.parts.items():
+    for (label, geom), a, b in zip(sd.parts.items(), starts.tolist(), ends.tolist(), strict=True):
         polys = list(geom.geoms) if isinstance(geom, MultiPolygon) else ([geom] if not geom.is_empty else [])
-        mine = np.flatnonzero(reg.label == label)  # this label's regions, in the output order
+        mine = order[a:b]  # this label's regions, in the output order
         centres = shapely.points(x0 + reg.first_col[mine], y0 + reg.first_row[mine])
         which, poly = shapely.STRtree(polys).query(centres, predicate="within")
         if which.size != mine.size or np.unique(poly).size != len(polys) or len(polys) != mine.size:

@@ -65,13 +65,14 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.core.errors import ParameterError
 from mrm.core.gc_pause import paused_gc
 from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import check_subdivision
 from mrm.core.models import Model
 from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.reconstruct import _subdivision_kernels as K
 from mrm.geometry.reconstruct._cell_polylines import _Chain, _polyline, _to_plane
 from mrm.geometry.reconstruct._subdivision_kernels import label_boxes
 from mrm.geometry.topology.cracks import DX, DY
-from mrm.geometry.topology.labeling import group_by_label
+from mrm.geometry.topology.labeling import group_by_label, label_regions
 from mrm.geometry.topology.labeling import label as label_components
 from mrm.reps.cells import Cells, cells_of
 
@@ -475,10 +476,24 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     ------
     ParameterError
         For any model other than ``gauss``.
+    LimitError
+        Before any work, when the map has too many labels, boundary edges, or junctions and regions
+        (:func:`mrm.core.limits.check_subdivision`; its cost follows from them, not from its pixels).
     """
     _check_model(model)
+    check_cost(lm)
     with paused_gc():  # tens of thousands of small acyclic tuples and lists: no cycle to collect
         return _subdivide(lm)
+
+
+def check_cost(lm: LabelMap, what: str | None = None) -> None:
+    """Refuse a label map whose subdivision would cost too much (:func:`mrm.core.limits.check_subdivision`).
+
+    Counts its labels and regions (one linear pass) and its boundary edges and junctions, before any work.
+    """
+    reg = label_regions(lm.labels)
+    n_labels = int(np.unique(reg.label).size)
+    check_subdivision(lm.labels, n_labels, int(reg.label.size), what)
 
 
 def _subdivide(lm: LabelMap) -> Subdivision:
