@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.errors import LimitError, ParameterError, SizeLimitError
+from mrm.core.numbers import value_text
 
 # ---------------------------------------------------------------------------------------------- the limits
 #: Default maximum number of pixels of a discretization or an operation's result (a preference in the GUI,
@@ -341,7 +342,9 @@ def check_pixels(estimated: int, limit: int | None, what: str, *, unit: str = "p
     if limit is None:
         return
     if isinstance(limit, bool) or not isinstance(limit, int) or limit < 0:
-        raise ParameterError(f"the {unit[:-1]} limit must be a non-negative integer or None, got {limit!r}")
+        raise ParameterError(
+            f"the {unit[:-1]} limit must be a non-negative integer or None, got {value_text(limit)}"
+        )
     if estimated > limit:
         raise SizeLimitError(int(estimated), int(limit), what, unit)
 

@@ -27,7 +27,9 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import ParameterError
 from mrm.core.grids import LabelMap
+from mrm.core.limits import PIXEL_COORDINATE_LIMIT
 from mrm.core.models import Model
+from mrm.core.numbers import read_pixel
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct.subdivision import subdivide
 from mrm.geometry.topology.labeling import label_regions
@@ -90,7 +92,7 @@ def polygonize(
         if a.ndim != 2 or a.dtype.kind not in "iub":
             raise ParameterError(f"labels must be a 2-D integer array, not {a.dtype} of shape {a.shape}")
         try:
-            lm = LabelMap(a, origin)
+            lm = LabelMap(a, read_pixel(origin, "origin", PIXEL_COORDINATE_LIMIT))
         except ValueError as e:
             raise ParameterError(str(e)) from None
     sd = subdivide(lm, "gauss")
