@@ -95,11 +95,11 @@ def polygonize(
             lm = LabelMap(a, read_pixel(origin, "origin", PIXEL_COORDINATE_LIMIT))
         except ValueError as e:
             raise ParameterError(str(e)) from None
-    sd = subdivide(lm, "gauss")
+    reg = label_regions(lm.labels)
+    sd = subdivide(lm, "gauss", regions=reg)  # its cost is checked first, from these regions
     # The subdivision gives one polygon per region, D_gauss of it exactly the region's pixels (its contract,
     # proven and tested in mrm.geometry.reconstruct.subdivision): a polygon is the region whose first pixel's
     # centre it holds, and the labelling gives each region's size and order.
-    reg = label_regions(lm.labels)
     x0, y0 = lm.origin
     # Each label's regions in the output order, grouped once (a search per label was quadratic in labels).
     order = np.argsort(reg.label, kind="stable")

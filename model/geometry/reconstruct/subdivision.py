@@ -72,7 +72,7 @@ from mrm.geometry.reconstruct import _subdivision_kernels as K
 from mrm.geometry.reconstruct._cell_polylines import _Chain, _polyline, _to_plane
 from mrm.geometry.reconstruct._subdivision_kernels import label_boxes
 from mrm.geometry.topology.cracks import DX, DY
-from mrm.geometry.topology.labeling import group_by_label, label_regions
+from mrm.geometry.topology.labeling import LabelRegions, group_by_label, label_regions
 from mrm.geometry.topology.labeling import label as label_components
 from mrm.reps.cells import Cells, cells_of
 
@@ -457,7 +457,7 @@ def _polylines(
     return polylines, stair
 
 
-def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
+def subdivide(lm: LabelMap, model: str = "gauss", *, regions: LabelRegions | None = None) -> Subdivision:
     """Reconstruct all the labels of a label map jointly (module docstring), with the 1-cell polylines.
 
     Parameters
@@ -466,6 +466,9 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
         The label map; label 0 and everything outside the array is the background.
     model : {"gauss"}
         The discretization model; only ``gauss`` admits a watertight subdivision.
+    regions : LabelRegions, optional
+        The map's :func:`~mrm.geometry.topology.labeling.label_regions`, when the caller has them already
+        (polygonize): the cost check counts them instead of labelling the map again.
 
     Returns
     -------
@@ -481,17 +484,18 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
         (:func:`mrm.core.limits.check_subdivision`; its cost follows from them, not from its pixels).
     """
     _check_model(model)
-    check_cost(lm)
+    check_cost(lm, regions=regions)
     with paused_gc():  # tens of thousands of small acyclic tuples and lists: no cycle to collect
         return _subdivide(lm)
 
 
-def check_cost(lm: LabelMap, what: str | None = None) -> None:
+def check_cost(lm: LabelMap, what: str | None = None, *, regions: LabelRegions | None = None) -> None:
     """Refuse a label map whose subdivision would cost too much (:func:`mrm.core.limits.check_subdivision`).
 
-    Counts its labels and regions (one linear pass) and its boundary edges and junctions, before any work.
+    Counts its labels and regions (one linear pass, unless ``regions`` gives them) and its boundary edges
+    and junctions, before any work.
     """
-    reg = label_regions(lm.labels)
+    reg = label_regions(lm.labels) if regions is None else regions
     n_labels = int(np.unique(reg.label).size)
     check_subdivision(lm.labels, n_labels, int(reg.label.size), what)
 
