@@ -71,9 +71,10 @@ MAX_CRACK_STEPS = 2_000_000
 #: assembling and exact checking whatever its size (a 693-byte PNG can hold 65,535 labels).
 MAX_SUBDIVISION_LABELS = 20_000
 #: Junctions (pixel corners where three labels meet, or two diagonally: the 0-cells) plus regions of a label
-#: map polygonized at once. Each is a cell or a polygon of about 3 kB and tens of microseconds: 200,000
-#: stay under a gigabyte and about ten seconds, where a 28 KB 2000² checkerboard has eight million.
-MAX_SUBDIVISION_CELLS = 200_000
+#: map polygonized at once. Each is a cell or a polygon of 1–3 kB, and each region one more GeoJSON Feature:
+#: 120,000 keep ``mrm polygonize`` under 0.8 GB and about 20 s, where a 28 KB 2000² checkerboard has eight
+#: million (ADR 0048).
+MAX_SUBDIVISION_CELLS = 120_000
 #: Largest file written by an export (SVG, GeoJSON, WKT, images).
 MAX_OUTPUT_BYTES = 256 << 20
 #: Pixels of a label map (four bytes each in memory).

@@ -345,7 +345,7 @@ def test_polygonize_refuses_too_many_regions_and_junctions_in_the_library_too(ki
     for call in (lambda: polygonize(lab), lambda: mrm.polygonize(lab)):
         with pytest.raises(LimitError) as e:
             call()
-        assert all(w in str(e.value) for w in words) and "200,000" in str(e.value)
+        assert all(w in str(e.value) for w in words) and "120,000" in str(e.value)
 
 
 def test_polygonize_just_below_the_limits_still_works() -> None:
