@@ -457,7 +457,9 @@ def _polylines(
     return polylines, stair
 
 
-def subdivide(lm: LabelMap, model: str = "gauss", *, regions: LabelRegions | None = None) -> Subdivision:
+def subdivide(
+    lm: LabelMap, model: str = "gauss", *, regions: LabelRegions | None = None, what: str | None = None
+) -> Subdivision:
     """Reconstruct all the labels of a label map jointly (module docstring), with the 1-cell polylines.
 
     Parameters
@@ -469,6 +471,8 @@ def subdivide(lm: LabelMap, model: str = "gauss", *, regions: LabelRegions | Non
     regions : LabelRegions, optional
         The map's :func:`~mrm.geometry.topology.labeling.label_regions`, when the caller has them already
         (polygonize): the cost check counts them instead of labelling the map again.
+    what : str, optional
+        How a refusal names the map (default "the label map").
 
     Returns
     -------
@@ -484,7 +488,7 @@ def subdivide(lm: LabelMap, model: str = "gauss", *, regions: LabelRegions | Non
         (:func:`mrm.core.limits.check_subdivision`; its cost follows from them, not from its pixels).
     """
     _check_model(model)
-    check_cost(lm, regions=regions)
+    check_cost(lm, what, regions=regions)
     with paused_gc():  # tens of thousands of small acyclic tuples and lists: no cycle to collect
         return _subdivide(lm)
 
@@ -611,7 +615,9 @@ def _part_ok(geom: Polygon | MultiPolygon, ps: PixelSet) -> bool:
     return bool(_discretize_pieces(_take_apart(geom, check_validity=False), "gauss", None) == ps)
 
 
-def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polygon | MultiPolygon]:
+def reconstruct_label_map(
+    lm: LabelMap, model: str = "gauss", *, what: str | None = None
+) -> dict[int, Polygon | MultiPolygon]:
     """Reconstruct every label of a label map as a watertight subdivision (module docstring).
 
     Parameters
@@ -620,6 +626,8 @@ def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polyg
         The label map (label 0 is the background).
     model : {"gauss"}
         Only ``gauss``: D_gauss(P_L) equals the pixels of L for every label L.
+    what : str, optional
+        How a refusal of its cost names the map (:func:`subdivide`).
 
     Returns
     -------
@@ -632,7 +640,7 @@ def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polyg
     ParameterError
         For a model other than ``gauss``.
     """
-    return subdivide(lm, model).parts
+    return subdivide(lm, model, what=what).parts
 
 
 def watertight_parts(parts: Sequence[PixelSet]) -> list[Polygon | MultiPolygon]:
@@ -661,5 +669,5 @@ def watertight_parts(parts: Sequence[PixelSet]) -> list[Polygon | MultiPolygon]:
         lm = LabelMap.from_pixel_sets(parts)
     except ValueError as e:
         raise ParameterError(f"the parts of a subdivision must be disjoint: {e}") from None
-    by_label = reconstruct_label_map(lm, "gauss")
+    by_label = reconstruct_label_map(lm, "gauss", what="the parts together")
     return [by_label.get(k + 1, Polygon()) for k in range(len(parts))]
