@@ -19,8 +19,9 @@ import numpy.typing as npt
 
 from mrm.core.errors import ParameterError
 from mrm.core.grids import LabelMap, PixelSet, VoxelSet
-from mrm.core.limits import DEFAULT_PIXEL_LIMIT
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, PIXEL_COORDINATE_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
+from mrm.core.numbers import read_pixel, value_text
 from mrm.geometry.discretize import discretize as _discretize
 from mrm.geometry.discretize.voxels import voxelize
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
@@ -152,8 +153,9 @@ def polygonize(
     if not isinstance(labels, LabelMap):
         a = np.asarray(labels)
         if a.ndim != 2 or a.dtype.kind not in "iub":
-            raise ValueError(f"a label image must be a 2-D integer array, got {a.dtype} {a.shape}")
-        labels = LabelMap(a[::-1].astype(np.int32), origin)
+            raise ParameterError(f"a label image must be a 2-D integer array, got {a.dtype} {a.shape}")
+        at = read_pixel(origin, "origin", PIXEL_COORDINATE_LIMIT)
+        labels = LabelMap(a[::-1].astype(np.int32), at)
     return reconstruct_label_map(labels, model)
 
 
@@ -191,18 +193,22 @@ def segment(
     >>> [s.as_list() for s in mrm.segment("00100100")]
     [[0, 8, 1, 2, 0, 3]]
     """
+    if not isinstance(closed, bool | np.bool_):
+        raise ParameterError(f"closed must be True or False, got {value_text(closed)}")
+    if isinstance(adjacency, bool) or adjacency not in (4, 8):
+        raise ParameterError(f"adjacency must be 4 or 8, got {value_text(adjacency)}")
     if isinstance(chain, str):
         bad = chain.translate(str.maketrans("", "", "0123"))
         if bad:
             raise ParameterError(f"Freeman codes are 0-3 (0=E 1=N 2=W 3=S), got {bad[0]!r}")
-        pts = chain_points(start, chain)
+        pts = chain_points(read_pixel(start, "start", PIXEL_COORDINATE_LIMIT), chain)
     else:
         pts = np.asarray(chain, dtype=np.int64)
     if mode == "greedy":
         return list(greedy_segmentation(pts, closed=closed, adjacency=adjacency))
     if mode == "maximal":
         return list(maximal_segments(pts, closed=closed, adjacency=adjacency))
-    raise ParameterError(f"mode must be 'greedy' or 'maximal', got {mode!r}")
+    raise ParameterError(f"mode must be 'greedy' or 'maximal', got {value_text(mode)}")
 
 
 def _result_of(name: str, obj: Any, limit: int | None, *params: object) -> Any:

@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.errors import LimitError, ParameterError, SizeLimitError
+from mrm.core.numbers import value_text
 
 # ---------------------------------------------------------------------------------------------- the limits
 #: Default maximum number of pixels of a discretization or an operation's result (a preference in the GUI,
@@ -70,6 +71,15 @@ FILE_BYTES_MARGIN = 1 << 20
 #: Boundary length (crack steps: pixel edges between a pixel of the set and one outside) of a pixel set
 #: that may be reconstructed; reconstruction costs several hundred bytes per step.
 MAX_CRACK_STEPS = 2_000_000
+#: Labels of a label map polygonized at once (its watertight subdivision: ``mrm polygonize``,
+#: :func:`mrm.polygonize`, a label map's polygons in the window): each label costs about half a millisecond of
+#: assembling and exact checking whatever its size (a 693-byte PNG can hold 65,535 labels).
+MAX_SUBDIVISION_LABELS = 20_000
+#: Junctions (pixel corners where three labels meet, or two diagonally: the 0-cells) plus regions of a label
+#: map polygonized at once. Each is a cell or a polygon of 1–3 kB, and each region one more GeoJSON Feature:
+#: 120,000 keep ``mrm polygonize`` under 0.8 GB and about 20 s, where a 28 KB 2000² checkerboard has eight
+#: million (ADR 0048).
+MAX_SUBDIVISION_CELLS = 120_000
 #: Largest file written by an export (SVG, GeoJSON, WKT, images).
 MAX_OUTPUT_BYTES = 256 << 20
 #: Pixels of a label map (four bytes each in memory).
@@ -210,15 +220,18 @@ def check_pixel_extent(
     check_pixels(count, limit, what, unit=f"{unit}s")
 
 
-def crack_steps(mask: npt.NDArray[np.bool_], *, rows_per_strip: int = 1024) -> int:
+def crack_steps(mask: npt.NDArray[Any], *, rows_per_strip: int = 1024) -> int:
     """The boundary length of a mask: pixel edges (2D) or voxel faces (3D, surfels) between the set and not.
 
-    An unset point, or the outside of the array, on the other side.
+    An unset point, or the outside of the array, on the other side. For an integer label array, the edges
+    between two different labels (the outside is label 0): the boundaries of a label map's subdivision.
 
     Linear time; works in strips along the first array axis so that it needs at most a few bytes per point
     of one strip.
     """
-    m = np.asarray(mask, dtype=bool)
+    m = np.asarray(mask)
+    if m.dtype.kind not in "biu":
+        m = m.astype(bool)
     if m.ndim not in (2, 3) or m.size == 0:
         return 0
     h = m.shape[0]
@@ -264,6 +277,76 @@ def check_reconstruct(ps: Any, what: str | None = None) -> int:
     return steps
 
 
+def label_junctions(labels: npt.NDArray[np.integer[Any]], *, rows_per_strip: int = 1024) -> int:
+    """The junctions of a label array: pixel corners where three labels meet, or two diagonally.
+
+    The outside is label 0. A corner is one exactly when at least three of the four pixel edges that meet
+    there separate different labels. Linear time, in strips of rows (a few bytes per pixel of one strip).
+    """
+    lab = np.asarray(labels)
+    if lab.ndim != 2 or lab.size == 0:
+        return 0
+    h, w = lab.shape
+    zero = np.zeros((1, w), dtype=lab.dtype)
+    total = 0
+    for i0 in range(0, h + 1, rows_per_strip):
+        i1 = min(i0 + rows_per_strip, h + 1)  # corner rows i0 … i1 − 1, each between pixel rows i − 1 and i
+        rows = lab[max(i0 - 1, 0) : min(i1, h)]
+        if i0 == 0:
+            rows = np.vstack([zero, rows])
+        if i1 == h + 1:
+            rows = np.vstack([rows, zero])
+        p = np.pad(rows, ((0, 0), (1, 1)))
+        a, b, c, d = p[:-1, :-1], p[:-1, 1:], p[1:, :-1], p[1:, 1:]
+        sides = (a != b).astype(np.uint8)
+        sides += c != d
+        sides += a != c
+        sides += b != d
+        total += int(np.count_nonzero(sides >= 3))
+    return total
+
+
+def check_subdivision(
+    labels: npt.NDArray[np.integer[Any]], n_labels: int, n_regions: int, what: str | None = None
+) -> int:
+    """Refuse to polygonize a label map whose subdivision would cost too much, before any of the work.
+
+    ``n_labels`` and ``n_regions`` count its distinct non-zero labels and its regions (4-connected
+    components of one label). Checked: the labels against :data:`MAX_SUBDIVISION_LABELS`, the boundary
+    length (edges between different labels) against :data:`MAX_CRACK_STEPS`, which also bounds the
+    vertices and the size of any file written from the polygons, and the junctions plus regions against
+    :data:`MAX_SUBDIVISION_CELLS`.
+
+    Returns the boundary length.
+
+    Raises
+    ------
+    LimitError
+        Naming the count that is too large and its limit.
+    """
+    name = what or "the label map"
+    if n_labels > MAX_SUBDIVISION_LABELS:
+        raise LimitError(
+            f"{name} has {n_labels:,} labels, more than the {MAX_SUBDIVISION_LABELS:,} that may be "
+            "polygonized at once; merge labels, or split it into smaller maps"
+        )
+    steps = crack_steps(labels)
+    if steps > MAX_CRACK_STEPS:
+        raise LimitError(
+            f"{name} has boundaries of {steps:,} pixel edges, more than the {MAX_CRACK_STEPS:,} its polygons "
+            "may have (a checkerboard-like or noisy image?); smooth it first, or keep it as a label map"
+        )
+    junctions = label_junctions(labels)
+    if junctions + n_regions > MAX_SUBDIVISION_CELLS:
+        raise LimitError(
+            f"{name} has {n_regions:,} regions and {junctions:,} corners where three labels meet, "
+            f"{junctions + n_regions:,} pieces, more than the {MAX_SUBDIVISION_CELLS:,} that may be "
+            "polygonized at once (a checkerboard-like or noisy image?); smooth it first, or keep it as a "
+            "label map"
+        )
+    return steps
+
+
 def check_pixels(estimated: int, limit: int | None, what: str, *, unit: str = "pixels") -> None:
     """The one size check: refuse work whose result would cover more than ``limit`` pixels, before any of it.
 
@@ -281,7 +364,9 @@ def check_pixels(estimated: int, limit: int | None, what: str, *, unit: str = "p
     if limit is None:
         return
     if isinstance(limit, bool) or not isinstance(limit, int) or limit < 0:
-        raise ParameterError(f"the {unit[:-1]} limit must be a non-negative integer or None, got {limit!r}")
+        raise ParameterError(
+            f"the {unit[:-1]} limit must be a non-negative integer or None, got {value_text(limit)}"
+        )
     if estimated > limit:
         raise SizeLimitError(int(estimated), int(limit), what, unit)
 
@@ -410,6 +495,7 @@ __all__ = [name for name in dir() if name.isupper() and not name.startswith("_")
     "check_param_int",
     "check_pixel_extent",
     "check_reconstruct",
+    "check_subdivision",
     "check_text",
     "check_transform",
     "check_vertices",
@@ -418,6 +504,7 @@ __all__ = [name for name in dir() if name.isupper() and not name.startswith("_")
     "clean_text",
     "crack_steps",
     "json_bytes",
+    "label_junctions",
     "object_file_bytes",
     "source_file_bytes",
 ]

@@ -22,6 +22,7 @@ from enum import StrEnum
 from fractions import Fraction
 
 from mrm.core.errors import ParameterError
+from mrm.core.numbers import value_text
 
 __all__ = ["DEFAULT_MODEL", "Model", "cell_index", "cell_of"]
 
@@ -68,7 +69,7 @@ class Model(StrEnum):
                 if m.value == key:
                     return m
         names = ", ".join(m.value for m in cls)
-        raise ParameterError(f"unknown {what} {value!r}; choose one of {names}")
+        raise ParameterError(f"unknown {what} {value_text(value)}; choose one of {names}")
 
     @classmethod
     def names(cls) -> tuple[str, ...]:

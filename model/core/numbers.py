@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 import re
+import reprlib
 from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Any
@@ -34,10 +35,12 @@ __all__ = [
     "brief",
     "fraction_text",
     "read_number",
+    "read_pixel",
     "read_point",
     "read_positive",
     "spell",
     "to_json",
+    "value_text",
 ]
 
 #: A point: exact coordinates (two in the plane, three in space).
@@ -53,6 +56,37 @@ _UNITS = ("px", "°", "×", "deg")
 _DECIMAL = re.compile(r"^[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE]([+-]?\d+))?$")
 _RATIO = re.compile(r"^[+-]?\d+/\d+$")
 _NOT_FINITE = ("nan", "inf", "infinity")
+
+
+class _Short(reprlib.Repr):
+    """``repr`` cut short, for messages: long texts and sequences abbreviated, huge integers described."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.maxstring = self.maxother = self.maxlong = 40
+        self.maxlist = self.maxtuple = self.maxdict = self.maxset = 4
+
+    def repr_int(self, x: int, level: int) -> str:
+        # repr of an integer beyond 4300 digits raises ValueError (CPython's conversion limit), and a long one
+        # says nothing a reader can use: its size does.
+        if x.bit_length() > 128:
+            return f"{'-' if x < 0 else ''}<an integer of about {int(x.bit_length() * 0.30103) + 1:,} digits>"
+        return super().repr_int(x, level)
+
+
+_SHORT = _Short()
+
+
+def value_text(value: object) -> str:
+    """``value`` as a message shows what a user gave: its ``repr``, at most about 40 characters.
+
+    Never fails: a 5000-digit integer (whose ``repr`` raises ValueError), a huge sequence or an object with a
+    broken ``repr`` each become a short description, so that the message refusing a value can be written.
+    """
+    try:
+        return _SHORT.repr(value)
+    except Exception:  # a repr that fails is the caller's object's bug: name its type
+        return f"<{type(value).__name__}>"
 
 
 def _normalise(text: str) -> str:
@@ -107,25 +141,25 @@ def read_number(value: object, what: str) -> Fraction:
     (Fraction(1, 5), Fraction(1, 3), Fraction(-5, 2))
     """
     if isinstance(value, bool) or value is None:
-        raise ParameterError(f"{what} must be a number, got {value!r}")
+        raise ParameterError(f"{what} must be a number, got {value_text(value)}")
     if isinstance(value, Fraction):
         q = value
     elif isinstance(value, int):
         q = Fraction(value)
     elif isinstance(value, float):
         if not math.isfinite(value):
-            raise ParameterError(f"{what} must be a finite number, got {value!r}")
+            raise ParameterError(f"{what} must be a finite number, got {value_text(value)}")
         q = Fraction(repr(float(value)))  # float(): numpy's float64 is a float whose repr is np.float64(…)
     elif isinstance(value, str):
         q = _from_text(value, what)
     elif isinstance(value, Decimal):
         if not value.is_finite():
-            raise ParameterError(f"{what} must be a finite number, got {value!r}")
+            raise ParameterError(f"{what} must be a finite number, got {value_text(value)}")
         q = _from_text(str(value), what)
     elif hasattr(value, "dtype") and hasattr(value, "item") and getattr(value, "ndim", 0) == 0:
         return read_number(value.item(), what)  # numpy scalars (and 0-d arrays)
     else:
-        raise ParameterError(f"{what} must be a number, got {value!r}")
+        raise ParameterError(f"{what} must be a number, got {value_text(value)}")
     if max(q.numerator.bit_length(), q.denominator.bit_length()) > 3.33 * MAX_DIGITS:
         raise ParameterError(f"{what} has more than {MAX_DIGITS} digits")
     return q
@@ -153,8 +187,27 @@ def read_point(value: object, what: str, dimension: int = 2) -> Point:
         value = value.tolist()
     if not isinstance(value, (list, tuple)) or len(value) != dimension:
         names = ", ".join("xyz"[:dimension])
-        raise ParameterError(f"{what} must be {dimension} numbers ({names}), got {value!r}")
+        raise ParameterError(f"{what} must be {dimension} numbers ({names}), got {value_text(value)}")
     return tuple(read_number(v, f"{what} {'xyz'[k]}") for k, v in enumerate(value))
+
+
+def read_pixel(value: object, what: str, bound: int, dimension: int = 2) -> tuple[int, ...]:
+    """A pixel (or voxel): :func:`read_point` with integer coordinates of magnitude at most ``bound``.
+
+    Raises
+    ------
+    ParameterError
+        Naming the point, for anything else (``(1.5, 0)``, ``(1e300, 0)``, ``"x"``).
+    """
+    if isinstance(value, bool):
+        raise ParameterError(f"{what} must be {dimension} integers, got {value!r}")
+    pt = read_point(value, what, dimension)
+    if any(c.denominator != 1 or abs(c) > bound for c in pt):
+        raise ParameterError(
+            f"{what} must be {dimension} integers between {-bound} and {bound}, got "
+            f"({', '.join(brief(c) for c in pt)})"
+        )
+    return tuple(int(c) for c in pt)
 
 
 def fraction_text(q: Fraction) -> str:

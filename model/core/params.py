@@ -23,7 +23,7 @@ from typing import Any, Literal, Self, TypeAlias
 
 from mrm.core.errors import ParameterError
 from mrm.core.models import Model
-from mrm.core.numbers import as_number, brief, read_number, read_point, spell
+from mrm.core.numbers import as_number, brief, read_number, read_point, spell, value_text
 
 __all__ = [
     "POINT_LIMIT",
@@ -123,7 +123,7 @@ class ParamSpec:
             return self._read_number(value)
         if self.kind == "point":
             if isinstance(value, bool):
-                raise ParameterError(f"{self.what} must be a pair of numbers, got {value!r}")
+                raise ParameterError(f"{self.what} must be a pair of numbers, got {value_text(value)}")
             pt = read_point(value, self.what, self.dimension)
             if any(abs(c) > POINT_LIMIT for c in pt):
                 raise ParameterError(
@@ -138,16 +138,16 @@ class ParamSpec:
                 return value
             if isinstance(value, str) and value.strip().lower() in ("true", "false"):
                 return value.strip().lower() == "true"
-            raise ParameterError(f"{self.what} must be true or false, got {value!r}")
+            raise ParameterError(f"{self.what} must be true or false, got {value_text(value)}")
         if self.kind == "choice":
             for c in self.choices:
                 if value == c:
                     return c
             raise ParameterError(
-                f"{self.what} must be one of {', '.join(map(str, self.choices))}, got {value!r}"
+                f"{self.what} must be one of {', '.join(map(str, self.choices))}, got {value_text(value)}"
             )
         if not isinstance(value, str):
-            raise ParameterError(f"{self.what} must be text, got {value!r}")
+            raise ParameterError(f"{self.what} must be text, got {value_text(value)}")
         return value
 
     def _read_number(self, value: Any) -> Fraction | int:

@@ -25,6 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.errors import ParameterError
+from mrm.core.numbers import value_text
 
 BoolArray = npt.NDArray[np.bool_]
 
@@ -105,10 +106,14 @@ def _otsu_sparse(vals: list[int], counts: list[int]) -> int:
 
 def _check_threshold(threshold: float) -> float:
     if isinstance(threshold, bool) or not isinstance(threshold, int | float | np.integer | np.floating):
-        raise ParameterError(f"the threshold must be a number, got {threshold!r}")
-    if not math.isfinite(float(threshold)):
-        raise ParameterError(f"the threshold must be finite, got {threshold!r}")
-    return float(threshold)
+        raise ParameterError(f"the threshold must be a number, got {value_text(threshold)}")
+    try:
+        value = float(threshold)
+    except OverflowError:  # an integer beyond float64
+        value = math.inf
+    if not math.isfinite(value):
+        raise ParameterError(f"the threshold must be finite, got {value_text(threshold)}")
+    return value
 
 
 def grey_of(

@@ -495,15 +495,20 @@ def _pin_legacy_provenance(objects: list[DocObject]) -> list[DocObject]:
     """
     by_id = {o.id: o for o in objects}
     done: dict[int, DocObject] = {}
-    visiting: set[int] = set()
+    visiting: list[int] = []  # the objects being pinned, each an input of the one before
+    cyclic: set[int] = set()
 
     def pinned(oid: int, depth: int) -> DocObject:
         if oid in done:
             return done[oid]
         obj = by_id[oid]
-        if oid in visiting:  # a cycle of ids in a hand-made file: leave it unpinned
+        if oid in visiting:
+            # A cycle of ids (a hand-made file: a result's inputs exist before it): no object on it records
+            # what its inputs were, so none is pinned, and its account says so (issue 32: a half-pinned
+            # cycle made `mrm account` fail on a record without content).
+            cyclic.update(visiting[visiting.index(oid) :])
             return obj
-        visiting.add(oid)
+        visiting.append(oid)
         prov = obj.provenance
         if (
             prov is not None
@@ -513,8 +518,9 @@ def _pin_legacy_provenance(objects: list[DocObject]) -> list[DocObject]:
             and all(i in by_id and i != oid for i in prov.inputs)
         ):
             ins = [pinned(i, depth + 1) for i in prov.inputs]
-            obj = obj.with_(provenance=Provenance.of_inputs(prov.operation, prov.params, ins))
-        visiting.discard(oid)
+            if oid not in cyclic:
+                obj = obj.with_(provenance=Provenance.of_inputs(prov.operation, prov.params, ins))
+        visiting.pop()
         done[oid] = obj
         return obj
 

@@ -309,6 +309,7 @@ def chain_of(prov: Any) -> list[Any]:
         and cur.pinned
         and cur.parents
         and cur.parents[0] is not None
+        and cur.parents[0].pinned  # a record without its input's content starts nothing that can be replayed
         and is_chain_operation(cur.parents[0].operation)
         and len(records) < 100_000
     ):

@@ -222,7 +222,7 @@ def _reconstruct_parts(
 ) -> tuple[dict[str, Any], bool]:
     """R of each part; under gauss the joint (watertight) reconstruction of the label map when available."""
     if model == Model.GAUSS:
-        by_label = reconstruct_label_map(label_map, model)
+        by_label = reconstruct_label_map(label_map, model, what="the co-refinement's parts together")
         return {p: by_label.get(i + 1, Polygon()) for i, p in enumerate(PARTS)}, True
     out = {}
     for i, p in enumerate(PARTS):

@@ -30,7 +30,7 @@ from shapely.geometry.base import BaseGeometry
 from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
-from mrm.core.numbers import spell
+from mrm.core.numbers import spell, value_text
 from mrm.core.params import Parameters
 from mrm.core.progress import NO_PROGRESS, ProgressLike
 from mrm.geometry.discretize.exact_shape import Similarity
@@ -261,13 +261,14 @@ def get_operation(name: str | OperationSpec) -> OperationSpec:
     if isinstance(name, OperationSpec):
         return name
     _load_builtin()
-    if name in REGISTRY:
+    if isinstance(name, str) and name in REGISTRY:
         return REGISTRY[name]
-    key = str(name).strip().lower().replace("-", "_").replace(" ", "_")
-    for spec in REGISTRY.values():
-        if key in spec.words or key.replace("_", "") in spec.words:
-            return spec
-    raise ParameterError(f"unknown operation {name!r} (known: {', '.join(sorted(REGISTRY))})")
+    if isinstance(name, str):
+        key = name.strip().lower().replace("-", "_").replace(" ", "_")
+        for spec in REGISTRY.values():
+            if key in spec.words or key.replace("_", "") in spec.words:
+                return spec
+    raise ParameterError(f"unknown operation {value_text(name)} (known: {', '.join(sorted(REGISTRY))})")
 
 
 def operations() -> list[OperationSpec]:

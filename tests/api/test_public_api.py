@@ -6,6 +6,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 from PIL import Image
 from shapely.geometry import Polygon
 
@@ -97,3 +98,32 @@ def test_polygonize_burns_back_to_the_label_image():
     assert sorted(parts) == [1, 2, 3]
     for label, poly in parts.items():
         assert mrm.discretize(poly, "gauss") == mrm.PixelSet.from_image(labels == label)
+
+
+HUGE = 10**5000  # its repr raises ValueError (CPython refuses int → str beyond 4300 digits)
+BAD_PIXELS = [(1e300, 0), (HUGE, 0), (0.5, 0), (2**40, 0), "x", [1], (1, 2, 3), True]
+BAD_CALLS = {
+    **{
+        f"polygonize origin {k}": (lambda v=v: mrm.polygonize(np.ones((2, 2), int), origin=v))
+        for k, v in enumerate(BAD_PIXELS)
+    },
+    **{f"segment start {k}": (lambda v=v: mrm.segment("0011", start=v)) for k, v in enumerate(BAD_PIXELS)},
+    "segment closed": lambda: mrm.segment("0011", closed=HUGE),
+    "segment closed list": lambda: mrm.segment("0011", closed=[1]),
+    "segment adjacency": lambda: mrm.segment("0011", adjacency=(HUGE,)),
+    "segment mode": lambda: mrm.segment("0011", mode=HUGE),
+    "scale by a pair": lambda: mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), (HUGE, 0)),
+    "scale model": lambda: mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model=HUGE),
+    "bound model": lambda: mrm.bound("DSS 2", model=(HUGE,)),
+    "discretize limit": lambda: mrm.discretize(Polygon([(0, 0), (2, 0), (0, 2)]), limit=(HUGE,)),
+    "threshold": lambda: mrm.PixelSet.from_image(np.zeros((2, 2), np.uint8), threshold=HUGE),
+}
+
+
+@pytest.mark.parametrize("call", BAD_CALLS.values(), ids=BAD_CALLS.keys())
+def test_hostile_arguments_are_refused_with_a_one_line_message(call):
+    """Issue 32: integer points read with int() (OverflowError, IndexError), numba typing errors, and messages
+    quoting a 5000-digit integer (ValueError) escaped the library's MRMError."""
+    with pytest.raises(mrm.MRMError) as e:
+        call()
+    assert "\n" not in str(e.value) and len(str(e.value)) < 300

@@ -224,3 +224,21 @@ def test_touching_labels_get_different_colours(seed: int, k: int, shape: tuple[i
                 r2, c2 = r + dr, c + dc
                 if room and 0 <= r2 < h and 0 <= c2 < w and 0 != lab[r, c] != lab[r2, c2] != 0:
                     assert label_colour(lm, int(lab[r, c])) != label_colour(lm, int(lab[r2, c2]))
+
+
+def test_a_label_map_too_costly_to_polygonize_is_refused_on_export_in_one_message(
+    make_window, qtbot, tmp_path
+):
+    """Issue 32: the export shares mrm polygonize's cost check; nothing is written, the map stays."""
+    win = make_window()
+    lm = LabelMap((np.arange(150 * 150, dtype=np.int32) + 1).reshape(150, 150))  # 22,500 one-pixel labels
+    obj = win.doc.make_object(lm, name="noise")
+    win.doc.push(AddObject(obj))
+    refused: list[tuple[str, str]] = []
+    win.files._error = lambda title, text: refused.append((title, text))  # type: ignore[method-assign]
+    out = tmp_path / "noise.geojson"
+    win.files.export(obj.id, out)
+    qtbot.waitUntil(lambda: bool(refused), timeout=30_000)
+    title, text = refused[0]
+    assert title == "Cannot export" and "22,500 labels" in text and "20,000" in text and "\n" not in text
+    assert not out.exists() and win.doc.get(obj.id).source is lm

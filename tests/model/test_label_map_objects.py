@@ -168,3 +168,20 @@ def test_a_label_maps_pixels_are_looked_up_like_a_pixel_sets():
     assert (11, 20) in lm and (11.0, 20) in lm and (10, 20) not in lm
     for odd in ((11.5, 20), ("11", 20), (11,), None):
         assert odd not in lm and odd not in lm.support()
+
+
+def test_a_label_map_too_costly_to_polygonize_keeps_its_labels_and_says_why(monkeypatch):
+    """Issue 32: the window's polygons of a label map share mrm polygonize's cost check (before any work)."""
+    from mrm.core.errors import LimitError
+    from mrm.geometry.reconstruct import subdivision
+
+    monkeypatch.setattr(subdivision, "_subdivide", lambda _lm: pytest.fail("subdivided before the check"))
+    labels = (np.arange(150 * 150, dtype=np.int32) + 1).reshape(150, 150)  # 22,500 one-pixel labels
+    doc = Document(Settings(model="gauss"))
+    obj = doc.make_object(LabelMap(labels), name="noise")
+    doc.push(AddObject(obj))
+    entry = doc.cache.entry(obj.source, doc.model)
+    for _ in range(2):  # the refusal is kept: asking again does not start the work again
+        with pytest.raises(LimitError, match="22,500 labels"):
+            entry.get("euclidean")
+    assert entry.get("discrete") is obj.source and doc.get(obj.id).source is obj.source

@@ -427,3 +427,43 @@ def test_any_recorded_parameters_give_an_account_or_a_message_never_an_exception
     acc = account_of(back.get(b).provenance, measure=False)
     assert acc.error or acc.bound is not None or acc.no_bound
     assert json.loads(json.dumps(acc.summary())) is not None
+
+
+# --------------------------------------------------------------------------------- schema-1 files: cycles
+def _schema1_project(path: Path, inputs: dict[int, list[int]]) -> None:
+    """A version 1 project whose objects are DSS results of the given input ids (a 2 × 2 block each)."""
+    style = {"fill": "#4c72b0", "stroke": "#1f2a44", "opacity": 0.6, "stroke_width": 1.5, "visible": True}
+    source = {"kind": "discrete", "origin": [0, 0], "shape": [2, 2], "bits": "8A=="}
+    objects = [
+        {
+            "id": oid,
+            "name": f"o{oid}",
+            "style": style,
+            "provenance": None
+            if ins is None
+            else {"operation": "dss", "params": {"alpha": 2, "model": "gauss"}, "inputs": ins},
+            "source": source,
+        }
+        for oid, ins in inputs.items()
+    ]
+    data = {"format": "mrm-project", "schema_version": 1, "settings": {"model": "gauss"}, "objects": objects}
+    path.write_text(json.dumps(data), encoding="utf-8")
+
+
+def _account_cli(capsys, path: Path, name: str) -> tuple[int, str, str]:
+    code = run_cli(["account", str(path), "--object", name, "--json"])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_a_provenance_cycle_in_a_schema_1_project_is_reported_not_a_traceback(tmp_path, capsys):
+    """Issue 32: o1 = DSS(o2) and o2 = DSS(o1) in a version 1 file made `mrm account` fail (IndexError)."""
+    path = tmp_path / "cycle.mrm"
+    _schema1_project(path, {1: [2], 2: [1], 3: [1]})
+    for name in ("o1", "o2"):
+        code, out, err = _account_cli(capsys, path, name)
+        assert code == 0 and "Traceback" not in err, err
+        assert "not recorded" in json.loads(out)["error"]  # a cycle records no input content: nothing pinned
+    code, out, err = _account_cli(capsys, path, "o3")  # a result of a cycle's member: its input is known
+    assert code == 0 and "Traceback" not in err, err
+    assert json.loads(out)["chain"] == ["DSS 2"] and json.loads(out)["error"] is None

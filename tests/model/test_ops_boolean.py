@@ -5,6 +5,7 @@ from __future__ import annotations
 import itertools
 from fractions import Fraction
 
+import numpy as np
 import pytest
 import shapely
 from hypothesis import given, settings
@@ -172,3 +173,31 @@ def test_the_parts_label_map_labels_each_part(a, b):
     assert parts_label_map(a, PixelSet.empty()) == LabelMap.from_pixel_sets(
         [a, PixelSet.empty(), PixelSet.empty()]
     )
+
+
+@pytest.mark.parametrize("model", MODELS)
+@pytest.mark.parametrize("alpha", [0.25, "1/524288"])
+def test_a_tiny_but_valid_shape_is_corefined_exactly_at_a_small_alpha(alpha, model):
+    """Issue 32: Sc_α of a triangle with legs 3·2⁻⁴⁰⁰ left D's float range and EDco_α refused it."""
+    tiny = 3 * 2.0**-400
+    e1 = shapely.Polygon([(0, 0), (8, 0), (8, tiny)])
+    e2 = shapely.Polygon([(0, 0), (tiny, 0), (0, tiny)])
+    a = Fraction(alpha) if isinstance(alpha, str) else Fraction(repr(float(alpha)))
+    out = euclidean_discrete_corefinement(e1, e2, model, alpha)
+    d1 = reference_discretize_rings(scaled(polygons_of(e1), a), model)
+    d2 = reference_discretize_rings(scaled(polygons_of(e2), a), model)
+    assert out.extra["pixels"]["a_and_b"] == d1 & d2
+    assert out.extra["pixels"]["a_minus_b"] == d1 - d2
+    assert out.extra["pixels"]["b_minus_a"] == d2 - d1
+
+
+def test_a_gauss_corefinement_of_noise_is_refused_by_the_subdivisions_cost_first(monkeypatch):
+    """Issue 32: under gauss the parts are one watertight subdivision, bounded like mrm polygonize."""
+    from mrm.core.errors import LimitError
+    from mrm.geometry.reconstruct import subdivision
+
+    monkeypatch.setattr(subdivision, "_subdivide", lambda _lm: pytest.fail("subdivided before the check"))
+    dots = np.zeros((700, 700), bool)
+    dots[::2, ::2] = True  # 122,500 one-pixel regions
+    with pytest.raises(LimitError, match="co-refinement's parts together has 122,5"):
+        euclidean_discrete_corefinement(PixelSet(dots), PixelSet.box(0, 0, 1, 1), "gauss")

@@ -218,3 +218,26 @@ def test_dss_one_fifth_of_a_large_object_is_the_computed_definition(model):
     assert out.euclidean == ExactShape.from_geometry(reconstruct(a, model)).map(
         Similarity.scaling(Fraction(1, 5))
     )
+
+
+@pytest.mark.parametrize("model", MODELS)
+@pytest.mark.parametrize(
+    "a",
+    [PixelSet.box(0, 0, 0, 0), PixelSet.box(-3, 5, 40, 7), PixelSet(np.eye(6, dtype=bool), (999_998, -2))],
+    ids=["one pixel", "a bar", "a diagonal across a block side"],
+)
+@pytest.mark.parametrize("k", [33, 10**6])
+def test_dss_by_one_over_a_huge_k_is_the_definition_without_a_k_by_k_array(a, k, model):
+    """Issue 32: DSS_10⁻⁶ with aligned grids padded A to whole 10⁶ × 10⁶ blocks (931 GiB, MemoryError).
+
+    The result is a pixel or two; it is the definition D(Sc_1/k(R(A))), computed by the references.
+    """
+    import mrm
+    from mrm.geometry.discretize.exact_shape import Similarity
+    from mrm.ops.outcome import scaling_by_pixels
+
+    centre = (Fraction(-1, 2), Fraction(-1, 2)) if model != "gauss" else (Fraction(0), Fraction(0))
+    assert scaling_by_pixels(a, Similarity.scaling(Fraction(1, k), centre), model) is not None  # the shortcut
+    got = mrm.scale(a, Fraction(1, k), centre, model)
+    polys = scaled(polygons_of(reconstruct(a, model)), Fraction(1, k), centre)
+    assert got == reference_discretize_rings(polys, model)

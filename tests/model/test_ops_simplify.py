@@ -97,3 +97,26 @@ def test_errors_name_the_parameter():
     for bad in (0, -2, float("nan"), float("-inf"), "x"):
         with pytest.raises(ParameterError, match="alpha"):
             simplification(tri, bad)
+
+
+# Valid shapes with a coordinate of 3·2⁻⁴⁰⁰: D takes them (|v| ≥ 2⁻⁴⁰⁰), and Sc_α for α < 1/3 moves it below.
+TINY = 3 * 2.0**-400
+TINY_SHAPES = {
+    "triangle": shapely.Polygon([(0, 0), (TINY, 0), (0, TINY)]),
+    "sliver": shapely.Polygon([(0, 0), (8, 0), (8, TINY)]),
+}
+
+
+@pytest.mark.parametrize("model", MODELS)
+@pytest.mark.parametrize("alpha", [0.25, "1/524288"])
+@pytest.mark.parametrize("name", TINY_SHAPES)
+def test_a_tiny_but_valid_shape_is_simplified_exactly_not_refused(name, alpha, model):
+    """Issue 32: Sc_α(E) had a coordinate below 2⁻⁴⁰⁰, which D's float kernels refuse ("too close to 0")."""
+    poly = TINY_SHAPES[name]
+    discretize(poly, model)  # the input is one D takes
+    out = simplification(poly, alpha, None, model)
+    a = exact(alpha)
+    assert out.discrete == reference_discretize_rings(scaled(polygons_of(poly), a), model)
+    back = scaled(polygons_of(reconstruct(out.discrete, model)), 1 / a)
+    expected = np.array([(float(x), float(y)) for p in back for r in p for x, y in r]).reshape(-1, 2)
+    assert np.array_equal(coords(out.result), expected)

@@ -127,3 +127,35 @@ def test_every_operation_declares_every_parameter_and_its_defaults_are_valid() -
         assert spec.read_params(defaults.to_json()) == defaults
         for s in spec.params.specs():
             assert s.help, f"{spec.name}.{s.name} has no help text"
+
+
+HUGE = 10**5000  # its repr raises ValueError (CPython refuses int → str beyond 4300 digits)
+
+
+@pytest.mark.parametrize("name", ["alpha", "steps", "centre", "exact", "mode", "angle", "model"])
+@pytest.mark.parametrize(
+    "value",
+    [HUGE, -HUGE, (HUGE, 0), [1, (2, HUGE)], {"x": HUGE}, "9" * 100_000],
+    ids=["huge", "minus huge", "pair", "nested", "mapping", "long text"],
+)
+def test_a_value_holding_a_huge_integer_is_refused_in_one_short_line(name: str, value: Any) -> None:
+    """Issue 32: messages quoting the value (repr) raised ValueError instead of refusing it."""
+    with pytest.raises(ParameterError) as e:
+        DemoParams(**{name: value})
+    message = str(e.value)
+    assert name in message and "\n" not in message and len(message) < 300
+
+
+def test_messages_show_a_value_briefly_whatever_it_is() -> None:
+    from mrm.core.numbers import value_text
+
+    assert value_text("abc") == "'abc'" and value_text((1, 2.5)) == "(1, 2.5)"
+    assert value_text(HUGE) == "<an integer of about 5,001 digits>"
+    assert value_text(-HUGE) == "-<an integer of about 5,001 digits>"
+    assert len(value_text(list(range(10**6)))) < 60 and len(value_text("x" * 10**6)) < 60
+
+    class Broken:
+        def __repr__(self) -> str:
+            raise RuntimeError("no")
+
+    assert value_text(Broken()).startswith("<")

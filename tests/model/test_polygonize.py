@@ -286,3 +286,69 @@ def test_a_polygon_the_labelling_cannot_place_is_counted_by_its_exact_discretiza
 
     monkeypatch.setattr(pz, "label_regions", shifted)
     assert [(r.label, r.pixels, r.geometry.wkb) for r in polygonize(lm)] == want
+
+
+# ------------------------------------------------------------------------------------ the cost, bounded first
+def checkerboard(n: int) -> np.ndarray:
+    yy, xx = np.mgrid[0:n, 0:n]
+    return ((xx + yy) % 2 + 1).astype(np.uint8)
+
+
+@pytest.fixture
+def no_subdivision(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The refusals below must come from the estimate, before any of the subdivision's work."""
+    from mrm.geometry.reconstruct import subdivision
+
+    def refuse(_lm: LabelMap) -> None:
+        raise AssertionError("the subdivision started before its cost was checked")
+
+    monkeypatch.setattr(subdivision, "_subdivide", refuse)
+
+
+def test_cli_polygonize_refuses_65535_labels_in_a_tiny_png_before_any_work(capsys, tmp_path, no_subdivision):
+    """Issue 32: a 693-byte 16-bit PNG with 65,535 labels (256²) took 90 s."""
+    lab = np.arange(256 * 256, dtype=np.uint16).reshape(256, 256)
+    Image.fromarray(lab).save(tmp_path / "labels.png")  # 16-bit grey, labels 0 … 65535
+    assert (tmp_path / "labels.png").stat().st_size < 200_000
+    code, _out, err = run(capsys, "polygonize", tmp_path / "labels.png", "-o", tmp_path / "o.geojson")
+    assert code == 2 and "Traceback" not in err
+    assert err.count("\n") == 1 and "65,535 labels" in err and "20,000" in err
+    assert not (tmp_path / "o.geojson").exists()
+
+
+def test_cli_polygonize_refuses_a_2000_checkerboard_by_its_boundary_length(capsys, tmp_path, no_subdivision):
+    """Issue 32: a 28 KB 2000² checkerboard ran 5 min 37 s and exhausted 8 GB."""
+    Image.fromarray(checkerboard(2000)).save(tmp_path / "board.png")
+    code, _out, err = run(capsys, "polygonize", tmp_path / "board.png", "-o", tmp_path / "o.geojson")
+    assert code == 2 and err.count("\n") == 1 and "Traceback" not in err
+    assert "8,004,000 pixel edges" in err and "2,000,000" in err  # 2·2000·2001 edges between labels
+    assert not (tmp_path / "o.geojson").exists()
+
+
+@pytest.mark.parametrize(
+    "kind, words",
+    [
+        ("checkerboard", ("129,600 regions", "130,317 corners")),
+        ("dots", ("251,002 regions", "4,000 corners")),
+    ],
+)
+def test_polygonize_refuses_too_many_regions_and_junctions_in_the_library_too(kind, words, no_subdivision):
+    """Few labels and a short enough boundary, but each region and junction is a cell of a few kB."""
+    import mrm
+    from mrm.core.errors import LimitError
+
+    if kind == "checkerboard":
+        lab = checkerboard(360)  # 129,600 regions; junctions at every inner corner and half the border
+    else:
+        lab = np.full((1001, 1001), 2, np.uint8)
+        lab[::2, ::2] = 1  # 501² one-pixel islands in one region of label 2, which meet the outside
+    for call in (lambda: polygonize(lab), lambda: mrm.polygonize(lab)):
+        with pytest.raises(LimitError) as e:
+            call()
+        assert all(w in str(e.value) for w in words) and "120,000" in str(e.value)
+
+
+def test_polygonize_just_below_the_limits_still_works() -> None:
+    lab = checkerboard(60).astype(np.int32)
+    regions = polygonize(LabelMap(lab))
+    assert len(regions) == 3600 and {r.pixels for r in regions} == {1}

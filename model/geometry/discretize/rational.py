@@ -29,12 +29,14 @@ from fractions import Fraction
 from typing import Any
 
 import numpy as np
+import shapely
 
 from mrm.core.grids import Box, PixelSet, box_area
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize import discretize
+from mrm.geometry.discretize.exact import check_coordinate_range
 from mrm.geometry.discretize.exact_shape import ExactShape, pixel_box
 from mrm.geometry.discretize.rational_kernels import (
     discretize_integer_edges,
@@ -106,9 +108,14 @@ def discretize_exact(
     check_pixels(box_area(box), limit, what)
     _tick(progress, None, "discretizing")
     if not force_integer and shape.is_float_exact():
-        result = discretize(shape.to_geometry(), model, limit=limit)
-        _tick(progress, None)
-        return result
+        geom = shape.to_geometry()
+        # Float64 coordinates within the range D's float kernels take: D itself. A scaled shape may leave it
+        # (α = 1/4 of a valid triangle with legs 3·2⁻⁴⁰⁰, below MIN_ABS_COORD) where its input did not; the
+        # exact paths below take any rational, so the result exists and is computed, never refused.
+        if check_coordinate_range(shapely.get_coordinates(geom).reshape(-1)) is None:
+            result = discretize(geom, model, limit=limit)
+            _tick(progress, None)
+            return result
     if not force_integer:
         # Coordinates that are not float64 values (a rotation's): the float filter, exact by its bound.
         filtered = filtered_exact(shape, model, limit=limit)
@@ -204,11 +211,13 @@ def discretize_image(
         and a.numerator & (a.numerator - 1) == 0
         and a.denominator & (a.denominator - 1) == 0
     ):
-        # A scaling about the origin by a power of two: the float64 image is exact (range checked below).
-
+        # A scaling about the origin by a power of two: the float64 image is exact when neither the input nor
+        # the image leaves the range of D's float kernels (no underflow); else the exact paths below.
         values = coords * float(a)
-        nonzero = np.abs(values[values != 0])
-        if np.isfinite(values).all() and (not nonzero.size or nonzero.min() > 2.0**-1000):
+        if (
+            check_coordinate_range(coords.reshape(-1)) is None
+            and check_coordinate_range(values.reshape(-1)) is None
+        ):
             image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
             whole = image[0] if len(image) == 1 else MultiPolygon(list(image))
             return discretize(whole, model, limit=limit, check_validity=not valid)
@@ -236,9 +245,10 @@ def discretize_image(
         # discretization is exact on it, and faster than the integer kernels.
 
         values = (img // 2).astype(np.float64) / float(d)
-        image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
-        whole = image[0] if len(image) == 1 else MultiPolygon(list(image))
-        return discretize(whole, model, limit=limit, check_validity=not valid)
+        if check_coordinate_range(values.reshape(-1)) is None:  # else the integer kernels below
+            image = shapely.set_coordinates(shapely.get_parts(geom).copy(), values)
+            whole = image[0] if len(image) == 1 else MultiPolygon(list(image))
+            return discretize(whole, model, limit=limit, check_validity=not valid)
     # Edges: consecutive vertices of each closed ring (the closing point repeats the first).
     same = index[1:] == index[:-1]
     e = np.concatenate([img[:-1][same], img[1:][same]], axis=1)

@@ -27,7 +27,9 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import ParameterError
 from mrm.core.grids import LabelMap
+from mrm.core.limits import PIXEL_COORDINATE_LIMIT
 from mrm.core.models import Model
+from mrm.core.numbers import read_pixel
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct.subdivision import subdivide
 from mrm.geometry.topology.labeling import label_regions
@@ -90,19 +92,23 @@ def polygonize(
         if a.ndim != 2 or a.dtype.kind not in "iub":
             raise ParameterError(f"labels must be a 2-D integer array, not {a.dtype} of shape {a.shape}")
         try:
-            lm = LabelMap(a, origin)
+            lm = LabelMap(a, read_pixel(origin, "origin", PIXEL_COORDINATE_LIMIT))
         except ValueError as e:
             raise ParameterError(str(e)) from None
-    sd = subdivide(lm, "gauss")
+    reg = label_regions(lm.labels)
+    sd = subdivide(lm, "gauss", regions=reg)  # its cost is checked first, from these regions
     # The subdivision gives one polygon per region, D_gauss of it exactly the region's pixels (its contract,
     # proven and tested in mrm.geometry.reconstruct.subdivision): a polygon is the region whose first pixel's
     # centre it holds, and the labelling gives each region's size and order.
-    reg = label_regions(lm.labels)
     x0, y0 = lm.origin
+    # Each label's regions in the output order, grouped once (a search per label was quadratic in labels).
+    order = np.argsort(reg.label, kind="stable")
+    starts = np.searchsorted(reg.label[order], np.asarray(list(sd.parts), dtype=np.int64))
+    ends = np.searchsorted(reg.label[order], np.asarray(list(sd.parts), dtype=np.int64), side="right")
     out: list[Region] = []
-    for label, geom in sd.parts.items():
+    for (label, geom), a, b in zip(sd.parts.items(), starts.tolist(), ends.tolist(), strict=True):
         polys = list(geom.geoms) if isinstance(geom, MultiPolygon) else ([geom] if not geom.is_empty else [])
-        mine = np.flatnonzero(reg.label == label)  # this label's regions, in the output order
+        mine = order[a:b]  # this label's regions, in the output order
         centres = shapely.points(x0 + reg.first_col[mine], y0 + reg.first_row[mine])
         which, poly = shapely.STRtree(polys).query(centres, predicate="within")
         if which.size != mine.size or np.unique(poly).size != len(polys) or len(polys) != mine.size:

@@ -65,13 +65,14 @@ from shapely.geometry import MultiPolygon, Polygon
 from mrm.core.errors import ParameterError
 from mrm.core.gc_pause import paused_gc
 from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import check_subdivision
 from mrm.core.models import Model
 from mrm.geometry.discretize import _discretize_pieces, _take_apart
 from mrm.geometry.reconstruct import _subdivision_kernels as K
 from mrm.geometry.reconstruct._cell_polylines import _Chain, _polyline, _to_plane
 from mrm.geometry.reconstruct._subdivision_kernels import label_boxes
 from mrm.geometry.topology.cracks import DX, DY
-from mrm.geometry.topology.labeling import group_by_label
+from mrm.geometry.topology.labeling import LabelRegions, group_by_label, label_regions
 from mrm.geometry.topology.labeling import label as label_components
 from mrm.reps.cells import Cells, cells_of
 
@@ -456,7 +457,9 @@ def _polylines(
     return polylines, stair
 
 
-def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
+def subdivide(
+    lm: LabelMap, model: str = "gauss", *, regions: LabelRegions | None = None, what: str | None = None
+) -> Subdivision:
     """Reconstruct all the labels of a label map jointly (module docstring), with the 1-cell polylines.
 
     Parameters
@@ -465,6 +468,11 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
         The label map; label 0 and everything outside the array is the background.
     model : {"gauss"}
         The discretization model; only ``gauss`` admits a watertight subdivision.
+    regions : LabelRegions, optional
+        The map's :func:`~mrm.geometry.topology.labeling.label_regions`, when the caller has them already
+        (polygonize): the cost check counts them instead of labelling the map again.
+    what : str, optional
+        How a refusal names the map (default "the label map").
 
     Returns
     -------
@@ -475,10 +483,25 @@ def subdivide(lm: LabelMap, model: str = "gauss") -> Subdivision:
     ------
     ParameterError
         For any model other than ``gauss``.
+    LimitError
+        Before any work, when the map has too many labels, boundary edges, or junctions and regions
+        (:func:`mrm.core.limits.check_subdivision`; its cost follows from them, not from its pixels).
     """
     _check_model(model)
+    check_cost(lm, what, regions=regions)
     with paused_gc():  # tens of thousands of small acyclic tuples and lists: no cycle to collect
         return _subdivide(lm)
+
+
+def check_cost(lm: LabelMap, what: str | None = None, *, regions: LabelRegions | None = None) -> None:
+    """Refuse a label map whose subdivision would cost too much (:func:`mrm.core.limits.check_subdivision`).
+
+    Counts its labels and regions (one linear pass, unless ``regions`` gives them) and its boundary edges
+    and junctions, before any work.
+    """
+    reg = label_regions(lm.labels) if regions is None else regions
+    n_labels = int(np.unique(reg.label).size)
+    check_subdivision(lm.labels, n_labels, int(reg.label.size), what)
 
 
 def _subdivide(lm: LabelMap) -> Subdivision:
@@ -592,7 +615,9 @@ def _part_ok(geom: Polygon | MultiPolygon, ps: PixelSet) -> bool:
     return bool(_discretize_pieces(_take_apart(geom, check_validity=False), "gauss", None) == ps)
 
 
-def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polygon | MultiPolygon]:
+def reconstruct_label_map(
+    lm: LabelMap, model: str = "gauss", *, what: str | None = None
+) -> dict[int, Polygon | MultiPolygon]:
     """Reconstruct every label of a label map as a watertight subdivision (module docstring).
 
     Parameters
@@ -601,6 +626,8 @@ def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polyg
         The label map (label 0 is the background).
     model : {"gauss"}
         Only ``gauss``: D_gauss(P_L) equals the pixels of L for every label L.
+    what : str, optional
+        How a refusal of its cost names the map (:func:`subdivide`).
 
     Returns
     -------
@@ -613,7 +640,7 @@ def reconstruct_label_map(lm: LabelMap, model: str = "gauss") -> dict[int, Polyg
     ParameterError
         For a model other than ``gauss``.
     """
-    return subdivide(lm, model).parts
+    return subdivide(lm, model, what=what).parts
 
 
 def watertight_parts(parts: Sequence[PixelSet]) -> list[Polygon | MultiPolygon]:
@@ -642,5 +669,5 @@ def watertight_parts(parts: Sequence[PixelSet]) -> list[Polygon | MultiPolygon]:
         lm = LabelMap.from_pixel_sets(parts)
     except ValueError as e:
         raise ParameterError(f"the parts of a subdivision must be disjoint: {e}") from None
-    by_label = reconstruct_label_map(lm, "gauss")
+    by_label = reconstruct_label_map(lm, "gauss", what="the parts together")
     return [by_label.get(k + 1, Polygon()) for k in range(len(parts))]
