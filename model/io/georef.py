@@ -41,7 +41,7 @@ from mrm.core.georef import GeoRef, Transform, grid_origin, unit_grid
 from mrm.core.grids import PixelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixel_extent, check_pixels
 from mrm.core.threshold import binarize
-from mrm.io.atomic import atomic_open, atomic_write_bytes, atomic_write_text
+from mrm.io.atomic import atomic_file_set, atomic_open, atomic_write_bytes, atomic_write_text
 from mrm.io.pixel_files import ORIGIN_KEY, parse_origin, read_pixels
 
 log = logging.getLogger(__name__)
@@ -226,17 +226,26 @@ def read_georef(path: PathLike) -> GeoRef | None:
 
 
 def write_world_file(path: PathLike, georef: GeoRef) -> Path:
-    """Write the world file (and ``.prj`` for a CRS) beside the image ``path``; returns the world file."""
+    """Write the world file (and ``.prj`` for a CRS) beside the image ``path``; returns the world file.
+
+    One output set (:func:`mrm.io.atomic.atomic_file_set`, joining the caller's, which holds the image): a
+    ``.prj`` left from an earlier georeference is removed when this one has no CRS, so the image never reads
+    back with a CRS that is not its own.
+    """
     p = Path(path)
     wf = p.with_suffix(WORLD_FILE_EXTENSIONS.get(p.suffix.lower(), (".wld",))[0])
-    atomic_write_text(wf, world_file_text(georef.transform))
-    if georef.crs is not None:
-        text = georef.crs
-        try:
-            text = _rasterio().crs.CRS.from_user_input(georef.crs).to_wkt()
-        except Exception:  # no rasterio: EPSG codes are written as they are
-            log.debug("wrote the CRS of %s as text", p.name)
-        atomic_write_text(p.with_suffix(".prj"), text + "\n")
+    prj = p.with_suffix(".prj")
+    with atomic_file_set() as files:
+        atomic_write_text(wf, world_file_text(georef.transform))
+        if georef.crs is None:
+            files.remove(prj)
+        else:
+            text = georef.crs
+            try:
+                text = _rasterio().crs.CRS.from_user_input(georef.crs).to_wkt()
+            except Exception:  # no rasterio: EPSG codes are written as they are
+                log.debug("wrote the CRS of %s as text", p.name)
+            atomic_write_text(prj, text + "\n")
     return wf
 
 
@@ -375,9 +384,12 @@ def write_georeferenced(ps: PixelSet, path: PathLike, georef: GeoRef) -> GeoRef:
 
     buf = io.BytesIO()
     Image.fromarray(ps.to_image(grid.frame)).save(buf, format="PNG")  # the world file's top-left pixel
-    atomic_write_bytes(path, buf.getvalue())
-    # The PNG carries no mrm:origin: it reads back at (0, 0) with the world file placing it.
-    write_world_file(path, grid)
+    # The PNG, its world file and .prj are one output set: a full disk never leaves the new picture placed
+    # by the old world file (issue 32).
+    with atomic_file_set():
+        atomic_write_bytes(path, buf.getvalue())
+        # The PNG carries no mrm:origin: it reads back at (0, 0) with the world file placing it.
+        write_world_file(path, grid)
     return grid
 
 
