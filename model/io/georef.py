@@ -320,8 +320,12 @@ def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:
         with mem.open(**profile) as ds:
             ds.write(image, 1)
         data = mem.read()
-    with atomic_open(path, "wb") as fh:
-        fh.write(data)
+    # GDAL reads ``name.tif.aux.xml`` before the file's own georeference: one left from the old file would
+    # place the new one (GDAL's own Create deletes it too). The TIFF and that removal are one output set.
+    with atomic_file_set() as files:
+        with atomic_open(path, "wb") as fh:
+            fh.write(data)
+        files.remove(f"{os.fspath(path)}.aux.xml")
 
 
 def few_pixels_warning(ps: PixelSet, geom: Any, what: str) -> str | None:

@@ -114,6 +114,22 @@ def test_a_new_set_replaces_the_whole_old_one_and_a_stale_prj_goes(old_png_set):
     assert len(read_pixels(old_png_set)) == len(PixelSet.box(2, 2, 4, 5))
 
 
+def test_a_new_geotiff_is_not_placed_by_an_old_aux_xml(tmp_path, monkeypatch):
+    out = tmp_path / "out.tif"
+    write_georeferenced(PixelSet.box(0, 0, 7, 7), out, OLD)
+    # What a GIS leaves beside a GeoTIFF it re-referenced: GDAL reads it before the file's own transform.
+    aux = tmp_path / "out.tif.aux.xml"
+    aux.write_text("<PAMDataset><GeoTransform>1, 1, 0, 1, 0, -1</GeoTransform></PAMDataset>")
+    before = snapshot(tmp_path)
+    fail_nth_write(monkeypatch, 1)
+    with pytest.raises(OSError):
+        write_georeferenced(PixelSet.box(2, 2, 4, 5), out, NEW)
+    monkeypatch.undo()
+    assert snapshot(tmp_path) == before  # the old set, its .aux.xml included, as it was
+    write_georeferenced(PixelSet.box(2, 2, 4, 5), out, NEW)
+    assert not aux.exists() and read_georef(out).transform == NEW.transform
+
+
 def test_a_failed_set_on_a_new_name_leaves_nothing(tmp_path, monkeypatch):
     fail_nth_rename(monkeypatch, 2)
     with pytest.raises(OSError):
