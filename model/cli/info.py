@@ -54,15 +54,15 @@ from mrm.cli._common import (
 from mrm.cli._project_input import add_object_argument
 from mrm.core.errors import LimitError, ParameterError
 from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import MAX_LABEL_COUNT_BYTES
 from mrm.core.models import Model
 from mrm.geometry.discretize.voxels import voxelize
 from mrm.geometry.reconstruct import reconstruct_voxels
-from mrm.geometry.topology.labeling import label_regions
 from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine
 from mrm.io.voxel_files import VOXEL_EXTENSIONS, read_label_volume
-from mrm.reps.cells import cells_of
+from mrm.reps.cells import cell_counts
 from mrm.reps.cells_3d import cells_3d_of
 from mrm.reps.summary import summarize, summarize_voxels
 
@@ -192,17 +192,22 @@ def label_volume_info(path: str, model: str, limit: int | None) -> dict[str, Any
 def label_map_info(lm: LabelMap, model: str) -> dict[str, Any]:
     """The summary of a label map: labels, regions, cells and adjacencies (as :func:`label_volume_info`)."""
     Model.parse(model)
-    cells = cells_of(lm)
+    counts: Any = None
+    try:  # counted with arrays: cells_of's objects take gigabytes on a checkerboard
+        counts = cell_counts(lm, budget=MAX_LABEL_COUNT_BYTES)
+    except LimitError as e:
+        log.info("no cell counts: %s", e)
+        print(f"mrm info: warning: {e}; regions and cells not counted", file=sys.stderr, flush=True)
     bbox = lm.bbox
     return {
         "model": model,
         "labels": len(lm.label_values()),
-        "regions": len(label_regions(lm.labels).label),
+        "regions": None if counts is None else counts.regions,
         "pixels": int(np.count_nonzero(lm.labels)),
         "bbox": None if bbox is None else list(bbox),
-        "one_cells": len(cells.one_cells),
-        "zero_cells": len(cells.zero_cells),
-        "adjacencies": len(cells.adjacency),
+        "one_cells": None if counts is None else counts.one_cells,
+        "zero_cells": None if counts is None else counts.zero_cells,
+        "adjacencies": None if counts is None else counts.adjacencies,
     }
 
 

@@ -162,3 +162,39 @@ def test_an_operation_on_a_label_map_says_what_to_do(capsys, with_labels, argv):
     assert err.count("\n") == 1 and "Traceback" not in err
     assert "'classes' is a label map" in err and "Split into Objects" in err
     assert not list(with_labels.parent.glob("x.*"))
+
+
+def test_cell_counts_agree_with_the_cells():
+    """The counts `mrm info` prints are cells_of's, without its objects (random maps, rings, pinches)."""
+    from mrm.reps.cells import cell_counts, cells_of
+
+    rng = np.random.default_rng(32)
+    maps = [
+        np.array([[1, 1, 1], [1, 2, 1], [1, 1, 1]]),  # a loop through no 0-cell
+        np.array([[1, 2], [2, 1]]),  # a diagonal pinch
+        np.array([[0, 0], [0, 0]]),
+        np.array([[5]]),
+    ]
+    for _ in range(300):
+        h, w = rng.integers(1, 10, 2)
+        m = rng.integers(0, rng.integers(1, 5) + 1, (h, w))
+        maps.append(np.kron(m, np.ones(rng.integers(1, 4, 2), dtype=np.int64)) if rng.random() < 0.3 else m)
+    for m in maps:
+        lm = LabelMap(m.astype(np.int32))
+        cells, counts = cells_of(lm), cell_counts(lm)
+        assert (counts.one_cells, counts.zero_cells, counts.adjacencies) == (
+            len(cells.one_cells),
+            len(cells.zero_cells),
+            len(cells.adjacency),
+        ), m
+
+
+def test_a_label_map_too_costly_to_count_gets_a_warning_not_gigabytes(capsys, with_labels, monkeypatch):
+    import mrm.cli.info as info
+
+    monkeypatch.setattr(info, "MAX_LABEL_COUNT_BYTES", 100)  # a 2000² checkerboard (38 KB) needs 690 MB
+    code, out, err = run(capsys, "info", with_labels, "--object", "classes", "--json")
+    assert code == 0
+    s = json.loads(out)
+    assert s["labels"] == 3 and s["pixels"] == 8 and s["regions"] is None and s["one_cells"] is None
+    assert err.startswith("mrm info: warning: counting the cells of a 4×3 label map") and err.count("\n") == 1
