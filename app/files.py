@@ -246,16 +246,16 @@ class FileController(QtCore.QObject):
         p = Path(path)
         if p.suffix.lower() != PROJECT_EXT and p.suffix.lower() in IMAGE_EXTS + VECTOR_EXTS:
             return self.import_files([p])
-        from mrm.io.autosave import find_recovery
+        from mrm.io.autosave import find_recoveries
         from mrm.io.project import read_project
 
         example = is_bundled(p)
-        rec = None
         try:
-            rec = None if example else find_recovery(p)
+            recs = [] if example else find_recoveries(p)
         except OSError:
-            rec = None
-        if rec is not None and self.offer_recovery(rec):
+            recs = []
+        # Every window that crashed on this project left its own autosave: each is offered in turn.
+        if self._offer_each(recs):
             return True
 
         def opened(project: Any) -> None:
@@ -296,8 +296,15 @@ class FileController(QtCore.QObject):
         opened(project)
         return True
 
-    def offer_recovery(self, rec: Any) -> bool:
-        """Ask whether to restore an autosave; True if it was restored."""
+    def _offer_each(self, recs: list[Any]) -> bool:
+        """Offer the autosaves one after the other until one is recovered (the others stay for later)."""
+        return any(self.offer_recovery(rec, (k, len(recs))) for k, rec in enumerate(recs, start=1))
+
+    def offer_recovery(self, rec: Any, position: tuple[int, int] = (1, 1)) -> bool:
+        """Ask whether to restore an autosave; True if it was restored.
+
+        ``position`` is (k, n) when n autosaves are offered in turn.
+        """
         if rec.project is not None:
             what = rec.project.name
         elif getattr(rec, "recorded", None) is not None:
@@ -310,7 +317,10 @@ class FileController(QtCore.QObject):
         box.setObjectName("recoveryDialog")
         box.setIcon(QtWidgets.QMessageBox.Icon.Question)
         box.setWindowTitle("Recover unsaved work?")
-        box.setText(f"MR Modeler was not closed properly. An autosave of {what} from {when} was found.")
+        count = f" (autosave {position[0]} of {position[1]})" if position[1] > 1 else ""
+        box.setText(
+            f"MR Modeler was not closed properly. An autosave of {what} from {when} was found{count}."
+        )
         box.setInformativeText("Recover it? Discarding deletes the autosave.")
         recover = box.addButton("Recover", QtWidgets.QMessageBox.ButtonRole.AcceptRole)
         discard = box.addButton("Discard", QtWidgets.QMessageBox.ButtonRole.DestructiveRole)
@@ -345,9 +355,7 @@ class FileController(QtCore.QObject):
             found = find_orphans(self.autosave_dir)
         except OSError:
             return False
-        for rec in found[:1]:
-            return self.offer_recovery(rec)
-        return False
+        return self._offer_each(found)
 
     # ------------------------------------------------------------------ save
     def save(self) -> bool:

@@ -7,6 +7,13 @@ Inputs are pixel files (.png .pbm .pgm .npz), vector files (.geojson .json .wkt)
 vector input), Sp the Euclidean one (R(A) of a pixel input), EDu and EDco either (a pixel set stands for
 itself as D(E)).
 
+A vector input that is not one polygon — polygon features that overlap or share an edge, lines, points (a
+GeometryCollection) — enters an operation as its discretization D(E) = ∪ D(feature) under the model in force:
+the pixels ``mrm discretize`` writes and ``mrm info`` counts, computed without rounding a coordinate (every
+model is union-stable). DSS, dR, EDu and EDco read exactly these pixels for a polygon too; Sp and EDco_α then
+read R(D(E)), as for any pixel input. A label map (a project object) is no input of the operations (ADR
+0033): the message says to split it into objects.
+
 Outputs: a pixel result goes to .png/.pbm/.pgm/.npz, a Euclidean result to .geojson/.json/.wkt/.svg; asking
 for the other kind writes the result's other representation (R of a pixel result, D of a Euclidean one —
 exact both ways, since D(R(A)) = A). Files are written atomically: a failure leaves no half-written file.
@@ -36,6 +43,9 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
+from shapely.geometry import MultiPolygon, Polygon
+from shapely.geometry.base import BaseGeometry
+
 from mrm.cli._common import (
     add_image_arguments,
     add_inputs_argument,
@@ -49,8 +59,8 @@ from mrm.cli._common import (
     run_inputs,
 )
 from mrm.cli._project_input import add_object_argument, project_object
-from mrm.core.errors import MRMError, ParameterError
-from mrm.core.grids import PixelSet
+from mrm.core.errors import MRMError, NotApplicableError, ParameterError
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.io.georef import (
@@ -130,12 +140,31 @@ def read_one(
         if not Path(path).exists():
             raise FileNotFoundError(2, "No such file", path)
         obj, chosen = project_object(Path(path), object_name, model)
+        if isinstance(obj.source, LabelMap):
+            raise NotApplicableError(
+                f"{Path(path).name}: {obj.name!r} is a label map, no input of the operations; Edit ▸ Split "
+                "into Objects in MR Modeler gives one pixel object per label (mrm polygonize: one polygon "
+                "per region)"
+            )
         return OperationInput(obj.source, chosen, obj.id, obj.provenance, obj.georef)
     _, value, chosen = load_object(path, object_name, model, threshold=threshold, invert=invert, limit=limit)
     georef = None
     if ext in PIXEL_EXTENSIONS and ext != ".npz":
         georef = read_georef(path)
-    return OperationInput(value, chosen, georef=georef)
+    return OperationInput(operation_source(value, chosen, limit), chosen, georef=georef)
+
+
+def operation_source(value: Any, model: str, limit: int | None) -> Any:
+    """What an operation reads of a file's content: a pixel set or one polygon as it is, else D(E).
+
+    A geometry that is not one (Multi)Polygon — overlapping features, lines, points — has no exact
+    Euclidean source, but its discretization is exact (union-stable): the operation reads that.
+    """
+    if not isinstance(value, BaseGeometry) or isinstance(value, Polygon | MultiPolygon):
+        return value
+    if value.is_empty:
+        return Polygon()
+    return discretize(value, model, limit=limit)
 
 
 def _two_names(args: argparse.Namespace) -> tuple[str | None, str | None]:

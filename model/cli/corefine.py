@@ -30,6 +30,7 @@ from shapely.geometry import Polygon
 from mrm.cli._common import print_table
 from mrm.cli._operation import TwoInputRun, result_summary, two_input_command
 from mrm.geometry.discretize import discretize
+from mrm.io.atomic import atomic_file_set
 from mrm.io.georef import geojson_members, georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
@@ -105,7 +106,8 @@ def _finish(args: argparse.Namespace, done: TwoInputRun) -> dict[str, Any]:
     out = acc.outcome if done.computed is None else done.computed
     if files:  # a folder target is created only now, when there is something to write into it
         Path(next(iter(files.values()))).parent.mkdir(parents=True, exist_ok=True)
-    _write(kind, files, str(args.output), out.result, out.extra["label_map"], model, done.georef)
+    with atomic_file_set():  # the parts are replaced together or not at all (issue 32)
+        _write(kind, files, str(args.output), out.result, out.extra["label_map"], model, done.georef)
     summary: dict[str, Any] = {"inputs": [str(args.first), str(args.second)], "output": str(args.output)}
     summary.update(operation="corefine", alpha=alpha_json)
     if files:

@@ -16,7 +16,10 @@ labels, background included) of :func:`mrm.reps.cells_3d.cells_3d_of`.
 
 For a project (.mrm) the summary is that of one object with ``--object NAME``; without it, that of the
 union of every object's pixels, with one summary per object under ``objects``. The model is ``--model``,
-else the project's, else 'standard'.
+else the project's, else 'standard'. A label map object (ADR 0033) is summarised as the 3D label volumes are,
+in the plane: ``model``, ``labels``, ``regions`` (4-connected components of one label), ``pixels``
+(non-zero), ``bbox``, ``one_cells``, ``zero_cells`` and ``adjacencies`` (pairs of 4-adjacent labels,
+background included) of :func:`mrm.reps.cells.cells_of`; its non-zero pixels count in the project's union.
 """
 
 from __future__ import annotations
@@ -50,7 +53,8 @@ from mrm.cli._common import (
 )
 from mrm.cli._project_input import add_object_argument
 from mrm.core.errors import LimitError, ParameterError
-from mrm.core.grids import PixelSet
+from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.limits import MAX_LABEL_COUNT_BYTES
 from mrm.core.models import Model
 from mrm.geometry.discretize.voxels import voxelize
 from mrm.geometry.reconstruct import reconstruct_voxels
@@ -58,6 +62,7 @@ from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine
 from mrm.io.voxel_files import VOXEL_EXTENSIONS, read_label_volume
+from mrm.reps.cells import cell_counts
 from mrm.reps.cells_3d import cells_3d_of
 from mrm.reps.summary import summarize, summarize_voxels
 
@@ -184,9 +189,32 @@ def label_volume_info(path: str, model: str, limit: int | None) -> dict[str, Any
     }
 
 
+def label_map_info(lm: LabelMap, model: str) -> dict[str, Any]:
+    """The summary of a label map: labels, regions, cells and adjacencies (as :func:`label_volume_info`)."""
+    Model.parse(model)
+    counts: Any = None
+    try:  # counted with arrays: cells_of's objects take gigabytes on a checkerboard
+        counts = cell_counts(lm, budget=MAX_LABEL_COUNT_BYTES)
+    except LimitError as e:
+        log.info("no cell counts: %s", e)
+        print(f"mrm info: warning: {e}; regions and cells not counted", file=sys.stderr, flush=True)
+    bbox = lm.bbox
+    return {
+        "model": model,
+        "labels": len(lm.label_values()),
+        "regions": None if counts is None else counts.regions,
+        "pixels": int(np.count_nonzero(lm.labels)),
+        "bbox": None if bbox is None else list(bbox),
+        "one_cells": None if counts is None else counts.one_cells,
+        "zero_cells": None if counts is None else counts.zero_cells,
+        "adjacencies": None if counts is None else counts.adjacencies,
+    }
+
+
 def _line(s: dict[str, Any]) -> str:
     if "regions" in s:
-        return f"{s['input']}: {s['labels']} labels, {s['regions']} regions, {s['voxels']} voxels"
+        size = f"{s['voxels']} voxels" if "voxels" in s else f"{s['pixels']} pixels"
+        return f"{s['input']}: {s['labels']} labels, {s['regions']} regions, {size}"
     if "voxels" in s:
         return (
             f"{s['input']}: {s['voxels']} voxels, {s['components']} components, {s['cavities']} cavities, "
@@ -213,9 +241,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def _summary(source: Any, model: str, limit: int) -> dict[str, Any]:
-    """The summary of one object given by its source: pixels, or a geometry (discretized under ``model``)."""
+    """The summary of one object given by its source: pixels, a label map, or a geometry (discretized)."""
     if isinstance(source, PixelSet):
         return summarize(source, model)
+    if isinstance(source, LabelMap):
+        return label_map_info(source, model)
     return summarize(discretize_geometry(source, model, limit), model, geom=source)
 
 
@@ -224,15 +254,18 @@ def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, An
     per_object = []
     union = PixelSet.empty()
     for obj in objects:
+        head = {"id": obj.id, "name": obj.name, "source": obj.kind}
+        if isinstance(obj.source, LabelMap):
+            union = union | obj.source.support()
+            per_object.append({**head, **label_map_info(obj.source, model)})
+            continue
         if isinstance(obj.source, PixelSet):
             ps, geom = obj.source, None
         else:
             ps, geom = discretize_geometry(obj.source, model, limit), obj.source
         union = union | ps
-        per_object.append(
-            {"id": obj.id, "name": obj.name, "source": obj.kind, **summarize(ps, model, geom=geom)}
-        )
-    all_euclidean = bool(objects) and all(not isinstance(o.source, PixelSet) for o in objects)
+        per_object.append({**head, **summarize(ps, model, geom=geom)})
+    all_euclidean = bool(objects) and all(o.kind == "euclidean" for o in objects)
     if all_euclidean:
         summary = summarize(union, model, geom=combine([o.source for o in objects]))
     else:

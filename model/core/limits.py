@@ -84,6 +84,14 @@ MAX_SUBDIVISION_CELLS = 120_000
 MAX_OUTPUT_BYTES = 256 << 20
 #: Pixels of a label map (four bytes each in memory).
 MAX_LABEL_PIXELS = 50_000_000
+#: Memory the cell counts of a label map's summary (``mrm info``) may take, estimated before the work at
+#: :data:`LABEL_COUNT_BYTES_PER_PIXEL` a pixel and :data:`LABEL_COUNT_BYTES_PER_LINEL` a boundary linel
+#: (measured: a 2000² checkerboard, 8·10⁶ linels, 690 MB; 16·10⁶ pixels of 100 blocks, 530 MB); beyond it
+#: the summary leaves them out, so a small project file holding a big label map never costs gigabytes, and
+#: ``mrm info`` stays under 1 GB with the interpreter and kernels (issue 32).
+MAX_LABEL_COUNT_BYTES = 640 << 20
+LABEL_COUNT_BYTES_PER_PIXEL = 40
+LABEL_COUNT_BYTES_PER_LINEL = 70
 #: Nesting depth of geometries in WKT and GeoJSON files (a MultiPolygon in a GeometryCollection is 4).
 MAX_GEOMETRY_NESTING = 32
 #: Largest magnitude of a world coordinate of a georeferenced grid (a GeoTIFF's transform, a world file,

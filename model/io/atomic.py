@@ -4,20 +4,30 @@ The data goes to a temporary file in the destination's directory (so the final r
 systems), is flushed and fsynced, and then ``os.replace``s the destination in one step; the directory is
 fsynced too so the rename survives a crash. If anything fails before the rename the temporary file is
 removed and the destination is untouched — no half-written file is ever left under the real name.
+
+Several files that only make sense together — a PNG and its world file and ``.prj``, the three parts of a
+co-refinement — are one **output set** (:func:`atomic_file_set`, ADR 0049): inside its block every
+:func:`atomic_open` writes its temporary file but defers the rename; when the block ends, every member is
+renamed into place, or, on any failure, none is and the old set is left as it was.
 """
 
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import errno
+import logging
 import os
 import re
 import secrets
 import stat
 import time
 from collections.abc import Iterator
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
+
+log = logging.getLogger(__name__)
 
 #: Open modes accepted by :func:`atomic_open`.
 _MODES = ("wb", "w")
@@ -163,11 +173,15 @@ def atomic_open(
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+    pending = _CURRENT_SET.get()
     try:
         with fh:
             yield fh
             fh.flush()
             os.fsync(fh.fileno())
+        if pending is not None:
+            pending.add(tmp, target)  # renamed with the other members when the set's block ends
+            return
         os.replace(tmp, target)
     except BaseException:
         with contextlib.suppress(OSError):
@@ -186,3 +200,189 @@ def atomic_write_text(path: str | os.PathLike[str], text: str) -> None:
     """Write ``text`` to ``path`` atomically, in UTF-8 (see :func:`atomic_open`)."""
     with atomic_open(path, "w") as fh:
         fh.write(text)
+
+
+# ---------------------------------------------------------------------------------------------- output sets
+@dataclass
+class _Member:
+    """One file of an output set: its temporary file (None: the file is to be removed) and destination."""
+
+    target: Path
+    tmp: Path | None
+    backup: Path | None = None
+    done: bool = False
+
+
+@dataclass
+class FileSet:
+    """The files of an output set being written (see :func:`atomic_file_set`)."""
+
+    members: list[_Member] = field(default_factory=list)
+
+    def add(self, tmp: Path, target: Path) -> None:
+        """A member written to ``tmp``, to replace ``target`` when the set is committed."""
+        for m in self.members:
+            if m.target == target:  # written twice: the later content wins
+                if m.tmp is not None:
+                    with contextlib.suppress(OSError):
+                        os.unlink(m.tmp)
+                m.tmp = tmp
+                return
+        self.members.append(_Member(target, tmp))
+
+    def remove(self, path: str | os.PathLike[str]) -> None:
+        """Remove ``path`` (a stale member of the old set, e.g. its ``.prj``) when the set is committed.
+
+        Only a regular file or a symbolic link is removed, and only if the whole set is written.
+        """
+        target = Path(os.path.abspath(os.fspath(path)))
+        if any(m.target == target for m in self.members):
+            return
+        with contextlib.suppress(OSError):
+            if stat.S_ISREG(os.lstat(target).st_mode) or target.is_symlink():
+                self.members.append(_Member(target, None))
+
+    def discard(self) -> None:
+        """Remove every temporary file written so far (the destinations were never touched)."""
+        for m in self.members:
+            if m.tmp is not None:
+                with contextlib.suppress(OSError):
+                    os.unlink(m.tmp)
+
+    def commit(self) -> None:
+        """Put every member in place, or none: on a failure the old set is restored and the error raised.
+
+        1. Each existing destination gets a backup (a hard link, else a copy) beside it; a failure here
+           touches no destination.
+        2. The members are renamed (or removed) in order.
+        3. If one of these fails, the members already in place are rolled back from their backups (a new
+           file is removed), in reverse order.
+        4. The backups are removed.
+        """
+        try:
+            for m in self.members:
+                m.backup = _backup(m.target)
+        except BaseException:
+            self._drop_backups()
+            self.discard()
+            raise
+        try:
+            for m in self.members:
+                if m.tmp is None:
+                    os.unlink(m.target)
+                else:
+                    os.replace(m.tmp, m.target)
+                m.done = True
+        except BaseException:
+            kept = self._roll_back()
+            self.discard()
+            if kept:
+                log.error("could not restore %s; the previous content is kept in %s", *kept[0])
+            raise
+        self._drop_backups()
+        for d in {m.target.parent for m in self.members}:
+            _fsync_directory(d)
+
+    def _roll_back(self) -> list[tuple[Path, Path]]:
+        """Undo the members put in place; returns (destination, backup) pairs that could not be restored."""
+        kept: list[tuple[Path, Path]] = []
+        for m in reversed(self.members):
+            if not m.done:
+                continue
+            try:
+                if m.backup is not None:
+                    os.replace(m.backup, m.target)
+                    m.backup = None
+                else:
+                    os.unlink(m.target)  # a new file of the set: the old set did not have it
+            except OSError:
+                if m.backup is not None:
+                    kept.append((m.target, m.backup))
+                    m.backup = None  # left in place: the only copy of the old content
+        self._drop_backups()
+        return kept
+
+    def _drop_backups(self) -> None:
+        for m in self.members:
+            if m.backup is not None:
+                with contextlib.suppress(OSError):
+                    os.unlink(m.backup)
+                m.backup = None
+
+
+def _backup(target: Path) -> Path | None:
+    """A second name for ``target``'s current content (None when there is no file): a hard link, else a copy.
+
+    The name is one of our temporary names, so a backup left by a process that died is cleaned up by
+    :func:`remove_stale_temps` like any temporary file.
+    """
+    try:
+        st = os.lstat(target)
+    except FileNotFoundError:
+        return None
+    for _ in range(100):
+        backup = target.with_name(f".{target.name}.{os.getpid()}-{secrets.token_hex(4)}.tmp")
+        try:
+            os.link(target, backup, follow_symlinks=False)
+            return backup
+        except FileExistsError:
+            continue
+        except OSError:
+            break  # no hard links here (some network and FAT file systems): copy instead
+    if stat.S_ISLNK(st.st_mode):
+        backup, fd = _temp_path(target)
+        os.close(fd)
+        os.unlink(backup)
+        os.symlink(os.readlink(target), backup)
+        return backup
+    backup, fd = _temp_path(target)
+    try:
+        with os.fdopen(fd, "wb") as out, open(target, "rb") as src:
+            while chunk := src.read(1 << 20):
+                out.write(chunk)
+            out.flush()
+            os.fsync(out.fileno())
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(backup)
+        raise
+    return backup
+
+
+_CURRENT_SET: contextvars.ContextVar[FileSet | None] = contextvars.ContextVar("_CURRENT_SET", default=None)
+
+
+@contextlib.contextmanager
+def atomic_file_set() -> Iterator[FileSet]:
+    """Write several files as one output set: all of them are replaced, or none (ADR 0049).
+
+    Inside the block, every :func:`atomic_open` (and so every writer of :mod:`mrm.io`) writes and fsyncs its
+    temporary file but does not rename it; :meth:`FileSet.remove` names stale members to delete. When the
+    block ends without an error, :meth:`FileSet.commit` puts them all in place; if the block raises (a full
+    disk while writing the third part), every temporary file is removed and the old set stays byte for byte.
+
+    Yields
+    ------
+    FileSet
+        The set being written. A set opened inside another one joins it.
+
+    Examples
+    --------
+    >>> with atomic_file_set():  # doctest: +SKIP
+    ...     write_pixels(ps, "out.png")
+    ...     write_world_file("out.png", georef)
+    """
+    outer = _CURRENT_SET.get()
+    if outer is not None:
+        yield outer
+        return
+    fs = FileSet()
+    token = _CURRENT_SET.set(fs)
+    try:
+        yield fs
+    except BaseException:
+        fs.discard()
+        raise
+    finally:
+        _CURRENT_SET.reset(token)
+    fs.commit()

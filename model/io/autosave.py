@@ -4,13 +4,20 @@ While a document has unsaved edits, :class:`Autosaver` writes it — a complete 
 ``"autosave"`` record — to a side file, after ``every_edits`` edits or ``interval`` seconds, whichever comes
 first. The GUI calls :meth:`Autosaver.tick` from a timer; nothing here starts threads or timers.
 
-* A saved project ``dir/name.mrm`` autosaves to ``dir/.name.mrm.autosave`` (hidden, beside it).
+* A saved project ``dir/name.mrm`` autosaves to ``dir/.name.mrm.<pid>-<token>.autosave`` (hidden, beside it).
 * An untitled document autosaves to ``<data dir>/autosave/untitled-<pid>-<token>.mrm.autosave``.
 
-On the next start, :func:`find_recovery` (for a project being opened) and :func:`find_orphans` (untitled
-documents of processes that are gone) return :class:`Recovery` records; :meth:`Recovery.restore` gives the
-recovered document — marked modified, since its edits are in no saved file — and :meth:`Recovery.discard`
-deletes the side file. Saving the project or undoing back to its saved state removes the side file.
+Each :class:`Autosaver` — each window, in any process — is one **writer** with a side file of its own
+(``<pid>-<token>``, ADR 0049): two windows on one project never overwrite each other's autosave, and a save
+removes only the saving window's side file, so the other window's edits stay recoverable (issue 32).
+
+On the next start, :func:`find_recoveries` (for a project being opened) and :func:`find_orphans` (untitled
+documents) return a :class:`Recovery` for every side file whose writer is gone — its process has exited,
+or, in this process, its autosaver was closed without discarding it; a live writer's side file is never
+offered. :meth:`Recovery.restore` gives the recovered document — marked modified, since its edits are in
+no saved file — and :meth:`Recovery.discard` deletes the side file. Saving the project or undoing back to
+its saved state removes the writer's own side file. The side file of older versions (``.name.mrm.autosave``,
+shared by every window) is still found, when it is newer than the project.
 
 What is found on start-up is not trusted (ADR 0015): any file name in the autosave folder is tolerated, an
 orphan's recorded project path is only shown, never adopted (the recovered document is untitled, so Save
@@ -42,7 +49,9 @@ SUFFIX = ".autosave"
 #: Seconds before a failed autosave is tried again.
 RETRY_SECONDS = 15.0
 #: Untitled side files: ``untitled-<pid>-<token>.mrm.autosave``.
-_ORPHAN = re.compile(r"untitled-([0-9]{1,10})-[0-9A-Za-z]{1,64}\.mrm" + re.escape(SUFFIX))
+_ORPHAN = re.compile(r"untitled-([0-9]{1,10})-([0-9A-Za-z]{1,64})\.mrm" + re.escape(SUFFIX))
+#: The writers (``<pid>-<token>``) of this process whose autosaver is open: their side files are not orphans.
+_LIVE_WRITERS: set[str] = set()
 #: Largest process id of any system we run on (Linux's pid_max is at most 2^22).
 _MAX_PID = 2**31 - 1
 
@@ -60,9 +69,19 @@ def default_directory() -> Path:
     return base / "mr-modeler" / "autosave"
 
 
-def side_file(project: Path) -> Path:
-    """The autosave side file of a saved project."""
-    return project.with_name(f".{project.name}{SUFFIX}")
+def side_file(project: Path, writer: str | None = None) -> Path:
+    """The autosave side file of a saved project written by ``writer`` (``<pid>-<token>``).
+
+    Without ``writer``: the one side file older versions shared between every window (still recovered).
+    """
+    if writer is None:
+        return project.with_name(f".{project.name}{SUFFIX}")
+    return project.with_name(f".{project.name}.{writer}{SUFFIX}")
+
+
+def _side_pattern(project: Path) -> re.Pattern[str]:
+    """The per-writer side files of ``project``: ``.name.mrm.<pid>-<token>.autosave``."""
+    return re.compile(rf"\.{re.escape(project.name)}\.([0-9]{{1,10}})-([0-9a-f]{{8}}){re.escape(SUFFIX)}")
 
 
 @dataclass(frozen=True)
@@ -112,22 +131,53 @@ def _record(path: Path) -> Recovery | None:
     return Recovery(path, None, str(info.get("saved_at", "")), recorded)
 
 
-def find_recovery(project: str | os.PathLike[str]) -> Recovery | None:
-    """The autosave of ``project`` if it is newer than the project file (else None).
+def find_recoveries(project: str | os.PathLike[str]) -> list[Recovery]:
+    """Every autosave of ``project`` left by a writer that is gone, newest first.
 
-    A side file older than the project is left over from before a later save, so it is ignored.
+    A per-writer side file exists only while its writer has edits that are in no saved file (its own save
+    removes it), so it is offered whatever its age: another window may have saved the project since, with
+    other edits. The shared side file of older versions is offered only when newer than the project (older,
+    it is left over from before a later save). A side file of a live writer (another window still open) is
+    never offered.
     """
     p = Path(project)
-    side = side_file(p)
     try:
-        side_mtime = side.stat().st_mtime
-    except FileNotFoundError:
-        return None
-    with contextlib.suppress(FileNotFoundError):
-        if p.stat().st_mtime > side_mtime:
-            return None
-    rec = _record(side)
-    return None if rec is None else Recovery(rec.path, p, rec.saved_at, rec.recorded)
+        project_mtime: float | None = p.stat().st_mtime
+    except OSError:
+        project_mtime = None
+    pattern = _side_pattern(p)
+    found: list[tuple[float, Recovery]] = []
+    try:
+        entries = list(os.scandir(p.parent))
+    except OSError:
+        entries = []
+    legacy = side_file(p).name
+    for entry in entries:
+        try:
+            m = pattern.fullmatch(entry.name)
+            if m is None and entry.name != legacy:
+                continue
+            st = entry.stat(follow_symlinks=False)
+            if not stat.S_ISREG(st.st_mode):
+                continue
+            if m is None:
+                if project_mtime is not None and project_mtime > st.st_mtime:
+                    continue
+            elif _writer_alive(int(m.group(1)), m.group(2)):
+                continue
+            rec = _record(Path(entry.path))
+        except Exception as e:  # whatever is beside the project, opening it never fails
+            log.warning("skipping %r beside %s: %s", entry.name, p.name, e)
+            continue
+        if rec is not None:
+            found.append((st.st_mtime, Recovery(rec.path, p, rec.saved_at, rec.recorded)))
+    return [r for _, r in sorted(found, key=lambda t: -t[0])]
+
+
+def find_recovery(project: str | os.PathLike[str]) -> Recovery | None:
+    """The newest of :func:`find_recoveries` (None when there is none)."""
+    found = find_recoveries(project)
+    return found[0] if found else None
 
 
 def _pid_alive(pid: int) -> bool:
@@ -148,8 +198,15 @@ def _pid_alive(pid: int) -> bool:
     return True
 
 
+def _writer_alive(pid: int, token: str) -> bool:
+    """Whether the writer ``<pid>-<token>`` may still be writing: in this process, its autosaver is open."""
+    if pid == os.getpid():
+        return f"{pid}-{token}" in _LIVE_WRITERS
+    return _pid_alive(pid)
+
+
 def find_orphans(directory: str | os.PathLike[str] | None = None) -> list[Recovery]:
-    """Autosaves of untitled documents whose process is no longer running, newest first."""
+    """Autosaves of untitled documents whose writer is gone (see :func:`find_recoveries`), newest first."""
     d = Path(directory) if directory is not None else default_directory()
     try:
         if not d.is_dir():
@@ -170,7 +227,7 @@ def find_orphans(directory: str | os.PathLike[str] | None = None) -> list[Recove
             st = os.lstat(f)
             if not stat.S_ISREG(st.st_mode):
                 continue
-            if _pid_alive(int(m.group(1))):
+            if _writer_alive(int(m.group(1)), m.group(2)):
                 continue
             rec = _record(f)
         except Exception as e:
@@ -216,7 +273,10 @@ class Autosaver:
         self.every_edits = int(every_edits)
         self.directory = Path(directory) if directory is not None else default_directory()
         self.clock = clock
-        self._token = f"untitled-{os.getpid()}-{secrets.token_hex(4)}.mrm{SUFFIX}"
+        #: This autosaver's writer id, ``<pid>-<token>``: its side files carry it.
+        self.writer = f"{os.getpid()}-{secrets.token_hex(4)}"
+        _LIVE_WRITERS.add(self.writer)
+        self._token = f"untitled-{self.writer}.mrm{SUFFIX}"
         self.edits = 1 if doc.is_modified else 0  # edits made before the autosaver started count too
         self._since = clock()
         self._written: Path | None = None
@@ -238,7 +298,7 @@ class Autosaver:
     def path(self) -> Path:
         """Where the side file of the document currently goes."""
         if self.doc.path is not None:
-            return side_file(Path(self.doc.path))
+            return side_file(Path(self.doc.path), self.writer)
         return self.directory / self._token
 
     def due(self, now: float | None = None) -> bool:
@@ -340,8 +400,12 @@ class Autosaver:
             self._written = None
 
     def close(self) -> None:
-        """Stop watching the document (the side file stays, for recovery, unless discarded)."""
+        """Stop watching the document (the side file stays, for recovery, unless discarded).
+
+        From now on the side file is an orphan: a window opening the project (or started later) offers it.
+        """
         self._unsubscribe()
+        _LIVE_WRITERS.discard(self.writer)
 
 
 def _describe(e: BaseException) -> str:

@@ -45,7 +45,7 @@ from mrm.core.georef import GeoRef, Transform, grid_origin, unit_grid
 from mrm.core.grids import PixelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixel_extent, check_pixels
 from mrm.core.threshold import _check_threshold, binarize
-from mrm.io.atomic import atomic_open, atomic_write_bytes, atomic_write_text
+from mrm.io.atomic import atomic_file_set, atomic_open, atomic_write_bytes, atomic_write_text
 from mrm.io.pixel_files import ORIGIN_KEY, parse_origin, read_pixels
 from mrm.io.reading import describe_content, open_regular, read_regular
 
@@ -349,17 +349,26 @@ def _world_file_georef(p: Path, frame: tuple[int, int, int, int], crs: str | Non
 
 
 def write_world_file(path: PathLike, georef: GeoRef) -> Path:
-    """Write the world file (and ``.prj`` for a CRS) beside the image ``path``; returns the world file."""
+    """Write the world file (and ``.prj`` for a CRS) beside the image ``path``; returns the world file.
+
+    One output set (:func:`mrm.io.atomic.atomic_file_set`, joining the caller's, which holds the image): a
+    ``.prj`` left from an earlier georeference is removed when this one has no CRS, so the image never reads
+    back with a CRS that is not its own.
+    """
     p = Path(path)
     wf = p.with_suffix(WORLD_FILE_EXTENSIONS.get(p.suffix.lower(), (".wld",))[0])
-    atomic_write_text(wf, world_file_text(georef.transform))
-    if georef.crs is not None:
-        text = georef.crs
-        try:
-            text = parse_crs(georef.crs).to_wkt()
-        except Exception:  # no rasterio: EPSG codes are written as they are
-            log.debug("wrote the CRS of %s as text", p.name)
-        atomic_write_text(p.with_suffix(".prj"), text + "\n")
+    prj = p.with_suffix(".prj")
+    with atomic_file_set() as files:
+        atomic_write_text(wf, world_file_text(georef.transform))
+        if georef.crs is None:
+            files.remove(prj)
+        else:
+            text = georef.crs
+            try:
+                text = parse_crs(georef.crs).to_wkt()
+            except Exception:  # no rasterio: EPSG codes are written as they are
+                log.debug("wrote the CRS of %s as text", p.name)
+            atomic_write_text(prj, text + "\n")
     return wf
 
 
@@ -497,7 +506,8 @@ def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:
         "count": 1,
         "dtype": "uint8",
         "transform": rasterio.Affine(*georef.transform),
-        "crs": georef.crs,
+        # Parsed by our own reader: rasterio's from_user_input would also read a file a CRS text names.
+        "crs": None if georef.crs is None else parse_crs(georef.crs),
         "compress": "deflate",
         "nbits": 1,
     }
@@ -505,8 +515,12 @@ def write_raster(ps: PixelSet, path: PathLike, georef: GeoRef) -> None:
         with mem.open(**profile) as ds:
             ds.write(image, 1)
         data = mem.read()
-    with atomic_open(path, "wb") as fh:
-        fh.write(data)
+    # GDAL reads ``name.tif.aux.xml`` before the file's own georeference: one left from the old file would
+    # place the new one (GDAL's own Create deletes it too). The TIFF and that removal are one output set.
+    with atomic_file_set() as files:
+        with atomic_open(path, "wb") as fh:
+            fh.write(data)
+        files.remove(f"{os.fspath(path)}.aux.xml")
 
 
 def few_pixels_warning(ps: PixelSet, geom: Any, what: str) -> str | None:
@@ -569,9 +583,12 @@ def write_georeferenced(ps: PixelSet, path: PathLike, georef: GeoRef) -> GeoRef:
 
     buf = io.BytesIO()
     Image.fromarray(ps.to_image(grid.frame)).save(buf, format="PNG")  # the world file's top-left pixel
-    atomic_write_bytes(path, buf.getvalue())
-    # The PNG carries no mrm:origin: it reads back at (0, 0) with the world file placing it.
-    write_world_file(path, grid)
+    # The PNG, its world file and .prj are one output set: a full disk never leaves the new picture placed
+    # by the old world file (issue 32).
+    with atomic_file_set():
+        atomic_write_bytes(path, buf.getvalue())
+        # The PNG carries no mrm:origin: it reads back at (0, 0) with the world file placing it.
+        write_world_file(path, grid)
     return grid
 
 

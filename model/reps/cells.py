@@ -21,7 +21,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
+from mrm.core import limits
+from mrm.core.errors import LimitError
 from mrm.core.gc_pause import paused_gc
 from mrm.core.grids import LabelMap, PixelSet
 from mrm.geometry.topology.cracks import trace_cells
@@ -165,3 +168,101 @@ def region_of_labels(lm: LabelMap) -> dict[int, Region]:
         m[rows - r0, cols - c0] = True
         out[v] = region_of(PixelSet(m, (x0 + c0, y0 + r0)))
     return out
+
+
+@dataclass(frozen=True, slots=True)
+class CellCounts:
+    """How many cells a label map has (what :func:`cells_of` would list), and its regions.
+
+    Attributes
+    ----------
+    regions : int
+        4-connected components of one non-zero label.
+    one_cells, zero_cells, adjacencies : int
+        ``len(cells_of(lm).one_cells)``, ``len(….zero_cells)``, ``len(….adjacency)``.
+    """
+
+    regions: int
+    one_cells: int
+    zero_cells: int
+    adjacencies: int
+
+
+def cell_counts(lm: LabelMap, budget: int | None = None) -> CellCounts:
+    """Count the regions and cells of a label map without building them (a summary, ``mrm info``).
+
+    :func:`cells_of` makes a Python object per cell — gigabytes for a 2000² checkerboard of 8·10⁶ 1-cells,
+    held in a 38 KB project. This counts with arrays, a few dozen bytes a pixel:
+
+    * a pointel is a 0-cell where three or four boundary linels meet (a diagonal pinch has four);
+    * each open 1-cell has its two ends at 0-cells: their number is half the linels at 0-cells;
+    * a closed 1-cell is a loop of boundary linels through no 0-cell: on the doubled grid (pointels, linels
+      and pixels as cells), the 4-connected components of boundary linels and the pointels of two boundary
+      linels that touch no 0-cell.
+
+    Parameters
+    ----------
+    lm : LabelMap
+    budget : int, optional
+        Bytes the counting may take (estimated from the pixels and boundary linels before the work).
+
+    Raises
+    ------
+    LimitError
+        When the estimate exceeds ``budget``.
+    """
+    from mrm.geometry.topology.labeling import label, label_regions
+
+    lab = lm.labels
+    if lab.size == 0:
+        return CellCounts(0, 0, 0, 0)
+    h, w = lab.shape
+    p = np.pad(lab, 1)  # the background around the array
+    dv = p[:, 1:] != p[:, :-1]  # (h+2, w+1): the linel between p[r, c] and p[r, c+1]
+    dh = p[1:, :] != p[:-1, :]  # (h+1, w+2): the linel between p[r, c] and p[r+1, c]
+    if budget is not None:
+        linels = int(np.count_nonzero(dv)) + int(np.count_nonzero(dh))
+        cost = limits.LABEL_COUNT_BYTES_PER_PIXEL * lab.size + limits.LABEL_COUNT_BYTES_PER_LINEL * linels
+        if cost > budget:
+            raise LimitError(
+                f"counting the cells of a {w}×{h} label map with {linels} boundary linels would take about "
+                f"{cost >> 20} MB, more than {budget >> 20} MB"
+            )
+    regions = len(label_regions(lab).label)
+    pairs = np.unique(
+        np.concatenate(
+            [
+                _pair_codes(p[:, 1:][dv], p[:, :-1][dv]),
+                _pair_codes(p[1:, :][dh], p[:-1, :][dh]),
+            ]
+        )
+    )
+    # Pointel (i, j), 0 ≤ i ≤ h, 0 ≤ j ≤ w: the corner between rows i, i+1 and columns j, j+1 of p.
+    deg = dv[:-1, :].astype(np.uint8) + dv[1:, :] + dh[:, :-1] + dh[:, 1:]
+    zero = deg >= 3
+    open_cells = int(deg[zero].sum(dtype=np.int64)) // 2
+    # The doubled grid: pointel (i, j) at (2i, 2j); the vertical linel between p[r, c] and p[r, c+1] joins
+    # pointels (r-1, c) and (r, c), at (2r-1, 2c); the horizontal one between p[r, c] and p[r+1, c] joins
+    # (r, c-1) and (r, c), at (2r, 2c-1). 0-cells are left out, so the chains end next to them.
+    g = np.zeros((2 * h + 1, 2 * w + 1), dtype=np.uint8)
+    g[::2, ::2] = deg == 2
+    g[1::2, ::2] = dv[1 : h + 1, :]
+    g[::2, 1::2] = dh[:, 1 : w + 1]
+    chains, n = label(g, connectivity=4)
+    del g
+    near = np.zeros(chains.shape, dtype=bool)  # the linels at a 0-cell
+    zi, zj = np.nonzero(zero)
+    for di, dj in ((1, 0), (-1, 0), (0, 1), (0, -1)):
+        i, j = 2 * zi + di, 2 * zj + dj
+        ok = (i >= 0) & (i <= 2 * h) & (j >= 0) & (j <= 2 * w)
+        near[i[ok], j[ok]] = True
+    touching = np.unique(chains[near])
+    loops = n - int(np.count_nonzero(touching))
+    return CellCounts(regions, open_cells + loops, int(np.count_nonzero(zero)), len(pairs))
+
+
+def _pair_codes(a: npt.NDArray[np.int32], b: npt.NDArray[np.int32]) -> npt.NDArray[np.int64]:
+    """One int64 per unordered pair of labels (labels are non-negative int32)."""
+    lo, hi = np.minimum(a, b).astype(np.int64), np.maximum(a, b).astype(np.int64)
+    codes: npt.NDArray[np.int64] = (lo << 32) | hi
+    return codes

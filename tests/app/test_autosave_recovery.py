@@ -3,6 +3,7 @@ but never becomes the recovered document's path."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 
@@ -54,3 +55,75 @@ def test_an_orphans_recorded_path_is_shown_not_adopted(make_window, qtbot, autos
     assert [o.name for o in win.doc.objects] == ["orphaned work"]
     assert win.doc.path is None and win.doc.is_modified  # Save will ask where to write
     assert victim.read_bytes() == b"precious"
+
+
+def test_two_windows_on_one_project_never_lose_each_others_edits(make_window, qtbot, tmp_path, monkeypatch):
+    """Issue 32, class 7: B's autosave and B's save leave A's autosave alone; A's crash is recovered."""
+    from mrm.io.project import save_project
+
+    path = tmp_path / "shared.mrm"
+    doc = Document()
+    doc.push(AddObject(doc.make_object(PixelSet.box(0, 0, 4, 4), "start")))
+    save_project(doc, path)
+    a, b = make_window(), make_window()
+    offered: list[object] = []
+    monkeypatch.setattr(b.files, "offer_recovery", lambda rec, *_: offered.append(rec) or False)
+    assert a.files.open(path, ask=False)
+    a.doc.push(RenameObject(a.doc.objects[0].id, "edited in A"))
+    a.files.autosaver.interval = 0.0
+    a.files.autosave_tick()
+    assert b.files.open(path, ask=False)
+    assert offered == []  # A is open: its autosave is no crash to recover from
+    b.doc.push(RenameObject(b.doc.objects[0].id, "edited in B"))
+    b.files.autosaver.interval = 0.0
+    b.files.autosave_tick()  # B's autosave after A's
+    assert b.files.save()  # B saves its own edits
+    side_a = a.files.autosaver.path
+    assert side_a.is_file() and b"edited in A" in side_a.read_bytes()
+    a.close_now(discard_autosave=False)  # A crashes with its edits unsaved
+
+    c = make_window()
+    texts = answer_dialog(qtbot, "recoveryDialog", "Recover")
+    assert c.files.open(path, ask=False)
+    assert "shared.mrm" in texts[0]
+    assert [o.name for o in c.doc.objects] == ["edited in A"] and c.doc.is_modified
+    assert not side_a.exists()  # recovered: now in C's own autosave
+
+
+def test_every_untitled_orphan_is_offered_in_turn(make_window, qtbot, autosave_dir):
+    """Two crashed windows left two untitled autosaves: the second is offered after "Later" on the first."""
+    from PySide6 import QtWidgets
+
+    from tests.app.helpers import _when_modal
+
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    )
+    for k, name in enumerate(("older work", "newer work")):
+        doc = Document()
+        doc.push(AddObject(doc.make_object(PixelSet.box(0, 0, 2, 2), name)))
+        orphan = autosave_dir / f"untitled-{int(dead.stdout)}-{k}.mrm.autosave"
+        orphan.write_bytes(dumps(doc))
+        os.utime(orphan, (1_000_000 + k, 1_000_000 + k))
+    seen: list[str] = []
+
+    def click(w: QtWidgets.QMessageBox, text: str) -> None:
+        seen.append(w.text())
+        next(b for b in w.buttons() if b.text().replace("&", "") == text).click()
+
+    def second(w: QtWidgets.QMessageBox) -> None:
+        if "2 of 2" not in w.text():  # still the first box, closing
+            _when_modal(QtWidgets.QMessageBox, "recoveryDialog", second)
+            return
+        click(w, "Recover")
+
+    def first(w: QtWidgets.QMessageBox) -> None:
+        click(w, "Later")
+        _when_modal(QtWidgets.QMessageBox, "recoveryDialog", second)
+
+    win = make_window()
+    _when_modal(QtWidgets.QMessageBox, "recoveryDialog", first)
+    assert win.files.check_orphans()
+    assert "1 of 2" in seen[0] and "2 of 2" in seen[-1]
+    assert [o.name for o in win.doc.objects] == ["older work"]  # newest first: the older one came second
+    assert (autosave_dir / f"untitled-{int(dead.stdout)}-1.mrm.autosave").exists()  # "Later": kept

@@ -147,11 +147,11 @@ def test_autosave_never_follows_a_planted_symlink(tmp_path):
     save_project(doc, proj)
     target = tmp_path / "victim.txt"
     target.write_bytes(b"keep me")
-    side_file(proj).symlink_to(target)
-    doc.push(RenameObject(doc.objects[0].id, "b"))
     saver = Autosaver(doc, interval=0)
+    side_file(proj, saver.writer).symlink_to(target)
+    doc.push(RenameObject(doc.objects[0].id, "b"))
     written = saver.tick()
-    assert written == side_file(proj)
+    assert written == side_file(proj, saver.writer)
     assert target.read_bytes() == b"keep me"
     assert not written.is_symlink() and b'"b"' in written.read_bytes()
 
@@ -207,3 +207,80 @@ def test_every_junk_name_alone_is_harmless(tmp_path, name):
         assert rec.project is None
         with pytest.raises(FileFormatError, match=r"not an MR Modeler project|not UTF-8|empty"):
             rec.restore()
+
+
+# ------------------------------------------------------------------------------------------ issue 32, class 7
+def opened(project: Path) -> Document:
+    from mrm.io.project import load_project
+
+    return load_project(project)
+
+
+def test_two_writers_on_one_project_keep_their_own_autosaves(tmp_path):
+    proj = tmp_path / "shared.mrm"
+    save_project(edited_doc(), proj)
+    doc_a, doc_b = opened(proj), opened(proj)
+    saver_a = Autosaver(doc_a, interval=0)
+    saver_b = Autosaver(doc_b, interval=0)
+    doc_a.push(RenameObject(doc_a.ids[0], "edited in A"))
+    doc_b.push(RenameObject(doc_b.ids[0], "edited in B"))
+    side_a, side_b = saver_a.tick(), saver_b.tick()  # B's autosave comes last
+    assert side_a is not None and side_b is not None and side_a != side_b
+    assert b"edited in A" in side_a.read_bytes()
+    save_project(doc_b, proj)  # B saves its edits, and drops its own side file only
+    saver_b.tick()
+    assert not side_b.exists() and side_a.exists()
+    assert find_recovery(proj) is None  # A is still open: its autosave is not an orphan
+    saver_a.close()  # A crashes
+    (rec,) = autosave.find_recoveries(proj)
+    assert rec.project == proj and [o.name for o in rec.restore().objects] == ["edited in A"]
+
+
+WRITER = """
+import os, sys
+from mrm.document.commands import RenameObject
+from mrm.io.autosave import Autosaver
+from mrm.io.project import load_project
+doc = load_project(sys.argv[1])
+doc.push(RenameObject(doc.ids[0], sys.argv[2]))
+Autosaver(doc, interval=0).tick()
+print("written", flush=True)
+if sys.argv[3] == "crash":
+    os._exit(9)
+sys.stdin.read()  # alive until the test closes our stdin
+"""
+
+
+def test_every_crashed_process_is_offered_and_a_live_one_is_not(tmp_path):
+    proj = tmp_path / "p.mrm"
+    save_project(edited_doc(), proj)
+    for name in ("first crash", "second crash"):
+        subprocess.run([sys.executable, "-c", WRITER, str(proj), name, "crash"], check=False)
+    live = subprocess.Popen(
+        [sys.executable, "-c", WRITER, str(proj), "still open", "wait"],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert live.stdout is not None and live.stdout.readline().strip() == "written"
+        assert len(list(tmp_path.glob(".p.mrm.*.autosave"))) == 3  # one side file per writer
+        found = autosave.find_recoveries(proj)
+        names = sorted(rec.restore().objects[0].name for rec in found)
+        assert names == ["first crash", "second crash"]  # every orphan; the live writer's is not one
+    finally:
+        live.communicate("")
+    names = sorted(rec.restore().objects[0].name for rec in autosave.find_recoveries(proj))
+    assert names == ["first crash", "second crash", "still open"]  # exited without discarding
+
+
+def test_a_legacy_shared_side_file_is_still_recovered(tmp_path):
+    proj = tmp_path / "old.mrm"
+    doc = edited_doc()
+    save_project(doc, proj)
+    legacy = side_file(proj)
+    assert legacy.name == ".old.mrm.autosave"
+    legacy.write_bytes(dumps(doc, autosave={"project": str(proj), "saved_at": "x"}))
+    os.utime(legacy, (proj.stat().st_mtime + 10,) * 2)
+    (rec,) = autosave.find_recoveries(proj)
+    assert rec.path == legacy

@@ -599,9 +599,11 @@ def test_autosave_after_n_edits_and_recovery_restores_the_edited_document(tmp_pa
     assert saver.tick() is None  # 2 edits, 0 s: not yet
     doc.push(RenameObject(a, "three"))
     side = saver.tick()
-    assert side == tmp_path / ".work.mrm.autosave" and side.exists()
+    assert side == tmp_path / f".work.mrm.{saver.writer}.autosave" and side.exists()
+    assert autosave.find_recovery(project) is None  # its writer is alive: nothing to recover yet
     expected = dumps(doc)
-    # The program dies here. On the next start:
+    saver.close()  # the window goes away without discarding its side file, as in a crash
+    # On the next start:
     rec = autosave.find_recovery(project)
     assert rec is not None and rec.project == project and rec.saved_at
     restored = rec.restore()
