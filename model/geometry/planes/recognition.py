@@ -151,11 +151,20 @@ def _sub(u: Vec, v: Vec) -> Vec:
     return (u[0] - v[0], u[1] - v[1], u[2] - v[2])
 
 
+def _add(u: Vec, v: Vec) -> Vec:
+    return (u[0] + v[0], u[1] + v[1], u[2] + v[2])
+
+
 class SurfelPlane:
     """Incremental recognition of a surfel patch as a digital plane segment (see the module docstring).
 
     Add surfels with :meth:`add`; it returns False, and leaves the recognizer unchanged, when the surfel
     would leave no plane that separates the inner voxels from the outer ones.
+
+    Like DGtal's recognizers it keeps a *witness*, one normal from the interior of the preimage with the
+    extreme dot products of the points along it: a surfel that this normal still separates is taken in
+    constant time, and the cone is cut by the points taken so only when the witness fails (or when the
+    preimage is asked for).
 
     Examples
     --------
@@ -172,8 +181,18 @@ class SurfelPlane:
         self.inner = _Points()
         self.outer = _Points()
         self._first: Vec | None = None  # the first surfel's outward direction e (n · e > 0 for every n)
-        self.cone: Cone | None = None
+        self._cone: Cone | None = None  # cut by every point up to the last witness failure
+        self._stale = False  # whether points were taken since, on the witness's word only
+        self._witness: Vec = (0, 0, 0)
+        self._w_hi = 0  # max witness · p over the inner voxels
+        self._w_lo = 0  # min witness · q over the outer voxels
         self.n_surfels = 0
+
+    @property
+    def cone(self) -> Cone | None:
+        """The preimage cone (None while the patch has one surfel: every n with n · e > 0 is admissible)."""
+        self._refresh()
+        return self._cone
 
     def add(self, p: Sequence[int], e: Sequence[int]) -> bool:
         """Add the surfel between the voxel ``p`` of A and its neighbour ``p + e`` outside A.
@@ -196,61 +215,83 @@ class SurfelPlane:
         if pv in self.outer or qv in self.inner:
             return False  # a voxel on both sides: no plane separates it from itself
         if pv in self.inner and qv in self.outer:
+            self.n_surfels += 1
             return True  # both voxels are there already: no new constraint
         if self._first is None:
             self._first = ev
-            self.inner.add(pv)
-            self.outer.add(qv)
-            self.n_surfels = 1
-            return True
-        cone = self._cut(pv, qv)
-        if cone is None:
-            return False
-        self.cone = cone
+        elif self._cone is None:
+            cone = self._start(pv, qv)
+            if cone is None:
+                return False
+            self._set(cone, pv, qv)
+        else:
+            w = self._witness
+            wp, wq = dot(w, pv), dot(w, qv)
+            if max(self._w_hi, wp) < min(self._w_lo, wq):
+                self._w_hi, self._w_lo = max(self._w_hi, wp), min(self._w_lo, wq)
+                self._stale = True
+            else:
+                cone = self._cut(self._cone, pv, qv)
+                if cone is None:
+                    return False
+                self._set(cone, pv, qv)
         self.inner.add(pv)
         self.outer.add(qv)
         self.n_surfels += 1
         return True
 
-    def _cut(self, p: Vec, q: Vec) -> Cone | None:
+    def _set(self, cone: Cone, p: Vec, q: Vec) -> None:
+        """Take ``cone`` (cut by every point and p, q) and its interior ray as the new witness."""
+        self._cone, self._stale = cone, False
+        w = self._witness = cone.interior_ray()
+        self._w_hi = max(self._extreme(self.inner, w)[0], dot(w, p))
+        self._w_lo = min(self._extreme(self.outer, w)[1], dot(w, q))
+
+    @staticmethod
+    def _extreme(points: _Points, n: Vec) -> tuple[int, int]:
+        """(max n·x, min n·x) over the points, exactly."""
+        o = points.origin or (0, 0, 0)
+        hi, _, lo, _ = points.dots(n, points.extent())
+        return hi + dot(n, o), lo + dot(n, o)
+
+    def _start(self, p: Vec, q: Vec) -> Cone | None:
+        # Still the half-space n · e > 0 (only one surfel so far): start the cone with the first pair
+        # constraint that is independent of e, then cut by every pair (few points exist yet).
+        e = self._first
+        assert e is not None
         inner, outer = self.inner, self.outer
-        cone = self.cone
-        if cone is None:
-            # Still the half-space n · e > 0 (only one surfel so far): start the cone with the first pair
-            # constraint that is independent of e, then cut by every pair (few points exist yet).
-            e = self._first
-            assert e is not None
-            ps = [inner.point(i) for i in range(inner.n)] + [p]
-            qs = [outer.point(i) for i in range(outer.n)] + [q]
-            vs = [_sub(b, a) for a in ps for b in qs]
-            start = next((v for v in vs if primitive(v) != primitive(e)), None)
-            if start is None:
-                # Every pair differs by a multiple of e: the new surfel is the old one moved along e, and
-                # one of the two pairs then points against e (docs: no plane separates them).
-                return None
-            cone = start_cone(e, start)
-            return None if cone is None else cone.clip_all(vs)
+        ps = [inner.point(i) for i in range(inner.n)] + [p]
+        qs = [outer.point(i) for i in range(outer.n)] + [q]
+        vs = [_sub(b, a) for a in ps for b in qs]
+        start = next((v for v in vs if primitive(v) != primitive(e)), None)
+        if start is None:
+            # Every pair differs by a multiple of e: the new surfel is the old one moved along e, and one of
+            # the two pairs then points against e.
+            return None
+        cone = start_cone(e, start)
+        return None if cone is None else cone.clip_all(vs)
+
+    def _cut(self, cone: Cone, p: Vec | None, q: Vec | None) -> Cone | None:
+        """The cone cut until every point (and p, q when given) is separated at each of its vertices."""
+        inner, outer = self.inner, self.outer
         extent = max(inner.extent(), outer.extent())
-        o = inner.origin
-        assert o is not None and outer.origin is not None
-        op = outer.origin
+        o, op = inner.origin or (0, 0, 0), outer.origin or (0, 0, 0)
         while True:
             cut: Vec | None = None
             for r in cone.rays:
-                # The new inner voxel must stay below every outer voxel, the new outer voxel above every
-                # inner one, and the two apart.
-                _, _, q_min, iq = outer.dots(r, extent)
-                q_min += dot(r, op)
-                p_max, ip, _, _ = inner.dots(r, extent)
-                p_max += dot(r, o)
-                rp, rq = dot(r, p), dot(r, q)
-                if rp > q_min:
-                    cut = _sub(outer.point(iq), p)
-                elif p_max > rq:
-                    cut = _sub(q, inner.point(ip))
-                elif rp > rq:
-                    cut = _sub(q, p)
-                if cut is not None:
+                hi, ihi, _, _ = inner.dots(r, extent)
+                _, _, lo, ilo = outer.dots(r, extent)
+                hi, lo = hi + dot(r, o), lo + dot(r, op)
+                a = inner.point(ihi)
+                b = outer.point(ilo)
+                if p is not None and q is not None:
+                    rp, rq = dot(r, p), dot(r, q)
+                    if rp > hi:
+                        hi, a = rp, p
+                    if rq < lo:
+                        lo, b = rq, q
+                if hi > lo:
+                    cut = _sub(b, a)
                     break
             if cut is None:
                 return cone
@@ -259,23 +300,30 @@ class SurfelPlane:
                 return None
             cone = nxt
 
+    def _refresh(self) -> None:
+        if self._stale and self._cone is not None:
+            cone = self._cut(self._cone, None, None)
+            # The witness separated every point taken, so the cut cone still holds it.
+            assert cone is not None
+            self._cone, self._stale = cone, False
+
     def accepts(self, n: Sequence[int]) -> bool:
         """Whether the plane normal n separates strictly: max n·p < min n·q (checked on the points)."""
-        nv: Vec = (int(n[0]), int(n[1]), int(n[2]))
-        extent = max(self.inner.extent(), self.outer.extent())
-        p_max = self.inner.dots(nv, extent)[0] + dot(nv, self.inner.origin or (0, 0, 0))
-        q_min = self.outer.dots(nv, extent)[2] + dot(nv, self.outer.origin or (0, 0, 0))
-        return p_max < q_min
+        t, u = self.offsets(n)
+        return t < u
 
     def preimage(self) -> Cone:
-        """The closed cone of admissible normals (its interior separates strictly)."""
-        if self.cone is not None:
-            return self.cone
+        """The closed cone of admissible normals (its interior separates strictly).
+
+        For a single surfel (every n with n · e > 0 separates) this is the square pyramid of the normals
+        at most 45° from e, where the chosen normal is searched.
+        """
+        cone = self.cone
+        if cone is not None:
+            return cone
         e = self._first
         if e is None:
             raise ValueError("an empty patch has no preimage")
-        # One surfel: every n with n · e > 0. Returned as the octant-like cone around e, which holds the
-        # normals at most 45° from e; it is the part the canonical normal is searched in.
         k = next(i for i in range(3) if e[i] != 0)
         rays: list[Vec] = []
         for su, sv in ((1, 1), (-1, 1), (-1, -1), (1, -1)):
@@ -297,10 +345,7 @@ class SurfelPlane:
     def offsets(self, n: Sequence[int]) -> tuple[int, int]:
         """(max n·p over the inner voxels, min n·q over the outer voxels)."""
         nv: Vec = (int(n[0]), int(n[1]), int(n[2]))
-        extent = max(self.inner.extent(), self.outer.extent())
-        p_max = self.inner.dots(nv, extent)[0] + dot(nv, self.inner.origin or (0, 0, 0))
-        q_min = self.outer.dots(nv, extent)[2] + dot(nv, self.outer.origin or (0, 0, 0))
-        return p_max, q_min
+        return self._extreme(self.inner, nv)[0], self._extreme(self.outer, nv)[1]
 
     def euclidean_plane(self, n: Sequence[int] | None = None) -> tuple[Vec, Fraction]:
         """The chosen Euclidean plane n · x = h, midway between the inner and the outer voxel centres."""
@@ -309,8 +354,24 @@ class SurfelPlane:
         return nv, Fraction(t + u, 2)
 
 
+@dataclass
+class _Octant:
+    """One octant's cone of :class:`PointPlane`, with its witness normal and the extremes along it."""
+
+    sign: Vec
+    cone: Cone
+    stale: bool = False
+    witness: Vec = (0, 0, 0)
+    hi: int = 0
+    lo: int = 0
+    has_witness: bool = False
+
+
 class PointPlane:
     """Incremental recognition of a point set as a piece of a standard arithmetic plane.
+
+    One cone per octant of normals; each keeps a witness normal as :class:`SurfelPlane` does, and a point
+    that some octant's witness still admits is taken in constant time.
 
     Examples
     --------
@@ -324,7 +385,13 @@ class PointPlane:
     def __init__(self) -> None:
         self.points = _Points()
         octants: list[Vec] = [(a, b, c) for a, b, c in product((1, -1), repeat=3)]
-        self.cones: dict[Vec, Cone | None] = {s: octant_cone(s) for s in octants}
+        self._octants: list[_Octant] = [_Octant(s, octant_cone(s)) for s in octants]
+
+    @property
+    def cones(self) -> dict[Vec, Cone]:
+        """The exact cone of admissible normals of each octant that still has one."""
+        self._octants = [oc for oc in self._octants if self._refresh(oc)]
+        return {oc.sign: oc.cone for oc in self._octants}
 
     def add(self, p: Sequence[int]) -> bool:
         """Add the point p; False (and no change) when no standard plane holds the points with it."""
@@ -334,34 +401,85 @@ class PointPlane:
         if self.points.n == 0:
             self.points.add(pv)
             return True
-        new: dict[Vec, Cone | None] = {}
-        for s, cone in self.cones.items():
-            new[s] = None if cone is None else self._cut(cone, s, pv)
-        if all(c is None for c in new.values()):
-            return False
-        self.cones = new
+        dead: list[int] = []
+        taken = False
+        for k, oc in enumerate(self._octants):
+            if oc.has_witness:
+                x = dot(oc.witness, pv)
+                hi, lo = max(oc.hi, x), min(oc.lo, x)
+                if hi - lo < dot(oc.witness, oc.sign):
+                    oc.hi, oc.lo, oc.stale = hi, lo, True
+                    taken = True
+                    break
+            # Points taken without this octant's cone being cut by them: cut it by all of them first (p
+            # aside), so that an empty cone here means empty with or without p.
+            if oc.stale and not self._refresh(oc):
+                dead.append(k)
+                continue
+            cone = self._cut(oc.cone, oc.sign, pv)
+            if cone is None:
+                dead.append(k)
+                continue
+            oc.cone, oc.stale = cone, False
+            w = oc.witness = cone.interior_ray()
+            oc.hi, oc.lo = self._extreme(w)
+            x = dot(w, pv)
+            oc.hi, oc.lo, oc.has_witness = max(oc.hi, x), min(oc.lo, x), True
+            taken = True
+            break
+        if not taken:
+            return False  # the octants are unchanged: the cut cones were not kept
+        # The octants after the one that took p have not seen it: their witness no longer speaks for all
+        # the points, so they are cut by every point when next asked. Octants found empty with p are empty
+        # for good now that p is taken.
+        for j in range(k + 1, len(self._octants)):
+            oc = self._octants[j]
+            oc.has_witness, oc.stale = False, True
+            if _sub(pv, oc.sign) in self.points or _add(pv, oc.sign) in self.points:
+                dead.append(j)  # the pair's constraint reads 0 > 0, which cutting cannot see
+        for j in sorted(dead, reverse=True):
+            del self._octants[j]
         self.points.add(pv)
         return True
 
-    def _cut(self, cone: Cone, s: Vec, p: Vec) -> Cone | None:
+    def _extreme(self, n: Vec) -> tuple[int, int]:
+        o = self.points.origin or (0, 0, 0)
+        hi, _, lo, _ = self.points.dots(n, self.points.extent())
+        return hi + dot(n, o), lo + dot(n, o)
+
+    def _refresh(self, oc: _Octant) -> bool:
+        """Cut a stale octant's cone by every point; False when it is empty (the octant is dead)."""
+        if oc.stale:
+            cone = self._cut(oc.cone, oc.sign, None)
+            if cone is None:
+                return False
+            oc.cone, oc.stale = cone, False
+        return True
+
+    def _cut(self, cone: Cone, s: Vec, p: Vec | None) -> Cone | None:
         pts = self.points
         o = pts.origin
         assert o is not None
-        extent = pts.extent() + abs(p[0] - o[0]) + abs(p[1] - o[1]) + abs(p[2] - o[2])
-        rp_rel = _sub(p, o)
-        if _sub(p, s) in pts or (p[0] + s[0], p[1] + s[1], p[2] + s[2]) in pts:
-            # Two points apart by s: the constraint n · (s − (p − p′)) > 0 reads 0 > 0. The closed cone
-            # does not see it (its half-space is everything), so it is checked here.
-            return None
+        extent = pts.extent()
+        if p is not None:
+            if _sub(p, s) in pts or _add(p, s) in pts:
+                # Two points apart by s: the constraint n · (s − (p − p′)) > 0 reads 0 > 0. The closed
+                # cone does not see it (its half-space is everything), so it is checked here.
+                return None
+            extent += abs(p[0] - o[0]) + abs(p[1] - o[1]) + abs(p[2] - o[2])
         while True:
             cut: Vec | None = None
             for r in cone.rays:
                 hi, ihi, lo, ilo = pts.dots(r, extent)
-                x = dot(r, rp_rel)
-                hi, lo = max(hi, x), min(lo, x)
+                a, b = _sub(pts.point(ihi), o), _sub(pts.point(ilo), o)
+                if p is not None:
+                    x_rel = _sub(p, o)
+                    x = dot(r, x_rel)
+                    if x > hi:
+                        hi, a = x, x_rel
+                    if x < lo:
+                        lo, b = x, x_rel
                 if hi - lo > dot(r, s):
-                    a = rp_rel if x == hi else _sub(pts.point(ihi), o)
-                    b = rp_rel if x == lo else _sub(pts.point(ilo), o)
                     cut = _sub(s, _sub(a, b))
                     break
             if cut is None:
@@ -376,15 +494,13 @@ class PointPlane:
         nv: Vec = (int(n[0]), int(n[1]), int(n[2]))
         if nv == (0, 0, 0):
             return False
-        hi, _, lo, _ = self.points.dots(nv, self.points.extent())
+        hi, lo = self._extreme(nv)
         return hi - lo < abs(nv[0]) + abs(nv[1]) + abs(nv[2])
 
     def normal(self) -> Vec:
         """The chosen normal: the smallest admissible one over the eight octants."""
         best: Vec | None = None
         for cone in self.cones.values():
-            if cone is None:
-                continue
             n = smallest_normal(cone, self.accepts)
             if best is None or _size_key(n) < _size_key(best):
                 best = n
@@ -395,9 +511,8 @@ class PointPlane:
     def plane(self) -> DigitalPlane:
         """The standard arithmetic plane of the chosen normal, μ the smallest remainder."""
         n = self.normal()
-        _, _, lo, _ = self.points.dots(n, self.points.extent())
-        o = self.points.origin or (0, 0, 0)
-        return DigitalPlane(n[0], n[1], n[2], lo + dot(n, o))
+        _, lo = self._extreme(n)
+        return DigitalPlane(n[0], n[1], n[2], lo)
 
 
 def _size_key(n: Vec) -> tuple[int, int, Vec]:
