@@ -22,6 +22,10 @@ of each, with the ratio; the last column is the time our smallest-normal search 
 (DGtal's getCharacteristics is not timed). Times: medians over ``--repeat`` runs (ours in this process, DGtal
 inside its process, reading excluded).
 
+A second table times the compiled greedy segmentation of whole surfaces (digital balls) that the analytical
+representation uses (``mrm.geometry.planes.segmentation.plane_segments``, surfel-patch recognition, no peer:
+DGtal has no segmentation of a surfel surface into standard plane segments with this contract).
+
 Usage: ``.venv/bin/python benchmarks/planes.py [--radius 40] [--repeat 3]``
 """
 
@@ -46,18 +50,39 @@ PEER = os.path.join(ROOT, "benchmarks", "dgtal", "build", "plane_compare")
 
 def segment_point_sets(mask: np.ndarray, origin: tuple[int, int, int]) -> list[np.ndarray]:
     """The voxels of A of each greedy plane segment of the mask's surfaces, in the order they were added."""
-    from mrm.geometry.planes.segmentation import segment_surfels
+    from mrm.geometry.planes.segmentation import plane_segments
     from mrm.geometry.topology.labeling_3d import label_runs_3d
     from mrm.geometry.topology.surfels import surfels_of
 
     s = surfels_of(label_runs_3d(mask, 6))
-    seg = segment_surfels(s, origin)
+    seg = plane_segments(s.voxel + np.array(origin), s.direction, s.neighbour)
     out = []
-    for sg in seg.segments:
-        vox = s.voxel[sg.surfels] + np.array(origin)
+    for k in range(len(seg)):
+        vox = seg.voxel[seg.surfels_of(k)]
         _, first = np.unique(vox, axis=0, return_index=True)
         out.append(vox[np.sort(first)])
     return out
+
+
+def segmentation_rows(radii: list[int], repeat: int) -> None:
+    """The compiled greedy segmentation of whole surfaces (balls): surfels, segments, time, surfels/s."""
+    from mrm.geometry.planes.segmentation import plane_segments
+    from mrm.geometry.topology.labeling_3d import label_runs_3d
+    from mrm.geometry.topology.surfels import surfels_of
+
+    print()
+    print("greedy segmentation of a digital ball's surface (compiled; surfels built beforehand, not timed)")
+    print(f"{'radius':>7}{'surfels':>10}{'segments':>10}{'seconds':>10}{'surfels/s':>12}")
+    for r in radii:
+        x, y, z = centred_grid(r)
+        s = surfels_of(label_runs_3d(x * x + y * y + z * z <= r * r, 6))
+        times = []
+        for _ in range(repeat):
+            t = time.perf_counter()
+            seg = plane_segments(s.voxel, s.direction, s.neighbour)
+            times.append(time.perf_counter() - t)
+        t_med = median(times)
+        print(f"{r:>7}{len(s.direction):>10}{len(seg):>10}{t_med:>10.3f}{len(s.direction) / t_med:>12,.0f}")
 
 
 def centred_grid(r: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -176,6 +201,7 @@ def main() -> None:
             f"{name:<18}{len(sets):>6}{points:>9}{f'{same}/{len(sets)}':>12}{f'{same_n}/{len(sets)}':>13}"
             f"{t_o:>12.2f}{t_d:>13.3f}{t_o / t_d:>11.0f}×{t_n:>19.2f}"
         )
+    segmentation_rows([8, 25, 50, 100, 200], args.repeat)
 
 
 if __name__ == "__main__":

@@ -21,6 +21,7 @@ empty for good.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from math import gcd
@@ -178,6 +179,26 @@ class Cone:
     def interior_ray(self) -> Vec:
         """A primitive integer vector inside the open cone: the sum of the extreme rays."""
         return primitive(tuple(sum(r[k] for r in self.rays) for k in range(3)))
+
+    def middle_ray(self) -> Vec:
+        """A primitive integer vector inside the open cone, near its middle (the witness of a recognizer).
+
+        The sum of the unit rays, rounded to integers below 2²⁰ and checked exactly against the faces;
+        :meth:`interior_ray` when rounding left it outside (a very thin cone). The integer sum is inside
+        too, but a long ray outweighs the others and puts it near one side.
+        """
+        f = [0.0, 0.0, 0.0]
+        for r in self.rays:
+            nrm = math.sqrt(float(r[0]) ** 2 + float(r[1]) ** 2 + float(r[2]) ** 2)
+            for k in range(3):
+                f[k] += r[k] / nrm
+        big = max(abs(c) for c in f)
+        if big > 0.0:
+            scale = float(1 << 20) / big
+            w = primitive(tuple(round(c * scale) for c in f))
+            if all(dot(w, c) > 0 for c in self.edge_normals()):
+                return w
+        return self.interior_ray()
 
 
 def start_cone(e: Sequence[int], v: Sequence[int]) -> Cone | None:

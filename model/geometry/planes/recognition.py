@@ -243,7 +243,7 @@ class SurfelPlane:
     def _set(self, cone: Cone, p: Vec, q: Vec) -> None:
         """Take ``cone`` (cut by every point and p, q) and its interior ray as the new witness."""
         self._cone, self._stale = cone, False
-        w = self._witness = cone.interior_ray()
+        w = self._witness = cone.middle_ray()
         self._w_hi = max(self._extreme(self.inner, w)[0], dot(w, p))
         self._w_lo = min(self._extreme(self.outer, w)[1], dot(w, q))
 
@@ -334,7 +334,7 @@ class SurfelPlane:
 
     def normal(self) -> Vec:
         """The chosen normal: the smallest admissible one (see :func:`smallest_normal`)."""
-        return smallest_normal(self.preimage(), self.accepts)
+        return smallest_normal(self.preimage(), self.accepts, open_cone=True)
 
     def plane(self, n: Sequence[int] | None = None) -> DigitalPlane:
         """The standard arithmetic plane (n, μ) holding the inner voxels, n the chosen normal by default."""
@@ -421,7 +421,7 @@ class PointPlane:
                 dead.append(k)
                 continue
             oc.cone, oc.stale = cone, False
-            w = oc.witness = cone.interior_ray()
+            w = oc.witness = cone.middle_ray()
             oc.hi, oc.lo = self._extreme(w)
             x = dot(w, pv)
             oc.hi, oc.lo, oc.has_witness = max(oc.hi, x), min(oc.lo, x), True
@@ -519,13 +519,14 @@ def _size_key(n: Vec) -> tuple[int, int, Vec]:
     return (max(abs(c) for c in n), abs(n[0]) + abs(n[1]) + abs(n[2]), n)
 
 
-def smallest_normal(cone: Cone, accepts: Callable[[Vec], bool]) -> Vec:
+def smallest_normal(cone: Cone, accepts: Callable[[Vec], bool], *, open_cone: bool = False) -> Vec:
     """The admissible normal of smallest max-norm (then L1 norm, then lexicographic) in a cone.
 
     The candidates at max-norm N are the integer points of the cone's slices by the faces of the cube
-    [−N, N]³, enumerated in the bounding box of each slice, kept when they are in the closed cone and
-    ``accepts`` them (the exact definition of the recognizer). The scan stops at :data:`MAX_NORMAL_SCAN` or
-    at the max-norm of the cone's interior ray, which is always admissible.
+    [−N, N]³, enumerated in the bounding box of each slice, kept when they are in the closed cone (the
+    open one with ``open_cone``) and ``accepts`` them (the exact definition of the recognizer). The scan
+    stops at :data:`MAX_NORMAL_SCAN` or at the max-norm of the cone's interior ray, which is always
+    admissible.
     """
     fallback = cone.interior_ray()
     if not accepts(fallback):
@@ -533,6 +534,10 @@ def smallest_normal(cone: Cone, accepts: Callable[[Vec], bool]) -> Vec:
         raise AssertionError(f"the interior ray {fallback} of the preimage is not admissible")
     cap = min(max(abs(c) for c in fallback), MAX_NORMAL_SCAN)
     normals = cone.edge_normals()
+    # When the admissible normals are exactly the open cone (a surfel patch), a candidate on its boundary is
+    # never admissible: filtering it out here spares ``accepts`` (a pass over the points) on the many
+    # lattice points a boundary face can hold, e.g. the (a, b, 0) of a long rod's segment.
+    least = 0 if open_cone else -1
     slices = _face_slices(cone)
     for big_n in range(1, cap + 1):
         found: list[Vec] = []
@@ -540,7 +545,7 @@ def smallest_normal(cone: Cone, accepts: Callable[[Vec], bool]) -> Vec:
             for u in range(max(-big_n, ceil(lo_u * big_n)), min(big_n, floor(hi_u * big_n)) + 1):
                 for v in range(max(-big_n, ceil(lo_v * big_n)), min(big_n, floor(hi_v * big_n)) + 1):
                     n = _on_face(axis, sign * big_n, u, v)
-                    if all(dot(c, n) >= 0 for c in normals):
+                    if all(dot(c, n) > least for c in normals):
                         found.append(n)
         for n in sorted(set(found), key=_size_key):
             if primitive(n) == n and accepts(n):
