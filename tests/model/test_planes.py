@@ -121,7 +121,7 @@ def test_the_octahedron_face_is_one_plane_with_its_own_parameters():
     plane = rec.plane()
     assert (plane.a, plane.b, plane.c, plane.mu, plane.omega) == (1, 1, 1, r - 2, 3)
     normal, h = rec.euclidean_plane()
-    assert normal == (1, 1, 1) and h == r + 0.5  # |x| + |y| + |z| = r + ½ (DESIGN §11)
+    assert normal == (1, 1, 1) and h == r + 0.5  # |x| + |y| + |z| = r + ½ (docs/design.md §11)
 
 
 def test_recognition_is_covariant_under_far_translations():
