@@ -68,6 +68,7 @@ KERNEL_MODULES = (
     "geometry/polyhedra/faces.py",
     "geometry/polyhedra/validation.py",
     "geometry/discretize/_kernels3d.py",
+    "geometry/planes/_kernels.py",
 )
 
 STAMP_NAME = "mrm-kernels-warm.json"
@@ -247,12 +248,15 @@ def _step_regions_3d() -> None:
     import numpy as np
 
     from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+    from mrm.reps.analytical_3d import analytical_3d_of
     from mrm.reps.cells_3d import cells_3d_of
     from mrm.reps.region_3d import region_3d_of
 
     mask = np.ones((3, 3, 3), bool)
     mask[1, 1, 1] = False  # a cavity
-    _ = region_3d_of(mask, (0, 0, 0)).surfaces
+    region = region_3d_of(mask, (0, 0, 0))
+    _ = region.surfaces
+    analytical_3d_of(region)  # the digital plane segments' kernel
     cells_3d_of(mask.astype(np.int32) + np.eye(3, dtype=np.int32)[None])
     safety_net_3d(mask)
 

@@ -512,6 +512,64 @@ def figure_3d() -> None:
     plt.close(fig)
 
 
+def surfel_square(p: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """The unit square between voxel p and its neighbour p + e, as 4 corners."""
+    c = p + e / 2
+    u, v = [np.eye(3)[k] for k in range(3) if e[k] == 0]
+    return np.array([c - u / 2 - v / 2, c + u / 2 - v / 2, c + u / 2 + v / 2, c - u / 2 + v / 2])
+
+
+def figure_plane_segments_3d() -> None:
+    """The digital plane segments of an octahedron and of a ball, one colour per segment."""
+    from mrm.geometry.topology.surfels import DIRS
+    from mrm.reps.analytical_3d import analytical_3d_of
+
+    fig = plt.figure(figsize=(8.4, 3.8), dpi=100)
+    for col, (name, r) in enumerate((("octahedron", 6), ("ball", 9))):
+        g = np.arange(-r - 1, r + 2)
+        z, y, x = np.meshgrid(g, g, g, indexing="ij")
+        mask = (abs(x) + abs(y) + abs(z) <= r) if name == "octahedron" else (x * x + y * y + z * z <= r * r)
+        reg = region_3d_of(mask, (-r - 1,) * 3)
+        an = analytical_3d_of(reg)
+        seg = an.segmentation
+        # neighbouring segments get different colours (greedy over the surfel edges)
+        nb = np.concatenate(
+            [
+                s.neighbours + k
+                for s, k in zip(reg.surfaces, np.cumsum([0] + [len(s) for s in reg.surfaces]), strict=False)
+            ]
+        )
+        touching: dict[int, set[int]] = {k: set() for k in range(len(an))}
+        for i, row in enumerate(nb):
+            for j in row:
+                a, b = int(seg.segment_of[i]), int(seg.segment_of[j])
+                if a != b:
+                    touching[a].add(b)
+        chosen: list[int] = []
+        for k in range(len(an)):
+            taken = {chosen[g2] for g2 in touching[k] if g2 < k}
+            chosen.append(next(c for c in range(len(FACE_COLOURS)) if c not in taken))
+        squares, fills = [], []
+        for i in range(len(seg.direction)):
+            e = DIRS[seg.direction[i]].astype(float)
+            shade = 0.62 + 0.38 * max(0.0, float(e @ LIGHT / np.linalg.norm(LIGHT)))
+            squares.append(surfel_square(seg.voxel[i].astype(float), e))
+            fills.append(rgb(tuple(round(shade * c) for c in FACE_COLOURS[chosen[int(seg.segment_of[i])]])))
+        box = (-r, -r, -r, r, r, r)
+        ax = voxel_axes(fig, (0.5 * col, 0.0, 0.5, 0.9), box, zoom=1.25)
+        ax.add_collection3d(Poly3DCollection(squares, facecolors=fills, edgecolors=fills, linewidths=0.4))
+        what = "|x| + |y| + |z|" if name == "octahedron" else "x² + y² + z²"
+        bound = r if name == "octahedron" else r * r
+        titled(
+            fig,
+            0.5 * col,
+            f"the digital {name} {what} ≤ {bound}",
+            f"{len(seg.direction)} surfels, {len(an)} digital plane segments",
+        )
+    fig.savefig(OUT / "plane-segments-3d.png")
+    plt.close(fig)
+
+
 def main() -> None:
     """Draw every picture."""
     OUT.mkdir(parents=True, exist_ok=True)
@@ -520,6 +578,7 @@ def main() -> None:
     figure_models()
     figure_gauss_disk()
     figure_3d()
+    figure_plane_segments_3d()
 
 
 if __name__ == "__main__":

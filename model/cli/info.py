@@ -5,9 +5,9 @@ it is done; ``--json`` then gives ``{"inputs": n, "files": [summary, …]}`` in 
 
 3D inputs: a voxel file (.npz holding a 3-D mask, a multi-page .tif/.tiff, .nii, .nii.gz; ``--threshold``
 for grey volumes) gives the keys of :func:`mrm.reps.summary.summarize_voxels` — ``voxels``, ``components``,
-``cavities``, ``tunnels``, ``euler``, ``surfels``, ``plane_segments`` (null until the digital plane segments
-arrive), and the ``faces`` and ``vertices`` of R(A); a mesh file (.obj .ply .off .stl) gives those of its
-voxelization D under the model, with the ``faces`` and ``vertices`` of the polyhedron itself.
+``cavities``, ``tunnels``, ``euler``, ``surfels``, ``plane_segments`` (the greedy digital plane segments of
+the surfaces), and the ``faces`` and ``vertices`` of R(A); a mesh file (.obj .ply .off .stl) gives those of
+its voxelization D under the model, with the ``faces`` and ``vertices`` of the polyhedron itself.
 
 A label volume (an .npz holding ``labels``, or any voxel file with ``--labels``) gives ``model``,
 ``labels`` (distinct non-zero labels), ``regions`` (6-connected components of one label), ``voxels``

@@ -43,10 +43,9 @@ def region_from_pixels(ps: PixelSet) -> Any:
     return region_of(ps)
 
 
-#: Why a 3D object has no analytical representation yet (issue 29, the compact 3D continuation).
-NO_PLANE_SEGMENTS = (
-    "a 3D object's digital plane segments come with the compact 3D continuation; its voxels, region and "
-    "polyhedron are available"
+#: Why a label volume has no analytical representation of its own yet.
+NO_LABEL_PLANE_SEGMENTS = (
+    "a label volume's faces are shared by two regions each: its digital plane segments come with its meshes"
 )
 #: Why a label volume has no Euclidean representation yet.
 NO_LABEL_MESHES = "a label volume's meshes (one closed mesh per region) come with the compact 3D continuation"
@@ -142,21 +141,23 @@ class Derived:
     def _compute_3d(self, what: Rep) -> Any:
         """The representations of a voxel set, label volume or polyhedron (docs/design.md §11).
 
-        D is the exact voxelizer, R the 3D continuation, the region representation the (6, 26) one; a label
-        volume's region representation is its cells. The analytical one (digital plane segments) and a
-        label volume's meshes come with the compact 3D continuation.
+        D is the exact voxelizer, R the 3D continuation, the region representation the (6, 26) one, the
+        analytical one the digital plane segments of its surfaces; a label volume's region representation is
+        its cells (its plane segments and meshes come with the compact 3D continuation).
         """
         # Imported here: a document of plane objects (the desktop's first paint) never loads the 3D kernels.
         from mrm.geometry.discretize.voxels import voxelize
         from mrm.reps.cells_3d import cells_3d_of
         from mrm.reps.region_3d import region_3d_of
 
-        if what == "analytical":
-            raise NotApplicableError(NO_PLANE_SEGMENTS)
         if self.kind == "labels":
             if what == "region":
                 return cells_3d_of(self.source.labels, self.source.origin)
-            raise NotApplicableError(NO_LABEL_MESHES)
+            raise NotApplicableError(NO_LABEL_PLANE_SEGMENTS if what == "analytical" else NO_LABEL_MESHES)
+        if what == "analytical":
+            from mrm.reps.analytical_3d import analytical_3d_of
+
+            return analytical_3d_of(self.get("region"))
         if what == "discrete":
             return voxelize(self.source, self.model)
         if what == "euclidean":

@@ -17,6 +17,7 @@ from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.models import Model
 from mrm.geometry.reconstruct import reconstruct
 from mrm.reps.analytical import segment_count
+from mrm.reps.analytical_3d import analytical_3d_of
 from mrm.reps.region import region_of
 from mrm.reps.region_3d import region_3d_of
 
@@ -104,8 +105,8 @@ def summarize_voxels(
     dict
         ``model``; ``voxels``; ``bbox`` ([xmin, ymin, zmin, xmax, ymax, zmax] or None); ``components``,
         ``cavities``, ``tunnels``, ``euler`` and ``surfels`` from :func:`mrm.reps.region_3d.region_3d_of`;
-        ``plane_segments`` (None: the digital plane segments come with the compact 3D continuation);
-        ``faces`` and ``vertices``.
+        ``plane_segments`` (the number of digital plane segments of the greedy segmentation,
+        :func:`mrm.reps.analytical_3d.analytical_3d_of`); ``faces`` and ``vertices``.
     """
     model = Model.parse(model)
     region = region_3d_of(vs.mask, vs.origin)
@@ -119,7 +120,7 @@ def summarize_voxels(
         "tunnels": int(region.n_tunnels),
         "euler": int(region.euler),
         "surfels": int(region.n_surfels),
-        "plane_segments": None,
+        "plane_segments": len(analytical_3d_of(region)),
         "faces": faces,
         "vertices": vertices,
     }

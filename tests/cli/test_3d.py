@@ -92,6 +92,17 @@ BOX_GAUSS = {(x, y, 0) for x in range(3) for y in range(2)}
 BOX_STANDARD = {(x, y, z) for x in range(4) for y in range(3) for z in range(2)}
 
 
+def reference_plane_segments(points) -> int:
+    """The number of greedy digital plane segments, by the pure-Python reference segmentation."""
+    from mrm.geometry.planes.segmentation import plane_segments_reference
+    from mrm.geometry.topology.labeling_3d import label_runs_3d
+    from mrm.geometry.topology.surfels import surfels_of
+
+    vs = points if isinstance(points, mrm.VoxelSet) else mrm.VoxelSet.from_points(sorted(points))
+    s = surfels_of(label_runs_3d(vs.mask, 6))
+    return len(plane_segments_reference(s.voxel, s.direction, s.neighbour))
+
+
 def as_set(vs: mrm.VoxelSet) -> set[tuple[int, int, int]]:
     return {(int(x), int(y), int(z)) for x, y, z in vs.points()}
 
@@ -123,7 +134,8 @@ def test_voxelize_writes_the_exact_voxels(capsys, tmp_path, mesh_ext, out_ext):
     assert set(summary) >= KEYS_3D and summary["input"] == str(mesh) and summary["output"] == str(out)
     assert summary["voxels"] == 6 and summary["bbox"] == [0, 0, 0, 2, 1, 0]
     assert (summary["components"], summary["cavities"], summary["tunnels"]) == (1, 0, 0)
-    assert summary["surfels"] == 2 * 6 + 2 * 3 + 2 * 2 and summary["plane_segments"] is None
+    assert summary["surfels"] == 2 * 6 + 2 * 3 + 2 * 2
+    assert summary["plane_segments"] == reference_plane_segments(BOX_GAUSS)
     assert (summary["faces"], summary["vertices"]) == (6, 8)  # the input box's
 
 
@@ -219,7 +231,10 @@ def test_info_of_voxel_files(capsys, tmp_path, ext):
     h = json.loads(stdout)
     assert set(h) == KEYS_3D | {"input"}
     assert (h["voxels"], h["components"], h["cavities"], h["tunnels"], h["euler"]) == (26, 1, 1, 0, 2)
-    assert h["surfels"] == 6 * 9 + 6 and h["plane_segments"] is None
+    assert h["surfels"] == 6 * 9 + 6
+    # The 6 surfels around the one-voxel cavity need several planes: no plane has all six neighbours of a
+    # voxel on one side and the voxel on the other.
+    assert h["plane_segments"] == reference_plane_segments(hollow_cube()) > 2
     r_of_a = mrm.reconstruct(hollow_cube(), "standard")
     assert (h["faces"], h["vertices"]) == (r_of_a.n_faces, r_of_a.n_vertices)
     code, stdout, _ = run(capsys, "info", tmp_path / f"r{ext}", "--json", "--model", "gauss")
@@ -228,6 +243,22 @@ def test_info_of_voxel_files(capsys, tmp_path, ext):
         "gauss", 8, 1, 0, 1, 0,
     )  # fmt: skip
     assert r["bbox"] == [100, -40, 5, 102, -38, 5]
+
+
+def test_info_counts_the_eight_plane_segments_of_the_digital_octahedron(capsys, tmp_path):
+    r = 6
+    octahedron = mrm.VoxelSet.from_points(
+        [
+            (x, y, z)
+            for x in range(-r, r + 1)
+            for y in range(-r, r + 1)
+            for z in range(-r, r + 1)
+            if abs(x) + abs(y) + abs(z) <= r
+        ]
+    )
+    write_voxels(octahedron, tmp_path / "oct.npz")
+    code, stdout, _ = run(capsys, "info", tmp_path / "oct.npz", "--json")
+    assert code == 0 and json.loads(stdout)["plane_segments"] == 8  # its 8 faces (docs/design.md §11)
 
 
 def test_info_of_a_grey_volume_needs_a_threshold(capsys, tmp_path):

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from mrm.core.errors import NotApplicableError
@@ -46,8 +47,26 @@ def test_a_voxel_object_gets_a_polyhedron_that_gives_it_back(doc):
         doc.push(ChangeSettings.model(doc, model))
         poly = doc.derived(obj.id).get("euclidean")
         assert isinstance(poly, Polyhedron) and voxelize(poly, model) == obj.source
-    with pytest.raises(NotApplicableError, match="plane segments"):
-        doc.derived(obj.id).get("analytical")
+    # The analytical representation: the digital plane segments of its surface, those of the reference
+    # segmentation (pure Python, tests/model/test_planes.py), each plane separating its voxels of A from the
+    # voxels outside.
+    from mrm.geometry.planes.segmentation import plane_segments_reference
+    from mrm.geometry.topology.labeling_3d import label_runs_3d
+    from mrm.geometry.topology.surfels import DIRS, surfels_of
+
+    analytical = doc.derived(obj.id).get("analytical")
+    vs = obj.source
+    s = surfels_of(label_runs_3d(vs.mask, 6))
+    reference = plane_segments_reference(s.voxel + np.array(vs.origin), s.direction, s.neighbour)
+    assert 1 < len(analytical) == len(reference)
+    seg = analytical.segmentation
+    for k in range(len(analytical)):
+        members = seg.surfels_of(k)
+        inner = seg.voxel[members]
+        outer = inner + DIRS[seg.direction[members]]
+        plane = analytical.segment(k)
+        n = np.array(plane.plane.normal)
+        assert (inner @ n).max() < plane.offset < (outer @ n).min()
 
 
 def test_a_label_volume_has_its_cells_and_says_why_it_has_no_meshes_yet(doc):
@@ -56,6 +75,8 @@ def test_a_label_volume_has_its_cells_and_says_why_it_has_no_meshes_yet(doc):
     assert d.get("region") is not None
     with pytest.raises(NotApplicableError, match="label volume"):
         d.get("euclidean")
+    with pytest.raises(NotApplicableError, match="label volume's faces are shared"):
+        d.get("analytical")
 
 
 def test_plane_objects_leave_the_3d_ones_out(doc):
