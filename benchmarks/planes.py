@@ -171,7 +171,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
     if not os.path.exists(PEER):
-        sys.exit(f"build the peer first: bash {os.path.relpath(os.path.dirname(PEER), ROOT)}/../build.sh")
+        sys.exit("build the peer first: bash benchmarks/dgtal/build.sh")
     r = args.radius
     rng = np.random.default_rng(2026)
     x, y, z = centred_grid(r)

@@ -22,7 +22,7 @@ empty for good.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from math import gcd
 
@@ -140,6 +140,33 @@ class Cone:
                     mid = (-mid[0], -mid[1], -mid[2])
                 res.append(mid)
         return res
+
+    def cut_until(self, failing: Callable[[Vec], Sequence[int] | None]) -> Cone | None:
+        """Cut the cone until ``failing`` finds nothing at any vertex; ``None`` once it is not full.
+
+        ``failing(r)`` returns the constraint vector v (r · v < 0) of a condition that fails at the vertex r,
+        or None where all hold. For conditions convex in n (a maximum of linear constraints, as the
+        recognizers' are) holding at every vertex means holding on the whole cone, so what is left is the
+        cone cut by exactly the constraints that matter.
+        """
+        cone: Cone | None = self
+        while cone is not None:
+            cut = next((v for v in map(failing, cone.rays) if v is not None), None)
+            if cut is None:
+                return cone
+            cone = cone.clip(cut)
+        return None
+
+    @staticmethod
+    def pyramid(e: Sequence[int]) -> Cone:
+        """The square pyramid of the normals within 45° of the axis vector e (± a unit vector)."""
+        k = next(i for i in range(3) if e[i] != 0)
+        rays: list[Vec] = []
+        for su, sv in ((1, 1), (-1, 1), (-1, -1), (1, -1)):
+            r = [0, 0, 0]
+            r[k], r[(k + 1) % 3], r[(k + 2) % 3] = int(e[k]), su, sv
+            rays.append((r[0], r[1], r[2]))
+        return Cone(tuple(rays))
 
     def clip_all(self, vs: Iterable[Sequence[int]]) -> Cone | None:
         """The cone cut by every half-space n · v ≥ 0 of ``vs`` in turn (``None`` once not full)."""

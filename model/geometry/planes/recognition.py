@@ -276,29 +276,22 @@ class SurfelPlane:
         inner, outer = self.inner, self.outer
         extent = max(inner.extent(), outer.extent())
         o, op = inner.origin or (0, 0, 0), outer.origin or (0, 0, 0)
-        while True:
-            cut: Vec | None = None
-            for r in cone.rays:
-                hi, ihi, _, _ = inner.dots(r, extent)
-                _, _, lo, ilo = outer.dots(r, extent)
-                hi, lo = hi + dot(r, o), lo + dot(r, op)
-                a = inner.point(ihi)
-                b = outer.point(ilo)
-                if p is not None and q is not None:
-                    rp, rq = dot(r, p), dot(r, q)
-                    if rp > hi:
-                        hi, a = rp, p
-                    if rq < lo:
-                        lo, b = rq, q
-                if hi > lo:
-                    cut = _sub(b, a)
-                    break
-            if cut is None:
-                return cone
-            nxt = cone.clip(cut)
-            if nxt is None:
-                return None
-            cone = nxt
+
+        def failing_pair(r: Vec) -> Vec | None:
+            # The highest voxel of A and the lowest voxel outside along r: apart, or the cut they give.
+            hi, ihi, _, _ = inner.dots(r, extent)
+            _, _, lo, ilo = outer.dots(r, extent)
+            hi, lo = hi + dot(r, o), lo + dot(r, op)
+            a, b = inner.point(ihi), outer.point(ilo)
+            if p is not None and q is not None:
+                rp, rq = dot(r, p), dot(r, q)
+                if rp > hi:
+                    hi, a = rp, p
+                if rq < lo:
+                    lo, b = rq, q
+            return _sub(b, a) if hi > lo else None
+
+        return cone.cut_until(failing_pair)
 
     def _refresh(self) -> None:
         if self._stale and self._cone is not None:
@@ -324,13 +317,7 @@ class SurfelPlane:
         e = self._first
         if e is None:
             raise ValueError("an empty patch has no preimage")
-        k = next(i for i in range(3) if e[i] != 0)
-        rays: list[Vec] = []
-        for su, sv in ((1, 1), (-1, 1), (-1, -1), (1, -1)):
-            r = [0, 0, 0]
-            r[k], r[(k + 1) % 3], r[(k + 2) % 3] = e[k], su, sv
-            rays.append((r[0], r[1], r[2]))
-        return Cone(tuple(rays))
+        return Cone.pyramid(e)
 
     def normal(self) -> Vec:
         """The chosen normal: the smallest admissible one (see :func:`smallest_normal`)."""
@@ -467,27 +454,21 @@ class PointPlane:
                 # cone does not see it (its half-space is everything), so it is checked here.
                 return None
             extent += abs(p[0] - o[0]) + abs(p[1] - o[1]) + abs(p[2] - o[2])
-        while True:
-            cut: Vec | None = None
-            for r in cone.rays:
-                hi, ihi, lo, ilo = pts.dots(r, extent)
-                a, b = _sub(pts.point(ihi), o), _sub(pts.point(ilo), o)
-                if p is not None:
-                    x_rel = _sub(p, o)
-                    x = dot(r, x_rel)
-                    if x > hi:
-                        hi, a = x, x_rel
-                    if x < lo:
-                        lo, b = x, x_rel
-                if hi - lo > dot(r, s):
-                    cut = _sub(s, _sub(a, b))
-                    break
-            if cut is None:
-                return cone
-            nxt = cone.clip(cut)
-            if nxt is None:
-                return None
-            cone = nxt
+
+        def failing_pair(r: Vec) -> Vec | None:
+            # The points farthest apart along r: within |r|₁ (r · s in the octant), or the cut they give.
+            hi, ihi, lo, ilo = pts.dots(r, extent)
+            a, b = _sub(pts.point(ihi), o), _sub(pts.point(ilo), o)
+            if p is not None:
+                x_rel = _sub(p, o)
+                x = dot(r, x_rel)
+                if x > hi:
+                    hi, a = x, x_rel
+                if x < lo:
+                    lo, b = x, x_rel
+            return _sub(s, _sub(a, b)) if hi - lo > dot(r, s) else None
+
+        return cone.cut_until(failing_pair)
 
     def accepts(self, n: Sequence[int]) -> bool:
         """Whether the points' width along n is below |n|₁."""

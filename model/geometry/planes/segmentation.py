@@ -98,7 +98,7 @@ class PlaneSegmentation:
         if b > a:
             return Cone(tuple((int(x), int(y), int(z)) for x, y, z in self.rays[a:b]))
         e = DIRS[int(self.direction[self.surfels_of(k)[0]])]
-        return _pyramid((int(e[0]), int(e[1]), int(e[2])))
+        return Cone.pyramid(e)
 
     def segment(self, k: int) -> PlaneSegment:
         """Segment k with its chosen plane (the smallest separating normal, the plane midway)."""
@@ -140,16 +140,6 @@ class PlaneSegmentation:
     def segments(self) -> tuple[PlaneSegment, ...]:
         """Every segment with its chosen plane (computed now for those not asked yet)."""
         return tuple(self.segment(k) for k in range(len(self)))
-
-
-def _pyramid(e: Vec) -> Cone:
-    k = next(i for i in range(3) if e[i] != 0)
-    rays: list[Vec] = []
-    for su, sv in ((1, 1), (-1, 1), (-1, -1), (1, -1)):
-        r = [0, 0, 0]
-        r[k], r[(k + 1) % 3], r[(k + 2) % 3] = e[k], su, sv
-        rays.append((r[0], r[1], r[2]))
-    return Cone(tuple(rays))
 
 
 def _inputs(
