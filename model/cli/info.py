@@ -189,12 +189,17 @@ def label_volume_info(path: str, model: str, limit: int | None) -> dict[str, Any
     }
 
 
-def label_map_info(lm: LabelMap, model: str) -> dict[str, Any]:
-    """The summary of a label map: labels, regions, cells and adjacencies (as :func:`label_volume_info`)."""
+def label_map_info(lm: LabelMap, model: str, held: int | None = None) -> dict[str, Any]:
+    """The summary of a label map: labels, regions, cells and adjacencies (as :func:`label_volume_info`).
+
+    ``held``: the bytes of grids the summary already holds (the map's own labels by default, a whole
+    project's grids for a project); the counting gets what :data:`MAX_LABEL_COUNT_BYTES` leaves of them.
+    """
     Model.parse(model)
     counts: Any = None
+    held = lm.labels.nbytes if held is None else held
     try:  # counted with arrays: cells_of's objects take gigabytes on a checkerboard
-        counts = cell_counts(lm, budget=MAX_LABEL_COUNT_BYTES)
+        counts = cell_counts(lm, budget=max(0, MAX_LABEL_COUNT_BYTES - held))
     except LimitError as e:
         log.info("no cell counts: %s", e)
         print(f"mrm info: warning: {e}; regions and cells not counted", file=sys.stderr, flush=True)
@@ -253,11 +258,15 @@ def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, An
     """The union of every object's pixels, plus one summary per object under ``objects``."""
     per_object = []
     union = PixelSet.empty()
+    # The grids the loaded project holds: what the label maps' counting must share the budget with.
+    held = sum(o.source.labels.nbytes for o in objects if isinstance(o.source, LabelMap)) + sum(
+        o.source.mask.nbytes for o in objects if isinstance(o.source, PixelSet)
+    )
     for obj in objects:
         head = {"id": obj.id, "name": obj.name, "source": obj.kind}
         if isinstance(obj.source, LabelMap):
             union = union | obj.source.support()
-            per_object.append({**head, **label_map_info(obj.source, model)})
+            per_object.append({**head, **label_map_info(obj.source, model, held)})
             continue
         if isinstance(obj.source, PixelSet):
             ps, geom = obj.source, None

@@ -45,13 +45,16 @@ PIXEL_COORDINATE_LIMIT = 2**31
 #: Pixels in the bounding box of one discrete source.
 MAX_OBJECT_PIXELS = DEFAULT_PIXEL_LIMIT
 #: Pixels and voxels in the bounding boxes of all the grid sources (pixel and voxel sets, label maps and
-#: volumes) of one document (one file) together: about 1 GB of masks at most, whatever a file claims. A
-#: label counts :data:`LABEL_WEIGHT` times: the budget is of memory, and compressed labels cost a file
-#: next to nothing (20 label maps in 5 MB took 4.4 GB to load, issue 32).
+#: volumes) of one document (one file) together: about 1 GB of masks at most, whatever a file claims. Masks
+#: are stored bit-packed, not compressed, so their file is as big as they are (a file under 10 MB holds at
+#: most 80 M pixels); labels are compressed and cost a file next to nothing (20 label maps in 5 MB took
+#: 4.4 GB to load, issue 32), so a label counts :data:`LABEL_WEIGHT` times.
 MAX_FILE_PIXELS = 1_000_000_000
-#: Bytes a label takes in memory (int32) against the one byte of a mask's pixel: a label map's or volume's
-#: points count this many times toward :data:`MAX_FILE_PIXELS`.
-LABEL_WEIGHT = 4
+#: What a label counts toward :data:`MAX_FILE_PIXELS`: its four bytes (int32) held, and as much again for
+#: what reading and summarising it works with. Measured on projects of under 1 MB (issue 32): labels holding
+#: 800 MB (weight 4) loaded at 1.05 GB and `mrm info` took 1.17 GB; at weight 8 they hold at most 500 MB
+#: and `mrm info` stays under 1 GB. A label volume in a document is thus at most 125 M voxels.
+LABEL_WEIGHT = 8
 #: Vertices (coordinates, closing points included) of one Euclidean source.
 MAX_OBJECT_VERTICES = 5_000_000
 #: Longest object name, in characters.
@@ -88,7 +91,9 @@ MAX_LABEL_PIXELS = 50_000_000
 #: :data:`LABEL_COUNT_BYTES_PER_PIXEL` a pixel and :data:`LABEL_COUNT_BYTES_PER_LINEL` a boundary linel
 #: (measured: a 2000² checkerboard, 8·10⁶ linels, 690 MB; 16·10⁶ pixels of 100 blocks, 530 MB); beyond it
 #: the summary leaves them out, so a small project file holding a big label map never costs gigabytes, and
-#: ``mrm info`` stays under 1 GB with the interpreter and kernels (issue 32).
+#: ``mrm info`` stays under 1 GB with the interpreter and kernels (issue 32). The grids the summary already
+#: holds (the map itself, or all of a project's) count against it: 4 label maps of 43·10⁶ pixels in a 0.9 MB
+#: project took 1.17 GB when each map's counting had the whole budget.
 MAX_LABEL_COUNT_BYTES = 640 << 20
 LABEL_COUNT_BYTES_PER_PIXEL = 40
 LABEL_COUNT_BYTES_PER_LINEL = 70
@@ -484,7 +489,9 @@ def object_file_bytes(name_bytes: int, provenance_bytes: int, source_bytes: int)
 def check_document_totals(pixels: int, nbytes: int) -> None:
     """Refuse a document whose discrete sources or file size would exceed the per-file limits."""
     check_pixels(
-        pixels, MAX_FILE_PIXELS, "the pixel objects of the document together (a label counts as four pixels)"
+        pixels,
+        MAX_FILE_PIXELS,
+        f"the pixel objects of the document together (a label counts as {LABEL_WEIGHT} pixels)",
     )
     if nbytes > MAX_FILE_BYTES - FILE_BYTES_MARGIN:
         raise LimitError(

@@ -250,7 +250,7 @@ class DocObject:
     def mask_pixels(self) -> int:
         """Pixels of the bounding box of a grid source (0 for a Euclidean one), as files count them.
 
-        A label map's or volume's points count :data:`~mrm.core.limits.LABEL_WEIGHT` times each (int32).
+        A label map's or volume's points count :data:`~mrm.core.limits.LABEL_WEIGHT` times each.
         """
         return int(self.__dict__["_mask_pixels"])
 

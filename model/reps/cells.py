@@ -217,6 +217,13 @@ def cell_counts(lm: LabelMap, budget: int | None = None) -> CellCounts:
     if lab.size == 0:
         return CellCounts(0, 0, 0, 0)
     h, w = lab.shape
+    if budget is not None and limits.LABEL_COUNT_BYTES_PER_PIXEL * lab.size > budget:
+        # The pixels alone are over the budget: refused before the padded copy and the linel masks below
+        # (210 MB for a 6614² map, more than the summary it would spare).
+        raise LimitError(
+            f"counting the cells of a {w}×{h} label map would take more than "
+            f"{(limits.LABEL_COUNT_BYTES_PER_PIXEL * lab.size) >> 20} MB, more than {budget >> 20} MB"
+        )
     p = np.pad(lab, 1)  # the background around the array
     dv = p[:, 1:] != p[:, :-1]  # (h+2, w+1): the linel between p[r, c] and p[r, c+1]
     dh = p[1:, :] != p[:-1, :]  # (h+1, w+2): the linel between p[r, c] and p[r+1, c]

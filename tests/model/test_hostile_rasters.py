@@ -330,16 +330,40 @@ def test_a_project_of_20_compressed_label_maps_is_refused_before_inflating_any(t
     p = _label_bomb(tmp_path, 20)
     assert p.stat().st_size < 10_000_000
     done = run_cli("info", p.name, cwd=tmp_path, limit_memory=True)
+    first_over = limits.MAX_FILE_PIXELS // (7071 * 7071 * limits.LABEL_WEIGHT)  # the map that crosses it
     one_line_error(
-        done, r"\$\.objects\[5\]\.source\.shape: the masks of the file hold more than 1,000,000,000"
+        done,
+        rf"\$\.objects\[{first_over}\]\.source\.shape: the masks of the file hold more than "
+        + f"{limits.MAX_FILE_PIXELS:,}",
     )
 
 
-def test_a_label_map_counts_four_bytes_a_label_in_the_documents_budget(monkeypatch, tmp_path):
-    monkeypatch.setattr(limits, "MAX_FILE_PIXELS", 100)
+def test_the_largest_label_project_the_budget_admits_is_summarised_within_1_gb(tmp_path):
+    # Three label maps filling the grid budget, compressed into well under 1 MB: mrm info loads them and
+    # summarises them (its cell counting gets what the held grids leave of its own budget). The peak
+    # resident memory of the mrm process, read by a parent that has no other child, stays below 1 GB.
+    from math import isqrt
+
+    side = isqrt(limits.MAX_FILE_PIXELS // limits.LABEL_WEIGHT // 3)
+    p = _label_bomb(tmp_path, 3, side=side)
+    assert p.stat().st_size < 1_000_000
+    probe = (
+        "import resource, subprocess, sys; "
+        "r = subprocess.run([sys.executable, '-m', 'mrm', 'info', sys.argv[1], '--json'], "
+        "capture_output=True); "
+        "print(r.returncode, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)"
+    )
+    done = subprocess.run([sys.executable, "-c", probe, str(p)], capture_output=True, text=True, timeout=300)
+    code, peak_kb = (int(v) for v in done.stdout.split())
+    assert code == 0, done.stderr
+    assert peak_kb * 1024 < 1_000_000_000, f"mrm info peaked at {peak_kb // 1024} MB"
+
+
+def test_a_label_counts_its_weight_in_the_documents_budget(monkeypatch, tmp_path):
+    monkeypatch.setattr(limits, "MAX_FILE_PIXELS", 25 * limits.LABEL_WEIGHT)
     doc = Document()
-    doc.push(AddObject(doc.make_object(LabelMap(np.ones((5, 5), np.int32)), "a")))  # 25 labels: 100
-    with pytest.raises(MRMError, match="label counts as four"):
+    doc.push(AddObject(doc.make_object(LabelMap(np.ones((5, 5), np.int32)), "a")))  # 25 labels: the budget
+    with pytest.raises(MRMError, match=f"label counts as {limits.LABEL_WEIGHT}"):
         doc.push(AddObject(doc.make_object(PixelSet.box(0, 0, 0, 0), "one more pixel")))
     p = tmp_path / "d.mrm"
     p.write_bytes(dumps(doc))
