@@ -247,6 +247,7 @@ def warm_pools(labels: Any, mask: Any) -> None:
 def _step_regions_3d() -> None:
     import numpy as np
 
+    from mrm.geometry.planes.recognition import standard_plane_prefix
     from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
     from mrm.reps.analytical_3d import analytical_3d_of
     from mrm.reps.cells_3d import cells_3d_of
@@ -257,6 +258,7 @@ def _step_regions_3d() -> None:
     region = region_3d_of(mask, (0, 0, 0))
     _ = region.surfaces
     analytical_3d_of(region)  # the digital plane segments' kernel
+    standard_plane_prefix([(0, 0, 0), (1, 0, 0), (0, 1, 1)])  # the compiled point recognizer
     cells_3d_of(mask.astype(np.int32) + np.eye(3, dtype=np.int32)[None])
     safety_net_3d(mask)
 

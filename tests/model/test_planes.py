@@ -333,3 +333,23 @@ def test_a_segment_never_reaches_beyond_the_compiled_bound():
         assert (vox.max(0) - vox.min(0)).max() <= MAX_EXTENT
         n = np.array(sg.plane.normal)
         assert (vox @ n).max() < sg.offset < ((vox + DIRS[seg.direction[sg.surfels]]) @ n).min()
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    st.lists(st.tuples(*[st.integers(-3, 3)] * 3), min_size=1, max_size=14),
+    st.tuples(st.integers(-(2**40), 2**40), st.integers(-5, 5), st.integers(-5, 5)),
+)
+def test_the_compiled_point_recognizer_takes_the_same_prefix_and_plane_as_the_reference(points, shift):
+    from mrm.geometry.planes.recognition import standard_plane_prefix
+
+    moved = [tuple(a + b for a, b in zip(p, shift, strict=True)) for p in points]
+    taken, plane = standard_plane_prefix(moved)
+    rec = PointPlane()
+    expected = next((k for k, p in enumerate(moved) if not rec.add(p)), len(moved))
+    assert taken == expected
+    assert points_in_standard_plane(points[:taken])
+    if taken < len(points):
+        assert not points_in_standard_plane(points[: taken + 1])
+    assert plane == rec.plane()
+    assert all(plane.contains(p) for p in moved[:taken])

@@ -435,3 +435,182 @@ def greedy_plane_segments(
         all_rays[:n_rays].copy(),
         ray_ptr[: n_seg + 1].copy(),
     )
+
+
+@leaf_njit(cache=True)
+def _cut_point_plane(
+    rays: Int64Array,
+    cons: Int64Array,
+    m: int,
+    pts: Int64Array,
+    n: int,
+    sx: int,
+    sy: int,
+    sz: int,
+    tmp_r: Int64Array,
+    tmp_c: Int64Array,
+) -> int:  # pragma: no cover - compiled
+    """Cut an octant's cone (in place) until the points' width along each vertex r is at most r · s."""
+    while True:
+        found = False
+        vx, vy, vz = 0, 0, 0
+        for r in range(m):
+            rx, ry, rz = rays[r, 0], rays[r, 1], rays[r, 2]
+            hi, ihi, lo, ilo = 0, 0, 0, 0
+            for i in range(n):
+                d = rx * pts[i, 0] + ry * pts[i, 1] + rz * pts[i, 2]
+                if i == 0 or d > hi:
+                    hi, ihi = d, i
+                if i == 0 or d < lo:
+                    lo, ilo = d, i
+            if hi - lo > rx * sx + ry * sy + rz * sz:
+                vx = sx - (pts[ihi, 0] - pts[ilo, 0])
+                vy = sy - (pts[ihi, 1] - pts[ilo, 1])
+                vz = sz - (pts[ihi, 2] - pts[ilo, 2])
+                found = True
+                break
+        if not found:
+            return m
+        k = _clip(rays, cons, m, vx, vy, vz, tmp_r, tmp_c)
+        if k <= 0:
+            return k
+        for i in range(k):
+            rays[i, 0], rays[i, 1], rays[i, 2] = tmp_r[i, 0], tmp_r[i, 1], tmp_r[i, 2]
+            cons[i, 0], cons[i, 1], cons[i, 2] = tmp_c[i, 0], tmp_c[i, 1], tmp_c[i, 2]
+        m = k
+
+
+@njit(cache=True)
+def point_plane_prefix(points: Int64Array) -> tuple[int, Int64Array, Int64Array]:  # pragma: no cover
+    """How many of ``points``, taken in order, lie in one standard arithmetic plane (as PointPlane.add).
+
+    The compiled :class:`~mrm.geometry.planes.recognition.PointPlane`: one cone per octant of normals, each
+    with its witness; stops at the first point that no octant admits, or that lies farther than
+    :data:`MAX_EXTENT` from the first point, or that would give a cone of more than :data:`MAX_RAYS`
+    vertices. Duplicates are taken without a constraint.
+
+    Returns
+    -------
+    taken : int
+    rays : (8, MAX_RAYS + 2, 3) the cones of the octants, cut by every point taken (an octant with no
+        admissible normal has count 0).
+    counts : (8,) their vertex counts.
+    """
+    n = points.shape[0]
+    pts = np.empty((n + 1, 3), np.int64)
+    bias = np.int64(1 << 20)  # coordinates within ±(2¹⁶ + 1) packed into 21 bits each
+    seen = dict()
+    seen[(bias << 42) | (bias << 21) | bias] = 1  # the first point, at (0, 0, 0)
+    rays = np.zeros((8, MAX_RAYS + 2, 3), np.int64)
+    cons = np.zeros((8, MAX_RAYS + 2, 3), np.int64)
+    m = np.zeros(8, np.int64)
+    sign = np.empty((8, 3), np.int64)
+    w = np.zeros((8, 3), np.int64)
+    w_hi = np.zeros(8, np.int64)
+    w_lo = np.zeros(8, np.int64)
+    has_w = np.zeros(8, np.bool_)
+    stale = np.zeros(8, np.bool_)
+    tmp_r = np.empty((MAX_RAYS + 2, 3), np.int64)
+    tmp_c = np.empty((MAX_RAYS + 2, 3), np.int64)
+    save_r = np.empty((MAX_RAYS + 2, 3), np.int64)
+    save_c = np.empty((MAX_RAYS + 2, 3), np.int64)
+    dead = np.zeros(8, np.bool_)
+    for o in range(8):
+        sx = 1 if o & 4 == 0 else -1
+        sy = 1 if o & 2 == 0 else -1
+        sz = 1 if o & 1 == 0 else -1
+        sign[o, 0], sign[o, 1], sign[o, 2] = sx, sy, sz
+        # The closed octant: a spherical triangle whose edges lie on the coordinate planes.
+        rays[o, 0, 0], rays[o, 1, 1], rays[o, 2, 2] = sx, sy, sz
+        cons[o, 0, 2], cons[o, 1, 0], cons[o, 2, 1] = sz, sx, sy
+        m[o] = 3
+    if n == 0:
+        return 0, rays, m
+    x0, y0, z0 = points[0, 0], points[0, 1], points[0, 2]
+    pts[0, 0], pts[0, 1], pts[0, 2] = 0, 0, 0
+    taken = 1  # points taken, duplicates included
+    npts = 1  # distinct points, in pts[:npts]
+    for t in range(1, n):
+        px, py, pz = points[t, 0] - x0, points[t, 1] - y0, points[t, 2] - z0
+        if abs(px) > MAX_EXTENT or abs(py) > MAX_EXTENT or abs(pz) > MAX_EXTENT:
+            break
+        key = ((px + bias) << 42) | ((py + bias) << 21) | (pz + bias)
+        if key in seen:
+            taken += 1
+            continue
+        tentative = np.zeros(8, np.bool_)
+        ok = -1
+        for o in range(8):
+            if dead[o]:
+                continue
+            sx, sy, sz = sign[o, 0], sign[o, 1], sign[o, 2]
+            if has_w[o]:
+                x = w[o, 0] * px + w[o, 1] * py + w[o, 2] * pz
+                hi, lo = max(w_hi[o], x), min(w_lo[o], x)
+                if hi - lo < w[o, 0] * sx + w[o, 1] * sy + w[o, 2] * sz:
+                    # Taken on the witness's word: the cone is not cut by p until it is next needed.
+                    w_hi[o], w_lo[o], stale[o] = hi, lo, True
+                    ok = o
+                    break
+            if stale[o]:
+                k = _cut_point_plane(rays[o], cons[o], m[o], pts, npts, sx, sy, sz, tmp_r, tmp_c)
+                if k <= 0:
+                    dead[o] = True  # empty without p: for good
+                    continue
+                m[o], stale[o] = k, False
+            # Two points apart by s give the constraint 0 > 0, which no vertex check sees.
+            ka = ((px - sx + bias) << 42) | ((py - sy + bias) << 21) | (pz - sz + bias)
+            kb = ((px + sx + bias) << 42) | ((py + sy + bias) << 21) | (pz + sz + bias)
+            if ka in seen or kb in seen:
+                tentative[o] = True
+                continue
+            mo = m[o]
+            save_r[:mo] = rays[o, :mo]
+            save_c[:mo] = cons[o, :mo]
+            pts[npts, 0], pts[npts, 1], pts[npts, 2] = px, py, pz
+            k = _cut_point_plane(rays[o], cons[o], mo, pts, npts + 1, sx, sy, sz, tmp_r, tmp_c)
+            if k <= 0:
+                rays[o, :mo] = save_r[:mo]
+                cons[o, :mo] = save_c[:mo]
+                tentative[o] = True
+                continue
+            m[o] = k
+            _witness(rays[o], cons[o], k, w[o])
+            hi, lo = 0, 0
+            for i in range(npts + 1):
+                d = w[o, 0] * pts[i, 0] + w[o, 1] * pts[i, 1] + w[o, 2] * pts[i, 2]
+                if i == 0 or d > hi:
+                    hi = d
+                if i == 0 or d < lo:
+                    lo = d
+            w_hi[o], w_lo[o], has_w[o] = hi, lo, True
+            ok = o
+            break
+        if ok < 0:
+            break
+        for o in range(8):
+            if tentative[o]:
+                dead[o] = True
+        for o in range(ok + 1, 8):
+            if dead[o]:
+                continue
+            has_w[o], stale[o] = False, True
+            sx, sy, sz = sign[o, 0], sign[o, 1], sign[o, 2]
+            ka = ((px - sx + bias) << 42) | ((py - sy + bias) << 21) | (pz - sz + bias)
+            kb = ((px + sx + bias) << 42) | ((py + sy + bias) << 21) | (pz + sz + bias)
+            if ka in seen or kb in seen:
+                dead[o] = True
+        pts[npts, 0], pts[npts, 1], pts[npts, 2] = px, py, pz
+        npts += 1
+        seen[key] = 1
+        taken += 1
+    # Every live octant cut by all the points taken: the exact cones.
+    for o in range(8):
+        if dead[o]:
+            m[o] = 0
+        elif stale[o]:
+            k = _cut_point_plane(
+                rays[o], cons[o], m[o], pts, npts, sign[o, 0], sign[o, 1], sign[o, 2], tmp_r, tmp_c
+            )
+            m[o] = max(k, 0)
+    return taken, rays, m

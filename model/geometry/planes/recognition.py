@@ -581,3 +581,61 @@ def recognize_points(points: Iterable[Sequence[int]]) -> DigitalPlane | None:
         if not rec.add(p):
             return None
     return rec.plane() if rec.points.n else None
+
+
+def standard_plane_prefix(points: npt.ArrayLike) -> tuple[int, DigitalPlane | None]:
+    """How many of the points, taken in order, lie in one standard arithmetic plane, and that plane.
+
+    The compiled form of feeding the points to :class:`PointPlane` until one is refused (the same decisions
+    and the same chosen plane; the tests hold the two together). Points farther than
+    :data:`~mrm.geometry.planes._kernels.MAX_EXTENT` from the first one end the prefix too.
+
+    Parameters
+    ----------
+    points : int array (n, 3)
+
+    Returns
+    -------
+    (int, DigitalPlane or None)
+        The length of the prefix, and its plane (None for no point).
+
+    Examples
+    --------
+    A flat 3 × 3 square, then a bump in its middle (a point set's normal is defined up to its sign; the
+    smallest comes first in lexicographic order):
+
+    >>> standard_plane_prefix([(x, y, 0) for x in range(3) for y in range(3)] + [(1, 1, 1)])
+    (9, DigitalPlane(a=0, b=0, c=-1, mu=0))
+    """
+    from mrm.geometry.planes._kernels import point_plane_prefix
+
+    pts = np.ascontiguousarray(points, np.int64).reshape(-1, 3)
+    taken, rays, counts = point_plane_prefix(pts)
+    if taken == 0:
+        return 0, None
+    kept = pts[:taken] - pts[0]
+
+    def extremes(n: Vec) -> tuple[int, int]:
+        if max(abs(c) for c in n) < MAX_INT64_RAY:
+            d = kept @ np.array(n, np.int64)
+            return int(d.max()), int(d.min())
+        vals = [dot(n, (int(x), int(y), int(z))) for x, y, z in kept]
+        return max(vals), min(vals)
+
+    def accepts(n: Vec) -> bool:
+        hi, lo = extremes(n)
+        return any(n) and hi - lo < abs(n[0]) + abs(n[1]) + abs(n[2])
+
+    best: Vec | None = None
+    for o in range(8):
+        if counts[o] == 0:
+            continue
+        cone = Cone(tuple((int(x), int(y), int(z)) for x, y, z in rays[o, : counts[o]]))
+        n = smallest_normal(cone, accepts)
+        if best is None or _size_key(n) < _size_key(best):
+            best = n
+    assert best is not None  # the first point alone lies in every octant's planes
+    _, lo = extremes(best)
+    return taken, DigitalPlane(
+        best[0], best[1], best[2], lo + dot(best, (int(pts[0, 0]), int(pts[0, 1]), int(pts[0, 2])))
+    )
