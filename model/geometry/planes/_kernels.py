@@ -173,6 +173,25 @@ def _split_half_turns(
 
 
 @leaf_njit(cache=True)
+def _clip_in_place(
+    rays: Int64Array,
+    cons: Int64Array,
+    m: int,
+    vx: int,
+    vy: int,
+    vz: int,
+    tmp_r: Int64Array,
+    tmp_c: Int64Array,
+) -> int:  # pragma: no cover - compiled
+    """:func:`_clip` by a v that cuts off a vertex, written back into rays/cons; the count (≤ 0: empty)."""
+    k = _clip(rays, cons, m, vx, vy, vz, tmp_r, tmp_c)
+    for i in range(max(k, 0)):
+        rays[i, 0], rays[i, 1], rays[i, 2] = tmp_r[i, 0], tmp_r[i, 1], tmp_r[i, 2]
+        cons[i, 0], cons[i, 1], cons[i, 2] = tmp_c[i, 0], tmp_c[i, 1], tmp_c[i, 2]
+    return k
+
+
+@leaf_njit(cache=True)
 def _witness(rays: Int64Array, cons: Int64Array, m: int, w: Int64Array) -> None:  # pragma: no cover
     """A normal inside the open cone, near its middle: the sum of the unit rays, rounded and checked.
 
@@ -247,13 +266,9 @@ def _cut_by_points(
                 break
         if not found:
             return m
-        k = _clip(rays, cons, m, vx, vy, vz, tmp_r, tmp_c)
-        if k <= 0:
-            return k
-        for i in range(k):
-            rays[i, 0], rays[i, 1], rays[i, 2] = tmp_r[i, 0], tmp_r[i, 1], tmp_r[i, 2]
-            cons[i, 0], cons[i, 1], cons[i, 2] = tmp_c[i, 0], tmp_c[i, 1], tmp_c[i, 2]
-        m = k
+        m = _clip_in_place(rays, cons, m, vx, vy, vz, tmp_r, tmp_c)
+        if m <= 0:
+            return m
 
 
 @leaf_njit(cache=True)
@@ -471,13 +486,9 @@ def _cut_point_plane(
                 break
         if not found:
             return m
-        k = _clip(rays, cons, m, vx, vy, vz, tmp_r, tmp_c)
-        if k <= 0:
-            return k
-        for i in range(k):
-            rays[i, 0], rays[i, 1], rays[i, 2] = tmp_r[i, 0], tmp_r[i, 1], tmp_r[i, 2]
-            cons[i, 0], cons[i, 1], cons[i, 2] = tmp_c[i, 0], tmp_c[i, 1], tmp_c[i, 2]
-        m = k
+        m = _clip_in_place(rays, cons, m, vx, vy, vz, tmp_r, tmp_c)
+        if m <= 0:
+            return m
 
 
 @njit(cache=True)
