@@ -41,7 +41,7 @@ from typing import Any
 
 from mrm.core.errors import MRMError
 from mrm.core.models import Model
-from mrm.core.version import installed_version
+from mrm.core.version import foreign_owner, installed_version
 from mrm.warmup import announce_if_cold
 
 #: Exit status after a closed standard output.
@@ -349,6 +349,14 @@ def run_headless(args: list[str]) -> int | None:
     """``--version`` or a subcommand, run; None when ``args`` are neither (the desktop's, or help)."""
     if args[:1] in (["--version"], ["-V"]):
         print(version_text(), flush=True)
+        foreign = foreign_owner()
+        if foreign is not None:  # its files overwrite ours: say it where a puzzled user looks first
+            print(
+                f"mrm: warning: the unrelated distribution '{foreign}' is installed too and writes into "
+                "the same 'mrm' package and command; uninstall both and reinstall MR Modeler "
+                "(pip's name: mr-modeler)",
+                file=sys.stderr,
+            )
         return 0
     if args and is_subcommand(args[0]):
         return run_cli(args)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tarfile
@@ -25,12 +26,17 @@ ROOT = Path(__file__).resolve().parents[2]
 @pytest.fixture(scope="module")
 def dist(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("dist")
-    subprocess.run(
+    # As a user's shell runs it: PYTHONDONTWRITEBYTECODE (set on some machines) makes setuptools warn that
+    # it skips byte-compiling, which says nothing about the project.
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    done = subprocess.run(
         [sys.executable, "-m", "build", "--outdir", str(out), str(ROOT)],
         check=True,
         capture_output=True,
         text=True,
+        env=env,
     )
+    (out / "build.log").write_text(done.stdout + done.stderr)
     return out
 
 
@@ -99,7 +105,8 @@ def test_installed_mrm_runs_without_qt(installed: Path, tmp_path: Path):
     names = {p["name"].lower() for p in json.loads(freeze)}
     assert "mr-modeler" in names and not names & {"pyside6", "pyside6-essentials", "pyqtgraph"}
 
-    assert _run(installed, "mrm", "--version", cwd=tmp_path).stdout.strip() == "mrm 0.1.0"
+    version = _run(installed, "mrm", "--version", cwd=tmp_path)
+    assert version.stdout.strip() == "mrm 0.1.0" and version.stderr == ""
 
     example = _run(
         installed,
@@ -123,3 +130,95 @@ def test_installed_mrm_runs_without_qt(installed: Path, tmp_path: Path):
 
     bare = _run(installed, "mrm", cwd=tmp_path, check=False)
     assert bare.returncode == 2 and "pip install 'mr-modeler[gui]'" in bare.stderr
+
+
+def test_the_build_prints_no_warning(dist: Path):
+    log = (dist / "build.log").read_text()
+    warnings = [line for line in log.splitlines() if "warning" in line.lower() or "would be ignored" in line]
+    assert warnings == []
+
+
+def _tracked_files() -> set[str]:
+    if (ROOT / ".git").exists():
+        listed = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True, check=True)
+        return set(listed.stdout.split())
+    # an unpacked sdist: its own files, less what the build adds
+    skip = {"PKG-INFO", "setup.cfg"}
+    return {
+        str(p.relative_to(ROOT))
+        for p in ROOT.rglob("*")
+        if p.is_file()
+        and p.name not in skip
+        and not any(
+            part in ("__pycache__", ".venv", "dist", "build") or part.endswith(".egg-info")
+            for part in p.relative_to(ROOT).parts
+        )
+    }
+
+
+def test_the_sdist_holds_exactly_the_tracked_files(dist: Path):
+    with tarfile.open(next(dist.glob("*.tar.gz"))) as tar:
+        names = {m.name.split("/", 1)[1] for m in tar.getmembers() if m.isfile()}
+    added_by_build = {"PKG-INFO", "setup.cfg"} | {n for n in names if ".egg-info/" in n}
+    assert names - added_by_build == _tracked_files() - {".gitignore"}
+
+
+def test_the_index_page_metadata_is_complete(dist: Path):
+    with zipfile.ZipFile(next(dist.glob("*.whl"))) as whl:
+        meta = whl.read(next(n for n in whl.namelist() if n.endswith(".dist-info/METADATA"))).decode()
+    fields = [line.split(": ", 1) for line in meta.split("\n\n", 1)[0].splitlines() if ": " in line]
+    values: dict[str, list[str]] = {}
+    for key, value in fields:
+        values.setdefault(key, []).append(value)
+    assert values["Name"] == ["mr-modeler"]
+    assert "3D" in values["Summary"][0]
+    assert values["License-Expression"] == ["MIT"]
+    assert "Typing :: Typed" in values["Classifier"]
+    assert "Topic :: Scientific/Engineering :: GIS" in values["Classifier"]
+    assert any(url.startswith("Paper, https://doi.org/") for url in values["Project-URL"])
+    assert "voxels" in values["Keywords"][0]
+
+
+def test_the_readme_install_commands_name_what_the_build_makes(dist: Path):
+    import tomllib
+
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("## Installing", 1)[1].split("\n## ", 1)[0]
+    extras = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"])
+    wheel = next(dist.glob("*.whl")).name
+    targets = [
+        line.split("pip install", 1)[1].split("#")[0].strip().strip("'")
+        for line in section.splitlines()
+        if line.startswith("pip install")
+    ]
+    assert targets, "the README gives no install command"
+    for target in targets:
+        where, _, named = target.partition("[")
+        assert where in (".", f"dist/{wheel}"), target
+        assert set(named.rstrip("]").split(",")) - {""} <= extras, target
+    assert "." in [t.partition("[")[0] for t in targets] and f"dist/{wheel}" in [
+        t.partition("[")[0] for t in targets
+    ]
+
+
+def test_version_warns_when_the_unrelated_mrm_distribution_is_installed_too(installed: Path, tmp_path: Path):
+    site = Path(
+        _run(
+            installed,
+            "python",
+            "-c",
+            "import sysconfig; print(sysconfig.get_paths()['purelib'])",
+            cwd=tmp_path,
+        ).stdout.strip()
+    )
+    foreign = (
+        site / "mrm-0.1.0.dist-info"
+    )  # what `pip install mrm` (the 2019 project) leaves beside its files
+    foreign.mkdir()
+    try:
+        (foreign / "METADATA").write_text("Metadata-Version: 2.1\nName: mrm\nVersion: 0.1.0\n")
+        done = _run(installed, "mrm", "--version", cwd=tmp_path)
+    finally:
+        shutil.rmtree(foreign)
+    assert done.stdout.strip() == "mrm 0.1.0"
+    assert "unrelated distribution 'mrm 0.1.0'" in done.stderr and "mr-modeler" in done.stderr
