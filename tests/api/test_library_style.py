@@ -119,3 +119,134 @@ def test_transform_places_every_corner_where_rasterio_shapes_does(name):
         mask = labels == 2
         check(mrm.reconstruct(mask, model), mrm.reconstruct(mask, model, transform=t), model)
     assert checked > 100
+
+
+# ---------------------------------------------------------------------------------------------- batches
+def _masks():
+    rng = np.random.default_rng(7)
+    out = [rng.random((6, 8)) < 0.45 for _ in range(3)]
+    out.append(np.zeros((4, 4), bool))
+    out[3][1:3, 1:3] = True
+    return out
+
+
+def test_a_stack_of_masks_reconstructs_element_wise():
+    """A list of 2-D masks was refused (np.asarray made it one 3-D array); now each is reconstructed."""
+    masks = _masks()
+    for model in ("standard", "supercover", "gauss"):
+        out = mrm.reconstruct(masks, model)
+        assert isinstance(out, np.ndarray) and out.dtype == object and out.shape == (len(masks),)
+        for got, mask in zip(out, masks, strict=True):
+            assert got.equals_exact(mrm.reconstruct(mask, model), tolerance=0)
+            assert mrm.discretize(got, model) == mrm.PixelSet.from_image(mask)
+    # a tuple and an object array of any shape keep working, the shape is kept
+    grid = np.empty((2, 2), dtype=object)
+    for i, m in enumerate(masks):
+        grid[divmod(i, 2)] = m
+    assert mrm.reconstruct(grid, "gauss").shape == (2, 2)
+    assert len(mrm.reconstruct(tuple(masks[:2]), "gauss")) == 2
+
+
+def test_a_3d_array_is_never_a_batch_and_nested_lists_stay_one_image():
+    stack = np.stack(_masks()[:3])  # (3, 6, 8): not a colour image, not a batch
+    with pytest.raises(mrm.MRMError):
+        mrm.reconstruct(stack, "gauss")
+    nested = [[1, 0, 1], [1, 1, 1]]
+    one = mrm.reconstruct(nested, "gauss")
+    assert mrm.discretize(one, "gauss") == mrm.PixelSet.from_image(np.array(nested))
+
+
+def test_vectorized_forms_equal_the_element_wise_calls():
+    from shapely.geometry import Point, box
+
+    geoms = [box(0, 0, 3, 2), Point(1, 1).buffer(2.3, 8), box(-2, 1, 0.5, 4.5)]
+    for got, g in zip(mrm.discretize(geoms, "gauss"), geoms, strict=True):
+        assert got == mrm.discretize(g, "gauss")
+    sets = [mrm.discretize(g, "gauss") for g in geoms]
+    for got, ps in zip(mrm.scale(sets, 2, model="gauss"), sets, strict=True):
+        assert got == mrm.scale(ps, 2, model="gauss")
+    for got, ps in zip(mrm.rotate(sets, 30, model="supercover"), sets, strict=True):
+        assert got == mrm.rotate(ps, 30, model="supercover")
+    for got, g in zip(mrm.simplify(geoms, 0.5), geoms, strict=True):
+        assert got.equals_exact(mrm.simplify(g, 0.5), tolerance=0)
+    # two arguments broadcast as numpy does: one against many, and many against many
+    d = mrm.hausdorff(geoms[0], geoms)
+    assert [x.value for x in d] == [mrm.hausdorff(geoms[0], g).value for g in geoms]
+    u = mrm.union(geoms, geoms[::-1], "gauss")
+    for got, (a, b) in zip(u, zip(geoms, geoms[::-1], strict=True), strict=True):
+        assert got.equals_exact(mrm.union(a, b, "gauss"), tolerance=0)
+    parts = mrm.corefine(geoms[:2], geoms[2], "gauss")
+    assert [sorted(p) for p in parts] == [["a_and_b", "a_minus_b", "b_minus_a"]] * 2
+    labels = [np.array([[1, 1, 2], [1, 2, 2]]), np.array([[3, 0], [3, 3]])]
+    for got, lab in zip(mrm.polygonize(labels), labels, strict=True):
+        assert got.keys() == mrm.polygonize(lab).keys()
+        assert all(got[k].equals_exact(p, tolerance=0) for k, p in mrm.polygonize(lab).items())
+    assert mrm.discretize([], "gauss").shape == (0,)
+
+
+def test_a_bad_item_of_a_batch_is_a_one_line_error_naming_the_item():
+    from shapely.geometry import box
+
+    with pytest.raises(mrm.MRMError) as e:
+        mrm.reconstruct([np.ones((2, 2), bool), np.array([[np.nan]])], "gauss")
+    assert "\n" not in str(e.value)
+    assert "in item (1,) of the batch" in e.value.__notes__
+    with pytest.raises(mrm.MRMError, match="do not broadcast"):
+        mrm.hausdorff([box(0, 0, 1, 1)] * 2, [box(0, 0, 1, 1)] * 3)
+
+
+# ---------------------------------------------------------------------------------------------- GeoJSON
+class _Feature:
+    """What GeoPandas, Fiona and pyogrio records look like to us: only ``__geo_interface__``."""
+
+    def __init__(self, mapping):
+        self._mapping = mapping
+
+    @property
+    def __geo_interface__(self):
+        return self._mapping
+
+
+def test_geojson_dicts_and_geo_interface_objects_give_the_shapely_result():
+    from shapely.geometry import Polygon
+
+    poly = Polygon([(0, 0), (7, 1), (5, 6), (1, 4)], [[(2, 2), (4, 2), (3, 4)]])
+    gi = poly.__geo_interface__  # tuples, as __geo_interface__ usually holds
+    as_lists = {"type": "Polygon", "coordinates": [[list(p) for p in ring] for ring in gi["coordinates"]]}
+    feature = {"type": "Feature", "properties": {"name": "field"}, "geometry": gi}
+    collection = {"type": "FeatureCollection", "features": [feature]}
+    as_array = {"type": "Polygon", "coordinates": [np.array(r) for r in gi["coordinates"]]}
+    for model in ("standard", "gauss"):
+        want = mrm.discretize(poly, model)
+        for given in (gi, as_lists, feature, collection, as_array, _Feature(gi), _Feature(feature)):
+            assert mrm.discretize(given, model) == want
+        assert mrm.scale(_Feature(gi), 2, model=model) == mrm.scale(poly, 2, model=model)
+    assert mrm.hausdorff(_Feature(gi), as_lists).value == 0.0
+    assert mrm.union(feature, poly, "gauss").equals_exact(mrm.union(poly, poly, "gauss"), tolerance=0)
+    # a batch of mixed kinds
+    out = mrm.discretize([poly, gi, _Feature(feature)], "gauss")
+    assert all(ps == mrm.discretize(poly, "gauss") for ps in out)
+
+
+BAD_GEOJSON = {
+    "unknown type": ({"type": "Circle", "coordinates": [0, 0]}, "unsupported GeoJSON geometry type 'Circle'"),
+    "nan": ({"type": "Point", "coordinates": [float("nan"), 0]}, "must be finite"),
+    "bow tie": ({"type": "Polygon", "coordinates": [[[0, 0], [2, 2], [2, 0], [0, 2], [0, 0]]]}, "Self-"),
+    "text": ({"type": "Point", "coordinates": ["1", "2"]}, "must be numbers"),
+    "no coordinates": ({"type": "LineString"}, "has no 'coordinates'"),
+    "geo interface not a mapping": (_Feature(42), "__geo_interface__, got _Feature"),
+    "deep collection": ({"type": "GeometryCollection", "geometries": []}, "nested more than"),
+}
+_deep = BAD_GEOJSON["deep collection"][0]
+for _ in range(200):
+    _inner: dict = {"type": "GeometryCollection", "geometries": []}
+    _deep["geometries"].append(_inner)
+    _deep = _inner
+
+
+@pytest.mark.parametrize("case", BAD_GEOJSON.values(), ids=BAD_GEOJSON.keys())
+def test_hostile_geojson_is_refused_with_one_line_saying_what_is_wrong(case):
+    doc, says = case
+    with pytest.raises(mrm.MRMError) as e:
+        mrm.discretize(doc, "gauss")
+    assert "\n" not in str(e.value) and says in str(e.value)
