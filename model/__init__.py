@@ -34,8 +34,13 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         union,
     )
     from mrm.core.errors import MRMError
+    from mrm.core.georef import GeoRef
     from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
+    from mrm.core.models import Model
     from mrm.geometry.discretize.voxels import voxelize
+    from mrm.geometry.dss import Segment
+    from mrm.geometry.hausdorff import HausdorffDistance
+    from mrm.geometry.hausdorff.bounds import BoundResult
     from mrm.geometry.polyhedra import Polyhedron
     from mrm.io.mesh_files import read_mesh, write_mesh
     from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
@@ -64,6 +69,12 @@ _LAZY = {
     "read_label_volume": "mrm.io.voxel_files",
     "write_label_volume": "mrm.io.voxel_files",
     "MRMError": "mrm.core.errors",
+    # the model names and the result types of the functions (mrm.api's signatures name them)
+    "Model": "mrm.core.models",
+    "GeoRef": "mrm.core.georef",
+    "BoundResult": "mrm.geometry.hausdorff.bounds",
+    "HausdorffDistance": "mrm.geometry.hausdorff",
+    "Segment": "mrm.geometry.dss",
     **{
         name: "mrm.api"
         for name in (
@@ -83,11 +94,16 @@ _LAZY = {
 }
 
 __all__ = [
+    "BoundResult",
+    "GeoRef",
+    "HausdorffDistance",
     "LabelMap",
     "LabelVolume",
     "MRMError",
+    "Model",
     "PixelSet",
     "Polyhedron",
+    "Segment",
     "VoxelSet",
     "__version__",
     "bound",
