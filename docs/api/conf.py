@@ -45,8 +45,8 @@ nitpick_ignore_regex = [
 def _short_names(app, env, node, contnode):
     """Resolve a short name in a docstring to the one documented object it names.
 
-    ``:class:`ParameterError```, ``:meth:`GeoRef.to_world``` or ``:func:`mrm.voxelize``` (a name of the curated
-    namespace) written in a module that does not define the name; several candidates stay unresolved.
+    ``:class:`ParameterError```, ``:meth:`GeoRef.to_world``` or ``:func:`mrm.voxelize``` (a name of the
+    curated namespace) written in a module that does not define the name; several candidates stay unresolved.
     """
     if node.get("refdomain") != "py":
         return None
