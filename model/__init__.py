@@ -9,6 +9,10 @@ and the command line start fast. numpy arrays, pixel sets and shapely geometries
     big = mrm.scale(ps, 2, model="gauss")         # DSS_2
     mrm.hausdorff(mrm.reconstruct(big, "gauss"), ...)
 
+Geometries may also be GeoJSON dicts or ``__geo_interface__`` objects; lists, tuples and numpy ``object``
+arrays of values are batches whose results come back as ``object`` arrays (docs/adr/0053); ``transform=``
+places an image as rasterio does.
+
 Pixel (x, y) is centred on the point (x, y) and y points **up** (docs/design.md §1); image arrays are
 converted by :meth:`PixelSet.from_image` / :meth:`PixelSet.to_image`, never by hand. The desktop application
 is ``mrm.app`` (needs the ``gui`` extra); the command line is ``mrm.cli``.
