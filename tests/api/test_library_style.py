@@ -250,3 +250,37 @@ def test_hostile_geojson_is_refused_with_one_line_saying_what_is_wrong(case):
     with pytest.raises(mrm.MRMError) as e:
         mrm.discretize(doc, "gauss")
     assert "\n" not in str(e.value) and says in str(e.value)
+
+
+BAD_TRANSFORMS = {
+    "five numbers": ((1, 0, 0, 0, -1), "six numbers"),
+    "not numbers": (("a", 0, 0, 0, -1, 0), "six numbers"),
+    "singular": ((1, 0, 0, 2, 0, 0), "not invertible"),
+    "nan": ((float("nan"), 0, 0, 0, -1, 0), "not invertible"),
+    "a 3x3 with a wrong last row": ((1, 0, 0, 0, -1, 0, 1, 0, 1), "GDAL's geotransform"),
+}
+
+
+@pytest.mark.parametrize("case", BAD_TRANSFORMS.values(), ids=BAD_TRANSFORMS.keys())
+def test_a_bad_transform_is_refused_with_one_line(case):
+    transform, says = case
+    image = np.array([[1, 0], [1, 1]])
+    for call in (
+        lambda: mrm.reconstruct(image.astype(bool), "gauss", transform=transform),
+        lambda: mrm.polygonize(image, transform=transform),
+    ):
+        with pytest.raises(mrm.MRMError) as e:
+            call()
+        assert "\n" not in str(e.value) and says in str(e.value)
+
+
+def test_a_pixel_set_is_placed_by_its_georef_not_by_six_numbers():
+    image = np.array([[1, 0], [1, 1]], bool)
+    ps = mrm.PixelSet.from_image(image)
+    with pytest.raises(mrm.MRMError, match="GeoRef"):
+        mrm.reconstruct(ps, "gauss", transform=(1, 0, 0, 0, -1, 0))
+    with pytest.raises(mrm.MRMError, match="GeoRef"):
+        mrm.polygonize(mrm.LabelMap.from_pixel_sets([ps]), transform=(1, 0, 0, 0, -1, 0))
+    georef = mrm.GeoRef((2.0, 0.0, 100.0, 0.0, -2.0, 50.0), 2, 2)
+    by_georef = mrm.reconstruct(ps, "gauss", transform=georef)
+    assert by_georef.equals_exact(mrm.reconstruct(image, "gauss", transform=georef.transform), tolerance=0)
