@@ -32,7 +32,7 @@ import numpy.typing as npt
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.geometry.base import BaseGeometry
 
-from mrm.core.errors import FileFormatError, MRMError, ParameterError
+from mrm.core.errors import FileFormatError, MRMError, NotApplicableError, ParameterError
 from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap, PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, PIXEL_COORDINATE_LIMIT
@@ -113,12 +113,20 @@ def as_pixels(obj: PixelSet | Image) -> PixelSet:
     return PixelSet.from_image(obj)
 
 
-def _as_object(obj: Shape | VoxelSet | Polyhedron) -> PixelSet | VoxelSet | Polyhedron | BaseGeometry:
-    """A value of the operations as they take it (a GeoJSON mapping becomes shapely's; an array, an image).
+def _as_object(obj: Shape) -> PixelSet | BaseGeometry:
+    """A value of the paper's 2-D operations as they take it: GeoJSON as shapely's, an array as an image.
 
-    Pixel and voxel sets, polyhedra and shapely geometries stay as they are.
+    Pixel sets and shapely geometries stay as they are. A voxel set, polyhedron or label map is refused: the
+    operations of :mod:`mrm.ops` are 2-D (they would read a voxel set as nothing).
     """
-    if isinstance(obj, PixelSet | VoxelSet | Polyhedron | BaseGeometry):
+    if isinstance(obj, VoxelSet | Polyhedron | LabelMap):
+        raise NotApplicableError(
+            f"this operation takes a pixel set, an image or a 2-D geometry, not a {type(obj).__name__}; "
+            "the library's 3-D functions are mrm.voxelize and mrm.reconstruct"
+            if not isinstance(obj, LabelMap)
+            else "a label map is no input of the paper's operations: take one label with lm.pixel_set(label)"
+        )
+    if isinstance(obj, PixelSet | BaseGeometry):
         return obj
     if is_geometry_like(obj):
         return as_geometry(obj)

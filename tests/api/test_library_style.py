@@ -284,3 +284,20 @@ def test_a_pixel_set_is_placed_by_its_georef_not_by_six_numbers():
     georef = mrm.GeoRef((2.0, 0.0, 100.0, 0.0, -2.0, 50.0), 2, 2)
     by_georef = mrm.reconstruct(ps, "gauss", transform=georef)
     assert by_georef.equals_exact(mrm.reconstruct(image, "gauss", transform=georef.transform), tolerance=0)
+
+
+def test_3d_values_are_refused_by_the_2d_operations_not_read_as_nothing():
+    """Passed through as they are, simplify(VoxelSet) gave POLYGON EMPTY; a one-line refusal instead."""
+    vs = mrm.VoxelSet.box(0, 0, 0, 1, 1, 1)
+    lm = mrm.LabelMap.from_pixel_sets([mrm.PixelSet.box(0, 0, 1, 1)])
+    for call in (
+        lambda: mrm.simplify(vs, 0.5),
+        lambda: mrm.scale(vs, 2),
+        lambda: mrm.rotate([vs], 90),
+        lambda: mrm.union(vs, mrm.PixelSet.box(0, 0, 1, 1)),
+        lambda: mrm.hausdorff(vs, vs),
+        lambda: mrm.corefine(lm, lm),
+    ):
+        with pytest.raises(mrm.MRMError) as e:
+            call()
+        assert "\n" not in str(e.value)
