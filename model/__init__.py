@@ -9,6 +9,10 @@ and the command line start fast. numpy arrays, pixel sets and shapely geometries
     big = mrm.scale(ps, 2, model="gauss")         # DSS_2
     mrm.hausdorff(mrm.reconstruct(big, "gauss"), ...)
 
+Geometries may also be GeoJSON dicts or ``__geo_interface__`` objects; lists, tuples and numpy ``object``
+arrays of values are batches whose results come back as ``object`` arrays (docs/adr/0053); ``transform=``
+places an image as rasterio does.
+
 Pixel (x, y) is centred on the point (x, y) and y points **up** (docs/design.md §1); image arrays are
 converted by :meth:`PixelSet.from_image` / :meth:`PixelSet.to_image`, never by hand. The desktop application
 is ``mrm.app`` (needs the ``gui`` extra); the command line is ``mrm.cli``.
@@ -34,8 +38,13 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         union,
     )
     from mrm.core.errors import MRMError
+    from mrm.core.georef import GeoRef
     from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
+    from mrm.core.models import Model
     from mrm.geometry.discretize.voxels import voxelize
+    from mrm.geometry.dss import Segment
+    from mrm.geometry.hausdorff import HausdorffDistance
+    from mrm.geometry.hausdorff.bounds import BoundResult
     from mrm.geometry.polyhedra import Polyhedron
     from mrm.io.mesh_files import read_mesh, write_mesh
     from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
@@ -64,6 +73,12 @@ _LAZY = {
     "read_label_volume": "mrm.io.voxel_files",
     "write_label_volume": "mrm.io.voxel_files",
     "MRMError": "mrm.core.errors",
+    # the model names and the result types of the functions (mrm.api's signatures name them)
+    "Model": "mrm.core.models",
+    "GeoRef": "mrm.core.georef",
+    "BoundResult": "mrm.geometry.hausdorff.bounds",
+    "HausdorffDistance": "mrm.geometry.hausdorff",
+    "Segment": "mrm.geometry.dss",
     **{
         name: "mrm.api"
         for name in (
@@ -83,11 +98,16 @@ _LAZY = {
 }
 
 __all__ = [
+    "BoundResult",
+    "GeoRef",
+    "HausdorffDistance",
     "LabelMap",
     "LabelVolume",
     "MRMError",
+    "Model",
     "PixelSet",
     "Polyhedron",
+    "Segment",
     "VoxelSet",
     "__version__",
     "bound",

@@ -1,39 +1,71 @@
 """The functions of the curated library API (``import mrm``), as thin, documented wrappers.
 
 Each function takes numpy arrays, :class:`~mrm.core.grids.PixelSet` / :class:`~mrm.core.grids.LabelMap`
-objects and shapely geometries, and returns the same kinds: no Qt, no project, no file. Arrays given where a
-pixel set is expected are **images** (row 0 at the top, as numpy, Pillow and matplotlib hold them) and go
-through :meth:`PixelSet.from_image`, so a picture never comes out upside down.
+objects and Euclidean geometries, and returns the same kinds: no Qt, no project, no file. Arrays given where
+a pixel set is expected are **images** (row 0 at the top, as numpy, Pillow and matplotlib hold them) and go
+through :meth:`PixelSet.from_image <mrm.core.grids.PixelSet.from_image>`, so a picture never comes out
+upside down; a NaN or infinite sample is refused.
+
+**Geometries** are shapely geometries, GeoJSON mappings (a geometry, a ``Feature`` or a ``FeatureCollection``)
+or any object with ``__geo_interface__`` (GeoPandas, Fiona, …): :func:`mrm.io.geo_interface.as_geometry`.
+
+**Vectorized forms**, as in shapely 2 (docs/adr/0053): where a function takes one geometry, pixel set or
+image, it also takes a *batch*: a ``list`` or ``tuple`` whose items are all such values (2-D arrays,
+pixel sets, label maps, geometries, GeoJSON mappings), or a numpy array of ``dtype=object``. The result is
+then a numpy ``object`` array of the element-wise results, of the batch's shape (a list or tuple gives a 1-D
+array). Two-argument functions broadcast their arguments as numpy does. A plain 3-D numeric array is **never**
+a batch: it stays one value (an H×W×3 colour image; voxels are a :class:`~mrm.core.grids.VoxelSet`); pass a
+stack of masks ``a`` of shape (N, H, W) as ``list(a)``. A nested list of numbers is one image, as before.
 
 The operations are the paper's (docs/design.md §5–§8); each wrapper calls the one implementation in
-:mod:`mrm.ops` or :mod:`mrm.geometry` and adds nothing but the conversion of its inputs.
+:mod:`mrm.ops` or :mod:`mrm.geometry` and adds nothing but the conversion of its inputs and outputs.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Callable, Sequence
+from fractions import Fraction
+from typing import Literal, TypeAlias, TypeVar, overload
 
 import numpy as np
 import numpy.typing as npt
+from shapely.geometry import MultiPolygon, Polygon
+from shapely.geometry.base import BaseGeometry
 
-from mrm.core.errors import ParameterError
+from mrm.core.errors import FileFormatError, MRMError, NotApplicableError, ParameterError
+from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap, PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, PIXEL_COORDINATE_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
 from mrm.core.numbers import read_pixel, value_text
 from mrm.geometry.discretize import discretize as _discretize
 from mrm.geometry.discretize.voxels import voxelize
+from mrm.geometry.dss import Segment
 from mrm.geometry.dss.segmentation import chain_points, greedy_segmentation, maximal_segments
-from mrm.geometry.hausdorff import hausdorff_distance
+from mrm.geometry.hausdorff import HausdorffDistance, hausdorff_distance
+from mrm.geometry.hausdorff.bounds import BoundResult
 from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct as _reconstruct
 from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
+from mrm.io.geo_interface import GeoInterface, GeometryLike, as_geometry, is_geometry_like
 from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
-from mrm.ops.chain import chain_bound, parse_chain
+from mrm.ops.chain import Link, chain_bound, parse_chain
 from mrm.ops.registry import get_operation
 
 __all__ = [
+    "Batch",
+    "BoundResult",
+    "GeoInterface",
+    "GeometryLike",
+    "HausdorffDistance",
+    "Image",
+    "ModelLike",
+    "ModelName",
+    "ObjectArray",
+    "Polygonal",
+    "Segment",
+    "Shape",
+    "TransformLike",
     "bound",
     "corefine",
     "discretize",
@@ -47,40 +79,180 @@ __all__ = [
     "union",
 ]
 
+#: The names of the discretization models (docs/design.md §2), as a type checker sees them.
+ModelName: TypeAlias = Literal["standard", "supercover", "gauss"]
+#: A discretization model: a :class:`~mrm.core.models.Model` or its name.
+ModelLike: TypeAlias = Model | ModelName
+#: What a reconstruction gives in 2-D.
+Polygonal: TypeAlias = Polygon | MultiPolygon
+#: An image as numpy holds it (row 0 at the top): booleans, integers or floats in [0, 1], or nested lists.
+Image: TypeAlias = (
+    npt.NDArray[np.bool_] | npt.NDArray[np.integer] | npt.NDArray[np.floating] | Sequence[Sequence[float]]
+)
+#: One 2-D value of the paper's operations: a pixel set, an image or a Euclidean geometry.
+Shape: TypeAlias = PixelSet | Image | GeometryLike
+#: Many values at once: a list or tuple of values, or a numpy array of ``dtype=object`` (module docstring).
+Batch: TypeAlias = (
+    Sequence[PixelSet | VoxelSet | LabelMap | Polyhedron | GeometryLike | npt.NDArray[np.generic]]
+    | npt.NDArray[np.object_]
+)
+#: The results of a batch: a numpy array of ``dtype=object``, of the batch's shape.
+ObjectArray: TypeAlias = npt.NDArray[np.object_]
+#: Where an image lies: GDAL's / rasterio's affine ``(a, b, c, d, e, f)`` (an ``affine.Affine`` too), or a
+#: :class:`~mrm.core.georef.GeoRef` (needed for a pixel set or label map, which have no rows of their own).
+TransformLike: TypeAlias = GeoRef | Sequence[float]
 
-def as_pixels(obj: PixelSet | npt.ArrayLike) -> PixelSet:
+_R = TypeVar("_R")
+
+
+# ---------------------------------------------------------------------------------------------- inputs
+def as_pixels(obj: PixelSet | Image) -> PixelSet:
     """A pixel set as it is; an array as an image (row 0 at the top, :meth:`PixelSet.from_image`)."""
     if isinstance(obj, PixelSet):
         return obj
     return PixelSet.from_image(obj)
 
 
-def _as_object(obj: Any) -> Any:
-    """A shapely geometry or pixel set as it is; an array as an image."""
-    if isinstance(obj, PixelSet) or hasattr(obj, "geom_type"):
+def _as_object(obj: Shape) -> PixelSet | BaseGeometry:
+    """A value of the paper's 2-D operations as they take it: GeoJSON as shapely's, an array as an image.
+
+    Pixel sets and shapely geometries stay as they are. A voxel set, polyhedron or label map is refused: the
+    operations of :mod:`mrm.ops` are 2-D (they would read a voxel set as nothing).
+    """
+    if isinstance(obj, VoxelSet | Polyhedron | LabelMap):
+        raise NotApplicableError(
+            f"this operation takes a pixel set, an image or a 2-D geometry, not a {type(obj).__name__}; "
+            "the library's 3-D functions are mrm.voxelize and mrm.reconstruct"
+            if not isinstance(obj, LabelMap)
+            else "a label map is no input of the paper's operations: take one label with lm.pixel_set(label)"
+        )
+    if isinstance(obj, PixelSet | BaseGeometry):
         return obj
-    return PixelSet.from_image(obj)
+    if is_geometry_like(obj):
+        return as_geometry(obj)
+    return PixelSet.from_image(obj)  # type: ignore[arg-type]  # what is left is an image
 
 
+def _is_item(x: object) -> bool:
+    """Whether ``x`` can be one element of a batch (a value, not a number or a row of numbers)."""
+    return isinstance(x, np.ndarray | PixelSet | VoxelSet | LabelMap | Polyhedron) or is_geometry_like(x)
+
+
+def _is_batch(obj: object) -> bool:
+    """The batch signal (module docstring): an object array, or a list/tuple of values (not of numbers)."""
+    if isinstance(obj, np.ndarray):
+        return bool(obj.dtype == np.object_)
+    if isinstance(obj, list | tuple):
+        return all(_is_item(x) for x in obj)
+    return False
+
+
+def _objects(obj: object) -> ObjectArray:
+    """The batch ``obj`` as an object array, or a 0-d object array holding the one value ``obj``."""
+    if isinstance(obj, np.ndarray) and obj.dtype == np.object_:
+        return obj
+    if _is_batch(obj):
+        items = list(obj)  # type: ignore[call-overload]  # a list or tuple (_is_batch)
+        out = np.empty(len(items), dtype=object)
+        for i, x in enumerate(items):  # one by one: np.array would stack equal-shaped images into 3-D
+            out[i] = x
+        return out
+    one = np.empty((), dtype=object)
+    one[()] = obj
+    return one
+
+
+def _map(func: Callable[..., _R], *args: object) -> ObjectArray:
+    """``func`` applied element-wise over broadcast batches, into an object array (module docstring)."""
+    arrays = [_objects(a) for a in args]
+    try:
+        it = np.broadcast(*arrays)
+    except ValueError as e:
+        shapes = " and ".join(str(a.shape) for a in arrays)
+        raise ParameterError(f"batches of shapes {shapes} do not broadcast together") from e
+    out = np.empty(it.shape, dtype=object)
+    for index, items in zip(np.ndindex(*it.shape), it, strict=True):
+        try:
+            out[index] = func(*items)
+        except MRMError as e:
+            e.add_note(f"in item {index} of the batch")
+            raise
+    return out
+
+
+def _georef(transform: TransformLike, shape: tuple[int, int] | None, origin: tuple[int, int]) -> GeoRef:
+    """The :class:`GeoRef` of an image of ``shape`` (rows, columns) under ``transform`` (rasterio's order).
+
+    A GeoRef is taken as it is; ``None`` for ``shape`` means the input has no rows (a pixel set, a label map),
+    which needs a GeoRef.
+    """
+    if isinstance(transform, GeoRef):
+        return transform
+    if shape is None:
+        raise ParameterError(
+            "transform= as six numbers places an image's rows; a pixel set or label map has none: "
+            "give the image array, or a GeoRef (mrm.io.georef.read_georef)"
+        )
+    try:
+        t = [float(v) for v in transform]
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(
+            "transform must be an Affine, six numbers (a, b, c, d, e, f) or a GeoRef, "
+            f"got {value_text(transform)}"
+        ) from None
+    if len(t) == 9 and t[6:] == [0.0, 0.0, 1.0]:  # affine.Affine is the 3×3 matrix, its last row (0, 0, 1)
+        t = t[:6]
+    if len(t) != 6:
+        raise ParameterError(
+            f"transform must be an Affine or six numbers (a, b, c, d, e, f), got {len(t)} numbers; "
+            "for GDAL's geotransform (c, a, b, f, d, e) use affine.Affine.from_gdal(*gt)"
+        )
+    h, w = shape
+    if h < 1 or w < 1:
+        raise ParameterError(f"an image of {w}×{h} pixels holds nothing to place")
+    try:
+        return GeoRef((t[0], t[1], t[2], t[3], t[4], t[5]), w, h, None, origin)
+    except FileFormatError as e:  # GeoRef's wording is for files; here it is an argument
+        raise ParameterError(f"transform: {e}") from None
+
+
+def _image_shape(obj: object) -> tuple[int, int] | None:
+    """(rows, columns) of an image argument; None for a pixel set, a label map or a geometry."""
+    if isinstance(obj, PixelSet | VoxelSet | LabelMap | BaseGeometry) or is_geometry_like(obj):
+        return None
+    a = np.asarray(obj)
+    return (int(a.shape[0]), int(a.shape[1])) if a.ndim >= 2 else None
+
+
+# ---------------------------------------------------------------------------------------------- functions
+@overload
+def discretize(geom: GeometryLike, model: ModelLike = ..., *, limit: int | None = ...) -> PixelSet: ...
+@overload
+def discretize(geom: Polyhedron, model: ModelLike = ..., *, limit: int | None = ...) -> VoxelSet: ...
+@overload
+def discretize(geom: Batch, model: ModelLike = ..., *, limit: int | None = ...) -> ObjectArray: ...
 def discretize(
-    geom: Any, model: Model | str = DEFAULT_MODEL, *, limit: int | None = DEFAULT_PIXEL_LIMIT
-) -> PixelSet | VoxelSet:
-    """Return the exact discretization D(E) of a shapely geometry under ``model`` (docs/design.md §2).
+    geom: GeometryLike | Polyhedron | Batch,
+    model: ModelLike = DEFAULT_MODEL,
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+) -> PixelSet | VoxelSet | ObjectArray:
+    """Return the exact discretization D(E) of a Euclidean geometry under ``model`` (docs/design.md §2).
 
     A :class:`~mrm.geometry.polyhedra.Polyhedron` is voxelized (:func:`mrm.voxelize`, §11) and gives a
     :class:`~mrm.core.grids.VoxelSet`.
 
     Parameters
     ----------
-    geom : shapely geometry or Polyhedron
+    geom : shapely geometry, GeoJSON mapping, ``__geo_interface__`` object, Polyhedron, or a batch of them
         Polygons, lines and points (any mix); coordinates are pixel units, pixel (x, y) is centred on (x, y).
-    model : Model or str
+    model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
-        Largest bounding box (in pixels) of the result, checked before any work.
+        Largest bounding box (in pixels) of each result, checked before any work.
 
     Returns
     -------
-    PixelSet
+    PixelSet, VoxelSet, or numpy.ndarray of them for a batch
 
     Examples
     --------
@@ -89,27 +261,55 @@ def discretize(
     >>> # gauss takes the centres of [0, 3) × [0, 2): the crossing test is half-open (docs/design.md §2)
     >>> sorted(mrm.discretize(box(0, 0, 3, 2), "gauss"))
     [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)]
+    >>> # a GeoJSON dict, and a batch: a list in, an object array out
+    >>> len(mrm.discretize({"type": "Point", "coordinates": [2, 5]}))
+    1
+    >>> [len(ps) for ps in mrm.discretize([box(0, 0, 1, 1), box(0, 0, 3, 2)], "gauss")]
+    [1, 6]
     """
+    if _is_batch(geom):
+        return _map(lambda g: discretize(g, model, limit=limit), geom)
     if isinstance(geom, Polyhedron):
         return voxelize(geom, model, limit=limit)
-    return _discretize(geom, model, limit=limit)
+    return _discretize(as_geometry(geom), model, limit=limit)
 
 
-def reconstruct(pixels: PixelSet | VoxelSet | npt.ArrayLike, model: Model | str = DEFAULT_MODEL) -> Any:
+@overload
+def reconstruct(
+    pixels: PixelSet | Image, model: ModelLike = ..., *, transform: TransformLike | None = ...
+) -> Polygonal: ...
+@overload
+def reconstruct(pixels: VoxelSet, model: ModelLike = ..., *, transform: None = ...) -> Polyhedron: ...
+@overload
+def reconstruct(
+    pixels: Batch, model: ModelLike = ..., *, transform: TransformLike | None = ...
+) -> ObjectArray: ...
+def reconstruct(
+    pixels: PixelSet | VoxelSet | Image | Batch,
+    model: ModelLike = DEFAULT_MODEL,
+    *,
+    transform: TransformLike | None = None,
+) -> Polygonal | Polyhedron | ObjectArray:
     """Return the reversible continuation R(A): a polygon (polyhedron) whose discretization is exactly A.
 
     Reference: docs/design.md §3, §11.
 
     Parameters
     ----------
-    pixels : PixelSet, VoxelSet or array_like
+    pixels : PixelSet, VoxelSet, array_like image, or a batch of them (a stack of masks: ``list(stack)``)
         The pixel or voxel set, or an image (row 0 at the top; see :meth:`PixelSet.from_image`).
-    model : Model or str
+    model : Model or {"standard", "supercover", "gauss"}
+    transform : affine.Affine, tuple of 6 float or GeoRef, optional
+        Where the image lies, as rasterio's ``transform=`` (``X = a·col + b·row + c``, ``Y = d·col + e·row +
+        f``, (col, row) = (0, 0) the top-left corner of the image): the polygon is returned in these world
+        coordinates, placed as ``rasterio.features.shapes(image, transform=transform)`` places the pixels'
+        outlines. A pixel set needs a :class:`~mrm.core.georef.GeoRef`.
 
     Returns
     -------
-    shapely Polygon or MultiPolygon, or Polyhedron for a voxel set
-        ``discretize(reconstruct(A, m), m) == A`` for every A and model m (``voxelize`` in 3D).
+    shapely.geometry.Polygon or shapely.geometry.MultiPolygon, Polyhedron, or numpy.ndarray of them
+        ``discretize(reconstruct(A, m), m) == A`` for every A and model m (``voxelize`` in 3D), in grid
+        coordinates (without ``transform``).
 
     Examples
     --------
@@ -118,29 +318,67 @@ def reconstruct(pixels: PixelSet | VoxelSet | npt.ArrayLike, model: Model | str 
     >>> poly = mrm.reconstruct(img, "gauss")
     >>> mrm.discretize(poly, "gauss") == mrm.PixelSet.from_image(img)
     True
+    >>> # 10 m pixels, the image's top-left corner at (500000, 4200050): the 3×3 block's world outline
+    >>> mrm.reconstruct(img, "gauss", transform=(10, 0, 500000, 0, -10, 4200050)).bounds
+    (500010.0, 4200010.0, 500040.0, 4200040.0)
+    >>> # a stack of masks is a list of 2-D arrays (a 3-D array is not a batch)
+    >>> [p.area for p in mrm.reconstruct([img, img[:, :3]], "gauss")]
+    [9.0, 6.0]
     """
+    if _is_batch(pixels):
+        return _map(lambda a: reconstruct(a, model, transform=transform), pixels)
     if isinstance(pixels, VoxelSet):
+        if transform is not None:
+            raise ParameterError("transform= places a 2-D image; a voxel set has no raster transform here")
         return _reconstruct(pixels, model)
-    return _reconstruct(as_pixels(pixels), model)
+    if transform is None:
+        return _reconstruct(as_pixels(pixels), model)  # type: ignore[arg-type]  # not a batch
+    georef = _georef(transform, _image_shape(pixels), (0, 0))
+    poly: Polygonal = georef.raster_to_world(_reconstruct(as_pixels(pixels), model))  # type: ignore[arg-type]
+    return poly
 
 
+@overload
 def polygonize(
-    labels: LabelMap | npt.ArrayLike, model: Model | str = Model.GAUSS, *, origin: tuple[int, int] = (0, 0)
-) -> dict[int, Any]:
+    labels: LabelMap | Image,
+    model: ModelLike = ...,
+    *,
+    origin: tuple[int, int] = ...,
+    transform: TransformLike | None = ...,
+) -> dict[int, Polygonal]: ...
+@overload
+def polygonize(
+    labels: Batch,
+    model: ModelLike = ...,
+    *,
+    origin: tuple[int, int] = ...,
+    transform: TransformLike | None = ...,
+) -> ObjectArray: ...
+def polygonize(
+    labels: LabelMap | Image | Batch,
+    model: ModelLike = Model.GAUSS,
+    *,
+    origin: tuple[int, int] = (0, 0),
+    transform: TransformLike | None = None,
+) -> dict[int, Polygonal] | ObjectArray:
     """Reconstruct every label of a label map as a watertight subdivision: one polygon per label.
 
     Parameters
     ----------
-    labels : LabelMap or array_like of int
+    labels : LabelMap, array_like of int, or a batch of them
         A label map, or an integer image (row 0 at the top); label 0 is the background.
     model : {"gauss"}
         The discretization every part reconstructs exactly under.
     origin : tuple of int
         For an image: the pixel of its bottom-left sample.
+    transform : affine.Affine, tuple of 6 float or GeoRef, optional
+        Where the image lies (rasterio's ``transform=``, see :func:`reconstruct`): the polygons are returned
+        in world coordinates, each pixel corner exactly where ``rasterio.features.shapes`` puts it. A label
+        map needs a :class:`~mrm.core.georef.GeoRef`.
 
     Returns
     -------
-    dict of int to Polygon or MultiPolygon
+    dict of int to shapely.geometry.Polygon or shapely.geometry.MultiPolygon, or numpy.ndarray of such dicts
         ``{label: polygon}``; neighbouring parts share their edges exactly (no gap, no overlap).
 
     Examples
@@ -149,24 +387,36 @@ def polygonize(
     >>> parts = mrm.polygonize(np.array([[1, 1, 2], [1, 2, 2]]))
     >>> sorted(parts), parts[1].intersection(parts[2]).area
     ([1, 2], 0.0)
+    >>> # half-metre pixels whose top-left corner is at (100, 200)
+    >>> world = mrm.polygonize(np.array([[1, 1, 2], [1, 2, 2]]), transform=(0.5, 0, 100, 0, -0.5, 200))
+    >>> world[2].bounds
+    (100.5, 199.0, 101.5, 200.0)
     """
+    if _is_batch(labels):
+        return _map(lambda a: polygonize(a, model, origin=origin, transform=transform), labels)
+    at = read_pixel(origin, "origin", PIXEL_COORDINATE_LIMIT)
+    shape = None
     if not isinstance(labels, LabelMap):
         a = np.asarray(labels)
         if a.ndim != 2 or a.dtype.kind not in "iub":
             raise ParameterError(f"a label image must be a 2-D integer array, got {a.dtype} {a.shape}")
-        at = read_pixel(origin, "origin", PIXEL_COORDINATE_LIMIT)
+        shape = (int(a.shape[0]), int(a.shape[1]))
         labels = LabelMap(a[::-1].astype(np.int32), at)
-    return reconstruct_label_map(labels, model)
+    parts = reconstruct_label_map(labels, model)
+    if transform is None:
+        return parts
+    georef = _georef(transform, shape, (at[0], at[1]))
+    return {v: georef.raster_to_world(p) for v, p in parts.items()}
 
 
 def segment(
     chain: str | Sequence[int] | npt.ArrayLike,
     *,
     start: tuple[int, int] = (0, 0),
-    mode: str = "greedy",
+    mode: Literal["greedy", "maximal"] = "greedy",
     closed: bool = False,
-    adjacency: int = 4,
-) -> list[Any]:
+    adjacency: Literal[4, 8] = 4,
+) -> list[Segment]:
     """Cut a digital curve into digital straight segments (DGtal's greedy or maximal segmentation).
 
     Parameters
@@ -211,41 +461,64 @@ def segment(
     raise ParameterError(f"mode must be 'greedy' or 'maximal', got {value_text(mode)}")
 
 
-def _result_of(name: str, obj: Any, limit: int | None, *params: object) -> Any:
+#: A number as the operations read it: a float is the decimal it prints as, ``"1/3"`` and Fractions exactly.
+Number: TypeAlias = int | float | Fraction | str
+
+
+def _result_of(name: str, obj: object, limit: int | None, *params: object) -> object:
     """The result of the registry's one-object operation ``name`` (DSS_α, dR_θ,C, Sp_α) on ``obj``.
 
     An array is an image; ``params`` are the operation's parameters in the order its spec declares them.
     """
     spec = get_operation(name)
     values = dict(zip([s.name for s in spec.params.specs()], params, strict=False))
-    return spec.outcome(_as_object(obj), spec.params.read(**values), limit=limit).result
+    result: object = spec.outcome(_as_object(obj), spec.params.read(**values), limit=limit).result
+    return result
 
 
+@overload
 def scale(
-    obj: Any,
-    alpha: object,
-    center: object = None,
-    model: Model | str = DEFAULT_MODEL,
+    obj: Shape,
+    alpha: Number,
+    center: tuple[Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> PixelSet: ...
+@overload
+def scale(
+    obj: Batch,
+    alpha: Number,
+    center: tuple[Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> ObjectArray: ...
+def scale(
+    obj: Shape | Batch,
+    alpha: Number,
+    center: tuple[Number, Number] | None = None,
+    model: ModelLike = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> PixelSet:
+) -> PixelSet | ObjectArray:
     """Discrete smooth scaling DSS_α(A) = D(Sc_α(R(A))), computed exactly (paper §4).
 
     Parameters
     ----------
-    obj : PixelSet, array_like image or shapely geometry
+    obj : PixelSet, array_like image, geometry, or a batch of them
         A (a geometry E stands for D(E)).
     alpha : number
         α > 0; a float is read as the decimal it prints as (``0.2`` is 1/5), ``"1/3"`` and Fractions too.
     center : pair of numbers, optional
         The centre of the scaling (the origin by default).
-    model : Model or str
+    model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
         Largest result (pixels of its bounding box), estimated before the work.
 
     Returns
     -------
-    PixelSet
+    PixelSet, or numpy.ndarray of PixelSet for a batch
 
     Examples
     --------
@@ -255,32 +528,53 @@ def scale(
     >>> mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model="gauss") == mrm.PixelSet.box(-1, -1, 6, 6)
     True
     """
-    out: PixelSet = _result_of("dss", obj, limit, alpha, center, model)
+    if _is_batch(obj):
+        return _map(lambda o: scale(o, alpha, center, model, limit=limit), obj)
+    out = _result_of("dss", obj, limit, alpha, center, model)
+    assert isinstance(out, PixelSet)
     return out
 
 
+@overload
 def rotate(
-    obj: Any,
-    angle: object,
-    center: object = None,
-    model: Model | str = DEFAULT_MODEL,
+    obj: Shape,
+    angle: Number,
+    center: tuple[Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> PixelSet: ...
+@overload
+def rotate(
+    obj: Batch,
+    angle: Number,
+    center: tuple[Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> ObjectArray: ...
+def rotate(
+    obj: Shape | Batch,
+    angle: Number,
+    center: tuple[Number, Number] | None = None,
+    model: ModelLike = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> PixelSet:
+) -> PixelSet | ObjectArray:
     """Discrete rotation dR_θ,C(A) = D(rot_θ,C(R(A))) with an exact rational rotation (paper §4).
 
     Parameters
     ----------
-    obj : PixelSet, array_like image or shapely geometry
+    obj : PixelSet, array_like image, geometry, or a batch of them
     angle : number
         Degrees, counter-clockwise (y up).
     center : pair of numbers, optional
-    model : Model or str
+    model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
 
     Returns
     -------
-    PixelSet
+    PixelSet, or numpy.ndarray of PixelSet for a batch
 
     Examples
     --------
@@ -288,33 +582,54 @@ def rotate(
     >>> sorted(mrm.rotate(mrm.PixelSet.box(0, 0, 2, 0), 90, model="gauss"))
     [(0, 0), (0, 1), (0, 2)]
     """
-    out: PixelSet = _result_of("discrete_rotation", obj, limit, angle, center, model)
+    if _is_batch(obj):
+        return _map(lambda o: rotate(o, angle, center, model, limit=limit), obj)
+    out = _result_of("discrete_rotation", obj, limit, angle, center, model)
+    assert isinstance(out, PixelSet)
     return out
 
 
+@overload
 def simplify(
-    obj: Any,
-    alpha: object,
-    center: object = None,
-    model: Model | str = DEFAULT_MODEL,
+    obj: Shape,
+    alpha: Number,
+    center: tuple[Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> Polygonal: ...
+@overload
+def simplify(
+    obj: Batch,
+    alpha: Number,
+    center: tuple[Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> ObjectArray: ...
+def simplify(
+    obj: Shape | Batch,
+    alpha: Number,
+    center: tuple[Number, Number] | None = None,
+    model: ModelLike = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> Any:
+) -> Polygonal | ObjectArray:
     """Simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): E redrawn on a grid of voxel size 1/α (paper §5).
 
     Parameters
     ----------
-    obj : shapely geometry, PixelSet or array_like image
+    obj : geometry, PixelSet, array_like image, or a batch of them
         E (a pixel set A stands for R(A)).
     alpha : number
         α > 0.
     center : pair of numbers, optional
-    model : Model or str
+    model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
 
     Returns
     -------
-    shapely Polygon or MultiPolygon
+    shapely.geometry.Polygon or shapely.geometry.MultiPolygon, or numpy.ndarray of them
 
     Examples
     --------
@@ -324,23 +639,40 @@ def simplify(
     >>> len(mrm.simplify(disc, 0.25).exterior.coords) < len(disc.exterior.coords)
     True
     """
-    return _result_of("simplify", obj, limit, alpha, center, model)
+    if _is_batch(obj):
+        return _map(lambda o: simplify(o, alpha, center, model, limit=limit), obj)
+    out: Polygonal = _result_of("simplify", obj, limit, alpha, center, model)
+    return out
 
 
+@overload
+def union(first: Shape, second: Shape, model: ModelLike = ..., *, limit: int | None = ...) -> Polygonal: ...
+@overload
 def union(
-    first: Any, second: Any, model: Model | str = DEFAULT_MODEL, *, limit: int | None = DEFAULT_PIXEL_LIMIT
-) -> Any:
+    first: Shape | Batch, second: Batch, model: ModelLike = ..., *, limit: int | None = ...
+) -> ObjectArray: ...
+@overload
+def union(
+    first: Batch, second: Shape | Batch, model: ModelLike = ..., *, limit: int | None = ...
+) -> ObjectArray: ...
+def union(
+    first: Shape | Batch,
+    second: Shape | Batch,
+    model: ModelLike = DEFAULT_MODEL,
+    *,
+    limit: int | None = DEFAULT_PIXEL_LIMIT,
+) -> Polygonal | ObjectArray:
     """Euclidean-discrete union EDu(E, E′) = R(D(E) ∪ D(E′)) (paper §6).
 
     Parameters
     ----------
-    first, second : shapely geometry, PixelSet or array_like image
-    model : Model or str
+    first, second : geometry, PixelSet, array_like image, or batches of them (broadcast together)
+    model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
 
     Returns
     -------
-    shapely Polygon or MultiPolygon
+    shapely.geometry.Polygon or shapely.geometry.MultiPolygon, or numpy.ndarray of them
 
     Examples
     --------
@@ -350,30 +682,62 @@ def union(
     >>> len(mrm.discretize(u, "gauss"))
     7
     """
-    return euclidean_discrete_union(_as_object(first), _as_object(second), model, limit=limit).result
+    if _is_batch(first) or _is_batch(second):
+        return _map(lambda a, b: union(a, b, model, limit=limit), first, second)
+    out: Polygonal = euclidean_discrete_union(
+        _as_object(first), _as_object(second), model, limit=limit
+    ).result
+    return out
 
 
+@overload
 def corefine(
-    first: Any,
-    second: Any,
-    model: Model | str = DEFAULT_MODEL,
-    alpha: object = None,
+    first: Shape,
+    second: Shape,
+    model: ModelLike = ...,
+    alpha: Number | None = ...,
+    *,
+    limit: int | None = ...,
+) -> dict[str, Polygonal]: ...
+@overload
+def corefine(
+    first: Shape | Batch,
+    second: Batch,
+    model: ModelLike = ...,
+    alpha: Number | None = ...,
+    *,
+    limit: int | None = ...,
+) -> ObjectArray: ...
+@overload
+def corefine(
+    first: Batch,
+    second: Shape | Batch,
+    model: ModelLike = ...,
+    alpha: Number | None = ...,
+    *,
+    limit: int | None = ...,
+) -> ObjectArray: ...
+def corefine(
+    first: Shape | Batch,
+    second: Shape | Batch,
+    model: ModelLike = DEFAULT_MODEL,
+    alpha: Number | None = None,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> dict[str, Any]:
+) -> dict[str, Polygonal] | ObjectArray:
     """Euclidean-discrete co-refinement EDco(E, E′), or EDco_α with ``alpha`` (paper §6).
 
     Parameters
     ----------
-    first, second : shapely geometry, PixelSet or array_like image
-    model : Model or str
+    first, second : geometry, PixelSet, array_like image, or batches of them (broadcast together)
+    model : Model or {"standard", "supercover", "gauss"}
     alpha : number, optional
         The precision factor α > 0.
     limit : int or None
 
     Returns
     -------
-    dict
+    dict, or numpy.ndarray of dict
         ``{"a_minus_b": …, "a_and_b": …, "b_minus_a": …}``, each a Polygon or MultiPolygon.
 
     Examples
@@ -384,21 +748,23 @@ def corefine(
     >>> sorted(parts)
     ['a_and_b', 'a_minus_b', 'b_minus_a']
     """
+    if _is_batch(first) or _is_batch(second):
+        return _map(lambda a, b: corefine(a, b, model, alpha, limit=limit), first, second)
     out = euclidean_discrete_corefinement(_as_object(first), _as_object(second), model, alpha, limit=limit)
     return dict(out.result)
 
 
 def bound(
-    chain: str | Sequence[Any], model: Model | str = DEFAULT_MODEL, *, exact_identities: bool = False
-) -> Any:
+    chain: str | Sequence[Link], model: ModelLike = DEFAULT_MODEL, *, exact_identities: bool = False
+) -> BoundResult:
     """Return the error bound of a chain of operations (docs/design.md §8), exactly.
 
     Parameters
     ----------
     chain : str or sequence of Link
         E.g. ``"DSS 5, DSS 2, DSS 0.5, DSS 0.2"`` (applied left to right), or links
-        (:meth:`mrm.ops.chain.Link.of`: ``Link.of("dss", alpha=5)``).
-    model : Model or str
+        (:meth:`Link.of <mrm.ops.chain.Link.of>`: ``Link.of("dss", alpha=5)``).
+    model : Model or {"standard", "supercover", "gauss"}
     exact_identities : bool
         Merge round trips separated by an exact identity.
 
@@ -418,19 +784,27 @@ def bound(
     return chain_bound(links, model, exact_identities=exact_identities)
 
 
-def hausdorff(first: Any, second: Any, model: Model | str = DEFAULT_MODEL) -> Any:
+@overload
+def hausdorff(first: Shape, second: Shape, model: ModelLike = ...) -> HausdorffDistance: ...
+@overload
+def hausdorff(first: Shape | Batch, second: Batch, model: ModelLike = ...) -> ObjectArray: ...
+@overload
+def hausdorff(first: Batch, second: Shape | Batch, model: ModelLike = ...) -> ObjectArray: ...
+def hausdorff(
+    first: Shape | Batch, second: Shape | Batch, model: ModelLike = DEFAULT_MODEL
+) -> HausdorffDistance | ObjectArray:
     """Return the exact Hausdorff distance between two filled polygonal sets.
 
     Parameters
     ----------
-    first, second : shapely Polygon / MultiPolygon, PixelSet or array_like image
+    first, second : geometry, PixelSet, array_like image, or batches of them (broadcast together)
         A pixel set (or image) stands for its continuation R(A) under ``model``.
-    model : Model or str
+    model : Model or {"standard", "supercover", "gauss"}
         Only used for pixel inputs.
 
     Returns
     -------
-    HausdorffDistance
+    HausdorffDistance, or numpy.ndarray of them
         ``value`` (float nearest to the exact distance), ``squared`` (exact Fraction when rational),
         ``witness`` (a point where it is reached).
 
@@ -440,7 +814,12 @@ def hausdorff(first: Any, second: Any, model: Model | str = DEFAULT_MODEL) -> An
     >>> import mrm
     >>> mrm.hausdorff(box(0, 0, 1, 1), box(0, 0, 4, 1)).value
     3.0
+    >>> # one polygon against three: broadcast as numpy does
+    >>> [d.value for d in mrm.hausdorff(box(0, 0, 1, 1), [box(0, 0, 1, 1), box(0, 0, 2, 1), box(0, 0, 4, 1)])]
+    [0.0, 1.0, 3.0]
     """
+    if _is_batch(first) or _is_batch(second):
+        return _map(lambda a, b: hausdorff(a, b, model), first, second)
     a, b = (_as_object(x) for x in (first, second))
-    a, b = (reconstruct(x, model) if isinstance(x, PixelSet) else x for x in (a, b))
+    a, b = (_reconstruct(x, model) if isinstance(x, PixelSet) else x for x in (a, b))
     return hausdorff_distance(a, b)

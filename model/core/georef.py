@@ -16,6 +16,7 @@ from fractions import Fraction
 from typing import Any, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
@@ -97,6 +98,29 @@ class GeoRef:
         from shapely.affinity import affine_transform
 
         return affine_transform(geom, self.grid_to_world())
+
+    def raster_to_world(self, geom: Any) -> Any:
+        """A geometry in grid coordinates, mapped to world coordinates in GDAL's order of operations.
+
+        Each point goes to the raster position (col, row) = (u − x0 + ½, H − ½ − (v − y0)), exact for the
+        half-integer corners of pixels, then to ``X = c + a·col + b·row``, ``Y = f + d·col + e·row`` in the
+        order GDAL's polygonize computes them, so a pixel corner lands on the very float that
+        ``rasterio.features.shapes`` / ``gdal_polygonize`` give it. :meth:`to_world` composes the two maps
+        first (one rounding less for points off the corners, another float for the corners).
+        """
+        import shapely
+
+        a, b, c, d, e, f = self.transform
+        x0, y0 = self.origin
+        h = self.height
+
+        def place(xy: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+            col = xy[:, 0] - x0 + 0.5
+            row = (h - 0.5 + y0) - xy[:, 1]
+            out: npt.NDArray[np.float64] = np.column_stack((c + col * a + row * b, f + col * d + row * e))
+            return out
+
+        return shapely.transform(geom, place)
 
     def to_grid(self, geom: Any) -> Any:
         """A geometry in world coordinates, mapped to grid coordinates."""

@@ -18,6 +18,7 @@ from typing import Any, ClassVar, Generic, Self, SupportsIndex, TypeVar, cast
 import numpy as np
 import numpy.typing as npt
 
+from mrm.core.errors import ParameterError
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, DEFAULT_VOXEL_LIMIT, check_pixels
 from mrm.core.threshold import binarize, grey_of
 
@@ -56,6 +57,25 @@ def box_area(box: tuple[int, ...] | None) -> int:
     for d in range(n):
         size *= max(0, box[n + d] - box[d] + 1)
     return size
+
+
+def refuse_non_finite(a: npt.NDArray[Any], what: str) -> None:
+    """Refuse an array holding NaN or an infinity, which would otherwise count as "in the set" (NaN ≠ 0).
+
+    Raises
+    ------
+    ParameterError
+        One line: how many samples, the index of the first, and what to do.
+    """
+    if a.dtype.kind not in "fc" or a.size == 0:
+        return
+    bad = ~np.isfinite(a)
+    if bad.any():
+        first = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise ParameterError(
+            f"{what} holds {int(bad.sum()):,} NaN or infinite sample(s), the first at index {first}; "
+            "replace them (numpy.nan_to_num) or choose the pixels with a comparison first"
+        )
 
 
 def _frozen(a: npt.NDArray[Any], *, fresh: bool = False) -> npt.NDArray[Any]:
@@ -180,6 +200,7 @@ class GridSet(Generic[_O, _B]):
             raise ValueError(f"a {self.unit} mask must be {n}-D, got shape {m.shape}")
         fresh = m.dtype != np.bool_
         if fresh:
+            refuse_non_finite(m, f"a {self.unit} mask")
             m = m != 0
         o = tuple(int(v) for v in origin) if origin is not None else (0,) * n
         if len(o) != n:
@@ -521,10 +542,11 @@ class PixelSet(GridSet[tuple[int, int], Box]):
         True
         """
         a = np.asarray(image)
+        refuse_non_finite(a, "the image")
         if a.ndim == 3 and a.shape[2] in (3, 4):
             a = grey_of(a)
         if a.ndim != 2:
-            raise ValueError(f"an image must be 2-D (or H×W×3, H×W×4 for colour), got shape {a.shape}")
+            raise ParameterError(f"an image must be 2-D (or H×W×3, H×W×4 for colour), got shape {a.shape}")
         if a.dtype == np.bool_:
             rows = a
         elif a.dtype.kind == "f":
