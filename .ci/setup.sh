@@ -13,8 +13,11 @@ XCB_DEBS="libx11-xcb1 libxcb1 libxcb-cursor0 libxcb-icccm4 libxcb-image0 libxcb-
   libxcb-xkb1 libxkbcommon-x11-0"
 # A virtual X server and the tools the real-display start test uses (tests/app/test_real_display.py).
 X_TEST_DEBS="xvfb xauth xdotool x11-apps"
+# OpenGL for the 3D views (pyqtgraph.opengl): Mesa's GLX and its software rasterizer llvmpipe, which the
+# 3D view tests use on their own Xvfb (tests/app/test_views_3d.py).
+GL_DEBS="libglx-mesa0 libgl1-mesa-dri libglu1-mesa"
 missing=""
-for p in $QT_DEBS $XCB_DEBS $X_TEST_DEBS; do
+for p in $QT_DEBS $XCB_DEBS $X_TEST_DEBS $GL_DEBS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"
 done
 if [ -n "$missing" ]; then

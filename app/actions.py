@@ -156,6 +156,9 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec("view.region", "&Region View", "Ctrl+2", "Show or focus the region view"),
     ActionSpec("view.analytical", "&Analytical View", "Ctrl+3", "Show or focus the analytical view"),
     ActionSpec("view.euclidean", "&Euclidean View", "Ctrl+4", "Show or focus the Euclidean view"),
+    ActionSpec(
+        "view.three_d", "&3D Views", "F3", "Show the four views of the 3D objects (voxels, polyhedra)", True
+    ),
     ActionSpec("view.pixel_grid", "Pixel &Grid", "G", "Draw the pixel grid when zoomed in", True),
     ActionSpec(
         "view.snap",

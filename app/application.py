@@ -83,9 +83,20 @@ def create_application(argv: list[str] | None = None, *, offscreen: bool = False
     QtGui.QGuiApplication.setHighDpiScaleFactorRoundingPolicy(
         QtCore.Qt.HighDpiScaleFactorRoundingPolicy.PassThrough
     )
+    share_opengl_contexts()
     app = QtWidgets.QApplication(list(argv) if argv else sys.argv[:1])
     configure(app)
     return app
+
+
+def share_opengl_contexts() -> None:
+    """Let every OpenGL view share one set of GL resources; call before the QApplication exists.
+
+    pyqtgraph compiles each shader program once and keeps its id; a 3D view in a second window (a new
+    context) would otherwise draw with an id its own context does not know ("invalid value" from
+    glUseProgram).
+    """
+    QtCore.QCoreApplication.setAttribute(QtCore.Qt.ApplicationAttribute.AA_ShareOpenGLContexts)
 
 
 def _guard_refcount_leak() -> bool:

@@ -253,6 +253,8 @@ class MainWindow(QtWidgets.QMainWindow):
             ("view.euclidean", "euclidean"),
         ):
             a.connect(aid, lambda n=name: self.views.show_view(self.views.by_name(n)))
+        a["view.three_d"].toggled.connect(self.views.set_dimension_checked)
+        self.views.dimensionChanged.connect(lambda d: a["view.three_d"].setChecked(d == 3))
         a["view.pixel_grid"].toggled.connect(self.set_pixel_grid)
         a["view.snap"].toggled.connect(self.set_snap_to_objects)
         a.connect("ops.panel", self.show_operations)
@@ -273,6 +275,10 @@ class MainWindow(QtWidgets.QMainWindow):
         if ch.settings or ch.reset:
             for act in self.model_group.actions():
                 act.setChecked(act.text() == self.doc.model)
+        if ch.reset:
+            # A document of 3D objects only opens in the 3D views, one with plane objects in the plane views.
+            solid = any(o.dimension == 3 for o in self.doc.objects)
+            self.views.set_dimension(3 if solid and not self.doc.plane_objects else 2)
         self.update_action_states()
 
     def update_action_states(self) -> None:
@@ -499,6 +505,9 @@ class MainWindow(QtWidgets.QMainWindow):
         self.doc.set_selection([ids[k % len(ids)]])
 
     def fit_all(self) -> None:
+        if self.views.dimension == 3 and self.views.area3d is not None:
+            self.views.area3d.fit()
+            return
         self._fit([o for o in self.doc.plane_objects if o.style.visible])
 
     def fit_selection(self) -> None:

@@ -63,7 +63,15 @@ def build_menus(win: MainWindow) -> None:
     a.menu(m, ["view.grid_layout", "view.tabs_layout", None])
     a.menu(
         m,
-        ["view.discrete", "view.region", "view.analytical", "view.euclidean", None, "view.pixel_grid"],
+        [
+            "view.discrete",
+            "view.region",
+            "view.analytical",
+            "view.euclidean",
+            None,
+            "view.three_d",
+            "view.pixel_grid",
+        ],
     )
     a.menu(m, ["view.snap"])
     m.addSeparator()

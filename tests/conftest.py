@@ -31,6 +31,11 @@ def pytest_configure(config):  # type: ignore[no-untyped-def]
     if not config.getoption("--headed"):
         os.environ["QT_QPA_PLATFORM"] = "offscreen"
     os.environ.setdefault("MRM_SETTINGS_ISOLATED", "1")
+    try:  # as the application does before its QApplication exists (the 3D views' shared shaders)
+        from mrm.app.application import share_opengl_contexts
+    except ImportError:  # a test run without the gui extra
+        return
+    share_opengl_contexts()
 
 
 def pytest_collection_modifyitems(config, items):  # type: ignore[no-untyped-def]

@@ -27,7 +27,74 @@ class Layer(pg.ItemGroup):
         self.waiting = False  # True while a representation it needs is being computed
 
 
-class RepresentationView(QtWidgets.QFrame):
+class PreparedDrawing:
+    """Drawing data made at once when small, on the scene's runner when big (the plane and the 3D views).
+
+    The class using it has ``name``, ``scene`` and ``mark_dirty(obj_id)`` and calls
+    :meth:`init_prepared_drawing` in its constructor.
+    """
+
+    name: str
+    scene: Any
+
+    def init_prepared_drawing(self) -> None:
+        self._prepared: dict[tuple[int, str], tuple[Any, Any]] = {}  # (object, what) -> (key, drawing data)
+        self._preparing: dict[str, Any] = {}  # worker slot -> the key it prepares
+
+    def mark_dirty(self, obj_id: int) -> None:
+        raise NotImplementedError
+
+    def forget_prepared(self, obj_id: int) -> None:
+        """Drop the drawing data of an object no longer drawn."""
+        for k in [k for k in self._prepared if k[0] == obj_id]:
+            del self._prepared[k]
+
+    #: Drawing data for representations up to this many elements (pixels, vertices) is prepared at once on
+    #: the GUI thread (well under 50 ms); beyond, on a worker, and the layer waits for it.
+    PREPARE_SYNC = 250_000
+
+    def prepared(self, obj_id: int, what: str, key: Any, size: int, compute: Any) -> Any | None:
+        """The drawing data ``compute()`` makes for ``key`` (a representation, compared by identity).
+
+        Small ones are computed now; big ones on a worker (the newest request per object wins), and None is
+        returned meanwhile: the layer keeps what it shows and the view says "computing…".
+        """
+        hit = self._prepared.get((obj_id, what))
+        if hit is not None and hit[0] is key:
+            return hit[1]
+        if size <= self.PREPARE_SYNC or getattr(self.scene, "runner", None) is None:
+            value = compute()
+            self._prepared[(obj_id, what)] = (key, value)
+            return value
+        slot = f"prepare:{self.name}:{what}:{obj_id}"
+        if self._preparing.get(slot) is key and self.scene.runner.is_busy(slot):
+            return None
+        self._preparing[slot] = key
+
+        def done(value: Any) -> None:
+            if self._preparing.get(slot) is key:
+                del self._preparing[slot]
+            self._prepared[(obj_id, what)] = (key, value)
+            self.mark_dirty(obj_id)
+
+        def failed(exc: BaseException) -> None:
+            self._preparing.pop(slot, None)
+            raise exc
+
+        self.scene.runner.submit(slot, lambda _p: compute(), on_result=done, on_error=failed)
+        return None
+
+    def is_preparing(self) -> bool:
+        runner = getattr(self.scene, "runner", None)
+        if runner is None:
+            return False
+        # The exact detail of a coarse image, zoomed in (MaskItem.update_detail), is drawing data too.
+        return any(runner.is_busy(s) for s in self._preparing) or runner.is_busy_prefix(
+            f"detail:{self.name}:"
+        )
+
+
+class RepresentationView(PreparedDrawing, QtWidgets.QFrame):
     """Base class of the discrete, region, analytical and Euclidean views."""
 
     #: Short name (object names, tests), title and what the view shows.
@@ -95,8 +162,7 @@ class RepresentationView(QtWidgets.QFrame):
         self.legend_label.setVisible(bool(self.legend))
         lay.addWidget(self.legend_label)
         self._layers: dict[int, Layer] = {}
-        self._prepared: dict[tuple[int, str], tuple[Any, Any]] = {}  # (object, what) -> (key, drawing data)
-        self._preparing: dict[str, Any] = {}  # worker slot -> the key it prepares
+        self.init_prepared_drawing()
         self._dirty: set[int] = set()
         self._all_dirty = True
         self._timer = QtCore.QTimer(self)
@@ -178,52 +244,7 @@ class RepresentationView(QtWidgets.QFrame):
     def _remove_layer(self, obj_id: int) -> None:
         layer = self._layers.pop(obj_id)
         self.plane.vb.removeItem(layer)
-        for k in [k for k in self._prepared if k[0] == obj_id]:
-            del self._prepared[k]
-
-    #: Drawing data for representations up to this many elements (pixels, vertices) is prepared at once on
-    #: the GUI thread (well under 50 ms); beyond, on a worker, and the layer waits for it.
-    PREPARE_SYNC = 250_000
-
-    def prepared(self, obj_id: int, what: str, key: Any, size: int, compute: Any) -> Any | None:
-        """The drawing data ``compute()`` makes for ``key`` (a representation, compared by identity).
-
-        Small ones are computed now; big ones on a worker (the newest request per object wins), and None is
-        returned meanwhile: the layer keeps what it shows and the view says "computing…".
-        """
-        hit = self._prepared.get((obj_id, what))
-        if hit is not None and hit[0] is key:
-            return hit[1]
-        if size <= self.PREPARE_SYNC or getattr(self.scene, "runner", None) is None:
-            value = compute()
-            self._prepared[(obj_id, what)] = (key, value)
-            return value
-        slot = f"prepare:{self.name}:{what}:{obj_id}"
-        if self._preparing.get(slot) is key and self.scene.runner.is_busy(slot):
-            return None
-        self._preparing[slot] = key
-
-        def done(value: Any) -> None:
-            if self._preparing.get(slot) is key:
-                del self._preparing[slot]
-            self._prepared[(obj_id, what)] = (key, value)
-            self.mark_dirty(obj_id)
-
-        def failed(exc: BaseException) -> None:
-            self._preparing.pop(slot, None)
-            raise exc
-
-        self.scene.runner.submit(slot, lambda _p: compute(), on_result=done, on_error=failed)
-        return None
-
-    def is_preparing(self) -> bool:
-        runner = getattr(self.scene, "runner", None)
-        if runner is None:
-            return False
-        # The exact detail of a coarse image, zoomed in (MaskItem.update_detail), is drawing data too.
-        return any(runner.is_busy(s) for s in self._preparing) or runner.is_busy_prefix(
-            f"detail:{self.name}:"
-        )
+        self.forget_prepared(obj_id)
 
     def _update_status(self) -> None:
         errors = []

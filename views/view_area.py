@@ -1,4 +1,8 @@
-"""The four representation views in a 2×2 grid or as tabs, sharing one camera (linked pan and zoom)."""
+"""The four representation views in a 2×2 grid or as tabs, sharing one camera (linked pan and zoom).
+
+The 3D objects have four views of their own (:class:`mrm.views.view3d.View3DArea`), made the first time
+they are shown: :meth:`ViewArea.set_dimension` switches between the plane views and the 3D views.
+"""
 
 from __future__ import annotations
 
@@ -19,6 +23,8 @@ class ViewArea(QtWidgets.QWidget):
     """Holds the discrete, region, analytical and Euclidean views; ``layout_mode`` is 'grid' or 'tabs'."""
 
     layoutChanged = QtCore.Signal(str)
+    #: 2 or 3: which views are shown.
+    dimensionChanged = QtCore.Signal(int)
 
     def __init__(self, scene: Scene, parent: QtWidgets.QWidget | None = None) -> None:
         super().__init__(parent)
@@ -44,6 +50,8 @@ class ViewArea(QtWidgets.QWidget):
         self._stack.addWidget(self._grid_page)
         self._stack.addWidget(self._tabs)
         self._mode = ""
+        self._dimension = 2
+        self.area3d: Any = None  # the 3D views, made when first shown (they load OpenGL)
         self.set_layout_mode("grid")
         for v in self.views:
             self.camera.add_view(v.plane)
@@ -85,6 +93,32 @@ class ViewArea(QtWidgets.QWidget):
             self.camera.fit(joint_box([box, shown]) or box, margin=0.02)
 
     @property
+    def dimension(self) -> int:
+        """2 while the plane views are shown, 3 while the 3D views are."""
+        return self._dimension
+
+    def set_dimension(self, dimension: int) -> None:
+        """Show the plane views (2) or the 3D views (3)."""
+        if dimension not in (2, 3) or dimension == self._dimension:
+            return
+        self._dimension = dimension
+        if dimension == 3:
+            if self.area3d is None:
+                from mrm.views.view3d import View3DArea  # loads OpenGL only when 3D is first shown
+
+                self.area3d = View3DArea(self.scene, self)
+                self._stack.addWidget(self.area3d)
+            self._stack.setCurrentWidget(self.area3d)
+        else:
+            self._stack.setCurrentWidget(self._grid_page if self._mode == "grid" else self._tabs)
+            QtCore.QTimer.singleShot(0, self._reapply_camera)
+        self.dimensionChanged.emit(dimension)
+
+    def set_dimension_checked(self, three_d: bool) -> None:
+        """The 3D Views action's slot: its check state chooses the views."""
+        self.set_dimension(3 if three_d else 2)
+
+    @property
     def layout_mode(self) -> str:
         return self._mode
 
@@ -99,13 +133,15 @@ class ViewArea(QtWidgets.QWidget):
             for k, v in enumerate(self.views):
                 self._grid.addWidget(v, k // 2, k % 2)
                 v.show()
-            self._stack.setCurrentWidget(self._grid_page)
+            if self._dimension == 2:
+                self._stack.setCurrentWidget(self._grid_page)
         else:
             for v in self.views:
                 self._grid.removeWidget(v)
                 self._tabs.addTab(v, v.title)
             self._tabs.setCurrentWidget(current or self.discrete)
-            self._stack.setCurrentWidget(self._tabs)
+            if self._dimension == 2:
+                self._stack.setCurrentWidget(self._tabs)
         QtCore.QTimer.singleShot(0, self._reapply_camera)
         self.layoutChanged.emit(mode)
 
@@ -138,7 +174,8 @@ class ViewArea(QtWidgets.QWidget):
         return list(self.views)
 
     def is_drawn(self) -> bool:
-        return all(v.is_drawn() for v in self.views)
+        flat = all(v.is_drawn() for v in self.views)
+        return flat and (self.area3d is None or self.area3d.is_drawn())
 
     def by_name(self, name: str) -> RepresentationView:
         for v in self.views:

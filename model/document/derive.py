@@ -173,6 +173,11 @@ class Derived:
         disc = self.peek("discrete")
         if disc is not None:
             area = float(disc.mask.size if isinstance(disc, GridSet) else disc.labels.size)
+        elif self.dimension == 3:  # a polyhedron: the voxels of its bounding box
+            (x0, y0, z0), (x1, y1, z1) = (
+                self.source.bbox if not self.source.is_empty else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+            )
+            area = (x1 - x0 + 2.0) * (y1 - y0 + 2.0) * (z1 - z0 + 2.0)
         else:
             xmin, ymin, xmax, ymax = self.source.bounds if not self.source.is_empty else (0, 0, 0, 0)
             area = (xmax - xmin + 2.0) * (ymax - ymin + 2.0)

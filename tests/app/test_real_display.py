@@ -10,8 +10,6 @@ not what Qt thinks it drew).
 from __future__ import annotations
 
 import os
-import shutil
-import signal
 import subprocess
 import sys
 import time
@@ -21,6 +19,7 @@ import numpy as np
 import pytest
 
 from mrm.app.gui import default_example
+from tests.app.xserver import start_xvfb, stop, tool
 
 TIMEOUT = 120.0  # generous: a loaded CI machine; the figure itself is printed, never asserted
 
@@ -46,37 +45,6 @@ def _colours(rgb: np.ndarray) -> int:
     return len(np.unique(packed))
 
 
-def _tool(name: str) -> str:
-    path = shutil.which(name)
-    assert path is not None, f"{name} is missing: run `bash .ci/setup.sh` (installs xvfb, xdotool, x11-apps)"
-    return path
-
-
-def _start_xvfb(tmp_path: Path) -> tuple[subprocess.Popen[bytes], str]:
-    r, w = os.pipe()
-    proc = subprocess.Popen(
-        [_tool("Xvfb"), "-displayfd", str(w), "-screen", "0", "1440x900x24", "-nolisten", "tcp"],
-        pass_fds=(w,),
-        stdout=subprocess.DEVNULL,
-        stderr=open(tmp_path / "xvfb.log", "wb"),  # noqa: SIM115 - lives as long as the server
-    )
-    os.close(w)
-    with os.fdopen(r) as f:
-        number = f.readline().strip()
-    assert number, f"Xvfb did not start: {(tmp_path / 'xvfb.log').read_text()}"
-    return proc, f":{number}"
-
-
-def _stop(proc: subprocess.Popen[bytes]) -> None:
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGTERM)
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(10)
-
-
 def _mrm_command() -> list[str]:
     script = Path(sys.executable).with_name("mrm")
     return [str(script)] if script.exists() else [sys.executable, "-m", "mrm.app"]
@@ -84,9 +52,9 @@ def _mrm_command() -> list[str]:
 
 @pytest.fixture
 def xserver(tmp_path: Path):  # type: ignore[no-untyped-def]
-    proc, display = _start_xvfb(tmp_path)
+    proc, display = start_xvfb(tmp_path)
     yield display
-    _stop(proc)
+    stop(proc)
 
 
 def test_mrm_starts_on_a_real_x_server_and_paints_its_window(xserver: str, tmp_path: Path) -> None:
@@ -107,7 +75,7 @@ def test_mrm_starts_on_a_real_x_server_and_paints_its_window(xserver: str, tmp_p
             log_text = (tmp_path / "mrm.log").read_text()
             assert app.poll() is None, f"mrm exited with {app.returncode}: {log_text}"
             found = subprocess.run(
-                [_tool("xdotool"), "search", "--onlyvisible", "--name", "MR Modeler"],
+                [tool("xdotool"), "search", "--onlyvisible", "--name", "MR Modeler"],
                 env=env,
                 capture_output=True,
                 text=True,
@@ -115,11 +83,11 @@ def test_mrm_starts_on_a_real_x_server_and_paints_its_window(xserver: str, tmp_p
             wids = found.stdout.split()
             if wids:
                 title = subprocess.run(
-                    [_tool("xdotool"), "getwindowname", wids[0]], env=env, capture_output=True, text=True
+                    [tool("xdotool"), "getwindowname", wids[0]], env=env, capture_output=True, text=True
                 ).stdout.strip()
                 if example.name in title:
                     dump = subprocess.run(
-                        [_tool("xwd"), "-root", "-silent"], env=env, capture_output=True, check=True
+                        [tool("xwd"), "-root", "-silent"], env=env, capture_output=True, check=True
                     ).stdout
                     shot = read_xwd(dump)
                     colours = _colours(shot)
@@ -137,5 +105,5 @@ def test_mrm_starts_on_a_real_x_server_and_paints_its_window(xserver: str, tmp_p
         assert dark < 0.5, f"{dark:.0%} of the screen is black"
         assert _colours(shot) > 50
     finally:
-        _stop(app)
+        stop(app)
         log.close()

@@ -41,6 +41,16 @@ def test_a_polyhedron_object_is_voxelized_exactly_under_the_documents_model(doc)
     assert d.get("euclidean") is solid.source
 
 
+def test_the_cost_of_a_polyhedrons_representations_is_estimated_from_its_box(doc):
+    # What the desktop asks before choosing the GUI thread or a worker (it raised AttributeError: a
+    # polyhedron has a 3D box, not the plane bounds of a shapely geometry).
+    d = doc.derived(doc.find("solid octahedron")[0].id)
+    costs = {rep: d.estimated_cost(rep) for rep in ("discrete", "region", "analytical", "euclidean")}
+    assert 6**3 <= costs["discrete"] < costs["region"] < costs["analytical"]  # a 5 × 5 × 5 box + room
+    d.get("region")
+    assert d.estimated_cost("discrete") == d.estimated_cost("region") == 0.0
+
+
 def test_a_voxel_object_gets_a_polyhedron_that_gives_it_back(doc):
     obj = doc.find("octahedron")[0]
     for model in ("standard", "supercover", "gauss"):

@@ -1,0 +1,175 @@
+"""The 3D views on a real X server with OpenGL (run by tests/app/test_views_3d.py under its own Xvfb).
+
+pyqtgraph's OpenGL widgets abort under Qt's offscreen platform, so these cases run in a pytest of their own,
+started with ``--headed`` and ``DISPLAY`` set to an Xvfb with GLX (Mesa's llvmpipe). They drive the real
+window with the keyboard and the mouse and read the rendered frame buffers back.
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from mrm.core.grids import VoxelSet
+from mrm.document.commands import AddObject
+from mrm.geometry.polyhedra import Polyhedron
+from mrm.views import gl_mesh
+from tests.app.helpers import press_key
+
+Qt = QtCore.Qt
+
+R = 6  # the digital octahedron |x| + |y| + |z| <= R: 8 plane segments, one per face
+
+
+def _octahedron(win):  # type: ignore[no-untyped-def]
+    n = 2 * R + 1
+    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
+    vs = VoxelSet(np.abs(x) + np.abs(y) + np.abs(z) <= R, (-R, -R, -R))
+    obj = win.doc.make_object(vs, name="octahedron")
+    win.doc.push(AddObject(obj))
+    assert n == vs.mask.shape[0]
+    return obj
+
+
+def _key_3d(qtbot, win, key) -> None:  # type: ignore[no-untyped-def]
+    pane = win.views.area3d.views[0].pane
+    # Xvfb has no window manager: the window can lose activation to the GL surfaces; shortcuts need it.
+    win.activateWindow()
+    qtbot.waitUntil(lambda: QtWidgets.QApplication.activeWindow() is win, timeout=5000)
+    pane.setFocus()
+    qtbot.keyClick(pane, key)
+
+
+def _show_3d(qtbot, win):  # type: ignore[no-untyped-def]
+    press_key(qtbot, win.views.discrete, Qt.Key.Key_F3)
+    qtbot.waitUntil(lambda: win.views.dimension == 3 and win.views.area3d is not None, timeout=5000)
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    qtbot.wait(50)  # one more frame: the camera fitted after the first refresh
+    return win.views.area3d
+
+
+def _frame(view) -> QtGui.QImage:  # type: ignore[no-untyped-def]
+    view.pane.update()
+    img = view.pane.grabFramebuffer()
+
+    if os.environ.get("MRM_GL_SAVE"):
+        img.save(f"{os.environ['MRM_GL_SAVE']}/{view.name}.png")
+    return img
+
+
+def _hues(img: QtGui.QImage, min_saturation: int = 60) -> np.ndarray:
+    """The hue (0-359) of every saturated pixel of the image."""
+    img = img.convertToFormat(QtGui.QImage.Format.Format_RGB32)
+    w, h = img.width(), img.height()
+    arr = np.frombuffer(img.constBits(), np.uint8).reshape(h, img.bytesPerLine() // 4, 4)[:, :w, :3]
+    rgb = arr[..., ::-1].reshape(-1, 3).astype(int)  # BGRA in memory
+    hues = []
+    mx, mn = rgb.max(axis=1), rgb.min(axis=1)
+    sat = mx - mn
+    keep = (sat >= min_saturation) & (mx >= 40)
+    for r, g, b in rgb[keep][:: max(1, int(keep.sum()) // 20000)]:
+        c = QtGui.QColor(int(r), int(g), int(b))
+        hues.append(c.hsvHue())
+    return np.array(hues, int)
+
+
+def _hue_of(colour: str) -> int:
+    return QtGui.QColor(colour).hsvHue()
+
+
+def _near(hues: np.ndarray, hue: int, tol: int = 12) -> int:
+    d = np.abs(hues - hue)
+    return int(np.sum(np.minimum(d, 360 - d) <= tol))
+
+
+def test_a_voxel_octahedron_is_drawn_in_its_four_3d_views(make_window, qtbot):
+    win = make_window(threaded=True)
+    obj = _octahedron(win)
+    area = _show_3d(qtbot, win)
+    assert [v.name for v in area.views] == ["discrete3d", "region3d", "analytical3d", "euclidean3d"]
+    discrete, region, analytical, euclidean = area.views
+    blue = _hue_of(obj.style.fill)
+    # The discrete view: the surfels in the object's colour, shaded, over a good part of the pane.
+    hues = _hues(_frame(discrete))
+    assert _near(hues, blue) > 0.9 * len(hues) > 500
+    # The region view: one component, in the first component colour.
+    hues = _hues(_frame(region))
+    assert _near(hues, _hue_of(gl_mesh.COMPONENT_COLOURS_3D[0])) > 0.9 * len(hues) > 500
+    # The analytical view: the 8 faces of the octahedron are 8 plane segments in several colours.
+    ana = win.scene.get(win.doc.objects[-1].id, "analytical")
+    assert ana.n_segments == 8
+    hues = _hues(_frame(analytical))
+    palette = {_hue_of(c) for c in gl_mesh.SEGMENT_COLOURS_3D if QtGui.QColor(c).hsvSaturation() > 60}
+    seen = {h for h in palette if _near(hues, h, 6) > 50}
+    assert len(seen) >= 3, seen  # a view shows at least three faces of a convex solid, neighbours differ
+    # The Euclidean view: the polyhedron R(A), in the object's colour, with dark face edges.
+    hues = _hues(_frame(euclidean))
+    assert _near(hues, blue) > 500
+    items = euclidean._items[win.doc.objects[-1].id][1]
+    assert any(type(it).__name__ == "GLLinePlotItem" for it in items)
+
+
+def test_orbiting_one_3d_view_turns_the_four_and_the_buttons_set_them_all(make_window, qtbot):
+    win = make_window(threaded=True)
+    _octahedron(win)
+    area = _show_3d(qtbot, win)
+    panes = [v.pane for v in area.views]
+    before = panes[0].cameraParams()
+    # Drag with the left button in the Euclidean view: it orbits, and the other three follow exactly.
+    pane = area.by_name("euclidean3d").pane
+    c = pane.rect().center()
+    qtbot.mousePress(pane, Qt.MouseButton.LeftButton, pos=c)
+    for k in range(1, 8):
+        ev = QtGui.QMouseEvent(
+            QtCore.QEvent.Type.MouseMove,
+            QtCore.QPointF(c.x() + 10 * k, c.y() + 3 * k),
+            QtCore.QPointF(pane.mapToGlobal(QtCore.QPoint(c.x() + 10 * k, c.y() + 3 * k))),
+            Qt.MouseButton.NoButton,
+            Qt.MouseButton.LeftButton,
+            Qt.KeyboardModifier.NoModifier,
+        )
+        QtCore.QCoreApplication.sendEvent(pane, ev)
+    qtbot.mouseRelease(pane, Qt.MouseButton.LeftButton, pos=c)
+    after = [p.cameraParams() for p in panes]
+    assert after[0]["azimuth"] != before["azimuth"]
+    assert all(a["azimuth"] == after[0]["azimuth"] and a["elevation"] == after[0]["elevation"] for a in after)
+    # The wheel zooms all four.
+    qtbot.wait(10)
+    d0 = panes[0].cameraParams()["distance"]
+    wheel = QtGui.QWheelEvent(
+        QtCore.QPointF(c),
+        QtCore.QPointF(pane.mapToGlobal(c)),
+        QtCore.QPoint(0, 0),
+        QtCore.QPoint(0, 240),
+        Qt.MouseButton.NoButton,
+        Qt.KeyboardModifier.NoModifier,
+        Qt.ScrollPhase.NoScrollPhase,
+        False,
+    )
+    QtCore.QCoreApplication.sendEvent(pane, wheel)
+    assert all(p.cameraParams()["distance"] < d0 for p in panes)
+    # Top: every view looks down the z axis.
+    qtbot.mouseClick(area.buttons["top"], Qt.MouseButton.LeftButton)
+    assert all(p.cameraParams()["elevation"] == 90.0 for p in panes)
+    # Home fits the octahedron: its whole height is in view again after the zoom.
+    _key_3d(qtbot, win, Qt.Key.Key_Home)
+    assert all(abs(p.cameraParams()["distance"] - d0) < 1e-6 * d0 for p in panes)
+
+
+def test_a_project_of_3d_objects_opens_in_the_3d_views_and_f3_goes_back(make_window, qtbot):
+    win = make_window(threaded=True)
+    poly = Polyhedron(
+        [[4, 0, 0], [-4, 0, 0], [0, 4, 0], [0, -4, 0], [0, 0, 4], [0, 0, -4]],
+        [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]],
+    )
+    win.doc.reset([win.doc.make_object(poly, name="solid")])  # as File ▸ Open does
+    qtbot.waitUntil(lambda: win.views.dimension == 3, timeout=5000)
+    assert win.registry["view.three_d"].isChecked()
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    euclidean = win.views.area3d.by_name("euclidean3d")
+    data = euclidean._items[win.doc.objects[0].id][0]
+    assert len(data["lines"]) == 2 * 12  # the octahedron's 12 edges, not the diagonals of a triangulation
+    _key_3d(qtbot, win, Qt.Key.Key_F3)
+    assert win.views.dimension == 2 and not win.registry["view.three_d"].isChecked()
