@@ -11,7 +11,11 @@ panel, measures through the Measure panel), waits until every view and backgroun
 its picture is drawn over the window's at the place it opened.
 
 Pictures (docs/img): ``analytical-segment.png``, ``inspector.png``, ``dark.png``, ``properties-panel.png``,
-``context-menu.png``, ``measure.png``, ``label-map.png``, ``history.png``.
+``context-menu.png``, ``measure.png``, ``label-map.png``, ``history.png``, and ``views-3d.png``, which needs a
+display with OpenGL (the 3D views abort offscreen)::
+
+    xvfb-run -s "-screen 0 1600x1000x24 +extension GLX" env QT_QPA_PLATFORM=xcb \
+        .venv/bin/python docs/figures/make_window_figures.py views-3d
 """
 
 from __future__ import annotations
@@ -239,6 +243,26 @@ def history(app: Any) -> Path:
     return _save(app, win, "history.png")
 
 
+def views_3d(app: Any) -> Path:
+    """The four 3D views: a digital octahedron (8 plane segments) and a digital torus, seen obliquely."""
+    import numpy as np
+
+    from mrm.core.grids import VoxelSet
+    from mrm.document.commands import AddObject
+
+    r = 10
+    z, y, x = np.mgrid[-r : r + 1, -r : r + 1, -r : r + 1]
+    octahedron = VoxelSet(np.abs(x) + np.abs(y) + np.abs(z) <= r, (-r - 14, -r, -r))
+    z, y, x = np.mgrid[-5:6, -13:14, -13:14]
+    torus = VoxelSet((np.hypot(x, y) - 9.0) ** 2 + z**2 <= 3.6**2, (14 - 13, -13, -5))
+    win = _window()
+    win.doc.reset([win.doc.make_object(octahedron, name="octahedron"), win.doc.make_object(torus, name="torus")])
+    win.doc.push(AddObject(win.doc.make_object(torus, name="_")))  # a push so the document settles as a user's
+    win.doc.history.undo()
+    _settle(app, win)
+    return _save(app, win, "views-3d.png")
+
+
 FIGURES: dict[str, Callable[[Any], Path]] = {
     "label-map": label_map,
     "analytical-segment": analytical_segment,
@@ -248,6 +272,7 @@ FIGURES: dict[str, Callable[[Any], Path]] = {
     "context-menu": context_menu,
     "measure": measure,
     "history": history,
+    "views-3d": views_3d,
 }
 
 
@@ -257,7 +282,10 @@ def main(names: list[str]) -> int:
     from mrm.warmup import warm_up
 
     warm_up()
-    for name in names or list(FIGURES):
+    from PySide6 import QtGui
+
+    offscreen = QtGui.QGuiApplication.platformName() in ("offscreen", "minimal")
+    for name in names or [n for n in FIGURES if not (offscreen and n == "views-3d")]:
         FIGURES[name](app)
     return 0
 
