@@ -444,8 +444,8 @@ def read_raster(
 _WORKING_BYTES = 24
 
 
-def _windows(ds: Any, name: str) -> Iterator[Any]:
-    """Windows of band 1 covering the raster, each whole blocks of at most the decoding budget.
+def _windows(ds: Any, name: str, band: int = 1) -> Iterator[Any]:
+    """Windows of band ``band`` covering the raster, each whole blocks of at most the decoding budget.
 
     Refuses a raster stored in blocks (strips or tiles, which GDAL decodes whole) of more than
     :data:`~mrm.core.limits.MAX_DECODED_BYTES`, before any is decoded.
@@ -454,9 +454,9 @@ def _windows(ds: Any, name: str) -> Iterator[Any]:
 
     budget = limits.MAX_DECODED_BYTES
     width, height = int(ds.width), int(ds.height)
-    bh, bw = (int(v) for v in ds.block_shapes[0])
+    bh, bw = (int(v) for v in ds.block_shapes[band - 1])
     bh, bw = max(1, min(bh, height)), max(1, min(bw, width))
-    itemsize = np.dtype(ds.dtypes[0]).itemsize
+    itemsize = np.dtype(ds.dtypes[band - 1]).itemsize
     # A pixel-interleaved block holds every band's sample of its pixels.
     interleaved = ds.count > 1 and getattr(ds.interleaving, "name", "") == "pixel"
     block_bytes = bh * bw * itemsize * (ds.count if interleaved else 1)
