@@ -299,9 +299,11 @@ def burn_file(
                 )
         else:
             assert resolution is not None
-            if extent is None and whole is None:
-                raise ParameterError(f"{path}: no feature to burn and no --extent")
-            grid = GeoRef.from_resolution(resolution, extent or tuple(whole.bounds), crs)
+            if extent is None:
+                if whole is None:
+                    raise ParameterError(f"{path}: no feature to burn and no --extent")
+                extent = tuple(whole.bounds)
+            grid = GeoRef.from_resolution(resolution, extent, crs)
         check_pixels(grid.width * grid.height, limit, f"{output}: the grid")
     t0 = time.perf_counter()
     parts = []

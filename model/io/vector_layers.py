@@ -63,7 +63,7 @@ _MAGIC = {".gpkg": b"SQLite format 3\x00", ".fgb": b"fgb\x03", ".shp": b"\x00\x0
 
 def _pyogrio() -> Any:
     try:
-        import pyogrio
+        import pyogrio  # type: ignore[import-untyped]
     except ImportError:  # pragma: no cover - depends on the install
         raise FileFormatError(
             "vector layers (.gpkg .shp .fgb) need the geo extra: pip install 'mr-modeler[geo]' "
@@ -257,10 +257,10 @@ def read_layer(path: PathLike, field: str | None = None) -> tuple[list[BaseGeome
         raise FileFormatError(f"{p.name}: unreadable vector layer ({str(e).splitlines()[0]})") from None
     geoms = [g for g in shapely.from_wkb(wkb)]
     crs = None if meta.get("crs") is None else crs_text(_pyproj_crs(meta["crs"]))
-    values = data[0] if field is not None else None
+    values = None
     if field is not None:
+        values = np.asarray(data[0])
         dtype = np.dtype(meta["dtypes"][0]) if meta.get("dtypes") is not None else values.dtype
-        values = np.asarray(values)
         if dtype.kind not in "iuf":
             raise FileFormatError(f"{p.name}: field {field!r} holds {dtype} values; burning needs integers")
     return geoms, values, crs
