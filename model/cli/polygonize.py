@@ -71,6 +71,7 @@ MODEL_HELP = (
 
 INPUTS = (*LABEL_READ_EXTENSIONS, *GEOTIFF_EXTENSIONS)
 OUTPUTS = LAYER_EXTENSIONS
+OUTPUT_WHAT = "vector output file (GeoJSON, GeoPackage, Shapefile or FlatGeobuf)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -226,7 +227,7 @@ def polygonize_file(
     pixels_field: str = "pixels",
 ) -> dict[str, Any]:
     """Polygonize one label image and write its features; return its summary (batch workers call it)."""
-    extension_of(output, OUTPUTS, "vector output file")
+    extension_of(output, OUTPUTS, OUTPUT_WHAT)
     check_field_names([field, pixels_field], output)  # before any work
     lm, values, georef = _read_input(path, band, nodata, mask, limit)
     check_layer_crs(output, None if georef is None else georef.crs)
@@ -268,7 +269,7 @@ def _line(f: dict[str, Any]) -> str:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Polygonize every label image and write the features; return the summary."""
-    pairs = inputs_and_outputs(args, INPUTS, "label image", OUTPUTS, ".geojson", "vector output file")
+    pairs = inputs_and_outputs(args, INPUTS, "label image", OUTPUTS, ".geojson", OUTPUT_WHAT)
     for _, o in pairs:
         check_field_names([args.field, args.pixels_field], o)
     jobs = [

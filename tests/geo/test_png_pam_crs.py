@@ -17,6 +17,8 @@ from pyproj import CRS as ProjCRS
 from rasterio.transform import from_origin
 
 PY = sys.executable
+#: The CRS comparisons go through PROJ strings (``to_dict``), which pyproj warns are lossy in general.
+pytestmark = pytest.mark.filterwarnings("ignore:You will likely lose important projection information")
 T = from_origin(500_000.0, 4_200_000.0, 30.0, 30.0)
 CUSTOM = (
     "+proj=lcc +lat_1=41.5 +lat_2=47.5 +lat_0=44.25 +lon_0=2.7 +x_0=700000 +y_0=6600000 "

@@ -25,6 +25,8 @@ from mrm.core.grids import LabelMap
 from mrm.geometry.reconstruct.polygonize import polygonize
 
 PY = sys.executable
+#: The CRS comparisons go through PROJ strings (``to_dict``), which pyproj warns are lossy in general.
+pytestmark = pytest.mark.filterwarnings("ignore:You will likely lose important projection information")
 T = from_origin(500_000.0, 4_200_000.0, 30.0, 30.0)
 CRS = "EPSG:32633"
 #: A CRS without an EPSG code: a custom Lambert conformal conic.
