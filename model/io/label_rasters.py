@@ -73,13 +73,14 @@ def _class_values(band: npt.NDArray[Any], valid: npt.NDArray[np.bool_], name: st
     """The valid samples as int64, refusing non-integer or out-of-range class values with one line."""
     if band.dtype.kind == "f":
         v = band[valid]
-        bad = ~np.isfinite(v) | (v != np.round(v)) | (np.abs(v) > 2**62)
+        bad = ~np.isfinite(v) | (v != np.round(v)) | (np.abs(v) > 2**31)
         if bad.any():
             raise FileFormatError(
-                f"{name}: a classified band holds integer class values; found {v[bad][0]!r} "
+                f"{name}: a classified band holds integer class values; found {float(v[bad][0])!r} "
                 "(give --nodata for the value that means no data)"
             )
-    elif band.dtype.kind not in "iub":
+        return np.where(valid, band, 0).astype(np.int64)  # nodata (NaN) never cast
+    if band.dtype.kind not in "iub":
         raise FileFormatError(f"{name}: a classified band holds integers, not {band.dtype}")
     return band.astype(np.int64)
 

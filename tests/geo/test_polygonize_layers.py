@@ -194,3 +194,20 @@ def test_help_states_the_model_polygonize_uses(tmp_path):
     assert done.returncode == 0
     text = " ".join(done.stdout.split())
     assert "only 'gauss'" in text and "'standard'" not in text
+
+
+def test_a_float_band_with_nan_nodata_polygonizes_and_a_fraction_is_refused(tmp_path):
+    cls = classes(30, 40, 5).astype(np.float32)
+    cls[cls == NODATA] = np.nan
+    write_tif(tmp_path / "f.tif", [cls], nodata=np.nan)
+    done = mrm_run("polygonize", "f.tif", "-o", "f.gpkg", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    _, geoms, fields = read_back(tmp_path / "f.gpkg")
+    burnt = rasterize(zip(geoms, fields["label"].tolist(), strict=True), out_shape=cls.shape, transform=T,
+                      fill=-1, dtype="float32")  # fmt: skip
+    assert (burnt == np.nan_to_num(cls, nan=-1)).all()
+    cls[5, 5] = 2.5
+    write_tif(tmp_path / "g.tif", [cls], nodata=np.nan)
+    done = mrm_run("polygonize", "g.tif", "-o", "g.gpkg", cwd=tmp_path)
+    assert done.returncode == 2 and one_error_line(done.stderr) and "found 2.5" in done.stderr, done.stderr
+    assert not (tmp_path / "g.gpkg").exists()
