@@ -16,6 +16,7 @@ import pyogrio
 import pytest
 import rasterio
 import shapely
+import shapely.affinity
 from rasterio.features import rasterize
 from rasterio.transform import from_origin
 from shapely.geometry import Polygon
@@ -123,3 +124,31 @@ def test_a_layer_in_another_crs_than_the_template_is_refused(tmp_path):
         "discretize", "f.fgb", "--attribute", "cls", "--like", "grid.tif", "-o", "o.tif", cwd=tmp_path
     )
     assert done.returncode == 2 and one_error_line(done.stderr) and "reproject" in done.stderr
+
+
+@pytest.mark.filterwarnings("ignore:'crs' was not provided")
+def test_resolution_grid_takes_the_layers_crs_and_no_grid_gives_a_label_map(tmp_path):
+    geoms = fields_layer(4)
+    write_layer(tmp_path / "f.gpkg", geoms, np.arange(1, 13))
+    grid = ("--resolution", "30", "--extent", "500000,4198800,501800,4200000")
+    done = mrm_run(
+        "discretize", "f.gpkg", "--attribute", "cls", *grid, "--model", "gauss", "-o", "r.tif", cwd=tmp_path
+    )
+    assert done.returncode == 0, done.stderr
+    with rasterio.open(tmp_path / "r.tif") as ds:
+        assert ds.crs == rasterio.crs.CRS.from_epsg(32633) and ds.transform == T
+        got = ds.read(1)
+    want = rasterize(zip(geoms, range(1, 13), strict=True), out_shape=got.shape, transform=T, dtype="int32")
+    assert (got == want).all()
+    # Without a grid: a label map in the layer's own coordinates (pixel (x, y) centred on (x, y)).
+    from mrm.io.pixel_files import read_label_map
+
+    small = [shapely.affinity.translate(shapely.affinity.scale(g, 0.05, 0.05, origin=(500_000, 4_199_000)),
+                                        -500_000, -4_199_000) for g in geoms]  # fmt: skip
+    write_layer(tmp_path / "g.fgb", small, np.arange(1, 13) * 1000, crs=None)
+    done = mrm_run(
+        "discretize", "g.fgb", "--attribute", "cls", "--model", "gauss", "-o", "g.npz", cwd=tmp_path
+    )
+    assert done.returncode == 0, done.stderr
+    lm = read_label_map(tmp_path / "g.npz")
+    assert set(lm.label_values()) <= set(range(1000, 13_000, 1000)) and len(lm.label_values()) > 3

@@ -23,6 +23,7 @@ from rasterio.transform import from_origin
 
 from mrm.core.grids import LabelMap
 from mrm.geometry.reconstruct.polygonize import polygonize
+from mrm.io.georef import world_file_text
 
 PY = sys.executable
 #: The CRS comparisons go through PROJ strings (``to_dict``), which pyproj warns are lossy in general.
@@ -211,3 +212,37 @@ def test_a_float_band_with_nan_nodata_polygonizes_and_a_fraction_is_refused(tmp_
     done = mrm_run("polygonize", "g.tif", "-o", "g.gpkg", cwd=tmp_path)
     assert done.returncode == 2 and one_error_line(done.stderr) and "found 2.5" in done.stderr, done.stderr
     assert not (tmp_path / "g.gpkg").exists()
+
+
+def test_a_shapefile_rewritten_without_crs_loses_its_old_prj(tmp_path):
+    from PIL import Image
+
+    write_tif(tmp_path / "c.tif", [classes(20, 30, 6)])
+    assert mrm_run("polygonize", "c.tif", "-o", "out.shp", cwd=tmp_path).returncode == 0
+    assert (tmp_path / "out.prj").is_file()
+    lab = np.zeros((8, 8), np.uint8)
+    lab[2:6, 1:5] = 3
+    Image.fromarray(lab).save(tmp_path / "plain.png")  # no world file: grid coordinates, no CRS
+    done = mrm_run("polygonize", "plain.png", "-o", "out.shp", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert not (tmp_path / "out.prj").exists()  # the new layer is not placed by the old CRS
+    meta, geoms, fields = read_back(tmp_path / "out.shp")
+    assert meta["crs"] is None and fields["label"].tolist() == [3] and len(geoms) == 1
+
+
+def test_a_png_label_image_with_a_world_file_and_a_mask(tmp_path):
+    from PIL import Image
+
+    cls = classes(20, 30, 7)
+    cls[cls == NODATA] = 0  # a PNG label image: 0 is the background
+    Image.fromarray(cls).save(tmp_path / "lab.png")
+    (tmp_path / "lab.pgw").write_text(world_file_text(tuple(T)[:6]))
+    mask = np.full(cls.shape, 255, np.uint8)
+    mask[:, :10] = 0
+    Image.fromarray(mask).save(tmp_path / "keep.png")
+    done = mrm_run("polygonize", "lab.png", "--mask", "keep.png", "-o", "out.fgb", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    _, geoms, fields = read_back(tmp_path / "out.fgb")
+    burnt = rasterize(zip(geoms, fields["label"].tolist(), strict=True), out_shape=cls.shape, transform=T,
+                      fill=0, dtype="uint8")  # fmt: skip
+    assert (burnt == np.where(mask == 0, 0, cls)).all()
