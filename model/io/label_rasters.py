@@ -46,9 +46,6 @@ log = logging.getLogger(__name__)
 
 PathLike = str | os.PathLike[str]
 
-#: The largest class value span (max − min) numbered through a lookup table; wider spans sort the values.
-_LUT_SPAN = 1 << 20
-
 
 @dataclass(frozen=True)
 class LabelRaster:
@@ -69,11 +66,11 @@ class LabelRaster:
     georef: GeoRef | None
 
 
-def _class_values(band: npt.NDArray[Any], valid: npt.NDArray[np.bool_], name: str) -> npt.NDArray[np.int64]:
-    """The valid samples as int64, refusing non-integer or out-of-range class values with one line."""
+def _class_values(band: npt.NDArray[Any], valid: npt.NDArray[np.bool_], name: str) -> npt.NDArray[Any]:
+    """The samples as integers (a float band's as int64), refusing non-integer or huge class values."""
     if band.dtype.kind == "f":
         v = band[valid]
-        bad = ~np.isfinite(v) | (v != np.round(v)) | (np.abs(v) > 2**31)
+        bad = ~np.isfinite(v) | (v != np.round(v)) | (np.abs(v) >= 2**31)
         if bad.any():
             raise FileFormatError(
                 f"{name}: a classified band holds integer class values; found {float(v[bad][0])!r} "
@@ -82,7 +79,11 @@ def _class_values(band: npt.NDArray[Any], valid: npt.NDArray[np.bool_], name: st
         return np.where(valid, band, 0).astype(np.int64)  # nodata (NaN) never cast
     if band.dtype.kind not in "iub":
         raise FileFormatError(f"{name}: a classified band holds integers, not {band.dtype}")
-    return band.astype(np.int64)
+    return band
+
+
+#: Rows of pixels numbered at a time (their int64 working copies stay within a few megabytes).
+_STRIP_PIXELS = 1 << 20
 
 
 def read_label_raster(
@@ -94,6 +95,10 @@ def read_label_raster(
     limit: int = limits.MAX_LABEL_PIXELS,
 ) -> LabelRaster:
     """Read band ``band`` of a classified GeoTIFF as a label map (see the module docstring).
+
+    The band is decoded a window of whole blocks at a time (ADR 0047) into an array of its own integer type
+    (int64 for a float band); the peak is about 6 bytes per pixel beyond that array (the int32 labels, the
+    validity mask).
 
     Parameters
     ----------
@@ -116,10 +121,10 @@ def read_label_raster(
     Raises
     ------
     FileFormatError
-        Not a TIFF, a band that does not exist, non-integer class values, more classes than a subdivision
-        takes, a mask of another size or grid.
+        Not a TIFF, non-integer class values, more classes than a subdivision takes, a mask of another
+        size or grid.
     ParameterError
-        A ``nodata`` value the band's type cannot hold.
+        A band the raster does not have, a ``nodata`` value the band's type cannot hold.
     """
     rasterio = _rasterio()
     p = Path(path)
@@ -135,68 +140,89 @@ def read_label_raster(
             nodata = ds.nodatavals[band - 1]
         else:
             _check_nodata(nodata, dtype, name)
-        rows = np.zeros((height, width), dtype=np.int64)  # top row first, as the band
+        store = dtype if dtype.kind in "iub" else np.dtype(np.int64)
+        rows = np.zeros((height, width), dtype=store)  # top row first, as the band
         valid = np.zeros((height, width), dtype=bool)
+        found: list[npt.NDArray[np.int64]] = []
         try:
             for win in _windows(ds, name, band):
                 data = ds.read(band, window=win)
                 r0, c0 = int(win.row_off), int(win.col_off)
                 r1, c1 = r0 + data.shape[0], c0 + data.shape[1]
-                ok = np.ones(data.shape, dtype=bool) if nodata is None else ~(data == nodata)
-                if data.dtype.kind == "f" and nodata is not None and np.isnan(nodata):
+                if nodata is None:
+                    ok = np.ones(data.shape, dtype=bool)
+                elif data.dtype.kind == "f" and np.isnan(nodata):
                     ok = ~np.isnan(data)
+                else:
+                    ok = data != nodata
                 valid[r0:r1, c0:c1] = ok
-                rows[r0:r1, c0:c1] = np.where(ok, _class_values(data, ok, name), 0)
-                del data, ok
+                ints = _class_values(data, ok, name)
+                rows[r0:r1, c0:c1] = ints
+                found.append(_distinct(ints[ok]))
+                del data, ok, ints
         except rasterio.errors.RasterioError as e:
             raise FileFormatError(f"{name}: corrupt GeoTIFF ({e})") from None
     if mask is not None:
         valid &= _mask_rows(mask, (height, width), georef, name)
-    labels, values = _number_classes(rows, valid, name)
+    values = np.unique(np.concatenate(found)) if found else np.zeros(0, np.int64)
+    if values.size > limits.MAX_SUBDIVISION_LABELS:
+        raise FileFormatError(
+            f"{name}: {values.size:,} class values, more than the {limits.MAX_SUBDIVISION_LABELS:,} a "
+            "polygonization takes: is it a classified raster (or give --nodata / --mask)?"
+        )
+    labels = np.zeros((height, width), dtype=np.int32)  # bottom row first, as a LabelMap holds it
+    step = max(1, _STRIP_PIXELS // max(1, width))
+    for r0 in range(0, height, step):
+        r1 = min(height, r0 + step)
+        k = np.searchsorted(values, rows[r0:r1]).astype(np.int32) + 1
+        k[~valid[r0:r1]] = 0
+        labels[height - r1 : height - r0] = k[::-1]
     del rows, valid
-    lm = LabelMap(labels[::-1], grid_origin(georef))
-    return LabelRaster(lm, values, georef)
+    if mask is not None:  # a mask may leave some class with no pixel: keep only the values still present
+        present = _present(labels, values.size)
+        if not present[1:].all():
+            renumber = np.cumsum(present).astype(np.int32) - 1
+            labels = renumber[labels]
+            values = values[present[1:]]
+    lm = LabelMap.taking_over(labels, grid_origin(georef))
+    return LabelRaster(lm, values.astype(np.int64), georef)
+
+
+def _distinct(v: npt.NDArray[Any]) -> npt.NDArray[np.int64]:
+    """The distinct values of valid samples, a million at a time (8/16-bit types: a table of seen values)."""
+    v = v.ravel()
+    small = v.dtype.itemsize <= 2 and v.dtype.kind in "iub"
+    lo = int(np.iinfo(v.dtype).min) if small and v.dtype.kind == "i" else 0
+    seen = np.zeros(1 << (8 * v.dtype.itemsize), dtype=bool) if small else None
+    out = np.zeros(0, np.int64)
+    for i in range(0, v.size, _STRIP_PIXELS):
+        chunk = v[i : i + _STRIP_PIXELS].astype(np.int64)
+        if seen is not None:
+            seen[chunk - lo] = True
+        else:
+            out = np.union1d(out, chunk)
+    return (np.flatnonzero(seen).astype(np.int64) + lo) if seen is not None else out
+
+
+def _present(labels: npt.NDArray[np.int32], n: int) -> npt.NDArray[np.bool_]:
+    """Which of the labels 0..n occur, a strip at a time (no full-size int64 copy)."""
+    present = np.zeros(n + 1, dtype=bool)
+    flat = labels.ravel()
+    for i in range(0, flat.size, _STRIP_PIXELS):
+        present[flat[i : i + _STRIP_PIXELS]] = True
+    return present
 
 
 def _check_nodata(nodata: float, dtype: np.dtype[Any], name: str) -> None:
     """Refuse a nodata value the band's type cannot hold (it would silently match nothing)."""
     if dtype.kind == "f":
         return
-    if (
-        nodata != nodata
-        or nodata != int(nodata)
-        or not (np.iinfo(dtype).min <= nodata <= np.iinfo(dtype).max)
-    ):
-        info = np.iinfo(dtype)
+    info = np.iinfo(dtype) if dtype.kind in "iu" else np.iinfo(np.uint8)
+    if nodata != nodata or nodata != int(nodata) or not (info.min <= nodata <= info.max):
         raise ParameterError(
             f"{name}: --nodata {nodata:g} is not a value of the band's type {dtype} "
             f"(integers from {info.min} to {info.max})"
         )
-
-
-def _number_classes(
-    rows: npt.NDArray[np.int64], valid: npt.NDArray[np.bool_], name: str
-) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.int64]]:
-    """Labels 1..K for the K class values of the valid pixels (0 elsewhere), and the values."""
-    if not valid.any():
-        return np.zeros(rows.shape, dtype=np.int32), np.zeros(0, dtype=np.int64)
-    lo, hi = int(rows[valid].min()), int(rows[valid].max())
-    if hi - lo <= _LUT_SPAN:  # a lookup table: no sort of the whole raster
-        present = np.zeros(hi - lo + 1, dtype=bool)
-        present[(rows[valid] - lo)] = True
-        values = np.flatnonzero(present).astype(np.int64) + lo
-        lut = np.cumsum(present).astype(np.int32)
-        labels = np.where(valid, lut[np.clip(rows - lo, 0, hi - lo)], 0).astype(np.int32)
-    else:
-        values, inverse = np.unique(rows[valid], return_inverse=True)
-        labels = np.zeros(rows.shape, dtype=np.int32)
-        labels[valid] = inverse.astype(np.int32) + 1
-    if values.size > limits.MAX_SUBDIVISION_LABELS:
-        raise FileFormatError(
-            f"{name}: {values.size:,} class values, more than the {limits.MAX_SUBDIVISION_LABELS:,} a "
-            "polygonization takes: is it a classified raster (or give --nodata / --mask)?"
-        )
-    return labels, values.astype(np.int64)
 
 
 def _mask_rows(
