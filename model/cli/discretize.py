@@ -18,7 +18,8 @@ the background, so a feature of value 0 erases. With ``--like`` or ``--resolutio
 or PNG + world file on that grid, with the template's (or the layer's) CRS; without, a label map (.png,
 .npz) in the layer's own coordinates.
 
-``IN`` is a GeoJSON or WKT file (every geometry in it, combined) or a project (.mrm). For a project,
+``IN`` is a GeoJSON, WKT, GeoPackage, Shapefile or FlatGeobuf file (every geometry in it, combined; the last
+three through pyogrio, with their CRS checked against ``--like``'s) or a project (.mrm). For a project,
 ``--object NAME`` picks one object — a Euclidean object is discretized, a discrete object is written as it
 is (it is its own discrete representation); without ``--object`` every Euclidean object of the project is
 discretized, combined (D is union-stable, so this is the union of their discretizations). The model is
@@ -71,7 +72,8 @@ NAME = "discretize"
 #: What ``-o -`` writes without ``--format``.
 STDOUT_FORMAT = ".png"
 HELP = (
-    "discretize a Euclidean geometry (.geojson, .wkt, .mrm) into a pixel file (.png, .pbm, .pgm, .npz, .svg)"
+    "discretize a Euclidean geometry (.geojson, .wkt, .gpkg, .shp, .fgb, .mrm) into a pixel file (.png, .pbm, "
+    ".pgm, .npz, .tif, .svg); --attribute burns a field's values into a label raster"
 )
 
 INPUTS = (*VECTOR_EXTENSIONS, PROJECT_EXTENSION, ".gpkg", ".shp", ".fgb")
@@ -151,7 +153,14 @@ def _grid(path: str, geom: Any, like: str | None, resolution: float | None, exte
         return None
     if geom is None:
         raise ParameterError(f"{path}: --like and --resolution apply to Euclidean inputs only")
-    crs = read_geojson_crs(path) if Path(path).suffix.lower() in (".geojson", ".json") else None
+    ext = Path(path).suffix.lower()
+    crs = (
+        read_geojson_crs(path)
+        if ext in (".geojson", ".json")
+        else _layer_crs(path)
+        if ext in LAYER_ONLY
+        else None
+    )
     if like is not None:
         if resolution is not None or extent is not None:
             raise ParameterError("--like gives the grid: it excludes --resolution and --extent")
@@ -183,9 +192,12 @@ def discretize_file(
     out_ext = extension_of(output, OUTPUTS, "pixel output file")  # fail before any work
     if attribute is not None:
         return burn_file(path, output, attribute, model, limit, like, resolution, extent)
-    if out_ext in LAYER_ONLY or Path(path).suffix.lower() in LAYER_ONLY:
-        raise ParameterError(f"{path}: a .gpkg, .shp or .fgb layer is burnt with --attribute FIELD")
-    source, chosen = _source(path, object_name, model, limit)
+    if Path(path).suffix.lower() in LAYER_ONLY:
+        if object_name is not None:
+            raise ParameterError(f"{path}: --object applies to projects (.mrm)")
+        source, chosen = _layer_source(path), model or "standard"
+    else:
+        source, chosen = _source(path, object_name, model, limit)
     geom = None if isinstance(source, PixelSet) else source
     grid = _grid(path, geom, like, resolution, extent)
     if grid is not None:
@@ -226,6 +238,25 @@ def discretize_file(
 LAYER_ONLY = (".gpkg", ".shp", ".fgb")
 #: What ``--attribute`` writes without a grid: a label map in the layer's coordinates.
 _LABEL_OUTPUTS = (".png", ".npz")
+
+
+def _layer_source(path: str) -> Any:
+    """Every feature of a GeoPackage, Shapefile or FlatGeobuf layer, combined (as for a GeoJSON file)."""
+    from mrm.io.vector_files import check_geometry
+    from mrm.io.vector_layers import read_layer
+
+    geoms, _, _ = read_layer(path)
+    return combine(
+        check_geometry(g, f"{path}: feature {i}")
+        for i, g in enumerate(geoms)
+        if g is not None and not g.is_empty
+    )
+
+
+def _layer_crs(path: str) -> str | None:
+    from mrm.io.vector_layers import read_layer_crs
+
+    return read_layer_crs(path)
 
 
 def _burn_values(values: Any, path: str, field: str) -> npt.NDArray[np.int64]:

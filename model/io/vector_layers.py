@@ -218,7 +218,14 @@ def _write_geojson_layer(
     write_features(list(geometries), props, p, members=members)
 
 
-def read_layer(path: PathLike, field: str | None = None) -> tuple[list[BaseGeometry], Any, str | None]:
+def read_layer_crs(path: PathLike) -> str | None:
+    """The CRS of a vector layer (``EPSG:n``, WKT or None), from its header (:func:`read_layer`'s checks)."""
+    return read_layer(path, None, geometries=False)[2]
+
+
+def read_layer(
+    path: PathLike, field: str | None = None, *, geometries: bool = True
+) -> tuple[list[BaseGeometry], Any, str | None]:
     """Read a vector layer's geometries, one field's values (or None) and its CRS (``EPSG:n``, WKT or None).
 
     The file must be a regular file of the format its extension names (its first bytes checked) and at most
@@ -250,12 +257,20 @@ def read_layer(path: PathLike, field: str | None = None) -> tuple[list[BaseGeome
         if field is not None and field not in names:
             shown = ", ".join(names) if names else "none"
             raise FileFormatError(f"{p.name}: no field {field!r} (its fields: {shown})")
+        if not geometries:
+            crs_only = info.get("crs")
+            return [], None, None if crs_only is None else crs_text(_pyproj_crs(crs_only))
         meta, _, wkb, data = pyogrio.raw.read(str(p), columns=[] if field is None else [field])
     except FileFormatError:
         raise
     except Exception as e:
         raise FileFormatError(f"{p.name}: unreadable vector layer ({str(e).splitlines()[0]})") from None
-    geoms = [g for g in shapely.from_wkb(wkb)]
+    geoms = list(shapely.from_wkb(wkb))
+    n = int(shapely.get_num_coordinates(np.asarray(geoms, dtype=object)).sum()) if geoms else 0
+    if n > limits.MAX_OBJECT_VERTICES:
+        raise FileFormatError(
+            f"{p.name}: {n:,} positions, more than the limit of {limits.MAX_OBJECT_VERTICES:,}"
+        )
     crs = None if meta.get("crs") is None else crs_text(_pyproj_crs(meta["crs"]))
     values = None
     if field is not None:

@@ -152,3 +152,21 @@ def test_resolution_grid_takes_the_layers_crs_and_no_grid_gives_a_label_map(tmp_
     assert done.returncode == 0, done.stderr
     lm = read_label_map(tmp_path / "g.npz")
     assert set(lm.label_values()) <= set(range(1000, 13_000, 1000)) and len(lm.label_values()) > 3
+
+
+@pytest.mark.parametrize("ext", [".gpkg", ".shp", ".fgb"])
+def test_without_attribute_a_layer_is_discretized_whole(tmp_path, ext):
+    template(tmp_path / "grid.tif")
+    geoms = fields_layer(5)
+    write_layer(tmp_path / f"f{ext}", geoms, np.arange(12))
+    done = mrm_run(
+        "discretize", f"f{ext}", "--like", "grid.tif", "--model", "gauss", "-o", "m.tif", cwd=tmp_path
+    )
+    assert done.returncode == 0, done.stderr
+    with rasterio.open(tmp_path / "m.tif") as ds:
+        assert ds.crs == rasterio.crs.CRS.from_epsg(32633) and ds.transform == T
+        got = ds.read(1)
+    assert (got == rasterize([(g, 1) for g in geoms], out_shape=(40, 60), transform=T, dtype="uint8")).all()
+    write_layer(tmp_path / f"w{ext}", geoms, np.arange(12), crs="EPSG:4326")
+    done = mrm_run("discretize", f"w{ext}", "--like", "grid.tif", "-o", "w.tif", cwd=tmp_path)
+    assert done.returncode == 2 and one_error_line(done.stderr) and "reproject" in done.stderr
