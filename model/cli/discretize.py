@@ -72,8 +72,8 @@ NAME = "discretize"
 #: What ``-o -`` writes without ``--format``.
 STDOUT_FORMAT = ".png"
 HELP = (
-    "discretize a Euclidean geometry (.geojson, .wkt, .gpkg, .shp, .fgb, .mrm) into a pixel file (.png, .pbm, "
-    ".pgm, .npz, .tif, .svg); --attribute burns a field's values into a label raster"
+    "discretize a Euclidean geometry (.geojson .wkt .gpkg .shp .fgb .mrm) into a pixel file (.png .pbm .pgm "
+    ".npz .tif .svg); --attribute burns a field's values into a label raster"
 )
 
 INPUTS = (*VECTOR_EXTENSIONS, PROJECT_EXTENSION, ".gpkg", ".shp", ".fgb")
