@@ -170,3 +170,14 @@ def test_without_attribute_a_layer_is_discretized_whole(tmp_path, ext):
     write_layer(tmp_path / f"w{ext}", geoms, np.arange(12), crs="EPSG:4326")
     done = mrm_run("discretize", f"w{ext}", "--like", "grid.tif", "-o", "w.tif", cwd=tmp_path)
     assert done.returncode == 2 and one_error_line(done.stderr) and "reproject" in done.stderr
+
+
+@pytest.mark.parametrize(("name", "content"), [("f.gpkg", b"<VRTDataset>"), ("f.fgb", b"{}"), ("f.shp", b"")])
+def test_a_file_that_is_not_the_layer_its_name_says_gives_one_line(tmp_path, name, content):
+    template(tmp_path / "grid.tif")
+    (tmp_path / name).write_bytes(content)
+    done = mrm_run(
+        "discretize", name, "--attribute", "cls", "--like", "grid.tif", "-o", "o.tif", cwd=tmp_path
+    )
+    assert done.returncode == 2 and one_error_line(done.stderr), done.stderr
+    assert "not a" in done.stderr and not (tmp_path / "o.tif").exists()
