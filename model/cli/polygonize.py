@@ -153,7 +153,7 @@ def _read_input(
                 f"{path}: --mask applies to images (.png .pgm) and GeoTIFFs; an .npz has no frame"
             )
         from mrm.io.georef import image_frame
-        from mrm.io.label_rasters import _mask_rows
+        from mrm.io.label_rasters import mask_rows
 
         x0, y0, x1, y1 = image_frame(path) if georef is None else georef.frame
         h, w = y1 - y0 + 1, x1 - x0 + 1
@@ -162,7 +162,7 @@ def _read_input(
             lx, ly = lm.origin
             lh, lw = lm.shape
             rows[ly - y0 : ly - y0 + lh, lx - x0 : lx - x0 + lw] = lm.labels
-        keep = _mask_rows(mask, (h, w), georef, Path(path).name)[::-1]
+        keep = mask_rows(mask, (h, w), georef, Path(path).name)[::-1]
         lm = LabelMap(np.where(keep, rows, 0), (x0, y0))
     return lm, None, georef
 

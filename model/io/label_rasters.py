@@ -163,7 +163,7 @@ def read_label_raster(
         except rasterio.errors.RasterioError as e:
             raise FileFormatError(f"{name}: corrupt GeoTIFF ({e})") from None
     if mask is not None:
-        valid &= _mask_rows(mask, (height, width), georef, name)
+        valid &= mask_rows(mask, (height, width), georef, name)
     values = np.unique(np.concatenate(found)) if found else np.zeros(0, np.int64)
     if values.size > limits.MAX_SUBDIVISION_LABELS:
         raise FileFormatError(
@@ -225,13 +225,23 @@ def _check_nodata(nodata: float, dtype: np.dtype[Any], name: str) -> None:
         )
 
 
-def _mask_rows(
+def mask_rows(
     mask: PathLike, shape: tuple[int, int], georef: GeoRef | None, name: str
 ) -> npt.NDArray[np.bool_]:
-    """The mask file's pixels as rows (top first) of the raster's shape: True where a region may be."""
-    ps, mgeo = read_pixels_georef(mask, limit=shape[0] * shape[1])
+    """The mask file's pixels as rows (top first) of the raster's shape: True where a region may be.
+
+    The mask's size (and, for a georeferenced mask, its transform) is checked from its header before any
+    pixel is decoded.
+    """
+    from mrm.io.georef import image_frame, read_georef
+
     mname = Path(mask).name
+    if Path(mask).suffix.lower() not in (*GEOTIFF_EXTENSIONS, ".png", ".pgm", ".pbm"):
+        raise ParameterError(
+            f"{os.fspath(mask)}: a mask is an image (.tif .png .pgm .pbm) of the input's size"
+        )
     h, w = shape
+    mgeo = read_georef(mask)
     if mgeo is not None:
         if (mgeo.width, mgeo.height) != (w, h) or (
             georef is not None and tuple(mgeo.transform) != tuple(georef.transform)
@@ -242,13 +252,12 @@ def _mask_rows(
             )
         x0, y0 = mgeo.origin
     else:
-        from mrm.io.georef import image_frame
-
         x0, y0, x1, y1 = image_frame(mask)
         if (x1 - x0 + 1, y1 - y0 + 1) != (w, h):
             raise FileFormatError(
                 f"{mname}: the mask has {x1 - x0 + 1}×{y1 - y0 + 1} pixels, the raster {name} {w}×{h}"
             )
+    ps, _ = read_pixels_georef(mask, limit=h * w)
     return ps.to_image((x0, y0, x0 + w - 1, y0 + h - 1))
 
 

@@ -246,3 +246,22 @@ def test_a_png_label_image_with_a_world_file_and_a_mask(tmp_path):
     burnt = rasterize(zip(geoms, fields["label"].tolist(), strict=True), out_shape=cls.shape, transform=T,
                       fill=0, dtype="uint8")  # fmt: skip
     assert (burnt == np.where(mask == 0, 0, cls)).all()
+
+
+@pytest.mark.parametrize(("shape", "name", "words"), [((20, 31), "m.tif", "not on the grid"),
+                                                     ((20, 31), "m.png", "the mask has 31×20 pixels"),
+                                                     ((20, 30), "m.npz", "a mask is an image")])  # fmt: skip
+def test_a_mask_off_the_rasters_grid_gives_one_line(tmp_path, shape, name, words):
+    from PIL import Image
+
+    write_tif(tmp_path / "c.tif", [classes(20, 30, 8)])
+    m = np.ones(shape, np.uint8)
+    if name.endswith(".tif"):
+        write_tif(tmp_path / name, [m], nodata=None)
+    elif name.endswith(".png"):
+        Image.fromarray(m * 255).save(tmp_path / name)
+    else:
+        np.savez(tmp_path / name, mask=m.astype(bool))
+    done = mrm_run("polygonize", "c.tif", "--mask", name, "-o", "o.gpkg", cwd=tmp_path)
+    assert done.returncode == 2 and one_error_line(done.stderr) and words in done.stderr, done.stderr
+    assert not (tmp_path / "o.gpkg").exists()
