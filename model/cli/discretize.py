@@ -253,6 +253,11 @@ def _layer_source(path: str) -> Any:
     )
 
 
+def _bounds(geom: Any) -> tuple[float, float, float, float]:
+    xmin, ymin, xmax, ymax = (float(v) for v in geom.bounds)
+    return xmin, ymin, xmax, ymax
+
+
 def _layer_crs(path: str) -> str | None:
     from mrm.io.vector_layers import read_layer_crs
 
@@ -330,11 +335,10 @@ def burn_file(
                 )
         else:
             assert resolution is not None
-            if extent is None:
-                if whole is None:
-                    raise ParameterError(f"{path}: no feature to burn and no --extent")
-                extent = tuple(whole.bounds)
-            grid = GeoRef.from_resolution(resolution, extent, crs)
+            if extent is None and whole is None:
+                raise ParameterError(f"{path}: no feature to burn and no --extent")
+            box = extent if extent is not None else _bounds(whole)
+            grid = GeoRef.from_resolution(resolution, box, crs)
         check_pixels(grid.width * grid.height, limit, f"{output}: the grid")
     t0 = time.perf_counter()
     parts = []

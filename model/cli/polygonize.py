@@ -195,7 +195,7 @@ def group_8_connected(regions: list[Region], lm: LabelMap) -> list[list[int]]:
         tree = shapely.STRtree([r.geometry for r in regions])
         pts = shapely.points(np.concatenate([x0 + c1, x0 + c2]), np.concatenate([y0 + r1, y0 + r2]))
         which, poly = tree.query(pts, predicate="within")
-        owner = np.full(pts.size, -1)
+        owner = np.full(2 * r1.size, -1)
         owner[which] = poly
         u, v = owner[: r1.size], owner[r1.size :]
         ok = (u >= 0) & (v >= 0)
