@@ -118,7 +118,7 @@ def build_parser() -> argparse.ArgumentParser:
             "--model",
             choices=Model.names(),
             default=None,
-            help="discretization model (default: the project's, or 'standard')",
+            help=getattr(mod, "MODEL_HELP", "discretization model (default: the project's, or 'standard')"),
         )
         p.add_argument("--json", action="store_true", help="print a machine-readable summary on stdout")
         p.add_argument(

@@ -9,7 +9,17 @@ geometry that covers fewer than a handful of pixels gets a warning on stderr (wr
 Several inputs (files, directories, quoted globs; ``--jobs N`` workers) need ``-o`` to be a directory
 (``NAME.geojson`` gives ``NAME.png``) or a pattern holding ``{stem}``, as for ``mrm reconstruct``.
 
-``IN`` is a GeoJSON or WKT file (every geometry in it, combined) or a project (.mrm). For a project,
+``--attribute FIELD`` burns each feature of a vector layer (GeoJSON, GeoPackage, Shapefile, FlatGeobuf,
+read through pyogrio: the ``geo`` extra) with the value of its field ``FIELD`` into a label raster
+(``gdal_rasterize -a``): each feature's pixels are its exact discretization under the model; where features
+overlap, the **last one in the layer wins** (GDAL's rule); values are integers (a float field only with
+integer values) that the output holds — 0 to 65535 in a PNG, a 32-bit integer in a GeoTIFF or NPZ — and 0 is
+the background, so a feature of value 0 erases. With ``--like`` or ``--resolution`` the output is a GeoTIFF
+or PNG + world file on that grid, with the template's (or the layer's) CRS; without, a label map (.png,
+.npz) in the layer's own coordinates.
+
+``IN`` is a GeoJSON, WKT, GeoPackage, Shapefile or FlatGeobuf file (every geometry in it, combined; the last
+three through pyogrio, with their CRS checked against ``--like``'s) or a project (.mrm). For a project,
 ``--object NAME`` picks one object — a Euclidean object is discretized, a discrete object is written as it
 is (it is its own discrete representation); without ``--object`` every Euclidean object of the project is
 discretized, combined (D is union-stable, so this is the union of their discretizations). The model is
@@ -25,6 +35,9 @@ import sys
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
 
 from mrm.cli._common import (
     PROJECT_EXTENSION,
@@ -45,7 +58,7 @@ from mrm.cli._common import (
 from mrm.cli._project_input import add_object_argument
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.georef import GeoRef
-from mrm.core.grids import PixelSet
+from mrm.core.grids import LabelMap, PixelSet
 from mrm.core.limits import check_pixels
 from mrm.io.georef import few_pixels_warning, read_geojson_crs, read_georef, same_crs, write_georeferenced
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
@@ -59,10 +72,11 @@ NAME = "discretize"
 #: What ``-o -`` writes without ``--format``.
 STDOUT_FORMAT = ".png"
 HELP = (
-    "discretize a Euclidean geometry (.geojson, .wkt, .mrm) into a pixel file (.png, .pbm, .pgm, .npz, .svg)"
+    "discretize a Euclidean geometry (.geojson .wkt .gpkg .shp .fgb .mrm) into a pixel file (.png .pbm .pgm "
+    ".npz .tif .svg); --attribute burns a field's values into a label raster"
 )
 
-INPUTS = (*VECTOR_EXTENSIONS, PROJECT_EXTENSION)
+INPUTS = (*VECTOR_EXTENSIONS, PROJECT_EXTENSION, ".gpkg", ".shp", ".fgb")
 OUTPUTS = (*PIXEL_EXTENSIONS, ".svg")
 
 
@@ -90,6 +104,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         metavar="XMIN,YMIN,XMAX,YMAX",
         help="the world box the --resolution grid covers",
+    )
+    parser.add_argument(
+        "--attribute",
+        metavar="FIELD",
+        default=None,
+        help="burn each feature's integer value of FIELD into a label raster (the last feature wins where "
+        "features overlap; 0 is the background); inputs .geojson .gpkg .shp .fgb",
     )
     add_output_argument(
         parser, "the pixel file to write (.png .pbm .pgm .npz; .svg draws the pixels with the input outlined)"
@@ -132,7 +153,14 @@ def _grid(path: str, geom: Any, like: str | None, resolution: float | None, exte
         return None
     if geom is None:
         raise ParameterError(f"{path}: --like and --resolution apply to Euclidean inputs only")
-    crs = read_geojson_crs(path) if Path(path).suffix.lower() in (".geojson", ".json") else None
+    ext = Path(path).suffix.lower()
+    crs = (
+        read_geojson_crs(path)
+        if ext in (".geojson", ".json")
+        else _layer_crs(path)
+        if ext in LAYER_ONLY
+        else None
+    )
     if like is not None:
         if resolution is not None or extent is not None:
             raise ParameterError("--like gives the grid: it excludes --resolution and --extent")
@@ -158,10 +186,18 @@ def discretize_file(
     like: str | None = None,
     resolution: float | None = None,
     extent: tuple[float, float, float, float] | None = None,
+    attribute: str | None = None,
 ) -> dict[str, Any]:
     """Read one input, discretize it, write the pixels; return the summary (batch workers call it)."""
     out_ext = extension_of(output, OUTPUTS, "pixel output file")  # fail before any work
-    source, chosen = _source(path, object_name, model, limit)
+    if attribute is not None:
+        return burn_file(path, output, attribute, model, limit, like, resolution, extent)
+    if Path(path).suffix.lower() in LAYER_ONLY:
+        if object_name is not None:
+            raise ParameterError(f"{path}: --object applies to projects (.mrm)")
+        source, chosen = _layer_source(path), model or "standard"
+    else:
+        source, chosen = _source(path, object_name, model, limit)
     geom = None if isinstance(source, PixelSet) else source
     grid = _grid(path, geom, like, resolution, extent)
     if grid is not None:
@@ -198,6 +234,150 @@ def discretize_file(
     return summary
 
 
+#: Vector layer formats read only through pyogrio, for ``--attribute``.
+LAYER_ONLY = (".gpkg", ".shp", ".fgb")
+#: What ``--attribute`` writes without a grid: a label map in the layer's coordinates.
+_LABEL_OUTPUTS = (".png", ".npz")
+
+
+def _layer_source(path: str) -> Any:
+    """Every feature of a GeoPackage, Shapefile or FlatGeobuf layer, combined (as for a GeoJSON file)."""
+    from mrm.io.vector_files import check_geometry
+    from mrm.io.vector_layers import read_layer
+
+    geoms, _, _ = read_layer(path)
+    return combine(
+        check_geometry(g, f"{path}: feature {i}")
+        for i, g in enumerate(geoms)
+        if g is not None and not g.is_empty
+    )
+
+
+def _bounds(geom: Any) -> tuple[float, float, float, float]:
+    xmin, ymin, xmax, ymax = (float(v) for v in geom.bounds)
+    return xmin, ymin, xmax, ymax
+
+
+def _layer_crs(path: str) -> str | None:
+    from mrm.io.vector_layers import read_layer_crs
+
+    return read_layer_crs(path)
+
+
+def _burn_values(values: Any, path: str, field: str) -> npt.NDArray[np.int64]:
+    """The field's values as int64, refusing missing or non-integer ones with one line."""
+    v = np.asarray(values)
+    if v.dtype.kind == "f":
+        bad = ~np.isfinite(v) | (v != np.round(v)) | (np.abs(v) > 2**31)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise ParameterError(
+                f"{path}: feature {i}: {field} = {v[i]!r} is not an integer label (burnt values are integers)"
+            )
+    return v.astype(np.int64)
+
+
+def burn_file(
+    path: str,
+    output: str,
+    field: str,
+    model: str | None,
+    limit: int,
+    like: str | None,
+    resolution: float | None,
+    extent: tuple[float, float, float, float] | None,
+) -> dict[str, Any]:
+    """``--attribute``: burn each feature's value of ``field`` into a label raster; return the summary."""
+    from mrm.io.label_rasters import label_dtype, write_label_raster
+    from mrm.io.pixel_files import write_label_map
+    from mrm.io.vector_files import check_geometry
+    from mrm.io.vector_layers import LAYER_EXTENSIONS, read_layer
+
+    extension_of(path, LAYER_EXTENSIONS, "vector layer (with --attribute)")
+    out_ext = Path(output).suffix.lower()
+    georeferenced = like is not None or resolution is not None
+    if not georeferenced and out_ext not in _LABEL_OUTPUTS:
+        raise ParameterError(
+            f"{output}: --attribute writes a label map (.png, .npz), or with --like or --resolution "
+            "a .tif or .png"
+        )
+    if georeferenced and out_ext not in (".tif", ".tiff", ".png"):
+        raise ParameterError(f"{output}: a georeferenced label raster is a .tif or a .png (+ world file)")
+    chosen = model or "standard"
+    geoms, raw, crs = read_layer(path, field)
+    values = _burn_values(raw, path, field)
+    feats = [
+        (check_geometry(g, f"{path}: feature {i}"), int(v))
+        for i, (g, v) in enumerate(zip(geoms, values.tolist(), strict=True))
+        if g is not None and not g.is_empty
+    ]
+    lo, hi = min([0, *(v for _, v in feats)]), max([0, *(v for _, v in feats)])
+    if out_ext in (".png", ".pgm") and (lo < 0 or hi > 65535):
+        raise ParameterError(
+            f"{path}: {field} runs from {lo} to {hi}; a PNG holds labels 0 to 65535 (write .tif)"
+        )
+    label_dtype(lo, hi)  # a 32-bit integer at most, refused here before any work
+    grid: GeoRef | None = None
+    if georeferenced:
+        whole = combine([g for g, _ in feats]) if feats else None
+        if like is not None:
+            if resolution is not None or extent is not None:
+                raise ParameterError("--like gives the grid: it excludes --resolution and --extent")
+            grid = read_georef(like)
+            if grid is None:
+                raise ParameterError(
+                    f"{like}: the raster has no georeference (no GeoTIFF tags, no world file)"
+                )
+            if crs is not None and grid.crs is not None and not same_crs(crs, grid.crs):
+                raise ParameterError(
+                    f"{path} is in {crs} and {Path(like).name} in {grid.crs}: reproject one of them first "
+                    "(e.g. ogr2ogr -t_srs); MR Modeler does not reproject"
+                )
+        else:
+            assert resolution is not None
+            if extent is None and whole is None:
+                raise ParameterError(f"{path}: no feature to burn and no --extent")
+            box = extent if extent is not None else _bounds(whole)
+            grid = GeoRef.from_resolution(resolution, box, crs)
+        check_pixels(grid.width * grid.height, limit, f"{output}: the grid")
+    t0 = time.perf_counter()
+    parts = []
+    for g, v in feats:  # in layer order: a later feature overwrites an earlier one (GDAL's rule)
+        ps = discretize_geometry(g if grid is None else grid.to_grid(g), chosen, limit)
+        parts.append((ps if grid is None else ps.crop(grid.frame), v))
+    if grid is not None:
+        x0, y0, x1, y1 = grid.frame
+    else:
+        boxes = [ps.bbox for ps, _ in parts if ps.bbox is not None]
+        x0, y0 = min(b[0] for b in boxes) if boxes else 0, min(b[1] for b in boxes) if boxes else 0
+        x1, y1 = max(b[2] for b in boxes) if boxes else 0, max(b[3] for b in boxes) if boxes else 0
+        check_pixels((x1 - x0 + 1) * (y1 - y0 + 1), limit, f"{output}: the label map")
+    rows = np.zeros((y1 - y0 + 1, x1 - x0 + 1), dtype=np.int64)  # bottom row first
+    for ps, v in parts:
+        if len(ps):
+            pts = ps.points()
+            rows[pts[:, 1] - y0, pts[:, 0] - x0] = v
+    seconds = time.perf_counter() - t0
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    if grid is not None:
+        write_label_raster(rows[::-1], output, grid)
+    else:
+        write_label_map(LabelMap(rows.astype(np.int32), (x0, y0)), output)
+    summary: dict[str, Any] = {
+        "input": str(path),
+        "output": str(output),
+        "model": chosen,
+        "attribute": field,
+        "features": len(feats),
+        "labels": len({v for _, v in feats} - {0}),
+        "pixels": int((rows != 0).sum()),
+        "seconds": seconds,
+    }
+    if grid is not None:
+        summary["grid"] = grid.as_dict()
+    return summary
+
+
 def _line(f: dict[str, Any]) -> str:
     return f"{f['input']} -> {f['output']}: {f['pixels']} pixels, {f['seconds']:.3f} s"
 
@@ -207,7 +387,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
     outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".png", "pixel output file")
     jobs = [
-        (i, o, args.object, args.model, args.limit, args.like, args.resolution, args.extent)
+        (i, o, args.object, args.model, args.limit, args.like, args.resolution, args.extent, args.attribute)
         for i, o in zip(inputs, outputs, strict=True)
     ]
 

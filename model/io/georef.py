@@ -321,10 +321,11 @@ def _georef(
 
 
 def _world_file_georef(p: Path, frame: tuple[int, int, int, int], crs: str | None) -> GeoRef | None:
-    """The georeference of image ``p`` (pixels in ``frame``) from its world file and ``.prj``, or None.
+    """The georeference of image ``p`` (pixels in ``frame``) from its world file and CRS, or None.
 
-    Both files are read bounded (:data:`~mrm.core.limits.MAX_WORLD_FILE_BYTES`, the CRS limit) and only when
-    they are regular files.
+    The CRS is GDAL's: the PAM file ``name.png.aux.xml`` (:func:`read_pam_srs`), else a ``.prj`` (what MR
+    Modeler wrote before it wrote the PAM file; GDAL ignores it). Every file is read bounded
+    (:data:`~mrm.core.limits.MAX_WORLD_FILE_BYTES`, the CRS limit) and only when it is a regular file.
     """
     wf = world_file_of(p)
     if wf is None:
@@ -332,18 +333,21 @@ def _world_file_georef(p: Path, frame: tuple[int, int, int, int], crs: str | Non
     raw = read_regular(wf, limits.MAX_WORLD_FILE_BYTES, "a world file", wf.name)
     transform = parse_world_file(raw.decode("ascii", errors="replace"), wf.name)
     prj = p.with_suffix(".prj")
+    aux = pam_file_of(p)
+    if crs is None and aux.is_file():  # GDAL's place for an image's CRS (it ignores a .prj beside a PNG)
+        crs = read_pam_srs(aux)
     if crs is None and prj.is_file():
         # UTF-8 takes at most 4 bytes a character: a longer file cannot hold a CRS within the limit.
         text = read_regular(prj, 4 * limits.MAX_CRS_CHARS, "a CRS (.prj)", prj.name)
         crs = text.decode("utf-8", errors="replace").strip() or None
-        if crs is not None:
-            try:
-                limits.check_crs_text(crs, f"{prj.name}: the CRS")
-                crs = _crs_text(parse_crs(crs))
-            except MRMError:
-                raise
-            except Exception:  # no rasterio, or a WKT it cannot parse: keep the text as it is
-                log.debug("kept the .prj text of %s as it is", p.name)
+    if crs is not None:
+        try:
+            limits.check_crs_text(crs, f"{p.name}: the CRS")
+            crs = _crs_text(parse_crs(crs))
+        except MRMError:
+            raise
+        except Exception:  # no rasterio, or a WKT it cannot parse: keep the text as it is
+            log.debug("kept the CRS text of %s as it is", p.name)
     x0, y0, x1, y1 = frame
     return _georef(wf.name, transform, x1 - x0 + 1, y1 - y0 + 1, crs, (x0, y0))
 
@@ -358,10 +362,12 @@ def write_world_file(path: PathLike, georef: GeoRef) -> Path:
     p = Path(path)
     wf = p.with_suffix(WORLD_FILE_EXTENSIONS.get(p.suffix.lower(), (".wld",))[0])
     prj = p.with_suffix(".prj")
+    aux = pam_file_of(p)
     with atomic_file_set() as files:
         atomic_write_text(wf, world_file_text(georef.transform))
         if georef.crs is None:
             files.remove(prj)
+            files.remove(aux)
         else:
             text = georef.crs
             try:
@@ -369,7 +375,56 @@ def write_world_file(path: PathLike, georef: GeoRef) -> Path:
             except Exception:  # no rasterio: EPSG codes are written as they are
                 log.debug("wrote the CRS of %s as text", p.name)
             atomic_write_text(prj, text + "\n")
+            # GDAL (and so rasterio, QGIS) reads an image's CRS from its PAM file, never from the .prj.
+            atomic_write_text(aux, pam_text(text))
     return wf
+
+
+# ------------------------------------------------------------------------------------------ PAM (.aux.xml)
+#: The largest ``.aux.xml`` read: a CRS within its limit (4 bytes a character at most) and some markup.
+MAX_PAM_BYTES = 4 * limits.MAX_CRS_CHARS + (64 << 10)
+_XML_DECLARATIONS = re.compile(rb"<!\s*(DOCTYPE|ENTITY|ELEMENT|ATTLIST)", re.IGNORECASE)
+
+
+def pam_file_of(path: PathLike) -> Path:
+    """GDAL's PAM side file of an image: ``name.png.aux.xml``."""
+    p = Path(path)
+    return p.with_name(p.name + ".aux.xml")
+
+
+def pam_text(crs_wkt: str) -> str:
+    """The ``.aux.xml`` GDAL reads an image's CRS from: ``<PAMDataset><SRS>WKT</SRS></PAMDataset>``."""
+    from xml.sax.saxutils import escape
+
+    return f"<PAMDataset>\n  <SRS>{escape(crs_wkt)}</SRS>\n</PAMDataset>\n"
+
+
+def read_pam_srs(path: PathLike) -> str | None:
+    """The CRS text (``<SRS>``) of a GDAL PAM file, or None when it names none.
+
+    Our own bounded reader: at most :data:`MAX_PAM_BYTES`, a regular file only, and no document type
+    declaration (so no entity expands: a "billion laughs" file or an external entity is refused unread).
+
+    Raises
+    ------
+    FileFormatError
+        Too large, a declaration, not XML, or not a ``PAMDataset``.
+    """
+    import xml.etree.ElementTree as ET
+
+    p = Path(path)
+    raw = read_regular(p, MAX_PAM_BYTES, "a GDAL side file (.aux.xml)", p.name)
+    if _XML_DECLARATIONS.search(raw):
+        raise FileFormatError(f"{p.name}: an .aux.xml with a document type declaration is not read")
+    try:
+        root = ET.fromstring(raw)
+    except ET.ParseError as e:
+        raise FileFormatError(f"{p.name}: not a GDAL .aux.xml ({e})") from None
+    if root.tag != "PAMDataset":
+        raise FileFormatError(f"{p.name}: not a GDAL .aux.xml (its root is <{root.tag[:40]}>)")
+    srs = root.find("SRS")
+    text = None if srs is None or srs.text is None else srs.text.strip()
+    return text or None
 
 
 # ---------------------------------------------------------------------------------------------- GeoTIFF
@@ -444,8 +499,8 @@ def read_raster(
 _WORKING_BYTES = 24
 
 
-def _windows(ds: Any, name: str) -> Iterator[Any]:
-    """Windows of band 1 covering the raster, each whole blocks of at most the decoding budget.
+def _windows(ds: Any, name: str, band: int = 1) -> Iterator[Any]:
+    """Windows of band ``band`` covering the raster, each whole blocks of at most the decoding budget.
 
     Refuses a raster stored in blocks (strips or tiles, which GDAL decodes whole) of more than
     :data:`~mrm.core.limits.MAX_DECODED_BYTES`, before any is decoded.
@@ -454,9 +509,9 @@ def _windows(ds: Any, name: str) -> Iterator[Any]:
 
     budget = limits.MAX_DECODED_BYTES
     width, height = int(ds.width), int(ds.height)
-    bh, bw = (int(v) for v in ds.block_shapes[0])
+    bh, bw = (int(v) for v in ds.block_shapes[band - 1])
     bh, bw = max(1, min(bh, height)), max(1, min(bw, width))
-    itemsize = np.dtype(ds.dtypes[0]).itemsize
+    itemsize = np.dtype(ds.dtypes[band - 1]).itemsize
     # A pixel-interleaved block holds every band's sample of its pixels.
     interleaved = ds.count > 1 and getattr(ds.interleaving, "name", "") == "pixel"
     block_bytes = bh * bw * itemsize * (ds.count if interleaved else 1)

@@ -547,16 +547,32 @@ def write_regions_geojson(
     export of a label map object write (ADR 0033).
     """
     regions = list(regions)
-    _check_geometry_output([r.geometry for r in regions], path)
+    write_features(
+        [r.geometry for r in regions],
+        [{"label": r.label, "pixels": r.pixels} for r in regions],
+        path,
+        members=members,
+    )
+
+
+def write_features(
+    geometries: Sequence[BaseGeometry],
+    properties: Sequence[Mapping[str, Any]],
+    path: PathLike,
+    *,
+    members: Mapping[str, Any] | None = None,
+) -> None:
+    """Write one Feature per geometry, with its properties, as a FeatureCollection, atomically.
+
+    Coordinates are written with ``repr`` (they read back identical), polygons oriented as RFC 7946 asks;
+    ``members`` are added to the FeatureCollection (``crs``, ``bbox``).
+    """
+    _check_geometry_output(geometries, path)
     try:
         with paused_gc():
             features = [
-                {
-                    "type": "Feature",
-                    "properties": {"label": r.label, "pixels": r.pixels},
-                    "geometry": _geojson_of(r.geometry),
-                }
-                for r in regions
+                {"type": "Feature", "properties": dict(props), "geometry": _geojson_of(g)}
+                for g, props in zip(geometries, properties, strict=True)
             ]
             text = json.dumps({"type": "FeatureCollection", **dict(members or {}), "features": features},
                               allow_nan=False)  # fmt: skip
