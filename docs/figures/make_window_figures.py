@@ -248,7 +248,6 @@ def views_3d(app: Any) -> Path:
     import numpy as np
 
     from mrm.core.grids import VoxelSet
-    from mrm.document.commands import AddObject
 
     r = 10
     z, y, x = np.mgrid[-r : r + 1, -r : r + 1, -r : r + 1]
@@ -256,9 +255,8 @@ def views_3d(app: Any) -> Path:
     z, y, x = np.mgrid[-5:6, -13:14, -13:14]
     torus = VoxelSet((np.hypot(x, y) - 9.0) ** 2 + z**2 <= 3.6**2, (14 - 13, -13, -5))
     win = _window()
-    win.doc.reset([win.doc.make_object(octahedron, name="octahedron"), win.doc.make_object(torus, name="torus")])
-    win.doc.push(AddObject(win.doc.make_object(torus, name="_")))  # a push so the document settles as a user's
-    win.doc.history.undo()
+    objects = [win.doc.make_object(octahedron, name="octahedron"), win.doc.make_object(torus, name="torus")]
+    win.doc.reset(objects)  # as File ▸ Open: a document of 3D objects only opens in the 3D views
     _settle(app, win)
     return _save(app, win, "views-3d.png")
 
