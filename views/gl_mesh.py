@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.geometry.topology.surfels import DIRS
+from mrm.views.palette import COMPONENT_COLOURS
 
 Floats = npt.NDArray[np.float32]
 Ints = npt.NDArray[np.int32]
@@ -97,34 +98,13 @@ def face_edges(vertices: npt.ArrayLike, triangles: npt.ArrayLike, face_of_triang
     return verts[first.reshape(-1)].astype(np.float32)
 
 
-#: Colours of the region view's components (as the plane view's) and of its cavity surfaces.
-COMPONENT_COLOURS_3D = (
-    "#4e79a7",
-    "#f28e2b",
-    "#59a14f",
-    "#b07aa1",
-    "#76b7b2",
-    "#edc948",
-    "#ff9da7",
-    "#9c755f",
-)
+#: The region view's component colours, as the plane region view's (:data:`COMPONENT_COLOURS`), without the
+#: red that marks cavity surfaces here.
 CAVITY_COLOUR = "#e15759"
+COMPONENT_COLOURS_3D = tuple(c for c in COMPONENT_COLOURS if c != CAVITY_COLOUR)
 
-#: Colours of the analytical view's plane segments: neighbouring segments rarely share one.
-SEGMENT_COLOURS_3D = (
-    "#e15759",
-    "#4e79a7",
-    "#59a14f",
-    "#f28e2b",
-    "#b07aa1",
-    "#76b7b2",
-    "#edc948",
-    "#9c755f",
-    "#ff9da7",
-    "#bab0ac",
-    "#86bcb6",
-    "#d37295",
-)
+#: The analytical view's plane segment colours: the same palette and two more, so neighbours rarely share one.
+SEGMENT_COLOURS_3D = (*COMPONENT_COLOURS, "#86bcb6", "#d37295")
 
 
 def rgba(colour: str, alpha: float = 1.0) -> tuple[float, float, float, float]:

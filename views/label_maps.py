@@ -29,7 +29,8 @@ from mrm.views.items import (
     rings_path,
     stroke_levels,
 )
-from mrm.views.region_view import COMPONENT_COLOURS, chain_xy
+from mrm.views.palette import COMPONENT_COLOURS
+from mrm.views.region_view import chain_xy
 
 #: The colours labels are drawn with (:func:`label_palette` gives each label one).
 LABEL_COLOURS = COMPONENT_COLOURS

@@ -16,20 +16,7 @@ from mrm.document import DocObject
 from mrm.views.base_view import Layer, RepresentationView
 from mrm.views.canvas import LOD_PIXELS, MaskItem, lod_factor, pictured, qcolor
 from mrm.views.items import LodPathItem, MarkersItem, StrokeLevel, levels_path, ring_groups, stroke_levels
-
-#: Component colours after the object's own (a qualitative palette, Tableau 10 reordered).
-COMPONENT_COLOURS = (
-    "#4e79a7",
-    "#f28e2b",
-    "#59a14f",
-    "#e15759",
-    "#b07aa1",
-    "#76b7b2",
-    "#edc948",
-    "#9c755f",
-    "#ff9da7",
-    "#bab0ac",
-)
+from mrm.views.palette import COMPONENT_COLOURS
 
 
 def hole_mask(mask: np.ndarray) -> np.ndarray:
