@@ -22,7 +22,7 @@ import logging
 import os
 import platform
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -405,18 +405,77 @@ def load_kernels() -> None:
         step()
 
 
-FIRST_RUN_MESSAGE = (
-    "mrm: first run: compiling the geometry kernels once (about a minute; "
-    "`python -m mrm.warmup` does it ahead of time) …"
-)
+#: Roughly what the first run of a command costs when every kernel it calls compiles (seconds of CPU on a
+#: 2020s x86 core, measured by benchmarks/first_run.py in a fresh venv); the notice quotes it. Commands not
+#: listed compile little (a few seconds) or, like ``reconstruct``, much: the default is the larger figure.
+FIRST_RUN_SECONDS: dict[str, int] = {"discretize": 10, "segment": 15}
+DEFAULT_FIRST_RUN_SECONDS = 60
 
 
-def announce_if_cold(stream: TextIO | None = None) -> bool:
-    """Print one line to stderr (or ``stream``) when the kernels will compile now; True when it printed."""
-    if is_warm():
-        return False
-    print(FIRST_RUN_MESSAGE, file=sys.stderr if stream is None else stream, flush=True)
-    return True
+def first_run_message(command: str | None = None) -> str:
+    """The one line printed on stderr when a command starts compiling kernels (see :func:`watch_compiles`)."""
+    seconds = FIRST_RUN_SECONDS.get(command or "", DEFAULT_FIRST_RUN_SECONDS)
+    return (
+        f"mrm: first run: compiling the geometry kernels this command needs, once "
+        f"(up to about {seconds} s of CPU; `python -m mrm.warmup` compiles them all ahead of time) …"
+    )
+
+
+class CompileLog:
+    """What :func:`watch_compiles` saw: how many kernels numba compiled (not loaded from its disk cache)."""
+
+    def __init__(self) -> None:
+        self.compiled = 0
+        self.announced = False
+
+
+@contextlib.contextmanager
+def watch_compiles(
+    command: str | None = None, *, quiet: bool = False, stream: TextIO | None = None
+) -> Iterator[CompileLog]:
+    """Print one line on stderr (or ``stream``) when numba starts compiling a kernel inside the block.
+
+    numba fires its ``numba:compile`` event only when a kernel is really compiled, never when it is loaded
+    from the disk cache: the line therefore appears exactly on a run that compiles, whatever any stamp says,
+    and never on a warm run. ``quiet`` counts without printing. numba is imported here (a command that
+    runs kernels imports it anyway).
+
+    Parameters
+    ----------
+    command : str, optional
+        The subcommand, for the estimate the line quotes (:data:`FIRST_RUN_SECONDS`).
+    quiet : bool
+        Count the compiles but print nothing (``--quiet``).
+    stream : text stream, optional
+        Where the line goes (default: ``sys.stderr`` at the time of the compile).
+
+    Yields
+    ------
+    CompileLog
+        Its ``compiled`` counts the kernels compiled inside the block (nested ones included).
+    """
+    from numba.core import event
+
+    record = CompileLog()
+
+    class _Listener(event.Listener):
+        def on_start(self, ev: Any) -> None:
+            record.compiled += 1
+            if not record.announced and not quiet:
+                record.announced = True
+                print(first_run_message(command), file=sys.stderr if stream is None else stream, flush=True)
+
+        def on_end(self, ev: Any) -> None:
+            pass
+
+    listener = _Listener()
+    event.register("numba:compile", listener)  # type: ignore[no-untyped-call]
+    try:
+        yield record
+    finally:
+        event.unregister("numba:compile", listener)  # type: ignore[no-untyped-call]
+        if record.compiled:
+            log.info("compiled %d kernels (numba's cache had not got them)", record.compiled)
 
 
 def main(argv: list[str] | None = None) -> int:

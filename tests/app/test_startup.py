@@ -1,4 +1,4 @@
-"""First start: a cold kernel cache compiles on a worker with progress; the command line says so first."""
+"""First start: a cold kernel cache compiles on a worker with progress (CLI: tests/cli/test_first_run.py)."""
 
 from __future__ import annotations
 
@@ -59,17 +59,6 @@ def test_warm_start_opens_at_once_and_keeps_kernel_loading_off_the_gui_thread(ma
     assert opened == [True]
     assert win.scene.sync_cost == 0  # every derivation runs on a worker until the kernels are loaded
     qtbot.waitUntil(lambda: win.scene.sync_cost > 0, timeout=HANG_MS)
-
-
-def test_the_cli_prints_one_line_before_a_first_run_compile(cold, capsys):
-    from mrm.cli import run_cli
-
-    assert run_cli(["segment", "--chain", "0,0,0001011", "--json"]) == 0
-    err = capsys.readouterr().err.strip().splitlines()
-    assert err == [warmup.FIRST_RUN_MESSAGE]
-    warmup.warm_up()
-    assert run_cli(["segment", "--chain", "0,0,0001011", "--json"]) == 0
-    assert capsys.readouterr().err == ""
 
 
 def test_checking_the_kernel_cache_does_not_import_numba():
