@@ -7,6 +7,7 @@ the stamp. Now the notice follows numba's own compile events (a cached kernel lo
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -109,3 +110,27 @@ def test_a_cold_cache_announces_once_and_the_next_run_is_silent(tmp_path: Path):
     second = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=900, check=False)
     assert second.returncode == 0 and second.stderr == "", second.stderr
     assert second.stdout == first.stdout
+
+
+def test_discretize_without_json_loads_no_region_or_segment_kernel(tmp_path: Path):
+    """The first ``mrm discretize`` compiled the labelling, crack and segmentation kernels for its table
+    (20 of its 28 s of CPU on a fresh install). Without ``--json`` it now calls none of them; ``--json``
+    keeps every documented key. Checked in a child process, which starts with no module loaded."""
+    src = tmp_path / "p.geojson"
+    src.write_text('{"type": "Polygon", "coordinates": [[[0.5, 0.5], [7.5, 1.5], [3.5, 6.5], [0.5, 0.5]]]}')
+    code = (
+        "import sys\n"
+        "from mrm.cli import run_cli\n"
+        f"status = run_cli(['discretize', {str(src)!r}, '-o', {str(tmp_path / 'o.png')!r}] + sys.argv[1:])\n"
+        "loaded = [m for m in ('mrm.geometry.dss._kernels', 'mrm.geometry.topology.cracks',"
+        " 'mrm.geometry.topology.labeling', 'mrm.reps.region') if m in sys.modules"
+        " and any(getattr(f, 'signatures', None) for f in vars(sys.modules[m]).values())]\n"
+        "print('LOADED', status, loaded)\n"
+    )
+    text = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert "LOADED 0 []" in text.stdout, text.stdout + text.stderr
+    assert "pixels" in text.stdout and "vertices" in text.stdout
+    full = subprocess.run([sys.executable, "-c", code, "--json"], capture_output=True, text=True, check=True)
+    assert "LOADED 0 [" in full.stdout and "LOADED 0 []" not in full.stdout  # --json: the region and segments
+    summary = json.loads(full.stdout.splitlines()[0])
+    assert {"components", "holes", "euler", "boundary_chains", "segments", "vertices"} <= set(summary)
