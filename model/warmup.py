@@ -5,7 +5,7 @@ The kernels are compiled on their first call and cached next to their sources (`
 every derivation and every operation on tiny inputs, in steps that report progress, then writes a stamp; the
 set-up script calls it (``python -m mrm.warmup``), the desktop application runs it on a worker thread with a
 progress message when :func:`is_warm` says the stamp is missing, and the command line prints one line to
-stderr before a first-run compile (:func:`announce_if_cold`).
+stderr when numba really compiles a kernel (:func:`watch_compiles`, docs/adr/0051).
 
 The stamp is keyed by the numba and Python versions and by the text of every module holding kernels: an
 edited kernel or a new numba makes the cache cold again. numba itself recompiles a cached kernel only when
@@ -405,19 +405,20 @@ def load_kernels() -> None:
         step()
 
 
-#: Roughly what the first run of a command costs when every kernel it calls compiles (seconds of CPU on a
-#: 2020s x86 core, measured by benchmarks/first_run.py in a fresh venv); the notice quotes it. Commands not
-#: listed compile little (a few seconds) or, like ``reconstruct``, much: the default is the larger figure.
-FIRST_RUN_SECONDS: dict[str, int] = {"discretize": 10, "segment": 15}
-DEFAULT_FIRST_RUN_SECONDS = 60
+#: What the first run of a command costs at most when every kernel it calls compiles, in seconds of CPU
+#: (benchmarks/first_run.py in a fresh venv, 2 cores: reconstruct of a small PNG 143 s, discretize 24-28 s
+#: with --json, segment about 15 s); the notice quotes it. Other commands: DEFAULT_FIRST_RUN.
+FIRST_RUN_SECONDS: dict[str, int] = {"discretize": 30, "segment": 20, "reconstruct": 150, "polygonize": 150}
+DEFAULT_FIRST_RUN = "one to a few minutes of CPU"
 
 
 def first_run_message(command: str | None = None) -> str:
     """The one line printed on stderr when a command starts compiling kernels (see :func:`watch_compiles`)."""
-    seconds = FIRST_RUN_SECONDS.get(command or "", DEFAULT_FIRST_RUN_SECONDS)
+    seconds = FIRST_RUN_SECONDS.get(command or "")
+    estimate = DEFAULT_FIRST_RUN if seconds is None else f"up to about {seconds} s of CPU"
     return (
         f"mrm: first run: compiling the geometry kernels this command needs, once "
-        f"(up to about {seconds} s of CPU; `python -m mrm.warmup` compiles them all ahead of time) …"
+        f"({estimate}; `python -m mrm.warmup` compiles them all ahead of time) …"
     )
 
 
