@@ -146,8 +146,8 @@ def run_gui(args: list[str]) -> int:
     from mrm.app.startup import prepare_then, when_exposed
 
     if opts.screenshot is None:
-        # The window paints first, then (after compiling the kernels on a worker, on a fresh install) the
-        # document loads: it is on screen as soon as possible and says what it is preparing.
+        # The window paints first, then the document loads (on a fresh install while the kernels compile on
+        # a worker, with progress in the status bar): it is on screen and usable as soon as possible.
         win.show_message(f"ready in {time.perf_counter() - t0:.2f} s", 4000)
         when_exposed(win, lambda: prepare_then(win, load))
         try:
@@ -157,7 +157,7 @@ def run_gui(args: list[str]) -> int:
 
             close_pool()
     loaded: list[bool] = []
-    prepare_then(win, lambda: loaded.append(load()))
+    prepare_then(win, lambda: loaded.append(load()), open_at_once=False)  # the finished drawing
     deadline = time.monotonic() + max(opts.timeout, 600.0)  # a cold compile takes minutes on a slow box
     while not loaded and time.monotonic() < deadline:
         QtCore.QCoreApplication.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)

@@ -1,10 +1,11 @@
-"""First start on a fresh install: compile the geometry kernels on a worker while the window shows progress.
+"""First start on a fresh install: the document opens at once while the kernels compile on a worker.
 
-numba compiles each kernel on its first call (a minute or more for all of them) and caches it on disk. The
+numba compiles each kernel on its first call (minutes of CPU for all of them) and caches it on disk. The
 set-up script fills that cache ahead of time (``python -m mrm.warmup``); after a bare ``pip install`` it is
-empty, and the first derivation would compile on the GUI thread with the window black. :func:`prepare_then`
-runs the warm-up on a worker instead, with a progress bar and a message in the status bar, and opens the
-document when it is done.
+empty. :func:`prepare_then` then opens the document at once and compiles the kernels on a worker, with
+progress in the status bar; meanwhile every derivation the views ask for runs on a worker too (the scene's
+synchronous budget is zero), queued behind the compiles numba serializes, so the window never waits and no
+request is refused (docs/adr/0051).
 """
 
 from __future__ import annotations
@@ -15,12 +16,13 @@ from typing import Any
 
 log = logging.getLogger(__name__)
 
-#: The status bar's text while the kernels compile.
-PREPARING = "Preparing the geometry kernels (first start only, about a minute)"
+#: The status bar's text while the kernels compile. No duration: it depends on the machine and its load
+#: (one to several minutes of CPU), and the progress bar says how far it is.
+PREPARING = "Compiling the geometry kernels (first start only; the document is usable meanwhile)"
 
 
-def prepare_then(win: Any, then: Callable[[], Any]) -> bool:
-    """Call ``then`` once the kernels are compiled; True when a warm-up had to run first (on a worker).
+def prepare_then(win: Any, then: Callable[[], Any], *, open_at_once: bool = True) -> bool:
+    """Open the document (``then``) and, on a cold cache, compile the kernels on a worker; True if cold.
 
     Parameters
     ----------
@@ -28,39 +30,66 @@ def prepare_then(win: Any, then: Callable[[], Any]) -> bool:
         Its task runner runs the warm-up and its status bar shows the progress.
     then : callable
         What to do next (open the document); called on the GUI thread.
+    open_at_once : bool
+        On a cold cache, call ``then`` at once (the default: the window is usable while the kernels
+        compile, and what the user asks for meanwhile is queued on workers). False calls it once the
+        kernels are compiled (a screenshot, which must show the finished drawing).
     """
-    from mrm.warmup import is_warm, warm_up
+    from mrm.warmup import STEPS, is_warm, warm_up
 
     if is_warm():
         preload(win)
         then()
         return False
     log.info("numba cache is cold: compiling the kernels on a worker")
+    scene = win.scene
+    cost = scene.sync_cost
+    scene.sync_cost = 0.0  # every derivation on a worker until the kernels are compiled: none on this thread
+    total = len(STEPS) + 1
 
     def work(progress: Any) -> None:
-        def report(done: int, total: int, what: str) -> None:
-            step = min(done + 1, total)
-            progress.update(done / total, f"{PREPARING}: {what} ({step}/{total})…")
+        def report(done: int, total_steps: int, what: str) -> None:
+            step = min(done + 2, total)
+            progress.update((done + 1) / total, f"{PREPARING}: {what} ({step}/{total})…")
 
+        # First what the views call on this thread (the pools and region drawing, the PNG decoder), so that
+        # the first drawings find it compiled; then every derivation and operation.
+        progress.update(0.0, f"{PREPARING}: drawing kernels (1/{total})…")
+        load_view_kernels()
         warm_up(report)
         win.runner.warm_processes()  # compiled: the worker process of the operations can load them now
 
+    def finished(_r: object = None) -> None:
+        scene.sync_cost = cost
+        win.show_message("geometry kernels ready", 3000)
+        if not open_at_once:
+            then()
+
     def failed(exc: BaseException) -> None:
-        # The kernels then compile on first use instead; say so and carry on.
+        # The kernels then compile on first use instead, each on the worker that needs it; say so, carry on.
+        scene.sync_cost = cost
         log.warning("kernel warm-up failed: %s", exc)
         win.show_message(f"could not prepare the geometry kernels ahead: {exc}", 8000, error=True)
-        then()
+        if not open_at_once:
+            then()
+
+    def cancelled() -> None:
+        scene.sync_cost = cost
+        if not open_at_once:
+            then()
 
     win.show_message(f"{PREPARING}…", 0)
     win.runner.submit(
         "warmup",
         work,
-        on_result=lambda _r: (win.show_message("geometry kernels ready", 3000), then()),
+        on_result=finished,
         on_error=failed,
-        on_cancel=then,
+        on_cancel=cancelled,
         label=PREPARING,
         show_progress=True,
     )
+    if open_at_once:
+        then()
     return True
 
 

@@ -5,7 +5,7 @@ The kernels are compiled on their first call and cached next to their sources (`
 every derivation and every operation on tiny inputs, in steps that report progress, then writes a stamp; the
 set-up script calls it (``python -m mrm.warmup``), the desktop application runs it on a worker thread with a
 progress message when :func:`is_warm` says the stamp is missing, and the command line prints one line to
-stderr before a first-run compile (:func:`announce_if_cold`).
+stderr when numba really compiles a kernel (:func:`watch_compiles`, docs/adr/0051).
 
 The stamp is keyed by the numba and Python versions and by the text of every module holding kernels: an
 edited kernel or a new numba makes the cache cold again. numba itself recompiles a cached kernel only when
@@ -22,7 +22,7 @@ import logging
 import os
 import platform
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -405,18 +405,78 @@ def load_kernels() -> None:
         step()
 
 
-FIRST_RUN_MESSAGE = (
-    "mrm: first run: compiling the geometry kernels once (about a minute; "
-    "`python -m mrm.warmup` does it ahead of time) …"
-)
+#: What the first run of a command costs at most when every kernel it calls compiles, in seconds of CPU
+#: (benchmarks/first_run.py in a fresh venv, 2 cores: reconstruct of a small PNG 143 s, discretize 24-28 s
+#: with --json, segment about 15 s); the notice quotes it. Other commands: DEFAULT_FIRST_RUN.
+FIRST_RUN_SECONDS: dict[str, int] = {"discretize": 30, "segment": 20, "reconstruct": 150, "polygonize": 150}
+DEFAULT_FIRST_RUN = "one to a few minutes of CPU"
 
 
-def announce_if_cold(stream: TextIO | None = None) -> bool:
-    """Print one line to stderr (or ``stream``) when the kernels will compile now; True when it printed."""
-    if is_warm():
-        return False
-    print(FIRST_RUN_MESSAGE, file=sys.stderr if stream is None else stream, flush=True)
-    return True
+def first_run_message(command: str | None = None) -> str:
+    """The one line printed on stderr when a command starts compiling kernels (see :func:`watch_compiles`)."""
+    seconds = FIRST_RUN_SECONDS.get(command or "")
+    estimate = DEFAULT_FIRST_RUN if seconds is None else f"up to about {seconds} s of CPU"
+    return (
+        f"mrm: first run: compiling the geometry kernels this command needs, once "
+        f"({estimate}; `python -m mrm.warmup` compiles them all ahead of time) …"
+    )
+
+
+class CompileLog:
+    """What :func:`watch_compiles` saw: how many kernels numba compiled (not loaded from its disk cache)."""
+
+    def __init__(self) -> None:
+        self.compiled = 0
+        self.announced = False
+
+
+@contextlib.contextmanager
+def watch_compiles(
+    command: str | None = None, *, quiet: bool = False, stream: TextIO | None = None
+) -> Iterator[CompileLog]:
+    """Print one line on stderr (or ``stream``) when numba starts compiling a kernel inside the block.
+
+    numba fires its ``numba:compile`` event only when a kernel is really compiled, never when it is loaded
+    from the disk cache: the line therefore appears exactly on a run that compiles, whatever any stamp says,
+    and never on a warm run. ``quiet`` counts without printing. numba is imported here (a command that
+    runs kernels imports it anyway).
+
+    Parameters
+    ----------
+    command : str, optional
+        The subcommand, for the estimate the line quotes (:data:`FIRST_RUN_SECONDS`).
+    quiet : bool
+        Count the compiles but print nothing (``--quiet``).
+    stream : text stream, optional
+        Where the line goes (default: ``sys.stderr`` at the time of the compile).
+
+    Yields
+    ------
+    CompileLog
+        Its ``compiled`` counts the kernels compiled inside the block (nested ones included).
+    """
+    from numba.core import event
+
+    record = CompileLog()
+
+    class _Listener(event.Listener):
+        def on_start(self, ev: Any) -> None:
+            record.compiled += 1
+            if not record.announced and not quiet:
+                record.announced = True
+                print(first_run_message(command), file=sys.stderr if stream is None else stream, flush=True)
+
+        def on_end(self, ev: Any) -> None:
+            pass
+
+    listener = _Listener()
+    event.register("numba:compile", listener)  # type: ignore[no-untyped-call]
+    try:
+        yield record
+    finally:
+        event.unregister("numba:compile", listener)  # type: ignore[no-untyped-call]
+        if record.compiled:
+            log.info("compiled %d kernels (numba's cache had not got them)", record.compiled)
 
 
 def main(argv: list[str] | None = None) -> int:

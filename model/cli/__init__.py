@@ -42,7 +42,7 @@ from typing import Any
 from mrm.core.errors import MRMError
 from mrm.core.models import Model
 from mrm.core.version import foreign_owner, installed_version
-from mrm.warmup import announce_if_cold
+from mrm.warmup import watch_compiles
 
 #: Exit status after a closed standard output.
 EXIT_BROKEN_PIPE = 141
@@ -305,15 +305,20 @@ def _run_cli(argv: list[str]) -> int:
         parser.print_help()
         return 2
     streams = _Streams()
-    if args.command not in NO_KERNELS:
-        announce_if_cold()  # one line before numba compiles for a minute on a fresh install
+    # One line on stderr as soon as numba really compiles a kernel (a fresh install, an edited kernel), never
+    # on a warm run; --quiet silences it (docs/adr/0051).
+    watching = (
+        watch_compiles(args.command, quiet=args.quiet)
+        if args.command not in NO_KERNELS
+        else contextlib.nullcontext()
+    )
     created: list[Path] = []
     status = 2
     try:
         _bind_streams(args, streams)
         created = _missing_folders(_output_folder(args))
         _make_output_folder(args)
-        with _stdout_to_stderr(streams.stdout_path is not None):
+        with watching, _stdout_to_stderr(streams.stdout_path is not None):
             summary = args._module.run(args)
         if streams.stdout_path is not None:
             with open(streams.stdout_path, "rb") as fh:

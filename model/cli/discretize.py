@@ -25,6 +25,11 @@ is (it is its own discrete representation); without ``--object`` every Euclidean
 discretized, combined (D is union-stable, so this is the union of their discretizations). The model is
 ``--model``, else the project's, else 'standard'. An .svg output draws the pixels with the Euclidean input
 outlined on top.
+
+The table printed without ``--json`` holds the model, the pixels, their bounding box, the input's vertices
+and the time; ``--json`` adds the region's and the segmentation's keys of ``mrm info`` (``components``,
+``holes``, ``euler``, ``boundary_chains``, ``segments``), which load more kernels (``mrm info OUT`` shows them
+for the written file).
 """
 
 from __future__ import annotations
@@ -63,7 +68,7 @@ from mrm.core.limits import check_pixels
 from mrm.io.georef import few_pixels_warning, read_geojson_crs, read_georef, same_crs, write_georeferenced
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, combine, write_svg
-from mrm.reps.summary import summarize
+from mrm.reps.summary import summarize, summarize_pixels
 
 if TYPE_CHECKING:
     from mrm.core.georef import GeoRef
@@ -187,8 +192,14 @@ def discretize_file(
     resolution: float | None = None,
     extent: tuple[float, float, float, float] | None = None,
     attribute: str | None = None,
+    topology: bool = True,
 ) -> dict[str, Any]:
-    """Read one input, discretize it, write the pixels; return the summary (batch workers call it)."""
+    """Read one input, discretize it, write the pixels; return the summary (batch workers call it).
+
+    ``topology``: add the region's and the segmentation's keys (``components`` … ``segments``, what
+    ``--json`` documents). Without ``--json`` they are left out: they load (on a fresh install, compile)
+    the labelling, crack and segmentation kernels, twice the work of the discretization itself.
+    """
     out_ext = extension_of(output, OUTPUTS, "pixel output file")  # fail before any work
     if attribute is not None:
         return burn_file(path, output, attribute, model, limit, like, resolution, extent)
@@ -227,7 +238,10 @@ def discretize_file(
     summary: dict[str, Any] = {"input": str(path), "output": str(output)}
     if object_name is not None:
         summary.update(object=object_name, source="discrete" if geom is None else "euclidean")
-    summary.update(summarize(ps, chosen, geom=geom))
+    if topology:
+        summary.update(summarize(ps, chosen, geom=geom))
+    else:
+        summary.update(summarize_pixels(ps, chosen, geom))
     summary["seconds"] = seconds
     if grid is not None:
         summary["grid"] = grid.as_dict()
@@ -387,7 +401,18 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     inputs = expand_inputs([str(i) for i in args.inputs], INPUTS)
     outputs = batch_outputs(inputs, str(args.output), OUTPUTS, ".png", "pixel output file")
     jobs = [
-        (i, o, args.object, args.model, args.limit, args.like, args.resolution, args.extent, args.attribute)
+        (
+            i,
+            o,
+            args.object,
+            args.model,
+            args.limit,
+            args.like,
+            args.resolution,
+            args.extent,
+            args.attribute,
+            args.json,
+        )
         for i, o in zip(inputs, outputs, strict=True)
     ]
 

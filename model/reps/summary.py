@@ -86,6 +86,24 @@ def summarize(ps: PixelSet, model: Model | str, geom: Any = None) -> dict[str, A
     }
 
 
+def summarize_pixels(ps: PixelSet, model: Model | str, geom: Any) -> dict[str, Any]:
+    """The keys of :func:`summarize` that need no kernel: ``model``, ``pixels``, ``bbox``, ``vertices``.
+
+    For a command that only writes pixels (``mrm discretize`` without ``--json``): the region's and the
+    segmentation's keys would load their kernels (compile them, on a fresh install) for a table line.
+    ``geom`` is the Euclidean source (its vertices), or None for pixels read as they are (no vertices key).
+    """
+    bbox = ps.bbox
+    out: dict[str, Any] = {
+        "model": str(Model.parse(model)),
+        "pixels": len(ps),
+        "bbox": None if bbox is None else list(bbox),
+    }
+    if geom is not None:
+        out["vertices"] = count_vertices(geom)
+    return out
+
+
 def summarize_voxels(
     vs: VoxelSet, model: Model | str, *, faces: int | None, vertices: int | None
 ) -> dict[str, Any]:

@@ -1,4 +1,4 @@
-"""First start: a cold kernel cache compiles on a worker with progress; the command line says so first."""
+"""First start: a cold kernel cache compiles on a worker with progress (CLI: tests/cli/test_first_run.py)."""
 
 from __future__ import annotations
 
@@ -21,34 +21,64 @@ def cold(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Path:
     return stamp
 
 
-def test_cold_start_shows_the_window_with_progress_then_opens_the_document(  # type: ignore[no-untyped-def]
+def test_cold_start_opens_the_document_at_once_and_queues_derivations_while_compiling(  # type: ignore[no-untyped-def]
     make_window, qtbot, cold, monkeypatch
 ):
+    """Issue 31: the cold start kept the window empty behind "Preparing … about a minute" for 540 s.
+
+    Now the document opens at once; the compile runs on a worker with progress, and what the views ask for
+    meanwhile is computed on workers (never on the GUI thread), not refused.
+    """
+    from mrm.app import startup
+
     win = make_window(threaded=True)
     gate = threading.Event()
-    real_step = warmup.STEPS[0][1]
+    real = startup.load_view_kernels
 
-    def slow_first_step() -> None:
-        gate.wait(20)  # hold the worker so the test sees the window while it prepares
-        real_step()
+    def held_view_kernels() -> None:
+        gate.wait(20)  # hold the compile so that the test sees the window while it runs
+        real()
 
-    steps = (("discretization kernels", slow_first_step), *warmup.STEPS[1:3])
-    monkeypatch.setattr(warmup, "STEPS", steps)
+    monkeypatch.setattr(startup, "load_view_kernels", held_view_kernels)
+    monkeypatch.setattr(warmup, "STEPS", warmup.STEPS[:3])
     opened: list[bool] = []
     example = default_example()
-    assert prepare_then(win, lambda: opened.append(win.files.open(example, ask=False))) is True
-    # The window is there and answers while the kernels compile: it says what it prepares, with progress.
-    qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=HANG_MS)
-    qtbot.waitUntil(
-        lambda: "discretization kernels (1/3)" in win.status.progress_label.text(), timeout=HANG_MS
-    )
-    assert PREPARING in win.status.progress_label.text()
-    assert not opened and len(win.doc) == 0
-    gate.set()
-    qtbot.waitUntil(lambda: bool(opened), timeout=HANG_MS)
-    assert opened == [True] and len(win.doc) > 0
-    assert warmup.is_warm()  # the stamp is written: the next start goes straight to the document
+    shown: list[tuple[str, str]] = []  # (label, message) of every progress the status bar was given
+    win.runner.progressChanged.connect(lambda label, _f, message: shown.append((label, message)))
+    try:
+        assert prepare_then(win, lambda: opened.append(win.files.open(example, ask=False))) is True
+        # The document is there at once, while the kernels compile with progress in the status bar.
+        assert opened == [True] and len(win.doc) > 0
+        qtbot.waitUntil(lambda: win.status.progress_box.isVisible(), timeout=HANG_MS)
+        qtbot.waitUntil(
+            lambda: any(lb == PREPARING and "drawing kernels (1/4)" in m for lb, m in shown), timeout=HANG_MS
+        )
+        # A derivation asked for meanwhile goes to a worker (none runs on the GUI thread) and arrives.
+        obj = next(iter(win.doc))
+        assert win.scene.sync_cost == 0
+        value = win.scene.get(obj.id, "region")
+        if value is None:
+            assert win.runner.is_busy(f"derive:{obj.id}:region")
+        qtbot.waitUntil(lambda: win.scene.get(obj.id, "region") is not None, timeout=HANG_MS)
+        assert not gate.is_set() and win.runner.is_busy("warmup")  # all that while the compile still ran
+    finally:
+        gate.set()
+    qtbot.waitUntil(lambda: not win.runner.is_busy("warmup"), timeout=HANG_MS)
+    assert warmup.is_warm()  # the stamp is written: the next start skips the compile
+    assert win.scene.sync_cost > 0
     qtbot.waitUntil(lambda: not win.status.progress_box.isVisible(), timeout=HANG_MS)
+
+
+def test_a_cold_screenshot_waits_for_the_kernels_before_opening(make_window, qtbot, cold, monkeypatch):
+    from mrm.app import startup
+
+    win = make_window(threaded=True)
+    monkeypatch.setattr(startup, "load_view_kernels", lambda: None)
+    monkeypatch.setattr(warmup, "STEPS", warmup.STEPS[:1])
+    opened: list[bool] = []
+    assert prepare_then(win, lambda: opened.append(True), open_at_once=False) is True
+    assert not opened
+    qtbot.waitUntil(lambda: bool(opened), timeout=HANG_MS)
 
 
 def test_warm_start_opens_at_once_and_keeps_kernel_loading_off_the_gui_thread(make_window, qtbot, cold):
@@ -59,17 +89,6 @@ def test_warm_start_opens_at_once_and_keeps_kernel_loading_off_the_gui_thread(ma
     assert opened == [True]
     assert win.scene.sync_cost == 0  # every derivation runs on a worker until the kernels are loaded
     qtbot.waitUntil(lambda: win.scene.sync_cost > 0, timeout=HANG_MS)
-
-
-def test_the_cli_prints_one_line_before_a_first_run_compile(cold, capsys):
-    from mrm.cli import run_cli
-
-    assert run_cli(["segment", "--chain", "0,0,0001011", "--json"]) == 0
-    err = capsys.readouterr().err.strip().splitlines()
-    assert err == [warmup.FIRST_RUN_MESSAGE]
-    warmup.warm_up()
-    assert run_cli(["segment", "--chain", "0,0,0001011", "--json"]) == 0
-    assert capsys.readouterr().err == ""
 
 
 def test_checking_the_kernel_cache_does_not_import_numba():
