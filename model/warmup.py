@@ -150,17 +150,33 @@ def is_warm() -> bool:
     return _indexes_present()  # a current stamp without the cache files (deleted by hand) is cold
 
 
+def _kernel_files() -> list[Path]:
+    # The kernel modules that hold compiled kernels (the decorator's own module holds none).
+    root = _package_root()
+    files = [root / rel for rel in KERNEL_MODULES]
+    return [
+        p for p in files if p.name != "_jit.py" and p.is_file() and "njit" in p.read_text(encoding="utf-8")
+    ]
+
+
 def _indexes_present() -> bool:
     if os.environ.get("NUMBA_CACHE_DIR"):
         return False  # another layout: the stamp alone decides
-    root = _package_root()
-    for rel in KERNEL_MODULES:
-        p = root / rel
-        if p.name == "_jit.py" or not p.is_file() or "njit" not in p.read_text(encoding="utf-8"):
-            continue
-        if not any((p.parent / "__pycache__").glob(f"{p.stem}.*.nbi")):
-            return False
-    return True
+    return all(any((p.parent / "__pycache__").glob(f"{p.stem}.*.nbi")) for p in _kernel_files())
+
+
+def kernels_cached() -> bool:
+    """True when numba's cache holds compiled code of every kernel module, whoever compiled it.
+
+    Read from numba's index files (``<module>.<kernel>-<line>.py311.nbi``), next to the sources or under
+    ``NUMBA_CACHE_DIR``; the warm-up's stamp is not needed. The command line runs small inputs interpreted
+    while this is False (:mod:`mrm.cli._interpreted`).
+    """
+    cache_dir = os.environ.get("NUMBA_CACHE_DIR")
+    if cache_dir:
+        indexes = {p.name.split(".", 1)[0] for p in Path(cache_dir).rglob("*.nbi")}
+        return all(p.stem in indexes for p in _kernel_files())
+    return _indexes_present()
 
 
 def _write_stamp() -> None:

@@ -39,6 +39,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from mrm.cli._interpreted import interpret_small_inputs
 from mrm.core.errors import MRMError
 from mrm.core.models import Model
 from mrm.core.version import foreign_owner, installed_version
@@ -299,6 +300,8 @@ def run_cli(argv: list[str]) -> int:
 
 
 def _run_cli(argv: list[str]) -> int:
+    # Before the parser imports the commands (and numba): a small input on a cold cache runs interpreted.
+    interpret_small_inputs(argv)
     parser = build_parser()
     args = parser.parse_args(argv)
     if getattr(args, "_module", None) is None:

@@ -135,3 +135,92 @@ def test_discretize_without_json_loads_no_region_or_segment_kernel(tmp_path: Pat
     assert "LOADED 0 [" in full.stdout and "LOADED 0 []" not in full.stdout  # --json: the region and segments
     summary = json.loads(full.stdout.splitlines()[0])
     assert {"components", "holes", "euler", "boundary_chains", "segments", "vertices"} <= set(summary)
+
+
+def _png(path: Path, width: int, height: int, *, labels: bool = False) -> Path:
+    """A picture with two discs, a hole and a pixel touching another by its corner (several rings)."""
+    import numpy as np
+    from PIL import Image
+
+    yy, xx = np.mgrid[0:height, 0:width]
+    img = ((xx - width * 0.45) ** 2 + (yy - height * 0.45) ** 2 < (0.3 * min(width, height)) ** 2).astype(
+        np.uint8
+    )
+    img[(xx - width * 0.45) ** 2 + (yy - height * 0.45) ** 2 < (0.1 * min(width, height)) ** 2] = 0
+    img[2:5, 2:6] = 2 if labels else 1
+    img[5, 6] = 3 if labels else 1
+    Image.fromarray(img if labels else img * 255).save(path)
+    return path
+
+
+def _cold_env(tmp_path: Path) -> dict[str, str]:
+    (tmp_path / "cold").mkdir(exist_ok=True)
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_DISABLE_JIT"}
+    return dict(env, NUMBA_CACHE_DIR=str(tmp_path / "cold"))
+
+
+@pytest.mark.parametrize(
+    ("command", "labels", "out"),
+    [("reconstruct", False, "r.geojson"), ("polygonize", True, "p.geojson"), ("info", False, None)],
+)
+def test_a_small_raster_on_a_cold_cache_runs_interpreted_with_the_compiled_result(
+    tmp_path: Path, command: str, labels: bool, out: str | None
+):
+    """A fresh install's first ``mrm reconstruct`` of a small PNG compiled for 130-143 s of CPU. On a cold
+    cache a small raster now runs the same kernels interpreted: nothing compiles (no notice, no cache file),
+    and the output is byte for byte the one the compiled kernels give (the warm cache of this suite)."""
+    src = _png(tmp_path / "in.png", 96, 80, labels=labels)
+    cold_out, warm_out = tmp_path / f"cold-{out}", tmp_path / f"warm-{out}"
+    runs = {}
+    for name, env, dest in (("cold", _cold_env(tmp_path), cold_out), ("warm", dict(os.environ), warm_out)):
+        cmd = [
+            sys.executable,
+            "-m",
+            "mrm.app.main",
+            command,
+            str(src),
+            *(["-o", str(dest)] if out else []),
+            "--json",
+        ]
+        runs[name] = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600, check=False)
+        assert runs[name].returncode == 0, runs[name].stderr
+    assert runs["cold"].stderr == ""  # no first-run notice: nothing compiled
+    assert not list((tmp_path / "cold").rglob("*.nbi"))
+    drop = ("seconds", "input", "output")
+    cold, warm = (json.loads(runs[n].stdout) for n in ("cold", "warm"))
+    assert {k: v for k, v in cold.items() if k not in drop} == {
+        k: v for k, v in warm.items() if k not in drop
+    }
+    if out:
+        assert cold_out.read_bytes() == warm_out.read_bytes()
+
+
+def _decides(tmp_path: Path, *args: str, env: dict[str, str] | None = None) -> bool:
+    code = "import sys; from mrm.cli._interpreted import interpret_small_inputs as f; print(f(sys.argv[1:]))"
+    done = subprocess.run(
+        [sys.executable, "-c", code, *args],
+        env=env or _cold_env(tmp_path),
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return done.stdout.strip() == "True"
+
+
+def test_only_small_rasters_on_a_cold_cache_run_interpreted(tmp_path: Path):
+    small = _png(tmp_path / "small.png", 256, 256)
+    big = _png(tmp_path / "big.png", 257, 256)
+    assert _decides(tmp_path, "reconstruct", str(small), "-o", str(tmp_path / "x.geojson"))
+    assert _decides(tmp_path, "polygonize", str(small), "--output", str(big))  # the output is not measured
+    assert not _decides(tmp_path, "reconstruct", str(big), "-o", "x.geojson")  # compiles, with the notice
+    assert not _decides(tmp_path, "reconstruct", str(small), str(big), "-o", "out")
+    assert not _decides(tmp_path, "reconstruct", str(tmp_path), "-o", "out")  # a folder of inputs
+    assert not _decides(tmp_path, "discretize", str(small), "-o", "x.png")  # not an R command
+    (tmp_path / "v.npz").write_bytes(b"")
+    assert not _decides(tmp_path, "reconstruct", str(tmp_path / "v.npz"), "-o", "x.obj")  # voxels
+    warm = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "NUMBA_DISABLE_JIT")}
+    assert not _decides(
+        tmp_path, "reconstruct", str(small), "-o", "x.geojson", env=warm
+    )  # this suite's cache
+    own = dict(_cold_env(tmp_path), NUMBA_DISABLE_JIT="0")
+    assert not _decides(tmp_path, "reconstruct", str(small), "-o", "x.geojson", env=own)  # the user's choice
