@@ -3,9 +3,10 @@
 Compiling every kernel ``mrm reconstruct`` calls costs 130-143 s of CPU on a fresh install (numba's typing
 and lowering, docs/adr/0051), while the same kernels *interpreted* — their plain Python, run by CPython on
 numpy arrays, exactly the same code and so exactly the same result — take about a second on a 64×64 image
-(0.8 s of CPU, less than loading the compiled kernels from the cache: 1.4 s) and about 6 s on the worst
-small case measured (a 128×128 image of noise). So when the cache lacks a compiled kernel and every input is
-a raster of at most :data:`INTERPRETED_PIXELS` pixels, the command runs with ``NUMBA_DISABLE_JIT=1`` and
+(0.8 s of CPU, less than loading the compiled kernels from the cache: 1.4 s) and 6-8 s on the worst case
+accepted (a 128×128 image of noise). So when the cache lacks a compiled kernel and every input is a raster
+of at most :data:`INTERPRETED_PIXELS` pixels and :data:`INTERPRETED_CRACKS` changes of value between
+neighbouring pixels, the command runs with ``NUMBA_DISABLE_JIT=1`` and
 compiles nothing; a larger input compiles in the foreground with the first-run notice, and
 ``python -m mrm.warmup`` compiles everything once (docs/adr/0057).
 
@@ -23,10 +24,13 @@ from pathlib import Path
 
 log = logging.getLogger(__name__)
 
-#: Inputs of at most this many pixels run interpreted on a cold cache: a 256×256 raster. The worst case is
-#: noise, whose boundary is longest (128×128 of noise: 6.3 s of CPU interpreted); a 256×256 image of discs
-#: takes 1.3 s and a 1024×1024 one 6 s.
+#: Inputs of at most this many pixels run interpreted on a cold cache: a 256×256 raster...
 INTERPRETED_PIXELS = 256 * 256
+
+#: ...with at most this many cracks between pixels of different values. Interpreted R costs about 0.5 ms of
+#: CPU per crack (128×128 of noise, 16,300 cracks: 6.3-8 s; 256×256 of noise, 65,000: 33 s), a few discs
+#: almost nothing (256×256 of discs: 1.3 s).
+INTERPRETED_CRACKS = 16_384
 
 #: The subcommands whose first run this applies to: their work is R on a 2D raster (reconstruct, polygonize)
 #: or its summary (info).
@@ -63,16 +67,29 @@ def _inputs(argv: list[str]) -> list[Path] | None:
     return found
 
 
-def _pixels(path: Path) -> int | None:
-    """The pixel count of a raster from its header, or None when it cannot be read that way."""
+def _small(path: Path) -> bool:
+    """True for a raster of at most INTERPRETED_PIXELS pixels and INTERPRETED_CRACKS value changes.
+
+    The size comes from the header; only then are the samples read (at most 256×256 of them) and the cracks
+    between horizontally or vertically neighbouring samples of different values counted: an upper bound of
+    the boundary R traces, whatever threshold the command applies.
+    """
     try:
+        import numpy as np
         from PIL import Image
 
         with Image.open(path) as im:
             w, h = im.size
-    except Exception:
-        return None
-    return int(w) * int(h)
+            if int(w) * int(h) > INTERPRETED_PIXELS:
+                return False
+            a = np.asarray(im)
+    except Exception:  # the command itself reads the file and says what is wrong with it
+        return False
+    if a.ndim == 3:  # colour: a change in any channel
+        rows, cols = np.any(a[1:] != a[:-1], axis=2), np.any(a[:, 1:] != a[:, :-1], axis=2)
+    else:
+        rows, cols = a[1:] != a[:-1], a[:, 1:] != a[:, :-1]
+    return int(np.count_nonzero(rows)) + int(np.count_nonzero(cols)) <= INTERPRETED_CRACKS
 
 
 def interpret_small_inputs(argv: list[str]) -> bool:
@@ -88,8 +105,7 @@ def interpret_small_inputs(argv: list[str]) -> bool:
     inputs = _inputs(argv)
     if not inputs:
         return False
-    sizes = [_pixels(p) for p in inputs]
-    if any(n is None or n > INTERPRETED_PIXELS for n in sizes):
+    if not all(_small(p) for p in inputs):
         return False
     from mrm.warmup import kernels_cached
 

@@ -213,6 +213,14 @@ def test_only_small_rasters_on_a_cold_cache_run_interpreted(tmp_path: Path):
     assert _decides(tmp_path, "reconstruct", str(small), "-o", str(tmp_path / "x.geojson"))
     assert _decides(tmp_path, "polygonize", str(small), "--output", str(big))  # the output is not measured
     assert not _decides(tmp_path, "reconstruct", str(big), "-o", "x.geojson")  # compiles, with the notice
+    import numpy as np
+    from PIL import Image
+
+    noise = np.random.default_rng(5).random((256, 256)) < 0.5  # 65,000 cracks: 33 s interpreted
+    Image.fromarray((noise * 255).astype(np.uint8)).save(tmp_path / "noise.png")
+    assert not _decides(tmp_path, "reconstruct", str(tmp_path / "noise.png"), "-o", "x.geojson")
+    Image.fromarray((noise[:90, :90] * 255).astype(np.uint8)).save(tmp_path / "noise90.png")  # 8,000 cracks
+    assert _decides(tmp_path, "reconstruct", str(tmp_path / "noise90.png"), "-o", "x.geojson")
     assert not _decides(tmp_path, "reconstruct", str(small), str(big), "-o", "out")
     assert not _decides(tmp_path, "reconstruct", str(tmp_path), "-o", "out")  # a folder of inputs
     assert not _decides(tmp_path, "discretize", str(small), "-o", "x.png")  # not an R command
