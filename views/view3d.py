@@ -179,6 +179,13 @@ def make_pane(camera: Camera3D, parent: QtWidgets.QWidget) -> Any:
                 return
             super().keyPressEvent(ev)
 
+        def contextMenuEvent(self, ev: QtGui.QContextMenuEvent) -> None:
+            menu = self.owner.context_menu() if self.owner is not None else None
+            if menu is None or menu.isEmpty():
+                super().contextMenuEvent(ev)
+                return
+            menu.exec(ev.globalPos())
+
         def wheelEvent(self, ev: QtGui.QWheelEvent) -> None:
             super().wheelEvent(ev)
             camera.sync_from(self)
@@ -293,14 +300,18 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
             self.status_label.setToolTip("")
         else:
             factor = self.coarsest_level()
-            self.status_label.setText(f"coarser level: blocks of {factor}³ voxels" if factor > 1 else "")
-            self.status_label.setToolTip(
-                f"An object has more than {self.SURFEL_BUDGET:,} surfels: each block of {factor}×{factor}×"
-                f"{factor} voxels holding one is drawn as one voxel."
-                if factor > 1
-                else ""
-            )
+            text, tip = self.level_note(factor) if factor > 1 else ("", "")
+            self.status_label.setText(text)
+            self.status_label.setToolTip(tip)
         self.refreshed.emit()
+
+    def level_note(self, factor: int) -> tuple[str, str]:
+        """The header's text and tool tip when a coarser level (``factor`` > 1) is drawn."""
+        return (
+            f"coarser level: blocks of {factor}³ voxels",
+            f"An object has more than {self.SURFEL_BUDGET:,} surfels: each block of {factor}×{factor}×"
+            f"{factor} voxels holding one is drawn as one voxel.",
+        )
 
     def coarsest_level(self) -> int:
         """The largest pooling factor among the drawn objects (1: every object drawn at full detail)."""
@@ -334,6 +345,27 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
 
     def pane_key(self, ev: QtGui.QKeyEvent) -> bool:
         return False
+
+    def context_menu(self) -> QtWidgets.QMenu | None:
+        """The pane's context menu (None: none)."""
+        return None
+
+    def target(self) -> DocObject | None:
+        """The voxel object the view's edits apply to: the selected one, else the topmost."""
+        voxels = [o for o in self.objects() if o.kind != "labels"]
+        selected = set(self.scene.doc.selection)
+        chosen = [o for o in voxels if o.id in selected] or voxels
+        return chosen[-1] if chosen else None
+
+    def replace_voxels(self, obj_id: int, voxels: Any, label: str) -> None:
+        """Replace an object's voxels in one undo step; a refusal (a limit) is one line in the header."""
+        from mrm.core.errors import MRMError
+        from mrm.document.commands import SetSource
+
+        try:
+            self.scene.doc.push(SetSource(obj_id, voxels, label=label))
+        except MRMError as e:  # the document stays as it was
+            self.status_label.setText(f"<span style='color:#c0392b'>{e}</span>")
 
     def ray_at(self, pos: QtCore.QPointF) -> tuple[np.ndarray, np.ndarray]:
         """The ray from the camera through the pane's point ``pos`` (widget pixels): origin and direction."""
@@ -528,13 +560,6 @@ class DiscreteView3D(View3D):
         b.setAutoRaise(True)
         return b
 
-    def target(self) -> DocObject | None:
-        """The voxel object the slice plane cuts and the brush edits: the selected one, else the topmost."""
-        voxels = [o for o in self.objects() if o.kind != "labels"]
-        selected = set(self.scene.doc.selection)
-        chosen = [o for o in voxels if o.id in selected] or voxels
-        return chosen[-1] if chosen else None
-
     def _target_voxels(self) -> tuple[DocObject, Any] | None:
         obj = self.target()
         if obj is None:
@@ -671,9 +696,7 @@ class DiscreteView3D(View3D):
         stroke, self._stroke = self._stroke, None
         if stroke is None:
             return False
-        from mrm.core.errors import MRMError
         from mrm.core.grids import VoxelSet
-        from mrm.document.commands import SetSource
 
         vs = self.scene.get(stroke["obj"], "discrete")
         if vs is None or self.slice_z is None:
@@ -683,14 +706,7 @@ class DiscreteView3D(View3D):
         dab = VoxelSet.from_points(pts)
         after = vs | dab if stroke["value"] else vs - dab
         if after != vs:
-            try:
-                self.scene.doc.push(
-                    SetSource(
-                        stroke["obj"], after, label="Paint voxels" if stroke["value"] else "Erase voxels"
-                    )
-                )
-            except MRMError as e:  # a limit: the document stays as it was, the header says why
-                self.status_label.setText(f"<span style='color:#c0392b'>{e}</span>")
+            self.replace_voxels(stroke["obj"], after, "Paint voxels" if stroke["value"] else "Erase voxels")
         self._draw_slice()
         return True
 
@@ -734,6 +750,44 @@ class RegionView3D(View3D):
             return gl_mesh.palette_rgba8(index, (*gl_mesh.COMPONENT_COLOURS_3D, gl_mesh.CAVITY_COLOUR))
 
         return self.surfel_data(obj, colours)
+
+    #: Components and cavities listed in the context menu at most (the biggest first).
+    MENU_ITEMS = 20
+
+    def context_menu(self) -> QtWidgets.QMenu | None:
+        """Delete a component or fill a cavity of the target voxel object (each one undo step)."""
+        obj = self.target()
+        if obj is None:
+            return None
+        region = self.scene.get(obj.id, "region")
+        vs = self.scene.get(obj.id, "discrete")
+        if region is None or vs is None:
+            return None
+        menu = QtWidgets.QMenu(self)
+        menu.setObjectName("region3dMenu")
+        comps = sorted(region.components, key=lambda c: -c.voxels)[: self.MENU_ITEMS]
+        for c in sorted(comps, key=lambda c: c.label):
+            act = menu.addAction(f"Delete component {c.label} ({c.voxels:,} voxels)")
+            act.triggered.connect(lambda _c=False, label=c.label: self.delete_component(obj.id, label))
+        cavities = [(c.label, t, cav) for c in region.components for t, cav in enumerate(c.cavities)]
+        if cavities:
+            menu.addSeparator()
+        for label, t, cav in sorted(cavities, key=lambda x: -x[2].voxels)[: self.MENU_ITEMS]:
+            act = menu.addAction(f"Fill cavity {t + 1} of component {label} ({cav.voxels:,} voxels)")
+            act.triggered.connect(lambda _c=False, a=label, b=t: self.fill_cavity(obj.id, a, b))
+        return menu
+
+    def delete_component(self, obj_id: int, label: int) -> None:
+        """Remove component ``label`` (1..n, the region's numbering) of an object's voxels."""
+        region, vs = self.scene.get(obj_id, "region"), self.scene.get(obj_id, "discrete")
+        if region is not None and vs is not None:
+            self.replace_voxels(obj_id, vs - region.component_voxels(label), "Delete component")
+
+    def fill_cavity(self, obj_id: int, component: int, cavity: int) -> None:
+        """Fill cavity ``cavity`` (0-based) of component ``component`` of an object's voxels."""
+        region, vs = self.scene.get(obj_id, "region"), self.scene.get(obj_id, "discrete")
+        if region is not None and vs is not None:
+            self.replace_voxels(obj_id, vs | region.cavity_voxels(component, cavity), "Fill cavity")
 
 
 class AnalyticalView3D(View3D):
@@ -798,15 +852,26 @@ class EuclideanView3D(View3D):
         if poly is None:
             return None
         colour = gl_mesh.rgba8(obj.style.fill)
+        budget = 2 * self.SURFEL_BUDGET  # triangles: a surfel is two
 
         def compute() -> dict[str, Any]:
-            data = gl_mesh.triangle_arrays(
-                poly.vertices, poly.triangles, np.tile(colour, (int(poly.n_triangles), 1))
-            )
-            data["lines"] = gl_mesh.face_edges(poly.vertices, poly.triangles, poly.face_of_triangle)
+            from mrm.geometry.topology.level_of_detail import coarse_mesh
+
+            cell, vertices, triangles, kept = coarse_mesh(poly.vertices, poly.triangles, budget)
+            faces = np.asarray(poly.face_of_triangle)[kept]
+            data = gl_mesh.triangle_arrays(vertices, triangles, np.tile(colour, (len(triangles), 1)))
+            data["lines"] = gl_mesh.face_edges(vertices, triangles, faces)
+            data["factor"] = math.ceil(cell) if cell > 0 else 1
             return data
 
         return self.prepared(obj.id, "polyhedron", poly, int(poly.n_triangles), compute)
+
+    def level_note(self, factor: int) -> tuple[str, str]:
+        return (
+            f"coarser level: vertices merged in cubes of side {factor}",
+            f"A polyhedron has more than {2 * self.SURFEL_BUDGET:,} triangles: its vertices in each cube of "
+            f"side {factor} are drawn as one.",
+        )
 
 
 class View3DArea(QtWidgets.QWidget):

@@ -126,3 +126,79 @@ def coarse_level(mask: npt.ArrayLike, budget: int, n_surfels: int | None = None)
         if surfel_total(pooled) <= budget or max(pooled.shape) <= 1:
             return f, pooled
         f += max(1, f // 4)
+
+
+def cluster_vertices(
+    vertices: npt.ArrayLike, triangles: npt.ArrayLike, cell: float
+) -> tuple[npt.NDArray[np.float64], Int64Array, Int64Array]:
+    """A coarser triangle mesh by vertex clustering: the vertices in one cube of side ``cell`` become one.
+
+    Each cluster's vertex is the mean of its vertices; a triangle two of whose corners fall in one cluster
+    vanishes, and of triangles with the same three clusters one is kept. For drawing only: the result need
+    not be a closed or manifold surface.
+
+    Parameters
+    ----------
+    vertices : float (n, 3)
+    triangles : int (m, 3)
+    cell : float
+        The side of the clustering cubes (> 0), cubes aligned on the origin.
+
+    Returns
+    -------
+    vertices : float64 (n', 3)
+    triangles : int64 (m', 3)
+    kept : int64 (m',)
+        The index in ``triangles`` of each triangle kept (to carry per-triangle data, e.g. its face).
+    """
+    if not cell > 0:
+        raise ValueError(f"a clustering cell must be positive, got {cell}")
+    v = np.asarray(vertices, np.float64).reshape(-1, 3)
+    t = np.asarray(triangles, np.int64).reshape(-1, 3)
+    if t.size == 0:
+        return np.zeros((0, 3)), np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
+    cells = np.floor(v / cell).astype(np.int64)
+    _keys, cluster, counts = np.unique(cells, axis=0, return_inverse=True, return_counts=True)
+    cluster = cluster.reshape(-1)
+    sums = np.zeros((counts.size, 3))
+    np.add.at(sums, cluster, v)
+    centres = sums / counts[:, None]
+    ct = cluster[t]
+    proper = (ct[:, 0] != ct[:, 1]) & (ct[:, 1] != ct[:, 2]) & (ct[:, 0] != ct[:, 2])
+    index = np.flatnonzero(proper)
+    ct = ct[proper]
+    # one triangle per set of three clusters (turned so that its smallest cluster comes first, keeping its
+    # orientation: a triangle and its reverse are different faces)
+    first = np.argmin(ct, axis=1)
+    rolled = np.stack([ct[np.arange(len(ct)), (first + k) % 3] for k in range(3)], axis=1)
+    _u, unique_at = np.unique(rolled, axis=0, return_index=True)
+    unique_at.sort()
+    return centres, rolled[unique_at], index[unique_at]
+
+
+def coarse_mesh(
+    vertices: npt.ArrayLike, triangles: npt.ArrayLike, budget: int
+) -> tuple[float, npt.NDArray[np.float64], Int64Array, Int64Array]:
+    """The finest vertex clustering (:func:`cluster_vertices`) of a mesh within ``budget`` triangles.
+
+    Returns
+    -------
+    cell : float
+        The side of the clustering cubes (0: the mesh itself, within the budget).
+    vertices, triangles, kept :
+        As :func:`cluster_vertices` (the mesh itself, and every index, at cell 0).
+    """
+    if budget < 1:
+        raise ValueError(f"a triangle budget must be positive, got {budget}")
+    v = np.asarray(vertices, np.float64).reshape(-1, 3)
+    t = np.asarray(triangles, np.int64).reshape(-1, 3)
+    if len(t) <= budget:
+        return 0.0, v, t, np.arange(len(t), dtype=np.int64)
+    # the mean edge length sets the start: triangles shrink in number about as 1/cell²
+    edge = float(np.mean(np.linalg.norm(v[t[:, 1]] - v[t[:, 0]], axis=1))) or 1.0
+    cell = edge * max(1.0, math.sqrt(len(t) / budget))
+    while True:
+        cv, ct, kept = cluster_vertices(v, t, cell)
+        if len(ct) <= budget:
+            return cell, cv, ct, kept
+        cell *= 1.3
