@@ -274,7 +274,9 @@ def segment_colour_indices(
     nb = np.asarray(neighbours, dtype=np.int64).reshape(seg.size, -1)
     a = np.repeat(seg, nb.shape[1])
     b = seg[nb.reshape(-1)]
-    pairs = np.unique(np.stack([a, b], axis=1)[a != b], axis=0)
+    # unique pairs as one int64 key each: numpy sorts integers without the GIL, rows (axis=0) with it
+    key = np.unique((a * n_seg + b)[a != b])
+    pairs = np.stack([key // n_seg, key % n_seg], axis=1)
     start = np.searchsorted(pairs[:, 0], np.arange(n_seg + 1))
     colours = np.full(n_seg, -1, np.int64)
     k = len(SEGMENT_COLOURS_3D)

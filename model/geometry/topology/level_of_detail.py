@@ -158,8 +158,7 @@ def cluster_vertices(
     if t.size == 0:
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
     cells = np.floor(v / cell).astype(np.int64)
-    _keys, cluster, counts = np.unique(cells, axis=0, return_inverse=True, return_counts=True)
-    cluster = cluster.reshape(-1)
+    cluster, counts = _unique_rows(cells)
     sums = np.zeros((counts.size, 3))
     np.add.at(sums, cluster, v)
     centres = sums / counts[:, None]
@@ -171,9 +170,30 @@ def cluster_vertices(
     # orientation: a triangle and its reverse are different faces)
     first = np.argmin(ct, axis=1)
     rolled = np.stack([ct[np.arange(len(ct)), (first + k) % 3] for k in range(3)], axis=1)
-    _u, unique_at = np.unique(rolled, axis=0, return_index=True)
+    which, _counts = _unique_rows(rolled)
+    unique_at = np.full(int(which.max()) + 1 if which.size else 0, len(which), np.int64)
+    np.minimum.at(unique_at, which, np.arange(len(which)))
     unique_at.sort()
     return centres, rolled[unique_at], index[unique_at]
+
+
+def _unique_rows(rows: Int64Array) -> tuple[Int64Array, Int64Array]:
+    """The index of each row's class of equal rows (classes in sorted order) and each class's size.
+
+    Rows are packed into one int64 key when their ranges allow it, so that numpy sorts integers (without
+    holding the GIL, which a worker must not hold for long: the GUI thread waits for it) rather than rows.
+    """
+    lo = rows.min(axis=0)
+    span = rows.max(axis=0) - lo + 1
+    if float(np.prod(span.astype(np.float64))) < 2.0**62:
+        shifted = rows - lo
+        key = shifted[:, 0]
+        for k in range(1, rows.shape[1]):
+            key = key * span[k] + shifted[:, k]
+        _u, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
+    else:
+        _r, inverse, counts = np.unique(rows, axis=0, return_inverse=True, return_counts=True)
+    return inverse.reshape(-1).astype(np.int64), counts.astype(np.int64)
 
 
 def coarse_mesh(

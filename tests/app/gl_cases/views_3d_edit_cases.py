@@ -1,12 +1,16 @@
-"""Editing voxels in the 3D views: the discrete view's slice plane, painting and erasing on it, undo.
+"""Editing voxels in the 3D views: the slice plane, painting and erasing on it, components and cavities.
 
 Run by tests/app/test_views_3d.py under its own Xvfb with GLX (see views_3d_cases.py).
 """
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6 import QtCore, QtGui
 
+from mrm.core.grids import VoxelSet
+from mrm.document.commands import AddObject
+from mrm.views import gl_mesh
 from mrm.views.view3d import SLICE_VOXEL_RGBA
 from tests.app.gl_cases.views_3d_cases import R, _frame, _hues, _near, _octahedron, _show_3d
 
@@ -85,3 +89,48 @@ def test_painting_and_erasing_on_the_slice_plane_are_one_undo_step_each(make_win
     win.doc.history.undo()
     assert win.doc.get(obj.id).source == before
     qtbot.waitUntil(win.is_drawn, timeout=60_000)
+
+
+def _hollow_cube_and_a_cube():  # type: ignore[no-untyped-def]
+    m = np.zeros((9, 9, 16), bool)
+    m[1:8, 1:8, 1:8] = True
+    m[3:6, 3:6, 3:6] = False  # a 3³ cavity (26 voxels around the one floating in it)
+    m[4, 4, 4] = True
+    m[2:5, 2:5, 11:14] = True  # a separate 3³ cube
+    return VoxelSet(m, (-8, -4, -4))
+
+
+def test_the_region_views_menu_fills_a_cavity_and_deletes_a_component_each_one_undo_step(make_window, qtbot):
+    win = make_window(threaded=True)
+    vs = _hollow_cube_and_a_cube()
+    obj = win.doc.make_object(vs, name="solids")
+    win.doc.push(AddObject(obj))
+    area = _show_3d(qtbot, win)
+    view = area.by_name("region3d")
+    second = QtGui.QColor(gl_mesh.COMPONENT_COLOURS_3D[1]).hsvHue()  # the separate cube's colour
+    assert _near(_hues(_frame(view)), second, 6) > 100
+
+    def trigger(text: str) -> None:
+        menu = view.context_menu()
+        acts = {a.text(): a for a in menu.actions() if a.text()}
+        assert text in acts, list(acts)
+        acts[text].trigger()
+
+    trigger("Fill cavity 1 of component 1 (26 voxels)")
+    filled = win.doc.get(obj.id).source
+    assert filled.count == vs.count + 26 and vs.issubset(filled)
+    assert win.doc.history.undo_label() == "Fill cavity"
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    region = win.scene.get(obj.id, "region")
+    assert region.n_cavities == 0 and [c.voxels for c in region.components] == [7**3, 27]
+    trigger("Delete component 2 (27 voxels)")
+    assert win.doc.get(obj.id).source.count == 7**3
+    assert win.doc.history.undo_label() == "Delete component"
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    assert _near(_hues(_frame(view)), second, 6) == 0  # the cube is gone from the region view
+    win.doc.history.undo()
+    assert win.doc.get(obj.id).source == filled
+    win.doc.history.undo()
+    assert win.doc.get(obj.id).source == vs
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    assert _near(_hues(_frame(view)), second, 6) > 100
