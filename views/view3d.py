@@ -860,7 +860,9 @@ class EuclideanView3D(View3D):
             cell, vertices, triangles, kept = coarse_mesh(poly.vertices, poly.triangles, budget)
             faces = np.asarray(poly.face_of_triangle)[kept]
             data = gl_mesh.triangle_arrays(vertices, triangles, np.tile(colour, (len(triangles), 1)))
-            data["lines"] = gl_mesh.face_edges(vertices, triangles, faces)
+            # a face's outline is drawn at full detail only: clustered, faces break into slivers whose
+            # outlines would cover the solid (and cost a wide-line pass over every edge per frame)
+            data["lines"] = gl_mesh.face_edges(vertices, triangles, faces) if cell == 0 else None
             data["factor"] = math.ceil(cell) if cell > 0 else 1
             return data
 
