@@ -24,6 +24,10 @@ Measured, each over many repeats (medians, with the 90th percentile):
    repaints them); ``--forced-repaint`` moves each view alone and repaints it at once instead (the gesture of
    the previous sessions' figures).
 
+``--stalls3d [SIDE]`` measures the 3D workflow instead (a display with OpenGL needed, e.g. an Xvfb with
+GLX): a ball of SIDE³ voxels (512 by default) added and shown in the 3D views, orbiting every 100 ms while its
+representations and drawing data are computed, then orbiting for 5 s (target ≤ 100 ms).
+
 ``--startup [N]`` measures instead the real ``mrm`` on a virtual X server, N starts (target ≤ 5 s to the
 painted window, the check of ``tests/app/test_real_display.py``).
 
@@ -715,6 +719,81 @@ def bench_stalls(
     return out
 
 
+def bench_stalls_3d(side: int = 512, timeout: float = 1800.0) -> list[tuple[str, float, float, str]]:
+    """The longest GUI-thread stalls of the 3D workflow: a ball of ``side``³ voxels added, the 3D views shown
+    (their surfaces drawn at a coarser level beyond the views' budget), orbiting every 100 ms while the
+    region, the plane segments and the polyhedron are computed; then orbiting the drawn views for 5 s.
+
+    Needs a display with OpenGL (an Xvfb with GLX: ``Xvfb :91 -screen 0 1600x1200x24 +extension GLX``).
+    """
+    from PySide6 import QtCore
+
+    from mrm.app.startup import preload
+    from mrm.core.grids import VoxelSet
+    from mrm.document.commands import AddObject
+    from mrm.views.view3d import opengl_available
+
+    app, win = make_window()
+    if not opengl_available():
+        raise RuntimeError("the 3D workflow needs a display with OpenGL (run it under Xvfb +extension GLX)")
+    beat = Heartbeat(trace="--trace" in sys.argv)
+    _BEAT[:] = [beat]
+    preload(win)
+    run_until_drawn(app, win, beat, timeout)
+    out: list[tuple[str, float, float, str]] = []
+    beat.reset()
+    t0 = time.perf_counter()
+    while time.perf_counter() - t0 < 2.0:
+        app.processEvents()
+        time.sleep(0.002)
+    out.append(("idle event loop (peer)", beat.worst, 2.0, ""))
+    r = (side - 1) / 2
+    c = np.arange(side, dtype=np.float32) - r
+    ball = (c[:, None, None] ** 2 + c[None, :, None] ** 2 + c[None, None, :] ** 2) <= r * r
+    vs = VoxelSet(ball, (0, 0, 0))
+    del ball
+    voxels = int(vs.count)
+
+    def orbit() -> None:
+        area = win.views.area3d
+        if area is not None and area.views:
+            p = area.camera.params()
+            area.camera.set(azimuth=float(p.get("azimuth", 0.0)) + 4.0)
+
+    def step(label: str, action, during=None, seconds: float = 0.0) -> None:  # type: ignore[no-untyped-def]
+        beat.mark(label)
+        beat.reset()
+        t = time.perf_counter()
+        action()
+        if seconds:
+            next_during = t
+            while time.perf_counter() - t < seconds:
+                app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 5)
+                if during is not None and time.perf_counter() >= next_during:
+                    during()
+                    next_during = time.perf_counter() + 0.1
+                time.sleep(0.002)
+        else:
+            run_until_drawn(app, win, beat, timeout, during)
+        took = time.perf_counter() - t
+        area = win.views.area3d
+        level = max((getattr(v, "coarsest_level", lambda: 1)() for v in area.views), default=1) if area else 1
+        note = f"{voxels:,} voxels, drawn at level {level}"
+        out.append((label, beat.worst, took, note))
+        print(f"   {label:<52} longest stall {beat.worst * 1000:8.1f} ms   ({took:6.1f} s; {note}; "
+              f"the GUI thread's CPU in it {beat.worst_cpu * 1000:.0f} ms)", flush=True)  # fmt: skip
+
+    def add_and_show() -> None:
+        win.doc.push(AddObject(win.doc.make_object(vs, name=f"ball{side}"), select=True))
+        if win.views.dimension != 3:
+            win.registry["view.three_d"].trigger()
+
+    step(f"add a {side}³ ball, show the 3D views, orbit while computing", add_and_show, orbit)
+    step("orbit the drawn views for 5 s", lambda: None, orbit, seconds=5.0)
+    win.close_now()
+    return out
+
+
 def main() -> int:
     args = sys.argv[1:]
     scale = float(args[args.index("--scale") + 1]) if "--scale" in args else 1.0
@@ -724,6 +803,19 @@ def main() -> int:
         load = Path("/proc/loadavg").read_text().split()[0]
         print(f"window painted on a real X server (Xvfb) after launching `mrm` (target ≤ 5 s), load {load}")
         print(f"   median {statistics.median(st):.2f} s  (runs: " + ", ".join(f"{t:.2f}" for t in st) + ")")
+        return 0
+    if "--stalls3d" in args:
+        i = args.index("--stalls3d")
+        side = int(args[i + 1]) if len(args) > i + 1 and args[i + 1].isdigit() else 512
+        print(f"4b. longest GUI-thread stall in the 3D workflow (target ≤ 100 ms), a {side}³ ball")
+        rows = bench_stalls_3d(side)
+        peer = max(rows[0][1], 1e-4)
+        print(f"   peer: idle event loop                         longest stall {rows[0][1] * 1000:8.1f} ms")
+        for label, worst, _took, _size in rows[1:]:
+            print(f"   ratio to the peer, {label:<52} {worst / peer:8.1f}×")
+        if "--trace" in args:
+            print("   where the GUI thread was during the stalls (innermost project frames):")
+            print(_BEAT[0].report() if _BEAT else "")
         return 0
     if "--stalls" in args:
         print(f"4. longest GUI-thread stall per workflow (target ≤ 100 ms), scale {scale:g}")

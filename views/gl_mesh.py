@@ -31,7 +31,12 @@ _QUAD = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.int32)
 assert np.array_equal(np.cross(_U, _W), DIRS), "each (u, w) must turn counter-clockwise about its normal"
 
 
-def surfel_mesh(voxels: npt.ArrayLike, directions: npt.ArrayLike) -> tuple[Floats, Ints]:
+def surfel_mesh(
+    voxels: npt.ArrayLike,
+    directions: npt.ArrayLike,
+    scale: float = 1.0,
+    offset: npt.ArrayLike = (0.0, 0.0, 0.0),
+) -> tuple[Floats, Ints]:
     """The two triangles of each surfel.
 
     Parameters
@@ -40,6 +45,9 @@ def surfel_mesh(voxels: npt.ArrayLike, directions: npt.ArrayLike) -> tuple[Float
         The (x, y, z) voxel of A each surfel belongs to.
     directions : int array (n,)
         The index in :data:`~mrm.geometry.topology.surfels.DIRS` of each surfel's outward normal.
+    scale, offset :
+        Voxel v is the cube of side ``scale`` centred on ``offset + scale * v`` (a coarser level's blocks,
+        :mod:`mrm.geometry.topology.level_of_detail`); by default the unit voxels themselves.
 
     Returns
     -------
@@ -51,14 +59,78 @@ def surfel_mesh(voxels: npt.ArrayLike, directions: npt.ArrayLike) -> tuple[Float
     v = np.asarray(voxels, dtype=np.float64).reshape(-1, 3)
     d = np.asarray(directions, dtype=np.intp).reshape(-1)
     n = d.size
-    centre = v + DIRS[d] / 2.0
-    corners = (
-        centre[:, None, :]
-        + _CORNERS[None, :, 0, None] * _U[d][:, None, :]
-        + _CORNERS[None, :, 1, None] * _W[d][:, None, :]
+    centre = np.asarray(offset, np.float64) + scale * (v + DIRS[d] / 2.0)
+    corners = centre[:, None, :] + scale * (
+        _CORNERS[None, :, 0, None] * _U[d][:, None, :] + _CORNERS[None, :, 1, None] * _W[d][:, None, :]
     )
     triangles = (np.arange(n, dtype=np.int32)[:, None, None] * 4 + _QUAD[None]).reshape(-1, 3)
     return corners.reshape(-1, 3).astype(np.float32), triangles
+
+
+def surfel_arrays(
+    voxels: npt.ArrayLike,
+    directions: npt.ArrayLike,
+    colours: npt.ArrayLike,
+    scale: float = 1.0,
+    offset: npt.ArrayLike = (0.0, 0.0, 0.0),
+) -> dict[str, npt.NDArray[np.generic]]:
+    """The arrays an OpenGL mesh item draws surfels from, ready to upload (made on a worker).
+
+    pyqtgraph's ``GLMeshItem`` with ``smooth=False`` builds per-face copies of vertices, normals and colours
+    when it first paints, on the GUI thread; these are the arrays it would end with, built here instead. The
+    four corners of a surfel are not shared with other surfels, so per-vertex normals and colours are the
+    surfel's own and the mesh draws flat.
+
+    Parameters
+    ----------
+    voxels, directions, scale, offset :
+        As :func:`surfel_mesh`.
+    colours : uint8 (n, 4)
+        The RGBA colour of each surfel.
+
+    Returns
+    -------
+    dict
+        ``vertices`` float32 (4n, 3), ``normals`` float32 (4n, 3), ``colours`` uint8 (4n, 4) and ``faces``
+        uint32 (2n, 3), with ``box`` the box of the vertices (None when there are none).
+    """
+    vertices, triangles = surfel_mesh(voxels, directions, scale, offset)
+    d = np.asarray(directions, dtype=np.intp).reshape(-1)
+    normals = np.repeat(DIRS[d].astype(np.float32), 4, axis=0)
+    rgba8 = np.repeat(np.asarray(colours, np.uint8).reshape(-1, 4), 4, axis=0)
+    return with_box(
+        {"vertices": vertices, "normals": normals, "colours": rgba8, "faces": triangles.astype(np.uint32)}
+    )
+
+
+def triangle_arrays(
+    vertices: npt.ArrayLike, triangles: npt.ArrayLike, colours: npt.ArrayLike
+) -> dict[str, npt.NDArray[np.generic]]:
+    """Flat-shaded arrays of a triangle mesh (each triangle its own three vertices, its normal and colour).
+
+    ``colours`` is uint8 (m, 4), one RGBA per triangle; the result is as :func:`surfel_arrays`'.
+    """
+    v = np.asarray(vertices, np.float64).reshape(-1, 3)
+    t = np.asarray(triangles, np.int64).reshape(-1, 3)
+    corners = v[t]  # (m, 3, 3)
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    length = np.linalg.norm(normal, axis=1, keepdims=True)
+    normal = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0)
+    return with_box(
+        {
+            "vertices": corners.reshape(-1, 3).astype(np.float32),
+            "normals": np.repeat(normal.astype(np.float32), 3, axis=0),
+            "colours": np.repeat(np.asarray(colours, np.uint8).reshape(-1, 4), 3, axis=0),
+            "faces": np.arange(3 * len(t), dtype=np.uint32).reshape(-1, 3),
+        }
+    )
+
+
+def with_box(data: dict[str, npt.NDArray[np.generic]]) -> dict[str, npt.NDArray[np.generic]]:
+    """``data`` with ``box``, the (lo, hi) corners of its ``vertices`` (None when empty)."""
+    v = data["vertices"]
+    data["box"] = (tuple(map(float, v.min(axis=0))), tuple(map(float, v.max(axis=0)))) if v.size else None  # type: ignore[assignment]
+    return data
 
 
 def face_edges(vertices: npt.ArrayLike, triangles: npt.ArrayLike, face_of_triangle: npt.ArrayLike) -> Floats:
@@ -113,11 +185,58 @@ def rgba(colour: str, alpha: float = 1.0) -> tuple[float, float, float, float]:
     return (int(c[0:2], 16) / 255, int(c[2:4], 16) / 255, int(c[4:6], 16) / 255, float(alpha))
 
 
-def palette_colours(index: npt.ArrayLike, palette: tuple[str, ...], repeat: int = 2) -> Floats:
-    """RGBA rows for each index (``index mod len(palette)``), each repeated ``repeat`` times (triangles)."""
-    table = np.array([rgba(c) for c in palette], dtype=np.float32)
-    idx = np.asarray(index, dtype=np.int64).reshape(-1) % len(palette)
-    return np.repeat(table[idx], repeat, axis=0)
+def rgba8(colour: str) -> npt.NDArray[np.uint8]:
+    """``#rrggbb`` as an opaque uint8 RGBA row."""
+    return np.array([round(c * 255) for c in rgba(colour)], np.uint8)
+
+
+def palette_rgba8(index: npt.ArrayLike, palette: tuple[str, ...]) -> npt.NDArray[np.uint8]:
+    """One uint8 RGBA row per index (``index mod len(palette)``)."""
+    table = np.array([rgba8(c) for c in palette], dtype=np.uint8)
+    return table[np.asarray(index, dtype=np.int64).reshape(-1) % len(palette)]
+
+
+def colours_by_block(
+    fine_blocks: npt.ArrayLike,
+    fine_directions: npt.ArrayLike,
+    fine_colours: npt.ArrayLike,
+    blocks: npt.ArrayLike,
+    directions: npt.ArrayLike,
+    shape: tuple[int, ...],
+) -> npt.NDArray[np.uint8]:
+    """Colours of a coarser level's surfels taken from the fine surfels they stand for.
+
+    A coarse surfel (block B, direction d) takes the colour of a fine surfel facing d whose voxel lies in
+    block B (the last in sort order); one with none (the pooled surface moved outward by a block) is grey.
+
+    Parameters
+    ----------
+    fine_blocks : int (m, 3)
+        The (I, J, K) block of each fine surfel's voxel.
+    fine_directions, fine_colours :
+        Its direction and uint8 RGBA colour.
+    blocks, directions :
+        The coarse surfels (:func:`mrm.geometry.topology.level_of_detail.boundary_surfels`).
+    shape :
+        The pooled mask's (nz, ny, nx).
+    """
+    _nz, ny, nx = (int(v) for v in shape)
+
+    def key(b: npt.ArrayLike, d: npt.ArrayLike) -> npt.NDArray[np.int64]:
+        v = np.asarray(b, np.int64).reshape(-1, 3)
+        return ((v[:, 2] * ny + v[:, 1]) * nx + v[:, 0]) * 6 + np.asarray(d, np.int64).reshape(-1)
+
+    fine = key(fine_blocks, fine_directions)
+    colours = np.asarray(fine_colours, np.uint8).reshape(-1, 4)
+    order = np.argsort(fine, kind="stable")
+    fine = fine[order]
+    want = key(blocks, directions)
+    out = np.tile(rgba8("#9a9a9a"), (want.size, 1))
+    if fine.size:
+        at = np.clip(np.searchsorted(fine, want, side="right") - 1, 0, fine.size - 1)
+        hit = fine[at] == want
+        out[hit] = colours[order[at[hit]]]
+    return out
 
 
 def segment_colour_indices(
@@ -135,7 +254,9 @@ def segment_colour_indices(
     nb = np.asarray(neighbours, dtype=np.int64).reshape(seg.size, -1)
     a = np.repeat(seg, nb.shape[1])
     b = seg[nb.reshape(-1)]
-    pairs = np.unique(np.stack([a, b], axis=1)[a != b], axis=0)
+    # unique pairs as one int64 key each: numpy sorts integers without the GIL, rows (axis=0) with it
+    key = np.unique((a * n_seg + b)[a != b])
+    pairs = np.stack([key // n_seg, key % n_seg], axis=1)
     start = np.searchsorted(pairs[:, 0], np.arange(n_seg + 1))
     colours = np.full(n_seg, -1, np.int64)
     k = len(SEGMENT_COLOURS_3D)

@@ -298,8 +298,9 @@ class SetSource(SwapObject):
     ----------
     obj_id : int
         The object.
-    source : PixelSet or Polygon or MultiPolygon
-        The new source; a geometry must be valid (:func:`~mrm.document.validate_geometry`).
+    source : PixelSet or VoxelSet or Polygon or MultiPolygon
+        The new source; a geometry must be valid (:func:`~mrm.document.validate_geometry`); a voxel set (the
+        3D views' paint, erase, delete component, fill cavity) replaces a voxel object's.
     label : str
         Text of the undo step.
     drag_id : object, optional
@@ -311,7 +312,7 @@ class SetSource(SwapObject):
         self, obj_id: int, source: Source, label: str = "Replace geometry", drag_id: object = None
     ) -> None:
         super().__init__(obj_id)
-        if not isinstance(source, PixelSet):
+        if not isinstance(source, GridSet):
             source = validate_geometry(source)
         self.source = source
         self.label = label

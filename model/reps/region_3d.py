@@ -25,6 +25,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from mrm.core.errors import ParameterError
+from mrm.core.grids import VoxelSet
 from mrm.core.limits import check_pixels
 from mrm.geometry.topology.labeling import _group_by_label
 from mrm.geometry.topology.labeling_3d import (
@@ -33,6 +35,7 @@ from mrm.geometry.topology.labeling_3d import (
     euler_per_label,
     label_runs_3d,
     paint_3d,
+    paint_background_3d,
     surfel_count,
 )
 from mrm.geometry.topology.surfels import Surfels, surfels_of
@@ -198,6 +201,35 @@ class Region3D:
     def labels(self) -> npt.NDArray[np.int32]:
         """The (nz, ny, nx) component label volume at :attr:`origin` (0 off the set)."""
         return paint_3d(self._runs_or_empty())
+
+    def component_voxels(self, label: int) -> VoxelSet:
+        """The voxels of component ``label`` (1..n): what deleting the component removes.
+
+        Raises
+        ------
+        ParameterError
+            When there is no such component.
+        """
+        if not 1 <= int(label) <= len(self.components):
+            raise ParameterError(f"there is no component {label} (the object has {len(self.components)})")
+        return VoxelSet(self.labels() == int(label), self.origin)
+
+    def cavity_voxels(self, component: int, cavity: int) -> VoxelSet:
+        """The voxels of cavity ``cavity`` (0-based) of component ``component``: what filling it adds.
+
+        The components nested inside the cavity are not part of it; filling it makes them one with its
+        component.
+
+        Raises
+        ------
+        ParameterError
+            When there is no such cavity.
+        """
+        key = (int(component), int(cavity))
+        if key not in self._cavity_index:
+            raise ParameterError(f"component {component} has no cavity {cavity + 1}")
+        b = self._cavity_index.index(key) + 1
+        return VoxelSet(paint_background_3d(self._runs_or_empty()) == b, self.origin)
 
     @property
     def surfaces(self) -> tuple[Surface3D, ...]:

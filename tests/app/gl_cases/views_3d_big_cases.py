@@ -1,0 +1,72 @@
+"""Big voxel objects in the 3D views: a coarser level within the budget, arrays made off the GUI thread.
+
+Run by tests/app/test_views_3d.py under its own Xvfb with GLX (see views_3d_cases.py).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mrm.core.grids import VoxelSet
+from mrm.document.commands import AddObject
+from mrm.views import gl_mesh
+from mrm.views.view3d import View3D
+from tests.app.gl_cases.views_3d_cases import _frame, _hue_of, _hues, _near, _show_3d
+
+R = 20  # a digital ball of radius 20: about 7,500 surfels
+
+
+def test_a_voxel_object_over_the_budget_is_drawn_coarser_and_the_header_says_so(
+    make_window, qtbot, monkeypatch
+):
+    monkeypatch.setattr(View3D, "SURFEL_BUDGET", 3000)
+    win = make_window(threaded=True)
+    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
+    vs = VoxelSet(x * x + y * y + z * z <= R * R, (-R, -R, -R))
+    obj = win.doc.make_object(vs, name="ball")
+    win.doc.push(AddObject(obj))
+    area = _show_3d(qtbot, win)
+    region = win.scene.get(obj.id, "region")
+    assert region.n_surfels > 3000
+    for name in ("discrete3d", "region3d", "analytical3d"):
+        view = area.by_name(name)
+        data, items = view._items[obj.id]
+        # fewer surfels than the budget, in blocks of f³ voxels, and the header says which level is shown
+        assert data["factor"] >= 2 and len(data["faces"]) // 2 <= 3000, name
+        assert view.coarsest_level() == data["factor"]
+        assert f"blocks of {data['factor']}³ voxels" in view.status_label.text(), name
+        # the blocks cover the ball: the drawn box holds the ball's whole box of voxel cubes
+        lo, hi = np.array(data["box"])
+        assert (
+            (lo <= -R - 0.5).all()
+            and (hi >= R + 0.5).all()
+            and (hi - lo <= 2 * R + 1 + 2 * data["factor"]).all()
+        )
+        # the GL item uploads the arrays made on the worker as they are (no per-face copies on the GUI thread)
+        _frame(view)
+        mesh = items[0]
+        assert (
+            mesh.vertexes is data["vertices"]
+            and mesh.colors is data["colours"]
+            and mesh.faces is data["faces"]
+        )
+    hues = _hues(_frame(area.by_name("discrete3d")))
+    assert _near(hues, _hue_of(obj.style.fill)) > 0.9 * len(hues) > 500
+    hues = _hues(_frame(area.by_name("region3d")))
+    assert _near(hues, _hue_of(gl_mesh.COMPONENT_COLOURS_3D[0])) > 0.9 * len(hues) > 500
+    # the analytical view's coarse surfels take their fine surfels' segment colours: several segments seen
+    hues = _hues(_frame(area.by_name("analytical3d")))
+    palette = {_hue_of(c) for c in gl_mesh.SEGMENT_COLOURS_3D}
+    assert len({h for h in palette if _near(hues, h, 6) > 50}) >= 3
+
+
+def test_a_voxel_object_within_the_budget_is_drawn_whole_with_an_empty_header(make_window, qtbot):
+    win = make_window(threaded=True)
+    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
+    obj = win.doc.make_object(VoxelSet(x * x + y * y + z * z <= R * R, (-R, -R, -R)), name="ball")
+    win.doc.push(AddObject(obj))
+    area = _show_3d(qtbot, win)
+    view = area.by_name("discrete3d")
+    data, _items = view._items[obj.id]
+    assert data["factor"] == 1 and len(data["faces"]) // 2 == win.scene.get(obj.id, "region").n_surfels
+    assert view.coarsest_level() == 1 and "coarser" not in view.status_label.text()
