@@ -25,6 +25,8 @@ if TYPE_CHECKING:
 PROJECT_EXT = ".mrm"
 IMAGE_EXTS = (".png", ".pbm", ".pgm", ".npz", ".tif", ".tiff")
 VECTOR_EXTS = (".geojson", ".json", ".wkt")
+#: 3D files (meshes and volumes; an .npz or .tif is a volume when it holds a 3-D array).
+SOLID_EXTS = (".obj", ".ply", ".off", ".stl", ".nii", ".gz")
 EXPORT_FILTERS = {
     ".png": "PNG image — pixels (*.png)",
     ".svg": "SVG picture — polygons (*.svg)",
@@ -244,7 +246,7 @@ class FileController(QtCore.QObject):
                 return False
             path = files[0]
         p = Path(path)
-        if p.suffix.lower() != PROJECT_EXT and p.suffix.lower() in IMAGE_EXTS + VECTOR_EXTS:
+        if p.suffix.lower() != PROJECT_EXT and p.suffix.lower() in IMAGE_EXTS + VECTOR_EXTS + SOLID_EXTS:
             return self.import_files([p])
         from mrm.io.autosave import find_recoveries
         from mrm.io.project import read_project
@@ -472,9 +474,12 @@ class FileController(QtCore.QObject):
             "importDialog",
             "Import",
             self._directory(),
-            "Images and geometry (*.png *.pbm *.pgm *.npz *.tif *.tiff *.geojson *.json *.wkt);;"
+            "Images, geometry and 3D (*.png *.pbm *.pgm *.npz *.tif *.tiff *.geojson *.json *.wkt"
+            " *.obj *.ply *.off *.stl *.nii *.nii.gz);;"
             "Images — pixels (*.png *.pbm *.pgm *.npz *.tif *.tiff);;"
-            "Geometry — polygons (*.geojson *.json *.wkt);;All files (*)",
+            "Geometry — polygons (*.geojson *.json *.wkt);;"
+            "3D — meshes and voxel volumes (*.obj *.ply *.off *.stl *.nii *.nii.gz *.npz *.tif *.tiff);;"
+            "All files (*)",
             many=True,
         )
         return self.import_files([Path(f) for f in files]) if files else False
@@ -490,6 +495,11 @@ class FileController(QtCore.QObject):
 
         model = self.doc.model if model is None else model
         ext = path.suffix.lower()
+        from mrm.io.imports import solid_sources
+
+        solid = solid_sources(path)  # a mesh, or a voxel file (an .npz or .tif holding a 3-D array)
+        if solid is not None:
+            return solid
         if ext in IMAGE_EXTS:
             from mrm.io.pixel_files import read_pixels
 
@@ -514,7 +524,7 @@ class FileController(QtCore.QObject):
 
         raise FileFormatError(
             f"{path.name}: cannot import '{ext or 'no extension'}' files; "
-            "use PNG, PBM, PGM, NPZ, GeoJSON or WKT"
+            "use PNG, PBM, PGM, NPZ, TIFF, GeoJSON, WKT, a mesh (OBJ, PLY, OFF, STL) or a volume (NIfTI)"
         )
 
     def _in_background(
@@ -559,7 +569,11 @@ class FileController(QtCore.QObject):
         def look(_progress: Any) -> tuple[int, Any] | None:
             # On a worker: a grey image's values are decoded in full to decide whether to ask (seconds at
             # 10⁸ pixels). The first image that needs an answer, with its values; None if none does.
+            from mrm.io.voxel_files import is_volume_file
+
             for k in todo:
+                if is_volume_file(paths[k]):
+                    continue  # a 3-D .npz or .tif: voxels, no threshold to ask for here
                 try:
                     values = image_values(paths[k])
                 except (OSError, ValueError):
@@ -614,7 +628,10 @@ class FileController(QtCore.QObject):
                     reader = chosen.get(k)
                     pairs = reader() if reader is not None else self.read_objects(p, model)
                     georef = None
-                    if p.suffix.lower() in IMAGE_EXTS:  # a GeoTIFF's or world file's place stays with it
+                    from mrm.document.objects import source_dimension
+
+                    flat = all(source_dimension(src) == 2 for _name, src in pairs)
+                    if flat and p.suffix.lower() in IMAGE_EXTS:  # a GeoTIFF's or world file's place stays
                         from mrm.io.georef import read_georef
 
                         georef = read_georef(p)

@@ -83,11 +83,13 @@ class ViewArea(QtWidgets.QWidget):
         if ch.reset or not ch.inserted:
             return
         doc = self.scene.doc
-        box = joint_box(object_box(self.scene.source(i)) for i in ch.inserted if i in doc)
+        # the plane views frame plane objects; 3D ones have the 3D views' own Fit
+        flat = [i for i in ch.inserted if i in doc and doc.get(i).dimension == 2]
+        box = joint_box(object_box(self.scene.source(i)) for i in flat)
         shown = self.visible_rect()
         if box is None or shown is None or _inside(box, shown):
             return
-        if all(i in ch.inserted for i in doc.ids):
+        if all(i in ch.inserted for i in (o.id for o in doc.plane_objects)):
             self.frame(box)
         else:
             self.camera.fit(joint_box([box, shown]) or box, margin=0.02)

@@ -4,6 +4,9 @@
   with its georeference (a GeoTIFF's, or a world file's) when it has one;
 * vector files (``.geojson`` ``.json`` ``.wkt``) → one object per geometry: polygons become Euclidean objects;
   lines and points, which are no shapes, become discrete objects D(geometry) under the document's model;
+* 3D files (docs/design.md §11): a mesh (``.obj`` ``.ply`` ``.off`` ``.stl``) → one polyhedron object, a
+  voxel file (``.nii`` ``.nii.gz``, a multi-page ``.tif``, an ``.npz`` holding a 3-D array) → one voxel
+  object, or a label volume when the ``.npz`` holds ``labels`` (:func:`solid_sources`);
 * another project (``.mrm``) → copies of its objects, with fresh ids (provenance inputs follow them).
 """
 
@@ -18,6 +21,7 @@ from mrm.core.errors import FileFormatError
 from mrm.core.limits import clean_name
 from mrm.document import DocObject, Document, validate_geometry
 from mrm.document.commands import ApplyResults
+from mrm.document.objects import Source
 from mrm.geometry.discretize import discretize
 from mrm.io.georef import read_pixels_georef
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
@@ -26,6 +30,34 @@ from mrm.io.vector_files import VECTOR_EXTENSIONS, read_geometries
 from mrm.ops.provenance import Provenance
 
 PathLike = str | os.PathLike[str]
+
+
+def solid_sources(path: PathLike) -> list[tuple[str, Source]] | None:
+    """The 3D object a mesh or voxel file holds, named after the file; None for any other file.
+
+    A mesh is checked as a closed, oriented, non-self-intersecting surface (:func:`mrm.read_mesh`); a voxel
+    file is told from a 2D one of the same extension by its headers (:func:`is_volume_file`). Nothing is
+    decided from the contents beyond what the readers check.
+    """
+    from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh
+    from mrm.io.voxel_files import is_volume_file, read_label_volume, read_voxels
+
+    p = Path(path)
+    name = clean_name(p.name[: -len(".nii.gz")] if p.name.lower().endswith(".nii.gz") else p.stem or p.name)
+    if p.suffix.lower() in MESH_EXTENSIONS:
+        return [(name, read_mesh(p))]
+    if not is_volume_file(p):
+        return None
+    if p.suffix.lower() == ".npz" and _holds_labels(p):
+        return [(name, read_label_volume(p))]
+    return [(name, read_voxels(p))]
+
+
+def _holds_labels(path: Path) -> bool:
+    import zipfile
+
+    with zipfile.ZipFile(path) as zf:  # is_volume_file has opened it as a zip already
+        return "labels.npy" in zf.namelist()
 
 
 def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None = None) -> list[DocObject]:
@@ -50,6 +82,9 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
             out.append(o.with_(id=new_ids[o.id], provenance=prov))
         return out
 
+    solid = solid_sources(p)
+    if solid is not None:
+        return [doc.make_object(src, label) for label, src in solid]
     if ext in PIXEL_EXTENSIONS:
         # A GeoTIFF's transform and CRS (or a world file's) stay on the object (ADR 0021).
         ps, georef = read_pixels_georef(p, threshold=threshold)
@@ -66,7 +101,8 @@ def objects_from_file(doc: Document, path: PathLike, *, threshold: float | None 
         return out
     shown = f"'{ext}'" if ext else "no extension"
     raise FileFormatError(
-        f"{p.name}: cannot import {shown}; use .png, .pbm, .pgm, .npz, .geojson, .json, .wkt or .mrm"
+        f"{p.name}: cannot import {shown}; use .png, .pbm, .pgm, .npz, .tif, .geojson, .json, .wkt, .mrm, "
+        "a mesh (.obj .ply .off .stl) or a volume (.nii .nii.gz)"
     )
 
 

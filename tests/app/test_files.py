@@ -388,3 +388,39 @@ def test_recent_files_show_their_folder(make_window, qtbot, tmp_path):
     assert texts == [f"&1 plan.mrm — {tmp_path / 'second'}", f"&2 plan.mrm — {tmp_path / 'first'}"]
     tips = [a.toolTip() for a in win.recent_menu.actions() if a.text().startswith("&")]
     assert tips == [str((tmp_path / d / "plan.mrm").resolve()) for d in ("second", "first")]
+
+
+def test_meshes_and_voxel_volumes_are_imported_and_dropped_as_3d_objects(make_window, qtbot, tmp_path):
+    """File ▸ Import and drops read meshes and volumes: a polyhedron, a voxel set and a label volume come in
+    as 3D objects (one undo step per import), exactly as the files hold them; a 3-D .npz asks no threshold."""
+    import mrm
+    from mrm.core.grids import LabelVolume, VoxelSet
+    from mrm.geometry.polyhedra import Polyhedron
+
+    octa = Polyhedron(
+        [[3, 0, 0], [-3, 0, 0], [0, 3, 0], [0, -3, 0], [0, 0, 3], [0, 0, -3]],
+        [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]],
+    )
+    mrm.write_mesh(octa, tmp_path / "octa.obj")
+    z, y, x = np.mgrid[-3:4, -3:4, -3:4]
+    ball = VoxelSet(x**2 + y**2 + z**2 <= 9, (10, -3, -3))
+    mrm.write_voxels(ball, tmp_path / "ball.nii.gz")
+    mrm.write_voxels(ball, tmp_path / "ball.npz")
+    labels = np.zeros((2, 3, 4), np.int32)
+    labels[0, :, :2], labels[1, 1:, 2:] = 1, 7
+    mrm.write_label_volume(LabelVolume(labels, (0, 0, 5)), tmp_path / "parts.npz")
+
+    win = make_window()
+    assert win.files.import_files([tmp_path / "octa.obj", tmp_path / "ball.nii.gz"])
+    qtbot.waitUntil(lambda: len(win.doc) == 2)
+    sources = {o.name: o.source for o in win.doc.objects}
+    assert sources["octa"] == octa and sources["ball"] == ball
+    assert all(o.dimension == 3 for o in win.doc.objects)
+    assert _drop(win, [tmp_path / "ball.npz", tmp_path / "parts.npz"])
+    qtbot.waitUntil(lambda: len(win.doc) == 4)
+    assert win.findChild(QtWidgets.QDialog, "imageImportDialog") is None  # no threshold asked
+    dropped = {o.name: o.source for o in win.doc.objects[2:]}
+    assert dropped["ball"] == ball
+    assert isinstance(dropped["parts"], LabelVolume) and np.array_equal(dropped["parts"].labels, labels)
+    win.doc.history.undo()
+    assert len(win.doc) == 2

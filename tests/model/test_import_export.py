@@ -227,3 +227,27 @@ def test_load_input_reports_hostile_projects_as_user_errors(tmp_path):
     (tmp_path / "h.mrm").write_bytes(np.arange(100, dtype=np.uint8).tobytes())
     with pytest.raises(MRMError, match=r"h\.mrm"):
         load_input(tmp_path / "h.mrm", "x")
+
+
+def test_meshes_and_volumes_import_as_3d_objects_and_a_2d_npz_stays_pixels(tmp_path):
+    import mrm
+    from mrm.core.errors import InvalidGeometryError
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.polyhedra import Polyhedron
+
+    tet = Polyhedron(
+        [[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4]], [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+    )
+    mrm.write_mesh(tet, tmp_path / "tet.off")
+    vs = VoxelSet(np.ones((2, 2, 3), bool), (1, 2, 3))
+    mrm.write_voxels(vs, tmp_path / "v.tif")
+    write_pixels(PixelSet(np.ones((2, 3), bool), (5, 5)), tmp_path / "p.npz")
+    doc = Document()
+    ids = [i for name in ("tet.off", "v.tif", "p.npz") for i in import_file(doc, tmp_path / name)]
+    got = {doc.get(i).name: doc.get(i).source for i in ids}
+    assert got["tet"] == tet and got["v"] == vs
+    assert isinstance(got["p"], PixelSet) and got["p"].count == 6
+    (tmp_path / "open.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")  # not a closed surface
+    with pytest.raises(InvalidGeometryError) as err:
+        import_file(doc, tmp_path / "open.obj")
+    assert "\n" not in str(err.value) and len(doc) == 3
