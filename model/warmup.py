@@ -69,6 +69,7 @@ KERNEL_MODULES = (
     "geometry/polyhedra/validation.py",
     "geometry/discretize/_kernels3d.py",
     "geometry/planes/_kernels.py",
+    "geometry/topology/colouring.py",
 )
 
 STAMP_NAME = "mrm-kernels-warm.json"
@@ -277,6 +278,9 @@ def _step_regions_3d() -> None:
     standard_plane_prefix([(0, 0, 0), (1, 0, 0), (0, 1, 1)])  # the compiled point recognizer
     cells_3d_of(mask.astype(np.int32) + np.eye(3, dtype=np.int32)[None])
     safety_net_3d(mask)
+    from mrm.geometry.topology.colouring import greedy_colouring
+
+    greedy_colouring(3, [(0, 1), (1, 2)], 2)  # the 3D analytical view's segment colours
 
 
 def _step_operations() -> None:

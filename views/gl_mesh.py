@@ -255,13 +255,7 @@ def segment_colour_indices(
     a = np.repeat(seg, nb.shape[1])
     b = seg[nb.reshape(-1)]
     # unique pairs as one int64 key each: numpy sorts integers without the GIL, rows (axis=0) with it
-    key = np.unique((a * n_seg + b)[a != b])
-    pairs = np.stack([key // n_seg, key % n_seg], axis=1)
-    start = np.searchsorted(pairs[:, 0], np.arange(n_seg + 1))
-    colours = np.full(n_seg, -1, np.int64)
-    k = len(SEGMENT_COLOURS_3D)
-    for s in range(n_seg):
-        used = colours[pairs[start[s] : start[s + 1], 1]]
-        free = np.setdiff1d(np.arange(k), used[used >= 0], assume_unique=False)
-        colours[s] = int(free[0]) if free.size else s % k
-    return colours
+    from mrm.geometry.topology.colouring import greedy_colouring
+
+    keep = a != b
+    return greedy_colouring(n_seg, np.stack([a[keep], b[keep]], axis=1), len(SEGMENT_COLOURS_3D))
