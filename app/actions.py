@@ -75,6 +75,12 @@ SPECS: tuple[ActionSpec, ...] = (
         "Replace the selected label map by one pixel object per label",
     ),
     ActionSpec("edit.rename", "Re&name Object…", "F2", "Rename the selected object"),
+    ActionSpec(
+        "edit.transform_3d",
+        "&Transform 3D Object…",
+        "Ctrl+T",
+        "Move, scale and rotate the selected polyhedron by numbers",
+    ),
     ActionSpec("edit.colour", "Object Co&lour…", "Ctrl+Shift+L", "Choose the colour of the selected object"),
     ActionSpec(
         "edit.properties",

@@ -6,6 +6,7 @@ import os
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.app.actions import ActionRegistry
@@ -50,6 +51,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.doc = Document(Settings(model=prefs.default_model))
         self.runner.revision_getter = lambda: self.doc.revision
         self.scene = Scene(self.doc, self.runner, self)
+        self.transform_dialog: Any = None  # Edit ▸ Transform 3D Object's dialog while it is open
         self.views = ViewArea(self.scene, self)
         self.setCentralWidget(self.views)
         self.registry = ActionRegistry(self, prefs.shortcut_overrides())
@@ -220,6 +222,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a.connect("edit.duplicate", self.duplicate_selection)
         a.connect("edit.split_labels", self.split_label_map)
         a.connect("edit.rename", self.rename_selection)
+        a.connect("edit.transform_3d", self.transform_3d)
         a.connect("edit.cut", self.clipboard.cut)
         a.connect("edit.copy", self.clipboard.copy)
         a.connect("edit.select_all", self.select_all)
@@ -298,6 +301,7 @@ class MainWindow(QtWidgets.QMainWindow):
         primary = self.scene.primary()
         a["view.fit_differences"].setEnabled(primary is not None and primary.provenance is not None)
         a["edit.split_labels"].setEnabled(primary is not None and primary.kind == "labels")
+        a["edit.transform_3d"].setEnabled(self._selected_polyhedron() is not None)
         a["measure.hausdorff"].setEnabled(len(self.doc) >= 2)
         a["edit.select_all"].setEnabled(len(self.doc) > 0)
 
@@ -491,6 +495,55 @@ class MainWindow(QtWidgets.QMainWindow):
         self.objects_dock.show()
         self.object_list.view.setCurrentIndex(idx)
         self.object_list.view.edit(idx)
+
+    def transform_3d(self) -> None:
+        """Edit ▸ Transform 3D Object: numbers for a move, a scaling and a rotation; one undo step."""
+        from mrm.app.transform3d_dialog import Transform3DDialog
+
+        obj = self._selected_polyhedron()
+        if obj is None:
+            return
+        dlg = Transform3DDialog(obj.name, self)
+        self.transform_dialog = dlg
+
+        def done(result: int) -> None:
+            self.transform_dialog = None
+            if result != QtWidgets.QDialog.DialogCode.Accepted or obj.id not in self.doc:
+                return
+            poly = self.doc.get(obj.id).source
+            lo, hi = poly.bbox
+            linear, offset = dlg.map((np.asarray(lo, float) + np.asarray(hi, float)) / 2)
+            self.runner.submit(
+                f"transform:{obj.id}",
+                lambda _p: poly.affine(linear, offset),
+                on_result=lambda new: self._transformed(obj.id, poly, new),
+                on_error=lambda e: self._transform_failed(obj.name, e),
+                label=f"Transforming {obj.name}",
+                show_progress=True,
+            )
+
+        dlg.finished.connect(done)
+        dlg.setWindowModality(QtCore.Qt.WindowModality.WindowModal)
+        dlg.open()
+
+    def _selected_polyhedron(self) -> Any:
+        """The first selected object when it is a polyhedron (a 3D Euclidean object), else None."""
+        sel = self.doc.selection
+        obj = self.doc.get(sel[0]) if sel and sel[0] in self.doc else None
+        return obj if obj is not None and obj.dimension == 3 and obj.kind == "euclidean" else None
+
+    def _transform_failed(self, name: str, exc: BaseException) -> None:
+        from mrm.core.errors import MRMError
+
+        if not isinstance(exc, MRMError):
+            raise exc
+        self.show_error("Cannot transform", f"{name}: {exc}")
+
+    def _transformed(self, obj_id: int, before: Any, new: Any) -> None:
+        from mrm.document.commands import SetSource
+
+        if obj_id in self.doc and self.doc.get(obj_id).source is before:  # not edited meanwhile
+            self.doc.push(SetSource(obj_id, new, "Transform 3D object"))
 
     def select_all(self) -> None:
         """Select every object of the document (Ctrl+A), hidden ones too, as the Objects list shows them."""

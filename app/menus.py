@@ -43,7 +43,18 @@ def build_menus(win: MainWindow) -> None:
     m = mb.addMenu("&Edit")
     a.menu(m, ["edit.undo", "edit.redo", None, "edit.cut", "edit.copy", "edit.paste", "edit.select_all"])
     m.addSeparator()
-    a.menu(m, ["edit.rename", "edit.colour", "edit.properties", "edit.duplicate", "edit.delete", None])
+    a.menu(
+        m,
+        [
+            "edit.rename",
+            "edit.colour",
+            "edit.properties",
+            "edit.transform_3d",
+            "edit.duplicate",
+            "edit.delete",
+            None,
+        ],
+    )
     a.menu(m, ["edit.split_labels", None])
     a.menu(m, ["edit.select_previous", "edit.select_next"])
     win.model_menu = m.addMenu("Discretization &Model")

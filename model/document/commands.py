@@ -38,6 +38,7 @@ from mrm.document.objects import (
     is_polyhedron,
     validate_geometry,
 )
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.ops.georef import common_grid
 from mrm.ops.provenance import Provenance
 
@@ -298,9 +299,10 @@ class SetSource(SwapObject):
     ----------
     obj_id : int
         The object.
-    source : PixelSet or VoxelSet or Polygon or MultiPolygon
+    source : PixelSet or VoxelSet or Polygon or MultiPolygon or Polyhedron
         The new source; a geometry must be valid (:func:`~mrm.document.validate_geometry`); a voxel set (the
-        3D views' paint, erase, delete component, fill cavity) replaces a voxel object's.
+        3D views' paint, erase, delete component, fill cavity) replaces a voxel object's, a polyhedron (Edit ▸
+        Transform 3D Object) a polyhedron object's.
     label : str
         Text of the undo step.
     drag_id : object, optional
@@ -312,7 +314,7 @@ class SetSource(SwapObject):
         self, obj_id: int, source: Source, label: str = "Replace geometry", drag_id: object = None
     ) -> None:
         super().__init__(obj_id)
-        if not isinstance(source, GridSet):
+        if not isinstance(source, GridSet | Polyhedron):  # both are valid by construction
             source = validate_geometry(source)
         self.source = source
         self.label = label

@@ -180,6 +180,40 @@ class Polyhedron:
             return Polyhedron._trusted(w, self._triangles.copy(), self._topology)
         return Polyhedron(w, self._triangles)
 
+    def affine(self, linear: object, offset: object = (0.0, 0.0, 0.0)) -> Polyhedron:
+        """The solid mapped by v ↦ linear · v + offset (a move, a scaling, a rotation or any invertible map).
+
+        The image of a valid solid under an invertible affine map is a valid solid; its vertices are rounded
+        to float64, so the result is validated again and may be refused (rounding can make nearby sheets
+        touch). A map that reverses orientation (negative determinant) has its triangles turned back, so
+        that they face outwards.
+
+        Parameters
+        ----------
+        linear : 3 × 3 numbers
+        offset : three numbers
+
+        Raises
+        ------
+        InvalidGeometryError
+            For non-finite or singular maps, or a rounded result that is no longer a valid polyhedron.
+        """
+        m = np.array(linear, dtype=np.float64)
+        d = np.array(offset, dtype=np.float64).reshape(-1)
+        if m.shape != (3, 3) or d.shape != (3,) or not (np.isfinite(m).all() and np.isfinite(d).all()):
+            raise InvalidGeometryError("an affine map is a 3 × 3 matrix and three numbers, all finite")
+        det = float(np.linalg.det(m))
+        if not math.isfinite(det) or abs(det) < 1e-12 * max(1.0, float(np.abs(m).max()) ** 3):
+            raise InvalidGeometryError("the map flattens the solid (its determinant is 0)")
+        if self.is_empty:
+            return self
+        with np.errstate(over="ignore", invalid="ignore"):
+            w = self._vertices @ m.T + d
+        if not np.isfinite(w).all():
+            raise InvalidGeometryError("the mapped vertices overflow float64")
+        t = self._triangles if det > 0 else self._triangles[:, ::-1]
+        return Polyhedron(w, np.ascontiguousarray(t))
+
     # ------------------------------------------------------------------------------------------ equality
     @cached_property
     def _canonical(self) -> tuple[bytes, bytes]:
