@@ -334,15 +334,16 @@ def _world_file_georef(p: Path, frame: tuple[int, int, int, int], crs: str | Non
     transform = parse_world_file(raw.decode("ascii", errors="replace"), wf.name)
     prj = p.with_suffix(".prj")
     aux = pam_file_of(p)
+    source = p.name  # the file a refusal names: where the CRS text came from
     if crs is None and aux.is_file():  # GDAL's place for an image's CRS (it ignores a .prj beside a PNG)
-        crs = read_pam_srs(aux)
+        crs, source = read_pam_srs(aux), aux.name
     if crs is None and prj.is_file():
         # UTF-8 takes at most 4 bytes a character: a longer file cannot hold a CRS within the limit.
         text = read_regular(prj, 4 * limits.MAX_CRS_CHARS, "a CRS (.prj)", prj.name)
-        crs = text.decode("utf-8", errors="replace").strip() or None
+        crs, source = text.decode("utf-8", errors="replace").strip() or None, prj.name
     if crs is not None:
         try:
-            limits.check_crs_text(crs, f"{p.name}: the CRS")
+            limits.check_crs_text(crs, f"{source}: the CRS")
             crs = _crs_text(parse_crs(crs))
         except MRMError:
             raise

@@ -78,14 +78,15 @@ def fail_nth_rename(monkeypatch, n: int) -> None:
 def old_png_set(tmp_path: Path) -> Path:
     out = tmp_path / "out.png"
     write_georeferenced(PixelSet.box(0, 0, 7, 7), out, OLD)
-    assert {p.name for p in tmp_path.iterdir()} == {"out.png", "out.pgw", "out.prj"}
+    # the CRS twice: in the PAM file GDAL reads, and in the .prj older MR Modeler and some tools read
+    assert {p.name for p in tmp_path.iterdir()} == {"out.png", "out.pgw", "out.prj", "out.png.aux.xml"}
     return out
 
 
-@pytest.mark.parametrize("member", [1, 2, 3])
+@pytest.mark.parametrize("member", [1, 2, 3, 4])
 def test_a_full_disk_while_exporting_a_georeferenced_png_keeps_the_old_set(old_png_set, monkeypatch, member):
     before = snapshot(old_png_set.parent)
-    fail_nth_write(monkeypatch, member)  # 1: the PNG, 2: the world file, 3: the .prj
+    fail_nth_write(monkeypatch, member)  # the PNG, the world file, the .prj, the .aux.xml, in some order
     with pytest.raises(OSError) as e:
         write_georeferenced(PixelSet.box(2, 2, 4, 5), old_png_set, NEW)
     monkeypatch.undo()
@@ -94,7 +95,7 @@ def test_a_full_disk_while_exporting_a_georeferenced_png_keeps_the_old_set(old_p
     assert read_georef(old_png_set).transform == OLD.transform
 
 
-@pytest.mark.parametrize("rename", [2, 3])
+@pytest.mark.parametrize("rename", [2, 3, 4])
 def test_a_rename_failing_midway_rolls_the_set_back(old_png_set, monkeypatch, rename):
     before = snapshot(old_png_set.parent)
     fail_nth_rename(monkeypatch, rename)
@@ -107,7 +108,7 @@ def test_a_rename_failing_midway_rolls_the_set_back(old_png_set, monkeypatch, re
 def test_a_new_set_replaces_the_whole_old_one_and_a_stale_prj_goes(old_png_set):
     no_crs = GeoRef(NEW.transform, NEW.width, NEW.height, None)
     write_georeferenced(PixelSet.box(2, 2, 4, 5), old_png_set, no_crs)
-    # Without removal the old .prj would give the new picture a CRS it does not have.
+    # Without removal the old .prj and .aux.xml would give the new picture a CRS it does not have.
     assert {p.name for p in old_png_set.parent.iterdir()} == {"out.png", "out.pgw"}
     g = read_georef(old_png_set)
     assert g is not None and g.transform == NEW.transform and g.crs is None
