@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import pytestqt.exceptions
 import shapely
 from PySide6 import QtCore, QtGui
 from shapely.geometry import Polygon
@@ -76,7 +77,17 @@ def test_a_polygon_vertex_snaps_exactly_to_a_vertex_with_a_marker_in_every_view(
         qtbot.mouseMove(view.plane.viewport(), _near(view, *V, 4, -3))
         return _marker_near(view, *V) and _marker_near(other, *V)
 
-    qtbot.waitUntil(hovered_with_markers, timeout=3000)
+    try:
+        qtbot.waitUntil(hovered_with_markers, timeout=30_000)
+    except (
+        pytestqt.exceptions.TimeoutError
+    ):  # say what is missing: it failed twice in loaded CI runs and never alone
+        tool = win.tools.tool
+        raise AssertionError(
+            f"marker in the Euclidean view {_marker_near(view, *V)}, in the discrete view "
+            f"{_marker_near(other, *V)}; tool {type(tool).__name__}, hover {tool.hover}, "
+            f"snap target {tool.snap_target}"
+        ) from None
     _click_at(qtbot, view, _near(view, *V, 4, -3))
     click(qtbot, view, 16, 1, modifiers=SHIFT)
     click(qtbot, view, 16, 8, modifiers=SHIFT)
