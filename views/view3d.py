@@ -111,6 +111,16 @@ class Camera3D(QtCore.QObject):
         self.set(elevation=elevation, azimuth=azimuth)
 
 
+def joint_box3(boxes: Any) -> Box3 | None:
+    """The smallest box holding every 3D box given (None boxes skipped; None if there are none)."""
+    got = [b for b in boxes if b is not None]
+    if not got:
+        return None
+    lo = np.min([b[0] for b in got], axis=0)
+    hi = np.max([b[1] for b in got], axis=0)
+    return (tuple(map(float, lo)), tuple(map(float, hi)))  # type: ignore[return-value]
+
+
 def _gl() -> Any:
     # Imported only where OpenGL runs: importing pyqtgraph.opengl loads PyOpenGL.
     import pyqtgraph.opengl as gl
@@ -325,12 +335,7 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
 
     def bounds(self) -> Box3 | None:
         """The box holding every drawn vertex (None when nothing is drawn)."""
-        boxes = [d["box"] for d, _items in self._items.values() if d.get("box") is not None]
-        if not boxes:
-            return None
-        lo = np.min([b[0] for b in boxes], axis=0)
-        hi = np.max([b[1] for b in boxes], axis=0)
-        return (tuple(map(float, lo)), tuple(map(float, hi)))  # type: ignore[return-value]
+        return joint_box3(d.get("box") for d, _items in self._items.values())
 
     # ------------------------------------------------------------------ mouse and keys (editing views)
     def pane_press(self, ev: QtGui.QMouseEvent) -> bool:
@@ -946,12 +951,7 @@ class View3DArea(QtWidgets.QWidget):
 
     def bounds(self) -> Box3 | None:
         """The box holding what the four views draw."""
-        boxes = [b for v in self.views if (b := v.bounds()) is not None]
-        if not boxes:
-            return None
-        lo = np.min([b[0] for b in boxes], axis=0)
-        hi = np.max([b[1] for b in boxes], axis=0)
-        return (tuple(map(float, lo)), tuple(map(float, hi)))  # type: ignore[return-value]
+        return joint_box3(v.bounds() for v in self.views)
 
     def fit(self) -> None:
         """Frame every drawn 3D object in the four views."""

@@ -49,6 +49,40 @@ def drag(
     qtbot.mouseRelease(vp, Qt.MouseButton.LeftButton, modifiers, pts[-1])
 
 
+def send_mouse_move(
+    widget: QtWidgets.QWidget, pos: QtCore.QPoint, buttons: Qt.MouseButton = Qt.MouseButton.NoButton
+) -> None:
+    """A mouse move with ``buttons`` held and no key, sent straight to ``widget``.
+
+    qtbot.mouseMove carries the keyboard modifiers QTest took from the last mouse event it sent (an earlier
+    test's Shift-click leaves Shift "held"); a move built here says exactly what is held.
+    """
+    ev = QtGui.QMouseEvent(
+        QtCore.QEvent.Type.MouseMove,
+        QtCore.QPointF(pos),
+        QtCore.QPointF(widget.mapToGlobal(pos)),
+        Qt.MouseButton.NoButton,
+        buttons,
+        Qt.KeyboardModifier.NoModifier,
+    )
+    QtCore.QCoreApplication.sendEvent(widget, ev)
+
+
+def send_wheel(widget: QtWidgets.QWidget, pos: QtCore.QPoint, degrees_x8: int = 240) -> None:
+    """A vertical wheel turn at ``pos`` (in eighths of a degree: 120 is one notch), sent to ``widget``."""
+    ev = QtGui.QWheelEvent(
+        QtCore.QPointF(pos),
+        QtCore.QPointF(widget.mapToGlobal(pos)),
+        QtCore.QPoint(0, 0),
+        QtCore.QPoint(0, degrees_x8),
+        Qt.MouseButton.NoButton,
+        Qt.KeyboardModifier.NoModifier,
+        Qt.ScrollPhase.NoScrollPhase,
+        False,
+    )
+    QtCore.QCoreApplication.sendEvent(widget, ev)
+
+
 def press_key(qtbot, view: RepresentationView, key, modifiers=Qt.KeyboardModifier.NoModifier) -> None:  # type: ignore[no-untyped-def]
     view.plane.setFocus()
     qtbot.keyClick(view.plane, key, modifiers)

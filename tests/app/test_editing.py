@@ -9,7 +9,16 @@ from shapely.geometry import Polygon
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
 from mrm.geometry.discretize import discretize
-from tests.app.helpers import click, colour_at, drag, is_background, press_key, wait_drawn, zoom_to
+from tests.app.helpers import (
+    click,
+    colour_at,
+    drag,
+    is_background,
+    press_key,
+    send_wheel,
+    wait_drawn,
+    zoom_to,
+)
 
 Qt = QtCore.Qt
 
@@ -29,19 +38,7 @@ def test_window_shows_four_linked_views(make_window, qtbot):
     before = view.plane.pixels_per_unit()
     pos = view.plane.map_from_plane(10, 10)
     qtbot.wait(1)
-    from PySide6 import QtGui
-
-    ev = QtGui.QWheelEvent(
-        QtCore.QPointF(pos),
-        QtCore.QPointF(view.plane.mapToGlobal(pos)),
-        QtCore.QPoint(0, 0),
-        QtCore.QPoint(0, 240),
-        Qt.MouseButton.NoButton,
-        Qt.KeyboardModifier.NoModifier,
-        Qt.ScrollPhase.NoScrollPhase,
-        False,
-    )
-    QtCore.QCoreApplication.sendEvent(view.plane.viewport(), ev)
+    send_wheel(view.plane.viewport(), pos)
     after = {round(v.plane.pixels_per_unit(), 6) for v in win.views.views}
     assert len(after) == 1 and next(iter(after)) > before * 1.2
 

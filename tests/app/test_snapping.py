@@ -6,13 +6,22 @@ import math
 
 import pytestqt.exceptions
 import shapely
-from PySide6 import QtCore, QtGui, QtWidgets
+from PySide6 import QtCore, QtGui
 from shapely.geometry import Polygon
 
 from mrm.app.settings import Preferences
 from mrm.document.commands import AddObject
 from mrm.views.tool_base import SNAP_COLOUR
-from tests.app.helpers import click, grab, press_key, square, wait_drawn, widget_pos, zoom_to
+from tests.app.helpers import (
+    click,
+    grab,
+    press_key,
+    send_mouse_move,
+    square,
+    wait_drawn,
+    widget_pos,
+    zoom_to,
+)
 
 Qt = QtCore.Qt
 ALT = Qt.KeyboardModifier.AltModifier
@@ -55,26 +64,6 @@ def _near(view, x: float, y: float, dx_px: int, dy_px: int) -> QtCore.QPoint:  #
     return widget_pos(view, x, y) + QtCore.QPoint(dx_px, dy_px)
 
 
-def _hover(view, pos: QtCore.QPoint) -> None:  # type: ignore[no-untyped-def]
-    """A mouse move with no button and no key held, whatever keys QTest believes are down.
-
-    qtbot.mouseMove sends the application's current keyboard modifiers, which QTest sets from the last mouse
-    event it sent: after a test whose last action was a Shift-click (another file, same process), the move
-    snapped to the pixel grid (hover (10.5, 4.5), no snap target). That failed this file in full CI runs and
-    never alone; reproduced with a Shift-click test run first.
-    """
-    vp = view.plane.viewport()
-    ev = QtGui.QMouseEvent(
-        QtCore.QEvent.Type.MouseMove,
-        QtCore.QPointF(pos),
-        QtCore.QPointF(vp.mapToGlobal(pos)),
-        Qt.MouseButton.NoButton,
-        Qt.MouseButton.NoButton,
-        NONE,
-    )
-    QtWidgets.QApplication.sendEvent(vp, ev)
-
-
 def _click_at(qtbot, view, pos: QtCore.QPoint, mods=NONE) -> None:  # type: ignore[no-untyped-def]
     vp = view.plane.viewport()
     qtbot.mouseMove(vp, pos)
@@ -93,7 +82,9 @@ def test_a_polygon_vertex_snaps_exactly_to_a_vertex_with_a_marker_in_every_view(
 
     def hovered_with_markers() -> bool:
         # 5 screen pixels off the vertex, with no key held (see _hover), moved again at each poll.
-        _hover(view, _near(view, *V, 4, -3))
+        # no key held: after an earlier test's Shift-click qtbot.mouseMove carried Shift, which snapped the
+        # hover to the pixel grid (hover (10.5, 4.5), no target) in full CI runs and never alone
+        send_mouse_move(view.plane.viewport(), _near(view, *V, 4, -3))
         return _marker_near(view, *V) and _marker_near(other, *V)
 
     try:

@@ -16,7 +16,7 @@ from mrm.core.grids import VoxelSet
 from mrm.document.commands import AddObject
 from mrm.geometry.polyhedra import Polyhedron
 from mrm.views import gl_mesh
-from tests.app.helpers import press_key
+from tests.app.helpers import press_key, send_mouse_move, send_wheel
 
 Qt = QtCore.Qt
 
@@ -122,15 +122,7 @@ def test_orbiting_one_3d_view_turns_the_four_and_the_buttons_set_them_all(make_w
     c = pane.rect().center()
     qtbot.mousePress(pane, Qt.MouseButton.LeftButton, pos=c)
     for k in range(1, 8):
-        ev = QtGui.QMouseEvent(
-            QtCore.QEvent.Type.MouseMove,
-            QtCore.QPointF(c.x() + 10 * k, c.y() + 3 * k),
-            QtCore.QPointF(pane.mapToGlobal(QtCore.QPoint(c.x() + 10 * k, c.y() + 3 * k))),
-            Qt.MouseButton.NoButton,
-            Qt.MouseButton.LeftButton,
-            Qt.KeyboardModifier.NoModifier,
-        )
-        QtCore.QCoreApplication.sendEvent(pane, ev)
+        send_mouse_move(pane, QtCore.QPoint(c.x() + 10 * k, c.y() + 3 * k), Qt.MouseButton.LeftButton)
     qtbot.mouseRelease(pane, Qt.MouseButton.LeftButton, pos=c)
     after = [p.cameraParams() for p in panes]
     assert after[0]["azimuth"] != before["azimuth"]
@@ -138,17 +130,7 @@ def test_orbiting_one_3d_view_turns_the_four_and_the_buttons_set_them_all(make_w
     # The wheel zooms all four.
     qtbot.wait(10)
     d0 = panes[0].cameraParams()["distance"]
-    wheel = QtGui.QWheelEvent(
-        QtCore.QPointF(c),
-        QtCore.QPointF(pane.mapToGlobal(c)),
-        QtCore.QPoint(0, 0),
-        QtCore.QPoint(0, 240),
-        Qt.MouseButton.NoButton,
-        Qt.KeyboardModifier.NoModifier,
-        Qt.ScrollPhase.NoScrollPhase,
-        False,
-    )
-    QtCore.QCoreApplication.sendEvent(pane, wheel)
+    send_wheel(pane, c)
     assert all(p.cameraParams()["distance"] < d0 for p in panes)
     # Top: every view looks down the z axis.
     qtbot.mouseClick(area.buttons["top"], Qt.MouseButton.LeftButton)

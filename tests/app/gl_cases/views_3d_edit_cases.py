@@ -13,6 +13,7 @@ from mrm.document.commands import AddObject
 from mrm.views import gl_mesh
 from mrm.views.view3d import SLICE_VOXEL_RGBA
 from tests.app.gl_cases.views_3d_cases import R, _frame, _hues, _near, _octahedron, _show_3d
+from tests.app.helpers import send_mouse_move
 
 Qt = QtCore.Qt
 
@@ -23,15 +24,7 @@ def _drag(qtbot, view, voxels) -> None:  # type: ignore[no-untyped-def]
     points = [view.screen_of(v).toPoint() for v in voxels]
     qtbot.mousePress(pane, Qt.MouseButton.LeftButton, pos=points[0])
     for p in points[1:]:
-        ev = QtGui.QMouseEvent(
-            QtCore.QEvent.Type.MouseMove,
-            QtCore.QPointF(p),
-            QtCore.QPointF(pane.mapToGlobal(p)),
-            Qt.MouseButton.NoButton,
-            Qt.MouseButton.LeftButton,
-            Qt.KeyboardModifier.NoModifier,
-        )
-        QtCore.QCoreApplication.sendEvent(pane, ev)
+        send_mouse_move(pane, p, Qt.MouseButton.LeftButton)
     qtbot.mouseRelease(pane, Qt.MouseButton.LeftButton, pos=points[-1])
 
 
