@@ -36,6 +36,7 @@ distance between the composite Euclidean transform of A_first and A_last; null w
 from __future__ import annotations
 
 import argparse
+import logging
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -55,13 +56,18 @@ from mrm.cli._common import (
     batch_total,
     extension_of,
     inputs_and_outputs,
+    is_3d_input,
     load_object,
+    read_voxel_input,
     run_inputs,
+    voxel_limit,
 )
 from mrm.cli._project_input import add_object_argument, project_object
 from mrm.core.errors import MRMError, NotApplicableError, ParameterError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, PixelSet, VoxelSet
 from mrm.geometry.discretize import discretize
+from mrm.geometry.discretize.voxels import voxelize
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct
 from mrm.io.georef import (
     GEOREFERENCED_EXTENSIONS,
@@ -70,18 +76,26 @@ from mrm.io.georef import (
     read_georef,
     write_georeferenced,
 )
+from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh, write_mesh
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, write_pixels
 from mrm.io.vector_files import VECTOR_EXTENSIONS, write_geojson, write_svg, write_wkt
+from mrm.io.voxel_files import VOXEL_EXTENSIONS, write_voxels
 from mrm.ops.account import account_of
 from mrm.ops.georef import result_georef
 from mrm.ops.provenance import Provenance
 from mrm.ops.registry import OperationSpec, get_operation, run_operation
-from mrm.reps.summary import summarize
+from mrm.reps.summary import summarize, summarize_voxels
 
-#: Input file types.
-INPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".mrm")
-#: Output file types of a single result.
-OUTPUTS = (*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".svg")
+log = logging.getLogger(__name__)
+
+#: Input file types (3D: voxel volumes and meshes, for the operations that take them).
+INPUTS = tuple(
+    dict.fromkeys((*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".mrm", *VOXEL_EXTENSIONS, *MESH_EXTENSIONS))
+)
+#: Output file types of a single result (a 3D result: a voxel file, or a mesh file of its R).
+OUTPUTS = tuple(
+    dict.fromkeys((*PIXEL_EXTENSIONS, *VECTOR_EXTENSIONS, ".svg", *VOXEL_EXTENSIONS, *MESH_EXTENSIONS))
+)
 
 
 def add_two_inputs(parser: argparse.ArgumentParser) -> None:
@@ -134,6 +148,10 @@ def read_one(
 ) -> OperationInput:
     """Read one input of an operation (a pixel file, a vector file or one object of a project)."""
     ext = extension_of(path, INPUTS, "supported input file")
+    if ext != ".mrm" and is_3d_input(path):  # a voxel volume or a mesh: a 3D object, no georeference
+        if ext in MESH_EXTENSIONS:
+            return OperationInput(read_mesh(path), model or "standard")
+        return OperationInput(read_voxel_input(path, threshold, voxel_limit(None)), model or "standard")
     if ext == ".mrm":
         if invert:
             raise ParameterError(f"{path}: --invert applies to image inputs only")
@@ -216,6 +234,9 @@ def write_result(
     file) and a vector file in world coordinates (GeoJSON with ``crs`` and ``bbox``); SVG stays a picture.
     """
     ext = extension_of(path, OUTPUTS, "output file")
+    if isinstance(result, VoxelSet | Polyhedron):
+        _write_3d(result, path, ext, model)
+        return
     if ext in PIXEL_EXTENSIONS:
         if not isinstance(result, PixelSet):
             result = discretize(result, model)
@@ -242,13 +263,31 @@ def write_result(
         )
 
 
+def _write_3d(result: VoxelSet | Polyhedron, path: str, ext: str, model: str) -> None:
+    """A 3D result: its voxels to a voxel file, its Euclidean representation (R of voxels) to a mesh file."""
+    if ext in MESH_EXTENSIONS:
+        warning = write_mesh(result if isinstance(result, Polyhedron) else reconstruct(result, model), path)
+        if warning:
+            log.warning("%s", warning)
+        return
+    if ext in VOXEL_EXTENSIONS:
+        write_voxels(result if isinstance(result, VoxelSet) else voxelize(result, model), path)
+        return
+    raise ParameterError(
+        f"{path}: a 3D result is written to a voxel file ({', '.join(VOXEL_EXTENSIONS)}) or a mesh file "
+        f"({', '.join(MESH_EXTENSIONS)})"
+    )
+
+
 def two_input_georef(operation: str, a: OperationInput, b: OperationInput) -> Any:
     """The georeference of a two-input result (ADR 0021): both inputs' grid when they share one, else None."""
     return result_georef(operation, {}, [a.georef, b.georef])
 
 
-def result_summary(result: Any, pixels: PixelSet, model: str) -> dict[str, Any]:
+def result_summary(result: Any, pixels: Any, model: str) -> dict[str, Any]:
     """The info keys of a result (its discrete representation, and the polygon when it is Euclidean)."""
+    if isinstance(pixels, VoxelSet):  # the 3D keys of mrm info, without R (the mesh file's own business)
+        return summarize_voxels(pixels, model, faces=None, vertices=None)
     return summarize(pixels, model, geom=None if isinstance(result, PixelSet) else result)
 
 
@@ -301,7 +340,8 @@ def unary_file(
 
 
 def _line(f: dict[str, Any]) -> str:
-    return f"{f['input']} -> {f['output']}: {f['pixels']} pixels, {f['seconds']:.3f} s"
+    count = f"{f['voxels']} voxels" if "voxels" in f else f"{f['pixels']} pixels"
+    return f"{f['input']} -> {f['output']}: {count}, {f['seconds']:.3f} s"
 
 
 #: Keys summed over the inputs of a batch.
@@ -333,8 +373,12 @@ def run_unary(args: argparse.Namespace, operation: str, params: dict[str, Any]) 
     return run_inputs(args, unary_file, jobs, _line, total, first=first, hidden=("account", "steps", "parts"))
 
 
-def _pixels_of(result: Any, model: str, limit: int | None) -> PixelSet:
-    return result if isinstance(result, PixelSet) else discretize(result, model, limit=limit)
+def _pixels_of(result: Any, model: str, limit: int | None) -> Any:
+    if isinstance(result, PixelSet | VoxelSet):
+        return result
+    if isinstance(result, Polyhedron):
+        return voxelize(result, model, limit=limit)
+    return discretize(result, model, limit=limit)
 
 
 def _parameter_fields(operation: str) -> tuple[Any, list[Any]]:

@@ -185,9 +185,12 @@ def read_point(value: object, what: str, dimension: int = 2) -> Point:
         value = [p for p in value.replace(";", ",").split(",")]
     elif hasattr(value, "tolist") and not isinstance(value, (list, tuple)):
         value = value.tolist()
+    if dimension == 0 and isinstance(value, (list, tuple)) and len(value) in (2, 3):
+        dimension = len(value)  # either: the caller decides from its inputs (a centre in 2D or 3D)
     if not isinstance(value, (list, tuple)) or len(value) != dimension:
-        names = ", ".join("xyz"[:dimension])
-        raise ParameterError(f"{what} must be {dimension} numbers ({names}), got {value_text(value)}")
+        names = ", ".join("xyz"[: dimension or 3])
+        count = dimension or "2 or 3"
+        raise ParameterError(f"{what} must be {count} numbers ({names}), got {value_text(value)}")
     return tuple(read_number(v, f"{what} {'xyz'[k]}") for k, v in enumerate(value))
 
 

@@ -72,7 +72,7 @@ class ParamSpec:
     positional : bool
         Whether a chain's text writes the value right after the operation's name (``DSS 5``).
     dimension : int
-        The number of coordinates of a ``point``.
+        The number of coordinates of a ``point``; 0 for two or three (a centre: the inputs' dimension).
     """
 
     name: str

@@ -48,12 +48,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from mrm.core.errors import Cancelled, MRMError, ParameterError
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
 from mrm.core.numbers import fraction_text
 from mrm.core.progress import ProgressLike, sub_progress
-from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.discretize.exact_solid import identity_map
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.hausdorff.bounds import BoundResult
 from mrm.ops.boolean import (
@@ -66,8 +66,8 @@ from mrm.ops.chain import Link as ChainLink
 from mrm.ops.chain import chain_bound
 from mrm.ops.measure import MeasuredError, PixelDifference, differing_pixels, measured_error
 from mrm.ops.provenance import content_digest
-from mrm.ops.registry import get_operation, plan_operation
-from mrm.ops.representations import discrete_of, euclidean_of
+from mrm.ops.registry import get_operation, input_dimension, plan_operation
+from mrm.ops.representations import discrete_of, euclidean_of, exact_of
 from mrm.ops.simplify import simplification
 
 log = logging.getLogger(__name__)
@@ -185,8 +185,8 @@ class Account:
     no_bound: str = ""
     measured: MeasuredError | None = None
     reference_exact: bool = True
-    direct: PixelSet | None = None
-    result: PixelSet | None = None
+    direct: PixelSet | VoxelSet | None = None
+    result: PixelSet | VoxelSet | None = None
     difference: PixelDifference | None = None
     parts: tuple[PartAccount, ...] = ()
     part: str = ""
@@ -415,14 +415,15 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     if len(models) > 1:
         raise ParameterError(f"the chain mixes discretization models ({', '.join(sorted(models))})")
     model = models.pop() if models else DEFAULT_MODEL
-    bound = chain_bound(links, model)
     first = records[0]
     origin = first.sources[0]
+    n = input_dimension([origin])
+    bound = chain_bound(links, model, n=n)
     origin_chain = input_chain(first.parents[0]) if first.parents else ()
-    transform = Similarity.identity()
+    transform = identity_map(n)
     for link in links:
         assert link.spec.similarity is not None
-        transform = transform.then(link.spec.similarity(link.params))
+        transform = transform.then(link.spec.similarity(link.params, n))
     acc = Account(
         prov.operation,
         model=model,
@@ -440,18 +441,20 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     outcome = last.spec.outcome(source, last.params, limit=limit, progress=_sub(progress, 0.0, 0.3))
     result = outcome.result
     pixels = (
-        result if isinstance(result, PixelSet) else discretize_exact(outcome.euclidean, model, limit=limit)
+        result
+        if isinstance(result, PixelSet | VoxelSet)
+        else discretize_exact(outcome.euclidean, model, limit=limit)
     )
     idempotent = None
     if last.spec.name == "simplify":
         # Sp_α∘Sp_α = Sp_α: Sp_α of the result as stored (float64) is exactly the exact result.
         again = simplification(result, last.params.alpha, last.params.center, model, limit=limit)
         idempotent = again.euclidean == outcome.euclidean
-    a_first = ExactShape.from_geometry(euclidean_of(_reads(links[0], origin, model, limit), model))
+    a_first = exact_of(euclidean_of(_reads(links[0], origin, model, limit), model))
     t_first = a_first.map(transform)
     if progress is not None:
         progress.update(0.3, "the direct result D(T(A_first))")
-    direct = discretize_exact(t_first, model, limit=limit, progress=_sub(progress, 0.3, 0.5))
+    direct = discrete_of(t_first, model, limit=limit, progress=_sub(progress, 0.3, 0.5))
     if progress is not None:
         progress.update(0.5, "measuring the Hausdorff distance")
     measured = measured_error(t_first, outcome.euclidean, progress=_sub(progress, 0.5, 1.0))

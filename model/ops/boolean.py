@@ -285,12 +285,12 @@ def estimate_corefine(inputs: Sequence[Any], params: CorefineParams) -> int:
     return estimated_pixels(inputs, _scaling(params), params.model)
 
 
-def union_bound(params: UnionParams, part: str) -> BoundStep:
+def union_bound(params: UnionParams, part: str, n: int = 2) -> BoundStep:
     """EDu in the bound rule: one round trip of the union."""
     return union_step(UNION_SPEC.label(params))
 
 
-def corefine_bound(params: CorefineParams, part: str) -> BoundStep:
+def corefine_bound(params: CorefineParams, part: str, n: int = 2) -> BoundStep:
     """EDco(_α) in the bound rule, following ``part``."""
     return corefine_step(
         COREFINE_SPEC.label(params, part), _scaling(params) or Similarity.identity(), BOUND_PART[part]

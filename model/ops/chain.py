@@ -61,9 +61,9 @@ class Link:
         """The step as a chain's text writes it (``DSS 5``, ``ROT 30 about 1,2``)."""
         return self.spec.label(self.params, self.part)
 
-    def bound_step(self) -> BoundStep:
-        """The step in the bound rule."""
-        return self.spec.bound_step(self.params, self.part)
+    def bound_step(self, n: int = N_DIM) -> BoundStep:
+        """The step in the bound rule, on objects of dimension ``n``."""
+        return self.spec.bound_step(self.params, self.part, n)
 
 
 def chain_bound(
@@ -75,7 +75,7 @@ def chain_bound(
 ) -> BoundResult:
     """The error bound of a chain (:func:`mrm.geometry.hausdorff.bounds.bound_of_chain` on its steps)."""
     return bound_of_chain(
-        [link.bound_step() for link in links], model, n=n, exact_identities=exact_identities
+        [link.bound_step(n) for link in links], model, n=n, exact_identities=exact_identities
     )
 
 
@@ -133,7 +133,8 @@ class _Parser:
         self.i += 1
         return tok[1]
 
-    def pair(self, what: str) -> tuple[str, str]:
+    def pair(self, what: str) -> tuple[str, ...]:
+        """A point: two numbers, or three (a centre in space: ``about 1,2,3``)."""
         paren = self.at("punct", "(")
         if paren:
             self.take()
@@ -141,11 +142,16 @@ class _Parser:
         if self.at("punct", ","):
             self.take()
         y = self.number(what)
+        z: tuple[str, ...] = ()
+        if (self.at("punct", ",") and self._number_follows()) or self.at("num"):
+            if self.at("punct", ","):
+                self.take()
+            z = (self.number(what),)
         if paren:
             if not self.at("punct", ")"):
                 raise ParameterError(f"{what}: expected ')'")
             self.take()
-        return x, y
+        return (x, y, *z)
 
     def link(self) -> Link:
         tok = self.peek()

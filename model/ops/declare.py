@@ -19,6 +19,7 @@ __all__ = [
     "ANGLE_LIMIT",
     "alpha_param",
     "angle_param",
+    "axis_param",
     "center_param",
     "model_param",
 ]
@@ -73,5 +74,15 @@ def angle_param(default: Any, help: str) -> Any:
 
 
 def center_param(help: str, *, default: Any = None) -> Any:
-    """A centre (a point; None means the origin), written ``about x,y`` in a chain's text."""
-    return param(default, kind="point", optional=default is None, label="centre", unit="px", help=help)
+    """A centre (a point; None means the origin), written ``about x,y`` (``about x,y,z`` in 3D) in a chain.
+
+    Two or three coordinates: the operation checks them against its inputs' dimension.
+    """
+    return param(
+        default, kind="point", optional=default is None, label="centre", unit="px", help=help, dimension=0
+    )
+
+
+def axis_param(help: str) -> Any:
+    """The axis of a 3D rotation (three numbers, not all zero; None means the z axis)."""
+    return param(None, kind="point", optional=True, label="axis", help=help, dimension=3)

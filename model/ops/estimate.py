@@ -13,19 +13,21 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any, Literal
 
-from mrm.core.grids import Box, PixelSet, box_area, joint_box
+from mrm.core.grids import PixelSet, VoxelSet, box_area, joint_box
 from mrm.core.models import Model
-from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, mapped_bounds, pixel_box, voxel_bounds
+from mrm.geometry.discretize.exact_shape import ExactShape, mapped_bounds, pixel_box, voxel_bounds
+from mrm.geometry.discretize.exact_solid import ExactSolid
+from mrm.geometry.polyhedra import Polyhedron
 
 __all__ = ["estimated_box", "estimated_pixels"]
 
 
 def estimated_box(
     source: Any,
-    sim: Similarity | None,
+    sim: Any,
     model: Model | str,
     reads: Literal["discrete", "euclidean"] = "euclidean",
-) -> Box | None:
+) -> tuple[int, ...] | None:
     """A pixel box holding D(T(X)) for an object's source X (T = ``sim``, None: no similarity).
 
     ``reads`` is the representation the operation transforms: ``discrete`` (DSS_α, dR_θ,C: a polygon E is
@@ -40,35 +42,44 @@ def estimated_box(
     model = Model.parse(model)
     if source is None:
         return None
-    if isinstance(source, PixelSet):
+    box: tuple[int, ...] | None
+    if isinstance(source, PixelSet | VoxelSet):
         box = source.bbox
     else:
         exact = _bounds(source)
         if exact is None:
             return None
         if reads == "euclidean":
-            return pixel_box(exact if sim is None else mapped_bounds(exact, sim), model)
+            found: tuple[int, ...] | None = pixel_box(
+                exact if sim is None else mapped_bounds(exact, sim), model
+            )
+            return found
         box = pixel_box(exact, Model.SUPERCOVER)  # D(E) lies in the closed cells E meets, in every model
     if sim is None or box is None:
         return box
     if not model.is_cover:
-        box = (box[0] - 1, box[1] - 1, box[2] + 1, box[3] + 1)
-    return pixel_box(mapped_bounds(voxel_bounds(box), sim), model)
+        n = len(box) // 2
+        box = (*(b - 1 for b in box[:n]), *(b + 1 for b in box[n:]))
+    mapped: tuple[int, ...] | None = pixel_box(mapped_bounds(voxel_bounds(box), sim), model)
+    return mapped
 
 
-def _bounds(source: Any) -> tuple[Fraction, Fraction, Fraction, Fraction] | None:
-    """The exact bounds of a polygon (shapely or exact), None when it is empty."""
-    if isinstance(source, ExactShape):
+def _bounds(source: Any) -> tuple[Fraction, ...] | None:
+    """The exact bounds of a polygon (shapely or exact) or a solid, None when it is empty."""
+    if isinstance(source, ExactShape | ExactSolid):
         return source.bounds()
     if source.is_empty:
         return None
+    if isinstance(source, Polyhedron):
+        lo, hi = source.bbox
+        return (*(Fraction(v) for v in lo), *(Fraction(v) for v in hi))
     x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)
     return x0, y0, x1, y1
 
 
 def estimated_pixels(
     sources: Sequence[Any],
-    sim: Similarity | None,
+    sim: Any,
     model: Model | str,
     reads: Literal["discrete", "euclidean"] = "euclidean",
 ) -> int:

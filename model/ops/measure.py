@@ -29,7 +29,6 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Literal
 
-from mrm.core.grids import PixelSet
 from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
 from mrm.geometry.hausdorff import directed_hausdorff
@@ -137,14 +136,14 @@ class PixelDifference:
 
     Attributes
     ----------
-    light : PixelSet
+    light : PixelSet or VoxelSet
         Light grey: in the result but not in the reference.
-    dark : PixelSet
+    dark : PixelSet or VoxelSet
         Dark grey: in the reference but not in the result.
     """
 
-    light: PixelSet
-    dark: PixelSet
+    light: Any
+    dark: Any
 
     @property
     def count(self) -> int:
@@ -156,6 +155,6 @@ class PixelDifference:
         return {"light": len(self.light), "dark": len(self.dark)}
 
 
-def differing_pixels(result: PixelSet, reference: PixelSet) -> PixelDifference:
+def differing_pixels(result: Any, reference: Any) -> PixelDifference:
     """Light grey = ``result ∖ reference``, dark grey = ``reference ∖ result``."""
     return PixelDifference(result - reference, reference - result)

@@ -17,16 +17,17 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.discretize.exact_solid import ExactSolid, Similarity3
 from mrm.geometry.discretize.rational import discretize_exact, discretize_image
 from mrm.geometry.hausdorff.bounds import BoundStep, discrete_similarity_step
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.estimate import estimated_pixels
-from mrm.ops.registry import OperationResult, OperationSpec, register
+from mrm.ops.registry import OperationResult, OperationSpec, input_dimension, register
 from mrm.ops.representations import discrete_of
 
 
@@ -51,7 +52,7 @@ class StepOutcome:
     """
 
     result: Any
-    transform: Similarity
+    transform: Any
     # An ExactShape, or a picklable function making it on first use (it costs Fraction arithmetic): a module
     # function bound with functools.partial, never a closure, so that an outcome can cross to a worker
     # process.
@@ -60,19 +61,22 @@ class StepOutcome:
     extra: dict[str, Any] = field(default_factory=dict)
 
     @property
-    def euclidean(self) -> ExactShape:
-        """The exact Euclidean object (computed on first use when the operation did not need it)."""
+    def euclidean(self) -> Any:
+        """The exact Euclidean object (computed on first use when the operation did not need it).
+
+        An :class:`ExactShape` in the plane, an :class:`~mrm.geometry.discretize.exact_solid.ExactSolid`
+        in space.
+        """
         value = self.exact_image
-        if not isinstance(value, ExactShape):
+        if not isinstance(value, ExactShape | ExactSolid):
             value = value()
             object.__setattr__(self, "exact_image", value)
-        assert isinstance(value, ExactShape)
         return value
 
 
 def discrete_similarity(
-    ps: PixelSet,
-    sim: Similarity,
+    ps: PixelSet | VoxelSet,
+    sim: Any,
     model: Model | str,
     *,
     limit: int | None,
@@ -87,6 +91,8 @@ def discrete_similarity(
     """
     if not estimated:
         check_pixels(estimated_pixels([ps], sim, model, reads="discrete"), limit, what)
+    if isinstance(ps, VoxelSet):
+        return _discrete_similarity_3d(ps, sim, model, limit=limit, progress=progress)
     pooled = scaling_by_pixels(ps, sim, model)
     if pooled is not None:
         # The pixels of A decide every result pixel (see scaling_by_pixels); R(A) and T(R(A)) are still the
@@ -110,6 +116,19 @@ def discrete_similarity(
         return StepOutcome(result, sim, exact, result)
     if progress is not None:
         progress.update(1.0, "done")
+    return StepOutcome(result, sim, image, result)
+
+
+def _discrete_similarity_3d(
+    vs: VoxelSet, sim: Similarity3, model: Model | str, *, limit: int | None, progress: ProgressLike | None
+) -> StepOutcome:
+    """``D(T(R(A)))`` for a voxel set A: R(A) a polyhedron, T(R(A)) its exact image (docs/design.md §11)."""
+    if progress is not None:
+        progress.update(0.0, "continuing R(A)")
+    image = ExactSolid(reconstruct(vs, model), Similarity3.identity()).map(sim)
+    if progress is not None:
+        progress.update(0.3, "discretizing the exact image")
+    result = image.discretize(str(model), limit=limit, progress=sub_progress(progress, 0.3, 1.0))
     return StepOutcome(result, sim, image, result)
 
 
@@ -212,7 +231,7 @@ def register_discrete_similarity(
     name: str,
     title: str,
     params: type,
-    similarity: Callable[[Any], Similarity],
+    similarity: Callable[..., Any],
     symbol: str,
     result_name: Callable[[Any], str],
     what: Callable[[Any], str],
@@ -230,7 +249,8 @@ def register_discrete_similarity(
     """
 
     def estimate(inputs: Any, p: Any) -> int:
-        return estimated_pixels(inputs[:1], similarity(p), p.model, reads="discrete")
+        n = input_dimension(inputs[:1])
+        return estimated_pixels(inputs[:1], similarity(p, n), p.model, reads="discrete")
 
     def step(
         source: Any,
@@ -241,8 +261,9 @@ def register_discrete_similarity(
         estimated: bool = False,
     ) -> StepOutcome:
         ps = discrete_of(source, p.model, limit=limit)
+        sim = similarity(p, input_dimension([ps]))
         return discrete_similarity(
-            ps, similarity(p), p.model, limit=limit, progress=progress, what=what(p), estimated=estimated
+            ps, sim, p.model, limit=limit, progress=progress, what=what(p), estimated=estimated
         )
 
     def run(inputs: Any, p: Any, progress: ProgressLike | None = None) -> OperationResult:
@@ -251,8 +272,8 @@ def register_discrete_similarity(
         out = step(inputs[0], p, progress=progress, estimated=True)
         return OperationResult(outputs=[(result_name(p), out.result)])
 
-    def bound(p: Any, part: str) -> BoundStep:
-        return discrete_similarity_step(spec.label(p), similarity(p))
+    def bound(p: Any, part: str, n: int = 2) -> BoundStep:
+        return discrete_similarity_step(spec.label(p), similarity(p, n))
 
     spec = OperationSpec(
         name=name,

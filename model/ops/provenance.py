@@ -21,8 +21,9 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core import limits
 from mrm.core.errors import LimitError, ParameterError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import PARAMS_MAX_CHARS, PARAMS_MAX_DEPTH
+from mrm.geometry.polyhedra import Polyhedron
 
 __all__ = ["PROVENANCE_MAX_DEPTH", "Provenance", "content_digest", "freeze_json"]
 
@@ -61,18 +62,27 @@ def freeze_json(value: Any, depth: int = 0) -> Any:
 def content_digest(source: Any) -> str:
     """A digest of an object's source representation: equal digests mean equal content.
 
-    A pixel set is hashed through its canonical (cropped) mask and origin, a geometry through its WKB
-    (float64 coordinates bit for bit), so the digest names the content, not the object that holds it.
+    A pixel or voxel set is hashed through its canonical (cropped) mask and origin, a geometry through its
+    WKB (float64 coordinates bit for bit), a polyhedron through its canonical vertices and triangles (the same
+    solid whatever the order of its triangles), so the digest names the content, not the object that holds it.
     """
     h = hashlib.sha256()
-    if isinstance(source, PixelSet):
-        h.update(b"discrete:")
+    if isinstance(source, PixelSet | VoxelSet):
+        h.update(b"discrete:" if isinstance(source, PixelSet) else b"voxels:")
         h.update(np.asarray([*source.origin, *source.shape], dtype=np.int64).tobytes())
         h.update(np.packbits(source.mask, axis=None).tobytes())
     elif isinstance(source, LabelMap):
         h.update(b"labels:")
         h.update(np.asarray([*source.origin, *source.shape], dtype=np.int64).tobytes())
         h.update(source.labels.astype("<i4", copy=False).tobytes())
+    elif isinstance(source, LabelVolume):
+        h.update(b"label volume:")
+        h.update(np.asarray([*source.origin, *source.shape], dtype=np.int64).tobytes())
+        h.update(source.labels.astype("<i4", copy=False).tobytes())
+    elif isinstance(source, Polyhedron):
+        h.update(b"solid:")
+        for part in source.canonical_bytes():
+            h.update(part)
     else:
         h.update(b"euclidean:")
         h.update(shapely.to_wkb(source, byte_order=1))

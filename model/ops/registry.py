@@ -28,13 +28,13 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 from shapely.geometry.base import BaseGeometry
 
 from mrm.core.errors import ParameterError
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.numbers import spell, value_text
 from mrm.core.params import Parameters
 from mrm.core.progress import NO_PROGRESS, ProgressLike
-from mrm.geometry.discretize.exact_shape import Similarity
 from mrm.geometry.hausdorff.bounds import BoundResult, BoundStep, bound_of_chain
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import held as held_reconstructions
 from mrm.ops.provenance import Provenance
 
@@ -48,6 +48,7 @@ __all__ = [
     "Plan",
     "PlannedResult",
     "get_operation",
+    "input_dimension",
     "operations",
     "plan_operation",
     "register",
@@ -89,8 +90,9 @@ RunFn = Callable[[Sequence[Output], Any, ProgressLike], OperationResult]
 EstimateFn = Callable[[Sequence[Output], Any], int]
 #: ``step(source, params, *, limit, progress, estimated=False) -> StepOutcome`` (see OperationSpec.step).
 StepFn = Callable[..., "StepOutcome"]
-#: ``bound(params, part) -> BoundStep``: the operation in the bound rule (``part``: the output followed).
-BoundFn = Callable[[Any, str], BoundStep]
+#: ``bound(params, part, n) -> BoundStep``: the operation in the bound rule (``part``: the output followed;
+#: ``n``: the dimension of its inputs, 2 or 3).
+BoundFn = Callable[[Any, str, int], BoundStep]
 
 
 @dataclass(frozen=True)
@@ -118,12 +120,13 @@ class OperationSpec:
         ``estimate(inputs, params) -> pixels``: the size of the largest pixel set it will make, computed
         before running for the guard.
     bound : callable, optional
-        ``bound(params, part) -> BoundStep``: the operation in the bound rule (docs/design.md §8); None for an
-        operation with no place in it.
+        ``bound(params, part, n) -> BoundStep``: the operation in the bound rule (docs/design.md §8) on
+        inputs of dimension ``n``; None for an operation with no place in it.
     similarity : callable, optional
-        ``similarity(params) -> Similarity``: the exact Euclidean similarity it applies (Sc_α for DSS, the
-        exact rotation for dR, the identity for Sp); the account composes them. None for an operation that is
-        no step of a one-object chain.
+        ``similarity(params, n=2)``: the exact Euclidean map it applies in dimension ``n`` (Sc_α for DSS, the
+        exact rotation for dR, the identity for Sp: a :class:`~mrm.geometry.discretize.exact_shape.Similarity`
+        in the plane, a :class:`~mrm.geometry.discretize.exact_solid.Similarity3` in space); the account
+        composes them. None for an operation that is no step of a one-object chain.
     step : callable, optional
         ``step(source, params, *, limit, progress, estimated=False) -> StepOutcome``: the operation on one
         object with its exact Euclidean image, for the account. None for an operation that is no step of a
@@ -157,7 +160,7 @@ class OperationSpec:
     help: str = ""
     estimate: EstimateFn | None = None
     bound: BoundFn | None = None
-    similarity: Callable[[Any], Similarity] | None = None
+    similarity: Callable[..., Any] | None = None
     step: StepFn | None = None
     symbol: str = ""
     aliases: tuple[str, ...] = ()
@@ -206,11 +209,11 @@ class OperationSpec:
             words.append(f"about {','.join(map(spell, center))}")
         return " ".join(words)
 
-    def bound_step(self, params: Any, part: str = "") -> BoundStep:
-        """The operation in the bound rule; ParameterError when it has no place in it."""
+    def bound_step(self, params: Any, part: str = "", n: int = 2) -> BoundStep:
+        """The operation in the bound rule on inputs of dimension ``n``; ParameterError if it has none."""
         if self.bound is None:
             raise ParameterError(f"{self.title} has no place in the paper's bound rule (docs/design.md §8)")
-        return self.bound(params, part or self.default_part)
+        return self.bound(params, part or self.default_part, n)
 
     def outcome(
         self,
@@ -225,6 +228,9 @@ class OperationSpec:
             raise ParameterError(f"{self.name} is no step of a one-object chain")
         return self.step(source, params, limit=limit, progress=progress)
 
+
+#: The operations that take 3D inputs (voxel sets, polyhedra) so far; the others refuse them in one line.
+THREE_D = frozenset({"dss", "discrete_rotation"})
 
 #: Every registered operation, by name.
 REGISTRY: dict[str, OperationSpec] = {}
@@ -277,11 +283,28 @@ def operations() -> list[OperationSpec]:
     return [REGISTRY[k] for k in sorted(REGISTRY)]
 
 
+def input_dimension(inputs: Sequence[Any]) -> int:
+    """The dimension the inputs live in: 3 for voxel sets and polyhedra (and their exact images), else 2.
+
+    Raises ParameterError for inputs of both dimensions (a pixel set and a voxel set).
+    """
+    dims = {
+        3 if getattr(obj, "n", None) == 3 or isinstance(obj, (VoxelSet, Polyhedron)) else 2 for obj in inputs
+    }
+    if len(dims) > 1:
+        raise ParameterError("the inputs mix 2D and 3D objects: an operation takes objects of one dimension")
+    return dims.pop() if dims else 2
+
+
 def _check_inputs(spec: OperationSpec, inputs: Sequence[Output]) -> None:
     if len(inputs) != spec.arity:
         raise ParameterError(f"{spec.name} takes {spec.arity} input(s), got {len(inputs)}")
+    if input_dimension(inputs) == 3 and spec.name not in THREE_D:
+        raise ParameterError(
+            f"{spec.title} does not take 3D objects yet (it does: {', '.join(sorted(THREE_D))})"
+        )
     for i, obj in enumerate(inputs):
-        if spec.reads == "discrete" and not isinstance(obj, PixelSet):
+        if spec.reads == "discrete" and not isinstance(obj, (PixelSet, VoxelSet)):
             raise ParameterError(f"{spec.name}: input {i + 1} must be a pixel set, got {type(obj).__name__}")
         if spec.reads == "euclidean" and not isinstance(obj, BaseGeometry):
             raise ParameterError(
@@ -341,7 +364,8 @@ def run_operation(
     }
     bound = result.bound
     if bound is None and spec.bound is not None and spec.arity == 1:
-        bound = bound_of_chain([spec.bound_step(params)], getattr(params, "model", "standard"))
+        n = input_dimension(inputs)
+        bound = bound_of_chain([spec.bound_step(params, n=n)], getattr(params, "model", "standard"), n=n)
     return dataclasses.replace(result, provenance=provenance, bound=bound)
 
 

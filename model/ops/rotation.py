@@ -28,20 +28,23 @@ from mrm.core.models import Model
 from mrm.core.numbers import Point, spell
 from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike
-from mrm.geometry.discretize.exact_shape import Similarity
-from mrm.ops.declare import angle_param, center_param, model_param
+from mrm.geometry.discretize.exact_solid import rotation_map
+from mrm.ops.declare import angle_param, axis_param, center_param, model_param
 from mrm.ops.outcome import StepOutcome, register_discrete_similarity
 
 
 @dataclass(frozen=True)
 class RotationParams(Parameters):
-    """Parameters of dR_θ,C: θ in degrees (read exactly), the centre C, the model."""
+    """Parameters of dR_θ,C: θ in degrees (read exactly), the centre C, the model, the axis (3D)."""
 
     angle: Fraction = angle_param(
         30, "Rotation angle in degrees, counter-clockwise; multiples of 90° about a pixel centre are exact."
     )
     center: Point | None = center_param("Centre C of the rotation (default: origin).")
     model: Model = model_param()
+    axis: Point | None = axis_param(
+        "3D only: the axis, three numbers (default z); quarter turns about x, y or z are exact."
+    )
 
 
 NAME = "discrete_rotation"
@@ -50,7 +53,7 @@ SPEC = register_discrete_similarity(
     name=NAME,
     title="Discrete-Euclidean rotation dR_θ,C",
     params=RotationParams,
-    similarity=lambda p: Similarity.rotation(p.angle, p.center),
+    similarity=lambda p, n=2: rotation_map(p.angle, p.center, p.axis, n),
     symbol="ROT",
     result_name=lambda p: f"dR {spell(p.angle)}°",
     what=lambda p: f"dR with θ = {spell(p.angle)}°",

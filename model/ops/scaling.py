@@ -21,7 +21,7 @@ from mrm.core.models import Model
 from mrm.core.numbers import Point, spell
 from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike
-from mrm.geometry.discretize.exact_shape import Similarity
+from mrm.geometry.discretize.exact_solid import scaling_map
 from mrm.ops.declare import alpha_param, center_param, model_param
 from mrm.ops.outcome import StepOutcome, register_discrete_similarity
 
@@ -43,7 +43,7 @@ SPEC = register_discrete_similarity(
     name=NAME,
     title="Discrete smooth scaling DSS_α",
     params=DSSParams,
-    similarity=lambda p: Similarity.scaling(p.alpha, p.center),
+    similarity=lambda p, n=2: scaling_map(p.alpha, p.center, n),
     symbol="DSS",
     result_name=lambda p: f"DSS {spell(p.alpha)}",
     what=lambda p: f"DSS with α = {spell(p.alpha)}",

@@ -260,8 +260,14 @@ def _similarity_operation(
     def step(source: Any, p: Any, **_: Any) -> StepOutcome:
         return euclidean_step(source, similarity(p))
 
-    def bound(p: Any, part: str) -> BoundStep:
-        return euclidean_similarity_step(spec.label(p), similarity(p))
+    def bound(p: Any, part: str, n: int = 2) -> BoundStep:
+        return euclidean_similarity_step(spec.label(p), in_plane(p, n))
+
+    def in_plane(p: Any, n: int = 2) -> Similarity:
+        # the exact Euclidean maps are planar so far (the registry refuses them 3D inputs)
+        if n != 2:
+            raise ParameterError(f"{declared.get('title', name)} does not take 3D objects yet")
+        return similarity(p)
 
     spec = OperationSpec(
         name=name,
@@ -270,7 +276,7 @@ def _similarity_operation(
         run=run,
         reads="euclidean",
         produces="euclidean",
-        similarity=similarity,
+        similarity=in_plane,
         step=step,
         bound=bound,
         **declared,

@@ -30,6 +30,7 @@ from mrm.core.numbers import Point, spell
 from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, pixel_box
+from mrm.geometry.discretize.exact_solid import identity_map
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.hausdorff.bounds import BoundStep, simplification_step
 from mrm.geometry.reconstruct import reconstruct
@@ -165,7 +166,7 @@ def run(
     return OperationResult(outputs=[(f"Sp {spell(params.alpha)}", out.result)])
 
 
-def bound(params: SimplifyParams, part: str) -> BoundStep:
+def bound(params: SimplifyParams, part: str, n: int = 2) -> BoundStep:
     """Sp_α in the bound rule: a round trip at scale α."""
     return simplification_step(SPEC.label(params), _scaling(params))
 
@@ -185,7 +186,7 @@ SPEC = register(
         estimate=estimate,
         bound=bound,
         # Sp_α applies Sc_α and Sc_1/α around its round trip: as a whole, the identity.
-        similarity=lambda params: Similarity.identity(),
+        similarity=lambda params, n=2: identity_map(n),
         step=step,
         symbol="SP",
         aliases=("simplification",),

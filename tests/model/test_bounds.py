@@ -388,8 +388,8 @@ def test_constructors_refuse_bad_values() -> None:
         rot(float("nan"))
     with pytest.raises(ParameterError):
         translate(1, float("inf"))
-    with pytest.raises(ParameterError):
-        dss(2, (1, 2, 3))
+    with pytest.raises(ParameterError):  # a centre is 2 numbers (a pixel set's) or 3 (a voxel set's)
+        dss(2, (1, 2, 3, 4))
 
 
 # ----------------------------------------------------------------------------------------------------------

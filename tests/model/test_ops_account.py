@@ -328,7 +328,7 @@ def test_plan_operation_needs_no_document():
         ("dss", {"alpha": 2.0, "colour": "red"}, "unknown parameter(s) colour"),
         ("dss", {"alpha": 5e-324}, "allowed: 1e-06 ≤ α ≤ 1e+06"),
         ("dss", {"alpha": 2.0, "center": [1, 2, 3]}, "must be 2 numbers (x, y)"),
-        ("dss", {"alpha": 2.0, "center": "middle"}, "must be 2 numbers (x, y)"),
+        ("dss", {"alpha": 2.0, "center": "middle"}, "must be 2 or 3 numbers (x, y, z)"),
         ("dss", {"alpha": [1, 2]}, "must be a number"),
         ("discrete_rotation", {"angle": 1e308}, "allowed: -3600 ≤ θ ≤ 3600"),
         ("corefine", {"part": "everything"}, "unknown corefine part 'everything'"),

@@ -169,7 +169,7 @@ def test_every_step_records_its_exact_parameters_and_the_account_reads_them_back
     records = [o.provenance for o in doc.objects[1:]]
     assert [r.operation for r in records] == ["dss", "discrete_rotation", "simplify", "dss"]
     assert records[0].params == {"alpha": 5, "center": None, "model": "standard"}
-    assert records[1].params == {"angle": 30, "center": [1, 1], "model": "standard"}
+    assert records[1].params == {"angle": 30, "center": [1, 1], "model": "standard", "axis": None}
     assert records[3].params["alpha"] == 0.2
     assert [link.label for link in acc.chain] == ["DSS 5", "ROT 30 about 1,1", "SP 0.5", "DSS 0.2"]
     # The account recomputes the last step from its pinned input: the same pixels as the document's result.

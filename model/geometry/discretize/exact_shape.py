@@ -41,7 +41,6 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import InvalidGeometryError
-from mrm.core.grids import Box
 from mrm.core.numbers import Point, is_float
 
 Ring = tuple[Point, ...]
@@ -248,30 +247,34 @@ def cell_range(lo: Fraction, hi: Fraction, model: str) -> tuple[int, int]:
     return math.ceil(lo - _HALF), math.ceil(hi - _HALF)
 
 
-def pixel_box(bounds: tuple[Fraction, Fraction, Fraction, Fraction] | None, model: str) -> Box | None:
-    """The pixel box holding D of any set with these Euclidean bounds (None for no bounds)."""
+def pixel_box(bounds: Any, model: str) -> Any:
+    """The pixel (or voxel) box holding D of any set with these Euclidean bounds (None for no bounds).
+
+    ``bounds`` is ``(mins..., maxs...)`` in any dimension: (xmin, ymin, xmax, ymax) in the plane,
+    (xmin, ymin, zmin, xmax, ymax, zmax) in space; the box has the same form.
+    """
     if bounds is None:
         return None
-    x0, x1 = cell_range(bounds[0], bounds[2], model)
-    y0, y1 = cell_range(bounds[1], bounds[3], model)
-    return x0, y0, x1, y1
+    n = len(bounds) // 2
+    ranges = [cell_range(bounds[d], bounds[n + d], model) for d in range(n)]
+    return (*(r[0] for r in ranges), *(r[1] for r in ranges))
 
 
-def voxel_bounds(box: Box | None) -> tuple[Fraction, Fraction, Fraction, Fraction] | None:
-    """The Euclidean bounds of the voxels of a pixel box: [x0 − ½, x1 + ½] × [y0 − ½, y1 + ½]."""
+def voxel_bounds(box: Any) -> Any:
+    """The Euclidean bounds of the voxels of a pixel (or voxel) box: each side widened by ½."""
     if box is None:
         return None
-    return box[0] - _HALF, box[1] - _HALF, box[2] + _HALF, box[3] + _HALF
+    n = len(box) // 2
+    return (*(box[d] - _HALF for d in range(n)), *(box[n + d] + _HALF for d in range(n)))
 
 
-def mapped_bounds(
-    bounds: tuple[Fraction, Fraction, Fraction, Fraction] | None, sim: Similarity
-) -> tuple[Fraction, Fraction, Fraction, Fraction] | None:
-    """Exact bounds of the image of a rectangle under a similarity (the box of its four mapped corners)."""
+def mapped_bounds(bounds: Any, sim: Any) -> Any:
+    """Exact bounds of the image of a box under an affine map (the box of its mapped corners), any n."""
     if bounds is None:
         return None
-    x0, y0, x1, y1 = bounds
-    pts = [sim(p) for p in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
-    xs = [p[0] for p in pts]
-    ys = [p[1] for p in pts]
-    return min(xs), min(ys), max(xs), max(ys)
+    n = len(bounds) // 2
+    corners = [
+        tuple(bounds[d + n * ((k >> d) & 1)] for d in range(n)) for k in range(2**n)
+    ]  # every choice of min or max per axis
+    pts = [sim(p) for p in corners]
+    return (*(min(p[d] for p in pts) for d in range(n)), *(max(p[d] for p in pts) for d in range(n)))

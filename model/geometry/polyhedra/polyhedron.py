@@ -230,6 +230,10 @@ class Polyhedron:
         tt = tt[np.lexsort((tt[:, 2], tt[:, 1], tt[:, 0]))]
         return (v[order] + 0.0).tobytes(), tt.astype(np.int64).tobytes()
 
+    def canonical_bytes(self) -> tuple[bytes, bytes]:
+        """The vertices and triangles in a canonical order, as bytes: equal for equal solids."""
+        return self._canonical
+
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Polyhedron):
             return NotImplemented
