@@ -50,7 +50,7 @@ from mrm.geometry.reconstruct.subdivision import reconstruct_label_map
 from mrm.io.geo_interface import GeoInterface, GeometryLike, as_geometry, is_geometry_like
 from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
 from mrm.ops.chain import Link, chain_bound, parse_chain
-from mrm.ops.registry import get_operation
+from mrm.ops.registry import THREE_D, get_operation
 
 __all__ = [
     "Batch",
@@ -113,12 +113,14 @@ def as_pixels(obj: PixelSet | Image) -> PixelSet:
     return PixelSet.from_image(obj)
 
 
-def _as_object(obj: Shape) -> PixelSet | BaseGeometry:
-    """A value of the paper's 2-D operations as they take it: GeoJSON as shapely's, an array as an image.
+def _as_object(obj: object, *, solids: bool = False) -> PixelSet | BaseGeometry | VoxelSet | Polyhedron:
+    """A value of the paper's operations as they take it: GeoJSON as shapely's, an array as an image.
 
-    Pixel sets and shapely geometries stay as they are. A voxel set, polyhedron or label map is refused: the
-    operations of :mod:`mrm.ops` are 2-D (they would read a voxel set as nothing).
+    Pixel sets and shapely geometries stay as they are; voxel sets and polyhedra too for the operations that
+    take 3D objects (``solids``: DSS_α and dR). Otherwise a voxel set, polyhedron or label map is refused.
     """
+    if solids and isinstance(obj, VoxelSet | Polyhedron):
+        return obj
     if isinstance(obj, VoxelSet | Polyhedron | LabelMap):
         raise NotApplicableError(
             f"this operation takes a pixel set, an image or a 2-D geometry, not a {type(obj).__name__}; "
@@ -472,10 +474,20 @@ def _result_of(name: str, obj: object, limit: int | None, *params: object) -> ob
     """
     spec = get_operation(name)
     values = dict(zip([s.name for s in spec.params.specs()], params, strict=False))
-    result: object = spec.outcome(_as_object(obj), spec.params.read(**values), limit=limit).result
+    value = _as_object(obj, solids=spec.name in THREE_D)
+    result: object = spec.outcome(value, spec.params.read(**values), limit=limit).result
     return result
 
 
+@overload
+def scale(
+    obj: VoxelSet | Polyhedron,
+    alpha: Number,
+    center: tuple[Number, Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> VoxelSet: ...
 @overload
 def scale(
     obj: Shape,
@@ -495,30 +507,30 @@ def scale(
     limit: int | None = ...,
 ) -> ObjectArray: ...
 def scale(
-    obj: Shape | Batch,
+    obj: Shape | VoxelSet | Polyhedron | Batch,
     alpha: Number,
-    center: tuple[Number, Number] | None = None,
+    center: tuple[Number, Number] | tuple[Number, Number, Number] | None = None,
     model: ModelLike = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> PixelSet | ObjectArray:
+) -> PixelSet | VoxelSet | ObjectArray:
     """Discrete smooth scaling DSS_α(A) = D(Sc_α(R(A))), computed exactly (paper §4).
 
     Parameters
     ----------
-    obj : PixelSet, array_like image, geometry, or a batch of them
-        A (a geometry E stands for D(E)).
+    obj : PixelSet, VoxelSet, array_like image, geometry, Polyhedron, or a batch of them
+        A (a geometry E stands for D(E), a polyhedron P for D(P)).
     alpha : number
         α > 0; a float is read as the decimal it prints as (``0.2`` is 1/5), ``"1/3"`` and Fractions too.
-    center : pair of numbers, optional
+    center : two (three for a 3D object) numbers, optional
         The centre of the scaling (the origin by default).
     model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
-        Largest result (pixels of its bounding box), estimated before the work.
+        Largest result (pixels or voxels of its bounding box), estimated before the work.
 
     Returns
     -------
-    PixelSet, or numpy.ndarray of PixelSet for a batch
+    PixelSet (VoxelSet for a 3D object), or numpy.ndarray of them for a batch
 
     Examples
     --------
@@ -527,14 +539,27 @@ def scale(
     >>> # (the τ rule keeps the left and bottom sides, not the right and top ones): an 8×8 block
     >>> mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model="gauss") == mrm.PixelSet.box(-1, -1, 6, 6)
     True
+    >>> cube = mrm.VoxelSet.box(0, 0, 0, 3, 3, 3)  # and in 3D
+    >>> mrm.scale(cube, 2, model="gauss") == mrm.VoxelSet.box(-1, -1, -1, 6, 6, 6)
+    True
     """
     if _is_batch(obj):
         return _map(lambda o: scale(o, alpha, center, model, limit=limit), obj)
     out = _result_of("dss", obj, limit, alpha, center, model)
-    assert isinstance(out, PixelSet)
+    assert isinstance(out, PixelSet | VoxelSet)
     return out
 
 
+@overload
+def rotate(
+    obj: VoxelSet | Polyhedron,
+    angle: Number,
+    center: tuple[Number, Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    axis: tuple[Number, Number, Number] | None = ...,
+    limit: int | None = ...,
+) -> VoxelSet: ...
 @overload
 def rotate(
     obj: Shape,
@@ -542,6 +567,7 @@ def rotate(
     center: tuple[Number, Number] | None = ...,
     model: ModelLike = ...,
     *,
+    axis: tuple[Number, Number, Number] | None = ...,
     limit: int | None = ...,
 ) -> PixelSet: ...
 @overload
@@ -551,30 +577,35 @@ def rotate(
     center: tuple[Number, Number] | None = ...,
     model: ModelLike = ...,
     *,
+    axis: tuple[Number, Number, Number] | None = ...,
     limit: int | None = ...,
 ) -> ObjectArray: ...
 def rotate(
-    obj: Shape | Batch,
+    obj: Shape | VoxelSet | Polyhedron | Batch,
     angle: Number,
-    center: tuple[Number, Number] | None = None,
+    center: tuple[Number, Number] | tuple[Number, Number, Number] | None = None,
     model: ModelLike = DEFAULT_MODEL,
     *,
+    axis: tuple[Number, Number, Number] | None = None,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> PixelSet | ObjectArray:
+) -> PixelSet | VoxelSet | ObjectArray:
     """Discrete rotation dR_θ,C(A) = D(rot_θ,C(R(A))) with an exact rational rotation (paper §4).
 
     Parameters
     ----------
-    obj : PixelSet, array_like image, geometry, or a batch of them
+    obj : PixelSet, VoxelSet, array_like image, geometry, Polyhedron, or a batch of them
     angle : number
-        Degrees, counter-clockwise (y up).
-    center : pair of numbers, optional
+        Degrees, counter-clockwise (y up; seen from the axis's tip in 3D).
+    center : two (three for a 3D object) numbers, optional
     model : Model or {"standard", "supercover", "gauss"}
+    axis : three numbers, optional
+        3D only: the axis (z by default). Quarter turns about x, y or z are exact; other rotations apply the
+        axis-angle matrix rounded to multiples of 2⁻³⁰, exactly (docs/adr/0060).
     limit : int or None
 
     Returns
     -------
-    PixelSet, or numpy.ndarray of PixelSet for a batch
+    PixelSet (VoxelSet for a 3D object), or numpy.ndarray of them for a batch
 
     Examples
     --------
@@ -583,9 +614,9 @@ def rotate(
     [(0, 0), (0, 1), (0, 2)]
     """
     if _is_batch(obj):
-        return _map(lambda o: rotate(o, angle, center, model, limit=limit), obj)
-    out = _result_of("discrete_rotation", obj, limit, angle, center, model)
-    assert isinstance(out, PixelSet)
+        return _map(lambda o: rotate(o, angle, center, model, axis=axis, limit=limit), obj)
+    out = _result_of("discrete_rotation", obj, limit, angle, center, model, axis)
+    assert isinstance(out, PixelSet | VoxelSet)
     return out
 
 

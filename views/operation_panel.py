@@ -22,6 +22,7 @@ from mrm.core.errors import MRMError, SizeLimitError
 from mrm.core.numbers import spell
 from mrm.document.apply import held_euclidean
 from mrm.document.commands import ApplyResults
+from mrm.ops.registry import THREE_D
 from mrm.views.failures import failure_message, log_failure
 from mrm.views.op_adapter import OpInfo, ParamInfo, operations
 from mrm.views.scene import Scene
@@ -218,7 +219,8 @@ class ParamControl(QtWidgets.QWidget):
         elif k == "point":
             self.xs = QtWidgets.QDoubleSpinBox(self)
             self.ys = QtWidgets.QDoubleSpinBox(self)
-            for w, label in ((self.xs, "x "), (self.ys, "y ")):
+            self.zs = QtWidgets.QDoubleSpinBox(self)  # shown for a 3D point (set_dimension)
+            for w, label in ((self.xs, "x "), (self.ys, "y "), (self.zs, "z ")):
                 w.setObjectName(f"{info.name}_{label.strip()}")
                 w.setRange(-1e9, 1e9)
                 w.setDecimals(4)
@@ -238,12 +240,19 @@ class ParamControl(QtWidgets.QWidget):
             )
             self.pick_button.clicked.connect(self.pickRequested.emit)
             lay.addWidget(self.pick_button)
+            self.zs.setVisible(info.spec.dimension == 3)
         else:
             self.field = QtWidgets.QLineEdit(self)
             self.field.editingFinished.connect(self.changed.emit)
             lay.addWidget(self.field)
         self._syncing = False
         self.set_value(info.default)
+
+    def set_dimension(self, n: int) -> None:
+        """Show the z coordinate of a point for 3D inputs (a centre takes the inputs' dimension)."""
+        if self.info.kind == "point" and self.info.spec.dimension == 0:
+            self.zs.setHidden(n != 3)
+            self.pick_button.setHidden(n == 3)  # picking is a click in a plane view
 
     # ------------------------------------------------------------------ slider ↔ field
     def _to_slider(self, v: float) -> int:
@@ -301,9 +310,11 @@ class ParamControl(QtWidgets.QWidget):
         if k in ("choice", "model"):
             return self.field.currentData()
         if k == "point":
-            p = (float(self.xs.value()), float(self.ys.value()))
+            p: tuple[float, ...] = (float(self.xs.value()), float(self.ys.value()))
+            if not self.zs.isHidden():
+                p = (*p, float(self.zs.value()))
             # An optional centre left at the origin is "no centre" (the origin), as the model's default says.
-            return None if self.info.optional and self.info.default is None and p == (0.0, 0.0) else p
+            return None if self.info.optional and self.info.default is None and not any(p) else p
         return self.field.text()
 
     def set_value(self, v: Any) -> None:
@@ -324,9 +335,10 @@ class ParamControl(QtWidgets.QWidget):
                 i = self.field.findData(v)
                 self.field.setCurrentIndex(max(0, i))
             elif k == "point":
-                x, y = v if v is not None else (0.0, 0.0)
+                x, y, *z = v if v is not None else (0.0, 0.0, 0.0)
                 self.xs.setValue(float(x))
                 self.ys.setValue(float(y))
+                self.zs.setValue(float(z[0]) if z else 0.0)
             elif k == "text":
                 self.field.setText("" if v is None else str(v))
         finally:
@@ -469,6 +481,7 @@ class OperationPanel(QtWidgets.QWidget):
             cb.setObjectName(f"input_{k}")
             _narrow(cb)
             cb.activated.connect(lambda _i: self.user_edited())
+            cb.currentIndexChanged.connect(lambda _i: self._follow_dimension())
             cb.currentIndexChanged.connect(lambda _i: self.request_preview())
             self.inputs.append(cb)
             self.form.addRow("Input" if self.op.arity == 1 else f"Input {'AB'[k] if k < 2 else k + 1}", cb)
@@ -503,12 +516,13 @@ class OperationPanel(QtWidgets.QWidget):
                 "A label map is no input of the operations: Edit ▸ Split into Objects gives one pixel "
                 "object per label"
             )
+        solids = self.op is not None and self.op.name in THREE_D
         for k, cb in enumerate(self.inputs):
             current = cb.currentData()
             cb.blockSignals(True)
             cb.clear()
-            for o in reversed(doc.plane_objects):
-                if o.kind != "labels":
+            for o in reversed(doc.objects):
+                if o.kind != "labels" and (o.dimension == 2 or solids):
                     cb.addItem(o.name, o.id)
             want = sel[k] if k < len(sel) else current
             if want is None and cb.count() > k:
@@ -516,6 +530,24 @@ class OperationPanel(QtWidgets.QWidget):
             i = cb.findData(want)
             cb.setCurrentIndex(i if i >= 0 else (0 if cb.count() else -1))
             cb.blockSignals(False)
+        self._follow_dimension()
+
+    def input_dimension(self) -> int:
+        """The dimension of the chosen inputs (3 when the first is a 3D object)."""
+        doc = self.scene.doc
+        ids = [i for i in self.input_ids() if i in doc]
+        return 3 if ids and doc.get(ids[0]).dimension == 3 else 2
+
+    def _follow_dimension(self) -> None:
+        """A centre gets its z for a 3D input; the rotation axis is shown for 3D inputs only."""
+        n = self.input_dimension()
+        for c in self.controls:
+            c.set_dimension(n)
+            if c.info.kind == "point" and c.info.spec.dimension == 3:
+                c.setVisible(n == 3)
+                label = self.form.labelForField(c)
+                if label is not None:
+                    label.setVisible(n == 3)
 
     def _doc_changed(self, ch: Any) -> None:
         if ch.reset:
@@ -628,6 +660,9 @@ class OperationPanel(QtWidgets.QWidget):
         job = self._job()
         if job is None:
             self.clear_preview()
+            return
+        if self.input_dimension() == 3:  # the ghosts are drawn in the plane views
+            self.status.setText("no live preview for 3D objects: Apply shows the result in the 3D views")
             return
         op, params, _ids, sources = job
         t0 = time.perf_counter()

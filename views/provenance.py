@@ -11,6 +11,7 @@ import html
 from dataclasses import dataclass
 from typing import Any
 
+from mrm.core.grids import VoxelSet
 from mrm.ops.account import Account, chain_of, changed_inputs
 
 
@@ -130,12 +131,19 @@ def measured_text(acc: Account) -> str:
             else " — <span style='color:#c0392b'><b>exceeds the bound</b></span>"
         )
     what = "H(T(A_first), A_last)" if acc.chain and acc.operation not in ("union", "corefine") else "H"
-    text = f"<b>Measured</b>: {what} = {m.value:.4g}{verdict}"
+    if m.intervals is not None and not m.exact:  # 3D: a certified enclosure, shown as one
+        lo, hi = m.intervals["both"]
+        text = f"<b>Measured</b>: {what} ∈ [{lo:.6g}, {hi:.6g}] (certified){verdict}"
+    else:
+        text = f"<b>Measured</b>: {what} = {m.value:.4g}{verdict}"
+    if acc.within_bound is None and m.intervals is not None and acc.bound is not None:
+        text += "<br><small>the certified interval holds the bound: neither side is proven</small>"
     if not acc.reference_exact:
         text += "<br><small>the Euclidean reference is GEOS's overlay (crossing vertices rounded)</small>"
     if acc.difference is not None:
+        unit = "voxels" if isinstance(acc.difference.light, VoxelSet) else "pixels"
         text += (
-            f"<br><small>{len(acc.difference.light):,} pixels only in the result (light grey), "
+            f"<br><small>{len(acc.difference.light):,} {unit} only in the result (light grey), "
             f"{len(acc.difference.dark):,} only in the direct result D(T(A_first)) (dark grey)</small>"
         )
     if acc.idempotent is not None:

@@ -395,7 +395,8 @@ def add_parameter_options(parser: argparse.ArgumentParser, fields: list[Any]) ->
     for p in fields:
         unit = f" [{p.unit}]" if p.unit and p.unit != "×" else ""
         if p.kind == "point":
-            parser.add_argument(f"--{p.name}", default=None, metavar="X,Y", help=f"{p.help}{unit}")
+            metavar = {0: "X,Y[,Z]", 3: "X,Y,Z"}.get(p.dimension, "X,Y")
+            parser.add_argument(f"--{p.name}", default=None, metavar=metavar, help=f"{p.help}{unit}")
         else:
             allowed = f" ({p.range_text()})" if p.minimum is not None or p.maximum is not None else ""
             parser.add_argument(

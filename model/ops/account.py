@@ -261,7 +261,10 @@ def _measured_dict(m: MeasuredError | None, b: BoundResult | None) -> dict[str, 
 def _within(m: MeasuredError, b: BoundResult) -> bool | None:
     if not b.directions:
         return None
-    return not any(m.exceeds(b.coefficient, b.n, d) for d in b.directions)
+    found = [m.exceeds(b.coefficient, b.n, d) for d in b.directions]
+    if any(found):
+        return False
+    return None if None in found else True
 
 
 # ============================================================================================================

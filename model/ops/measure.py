@@ -31,7 +31,9 @@ from typing import Any, Literal
 
 from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
+from mrm.geometry.discretize.exact_solid import ExactSolid
 from mrm.geometry.hausdorff import directed_hausdorff
+from mrm.geometry.hausdorff.solids import solid_hausdorff
 
 Direction = Literal["both", "result_within", "source_within"]
 
@@ -51,6 +53,10 @@ class MeasuredError:
     exact : bool
         True when no coordinate was rounded: the values are the floats nearest to the exact distances
         and :meth:`exceeds` decides exactly.
+    intervals : dict or None
+        Between solids (3D), certified enclosures ``(lo, hi)`` of the distances instead of exact values:
+        ``{"both": …, "result_within": …, "source_within": …}``; the three floats above are then the upper
+        ends (docs/adr/0059). None for polygons, whose distances are exact.
     """
 
     value: float
@@ -60,12 +66,22 @@ class MeasuredError:
     _scale: Fraction = field(repr=False, compare=False)
     _result: Any = field(repr=False, compare=False)
     _source: Any = field(repr=False, compare=False)
+    intervals: dict[str, tuple[float, float]] | None = None
 
-    def exceeds(self, coefficient: Fraction | int, n: int = 2, direction: Direction = "both") -> bool:
+    def exceeds(self, coefficient: Fraction | int, n: int = 2, direction: Direction = "both") -> bool | None:
         """Is the distance greater than ``coefficient · √n`` (the form of every bound)? Exact.
 
-        ``direction`` picks the two-sided distance (``both``) or one directed distance.
+        ``direction`` picks the two-sided distance (``both``) or one directed distance. None when a
+        certified enclosure (3D) holds the bound: neither answer is proven.
         """
+        if self.intervals is not None:
+            lo, hi = self.intervals[direction]
+            c2n = Fraction(coefficient) ** 2 * n  # lo > c√n ⟺ lo² > c²n (both sides ≥ 0): exact on floats
+            if lo > 0 and Fraction(lo) ** 2 > c2n:
+                return True
+            if math.isfinite(hi) and Fraction(hi) ** 2 <= c2n:
+                return False
+            return None
         c = Fraction(coefficient) * self._scale
         if self._result is None:  # identical shapes: the distance is 0
             return c < 0
@@ -82,12 +98,16 @@ class MeasuredError:
         def num(v: float) -> float | None:
             return v if math.isfinite(v) else None
 
-        return {
+        out: dict[str, Any] = {
             "measured": num(self.value),
             "result_within": num(self.result_within),
             "source_within": num(self.source_within),
             "exact": self.exact,
         }
+        if self.intervals is not None:
+            for key, (lo, hi) in self.intervals.items():
+                out[f"{'measured' if key == 'both' else key}_interval"] = [num(lo), num(hi)]
+        return out
 
 
 def _odd_denominator(shapes: tuple[ExactShape, ...]) -> int:
@@ -112,6 +132,8 @@ def measured_error(
     progress : object with ``update(fraction, message)``, optional
         Passed to the Hausdorff computation; its ``Cancelled`` propagates.
     """
+    if isinstance(reference, ExactSolid) or isinstance(result, ExactSolid):
+        return measured_solid_error(ExactSolid.of(reference), ExactSolid.of(result), progress=progress)
     ref = reference if isinstance(reference, ExactShape) else ExactShape.from_geometry(reference)
     res = result if isinstance(result, ExactShape) else ExactShape.from_geometry(result)
     if ref == res:  # the same polygons, vertex for vertex (e.g. a single DSS: A_last = T(A_first))
@@ -128,6 +150,33 @@ def measured_error(
     rw = h_res.value / scale
     sw = h_src.value / scale
     return MeasuredError(max(rw, sw), rw, sw, exact, Fraction(scale), h_res, h_src)
+
+
+def measured_solid_error(
+    reference: ExactSolid, result: ExactSolid, *, progress: ProgressLike | None = None
+) -> MeasuredError:
+    """The measured error between two exact solids: certified enclosures (docs/adr/0059).
+
+    The exact images are rounded to float64 once (:meth:`ExactSolid.float_vertices`, which bounds the
+    rounding), and :func:`mrm.geometry.hausdorff.solids.solid_hausdorff` encloses both directed distances,
+    widened by that rounding.
+    """
+    if reference == result:  # the same solid under the same map: the distance is 0, exactly
+        return MeasuredError(0.0, 0.0, 0.0, True, Fraction(1), None, None)
+    rv, r_err = reference.float_vertices()
+    sv, s_err = result.float_vertices()
+    h = solid_hausdorff(
+        sv,
+        result.base.triangles,
+        rv,
+        reference.base.triangles,
+        vertex_error=max(r_err, s_err),
+        progress=progress,
+    )
+    intervals = {"both": h.value, "result_within": h.a_within, "source_within": h.b_within}
+    return MeasuredError(
+        h.value[1], h.a_within[1], h.b_within[1], h.exact, Fraction(1), None, None, intervals
+    )
 
 
 @dataclass(frozen=True)

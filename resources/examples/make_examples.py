@@ -8,7 +8,11 @@ Every derived object is made by :func:`mrm.document.apply.apply_operation`, so i
   dR_−45(A1) about (0, 0), which is not A again (Fig. 13);
 * ``fig08-simplification.mrm``: a detailed polygon simplified with Sp_α for α = 1, 1/2, 1/4 (Fig. 8);
 * ``fig09-10-union-corefinement.mrm``: two overlapping polygons, their union EDu and co-refinement EDco
-  (Figs. 9 and 10).
+  (Figs. 9 and 10);
+* ``fig12-3d-octahedron.mrm``: the paper's Figure 12 in 3D, a digital octahedron A and the chain DSS 1.25 →
+  DSS 5 → DSS 0.2 → DSS 0.8 on voxels;
+* ``rotation-3d.mrm``: a digital brick turned by 30° about the axis (1, 1, 1) through its centre, turned
+  back (not A again), and a quarter turn about x (exact).
 
 Run ``.venv/bin/python resources/examples/make_examples.py`` from the repository root.
 """
@@ -21,7 +25,7 @@ from pathlib import Path
 import numpy as np
 from shapely.geometry import Polygon
 
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, VoxelSet
 from mrm.document import Document
 from mrm.document.apply import apply_operation
 from mrm.document.commands import AddObject
@@ -110,11 +114,42 @@ def fig09_10() -> Document:
     return doc
 
 
+def fig12_3d() -> Document:
+    """The digital octahedron |x| + |y| + |z| ≤ 10 and the chain DSS 1.25, 5, 0.2, 0.8 (Fig. 12)."""
+    doc = Document()
+    r = 10
+    zz, yy, xx = np.mgrid[-r : r + 1, -r : r + 1, -r : r + 1]
+    octahedron = VoxelSet(np.abs(xx) + np.abs(yy) + np.abs(zz) <= r, (-r, -r, -r))
+    cur = _add(doc, octahedron, "A (octahedron)")
+    for alpha in (1.25, 5.0, 0.2, 0.8):
+        ids = apply_operation(doc, "dss", [cur], _params("dss", alpha=alpha))
+        cur = _rename_last(doc, ids, f"DSS {alpha:g}")
+    return doc
+
+
+def rotation_3d() -> Document:
+    """A 13 × 9 × 5 brick turned by 30° about (1, 1, 1) through its centre, back by −30°, and 90° about x."""
+    doc = Document()
+    a = _add(doc, VoxelSet.box(-6, -4, -2, 6, 4, 2), "A (brick)")
+    turn = _params("discrete_rotation", angle=30.0, axis=(1.0, 1.0, 1.0), center=(0.0, 0.0, 0.0))
+    (a1,) = apply_operation(doc, "discrete_rotation", [a], turn)
+    _rename_last(doc, [a1], "A1 = dR30 about (1,1,1)")
+    back = _params("discrete_rotation", angle=-30.0, axis=(1.0, 1.0, 1.0), center=(0.0, 0.0, 0.0))
+    (a2,) = apply_operation(doc, "discrete_rotation", [a1], back)
+    _rename_last(doc, [a2], "dR-30 about (1,1,1) of A1")
+    quarter = _params("discrete_rotation", angle=90.0, axis=(1.0, 0.0, 0.0), center=(0.0, 0.0, 0.0))
+    (q,) = apply_operation(doc, "discrete_rotation", [a], quarter)
+    _rename_last(doc, [q], "dR90 about x (exact)")
+    return doc
+
+
 EXAMPLES = {
     "fig12-dss-combinations.mrm": fig12,
     "fig13-rotations.mrm": fig13,
     "fig08-simplification.mrm": fig08,
     "fig09-10-union-corefinement.mrm": fig09_10,
+    "fig12-3d-octahedron.mrm": fig12_3d,
+    "rotation-3d.mrm": rotation_3d,
 }
 
 
