@@ -111,11 +111,11 @@ def _pool_axis(a: BoolArray, axis: int, k: int, offset: int) -> BoolArray:
     if whole:
         mid = a[take(head, head + whole * k)]
         split = mid.reshape((*a.shape[:axis], whole, k, *a.shape[axis + 1 :]))
+        cells = np.moveaxis(split, axis + 1, 0)  # cells[i]: the i-th cell of every block (a view)
         dst = out[take(b0, b0 + whole)]
-        pick = (slice(None),) * (axis + 1)
-        np.copyto(dst, split[(*pick, 0)])
+        np.copyto(dst, cells[0])
         for i in range(1, k):
-            dst |= split[(*pick, i)]
+            dst |= cells[i]
     if head:
         np.any(a[take(0, head)], axis=axis, out=out[take(0, 1)].squeeze(axis))
     tail = m - head - whole * k

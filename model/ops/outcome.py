@@ -149,6 +149,7 @@ def scaling_by_pixels(gs: _G, sim: Similarity | tuple[Fraction, Sequence[Fractio
     (k = 1 gives DSS_1(A) = A.) tests/model/test_ops_scaling.py (2D) and tests/model/test_voxel_images.py
     (3D) compare it with D(Sc_α(R(A))) computed.
     """
+    t: tuple[Fraction, ...]
     if isinstance(sim, Similarity):
         if sim.b != 0:
             return None
