@@ -8,16 +8,14 @@ final discretization (or its exact Euclidean result): :class:`StepOutcome` carri
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import partial
-from typing import Any
+from typing import Any, TypeVar
 
-import numpy as np
-import numpy.typing as npt
-
-from mrm.core.grids import PixelSet, VoxelSet
+from mrm.core.blocks import or_pool, sample
+from mrm.core.grids import GridSet, PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.progress import ProgressLike, sub_progress
@@ -29,6 +27,8 @@ from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.estimate import estimated_pixels
 from mrm.ops.registry import OperationResult, OperationSpec, input_dimension, register
 from mrm.ops.representations import discrete_of
+
+_G = TypeVar("_G", bound="GridSet[Any, Any]")
 
 
 @dataclass(frozen=True)
@@ -123,13 +123,26 @@ def _discrete_similarity_3d(
     vs: VoxelSet, sim: Similarity3, model: Model | str, *, limit: int | None, progress: ProgressLike | None
 ) -> StepOutcome:
     """``D(T(R(A)))`` for a voxel set A: R(A) a polyhedron, T(R(A)) its exact image (docs/design.md §11)."""
+    m = sim.linear
+    alpha = m[0][0]
+    if all(m[i][j] == (alpha if i == j else 0) for i in range(3) for j in range(3)):
+        pooled = scaling_by_pixels(vs, (alpha, sim.offset), str(model))
+        if pooled is not None:  # DSS_1/k on an aligned grid: A's voxels decide (scaling_by_pixels)
+            if progress is not None:
+                progress.update(1.0, "done")
+            return StepOutcome(pooled, sim, partial(solid_image, vs, sim, model), pooled)
     if progress is not None:
         progress.update(0.0, "continuing R(A)")
-    image = ExactSolid(reconstruct(vs, model), Similarity3.identity()).map(sim)
+    image = solid_image(vs, sim, model)
     if progress is not None:
         progress.update(0.3, "discretizing the exact image")
     result = image.discretize(str(model), limit=limit, progress=sub_progress(progress, 0.3, 1.0))
     return StepOutcome(result, sim, image, result)
+
+
+def solid_image(vs: VoxelSet, sim: Similarity3, model: Any) -> ExactSolid:
+    """T(R(A)) of a voxel set A, exact: the Euclidean object of a 3D step (made on first use when pooled)."""
+    return ExactSolid(reconstruct(vs, model)).map(sim)
 
 
 def mapped_image(geom: Any, sim: Similarity) -> ExactShape:
@@ -142,88 +155,53 @@ def continued_image(ps: PixelSet, sim: Similarity, model: Any) -> ExactShape:
     return mapped_image(reconstruct(ps, model), sim)
 
 
-#: Largest block side k pooled by k slice ORs on A padded to whole blocks; beyond it, ufunc.reduceat on A.
-_POOL_SLICES_MAX_K = 32
+def scaling_by_pixels(gs: _G, sim: Similarity | tuple[Fraction, Sequence[Fraction]], model: str) -> _G | None:
+    """DSS_1/k(A) = D(Sc_1/k(R(A))) from A's cells (pixels, voxels) alone, when the grids are aligned.
 
+    ``gs`` is A, a :class:`~mrm.core.grids.PixelSet` or a :class:`~mrm.core.grids.VoxelSet` (any dimension
+    n); ``sim`` is the similarity T, a 2D :class:`Similarity` or, in any dimension, a pair ``(α, t)`` for
+    T(v) = α·v + t (Sc_α about C has t = (1 − α)·C).
 
-def scaling_by_pixels(ps: PixelSet, sim: Similarity, model: str) -> PixelSet | None:
-    """DSS_1/k(A) = D(Sc_1/k(R(A))) from A's pixels alone, when the grid of the result is aligned to A's.
+    Applies when T is ``Sc_α`` with α = 1/k (k a positive integer), and ``T⁻¹ = v ↦ k·v + c`` (c = −k·t)
+    maps cell centres to cell centres (gauss: c ∈ Zⁿ) or the kernel of every result cell onto a k^n block of
+    A's cells (covers: c − (k − 1)/2 ∈ Zⁿ); otherwise returns None. Proof, from R's contract (docs/design.md
+    §3, and §11 for n = 3, items 1–3; :mod:`mrm.geometry.reconstruct`):
 
-    Applies when ``sim`` is ``Sc_α`` with α = 1/k (k a positive integer) about a centre C, and
-    ``Sc_1/α = v ↦ k·v + c`` (c = (1 − k)·C) maps pixel centres to pixel centres (gauss: c ∈ Z²) or the
-    kernel of every result pixel onto a k × k block of A's voxels (covers: c − (k − 1)/2 ∈ Z²); otherwise
-    returns None. Proof, from R's contract (docs/design.md §3; :mod:`mrm.geometry.reconstruct`, items 1–3):
-
-    * ``gauss``: q ∈ D(Sc_α(R(A))) ⟺ z + kτ ∈ R(A) with z = k·q + c, a pixel centre. No centre lies on
+    * ``gauss``: q ∈ D(Sc_α(R(A))) ⟺ z + kτ ∈ R(A) with z = k·q + c, a cell centre. No centre lies on
       ∂R(A), so that is z ∈ R(A), and since D(R(A)) = A it is z ∈ A: the result is A sampled every k
-      pixels, ``{q : k·q + c ∈ A}``.
+      cells, ``{q : k·q + c ∈ A}``.
     * ``standard`` / ``supercover``: the kernel of q maps to the open block B(q) + kτ (standard) or the
-      closed block B̄(q) (supercover) made of the voxels of the k × k pixels b with
-      b − (k·q + s) ∈ [0, k − 1]², s = c − (k − 1)/2. If one of them is in A, R(A) meets int V(b)
-      (condition C2: its centre is in R(A) or ∂R(A) crosses its open square), an open subset of B(q), so
+      closed block B̄(q) (supercover) made of the closed cells (pixels, voxels) of the k^n cells b with
+      b − (k·q + s) ∈ [0, k − 1]ⁿ, s = c − (k − 1)/2. If one of them is in A, R(A) meets int V(b)
+      (condition C2: its centre is in R(A) or ∂R(A) crosses its open cell), an open subset of B(q), so
       both kernels meet R(A). If none is, R(A) misses every V(b) (the same R(A) has D_supercover = A, so it
-      misses the closed voxel of every pixel outside A), so it misses the compact B̄(q) at a positive
-      distance and both kernels. The result is ``{q : A meets the block of q}``, a k × k OR-pooling.
+      misses the closed cell of every point outside A), so it misses the compact B̄(q) at a positive
+      distance and both kernels. The result is ``{q : A meets the block of q}``, a k^n OR-pooling.
 
-    (k = 1 gives DSS_1(A) = A.) tests/model/test_ops_scaling.py compares it with D(Sc_α(R(A))) computed.
+    (k = 1 gives DSS_1(A) = A.) tests/model/test_ops_scaling.py (2D) and tests/model/test_voxel_images.py
+    (3D) compare it with D(Sc_α(R(A))) computed.
     """
-    if sim.b != 0 or sim.a <= 0 or sim.a.numerator != 1 or ps.is_empty():
-        return None
-    inv = sim.inverse()
-    k = int(inv.a)
-    cx, cy = inv.tx, inv.ty
-    if model == "gauss":
-        if cx.denominator != 1 or cy.denominator != 1:
+    t: tuple[Fraction, ...]
+    if isinstance(sim, Similarity):
+        if sim.b != 0:
             return None
-        sx, sy = int(cx), int(cy)
+        alpha, t = sim.a, (sim.tx, sim.ty)
     else:
-        half = Fraction(k - 1, 2)
-        if (cx - half).denominator != 1 or (cy - half).denominator != 1:
-            return None
-        sx, sy = int(cx - half), int(cy - half)
-    x0, y0 = ps.origin
-    mask = ps.mask
+        alpha, t = Fraction(sim[0]), tuple(Fraction(v) for v in sim[1])
+    if alpha <= 0 or alpha.numerator != 1 or gs.is_empty() or len(t) != len(gs.origin):
+        return None
+    k = alpha.denominator
+    c = [-k * v for v in t]
     if model == "gauss":
-        # q holds the one pixel b = k·q + s: the rows and columns of A congruent to s modulo k.
-        r0, c0 = (sy - y0) % k, (sx - x0) % k
-        sub = np.ascontiguousarray(mask[r0::k, c0::k])
-        return PixelSet(sub, ((x0 + c0 - sx) // k, (y0 + r0 - sy) // k))
-    # q holds the pixels b with k·q + s ≤ b ≤ k·q + s + k − 1: OR the rows, then the columns, of each block.
-    qx0, qy0 = (x0 - sx) // k, (y0 - sy) // k
-    left, bottom = (x0 - sx) - k * qx0, (y0 - sy) - k * qy0
-    h, w = mask.shape
-    if k > _POOL_SLICES_MAX_K:
-        # Cut the blocks where they start in A: padding A to whole k × k blocks would take up to k² times the
-        # result's size (α = 10⁻⁶ on one pixel: a 10⁶ × 10⁶ array), and k slice ORs k Python steps.
-        rows_or = np.logical_or.reduceat(mask, _block_starts(h, bottom, k), axis=0)
-        pooled = np.logical_or.reduceat(rows_or, _block_starts(w, left, k), axis=1)
-        return PixelSet(pooled, (qx0, qy0))
-    rows = -(-(h + bottom) // k)
-    cols = -(-(w + left) // k)
-    if (bottom, left, h, w) == (0, 0, rows * k, cols * k):
-        padded = mask
-    else:  # at most k − 1 more rows and columns
-        padded = np.zeros((rows * k, cols * k), dtype=bool)
-        padded[bottom : bottom + h, left : left + w] = mask
-    # OR of the k rows, then of the k columns of each block (k slice ORs: ten times faster than .any(axis),
-    # and than ufunc.reduceat for small k).
-    strips = padded.reshape(rows, k, cols * k)
-    rows_or = strips[:, 0].copy()
-    for i in range(1, k):
-        rows_or |= strips[:, i]
-    blocks = rows_or.reshape(rows, cols, k)
-    pooled = blocks[..., 0].copy()
-    for i in range(1, k):
-        pooled |= blocks[..., i]
-    return PixelSet(pooled, (qx0, qy0))
-
-
-def _block_starts(n: int, offset: int, k: int) -> npt.NDArray[np.intp]:
-    """Where the blocks of ``k`` cells start in ``range(n)`` when the first has ``offset`` cells before 0.
-
-    0, then k − offset, 2k − offset, … below n (0 ≤ offset < k): ⌈(n + offset)/k⌉ blocks.
-    """
-    return np.concatenate(([0], np.arange(k - offset, n, k))).astype(np.intp)
+        if any(v.denominator != 1 for v in c):
+            return None
+        # q holds the one cell b = k·q + c: the cells of A congruent to c modulo k.
+        return sample(gs, k, [int(v) for v in c])
+    half = Fraction(k - 1, 2)
+    if any((v - half).denominator != 1 for v in c):
+        return None
+    # q holds the cells b with k·q + s ≤ b ≤ k·q + s + k − 1.
+    return or_pool(gs, k, [int(v - half) for v in c])
 
 
 def register_discrete_similarity(

@@ -41,10 +41,12 @@ HALF = Q(1, 2)
 ZERO4: Eps = (0, 0, 0, 0)
 
 # Speed, without changing any answer: the whole problem is scaled by S = 2·(the common denominator of the
-# coordinates), a power of two, so that every coordinate and every half-integer of the grid becomes an integer
-# and the arithmetic runs on Python ints. Scaling all real parts by S > 0 keeps every comparison; the ε
-# coefficients are left as they are (scaling the coefficients of one power of ε by a positive constant in
-# every quantity at once keeps every sign, and all quantities are combinations with positive weights).
+# coordinates: their lcm, not their largest denominator, which is the same only for powers of two; an exact
+# image under α = 1/5 has fifths and quarters), so that every coordinate and every half-integer of the grid
+# becomes an integer and the arithmetic runs on Python ints. Scaling all real parts by S > 0 keeps every
+# comparison; the ε coefficients are left as they are (scaling the coefficients of one power of ε by a
+# positive constant in every quantity at once keeps every sign, and all quantities are combinations with
+# positive weights).
 
 
 def _e(v0: int, axis: int = -1) -> Eps:
@@ -173,7 +175,7 @@ def reference_voxelize_all(
     if not tris:
         return out
     pts = [q for t in tris for q in t]
-    scale = 2 * max(q[d].denominator for q in pts for d in range(3))
+    scale = 2 * math.lcm(*(q[d].denominator for q in pts for d in range(3)))
     itris = [[tuple(int(q[d] * scale) for d in range(3)) for q in t] for t in tris]
     ranges = [_closed_range(min(q[d] for q in pts), max(q[d] for q in pts)) for d in range(3)]
     boxes = [

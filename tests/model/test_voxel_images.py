@@ -1,0 +1,275 @@
+"""D(T(P)) of an exact rational affine image of a polyhedron (docs/design.md §11, §8; ADR 0058).
+
+DSS_α(A) = D(Sc_α(R(A))) and the quarter turns dR(A) = D(rot(R(A))) on voxel sets, with α = p/q whose image
+is not float64 (α = 1/5, 4/5 of the paper's Figure 12): every result is compared with the Fraction reference
+of the definitions (tests/oracles/voxelize_reference.py) given the exact image, on R(A) of random voxel sets
+and on tetrahedra and split octahedra with free float vertices. Then D(Sc_1(R(A))) = A, quarter turns of R(A)
+are A's quarter turns, DSS_1/k by pooling A's voxels is the computed definition, and a ratio that needs a grid
+too fine is refused at once without memory.
+"""
+
+from __future__ import annotations
+
+import math
+import tracemalloc
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from mrm.core.errors import InvalidGeometryError, ParameterError, SizeLimitError
+from mrm.core.grids import VoxelSet
+from mrm.core.models import Model
+from mrm.geometry.discretize.voxel_images import voxelize_image
+from mrm.geometry.polyhedra import Polyhedron
+from mrm.geometry.reconstruct import reconstruct
+from mrm.ops.outcome import scaling_by_pixels
+from tests.oracles.mesh_strategies import stars, tetra_mesh, tetras
+from tests.oracles.voxelize_reference import reference_voxelize
+
+MODELS = Model.names()
+F = Fraction
+ALPHAS = [F(1, 5), F(4, 5), F(5, 4), F(2, 3), F(3), F(1, 2), F(7, 3)]
+IDENTITY = ((1, 0, 0), (0, 1, 0), (0, 0, 1))
+
+#: Voxel sets of up to 3 × 3 × 3 (the reference is slow), anywhere near the origin.
+small_sets = st.builds(
+    lambda bits, origin: VoxelSet(np.array(bits, dtype=bool).reshape(3, 3, 3), origin),
+    st.lists(st.booleans(), min_size=27, max_size=27),
+    st.tuples(*[st.integers(-3, 3)] * 3),
+).filter(lambda a: not a.is_empty())
+
+#: Rational centres: the origin, voxel centres, voxel corners, and thirds between them.
+centres = st.one_of(
+    st.just((F(0), F(0), F(0))),
+    st.tuples(*[st.integers(-3, 3).map(F)] * 3),
+    st.tuples(*[st.integers(-6, 6).map(lambda n: F(n, 2))] * 3),
+    st.tuples(*[st.integers(-9, 9).map(lambda n: F(n, 3))] * 3),
+)
+
+
+def quarter_turn(axis: int, k: int) -> tuple[tuple[int, int, int], ...]:
+    """k quarter turns counter-clockwise about the coordinate axis ``axis``: a signed permutation matrix."""
+    a, b = [(1, 2), (2, 0), (0, 1)][axis]
+    m = [[int(i == j) for j in range(3)] for i in range(3)]
+    for _ in range(k % 4):
+        rows = [list(r) for r in m]
+        m[a], m[b] = [-u for u in rows[b]], rows[a]
+    return tuple(tuple(r) for r in m)
+
+
+def similarity(alpha: Fraction, rot: tuple[tuple[int, ...], ...], centre) -> tuple[list[list[F]], list[F]]:  # type: ignore[no-untyped-def]
+    """v ↦ α·rot·(v − C) + C as (linear, offset), exactly."""
+    lin = [[alpha * rot[i][j] for j in range(3)] for i in range(3)]
+    off = [centre[i] - sum(lin[i][j] * centre[j] for j in range(3)) for i in range(3)]
+    return lin, off
+
+
+def exact_image(solid: Polyhedron, lin, off) -> list[list[tuple[F, F, F]]]:  # type: ignore[no-untyped-def]
+    """T(P)'s triangles with Fraction vertices: what the reference takes."""
+    pts = []
+    for row in solid.vertices.tolist():
+        v = [F(u) for u in row]
+        pts.append(tuple(sum((lin[i][j] * v[j] for j in range(3)), off[i]) for i in range(3)))
+    return [[pts[i] for i in tri] for tri in solid.triangles.tolist()]
+
+
+def voxels(vs: VoxelSet) -> set[tuple[int, int, int]]:
+    return {(int(x), int(y), int(z)) for x, y, z in vs.points().tolist()}
+
+
+def float_refusal_is_due(tris) -> bool:  # type: ignore[no-untyped-def]
+    """True when N·T(P), N the odd part of the coordinates' common denominator, is not float64 in range."""
+    coords = [c for t in tris for p in t for c in p]
+    den = math.lcm(*(c.denominator for c in coords))
+    n = den >> ((den & -den).bit_length() - 1)
+    for c in coords:
+        q = n * c
+        try:
+            f = float(q)
+        except OverflowError:
+            return True
+        if F(f) != q or abs(f) > 2.0**51 or (f != 0 and abs(f) < 2.0**-250):
+            return True
+    return False
+
+
+# --------------------------------------------------------------------------------- against the reference
+@settings(max_examples=60)
+@given(
+    small_sets,
+    st.sampled_from(ALPHAS),
+    centres,
+    st.tuples(st.integers(0, 2), st.integers(0, 3)),
+    st.sampled_from(MODELS),
+)
+def test_dss_and_quarter_turns_of_r_of_a_voxel_set_are_the_definition(a, alpha, centre, turn, model):
+    """D(α·rot·(R(A) − C) + C) equals the Fraction reference given the exact image, in every model."""
+    solid = reconstruct(a, model)
+    lin, off = similarity(alpha, quarter_turn(*turn), centre)
+    got = voxelize_image(solid, lin, off, model)
+    assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
+
+
+@settings(max_examples=60)
+@given(
+    st.one_of(tetras(), stars(max_radius=1.5)),
+    st.sampled_from(ALPHAS),
+    centres,
+    st.tuples(st.integers(0, 2), st.integers(0, 3)),
+    st.sampled_from(MODELS),
+)
+def test_exact_images_of_float_polyhedra_are_the_definition_or_refused_when_not_float(
+    mesh, alpha, centre, turn, model
+):
+    """Tetrahedra and split octahedra with free float64 vertices: the definition, or a one-line refusal
+    exactly when the image on the finer grid is not made of float64 numbers (53-bit mantissas)."""
+    try:
+        solid = Polyhedron(*mesh)
+    except InvalidGeometryError:
+        assume(False)
+    lin, off = similarity(alpha, quarter_turn(*turn), centre)
+    tris = exact_image(solid, lin, off)
+    try:
+        got = voxelize_image(solid, lin, off, model)
+    except ParameterError as e:
+        assert "\n" not in str(e) and "float64" in str(e)
+        assert float_refusal_is_due(tris)
+        return
+    assert voxels(got) == reference_voxelize(tris, model, True)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_vertices_spanning_more_bits_than_int64_are_exact(model):
+    """Coordinates 2⁻⁶⁰ and 6 in one solid (65 bits apart) take Python integers, with the same voxels."""
+    solid = Polyhedron(
+        *tetra_mesh((2.0**-60, 0.25, 0.5), (6.0, 0.5, 0.25), (0.5, 6.0, 0.75), (0.75, 0.5, 6.0))
+    )
+    lin, off = similarity(F(4, 5), IDENTITY, (F(0), F(0), F(0)))
+    got = voxelize_image(solid, lin, off, model)
+    assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
+    assert len(got) > 0
+
+
+# ------------------------------------------------------------------------------------------ properties
+@settings(max_examples=40)
+@given(
+    st.builds(
+        lambda bits, shape, origin: VoxelSet(
+            np.array(bits[: math.prod(shape)], dtype=bool).reshape(shape), origin
+        ),
+        st.lists(st.booleans(), min_size=216, max_size=216),
+        st.tuples(*[st.integers(1, 6)] * 3),
+        st.tuples(*[st.integers(-50, 50)] * 3),
+    ),
+    centres,
+    st.tuples(st.integers(0, 2), st.integers(0, 3), st.tuples(*[st.integers(-3, 3)] * 3)),
+    st.sampled_from(MODELS),
+)
+def test_dss_one_is_the_identity_and_quarter_turns_are_the_voxels_turned(a, centre, turn, model):
+    """D(Sc_1(R(A))) = A about any centre, and D(rot(R(A))) = A's quarter turn about a voxel centre."""
+    solid = reconstruct(a, model)
+    lin, off = similarity(F(1), IDENTITY, centre)
+    assert voxelize_image(solid, lin, off, model) == a
+    axis, k, c = turn
+    lin, off = similarity(F(1), quarter_turn(axis, k), tuple(F(u) for u in c))
+    assert voxelize_image(solid, lin, off, model) == a.rotate90(k, axis, c)
+
+
+@settings(max_examples=60)
+@given(
+    st.builds(
+        lambda bits, origin: VoxelSet(np.array(bits, dtype=bool).reshape(5, 4, 6), origin),
+        st.lists(st.booleans(), min_size=120, max_size=120),
+        st.tuples(*[st.integers(-9, 9)] * 3),
+    ).filter(lambda a: not a.is_empty()),
+    st.integers(1, 5),
+    st.tuples(*[st.integers(-6, 6).map(lambda n: F(n, 2))] * 3),
+    st.sampled_from(MODELS),
+)
+def test_dss_one_over_k_by_pooling_voxels_is_the_computed_definition(a, k, centre, model):
+    """scaling_by_pixels in 3D (k × k × k pooling, or sampling for gauss) = D(Sc_1/k(R(A))) computed."""
+    alpha = F(1, k)
+    lin, off = similarity(alpha, IDENTITY, centre)
+    got = scaling_by_pixels(a, (alpha, off), model)
+    c = [(1 - k) * u for u in centre]  # Sc_1/α = v ↦ k·v + c
+    half = F(k - 1, 2)
+    aligned = all((u if model == "gauss" else u - half).denominator == 1 for u in c)
+    assert (got is not None) == aligned
+    if got is not None:
+        assert got == voxelize_image(reconstruct(a, model), lin, off, model)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_dss_one_fifth_by_pooling_of_a_noisy_ball_is_the_computed_definition(model):
+    """A 40³ noisy ball: DSS_1/5 by pooling A equals D(Sc_1/5(R(A))) through the 5-times finer grid."""
+    rng = np.random.default_rng(7)
+    z, y, x = np.mgrid[0:40, 0:40, 0:40]
+    ball = ((x - 19.5) ** 2 + (y - 20.0) ** 2 + (z - 18.0) ** 2 < 17**2) ^ (rng.random((40, 40, 40)) < 0.03)
+    a = VoxelSet(ball, (-7, 3, 11))
+    centre = (F(-1, 2), F(-1, 2), F(-1, 2)) if model != "gauss" else (F(0), F(0), F(0))
+    lin, off = similarity(F(1, 5), IDENTITY, centre)
+    pooled = scaling_by_pixels(a, (F(1, 5), off), model)
+    assert pooled is not None
+    assert pooled == voxelize_image(reconstruct(a, model), lin, off, model)
+
+
+# -------------------------------------------------------------------------------------------- refusals
+def test_a_ratio_needing_a_grid_125_times_finer_is_refused_at_once_without_memory():
+    """α = 1001/1000 on a 64³ object would voxelize on a 125-times finer grid (5·10¹¹ voxels): refused by
+    the size check with one line naming that grid, before anything of that size is made."""
+    a = VoxelSet.box(0, 0, 0, 63, 63, 63)
+    solid = reconstruct(a, "standard")
+    lin, off = similarity(F(1001, 1000), IDENTITY, (F(0), F(0), F(0)))
+    tracemalloc.start()
+    try:
+        with pytest.raises(SizeLimitError) as info:
+            voxelize_image(solid, lin, off, "standard", what="DSS 1.001")
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    message = str(info.value)
+    assert "\n" not in message and "125 times finer" in message and "DSS 1.001" in message
+    assert info.value.estimated > 10**11
+    assert peak < 1 << 20  # a megabyte: the polyhedron's few vertices, no grid
+
+
+def test_a_result_beyond_the_limit_is_refused_before_the_finer_grid():
+    a = VoxelSet.box(0, 0, 0, 9, 9, 9)
+    lin, off = similarity(F(2, 5), IDENTITY, (F(0), F(0), F(0)))
+    with pytest.raises(SizeLimitError) as info:
+        voxelize_image(reconstruct(a, "gauss"), lin, off, "gauss", limit=20)
+    assert info.value.estimated <= 5**3 and "finer" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("linear", "offset", "words"),
+    [
+        ([[1, 0, 0], [0, 1, 0], [0, 0, -1]], [0, 0, 0], "determinant"),
+        ([[1, 0, 0], [0, 1, 0], [0, 0, 0]], [0, 0, 0], "determinant"),
+        ([[1, 0], [0, 1]], [0, 0], "3 × 3"),
+        ([[1, 0, 0], [0, 1, 0], [0, 0, 1]], [0, float("nan"), 0], "finite"),
+        ([[1, 0, 0], [0, "1", 0], [0, 0, 1]], [0, 0, 0], "rational"),
+    ],
+    ids=["a mirror", "flat", "2 × 2", "NaN offset", "a string"],
+)
+def test_maps_that_are_not_exact_orientation_keeping_bijections_are_refused_in_one_line(
+    linear, offset, words
+):
+    solid = reconstruct(VoxelSet.box(0, 0, 0, 1, 1, 1), "standard")
+    with pytest.raises(ParameterError) as info:
+        voxelize_image(solid, linear, offset, "standard")
+    assert words in str(info.value) and "\n" not in str(info.value)
+
+
+def test_an_image_with_coordinates_beyond_53_bits_is_refused_in_one_line():
+    """x = 1 + 2⁻⁵² scaled by 3 has 54 significant bits: no float64 holds it, so no exact kernel runs."""
+    solid = Polyhedron(
+        *tetra_mesh((1 + 2.0**-52, 0.0, 0.0), (4.0, 0.0, 0.0), (1.0, 3.0, 0.0), (1.0, 0.0, 3.0))
+    )
+    lin, off = similarity(F(3), IDENTITY, (F(0), F(0), F(0)))
+    with pytest.raises(ParameterError) as info:
+        voxelize_image(solid, lin, off, "gauss")
+    assert "float64" in str(info.value) and "\n" not in str(info.value)
