@@ -68,6 +68,7 @@ KERNEL_MODULES = (
     "geometry/polyhedra/faces.py",
     "geometry/polyhedra/validation.py",
     "geometry/discretize/_kernels3d.py",
+    "geometry/hausdorff/_solids_kernels.py",
     "geometry/planes/_kernels.py",
     "geometry/topology/colouring.py",
 )

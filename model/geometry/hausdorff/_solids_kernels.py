@@ -1,0 +1,578 @@
+"""Numba kernels of the certified Hausdorff interval between two solids (:mod:`.solids`).
+
+Every function returns either an exact decision or a float enclosure whose error allowance is stated where
+it is computed. Conventions:
+
+* a mesh is ``(V, T)``: float64 (n, 3) vertices, int64 (m, 3) outward counter-clockwise triangles;
+* a 3D bin grid ``(o, g, n, start, items)`` lists, for each bin, the triangles whose bounding box meets it
+  (CSR); a 2D grid over (y, z) does the same for the parity rays along +x;
+* a bin index is ``clamp(floor((x − o) / g), 0, n − 1)``, a monotone (non-decreasing) function of x in
+  floats: every rounding step (subtraction, division, floor, clamp) is monotone. So if ``lo ≤ y ≤ hi``
+  coordinate-wise then ``index(lo) ≤ index(y) ≤ index(hi)``: a triangle that contains a point y is listed
+  in y's bin, and a search over the index box of ``[lo, hi]`` sees every triangle with a point in
+  ``[lo, hi]`` — no rounding allowance is needed for the grids.
+
+Exactness of the predicates: the parity test and the side tests use
+:func:`mrm.geometry.discretize._kernels3d.det3_sign` and :func:`mrm.geometry.discretize._kernels.det_sign`,
+exact for coordinates that are 0 or of magnitude in [2⁻²⁵⁰, 2⁵¹] (the caller checks the data and the
+query points).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.geometry._jit import njit
+from mrm.geometry.discretize._kernels import det_sign
+from mrm.geometry.discretize._kernels3d import SCRATCH3_SIZE, det3_sign
+
+Floats = npt.NDArray[np.float64]
+Ints = npt.NDArray[np.int64]
+
+#: Relative allowance on a computed distance (2⁻⁴⁸ = 32 units in the last place).
+REL = 2.0**-48
+#: Absolute allowance on a point–triangle distance, per unit of the largest coordinate magnitude M.
+ABS = 2.0**-44
+#: Relative allowance on the sign of the "projection inside the triangle" determinants, per L⁴.
+_SIDE = 2.0**-44
+#: Cells keep at most this many listed triangles for the exact containment certificate.
+KMAX = 48
+#: How many (x, y, z) grid bins a dimension may have at most.
+MAX_BINS = 256
+_TINY = 2.0**-1000
+
+
+# --------------------------------------------------------------------------------------------- grids
+@njit(cache=True)
+def _idx(x: float, o: float, g: float, n: int) -> int:
+    u = math.floor((x - o) / g)
+    if u != u or u < 0.0:
+        return 0
+    if u > n - 1:
+        return n - 1
+    return int(u)
+
+
+@njit(cache=True)
+def build_grid3(V: Floats, T: Ints, o: Floats, g: float, n: Ints) -> tuple[Ints, Ints]:
+    """CSR lists of the triangles whose bounding box meets each bin (bin id = (k·ny + j)·nx + i)."""
+    nb = n[0] * n[1] * n[2]
+    counts = np.zeros(nb + 1, np.int64)
+    m = T.shape[0]
+    rng = np.empty((m, 6), np.int64)
+    for t in range(m):
+        for ax in range(3):
+            lo = min(V[T[t, 0], ax], V[T[t, 1], ax], V[T[t, 2], ax])
+            hi = max(V[T[t, 0], ax], V[T[t, 1], ax], V[T[t, 2], ax])
+            rng[t, ax] = _idx(lo, o[ax], g, n[ax])
+            rng[t, 3 + ax] = _idx(hi, o[ax], g, n[ax])
+        for k in range(rng[t, 2], rng[t, 5] + 1):
+            for j in range(rng[t, 1], rng[t, 4] + 1):
+                for i in range(rng[t, 0], rng[t, 3] + 1):
+                    counts[(k * n[1] + j) * n[0] + i + 1] += 1
+    start = np.cumsum(counts)
+    fill = start[:-1].copy()
+    items = np.empty(start[-1], np.int64)
+    for t in range(m):
+        for k in range(rng[t, 2], rng[t, 5] + 1):
+            for j in range(rng[t, 1], rng[t, 4] + 1):
+                for i in range(rng[t, 0], rng[t, 3] + 1):
+                    b = (k * n[1] + j) * n[0] + i
+                    items[fill[b]] = t
+                    fill[b] += 1
+    return start, items
+
+
+@njit(cache=True)
+def build_grid2(V: Floats, T: Ints, o: Floats, g: float, n: Ints) -> tuple[Ints, Ints]:
+    """CSR lists of the triangles whose (y, z) bounding box meets each (y, z) bin (id = k·ny + j)."""
+    nb = n[1] * n[2]
+    counts = np.zeros(nb + 1, np.int64)
+    m = T.shape[0]
+    rng = np.empty((m, 4), np.int64)
+    for t in range(m):
+        for q in range(2):
+            ax = q + 1
+            lo = min(V[T[t, 0], ax], V[T[t, 1], ax], V[T[t, 2], ax])
+            hi = max(V[T[t, 0], ax], V[T[t, 1], ax], V[T[t, 2], ax])
+            rng[t, q] = _idx(lo, o[ax], g, n[ax])
+            rng[t, 2 + q] = _idx(hi, o[ax], g, n[ax])
+        for k in range(rng[t, 1], rng[t, 3] + 1):
+            for j in range(rng[t, 0], rng[t, 2] + 1):
+                counts[k * n[1] + j + 1] += 1
+    start = np.cumsum(counts)
+    fill = start[:-1].copy()
+    items = np.empty(start[-1], np.int64)
+    for t in range(m):
+        for k in range(rng[t, 1], rng[t, 3] + 1):
+            for j in range(rng[t, 0], rng[t, 2] + 1):
+                b = k * n[1] + j
+                items[fill[b]] = t
+                fill[b] += 1
+    return start, items
+
+
+# ------------------------------------------------------------------------------------------- parity
+@njit(cache=True)
+def _edge_side(ay: float, az: float, by: float, bz: float, j: float, k: float, e: Floats) -> int:
+    # Sign of orient((a, b, q)) in the (y, z) plane for q = (j + ε², k + ε³); never 0 for a ≠ b
+    # (the same symbolic perturbation as the voxelization's parity fill).
+    s = det_sign(by, ay, k, az, bz, az, j, ay, False, e)
+    if s != 0:
+        return s
+    if az != bz:
+        return 1 if az > bz else -1
+    return 1 if by > ay else -1
+
+
+@njit(cache=True)
+def inside(
+    qx: float, qy: float, qz: float, V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints,
+    e: Floats,
+) -> bool:
+    """Whether q + τ, τ = (ε, ε², ε³) infinitesimal, lies inside the closed mesh (exact; even-odd rule).
+
+    The ray {q + τ + (s, 0, 0), s > 0} meets no vertex and no edge. A triangle whose (y, z) projection is
+    flat is never crossed; otherwise it is crossed when (q_y + ε², q_z + ε³) is inside its projection (the
+    three edge signs equal its orientation) and its plane is met beyond q_x + ε, i.e. the crossing
+    abscissa X satisfies X > q_x (a tie X = q_x loses against the ε). If q + τ is inside, q belongs to the
+    closed solid; if q + τ is outside but q belongs to the solid, q lies on the surface.
+    """
+    if T.shape[0] == 0:
+        return False
+    if n[1] == 0:
+        return False
+    j = _idx(qy, o[1], g, n[1])
+    k = _idx(qz, o[2], g, n[2])
+    b = k * n[1] + j
+    par = False
+    for p in range(start[b], start[b + 1]):
+        t = items[p]
+        a0 = T[t, 0]
+        a1 = T[t, 1]
+        a2 = T[t, 2]
+        ay, az = V[a0, 1], V[a0, 2]
+        by, bz = V[a1, 1], V[a1, 2]
+        cy, cz = V[a2, 1], V[a2, 2]
+        if qy < min(ay, by, cy) or qy > max(ay, by, cy) or qz < min(az, bz, cz) or qz > max(az, bz, cz):
+            continue
+        s = det_sign(by, ay, cz, az, bz, az, cy, ay, False, e)
+        if s == 0:
+            continue
+        if _edge_side(ay, az, by, bz, qy, qz, e) != s:
+            continue
+        if _edge_side(by, bz, cy, cz, qy, qz, e) != s:
+            continue
+        if _edge_side(cy, cz, ay, az, qy, qz, e) != s:
+            continue
+        d = det3_sign(
+            V[a0, 0], ay, az, V[a1, 0], by, bz, V[a2, 0], cy, cz, qx, qy, qz, False, e
+        )
+        if s * d > 0:
+            par = not par
+    return par
+
+
+# -------------------------------------------------------------------------------- point–triangle distance
+@njit(cache=True)
+def _seg(ax: float, ay: float, az: float, bx: float, by: float, bz: float) -> float:
+    # Distance from the origin to the segment [a, b] (floats; see tri_dist for the allowance).
+    ex = bx - ax
+    ey = by - ay
+    ez = bz - az
+    ee = ex * ex + ey * ey + ez * ez
+    t = 0.0
+    if ee > 0.0:
+        t = -(ax * ex + ay * ey + az * ez) / ee
+        if t < 0.0:
+            t = 0.0
+        elif t > 1.0:
+            t = 1.0
+    wx = ax + t * ex
+    wy = ay + t * ey
+    wz = az + t * ez
+    return math.sqrt(wx * wx + wy * wy + wz * wz)
+
+
+@njit(cache=True)
+def tri_dist(qx: float, qy: float, qz: float, V: Floats, T: Ints, t: int, alpha: float) -> tuple[float, float]:
+    """An enclosure [lo, hi] of the exact distance from q to triangle t (see the allowance below).
+
+    Allowance (u = 2⁻⁵³, M ≥ every |coordinate| of q and of the triangle, ``alpha = ABS·M = 512·u·M``):
+
+    * translating the vertices to q (p_k = fl(v_k − q)) moves each by at most u·|v_k − q| ≤ 2u·M per
+      coordinate, 2√3·u·M ≈ 3.5u·M in length; the triangle T' of the rounded p_k is within that Hausdorff
+      distance of T − q, so d(q, T) = d(0, T') ± 3.5u·M. The rest bounds d(0, T').
+    * a segment [p, p'] (|p|, |p'| ≤ 2√3·M): the computed parameter t differs from the exact clamped one by
+      at most (γ₃|p||e| + γ₅|p||e|)/|e|² (the dot product's absolute error, the division's relative error,
+      clamping is 1-Lipschitz), which moves the point by ≤ 9u·|p| ≤ 31u·M; e = fl(p' − p) is off by
+      ≤ u|p' − p| ≤ 7u·M; evaluating p + t·e costs ≤ 2u(|p_i| + |e_i|) per coordinate, ≤ 21u·M in length;
+      and the norm's sqrt of a sum of squares has relative error ≤ 3u. Total: ≤ 63u·M + 3u·relative.
+    * the plane: the computed normal n' = fl(e₁ × e₂) differs from the exact one by |Δn| ≤ 8u·L² (L the sum
+      of the 1-norms of p₀, p₁, p₂), so |p₀·n'|/|n'| is within β = 2⁻⁴⁵·|p₀|₁·L²/|n'| (≥ 2(|p₀||Δn| +
+      3u|p₀||n'|)/|n'|) of |p₀·n|/|n| while |n'| ≥ 2⁻⁴⁰·L² (below that the plane is not used). The three
+      signs "the projection is inside" (n'·(p_i × p_j)) have errors ≤ 15u·L⁴ < 2⁻⁴⁴·L⁴: a sign is trusted
+      only beyond that margin. The plane distance is always ≤ the distance (a lower bound whenever the
+      projection may be inside); it is used as an upper bound only when the projection is certainly
+      inside; the minimum over the three edges is always an upper bound; and ``min edge − inradius`` is
+      always a lower bound (inradius = |n|/perimeter, taken with a 2⁻⁴⁰ relative margin).
+
+    So lo = (1 − 2⁻⁴⁸)·lo' − alpha and hi = (1 + 2⁻⁴⁸)·hi' + alpha enclose the exact distance, with
+    alpha = 512u·M ≥ 8 × the 66u·M above and 2⁻⁴⁸ = 32u ≥ 8 × the relative 4u of a float norm.
+    """
+    a = T[t, 0]
+    b = T[t, 1]
+    c = T[t, 2]
+    p0x = V[a, 0] - qx
+    p0y = V[a, 1] - qy
+    p0z = V[a, 2] - qz
+    p1x = V[b, 0] - qx
+    p1y = V[b, 1] - qy
+    p1z = V[b, 2] - qz
+    p2x = V[c, 0] - qx
+    p2y = V[c, 1] - qy
+    p2z = V[c, 2] - qz
+    d01 = _seg(p0x, p0y, p0z, p1x, p1y, p1z)
+    d12 = _seg(p1x, p1y, p1z, p2x, p2y, p2z)
+    d20 = _seg(p2x, p2y, p2z, p0x, p0y, p0z)
+    segmin = min(d01, d12, d20)
+    lo_raw = segmin
+    hi_raw = segmin
+    e1x = p1x - p0x
+    e1y = p1y - p0y
+    e1z = p1z - p0z
+    e2x = p2x - p0x
+    e2y = p2y - p0y
+    e2z = p2z - p0z
+    nx = e1y * e2z - e1z * e2y
+    ny = e1z * e2x - e1x * e2z
+    nz = e1x * e2y - e1y * e2x
+    nl = math.sqrt(nx * nx + ny * ny + nz * nz)
+    n0 = abs(p0x) + abs(p0y) + abs(p0z)
+    L = n0 + abs(p1x) + abs(p1y) + abs(p1z) + abs(p2x) + abs(p2y) + abs(p2z)
+    if nl > 0.0:
+        perim = (
+            math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
+            + math.sqrt(e2x * e2x + e2y * e2y + e2z * e2z)
+            + math.sqrt((p2x - p1x) ** 2 + (p2y - p1y) ** 2 + (p2z - p1z) ** 2)
+        )
+        inr = (nl + 2.0**-45 * L * L) / perim * (1.0 + 2.0**-40)
+        # Three signs n'·(p_i × p_j): all ≥ 0 when the projection of the origin is inside (closed).
+        s0 = nx * (p0y * p1z - p0z * p1y) + ny * (p0z * p1x - p0x * p1z) + nz * (p0x * p1y - p0y * p1x)
+        s1 = nx * (p1y * p2z - p1z * p2y) + ny * (p1z * p2x - p1x * p2z) + nz * (p1x * p2y - p1y * p2x)
+        s2 = nx * (p2y * p0z - p2z * p0y) + ny * (p2z * p0x - p2x * p0z) + nz * (p2x * p0y - p2y * p0x)
+        sig = _SIDE * (L * L) * (L * L)
+        may_inside = s0 >= -sig and s1 >= -sig and s2 >= -sig
+        surely_inside = s0 > sig and s1 > sig and s2 > sig
+        if may_inside:
+            lo_raw = segmin - inr
+            if nl > 2.0**-40 * L * L:
+                dp = abs(p0x * nx + p0y * ny + p0z * nz) / nl
+                beta = 2.0**-45 * n0 * L * L / nl
+                lo_raw = max(lo_raw, dp - beta)
+                if surely_inside:
+                    hi_raw = min(hi_raw, dp + beta)
+    lo = lo_raw * (1.0 - REL) - alpha
+    if lo < 0.0:
+        lo = 0.0
+    hi = hi_raw * (1.0 + REL) + alpha
+    return lo, hi
+
+
+# ---------------------------------------------------------------------------------- nearest triangle
+@njit(cache=True)
+def _reach(x: float, d: float, sign: float) -> float:
+    # A float y with y ≤ x − d (sign −1) or y ≥ x + d (sign +1) exactly: the slack 2⁻⁵¹(|x| + d) exceeds
+    # the rounding of the sum and of the slack itself.
+    slack = d + 2.0**-50 * (abs(x) + d) + _TINY
+    return x + sign * slack
+
+
+@njit(cache=True)
+def nearest(
+    qx: float, qy: float, qz: float, V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints,
+    stamp: Ints, qid: int, alpha: float,
+) -> tuple[float, float, int]:
+    """[lo, hi] of the distance from q to the nearest triangle, and that triangle (−1 when none).
+
+    Bins are visited in growing index boxes around q's bin until the box holds the index box of
+    [q − D, q + D] for D the best upper bound so far: the nearest triangle has a point within D of q, so it
+    is listed in a visited bin (monotone indices), and the minimum of the visited lower bounds is a lower
+    bound of the true minimum.
+    """
+    if T.shape[0] == 0:
+        return math.inf, math.inf, -1
+    i0 = _idx(qx, o[0], g, n[0])
+    j0 = _idx(qy, o[1], g, n[1])
+    k0 = _idx(qz, o[2], g, n[2])
+    bx0, bx1, by0, by1, bz0, bz1 = i0, i0, j0, j0, k0, k0
+    px0, px1, py0, py1, pz0, pz1 = i0, i0 - 1, j0, j0, k0, k0  # previous box (empty at first)
+    best_lo = math.inf
+    best_hi = math.inf
+    best_t = -1
+    while True:
+        for k in range(bz0, bz1 + 1):
+            for j in range(by0, by1 + 1):
+                for i in range(bx0, bx1 + 1):
+                    if px0 <= i <= px1 and py0 <= j <= py1 and pz0 <= k <= pz1:
+                        continue
+                    b = (k * n[1] + j) * n[0] + i
+                    for p in range(start[b], start[b + 1]):
+                        t = items[p]
+                        if stamp[t] == qid:
+                            continue
+                        stamp[t] = qid
+                        lo, hi = tri_dist(qx, qy, qz, V, T, t, alpha)
+                        if lo < best_lo:
+                            best_lo = lo
+                        if hi < best_hi:
+                            best_hi = hi
+                            best_t = t
+        if best_hi < math.inf:
+            rx0 = _idx(_reach(qx, best_hi, -1.0), o[0], g, n[0])
+            rx1 = _idx(_reach(qx, best_hi, 1.0), o[0], g, n[0])
+            ry0 = _idx(_reach(qy, best_hi, -1.0), o[1], g, n[1])
+            ry1 = _idx(_reach(qy, best_hi, 1.0), o[1], g, n[1])
+            rz0 = _idx(_reach(qz, best_hi, -1.0), o[2], g, n[2])
+            rz1 = _idx(_reach(qz, best_hi, 1.0), o[2], g, n[2])
+        else:
+            rx0, rx1, ry0, ry1, rz0, rz1 = 0, n[0] - 1, 0, n[1] - 1, 0, n[2] - 1
+        if bx0 <= rx0 and bx1 >= rx1 and by0 <= ry0 and by1 >= ry1 and bz0 <= rz0 and bz1 >= rz1:
+            break
+        px0, px1, py0, py1, pz0, pz1 = bx0, bx1, by0, by1, bz0, bz1
+        if bx0 > rx0:
+            bx0 -= 1
+        if bx1 < rx1:
+            bx1 += 1
+        if by0 > ry0:
+            by0 -= 1
+        if by1 < ry1:
+            by1 += 1
+        if bz0 > rz0:
+            bz0 -= 1
+        if bz1 < rz1:
+            bz1 += 1
+    return best_lo, best_hi, best_t
+
+
+# ------------------------------------------------------------------------------- box–triangle test
+@njit(cache=True)
+def may_meet(V: Floats, T: Ints, t: int, cx: float, cy: float, cz: float, h: float) -> bool:
+    """False only when triangle t certainly misses the closed cube of centre c and half-side h.
+
+    The bounding boxes are compared exactly (c ± h are exact: the cells are dyadic). The plane test
+    |n'·(c − a)| > h·|n'|₁ + σ separates for certain with σ = 2⁻⁴⁴·L_e²·(|c − a|₁ + 3h), L_e the sum of the
+    1-norms of the two edge vectors: the computed normal is within 8u·L_e² of the exact one and the
+    remaining roundings are relative (≤ 5u) to terms bounded by L_e²·(|c − a|₁ + 3h).
+    """
+    a = T[t, 0]
+    b = T[t, 1]
+    c = T[t, 2]
+    for ax in range(3):
+        lo = min(V[a, ax], V[b, ax], V[c, ax])
+        hi = max(V[a, ax], V[b, ax], V[c, ax])
+        ce = cx if ax == 0 else (cy if ax == 1 else cz)
+        if hi < ce - h or lo > ce + h:
+            return False
+    e1x = V[b, 0] - V[a, 0]
+    e1y = V[b, 1] - V[a, 1]
+    e1z = V[b, 2] - V[a, 2]
+    e2x = V[c, 0] - V[a, 0]
+    e2y = V[c, 1] - V[a, 1]
+    e2z = V[c, 2] - V[a, 2]
+    nx = e1y * e2z - e1z * e2y
+    ny = e1z * e2x - e1x * e2z
+    nz = e1x * e2y - e1y * e2x
+    dx = cx - V[a, 0]
+    dy = cy - V[a, 1]
+    dz = cz - V[a, 2]
+    dist = abs(nx * dx + ny * dy + nz * dz)
+    rad = h * (abs(nx) + abs(ny) + abs(nz))
+    le = abs(e1x) + abs(e1y) + abs(e1z) + abs(e2x) + abs(e2y) + abs(e2z)
+    sig = 2.0**-44 * le * le * (abs(dx) + abs(dy) + abs(dz) + 3.0 * h)
+    return not (dist > rad + sig)
+
+
+@njit(cache=True)
+def tris_in_cube(
+    V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints, stamp: Ints, qid: int,
+    cx: float, cy: float, cz: float, h: float, out: Ints,
+) -> int:
+    """The triangles that may meet the cube (at most ``out.size`` listed); return their count (may exceed)."""
+    if T.shape[0] == 0:
+        return 0
+    i0 = _idx(cx - h, o[0], g, n[0])
+    i1 = _idx(cx + h, o[0], g, n[0])
+    j0 = _idx(cy - h, o[1], g, n[1])
+    j1 = _idx(cy + h, o[1], g, n[1])
+    k0 = _idx(cz - h, o[2], g, n[2])
+    k1 = _idx(cz + h, o[2], g, n[2])
+    cnt = 0
+    for k in range(k0, k1 + 1):
+        for j in range(j0, j1 + 1):
+            for i in range(i0, i1 + 1):
+                b = (k * n[1] + j) * n[0] + i
+                for p in range(start[b], start[b + 1]):
+                    t = items[p]
+                    if stamp[t] == qid:
+                        continue
+                    stamp[t] = qid
+                    if may_meet(V, T, t, cx, cy, cz, h):
+                        if cnt < out.size:
+                            out[cnt] = t
+                        cnt += 1
+    return cnt
+
+
+# ------------------------------------------------------------------------------------- the searches
+@njit(cache=True)
+def _inner(V: Floats, T: Ints, t: int, x: float, y: float, z: float, e: Floats) -> int:
+    # Sign of ((b − a) × (c − a))·(a − x): > 0 strictly on the inner side of triangle t's plane.
+    a = T[t, 0]
+    b = T[t, 1]
+    c = T[t, 2]
+    return det3_sign(
+        V[a, 0], V[a, 1], V[a, 2], V[b, 0], V[b, 1], V[b, 2], V[c, 0], V[c, 1], V[c, 2], x, y, z, False, e
+    )
+
+
+@njit(cache=True)
+def vertex_lows(
+    P: Floats, VB: Floats, TB: Ints, o3: Floats, g3: float, n3: Ints, s3: Ints, i3: Ints,
+    o2: Floats, g2: float, n2: Ints, s2: Ints, i2: Ints, alpha: float,
+) -> Floats:
+    """Lower bounds of d(p, B) for each row p of P (0 when p + τ is inside B)."""
+    out = np.empty(P.shape[0])
+    e = np.empty(SCRATCH3_SIZE)
+    stamp = np.full(TB.shape[0], -1, np.int64)
+    for r in range(P.shape[0]):
+        x, y, z = P[r, 0], P[r, 1], P[r, 2]
+        if inside(x, y, z, VB, TB, o2, g2, n2, s2, i2, e):
+            out[r] = 0.0
+        else:
+            out[r] = nearest(x, y, z, VB, TB, o3, g3, n3, s3, i3, stamp, r, alpha)[0]
+    return out
+
+
+@njit(cache=True)
+def _certify_inside_b(
+    cx: float, cy: float, cz: float, h: float, lb: Ints, nb: int, la: Ints, na: int,
+    VA: Floats, TA: Ints, oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
+    VB: Floats, TB: Ints, ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints, e: Floats,
+) -> bool:
+    """Whether C ∩ A ⊆ B is proved exactly from the triangles listed (see :mod:`.solids`, "containment")."""
+    # 1. The listed B triangles are all on the boundary of K = ∩ inner half-spaces (a convex configuration).
+    for p in range(nb):
+        for q in range(nb):
+            if p == q:
+                continue
+            for w in range(3):
+                v = TB[lb[q], w]
+                if _inner(VB, TB, lb[p], VB[v, 0], VB[v, 1], VB[v, 2], e) < 0:
+                    return False
+    # 2. A point z + τ of int K ∩ int C inside B: then int K ∩ int C ⊆ B (connected, misses ∂B).
+    found = False
+    for w in range(9):
+        if w == 0:
+            zx, zy, zz = cx, cy, cz
+        else:
+            zx = cx + (0.5 * h if (w - 1) & 1 else -0.5 * h)
+            zy = cy + (0.5 * h if (w - 1) & 2 else -0.5 * h)
+            zz = cz + (0.5 * h if (w - 1) & 4 else -0.5 * h)
+        ok = True
+        for p in range(nb):
+            if _inner(VB, TB, lb[p], zx, zy, zz, e) <= 0:
+                ok = False
+                break
+        if ok and inside(zx, zy, zz, VB, TB, ob2, gb2, nb2, sb2, ib2, e):
+            found = True
+            break
+    if not found:
+        return False
+    # 3. Every listed A triangle lies in K (its vertices do), and so does every corner of C that is in A.
+    for p in range(na):
+        for w in range(3):
+            v = TA[la[p], w]
+            for q in range(nb):
+                if _inner(VB, TB, lb[q], VA[v, 0], VA[v, 1], VA[v, 2], e) < 0:
+                    return False
+    for w in range(8):
+        zx = cx + (h if w & 1 else -h)
+        zy = cy + (h if w & 2 else -h)
+        zz = cz + (h if w & 4 else -h)
+        ok = True
+        for q in range(nb):
+            if _inner(VB, TB, lb[q], zx, zy, zz, e) < 0:
+                ok = False
+                break
+        if not ok and inside(zx, zy, zz, VA, TA, oa2, ga2, na2, sa2, ia2, e):
+            return False
+    return True
+
+
+@njit(cache=True)
+def process_cells(
+    C: Floats, h: float, r_up: float,
+    VA: Floats, TA: Ints, oa3: Floats, ga3: float, na3: Ints, sa3: Ints, ia3: Ints,
+    oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
+    VB: Floats, TB: Ints, ob3: Floats, gb3: float, nb3: Ints, sb3: Ints, ib3: Ints,
+    ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints,
+    alpha: float,
+) -> tuple[Floats, Floats]:
+    """Upper bounds of max d(·, B) over C ∩ A, and lower bounds from the centre, for cubes C (centres C).
+
+    hi = −inf marks a cell that certainly misses A; lo = −inf a centre not proved to be in A.
+    """
+    m = C.shape[0]
+    his = np.empty(m)
+    los = np.full(m, -math.inf)
+    e = np.empty(SCRATCH3_SIZE)
+    stamp_a = np.full(TA.shape[0], -1, np.int64)
+    stamp_b = np.full(TB.shape[0], -1, np.int64)
+    la = np.empty(KMAX, np.int64)
+    lb = np.empty(KMAX, np.int64)
+    qid = 0
+    for r in range(m):
+        cx, cy, cz = C[r, 0], C[r, 1], C[r, 2]
+        qid += 1
+        na = tris_in_cube(VA, TA, oa3, ga3, na3, sa3, ia3, stamp_a, qid, cx, cy, cz, h, la)
+        c_in_a = inside(cx, cy, cz, VA, TA, oa2, ga2, na2, sa2, ia2, e)
+        if na == 0 and not c_in_a:
+            his[r] = -math.inf  # C ∩ ∂A = ∅ and the centre is outside: C misses A
+            continue
+        c_in_b = inside(cx, cy, cz, VB, TB, ob2, gb2, nb2, sb2, ib2, e)
+        tbest = -1
+        if c_in_b:
+            flo = 0.0
+            fhi = 0.0
+        else:
+            flo, fhi, tbest = nearest(cx, cy, cz, VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid, alpha)
+        if c_in_a:
+            los[r] = flo
+        hi = fhi + r_up
+        hi = hi + hi * 2.0**-51  # outward rounding of the sum
+        qid += 1
+        nb = tris_in_cube(VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid, cx, cy, cz, h, lb)
+        if nb == 0:
+            if c_in_b:
+                hi = 0.0  # C ∩ ∂B = ∅ and the centre is inside: C ⊆ B
+        elif nb <= KMAX and na <= KMAX:
+            if _certify_inside_b(
+                cx, cy, cz, h, lb, nb, la, na, VA, TA, oa2, ga2, na2, sa2, ia2, VB, TB, ob2, gb2, nb2, sb2, ib2, e
+            ):
+                hi = 0.0
+        if hi > 0.0 and tbest >= 0:
+            # d(·, B) ≤ d(·, T) for the triangle T nearest the centre, convex: its maximum over C is at a corner.
+            g = 0.0
+            for w in range(8):
+                zx = cx + (h if w & 1 else -h)
+                zy = cy + (h if w & 2 else -h)
+                zz = cz + (h if w & 4 else -h)
+                g = max(g, tri_dist(zx, zy, zz, VB, TB, tbest, alpha)[1])
+            if g < hi:
+                hi = g
+        his[r] = hi
+    return his, los
