@@ -249,13 +249,16 @@ def _measured_dict(m: MeasuredError | None, b: BoundResult | None) -> dict[str, 
             "within_bound": None,
         }
     d = m.as_dict()
-    return {
+    out = {
         "measured": d["measured"],
         "result_within": d["result_within"],
         "source_within": d["source_within"],
         "measured_exact": d["exact"],
         "within_bound": None if b is None else _within(m, b),
     }
+    # 3D: the certified enclosures the three numbers above are the upper ends of (docs/adr/0060)
+    out.update({k: v for k, v in d.items() if k.endswith("_interval")})
+    return out
 
 
 def _within(m: MeasuredError, b: BoundResult) -> bool | None:
@@ -405,7 +408,7 @@ def _sub(progress: ProgressLike | None, lo: float, hi: float) -> Any:
 
 def _reads(link: ChainLink, source: Any, model: Model, limit: int | None) -> Any:
     """The representation the link's step works in, of ``source`` (D(E) or R(A), as the document does)."""
-    if link.bound_step().reads == "discrete":
+    if link.bound_step(input_dimension([source])).reads == "discrete":
         return discrete_of(source, model, limit=limit)
     return euclidean_of(source, model)
 

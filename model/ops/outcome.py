@@ -57,7 +57,7 @@ class StepOutcome:
     # function bound with functools.partial, never a closure, so that an outcome can cross to a worker
     # process.
     exact_image: Any
-    discrete: PixelSet
+    discrete: Any
     extra: dict[str, Any] = field(default_factory=dict)
 
     @property

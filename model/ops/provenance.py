@@ -150,7 +150,7 @@ class Provenance:
         if sources and len(sources) != len(ins):
             raise ParameterError(f"a provenance pins {len(sources)} input contents for {len(ins)} inputs")
         for s in sources:
-            if not isinstance(s, PixelSet | Polygon | MultiPolygon):
+            if not isinstance(s, PixelSet | VoxelSet | Polygon | MultiPolygon | Polyhedron):
                 raise ParameterError(f"a pinned input content must be a source, got {type(s).__name__}")
         object.__setattr__(self, "sources", sources)
         parents = tuple(self.parents) if self.parents else (None,) * len(sources)

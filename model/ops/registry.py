@@ -226,6 +226,7 @@ class OperationSpec:
         """Run the operation as a chain step on ``source`` (already in the representation it reads)."""
         if self.step is None:
             raise ParameterError(f"{self.name} is no step of a one-object chain")
+        _refuse_3d(self, [source])
         return self.step(source, params, limit=limit, progress=progress)
 
 
@@ -296,13 +297,17 @@ def input_dimension(inputs: Sequence[Any]) -> int:
     return dims.pop() if dims else 2
 
 
+def _refuse_3d(spec: OperationSpec, inputs: Sequence[Any]) -> None:
+    """One line for a 3D input of an operation that does not take 3D objects yet."""
+    if input_dimension(inputs) == 3 and spec.name not in THREE_D:
+        takes = ", ".join(get_operation(n).title for n in sorted(THREE_D))
+        raise ParameterError(f"{spec.title} does not take 3D objects yet (these do: {takes})")
+
+
 def _check_inputs(spec: OperationSpec, inputs: Sequence[Output]) -> None:
     if len(inputs) != spec.arity:
         raise ParameterError(f"{spec.name} takes {spec.arity} input(s), got {len(inputs)}")
-    if input_dimension(inputs) == 3 and spec.name not in THREE_D:
-        raise ParameterError(
-            f"{spec.title} does not take 3D objects yet (it does: {', '.join(sorted(THREE_D))})"
-        )
+    _refuse_3d(spec, inputs)
     for i, obj in enumerate(inputs):
         if spec.reads == "discrete" and not isinstance(obj, (PixelSet, VoxelSet)):
             raise ParameterError(f"{spec.name}: input {i + 1} must be a pixel set, got {type(obj).__name__}")
