@@ -146,6 +146,8 @@ def measured_text(acc: Account) -> str:
             f"<br><small>{len(acc.difference.light):,} {unit} only in the result (light grey), "
             f"{len(acc.difference.dark):,} only in the direct result D(T(A_first)) (dark grey)</small>"
         )
+    if acc.direct_note:
+        text += f"<br><small>{html.escape(acc.direct_note, quote=False)}</small>"
     if acc.idempotent is not None:
         text += f"<br><small>Sp_α∘Sp_α = Sp_α: {'checked ✓' if acc.idempotent else 'FAILS'}</small>"
     return text

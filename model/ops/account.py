@@ -168,6 +168,9 @@ class Account:
         For Sp_α: whether Sp_α(result) = result exactly.
     error : str
         Why the provenance could not be accounted for (nothing else is then set).
+    direct_note : str
+        Why the direct result was not computed although the rest was (a 3D chain whose composite map
+        leaves the exact voxelization's range); empty otherwise.
     output : object
         The result as the measurement recomputed it from the pinned inputs (a pixel set, a polygon, or for
         a co-refinement a dict part → polygon); None when not measured.
@@ -192,6 +195,7 @@ class Account:
     part: str = ""
     idempotent: bool | None = None
     error: str = ""
+    direct_note: str = ""
     output: Any = field(default=None, repr=False, compare=False)
     outcome: Any = field(default=None, repr=False, compare=False)
 
@@ -225,6 +229,7 @@ class Account:
         out["part"] = self.part or None
         out["parts"] = [p.as_dict() for p in self.parts]
         out["idempotent"] = self.idempotent
+        out["direct_note"] = self.direct_note or None
         return out
 
 
@@ -460,7 +465,15 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     t_first = a_first.map(transform)
     if progress is not None:
         progress.update(0.3, "the direct result D(T(A_first))")
-    direct = discrete_of(t_first, model, limit=limit, progress=_sub(progress, 0.3, 0.5))
+    direct_note = ""
+    try:
+        direct = discrete_of(t_first, model, limit=limit, progress=_sub(progress, 0.3, 0.5))
+    except ParameterError as e:
+        if n != 3:
+            raise
+        # In space a chain of rotations composes matrices of ever more bits (docs/adr/0060): the exact image
+        # may leave the exact voxelization's range. The bound and the measured distance do not need it.
+        direct, direct_note = None, f"the direct result D(T(A_first)) is not computed: {e}"
     if progress is not None:
         progress.update(0.5, "measuring the Hausdorff distance")
     measured = measured_error(t_first, outcome.euclidean, progress=_sub(progress, 0.5, 1.0))
@@ -469,9 +482,10 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
         measured=measured,
         direct=direct,
         result=pixels,
-        difference=differing_pixels(pixels, direct),
+        difference=None if direct is None else differing_pixels(pixels, direct),
         idempotent=idempotent,
         output=result,
+        direct_note=direct_note,
     )
 
 

@@ -130,16 +130,7 @@ def _edge_side(ay: float, az: float, by: float, bz: float, j: float, k: float, e
 
 @njit(cache=True)
 def inside(
-    qx: float,
-    qy: float,
-    qz: float,
-    V: Floats,
-    T: Ints,
-    o: Floats,
-    g: float,
-    n: Ints,
-    start: Ints,
-    items: Ints,
+    qx: float, qy: float, qz: float, V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints,
     e: Floats,
 ) -> bool:
     """Whether q + τ, τ = (ε, ε², ε³) infinitesimal, lies inside the closed mesh (exact; even-odd rule).
@@ -177,7 +168,9 @@ def inside(
             continue
         if _edge_side(cy, cz, ay, az, qy, qz, e) != s:
             continue
-        d = det3_sign(V[a0, 0], ay, az, V[a1, 0], by, bz, V[a2, 0], cy, cz, qx, qy, qz, False, e)
+        d = det3_sign(
+            V[a0, 0], ay, az, V[a1, 0], by, bz, V[a2, 0], cy, cz, qx, qy, qz, False, e
+        )
         if s * d > 0:
             par = not par
     return par
@@ -205,9 +198,7 @@ def _seg(ax: float, ay: float, az: float, bx: float, by: float, bz: float) -> fl
 
 
 @njit(cache=True)
-def tri_dist(
-    qx: float, qy: float, qz: float, V: Floats, T: Ints, t: int, alpha: float
-) -> tuple[float, float]:
+def tri_dist(qx: float, qy: float, qz: float, V: Floats, T: Ints, t: int, alpha: float) -> tuple[float, float]:
     """An enclosure [lo, hi] of the exact distance from q to triangle t (see the allowance below).
 
     Allowance (u = 2⁻⁵³, M ≥ every |coordinate| of q and of the triangle, ``alpha = ABS·M = 512·u·M``):
@@ -302,19 +293,8 @@ def _reach(x: float, d: float, sign: float) -> float:
 
 @njit(cache=True)
 def nearest(
-    qx: float,
-    qy: float,
-    qz: float,
-    V: Floats,
-    T: Ints,
-    o: Floats,
-    g: float,
-    n: Ints,
-    start: Ints,
-    items: Ints,
-    stamp: Ints,
-    qid: int,
-    alpha: float,
+    qx: float, qy: float, qz: float, V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints,
+    stamp: Ints, qid: int, alpha: float,
 ) -> tuple[float, float, int]:
     """[lo, hi] of the distance from q to the nearest triangle, and that triangle (−1 when none).
 
@@ -418,20 +398,8 @@ def may_meet(V: Floats, T: Ints, t: int, cx: float, cy: float, cz: float, h: flo
 
 @njit(cache=True)
 def tris_in_cube(
-    V: Floats,
-    T: Ints,
-    o: Floats,
-    g: float,
-    n: Ints,
-    start: Ints,
-    items: Ints,
-    stamp: Ints,
-    qid: int,
-    cx: float,
-    cy: float,
-    cz: float,
-    h: float,
-    out: Ints,
+    V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints, stamp: Ints, qid: int,
+    cx: float, cy: float, cz: float, h: float, out: Ints,
 ) -> int:
     """The triangles that may meet the cube (at most ``out.size`` listed); return their count (may exceed)."""
     if T.shape[0] == 0:
@@ -473,20 +441,8 @@ def _inner(V: Floats, T: Ints, t: int, x: float, y: float, z: float, e: Floats) 
 
 @njit(cache=True)
 def vertex_lows(
-    P: Floats,
-    VB: Floats,
-    TB: Ints,
-    o3: Floats,
-    g3: float,
-    n3: Ints,
-    s3: Ints,
-    i3: Ints,
-    o2: Floats,
-    g2: float,
-    n2: Ints,
-    s2: Ints,
-    i2: Ints,
-    alpha: float,
+    P: Floats, VB: Floats, TB: Ints, o3: Floats, g3: float, n3: Ints, s3: Ints, i3: Ints,
+    o2: Floats, g2: float, n2: Ints, s2: Ints, i2: Ints, alpha: float,
 ) -> Floats:
     """Lower bounds of d(p, B) for each row p of P (0 when p + τ is inside B)."""
     out = np.empty(P.shape[0])
@@ -503,29 +459,9 @@ def vertex_lows(
 
 @njit(cache=True)
 def _certify_inside_b(
-    cx: float,
-    cy: float,
-    cz: float,
-    h: float,
-    lb: Ints,
-    nb: int,
-    la: Ints,
-    na: int,
-    VA: Floats,
-    TA: Ints,
-    oa2: Floats,
-    ga2: float,
-    na2: Ints,
-    sa2: Ints,
-    ia2: Ints,
-    VB: Floats,
-    TB: Ints,
-    ob2: Floats,
-    gb2: float,
-    nb2: Ints,
-    sb2: Ints,
-    ib2: Ints,
-    e: Floats,
+    cx: float, cy: float, cz: float, h: float, lb: Ints, nb: int, la: Ints, na: int,
+    VA: Floats, TA: Ints, oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
+    VB: Floats, TB: Ints, ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints, e: Floats,
 ) -> bool:
     """Whether C ∩ A ⊆ B is proved exactly from the triangles listed (see :mod:`.solids`, "containment")."""
     # 1. The listed B triangles are all on the boundary of K = ∩ inner half-spaces (a convex configuration).
@@ -579,33 +515,11 @@ def _certify_inside_b(
 
 @njit(cache=True)
 def process_cells(
-    C: Floats,
-    h: float,
-    r_up: float,
-    VA: Floats,
-    TA: Ints,
-    oa3: Floats,
-    ga3: float,
-    na3: Ints,
-    sa3: Ints,
-    ia3: Ints,
-    oa2: Floats,
-    ga2: float,
-    na2: Ints,
-    sa2: Ints,
-    ia2: Ints,
-    VB: Floats,
-    TB: Ints,
-    ob3: Floats,
-    gb3: float,
-    nb3: Ints,
-    sb3: Ints,
-    ib3: Ints,
-    ob2: Floats,
-    gb2: float,
-    nb2: Ints,
-    sb2: Ints,
-    ib2: Ints,
+    C: Floats, h: float, r_up: float,
+    VA: Floats, TA: Ints, oa3: Floats, ga3: float, na3: Ints, sa3: Ints, ia3: Ints,
+    oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
+    VB: Floats, TB: Ints, ob3: Floats, gb3: float, nb3: Ints, sb3: Ints, ib3: Ints,
+    ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints,
     alpha: float,
 ) -> tuple[Floats, Floats]:
     """Upper bounds of max d(·, B) over C ∩ A, and lower bounds from the centre, for cubes C (centres C).
@@ -647,29 +561,7 @@ def process_cells(
                 hi = 0.0  # C ∩ ∂B = ∅ and the centre is inside: C ⊆ B
         elif nb <= KMAX and na <= KMAX:
             if _certify_inside_b(
-                cx,
-                cy,
-                cz,
-                h,
-                lb,
-                nb,
-                la,
-                na,
-                VA,
-                TA,
-                oa2,
-                ga2,
-                na2,
-                sa2,
-                ia2,
-                VB,
-                TB,
-                ob2,
-                gb2,
-                nb2,
-                sb2,
-                ib2,
-                e,
+                cx, cy, cz, h, lb, nb, la, na, VA, TA, oa2, ga2, na2, sa2, ia2, VB, TB, ob2, gb2, nb2, sb2, ib2, e
             ):
                 hi = 0.0
         if hi > 0.0 and tbest >= 0:
