@@ -93,10 +93,11 @@ def _inverse(m: Mat3) -> Mat3:
 
 
 def _sqrt_up(q: Fraction) -> Fraction:
-    """A rational r ≥ √q, within a few float64 roundings of it."""
-    r = Fraction(math.sqrt(float(q)))
+    """A rational r ≥ √q with ten decimals (a bound a reader can read: 1.0000000001), at most 10⁻¹⁰ above."""
+    scale = 10**10
+    r = Fraction(math.ceil(math.sqrt(float(q)) * scale), scale)
     while r * r < q:
-        r = Fraction(math.nextafter(float(r), math.inf))
+        r += Fraction(1, scale)
     return r
 
 
