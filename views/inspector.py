@@ -19,8 +19,9 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.core.errors import MRMError
-from mrm.core.grids import joint_box
+from mrm.core.grids import VoxelSet, joint_box
 from mrm.ops.account import Account, account_of, rerun_request
+from mrm.views import gl_mesh
 from mrm.views.canvas import Camera, MaskItem, Picture, PlaneView, lod_image, make_picture, qcolor
 from mrm.views.failures import failure_message, log_failure
 from mrm.views.provenance import bound_text, chain_rows, changes_text, measured_text
@@ -69,6 +70,7 @@ class ErrorInspector(QtWidgets.QWidget):
         self.account: Account | None = None
         self.measurement: Account | None = None
         self.picture: DiffPicture | None = None  # the drawing of the measurement, once made
+        self.difference3d: dict[str, Any] | None = None  # a 3D account's differing voxels, drawn in 3D
         self.title = QtWidgets.QLabel("", self)
         self.title.setWordWrap(True)
         self.changes_label = QtWidgets.QLabel("", self)
@@ -343,6 +345,9 @@ class ErrorInspector(QtWidgets.QWidget):
     # ------------------------------------------------------------------ pictures
     def _request_picture(self, m: Account) -> None:
         """Make the drawing of ``m`` on a worker: at 10⁸ pixels the union and the masks take seconds."""
+        if isinstance(m.result, VoxelSet):  # 3D: the differing voxels are drawn in the 3D discrete view
+            self._request_voxel_difference(m)
+            return
 
         def done(pic: DiffPicture | None) -> None:
             if self.measurement is m:
@@ -358,6 +363,24 @@ class ErrorInspector(QtWidgets.QWidget):
             on_result=done,
             label="Drawing the differences",
         )
+
+    def _request_voxel_difference(self, m: Account) -> None:
+        """The surfels of the voxels that differ from the direct result, made on a worker (3D accounts)."""
+
+        def done(data: dict[str, Any] | None) -> None:
+            if self.measurement is m:
+                self.difference3d = data
+                self._overlay_changed(self.overlay.isChecked())
+                self.pictured.emit()
+
+        def work(_p: Any) -> dict[str, Any] | None:
+            if m.difference is None:
+                return None
+            return gl_mesh.difference_arrays(m.difference.light, m.difference.dark, LIGHT_GREY, DARK_GREY)
+
+        self.picture = None
+        self.difference3d = None
+        self.runner.submit("inspect:picture", work, on_result=done, label="Drawing the differing voxels")
 
     def _result_lut(self) -> np.ndarray:
         """The table the result is drawn with: the selected object's colour."""
@@ -398,6 +421,10 @@ class ErrorInspector(QtWidgets.QWidget):
         views = getattr(w, "views", None)
         if views is None:
             return
+        area3d = getattr(views, "area3d", None)
+        if area3d is not None:  # the 3D discrete view draws a 3D account's differing voxels
+            measured3d = self.measurement is not None and isinstance(self.measurement.result, VoxelSet)
+            area3d.show_difference(self.difference3d if on and measured3d else None)
         vb = views.discrete.plane.vb
         if self._overlay_item is not None:
             self._overlay_item.detach()
@@ -472,7 +499,7 @@ def diff_picture(m: Account, result_lut: np.ndarray | None = None) -> DiffPictur
 
     With ``result_lut`` (the table the result is drawn with) the pictures are made too.
     """
-    if m.result is None:
+    if m.result is None or isinstance(m.result, VoxelSet):  # a 3D account is drawn in the 3D views
         return None
     result, rf = lod_image(m.result.mask)
     d = diff_image(m)

@@ -531,6 +531,7 @@ class DiscreteView3D(View3D):
         #: "paint", "erase" or None: what a left drag on the slice plane does.
         self.brush: str | None = None
         self._slice_item: Any = None
+        self._difference_item: Any = None  # the voxels that differ from the direct result (show_difference)
         self._stroke: dict[str, Any] | None = None
         super().__init__(scene, camera, parent)
         hl = self.header_layout
@@ -654,6 +655,21 @@ class DiscreteView3D(View3D):
         item.setDepthValue(10)  # drawn after the surfaces, over them
         self.pane.addItem(item)
         self._slice_item = item
+
+    def show_difference(self, data: dict[str, Any] | None) -> None:
+        """Draw the voxels that differ from the direct result (light and dark grey), or nothing (None).
+
+        ``data`` is :func:`gl_mesh.difference_arrays`' (made on a worker); drawn over the objects' surfaces.
+        """
+        if self._difference_item is not None:
+            self.pane.removeItem(self._difference_item)
+            self._difference_item = None
+        if data is None or not data["vertices"].size:
+            return
+        item = ready_mesh_item(data)
+        item.setDepthValue(5)
+        self.pane.addItem(item)
+        self._difference_item = item
 
     def slice_voxel_at(self, pos: QtCore.QPointF) -> tuple[int, int, int] | None:
         """The voxel of the slice plane under the pane's point ``pos`` (ray-plane intersection)."""
@@ -960,6 +976,12 @@ class View3DArea(QtWidgets.QWidget):
     def is_drawn(self) -> bool:
         """True when the four views have drawn everything (always, without OpenGL)."""
         return all(v.is_drawn() for v in self.views)
+
+    def show_difference(self, data: dict[str, Any] | None) -> None:
+        """Draw a 3D account's differing voxels in the discrete 3D view (None clears them)."""
+        for v in self.views:
+            if isinstance(v, DiscreteView3D):
+                v.show_difference(data)
 
     def by_name(self, name: str) -> View3D:
         for v in self.views:
