@@ -151,7 +151,7 @@ class ErrorInspector(QtWidgets.QWidget):
 
     # ------------------------------------------------------------------ state
     def refresh(self) -> None:
-        obj = self.scene.primary()
+        obj = self.scene.selected()
         prov = obj.provenance if obj is not None else None
         keep = prov is not None and prov is self._measured_for and self.measurement is not None
         if not keep:
@@ -172,6 +172,8 @@ class ErrorInspector(QtWidgets.QWidget):
         )
         for w in details:
             w.setVisible(prov is not None)
+        if obj is not None and obj.dimension == 3:  # its differing voxels are drawn in the 3D discrete view
+            self.plane.setVisible(False)
         if obj is None or prov is None:
             self.account = None
             self.title.setText(
@@ -248,7 +250,7 @@ class ErrorInspector(QtWidgets.QWidget):
     # ------------------------------------------------------------------ measuring
     def start_measure(self) -> None:
         acc = self.account
-        obj = self.scene.primary()
+        obj = self.scene.selected()
         if acc is None or obj is None or obj.provenance is None or acc.error:
             return
         prov = obj.provenance
@@ -256,7 +258,7 @@ class ErrorInspector(QtWidgets.QWidget):
 
         def done(outcome: tuple[Account, str]) -> None:
             m, text = outcome
-            now = self.scene.primary()
+            now = self.scene.selected()
             if now is None or now.provenance is not prov:
                 return  # another object was selected meanwhile
             self.measurement = m
@@ -308,7 +310,7 @@ class ErrorInspector(QtWidgets.QWidget):
     # ------------------------------------------------------------------ re-running
     def rerun(self) -> None:
         """Run the result's operation again on the current inputs, as a new result (one undo step)."""
-        obj = self.scene.primary()
+        obj = self.scene.selected()
         if obj is None or obj.provenance is None:
             return
         doc = self.scene.doc
@@ -384,7 +386,7 @@ class ErrorInspector(QtWidgets.QWidget):
 
     def _result_lut(self) -> np.ndarray:
         """The table the result is drawn with: the selected object's colour."""
-        obj = self.scene.primary()
+        obj = self.scene.selected()
         colour = qcolor(obj.style.fill) if obj is not None else QtGui.QColor("#4c72b0")
         return np.array([[0, 0, 0, 0], [*colour.getRgb()[:3], 110]])
 

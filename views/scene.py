@@ -163,6 +163,11 @@ class Scene(QtCore.QObject):
     def phantoms(self) -> list[Phantom]:
         return [p for p, _ in self._phantoms.values()]
 
+    def selected(self) -> DocObject | None:
+        """The first selected object, in either dimension (the inspector accounts for 3D results too)."""
+        sel = self.doc.selection
+        return self.doc.get(sel[0]) if sel and sel[0] in self.doc else None
+
     def primary(self) -> DocObject | None:
         """The selected object shown in detail (first of the selection), if the plane views show it."""
         sel = self.doc.selection

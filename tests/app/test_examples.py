@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+import mrm
 from mrm.geometry.discretize import discretize
 from mrm.io.project import dumps, load_project
 from mrm.ops.account import account_of
@@ -41,7 +42,8 @@ def test_every_example_loads_and_its_discrete_is_d_of_its_euclidean(path):
     assert doc.objects and not doc.is_modified
     for o in doc.objects:
         d = doc.derived(o.id)
-        assert discretize(d.get("euclidean"), doc.model) == d.get("discrete"), o.name
+        # mrm.discretize: D of a polygon, or of a polyhedron (a 3D example's R(A)) into voxels
+        assert mrm.discretize(d.get("euclidean"), doc.model) == d.get("discrete"), o.name
 
 
 @pytest.mark.parametrize("name", sorted(_script().EXAMPLES))
@@ -66,6 +68,28 @@ def test_fig12_chain_bound_and_measured_error():
     assert acc.bound.coefficient == s[1] * s[2] * s[3] + s[2] * s[3] + s[3] == Fraction(44, 25)
     assert acc.within_bound is True
     assert acc.measured.value == 0.05  # the issue's report: exactly 0.05, not 0.05000000000000071
+
+
+def test_fig12_in_3d_the_octahedron_chain_is_within_its_sqrt3_bound():
+    """The paper's Figure 12 on a digital octahedron: each result's certified distance is within its bound."""
+    import math
+
+    doc = load_project(EXAMPLES / "fig12-3d-octahedron.mrm")
+    objs = _by_name(doc)
+    s = [Fraction(5, 4), Fraction(5), Fraction(1, 5), Fraction(4, 5)]
+    # √3 · Σ_{i=2..k} Π_{j=i..k} s_j for the chains of 2, 3 and 4 steps (docs/design.md §8, §11)
+    expected = {
+        "DSS 5": s[1],
+        "DSS 0.2": s[1] * s[2] + s[2],
+        "DSS 0.8": s[1] * s[2] * s[3] + s[2] * s[3] + s[3],
+    }
+    for name, coefficient in expected.items():
+        acc = account_of(objs[name].provenance)
+        assert acc.bound.coefficient == coefficient and acc.bound.n == 3, name
+        lo, hi = acc.measured.intervals["both"]
+        assert lo <= hi <= float(coefficient) * math.sqrt(3) and acc.within_bound is True, name
+    # DSS_0.2∘DSS_5 gives A1 back on this octahedron (no voxel differs from D(Sc_1.25(R(A))))
+    assert objs["DSS 0.2"].source == objs["DSS 1.25"].source
 
 
 def test_fig13_rotation_back_is_not_the_original():
@@ -109,7 +133,7 @@ def test_fig08_simplification_is_its_definition_at_each_alpha():
 
 @pytest.mark.parametrize(
     "name", ["fig12-dss-combinations.mrm", "fig13-rotations.mrm", "fig08-simplification.mrm",
-             "fig09-10-union-corefinement.mrm"],
+             "fig09-10-union-corefinement.mrm", "fig12-3d-octahedron.mrm", "rotation-3d.mrm"],
 )  # fmt: skip
 def test_the_inspector_cli_and_api_print_identical_numbers(make_window, qtbot, name):
     """One account (mrm.ops.account): what the inspector holds is what ``mrm account --json`` prints."""
@@ -134,5 +158,8 @@ def test_the_inspector_cli_and_api_print_identical_numbers(make_window, qtbot, n
             assert run_cli(["account", str(EXAMPLES / name), "--object", obj.name, "--json"]) == 0
         cli = json.loads(out.getvalue())
         assert gui == api == {k: cli[k] for k in api}, obj.name
-        if gui["measured"] is not None:
+        if gui.get("measured_interval") and not gui["measured_exact"]:  # 3D: a certified enclosure
+            lo, hi = gui["measured_interval"]
+            assert f"∈ [{lo:.6g}, {hi:.6g}] (certified)" in insp.measured_label.text()
+        elif gui["measured"] is not None:
             assert f"= {gui['measured']:.4g}" in insp.measured_label.text()

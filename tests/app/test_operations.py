@@ -164,3 +164,60 @@ def test_apply_hands_the_worker_the_r_the_euclidean_view_computed(make_window, q
     assert [(k, model) for k, model, _g in held] == [(0, doc.model)]
     assert held[0][2].equals_exact(shown, 0.0)
     assert doc.get(result).source == _dss(a.source, 5.0)
+
+
+def test_dss_and_a_rotation_of_a_voxel_object_from_the_panel_are_the_librarys_and_undo(make_window, qtbot):
+    """Issue 30: the panel takes 3D objects for DSS and dR; a centre gets its z, the rotation its axis."""
+    import mrm
+    from mrm.core.grids import VoxelSet
+
+    win = make_window()
+    doc = win.doc
+    z, y, x = np.mgrid[-3:4, -3:4, -3:4]
+    a = doc.make_object(VoxelSet(np.abs(x) + np.abs(y) + np.abs(z) <= 3, (-3, -3, -3)), name="A")
+    doc.push(AddObject(a, select=True))
+    panel = win.operations
+    panel.select_operation("dss")
+    assert panel.inputs[0].currentData() == a.id  # a 3D object is an input of DSS
+    centre = panel.control("center")
+    assert centre.zs.isVisibleTo(panel) and not centre.pick_button.isVisibleTo(panel)
+    first = _apply_dss_from_panel(win, qtbot, "0.8")
+    assert doc.get(first).source == mrm.scale(a.source, "0.8")
+    assert isinstance(doc.get(first).source, VoxelSet)
+    # dR about the tilted axis (1, 1, 1) through (1, 0, 0): typed into the axis and centre fields
+    panel.select_operation("discrete_rotation")
+    panel.inputs[0].setCurrentIndex(panel.inputs[0].findData(a.id))
+    axis = panel.control("axis")
+    assert axis.isVisibleTo(panel)
+    type_into(qtbot, panel.control("angle").field, "30")
+    for spin, value in ((axis.xs, 1), (axis.ys, 1), (axis.zs, 1), (panel.control("center").xs, 1)):
+        spin.setFocus()
+        qtbot.keyClick(spin, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
+        qtbot.keyClicks(spin, str(value))
+        qtbot.keyClick(spin, Qt.Key.Key_Return)
+    n = len(doc.objects)
+    with task_done(qtbot, win.runner, "operation"):
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    assert len(doc.objects) == n + 1
+    turned = doc.objects[-1]
+    assert turned.source == mrm.rotate(a.source, 30, (1, 0, 0), axis=(1, 1, 1))
+    assert turned.provenance.params["axis"] == [1, 1, 1]
+    # one undo step each
+    win.doc.history.undo()
+    win.doc.history.undo()
+    assert [o.id for o in doc.objects] == [a.id]
+    # a 2D object hides the axis and the centre's z again
+    doc.push(AddObject(doc.make_object(_diamond(), name="B"), select=True))
+    panel.inputs[0].setCurrentIndex(panel.inputs[0].findData(doc.objects[-1].id))
+    assert not axis.isVisibleTo(panel) and not panel.control("center").zs.isVisibleTo(panel)
+
+
+def test_an_operation_without_a_3d_form_does_not_offer_voxel_objects(make_window):
+    from mrm.core.grids import VoxelSet
+
+    win = make_window()
+    doc = win.doc
+    doc.push(AddObject(doc.make_object(VoxelSet.box(0, 0, 0, 2, 2, 2), name="cube"), select=True))
+    panel = win.operations
+    panel.select_operation("simplify")
+    assert panel.inputs[0].findData(doc.objects[-1].id) < 0
