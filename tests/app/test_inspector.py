@@ -154,7 +154,7 @@ def test_hostile_provenance_gives_a_message_never_an_exception(make_window, qtbo
         ({"alpha": 2.0, "colour": "red"}, "unknown parameter"),
         ({"alpha": 5e-324}, "allowed: 1e-06 ≤ α ≤ 1e+06"),
         ({"alpha": 2.0, "center": [1.0, 2.0, 3.0]}, "must be 2 numbers"),
-        ({"alpha": 2.0, "center": "here"}, "must be 2 numbers"),
+        ({"alpha": 2.0, "center": "here"}, "must be 2 or 3 numbers"),
     ]
     for params, message in cases:
         prov = Provenance("dss", params, (a.id,), (a.source,), (None,))
