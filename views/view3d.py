@@ -666,8 +666,13 @@ class DiscreteView3D(View3D):
             self._difference_item = None
         if data is None or not data["vertices"].size:
             return
+        from OpenGL import GL
+
         item = ready_mesh_item(data)
-        item.setDepthValue(5)
+        # Over the objects' surfaces, which the differing voxels' surfels often coincide with (no z-fight):
+        # drawn last, without the depth test, as the slice plane is.
+        item.setGLOptions({GL.GL_DEPTH_TEST: False, GL.GL_BLEND: False, GL.GL_CULL_FACE: True})
+        item.setDepthValue(20)
         self.pane.addItem(item)
         self._difference_item = item
 
@@ -960,10 +965,11 @@ class View3DArea(QtWidgets.QWidget):
             self._fitted = False
 
     def _fit_first(self) -> None:
-        # The first time something is drawn (and after File ▸ Open), frame it.
+        # The first time something is drawn (and after File ▸ Open), frame it; while objects are still being
+        # computed, frame again as each is drawn (a big result drawn last would otherwise fill the panes).
         if not self._fitted and self.bounds() is not None:
-            self._fitted = True
             self.fit()
+            self._fitted = self.is_drawn()
 
     def bounds(self) -> Box3 | None:
         """The box holding what the four views draw."""
