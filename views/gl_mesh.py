@@ -261,29 +261,6 @@ def segment_colour_indices(
     return greedy_colouring(n_seg, np.stack([a[keep], b[keep]], axis=1), len(SEGMENT_COLOURS_3D))
 
 
-def boundary_surfels(
-    mask: npt.ArrayLike, origin: npt.ArrayLike
-) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.uint8]]:
-    """The surfels of a voxel mask (``mask[k, j, i]`` is voxel origin + (i, j, k)): voxels and directions.
-
-    A voxel's face in direction d is a surfel when its neighbour in direction d is not in the mask; numpy
-    shifts, one per direction of :data:`~mrm.geometry.topology.surfels.DIRS` (no components or surfaces,
-    which the differences after an operation do not need).
-    """
-    m = np.asarray(mask, dtype=bool)
-    padded = np.pad(m, 1)
-    voxels, dirs = [], []
-    o = np.asarray(origin, np.int64)
-    for d, (dx, dy, dz) in enumerate(DIRS.tolist()):
-        neighbour = padded[1 + dz : padded.shape[0] - 1 + dz, 1 + dy : padded.shape[1] - 1 + dy][
-            :, :, 1 + dx : padded.shape[2] - 1 + dx
-        ]
-        k, j, i = np.nonzero(m & ~neighbour)
-        voxels.append(np.stack([i, j, k], axis=1) + o)
-        dirs.append(np.full(len(i), d, np.uint8))
-    return np.concatenate(voxels), np.concatenate(dirs)
-
-
 def difference_arrays(
     light: object, dark: object, light_rgb: tuple[int, int, int], dark_rgb: tuple[int, int, int]
 ) -> dict[str, npt.NDArray[np.generic]]:
@@ -294,7 +271,10 @@ def difference_arrays(
     parts = []
     for vs, rgb in ((light, light_rgb), (dark, dark_rgb)):
         if not vs.is_empty():  # type: ignore[attr-defined]
-            v, d = boundary_surfels(vs.mask, vs.origin)  # type: ignore[attr-defined]
+            from mrm.geometry.topology.level_of_detail import boundary_surfels
+
+            v, d = boundary_surfels(vs.mask)  # type: ignore[attr-defined]
+            v = v + np.asarray(vs.origin, np.int64)  # type: ignore[attr-defined]  # array indices → voxels
             parts.append((v, d, np.tile(np.array([*rgb, 255], np.uint8), (len(d), 1))))
     if not parts:
         return surfel_arrays(np.zeros((0, 3)), np.zeros(0, np.uint8), np.zeros((0, 4), np.uint8))

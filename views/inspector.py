@@ -85,7 +85,7 @@ class ErrorInspector(QtWidgets.QWidget):
         self.rerun_button.clicked.connect(self.rerun)
         self.chain = QtWidgets.QTreeWidget(self)
         self.chain.setObjectName("provenanceChain")
-        self.chain.setHeaderLabels(["step", "object", "pixels"])
+        self.chain.setHeaderLabels(["step", "object", "size"])
         self.chain.setRootIsDecorated(False)
         self.chain.setUniformRowHeights(True)
         self.chain.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAlwaysOff)

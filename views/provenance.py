@@ -29,8 +29,11 @@ def _count(source: Any) -> str:
     from mrm.core.grids import PixelSet
     from mrm.views.scene import pixel_count
 
+    if isinstance(source, VoxelSet):
+        n = pixel_count(source)  # type: ignore[arg-type]  # any grid set: counted off the GUI thread when big
+        return "…" if n is None else f"{n:,} voxels"
     if not isinstance(source, PixelSet):
-        return "polygon"
+        return "polyhedron" if getattr(source, "n", None) == 3 or hasattr(source, "triangles") else "polygon"
     n = pixel_count(source)
     return "…" if n is None else f"{n:,}"
 

@@ -261,6 +261,38 @@ def views_3d(app: Any) -> Path:
     return _save(app, win, "views-3d.png")
 
 
+def _open_3d_example(app: Any, name: str, select: str) -> Any:
+    """A window on a bundled 3D example with the object ``select`` selected and its account measured."""
+    from PySide6 import QtCore
+
+    from mrm.resources import examples_dir
+
+    win = _window()
+    win.files.open(examples_dir() / name, ask=False)
+    _settle(app, win)
+    obj = next(o for o in win.doc.objects if o.name == select)
+    win.doc.set_selection([obj.id])
+    win.inspector_dock.show()
+    win.inspector_dock.raise_()
+    deadline = QtCore.QDeadlineTimer(300_000)
+    while win.inspector.difference3d is None and not deadline.hasExpired():
+        app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
+    return win
+
+
+def fig12_3d(app: Any) -> Path:
+    """The paper's Figure 12 on a digital octahedron: DSS 5 of DSS 1.25(A), its voxels that differ in grey."""
+    win = _open_3d_example(app, "fig12-3d-octahedron.mrm", "DSS 5")
+    win.inspector.overlay.setChecked(True)
+    return _save(app, win, "fig12-3d.png", fit=False)
+
+
+def rotation_3d(app: Any) -> Path:
+    """A brick turned by 30° about (1, 1, 1) and back: not A again, within the bound."""
+    win = _open_3d_example(app, "rotation-3d.mrm", "dR-30 about (1,1,1) of A1")
+    return _save(app, win, "rotation-3d.png", fit=False)
+
+
 FIGURES: dict[str, Callable[[Any], Path]] = {
     "label-map": label_map,
     "analytical-segment": analytical_segment,
@@ -271,7 +303,11 @@ FIGURES: dict[str, Callable[[Any], Path]] = {
     "measure": measure,
     "history": history,
     "views-3d": views_3d,
+    "fig12-3d": fig12_3d,
+    "rotation-3d": rotation_3d,
 }
+#: The pictures that need OpenGL (made under Xvfb, see the module docstring).
+GL_FIGURES = ("views-3d", "fig12-3d", "rotation-3d")
 
 
 def main(names: list[str]) -> int:
@@ -283,7 +319,7 @@ def main(names: list[str]) -> int:
     from PySide6 import QtGui
 
     offscreen = QtGui.QGuiApplication.platformName() in ("offscreen", "minimal")
-    for name in names or [n for n in FIGURES if not (offscreen and n == "views-3d")]:
+    for name in names or [n for n in FIGURES if not (offscreen and n in GL_FIGURES)]:
         FIGURES[name](app)
     return 0
 
