@@ -273,3 +273,13 @@ def test_an_image_with_coordinates_beyond_53_bits_is_refused_in_one_line():
     with pytest.raises(ParameterError) as info:
         voxelize_image(solid, lin, off, "gauss")
     assert "float64" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_the_docstring_example_runs():
+    """DSS_1/5 of a 10³ cube about a voxel corner is the 2³ cube its docstring shows."""
+    import doctest
+
+    import mrm.geometry.discretize.voxel_images as module
+
+    result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE, verbose=False)
+    assert result.failed == 0 and result.attempted > 0
