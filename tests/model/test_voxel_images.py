@@ -97,7 +97,7 @@ def float_refusal_is_due(tris) -> bool:  # type: ignore[no-untyped-def]
 
 
 # --------------------------------------------------------------------------------- against the reference
-@settings(max_examples=60)
+@settings(max_examples=40)
 @given(
     small_sets,
     st.sampled_from(ALPHAS),
@@ -113,7 +113,7 @@ def test_dss_and_quarter_turns_of_r_of_a_voxel_set_are_the_definition(a, alpha, 
     assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
 
 
-@settings(max_examples=60)
+@settings(max_examples=40)
 @given(
     st.one_of(tetras(), stars(max_radius=1.5)),
     st.sampled_from(ALPHAS),
