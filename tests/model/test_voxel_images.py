@@ -283,3 +283,21 @@ def test_the_docstring_example_runs():
 
     result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE, verbose=False)
     assert result.failed == 0 and result.attempted > 0
+
+
+def test_a_cancelled_voxelization_stops_with_cancelled():
+    """The progress object's Cancelled (the GUI's cancel button) stops the work and reaches the caller."""
+    from mrm.core.errors import Cancelled
+
+    class CancelAtOnce:
+        calls = 0
+
+        def update(self, fraction=None, message=None):  # type: ignore[no-untyped-def]
+            self.calls += 1
+            raise Cancelled("cancelled")
+
+    progress = CancelAtOnce()
+    lin, off = similarity(F(4, 5), IDENTITY, (F(0), F(0), F(0)))
+    with pytest.raises(Cancelled):
+        voxelize_image(reconstruct(VoxelSet.box(0, 0, 0, 9, 9, 9), "standard"), lin, off, progress=progress)
+    assert progress.calls == 1
