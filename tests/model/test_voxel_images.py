@@ -97,7 +97,7 @@ def float_refusal_is_due(tris) -> bool:  # type: ignore[no-untyped-def]
 
 
 # --------------------------------------------------------------------------------- against the reference
-@settings(max_examples=60)
+@settings(max_examples=40)
 @given(
     small_sets,
     st.sampled_from(ALPHAS),
@@ -113,7 +113,7 @@ def test_dss_and_quarter_turns_of_r_of_a_voxel_set_are_the_definition(a, alpha, 
     assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
 
 
-@settings(max_examples=60)
+@settings(max_examples=40)
 @given(
     st.one_of(tetras(), stars(max_radius=1.5)),
     st.sampled_from(ALPHAS),
@@ -273,3 +273,31 @@ def test_an_image_with_coordinates_beyond_53_bits_is_refused_in_one_line():
     with pytest.raises(ParameterError) as info:
         voxelize_image(solid, lin, off, "gauss")
     assert "float64" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_the_docstring_example_runs():
+    """DSS_1/5 of a 10³ cube about a voxel corner is the 2³ cube its docstring shows."""
+    import doctest
+
+    import mrm.geometry.discretize.voxel_images as module
+
+    result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE, verbose=False)
+    assert result.failed == 0 and result.attempted > 0
+
+
+def test_a_cancelled_voxelization_stops_with_cancelled():
+    """The progress object's Cancelled (the GUI's cancel button) stops the work and reaches the caller."""
+    from mrm.core.errors import Cancelled
+
+    class CancelAtOnce:
+        calls = 0
+
+        def update(self, fraction=None, message=None):  # type: ignore[no-untyped-def]
+            self.calls += 1
+            raise Cancelled("cancelled")
+
+    progress = CancelAtOnce()
+    lin, off = similarity(F(4, 5), IDENTITY, (F(0), F(0), F(0)))
+    with pytest.raises(Cancelled):
+        voxelize_image(reconstruct(VoxelSet.box(0, 0, 0, 9, 9, 9), "standard"), lin, off, progress=progress)
+    assert progress.calls == 1

@@ -20,6 +20,9 @@ How each is computed (the kernels are in :mod:`._kernels3d`):
 * triangles, segments and points (no interior): D of each, by the same test (segments and points are
   degenerate triangles). Under ``gauss`` they discretize to nothing: no p + τ lies on a plane for all small ε.
 
+The image of a polyhedron under a rational affine map (DSS_α with α = 1/5, a quarter turn), whose vertices
+are not float64, is voxelized exactly by :func:`mrm.geometry.discretize.voxel_images.voxelize_image`.
+
 Every decision is exact for float64 input: a float filter decides the easy cases, floating-point expansions
 the rest, or plain float arithmetic when it is provably exact for the whole input (snapped coordinates).
 Nothing uses an epsilon.

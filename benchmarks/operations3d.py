@@ -1,0 +1,121 @@
+"""Benchmark: DSS_α of a voxel set, exactly, against scipy's nearest-neighbour zoom (issue 30 item 1).
+
+DSS_α(A) = D(Sc_α(R(A))) (docs/design.md §8, §11) of a 128³ digital ball (default), about the origin:
+
+* R = ``reconstruct(A, model)`` is timed once on its own (an object's Euclidean view holds it: ADR 0039);
+* ours = ``voxelize_image(R, α·I, 0, model)``, the exact image voxelized (ADR 0058): α = 2 and 1.25 are
+  dyadic (N = 1: the plain exact voxelization); α = 4/5 and 1/5 voxelize on a grid 5 times finer and pool;
+* ours (pooling) = ``scaling_by_pixels`` for α = 1/2 with an aligned centre: A's voxels alone, no R;
+* scipy = ``scipy.ndimage.zoom(mask, α, order=0)``: nearest-neighbour resampling of the mask — not exact and
+  not the same set (no continuation, its own rounding of the grid), the raster peer for speed only.
+
+Times are medians of ``--repeat`` runs in this process (numba compilation or cache loading measured once,
+apart), in seconds; ratio = ours / scipy. Target in the issue: DSS_2 of 128³ ≤ 10× scipy zoom.
+
+Usage: ``.venv/bin/python benchmarks/operations3d.py [--size 128] [--repeat 3] [--model standard]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from fractions import Fraction
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+if ROOT not in sys.path:
+    sys.path.insert(0, ROOT)
+
+from benchmarks.region import median_time  # noqa: E402
+
+
+def ball(n: int) -> np.ndarray:
+    """The digital ball of diameter n - 1 centred in an n³ grid: (x, y, z) with |p − c| ≤ (n − 1)/2."""
+    z, y, x = np.mgrid[0:n, 0:n, 0:n]
+    c = (n - 1) / 2
+    return np.ascontiguousarray((x - c) ** 2 + (y - c) ** 2 + (z - c) ** 2 <= c * c)
+
+
+def warm_up(model: str) -> float:
+    """First calls of R and the exact voxelization on a tiny set: compilation or cache loading (seconds)."""
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.discretize.voxel_images import voxelize_image
+    from mrm.geometry.reconstruct import reconstruct
+
+    t = time.perf_counter()
+    r = reconstruct(VoxelSet(np.ones((3, 3, 3), dtype=bool)), model)
+    voxelize_image(r, scaling(Fraction(1, 5)), (0, 0, 0), model)
+    return time.perf_counter() - t
+
+
+def scaling(alpha: Fraction) -> list[list[Fraction]]:
+    return [[alpha if i == j else Fraction(0) for j in range(3)] for i in range(3)]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    ap.add_argument("--size", type=int, default=128)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--model", default="standard", choices=["standard", "supercover", "gauss"])
+    args = ap.parse_args()
+
+    import scipy.ndimage as ndi
+
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.discretize.voxel_images import voxelize_image
+    from mrm.geometry.reconstruct import reconstruct
+    from mrm.ops.outcome import scaling_by_pixels
+
+    model = args.model
+    print(f"first call of R + voxelize_image (numba compile or cache load): {warm_up(model) * 1000:.0f} ms")
+    mask = ball(args.size)
+    a = VoxelSet(mask)
+    t = time.perf_counter()
+    r = reconstruct(a, model)
+    t_r = time.perf_counter() - t
+    print(
+        f"A: {args.size}³ digital ball, {len(a):,} voxels, model {model}; R(A): {r.n_vertices:,} vertices, "
+        f"{r.n_triangles:,} triangles, {t_r:.2f} s (once, not in the rows)"
+    )
+    print(f"times: median of {args.repeat} runs, seconds\n")
+    head = f"{'operation':<22} {'result voxels':>14} | {'ours':>7} {'scipy':>7} | {'ratio':>6}"
+    print(head)
+    print("-" * len(head))
+    rows: list[tuple[str, Fraction, str]] = [
+        ("DSS_2", Fraction(2), "image"),
+        ("DSS_1.25", Fraction(5, 4), "image"),
+        ("DSS_0.5", Fraction(1, 2), "image"),
+        ("DSS_0.5 (pooling A)", Fraction(1, 2), "pool"),
+        ("DSS_0.8 (N = 5)", Fraction(4, 5), "image"),
+        ("DSS_0.2 (N = 5)", Fraction(1, 5), "image"),
+    ]
+    for name, alpha, how in rows:
+        if how == "image":
+            lin = scaling(alpha)
+
+            def ours(_: object, lin: list[list[Fraction]] = lin) -> VoxelSet:
+                return voxelize_image(r, lin, (0, 0, 0), model)
+        else:
+            # Sc_1/2 about C = (½, ½, ½) (covers) or the origin (gauss): blocks aligned with A's voxels
+            c = Fraction(0) if model == "gauss" else Fraction(-1, 2)
+            t_off = (1 - alpha) * c
+
+            def ours(_: object, alpha: Fraction = alpha, t_off: Fraction = t_off) -> VoxelSet:
+                out = scaling_by_pixels(a, (alpha, (t_off, t_off, t_off)), model)
+                assert out is not None
+                return out
+
+        result = ours(None)
+        t_ours = median_time(ours, None, args.repeat)
+        t_scipy = median_time(lambda m, f=float(alpha): ndi.zoom(m, f, order=0), mask, args.repeat)
+        print(
+            f"{name:<22} {len(result):>14,} | {t_ours:>7.3f} {t_scipy:>7.3f} | {t_ours / t_scipy:>6.2f}",
+            flush=True,
+        )
+
+
+if __name__ == "__main__":
+    main()
