@@ -263,12 +263,18 @@ def views_3d(app: Any) -> Path:
 
 def _open_3d_example(app: Any, name: str, select: str) -> Any:
     """A window on a bundled 3D example with the object ``select`` selected and its account measured."""
+    from dataclasses import replace
+
     from PySide6 import QtCore
 
+    from mrm.document.commands import RestyleObject
     from mrm.resources import examples_dir
 
     win = _window()
     win.files.open(examples_dir() / name, ask=False)
+    for o in win.doc.objects:  # the selected result alone: the others overlap it (same centre)
+        if o.name != select:
+            win.doc.push(RestyleObject(o.id, replace(o.style, visible=False)))
     _settle(app, win)
     obj = next(o for o in win.doc.objects if o.name == select)
     win.doc.set_selection([obj.id])

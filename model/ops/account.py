@@ -473,7 +473,11 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
             raise
         # In space a chain of rotations composes matrices of ever more bits (docs/adr/0060): the exact image
         # may leave the exact voxelization's range. The bound and the measured distance do not need it.
-        direct, direct_note = None, f"the direct result D(T(A_first)) is not computed: {e}"
+        log.info("no direct result for a 3D chain: %s", e)
+        direct, direct_note = None, (
+            "the direct result D(T(A_first)) is not computed: the composite of the chain's rotations has "
+            "more bits than the exact voxelization takes (docs/adr/0060)"
+        )
     if progress is not None:
         progress.update(0.5, "measuring the Hausdorff distance")
     measured = measured_error(t_first, outcome.euclidean, progress=_sub(progress, 0.5, 1.0))
