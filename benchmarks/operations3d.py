@@ -6,6 +6,11 @@ DSS_α(A) = D(Sc_α(R(A))) (docs/design.md §8, §11) of a 128³ digital ball (d
 * ours = ``voxelize_image(R, α·I, 0, model)``, the exact image voxelized (ADR 0058): α = 2 and 1.25 are
   dyadic (N = 1: the plain exact voxelization); α = 4/5 and 1/5 voxelize on a grid 5 times finer and pool;
 * ours (pooling) = ``scaling_by_pixels`` for α = 1/2 with an aligned centre: A's voxels alone, no R;
+* float = the float composition the issue compares with: the same R, its vertices mapped in float64 (rounded;
+  for a rotation the unrounded axis-angle matrix), then ``voxelize_solid`` — fast, but not D(T(R(A))) where a
+  rounded vertex crosses a voxel side; target ours ≤ 1.3 × float;
+* dR rows: the rotation dR applies (ADR 0060: quarter turns exact, other angles the axis-angle matrix rounded
+  to 2⁻³⁰), exactly;
 * scipy = ``scipy.ndimage.zoom(mask, α, order=0)``: nearest-neighbour resampling of the mask — not exact and
   not the same set (no continuation, its own rounding of the grid), the raster peer for speed only.
 
@@ -22,6 +27,7 @@ import os
 import sys
 import time
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 
@@ -65,7 +71,9 @@ def main() -> None:
     import scipy.ndimage as ndi
 
     from mrm.core.grids import VoxelSet
+    from mrm.geometry.discretize.exact_solid import rotation_matrix
     from mrm.geometry.discretize.voxel_images import voxelize_image
+    from mrm.geometry.discretize.voxels import voxelize_solid
     from mrm.geometry.reconstruct import reconstruct
     from mrm.ops.outcome import scaling_by_pixels
 
@@ -81,20 +89,34 @@ def main() -> None:
         f"{r.n_triangles:,} triangles, {t_r:.2f} s (once, not in the rows)"
     )
     print(f"times: median of {args.repeat} runs, seconds\n")
-    head = f"{'operation':<22} {'result voxels':>14} | {'ours':>7} {'scipy':>7} | {'ratio':>6}"
+    head = (
+        f"{'operation':<22} {'result voxels':>14} | {'ours':>7} {'float':>7} {'scipy':>7} | "
+        f"{'÷ float':>7} {'÷ scipy':>7}"
+    )
     print(head)
     print("-" * len(head))
-    rows: list[tuple[str, Fraction, str]] = [
+    rows: list[tuple[str, Any, str]] = [
         ("DSS_2", Fraction(2), "image"),
         ("DSS_1.25", Fraction(5, 4), "image"),
         ("DSS_0.5", Fraction(1, 2), "image"),
         ("DSS_0.5 (pooling A)", Fraction(1, 2), "pool"),
         ("DSS_0.8 (N = 5)", Fraction(4, 5), "image"),
         ("DSS_0.2 (N = 5)", Fraction(1, 5), "image"),
+        ("dR_90 about x", (Fraction(90), (1, 0, 0)), "rotation"),
+        ("dR_30 about (1,1,1)", (Fraction(30), (1, 1, 1)), "rotation"),
     ]
+    verts = np.asarray(r.vertices)
+    tris = np.asarray(r.triangles)
     for name, alpha, how in rows:
-        if how == "image":
-            lin = scaling(alpha)
+        float_map: np.ndarray | None = None
+        if how in ("image", "rotation"):
+            if how == "image":
+                lin = scaling(alpha)
+                float_map = float(alpha) * np.eye(3)
+            else:
+                theta, axis = alpha
+                lin = [list(row) for row in rotation_matrix(theta, axis)]
+                float_map = _rodrigues(float(theta), axis)
 
             def ours(_: object, lin: list[list[Fraction]] = lin) -> VoxelSet:
                 return voxelize_image(r, lin, (0, 0, 0), model)
@@ -110,11 +132,32 @@ def main() -> None:
 
         result = ours(None)
         t_ours = median_time(ours, None, args.repeat)
-        t_scipy = median_time(lambda m, f=float(alpha): ndi.zoom(m, f, order=0), mask, args.repeat)
+        if float_map is not None:
+            # the float composition: the same R, its vertices mapped in float64 (rounded), voxelized
+            t_float = median_time(
+                lambda m: voxelize_solid(verts @ m.T, tris, model, limit=None), float_map, args.repeat
+            )
+        else:
+            t_float = float("nan")
+        if how == "rotation":
+            t_scipy = float("nan")  # scipy.ndimage.rotate turns about one axis only: no peer row
+        else:
+            t_scipy = median_time(lambda m, f=float(alpha): ndi.zoom(m, f, order=0), mask, args.repeat)
         print(
-            f"{name:<22} {len(result):>14,} | {t_ours:>7.3f} {t_scipy:>7.3f} | {t_ours / t_scipy:>6.2f}",
+            f"{name:<22} {len(result):>14,} | {t_ours:>7.3f} {t_float:>7.3f} {t_scipy:>7.3f} | "
+            f"{t_ours / t_float:>7.2f} {t_ours / t_scipy:>7.2f}",
             flush=True,
         )
+
+
+def _rodrigues(theta: float, axis: Any) -> np.ndarray:
+    """The float64 rotation matrix of the axis-angle formula (not rounded: the float composition's map)."""
+    import math
+
+    u = np.asarray(axis, float) / np.linalg.norm(axis)
+    k = np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
+    t = math.radians(theta)
+    return np.asarray(np.eye(3) + math.sin(t) * k + (1.0 - math.cos(t)) * (k @ k))
 
 
 if __name__ == "__main__":

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from fractions import Fraction
-from typing import Literal, TypeAlias, TypeVar, overload
+from typing import Any, Literal, TypeAlias, TypeVar, cast, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -539,8 +539,9 @@ def scale(
     >>> # (the τ rule keeps the left and bottom sides, not the right and top ones): an 8×8 block
     >>> mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model="gauss") == mrm.PixelSet.box(-1, -1, 6, 6)
     True
-    >>> cube = mrm.VoxelSet.box(0, 0, 0, 3, 3, 3)  # and in 3D
-    >>> mrm.scale(cube, 2, model="gauss") == mrm.VoxelSet.box(-1, -1, -1, 6, 6, 6)
+    >>> # in 3D R(A) is, for now, the voxels eroded by ¼: [-1/4, 13/4]³, doubled [-1/2, 13/2]³, centres 0 … 6
+    >>> cube = mrm.VoxelSet.box(0, 0, 0, 3, 3, 3)
+    >>> mrm.scale(cube, 2, model="gauss") == mrm.VoxelSet.box(0, 0, 0, 6, 6, 6)
     True
     """
     if _is_batch(obj):
@@ -622,6 +623,15 @@ def rotate(
 
 @overload
 def simplify(
+    obj: VoxelSet | Polyhedron,
+    alpha: Number,
+    center: tuple[Number, Number, Number] | None = ...,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> Polyhedron: ...
+@overload
+def simplify(
     obj: Shape,
     alpha: Number,
     center: tuple[Number, Number] | None = ...,
@@ -639,28 +649,29 @@ def simplify(
     limit: int | None = ...,
 ) -> ObjectArray: ...
 def simplify(
-    obj: Shape | Batch,
+    obj: Shape | VoxelSet | Polyhedron | Batch,
     alpha: Number,
-    center: tuple[Number, Number] | None = None,
+    center: tuple[Number, Number] | tuple[Number, Number, Number] | None = None,
     model: ModelLike = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> Polygonal | ObjectArray:
+) -> Polygonal | Polyhedron | ObjectArray:
     """Simplification Sp_α(E) = Sc_1/α(R(D(Sc_α(E)))): E redrawn on a grid of voxel size 1/α (paper §5).
 
     Parameters
     ----------
-    obj : geometry, PixelSet, array_like image, or a batch of them
-        E (a pixel set A stands for R(A)).
+    obj : geometry, PixelSet, array_like image, Polyhedron, VoxelSet, or a batch of them
+        E (a pixel or voxel set A stands for R(A)).
     alpha : number
         α > 0.
-    center : pair of numbers, optional
+    center : two (three for a 3D object) numbers, optional
     model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
 
     Returns
     -------
-    shapely.geometry.Polygon or shapely.geometry.MultiPolygon, or numpy.ndarray of them
+    shapely.geometry.Polygon or shapely.geometry.MultiPolygon (a Polyhedron for a 3D object), or
+    numpy.ndarray of them
 
     Examples
     --------
@@ -671,8 +682,10 @@ def simplify(
     True
     """
     if _is_batch(obj):
-        return _map(lambda o: simplify(o, alpha, center, model, limit=limit), obj)
-    out: Polygonal = _result_of("simplify", obj, limit, alpha, center, model)
+        # Any: each item takes the centre of its own dimension (too many overload unions for mypy to try)
+        return _map(lambda o: simplify(o, alpha, cast(Any, center), model, limit=limit), obj)
+    out = _result_of("simplify", obj, limit, alpha, center, model)
+    assert isinstance(out, Polyhedron | Polygon | MultiPolygon)
     return out
 
 

@@ -54,7 +54,6 @@ from mrm.core.models import DEFAULT_MODEL, Model
 from mrm.core.numbers import fraction_text
 from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_solid import identity_map
-from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.hausdorff.bounds import BoundResult
 from mrm.ops.boolean import (
     PARTS,
@@ -454,7 +453,7 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
     pixels = (
         result
         if isinstance(result, PixelSet | VoxelSet)
-        else discretize_exact(outcome.euclidean, model, limit=limit)
+        else discrete_of(outcome.euclidean, model, limit=limit)
     )
     idempotent = None
     if last.spec.name == "simplify":
@@ -474,9 +473,12 @@ def _chain_account(prov: Any, measure: bool, progress: ProgressLike | None, limi
         # In space a chain of rotations composes matrices of ever more bits (docs/adr/0060): the exact image
         # may leave the exact voxelization's range. The bound and the measured distance do not need it.
         log.info("no direct result for a 3D chain: %s", e)
-        direct, direct_note = None, (
-            "the direct result D(T(A_first)) is not computed: the composite of the chain's rotations has "
-            "more bits than the exact voxelization takes (docs/adr/0060)"
+        direct, direct_note = (
+            None,
+            (
+                "the direct result D(T(A_first)) is not computed: the composite of the chain's rotations has "
+                "more bits than the exact voxelization takes (docs/adr/0060)"
+            ),
         )
     if progress is not None:
         progress.update(0.5, "measuring the Hausdorff distance")

@@ -231,7 +231,7 @@ class OperationSpec:
 
 
 #: The operations that take 3D inputs (voxel sets, polyhedra) so far; the others refuse them in one line.
-THREE_D = frozenset({"dss", "discrete_rotation"})
+THREE_D = frozenset({"dss", "discrete_rotation", "simplify"})
 
 #: Every registered operation, by name.
 REGISTRY: dict[str, OperationSpec] = {}

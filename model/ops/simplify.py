@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from mrm.core.errors import ParameterError
+from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.core.grids import box_area
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.models import Model
@@ -30,14 +30,15 @@ from mrm.core.numbers import Point, spell
 from mrm.core.params import Parameters
 from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, pixel_box
-from mrm.geometry.discretize.exact_solid import identity_map
+from mrm.geometry.discretize.exact_solid import ExactSolid, identity_map, scaling_map
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.hausdorff.bounds import BoundStep, simplification_step
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.declare import alpha_param, center_param, model_param
 from mrm.ops.estimate import estimated_pixels
 from mrm.ops.outcome import StepOutcome
-from mrm.ops.registry import OperationResult, OperationSpec, register
+from mrm.ops.registry import OperationResult, OperationSpec, input_dimension, register
 from mrm.ops.representations import euclidean_of
 
 
@@ -93,9 +94,11 @@ def simplification(
     """
     params = SimplifyParams.read(alpha=alpha, center=center, model=model)
     model = params.model
+    geom = euclidean_of(source, model)
+    if isinstance(geom, Polyhedron | ExactSolid):
+        return _simplification_3d(ExactSolid.of(geom), params, limit=limit, progress=progress)
     sc = _scaling(params)
     a = sc.ratio
-    geom = euclidean_of(source, model)
     shape = ExactShape.from_geometry(geom).map(sc)
     what = f"Sp with α = {spell(a)} (the discretization at scale α)"
     check_pixels(box_area(pixel_box(shape.bounds(), model)), limit, what)
@@ -122,6 +125,46 @@ def simplification(
     return StepOutcome(result, Similarity.identity(), exact, scaled, {"scaled_pixels": scaled})
 
 
+def _simplification_3d(
+    solid: ExactSolid, params: SimplifyParams, *, limit: int | None, progress: ProgressLike | None
+) -> StepOutcome:
+    """Sp_α of a solid (docs/design.md §11): D(Sc_α(E)) exactly, R of it, Sc_1/α back, rounded once.
+
+    The exact result is Sc_1/α(R(D(Sc_α(E)))), an :class:`ExactSolid`; the polyhedron returned is its vertices
+    rounded to float64 (exact when 1/α·v is a float64, e.g. α = 1/2, 1/3, 2/3 on R's quarter-grid vertices).
+    When rounding happened, the fixed point is checked exactly — D(Sc_α(result)) must be the same voxels, so
+    that Sp_α ∘ Sp_α = Sp_α — and a result that fails it, or is no longer a valid solid, is refused.
+    """
+    model = str(params.model)
+    sc = scaling_map(params.alpha, params.center, 3)
+    what = f"Sp with α = {spell(params.alpha)} (the discretization at scale α)"
+    scaled = solid.map(sc).discretize(model, limit=limit, progress=sub_progress(progress, 0.0, 0.4))
+    if progress is not None:
+        progress.update(0.4, "continuing")
+    exact = ExactSolid(reconstruct(scaled, model)).map(sc.inverse())
+    if progress is not None:
+        progress.update(0.9, "scaling back")
+    vertices, error = exact.float_vertices()
+    try:
+        result = exact.base if exact.transform.is_identity else Polyhedron(vertices, exact.base.triangles)
+    except InvalidGeometryError as e:
+        raise ParameterError(f"{what}: the result is no valid solid once written in float64 ({e})") from None
+    if error:
+        refusal = ParameterError(
+            f"{what}: the result cannot be written in float64 keeping its discretization (Sp_α would not "
+            "be idempotent); use an α whose numerator is a power of two (1/3, 2/3, 1/2…)"
+        )
+        try:
+            again = ExactSolid(result).map(sc).discretize(model, limit=limit)
+        except ParameterError:  # the rounded vertices have more bits than the exact voxelization takes
+            raise refusal from None
+        if again != scaled:
+            raise refusal
+    if progress is not None:
+        progress.update(1.0, "done")
+    return StepOutcome(result, identity_map(3), exact, scaled, {"scaled_pixels": scaled})
+
+
 #: R keeps its boundary at least 2⁻²⁴ / L pixels from every tie of the model (its vertices lie on the grid
 #: 2⁻¹² with the pixel corners and centres, so a nonzero cross product is at least 2⁻²⁴; L is the longest
 #: edge). Rounding Sc_1/α's output to float64 moves a vertex by at most 2⁻⁵³·|v| per coordinate, i.e.
@@ -143,7 +186,8 @@ def _rounding_may_matter(result: Any, alpha: Any) -> bool:
 # ---------------------------------------------------------------------------------------------- the spec
 def estimate(inputs: Sequence[Any], params: SimplifyParams) -> int:
     """The size of the discretization D(Sc_α(E)) from the input's bounding box alone."""
-    return estimated_pixels(inputs[:1], _scaling(params), params.model)
+    n = input_dimension(inputs[:1])
+    return estimated_pixels(inputs[:1], scaling_map(params.alpha, params.center, n), params.model)
 
 
 def step(
@@ -168,7 +212,7 @@ def run(
 
 def bound(params: SimplifyParams, part: str, n: int = 2) -> BoundStep:
     """Sp_α in the bound rule: a round trip at scale α."""
-    return simplification_step(SPEC.label(params), _scaling(params))
+    return simplification_step(SPEC.label(params), scaling_map(params.alpha, params.center, n))
 
 
 NAME = "simplify"
