@@ -90,7 +90,12 @@ def test_run_and_provenance():
     res = run_operation("discrete_rotation", [a], RotationParams(angle=90.0, center=(1.0, 0.0)))
     assert res.output == a.rotate90(1, (1, 0))
     assert res.provenance["operation"] == "discrete_rotation"
-    assert res.provenance["params"] == {"angle": 90.0, "center": [1.0, 0.0], "model": "standard", "axis": None}
+    assert res.provenance["params"] == {
+        "angle": 90.0,
+        "center": [1.0, 0.0],
+        "model": "standard",
+        "axis": None,
+    }
 
 
 def test_angle_errors_name_the_parameter():
