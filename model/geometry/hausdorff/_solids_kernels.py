@@ -459,11 +459,15 @@ def vertex_lows(
 
 @njit(cache=True)
 def _certify_inside_b(
-    cx: float, cy: float, cz: float, h: float, lb: Ints, nb: int, la: Ints, na: int,
+    cx: float, cy: float, cz: float, h: float, hq: float, lb: Ints, nb: int, la: Ints, na: int,
     VA: Floats, TA: Ints, oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
     VB: Floats, TB: Ints, ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints, e: Floats,
 ) -> bool:
-    """Whether C ∩ A ⊆ B is proved exactly from the triangles listed (see :mod:`.solids`, "containment")."""
+    """Whether C ∩ A ⊆ B is proved exactly (see :mod:`.solids`, "containment").
+
+    ``lb`` lists the triangles of B that may meet the cube Q ⊇ C of half-side ``hq`` (h or 2h), ``la``
+    those of A that may meet C (all of them: ``na`` ≤ their room).
+    """
     # 1. The listed B triangles are all on the boundary of K = ∩ inner half-spaces (a convex configuration).
     for p in range(nb):
         for q in range(nb):
@@ -473,15 +477,17 @@ def _certify_inside_b(
                 v = TB[lb[q], w]
                 if _inner(VB, TB, lb[p], VB[v, 0], VB[v, 1], VB[v, 2], e) < 0:
                     return False
-    # 2. A point z + τ of int K ∩ int C inside B: then int K ∩ int C ⊆ B (connected, misses ∂B).
+    # 2. A point z + τ of int K ∩ int Q inside B: then int K ∩ int Q ⊆ B (connected, misses ∂B). The
+    # candidates: the centre and the points c ± s·h/2 for s = 1 (and 3 when Q is the doubled cube).
     found = False
-    for w in range(9):
+    for w in range(17 if hq > h else 9):
         if w == 0:
             zx, zy, zz = cx, cy, cz
         else:
-            zx = cx + (0.5 * h if (w - 1) & 1 else -0.5 * h)
-            zy = cy + (0.5 * h if (w - 1) & 2 else -0.5 * h)
-            zz = cz + (0.5 * h if (w - 1) & 4 else -0.5 * h)
+            f = 0.5 * h if w < 9 else 1.5 * h
+            zx = cx + (f if (w - 1) & 1 else -f)
+            zy = cy + (f if (w - 1) & 2 else -f)
+            zz = cz + (f if (w - 1) & 4 else -f)
         ok = True
         for p in range(nb):
             if _inner(VB, TB, lb[p], zx, zy, zz, e) <= 0:
@@ -514,17 +520,197 @@ def _certify_inside_b(
 
 
 @njit(cache=True)
+def _same_triangles(la: Ints, na: int, VA: Floats, TA: Ints, lb: Ints, nb: int, VB: Floats, TB: Ints) -> bool:
+    """Whether the listed triangles of A and of B are the same oriented triangles (equal coordinates)."""
+    if na != nb:
+        return False
+    for p in range(na):
+        ta = la[p]
+        found = False
+        for q in range(nb):
+            tb = lb[q]
+            for rot in range(3):
+                same = True
+                for w in range(3):
+                    va = TA[ta, w]
+                    vb = TB[tb, (w + rot) % 3]
+                    if VA[va, 0] != VB[vb, 0] or VA[va, 1] != VB[vb, 1] or VA[va, 2] != VB[vb, 2]:
+                        same = False
+                        break
+                if same:
+                    found = True
+                    break
+            if found:
+                break
+        if not found:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _phi(x: float, y: float, z: float, VB: Floats, TB: Ints, t: int, alpha: float, kind: int) -> float:
+    # An upper bound of the convex φ at x: kind 0, the distance to triangle t; kind 1, max(0, signed
+    # distance to t's plane, positive outward) with the allowance of :func:`_flat_under`.
+    if kind == 0:
+        return tri_dist(x, y, z, VB, TB, t, alpha)[1]
+    a = TB[t, 0]
+    b = TB[t, 1]
+    c = TB[t, 2]
+    e1x = VB[b, 0] - VB[a, 0]
+    e1y = VB[b, 1] - VB[a, 1]
+    e1z = VB[b, 2] - VB[a, 2]
+    e2x = VB[c, 0] - VB[a, 0]
+    e2y = VB[c, 1] - VB[a, 1]
+    e2z = VB[c, 2] - VB[a, 2]
+    nx = e1y * e2z - e1z * e2y
+    ny = e1z * e2x - e1x * e2z
+    nz = e1x * e2y - e1y * e2x
+    nl = math.sqrt(nx * nx + ny * ny + nz * nz)
+    dx = x - VB[a, 0]
+    dy = y - VB[a, 1]
+    dz = z - VB[a, 2]
+    le = abs(e1x) + abs(e1y) + abs(e1z) + abs(e2x) + abs(e2y) + abs(e2z)
+    s = (nx * dx + ny * dy + nz * dz) / nl
+    err = 2.0**-44 * (abs(dx) + abs(dy) + abs(dz)) * le * le / nl + alpha
+    v = s * (1.0 + REL) + err if s > 0.0 else s * (1.0 - REL) + err
+    return max(v, 0.0)
+
+
+@njit(cache=True)
+def _restricted_bound(
+    cx: float, cy: float, cz: float, h: float, corner_in_a: npt.NDArray[np.bool_], la: Ints, na: int,
+    VA: Floats, TA: Ints, VB: Floats, TB: Ints, t: int, alpha: float, kind: int,
+) -> float:
+    """An upper bound of the convex φ over C ∩ A (see :func:`process_cells`)."""
+    mc = 0.0
+    best = 0.0
+    for w in range(8):
+        zx = cx + (h if w & 1 else -h)
+        zy = cy + (h if w & 2 else -h)
+        zz = cz + (h if w & 4 else -h)
+        v = _phi(zx, zy, zz, VB, TB, t, alpha, kind)
+        mc = max(mc, v)
+        if corner_in_a[w]:
+            best = max(best, v)
+    for p in range(na):
+        pv = 0.0
+        for w in range(3):
+            q = TA[la[p], w]
+            pv = max(pv, _phi(VA[q, 0], VA[q, 1], VA[q, 2], VB, TB, t, alpha, kind))
+        best = max(best, min(pv, mc))
+    return best
+
+
+@njit(cache=True)
+def _flat_under(
+    cx: float, cy: float, cz: float, h: float, t: int, VB: Floats, TB: Ints,
+    o3: Floats, g3: float, n3: Ints, s3: Ints, i3: Ints, stamp: Ints, qid: int,
+    o2: Floats, g2: float, n2: Ints, s2: Ints, i2: Ints, big: float, e: Floats,
+) -> bool:
+    """Whether d(x, B) ≤ max(0, s(x)) on C, s the signed distance to the plane H of B's triangle t.
+
+    Z is a box holding C and the projections of C's corners on H (computed in floats, widened by
+    2⁻⁴⁰·(big + |s|) ≫ their rounding). When every triangle of B that may meet Z lies in H (exact signs)
+    and a point of Z strictly on the inner side of H is inside B (exact parity), the inner side of H in Z
+    (connected, missing ∂B) lies in B with its closure, which holds the projection π(x) ∈ H ∩ Z of every
+    x ∈ C: then d(x, B) ≤ |x − π(x)| = s(x) outside, and d(x, B) = 0 on the inner side. ``_phi`` with kind 1
+    bounds max(0, s): s is computed with n' = fl(e₁ × e₂) (within 8u·L_e² of the exact normal) and a few
+    relative roundings, covered by 2⁻⁴⁴·|x − a|₁·L_e²/|n'| plus the usual alpha, while |n'| ≥ 2⁻⁴⁰·L_e².
+    """
+    a = TB[t, 0]
+    b = TB[t, 1]
+    c = TB[t, 2]
+    e1x = VB[b, 0] - VB[a, 0]
+    e1y = VB[b, 1] - VB[a, 1]
+    e1z = VB[b, 2] - VB[a, 2]
+    e2x = VB[c, 0] - VB[a, 0]
+    e2y = VB[c, 1] - VB[a, 1]
+    e2z = VB[c, 2] - VB[a, 2]
+    nx = e1y * e2z - e1z * e2y
+    ny = e1z * e2x - e1x * e2z
+    nz = e1x * e2y - e1y * e2x
+    nl = math.sqrt(nx * nx + ny * ny + nz * nz)
+    le = abs(e1x) + abs(e1y) + abs(e1z) + abs(e2x) + abs(e2y) + abs(e2z)
+    if not nl > 2.0**-40 * le * le:
+        return False
+    ux, uy, uz = nx / nl, ny / nl, nz / nl
+    lox, loy, loz = cx - h, cy - h, cz - h
+    hix, hiy, hiz = cx + h, cy + h, cz + h
+    smax = 0.0
+    for w in range(8):
+        zx = cx + (h if w & 1 else -h)
+        zy = cy + (h if w & 2 else -h)
+        zz = cz + (h if w & 4 else -h)
+        s = ux * (zx - VB[a, 0]) + uy * (zy - VB[a, 1]) + uz * (zz - VB[a, 2])
+        px, py, pz = zx - s * ux, zy - s * uy, zz - s * uz
+        lox, loy, loz = min(lox, px), min(loy, py), min(loz, pz)
+        hix, hiy, hiz = max(hix, px), max(hiy, py), max(hiz, pz)
+        smax = max(smax, abs(s))
+    m = 2.0**-40 * (big + smax)
+    lox, loy, loz = lox - m, loy - m, loz - m
+    hix, hiy, hiz = hix + m, hiy + m, hiz + m
+    # The triangles of B that may meet Z (bounding boxes, exact comparisons): all must lie in H.
+    i0 = _idx(lox, o3[0], g3, n3[0])
+    i1 = _idx(hix, o3[0], g3, n3[0])
+    j0 = _idx(loy, o3[1], g3, n3[1])
+    j1 = _idx(hiy, o3[1], g3, n3[1])
+    k0 = _idx(loz, o3[2], g3, n3[2])
+    k1 = _idx(hiz, o3[2], g3, n3[2])
+    if (i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1) > 125:
+        return False
+    cnt = 0
+    for k in range(k0, k1 + 1):
+        for j in range(j0, j1 + 1):
+            for i in range(i0, i1 + 1):
+                bb = (k * n3[1] + j) * n3[0] + i
+                for p in range(s3[bb], s3[bb + 1]):
+                    q = i3[p]
+                    if stamp[q] == qid:
+                        continue
+                    stamp[q] = qid
+                    out = False
+                    for ax in range(3):
+                        lo = min(VB[TB[q, 0], ax], VB[TB[q, 1], ax], VB[TB[q, 2], ax])
+                        hi = max(VB[TB[q, 0], ax], VB[TB[q, 1], ax], VB[TB[q, 2], ax])
+                        zl = lox if ax == 0 else (loy if ax == 1 else loz)
+                        zh = hix if ax == 0 else (hiy if ax == 1 else hiz)
+                        if hi < zl or lo > zh:
+                            out = True
+                    if out:
+                        continue
+                    cnt += 1
+                    if cnt > 4 * KMAX:
+                        return False
+                    for w in range(3):
+                        v = TB[q, w]
+                        if _inner(VB, TB, t, VB[v, 0], VB[v, 1], VB[v, 2], e) != 0:
+                            return False
+    # A point strictly inside Z, strictly on the inner side, inside B.
+    for w in range(8):
+        zx = 0.5 * (lox + hix) + (0.25 if w & 1 else -0.25) * (hix - lox)
+        zy = 0.5 * (loy + hiy) + (0.25 if w & 2 else -0.25) * (hiy - loy)
+        zz = 0.5 * (loz + hiz) + (0.25 if w & 4 else -0.25) * (hiz - loz)
+        if not (lox < zx < hix and loy < zy < hiy and loz < zz < hiz):
+            continue
+        if _inner(VB, TB, t, zx, zy, zz, e) > 0 and inside(zx, zy, zz, VB, TB, o2, g2, n2, s2, i2, e):
+            return True
+    return False
+
+
+@njit(cache=True)
 def process_cells(
     C: Floats, h: float, r_up: float,
     VA: Floats, TA: Ints, oa3: Floats, ga3: float, na3: Ints, sa3: Ints, ia3: Ints,
     oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
     VB: Floats, TB: Ints, ob3: Floats, gb3: float, nb3: Ints, sb3: Ints, ib3: Ints,
     ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints,
-    alpha: float,
+    alpha: float, big: float, settle: float,
 ) -> tuple[Floats, Floats]:
     """Upper bounds of max d(·, B) over C ∩ A, and lower bounds from the centre, for cubes C (centres C).
 
-    hi = −inf marks a cell that certainly misses A; lo = −inf a centre not proved to be in A.
+    hi = −inf marks a cell that certainly misses A; lo = −inf a centre not proved to be in A. The costlier
+    bounds are skipped once hi ≤ ``settle`` (the current lower bound plus the tolerance). ``big`` ≥ every
+    coordinate magnitude.
     """
     m = C.shape[0]
     his = np.empty(m)
@@ -534,6 +720,8 @@ def process_cells(
     stamp_b = np.full(TB.shape[0], -1, np.int64)
     la = np.empty(KMAX, np.int64)
     lb = np.empty(KMAX, np.int64)
+    lq = np.empty(KMAX, np.int64)
+    corner_in_a = np.zeros(8, np.bool_)
     qid = 0
     for r in range(m):
         cx, cy, cz = C[r, 0], C[r, 1], C[r, 2]
@@ -554,25 +742,66 @@ def process_cells(
             los[r] = flo
         hi = fhi + r_up
         hi = hi + hi * 2.0**-51  # outward rounding of the sum
-        qid += 1
+        qid += 2
         nb = tris_in_cube(VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid, cx, cy, cz, h, lb)
         if nb == 0:
             if c_in_b:
                 hi = 0.0  # C ∩ ∂B = ∅ and the centre is inside: C ⊆ B
         elif nb <= KMAX and na <= KMAX:
             if _certify_inside_b(
-                cx, cy, cz, h, lb, nb, la, na, VA, TA, oa2, ga2, na2, sa2, ia2, VB, TB, ob2, gb2, nb2, sb2, ib2, e
+                cx, cy, cz, h, h, lb, nb, la, na, VA, TA, oa2, ga2, na2, sa2, ia2, VB, TB, ob2, gb2, nb2, sb2, ib2,
+                e,
             ):
                 hi = 0.0
-        if hi > 0.0 and tbest >= 0:
-            # d(·, B) ≤ d(·, T) for the triangle T nearest the centre, convex: its maximum over C is at a corner.
-            g = 0.0
-            for w in range(8):
-                zx = cx + (h if w & 1 else -h)
-                zy = cy + (h if w & 2 else -h)
-                zz = cz + (h if w & 4 else -h)
-                g = max(g, tri_dist(zx, zy, zz, VB, TB, tbest, alpha)[1])
-            if g < hi:
-                hi = g
+        if hi > 0.0 and 0 < nb <= KMAX and na <= KMAX:
+            # A cube touching B only on its boundary has no interior point in B: try the doubled cube.
+            qid += 1
+            nq = tris_in_cube(VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid, cx, cy, cz, 2.0 * h, lb)
+            if 0 < nq <= KMAX and _certify_inside_b(
+                cx, cy, cz, h, 2.0 * h, lb, nq, la, na, VA, TA, oa2, ga2, na2, sa2, ia2, VB, TB, ob2, gb2, nb2,
+                sb2, ib2, e,
+            ):
+                hi = 0.0
+            elif 0 < nq <= KMAX and c_in_a == c_in_b:
+                # The same boundary in Q (the same oriented triangles may meet Q): every component of
+                # int Q minus the surface is on the same side of it for both solids, so A ∩ int Q = B ∩ int Q
+                # and C ∩ A ⊆ B (C lies in int Q). When no listed triangle really meets int Q, int Q is on
+                # one side of both, the side of the centre: hence the centre's test.
+                qid += 1
+                nqa = tris_in_cube(VA, TA, oa3, ga3, na3, sa3, ia3, stamp_a, qid, cx, cy, cz, 2.0 * h, lq)
+                if nqa <= KMAX and _same_triangles(lq, nqa, VA, TA, lb, nq, VB, TB):
+                    hi = 0.0
+        if hi > 0.0 and hi > settle and tbest >= 0:
+            if na <= KMAX:
+                # Bounds restricted to C ∩ A, which lies in the convex hull of C's corners in A and of the
+                # pieces T_A ∩ C of A's triangles; for a convex φ the maximum over a piece is at most the
+                # smaller of its maxima over T_A's vertices and over C's corners.
+                for w in range(8):
+                    zx = cx + (h if w & 1 else -h)
+                    zy = cy + (h if w & 2 else -h)
+                    zz = cz + (h if w & 4 else -h)
+                    corner_in_a[w] = inside(zx, zy, zz, VA, TA, oa2, ga2, na2, sa2, ia2, e)
+                g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, VA, TA, VB, TB, tbest, alpha, 0)
+                if g < hi:
+                    hi = g
+                if hi > settle and _flat_under(
+                    cx, cy, cz, h, tbest, VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid + 1, ob2, gb2, nb2,
+                    sb2, ib2, big, e,
+                ):
+                    g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, VA, TA, VB, TB, tbest, alpha, 1)
+                    if g < hi:
+                        hi = g
+                qid += 1
+            else:
+                # d(·, B) ≤ d(·, T) for the triangle T nearest the centre, convex: its maximum over C is at a
+                # corner.
+                g = 0.0
+                for w in range(8):
+                    zx = cx + (h if w & 1 else -h)
+                    zy = cy + (h if w & 2 else -h)
+                    zz = cz + (h if w & 4 else -h)
+                    g = max(g, tri_dist(zx, zy, zz, VB, TB, tbest, alpha)[1])
+                if g < hi:
+                    hi = g
         his[r] = hi
     return his, los

@@ -181,7 +181,7 @@ def _root(v: Floats) -> tuple[Floats, float]:
 
 
 def _directed(
-    a: _Mesh, b: _Mesh, alpha: float, tol: float, budget: int, progress: ProgressLike | None, label: str
+    a: _Mesh, b: _Mesh, alpha: float, big: float, tol: float, budget: int, progress: ProgressLike | None, label: str
 ) -> tuple[float, float, str, int]:
     """[lo, hi] of h(A, B) for non-empty A and B, how the search stopped, and the cubes examined."""
     lows = K.vertex_lows(a.V, b.V, b.T, b.o, b.g, b.n, b.s3, b.i3, b.o, b.g, b.n, b.s2, b.i2, alpha)
@@ -199,7 +199,7 @@ def _directed(
             cells, h, r_up,
             a.V, a.T, a.o, a.g, a.n, a.s3, a.i3, a.o, a.g, a.n, a.s2, a.i2,
             b.V, b.T, b.o, b.g, b.n, b.s3, b.i3, b.o, b.g, b.n, b.s2, b.i2,
-            alpha,
+            alpha, big, lo + tol,
         )  # fmt: skip
         done += len(cells)
         if len(los):
@@ -297,8 +297,8 @@ def solid_hausdorff(
     alpha = K.ABS * big
     ma = _index(va, ta)
     mb = _index(vb, tb)
-    alo, ahi, sa, ca = _directed(ma, mb, alpha, tol, cell_budget, progress, "A outside B")
-    blo, bhi, sb, cb = _directed(mb, ma, alpha, tol, cell_budget, progress, "B outside A")
+    alo, ahi, sa, ca = _directed(ma, mb, alpha, big, tol, cell_budget, progress, "A outside B")
+    blo, bhi, sb, cb = _directed(mb, ma, alpha, big, tol, cell_budget, progress, "B outside A")
     if progress is not None:
         progress.update(1.0, "Measured")
     if vertex_error > 0.0:
