@@ -30,7 +30,9 @@ _BOX_TRIS = np.array(
 
 
 def box(lo: tuple[float, float, float], hi: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
-    v = np.array([[(lo, hi)[i & 1][0], (lo, hi)[i >> 1 & 1][1], (lo, hi)[i >> 2][2]] for i in range(8)], float)
+    v = np.array(
+        [[(lo, hi)[i & 1][0], (lo, hi)[i >> 1 & 1][1], (lo, hi)[i >> 2][2]] for i in range(8)], float
+    )
     return v, _BOX_TRIS.copy()
 
 
@@ -255,7 +257,9 @@ def solid_of(mask: np.ndarray, origin: tuple[int, int, int]) -> tuple[np.ndarray
     masks.filter(lambda m: m.any()),
     st.tuples(st.integers(-1, 1), st.integers(-1, 1), st.integers(-1, 1)),
 )
-def test_reconstructions_pairwise_bracket_a_dense_sample(m1: np.ndarray, m2: np.ndarray, shift: tuple) -> None:
+def test_reconstructions_pairwise_bracket_a_dense_sample(
+    m1: np.ndarray, m2: np.ndarray, shift: tuple
+) -> None:
     a = solid_of(m1, (0, 0, 0))
     b = solid_of(m2, shift)
     r = solid_hausdorff(*a, *b, cell_budget=20_000)

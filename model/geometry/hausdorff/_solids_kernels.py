@@ -21,6 +21,7 @@ query points).
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -43,6 +44,20 @@ KMAX = 48
 #: How many (x, y, z) grid bins a dimension may have at most.
 MAX_BINS = 256
 _TINY = 2.0**-1000
+
+
+class Mesh(NamedTuple):
+    """A mesh with its bin grids (numba passes it to the kernels as a tuple)."""
+
+    V: Floats
+    T: Ints
+    o: Floats
+    g: float
+    n: Ints
+    s3: Ints
+    i3: Ints
+    s2: Ints
+    i2: Ints
 
 
 # --------------------------------------------------------------------------------------------- grids
@@ -129,10 +144,7 @@ def _edge_side(ay: float, az: float, by: float, bz: float, j: float, k: float, e
 
 
 @njit(cache=True)
-def inside(
-    qx: float, qy: float, qz: float, V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints,
-    e: Floats,
-) -> bool:
+def inside(qx: float, qy: float, qz: float, m: Mesh, e: Floats) -> bool:
     """Whether q + τ, τ = (ε, ε², ε³) infinitesimal, lies inside the closed mesh (exact; even-odd rule).
 
     The ray {q + τ + (s, 0, 0), s > 0} meets no vertex and no edge. A triangle whose (y, z) projection is
@@ -141,9 +153,8 @@ def inside(
     abscissa X satisfies X > q_x (a tie X = q_x loses against the ε). If q + τ is inside, q belongs to the
     closed solid; if q + τ is outside but q belongs to the solid, q lies on the surface.
     """
+    V, T, o, g, n, start, items = m.V, m.T, m.o, m.g, m.n, m.s2, m.i2
     if T.shape[0] == 0:
-        return False
-    if n[1] == 0:
         return False
     j = _idx(qy, o[1], g, n[1])
     k = _idx(qz, o[2], g, n[2])
@@ -168,9 +179,7 @@ def inside(
             continue
         if _edge_side(cy, cz, ay, az, qy, qz, e) != s:
             continue
-        d = det3_sign(
-            V[a0, 0], ay, az, V[a1, 0], by, bz, V[a2, 0], cy, cz, qx, qy, qz, False, e
-        )
+        d = det3_sign(V[a0, 0], ay, az, V[a1, 0], by, bz, V[a2, 0], cy, cz, qx, qy, qz, False, e)
         if s * d > 0:
             par = not par
     return par
@@ -198,7 +207,9 @@ def _seg(ax: float, ay: float, az: float, bx: float, by: float, bz: float) -> fl
 
 
 @njit(cache=True)
-def tri_dist(qx: float, qy: float, qz: float, V: Floats, T: Ints, t: int, alpha: float) -> tuple[float, float]:
+def tri_dist(
+    qx: float, qy: float, qz: float, V: Floats, T: Ints, t: int, alpha: float
+) -> tuple[float, float]:
     """An enclosure [lo, hi] of the exact distance from q to triangle t (see the allowance below).
 
     Allowance (u = 2⁻⁵³, M ≥ every |coordinate| of q and of the triangle, ``alpha = ABS·M = 512·u·M``):
@@ -293,8 +304,7 @@ def _reach(x: float, d: float, sign: float) -> float:
 
 @njit(cache=True)
 def nearest(
-    qx: float, qy: float, qz: float, V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints,
-    stamp: Ints, qid: int, alpha: float,
+    qx: float, qy: float, qz: float, m: Mesh, stamp: Ints, qid: int, alpha: float
 ) -> tuple[float, float, int]:
     """[lo, hi] of the distance from q to the nearest triangle, and that triangle (−1 when none).
 
@@ -303,6 +313,7 @@ def nearest(
     is listed in a visited bin (monotone indices), and the minimum of the visited lower bounds is a lower
     bound of the true minimum.
     """
+    V, T, o, g, n, start, items = m.V, m.T, m.o, m.g, m.n, m.s3, m.i3
     if T.shape[0] == 0:
         return math.inf, math.inf, -1
     i0 = _idx(qx, o[0], g, n[0])
@@ -397,11 +408,9 @@ def may_meet(V: Floats, T: Ints, t: int, cx: float, cy: float, cz: float, h: flo
 
 
 @njit(cache=True)
-def tris_in_cube(
-    V: Floats, T: Ints, o: Floats, g: float, n: Ints, start: Ints, items: Ints, stamp: Ints, qid: int,
-    cx: float, cy: float, cz: float, h: float, out: Ints,
-) -> int:
+def tris_in_cube(m: Mesh, stamp: Ints, qid: int, cx: float, cy: float, cz: float, h: float, out: Ints) -> int:
     """The triangles that may meet the cube (at most ``out.size`` listed); return their count (may exceed)."""
+    V, T, o, g, n, start, items = m.V, m.T, m.o, m.g, m.n, m.s3, m.i3
     if T.shape[0] == 0:
         return 0
     i0 = _idx(cx - h, o[0], g, n[0])
@@ -440,34 +449,41 @@ def _inner(V: Floats, T: Ints, t: int, x: float, y: float, z: float, e: Floats) 
 
 
 @njit(cache=True)
-def vertex_lows(
-    P: Floats, VB: Floats, TB: Ints, o3: Floats, g3: float, n3: Ints, s3: Ints, i3: Ints,
-    o2: Floats, g2: float, n2: Ints, s2: Ints, i2: Ints, alpha: float,
-) -> Floats:
+def vertex_lows(P: Floats, mb: Mesh, alpha: float) -> Floats:
     """Lower bounds of d(p, B) for each row p of P (0 when p + τ is inside B)."""
     out = np.empty(P.shape[0])
     e = np.empty(SCRATCH3_SIZE)
-    stamp = np.full(TB.shape[0], -1, np.int64)
+    stamp = np.full(mb.T.shape[0], -1, np.int64)
     for r in range(P.shape[0]):
         x, y, z = P[r, 0], P[r, 1], P[r, 2]
-        if inside(x, y, z, VB, TB, o2, g2, n2, s2, i2, e):
+        if inside(x, y, z, mb, e):
             out[r] = 0.0
         else:
-            out[r] = nearest(x, y, z, VB, TB, o3, g3, n3, s3, i3, stamp, r, alpha)[0]
+            out[r] = nearest(x, y, z, mb, stamp, r, alpha)[0]
     return out
 
 
 @njit(cache=True)
 def _certify_inside_b(
-    cx: float, cy: float, cz: float, h: float, hq: float, lb: Ints, nb: int, la: Ints, na: int,
-    VA: Floats, TA: Ints, oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
-    VB: Floats, TB: Ints, ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints, e: Floats,
+    cx: float,
+    cy: float,
+    cz: float,
+    h: float,
+    hq: float,
+    lb: Ints,
+    nb: int,
+    la: Ints,
+    na: int,
+    ma: Mesh,
+    mb: Mesh,
+    e: Floats,
 ) -> bool:
     """Whether C ∩ A ⊆ B is proved exactly (see :mod:`.solids`, "containment").
 
     ``lb`` lists the triangles of B that may meet the cube Q ⊇ C of half-side ``hq`` (h or 2h), ``la``
     those of A that may meet C (all of them: ``na`` ≤ their room).
     """
+    VA, TA, VB, TB = ma.V, ma.T, mb.V, mb.T
     # 1. The listed B triangles are all on the boundary of K = ∩ inner half-spaces (a convex configuration).
     for p in range(nb):
         for q in range(nb):
@@ -493,7 +509,7 @@ def _certify_inside_b(
             if _inner(VB, TB, lb[p], zx, zy, zz, e) <= 0:
                 ok = False
                 break
-        if ok and inside(zx, zy, zz, VB, TB, ob2, gb2, nb2, sb2, ib2, e):
+        if ok and inside(zx, zy, zz, mb, e):
             found = True
             break
     if not found:
@@ -514,7 +530,7 @@ def _certify_inside_b(
             if _inner(VB, TB, lb[q], zx, zy, zz, e) < 0:
                 ok = False
                 break
-        if not ok and inside(zx, zy, zz, VA, TA, oa2, ga2, na2, sa2, ia2, e):
+        if not ok and inside(zx, zy, zz, ma, e):
             return False
     return True
 
@@ -573,15 +589,26 @@ def _phi(x: float, y: float, z: float, VB: Floats, TB: Ints, t: int, alpha: floa
     s = (nx * dx + ny * dy + nz * dz) / nl
     err = 2.0**-44 * (abs(dx) + abs(dy) + abs(dz)) * le * le / nl + alpha
     v = s * (1.0 + REL) + err if s > 0.0 else s * (1.0 - REL) + err
-    return max(v, 0.0)
+    return float(max(v, 0.0))
 
 
 @njit(cache=True)
 def _restricted_bound(
-    cx: float, cy: float, cz: float, h: float, corner_in_a: npt.NDArray[np.bool_], la: Ints, na: int,
-    VA: Floats, TA: Ints, VB: Floats, TB: Ints, t: int, alpha: float, kind: int,
+    cx: float,
+    cy: float,
+    cz: float,
+    h: float,
+    corner_in_a: npt.NDArray[np.bool_],
+    la: Ints,
+    na: int,
+    ma: Mesh,
+    mb: Mesh,
+    t: int,
+    alpha: float,
+    kind: int,
 ) -> float:
     """An upper bound of the convex φ over C ∩ A (see :func:`process_cells`)."""
+    VA, TA, VB, TB = ma.V, ma.T, mb.V, mb.T
     mc = 0.0
     best = 0.0
     for w in range(8):
@@ -603,13 +630,12 @@ def _restricted_bound(
 
 @njit(cache=True)
 def _flat_under(
-    cx: float, cy: float, cz: float, h: float, t: int, VB: Floats, TB: Ints,
-    o3: Floats, g3: float, n3: Ints, s3: Ints, i3: Ints, stamp: Ints, qid: int,
-    o2: Floats, g2: float, n2: Ints, s2: Ints, i2: Ints, big: float, e: Floats,
+    cx: float, cy: float, cz: float, h: float, t: int, mb: Mesh, stamp: Ints, qid: int, big: float, e: Floats
 ) -> bool:
     """Whether d(x, B) ≤ max(0, s(x)) on C, s the signed distance to the plane H of B's triangle t.
 
-    Z is a box holding C and the projections of C's corners on H (computed in floats, widened by
+    Z is a box holding C, the projections of C's corners on H and those pushed h further in (computed in
+    floats, widened by
     2⁻⁴⁰·(big + |s|) ≫ their rounding). When every triangle of B that may meet Z lies in H (exact signs)
     and a point of Z strictly on the inner side of H is inside B (exact parity), the inner side of H in Z
     (connected, missing ∂B) lies in B with its closure, which holds the projection π(x) ∈ H ∩ Z of every
@@ -617,6 +643,7 @@ def _flat_under(
     bounds max(0, s): s is computed with n' = fl(e₁ × e₂) (within 8u·L_e² of the exact normal) and a few
     relative roundings, covered by 2⁻⁴⁴·|x − a|₁·L_e²/|n'| plus the usual alpha, while |n'| ≥ 2⁻⁴⁰·L_e².
     """
+    VB, TB, o3, g3, n3, s3, i3 = mb.V, mb.T, mb.o, mb.g, mb.n, mb.s3, mb.i3
     a = TB[t, 0]
     b = TB[t, 1]
     c = TB[t, 2]
@@ -642,9 +669,11 @@ def _flat_under(
         zy = cy + (h if w & 2 else -h)
         zz = cz + (h if w & 4 else -h)
         s = ux * (zx - VB[a, 0]) + uy * (zy - VB[a, 1]) + uz * (zz - VB[a, 2])
-        px, py, pz = zx - s * ux, zy - s * uy, zz - s * uz
-        lox, loy, loz = min(lox, px), min(loy, py), min(loz, pz)
-        hix, hiy, hiz = max(hix, px), max(hiy, py), max(hiz, pz)
+        # The projection, and the projection pushed h further to the inner side (room for a test point).
+        for depth in (s, s + h):
+            px, py, pz = zx - depth * ux, zy - depth * uy, zz - depth * uz
+            lox, loy, loz = min(lox, px), min(loy, py), min(loz, pz)
+            hix, hiy, hiz = max(hix, px), max(hiy, py), max(hiz, pz)
         smax = max(smax, abs(s))
     m = 2.0**-40 * (big + smax)
     lox, loy, loz = lox - m, loy - m, loz - m
@@ -685,26 +714,26 @@ def _flat_under(
                         v = TB[q, w]
                         if _inner(VB, TB, t, VB[v, 0], VB[v, 1], VB[v, 2], e) != 0:
                             return False
-    # A point strictly inside Z, strictly on the inner side, inside B.
-    for w in range(8):
-        zx = 0.5 * (lox + hix) + (0.25 if w & 1 else -0.25) * (hix - lox)
-        zy = 0.5 * (loy + hiy) + (0.25 if w & 2 else -0.25) * (hiy - loy)
-        zz = 0.5 * (loz + hiz) + (0.25 if w & 4 else -0.25) * (hiz - loz)
+    # A point strictly inside Z, strictly on the inner side, inside B: the centre's projection pushed h/2
+    # inwards, or points a quarter of Z's extent from its centre.
+    sc = ux * (cx - VB[a, 0]) + uy * (cy - VB[a, 1]) + uz * (cz - VB[a, 2]) + 0.5 * h
+    for w in range(9):
+        if w == 8:
+            zx, zy, zz = cx - sc * ux, cy - sc * uy, cz - sc * uz
+        else:
+            zx = 0.5 * (lox + hix) + (0.25 if w & 1 else -0.25) * (hix - lox)
+            zy = 0.5 * (loy + hiy) + (0.25 if w & 2 else -0.25) * (hiy - loy)
+            zz = 0.5 * (loz + hiz) + (0.25 if w & 4 else -0.25) * (hiz - loz)
         if not (lox < zx < hix and loy < zy < hiy and loz < zz < hiz):
             continue
-        if _inner(VB, TB, t, zx, zy, zz, e) > 0 and inside(zx, zy, zz, VB, TB, o2, g2, n2, s2, i2, e):
+        if _inner(VB, TB, t, zx, zy, zz, e) > 0 and inside(zx, zy, zz, mb, e):
             return True
     return False
 
 
 @njit(cache=True)
 def process_cells(
-    C: Floats, h: float, r_up: float,
-    VA: Floats, TA: Ints, oa3: Floats, ga3: float, na3: Ints, sa3: Ints, ia3: Ints,
-    oa2: Floats, ga2: float, na2: Ints, sa2: Ints, ia2: Ints,
-    VB: Floats, TB: Ints, ob3: Floats, gb3: float, nb3: Ints, sb3: Ints, ib3: Ints,
-    ob2: Floats, gb2: float, nb2: Ints, sb2: Ints, ib2: Ints,
-    alpha: float, big: float, settle: float,
+    C: Floats, h: float, r_up: float, ma: Mesh, mb: Mesh, alpha: float, big: float, settle: float
 ) -> tuple[Floats, Floats]:
     """Upper bounds of max d(·, B) over C ∩ A, and lower bounds from the centre, for cubes C (centres C).
 
@@ -716,8 +745,8 @@ def process_cells(
     his = np.empty(m)
     los = np.full(m, -math.inf)
     e = np.empty(SCRATCH3_SIZE)
-    stamp_a = np.full(TA.shape[0], -1, np.int64)
-    stamp_b = np.full(TB.shape[0], -1, np.int64)
+    stamp_a = np.full(ma.T.shape[0], -1, np.int64)
+    stamp_b = np.full(mb.T.shape[0], -1, np.int64)
     la = np.empty(KMAX, np.int64)
     lb = np.empty(KMAX, np.int64)
     lq = np.empty(KMAX, np.int64)
@@ -726,41 +755,34 @@ def process_cells(
     for r in range(m):
         cx, cy, cz = C[r, 0], C[r, 1], C[r, 2]
         qid += 1
-        na = tris_in_cube(VA, TA, oa3, ga3, na3, sa3, ia3, stamp_a, qid, cx, cy, cz, h, la)
-        c_in_a = inside(cx, cy, cz, VA, TA, oa2, ga2, na2, sa2, ia2, e)
+        na = tris_in_cube(ma, stamp_a, qid, cx, cy, cz, h, la)
+        c_in_a = inside(cx, cy, cz, ma, e)
         if na == 0 and not c_in_a:
             his[r] = -math.inf  # C ∩ ∂A = ∅ and the centre is outside: C misses A
             continue
-        c_in_b = inside(cx, cy, cz, VB, TB, ob2, gb2, nb2, sb2, ib2, e)
+        c_in_b = inside(cx, cy, cz, mb, e)
         tbest = -1
         if c_in_b:
             flo = 0.0
             fhi = 0.0
         else:
-            flo, fhi, tbest = nearest(cx, cy, cz, VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid, alpha)
+            flo, fhi, tbest = nearest(cx, cy, cz, mb, stamp_b, qid, alpha)
         if c_in_a:
             los[r] = flo
         hi = fhi + r_up
         hi = hi + hi * 2.0**-51  # outward rounding of the sum
         qid += 2
-        nb = tris_in_cube(VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid, cx, cy, cz, h, lb)
+        nb = tris_in_cube(mb, stamp_b, qid, cx, cy, cz, h, lb)
         if nb == 0:
             if c_in_b:
                 hi = 0.0  # C ∩ ∂B = ∅ and the centre is inside: C ⊆ B
-        elif nb <= KMAX and na <= KMAX:
-            if _certify_inside_b(
-                cx, cy, cz, h, h, lb, nb, la, na, VA, TA, oa2, ga2, na2, sa2, ia2, VB, TB, ob2, gb2, nb2, sb2, ib2,
-                e,
-            ):
-                hi = 0.0
+        elif nb <= KMAX and na <= KMAX and _certify_inside_b(cx, cy, cz, h, h, lb, nb, la, na, ma, mb, e):
+            hi = 0.0
         if hi > 0.0 and 0 < nb <= KMAX and na <= KMAX:
             # A cube touching B only on its boundary has no interior point in B: try the doubled cube.
             qid += 1
-            nq = tris_in_cube(VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid, cx, cy, cz, 2.0 * h, lb)
-            if 0 < nq <= KMAX and _certify_inside_b(
-                cx, cy, cz, h, 2.0 * h, lb, nq, la, na, VA, TA, oa2, ga2, na2, sa2, ia2, VB, TB, ob2, gb2, nb2,
-                sb2, ib2, e,
-            ):
+            nq = tris_in_cube(mb, stamp_b, qid, cx, cy, cz, 2.0 * h, lb)
+            if 0 < nq <= KMAX and _certify_inside_b(cx, cy, cz, h, 2.0 * h, lb, nq, la, na, ma, mb, e):
                 hi = 0.0
             elif 0 < nq <= KMAX and c_in_a == c_in_b:
                 # The same boundary in Q (the same oriented triangles may meet Q): every component of
@@ -768,8 +790,8 @@ def process_cells(
                 # and C ∩ A ⊆ B (C lies in int Q). When no listed triangle really meets int Q, int Q is on
                 # one side of both, the side of the centre: hence the centre's test.
                 qid += 1
-                nqa = tris_in_cube(VA, TA, oa3, ga3, na3, sa3, ia3, stamp_a, qid, cx, cy, cz, 2.0 * h, lq)
-                if nqa <= KMAX and _same_triangles(lq, nqa, VA, TA, lb, nq, VB, TB):
+                nqa = tris_in_cube(ma, stamp_a, qid, cx, cy, cz, 2.0 * h, lq)
+                if nqa <= KMAX and _same_triangles(lq, nqa, ma.V, ma.T, lb, nq, mb.V, mb.T):
                     hi = 0.0
         if hi > 0.0 and hi > settle and tbest >= 0:
             if na <= KMAX:
@@ -780,15 +802,12 @@ def process_cells(
                     zx = cx + (h if w & 1 else -h)
                     zy = cy + (h if w & 2 else -h)
                     zz = cz + (h if w & 4 else -h)
-                    corner_in_a[w] = inside(zx, zy, zz, VA, TA, oa2, ga2, na2, sa2, ia2, e)
-                g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, VA, TA, VB, TB, tbest, alpha, 0)
+                    corner_in_a[w] = inside(zx, zy, zz, ma, e)
+                g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, ma, mb, tbest, alpha, 0)
                 if g < hi:
                     hi = g
-                if hi > settle and _flat_under(
-                    cx, cy, cz, h, tbest, VB, TB, ob3, gb3, nb3, sb3, ib3, stamp_b, qid + 1, ob2, gb2, nb2,
-                    sb2, ib2, big, e,
-                ):
-                    g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, VA, TA, VB, TB, tbest, alpha, 1)
+                if hi > settle and _flat_under(cx, cy, cz, h, tbest, mb, stamp_b, qid + 1, big, e):
+                    g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, ma, mb, tbest, alpha, 1)
                     if g < hi:
                         hi = g
                 qid += 1
@@ -800,7 +819,7 @@ def process_cells(
                     zx = cx + (h if w & 1 else -h)
                     zy = cy + (h if w & 2 else -h)
                     zz = cz + (h if w & 4 else -h)
-                    g = max(g, tri_dist(zx, zy, zz, VB, TB, tbest, alpha)[1])
+                    g = max(g, tri_dist(zx, zy, zz, mb.V, mb.T, tbest, alpha)[1])
                 if g < hi:
                     hi = g
         his[r] = hi

@@ -58,7 +58,6 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -114,18 +113,6 @@ class SolidHausdorff:
         return lo == hi
 
 
-class _Mesh(NamedTuple):
-    V: Floats
-    T: Ints
-    o: Floats
-    g: float
-    n: Ints
-    s3: Ints
-    i3: Ints
-    s2: Ints
-    i2: Ints
-
-
 def _as_mesh(vertices: object, triangles: object, what: str) -> tuple[Floats, Ints]:
     v = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64).reshape(-1, 3))
     t = np.ascontiguousarray(np.asarray(triangles, dtype=np.int64).reshape(-1, 3))
@@ -147,7 +134,7 @@ def _check_range(x: Floats, what: str) -> None:
         raise ParameterError(f"{what}: coordinates must be 0 or of magnitude between 2^-240 and 2^50")
 
 
-def _index(v: Floats, t: Ints) -> _Mesh:
+def _index(v: Floats, t: Ints) -> K.Mesh:
     # A uniform bin grid of about 1.5 mean triangle extents per bin, at most MAX_BINS per axis.
     lo = v.min(axis=0) if len(v) else np.zeros(3)
     hi = v.max(axis=0) if len(v) else np.ones(3)
@@ -165,7 +152,7 @@ def _index(v: Floats, t: Ints) -> _Mesh:
     o = np.ascontiguousarray(lo, dtype=np.float64)
     s3, i3 = K.build_grid3(v, t, o, size, n)
     s2, i2 = K.build_grid2(v, t, o, size, n)
-    return _Mesh(v, t, o, size, n, s3, i3, s2, i2)
+    return K.Mesh(v, t, o, float(size), n, s3, i3, s2, i2)
 
 
 def _root(v: Floats) -> tuple[Floats, float]:
@@ -181,10 +168,17 @@ def _root(v: Floats) -> tuple[Floats, float]:
 
 
 def _directed(
-    a: _Mesh, b: _Mesh, alpha: float, big: float, tol: float, budget: int, progress: ProgressLike | None, label: str
+    a: K.Mesh,
+    b: K.Mesh,
+    alpha: float,
+    big: float,
+    tol: float,
+    budget: int,
+    progress: ProgressLike | None,
+    label: str,
 ) -> tuple[float, float, str, int]:
     """[lo, hi] of h(A, B) for non-empty A and B, how the search stopped, and the cubes examined."""
-    lows = K.vertex_lows(a.V, b.V, b.T, b.o, b.g, b.n, b.s3, b.i3, b.o, b.g, b.n, b.s2, b.i2, alpha)
+    lows = K.vertex_lows(a.V, b, alpha)
     lo = float(lows.max())
     cells, h = _root(a.V)
     closed_hi = -math.inf
@@ -195,12 +189,7 @@ def _directed(
         if progress is not None:
             progress.update(min(done / budget, 1.0), f"Measuring {label}")
         r_up = h * math.sqrt(3.0) * (1.0 + 2.0**-50)
-        his, los = K.process_cells(
-            cells, h, r_up,
-            a.V, a.T, a.o, a.g, a.n, a.s3, a.i3, a.o, a.g, a.n, a.s2, a.i2,
-            b.V, b.T, b.o, b.g, b.n, b.s3, b.i3, b.o, b.g, b.n, b.s2, b.i2,
-            alpha, big, lo + tol,
-        )  # fmt: skip
+        his, los = K.process_cells(cells, h, r_up, a, b, alpha, big, lo + tol)
         done += len(cells)
         if len(los):
             lo = max(lo, float(los.max()))
