@@ -113,8 +113,9 @@ def test_a_filled_box_is_farthest_from_a_box_with_a_cavity_at_the_cavitys_centre
     hollow = with_cavity(((0, 0, 0), (4, 4, 4)), ((1, 1, 1), (3, 3, 3)))
     r = solid_hausdorff(*filled, *hollow)
     assert brackets(r.a_within, 1)
-    # The hollow box lies in the filled one and shares its whole outer boundary: 0, proved.
-    assert r.b_within == (0.0, 0.0)
+    # The hollow box lies in the filled one and shares its whole outer boundary: 0, within the tolerance
+    # (the shared faces, edges and corners do not stall the search).
+    assert r.b_within[0] == 0.0
     assert_tight(r, tolerance_of(filled, hollow))
 
 

@@ -593,6 +593,138 @@ def _phi(x: float, y: float, z: float, VB: Floats, TB: Ints, t: int, alpha: floa
 
 
 @njit(cache=True)
+def _piece_points(
+    V: Floats, T: Ints, t: int, cx: float, cy: float, cz: float, h: float, ecap: float, out: Floats
+) -> int:
+    """Points within ``ecap`` of every vertex of the piece T ∩ C (T = triangle t); −1 when not certain.
+
+    A vertex of the convex polygon T ∩ C meets two of its boundary lines: (a) a vertex of T inside C
+    (exact comparisons), (b) an edge of T crossing a face plane of C (the crossing's own coordinate is the
+    plane's exactly; the two others are interpolated with an error ≤ 30u·M ≪ ecap = 2⁻³⁶·M), or (c) an edge
+    line of C crossing T's plane (solved with an error estimate; −1 when the estimate exceeds ecap/2, a
+    near-parallel edge). Every candidate that may be such a vertex is returned (the tests are widened by the
+    errors), so each true vertex has a returned point within ecap: the piece lies within ecap of their
+    convex hull, and a 1-Lipschitz convex φ is at most their maximum + ecap on it.
+    """
+    lo0, lo1, lo2 = cx - h, cy - h, cz - h
+    hi0, hi1, hi2 = cx + h, cy + h, cz + h
+    m = 2.0 * ecap
+    cnt = 0
+    # (a) the vertices of T in C.
+    for w in range(3):
+        v = T[t, w]
+        if lo0 <= V[v, 0] <= hi0 and lo1 <= V[v, 1] <= hi1 and lo2 <= V[v, 2] <= hi2:
+            out[cnt, 0] = V[v, 0]
+            out[cnt, 1] = V[v, 1]
+            out[cnt, 2] = V[v, 2]
+            cnt += 1
+    # (b) the edges of T across the face planes of C.
+    for w in range(3):
+        p = T[t, w]
+        q = T[t, (w + 1) % 3]
+        for ax in range(3):
+            pa = V[p, ax]
+            qa = V[q, ax]
+            if pa == qa:
+                continue
+            for side in range(2):
+                if ax == 0:
+                    x = lo0 if side == 0 else hi0
+                elif ax == 1:
+                    x = lo1 if side == 0 else hi1
+                else:
+                    x = lo2 if side == 0 else hi2
+                if x < min(pa, qa) or x > max(pa, qa):
+                    continue
+                f = (x - pa) / (qa - pa)
+                ok = True
+                for k in range(3):
+                    if k == ax:
+                        out[cnt, k] = x
+                        continue
+                    y = V[p, k] + f * (V[q, k] - V[p, k])
+                    out[cnt, k] = y
+                    lo = lo0 if k == 0 else (lo1 if k == 1 else lo2)
+                    hi = hi0 if k == 0 else (hi1 if k == 1 else hi2)
+                    if y < lo - m or y > hi + m:
+                        ok = False
+                if ok:
+                    cnt += 1
+    # (c) the edges of C across the plane of T.
+    a = T[t, 0]
+    b = T[t, 1]
+    c = T[t, 2]
+    e1x = V[b, 0] - V[a, 0]
+    e1y = V[b, 1] - V[a, 1]
+    e1z = V[b, 2] - V[a, 2]
+    e2x = V[c, 0] - V[a, 0]
+    e2y = V[c, 1] - V[a, 1]
+    e2z = V[c, 2] - V[a, 2]
+    nx = e1y * e2z - e1z * e2y
+    ny = e1z * e2x - e1x * e2z
+    nz = e1x * e2y - e1y * e2x
+    le = abs(e1x) + abs(e1y) + abs(e1z) + abs(e2x) + abs(e2y) + abs(e2z)
+    dn = 2.0**-46 * le * le  # ≥ 8u·L_e², the error of each component of n'
+    n1 = abs(nx) + abs(ny) + abs(nz)
+    for ax in range(3):
+        na = nx if ax == 0 else (ny if ax == 1 else nz)
+        if abs(na) <= dn:
+            continue  # (nearly) parallel to T's plane: such an edge meets it nowhere or all along
+        j = (ax + 1) % 3
+        k = (ax + 2) % 3
+        nj = nx if j == 0 else (ny if j == 1 else nz)
+        nk = nx if k == 0 else (ny if k == 1 else nz)
+        lo_a = lo0 if ax == 0 else (lo1 if ax == 1 else lo2)
+        hi_a = hi0 if ax == 0 else (hi1 if ax == 1 else hi2)
+        for corner in range(4):
+            yj = (
+                (lo0 if j == 0 else (lo1 if j == 1 else lo2))
+                if corner & 1 == 0
+                else (hi0 if j == 0 else (hi1 if j == 1 else hi2))
+            )
+            yk = (
+                (lo0 if k == 0 else (lo1 if k == 1 else lo2))
+                if corner & 2 == 0
+                else (hi0 if k == 0 else (hi1 if k == 1 else hi2))
+            )
+            num = nx * V[a, 0] + ny * V[a, 1] + nz * V[a, 2] - nj * yj - nk * yk
+            sval = num / na
+            # |Δnum| ≤ dn·(|a|₁ + |yj| + |yk|) + 5u·(Σ|n_i a_i| + |nj yj| + |nk yk|); dividing by
+            # |na| − dn bounds the error of sval, plus |sval|·dn/(|na| − dn) for the error of na itself.
+            an = abs(V[a, 0]) + abs(V[a, 1]) + abs(V[a, 2]) + abs(yj) + abs(yk)
+            snum = abs(nx * V[a, 0]) + abs(ny * V[a, 1]) + abs(nz * V[a, 2]) + abs(nj * yj) + abs(nk * yk)
+            err = (dn * an + 2.0**-50 * snum + abs(sval) * dn) / (abs(na) - dn) + 2.0**-50 * abs(sval)
+            if sval < lo_a - m - err or sval > hi_a + m + err:
+                continue
+            if err > 0.5 * ecap:
+                return -1
+            out[cnt, ax] = sval
+            out[cnt, j] = yj
+            out[cnt, k] = yk
+            # Inside T (closed): the three signs n'·((p_{k+1} − p_k) × (x − p_k)) ≥ −margin, the margin
+            # covering the point's error (≤ ecap) and the roundings (2⁻⁴⁴·L_e²·|e_k|₁·(|x − p_k|₁ + ecap)).
+            inside_t = True
+            for w in range(3):
+                p = T[t, w]
+                q = T[t, (w + 1) % 3]
+                ex = V[q, 0] - V[p, 0]
+                ey = V[q, 1] - V[p, 1]
+                ez = V[q, 2] - V[p, 2]
+                dx = out[cnt, 0] - V[p, 0]
+                dy = out[cnt, 1] - V[p, 1]
+                dz = out[cnt, 2] - V[p, 2]
+                sg = nx * (ey * dz - ez * dy) + ny * (ez * dx - ex * dz) + nz * (ex * dy - ey * dx)
+                e1 = abs(ex) + abs(ey) + abs(ez)
+                d1 = abs(dx) + abs(dy) + abs(dz)
+                if sg < -(n1 * e1 * 2.0 * ecap + 2.0**-44 * le * le * e1 * (d1 + ecap)):
+                    inside_t = False
+                    break
+            if inside_t:
+                cnt += 1
+    return cnt
+
+
+@njit(cache=True)
 def _restricted_bound(
     cx: float,
     cy: float,
@@ -606,8 +738,14 @@ def _restricted_bound(
     t: int,
     alpha: float,
     kind: int,
+    ecap: float,
+    pts: Floats,
 ) -> float:
-    """An upper bound of the convex φ over C ∩ A (see :func:`process_cells`)."""
+    """An upper bound of the convex, 1-Lipschitz φ over C ∩ A (see :func:`process_cells`).
+
+    C ∩ A lies in the convex hull of C's corners in A and of the pieces T_A ∩ C; on a piece, φ is at most
+    the smaller of its maxima over T_A's vertices, over C's corners, and over the piece's points (+ ecap).
+    """
     VA, TA, VB, TB = ma.V, ma.T, mb.V, mb.T
     mc = 0.0
     best = 0.0
@@ -624,7 +762,17 @@ def _restricted_bound(
         for w in range(3):
             q = TA[la[p], w]
             pv = max(pv, _phi(VA[q, 0], VA[q, 1], VA[q, 2], VB, TB, t, alpha, kind))
-        best = max(best, min(pv, mc))
+        piece = min(pv, mc)
+        if piece > best:
+            cnt = _piece_points(VA, TA, la[p], cx, cy, cz, h, ecap, pts)
+            if cnt >= 0:
+                g = 0.0
+                for w in range(cnt):
+                    g = max(g, _phi(pts[w, 0], pts[w, 1], pts[w, 2], VB, TB, t, alpha, kind))
+                g = g + ecap
+                g = g + g * 2.0**-51
+                piece = min(piece, g)
+        best = max(best, piece)
     return best
 
 
@@ -751,6 +899,9 @@ def process_cells(
     lb = np.empty(KMAX, np.int64)
     lq = np.empty(KMAX, np.int64)
     corner_in_a = np.zeros(8, np.bool_)
+    pts = np.empty((40, 3))
+    cand = np.empty(9, np.int64)
+    ecap = 2.0**-36 * big
     qid = 0
     for r in range(m):
         cx, cy, cz = C[r, 0], C[r, 1], C[r, 2]
@@ -803,14 +954,38 @@ def process_cells(
                     zy = cy + (h if w & 2 else -h)
                     zz = cz + (h if w & 4 else -h)
                     corner_in_a[w] = inside(zx, zy, zz, ma, e)
-                g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, ma, mb, tbest, alpha, 0)
-                if g < hi:
-                    hi = g
-                if hi > settle and _flat_under(cx, cy, cz, h, tbest, mb, stamp_b, qid + 1, big, e):
-                    g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, ma, mb, tbest, alpha, 1)
+                # Candidates T: the triangles nearest the centre and the corners (each bound is valid alone).
+                ncand = 0
+                cand[ncand] = tbest
+                ncand += 1
+                for w in range(8):
+                    if hi <= settle:
+                        break
+                    if w > 0:
+                        zx = cx + (h if w & 1 else -h)
+                        zy = cy + (h if w & 2 else -h)
+                        zz = cz + (h if w & 4 else -h)
+                        qid += 1
+                        tc = nearest(zx, zy, zz, mb, stamp_b, qid, alpha)[2]
+                        seen = tc < 0
+                        for u in range(ncand):
+                            if cand[u] == tc:
+                                seen = True
+                        if seen:
+                            continue
+                        cand[ncand] = tc
+                        ncand += 1
+                    tc = cand[ncand - 1]
+                    g = _restricted_bound(cx, cy, cz, h, corner_in_a, la, na, ma, mb, tc, alpha, 0, ecap, pts)
                     if g < hi:
                         hi = g
-                qid += 1
+                    qid += 1
+                    if hi > settle and _flat_under(cx, cy, cz, h, tc, mb, stamp_b, qid, big, e):
+                        g = _restricted_bound(
+                            cx, cy, cz, h, corner_in_a, la, na, ma, mb, tc, alpha, 1, ecap, pts
+                        )
+                        if g < hi:
+                            hi = g
             else:
                 # d(·, B) ≤ d(·, T) for the triangle T nearest the centre, convex: its maximum over C is at a
                 # corner.
