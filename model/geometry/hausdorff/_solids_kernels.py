@@ -783,10 +783,10 @@ def _flat_under(
     """Whether d(x, B) ≤ max(0, s(x)) on C, s the signed distance to the plane H of B's triangle t.
 
     Z is a box holding C, the projections of C's corners on H and those pushed h further in (computed in
-    floats, widened by
-    2⁻⁴⁰·(big + |s|) ≫ their rounding). When every triangle of B that may meet Z lies in H (exact signs)
-    and a point of Z strictly on the inner side of H is inside B (exact parity), the inner side of H in Z
-    (connected, missing ∂B) lies in B with its closure, which holds the projection π(x) ∈ H ∩ Z of every
+    floats, widened by more than their error, see below). When every triangle of B that may meet Z lies in
+    H (exact signs) and a point of Z strictly on the inner side of H is inside B (exact parity), the inner
+    side of H in Z (convex, missing ∂B) lies in B with its closure, which holds the projection
+    π(x) ∈ H ∩ Z of every
     x ∈ C: then d(x, B) ≤ |x − π(x)| = s(x) outside, and d(x, B) = 0 on the inner side. ``_phi`` with kind 1
     bounds max(0, s): s is computed with n' = fl(e₁ × e₂) (within 8u·L_e² of the exact normal) and a few
     relative roundings, covered by 2⁻⁴⁴·|x − a|₁·L_e²/|n'| plus the usual alpha, while |n'| ≥ 2⁻⁴⁰·L_e².
@@ -823,7 +823,9 @@ def _flat_under(
             lox, loy, loz = min(lox, px), min(loy, py), min(loz, pz)
             hix, hiy, hiz = max(hix, px), max(hiy, py), max(hiz, pz)
         smax = max(smax, abs(s))
-    m = 2.0**-40 * (big + smax)
+    # The projections' error: roundings (≪ 2⁻⁴⁰·(big + |s|)) and the direction of n', off by at most
+    # 2√3·|Δn|/|n| with |Δn| ≤ √3·2⁻⁴⁶·L_e² per the normal's allowance.
+    m = 2.0**-40 * (big + smax) + 8.0 * smax * 2.0**-46 * le * le / nl
     lox, loy, loz = lox - m, loy - m, loz - m
     hix, hiy, hiz = hix + m, hiy + m, hiz + m
     # The triangles of B that may meet Z (bounding boxes, exact comparisons): all must lie in H.

@@ -14,23 +14,36 @@ How
   first — most chains' maximum is at a vertex) and the centres of the cells below that the exact parity test
   puts inside A.
 * ``hi`` comes from a branch-and-bound over dyadic cubes covering A's bounding box. A cube C of centre c and
-  half-diagonal r gets an upper bound of ``max d(·, B)`` over ``C ∩ A``: the smaller of ``d(c, B) + r``
-  (1-Lipschitz) and ``max over C's corners of d(·, T)`` for the triangle T of B nearest c (``d(·, B) ≤
-  d(·, T)``, convex, so its maximum over C is at a corner); 0 when ``C ∩ A ⊆ B`` is proved exactly
-  (containment, below). A cube that certainly misses A (no triangle of A may meet it — a conservative
-  box/triangle test — and its centre is outside A, exactly) is dropped. Cubes whose bound exceeds
-  ``lo + tolerance`` are split in 8; the search stops when none is left (then ``hi − lo ≤ tolerance``),
-  or when the cell budget or the depth limit is reached (then the bounds of the open cubes count and the
-  interval is wider; :attr:`SolidHausdorff.stopped` says so).
+  half-diagonal r gets an upper bound of ``max d(·, B)`` over ``C ∩ A``, the least of:
+
+  - ``d(c, B) + r`` (1-Lipschitz);
+  - for a few triangles T of B (the nearest to c and to C's corners), the maximum over ``C ∩ A`` of the
+    convex ``d(·, T) ≥ d(·, B)``. ``C ∩ A`` lies in the convex hull of C's corners that are in A and of the
+    pieces ``T_A ∩ C`` of A's triangles, so the maximum is bounded by its values at those corners and, for
+    each piece, by the least of its maxima over T_A's vertices, over C's corners, and over points within a
+    proven distance of the piece's vertices (:func:`._solids_kernels._piece_points`);
+  - the same with ``max(0, signed distance to T's plane)`` when B is flat under C: every triangle of B
+    between C and its projection on that plane lies in it (exact) and B is on the far side (exact parity),
+    so ``d(x, B)`` is at most the signed distance (two parallel faces at constant distance close at once);
+  - 0 when ``C ∩ A ⊆ B`` is proved exactly (containment, below).
+
+  A cube that certainly misses A (no triangle of A may meet it — a conservative box/triangle test — and its
+  centre is outside A, exactly) is dropped. Cubes whose bound exceeds ``lo + tolerance`` are split in 8; the
+  search stops when none is left (then ``hi − lo ≤ tolerance``), or when the cell budget or the depth limit
+  is reached (then the bounds of the open cubes count and the interval is wider;
+  :attr:`SolidHausdorff.stopped` says so).
 
 Containment (why shared boundaries do not stall the search): two solids that share faces, edges or corners
 (a voxel object and a part of it) have ``d(·, B) = 0`` along the shared boundary, where ``d(c, B) + r``
-never reaches 0. A cube C is settled at 0 when the triangles of B that may meet C form a convex
-configuration (each lies on the inner side of the others' planes, exact signs), so that ∂B ∩ C lies on the
-boundary of the convex K = ∩ inner half-spaces; a point of int K ∩ int C (the centre or a point half-way to
-a corner) is inside B (exact parity), so int K ∩ int C — connected and missing ∂B — lies in B, and so does
-K ∩ C; and every triangle of A that may meet C has its vertices in K, as has every corner of C that is in A.
-C ∩ A lies in the convex hull of its corners in A and of the pieces of A's triangles in C, hence in K ∩ C.
+never reaches 0. A cube C is settled at 0 when (1) no triangle of B may meet it and its centre is inside B;
+or (2) the triangles of B that may meet C (or the doubled cube Q, for a cube touching B only on its
+boundary) form a convex configuration (each lies on the inner side of the others' planes, exact signs), so
+that ∂B ∩ Q lies on the boundary of the convex K = ∩ inner half-spaces; a point of int K ∩ int Q is inside B
+(exact parity), so int K ∩ int Q — connected and missing ∂B — lies in B, and so does K ∩ Q; and every
+triangle of A that may meet C has its vertices in K, as has every corner of C that is in A: C ∩ A lies in
+the convex hull of those, hence in K ∩ Q; or (3) the same oriented triangles of A and of B may meet Q and
+the centre is on the same side of both: every component of int Q minus the surface is then on the same side
+of both solids.
 
 Exactness and rounding
 ----------------------
@@ -39,8 +52,9 @@ Inside/outside decisions are exact: a parity ray with a symbolic perturbation (q
 of magnitude in [2⁻²⁴⁰, 2⁵⁰]; others are refused. Distances are float enclosures: relative 2⁻⁴⁸ plus
 ``2⁻⁴⁴·M`` absolute, M the largest coordinate magnitude, which covers the roundings of a point–triangle
 distance eight times over (the derivation is in :func:`._solids_kernels.tri_dist`); sums of upper bounds are
-rounded up by a relative 2⁻⁵¹. Grid searches need no allowance (monotone bin indices). So the interval is
-not tighter than about ``2⁻⁴³·M``: far from the origin, small details cost precision.
+rounded up by a relative 2⁻⁵¹; the piece points carry ``2⁻³⁶·M``. Grid searches need no allowance
+(monotone bin indices). So the interval is not tighter than about ``2⁻³⁶·M`` where pieces matter: far
+from the origin, small details cost precision.
 
 ``vertex_error``: when every given vertex may be off from the true one by ``vertex_error`` in each
 coordinate, each solid is within ``√3·vertex_error`` of the true one (a point that changes sides while the
@@ -48,9 +62,9 @@ vertices move is crossed by a moving triangle, within ``√3·vertex_error`` of 
 ``h`` moves by at most the sum of the two: the interval is widened by ``2·√3·vertex_error`` on each side.
 
 Cost: the vertices of A cost one nearest-triangle query each (a uniform bin grid of B's triangles); a
-maximum at a vertex closes the search after a few hundred cubes. A maximum spread over a whole face (two
-parallel faces at constant distance) cannot be closed by these bounds: the budget stops it, with a wider
-but still certain interval.
+maximum at a vertex closes the search after a few hundred cubes. Maxima spread over many faces (a voxel
+object against its translate: every face facing the shift is exactly |t| away) cost tens of thousands of
+cubes; when the budget stops the search, the interval is wider but still certain (docs/adr/0059).
 """
 
 from __future__ import annotations
