@@ -87,8 +87,8 @@ Ints = npt.NDArray[np.int64]
 
 #: Cubes examined per direction before the search stops with a wider interval (a few seconds at most).
 DEFAULT_CELL_BUDGET = 200_000
-#: Deepest subdivision (cubes stay dyadic and exact well before 60 halvings).
-_MAX_DEPTH = 60
+#: Open cubes split per round of the best-first search (enough to amortize a compiled call).
+_ROUND = 4096
 _LOW = 2.0**-240
 _HIGH = 2.0**50
 
@@ -181,6 +181,11 @@ def _root(v: Floats) -> tuple[Floats, float]:
     return np.ascontiguousarray(centre.reshape(1, 3)), 2.0 * big
 
 
+def _radius(h: float) -> float:
+    # The half-diagonal √3·h of a cube of half-side h (a power of two), rounded up.
+    return h * math.sqrt(3.0) * (1.0 + 2.0**-50)
+
+
 def _directed(
     a: K.Mesh,
     b: K.Mesh,
@@ -194,40 +199,53 @@ def _directed(
     """[lo, hi] of h(A, B) for non-empty A and B, how the search stopped, and the cubes examined."""
     lows = K.vertex_lows(a.V, b, alpha)
     lo = float(lows.max())
-    cells, h = _root(a.V)
+    # Best first: each round splits the open cubes with the largest bounds (at most _ROUND of them), so a
+    # search stopped by the budget has refined where the upper bound is.
+    root, h0 = _root(a.V)
+    cells = root
+    sizes = np.array([h0])
+    his, los = K.process_cells(root, h0, _radius(h0), a, b, alpha, big, lo + tol)
+    done = 1
     closed_hi = -math.inf
-    done = 0
     stopped = "tolerance"
-    open_hi = -math.inf
-    for depth in range(_MAX_DEPTH + 1):
-        if progress is not None:
-            progress.update(min(done / budget, 1.0), f"Measuring {label}")
-        r_up = h * math.sqrt(3.0) * (1.0 + 2.0**-50)
-        his, los = K.process_cells(cells, h, r_up, a, b, alpha, big, lo + tol)
-        done += len(cells)
+    while True:
         if len(los):
             lo = max(lo, float(los.max()))
         keep = his > lo + tol
-        closed = his[~keep]
-        if len(closed):
-            closed_hi = max(closed_hi, float(closed.max()))
-        cells = cells[keep]
+        if (~keep).any():
+            closed_hi = max(closed_hi, float(his[~keep].max()))
+        cells, sizes, his = cells[keep], sizes[keep], his[keep]
         if len(cells) == 0:
-            open_hi = -math.inf
             break
-        open_hi = float(his[keep].max())
-        h_next = h / 2.0
-        if done + 8 * len(cells) > budget:
+        if progress is not None:
+            progress.update(min(done / budget, 1.0), f"Measuring {label}")
+        room = (budget - done) // 8
+        if room < 1:
             stopped = "budget"
             break
-        if depth == _MAX_DEPTH or h_next < _LOW or h_next < float(np.abs(cells).max()) * 2.0**-50:
+        k = min(len(cells), room, _ROUND)
+        pick = np.argpartition(-his, k - 1)[:k] if k < len(cells) else np.arange(len(cells))
+        half = sizes[pick] / 2.0
+        if (half < _LOW).any() or (half < np.abs(cells[pick]).max(axis=1) * 2.0**-50).any():
             stopped = "depth"
             break
-        offsets = np.array(
-            [[dx, dy, dz] for dz in (-h_next, h_next) for dy in (-h_next, h_next) for dx in (-h_next, h_next)]
-        )
-        cells = np.ascontiguousarray((cells[:, None, :] + offsets[None, :, :]).reshape(-1, 3))
-        h = h_next
+        rest = np.ones(len(cells), bool)
+        rest[pick] = False
+        new_cells, new_sizes, new_his = [cells[rest]], [sizes[rest]], [his[rest]]
+        los_parts = []
+        for hn in np.unique(half):
+            parents = cells[pick][half == hn]
+            offsets = np.array([[dx, dy, dz] for dz in (-hn, hn) for dy in (-hn, hn) for dx in (-hn, hn)])
+            kids = np.ascontiguousarray((parents[:, None, :] + offsets[None, :, :]).reshape(-1, 3))
+            kh, kl = K.process_cells(kids, float(hn), _radius(float(hn)), a, b, alpha, big, lo + tol)
+            done += len(kids)
+            new_cells.append(kids)
+            new_sizes.append(np.full(len(kids), hn))
+            new_his.append(kh)
+            los_parts.append(kl)
+        cells, sizes, his = np.vstack(new_cells), np.concatenate(new_sizes), np.concatenate(new_his)
+        los = np.concatenate(los_parts)
+    open_hi = float(his.max()) if len(his) else -math.inf
     hi = max(closed_hi, open_hi, lo)
     log.debug("h(%s): [%r, %r] after %d cubes (%s)", label, lo, hi, done, stopped)
     return lo, hi, stopped, done
