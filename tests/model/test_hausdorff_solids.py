@@ -172,6 +172,39 @@ def test_hostile_parameters_are_refused_in_one_line() -> None:
         solid_hausdorff(a[0] * 2.0**60, a[1], *a)
 
 
+def voxel_ball(n: int) -> np.ndarray:
+    zz, yy, xx = np.mgrid[:n, :n, :n].astype(float)
+    c = (n - 1) / 2
+    return (xx - c) ** 2 + (yy - c) ** 2 + (zz - c) ** 2 <= (0.45 * n) ** 2
+
+
+def test_a_one_voxel_cavity_of_a_reconstructed_ball_is_measured_at_its_centre() -> None:
+    # R(A) of a ball with one voxel removed has a cube-shaped cavity of half-side 3/4 (the voxel grown by
+    # the ¼ erosion of the safety net): the ball without the hole reaches 3/4 outside it, at the cavity's
+    # centre, while every vertex of the full ball is on the holed one's surface or inside it.
+    full = voxel_ball(12)
+    holed = full.copy()
+    holed[5, 5, 5] = False
+    a = solid_of(full, (0, 0, 0))
+    b = solid_of(holed, (0, 0, 0))
+    r = solid_hausdorff(*a, *b)
+    assert brackets(r.a_within, Fraction(9, 16))
+    assert r.b_within == (0.0, 0.0)  # the holed ball lies in the full one; their outer surfaces coincide
+    assert_tight(r, tolerance_of(a, b))
+
+
+def test_a_reconstructed_ball_and_its_translate_close_at_the_tolerance() -> None:
+    # Every face of the staircase that faces the shift is exactly 1 away: the maximum is spread over whole
+    # faces and along their edges, where neither vertex sampling nor d(c, B) + r settles anything.
+    ball = voxel_ball(12)
+    a = solid_of(ball, (0, 0, 0))
+    b = solid_of(ball, (1, 0, 0))
+    r = solid_hausdorff(*a, *b)
+    assert brackets(r.a_within, 1)
+    assert brackets(r.b_within, 1)
+    assert_tight(r, tolerance_of(a, b))
+
+
 # ------------------------------------------------------------------------------------------ vertex error
 def test_vertex_error_widens_the_interval_to_cover_the_true_solids() -> None:
     # The true solids are the boxes; the given ones have every vertex moved by up to e in each coordinate.
