@@ -777,6 +777,13 @@ def _restricted_bound(
 
 
 @njit(cache=True)
+def _exact_range(v: float) -> bool:
+    # The exact predicates' range for a query coordinate: 0 or 2⁻²⁴⁰ ≤ |v| ≤ 2⁵⁰ (the solids' own check).
+    a = abs(v)
+    return a == 0.0 or (2.0**-240 <= a <= 2.0**50)
+
+
+@njit(cache=True)
 def _flat_under(
     cx: float, cy: float, cz: float, h: float, t: int, mb: Mesh, stamp: Ints, qid: int, big: float, e: Floats
 ) -> bool:
@@ -876,6 +883,8 @@ def _flat_under(
             zz = 0.5 * (loz + hiz) + (0.25 if w & 4 else -0.25) * (hiz - loz)
         if not (lox < zx < hix and loy < zy < hiy and loz < zz < hiz):
             continue
+        if not (_exact_range(zx) and _exact_range(zy) and _exact_range(zz)):
+            continue  # a computed point outside the predicates' exact range
         if _inner(VB, TB, t, zx, zy, zz, e) > 0 and inside(zx, zy, zz, mb, e):
             return True
     return False
