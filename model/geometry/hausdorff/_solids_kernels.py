@@ -891,6 +891,89 @@ def _flat_under(
 
 
 @njit(cache=True)
+def _add_planes(
+    lst: Ints, cnt: int, m: Mesh, cx: float, cy: float, cz: float, hq: float, vals: Floats, nv: Ints
+) -> bool:
+    # Record the axis-aligned plane of each listed triangle that cuts int Q; False for a slanted triangle.
+    V, T = m.V, m.T
+    for p in range(cnt):
+        t = lst[p]
+        found = False
+        for ax in range(3):
+            x = V[T[t, 0], ax]
+            if V[T[t, 1], ax] != x or V[T[t, 2], ax] != x:
+                continue
+            found = True
+            c = cx if ax == 0 else (cy if ax == 1 else cz)
+            if not (c - hq < x < c + hq):
+                break  # on Q's boundary or beyond: it does not cut int Q
+            seen = False
+            for u in range(nv[ax]):
+                if vals[ax, u] == x:
+                    seen = True
+            if not seen:
+                vals[ax, nv[ax]] = x
+                nv[ax] += 1
+            break
+        if not found:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _axis_cells_inside(
+    cx: float,
+    cy: float,
+    cz: float,
+    hq: float,
+    la: Ints,
+    na: int,
+    lb: Ints,
+    nb: int,
+    ma: Mesh,
+    mb: Mesh,
+    vals: Floats,
+    e: Floats,
+) -> bool:
+    """Whether A ∩ int Q ⊆ B is proved when every triangle of A and B that may meet Q is axis-aligned.
+
+    The planes of those triangles cut int Q into open boxes; each misses both surfaces, so it lies inside
+    or outside each solid as a whole, as its midpoint + τ does (exact parity). If every box inside A is
+    inside B, then A ∩ int Q — the closure of A's interior, whose points off the planes lie in those boxes —
+    is in the closure of B's boxes, in B. (Voxel reconstructions are axis-aligned: shared faces, edges and
+    corners, convex or not and however triangulated, are settled here.)
+    """
+    nv = np.zeros(3, np.int64)
+    if not _add_planes(la, na, ma, cx, cy, cz, hq, vals, nv):
+        return False
+    if not _add_planes(lb, nb, mb, cx, cy, cz, hq, vals, nv):
+        return False
+    if (nv[0] + 1) * (nv[1] + 1) * (nv[2] + 1) > 512:
+        return False
+    for ax in range(3):
+        vals[ax, : nv[ax]] = np.sort(vals[ax, : nv[ax]])
+    for i in range(nv[0] + 1):
+        x0 = cx - hq if i == 0 else vals[0, i - 1]
+        x1 = cx + hq if i == nv[0] else vals[0, i]
+        zx = 0.5 * x0 + 0.5 * x1
+        for j in range(nv[1] + 1):
+            y0 = cy - hq if j == 0 else vals[1, j - 1]
+            y1 = cy + hq if j == nv[1] else vals[1, j]
+            zy = 0.5 * y0 + 0.5 * y1
+            for k in range(nv[2] + 1):
+                z0 = cz - hq if k == 0 else vals[2, k - 1]
+                z1 = cz + hq if k == nv[2] else vals[2, k]
+                zz = 0.5 * z0 + 0.5 * z1
+                if not (x0 < zx < x1 and y0 < zy < y1 and z0 < zz < z1):
+                    return False  # no float strictly inside: cannot sample this box
+                if not (_exact_range(zx) and _exact_range(zy) and _exact_range(zz)):
+                    return False
+                if inside(zx, zy, zz, ma, e) and not inside(zx, zy, zz, mb, e):
+                    return False
+    return True
+
+
+@njit(cache=True)
 def process_cells(
     C: Floats, h: float, r_up: float, ma: Mesh, mb: Mesh, alpha: float, big: float, settle: float
 ) -> tuple[Floats, Floats]:
@@ -909,6 +992,7 @@ def process_cells(
     la = np.empty(KMAX, np.int64)
     lb = np.empty(KMAX, np.int64)
     lq = np.empty(KMAX, np.int64)
+    vals = np.empty((3, 2 * KMAX + 2))
     corner_in_a = np.zeros(8, np.bool_)
     pts = np.empty((40, 3))
     cand = np.empty(9, np.int64)
@@ -953,7 +1037,10 @@ def process_cells(
                 # one side of both, the side of the centre: hence the centre's test.
                 qid += 1
                 nqa = tris_in_cube(ma, stamp_a, qid, cx, cy, cz, 2.0 * h, lq)
-                if nqa <= KMAX and _same_triangles(lq, nqa, ma.V, ma.T, lb, nq, mb.V, mb.T):
+                if nqa <= KMAX and (
+                    _same_triangles(lq, nqa, ma.V, ma.T, lb, nq, mb.V, mb.T)
+                    or _axis_cells_inside(cx, cy, cz, 2.0 * h, lq, nqa, lb, nq, ma, mb, vals, e)
+                ):
                     hi = 0.0
         if hi > 0.0 and hi > settle and tbest >= 0:
             if na <= KMAX:
