@@ -205,6 +205,23 @@ def test_a_reconstructed_ball_and_its_translate_close_at_the_tolerance() -> None
     assert_tight(r, tolerance_of(a, b))
 
 
+def test_a_voxel_object_inside_another_sharing_concave_edges_is_exactly_zero_away() -> None:
+    # B: a 4³ block with a 2³ notch (concave edges and a concave corner); A: B without a row and a voxel.
+    # Their reconstructions share faces triangulated differently and the notch's concave edges, where
+    # neither the convex certificate nor equal triangles apply: the axis-aligned boxes settle them.
+    big = np.ones((4, 4, 4), bool)
+    big[2:, 2:, 2:] = False
+    small = big.copy()
+    small[0, 0, :] = False
+    small[3, 0, 0] = False
+    a = solid_of(small, (0, 0, 0))
+    b = solid_of(big, (0, 0, 0))
+    r = solid_hausdorff(*a, *b)
+    assert r.a_within == (0.0, 0.0)
+    assert r.stopped == "tolerance"
+    assert r.b_within[1] >= sampled_max(b, a, 0.25)
+
+
 # ------------------------------------------------------------------------------------------ vertex error
 def test_vertex_error_widens_the_interval_to_cover_the_true_solids() -> None:
     # The true solids are the boxes; the given ones have every vertex moved by up to e in each coordinate.
