@@ -43,7 +43,9 @@ that ∂B ∩ Q lies on the boundary of the convex K = ∩ inner half-spaces; a 
 triangle of A that may meet C has its vertices in K, as has every corner of C that is in A: C ∩ A lies in
 the convex hull of those, hence in K ∩ Q; or (3) the same oriented triangles of A and of B may meet Q and
 the centre is on the same side of both: every component of int Q minus the surface is then on the same side
-of both solids.
+of both solids; or (4) every triangle of A and B that may meet Q is axis-aligned (voxel reconstructions
+are): their planes cut int Q into open boxes that miss both surfaces, and every box whose midpoint is in A
+has it in B (exact parity) — shared concave edges and differently triangulated faces settle here.
 
 Exactness and rounding
 ----------------------
