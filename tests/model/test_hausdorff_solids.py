@@ -16,8 +16,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mrm.core.errors import ParameterError
+from mrm.core.errors import Cancelled, ParameterError
 from mrm.core.grids import VoxelSet
+from mrm.core.progress import Progress
 from mrm.geometry.hausdorff.solids import SolidHausdorff, solid_hausdorff
 from mrm.geometry.reconstruct import reconstruct
 
@@ -220,6 +221,19 @@ def test_a_voxel_object_inside_another_sharing_concave_edges_is_exactly_zero_awa
     assert r.a_within == (0.0, 0.0)
     assert r.stopped == "tolerance"
     assert r.b_within[1] >= sampled_max(b, a, 0.25)
+
+
+def test_progress_is_reported_and_a_cancel_stops_the_measure() -> None:
+    a = box((0, 0, 0), (4, 4, 4))
+    b = with_cavity(((0, 0, 0), (4, 4, 4)), ((1, 1, 1), (3, 3, 3)))
+    seen: list[float | None] = []
+    progress = Progress(lambda f, _m: seen.append(f))
+    solid_hausdorff(*a, *b, progress=progress)
+    assert seen and seen[-1] == 1.0
+    cancelled = Progress()
+    cancelled.cancel()
+    with pytest.raises(Cancelled):
+        solid_hausdorff(*a, *b, progress=cancelled)
 
 
 # ------------------------------------------------------------------------------------------ vertex error
