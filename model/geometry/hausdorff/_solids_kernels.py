@@ -264,20 +264,23 @@ def tri_dist(
     nl = math.sqrt(nx * nx + ny * ny + nz * nz)
     n0 = abs(p0x) + abs(p0y) + abs(p0z)
     L = n0 + abs(p1x) + abs(p1y) + abs(p1z) + abs(p2x) + abs(p2y) + abs(p2z)
-    if nl > 0.0:
-        perim = (
-            math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
-            + math.sqrt(e2x * e2x + e2y * e2y + e2z * e2z)
-            + math.sqrt((p2x - p1x) ** 2 + (p2y - p1y) ** 2 + (p2z - p1z) ** 2)
-        )
+    perim = (
+        math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
+        + math.sqrt(e2x * e2x + e2y * e2y + e2z * e2z)
+        + math.sqrt((p2x - p1x) ** 2 + (p2y - p1y) ** 2 + (p2z - p1z) ** 2)
+    )
+    if perim > 0.0:  # (0 only when the three rounded vertices are equal: T' is that point)
         inr = (nl + 2.0**-45 * L * L) / perim * (1.0 + 2.0**-40)
-        # Three signs n'·(p_i × p_j): all ≥ 0 when the projection of the origin is inside (closed).
-        s0 = nx * (p0y * p1z - p0z * p1y) + ny * (p0z * p1x - p0x * p1z) + nz * (p0x * p1y - p0y * p1x)
-        s1 = nx * (p1y * p2z - p1z * p2y) + ny * (p1z * p2x - p1x * p2z) + nz * (p1x * p2y - p1y * p2x)
-        s2 = nx * (p2y * p0z - p2z * p0y) + ny * (p2z * p0x - p2x * p0z) + nz * (p2x * p0y - p2y * p0x)
-        sig = _SIDE * (L * L) * (L * L)
-        may_inside = s0 >= -sig and s1 >= -sig and s2 >= -sig
-        surely_inside = s0 > sig and s1 > sig and s2 > sig
+        may_inside = True  # a flat float normal (nl = 0) cannot tell: T' may still have a tiny area
+        surely_inside = False
+        if nl > 0.0:
+            # Three signs n'·(p_i × p_j): all ≥ 0 when the projection of the origin is inside (closed).
+            s0 = nx * (p0y * p1z - p0z * p1y) + ny * (p0z * p1x - p0x * p1z) + nz * (p0x * p1y - p0y * p1x)
+            s1 = nx * (p1y * p2z - p1z * p2y) + ny * (p1z * p2x - p1x * p2z) + nz * (p1x * p2y - p1y * p2x)
+            s2 = nx * (p2y * p0z - p2z * p0y) + ny * (p2z * p0x - p2x * p0z) + nz * (p2x * p0y - p2y * p0x)
+            sig = _SIDE * (L * L) * (L * L)
+            may_inside = s0 >= -sig and s1 >= -sig and s2 >= -sig
+            surely_inside = s0 > sig and s1 > sig and s2 > sig
         if may_inside:
             lo_raw = segmin - inr
             if nl > 2.0**-40 * L * L:
