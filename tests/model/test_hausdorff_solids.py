@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 from mrm.core.errors import Cancelled, ParameterError
 from mrm.core.grids import VoxelSet
 from mrm.core.progress import Progress
+from mrm.geometry.hausdorff import _solids_kernels as K
 from mrm.geometry.hausdorff.solids import SolidHausdorff, solid_hausdorff
 from mrm.geometry.reconstruct import reconstruct
 
@@ -253,6 +254,60 @@ def test_vertex_error_widens_the_interval_to_cover_the_true_solids() -> None:
     assert brackets(wide.a_within, 3)
     assert brackets(wide.b_within, 6)
     assert not wide.exact
+
+
+# ------------------------------------------------------------------------------ the distance enclosure
+def exact_square_distance(q: np.ndarray, tri: np.ndarray) -> Fraction:
+    """The exact squared distance from q to the triangle (Fractions of the float coordinates)."""
+    p = [tuple(Fraction(float(x)) for x in row) for row in tri]
+    qq = tuple(Fraction(float(x)) for x in q)
+
+    def sub(u: tuple, v: tuple) -> tuple:
+        return tuple(x - y for x, y in zip(u, v, strict=True))
+
+    def dot(u: tuple, v: tuple) -> Fraction:
+        return sum((x * y for x, y in zip(u, v, strict=True)), Fraction(0))
+
+    def cross(u: tuple, v: tuple) -> tuple:
+        return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+
+    best = None
+    for i in range(3):
+        a, b = p[i], p[(i + 1) % 3]
+        e = sub(b, a)
+        ee = dot(e, e)
+        t = Fraction(0) if ee == 0 else min(max(dot(sub(qq, a), e) / ee, Fraction(0)), Fraction(1))
+        w = sub(qq, tuple(x + t * y for x, y in zip(a, e, strict=True)))
+        best = dot(w, w) if best is None else min(best, dot(w, w))
+    n = cross(sub(p[1], p[0]), sub(p[2], p[0]))
+    nn = dot(n, n)
+    if nn > 0 and all(dot(cross(sub(p[(i + 1) % 3], p[i]), sub(qq, p[i])), n) >= 0 for i in range(3)):
+        best = min(best, dot(sub(qq, p[0]), n) ** 2 / nn)
+    assert best is not None
+    return best
+
+
+# The solids' coordinates are 0 or of magnitude in [2⁻²⁴⁰, 2⁵⁰] (checked at the entry).
+coords = st.floats(-64, 64, allow_nan=False, allow_subnormal=False).filter(
+    lambda x: x == 0 or abs(x) >= 2.0**-240
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    st.lists(st.tuples(coords, coords, coords), min_size=4, max_size=4),
+    st.floats(0, 1),
+    st.integers(0, 60),
+)
+def test_point_triangle_enclosures_contain_the_exact_distance(pts: list, slant: float, flat: int) -> None:
+    # Slivers too: the third vertex is pulled towards the first edge by 2^-flat of the way.
+    q, a, b, c = (np.array(x, float) for x in pts)
+    c = a + slant * (b - a) + (c - a) * 2.0**-flat
+    tri = np.vstack([a, b, c])
+    big = float(np.abs(np.vstack([tri, q])).max())
+    lo, hi = K.tri_dist(q[0], q[1], q[2], tri, np.array([[0, 1, 2]], np.int64), 0, K.ABS * big)
+    d2 = exact_square_distance(q, tri)
+    assert Fraction(lo) ** 2 <= d2 <= Fraction(hi) ** 2
 
 
 # ------------------------------------------------------------------------------------ brute-force reference
