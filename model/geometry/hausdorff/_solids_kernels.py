@@ -699,13 +699,14 @@ def _piece_points(
             err = (dn * an + 2.0**-50 * snum + abs(sval) * dn) / (abs(na) - dn) + 2.0**-50 * abs(sval)
             if sval < lo_a - m - err or sval > hi_a + m + err:
                 continue
-            if err > 0.5 * ecap:
-                return -1
             out[cnt, ax] = sval
             out[cnt, j] = yj
             out[cnt, k] = yk
             # Inside T (closed): the three signs n'·((p_{k+1} − p_k) × (x − p_k)) ≥ −margin, the margin
-            # covering the point's error (≤ ecap) and the roundings (2⁻⁴⁴·L_e²·|e_k|₁·(|x − p_k|₁ + ecap)).
+            # covering the point's error (≤ ρ = max(err, ecap)) and the roundings
+            # (2⁻⁴⁴·L_e²·|e_k|₁·(|x − p_k|₁ + ρ)). A point certainly outside T is no vertex; one that may be
+            # inside but is known only to err > ecap/2 makes the piece uncertain.
+            rho = max(err, ecap)
             inside_t = True
             for w in range(3):
                 p = T[t, w]
@@ -719,10 +720,12 @@ def _piece_points(
                 sg = nx * (ey * dz - ez * dy) + ny * (ez * dx - ex * dz) + nz * (ex * dy - ey * dx)
                 e1 = abs(ex) + abs(ey) + abs(ez)
                 d1 = abs(dx) + abs(dy) + abs(dz)
-                if sg < -(n1 * e1 * 2.0 * ecap + 2.0**-44 * le * le * e1 * (d1 + ecap)):
+                if sg < -(n1 * e1 * 2.0 * rho + 2.0**-44 * le * le * e1 * (d1 + rho)):
                     inside_t = False
                     break
             if inside_t:
+                if err > 0.5 * ecap:
+                    return -1
                 cnt += 1
     return cnt
 
