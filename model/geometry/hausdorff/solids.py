@@ -188,6 +188,22 @@ def _radius(h: float) -> float:
     return h * math.sqrt(3.0) * (1.0 + 2.0**-50)
 
 
+def _same_surface(va: Floats, ta: Ints, vb: Floats, tb: Ints) -> bool:
+    # The same set of oriented triangles (coordinates compared exactly, each triangle started at its
+    # lexicographically least vertex): the same solid.
+    if len(ta) != len(tb):
+        return False
+
+    def canonical(v: Floats, t: Ints) -> Floats:
+        c = v[t]  # (m, 3, 3)
+        order = np.lexsort((c[:, :, 2], c[:, :, 1], c[:, :, 0]), axis=-1)[:, 0]
+        rolled = np.stack([c[np.arange(len(c)), (order + k) % 3] for k in range(3)], axis=1)
+        flat = rolled.reshape(len(c), 9)
+        return flat[np.lexsort(flat.T[::-1])]
+
+    return bool(np.array_equal(canonical(va, ta), canonical(vb, tb)))
+
+
 def _directed(
     a: K.Mesh,
     b: K.Mesh,
@@ -308,6 +324,8 @@ def solid_hausdorff(
         a_in = (0.0, 0.0) if a_empty else (math.inf, math.inf)
         b_in = (0.0, 0.0) if b_empty else (math.inf, math.inf)
         return SolidHausdorff(a_in, b_in, "tolerance", 0)
+    if _same_surface(va, ta, vb, tb):  # an identity chain: the same oriented triangles, exactly 0
+        return SolidHausdorff((0.0, 0.0), (0.0, 0.0), "tolerance", 0)
     both = np.vstack([va, vb])
     diam = float(np.linalg.norm(both.max(axis=0) - both.min(axis=0)))
     tol = max(1e-6 * diam, 1e-9) if tolerance is None else float(tolerance)
