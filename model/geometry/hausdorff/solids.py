@@ -130,8 +130,10 @@ class SolidHausdorff:
 
 
 def _as_mesh(vertices: object, triangles: object, what: str) -> tuple[Floats, Ints]:
-    v = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64).reshape(-1, 3))
-    t = np.ascontiguousarray(np.asarray(triangles, dtype=np.int64).reshape(-1, 3))
+    # Fresh writeable C arrays: numba compiles one specialization per array layout and per read-only flag,
+    # and a Polyhedron's arrays are read-only, so every caller gets the same (warmed-up) signature.
+    v = np.array(vertices, dtype=np.float64, order="C").reshape(-1, 3)
+    t = np.array(triangles, dtype=np.int64, order="C").reshape(-1, 3)
     if not np.isfinite(v).all():
         raise ParameterError(f"{what}: vertex coordinates must be finite")
     if t.size and (t.min() < 0 or t.max() >= len(v)):
