@@ -333,7 +333,11 @@ def _step_files() -> None:
 
 
 def _step_polyhedra() -> None:
-    """Validate a cube with a cubic cavity (every check's kernels), a crossing pair and a flat face."""
+    """Validate a cube with a cubic cavity, a crossing pair and a flat face; measure the 3D error.
+
+    The validations reach every check's kernels; the cube with its cavity against the full cube reaches
+    those of the measured error in 3D (:mod:`mrm.geometry.hausdorff.solids`).
+    """
     import numpy as np
 
     from mrm.core.errors import InvalidGeometryError
@@ -347,6 +351,9 @@ def _step_polyhedra() -> None:
     )  # fmt: skip
     cavity = Polyhedron(np.vstack([corners * 3.0, corners + 1.0]), np.vstack([tris, tris[:, ::-1] + 8]))
     _ = cavity.n_faces
+    from mrm.geometry.hausdorff.solids import solid_hausdorff
+
+    solid_hausdorff(cavity.vertices, cavity.triangles, corners * 3.0, tris)  # the measured error in 3D
     with contextlib.suppress(InvalidGeometryError):  # the pair tests of a self-intersecting mesh
         Polyhedron(np.vstack([corners, corners + 0.5]), np.vstack([tris, tris + 8]))
 

@@ -14,23 +14,38 @@ How
   first — most chains' maximum is at a vertex) and the centres of the cells below that the exact parity test
   puts inside A.
 * ``hi`` comes from a branch-and-bound over dyadic cubes covering A's bounding box. A cube C of centre c and
-  half-diagonal r gets an upper bound of ``max d(·, B)`` over ``C ∩ A``: the smaller of ``d(c, B) + r``
-  (1-Lipschitz) and ``max over C's corners of d(·, T)`` for the triangle T of B nearest c (``d(·, B) ≤
-  d(·, T)``, convex, so its maximum over C is at a corner); 0 when ``C ∩ A ⊆ B`` is proved exactly
-  (containment, below). A cube that certainly misses A (no triangle of A may meet it — a conservative
-  box/triangle test — and its centre is outside A, exactly) is dropped. Cubes whose bound exceeds
-  ``lo + tolerance`` are split in 8; the search stops when none is left (then ``hi − lo ≤ tolerance``),
-  or when the cell budget or the depth limit is reached (then the bounds of the open cubes count and the
-  interval is wider; :attr:`SolidHausdorff.stopped` says so).
+  half-diagonal r gets an upper bound of ``max d(·, B)`` over ``C ∩ A``, the least of:
+
+  - ``d(c, B) + r`` (1-Lipschitz);
+  - for a few triangles T of B (the nearest to c and to C's corners), the maximum over ``C ∩ A`` of the
+    convex ``d(·, T) ≥ d(·, B)``. ``C ∩ A`` lies in the convex hull of C's corners that are in A and of the
+    pieces ``T_A ∩ C`` of A's triangles, so the maximum is bounded by its values at those corners and, for
+    each piece, by the least of its maxima over T_A's vertices, over C's corners, and over points within a
+    proven distance of the piece's vertices (:func:`._solids_kernels._piece_points`);
+  - the same with ``max(0, signed distance to T's plane)`` when B is flat under C: every triangle of B
+    between C and its projection on that plane lies in it (exact) and B is on the far side (exact parity),
+    so ``d(x, B)`` is at most the signed distance (two parallel faces at constant distance close at once);
+  - 0 when ``C ∩ A ⊆ B`` is proved exactly (containment, below).
+
+  A cube that certainly misses A (no triangle of A may meet it — a conservative box/triangle test — and its
+  centre is outside A, exactly) is dropped. Cubes whose bound exceeds ``lo + tolerance`` are split in 8; the
+  search stops when none is left (then ``hi − lo ≤ tolerance``), or when the cell budget or the depth limit
+  is reached (then the bounds of the open cubes count and the interval is wider;
+  :attr:`SolidHausdorff.stopped` says so).
 
 Containment (why shared boundaries do not stall the search): two solids that share faces, edges or corners
 (a voxel object and a part of it) have ``d(·, B) = 0`` along the shared boundary, where ``d(c, B) + r``
-never reaches 0. A cube C is settled at 0 when the triangles of B that may meet C form a convex
-configuration (each lies on the inner side of the others' planes, exact signs), so that ∂B ∩ C lies on the
-boundary of the convex K = ∩ inner half-spaces; a point of int K ∩ int C (the centre or a point half-way to
-a corner) is inside B (exact parity), so int K ∩ int C — connected and missing ∂B — lies in B, and so does
-K ∩ C; and every triangle of A that may meet C has its vertices in K, as has every corner of C that is in A.
-C ∩ A lies in the convex hull of its corners in A and of the pieces of A's triangles in C, hence in K ∩ C.
+never reaches 0. A cube C is settled at 0 when (1) no triangle of B may meet it and its centre is inside B;
+or (2) the triangles of B that may meet C (or the doubled cube Q, for a cube touching B only on its
+boundary) form a convex configuration (each lies on the inner side of the others' planes, exact signs), so
+that ∂B ∩ Q lies on the boundary of the convex K = ∩ inner half-spaces; a point of int K ∩ int Q is inside B
+(exact parity), so int K ∩ int Q — connected and missing ∂B — lies in B, and so does K ∩ Q; and every
+triangle of A that may meet C has its vertices in K, as has every corner of C that is in A: C ∩ A lies in
+the convex hull of those, hence in K ∩ Q; or (3) the same oriented triangles of A and of B may meet Q and
+the centre is on the same side of both: every component of int Q minus the surface is then on the same side
+of both solids; or (4) every triangle of A and B that may meet Q is axis-aligned (voxel reconstructions
+are): their planes cut int Q into open boxes that miss both surfaces, and every box whose midpoint is in A
+has it in B (exact parity) — shared concave edges and differently triangulated faces settle here.
 
 Exactness and rounding
 ----------------------
@@ -39,8 +54,9 @@ Inside/outside decisions are exact: a parity ray with a symbolic perturbation (q
 of magnitude in [2⁻²⁴⁰, 2⁵⁰]; others are refused. Distances are float enclosures: relative 2⁻⁴⁸ plus
 ``2⁻⁴⁴·M`` absolute, M the largest coordinate magnitude, which covers the roundings of a point–triangle
 distance eight times over (the derivation is in :func:`._solids_kernels.tri_dist`); sums of upper bounds are
-rounded up by a relative 2⁻⁵¹. Grid searches need no allowance (monotone bin indices). So the interval is
-not tighter than about ``2⁻⁴³·M``: far from the origin, small details cost precision.
+rounded up by a relative 2⁻⁵¹; the piece points carry ``2⁻³⁶·M``. Grid searches need no allowance
+(monotone bin indices). So the interval is not tighter than about ``2⁻³⁶·M`` where pieces matter: far
+from the origin, small details cost precision.
 
 ``vertex_error``: when every given vertex may be off from the true one by ``vertex_error`` in each
 coordinate, each solid is within ``√3·vertex_error`` of the true one (a point that changes sides while the
@@ -48,9 +64,9 @@ vertices move is crossed by a moving triangle, within ``√3·vertex_error`` of 
 ``h`` moves by at most the sum of the two: the interval is widened by ``2·√3·vertex_error`` on each side.
 
 Cost: the vertices of A cost one nearest-triangle query each (a uniform bin grid of B's triangles); a
-maximum at a vertex closes the search after a few hundred cubes. A maximum spread over a whole face (two
-parallel faces at constant distance) cannot be closed by these bounds: the budget stops it, with a wider
-but still certain interval.
+maximum at a vertex closes the search after a few hundred cubes. Maxima spread over many faces (a voxel
+object against its translate: every face facing the shift is exactly |t| away) cost tens of thousands of
+cubes; when the budget stops the search, the interval is wider but still certain (docs/adr/0059).
 """
 
 from __future__ import annotations
@@ -58,7 +74,6 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -74,8 +89,8 @@ Ints = npt.NDArray[np.int64]
 
 #: Cubes examined per direction before the search stops with a wider interval (a few seconds at most).
 DEFAULT_CELL_BUDGET = 200_000
-#: Deepest subdivision (cubes stay dyadic and exact well before 60 halvings).
-_MAX_DEPTH = 60
+#: Open cubes split per round of the best-first search (enough to amortize a compiled call).
+_ROUND = 4096
 _LOW = 2.0**-240
 _HIGH = 2.0**50
 
@@ -114,21 +129,11 @@ class SolidHausdorff:
         return lo == hi
 
 
-class _Mesh(NamedTuple):
-    V: Floats
-    T: Ints
-    o: Floats
-    g: float
-    n: Ints
-    s3: Ints
-    i3: Ints
-    s2: Ints
-    i2: Ints
-
-
 def _as_mesh(vertices: object, triangles: object, what: str) -> tuple[Floats, Ints]:
-    v = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64).reshape(-1, 3))
-    t = np.ascontiguousarray(np.asarray(triangles, dtype=np.int64).reshape(-1, 3))
+    # Fresh writeable C arrays: numba compiles one specialization per array layout and per read-only flag,
+    # and a Polyhedron's arrays are read-only, so every caller gets the same (warmed-up) signature.
+    v = np.array(vertices, dtype=np.float64, order="C").reshape(-1, 3)
+    t = np.array(triangles, dtype=np.int64, order="C").reshape(-1, 3)
     if not np.isfinite(v).all():
         raise ParameterError(f"{what}: vertex coordinates must be finite")
     if t.size and (t.min() < 0 or t.max() >= len(v)):
@@ -147,7 +152,7 @@ def _check_range(x: Floats, what: str) -> None:
         raise ParameterError(f"{what}: coordinates must be 0 or of magnitude between 2^-240 and 2^50")
 
 
-def _index(v: Floats, t: Ints) -> _Mesh:
+def _index(v: Floats, t: Ints) -> K.Mesh:
     # A uniform bin grid of about 1.5 mean triangle extents per bin, at most MAX_BINS per axis.
     lo = v.min(axis=0) if len(v) else np.zeros(3)
     hi = v.max(axis=0) if len(v) else np.ones(3)
@@ -165,7 +170,7 @@ def _index(v: Floats, t: Ints) -> _Mesh:
     o = np.ascontiguousarray(lo, dtype=np.float64)
     s3, i3 = K.build_grid3(v, t, o, size, n)
     s2, i2 = K.build_grid2(v, t, o, size, n)
-    return _Mesh(v, t, o, size, n, s3, i3, s2, i2)
+    return K.Mesh(v, t, o, float(size), n, s3, i3, s2, i2)
 
 
 def _root(v: Floats) -> tuple[Floats, float]:
@@ -180,51 +185,87 @@ def _root(v: Floats) -> tuple[Floats, float]:
     return np.ascontiguousarray(centre.reshape(1, 3)), 2.0 * big
 
 
+def _radius(h: float) -> float:
+    # The half-diagonal √3·h of a cube of half-side h (a power of two), rounded up.
+    return h * math.sqrt(3.0) * (1.0 + 2.0**-50)
+
+
+def _same_surface(va: Floats, ta: Ints, vb: Floats, tb: Ints) -> bool:
+    # The same set of oriented triangles (coordinates compared exactly, each triangle started at its
+    # lexicographically least vertex): the same solid.
+    if len(ta) != len(tb):
+        return False
+
+    def canonical(v: Floats, t: Ints) -> Floats:
+        c = v[t]  # (m, 3, 3)
+        order = np.lexsort((c[:, :, 2], c[:, :, 1], c[:, :, 0]), axis=-1)[:, 0]
+        rolled = np.stack([c[np.arange(len(c)), (order + k) % 3] for k in range(3)], axis=1)
+        flat = rolled.reshape(len(c), 9)
+        return flat[np.lexsort(flat.T[::-1])]
+
+    return bool(np.array_equal(canonical(va, ta), canonical(vb, tb)))
+
+
 def _directed(
-    a: _Mesh, b: _Mesh, alpha: float, tol: float, budget: int, progress: ProgressLike | None, label: str
+    a: K.Mesh,
+    b: K.Mesh,
+    alpha: float,
+    big: float,
+    tol: float,
+    budget: int,
+    progress: ProgressLike | None,
+    label: str,
 ) -> tuple[float, float, str, int]:
     """[lo, hi] of h(A, B) for non-empty A and B, how the search stopped, and the cubes examined."""
-    lows = K.vertex_lows(a.V, b.V, b.T, b.o, b.g, b.n, b.s3, b.i3, b.o, b.g, b.n, b.s2, b.i2, alpha)
+    lows = K.vertex_lows(a.V, b, alpha)
     lo = float(lows.max())
-    cells, h = _root(a.V)
+    # Best first: each round splits the open cubes with the largest bounds (at most _ROUND of them), so a
+    # search stopped by the budget has refined where the upper bound is.
+    root, h0 = _root(a.V)
+    cells = root
+    sizes = np.array([h0])
+    his, los = K.process_cells(root, h0, _radius(h0), a, b, alpha, big, lo + tol)
+    done = 1
     closed_hi = -math.inf
-    done = 0
     stopped = "tolerance"
-    open_hi = -math.inf
-    for depth in range(_MAX_DEPTH + 1):
-        if progress is not None:
-            progress.update(min(done / budget, 1.0), f"Measuring {label}")
-        r_up = h * math.sqrt(3.0) * (1.0 + 2.0**-50)
-        his, los = K.process_cells(
-            cells, h, r_up,
-            a.V, a.T, a.o, a.g, a.n, a.s3, a.i3, a.o, a.g, a.n, a.s2, a.i2,
-            b.V, b.T, b.o, b.g, b.n, b.s3, b.i3, b.o, b.g, b.n, b.s2, b.i2,
-            alpha,
-        )  # fmt: skip
-        done += len(cells)
+    while True:
         if len(los):
             lo = max(lo, float(los.max()))
         keep = his > lo + tol
-        closed = his[~keep]
-        if len(closed):
-            closed_hi = max(closed_hi, float(closed.max()))
-        cells = cells[keep]
+        if (~keep).any():
+            closed_hi = max(closed_hi, float(his[~keep].max()))
+        cells, sizes, his = cells[keep], sizes[keep], his[keep]
         if len(cells) == 0:
-            open_hi = -math.inf
             break
-        open_hi = float(his[keep].max())
-        h_next = h / 2.0
-        if done + 8 * len(cells) > budget:
+        if progress is not None:
+            progress.update(min(done / budget, 1.0), f"Measuring {label}")
+        room = (budget - done) // 8
+        if room < 1:
             stopped = "budget"
             break
-        if depth == _MAX_DEPTH or h_next < _LOW or h_next < float(np.abs(cells).max()) * 2.0**-50:
+        k = min(len(cells), room, _ROUND)
+        pick = np.argpartition(-his, k - 1)[:k] if k < len(cells) else np.arange(len(cells))
+        half = sizes[pick] / 2.0
+        if (half < _LOW).any() or (half < np.abs(cells[pick]).max(axis=1) * 2.0**-50).any():
             stopped = "depth"
             break
-        offsets = np.array(
-            [[dx, dy, dz] for dz in (-h_next, h_next) for dy in (-h_next, h_next) for dx in (-h_next, h_next)]
-        )
-        cells = np.ascontiguousarray((cells[:, None, :] + offsets[None, :, :]).reshape(-1, 3))
-        h = h_next
+        rest = np.ones(len(cells), bool)
+        rest[pick] = False
+        new_cells, new_sizes, new_his = [cells[rest]], [sizes[rest]], [his[rest]]
+        los_parts = []
+        for hn in np.unique(half):
+            parents = cells[pick][half == hn]
+            offsets = np.array([[dx, dy, dz] for dz in (-hn, hn) for dy in (-hn, hn) for dx in (-hn, hn)])
+            kids = np.ascontiguousarray((parents[:, None, :] + offsets[None, :, :]).reshape(-1, 3))
+            kh, kl = K.process_cells(kids, float(hn), _radius(float(hn)), a, b, alpha, big, lo + tol)
+            done += len(kids)
+            new_cells.append(kids)
+            new_sizes.append(np.full(len(kids), hn))
+            new_his.append(kh)
+            los_parts.append(kl)
+        cells, sizes, his = np.vstack(new_cells), np.concatenate(new_sizes), np.concatenate(new_his)
+        los = np.concatenate(los_parts)
+    open_hi = float(his.max()) if len(his) else -math.inf
     hi = max(closed_hi, open_hi, lo)
     log.debug("h(%s): [%r, %r] after %d cubes (%s)", label, lo, hi, done, stopped)
     return lo, hi, stopped, done
@@ -285,6 +326,8 @@ def solid_hausdorff(
         a_in = (0.0, 0.0) if a_empty else (math.inf, math.inf)
         b_in = (0.0, 0.0) if b_empty else (math.inf, math.inf)
         return SolidHausdorff(a_in, b_in, "tolerance", 0)
+    if _same_surface(va, ta, vb, tb):  # an identity chain: the same oriented triangles, exactly 0
+        return SolidHausdorff((0.0, 0.0), (0.0, 0.0), "tolerance", 0)
     both = np.vstack([va, vb])
     diam = float(np.linalg.norm(both.max(axis=0) - both.min(axis=0)))
     tol = max(1e-6 * diam, 1e-9) if tolerance is None else float(tolerance)
@@ -297,8 +340,8 @@ def solid_hausdorff(
     alpha = K.ABS * big
     ma = _index(va, ta)
     mb = _index(vb, tb)
-    alo, ahi, sa, ca = _directed(ma, mb, alpha, tol, cell_budget, progress, "A outside B")
-    blo, bhi, sb, cb = _directed(mb, ma, alpha, tol, cell_budget, progress, "B outside A")
+    alo, ahi, sa, ca = _directed(ma, mb, alpha, big, tol, cell_budget, progress, "A outside B")
+    blo, bhi, sb, cb = _directed(mb, ma, alpha, big, tol, cell_budget, progress, "B outside A")
     if progress is not None:
         progress.update(1.0, "Measured")
     if vertex_error > 0.0:
