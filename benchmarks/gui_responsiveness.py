@@ -26,7 +26,8 @@ Measured, each over many repeats (medians, with the 90th percentile):
 
 ``--stalls3d [SIDE]`` measures the 3D workflow instead (a display with OpenGL needed, e.g. an Xvfb with
 GLX): a ball of SIDE³ voxels (512 by default) added and shown in the 3D views, orbiting every 100 ms while its
-representations and drawing data are computed, then orbiting for 5 s (target ≤ 100 ms).
+representations and drawing data are computed, then orbiting for 5 s; DSS 1.25 and dR 30° about (1, 1, 1) of
+it applied from the Operations panel, orbiting; the project saved and opened again (target ≤ 100 ms).
 
 ``--startup [N]`` measures instead the real ``mrm`` on a virtual X server, N starts (target ≤ 5 s to the
 painted window, the check of ``tests/app/test_real_display.py``).
@@ -790,6 +791,30 @@ def bench_stalls_3d(side: int = 512, timeout: float = 1800.0) -> list[tuple[str,
 
     step(f"add a {side}³ ball, show the 3D views, orbit while computing", add_and_show, orbit)
     step("orbit the drawn views for 5 s", lambda: None, orbit, seconds=5.0)
+    panel = win.operations
+    ball_id = win.doc.objects[-1].id
+
+    def apply3d(op: str, **values: object) -> None:
+        win.doc.set_selection([ball_id])
+        panel.select_operation(op)
+        panel.inputs[0].setCurrentIndex(panel.inputs[0].findData(ball_id))
+        for name, value in values.items():
+            panel.control(name).set_value(value)
+        panel.apply()
+
+    # the paper's operations on the ball from the Operations panel (issue 30): the work and the result's
+    # representations on workers, the inspector's measurement in a worker process, orbiting all along
+    step("DSS 1.25 of the ball from the panel, orbiting", lambda: apply3d("dss", alpha=1.25), orbit)
+    step(
+        "dR 30° about (1,1,1) of the ball, orbiting",
+        lambda: apply3d("discrete_rotation", angle=30.0, axis=(1.0, 1.0, 1.0)),
+        orbit,
+    )
+    import tempfile
+
+    project = Path(tempfile.mkdtemp(prefix="mrm-stalls3d-")) / "balls.mrm"
+    step("save the project", lambda: win.files.save_as(project))
+    step("open the project, orbiting while it is drawn", lambda: win.files.open(project, ask=False), orbit)
     win.close_now()
     return out
 
