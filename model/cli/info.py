@@ -53,7 +53,7 @@ from mrm.cli._common import (
 )
 from mrm.cli._project_input import add_object_argument
 from mrm.core.errors import LimitError, ParameterError
-from mrm.core.grids import LabelMap, PixelSet
+from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet, dimension_of
 from mrm.core.limits import MAX_LABEL_COUNT_BYTES
 from mrm.core.models import Model
 from mrm.geometry.discretize.voxels import voxelize
@@ -143,18 +143,23 @@ def info_3d(
     if Path(path).suffix.lower() in MESH_EXTENSIONS:
         if threshold is not None:
             raise ParameterError(f"{path}: --threshold applies to images and voxel files only")
-        poly = read_mesh(path)
-        vs = voxelize(poly, model, limit=voxel_limit(limit))
-        return summarize_voxels(vs, model, faces=poly.n_faces, vertices=poly.n_vertices)
-    vs = read_voxel_input(path, threshold, limit)
+        return summary_3d(read_mesh(path), model, limit, path)
+    return summary_3d(read_voxel_input(path, threshold, limit), model, limit, path)
+
+
+def summary_3d(source: Any, model: str, limit: int | None, what: str) -> dict[str, Any]:
+    """The 3D summary of a voxel set (R(A) gives faces and vertices) or a polyhedron (D under ``model``)."""
+    if not isinstance(source, VoxelSet):  # a polyhedron: its own faces and vertices, its voxels D(P)
+        vs = voxelize(source, model, limit=voxel_limit(limit))
+        return summarize_voxels(vs, model, faces=source.n_faces, vertices=source.n_vertices)
     try:
-        poly = reconstruct_voxels(vs, model)
+        poly = reconstruct_voxels(source, model)
     except LimitError as e:
         # The discrete and region summaries stand without R: say why faces and vertices are missing.
-        log.info("no continuation for %s: %s", path, e)
+        log.info("no continuation for %s: %s", what, e)
         print(f"mrm info: warning: {e}; faces and vertices not computed", file=sys.stderr, flush=True)
-        return summarize_voxels(vs, model, faces=None, vertices=None)
-    return summarize_voxels(vs, model, faces=poly.n_faces, vertices=poly.n_vertices)
+        return summarize_voxels(source, model, faces=None, vertices=None)
+    return summarize_voxels(source, model, faces=poly.n_faces, vertices=poly.n_vertices)
 
 
 def _holds_labels(path: str) -> bool:
@@ -172,8 +177,12 @@ def _holds_labels(path: str) -> bool:
 
 def label_volume_info(path: str, model: str, limit: int | None) -> dict[str, Any]:
     """The summary of a label volume: its labels, regions, cells and adjacencies."""
+    return label_volume_summary(read_label_volume(path, limit=limit), model, limit)
+
+
+def label_volume_summary(lv: LabelVolume, model: str, limit: int | None) -> dict[str, Any]:
+    """A label volume's labels, regions, cells and adjacencies (a file's or a project object's)."""
     Model.parse(model)
-    lv = read_label_volume(path, limit=limit)
     cells = cells_3d_of(lv.labels, lv.origin, limit=voxel_limit(limit))
     bbox = lv.bbox
     return {
@@ -246,7 +255,15 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def _summary(source: Any, model: str, limit: int) -> dict[str, Any]:
-    """The summary of one object given by its source: pixels, a label map, or a geometry (discretized)."""
+    """The summary of one object given by its source.
+
+    Pixels, a label map, a geometry (discretized), or a 3D object (voxels, a polyhedron, a label volume: the
+    3D keys).
+    """
+    if isinstance(source, LabelVolume):
+        return label_volume_summary(source, model, None)
+    if dimension_of(source) == 3:
+        return summary_3d(source, model, None, "a 3D object")
     if isinstance(source, PixelSet):
         return summarize(source, model)
     if isinstance(source, LabelMap):
@@ -255,15 +272,30 @@ def _summary(source: Any, model: str, limit: int) -> dict[str, Any]:
 
 
 def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, Any]:
-    """The union of every object's pixels, plus one summary per object under ``objects``."""
+    """The union of every plane object's pixels, plus one summary per object under ``objects``.
+
+    A 3D object is listed with the 3D keys of its own (voxels, components, cavities…); the project's
+    ``voxels`` counts the union of their voxels.
+    """
     per_object = []
     union = PixelSet.empty()
+    solids = VoxelSet.empty()
     # The grids the loaded project holds: what the label maps' counting must share the budget with.
     held = sum(o.source.labels.nbytes for o in objects if isinstance(o.source, LabelMap)) + sum(
         o.source.mask.nbytes for o in objects if isinstance(o.source, PixelSet)
     )
     for obj in objects:
         head = {"id": obj.id, "name": obj.name, "source": obj.kind}
+        if isinstance(obj.source, LabelVolume):
+            per_object.append({**head, **label_volume_summary(obj.source, model, None)})
+            continue
+        if obj.dimension == 3:
+            one = summary_3d(obj.source, model, None, obj.name)
+            solids = solids | (
+                obj.source if isinstance(obj.source, VoxelSet) else voxelize(obj.source, model)
+            )
+            per_object.append({**head, **one})
+            continue
         if isinstance(obj.source, LabelMap):
             union = union | obj.source.support()
             per_object.append({**head, **label_map_info(obj.source, model, held)})
@@ -274,10 +306,13 @@ def _project_summary(objects: list[Any], model: str, limit: int) -> dict[str, An
             ps, geom = discretize_geometry(obj.source, model, limit), obj.source
         union = union | ps
         per_object.append({**head, **summarize(ps, model, geom=geom)})
-    all_euclidean = bool(objects) and all(o.kind == "euclidean" for o in objects)
+    plane = [o for o in objects if o.dimension == 2]
+    all_euclidean = bool(plane) and all(o.kind == "euclidean" for o in plane)
     if all_euclidean:
-        summary = summarize(union, model, geom=combine([o.source for o in objects]))
+        summary = summarize(union, model, geom=combine([o.source for o in plane]))
     else:
         summary = summarize(union, model)
+    if len(plane) < len(objects):
+        summary["voxels"] = len(solids)
     summary["objects"] = per_object
     return summary

@@ -48,6 +48,17 @@ def joint_box(boxes: Iterable[_T | None]) -> _T | None:
     return cast(_T, (*lo, *hi))
 
 
+def dimension_of(value: object) -> int:
+    """The dimension a value lives in: 3 for voxel sets, polyhedra and their exact images, else 2.
+
+    Its class's ``ndim`` (2 for pixel sets); 2 for anything else (shapely geometries). Read from the class,
+    so that knowing a polyhedron is 3D never imports the polyhedra package (the plane work must not load
+    the 3D kernels).
+    """
+    ndim = getattr(type(value), "ndim", 2)
+    return ndim if isinstance(ndim, int) else 2
+
+
 def box_area(box: tuple[int, ...] | None) -> int:
     """The number of pixels or voxels of a box ``(mins..., maxs...)`` (0 for None or an empty box)."""
     if box is None:

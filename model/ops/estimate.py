@@ -13,11 +13,10 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any, Literal
 
-from mrm.core.grids import PixelSet, VoxelSet, box_area, joint_box
+from mrm.core.grids import PixelSet, VoxelSet, box_area, dimension_of, joint_box
 from mrm.core.models import Model
 from mrm.geometry.discretize.exact_shape import ExactShape, mapped_bounds, pixel_box, voxel_bounds
 from mrm.geometry.discretize.exact_solid import ExactSolid
-from mrm.geometry.polyhedra import Polyhedron
 
 __all__ = ["estimated_box", "estimated_pixels"]
 
@@ -70,7 +69,7 @@ def _bounds(source: Any) -> tuple[Fraction, ...] | None:
         return source.bounds()
     if source.is_empty:
         return None
-    if isinstance(source, Polyhedron):
+    if dimension_of(source) == 3:  # a polyhedron
         lo, hi = source.bbox
         return (*(Fraction(v) for v in lo), *(Fraction(v) for v in hi))
     x0, y0, x1, y1 = (Fraction(float(v)) for v in source.bounds)

@@ -33,7 +33,6 @@ from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact_shape import ExactShape, Similarity
 from mrm.geometry.discretize.exact_solid import ExactSolid
 from mrm.geometry.hausdorff import directed_hausdorff
-from mrm.geometry.hausdorff.solids import solid_hausdorff
 
 Direction = Literal["both", "result_within", "source_within"]
 
@@ -163,6 +162,8 @@ def measured_solid_error(
     """
     if reference == result:  # the same solid under the same map: the distance is 0, exactly
         return MeasuredError(0.0, 0.0, 0.0, True, Fraction(1), None, None)
+    from mrm.geometry.hausdorff.solids import solid_hausdorff  # 3D kernels: loaded when a solid is met
+
     rv, r_err = reference.float_vertices()
     sv, s_err = result.float_vertices()
     h = solid_hausdorff(

@@ -21,9 +21,8 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core import limits
 from mrm.core.errors import LimitError, ParameterError
-from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
+from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet, dimension_of
 from mrm.core.limits import PARAMS_MAX_CHARS, PARAMS_MAX_DEPTH
-from mrm.geometry.polyhedra import Polyhedron
 
 __all__ = ["PROVENANCE_MAX_DEPTH", "Provenance", "content_digest", "freeze_json"]
 
@@ -79,7 +78,7 @@ def content_digest(source: Any) -> str:
         h.update(b"label volume:")
         h.update(np.asarray([*source.origin, *source.shape], dtype=np.int64).tobytes())
         h.update(source.labels.astype("<i4", copy=False).tobytes())
-    elif isinstance(source, Polyhedron):
+    elif dimension_of(source) == 3:  # a polyhedron
         h.update(b"solid:")
         for part in source.canonical_bytes():
             h.update(part)
@@ -150,7 +149,7 @@ class Provenance:
         if sources and len(sources) != len(ins):
             raise ParameterError(f"a provenance pins {len(sources)} input contents for {len(ins)} inputs")
         for s in sources:
-            if not isinstance(s, PixelSet | VoxelSet | Polygon | MultiPolygon | Polyhedron):
+            if not (isinstance(s, PixelSet | VoxelSet | Polygon | MultiPolygon) or dimension_of(s) == 3):
                 raise ParameterError(f"a pinned input content must be a source, got {type(s).__name__}")
         object.__setattr__(self, "sources", sources)
         parents = tuple(self.parents) if self.parents else (None,) * len(sources)

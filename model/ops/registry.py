@@ -28,13 +28,12 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 from shapely.geometry.base import BaseGeometry
 
 from mrm.core.errors import ParameterError
-from mrm.core.grids import PixelSet, VoxelSet
+from mrm.core.grids import PixelSet, VoxelSet, dimension_of
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.numbers import spell, value_text
 from mrm.core.params import Parameters
 from mrm.core.progress import NO_PROGRESS, ProgressLike
 from mrm.geometry.hausdorff.bounds import BoundResult, BoundStep, bound_of_chain
-from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import held as held_reconstructions
 from mrm.ops.provenance import Provenance
 
@@ -124,8 +123,8 @@ class OperationSpec:
         inputs of dimension ``n``; None for an operation with no place in it.
     similarity : callable, optional
         ``similarity(params, n=2)``: the exact Euclidean map it applies in dimension ``n`` (Sc_α for DSS, the
-        exact rotation for dR, the identity for Sp: a :class:`~mrm.geometry.discretize.exact_shape.Similarity`
-        in the plane, a :class:`~mrm.geometry.discretize.exact_solid.Similarity3` in space); the account
+        exact rotation for dR, the identity for Sp: a ``Similarity`` in the plane,
+        a ``Similarity3`` in space, both in ``mrm.geometry.discretize``); the account
         composes them. None for an operation that is no step of a one-object chain.
     step : callable, optional
         ``step(source, params, *, limit, progress, estimated=False) -> StepOutcome``: the operation on one
@@ -289,9 +288,7 @@ def input_dimension(inputs: Sequence[Any]) -> int:
 
     Raises ParameterError for inputs of both dimensions (a pixel set and a voxel set).
     """
-    dims = {
-        3 if getattr(obj, "n", None) == 3 or isinstance(obj, (VoxelSet, Polyhedron)) else 2 for obj in inputs
-    }
+    dims = {dimension_of(obj) for obj in inputs}
     if len(dims) > 1:
         raise ParameterError("the inputs mix 2D and 3D objects: an operation takes objects of one dimension")
     return dims.pop() if dims else 2

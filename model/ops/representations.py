@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from mrm.core.grids import PixelSet, VoxelSet
+from mrm.core.grids import PixelSet, VoxelSet, dimension_of
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT
 from mrm.core.models import Model
 from mrm.core.progress import ProgressLike
@@ -18,7 +18,6 @@ from mrm.geometry.discretize import discretize
 from mrm.geometry.discretize.exact_shape import ExactShape
 from mrm.geometry.discretize.exact_solid import ExactSolid
 from mrm.geometry.discretize.rational import discretize_exact, discretize_image
-from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct
 
 __all__ = ["discrete_of", "euclidean_of", "exact_of"]
@@ -26,7 +25,7 @@ __all__ = ["discrete_of", "euclidean_of", "exact_of"]
 
 def exact_of(geom: Any) -> ExactShape | ExactSolid:
     """A Euclidean object as an exact one: an ExactShape for a polygon, an ExactSolid for a polyhedron."""
-    if isinstance(geom, Polyhedron | ExactSolid):
+    if dimension_of(geom) == 3:  # a polyhedron or an exact solid
         return ExactSolid.of(geom)
     return ExactShape.from_geometry(geom)
 
@@ -61,7 +60,7 @@ def discrete_of(
     if isinstance(source, PixelSet | VoxelSet) and sim is None:
         return source
     geom = euclidean_of(source, model)
-    if isinstance(geom, Polyhedron | ExactSolid):  # 3D: the exact image T(P), discretized exactly
+    if dimension_of(geom) == 3:  # a polyhedron or an exact solid: the exact image T(P), discretized exactly
         solid = ExactSolid.of(geom) if sim is None else ExactSolid.of(geom).map(sim)
         return solid.discretize(str(Model.parse(model)), limit=limit, progress=progress)
     if not isinstance(geom, ExactShape):

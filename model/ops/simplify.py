@@ -23,7 +23,7 @@ from fractions import Fraction
 from typing import Any
 
 from mrm.core.errors import InvalidGeometryError, ParameterError
-from mrm.core.grids import box_area
+from mrm.core.grids import box_area, dimension_of
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.numbers import Point, spell
@@ -33,7 +33,6 @@ from mrm.geometry.discretize.exact_shape import ExactShape, Similarity, pixel_bo
 from mrm.geometry.discretize.exact_solid import ExactSolid, identity_map, scaling_map
 from mrm.geometry.discretize.rational import discretize_exact
 from mrm.geometry.hausdorff.bounds import BoundStep, simplification_step
-from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.declare import alpha_param, center_param, model_param
 from mrm.ops.estimate import estimated_pixels
@@ -95,7 +94,7 @@ def simplification(
     params = SimplifyParams.read(alpha=alpha, center=center, model=model)
     model = params.model
     geom = euclidean_of(source, model)
-    if isinstance(geom, Polyhedron | ExactSolid):
+    if dimension_of(geom) == 3:  # a polyhedron or an exact solid
         return _simplification_3d(ExactSolid.of(geom), params, limit=limit, progress=progress)
     sc = _scaling(params)
     a = sc.ratio
@@ -135,6 +134,8 @@ def _simplification_3d(
     When rounding happened, the fixed point is checked exactly — D(Sc_α(result)) must be the same voxels, so
     that Sp_α ∘ Sp_α = Sp_α — and a result that fails it, or is no longer a valid solid, is refused.
     """
+    from mrm.geometry.polyhedra import Polyhedron  # 3D only: the plane work never loads the polyhedra
+
     model = str(params.model)
     sc = scaling_map(params.alpha, params.center, 3)
     what = f"Sp with α = {spell(params.alpha)} (the discretization at scale α)"

@@ -10,7 +10,7 @@ import pytest
 from shapely.geometry import Polygon, box
 
 from mrm.cli import run_cli
-from mrm.core.grids import PixelSet
+from mrm.core.grids import PixelSet, VoxelSet
 from mrm.document import Document, Settings
 from mrm.geometry.discretize import discretize
 from mrm.io.pixel_files import read_pixels
@@ -56,6 +56,18 @@ def test_the_examples_are_there():
     assert {p.name for p in EXAMPLES} >= {"diamond.mrm", "holes-and-components.mrm", "two-polygons.mrm"}
 
 
+#: The 3D keys of mrm info (docs/design.md §11).
+INFO_KEYS_3D = {"voxels", "components", "cavities", "tunnels", "euler", "surfels", "plane_segments", "faces",
+                "vertices"}  # fmt: skip
+
+
+def voxels_of(obj, model: str) -> VoxelSet:
+    """A 3D object's voxels: the set itself, or D of a polyhedron (the voxelizer, not the info command)."""
+    from mrm.geometry.discretize.voxels import voxelize
+
+    return obj.source if isinstance(obj.source, VoxelSet) else voxelize(obj.source, model)
+
+
 def pixels_of(obj, model: str) -> PixelSet:
     """An object's discrete representation, straight from the discretization module."""
     return obj.source if isinstance(obj.source, PixelSet) else discretize(obj.source, model)
@@ -87,19 +99,29 @@ def test_info_of_an_example_with_and_without_object(capsys, example):
     whole = json.loads(out)
     assert whole.keys() >= INFO_KEYS and whole["model"] == model
     union = PixelSet.empty()
+    solids = VoxelSet.empty()
     for obj in project.objects:
-        union = union | pixels_of(obj, model)
+        if obj.dimension == 3:  # a 3D object: its voxels, listed with the 3D keys (the plane union skips it)
+            solids = solids | voxels_of(obj, model)
+        else:
+            union = union | pixels_of(obj, model)
     assert whole["pixels"] == union.count
+    assert whole.get("voxels", 0) == len(solids)
     assert [(o["name"], o["source"]) for o in whole["objects"]] == [(o.name, o.kind) for o in project.objects]
     for obj, listed in zip(project.objects, whole["objects"], strict=True):
         code, out, err = run(capsys, "info", example, "--object", obj.name, "--json")
         assert code == 0, err
         one = json.loads(out)
         assert (one["object"], one["source"], one["model"]) == (obj.name, obj.kind, model)
-        assert one["pixels"] == pixels_of(obj, model).count
         assert "objects" not in one
+        if obj.dimension == 3:
+            assert one["voxels"] == len(voxels_of(obj, model))
+            keys = INFO_KEYS_3D
+        else:
+            assert one["pixels"] == pixels_of(obj, model).count
+            keys = INFO_KEYS
         # the summary of one object is the one listed for it in the whole project's
-        assert {k: one[k] for k in INFO_KEYS} == {k: listed[k] for k in INFO_KEYS}
+        assert {k: one[k] for k in keys} == {k: listed[k] for k in keys}
 
 
 def test_info_object_in_the_projects_model_unless_model_is_given(capsys, gauss_project):

@@ -684,14 +684,18 @@ def test_a_damaged_side_file_is_offered_but_reports_on_restore(tmp_path):
 # ---------------------------------------------------------------------------------------------- examples
 @pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.mrm")), ids=lambda p: p.name)
 def test_example_projects_load_and_satisfy_the_invariant(path):
-    from mrm.geometry.discretize import discretize
+
+    import mrm
 
     doc = load_project(path)
     assert len(doc) >= 1
     for o in doc:
         d = doc.derived(o.id)
-        assert discretize(d.get("euclidean"), doc.model) == d.get("discrete")
-        assert d.get("region").pixels == d.get("discrete").count
+        # D(Euclidean) = discrete: a polygon's pixels, or a 3D example's R(A) voxelized (mrm.discretize)
+        assert mrm.discretize(d.get("euclidean"), doc.model) == d.get("discrete")
+        region = d.get("region")
+        counted = region.voxels if o.dimension == 3 else region.pixels
+        assert counted == d.get("discrete").count
 
 
 def test_examples_hold_what_their_names_say():

@@ -265,7 +265,8 @@ class ExactSolid:
     base: Any
     transform: Similarity3 = Similarity3()
 
-    n = 3
+    #: A solid of space (``mrm.core.grids.dimension_of`` reads it).
+    ndim = 3
 
     @classmethod
     def of(cls, solid: Any) -> ExactSolid:

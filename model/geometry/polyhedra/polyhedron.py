@@ -56,6 +56,9 @@ class Polyhedron:
 
     __slots__ = ("__dict__", "_topology", "_triangles", "_vertices")
 
+    #: A solid of space (``mrm.core.grids.dimension_of`` reads it).
+    ndim = 3
+
     def __init__(self, vertices: object, triangles: object, *, limit: int | None = MAX_TRIANGLES) -> None:
         v, t = as_arrays(vertices, triangles, limit)
         self._topology: Topology = validate(v, t)
