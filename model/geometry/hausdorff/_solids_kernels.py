@@ -28,7 +28,7 @@ import numpy.typing as npt
 
 from mrm.geometry._jit import njit
 from mrm.geometry.discretize._kernels import det_sign
-from mrm.geometry.discretize._kernels3d import SCRATCH3_SIZE, det3_sign
+from mrm.geometry.discretize._kernels3d import SCRATCH3_SIZE, _edge_side, det3_sign
 
 Floats = npt.NDArray[np.float64]
 Ints = npt.NDArray[np.int64]
@@ -132,18 +132,6 @@ def build_grid2(V: Floats, T: Ints, o: Floats, g: float, n: Ints) -> tuple[Ints,
 
 # ------------------------------------------------------------------------------------------- parity
 @njit(cache=True)
-def _edge_side(ay: float, az: float, by: float, bz: float, j: float, k: float, e: Floats) -> int:
-    # Sign of orient((a, b, q)) in the (y, z) plane for q = (j + ε², k + ε³); never 0 for a ≠ b
-    # (the same symbolic perturbation as the voxelization's parity fill).
-    s = det_sign(by, ay, k, az, bz, az, j, ay, False, e)
-    if s != 0:
-        return s
-    if az != bz:
-        return 1 if az > bz else -1
-    return 1 if by > ay else -1
-
-
-@njit(cache=True)
 def inside(qx: float, qy: float, qz: float, m: Mesh, e: Floats) -> bool:
     """Whether q + τ, τ = (ε, ε², ε³) infinitesimal, lies inside the closed mesh (exact; even-odd rule).
 
@@ -173,11 +161,11 @@ def inside(qx: float, qy: float, qz: float, m: Mesh, e: Floats) -> bool:
         s = det_sign(by, ay, cz, az, bz, az, cy, ay, False, e)
         if s == 0:
             continue
-        if _edge_side(ay, az, by, bz, qy, qz, e) != s:
+        if _edge_side(ay, az, by, bz, qy, qz, False, e) != s:
             continue
-        if _edge_side(by, bz, cy, cz, qy, qz, e) != s:
+        if _edge_side(by, bz, cy, cz, qy, qz, False, e) != s:
             continue
-        if _edge_side(cy, cz, ay, az, qy, qz, e) != s:
+        if _edge_side(cy, cz, ay, az, qy, qz, False, e) != s:
             continue
         d = det3_sign(V[a0, 0], ay, az, V[a1, 0], by, bz, V[a2, 0], cy, cz, qx, qy, qz, False, e)
         if s * d > 0:
