@@ -319,7 +319,8 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         """The header's text and tool tip when a coarser level (``factor`` > 1) is drawn."""
         return (
             f"coarser level: blocks of {factor}³ voxels",
-            f"An object has more than {self.SURFEL_BUDGET:,} surfels: each block of {factor}×{factor}×"
+            f"An object has more than its share of the view's {self.SURFEL_BUDGET:,} surfels: each block of "
+            f"{factor}×{factor}×"
             f"{factor} voxels holding one is drawn as one voxel.",
         )
 
@@ -422,6 +423,27 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
     #: 0.25 µs per surfel (306 k surfels: 84 ms, 77 k: 28 ms, 35 k: 16 ms), so 50 k keeps four under 100 ms.
     SURFEL_BUDGET = 50_000
 
+    #: The least budget an object gets when many share a view (a small object is drawn whole anyway).
+    SURFEL_BUDGET_MIN = 5_000
+
+    def object_budget(self) -> int:
+        """The surfels one object may draw: the view's budget shared by the 3D objects it draws.
+
+        The budget bounds a frame of the four views (llvmpipe paints on the GUI thread), so three big
+        objects on screen get a third each, not 50 k each (a frame of three 10⁶-voxel balls took 0.5–0.8 s).
+        """
+        shown = sum(1 for o in self.objects() if o.kind != "labels")
+        return min(self.SURFEL_BUDGET, max(self.SURFEL_BUDGET_MIN, self.SURFEL_BUDGET // max(1, shown)))
+
+    def budgeted(self, obj_id: int, what: str, budget: int) -> str:
+        """The name of ``obj_id``'s drawing data ``what`` at ``budget``; that of another budget is dropped."""
+        name = f"{what}@{budget}"
+        for key in [
+            k for k in self._prepared if k[0] == obj_id and k[1].startswith(f"{what}@") and k[1] != name
+        ]:
+            del self._prepared[key]
+        return name
+
     def surfel_data(self, obj: DocObject, colour_of: Any) -> dict[str, Any] | None:
         """Surfel meshes of a voxel object's surfaces, coloured by ``colour_of(region, surfaces)``.
 
@@ -435,7 +457,7 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         if region is None or vs is None:
             return None
         n = int(region.n_surfels)
-        budget = self.SURFEL_BUDGET
+        budget = self.object_budget()
 
         def compute() -> dict[str, Any]:
             from mrm.geometry.topology.level_of_detail import coarse_level
@@ -452,7 +474,7 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
             data["factor"] = factor
             return data
 
-        return self.prepared(obj.id, "surfels", region, n, compute)
+        return self.prepared(obj.id, self.budgeted(obj.id, "surfels", budget), region, n, compute)
 
 
 def _placement(vs: Any, factor: int) -> tuple[float, tuple[float, float, float]]:
@@ -834,7 +856,7 @@ class AnalyticalView3D(View3D):
             return None
         seg = ana.segmentation
         n = int(seg.segment_of.size)
-        budget = self.SURFEL_BUDGET
+        budget = self.object_budget()
 
         def compute() -> dict[str, Any]:
             # the surfels' neighbours, numbered over all surfaces in the segmentation's order
@@ -860,7 +882,7 @@ class AnalyticalView3D(View3D):
             data["factor"] = factor
             return data
 
-        return self.prepared(obj.id, "segments", ana, n, compute)
+        return self.prepared(obj.id, self.budgeted(obj.id, "segments", budget), ana, n, compute)
 
 
 class EuclideanView3D(View3D):
@@ -878,7 +900,7 @@ class EuclideanView3D(View3D):
         if poly is None:
             return None
         colour = gl_mesh.rgba8(obj.style.fill)
-        budget = 2 * self.SURFEL_BUDGET  # triangles: a surfel is two
+        budget = 2 * self.object_budget()  # triangles: a surfel is two
 
         def compute() -> dict[str, Any]:
             from mrm.geometry.topology.level_of_detail import coarse_mesh
@@ -892,13 +914,14 @@ class EuclideanView3D(View3D):
             data["factor"] = math.ceil(cell) if cell > 0 else 1
             return data
 
-        return self.prepared(obj.id, "polyhedron", poly, int(poly.n_triangles), compute)
+        what = self.budgeted(obj.id, "polyhedron", budget)
+        return self.prepared(obj.id, what, poly, int(poly.n_triangles), compute)
 
     def level_note(self, factor: int) -> tuple[str, str]:
         return (
             f"coarser level: vertices merged in cubes of side {factor}",
-            f"A polyhedron has more than {2 * self.SURFEL_BUDGET:,} triangles: its vertices in each cube of "
-            f"side {factor} are drawn as one.",
+            f"A polyhedron has more than its share of {2 * self.SURFEL_BUDGET:,} triangles: its vertices in "
+            f"each cube of side {factor} are drawn as one.",
         )
 
 

@@ -70,3 +70,28 @@ def test_a_voxel_object_within_the_budget_is_drawn_whole_with_an_empty_header(ma
     data, _items = view._items[obj.id]
     assert data["factor"] == 1 and len(data["faces"]) // 2 == win.scene.get(obj.id, "region").n_surfels
     assert view.coarsest_level() == 1 and "coarser" not in view.status_label.text()
+
+
+def test_objects_in_view_share_the_surfel_budget_so_a_frame_stays_bounded(make_window, qtbot, monkeypatch):
+    """Two balls of 7,500 surfels each under a 10,000-surfel budget: each drawn coarser, together within it.
+
+    (Each got the whole budget before: three 10⁶-voxel objects in view took 0.5–0.8 s per frame on llvmpipe.)
+    """
+    monkeypatch.setattr(View3D, "SURFEL_BUDGET", 10_000)
+    monkeypatch.setattr(View3D, "SURFEL_BUDGET_MIN", 1_000)
+    win = make_window(threaded=True)
+    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
+    ball = x * x + y * y + z * z <= R * R
+    objs = [win.doc.make_object(VoxelSet(ball, (-R + dx, -R, -R)), name=f"ball {dx}") for dx in (0, 3 * R)]
+    for obj in objs:
+        win.doc.push(AddObject(obj))
+    area = _show_3d(qtbot, win)
+    view = area.by_name("discrete3d")
+    assert all(win.scene.get(o.id, "region").n_surfels > 5_000 for o in objs)
+    drawn = [view._items[o.id][0] for o in objs]
+    assert all(d["factor"] >= 2 for d in drawn)
+    assert sum(len(d["faces"]) // 2 for d in drawn) <= 10_000
+    # one ball deleted: the other gets the whole budget back and is drawn at full detail again
+    win.doc.history.undo()
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    assert view._items[objs[0].id][0]["factor"] == 1
