@@ -26,6 +26,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mrm.core.errors import ParameterError
+from mrm.core.limits import check_chain_steps
 from mrm.core.models import Model
 from mrm.geometry.hausdorff.bounds import N_DIM, BoundResult, BoundStep, bound_of_chain
 from mrm.ops.registry import OperationSpec, get_operation, operations
@@ -73,7 +74,12 @@ def chain_bound(
     exact_identities: bool = False,
     n: int = N_DIM,
 ) -> BoundResult:
-    """The error bound of a chain (:func:`mrm.geometry.hausdorff.bounds.bound_of_chain` on its steps)."""
+    """The error bound of a chain (:func:`mrm.geometry.hausdorff.bounds.bound_of_chain` on its steps).
+
+    A chain beyond the step limit is refused before any step is put into the bound rule (each makes its
+    exact map).
+    """
+    check_chain_steps(len(links))
     return bound_of_chain(
         [link.bound_step(n) for link in links], model, n=n, exact_identities=exact_identities
     )
