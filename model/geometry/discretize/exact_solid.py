@@ -308,9 +308,12 @@ class ExactSolid:
     def float_vertices(self) -> tuple[np.ndarray, float]:
         """The image's vertices rounded to float64, and a bound of the rounding error of any coordinate.
 
-        Computed with Python integers: the base's coordinates are ``X·2⁻ᵏ`` (dyadic), so every image
+        Computed with Python integers: the base's coordinates are ``X·2⁻ᵏ`` (dyadic, read by the exact
+        voxelization's :func:`~mrm.geometry.discretize.voxel_images.integer_vertices`), so every image
         coordinate is one integer over one common denominator, and the division rounds once.
         """
+        from mrm.geometry.discretize.voxel_images import integer_vertices
+
         v = np.asarray(self.base.vertices, dtype=np.float64)
         if self.transform.is_identity or v.size == 0:
             return v.copy(), 0.0
@@ -319,9 +322,8 @@ class ExactSolid:
         den = math.lcm(*(x.denominator for row in m for x in row), *(x.denominator for x in t))
         mi = np.array([[int(x * den) for x in row] for row in m], dtype=object)
         ti = np.array([int(x * den) for x in t], dtype=object)
-        _, exp = np.frexp(v)
-        k = max(0, 53 - int(exp.min(initial=0)))  # every coordinate is an integer multiple of 2^-k
-        xi = np.array([[int(math.ldexp(c, k)) for c in row] for row in v.tolist()], dtype=object)
+        x, k = integer_vertices(v)  # v = x·2^-k exactly
+        xi = x.astype(object)  # Python integers: the products below may pass int64
         num = xi.dot(mi.T) + ti * 2**k  # image = num / (den · 2^k)
         scale = den * 2**k
         out = np.array([[c / scale for c in row] for row in num.tolist()], dtype=np.float64)

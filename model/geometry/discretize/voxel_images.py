@@ -67,7 +67,7 @@ from mrm.core.progress import ProgressLike
 from mrm.geometry.discretize.exact import MAX_ABS_COORD
 from mrm.geometry.discretize.voxels import MIN_ABS_COORD_3D, voxelize_solid
 
-__all__ = ["voxelize_image"]
+__all__ = ["integer_vertices", "voxelize_image"]
 
 log = logging.getLogger(__name__)
 
@@ -218,7 +218,7 @@ def _exact_map(linear: Matrix, offset: Sequence[Any]) -> tuple[list[list[Fractio
 
 
 # ---------------------------------------------------------------------------------- the finer grid
-def _integer_vertices(v: Floats) -> tuple[npt.NDArray[Any], int]:
+def integer_vertices(v: Floats) -> tuple[npt.NDArray[Any], int]:
     """(X, k) with v = X·2^-k exactly, X integers (int64 when they fit, else Python ints), k ≥ 0 least."""
     mant, e = np.frexp(v)  # v = mant·2^e, 0.5 ≤ |mant| < 1
     big = np.ldexp(mant, 53).astype(np.int64)  # v = big·2^(e − 53), exactly
@@ -243,7 +243,7 @@ def _fine_image(
     v: Floats, m: list[list[Fraction]], t: list[Fraction]
 ) -> tuple[npt.NDArray[Any], list[int], int]:
     """(Z, e, N): N·T(v)_i = Z[:, i]·2^-e[i] exactly, N the odd part of the image's common denominator."""
-    x, k = _integer_vertices(v)
+    x, k = integer_vertices(v)
     xmax = [int(np.abs(x[:, j]).max()) for j in range(3)]
     rows = []
     for i in range(3):
