@@ -47,6 +47,7 @@ class Task:
     progress: TaskProgress = field(default_factory=TaskProgress)
     done: bool = False
     at_par: bool = False
+    drawing: bool = False
 
     def cancel(self) -> None:
         self.progress.cancel()
@@ -135,6 +136,11 @@ class TaskRunner(QtCore.QObject):
         # cannot be raised again without privileges, so they have their own).
         self._par_pool = QtCore.QThreadPool(self)
         self._par_pool.setMaxThreadCount(4)
+        # The views' drawing data (``drawing=True``): short jobs the user is looking at, which must not queue
+        # behind operations and derivations that hold the main pool's threads for seconds (a 3D view
+        # waited 15 minutes behind them when it shared the pool). Two threads: one view at a time per core.
+        self._draw_pool = QtCore.QThreadPool(self)
+        self._draw_pool.setMaxThreadCount(2)
         self._signals = _Signals(self)
         self._signals.finished.connect(self._on_finished)
         self._signals.failed.connect(self._on_failed)
@@ -158,12 +164,16 @@ class TaskRunner(QtCore.QObject):
         revision: int | None = None,
         show_progress: bool = False,
         at_par: bool = False,
+        drawing: bool = False,
     ) -> Task:
         """Run ``fn(progress)``; cancel whatever ran in ``slot`` before. See the module docstring.
 
         ``at_par``: in a thread at the window's priority, not :data:`WORKER_NICENESS` below it. For short
         Python work the user waits for, such as loading the kernels at start-up: a lowered thread holding the
         GIL is starved on a busy machine, and the window, waiting for the GIL, with it (ADR 0042).
+
+        ``drawing``: a view's drawing data, run on threads of their own (below the window's priority) so that
+        it never waits for long work in the main pool.
         """
         old = self._current.get(slot)
         if old is not None and not old.done:
@@ -178,6 +188,7 @@ class TaskRunner(QtCore.QObject):
             revision,
             show_progress,
             at_par=at_par,
+            drawing=drawing,
         )
         if show_progress:
             task.progress = TaskProgress(lambda f, m, t=task: self._signals.progressed.emit(t, f, m))
@@ -229,6 +240,7 @@ class TaskRunner(QtCore.QObject):
         self.cancel()
         self._pool.waitForDone(timeout_ms)
         self._par_pool.waitForDone(timeout_ms)
+        self._draw_pool.waitForDone(timeout_ms)
         # Outcomes already queued are dropped: their receivers are going away.
         for task in list(self._running):
             task.done = True
@@ -237,7 +249,8 @@ class TaskRunner(QtCore.QObject):
 
     # ------------------------------------------------------------------ internals
     def _start(self, task: Task) -> None:
-        (self._par_pool if task.at_par else self._pool).start(_Worker(task, self._signals))
+        pool = self._par_pool if task.at_par else self._draw_pool if task.drawing else self._pool
+        pool.start(_Worker(task, self._signals))
 
     def _on_finished(self, task: Task, result: Any) -> None:
         self._deliver(task, "result", result)

@@ -81,7 +81,7 @@ class PreparedDrawing:
             self._preparing.pop(slot, None)
             raise exc
 
-        self.scene.runner.submit(slot, lambda _p: compute(), on_result=done, on_error=failed)
+        self.scene.runner.submit(slot, lambda _p: compute(), on_result=done, on_error=failed, drawing=True)
         return None
 
     def is_preparing(self) -> bool:

@@ -297,7 +297,9 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
             old = self._items.get(obj.id)
             if old is not None and old[0] is data:
                 continue
-            self._remove(obj.id)
+            # the items only: the drawing data just prepared stays (forgetting it made every worker's result
+            # send the other objects back to their workers, each refresh in turn, without end)
+            self._remove(obj.id, forget=False)
             items = self.make_items(obj, data)
             for it in items:
                 self.pane.addItem(it)
@@ -328,11 +330,12 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         """The largest pooling factor among the drawn objects (1: every object drawn at full detail)."""
         return max((int(d.get("factor", 1)) for d, _items in self._items.values()), default=1)
 
-    def _remove(self, obj_id: int) -> None:
+    def _remove(self, obj_id: int, *, forget: bool = True) -> None:
         _data, items = self._items.pop(obj_id, (None, []))
         for it in items:
             self.pane.removeItem(it)
-        self.forget_prepared(obj_id)
+        if forget:
+            self.forget_prepared(obj_id)
 
     def bounds(self) -> Box3 | None:
         """The box holding every drawn vertex (None when nothing is drawn)."""
@@ -426,6 +429,21 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
     #: The least budget an object gets when many share a view (a small object is drawn whole anyway).
     SURFEL_BUDGET_MIN = 5_000
 
+    #: Drawing data up to this many elements is made at once on the GUI thread. A 3D element costs far more
+    #: than a pixel of the plane views (a surfel is four vertices, their normals and colours; a triangle's
+    #: face edges are found by sorting): 84 k triangles took 80 ms, so beyond 20 k the work goes to a worker.
+    PREPARE_SYNC = 20_000
+
+    @staticmethod
+    def surfel_work(n: int, budget: int, vs: Any) -> int:
+        """How much work the surfels of a voxel object take to prepare.
+
+        ``n`` surfels drawn as they are, or every voxel of the mask when a coarser level must be pooled from
+        it (a 10⁶-voxel ball's pooling took 100–200 ms with only 50 k surfels: counting surfels kept it on the
+        GUI thread).
+        """
+        return n if n <= budget else max(n, int(vs.mask.size))
+
     def object_budget(self) -> int:
         """The surfels one object may draw: the view's budget shared by the 3D objects it draws.
 
@@ -474,7 +492,8 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
             data["factor"] = factor
             return data
 
-        return self.prepared(obj.id, self.budgeted(obj.id, "surfels", budget), region, n, compute)
+        what = self.budgeted(obj.id, "surfels", budget)
+        return self.prepared(obj.id, what, region, self.surfel_work(n, budget, vs), compute)
 
 
 def _placement(vs: Any, factor: int) -> tuple[float, tuple[float, float, float]]:
@@ -882,7 +901,8 @@ class AnalyticalView3D(View3D):
             data["factor"] = factor
             return data
 
-        return self.prepared(obj.id, self.budgeted(obj.id, "segments", budget), ana, n, compute)
+        what = self.budgeted(obj.id, "segments", budget)
+        return self.prepared(obj.id, what, ana, self.surfel_work(n, budget, vs), compute)
 
 
 class EuclideanView3D(View3D):

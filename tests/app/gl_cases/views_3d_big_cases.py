@@ -95,3 +95,44 @@ def test_objects_in_view_share_the_surfel_budget_so_a_frame_stays_bounded(make_w
     win.doc.history.undo()
     qtbot.waitUntil(win.is_drawn, timeout=60_000)
     assert view._items[objs[0].id][0]["factor"] == 1
+
+
+def test_coarser_levels_are_pooled_off_the_gui_thread_once_per_object_and_view(
+    make_window, qtbot, monkeypatch
+):
+    """Two balls over their share of the budget: the pooling of a coarser level (which reads every voxel of
+    the mask) runs on a worker, and once per object and view, however many frames are drawn meanwhile.
+
+    Before, the pooling ran on the GUI thread (100–200 ms for a 10⁶-voxel ball: the work was counted in
+    surfels, not voxels); moved to a worker, each worker's result made the view forget the other objects'
+    data and send them back to their workers, without end (the 3D stall benchmark never finished).
+    """
+    import threading
+
+    from mrm.geometry.topology import level_of_detail
+
+    monkeypatch.setattr(View3D, "SURFEL_BUDGET", 10_000)
+    monkeypatch.setattr(View3D, "SURFEL_BUDGET_MIN", 1_000)
+    monkeypatch.setattr(View3D, "PREPARE_SYNC", 20_000)  # the voxels of the masks (69 k each) are over it
+    calls: list[bool] = []
+    real = level_of_detail.coarse_level
+
+    def recording(*args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(threading.current_thread() is threading.main_thread())
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(level_of_detail, "coarse_level", recording)
+    win = make_window(threaded=True)
+    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
+    ball = x * x + y * y + z * z <= R * R
+    objs = [win.doc.make_object(VoxelSet(ball, (-R + dx, -R, -R)), name=f"ball {dx}") for dx in (0, 3 * R)]
+    for obj in objs:
+        win.doc.push(AddObject(obj))
+    area = _show_3d(qtbot, win)
+    qtbot.wait(1000)  # frames and refreshes go on: nothing is prepared again
+    assert win.is_drawn()
+    pooled = ("discrete3d", "region3d", "analytical3d")  # the views that pool voxels
+    assert calls and not any(calls), "a coarser level was pooled on the GUI thread"
+    assert len(calls) <= len(pooled) * len(objs), f"{len(calls)} poolings for 2 objects in 3 views"
+    for name in pooled:
+        assert all(area.by_name(name)._items[o.id][0]["factor"] >= 2 for o in objs), name
