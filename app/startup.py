@@ -108,12 +108,19 @@ def preload(win: Any) -> None:
     def restore(_r: object = None) -> None:
         scene.sync_cost = cost
 
+    from mrm.views.view3d import opengl_available
+
+    gl = opengl_available()  # read here: Qt's platform is asked on the GUI thread
+
     def work(p: Any) -> None:
         # First the worker process of the operations and measurements (ADR 0025): it loads its modules and
         # kernels meanwhile, in parallel, so that the first Apply finds it ready (ADR 0042).
         win.runner.warm_processes()
         load_kernels()
         load_view_kernels()
+        if gl:
+            # pyqtgraph.opengl and PyOpenGL: 90 ms of imports the first 3D view would make on the GUI thread
+            import pyqtgraph.opengl  # noqa: F401
 
     win.runner.submit(
         "warmup",
