@@ -7,6 +7,7 @@ from typing import Any
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from mrm.views.elided_label import ElidedLabel
 from mrm.views.geometry_edit import pixel_at, vertex_count
 from mrm.views.scene import Scene, pixel_count
 
@@ -20,84 +21,6 @@ def _fmt(v: float) -> str:
 
 def _int(v: int) -> str:
     return f"{v:,}".replace(",", "\u2009").replace("-", "−")
-
-
-class ElidedLabel(QtWidgets.QLabel):
-    """A one-line plain-text label that elides what does not fit (``…``), with the whole text as tooltip.
-
-    Its size hint asks for the whole text but never more than ``most`` pixels, and it may shrink to
-    ``least``: a long text cannot widen the window. A leading part may be drawn bold (:meth:`set_parts`).
-    """
-
-    def __init__(
-        self, parent: QtWidgets.QWidget | None = None, *, least: int = 0, most: int = 10_000
-    ) -> None:
-        super().__init__("", parent)
-        self.least, self.most = least, most
-        self._lead = ""  # the bold start of the text
-        self.setTextFormat(QtCore.Qt.TextFormat.PlainText)
-
-    def setText(self, text: str) -> None:
-        self.set_parts("", text)
-
-    def set_parts(self, lead: str, rest: str) -> None:
-        """Show ``lead`` in bold, then ``rest``."""
-        self._lead = lead
-        super().setText(lead + rest)
-        self._update_tip()
-        self.updateGeometry()
-
-    def _bold(self) -> QtGui.QFontMetrics:
-        font = QtGui.QFont(self.font())
-        font.setBold(True)
-        return QtGui.QFontMetrics(font)
-
-    def _pieces(self) -> tuple[str, str]:
-        """The lead and the rest as drawn in the label's width (elided where they do not fit)."""
-        width = max(0, self.contentsRect().width())
-        rest = self.text()[len(self._lead) :]
-        elide = QtCore.Qt.TextElideMode.ElideRight
-        if not self._lead:
-            return "", self.fontMetrics().elidedText(rest, elide, width)
-        bold = self._bold()
-        lead = bold.elidedText(self._lead, elide, width)
-        if lead != self._lead:
-            return lead, ""
-        return lead, self.fontMetrics().elidedText(rest, elide, width - bold.horizontalAdvance(lead))
-
-    def displayed_text(self) -> str:
-        """What is drawn: the text, elided to the label's width."""
-        return "".join(self._pieces())
-
-    def _update_tip(self) -> None:
-        self.setToolTip(self.text() if self.displayed_text() != self.text() else "")
-
-    def sizeHint(self) -> QtCore.QSize:
-        rest = self.text()[len(self._lead) :]
-        need = self._bold().horizontalAdvance(self._lead) + self.fontMetrics().horizontalAdvance(rest) + 4
-        return QtCore.QSize(min(self.most, max(self.least, need)), super().sizeHint().height())
-
-    def minimumSizeHint(self) -> QtCore.QSize:
-        return QtCore.QSize(self.least, super().minimumSizeHint().height())
-
-    def resizeEvent(self, ev: QtGui.QResizeEvent) -> None:
-        super().resizeEvent(ev)
-        self._update_tip()
-
-    def paintEvent(self, _ev: QtGui.QPaintEvent) -> None:
-        p = QtGui.QPainter(self)
-        p.setPen(self.palette().color(self.foregroundRole()))
-        rect = QtCore.QRectF(self.contentsRect())
-        flags = int(QtCore.Qt.AlignmentFlag.AlignLeft | QtCore.Qt.AlignmentFlag.AlignVCenter)
-        lead, rest = self._pieces()
-        if lead:
-            font = QtGui.QFont(self.font())
-            font.setBold(True)
-            p.setFont(font)
-            p.drawText(rect, flags, lead)
-            rect.setLeft(rect.left() + self._bold().horizontalAdvance(lead))
-            p.setFont(self.font())
-        p.drawText(rect, flags, rest)
 
 
 def progress_text(label: str, message: str) -> str:

@@ -16,6 +16,7 @@ from mrm.document import Changes, DocObject
 from mrm.document.derive import Rep
 from mrm.views.canvas import PlaneView
 from mrm.views.scene import CANCELLED, Phantom, Scene
+from mrm.views.view_header import ViewHeader
 
 
 class Layer(pg.ItemGroup):
@@ -120,25 +121,11 @@ class RepresentationView(PreparedDrawing, QtWidgets.QFrame):
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
         lay.setSpacing(0)
-        self.header = QtWidgets.QWidget(self)
-        self.header.setObjectName("viewHeader")
-        hl = QtWidgets.QHBoxLayout(self.header)
-        hl.setContentsMargins(8, 3, 6, 3)
-        hl.setSpacing(6)
-        self.title_label = QtWidgets.QLabel(f"<b>{self.title}</b>", self.header)
-        self.subtitle_label = QtWidgets.QLabel(self.subtitle, self.header)
-        self.subtitle_label.setObjectName("viewSubtitle")
-        self.status_label = QtWidgets.QLabel("", self.header)
-        self.status_label.setObjectName("viewStatus")
-        for lab in (self.subtitle_label, self.status_label):
-            # Long texts are cut, never allowed to widen the view (the four views share the space evenly).
-            lab.setSizePolicy(QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Preferred)
-        self.status_label.setAlignment(
-            QtCore.Qt.AlignmentFlag.AlignRight | QtCore.Qt.AlignmentFlag.AlignVCenter
-        )
-        hl.addWidget(self.title_label)
-        hl.addWidget(self.subtitle_label, 2)
-        hl.addWidget(self.status_label, 3)
+        self.header = ViewHeader(self.title, self.subtitle, self)
+        hl = self.header.layout_
+        self.title_label = self.header.title_label
+        self.subtitle_label = self.header.subtitle_label
+        self.status_label = self.header.status_label
         # After a Cancel in the status bar: compute what was left out (shown only then).
         self.resume_button = QtWidgets.QToolButton(self.header)
         self.resume_button.setObjectName("resumeDerivations")
@@ -259,20 +246,15 @@ class RepresentationView(PreparedDrawing, QtWidgets.QFrame):
             if e:
                 errors.append(f"{obj.name}: {e}")
         if cancelled and not errors:
-            self.status_label.setText(f"{cancelled[0]}: {CANCELLED}")
-            self.status_label.setToolTip("\n".join(cancelled))
+            self.header.show_status(f"{cancelled[0]}: {CANCELLED}", "\n".join(cancelled))
         elif errors:
-            self.status_label.setText(f"<span style='color:#c0392b'>{errors[0]}</span>")
-            self.status_label.setToolTip("\n".join(errors))
+            self.header.show_status(errors[0], "\n".join(errors), error=True)
         elif any(layer.waiting for layer in self._layers.values()):
-            self.status_label.setText("computing…")
-            self.status_label.setToolTip("")
+            self.header.show_status("computing…")
         elif (note := self.label_map_note()) is not None:
-            self.status_label.setText(f"<span style='color:#7f7f7f'>{note}</span>")
-            self.status_label.setToolTip(note)
+            self.header.show_status(note, note)
         else:
-            self.status_label.setText("")
-            self.status_label.setToolTip("")
+            self.header.show_status("")
         from mrm.views.label_maps import LABEL_LEGEND
 
         maps = any(o.kind == "labels" and o.style.visible for o in self.scene.doc.plane_objects)
@@ -311,11 +293,10 @@ class RepresentationView(PreparedDrawing, QtWidgets.QFrame):
     # ------------------------------------------------------------------ appearance
     def _style_header(self) -> None:
         pal = self.palette()
-        mid = pal.color(QtGui.QPalette.ColorRole.PlaceholderText).name()
-        self.subtitle_label.setStyleSheet(f"color: {mid};")
+        self.header.restyle(pal)
         if hasattr(self, "legend_label"):
+            mid = pal.color(QtGui.QPalette.ColorRole.PlaceholderText).name()
             self.legend_label.setStyleSheet(f"color: {mid}; font-size: 8pt;")
-        self.status_label.setStyleSheet(f"color: {mid};")
 
     def changeEvent(self, ev: QtCore.QEvent) -> None:
         if ev.type() in (QtCore.QEvent.Type.PaletteChange, QtCore.QEvent.Type.ApplicationPaletteChange):

@@ -28,6 +28,7 @@ from mrm.document.derive import Rep
 from mrm.views import gl_mesh
 from mrm.views.base_view import PreparedDrawing
 from mrm.views.scene import Scene
+from mrm.views.view_header import ViewHeader
 
 log = logging.getLogger(__name__)
 
@@ -229,24 +230,10 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
         lay.setSpacing(0)
-        header = QtWidgets.QWidget(self)
-        header.setObjectName("viewHeader")
-        hl = QtWidgets.QHBoxLayout(header)
-        hl.setContentsMargins(8, 3, 6, 3)
-        hl.addWidget(QtWidgets.QLabel(f"<b>{self.title}</b>", header))
-        sub = QtWidgets.QLabel(self.subtitle, header)
-        sub.setObjectName("viewSubtitle")
-        hl.addWidget(sub, 2)
-        self.status_label = QtWidgets.QLabel("", header)
-        self.status_label.setObjectName("viewStatus")
-        self.status_label.setAlignment(
-            QtCore.Qt.AlignmentFlag.AlignRight | QtCore.Qt.AlignmentFlag.AlignVCenter
-        )
-        for lab in (sub, self.status_label):
-            lab.setSizePolicy(QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Preferred)
-        hl.addWidget(self.status_label, 3)
-        self.header_layout = hl
-        lay.addWidget(header)
+        self.header = ViewHeader(self.title, self.subtitle, self)
+        self.header.restyle(self.palette())
+        self.status_label = self.header.status_label
+        lay.addWidget(self.header)
         self.pane = make_pane(camera, self)
         self.pane.owner = self
         lay.addWidget(self.pane, 1)
@@ -305,16 +292,13 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
                 self.pane.addItem(it)
             self._items[obj.id] = (data, items)
         if errors:
-            self.status_label.setText(f"<span style='color:#c0392b'>{errors[0]}</span>")
-            self.status_label.setToolTip("\n".join(errors))
+            self.header.show_status(errors[0], "\n".join(errors), error=True)
         elif self._waiting:
-            self.status_label.setText("computing…")
-            self.status_label.setToolTip("")
+            self.header.show_status("computing…")
         else:
             factor = self.coarsest_level()
             text, tip = self.level_note(factor) if factor > 1 else ("", "")
-            self.status_label.setText(text)
-            self.status_label.setToolTip(tip)
+            self.header.show_status(text, tip)
         self.refreshed.emit()
 
     def level_note(self, factor: int) -> tuple[str, str]:
@@ -374,7 +358,7 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         try:
             self.scene.doc.push(SetSource(obj_id, voxels, label=label))
         except MRMError as e:  # the document stays as it was
-            self.status_label.setText(f"<span style='color:#c0392b'>{e}</span>")
+            self.header.show_status(str(e), error=True)
 
     def ray_at(self, pos: QtCore.QPointF) -> tuple[np.ndarray, np.ndarray]:
         """The ray from the camera through the pane's point ``pos`` (widget pixels): origin and direction."""
@@ -575,7 +559,6 @@ class DiscreteView3D(View3D):
         self._difference_item: Any = None  # the voxels that differ from the direct result (show_difference)
         self._stroke: dict[str, Any] | None = None
         super().__init__(scene, camera, parent)
-        hl = self.header_layout
         self.slice_button = self._tool_button(
             "sliceButton", "Slice", "Show the slice plane z = k (PgUp/PgDn)"
         )
@@ -595,8 +578,19 @@ class DiscreteView3D(View3D):
         )
         self.paint_button.toggled.connect(lambda on: self._brush_toggled("paint", on))
         self.erase_button.toggled.connect(lambda on: self._brush_toggled("erase", on))
+        # The tools get a row of their own under the header: beside the title they left the subtitle and
+        # the level note no room at all in a quarter of the window.
+        strip = QtWidgets.QWidget(self)
+        strip.setObjectName("viewTools")
+        row = QtWidgets.QHBoxLayout(strip)
+        row.setContentsMargins(8, 0, 6, 2)
+        row.setSpacing(6)
         for w in (self.slice_button, self.slice_spin, self.paint_button, self.erase_button):
-            hl.addWidget(w)
+            row.addWidget(w)
+        row.addStretch(1)
+        layout = self.layout()
+        assert isinstance(layout, QtWidgets.QBoxLayout)
+        layout.insertWidget(1, strip)
 
     def _tool_button(self, name: str, text: str, tip: str) -> QtWidgets.QToolButton:
         b = QtWidgets.QToolButton(self)

@@ -35,6 +35,9 @@ def test_a_voxel_object_over_the_budget_is_drawn_coarser_and_the_header_says_so(
         assert data["factor"] >= 2 and len(data["faces"]) // 2 <= 3000, name
         assert view.coarsest_level() == data["factor"]
         assert f"blocks of {data['factor']}³ voxels" in view.status_label.text(), name
+        for label in (view.header.subtitle_label, view.status_label):  # beside Slice, Paint, Erase
+            shown, whole = label.displayed_text(), label.text()
+            assert shown == whole or (shown.endswith("…") and whole.startswith(shown[:-1])), (name, shown)
         # the blocks cover the ball: the drawn box holds the ball's whole box of voxel cubes
         lo, hi = np.array(data["box"])
         assert (
