@@ -160,6 +160,42 @@ def headlight_shader() -> str:
     return _HEADLIGHT
 
 
+#: The axis gizmo's colours (x red, y green, z blue, as in every 3D tool), its radius and margin in pixels.
+GIZMO_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")
+GIZMO_RADIUS = 26
+GIZMO_MARGIN = 12
+
+
+def gizmo_axes(view: QtGui.QMatrix4x4) -> np.ndarray:
+    """Where the x, y and z axes point on the screen: rows (right, up, towards the viewer) per axis.
+
+    The rotation part of the camera's view matrix takes world directions to eye coordinates (x right,
+    y up, z towards the viewer); its columns are the world axes seen from the camera.
+    """
+    m = np.array(view.data(), np.float64).reshape(4, 4).T  # Qt stores the matrix column-major
+    return m[:3, :3].T.copy()
+
+
+def draw_axis_gizmo(painter: QtGui.QPainter, view: QtGui.QMatrix4x4, height: int) -> None:
+    """Draw the axis gizmo in the bottom-left corner: x, y and z as the camera sees them, farthest first."""
+    axes = gizmo_axes(view)
+    centre = QtCore.QPointF(GIZMO_MARGIN + GIZMO_RADIUS, height - GIZMO_MARGIN - GIZMO_RADIUS)
+    painter.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing)
+    font = painter.font()
+    font.setBold(True)
+    painter.setFont(font)
+    for i in np.argsort(axes[:, 2], kind="stable"):  # the axis pointing away first, the nearest on top
+        right, up = axes[i, 0], axes[i, 1]
+        tip = QtCore.QPointF(centre.x() + GIZMO_RADIUS * right, centre.y() - GIZMO_RADIUS * up)
+        colour = QtGui.QColor(GIZMO_COLOURS[i])
+        painter.setPen(QtGui.QPen(colour, 2.5))
+        painter.drawLine(centre, tip)
+        label = QtCore.QPointF(
+            centre.x() + (GIZMO_RADIUS + 8) * right - 4, centre.y() - (GIZMO_RADIUS + 8) * up + 5
+        )
+        painter.drawText(label, "xyz"[i])
+
+
 def make_pane(camera: Camera3D, parent: QtWidgets.QWidget) -> Any:
     """A pyqtgraph GLViewWidget whose camera moves are shared through ``camera``."""
     gl = _gl()
@@ -200,6 +236,14 @@ def make_pane(camera: Camera3D, parent: QtWidgets.QWidget) -> Any:
         def wheelEvent(self, ev: QtGui.QWheelEvent) -> None:
             super().wheelEvent(ev)
             camera.sync_from(self)
+
+        def paintGL(self) -> None:
+            super().paintGL()
+            painter = QtGui.QPainter(self)
+            try:
+                draw_axis_gizmo(painter, self.viewMatrix(), self.height())
+            finally:
+                painter.end()
 
     pane = GLPane(parent)
     pane.setObjectName("glPane")
@@ -381,6 +425,33 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         c = m @ np.array([*map(float, point), 1.0])
         return QtCore.QPointF((c[0] / c[3] + 1.0) * w / 2, (1.0 - c[1] / c[3]) * h / 2)
 
+    # ------------------------------------------------------------------ tools
+    def add_tool_row(self, *widgets: QtWidgets.QWidget) -> None:
+        """Put a view's tools in a row of their own under the header.
+
+        Beside the title they left the subtitle and the state no room at all in a quarter of the window.
+        """
+        strip = QtWidgets.QWidget(self)
+        strip.setObjectName("viewTools")
+        row = QtWidgets.QHBoxLayout(strip)
+        row.setContentsMargins(8, 0, 6, 2)
+        row.setSpacing(6)
+        for w in widgets:
+            row.addWidget(w)
+        row.addStretch(1)
+        layout = self.layout()
+        assert isinstance(layout, QtWidgets.QBoxLayout)
+        layout.insertWidget(1, strip)
+
+    def _tool_button(self, name: str, text: str, tip: str) -> QtWidgets.QToolButton:
+        b = QtWidgets.QToolButton(self)
+        b.setObjectName(name)
+        b.setText(text)
+        b.setToolTip(tip)
+        b.setCheckable(True)
+        b.setAutoRaise(True)
+        return b
+
     # ------------------------------------------------------------------ per view
     def drawing_data(self, obj: DocObject) -> dict[str, Any] | None:
         """The mesh of ``obj`` in this view, or None while its representation or mesh is being computed."""
@@ -437,20 +508,24 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         shown = sum(1 for o in self.objects() if o.kind != "labels")
         return min(self.SURFEL_BUDGET, max(self.SURFEL_BUDGET_MIN, self.SURFEL_BUDGET // max(1, shown)))
 
-    def budgeted(self, obj_id: int, what: str, budget: int) -> str:
-        """The name of ``obj_id``'s drawing data ``what`` at ``budget``; that of another budget is dropped."""
-        name = f"{what}@{budget}"
+    def budgeted(self, obj_id: int, what: str, budget: int, variant: str = "") -> str:
+        """The name of ``obj_id``'s drawing data ``what`` at ``budget`` and ``variant`` (a cut's height).
+
+        The data of another budget or variant is dropped.
+        """
+        name = f"{what}@{budget}{variant}"
         for key in [
             k for k in self._prepared if k[0] == obj_id and k[1].startswith(f"{what}@") and k[1] != name
         ]:
             del self._prepared[key]
         return name
 
-    def surfel_data(self, obj: DocObject, colour_of: Any) -> dict[str, Any] | None:
+    def surfel_data(self, obj: DocObject, colour_of: Any, cut: int | None = None) -> dict[str, Any] | None:
         """Surfel meshes of a voxel object's surfaces, coloured by ``colour_of(region, surfaces)``.
 
         ``colour_of`` gives a uint8 RGBA row per surfel. Beyond :attr:`SURFEL_BUDGET` surfels the surfaces
         drawn are those of a coarser level (max-pooled blocks) and the data's ``factor`` says which.
+        ``cut``: only the part z ≤ ``cut`` is drawn, with the faces the cut opens (:func:`gl_mesh.cut_away`).
         """
         if obj.kind == "labels":
             return None  # a label volume's surfaces come with its meshes (issue 29, item 5)
@@ -472,11 +547,18 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
             surfaces = drawn.surfaces
             voxels = np.concatenate([s.voxels for s in surfaces]) if surfaces else np.zeros((0, 3), np.int64)
             dirs = np.concatenate([s.directions for s in surfaces]) if surfaces else np.zeros(0, np.uint8)
-            data = gl_mesh.surfel_arrays(voxels, dirs, colour_of(drawn, surfaces), *_placement(vs, factor))
+            colours = colour_of(drawn, surfaces)
+            if cut is not None:
+                # the cut's layer in the drawn level's coordinates (a block holds f layers from the origin)
+                top = cut if factor == 1 else (cut - int(vs.origin[2])) // factor
+                voxels, dirs, colours = gl_mesh.cut_away(
+                    voxels, dirs, colours, drawn.labels(), drawn.origin, top
+                )
+            data = gl_mesh.surfel_arrays(voxels, dirs, colours, *_placement(vs, factor))
             data["factor"] = factor
             return data
 
-        what = self.budgeted(obj.id, "surfels", budget)
+        what = self.budgeted(obj.id, "surfels", budget, "" if cut is None else f"/cut{cut}")
         return self.prepared(obj.id, what, region, self.surfel_work(n, budget, vs), compute)
 
 
@@ -578,28 +660,7 @@ class DiscreteView3D(View3D):
         )
         self.paint_button.toggled.connect(lambda on: self._brush_toggled("paint", on))
         self.erase_button.toggled.connect(lambda on: self._brush_toggled("erase", on))
-        # The tools get a row of their own under the header: beside the title they left the subtitle and
-        # the level note no room at all in a quarter of the window.
-        strip = QtWidgets.QWidget(self)
-        strip.setObjectName("viewTools")
-        row = QtWidgets.QHBoxLayout(strip)
-        row.setContentsMargins(8, 0, 6, 2)
-        row.setSpacing(6)
-        for w in (self.slice_button, self.slice_spin, self.paint_button, self.erase_button):
-            row.addWidget(w)
-        row.addStretch(1)
-        layout = self.layout()
-        assert isinstance(layout, QtWidgets.QBoxLayout)
-        layout.insertWidget(1, strip)
-
-    def _tool_button(self, name: str, text: str, tip: str) -> QtWidgets.QToolButton:
-        b = QtWidgets.QToolButton(self)
-        b.setObjectName(name)
-        b.setText(text)
-        b.setToolTip(tip)
-        b.setCheckable(True)
-        b.setAutoRaise(True)
-        return b
+        self.add_tool_row(self.slice_button, self.slice_spin, self.paint_button, self.erase_button)
 
     def _target_voxels(self) -> tuple[DocObject, Any] | None:
         obj = self.target()
@@ -788,12 +849,54 @@ SLICE_VOXEL_RGBA = (255, 140, 0, 230)
 
 
 class RegionView3D(View3D):
-    """The surfaces of the components, one colour per component; cavity surfaces in red."""
+    """The surfaces of the components, one colour per component; cavity surfaces in red.
+
+    **Cut** cuts the objects away above a plane z = k (the spin box; PgUp/PgDn in the view move it): the
+    cavities it crosses open and their red walls show, the cut faces in their component's colour, darker.
+    """
 
     name = "region3d"
     title = "Region"
     subtitle = "components and cavities"
     rep: Rep = "region"
+
+    def __init__(self, scene: Scene, camera: Camera3D, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(scene, camera, parent)
+        self.cut_button = self._tool_button(
+            "cutButton", "Cut", "Cut the objects away above z = k to see their cavities (PgUp/PgDn move it)"
+        )
+        self.cut_spin = QtWidgets.QSpinBox(self)
+        self.cut_spin.setObjectName("cutSpin")
+        self.cut_spin.setPrefix("z ≤ ")
+        self.cut_spin.setRange(-(2**30), 2**30)
+        self.cut_spin.setToolTip("The highest layer of voxels drawn (PgUp/PgDn in the view)")
+        self.cut_spin.setEnabled(False)
+        self.cut_button.toggled.connect(self._cut_toggled)
+        self.cut_spin.valueChanged.connect(lambda _z: self.mark_dirty(0))
+        self.add_tool_row(self.cut_button, self.cut_spin)
+
+    @property
+    def cut(self) -> int | None:
+        """The highest layer drawn, or None when nothing is cut away."""
+        return self.cut_spin.value() if self.cut_button.isChecked() else None
+
+    def _cut_toggled(self, on: bool) -> None:
+        if on:
+            obj = self.target()
+            vs = self.scene.get(obj.id, "discrete") if obj is not None else None
+            box = vs.bbox if vs is not None else None
+            self.cut_spin.blockSignals(True)
+            self.cut_spin.setValue((box[2] + box[5]) // 2 if box is not None else 0)  # through the middle
+            self.cut_spin.blockSignals(False)
+        self.cut_spin.setEnabled(on)
+        self.mark_dirty(0)
+
+    def pane_key(self, ev: QtGui.QKeyEvent) -> bool:
+        step = {QtCore.Qt.Key.Key_PageUp: 1, QtCore.Qt.Key.Key_PageDown: -1}.get(ev.key())
+        if step is None or not self.cut_button.isChecked():
+            return super().pane_key(ev)
+        self.cut_spin.setValue(self.cut_spin.value() + step)
+        return True
 
     def drawing_data(self, obj: DocObject) -> dict[str, Any] | None:
         def colours(_region: Any, surfaces: Any) -> Any:
@@ -810,7 +913,7 @@ class RegionView3D(View3D):
             )
             return gl_mesh.palette_rgba8(index, (*gl_mesh.COMPONENT_COLOURS_3D, gl_mesh.CAVITY_COLOUR))
 
-        return self.surfel_data(obj, colours)
+        return self.surfel_data(obj, colours, self.cut)
 
     #: Components and cavities listed in the context menu at most (the biggest first).
     MENU_ITEMS = 20
@@ -852,11 +955,14 @@ class RegionView3D(View3D):
 
 
 class AnalyticalView3D(View3D):
-    """The digital plane segments of the surfaces, neighbouring segments in different colours."""
+    """The digital plane segments of the surfaces, neighbouring segments in different colours.
+
+    The normals (a, b, c) of the biggest segments' chosen planes are drawn as lines from their centres.
+    """
 
     name = "analytical3d"
     title = "Analytical"
-    subtitle = "digital plane segments"
+    subtitle = "digital plane segments and their normals"
     rep: Rep = "analytical"
 
     def drawing_data(self, obj: DocObject) -> dict[str, Any] | None:
@@ -884,6 +990,7 @@ class AnalyticalView3D(View3D):
             if n <= budget:
                 data = gl_mesh.surfel_arrays(seg.voxel, seg.direction, colours)
                 data["factor"] = 1
+                data["lines"] = gl_mesh.segment_normals(seg)
                 return data
             from mrm.geometry.topology.level_of_detail import boundary_surfels, coarse_level
 
@@ -893,10 +1000,16 @@ class AnalyticalView3D(View3D):
             coarse = gl_mesh.colours_by_block(fine, seg.direction, colours, voxels, dirs, pooled.shape)
             data = gl_mesh.surfel_arrays(voxels, dirs, coarse, *_placement(vs, factor))
             data["factor"] = factor
+            data["lines"] = gl_mesh.segment_normals(seg)
             return data
 
         what = self.budgeted(obj.id, "segments", budget)
-        return self.prepared(obj.id, what, ana, self.surfel_work(n, budget, vs), compute)
+        # each normal drawn costs its segment's chosen plane (exact arithmetic, about 1 ms)
+        work = self.surfel_work(n, budget, vs) + self.NORMAL_WORK * min(len(seg), gl_mesh.MAX_NORMALS)
+        return self.prepared(obj.id, what, ana, work, compute)
+
+    #: The work of one normal in elements of :attr:`PREPARE_SYNC` (1 ms, as a thousand surfels).
+    NORMAL_WORK = 1_000
 
 
 class EuclideanView3D(View3D):

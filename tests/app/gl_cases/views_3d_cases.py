@@ -50,9 +50,21 @@ def _show_3d(qtbot, win):  # type: ignore[no-untyped-def]
     return win.views.area3d
 
 
-def _frame(view) -> QtGui.QImage:  # type: ignore[no-untyped-def]
+def _frame(view, gizmo: bool = False) -> QtGui.QImage:  # type: ignore[no-untyped-def]
+    """The view's rendered frame.
+
+    Without ``gizmo``, the axis gizmo's corner is blacked out: its x axis is red like a cavity, its z axis
+    blue like an object.
+    """
     view.pane.update()
     img = view.pane.grabFramebuffer()
+    if not gizmo:
+        from mrm.views.view3d import GIZMO_MARGIN, GIZMO_RADIUS
+
+        side = 2 * (GIZMO_MARGIN + GIZMO_RADIUS) + 12
+        painter = QtGui.QPainter(img)
+        painter.fillRect(0, img.height() - side, side, side, QtGui.QColor("black"))
+        painter.end()
 
     if os.environ.get("MRM_GL_SAVE"):
         img.save(f"{os.environ['MRM_GL_SAVE']}/{view.name}.png")
@@ -155,3 +167,69 @@ def test_a_project_of_3d_objects_opens_in_the_3d_views_and_f3_goes_back(make_win
     assert len(data["lines"]) == 2 * 12  # the octahedron's 12 edges, not the diagonals of a triangulation
     _key_3d(qtbot, win, Qt.Key.Key_F3)
     assert win.views.dimension == 2 and not win.registry["view.three_d"].isChecked()
+
+
+def _corner_hues(view, colour: str) -> tuple[int, int, int, int]:  # type: ignore[no-untyped-def]
+    """Pixels of ``colour`` in the gizmo's corner: (right of, left of, above, below) its centre."""
+    from mrm.views.view3d import GIZMO_MARGIN, GIZMO_RADIUS
+
+    img = _frame(view, gizmo=True).convertToFormat(QtGui.QImage.Format.Format_RGB32)
+    cx, cy = GIZMO_MARGIN + GIZMO_RADIUS, img.height() - GIZMO_MARGIN - GIZMO_RADIUS
+    hue = _hue_of(colour)
+    counts = [0, 0, 0, 0]
+    for x in range(max(0, cx - GIZMO_RADIUS - 12), cx + GIZMO_RADIUS + 12):
+        for y in range(cy - GIZMO_RADIUS - 12, min(img.height(), cy + GIZMO_RADIUS + 12)):
+            c = img.pixelColor(x, y)
+            if c.hsvSaturation() < 120 or c.value() < 80:
+                continue
+            if min(abs(c.hsvHue() - hue), 360 - abs(c.hsvHue() - hue)) > 10:
+                continue
+            counts[0] += x > cx + 4
+            counts[1] += x < cx - 4
+            counts[2] += y < cy - 4
+            counts[3] += y > cy + 4
+    return counts[0], counts[1], counts[2], counts[3]
+
+
+def test_the_axis_gizmo_turns_with_the_shared_camera(make_window, qtbot):
+    from mrm.views.view3d import GIZMO_COLOURS
+
+    win = make_window(threaded=True)
+    _octahedron(win)
+    area = _show_3d(qtbot, win)
+    x, y, z = GIZMO_COLOURS
+    area.buttons["front"].click()  # looking along +y: x to the right, z up, y away from the viewer
+    for view in area.views:  # every view has its gizmo, and they agree
+        right, left, up, down = _corner_hues(view, x)
+        assert right > 20 and left == 0, view.name
+        right, left, up, down = _corner_hues(view, z)
+        assert up > 20 and down == 0, view.name
+    area.buttons["top"].click()  # looking down z: x to the right, y up
+    right, left, up, down = _corner_hues(area.views[0], y)
+    assert up > 20 and down == 0
+    area.buttons["side"].click()  # looking along −x: y to the right... of a viewer facing −x, z up
+    right, left, up, down = _corner_hues(area.views[0], z)
+    assert up > 20 and down == 0
+    right, left, up, down = _corner_hues(area.views[0], x)
+    assert right + left < 15  # x points at the viewer: seen end-on, a dot
+
+
+def test_the_analytical_view_draws_each_plane_segments_normal(make_window, qtbot):
+    """The octahedron's 8 plane segments have the normals (±1, ±1, ±1): one outward line from each face."""
+    win = make_window(threaded=True)
+    obj = _octahedron(win)
+    area = _show_3d(qtbot, win)
+    view = area.by_name("analytical3d")
+    data, items = view._items[obj.id]
+    lines = data["lines"].reshape(-1, 2, 3).astype(float)
+    assert len(lines) == 8
+    starts, ends = lines[:, 0], lines[:, 1]
+    directions = (ends - starts) / np.linalg.norm(ends - starts, axis=1)[:, None]
+    assert np.allclose(np.abs(directions), 1 / np.sqrt(3), atol=1e-6)
+    # outward: each line points away from the centre, from a start on its face (|x| + |y| + |z| ≈ R + ½)
+    assert (np.sum(starts * directions, axis=1) > 0).all()
+    assert set(map(tuple, np.sign(directions).astype(int))) == {
+        (a, b, c) for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)
+    }
+    assert np.allclose(np.abs(starts).sum(axis=1), R + 0.5, atol=1.5)
+    assert any(type(it).__name__ == "GLLinePlotItem" for it in items)

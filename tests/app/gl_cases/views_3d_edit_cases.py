@@ -127,3 +127,30 @@ def test_the_region_views_menu_fills_a_cavity_and_deletes_a_component_each_one_u
     assert win.doc.get(obj.id).source == vs
     qtbot.waitUntil(win.is_drawn, timeout=60_000)
     assert _near(_hues(_frame(view)), second, 6) > 100
+
+
+def test_the_region_views_cut_opens_the_cavity_and_pgup_moves_it(make_window, qtbot):
+    """Seen from the top, a cavity is hidden; cut through it, its red walls show, until the cut passes it."""
+    win = make_window(threaded=True)
+    obj = win.doc.make_object(_hollow_cube_and_a_cube(), name="solids")  # the cavity is at z = −1 … 1
+    win.doc.push(AddObject(obj))
+    area = _show_3d(qtbot, win)
+    area.buttons["top"].click()
+    view = area.by_name("region3d")
+    red = QtGui.QColor(gl_mesh.CAVITY_COLOUR).hsvHue()
+    assert _near(_hues(_frame(view)), red, 6) == 0  # closed: nothing of the cavity shows
+    qtbot.mouseClick(view.cut_button, Qt.MouseButton.LeftButton)
+    assert view.cut == 0 and view.cut_spin.isEnabled()  # through the middle of the target's box
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    assert _near(_hues(_frame(view)), red, 6) > 100  # opened: its walls are seen from above
+    data = view._items[obj.id][0]
+    assert data["box"][1][2] == 0.5  # nothing drawn above the cut's layer z = 0
+    view.pane.setFocus()
+    qtbot.keyClick(view.pane, Qt.Key.Key_PageUp)
+    qtbot.keyClick(view.pane, Qt.Key.Key_PageUp)
+    assert view.cut == 2
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    assert _near(_hues(_frame(view)), red, 6) == 0  # the cut's faces at z = 2 close it again
+    qtbot.mouseClick(view.cut_button, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(win.is_drawn, timeout=60_000)
+    assert view.cut is None and view._items[obj.id][0]["box"][1][2] == 3.5  # whole again
