@@ -24,6 +24,7 @@ subdivision: neighbouring parts share their boundaries exactly.
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -59,6 +60,8 @@ from mrm.ops.estimate import estimated_pixels
 from mrm.ops.outcome import StepOutcome
 from mrm.ops.registry import OperationResult, OperationSpec, input_dimension, register
 from mrm.ops.representations import discrete_of, euclidean_of
+
+log = logging.getLogger(__name__)
 
 #: The parts of a co-refinement, in label order (label = index + 1), as files and properties name them.
 PARTS = ("a_minus_b", "a_and_b", "b_minus_a")
@@ -536,18 +539,48 @@ def _manifold(solid: Any) -> Any:
     return m
 
 
+@dataclass(frozen=True, eq=False)
+class ReferenceMesh:
+    """A closed, outward triangle mesh that is no :class:`Polyhedron`: manifold3d's result with pinches.
+
+    Where E and E′ share a face or an edge (R of voxel sets lie on common planes), a part of them touches
+    itself along an edge or at a point; manifold3d keeps such a pinch as two vertices at one position, which
+    a polyhedron refuses (one vertex per point, manifold vertices) but the measure of the distance does not
+    need (it reads triangles and crossings: :func:`mrm.geometry.hausdorff.solids.solid_hausdorff`). It has
+    what :class:`ExactSolid` reads of a polyhedron.
+    """
+
+    vertices: np.ndarray
+    triangles: np.ndarray
+
+    @property
+    def is_empty(self) -> bool:
+        """True for no triangle."""
+        return len(self.triangles) == 0
+
+    @property
+    def n_vertices(self) -> int:
+        """The number of vertices."""
+        return len(self.vertices)
+
+    @property
+    def bbox(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """((xmin, ymin, zmin), (xmax, ymax, zmax)) of the vertices."""
+        lo, hi = self.vertices.min(axis=0), self.vertices.max(axis=0)
+        return (float(lo[0]), float(lo[1]), float(lo[2])), (float(hi[0]), float(hi[1]), float(hi[2]))
+
+
 def _polyhedron_of(m: Any, key: str) -> Any:
-    """manifold3d's result as a polyhedron (its float64 mesh)."""
+    """manifold3d's result as a polyhedron (its float64 mesh), or a :class:`ReferenceMesh` with pinches."""
     from mrm.geometry.polyhedra import Polyhedron
 
     mesh = m.to_mesh64()
-    vertices = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    triangles = np.asarray(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
+    vertices = np.array(mesh.vert_properties, dtype=np.float64)[:, :3].copy()
+    triangles = np.array(mesh.tri_verts, dtype=np.int64).reshape(-1, 3)
     if len(triangles) == 0:
         return Polyhedron.empty()
     try:
         return Polyhedron(vertices, triangles)
-    except InvalidGeometryError as e:  # e.g. two vertices rounded onto one point
-        raise ParameterError(
-            f"the reference {key} made by the mesh Booleans is no valid solid ({e})"
-        ) from None
+    except InvalidGeometryError as e:  # a pinch (two vertices at one point): closed and outward all the same
+        log.debug("the reference %s is no polyhedron (%s): measured as its mesh", key, e)
+        return ReferenceMesh(vertices, triangles)
