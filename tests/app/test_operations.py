@@ -252,7 +252,23 @@ def test_a_corefinement_of_two_voxel_objects_from_the_panel_adds_three_polyhedra
             isinstance(obj.source, mrm.Polyhedron) and obj.source == expected[obj.provenance.params["part"]]
         )
         assert obj.provenance.operation == "corefine" and list(obj.provenance.inputs) == [a.id, b.id]
-    acc = account_of(made[1].provenance)  # the inspector's account of A ∩ B: √3, one-sided
+    acc = account_of(made[1].provenance)  # the account of A ∩ B: √3, one-sided, a certified interval
     assert acc.error == "" and acc.bound.n == 3 and acc.part == "a_and_b"
+    insp = win.inspector  # what the inspector reads is that account
+    doc.set_selection([made[1].id])
+    insp.refresh()
+    qtbot.waitUntil(lambda: insp.measurement is not None, timeout=120_000)
+    assert insp.measurement.summary() == acc.summary()
+    assert "manifold3d" in insp.measured_label.text()  # the reference of overlapping solids, not GEOS's
+    doc.set_selection([made[0].id])  # A ∖ B: a certified interval, shown as one
+    insp.refresh()
+    qtbot.waitUntil(
+        lambda: insp.measurement is not None and insp.measurement.part == "a_minus_b", timeout=HANG_MS
+    )
+    told = account_of(made[0].provenance).summary()
+    assert insp.measurement.summary() == told
+    if not told["measured_exact"]:
+        lo, hi = told["measured_interval"]
+        assert f"∈ [{lo:.6g}, {hi:.6g}] (certified)" in insp.measured_label.text()
     win.doc.history.undo()  # one undo step removes the three parts
     assert [o.id for o in doc.objects] == [a.id, b.id]
