@@ -216,6 +216,17 @@ def test_voxel_balls_whose_difference_pinches_are_measured_within_their_bounds(m
     assert acc.measured.intervals["result_within"][1] < 1  # R(A) ∖ R(B) is near, not a stray mesh
 
 
+@pytest.mark.parametrize("alpha", [None, "1/3"])
+def test_an_empty_input_gives_empty_parts_measured_as_in_the_plane(alpha):
+    empty, cube = Polyhedron.empty(), VoxelSet.box(0, 0, 0, 1, 1, 1)
+    parts = mrm.corefine(empty, cube, "standard", alpha)
+    assert parts["a_minus_b"].is_empty and parts["a_and_b"].is_empty and not parts["b_minus_a"].is_empty
+    acc = account_of(_prov("corefine", {"model": "standard", "alpha": alpha, "part": "a_and_b"}, empty, cube))
+    assert acc.error == "" and acc.reference_exact is True
+    assert [p.measured.value for p in acc.parts][:2] == [0, 0]  # h(∅, ∅) = 0, as measured_error in 2D
+    assert mrm.voxelize(mrm.union(empty, cube), "standard") == cube
+
+
 def test_inputs_apart_have_their_exact_reference():
     e1, e2 = PAIRS["apart"]
     acc = account_of(_prov("corefine", {"model": "standard", "alpha": None, "part": "a_and_b"}, e1, e2))
