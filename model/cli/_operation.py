@@ -264,20 +264,25 @@ def write_result(
         )
 
 
+def check_3d_output(path: str) -> None:
+    """Refuse an output a 3D result cannot be written to (before the work: a voxel file or a mesh file)."""
+    ext = extension_of(path, OUTPUTS, "output file")
+    if ext not in MESH_EXTENSIONS and ext not in VOXEL_EXTENSIONS:
+        raise ParameterError(
+            f"{path}: a 3D result is written to a voxel file ({', '.join(VOXEL_EXTENSIONS)}) or a mesh file "
+            f"({', '.join(MESH_EXTENSIONS)})"
+        )
+
+
 def _write_3d(result: VoxelSet | Polyhedron, path: str, ext: str, model: str) -> None:
     """A 3D result: its voxels to a voxel file, its Euclidean representation (R of voxels) to a mesh file."""
+    check_3d_output(path)
     if ext in MESH_EXTENSIONS:
         warning = write_mesh(result if isinstance(result, Polyhedron) else reconstruct(result, model), path)
         if warning:
             log.warning("%s", warning)
         return
-    if ext in VOXEL_EXTENSIONS:
-        write_voxels(result if isinstance(result, VoxelSet) else voxelize(result, model), path)
-        return
-    raise ParameterError(
-        f"{path}: a 3D result is written to a voxel file ({', '.join(VOXEL_EXTENSIONS)}) or a mesh file "
-        f"({', '.join(MESH_EXTENSIONS)})"
-    )
+    write_voxels(result if isinstance(result, VoxelSet) else voxelize(result, model), path)
 
 
 def two_input_georef(operation: str, a: OperationInput, b: OperationInput) -> Any:

@@ -14,7 +14,14 @@ import argparse
 from typing import Any
 
 from mrm.cli._common import print_table
-from mrm.cli._operation import OUTPUTS, TwoInputRun, result_summary, two_input_command, write_result
+from mrm.cli._operation import (
+    OUTPUTS,
+    TwoInputRun,
+    check_3d_output,
+    result_summary,
+    two_input_command,
+    write_result,
+)
 from mrm.io.georef import georef_summary
 from mrm.ops.registry import get_operation, run_operation
 from mrm.ops.representations import discrete_of
@@ -54,4 +61,5 @@ add_arguments, run = two_input_command(
     _finish,
     _direct,
     outputs=OUTPUTS,
+    check_output=lambda output, n: check_3d_output(output) if n == 3 else None,
 )

@@ -301,3 +301,7 @@ def test_mrm_corefine_of_3d_inputs_refuses_a_vector_output_in_one_line(tmp_path,
     err = capsys.readouterr().err
     assert "error:" in err and "label volume (.npz)" in err and len(err.splitlines()) == 1
     assert not (tmp_path / "o.geojson").exists()
+    argv = ["union", str(tmp_path / "a.npz"), str(tmp_path / "b.npz"), "-o", str(tmp_path / "u.geojson")]
+    assert run_cli(argv) == 2
+    err = capsys.readouterr().err
+    assert "a mesh file" in err and len(err.splitlines()) == 1 and not (tmp_path / "u.geojson").exists()
