@@ -529,12 +529,12 @@ def reference_solids(first: Any, second: Any) -> tuple[dict[str, Any], bool]:
 
 def _manifold(solid: Any) -> Any:
     """A polyhedron as a manifold3d Manifold, from its float64 vertices (Mesh64: never float32)."""
-    from manifold3d import Manifold, Mesh64
+    from manifold3d import Error, Manifold, Mesh64
 
     vertices = np.array(solid.vertices, dtype=np.float64, order="C")  # fresh and writeable, as nanobind takes
     triangles = np.array(solid.triangles, dtype=np.uint64, order="C")
     m = Manifold(Mesh64(vert_properties=vertices, tri_verts=triangles))
-    if str(m.status()) != "Error.NoError":
+    if m.status() != Error.NoError:
         raise ParameterError(f"the mesh Booleans refused a solid as the reference ({m.status()})")
     return m
 
