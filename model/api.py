@@ -690,6 +690,14 @@ def simplify(
 
 
 @overload
+def union(
+    first: VoxelSet | Polyhedron,
+    second: VoxelSet | Polyhedron,
+    model: ModelLike = ...,
+    *,
+    limit: int | None = ...,
+) -> Polyhedron: ...
+@overload
 def union(first: Shape, second: Shape, model: ModelLike = ..., *, limit: int | None = ...) -> Polygonal: ...
 @overload
 def union(
@@ -700,23 +708,25 @@ def union(
     first: Batch, second: Shape | Batch, model: ModelLike = ..., *, limit: int | None = ...
 ) -> ObjectArray: ...
 def union(
-    first: Shape | Batch,
-    second: Shape | Batch,
+    first: Shape | VoxelSet | Polyhedron | Batch,
+    second: Shape | VoxelSet | Polyhedron | Batch,
     model: ModelLike = DEFAULT_MODEL,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> Polygonal | ObjectArray:
+) -> Polygonal | Polyhedron | ObjectArray:
     """Euclidean-discrete union EDu(E, E′) = R(D(E) ∪ D(E′)) (paper §6).
 
     Parameters
     ----------
     first, second : geometry, PixelSet, array_like image, or batches of them (broadcast together)
+        Or two 3D objects (Polyhedron, VoxelSet): the union is then a polyhedron.
     model : Model or {"standard", "supercover", "gauss"}
     limit : int or None
 
     Returns
     -------
-    shapely.geometry.Polygon or shapely.geometry.MultiPolygon, or numpy.ndarray of them
+    shapely.geometry.Polygon or shapely.geometry.MultiPolygon (a Polyhedron for 3D objects), or
+    numpy.ndarray of them
 
     Examples
     --------
@@ -728,12 +738,21 @@ def union(
     """
     if _is_batch(first) or _is_batch(second):
         return _map(lambda a, b: union(a, b, model, limit=limit), first, second)
-    out: Polygonal = euclidean_discrete_union(
-        _as_object(first), _as_object(second), model, limit=limit
+    out: Polygonal | Polyhedron = euclidean_discrete_union(
+        _as_object(first, solids=True), _as_object(second, solids=True), model, limit=limit
     ).result
     return out
 
 
+@overload
+def corefine(
+    first: VoxelSet | Polyhedron,
+    second: VoxelSet | Polyhedron,
+    model: ModelLike = ...,
+    alpha: Number | None = ...,
+    *,
+    limit: int | None = ...,
+) -> dict[str, Polyhedron]: ...
 @overload
 def corefine(
     first: Shape,
@@ -762,18 +781,19 @@ def corefine(
     limit: int | None = ...,
 ) -> ObjectArray: ...
 def corefine(
-    first: Shape | Batch,
-    second: Shape | Batch,
+    first: Shape | VoxelSet | Polyhedron | Batch,
+    second: Shape | VoxelSet | Polyhedron | Batch,
     model: ModelLike = DEFAULT_MODEL,
     alpha: Number | None = None,
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
-) -> dict[str, Polygonal] | ObjectArray:
+) -> dict[str, Polygonal] | dict[str, Polyhedron] | ObjectArray:
     """Euclidean-discrete co-refinement EDco(E, E′), or EDco_α with ``alpha`` (paper §6).
 
     Parameters
     ----------
     first, second : geometry, PixelSet, array_like image, or batches of them (broadcast together)
+        Or two 3D objects (Polyhedron, VoxelSet): the parts are then polyhedra.
     model : Model or {"standard", "supercover", "gauss"}
     alpha : number, optional
         The precision factor α > 0.
@@ -782,7 +802,8 @@ def corefine(
     Returns
     -------
     dict, or numpy.ndarray of dict
-        ``{"a_minus_b": …, "a_and_b": …, "b_minus_a": …}``, each a Polygon or MultiPolygon.
+        ``{"a_minus_b": …, "a_and_b": …, "b_minus_a": …}``, each a Polygon or MultiPolygon (a Polyhedron
+        for 3D objects).
 
     Examples
     --------
@@ -794,8 +815,8 @@ def corefine(
     """
     if _is_batch(first) or _is_batch(second):
         return _map(lambda a, b: corefine(a, b, model, alpha, limit=limit), first, second)
-    out = euclidean_discrete_corefinement(_as_object(first), _as_object(second), model, alpha, limit=limit)
-    return dict(out.result)
+    a, b = _as_object(first, solids=True), _as_object(second, solids=True)
+    return dict(euclidean_discrete_corefinement(a, b, model, alpha, limit=limit).result)
 
 
 def bound(

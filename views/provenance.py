@@ -141,8 +141,9 @@ def measured_text(acc: Account) -> str:
         text = f"<b>Measured</b>: {what} = {m.value:.4g}{verdict}"
     if acc.within_bound is None and m.intervals is not None and acc.bound is not None:
         text += "<br><small>the certified interval holds the bound: neither side is proven</small>"
-    if not acc.reference_exact:
-        text += "<br><small>the Euclidean reference is GEOS's overlay (crossing vertices rounded)</small>"
+    if not acc.reference_exact:  # the overlay that made E ∪ E′ or the part (docs/adr/0061 in space)
+        made = "manifold3d's mesh Booleans" if isinstance(acc.result, VoxelSet) else "GEOS's overlay"
+        text += f"<br><small>the Euclidean reference is {made} (crossing vertices rounded)</small>"
     if acc.difference is not None:
         unit = "voxels" if isinstance(acc.difference.light, VoxelSet) else "pixels"
         text += (

@@ -83,7 +83,7 @@ from mrm.io.voxel_files import VOXEL_EXTENSIONS, write_voxels
 from mrm.ops.account import account_of
 from mrm.ops.georef import result_georef
 from mrm.ops.provenance import Provenance
-from mrm.ops.registry import OperationSpec, get_operation, run_operation
+from mrm.ops.registry import OperationSpec, get_operation, input_dimension, run_operation
 from mrm.reps.summary import summarize, summarize_voxels
 
 log = logging.getLogger(__name__)
@@ -100,8 +100,9 @@ OUTPUTS = tuple(
 
 def add_two_inputs(parser: argparse.ArgumentParser) -> None:
     """Two inputs A B; ``--object`` may be given twice (for A, then for B)."""
-    parser.add_argument("first", metavar="A", help="a pixel file, a vector file or a project (.mrm)")
-    parser.add_argument("second", metavar="B", help="a pixel file, a vector file or a project (.mrm)")
+    what = "a pixel file, a vector file, a project (.mrm), a voxel file or a mesh (both of one dimension)"
+    parser.add_argument("first", metavar="A", help=what)
+    parser.add_argument("second", metavar="B", help=what)
     parser.add_argument(
         "--object",
         metavar="NAME",
@@ -263,20 +264,25 @@ def write_result(
         )
 
 
+def check_3d_output(path: str) -> None:
+    """Refuse an output a 3D result cannot be written to (before the work: a voxel file or a mesh file)."""
+    ext = extension_of(path, OUTPUTS, "output file")
+    if ext not in MESH_EXTENSIONS and ext not in VOXEL_EXTENSIONS:
+        raise ParameterError(
+            f"{path}: a 3D result is written to a voxel file ({', '.join(VOXEL_EXTENSIONS)}) or a mesh file "
+            f"({', '.join(MESH_EXTENSIONS)})"
+        )
+
+
 def _write_3d(result: VoxelSet | Polyhedron, path: str, ext: str, model: str) -> None:
     """A 3D result: its voxels to a voxel file, its Euclidean representation (R of voxels) to a mesh file."""
+    check_3d_output(path)
     if ext in MESH_EXTENSIONS:
         warning = write_mesh(result if isinstance(result, Polyhedron) else reconstruct(result, model), path)
         if warning:
             log.warning("%s", warning)
         return
-    if ext in VOXEL_EXTENSIONS:
-        write_voxels(result if isinstance(result, VoxelSet) else voxelize(result, model), path)
-        return
-    raise ParameterError(
-        f"{path}: a 3D result is written to a voxel file ({', '.join(VOXEL_EXTENSIONS)}) or a mesh file "
-        f"({', '.join(MESH_EXTENSIONS)})"
-    )
+    write_voxels(result if isinstance(result, VoxelSet) else voxelize(result, model), path)
 
 
 def two_input_georef(operation: str, a: OperationInput, b: OperationInput) -> Any:
@@ -480,13 +486,15 @@ def two_input_command(
     finish: Callable[[argparse.Namespace, TwoInputRun], dict[str, Any]],
     direct: Callable[..., Any],
     outputs: tuple[str, ...] | None = None,
+    check_output: Callable[[str, int], None] | None = None,
 ) -> tuple[Any, Any]:
     """``(add_arguments, run)`` of a two-object subcommand, generated from the operation's registry spec.
 
     The options are the spec's parameters, read exactly and range-checked as for the one-object commands.
     ``run`` calls ``finish(args, TwoInputRun)`` for what the subcommand writes and prints;
     ``direct(a, b, model, params, limit)`` computes the result when the account does not (``--no-measure``);
-    ``outputs``, when given, are the output types, checked first.
+    ``outputs``, when given, are the output types, checked first; ``check_output(output, n)``, when given,
+    checks the output for inputs of dimension ``n`` once they are read, before any work.
     The numbers are those of the one account of the result (:func:`mrm.ops.account.account_of`): the
     account's recomputation is the result written, so nothing is computed twice.
     """
@@ -503,6 +511,8 @@ def two_input_command(
         given = {p.name: getattr(args, p.name) for p in fields if getattr(args, p.name) is not None}
         checked = spec.read_params(given)  # the declared ranges, before any input is read
         a, b, model = read_two(args)
+        if check_output is not None:
+            check_output(str(args.output), input_dimension([a.value, b.value]))
         params = checked.replace(model=model).to_json()
         t0 = time.perf_counter()
         acc = account_of(

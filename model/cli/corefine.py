@@ -9,6 +9,10 @@ written depends on OUT:
 * ``OUT.wkt`` / ``OUT.svg``: one file per part, ``OUT-a_minus_b.wkt`` and so on;
 * any other OUT is a prefix: ``OUT-a_minus_b.geojson``, ``OUT-a_and_b.geojson``, ``OUT-b_minus_a.geojson``.
 
+3D inputs (voxel files, meshes: docs/design.md §11) give polyhedra: ``OUT.npz`` is the label volume of the
+three discrete parts, ``OUT.obj`` / ``OUT.ply`` / ``OUT.off`` one mesh per part (``OUT-a_minus_b.obj``…), a
+folder or a prefix ``.obj`` meshes.
+
 ``--json``: the info keys of the whole result (the union of the parts), ``bound`` (null: a co-refinement
 part only has a one-sided bound, given per part), ``measured`` (the largest Hausdorff distance between a part
 and the matching Euclidean part of A and B), and ``parts`` with each part's info keys, one-sided bound and
@@ -28,26 +32,46 @@ import shapely
 from shapely.geometry import Polygon
 
 from mrm.cli._common import print_table
-from mrm.cli._operation import TwoInputRun, result_summary, two_input_command
-from mrm.geometry.discretize import discretize
+from mrm.cli._operation import TwoInputRun, result_summary, two_input_command, write_result
+from mrm.core.errors import ParameterError
+from mrm.core.grids import LabelVolume, dimension_of
 from mrm.io.atomic import atomic_file_set
 from mrm.io.georef import geojson_members, georef_summary
 from mrm.io.pixel_files import write_label_map
 from mrm.io.vector_files import write_geojson, write_svg, write_wkt
+from mrm.io.voxel_files import write_label_volume
 from mrm.ops.boolean import PARTS, euclidean_discrete_corefinement
 from mrm.ops.registry import get_operation
+from mrm.ops.representations import discrete_of
 from mrm.reps.summary import count_vertices, summarize
 
 NAME = get_operation("corefine").command  # declared by the operation (mrm.ops.boolean)
 HELP = "Euclidean-discrete co-refinement EDco(_α) of two objects: the parts A∖B, A∩B, B∖A"
 
 
-def _targets(output: str) -> tuple[str, dict[str, str]]:
-    """('collection' | 'labels' | 'files', part → path)."""
+#: The mesh files a 3D co-refinement writes, one per part (OBJ, PLY, OFF keep float64 exactly).
+_MESHES = (".obj", ".ply", ".off")
+
+
+def _targets(output: str, solid: bool = False) -> tuple[str, dict[str, str]]:
+    """('collection' | 'labels' | 'files', part → path); ``solid``: the parts are polyhedra."""
     p = Path(output)
+    default = ".obj" if solid else ".geojson"
     if output.endswith(("/", os.sep)) or p.is_dir():  # a folder: one file per part, named after the part
-        return "files", {part: str(p / f"{part}.geojson") for part in PARTS}
+        return "files", {part: str(p / f"{part}{default}") for part in PARTS}
     ext = p.suffix.lower()
+    if solid:
+        if ext == ".npz":
+            return "labels", {}
+        if ext in _MESHES:
+            stem = str(p.with_suffix(""))
+            return "files", {part: f"{stem}-{part}{ext}" for part in PARTS}
+        if ext in (".geojson", ".json", ".png", ".wkt", ".svg"):
+            raise ParameterError(
+                f"{output}: the parts of 3D objects are written to a label volume (.npz) or to meshes "
+                f"({' '.join(_MESHES)}), one per part"
+            )
+        return "files", {part: f"{output}-{part}{default}" for part in PARTS}
     if ext in (".geojson", ".json"):
         return "collection", {}
     if ext in (".png", ".npz"):
@@ -71,6 +95,13 @@ def _write(
 
     An SVG stays a picture and a label map stays on the pixel grid.
     """
+    if isinstance(labels, LabelVolume):  # 3D: the label volume, or one mesh per part
+        if kind == "labels":
+            write_label_volume(labels, output)
+        else:
+            for part, path in files.items():
+                write_result(result[part], path, model)
+        return
     world = {part: result[part] if georef is None else georef.to_world(result[part]) for part in PARTS}
     if kind == "collection":
         members = geojson_members(georef, shapely.GeometryCollection([world[p] for p in PARTS]))
@@ -94,6 +125,12 @@ def _write(
                 )
 
 
+def _check_output(output: str, n: int) -> None:
+    """Refuse an output 3D parts cannot be written to, once the inputs are read and before any work."""
+    if n == 3:
+        _targets(output, solid=True)
+
+
 def _direct(a: Any, b: Any, model: str, params: dict[str, Any], limit: int) -> Any:
     """EDco(_α) without its account (``--no-measure``): the whole outcome, label map included."""
     return euclidean_discrete_corefinement(a.value, b.value, model, params["alpha"], limit=limit)
@@ -101,9 +138,10 @@ def _direct(a: Any, b: Any, model: str, params: dict[str, Any], limit: int) -> A
 
 def _finish(args: argparse.Namespace, done: TwoInputRun) -> dict[str, Any]:
     """Write the parts and return the summary (the numbers are the model's account of the result)."""
-    kind, files = _targets(str(args.output))
     acc, model, alpha_json = done.account, done.model, done.params["alpha"]
     out = acc.outcome if done.computed is None else done.computed
+    solid = dimension_of(out.discrete) == 3
+    kind, files = _targets(str(args.output), solid)
     if files:  # a folder target is created only now, when there is something to write into it
         Path(next(iter(files.values()))).parent.mkdir(parents=True, exist_ok=True)
     with atomic_file_set():  # the parts are replaced together or not at all (issue 32)
@@ -114,10 +152,14 @@ def _finish(args: argparse.Namespace, done: TwoInputRun) -> dict[str, Any]:
         summary["files"] = files
     pixels = dict(out.extra["pixels"])
     if alpha_json is not None:  # the parts' own discretizations, on the unscaled grid
-        pixels = {p: discretize(out.result[p], model, limit=args.limit) for p in PARTS}
+        pixels = {p: discrete_of(out.result[p], model, limit=args.limit) for p in PARTS}
     support = pixels["a_minus_b"] | pixels["a_and_b"] | pixels["b_minus_a"]
-    summary.update(summarize(support, model, geom=Polygon()))
-    summary["vertices"] = sum(count_vertices(out.result[p]) for p in PARTS)
+    if solid:
+        summary.update(result_summary(None, support, model))
+        summary["vertices"] = sum(out.result[p].n_vertices for p in PARTS)
+    else:
+        summary.update(summarize(support, model, geom=Polygon()))
+        summary["vertices"] = sum(count_vertices(out.result[p]) for p in PARTS)
     told = acc.summary()
     summary.update(
         bound=None,
@@ -153,4 +195,5 @@ add_arguments, run = two_input_command(
     "or a prefix (OUT-a_minus_b.geojson, …)",
     _finish,
     _direct,
+    check_output=_check_output,
 )

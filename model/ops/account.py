@@ -28,12 +28,13 @@ For Sp_α the account also checks ``Sp_α∘Sp_α = Sp_α`` on the result (:attr
 
 Two-object operations
 ---------------------
-EDu and EDco are accounted for on their own pinned inputs ``E``, ``E′`` (a pixel set ``A`` stands for
-``R(A)``): the bound of the step (√n for EDu; per part for EDco / EDco_α, with the directions that hold,
-:mod:`mrm.geometry.hausdorff.bounds`), and the measured distance to the Euclidean union or part, computed by
-GEOS's
-overlay — exact when the inputs do not overlap, otherwise exact for GEOS's polygon, whose new crossing
-vertices are rounded to float64 (``reference_exact`` says which). Both inputs' own chains are listed.
+EDu and EDco are accounted for on their own pinned inputs ``E``, ``E′`` (a pixel or voxel set ``A`` stands
+for ``R(A)``): the bound of the step (√n for EDu; per part for EDco / EDco_α, with the directions that hold,
+:mod:`mrm.geometry.hausdorff.bounds`), and the measured distance to the Euclidean union or part
+(:func:`mrm.ops.boolean.reference_parts`), computed by GEOS's overlay in the plane and manifold3d's mesh
+Booleans in space (docs/adr/0061) — exact when the inputs do not overlap, otherwise exact for the overlay's
+result, whose new crossing vertices are rounded to float64 (``reference_exact`` says which); between solids
+the distance is a certified interval. Both inputs' own chains are listed.
 
 Where no bound exists, :attr:`Account.no_bound` says why in words. A provenance that cannot be read (an
 unknown operation, parameters out of range, a chain that mixes models) gives an account whose
@@ -505,10 +506,11 @@ def _binary_account(
     spec, params = link.spec, link.params
     model = params.model
     first, second = prov.sources
+    n = input_dimension([first, second])
     chains = tuple(input_chain(p) for p in prov.parents)
     own = _link(prov)
     if not spec.parts:  # EDu
-        bound = chain_bound([link], model)
+        bound = chain_bound([link], model, n=n)
         acc = Account(spec.name, model=model, chain=(own,), input_chains=chains, bound=bound)
         if not measure:
             return acc
@@ -519,7 +521,7 @@ def _binary_account(
             acc, measured=m, reference_exact=exact, result=out.discrete, output=out.result, outcome=out
         )
     part = link.part or PARTS[0]
-    part_bounds = {p: chain_bound([ChainLink(spec, params, p)], model) for p in PARTS}
+    part_bounds = {p: chain_bound([ChainLink(spec, params, p)], model, n=n) for p in PARTS}
     acc = Account(
         spec.name,
         model=model,

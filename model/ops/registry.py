@@ -230,7 +230,7 @@ class OperationSpec:
 
 
 #: The operations that take 3D inputs (voxel sets, polyhedra) so far; the others refuse them in one line.
-THREE_D = frozenset({"dss", "discrete_rotation", "simplify"})
+THREE_D = frozenset({"dss", "discrete_rotation", "simplify", "union", "corefine"})
 
 #: Every registered operation, by name.
 REGISTRY: dict[str, OperationSpec] = {}
@@ -352,7 +352,8 @@ def run_operation(
     params = spec.read_params(params)
     _check_inputs(spec, inputs)
     if spec.estimate is not None:
-        check_pixels(spec.estimate(inputs, params), limit, f"{spec.title} result")
+        unit = "voxels" if input_dimension(inputs) == 3 else "pixels"
+        check_pixels(spec.estimate(inputs, params), limit, f"{spec.title} result", unit=unit)
     progress = NO_PROGRESS if progress is None else progress
     progress.update(0.0, spec.title)
     known = [(inputs[i], m, geom) for i, m, geom in held if isinstance(inputs[i], PixelSet)]

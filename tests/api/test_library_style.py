@@ -289,16 +289,18 @@ def test_a_pixel_set_is_placed_by_its_georef_not_by_six_numbers():
 def test_3d_values_are_refused_by_the_2d_operations_not_read_as_nothing():
     """Passed through as they are, simplify(VoxelSet) gave POLYGON EMPTY; a one-line refusal instead.
 
-    DSS, dR and Sp take 3D objects now (issue 30, ADR 0060): they give 3D results, never an empty 2D one.
+    DSS, dR, Sp, EDu and EDco take 3D objects now (issue 30, ADRs 0060, 0061): they give 3D results, never an
+    empty 2D one.
     """
     vs = mrm.VoxelSet.box(0, 0, 0, 1, 1, 1)
     assert isinstance(mrm.simplify(vs, 0.5), mrm.Polyhedron) and not mrm.simplify(vs, 0.5).is_empty
     assert mrm.scale(vs, 2) == mrm.VoxelSet.box(-1, -1, -1, 2, 2, 2)
     assert mrm.rotate([vs], 90, axis=(0, 0, 1))[0] == vs.rotate90(1)
+    assert mrm.voxelize(mrm.union(vs, vs), "standard") == vs
+    assert mrm.voxelize(mrm.corefine(vs, vs)["a_and_b"], "standard") == vs
     lm = mrm.LabelMap.from_pixel_sets([mrm.PixelSet.box(0, 0, 1, 1)])
     for call in (
         lambda: mrm.union(vs, mrm.PixelSet.box(0, 0, 1, 1)),
-        lambda: mrm.union(vs, vs),
         lambda: mrm.hausdorff(vs, vs),
         lambda: mrm.corefine(lm, lm),
     ):

@@ -219,5 +219,56 @@ def test_an_operation_without_a_3d_form_does_not_offer_voxel_objects(make_window
     doc = win.doc
     doc.push(AddObject(doc.make_object(VoxelSet.box(0, 0, 0, 2, 2, 2), name="cube"), select=True))
     panel = win.operations
-    panel.select_operation("union")  # EDu does not take 3D objects yet
+    panel.select_operation("discrete_union")  # the set operations do not take 3D objects yet
     assert panel.inputs[0].findData(doc.objects[-1].id) < 0
+
+
+def test_a_corefinement_of_two_voxel_objects_from_the_panel_adds_three_polyhedra_in_one_undo_step(
+    make_window, qtbot
+):
+    """Issue 30 item 1: EDco on 3D objects from the panel: the library's parts, with provenance."""
+    import mrm
+    from mrm.core.grids import VoxelSet
+    from mrm.ops.account import account_of
+
+    win = make_window()
+    doc = win.doc
+    a = doc.make_object(VoxelSet.box(0, 0, 0, 3, 3, 3), name="A")
+    b = doc.make_object(VoxelSet.box(2, 1, 1, 5, 4, 2), name="B")
+    doc.push(AddObject(a))
+    doc.push(AddObject(b, select=True))
+    panel = win.operations
+    panel.select_operation("corefine")
+    panel.inputs[0].setCurrentIndex(panel.inputs[0].findData(a.id))  # both 3D objects are offered
+    panel.inputs[1].setCurrentIndex(panel.inputs[1].findData(b.id))
+    n = len(doc.objects)
+    with task_done(qtbot, win.runner, "operation"):
+        qtbot.mouseClick(panel.apply_button, Qt.MouseButton.LeftButton)
+    made = doc.objects[n:]
+    expected = mrm.corefine(a.source, b.source, doc.model)
+    assert [o.provenance.params["part"] for o in made] == ["a_minus_b", "a_and_b", "b_minus_a"]
+    for obj in made:
+        assert (
+            isinstance(obj.source, mrm.Polyhedron) and obj.source == expected[obj.provenance.params["part"]]
+        )
+        assert obj.provenance.operation == "corefine" and list(obj.provenance.inputs) == [a.id, b.id]
+    acc = account_of(made[1].provenance)  # the account of A ∩ B: √3, one-sided, a certified interval
+    assert acc.error == "" and acc.bound.n == 3 and acc.part == "a_and_b"
+    insp = win.inspector  # what the inspector reads is that account
+    doc.set_selection([made[1].id])
+    insp.refresh()
+    qtbot.waitUntil(lambda: insp.measurement is not None, timeout=120_000)
+    assert insp.measurement.summary() == acc.summary()
+    assert "manifold3d" in insp.measured_label.text()  # the reference of overlapping solids, not GEOS's
+    doc.set_selection([made[0].id])  # A ∖ B: a certified interval, shown as one
+    insp.refresh()
+    qtbot.waitUntil(
+        lambda: insp.measurement is not None and insp.measurement.part == "a_minus_b", timeout=HANG_MS
+    )
+    told = account_of(made[0].provenance).summary()
+    assert insp.measurement.summary() == told
+    if not told["measured_exact"]:
+        lo, hi = told["measured_interval"]
+        assert f"∈ [{lo:.6g}, {hi:.6g}] (certified)" in insp.measured_label.text()
+    win.doc.history.undo()  # one undo step removes the three parts
+    assert [o.id for o in doc.objects] == [a.id, b.id]

@@ -139,11 +139,8 @@ def test_the_paper_figure_12_chain_on_an_octahedron_is_within_sqrt3_times_its_co
     assert acc.measured.value == hi  # the number shown is the certified upper end
 
 
-def test_operations_without_a_3d_form_refuse_voxel_sets_in_one_line():
+def test_inputs_of_both_dimensions_are_refused_in_one_line():
     a = _octahedron(2)
-    for name in ("union", "corefine"):
-        with pytest.raises(ParameterError, match="does not take 3D objects yet"):
-            run_operation(name, [a, a], {})
     with pytest.raises(ParameterError, match="mix 2D and 3D"):
         run_operation("union", [a, mrm.PixelSet.box(0, 0, 1, 1)], {})
 
