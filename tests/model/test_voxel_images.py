@@ -26,7 +26,7 @@ from mrm.geometry.discretize.voxel_images import voxelize_image
 from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.outcome import scaling_by_pixels
-from tests.oracles.mesh_strategies import stars, tetra_mesh, tetras
+from tests.oracles.mesh_strategies import box_mesh, stars, tetra_mesh, tetras
 from tests.oracles.voxelize_reference import reference_voxelize
 
 MODELS = Model.names()
@@ -217,23 +217,81 @@ def test_dss_one_fifth_by_pooling_of_a_noisy_ball_is_the_computed_definition(mod
 
 
 # -------------------------------------------------------------------------------------------- refusals
-def test_a_ratio_needing_a_grid_125_times_finer_is_refused_at_once_without_memory():
-    """α = 1001/1000 on a 64³ object would voxelize on a 125-times finer grid (5·10¹¹ voxels): refused by
-    the size check with one line naming that grid, before anything of that size is made."""
+@pytest.mark.parametrize("model", MODELS)
+def test_a_ratio_with_a_large_odd_denominator_costs_its_result_only(model):
+    """α = 127/125 (N = 125) on a 64³ cube: computed on the grid of step 125 within a few megabytes (a
+    125-times finer grid would hold 3·10¹¹ voxels, refused before), and it is D of the scaled box: on each
+    axis the voxels whose kernel meets [α·lo, α·hi], [lo, hi] the extent of R(A)."""
     a = VoxelSet.box(0, 0, 0, 63, 63, 63)
-    solid = reconstruct(a, "standard")
-    lin, off = similarity(F(1001, 1000), IDENTITY, (F(0), F(0), F(0)))
+    solid = reconstruct(a, model)
+    alpha = F(127, 125)
+    lin, off = similarity(alpha, IDENTITY, (F(0), F(0), F(0)))
     tracemalloc.start()
     try:
-        with pytest.raises(SizeLimitError) as info:
-            voxelize_image(solid, lin, off, "standard", what="DSS 1.001")
+        got = voxelize_image(solid, lin, off, model, what="DSS 1.016")
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
-    message = str(info.value)
-    assert "\n" not in message and "125 times finer" in message and "DSS 1.001" in message
-    assert info.value.estimated > 10**11
-    assert peak < 1 << 20  # a megabyte: the polyhedron's few vertices, no grid
+    assert solid.n_vertices == 8  # R(A) is the box [lo, hi]³
+    lo, hi = alpha * F(float(solid.vertices.min())), alpha * F(float(solid.vertices.max()))
+    if model == "gauss":  # lo ≤ c < hi
+        c_lo, c_hi = math.ceil(lo), math.ceil(hi) - 1
+    else:  # the cells (c − ½, c + ½] of the ends (neither end is a half-integer)
+        assert (2 * lo).denominator > 1 and (2 * hi).denominator > 1
+        c_lo, c_hi = math.ceil(lo - F(1, 2)), math.ceil(hi - F(1, 2))
+    assert got == VoxelSet.box(c_lo, c_lo, c_lo, c_hi, c_hi, c_hi) != a
+    assert peak < 8 << 20  # the 65³ result is 0.3 MB
+
+
+#: Ratios with odd denominators up to 375, and the lattice of the image's vertices (below).
+LATTICE_ALPHAS = [F(1, 5), F(4, 5), F(2, 3), F(1, 7), F(3, 11), F(1, 125), F(64, 375)]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.sampled_from(LATTICE_ALPHAS),
+    st.lists(st.tuples(*[st.integers(-3, 3)] * 3), min_size=4, max_size=4, unique=True),
+    st.tuples(*[st.integers(-2, 2)] * 3),
+    st.tuples(st.integers(0, 2), st.integers(0, 3)),
+    st.booleans(),
+    st.sampled_from(MODELS),
+)
+def test_images_on_the_coarse_grid_planes_and_centres_are_the_definition(
+    alpha, ms, shift, turn, as_box, model
+):
+    """Images whose vertices lie on the result's voxel centres (integers) and faces (half-integers), with
+    edges and faces along them, so that Q = N·T(P) lies on the centres N·c and planes N·(k ± ½) of the grid
+    of step N where the shift N·τ decides: a tetrahedron or an axis-aligned box with vertices w in the lattice
+    (p'/2)·Z³ (p' the odd part of α's numerator), P = T⁻¹ of it (float64: T⁻¹(w) = rot⁻¹(w − C)/α + C with
+    C in the lattice). Compared with the Fraction reference, in every model."""
+    unit = F(alpha.numerator >> ((alpha.numerator & -alpha.numerator).bit_length() - 1), 2)
+    ws = [tuple(unit * u for u in m) for m in ms]
+    centre = tuple(unit * u for u in shift)
+    if as_box:
+        lo = [min(w[d] for w in ws[:2]) for d in range(3)]
+        hi = [max(w[d] for w in ws[:2]) for d in range(3)]
+        assume(all(lo[d] < hi[d] for d in range(3)))
+        corners = [tuple((lo, hi)[(n >> d) & 1][d] for d in range(3)) for n in range(8)]
+    else:
+        corners = ws
+    rot = quarter_turn(*turn)
+    lin, off = similarity(alpha, rot, centre)
+    # T⁻¹(w) = rotᵀ·(w − C)/α + C, exactly; float64 by the choice of the lattice
+    pre = [
+        tuple(sum(rot[j][i] * (w[j] - centre[j]) for j in range(3)) / alpha + centre[i] for i in range(3))
+        for w in corners
+    ]
+    assert all(F(float(u)) == u for p in pre for u in p)
+    if as_box:  # box_mesh's outward triangles on the corners' preimages (T keeps orientation)
+        v, t = np.array([[float(u) for u in p] for p in pre]), box_mesh((0, 0, 0), (1, 1, 1))[1]
+    else:
+        v, t = tetra_mesh(*[tuple(float(u) for u in p) for p in pre])
+    try:
+        solid = Polyhedron(v, t)
+    except InvalidGeometryError:
+        assume(False)
+    got = voxelize_image(solid, lin, off, model)
+    assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
 
 
 def test_a_result_beyond_the_limit_is_refused_before_the_finer_grid():
