@@ -357,6 +357,18 @@ def test_bad_input_is_refused_with_a_message() -> None:
         voxelize_solid(v * 1000, t, limit=1000)
 
 
+@pytest.mark.parametrize("model", MODELS)
+def test_vertices_no_triangle_uses_neither_widen_the_box_nor_need_to_be_in_range(model) -> None:
+    """Two extra vertices (one NaN, one at 10^300) that no triangle refers to change nothing."""
+    v, t = tetra_mesh((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0), (0.0, 0.0, 2.0))
+    extra = np.concatenate([v[:2], [[np.nan, 0.0, 0.0], [1e300, -1e300, 0.0]], v[2:]])
+    t2 = np.where(t >= 2, t + 2, t)
+    mask, origin = voxelize_solid(extra, t2, model)
+    assert voxel_set(mask, origin) == voxels((v, t), model)
+    assert_canonical(mask, origin)
+    assert voxelization_box(extra, t2, model) == voxelization_box(v, t, model)
+
+
 def test_empty_inputs() -> None:
     for model in MODELS:
         mask, origin = voxelize_solid(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64), model)
