@@ -247,7 +247,8 @@ def _gcd_with(y: npt.NDArray[Any], odd: int) -> int:
     if odd == 1:
         return 1
     if y.dtype == np.int64 and odd < _INT64_SAFE:
-        return math.gcd(odd, int(np.gcd.reduce(np.gcd(y, odd))))
+        # gcd(odd, y) = gcd(odd, y mod odd): the remainders are small, so Euclid's loop per element is short
+        return math.gcd(odd, int(np.gcd.reduce(y % odd)))
     g = odd
     for value in y.tolist():
         g = math.gcd(g, value)
