@@ -1,11 +1,12 @@
-"""D(T(P)) of an exact rational affine image of a polyhedron (docs/design.md §11, §8; ADR 0058).
+"""D(T(P)) of an exact rational affine image of a polyhedron (docs/design.md §11, §8; ADRs 0058, 0062).
 
 DSS_α(A) = D(Sc_α(R(A))) and the quarter turns dR(A) = D(rot(R(A))) on voxel sets, with α = p/q whose image
 is not float64 (α = 1/5, 4/5 of the paper's Figure 12): every result is compared with the Fraction reference
-of the definitions (tests/oracles/voxelize_reference.py) given the exact image, on R(A) of random voxel sets
-and on tetrahedra and split octahedra with free float vertices. Then D(Sc_1(R(A))) = A, quarter turns of R(A)
-are A's quarter turns, DSS_1/k by pooling A's voxels is the computed definition, and a ratio that needs a grid
-too fine is refused at once without memory.
+of the definitions (tests/oracles/voxelize_reference.py) given the exact image, on R(A) of random voxel sets,
+on tetrahedra and split octahedra with free float vertices, and on images lying on the result's voxel centres
+and faces (where the grid of step N decides ties by N·τ). Then D(Sc_1(R(A))) = A, quarter turns of R(A) are
+A's quarter turns, DSS_1/k by pooling A's voxels is the computed definition, and a ratio with a large odd
+denominator costs its result only.
 """
 
 from __future__ import annotations
@@ -125,7 +126,7 @@ def test_exact_images_of_float_polyhedra_are_the_definition_or_refused_when_not_
     mesh, alpha, centre, turn, model
 ):
     """Tetrahedra and split octahedra with free float64 vertices: the definition, or a one-line refusal
-    exactly when the image on the finer grid is not made of float64 numbers (53-bit mantissas)."""
+    exactly when the image scaled by N is not made of float64 numbers (53-bit mantissas)."""
     try:
         solid = Polyhedron(*mesh)
     except InvalidGeometryError:
@@ -204,7 +205,7 @@ def test_dss_one_over_k_by_pooling_voxels_is_the_computed_definition(a, k, centr
 
 @pytest.mark.parametrize("model", MODELS)
 def test_dss_one_fifth_by_pooling_of_a_noisy_ball_is_the_computed_definition(model):
-    """A 40³ noisy ball: DSS_1/5 by pooling A equals D(Sc_1/5(R(A))) through the 5-times finer grid."""
+    """A 40³ noisy ball: DSS_1/5 by pooling A equals D(Sc_1/5(R(A))) computed on the grid of step 5."""
     rng = np.random.default_rng(7)
     z, y, x = np.mgrid[0:40, 0:40, 0:40]
     ball = ((x - 19.5) ** 2 + (y - 20.0) ** 2 + (z - 18.0) ** 2 < 17**2) ^ (rng.random((40, 40, 40)) < 0.03)
@@ -214,6 +215,24 @@ def test_dss_one_fifth_by_pooling_of_a_noisy_ball_is_the_computed_definition(mod
     pooled = scaling_by_pixels(a, (F(1, 5), off), model)
     assert pooled is not None
     assert pooled == voxelize_image(reconstruct(a, model), lin, off, model)
+
+
+@pytest.mark.parametrize(
+    ("numerators", "odd", "expected"),
+    [
+        ([25] * 100 + [10], 75, 5),  # the value that lowers the gcd comes after the first 64
+        ([15] * 100, 75, 15),
+        ([15] * 100 + [7], 75, 1),
+        ([0] * 70, 9, 9),
+        ([-45, 0, 30], 15, 15),
+    ],
+)
+def test_the_odd_denominator_is_reduced_by_every_numerator(numerators, odd, expected):
+    """N is the least odd factor: gcd(odd, every numerator), whichever value lowers it."""
+    from mrm.geometry.discretize.voxel_images import _gcd_with
+
+    assert _gcd_with(np.array(numerators, dtype=np.int64), odd) == expected
+    assert _gcd_with(np.array(numerators, dtype=object), odd) == expected
 
 
 # -------------------------------------------------------------------------------------------- refusals

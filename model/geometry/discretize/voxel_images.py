@@ -62,6 +62,8 @@ Matrix = Sequence[Sequence[Any]]
 _INT64_SAFE = 1 << 62
 #: Largest integer below which every integer is a float64 value.
 _FLOAT_INTEGERS = 1 << 53
+#: Numerators read first when reducing the odd denominator (most images are reduced to 1 by a few).
+_GCD_PREFIX = 64
 
 
 def voxelize_image(
@@ -247,8 +249,12 @@ def _gcd_with(y: npt.NDArray[Any], odd: int) -> int:
     if odd == 1:
         return 1
     if y.dtype == np.int64 and odd < _INT64_SAFE:
-        # gcd(odd, y) = gcd(odd, y mod odd): the remainders are small, so Euclid's loop per element is short
-        return math.gcd(odd, int(np.gcd.reduce(y % odd)))
+        # gcd(odd, y) = gcd(odd, y mod odd): the remainders are small, so Euclid's loop per element is short.
+        # A few values usually bring the gcd to 1 already (then the rest need not be read).
+        g = math.gcd(odd, int(np.gcd.reduce(y[:_GCD_PREFIX] % odd)))
+        if g == 1 or y.shape[0] <= _GCD_PREFIX:
+            return g
+        return math.gcd(g, int(np.gcd.reduce(y[_GCD_PREFIX:] % g)))
     g = odd
     for value in y.tolist():
         g = math.gcd(g, value)
