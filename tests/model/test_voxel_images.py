@@ -217,6 +217,32 @@ def test_dss_one_fifth_by_pooling_of_a_noisy_ball_is_the_computed_definition(mod
     assert pooled == voxelize_image(reconstruct(a, model), lin, off, model)
 
 
+@settings(max_examples=200)
+@given(
+    st.lists(
+        st.one_of(
+            st.floats(allow_nan=False, allow_infinity=False),
+            st.integers(-(2**20), 2**20).map(lambda n: n / 4),
+            st.sampled_from([0.0, -0.0, 5e-324, 2.0**-60, 6.0, 2.0**62, -(2.0**70)]),
+        ),
+        min_size=1,
+        max_size=12,
+    )
+)
+def test_integer_vertices_are_the_values_times_the_least_power_of_two(values):
+    """v = X·2^-k exactly with k ≥ 0 least, X int64 when it fits (else Python integers): the reading of
+    the vertices that every exact image starts from."""
+    from mrm.geometry.discretize.voxel_images import integer_vertices
+
+    v = np.array(values + [0.0] * (-len(values) % 3), dtype=np.float64).reshape(-1, 3)
+    x, k = integer_vertices(v)
+    assert k >= 0 and x.shape == v.shape
+    assert all(F(int(xi), 2**k) == F(vi) for xi, vi in zip(x.reshape(-1), v.reshape(-1), strict=True))
+    if k > 0:  # least: some value is not an integer times 2^-(k-1)
+        assert any((F(vi) * 2 ** (k - 1)).denominator > 1 for vi in v.reshape(-1))
+    assert (x.dtype == np.int64) == all(abs(F(vi)) * 2**k < 2**62 for vi in v.reshape(-1))
+
+
 @pytest.mark.parametrize(
     ("numerators", "odd", "expected"),
     [

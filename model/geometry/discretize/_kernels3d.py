@@ -708,6 +708,27 @@ def mark_triangles(
 
 
 @njit(cache=True)
+def least_exponent(v: Floats, kmax: int) -> int:
+    """Return the least k ≥ 0 with v·2^k an integer for every value of the 1-D array v; −1 beyond kmax.
+
+    v·2^k is exact (k ≥ 0: no underflow; an overflow to ±inf only for values that are integers already),
+    and an integer stays one as k grows, so k only rises: one pass. The product by the float 2^k is the
+    fast way; beyond 2^1000 (subnormal input only) 2^k is no float and ldexp takes over.
+    """
+    k = 0
+    scale = 1.0
+    for i in range(v.shape[0]):
+        u = v[i] * scale if k <= 1000 else math.ldexp(v[i], k)
+        while u != math.floor(u):
+            if k >= kmax:
+                return -1
+            k += 1
+            scale *= 2.0  # 2^k; inf beyond 2^1023, where it is not used
+            u = v[i] * scale if k <= 1000 else math.ldexp(v[i], k)
+    return k
+
+
+@njit(cache=True)
 def crop_in_place(mask: BoolMask, i0: int, j0: int, k0: int, nx: int, ny: int, nz: int) -> None:
     """Move mask[k0:k0+nz, j0:j0+ny, i0:i0+nx] to the front of the buffer, as a C-ordered (nz, ny, nx) array.
 

@@ -48,6 +48,7 @@ from mrm.core.grids import VoxelSet
 from mrm.core.limits import DEFAULT_VOXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.progress import ProgressLike
+from mrm.geometry.discretize._kernels3d import least_exponent
 from mrm.geometry.discretize.exact import MAX_ABS_COORD
 from mrm.geometry.discretize.voxels import MAX_GRID_STEP, MIN_ABS_COORD_3D, voxelize_solid
 
@@ -62,6 +63,8 @@ Matrix = Sequence[Sequence[Any]]
 _INT64_SAFE = 1 << 62
 #: Largest integer below which every integer is a float64 value.
 _FLOAT_INTEGERS = 1 << 53
+#: Beyond the exponent of the least subnormal (2^-1074): no float64 needs more fractional bits.
+_MAX_EXPONENT = 1100
 #: Numerators read first when reducing the odd denominator (most images are reduced to 1 by a few).
 _GCD_PREFIX = 64
 
@@ -192,6 +195,13 @@ def _exact_map(linear: Matrix, offset: Sequence[Any]) -> tuple[list[list[Fractio
 # ---------------------------------------------------------------------------------- the scaled image
 def integer_vertices(v: Floats) -> tuple[npt.NDArray[Any], int]:
     """(X, k) with v = X·2^-k exactly, X integers (int64 when they fit, else Python ints), k ≥ 0 least."""
+    if v.size == 0:
+        return np.zeros(v.shape, dtype=np.int64), 0
+    vmax = float(np.abs(v).max())
+    k = least_exponent(np.ascontiguousarray(v, dtype=np.float64).reshape(-1), _MAX_EXPONENT)
+    # |v|·2^k < 2^62, compared without forming 2^k (k reaches 1074 for a subnormal)
+    if k >= 0 and vmax < math.ldexp(1.0, 62 - k):
+        return np.ldexp(v, k).astype(np.int64), k  # exact: a power-of-two scale of integers below 2^62
     mant, e = np.frexp(v)  # v = mant·2^e, 0.5 ≤ |mant| < 1
     big = np.ldexp(mant, 53).astype(np.int64)  # v = big·2^(e − 53), exactly
     nz = big != 0
@@ -200,7 +210,7 @@ def integer_vertices(v: Floats) -> tuple[npt.NDArray[Any], int]:
     low = big[nz]
     tz = np.log2((low & -low).astype(np.float64)).astype(np.int64)  # trailing zero bits (powers of two)
     k = max(0, -int((e[nz] - 53 + tz).min()))
-    if float(np.abs(v).max()) * 2.0**k < _INT64_SAFE:
+    if vmax < math.ldexp(1.0, 62 - k):
         return np.ldexp(v, k).astype(np.int64), k
     # Coordinates spanning more than 62 bits together: Python integers (rare; still no Fraction).
     # big has its trailing zero bits, so a right shift (k ≥ −(e − 53 + tz)) drops zeros only.
