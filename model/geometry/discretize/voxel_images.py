@@ -234,7 +234,7 @@ def _scaled_image(
         b = int(t[i] * den) << k
         bound = sum(abs(a[j]) * xmax[j] for j in range(3)) + abs(b)
         xs = x if bound < _INT64_SAFE and x.dtype == np.int64 else x.astype(object)
-        y = xs[:, 0] * a[0] + xs[:, 1] * a[1] + xs[:, 2] * a[2] + b  # T(v)_i = y / (den·2^k)
+        y = _combination(xs, a, b)  # T(v)_i = y / (den·2^k)
         two = (den & -den).bit_length() - 1
         odd = den >> two
         g = _gcd_with(y, odd)
@@ -252,6 +252,18 @@ def _scaled_image(
     obj = any(c.dtype == object for c in z_cols)
     z = np.stack([c.astype(object) if obj else c for c in z_cols], axis=1)
     return z, exps, n
+
+
+def _combination(x: npt.NDArray[Any], a: list[int], b: int) -> npt.NDArray[Any]:
+    """x[:, 0]·a[0] + x[:, 1]·a[1] + x[:, 2]·a[2] + b, skipping zero terms (a scaling's row has one)."""
+    y: npt.NDArray[Any] | None = None
+    for j in range(3):
+        if a[j] != 0:
+            term = x[:, j] * a[j]
+            y = term if y is None else y + term
+    if y is None:  # pragma: no cover - a row of an invertible matrix is not zero
+        y = np.zeros(x.shape[0], dtype=x.dtype)
+    return y + b if b != 0 else y
 
 
 def _gcd_with(y: npt.NDArray[Any], odd: int) -> int:
