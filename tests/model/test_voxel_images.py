@@ -339,6 +339,25 @@ def test_images_on_the_coarse_grid_planes_and_centres_are_the_definition(
     assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
 
 
+@pytest.mark.parametrize("model", MODELS)
+def test_a_denominator_near_the_grid_step_limit_is_exact_and_one_beyond_is_refused(model):
+    """α = 1/3³⁰ (N ≈ 2^47.5): a tetrahedron of size ~2^48 about a voxel face shrinks to a few voxels, decided
+    on the grid of step N as the reference decides; α = 1/(2⁵⁰ + 1) is refused in one line (the grid
+    numbers N·(k ± ½) would leave the exact half-integers)."""
+    n = 3**30
+    tetra = Polyhedron(
+        *tetra_mesh((-n / 2, -n / 2, 0.0), (2.0 * n, 0.0, 0.0), (0.0, 1.5 * n, 0.0), (0.0, 0.0, n))
+    )
+    lin, off = similarity(F(1, n), IDENTITY, (F(0), F(0), F(0)))
+    got = voxelize_image(tetra, lin, off, model)
+    assert voxels(got) == reference_voxelize(exact_image(tetra, lin, off), model, True)
+    assert len(got) > 0
+    lin, off = similarity(F(1, 2**50 + 1), IDENTITY, (F(0), F(0), F(0)))
+    with pytest.raises(ParameterError) as info:
+        voxelize_image(tetra, lin, off, model)
+    assert "2^49" in str(info.value) and "\n" not in str(info.value)
+
+
 def test_a_result_beyond_the_limit_is_refused_before_the_finer_grid():
     a = VoxelSet.box(0, 0, 0, 9, 9, 9)
     lin, off = similarity(F(2, 5), IDENTITY, (F(0), F(0), F(0)))
