@@ -3,8 +3,8 @@
 DSS_α(A) = D(Sc_α(R(A))) (docs/design.md §8, §11) of a 128³ digital ball (default), about the origin:
 
 * R = ``reconstruct(A, model)`` is timed once on its own (an object's Euclidean view holds it: ADR 0039);
-* ours = ``voxelize_image(R, α·I, 0, model)``, the exact image voxelized (ADR 0058): α = 2 and 1.25 are
-  dyadic (N = 1: the plain exact voxelization); α = 4/5 and 1/5 voxelize on a grid 5 times finer and pool;
+* ours = ``voxelize_image(R, α·I, 0, model)``, the exact image voxelized (ADRs 0058, 0062): α = 2 and 1.25
+  are dyadic (N = 1: the plain exact voxelization); α = 4/5 and 1/5 voxelize 5·Sc_α(R) on the grid of step 5;
 * ours (pooling) = ``scaling_by_pixels`` for α = 1/2 with an aligned centre: A's voxels alone, no R;
 * float = the float composition the issue compares with: the same R, its vertices mapped in float64 (rounded;
   for a rotation the unrounded axis-angle matrix), then ``voxelize_solid`` — fast, but not D(T(R(A))) where a

@@ -362,6 +362,7 @@ def _step_voxelize() -> None:
     """D of a tetrahedron in every model, on both arithmetic paths (snapped and free coordinates)."""
     import numpy as np
 
+    from mrm.geometry.discretize.voxel_images import integer_vertices
     from mrm.geometry.discretize.voxels import voxelize_solid, voxelize_triangles
 
     tris = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
@@ -373,6 +374,7 @@ def _step_voxelize() -> None:
         for model in ("standard", "supercover", "gauss"):
             voxelize_solid(v, tris, model)
             voxelize_triangles(v, tris, model)
+    integer_vertices(v)  # the exact images' reading of the vertices (voxelize_image)
 
 
 def _step_examples() -> None:

@@ -1,8 +1,7 @@
 """Grid sets on a grid k times coarser: k-block OR-pooling and k-sampling, in any dimension.
 
-Two exact reductions of a grid set A share this one implementation: DSS_1/k of a pixel or voxel set when the
-grids are aligned (:func:`mrm.ops.outcome.scaling_by_pixels`) and the exact image of a polyhedron voxelized
-on a grid N times finer (:mod:`mrm.geometry.discretize.voxel_images`). Cell c of the coarse grid stands for
+Two exact reductions of a grid set A, used by DSS_1/k of a pixel or voxel set when the grids are aligned
+(:func:`mrm.ops.outcome.scaling_by_pixels`). Cell c of the coarse grid stands for
 the block of k^n cells of A's grid ``k·c + s + [0, k − 1]^n`` (``s`` its first cell for c = 0); the
 reductions are
 

@@ -1,11 +1,12 @@
-"""D(T(P)) of an exact rational affine image of a polyhedron (docs/design.md §11, §8; ADR 0058).
+"""D(T(P)) of an exact rational affine image of a polyhedron (docs/design.md §11, §8; ADRs 0058, 0062).
 
 DSS_α(A) = D(Sc_α(R(A))) and the quarter turns dR(A) = D(rot(R(A))) on voxel sets, with α = p/q whose image
 is not float64 (α = 1/5, 4/5 of the paper's Figure 12): every result is compared with the Fraction reference
-of the definitions (tests/oracles/voxelize_reference.py) given the exact image, on R(A) of random voxel sets
-and on tetrahedra and split octahedra with free float vertices. Then D(Sc_1(R(A))) = A, quarter turns of R(A)
-are A's quarter turns, DSS_1/k by pooling A's voxels is the computed definition, and a ratio that needs a grid
-too fine is refused at once without memory.
+of the definitions (tests/oracles/voxelize_reference.py) given the exact image, on R(A) of random voxel sets,
+on tetrahedra and split octahedra with free float vertices, and on images lying on the result's voxel centres
+and faces (where the grid of step N decides ties by N·τ). Then D(Sc_1(R(A))) = A, quarter turns of R(A) are
+A's quarter turns, DSS_1/k by pooling A's voxels is the computed definition, and a ratio with a large odd
+denominator costs its result only.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from mrm.geometry.discretize.voxel_images import voxelize_image
 from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct import reconstruct
 from mrm.ops.outcome import scaling_by_pixels
-from tests.oracles.mesh_strategies import stars, tetra_mesh, tetras
+from tests.oracles.mesh_strategies import box_mesh, stars, tetra_mesh, tetras
 from tests.oracles.voxelize_reference import reference_voxelize
 
 MODELS = Model.names()
@@ -125,7 +126,7 @@ def test_exact_images_of_float_polyhedra_are_the_definition_or_refused_when_not_
     mesh, alpha, centre, turn, model
 ):
     """Tetrahedra and split octahedra with free float64 vertices: the definition, or a one-line refusal
-    exactly when the image on the finer grid is not made of float64 numbers (53-bit mantissas)."""
+    exactly when the image scaled by N is not made of float64 numbers (53-bit mantissas)."""
     try:
         solid = Polyhedron(*mesh)
     except InvalidGeometryError:
@@ -204,7 +205,7 @@ def test_dss_one_over_k_by_pooling_voxels_is_the_computed_definition(a, k, centr
 
 @pytest.mark.parametrize("model", MODELS)
 def test_dss_one_fifth_by_pooling_of_a_noisy_ball_is_the_computed_definition(model):
-    """A 40³ noisy ball: DSS_1/5 by pooling A equals D(Sc_1/5(R(A))) through the 5-times finer grid."""
+    """A 40³ noisy ball: DSS_1/5 by pooling A equals D(Sc_1/5(R(A))) computed on the grid of step 5."""
     rng = np.random.default_rng(7)
     z, y, x = np.mgrid[0:40, 0:40, 0:40]
     ball = ((x - 19.5) ** 2 + (y - 20.0) ** 2 + (z - 18.0) ** 2 < 17**2) ^ (rng.random((40, 40, 40)) < 0.03)
@@ -216,24 +217,145 @@ def test_dss_one_fifth_by_pooling_of_a_noisy_ball_is_the_computed_definition(mod
     assert pooled == voxelize_image(reconstruct(a, model), lin, off, model)
 
 
+@settings(max_examples=200)
+@given(
+    st.lists(
+        st.one_of(
+            st.floats(allow_nan=False, allow_infinity=False),
+            st.integers(-(2**20), 2**20).map(lambda n: n / 4),
+            st.sampled_from([0.0, -0.0, 5e-324, 2.0**-60, 6.0, 2.0**62, -(2.0**70)]),
+        ),
+        min_size=1,
+        max_size=12,
+    )
+)
+def test_integer_vertices_are_the_values_times_the_least_power_of_two(values):
+    """v = X·2^-k exactly with k ≥ 0 least, X int64 when it fits (else Python integers): the reading of
+    the vertices that every exact image starts from."""
+    from mrm.geometry.discretize.voxel_images import integer_vertices
+
+    v = np.array(values + [0.0] * (-len(values) % 3), dtype=np.float64).reshape(-1, 3)
+    x, k = integer_vertices(v)
+    assert k >= 0 and x.shape == v.shape
+    assert all(F(int(xi), 2**k) == F(vi) for xi, vi in zip(x.reshape(-1), v.reshape(-1), strict=True))
+    if k > 0:  # least: some value is not an integer times 2^-(k-1)
+        assert any((F(vi) * 2 ** (k - 1)).denominator > 1 for vi in v.reshape(-1))
+    assert (x.dtype == np.int64) == all(abs(F(vi)) * 2**k < 2**62 for vi in v.reshape(-1))
+
+
+@pytest.mark.parametrize(
+    ("numerators", "odd", "expected"),
+    [
+        ([25] * 100 + [10], 75, 5),  # the value that lowers the gcd comes after the first 64
+        ([15] * 100, 75, 15),
+        ([15] * 100 + [7], 75, 1),
+        ([0] * 70, 9, 9),
+        ([-45, 0, 30], 15, 15),
+    ],
+)
+def test_the_odd_denominator_is_reduced_by_every_numerator(numerators, odd, expected):
+    """N is the least odd factor: gcd(odd, every numerator), whichever value lowers it."""
+    from mrm.geometry.discretize.voxel_images import _gcd_with
+
+    assert _gcd_with(np.array(numerators, dtype=np.int64), odd) == expected
+    assert _gcd_with(np.array(numerators, dtype=object), odd) == expected
+
+
 # -------------------------------------------------------------------------------------------- refusals
-def test_a_ratio_needing_a_grid_125_times_finer_is_refused_at_once_without_memory():
-    """α = 1001/1000 on a 64³ object would voxelize on a 125-times finer grid (5·10¹¹ voxels): refused by
-    the size check with one line naming that grid, before anything of that size is made."""
+@pytest.mark.parametrize("model", MODELS)
+def test_a_ratio_with_a_large_odd_denominator_costs_its_result_only(model):
+    """α = 127/125 (N = 125) on a 64³ cube: computed on the grid of step 125 within a few megabytes (a
+    125-times finer grid would hold 3·10¹¹ voxels, refused before), and it is D of the scaled box: on each
+    axis the voxels whose kernel meets [α·lo, α·hi], [lo, hi] the extent of R(A)."""
     a = VoxelSet.box(0, 0, 0, 63, 63, 63)
-    solid = reconstruct(a, "standard")
-    lin, off = similarity(F(1001, 1000), IDENTITY, (F(0), F(0), F(0)))
+    solid = reconstruct(a, model)
+    alpha = F(127, 125)
+    lin, off = similarity(alpha, IDENTITY, (F(0), F(0), F(0)))
     tracemalloc.start()
     try:
-        with pytest.raises(SizeLimitError) as info:
-            voxelize_image(solid, lin, off, "standard", what="DSS 1.001")
+        got = voxelize_image(solid, lin, off, model, what="DSS 1.016")
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
-    message = str(info.value)
-    assert "\n" not in message and "125 times finer" in message and "DSS 1.001" in message
-    assert info.value.estimated > 10**11
-    assert peak < 1 << 20  # a megabyte: the polyhedron's few vertices, no grid
+    assert solid.n_vertices == 8  # R(A) is the box [lo, hi]³
+    lo, hi = alpha * F(float(solid.vertices.min())), alpha * F(float(solid.vertices.max()))
+    if model == "gauss":  # lo ≤ c < hi
+        c_lo, c_hi = math.ceil(lo), math.ceil(hi) - 1
+    else:  # the cells (c − ½, c + ½] of the ends (neither end is a half-integer)
+        assert (2 * lo).denominator > 1 and (2 * hi).denominator > 1
+        c_lo, c_hi = math.ceil(lo - F(1, 2)), math.ceil(hi - F(1, 2))
+    assert got == VoxelSet.box(c_lo, c_lo, c_lo, c_hi, c_hi, c_hi) != a
+    assert peak < 8 << 20  # the 65³ result is 0.3 MB
+
+
+#: Ratios with odd denominators up to 375, and the lattice of the image's vertices (below).
+LATTICE_ALPHAS = [F(1, 5), F(4, 5), F(2, 3), F(1, 7), F(3, 11), F(1, 125), F(64, 375)]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.sampled_from(LATTICE_ALPHAS),
+    st.lists(st.tuples(*[st.integers(-3, 3)] * 3), min_size=4, max_size=4, unique=True),
+    st.tuples(*[st.integers(-2, 2)] * 3),
+    st.tuples(st.integers(0, 2), st.integers(0, 3)),
+    st.booleans(),
+    st.sampled_from(MODELS),
+)
+def test_images_on_the_coarse_grid_planes_and_centres_are_the_definition(
+    alpha, ms, shift, turn, as_box, model
+):
+    """Images whose vertices lie on the result's voxel centres (integers) and faces (half-integers), with
+    edges and faces along them, so that Q = N·T(P) lies on the centres N·c and planes N·(k ± ½) of the grid
+    of step N where the shift N·τ decides: a tetrahedron or an axis-aligned box with vertices w in the lattice
+    (p'/2)·Z³ (p' the odd part of α's numerator), P = T⁻¹ of it (float64: T⁻¹(w) = rot⁻¹(w − C)/α + C with
+    C in the lattice). Compared with the Fraction reference, in every model."""
+    unit = F(alpha.numerator >> ((alpha.numerator & -alpha.numerator).bit_length() - 1), 2)
+    ws = [tuple(unit * u for u in m) for m in ms]
+    centre = tuple(unit * u for u in shift)
+    if as_box:
+        lo = [min(w[d] for w in ws[:2]) for d in range(3)]
+        hi = [max(w[d] for w in ws[:2]) for d in range(3)]
+        assume(all(lo[d] < hi[d] for d in range(3)))
+        corners = [tuple((lo, hi)[(n >> d) & 1][d] for d in range(3)) for n in range(8)]
+    else:
+        corners = ws
+    rot = quarter_turn(*turn)
+    lin, off = similarity(alpha, rot, centre)
+    # T⁻¹(w) = rotᵀ·(w − C)/α + C, exactly; float64 by the choice of the lattice
+    pre = [
+        tuple(sum(rot[j][i] * (w[j] - centre[j]) for j in range(3)) / alpha + centre[i] for i in range(3))
+        for w in corners
+    ]
+    assert all(F(float(u)) == u for p in pre for u in p)
+    if as_box:  # box_mesh's outward triangles on the corners' preimages (T keeps orientation)
+        v, t = np.array([[float(u) for u in p] for p in pre]), box_mesh((0, 0, 0), (1, 1, 1))[1]
+    else:
+        v, t = tetra_mesh(*[tuple(float(u) for u in p) for p in pre])
+    try:
+        solid = Polyhedron(v, t)
+    except InvalidGeometryError:
+        assume(False)
+    got = voxelize_image(solid, lin, off, model)
+    assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_a_denominator_near_the_grid_step_limit_is_exact_and_one_beyond_is_refused(model):
+    """α = 1/3³⁰ (N ≈ 2^47.5): a tetrahedron of size ~2^48 about a voxel face shrinks to a few voxels, decided
+    on the grid of step N as the reference decides; α = 1/(2⁵⁰ + 1) is refused in one line (the grid
+    numbers N·(k ± ½) would leave the exact half-integers)."""
+    n = 3**30
+    tetra = Polyhedron(
+        *tetra_mesh((-n / 2, -n / 2, 0.0), (2.0 * n, 0.0, 0.0), (0.0, 1.5 * n, 0.0), (0.0, 0.0, n))
+    )
+    lin, off = similarity(F(1, n), IDENTITY, (F(0), F(0), F(0)))
+    got = voxelize_image(tetra, lin, off, model)
+    assert voxels(got) == reference_voxelize(exact_image(tetra, lin, off), model, True)
+    assert len(got) > 0
+    lin, off = similarity(F(1, 2**50 + 1), IDENTITY, (F(0), F(0), F(0)))
+    with pytest.raises(ParameterError) as info:
+        voxelize_image(tetra, lin, off, model)
+    assert "2^49" in str(info.value) and "\n" not in str(info.value)
 
 
 def test_a_result_beyond_the_limit_is_refused_before_the_finer_grid():

@@ -102,27 +102,97 @@ def test_triangles_segments_points_match_reference(mesh) -> None:  # type: ignor
     assert_matches_reference(mesh, solid=False)
 
 
-@pytest.mark.parametrize(
-    "mesh",
-    [
-        # faces along voxel faces, vertices on voxel corners
-        box_mesh((-0.5, -0.5, -0.5), (1.5, 0.5, 2.5)),
-        # faces through voxel centres, vertices on centres
-        box_mesh((0.0, 0.0, 0.0), (2.0, 1.0, 3.0)),
-        # a unit cube centred on a voxel edge and a regular octahedron on the grid
-        box_mesh((0.0, 0.5, -0.5), (1.0, 1.5, 0.5)),
-        tetra_mesh((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0), (0.0, 0.0, 2.0)),
-        tetra_mesh((0.5, 0.5, 0.5), (2.5, 0.5, 0.5), (0.5, 2.5, 0.5), (0.5, 0.5, 2.5)),
-        # a box with a cavity whose faces lie on voxel faces
-        concat(
-            box_mesh((-2.5, -2.5, -2.5), (2.5, 2.5, 2.5)), box_mesh((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), True)
-        ),
-    ],
-    ids=["on-faces", "on-centres", "on-edge", "corner-tetra", "half-tetra", "cavity-on-faces"],
-)
+ADVERSARIAL_SOLIDS = [
+    # faces along voxel faces, vertices on voxel corners
+    box_mesh((-0.5, -0.5, -0.5), (1.5, 0.5, 2.5)),
+    # faces through voxel centres, vertices on centres
+    box_mesh((0.0, 0.0, 0.0), (2.0, 1.0, 3.0)),
+    # a unit cube centred on a voxel edge and a regular octahedron on the grid
+    box_mesh((0.0, 0.5, -0.5), (1.0, 1.5, 0.5)),
+    tetra_mesh((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0), (0.0, 0.0, 2.0)),
+    tetra_mesh((0.5, 0.5, 0.5), (2.5, 0.5, 0.5), (0.5, 2.5, 0.5), (0.5, 0.5, 2.5)),
+    # a box with a cavity whose faces lie on voxel faces
+    concat(
+        box_mesh((-2.5, -2.5, -2.5), (2.5, 2.5, 2.5)), box_mesh((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), True)
+    ),
+]
+ADVERSARIAL_IDS = ["on-faces", "on-centres", "on-edge", "corner-tetra", "half-tetra", "cavity-on-faces"]
+
+
+@pytest.mark.parametrize("mesh", ADVERSARIAL_SOLIDS, ids=ADVERSARIAL_IDS)
 def test_adversarial_solids_match_reference(mesh) -> None:  # type: ignore[no-untyped-def]
     assert_matches_reference(mesh, solid=True)
     assert_matches_reference(mesh, solid=False)
+
+
+# ----------------------------------------------------------------------------------- the grid of step N
+#: Grid steps: odd (the exact images of DSS_α, α = p/q, voxelize on the grid of step N = the odd part of q),
+#: even, and large.
+STEPS = [1, 2, 3, 5, 7, 11, 125]
+
+
+def assert_step_matches_reference(mesh, n: int) -> None:  # type: ignore[no-untyped-def]
+    """Q = N·P (rounded where a free float times N is not a float64) on the grid of step N, whose voxel c is
+    the cube of side N centred on N·c, is the reference D(Q / N) of the exact Q / N, in every model and along
+    both arithmetic paths. P's grid-friendly vertices put Q's on that grid's centres N·k and planes N·(k ± ½),
+    where the kernel's shift N·τ decides."""
+    v, t = mesh
+    q = v * n
+    tris = [[tuple(u / n for u in p) for p in tri] for tri in exact_triangles(q, t)]
+    ref = reference_voxelize_all(tris, True, MODELS)
+    for model in MODELS:
+        for exact_mode in (None, False):
+            got = voxel_set(*_run(q, t, Model.parse(model), True, None, exact_mode, step=n))
+            assert got == ref[model], (model, n, exact_mode, sorted(got ^ ref[model]), mesh)
+        mask, origin = _run(q, t, Model.parse(model), True, None, step=n)
+        assert_canonical(mask, origin)
+
+
+@settings(max_examples=60)
+@given(solids(), st.sampled_from(STEPS))
+def test_solids_on_the_grid_of_step_n_match_reference(mesh, n) -> None:  # type: ignore[no-untyped-def]
+    assert_step_matches_reference(mesh, n)
+
+
+@pytest.mark.parametrize("n", [3, 5, 11, 125])
+@pytest.mark.parametrize("mesh", ADVERSARIAL_SOLIDS, ids=ADVERSARIAL_IDS)
+def test_adversarial_solids_on_the_grid_of_step_n_match_reference(mesh, n) -> None:  # type: ignore[no-untyped-def]
+    """Faces on the planes N·(k ± ½), vertices on the centres N·k and corners, edges along voxel edges."""
+    assert_step_matches_reference(mesh, n)
+
+
+@settings(max_examples=25)
+@given(
+    solids(),
+    st.sampled_from([3, 5, 125]),
+    st.tuples(*[st.sampled_from([2**40 + 3, -(2**33), 2**20 - 1, 2**42 + 1])] * 3),
+)
+def test_far_solids_on_the_grid_of_step_n_match_reference(mesh, n, t) -> None:  # type: ignore[no-untyped-def]
+    """Coordinates N·(2^42 + a fraction) ≈ 2^49: the float filters' bounds with cubes of side N."""
+    v, tri = mesh
+    v = np.round(v * 16) / 16 + np.array(t, dtype=np.float64)  # exact: 2^42 + k/16 is a float64
+    assert_step_matches_reference((v, tri), n)
+
+
+@pytest.mark.parametrize("n", [3, 125, 2**20 + 1])
+def test_a_box_near_the_coordinate_limit_on_the_grid_of_step_n(n) -> None:
+    """Q's coordinates near 2^51 and the grid planes N·(k ± ½) just below 2^52 stay exact half-integers."""
+    base = box_mesh((0.0, 0.5, -0.5), (1.0, 1.5, 0.5))
+    k = 2**51 // n - 3  # the box's voxels near 2^51 / N
+    v = base[0] * n + np.array([k * n, -k * n, (k // 2) * n], dtype=np.float64)
+    assert np.abs(v).max() <= 2.0**51 and (v == np.round(v * 2) / 2).all()
+    for model in MODELS:
+        got = voxel_set(*_run(v, base[1], Model.parse(model), True, None, step=n))
+        unit = voxels(base, model)
+        assert got == {(x + k, y - k, z + k // 2) for x, y, z in unit}, model
+
+
+@pytest.mark.parametrize("step", [0, -3, 2**49 + 1, 1.5, True, "3"])
+def test_a_bad_grid_step_is_refused_in_one_line(step) -> None:  # type: ignore[no-untyped-def]
+    v, t = tetra_mesh((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    with pytest.raises(ParameterError) as info:
+        voxelize_solid(v, t, step=step)
+    assert "step" in str(info.value) and "\n" not in str(info.value)
 
 
 def test_octahedron_gauss_is_the_digital_octahedron() -> None:
@@ -285,6 +355,18 @@ def test_bad_input_is_refused_with_a_message() -> None:
         voxelize_solid(v, t.astype(float))
     with pytest.raises(SizeLimitError):
         voxelize_solid(v * 1000, t, limit=1000)
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_vertices_no_triangle_uses_neither_widen_the_box_nor_need_to_be_in_range(model) -> None:
+    """Two extra vertices (one NaN, one at 10^300) that no triangle refers to change nothing."""
+    v, t = tetra_mesh((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0), (0.0, 0.0, 2.0))
+    extra = np.concatenate([v[:2], [[np.nan, 0.0, 0.0], [1e300, -1e300, 0.0]], v[2:]])
+    t2 = np.where(t >= 2, t + 2, t)
+    mask, origin = voxelize_solid(extra, t2, model)
+    assert voxel_set(mask, origin) == voxels((v, t), model)
+    assert_canonical(mask, origin)
+    assert voxelization_box(extra, t2, model) == voxelization_box(v, t, model)
 
 
 def test_empty_inputs() -> None:

@@ -2,20 +2,27 @@
 
 Every decision reduces to one of three exact questions about float64 data:
 
-* the cell of a coordinate (comparisons with half-integers, exact: :func:`._kernels.cell`);
+* the cell of a coordinate (comparisons with grid half-integers, exact: :func:`_cell_step`);
 * the sign of a 2×2 determinant ``(p1 − p2)(q1 − q2) − (r1 − r2)(s1 − s2)`` (the 2D kernels' filtered
   :func:`._kernels._det_filter` / :func:`._kernels._det_sign_exact`);
 * the sign of a 3×3 determinant det[a − d; b − d; c − d] (here: Shewchuk's orient3d filter, and an exact
   floating-point expansion when the filter cannot decide).
 
 The expansion arithmetic is exact as long as no product underflows or overflows: the caller limits the
-coordinates to 2^-250 ≤ |v| ≤ 2^51 (or v = 0). Every input and grid number is then a multiple of 2^-302, every
-product of three of them (and every rounding error of such a product) a multiple of 2^-906, far above the
-subnormal range. When the caller has proved plain float arithmetic exact for the whole mesh (``exact=True``,
-:func:`mrm.geometry.discretize.exact.float_predicates_are_exact` with ``EXACT_UNITS_3D``) the float
-determinants are used as they are, zero included.
+coordinates to 2^-250 ≤ |v| ≤ 2^51 (or v = 0) and the grid step to w ≤ 2^49, so that grid numbers within two
+voxels of the data stay below 2^52, exact half-integers. Every input and grid number is a multiple of 2^-302,
+every product of three of them (and every rounding error of such a product) a multiple of 2^-906, far above
+the subnormal range. When the caller has proved plain float arithmetic exact for the whole mesh
+(``exact=True``, :func:`mrm.geometry.discretize.exact.float_predicates_are_exact` with ``EXACT_UNITS_3D`` and
+the step) the float determinants are used as they are, zero included.
 
-Voxel p = (i, j, k) is centred on p; τ = (ε, ε², ε³). The models (docs/design.md §11):
+Voxel p = (i, j, k) is centred on p; τ = (ε, ε², ε³). The kernels also run on the grid of step w (a
+positive integer; ``w = 1.0`` is the unit grid): voxel p is then the cube of side w centred on w·p, its kernel
+is w·K(p) (shift w·τ), and the result is D(P / w) without dividing P (ADR 0062). Grid numbers w·p and
+w·p ± w/2 are integers or half-integers, exact floats in the supported range, and every tie is decided by the
+sign of a linear form a·τ, the same for w·τ. The docstrings below are written for w = 1.
+
+The models (docs/design.md §11):
 
 * gauss — p + τ inside the solid: a parity scanline along +x (:func:`fill_parity`);
 * supercover — V(p) meets a triangle: the separating-axis test with strict separation;
@@ -38,7 +45,6 @@ from mrm.geometry.discretize._kernels import (
     _grow,
     _two_diff,
     _two_prod,
-    cell,
     det_sign,
 )
 
@@ -176,6 +182,29 @@ def _sgn(u: float) -> int:
     return 1 if u > 0.0 else (-1 if u < 0.0 else 0)
 
 
+# ------------------------------------------------------------------------------------- the grid step
+@njit(cache=True)
+def _ceil_step(u: float, w: float) -> int:
+    """Return the least k with k·w ≥ u: ⌈u / w⌉ exactly (k·w is an integer below 2^53, an exact float)."""
+    k = math.ceil(u / w)  # off by at most one: the quotient is rounded once
+    if k * w < u:
+        k += 1
+    elif (k - 1) * w >= u:
+        k -= 1
+    return k
+
+
+@njit(cache=True)
+def _cell_step(u: float, w: float, half: float) -> int:
+    """Return k with u ∈ (k·w − half, k·w + half], half = w / 2 (exact: k·w ± half are floats)."""
+    k = np.floor((u + half) / w)
+    while u > k * w + half:
+        k += 1.0
+    while u <= k * w - half:
+        k -= 1.0
+    return int(k)
+
+
 # ------------------------------------------------------------------------------------------ gauss
 @njit(cache=True)
 def _edge_side(ay: float, az: float, by: float, bz: float, j: float, k: float, exact: bool, e: Floats) -> int:
@@ -207,19 +236,20 @@ def _crossing_ceil(
     k: float,
     lo: int,
     hi: int,
+    w: float,
     exact: bool,
     e: Floats,
 ) -> int:
-    """Return min(max(⌈X⌉, lo), hi), X the abscissa where the line (·, j, k) meets the plane of abc.
+    """Return min(max(⌈X / w⌉, lo), hi), X the abscissa where the line (·, j, k) meets the plane of abc.
 
-    X ≤ n ⟺ s · det[a − q; b − q; c − q] ≤ 0 for q = (n, j, k), s the sign of the normal's x component.
-    The float estimate of X gives the first candidate; a binary search corrects it (needed only where the
-    estimate is off by more than a unit, i.e. almost never).
+    X ≤ n·w ⟺ s · det[a − q; b − q; c − q] ≤ 0 for q = (n·w, j, k), s the sign of the normal's x component
+    (w the grid step). The float estimate of X / w gives the first candidate; a binary search corrects it
+    (needed only where the estimate is off by more than a unit, i.e. almost never).
     """
     nx = (by - ay) * (cz - az) - (bz - az) * (cy - ay)
     ny = (bz - az) * (cx - ax) - (bx - ax) * (cz - az)
     nz = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
-    xe = ax + (ny * (ay - j) + nz * (az - k)) / nx
+    xe = (ax + (ny * (ay - j) + nz * (az - k)) / nx) / w
     if xe != xe:  # NaN: take the middle of the range
         c = (lo + hi) // 2
     elif xe <= lo:
@@ -228,18 +258,18 @@ def _crossing_ceil(
         c = hi
     else:
         c = math.ceil(xe)
-    if c < hi and s * det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, float(c), j, k, exact, e) > 0:
+    if c < hi and s * det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, c * w, j, k, exact, e) > 0:
         lo2 = c + 1
         hi2 = hi
     else:
-        if c == lo or s * det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, float(c - 1), j, k, exact, e) > 0:
+        if c == lo or s * det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, (c - 1) * w, j, k, exact, e) > 0:
             return c
         lo2 = lo
         hi2 = c - 1
     # The answer lies in [lo2, hi2] and X ≤ hi2 holds (or hi2 == hi, the clamp).
     while lo2 < hi2:
         mid = (lo2 + hi2) // 2
-        if s * det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, float(mid), j, k, exact, e) <= 0:
+        if s * det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, mid * w, j, k, exact, e) <= 0:
             hi2 = mid
         else:
             lo2 = mid + 1
@@ -259,8 +289,12 @@ def fill_parity(
     exact: bool,
     scratch: Floats,
     ext: Ints,
+    w: float,
 ) -> int:
     """Set the voxels p with p + τ inside the closed surface ``tris`` (even-odd rule); return #misses.
+
+    On the grid of step w (a positive integer as a float) the point is w·p + w·τ, below written for w = 1:
+    the argument is the same with j, k, i replaced by w·j, w·k, w·i, and ⌈X⌉ by ⌈X / w⌉.
 
     The ray from p + τ towards +x, {(i + ε + t, j + ε², k + ε³)}, passes through no vertex and no edge: it
     crosses a triangle exactly when (j + ε², k + ε³) lies inside the triangle's projection on the (y, z) plane
@@ -283,14 +317,14 @@ def fill_parity(
         s = det_sign(by, ay, cz, az, bz, az, cy, ay, exact, scratch)
         if s == 0:
             continue  # seen edge-on along x: never crossed
-        jlo = math.ceil(min(ay, by, cy))
-        jhi = math.ceil(max(ay, by, cy)) - 1
-        klo = math.ceil(min(az, bz, cz))
-        khi = math.ceil(max(az, bz, cz)) - 1
+        jlo = _ceil_step(min(ay, by, cy), w)
+        jhi = _ceil_step(max(ay, by, cy), w) - 1
+        klo = _ceil_step(min(az, bz, cz), w)
+        khi = _ceil_step(max(az, bz, cz), w) - 1
         for k in range(klo, khi + 1):
-            fk = float(k)
+            fk = k * w
             for j in range(jlo, jhi + 1):
-                fj = float(j)
+                fj = j * w
                 if _edge_side(ay, az, by, bz, fj, fk, exact, scratch) != s:
                     continue
                 if _edge_side(by, bz, cy, cz, fj, fk, exact, scratch) != s:
@@ -298,7 +332,7 @@ def fill_parity(
                 if _edge_side(cy, cz, ay, az, fj, fk, exact, scratch) != s:
                     continue
                 ci = _crossing_ceil(
-                    ax, ay, az, bx, by, bz, cx, cy, cz, s, fj, fk, x0, x0 + nxs, exact, scratch
+                    ax, ay, az, bx, by, bz, cx, cy, cz, s, fj, fk, x0, x0 + nxs, w, exact, scratch
                 )
                 kk = k - z0
                 jj = j - y0
@@ -346,13 +380,15 @@ def _cross_axis_separates(
     ct: float,
     t_first: bool,
     supercover: bool,
+    side: float,
     exact: bool,
     e: Floats,
 ) -> bool:
     """Tell whether the axis a = (w − v) × u (u a coordinate axis) separates the triangle from the kernel.
 
     (s, t) are the two other coordinates, in cyclic order, so that a = (e_t, −e_s) in that plane, e = w − v.
-    The triangle projects on a to {a·v = a·w, a·o}; the kernel's cube (centre c) to [a·c_min, a·c_max].
+    The triangle projects on a to {a·v = a·w, a·o}; the kernel's cube (centre c, side ``side``, the grid
+    step) to [a·c_min, a·c_max].
     supercover: separated when both values lie strictly below a·c_min or strictly above a·c_max.
     standard (open cube shifted by τ): below when a·(x − c_min) ≤ a·τ, an equality counting when a·τ > 0,
     i.e. when the first non-zero component of a in (x, y, z) order is positive (``t_first``: t comes first).
@@ -371,8 +407,9 @@ def _cross_axis_separates(
     pot = ot - ct
     pv = et * pvs - es * pvt
     po = et * pos - es * pot
-    r = 0.5 * (abs(et) + abs(es))
-    bound = 16.0 * _EPS * (abs(et) * (abs(pvs) + abs(pos) + 1.0) + abs(es) * (abs(pvt) + abs(pot) + 1.0))
+    half = 0.5 * side
+    r = half * (abs(et) + abs(es))
+    bound = 16.0 * _EPS * (abs(et) * (abs(pvs) + abs(pos) + side) + abs(es) * (abs(pvt) + abs(pot) + side))
     hi_v = max(pv, po)
     lo_v = min(pv, po)
     if hi_v + r > bound and lo_v - r < -bound:
@@ -381,8 +418,8 @@ def _cross_axis_separates(
         return True  # strictly apart
     first, second = (a_t, a_s) if t_first else (a_s, a_t)
     lex = first if first != 0 else second
-    ms = cs - 0.5 if a_s > 0 else cs + 0.5
-    mt = ct - 0.5 if a_t > 0 else ct + 0.5
+    ms = cs - half if a_s > 0 else cs + half
+    mt = ct - half if a_t > 0 else ct + half
     # a·(x − m) = e_t (x_s − m_s) − e_s (x_t − m_t)
     d1 = det_sign(wt, vt, vs, ms, ws, vs, vt, mt, exact, e)
     if d1 < 0 or (d1 == 0 and not supercover and lex > 0):
@@ -414,6 +451,7 @@ def _plane_cross_separates(
     ft: float,
     plane: int,
     supercover: bool,
+    side: float,
     exact: bool,
     e: Floats,
 ) -> bool:
@@ -428,19 +466,23 @@ def _plane_cross_separates(
     else:
         a_s, a_t, b_s, b_t, c_s, c_t = ax, ay, bx, by, cx, cy
     tf = plane == 1
-    if _cross_axis_separates(a_s, a_t, b_s, b_t, c_s, c_t, fs, ft, tf, supercover, exact, e):
+    if _cross_axis_separates(a_s, a_t, b_s, b_t, c_s, c_t, fs, ft, tf, supercover, side, exact, e):
         return True
-    if _cross_axis_separates(b_s, b_t, c_s, c_t, a_s, a_t, fs, ft, tf, supercover, exact, e):
+    if _cross_axis_separates(b_s, b_t, c_s, c_t, a_s, a_t, fs, ft, tf, supercover, side, exact, e):
         return True
-    return _cross_axis_separates(c_s, c_t, a_s, a_t, b_s, b_t, fs, ft, tf, supercover, exact, e)
+    return _cross_axis_separates(c_s, c_t, a_s, a_t, b_s, b_t, fs, ft, tf, supercover, side, exact, e)
 
 
 @njit(cache=True)
-def _range(lo: float, hi: float, supercover: bool) -> tuple[int, int]:
-    """Voxel indices whose kernel's extent on one axis meets [lo, hi] (closed cells, or the cell rule)."""
-    i0 = cell(lo)
-    i1 = cell(hi)
-    if supercover and hi == i1 + 0.5:
+def _range(lo: float, hi: float, supercover: bool, w: float) -> tuple[int, int]:
+    """Voxel indices whose kernel's extent on one axis meets [lo, hi] (closed cells, or the cell rule).
+
+    On the grid of step w the kernel of index i spans w·i ± w/2 on the axis (shifted by w·ε in standard).
+    """
+    half = 0.5 * w
+    i0 = _cell_step(lo, w, half)
+    i1 = _cell_step(hi, w, half)
+    if supercover and hi == i1 * w + half:
         i1 += 1
     return i0, i1
 
@@ -464,19 +506,20 @@ def _normal_separates(
     snz: int,
     lexn: int,
     supercover: bool,
+    half: float,
     exact: bool,
     e: Floats,
 ) -> bool:
-    """Tell whether the triangle's normal n separates it from the cube centred at (fi, fj, fk).
+    """Tell whether the triangle's normal n separates it from the cube of half-side ``half`` at (fi, fj, fk).
 
     n·(a − m) = det[a − m; b − m; c − m] for the cube's corner m minimizing n·x: below when < 0 (or = 0 with
     n·τ > 0 under the tie rule); the same with the maximizing corner, above.
     """
     if lexn == 0:
         return False
-    mx = fi - 0.5 if snx > 0 else fi + 0.5
-    my = fj - 0.5 if sny > 0 else fj + 0.5
-    mz = fk - 0.5 if snz > 0 else fk + 0.5
+    mx = fi - half if snx > 0 else fi + half
+    my = fj - half if sny > 0 else fj + half
+    mz = fk - half if snz > 0 else fk + half
     d = det3_sign(ax, ay, az, bx, by, bz, cx, cy, cz, mx, my, mz, exact, e)
     if d < 0 or (d == 0 and not supercover and lexn > 0):
         return True
@@ -503,8 +546,11 @@ def mark_triangles(
     supercover: bool,
     exact: bool,
     scratch: Floats,
+    w: float,
 ) -> int:
     """Set the voxels whose kernel meets a closed triangle of ``tris`` (standard or supercover); #misses.
+
+    Voxel p's cube has side w (the grid step, a positive integer as a float) and centre w·p; below, w = 1.
 
     Separating-axis theorem (the 13 candidate axes of a box and a triangle: the 3 coordinate axes, the
     triangle's normal and the 9 products edge × axis; zero axes of degenerate triangles are skipped, and the
@@ -518,11 +564,12 @@ def mark_triangles(
     its error, and not used at all when the float normal is not accurate enough.
     """
     nzs, nys, nxs = mask.shape
-    origin = (x0, y0, z0)
     bad = 0
+    half = 0.5 * w
     lo = np.empty(3, np.int64)
     hi = np.empty(3, np.int64)
-    f = np.empty(3)
+    f = np.empty(3)  # the voxel's centre w·p
+    ix = np.empty(3, np.int64)  # p
     for t in range(tris.shape[0]):
         a = tris[t, 0]
         b = tris[t, 1]
@@ -534,9 +581,9 @@ def mark_triangles(
         sny = det_sign(bz, az, cx, ax, bx, ax, cz, az, exact, scratch)
         snz = det_sign(bx, ax, cy, ay, by, ay, cx, ax, exact, scratch)
         lexn = snx if snx != 0 else (sny if sny != 0 else snz)
-        lo[0], hi[0] = _range(min(ax, bx, cx), max(ax, bx, cx), supercover)
-        lo[1], hi[1] = _range(min(ay, by, cy), max(ay, by, cy), supercover)
-        lo[2], hi[2] = _range(min(az, bz, cz), max(az, bz, cz), supercover)
+        lo[0], hi[0] = _range(min(ax, bx, cx), max(ax, bx, cx), supercover, w)
+        lo[1], hi[1] = _range(min(ay, by, cy), max(ay, by, cy), supercover, w)
+        lo[2], hi[2] = _range(min(az, bz, cz), max(az, bz, cz), supercover, w)
         # The float normal and a bound of its error: each component has two products of rounded
         # differences and one subtraction, below 4u(1 + 4u)(|p1| + |p2|) off; 8u leaves room.
         p1 = (by - ay) * (cz - az)
@@ -561,26 +608,29 @@ def mark_triangles(
         qq = (dd + 2) % 3
         av = (ax, ay, az)
         nv = (n0, n1, n2)
-        # Error of the float range (see the docstring): relative error of n below 2^-30, |n_D| ≥ Σ|n| / 3,
-        # |p − a_P|, |q − a_Q| below the span, so the quotients are off by far less than 2^-6; the rounding of
-        # a_D − quotient is below 2^-51 |a_D| + 2^-50 · span.
-        margin = 1.0 + (abs(av[dd]) + span) * 2.0**-40
-        h = 0.5 * (abs(n0) + abs(n1) + abs(n2))
+        # Error of the float range (see the docstring), in units of w: relative error of n below 2^-30,
+        # |n_D| ≥ Σ|n| / 3, |p − a_P| / w, |q − a_Q| / w below the span, so the quotients are off by far less
+        # than 2^-6; the roundings of a_D − quotient and of the division by w are below
+        # 2^-51 |a_D| / w + 2^-49 · span.
+        margin = 1.0 + (abs(av[dd]) / w + span) * 2.0**-40
+        h = half * (abs(n0) + abs(n1) + abs(n2))
         for q in range(lo[qq], hi[qq] + 1):
             for p in range(lo[pp], hi[pp] + 1):
-                f[pp] = float(p)
-                f[qq] = float(q)
+                f[pp] = p * w
+                f[qq] = q * w
+                ix[pp] = p
+                ix[qq] = q
                 if dd == 0:
                     sep = _plane_cross_separates(
-                        ax, ay, az, bx, by, bz, cx, cy, cz, f[1], f[2], 0, supercover, exact, scratch
+                        ax, ay, az, bx, by, bz, cx, cy, cz, f[1], f[2], 0, supercover, w, exact, scratch
                     )
                 elif dd == 1:
                     sep = _plane_cross_separates(
-                        ax, ay, az, bx, by, bz, cx, cy, cz, f[2], f[0], 1, supercover, exact, scratch
+                        ax, ay, az, bx, by, bz, cx, cy, cz, f[2], f[0], 1, supercover, w, exact, scratch
                     )
                 else:
                     sep = _plane_cross_separates(
-                        ax, ay, az, bx, by, bz, cx, cy, cz, f[0], f[1], 2, supercover, exact, scratch
+                        ax, ay, az, bx, by, bz, cx, cy, cz, f[0], f[1], 2, supercover, w, exact, scratch
                     )
                 if sep:
                     continue
@@ -588,20 +638,21 @@ def mark_triangles(
                 d1 = hi[dd]
                 if narrow:
                     g = nv[pp] * (f[pp] - av[pp]) + nv[qq] * (f[qq] - av[qq])
-                    u1 = av[dd] - (g + h) / nd
-                    u2 = av[dd] - (g - h) / nd
+                    u1 = (av[dd] - (g + h) / nd) / w
+                    u2 = (av[dd] - (g - h) / nd) / w
                     if u1 > u2:
                         u1, u2 = u2, u1
                     d0 = max(d0, math.ceil(u1 - margin))
                     d1 = min(d1, math.floor(u2 + margin))
                 for d in range(d0, d1 + 1):
-                    f[dd] = float(d)
+                    f[dd] = d * w
+                    ix[dd] = d
                     fi = f[0]
                     fj = f[1]
                     fk = f[2]
-                    kk = int(fk) - origin[2]
-                    jj = int(fj) - origin[1]
-                    ii = int(fi) - origin[0]
+                    kk = ix[2] - z0
+                    jj = ix[1] - y0
+                    ii = ix[0] - x0
                     if kk < 0 or jj < 0 or ii < 0 or kk >= nzs or jj >= nys or ii >= nxs:
                         bad += 1
                         continue
@@ -612,7 +663,7 @@ def mark_triangles(
                     uj = fj - ay
                     uk = fk - az
                     g = n0 * ui + n1 * uj + n2 * uk
-                    gb = err * (abs(ui) + abs(uj) + abs(uk) + 1.5) + 16.0 * _EPS * (
+                    gb = err * (abs(ui) + abs(uj) + abs(uk) + 3.0 * half) + 16.0 * _EPS * (
                         abs(n0 * ui) + abs(n1 * uj) + abs(n2 * uk) + h
                     )
                     if abs(g) > h + gb:
@@ -635,24 +686,46 @@ def mark_triangles(
                         snz,
                         lexn,
                         supercover,
+                        half,
                         exact,
                         scratch,
                     ):
                         continue
                     if dd != 0 and _plane_cross_separates(
-                        ax, ay, az, bx, by, bz, cx, cy, cz, fj, fk, 0, supercover, exact, scratch
+                        ax, ay, az, bx, by, bz, cx, cy, cz, fj, fk, 0, supercover, w, exact, scratch
                     ):
                         continue
                     if dd != 1 and _plane_cross_separates(
-                        ax, ay, az, bx, by, bz, cx, cy, cz, fk, fi, 1, supercover, exact, scratch
+                        ax, ay, az, bx, by, bz, cx, cy, cz, fk, fi, 1, supercover, w, exact, scratch
                     ):
                         continue
                     if dd != 2 and _plane_cross_separates(
-                        ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, 2, supercover, exact, scratch
+                        ax, ay, az, bx, by, bz, cx, cy, cz, fi, fj, 2, supercover, w, exact, scratch
                     ):
                         continue
                     mask[kk, jj, ii] = True
     return bad
+
+
+@njit(cache=True)
+def least_exponent(v: Floats, kmax: int) -> int:
+    """Return the least k ≥ 0 with v·2^k an integer for every value of the 1-D array v; −1 beyond kmax.
+
+    v·2^k is exact (k ≥ 0: no underflow; an overflow to ±inf only for values that are integers already),
+    and an integer stays one as k grows, so k only rises: one pass. The product by the float 2^k is the
+    fast way; beyond 2^1000 (subnormal input only) 2^k is no float and ldexp takes over.
+    """
+    k = 0
+    scale = 1.0
+    for i in range(v.shape[0]):
+        u = v[i] * scale if k <= 1000 else math.ldexp(v[i], k)
+        while u != math.floor(u):
+            if k >= kmax:
+                return -1
+            k += 1
+            scale *= 2.0  # 2^k; inf beyond 2^1023, where it is not used
+            u = v[i] * scale if k <= 1000 else math.ldexp(v[i], k)
+    return k
 
 
 @njit(cache=True)

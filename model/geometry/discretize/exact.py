@@ -52,12 +52,15 @@ def check_coordinate_range(values: npt.NDArray[np.float64]) -> tuple[int, float]
     return i, float(values[i])
 
 
-def float_predicates_are_exact(values: npt.NDArray[np.float64], units: float = _EXACT_UNITS) -> bool:
+def float_predicates_are_exact(
+    values: npt.NDArray[np.float64], units: float = _EXACT_UNITS, *, step: int = 1
+) -> bool:
     """True when plain float64 evaluation of the grid predicates is free of rounding.
 
     Let 2^-K be the coarsest dyadic step that every value (and the half-integers of the grid) is a multiple
-    of, u = 2^-(K+1), and L = (max |v| + 2) / u. Grid points used by the kernels (integers and
-    half-integers within one pixel of the data) are multiples of u below L·u in magnitude. When
+    of, u = 2^-(K+1), and L = (max |v| + 2·step) / u. Grid points used by the kernels (integers and
+    half-integers within one pixel of the data, on the grid of that step) are multiples of u below L·u in
+    magnitude. When
     L ≤ 2^25, differences of such numbers are integers below 2^26 in units of u, products of two
     differences are below 2^52 in units of u², and a difference of two products is below 2^53 u²: all of
     them are exact float64 values. Orientation signs computed in plain float arithmetic are then exact,
@@ -70,6 +73,9 @@ def float_predicates_are_exact(values: npt.NDArray[np.float64], units: float = _
     units : float
         The bound on L; the default fits the 2×2 determinants of 2D. The 3×3 determinants of 3D (products of
         three differences, sums of six such products) need L ≤ 2^15 (``EXACT_UNITS_3D``).
+    step : int
+        The grid step (a positive integer): pixels of side ``step`` centred on step·p, whose grid points
+        step·p ± step/2 reach ``step`` times farther from the data.
     """
     v = values[values != 0.0]
     if v.size == 0:
@@ -82,4 +88,4 @@ def float_predicates_are_exact(values: npt.NDArray[np.float64], units: float = _
     k = max(0, int((53 - expo.astype(np.int64) - tz).max()))
     if k > 60:
         return False
-    return (float(np.abs(v).max()) + 2.0) * 2.0 ** (k + 1) <= units
+    return (float(np.abs(v).max()) + 2.0 * step) * 2.0 ** (k + 1) <= units

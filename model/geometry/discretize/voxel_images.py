@@ -1,48 +1,33 @@
 """The exact voxelization D(T(P)) of the image of a polyhedron P under a rational affine map T.
 
-Reference: docs/design.md §11 (D in 3D) and §8 (DSS_α = D∘Sc_α∘R, dR = D∘rot∘R); ADR 0058.
+Reference: docs/design.md §11 (D in 3D) and §8 (DSS_α = D∘Sc_α∘R, dR = D∘rot∘R); ADRs 0058, 0062.
 
 :func:`~mrm.geometry.discretize.voxels.voxelize_solid` is exact for float64 vertices. ``T(v) = M·v + t`` with
 rational M and t (Sc_α for α = p/q about a rational centre, a quarter turn) maps P's float64 vertices to
 rationals that are not float64 values when q has an odd factor (α = 1/5, 4/5, 2/3). Rounding them could move
-a vertex across a voxel side. Instead the problem goes to a grid N times finer, N odd, where it is float64,
-and comes back exactly:
+a vertex across a voxel side. Instead the image is scaled by an odd N, where it is float64, and voxelized on
+the grid of step N, whose voxel c is the cube of side N centred on N·c:
 
 * every float64 vertex coordinate is X·2^-k (X an integer, k one exponent for the whole solid), so
   T(v)_i = Y_i / (D_i·2^k) with Y_i an integer combination of the X (int64 arithmetic where it cannot
   overflow, else Python integers in object arrays; never a Fraction per vertex);
 * N is the odd part of the common denominator of all these values (the least odd N making N·T(P) dyadic),
-  and Q = N·T(P) has dyadic coordinates; when they are float64 values (checked exactly; a ParameterError
-  otherwise) the existing exact kernels compute D(Q) on the unit grid;
-* D(T(P)) is read off D(Q) (below). N = 1 (a dyadic α such as 1.25 or 2, a quarter turn) is D(Q) itself.
+  and Q = N·T(P) has dyadic coordinates; when they are float64 values in the exact kernels' range (checked
+  exactly; a ParameterError otherwise) the kernels compute D(T(P)) = D(Q / N) on the grid of step N.
+  N = 1 (a dyadic α such as 1.25 or 2, a quarter turn) is the unit grid.
 
-Why the reduction is exact. Write τ = (ε, ε², ε³) and B(c) = N·c + {−h, …, h}³ with h = (N − 1)/2 (N is
-odd, so B(c) is a block of N³ voxels and the blocks B(c), c ∈ Z³, tile Z³). Scaling by N is a bijection, so
-c ∈ D(T(P)) ⟺ Q meets N·K(c), and N·K(c) is
+Why this is exact. Scaling by N is a bijection, so c ∈ D(T(P)) ⟺ Q meets N·K(c): the point N·c + N·τ
+(gauss), the closed cube N·V(c) (supercover), the open cube int(N·V(c)) + N·τ (standard) — the kernels of
+the grid of step N. Its planes N·(k ± ½) are half-integers (N odd) and its centres integers, exact floats,
+so every comparison and determinant the kernels make on them is exact as on the unit grid. The shift N·τ =
+(Nε, Nε², Nε³) decides as τ does: Q is a finite union of convex polytopes; that one meets a box
+lo + σ < x < hi + σ (or holds a point u + σ) is a linear feasibility problem in x, which Fourier–Motzkin
+elimination turns into finitely many conditions a + b·σ < 0 or ≤ 0 with rational a, b (the elimination takes
+positive combinations of the constraints, in which σ enters linearly). For every small ε the sign of a + b·σ
+is that of the first non-zero term of (a, b_x, b_y, b_z), for σ = τ and σ = N·τ alike (N > 0 scales b).
 
-* ``gauss``: the point N·c + N·τ;
-* ``supercover``: the closed cube N·V(c), which (N odd) is the union of the N³ closed unit cubes V(u),
-  u ∈ B(c): Q meets it ⟺ Q meets some V(u) ⟺ D_supercover(Q) meets B(c);
-* ``standard``: the open cube O = int(N·V(c)) + N·τ. It holds U = ⋃_{u ∈ B(c)} (int V(u) + N·τ), and
-  O ∖ U lies in finitely many planes (the shifted inner faces). Q is a valid polyhedron: closed and the
-  closure of its interior. If Q meets the open O, points of int Q near the meeting point do too, so int Q ∩ O
-  is a non-empty open set, which no finite union of planes holds: it meets U. Hence Q meets O ⟺ Q meets
-  some int V(u) + N·τ.
-
-Last, N·τ = (Nε, Nε², Nε³) decides exactly as τ does. Q is a finite union of convex polytopes; that one
-meets a box lo + σ < x < hi + σ (or holds a point u + σ) is a linear feasibility problem in x, which
-Fourier–Motzkin elimination turns into finitely many conditions a + b·σ < 0 or ≤ 0 with rational a, b (the
-elimination takes positive combinations of the constraints, in which σ enters linearly). For every small ε
-the sign of a + b·σ is that of the first non-zero term of (a, b_x, b_y, b_z), for σ = τ and σ = N·τ alike
-(N > 0 scales b). So each condition, over finitely many voxels u, is eventually constant and the same under
-both shifts, and
-
-* ``gauss``: D(T(P)) = { c : N·c ∈ D_gauss(Q) } — D(Q) sampled every N voxels;
-* ``standard``, ``supercover``: D(T(P)) = { c : D(Q) meets B(c) } — an N × N × N OR-pooling of D(Q).
-
-The cost is that of D(Q): N³ times the result's voxels. Both that grid and the result are estimated from
-Q's exact bounding box before any grid is made, and refused beyond ``limit`` (α = 1001/1000 on a 64³ object
-needs a 125-times finer grid: 5·10¹¹ voxels, refused at once).
+The cost is that of D of an image of the result's size: no finer grid. The result's box is computed from
+Q's exact extremes and refused beyond ``limit`` before any grid is made.
 """
 
 from __future__ import annotations
@@ -58,14 +43,14 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mrm.core.blocks import or_pool, sample
 from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.core.grids import VoxelSet
 from mrm.core.limits import DEFAULT_VOXEL_LIMIT, check_pixels
 from mrm.core.models import Model
 from mrm.core.progress import ProgressLike
+from mrm.geometry.discretize._kernels3d import least_exponent
 from mrm.geometry.discretize.exact import MAX_ABS_COORD
-from mrm.geometry.discretize.voxels import MIN_ABS_COORD_3D, voxelize_solid
+from mrm.geometry.discretize.voxels import MAX_GRID_STEP, MIN_ABS_COORD_3D, voxelize_solid
 
 __all__ = ["integer_vertices", "voxelize_image"]
 
@@ -78,6 +63,10 @@ Matrix = Sequence[Sequence[Any]]
 _INT64_SAFE = 1 << 62
 #: Largest integer below which every integer is a float64 value.
 _FLOAT_INTEGERS = 1 << 53
+#: Beyond the exponent of the least subnormal (2^-1074): no float64 needs more fractional bits.
+_MAX_EXPONENT = 1100
+#: Numerators read first when reducing the odd denominator (most images are reduced to 1 by a few).
+_GCD_PREFIX = 64
 
 
 def voxelize_image(
@@ -104,8 +93,8 @@ def voxelize_image(
     model : {"standard", "supercover", "gauss"}
         The kernel (docs/design.md §11).
     limit : int or None
-        Largest number of voxels in the bounding box of the result, and of D(Q) on the grid N times finer
-        that the computation makes; both are checked before any grid is made. None for no limit.
+        Largest number of voxels in the bounding box of the result, checked before any grid is made. None
+        for no limit.
     progress : object with ``update(fraction, message)``, optional
         Told when the voxelization starts and ends; the ``Cancelled`` it raises propagates.
     what : str
@@ -120,12 +109,12 @@ def voxelize_image(
     ------
     ParameterError
         A map that is not 3 × 3 rationals and three rationals, or whose determinant is not positive; an
-        unknown model; an image whose coordinates on the finer grid are not float64 values in the range of
-        the exact kernels (53-bit mantissas, |x| ≤ 2⁵¹, 0 or ≥ 2⁻²⁵⁰).
+        unknown model; an image whose coordinates scaled by N are not float64 values in the range of the
+        exact kernels (53-bit mantissas, |x| ≤ 2⁵¹, 0 or ≥ 2⁻²⁵⁰), or N beyond 2⁴⁹.
     InvalidGeometryError
         ``solid`` is not a Polyhedron.
     SizeLimitError
-        The result, or the grid N times finer, would exceed ``limit`` voxels.
+        The result would exceed ``limit`` voxels.
 
     Examples
     --------
@@ -145,35 +134,21 @@ def voxelize_image(
     parsed = Model.parse(model)
     if solid.is_empty:
         return VoxelSet.empty()
-    z, exps, n = _fine_image(solid.vertices, m, t)
+    z, exps, n = _scaled_image(solid.vertices, m, t)
     lo = [Fraction(int(z[:, i].min()), 1 << exps[i]) for i in range(3)]
     hi = [Fraction(int(z[:, i].max()), 1 << exps[i]) for i in range(3)]
-    fine = _unit_box(lo, hi, parsed)
-    result = _coarse_box(fine, n, parsed)
-    check_pixels(_volume(result), limit, what, unit="voxels")
-    if n > 1:
-        check_pixels(
-            _volume(fine),
-            limit,
-            f"{what} (computed exactly on a grid {n} times finer: the odd part of the image's denominators)",
-            unit="voxels",
-        )
-    if result is None:
+    box = _grid_box(lo, hi, parsed, n)
+    check_pixels(_volume(box), limit, what, unit="voxels")
+    if box is None:
         return VoxelSet.empty()
     q = _as_floats(z, exps, n)
     if progress is not None:
         progress.update(0.0, "voxelizing")
-    mask, origin = voxelize_solid(q, solid.triangles, parsed.value, limit=None)
+    mask, origin = voxelize_solid(q, solid.triangles, parsed.value, limit=None, step=n)
     if progress is not None:
         progress.update(1.0, None)
-    fine_set = VoxelSet.taking_over(mask, origin)
-    if n == 1:
-        return fine_set
-    log.debug("voxelize_image: %s on a grid %d times finer, %d voxels", parsed.value, n, mask.size)
-    if parsed is Model.GAUSS:
-        return sample(fine_set, n, (0, 0, 0))
-    h = (n - 1) // 2
-    return or_pool(fine_set, n, (-h, -h, -h))
+    log.debug("voxelize_image: %s on the grid of step %d, %d voxels", parsed.value, n, mask.size)
+    return VoxelSet.taking_over(mask, origin)
 
 
 # ---------------------------------------------------------------------------------------------- the map
@@ -217,9 +192,16 @@ def _exact_map(linear: Matrix, offset: Sequence[Any]) -> tuple[list[list[Fractio
     return m, t
 
 
-# ---------------------------------------------------------------------------------- the finer grid
+# ---------------------------------------------------------------------------------- the scaled image
 def integer_vertices(v: Floats) -> tuple[npt.NDArray[Any], int]:
     """(X, k) with v = X·2^-k exactly, X integers (int64 when they fit, else Python ints), k ≥ 0 least."""
+    if v.size == 0:
+        return np.zeros(v.shape, dtype=np.int64), 0
+    vmax = float(np.abs(v).max())
+    k = least_exponent(np.ascontiguousarray(v, dtype=np.float64).reshape(-1), _MAX_EXPONENT)
+    # |v|·2^k < 2^62, compared without forming 2^k (k reaches 1074 for a subnormal)
+    if k >= 0 and vmax < math.ldexp(1.0, 62 - k):
+        return np.ldexp(v, k).astype(np.int64), k  # exact: a power-of-two scale of integers below 2^62
     mant, e = np.frexp(v)  # v = mant·2^e, 0.5 ≤ |mant| < 1
     big = np.ldexp(mant, 53).astype(np.int64)  # v = big·2^(e − 53), exactly
     nz = big != 0
@@ -228,7 +210,7 @@ def integer_vertices(v: Floats) -> tuple[npt.NDArray[Any], int]:
     low = big[nz]
     tz = np.log2((low & -low).astype(np.float64)).astype(np.int64)  # trailing zero bits (powers of two)
     k = max(0, -int((e[nz] - 53 + tz).min()))
-    if float(np.abs(v).max()) * 2.0**k < _INT64_SAFE:
+    if vmax < math.ldexp(1.0, 62 - k):
         return np.ldexp(v, k).astype(np.int64), k
     # Coordinates spanning more than 62 bits together: Python integers (rare; still no Fraction).
     # big has its trailing zero bits, so a right shift (k ≥ −(e − 53 + tz)) drops zeros only.
@@ -239,7 +221,7 @@ def integer_vertices(v: Floats) -> tuple[npt.NDArray[Any], int]:
     return out.reshape(v.shape), k
 
 
-def _fine_image(
+def _scaled_image(
     v: Floats, m: list[list[Fraction]], t: list[Fraction]
 ) -> tuple[npt.NDArray[Any], list[int], int]:
     """(Z, e, N): N·T(v)_i = Z[:, i]·2^-e[i] exactly, N the odd part of the image's common denominator."""
@@ -252,7 +234,7 @@ def _fine_image(
         b = int(t[i] * den) << k
         bound = sum(abs(a[j]) * xmax[j] for j in range(3)) + abs(b)
         xs = x if bound < _INT64_SAFE and x.dtype == np.int64 else x.astype(object)
-        y = xs[:, 0] * a[0] + xs[:, 1] * a[1] + xs[:, 2] * a[2] + b  # T(v)_i = y / (den·2^k)
+        y = _combination(xs, a, b)  # T(v)_i = y / (den·2^k)
         two = (den & -den).bit_length() - 1
         odd = den >> two
         g = _gcd_with(y, odd)
@@ -272,12 +254,29 @@ def _fine_image(
     return z, exps, n
 
 
+def _combination(x: npt.NDArray[Any], a: list[int], b: int) -> npt.NDArray[Any]:
+    """x[:, 0]·a[0] + x[:, 1]·a[1] + x[:, 2]·a[2] + b, skipping zero terms (a scaling's row has one)."""
+    y: npt.NDArray[Any] | None = None
+    for j in range(3):
+        if a[j] != 0:
+            term = x[:, j] * a[j]
+            y = term if y is None else y + term
+    if y is None:  # pragma: no cover - a row of an invertible matrix is not zero
+        y = np.zeros(x.shape[0], dtype=x.dtype)
+    return y + b if b != 0 else y
+
+
 def _gcd_with(y: npt.NDArray[Any], odd: int) -> int:
     """gcd(odd, every y): the part of the denominator ``odd`` that every value's numerator cancels."""
     if odd == 1:
         return 1
     if y.dtype == np.int64 and odd < _INT64_SAFE:
-        return math.gcd(odd, int(np.gcd.reduce(np.gcd(y, odd))))
+        # gcd(odd, y) = gcd(odd, y mod odd): the remainders are small, so Euclid's loop per element is short.
+        # A few values usually bring the gcd to 1 already (then the rest need not be read).
+        g = math.gcd(odd, int(np.gcd.reduce(y[:_GCD_PREFIX] % odd)))
+        if g == 1 or y.shape[0] <= _GCD_PREFIX:
+            return g
+        return math.gcd(g, int(np.gcd.reduce(y[_GCD_PREFIX:] % g)))
     g = odd
     for value in y.tolist():
         g = math.gcd(g, value)
@@ -306,11 +305,11 @@ def _as_floats(z: npt.NDArray[Any], exps: list[int], n: int) -> Floats:
             q[:, i] = np.ldexp(z[:, i].astype(np.float64), -exps[i])
         a = np.abs(q)
         exact = bool(((a <= MAX_ABS_COORD) & ((a >= MIN_ABS_COORD_3D) | (z == 0))).all())
-    if not exact:
+    if not exact or n > MAX_GRID_STEP:
         raise ParameterError(
-            f"the exact image's coordinates on the grid {n} times finer that makes them dyadic are not all "
-            "float64 numbers within the exact voxelization's range (53-bit mantissas, |x| ≤ 2^51, 0 or "
-            "≥ 2^-250); choose a simpler ratio or centre"
+            f"the exact image's coordinates times {n}, which makes them dyadic, are not all float64 numbers "
+            "within the exact voxelization's range (53-bit mantissas, |x| ≤ 2^51, 0 or ≥ 2^-250, a factor "
+            "≤ 2^49); choose a simpler ratio or centre"
         )
     return q
 
@@ -319,36 +318,23 @@ def _as_floats(z: npt.NDArray[Any], exps: list[int], n: int) -> Floats:
 Box3 = tuple[int, int, int, int, int, int]
 
 
-def _unit_box(lo: list[Fraction], hi: list[Fraction], model: Model) -> Box3 | None:
-    """The unit-grid voxels that hold D of a solid with this extent (as voxels.voxelization_box)."""
-    half = Fraction(1, 2)
-    if model is Model.GAUSS:
-        c_lo = [math.ceil(u) for u in lo]
-        c_hi = [math.ceil(u) - 1 for u in hi]
+def _grid_box(lo: list[Fraction], hi: list[Fraction], model: Model, n: int) -> Box3 | None:
+    """The voxels of the grid of step n (centres n·c) that hold D of a solid with this extent.
+
+    As voxels.voxelization_box, exactly on the extent's Fractions.
+    """
+    if model is Model.GAUSS:  # lo ≤ n·c < hi
+        c_lo = [math.ceil(u / n) for u in lo]
+        c_hi = [math.ceil(u / n) - 1 for u in hi]
         if any(c_hi[d] < c_lo[d] for d in range(3)):
             return None
-    else:
-        c_lo = [math.ceil(u - half) for u in lo]
-        c_hi = [math.ceil(u - half) for u in hi]
+    else:  # the cells (n·c − n/2, n·c + n/2] of the extremes; closed cubes add the next one on a plane
+        half = Fraction(1, 2)
+        c_lo = [math.ceil(u / n - half) for u in lo]
+        c_hi = [math.ceil(u / n - half) for u in hi]
         if model is Model.SUPERCOVER:
-            c_hi = [c + (u == c + half) for c, u in zip(c_hi, hi, strict=True)]
+            c_hi = [c + (u / n == c + half) for c, u in zip(c_hi, hi, strict=True)]
     return (c_lo[0], c_lo[1], c_lo[2], c_hi[0], c_hi[1], c_hi[2])
-
-
-def _coarse_box(fine: Box3 | None, n: int, model: Model) -> Box3 | None:
-    """The result's voxels that the reduction of ``fine`` can give: sampled (gauss) or pooled blocks."""
-    if fine is None:
-        return None
-    if model is Model.GAUSS:  # c with N·c in the box
-        lo = [-((-u) // n) for u in fine[:3]]
-        hi = [u // n for u in fine[3:]]
-        if any(hi[d] < lo[d] for d in range(3)):
-            return None
-    else:  # c whose block N·c + [−h, h] meets the box
-        h = (n - 1) // 2
-        lo = [(u + h) // n for u in fine[:3]]
-        hi = [(u + h) // n for u in fine[3:]]
-    return (lo[0], lo[1], lo[2], hi[0], hi[1], hi[2])
 
 
 def _volume(box: Box3 | None) -> int:

@@ -41,7 +41,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from mrm.core.errors import InvalidGeometryError
+from mrm.core.errors import InvalidGeometryError, ParameterError
 from mrm.core.grids import VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, DEFAULT_VOXEL_LIMIT, check_pixels
 from mrm.core.models import Model
@@ -49,6 +49,7 @@ from mrm.geometry.discretize import _kernels3d as _k3
 from mrm.geometry.discretize.exact import EXACT_UNITS_3D, MAX_ABS_COORD, float_predicates_are_exact
 
 __all__ = [
+    "MAX_GRID_STEP",
     "MIN_ABS_COORD_3D",
     "estimate_voxels",
     "voxelization_box",
@@ -68,6 +69,10 @@ Box3 = tuple[int, int, int, int, int, int]
 #: Smallest supported non-zero |coordinate| in 3D: products of three differences must stay above the
 #: subnormal range (see :mod:`._kernels3d`).
 MIN_ABS_COORD_3D = 2.0**-250
+
+#: Largest grid step of :func:`voxelize_solid`: with |coordinates| ≤ 2^51 the grid numbers the kernels use
+#: (step·p and step·p ± step/2 within two voxels of the data) stay below 2^52, exact half-integers.
+MAX_GRID_STEP = 2**49
 
 
 # --------------------------------------------------------------------------------------- public API
@@ -112,6 +117,7 @@ def voxelize_solid(
     model: str = "standard",
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
+    step: int = 1,
 ) -> tuple[Mask, Origin]:
     """Return the exact discretization D(P) of the closed solid P bounded by a triangle mesh.
 
@@ -128,6 +134,10 @@ def voxelize_solid(
     limit : int or None
         Largest bounding-box size (in voxels) allowed for the result; None for no limit. Checked before any
         voxel array is allocated.
+    step : int
+        The grid step N, a positive integer up to :data:`MAX_GRID_STEP`: voxel p is the cube of side N
+        centred on N·p, with kernel N·K(p). The result is D(P / N) exactly, computed without dividing P (whose
+        vertices divided by an odd N would not be float64 numbers); 1 is the unit grid.
 
     Returns
     -------
@@ -139,7 +149,7 @@ def voxelize_solid(
     Raises
     ------
     ParameterError
-        Unknown model or bad limit.
+        Unknown model, bad limit or bad step.
     InvalidGeometryError
         Malformed arrays, a triangle index out of range, or a coordinate out of the supported range.
     SizeLimitError
@@ -154,7 +164,7 @@ def voxelize_solid(
     >>> int(mask.sum()), origin
     (4, (0, 0, 0))
     """
-    return _run(vertices, triangles, Model.parse(model), True, limit)
+    return _run(vertices, triangles, Model.parse(model), True, limit, step=step)
 
 
 def voxelize_triangles(
@@ -222,8 +232,8 @@ def voxelization_box(
     the voxels p whose p + τ lies in the vertices' extent (⌈min⌉ ≤ p ≤ ⌈max⌉ − 1), which hold the result
     (None when there are none).
     """
-    v, t = _validate(vertices, triangles)
-    return _box(v, t, Model.parse(model))
+    _, t, used = _validate(vertices, triangles)
+    return _box(used, t, Model.parse(model), 1)
 
 
 def estimate_voxels(vertices: npt.ArrayLike, triangles: npt.ArrayLike, model: str = "supercover") -> int:
@@ -244,15 +254,25 @@ def _as_points(values: npt.ArrayLike, what: str) -> Floats:
     return np.ascontiguousarray(arr)
 
 
-def _validate(vertices: npt.ArrayLike, triangles: npt.ArrayLike) -> tuple[Floats, Ints]:
-    """Check the arrays and the coordinates of the referenced vertices; return them contiguous."""
+def _used(v: Floats, t: Ints) -> Floats:
+    """The vertices the triangles refer to, each once: their coordinates decide the box and the arithmetic.
+
+    Usually all of them (a closed mesh): one bincount tells, instead of gathering three rows per triangle.
+    """
+    if t.shape[0] * 3 >= v.shape[0] and bool(np.bincount(t.reshape(-1), minlength=v.shape[0]).all()):
+        return v
+    return v[np.unique(t)]
+
+
+def _validate(vertices: npt.ArrayLike, triangles: npt.ArrayLike) -> tuple[Floats, Ints, Floats]:
+    """Check the arrays and the referenced vertices' coordinates: (vertices, triangles, :func:`_used`)."""
     v = _as_points(vertices, "vertices")
     try:
         t = np.asarray(triangles)
     except (TypeError, ValueError) as exc:  # pragma: no cover - numpy accepts nearly anything
         raise InvalidGeometryError(f"triangles: expected an (m, 3) integer array ({exc})") from None
     if t.size == 0:
-        return v, np.zeros((0, 3), dtype=np.int64)
+        return v, np.zeros((0, 3), dtype=np.int64), v[:0]
     if t.ndim != 2 or t.shape[1] != 3 or not (np.issubdtype(t.dtype, np.integer)):
         raise InvalidGeometryError(
             f"triangles: expected an (m, 3) array of integer vertex indices, got shape {t.shape} of {t.dtype}"
@@ -265,7 +285,7 @@ def _validate(vertices: npt.ArrayLike, triangles: npt.ArrayLike) -> tuple[Floats
             f"triangle {bad} {t[bad].tolist()} refers to a vertex that does not exist "
             f"(there are {v.shape[0]} vertices)"
         )
-    used = v[np.unique(t)] if t.shape[0] * 3 < v.shape[0] else v[t.reshape(-1)]
+    used = _used(v, t)
     a = np.abs(used)
     bad_mask = ~np.isfinite(used) | (a > MAX_ABS_COORD) | ((a < MIN_ABS_COORD_3D) & (a != 0.0))
     if bad_mask.any():
@@ -277,7 +297,7 @@ def _validate(vertices: npt.ArrayLike, triangles: npt.ArrayLike) -> tuple[Floats
             f"finite, at most 2^51 ≈ {MAX_ABS_COORD:.3g} in absolute value, and 0 or at least 2^-250 "
             "(exact determinants must neither overflow nor underflow); repair, translate or rescale the mesh"
         )
-    return v, t
+    return v, t, used
 
 
 # -------------------------------------------------------------------------------------------- boxes
@@ -288,25 +308,47 @@ def _volume(box: Box3 | None) -> int:
     return (x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1)
 
 
-def _box(v: Floats, t: Ints, model: Model) -> Box3 | None:
+def _ceil_step(u: Floats, step: int) -> Ints:
+    """⌈u / step⌉ exactly: the float quotient is off by less than one, k·step is an exact integer float."""
+    k = np.ceil(u / step)
+    k = k + (k * step < u) - ((k - 1) * step >= u)
+    return k.astype(np.int64)
+
+
+def _cell_step(u: Floats, step: int) -> Ints:
+    """The cell index k with u ∈ (k·step − step/2, k·step + step/2], exactly.
+
+    An estimate off by at most one, corrected by exact comparisons (k·step ± step/2 are integers or
+    half-integers below 2^52, exact floats).
+    """
+    half = 0.5 * step
+    k = np.ceil((u - half) / step)
+    k = k + (u > k * step + half) - (u <= k * step - half)
+    return k.astype(np.int64)
+
+
+def _box(used: Floats, t: Ints, model: Model, step: int) -> Box3 | None:
+    """The voxel box of D on the grid of ``step``, from ``used``, the vertices that ``t`` refers to."""
     if t.shape[0] == 0:
         return None
-    used = v[t.reshape(-1)]
-    lo = used.min(axis=0)
-    hi = used.max(axis=0)
-    # cell(u) = ⌈u − ½⌉ is exact for |u| ≤ 2^51 (u − ½ is a float there); the closed upper end adds one
-    # voxel when the maximum is a half-integer.
+    # column by column: numpy reduces an (n, 3) array along axis 0 several times slower
+    lo = np.array([used[:, d].min() for d in range(3)])
+    hi = np.array([used[:, d].max() for d in range(3)])
+    # Voxel p spans step·p ± step/2 (an integer or a half-integer, exact); its cell on an axis is
+    # (step·p − step/2, step·p + step/2]. The closed upper end adds one voxel when the maximum is on a grid
+    # plane.
     if model is Model.GAUSS:
-        # p + τ within the extent: lo ≤ p + ε and p + ε < hi on each axis, i.e. ⌈lo⌉ ≤ p ≤ ⌈hi⌉ − 1.
-        c_lo = np.ceil(lo).astype(np.int64)
-        c_hi = np.ceil(hi).astype(np.int64) - 1
+        # step·(p + τ) within the extent: lo ≤ step·p and step·p < hi on each axis, ⌈lo / step⌉ ≤ p ≤
+        # ⌈hi / step⌉ − 1.
+        c_lo = _ceil_step(lo, step)
+        c_hi = _ceil_step(hi, step) - 1
         if (c_hi < c_lo).any():
             return None
     else:
-        c_lo = np.ceil(lo - 0.5).astype(np.int64)
-        c_hi = np.ceil(hi - 0.5).astype(np.int64)
+        c_lo = _cell_step(lo, step)
+        c_hi = _cell_step(hi, step)
     if model is Model.SUPERCOVER:
-        c_hi = c_hi + (hi == c_hi + 0.5)
+        c_hi = c_hi + (hi == c_hi * step + 0.5 * step)
     return (int(c_lo[0]), int(c_lo[1]), int(c_lo[2]), int(c_hi[0]), int(c_hi[1]), int(c_hi[2]))
 
 
@@ -322,18 +364,25 @@ def _run(
     solid: bool,
     limit: int | None,
     exact_mode: bool | None = None,
+    step: int = 1,
 ) -> tuple[Mask, Origin]:
-    """Validate, allocate the box and run the kernels. ``exact_mode``: force/forbid plain float (tests)."""
-    v, t = _validate(vertices, triangles)
+    """Validate, allocate the box and run the kernels on the grid of ``step``.
+
+    ``exact_mode``: force/forbid plain float (tests).
+    """
+    if isinstance(step, bool) or not isinstance(step, int | np.integer) or not 1 <= step <= MAX_GRID_STEP:
+        raise ParameterError(f"the grid step must be an integer from 1 to 2^49, got {step!r}")
+    step = int(step)
+    v, t, used = _validate(vertices, triangles)
     gauss = model is Model.GAUSS
     if gauss and not solid:
         return _empty()
-    box = _box(v, t, model)
+    box = _box(used, t, model, step)
     if box is None:
         return _empty()
     check_pixels(_volume(box), limit, "voxelization")
     if exact_mode is None:
-        exact_mode = float_predicates_are_exact(v[t.reshape(-1)].reshape(-1), EXACT_UNITS_3D)
+        exact_mode = float_predicates_are_exact(used.reshape(-1), EXACT_UNITS_3D, step=step)
     x0, y0, z0, x1, y1, z1 = box
     mask = np.zeros((z1 - z0 + 1, y1 - y0 + 1, x1 - x0 + 1), dtype=bool)
     vx = np.ascontiguousarray(v[:, 0])
@@ -344,10 +393,10 @@ def _run(
     ext = np.array([big, big, big, -big, -big, -big], dtype=np.int64)
     bad = 0
     if solid:
-        bad += _k3.fill_parity(mask, x0, y0, z0, vx, vy, vz, t, exact_mode, scratch, ext)
+        bad += _k3.fill_parity(mask, x0, y0, z0, vx, vy, vz, t, exact_mode, scratch, ext, float(step))
     if not gauss:
         bad += _k3.mark_triangles(
-            mask, x0, y0, z0, vx, vy, vz, t, model is Model.SUPERCOVER, exact_mode, scratch
+            mask, x0, y0, z0, vx, vy, vz, t, model is Model.SUPERCOVER, exact_mode, scratch, float(step)
         )
     if bad:  # pragma: no cover - the boxes above are proven to hold every voxel
         raise RuntimeError(f"internal error: {bad} voxels fell outside the voxelization box {box}")
