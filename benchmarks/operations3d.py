@@ -14,6 +14,12 @@ DSS_α(A) = D(Sc_α(R(A))) (docs/design.md §8, §11) of a 128³ digital ball (d
 * scipy = ``scipy.ndimage.zoom(mask, α, order=0)``: nearest-neighbour resampling of the mask — not exact and
   not the same set (no continuation, its own rounding of the grid), the raster peer for speed only.
 
+EDu and EDco_α rows (issue 30: every 3D operation ≤ 1.3× its float composition): two ``--binary-size`` balls
+(64³ by default), the second shifted by a third of its side along x. EDu = R(A ∪ B): the float composition
+is the same (no map: D of a voxel set is itself), the numpy union then R; EDco_1/2: ours
+(:func:`mrm.ops.boolean.euclidean_discrete_corefinement`, exact) against R(A) and R(B) scaled by ½ in float,
+voxelized, the three set operations, R of each part and its vertices scaled back by 2 in float.
+
 Times are medians of ``--repeat`` runs in this process (numba compilation or cache loading measured once,
 apart), in seconds; ratio = ours / scipy. Target in the issue: DSS_2 of 128³ ≤ 10× scipy zoom.
 
@@ -66,6 +72,7 @@ def main() -> None:
     ap.add_argument("--size", type=int, default=128)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--model", default="standard", choices=["standard", "supercover", "gauss"])
+    ap.add_argument("--binary-size", type=int, default=64, help="side of the EDu / EDco balls")
     args = ap.parse_args()
 
     import scipy.ndimage as ndi
@@ -146,6 +153,50 @@ def main() -> None:
         print(
             f"{name:<22} {len(result):>14,} | {t_ours:>7.3f} {t_float:>7.3f} {t_scipy:>7.3f} | "
             f"{t_ours / t_float:>7.2f} {t_ours / t_scipy:>7.2f}",
+            flush=True,
+        )
+    binary_rows(args.binary_size, model, args.repeat)
+
+
+def binary_rows(side: int, model: str, repeat: int) -> None:
+    """EDu and EDco_1/2 of two overlapping balls against their float compositions (see the docstring)."""
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.discretize.voxels import voxelize_solid
+    from mrm.geometry.reconstruct import reconstruct
+    from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
+
+    a = VoxelSet(ball(side))
+    b = VoxelSet(ball(side), (side // 3, 0, 0))
+
+    def float_union(_: object) -> Any:
+        return reconstruct(a | b, model)
+
+    def float_corefine(_: object) -> list[Any]:
+        scaled = []
+        for s in (a, b):
+            r = reconstruct(s, model)
+            mask, origin = voxelize_solid(np.asarray(r.vertices) * 0.5, r.triangles, model, limit=None)
+            scaled.append(VoxelSet(mask, origin))
+        sa, sb = scaled
+        out = []
+        for part in (sa - sb, sa & sb, sb - sa):
+            p = reconstruct(part, model)
+            out.append(np.asarray(p.vertices) * 2.0)
+        return out
+
+    print(f"\nEDu, EDco: two {side}³ balls, the second shifted by {side // 3} along x ({model})")
+    for name, ours, flo in (
+        ("EDu", lambda _: euclidean_discrete_union(a, b, model), float_union),
+        (
+            "EDco_1/2",
+            lambda _: euclidean_discrete_corefinement(a, b, model, Fraction(1, 2)),
+            float_corefine,
+        ),
+    ):
+        t_ours = median_time(ours, None, repeat)
+        t_float = median_time(flo, None, repeat)
+        print(
+            f"{name:<22} {'':>14} | {t_ours:>7.3f} {t_float:>7.3f} {'':>7} | {t_ours / t_float:>7.2f}",
             flush=True,
         )
 

@@ -293,8 +293,8 @@ def segment_normals(segmentation: object, count: int = MAX_NORMALS) -> Floats:
     """A line along the chosen normal (a, b, c) of each of the ``count`` biggest digital plane segments.
 
     Each line starts at the centre of its segment's surfels (the mean of their centres: the voxel plus half
-    the outward direction) and runs outward for ``√(surfels)/2`` voxels, at least 1.5 and at most 20: a big
-    plane gets a long arrow, a small one a short one.
+    the outward direction) and runs outward for ``0.3·√(surfels)`` voxels, at least 1 and at most 6: a big
+    plane gets a longer line than a small one, and none reaches far beyond the object.
 
     Parameters
     ----------
@@ -320,7 +320,7 @@ def segment_normals(segmentation: object, count: int = MAX_NORMALS) -> Floats:
         members = segmentation.surfels_of(int(k))  # type: ignore[attr-defined]
         start = (voxel[members] + DIRS[direction[members]] / 2.0).mean(axis=0)
         normal = np.array(segmentation.segment(int(k)).plane.normal, np.float64)  # type: ignore[attr-defined]
-        length = min(20.0, max(1.5, np.sqrt(float(sizes[k])) / 2.0))
+        length = min(6.0, max(1.0, 0.3 * np.sqrt(float(sizes[k]))))
         ends[2 * i] = start
         ends[2 * i + 1] = start + length * normal / np.linalg.norm(normal)
     return ends.astype(np.float32)

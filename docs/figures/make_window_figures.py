@@ -64,6 +64,16 @@ def _save(app: Any, win: Any, name: str, *, fit: bool = True, menu: Any = None) 
         win.fit_all()
     _settle(app, win)
     pm = win.grab()
+    # A window grab takes the 3D panes' last frames without what is painted over them (the axis gizmo);
+    # each pane's own frame buffer has it.
+    from PySide6 import QtCore, QtOpenGLWidgets
+
+    panes = [w for w in win.findChildren(QtOpenGLWidgets.QOpenGLWidget) if w.isVisible()]
+    if panes:
+        p = QtGui.QPainter(pm)
+        for pane in panes:
+            p.drawImage(pane.mapTo(win, QtCore.QPoint(0, 0)), pane.grabFramebuffer())
+        p.end()
     if menu is not None:
         p = QtGui.QPainter(pm)
         p.drawPixmap(win.mapFromGlobal(menu.pos()), menu.grab())

@@ -25,7 +25,7 @@ subdivision: neighbouring parts share their boundaries exactly.
 from __future__ import annotations
 
 import logging
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import partial
@@ -189,29 +189,23 @@ def euclidean_discrete_corefinement(
     if progress is not None:
         progress.update(0.45, "continuing the parts")
     geoms, watertight = _reconstruct_parts(pixels, label_map, model, progress)
+    exact: Mapping[str, Any]
+    everything: Callable[[], Any]  # the parts together, exact, when the account asks for them
     if n == 3:
-        result, solids = _solids_back(geoms, sim, what)
-        if progress is not None:
-            progress.update(1.0, "done")
-        extra = {
-            "label_map": label_map,
-            "pixels": pixels,
-            "exact": solids,
-            "alpha": None if sim is None else sim.ratio,
-            "watertight": watertight,
-        }
-        return StepOutcome(result, identity_map(3), partial(_all_solids, solids), a | b, extra)
-    back = sim.inverse() if sim is not None else Similarity.identity()
-    exact: Mapping[str, ExactShape]
-    if _is_dyadic_scaling(back):
-        # Scaling back by a power of two is exact in float64: the parts need no Fraction; their exact form
-        # is made only when asked for (the account measures it).
-        r = float(back.ratio)
-        result = {p: geoms[p] if r == 1 else affinity.scale(geoms[p], r, r, origin=(0, 0)) for p in PARTS}
-        exact = _LazyExact(result)
+        result, exact = _solids_back(geoms, sim, what)
+        identity, everything = identity_map(3), partial(_all_solids, exact)
     else:
-        exact = {p: ExactShape.from_geometry(g).map(back) for p, g in geoms.items()}
-        result = {p: exact[p].to_geometry() for p in PARTS}
+        back = sim.inverse() if sim is not None else Similarity.identity()
+        if _is_dyadic_scaling(back):
+            # Scaling back by a power of two is exact in float64: the parts need no Fraction; their exact
+            # form is made only when asked for (the account measures it).
+            r = float(back.ratio)
+            result = {p: geoms[p] if r == 1 else affinity.scale(geoms[p], r, r, origin=(0, 0)) for p in PARTS}
+            exact = _LazyExact(result)
+        else:
+            exact = {p: ExactShape.from_geometry(g).map(back) for p, g in geoms.items()}
+            result = {p: exact[p].to_geometry() for p in PARTS}
+        identity, everything = Similarity.identity(), partial(_all_parts, exact)
     if progress is not None:
         progress.update(1.0, "done")
     extra = {
@@ -221,7 +215,7 @@ def euclidean_discrete_corefinement(
         "alpha": None if sim is None else sim.ratio,
         "watertight": watertight,
     }
-    return StepOutcome(result, Similarity.identity(), partial(_all_parts, exact), a | b, extra)
+    return StepOutcome(result, identity, everything, a | b, extra)
 
 
 def _all_parts(exact: Mapping[str, ExactShape]) -> ExactShape:

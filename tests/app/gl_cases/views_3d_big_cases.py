@@ -75,6 +75,16 @@ def test_a_voxel_object_within_the_budget_is_drawn_whole_with_an_empty_header(ma
     assert view.coarsest_level() == 1 and "coarser" not in view.status_label.text()
 
 
+def _two_balls(win):  # type: ignore[no-untyped-def]
+    """Two balls of radius R side by side, added to the document."""
+    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
+    ball = x * x + y * y + z * z <= R * R
+    objs = [win.doc.make_object(VoxelSet(ball, (-R + dx, -R, -R)), name=f"ball {dx}") for dx in (0, 3 * R)]
+    for obj in objs:
+        win.doc.push(AddObject(obj))
+    return objs
+
+
 def test_objects_in_view_share_the_surfel_budget_so_a_frame_stays_bounded(make_window, qtbot, monkeypatch):
     """Two balls of 7,500 surfels each under a 10,000-surfel budget: each drawn coarser, together within it.
 
@@ -83,11 +93,7 @@ def test_objects_in_view_share_the_surfel_budget_so_a_frame_stays_bounded(make_w
     monkeypatch.setattr(View3D, "SURFEL_BUDGET", 10_000)
     monkeypatch.setattr(View3D, "SURFEL_BUDGET_MIN", 1_000)
     win = make_window(threaded=True)
-    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
-    ball = x * x + y * y + z * z <= R * R
-    objs = [win.doc.make_object(VoxelSet(ball, (-R + dx, -R, -R)), name=f"ball {dx}") for dx in (0, 3 * R)]
-    for obj in objs:
-        win.doc.push(AddObject(obj))
+    objs = _two_balls(win)
     area = _show_3d(qtbot, win)
     view = area.by_name("discrete3d")
     assert all(win.scene.get(o.id, "region").n_surfels > 5_000 for o in objs)
@@ -126,11 +132,7 @@ def test_coarser_levels_are_pooled_off_the_gui_thread_once_per_object_and_view(
 
     monkeypatch.setattr(level_of_detail, "coarse_level", recording)
     win = make_window(threaded=True)
-    z, y, x = np.mgrid[-R : R + 1, -R : R + 1, -R : R + 1]
-    ball = x * x + y * y + z * z <= R * R
-    objs = [win.doc.make_object(VoxelSet(ball, (-R + dx, -R, -R)), name=f"ball {dx}") for dx in (0, 3 * R)]
-    for obj in objs:
-        win.doc.push(AddObject(obj))
+    objs = _two_balls(win)
     area = _show_3d(qtbot, win)
     qtbot.wait(1000)  # frames and refreshes go on: nothing is prepared again
     assert win.is_drawn()
