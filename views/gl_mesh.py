@@ -284,17 +284,23 @@ def difference_arrays(
     return surfel_arrays(v, d, c)
 
 
-#: Plane segments whose normals are drawn at most (the biggest first): each normal costs its segment's chosen
-#: plane, about 1 ms of exact arithmetic, and a view crowded with arrows shows nothing.
+#: Plane segments whose normals are drawn at most (the biggest first): a view crowded with lines shows
+#: nothing.
 MAX_NORMALS = 300
 
 
 def segment_normals(segmentation: object, count: int = MAX_NORMALS) -> Floats:
-    """A line along the chosen normal (a, b, c) of each of the ``count`` biggest digital plane segments.
+    """A line along a normal of each of the ``count`` biggest digital plane segments.
+
+    The normal drawn is the mean of the unit extreme rays of the segment's preimage (the cone of the normals
+    that separate its voxels from those outside,
+    :class:`~mrm.geometry.planes.segmentation.PlaneSegmentation`): a convex combination of them, so a
+    normal of the preimage, and the axis itself for a one-surfel segment.
+    It is read from the segmentation's integer rays in numpy: the chosen plane of each segment (exact
+    rational arithmetic, about 1 ms each in Python) would hold the GIL the window paints with.
 
     Each line starts at the centre of its segment's surfels (the mean of their centres: the voxel plus half
-    the outward direction) and runs outward for ``0.3·√(surfels)`` voxels, at least 1 and at most 6: a big
-    plane gets a longer line than a small one, and none reaches far beyond the object.
+    the outward direction) and runs outward for ``0.3·√(surfels)`` voxels, at least 1 and at most 6.
 
     Parameters
     ----------
@@ -312,18 +318,30 @@ def segment_normals(segmentation: object, count: int = MAX_NORMALS) -> Floats:
     sizes = np.diff(ptr)
     if sizes.size == 0 or count <= 0:
         return np.zeros((0, 3), np.float32)
-    biggest = np.argsort(-sizes, kind="stable")[:count]
-    voxel = np.asarray(segmentation.voxel, np.float64)  # type: ignore[attr-defined]
+    n_seg = sizes.size
+    seg_of = np.asarray(segmentation.segment_of, np.int64)  # type: ignore[attr-defined]
     direction = np.asarray(segmentation.direction, np.intp)  # type: ignore[attr-defined]
-    ends = np.empty((2 * biggest.size, 3), np.float64)
-    for i, k in enumerate(biggest):
-        members = segmentation.surfels_of(int(k))  # type: ignore[attr-defined]
-        start = (voxel[members] + DIRS[direction[members]] / 2.0).mean(axis=0)
-        normal = np.array(segmentation.segment(int(k)).plane.normal, np.float64)  # type: ignore[attr-defined]
-        length = min(6.0, max(1.0, 0.3 * np.sqrt(float(sizes[k]))))
-        ends[2 * i] = start
-        ends[2 * i + 1] = start + length * normal / np.linalg.norm(normal)
-    return ends.astype(np.float32)
+    centres = np.asarray(segmentation.voxel, np.float64) + DIRS[direction] / 2.0  # type: ignore[attr-defined]
+    start = np.stack([np.bincount(seg_of, centres[:, i], n_seg) for i in range(3)], axis=1)
+    start /= np.maximum(sizes, 1)[:, None]
+    # a one-surfel segment (no rays): its own direction; otherwise the mean of its unit extreme rays
+    members = np.asarray(segmentation.members, np.int64)  # type: ignore[attr-defined]
+    normal = DIRS[direction[members[ptr[:-1]]]].astype(np.float64)
+    rays = np.asarray(segmentation.rays, np.float64).reshape(-1, 3)  # type: ignore[attr-defined]
+    ray_ptr = np.asarray(segmentation.ray_ptr, np.int64)  # type: ignore[attr-defined]
+    counts = np.diff(ray_ptr)
+    if rays.size:
+        unit = rays / np.linalg.norm(rays, axis=1)[:, None]
+        owner = np.repeat(np.arange(n_seg), counts)
+        summed = np.stack([np.bincount(owner, unit[:, i], n_seg) for i in range(3)], axis=1)
+        normal = np.where((counts > 0)[:, None], summed, normal)
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    biggest = np.argsort(-sizes, kind="stable")[:count]
+    length = np.clip(0.3 * np.sqrt(sizes[biggest].astype(np.float64)), 1.0, 6.0)
+    ends = np.empty((biggest.size, 2, 3), np.float64)
+    ends[:, 0] = start[biggest]
+    ends[:, 1] = start[biggest] + length[:, None] * normal[biggest]
+    return ends.reshape(-1, 3).astype(np.float32)
 
 
 def cut_away(

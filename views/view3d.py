@@ -957,7 +957,8 @@ class RegionView3D(View3D):
 class AnalyticalView3D(View3D):
     """The digital plane segments of the surfaces, neighbouring segments in different colours.
 
-    The normals (a, b, c) of the biggest segments' chosen planes are drawn as lines from their centres.
+    A normal of each of the biggest segments (from its preimage, :func:`gl_mesh.segment_normals`) is drawn
+    as a line from its centre.
     """
 
     name = "analytical3d"
@@ -1004,12 +1005,7 @@ class AnalyticalView3D(View3D):
             return data
 
         what = self.budgeted(obj.id, "segments", budget)
-        # each normal drawn costs its segment's chosen plane (exact arithmetic, about 1 ms)
-        work = self.surfel_work(n, budget, vs) + self.NORMAL_WORK * min(len(seg), gl_mesh.MAX_NORMALS)
-        return self.prepared(obj.id, what, ana, work, compute)
-
-    #: The work of one normal in elements of :attr:`PREPARE_SYNC` (1 ms, as a thousand surfels).
-    NORMAL_WORK = 1_000
+        return self.prepared(obj.id, what, ana, self.surfel_work(n, budget, vs), compute)
 
 
 class EuclideanView3D(View3D):

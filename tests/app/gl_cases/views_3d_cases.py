@@ -215,21 +215,26 @@ def test_the_axis_gizmo_turns_with_the_shared_camera(make_window, qtbot):
 
 
 def test_the_analytical_view_draws_each_plane_segments_normal(make_window, qtbot):
-    """The octahedron's 8 plane segments have the normals (±1, ±1, ±1): one outward line from each face."""
+    """The octahedron's 8 plane segments: one outward line from the middle of each face, along a normal that
+    separates the face's voxels from the voxels outside it (a normal of the segment's preimage)."""
+    from mrm.geometry.topology.surfels import DIRS
+
     win = make_window(threaded=True)
     obj = _octahedron(win)
     area = _show_3d(qtbot, win)
     view = area.by_name("analytical3d")
     data, items = view._items[obj.id]
     lines = data["lines"].reshape(-1, 2, 3).astype(float)
-    assert len(lines) == 8
-    starts, ends = lines[:, 0], lines[:, 1]
-    directions = (ends - starts) / np.linalg.norm(ends - starts, axis=1)[:, None]
-    assert np.allclose(np.abs(directions), 1 / np.sqrt(3), atol=1e-6)
-    # outward: each line points away from the centre, from a start on its face (|x| + |y| + |z| ≈ R + ½)
-    assert (np.sum(starts * directions, axis=1) > 0).all()
-    assert set(map(tuple, np.sign(directions).astype(int))) == {
-        (a, b, c) for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)
-    }
-    assert np.allclose(np.abs(starts).sum(axis=1), R + 0.5, atol=1.5)
+    seg = win.scene.get(obj.id, "analytical").segmentation
+    assert len(lines) == len(seg) == 8
+    for start, end in lines:
+        normal = end - start
+        k = int(seg.segment_of[np.argmin(np.abs(seg.voxel - start).sum(axis=1))])  # the face it starts on
+        members = seg.surfels_of(k)
+        inner = seg.voxel[members]
+        outer = inner + DIRS[seg.direction[members].astype(int)]
+        assert (inner @ normal).max() < (outer @ normal).min(), k  # it separates: in the preimage
+        assert np.allclose(np.abs(start).sum(), R + 0.5, atol=1.5)  # from the face's middle, outward
+        assert start @ normal > 0 and np.sign(normal).tolist() == np.sign(start).tolist()
+    assert len({tuple(np.sign(e - s).astype(int)) for s, e in lines}) == 8
     assert any(type(it).__name__ == "GLLinePlotItem" for it in items)
