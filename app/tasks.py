@@ -90,7 +90,9 @@ class _Worker(QtCore.QRunnable):
         self.setAutoDelete(True)
 
     def run(self) -> None:
-        if not self.task.at_par:
+        if not (self.task.at_par or self.task.drawing):
+            # drawing data is short work the window waits for: lowered, its thread would hold the GIL
+            # while starved of a core, and the window with it (ADR 0042)
             lower_thread_priority()
         task = self.task
         try:
@@ -172,8 +174,8 @@ class TaskRunner(QtCore.QObject):
         Python work the user waits for, such as loading the kernels at start-up: a lowered thread holding the
         GIL is starved on a busy machine, and the window, waiting for the GIL, with it (ADR 0042).
 
-        ``drawing``: a view's drawing data, run on threads of their own (below the window's priority) so that
-        it never waits for long work in the main pool.
+        ``drawing``: a view's drawing data, run on threads of their own, at the window's priority, so that it
+        never waits for long work in the main pool.
         """
         old = self._current.get(slot)
         if old is not None and not old.done:
