@@ -423,3 +423,29 @@ def test_a_cancelled_voxelization_stops_with_cancelled():
     with pytest.raises(Cancelled):
         voxelize_image(reconstruct(VoxelSet.box(0, 0, 0, 9, 9, 9), "standard"), lin, off, progress=progress)
     assert progress.calls == 1
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_a_dyadic_map_is_computed_in_float64_only_when_nothing_rounds(model):
+    """Dyadic α about a dyadic centre and quarter turns skip the integer reading of the vertices, only when
+    every product and sum is exact in float64: then the image is the very one (the definition); when a sum
+    rounds (0.05 + 0.5), the integer path decides, and refuses an image float64 cannot hold."""
+    from mrm.geometry.discretize.voxel_images import _dyadic_image
+
+    tetra = Polyhedron(*tetra_mesh((0.1, 0.0, 0.0), (3.3, 0.0, 0.0), (0.0, 2.7, 0.0), (0.0, 0.0, 1.9)))
+    rounds = similarity(F(1, 2), quarter_turn(2, 1), (F(1), F(1), F(1)))
+    exact = similarity(F(4), quarter_turn(0, 3), (F(0), F(0), F(0)))
+    box = Polyhedron(*box_mesh((-1.25, 0.5, 2.0), (3.75, 4.5, 2.5)))
+    for solid, (lin, off), fast in ((tetra, rounds, False), (tetra, exact, True), (box, rounds, True)):
+        m = [[F(x) for x in row] for row in lin]
+        t = [F(x) for x in off]
+        q = _dyadic_image(np.asarray(solid.vertices), m, t)
+        assert (q is not None) == fast
+        if q is None:
+            with pytest.raises(ParameterError, match="float64"):
+                voxelize_image(solid, lin, off, model)
+            continue
+        want = [[sum((m[i][j] * F(v[j]) for j in range(3)), t[i]) for i in range(3)] for v in solid.vertices]
+        assert [[F(c) for c in row] for row in q.tolist()] == want  # every coordinate, exactly
+        got = voxelize_image(solid, lin, off, model)
+        assert voxels(got) == reference_voxelize(exact_image(solid, lin, off), model, True)
