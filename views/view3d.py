@@ -239,6 +239,11 @@ def make_pane(camera: Camera3D, parent: QtWidgets.QWidget) -> Any:
 
         def paintGL(self) -> None:
             super().paintGL()
+            from OpenGL import GL
+
+            # An item's GL options stay set after it (the differences are drawn with face culling on):
+            # QPainter strokes lines as triangles, which culling drops. Its engine resets the rest.
+            GL.glDisable(GL.GL_CULL_FACE)
             painter = QtGui.QPainter(self)
             try:
                 draw_axis_gizmo(painter, self.viewMatrix(), self.height())

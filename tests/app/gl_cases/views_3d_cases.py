@@ -170,7 +170,7 @@ def test_a_project_of_3d_objects_opens_in_the_3d_views_and_f3_goes_back(make_win
 
 
 def _corner_hues(view, colour: str) -> tuple[int, int, int, int]:  # type: ignore[no-untyped-def]
-    """Pixels of ``colour`` in the gizmo's corner: (right of, left of, above, below) its centre."""
+    """Pixels of ``colour`` on the gizmo's axes (its disk): (right of, left of, above, below) its centre."""
     from mrm.views.view3d import GIZMO_MARGIN, GIZMO_RADIUS
 
     img = _frame(view, gizmo=True).convertToFormat(QtGui.QImage.Format.Format_RGB32)
@@ -179,6 +179,8 @@ def _corner_hues(view, colour: str) -> tuple[int, int, int, int]:  # type: ignor
     counts = [0, 0, 0, 0]
     for x in range(max(0, cx - GIZMO_RADIUS - 12), cx + GIZMO_RADIUS + 12):
         for y in range(cy - GIZMO_RADIUS - 12, min(img.height(), cy + GIZMO_RADIUS + 12)):
+            if (x - cx) ** 2 + (y - cy) ** 2 > (GIZMO_RADIUS - 4) ** 2:
+                continue  # the axes' lines only, not their letters beyond their ends
             c = img.pixelColor(x, y)
             if c.hsvSaturation() < 120 or c.value() < 80:
                 continue

@@ -48,6 +48,13 @@ def test_figure_12_in_3d_opens_in_the_3d_views_and_draws_its_differing_voxels_in
     qtbot.wait(50)
     shown = _greys(_frame(view))
     assert shown > before + 2000, (before, shown)
+    # the axis gizmo is whole over them: its x axis drawn to the right (the greys' face culling once hid it)
+    from mrm.views.view3d import GIZMO_COLOURS
+    from tests.app.gl_cases.views_3d_cases import _corner_hues
+
+    area.buttons["front"].click()
+    right, left, _up, _down = _corner_hues(view, GIZMO_COLOURS[0])
+    assert right > 20 and left == 0
     insp.overlay.setChecked(False)
     qtbot.wait(50)
     assert _greys(_frame(view)) < shown - 2000
