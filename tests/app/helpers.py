@@ -226,3 +226,18 @@ def wait_idle(qtbot, runner) -> None:  # type: ignore[no-untyped-def]
     if runner.is_busy():
         with qtbot.waitSignal(runner.idle, timeout=HANG_MS):
             pass
+
+
+def record_gui_thread_calls(monkeypatch, owner, name: str) -> list[bool]:  # type: ignore[no-untyped-def]
+    """Wrap ``owner.name``: each call appends whether it ran on the GUI (main) thread, then runs it."""
+    import threading
+
+    calls: list[bool] = []
+    real = getattr(owner, name)
+
+    def recording(*args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(threading.current_thread() is threading.main_thread())
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(owner, name, recording)
+    return calls

@@ -17,7 +17,15 @@ import mrm.document.derive
 import mrm.views.inspector
 from mrm.core.grids import PixelSet
 from mrm.document.commands import AddObject
-from tests.app.helpers import HANG_MS, colour_at, is_background, task_done, wait_drawn, wait_idle
+from tests.app.helpers import (
+    HANG_MS,
+    colour_at,
+    is_background,
+    record_gui_thread_calls,
+    task_done,
+    wait_drawn,
+    wait_idle,
+)
 from tests.app.test_inspector import _chain
 
 Qt = QtCore.Qt
@@ -225,14 +233,7 @@ def test_a_big_documents_autosave_is_written_by_a_worker_and_recovers_it(make_wi
     from mrm.io import autosave
     from mrm.io.project import load_project
 
-    threads: list[bool] = []
-    real = autosave.dumps
-
-    def recording(*a, **k):  # type: ignore[no-untyped-def]
-        threads.append(threading.current_thread() is threading.main_thread())
-        return real(*a, **k)
-
-    monkeypatch.setattr(autosave, "dumps", recording)
+    threads = record_gui_thread_calls(monkeypatch, autosave, "dumps")
     win = make_window(threaded=True)
     m = np.zeros((4100, 4100), bool)  # above the 4 M-pixel-equivalent weight of a "big" document
     m[::3, ::5] = True

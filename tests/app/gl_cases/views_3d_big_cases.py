@@ -116,21 +116,13 @@ def test_coarser_levels_are_pooled_off_the_gui_thread_once_per_object_and_view(
     surfels, not voxels); moved to a worker, each worker's result made the view forget the other objects'
     data and send them back to their workers, without end (the 3D stall benchmark never finished).
     """
-    import threading
-
     from mrm.geometry.topology import level_of_detail
+    from tests.app.helpers import record_gui_thread_calls
 
     monkeypatch.setattr(View3D, "SURFEL_BUDGET", 10_000)
     monkeypatch.setattr(View3D, "SURFEL_BUDGET_MIN", 1_000)
     monkeypatch.setattr(View3D, "PREPARE_SYNC", 20_000)  # the voxels of the masks (69 k each) are over it
-    calls: list[bool] = []
-    real = level_of_detail.coarse_level
-
-    def recording(*args, **kwargs):  # type: ignore[no-untyped-def]
-        calls.append(threading.current_thread() is threading.main_thread())
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(level_of_detail, "coarse_level", recording)
+    calls = record_gui_thread_calls(monkeypatch, level_of_detail, "coarse_level")
     win = make_window(threaded=True)
     objs = _two_balls(win)
     area = _show_3d(qtbot, win)
