@@ -60,16 +60,15 @@ from mrm.core.grids import PixelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import held as held_reconstructions
 from mrm.geometry.reconstruct import reconstruct
-from mrm.reps.summary import optional_function
+from mrm.geometry.reconstruct.subdivision import watertight_parts as WATERTIGHT
+from mrm.ops.boolean import euclidean_discrete_corefinement as COREFINE
+from mrm.ops.boolean import euclidean_discrete_union as UNION
+from mrm.ops.rotation import discrete_rotation as ROTATE
+from mrm.ops.scaling import discrete_smooth_scaling as DSS
 from tests.oracles.geometry_strategies import noisy_star
 
-# The operations are looked up, not imported, so the script also runs while they are being written; a row
-# whose operation is missing is reported as such and the composition rows still run.
-DSS = optional_function("mrm.ops.scaling", "discrete_smooth_scaling")
-ROTATE = optional_function("mrm.ops.rotation", "discrete_rotation")
-UNION = optional_function("mrm.ops.boolean", "euclidean_discrete_union")
-COREFINE = optional_function("mrm.ops.boolean", "euclidean_discrete_corefinement")
-WATERTIGHT = optional_function("mrm.geometry.reconstruct.subdivision", "watertight_parts")
+# (The operations were once looked up by name so the script ran while they were being written; the helper
+# that did it left with issue 27 and the script failed at its first line since. They are imported now.)
 
 SLIVER = 1e-6
 
