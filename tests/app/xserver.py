@@ -2,11 +2,18 @@
 
 from __future__ import annotations
 
+import fcntl
 import os
 import shutil
 import signal
 import subprocess
+import tempfile
 from pathlib import Path
+
+#: Held while one Xvfb starts. Two servers started at once by two pytest-xdist workers can both pick the same
+#: free display: the second unlinks the first's socket file, binds its own, fails to lock the display and
+#: exits, and the first is left without a socket ("could not connect to display :1", seen once in CI).
+START_LOCK = Path(tempfile.gettempdir()) / "mrm-tests-xvfb-start.lock"
 
 
 def tool(name: str) -> str:
@@ -27,15 +34,18 @@ def start_xvfb(
     args = [tool("Xvfb"), "-displayfd", str(w), "-screen", "0", size, "-nolisten", "tcp"]
     if glx:
         args += ["+extension", "GLX"]
-    proc = subprocess.Popen(
-        args,
-        pass_fds=(w,),
-        stdout=subprocess.DEVNULL,
-        stderr=open(tmp_path / "xvfb.log", "wb"),  # noqa: SIM115 - lives as long as the server
-    )
-    os.close(w)
-    with os.fdopen(r) as f:
-        number = f.readline().strip()
+    with open(START_LOCK, "w") as lock:
+        # one start at a time: the number is written once the server holds its display's lock file
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.Popen(
+            args,
+            pass_fds=(w,),
+            stdout=subprocess.DEVNULL,
+            stderr=open(tmp_path / "xvfb.log", "wb"),  # noqa: SIM115 - lives as long as the server
+        )
+        os.close(w)
+        with os.fdopen(r) as f:
+            number = f.readline().strip()
     assert number, f"Xvfb did not start: {(tmp_path / 'xvfb.log').read_text()}"
     return proc, f":{number}"
 
