@@ -457,6 +457,29 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         b.setAutoRaise(True)
         return b
 
+    def _z_spin(self, name: str, prefix: str, tip: str) -> QtWidgets.QSpinBox:
+        """A spin box for a plane z = k (the slice, the cut), disabled until its tool is on."""
+        spin = QtWidgets.QSpinBox(self)
+        spin.setObjectName(name)
+        spin.setPrefix(prefix)
+        spin.setRange(-(2**30), 2**30)
+        spin.setToolTip(tip)
+        spin.setEnabled(False)
+        return spin
+
+    def _target_voxels(self) -> tuple[DocObject, Any] | None:
+        obj = self.target()
+        if obj is None:
+            return None
+        vs = self.scene.get(obj.id, "discrete")
+        return None if vs is None else (obj, vs)
+
+    def middle_z(self) -> int:
+        """The middle layer of the target voxel object (0 without one): where a slice or a cut starts."""
+        tv = self._target_voxels()
+        box = tv[1].bbox if tv is not None else None
+        return (box[2] + box[5]) // 2 if box is not None else 0
+
     # ------------------------------------------------------------------ per view
     def drawing_data(self, obj: DocObject) -> dict[str, Any] | None:
         """The mesh of ``obj`` in this view, or None while its representation or mesh is being computed."""
@@ -650,12 +673,7 @@ class DiscreteView3D(View3D):
             "sliceButton", "Slice", "Show the slice plane z = k (PgUp/PgDn)"
         )
         self.slice_button.toggled.connect(self._slice_toggled)
-        self.slice_spin = QtWidgets.QSpinBox(self)
-        self.slice_spin.setObjectName("sliceSpin")
-        self.slice_spin.setPrefix("z = ")
-        self.slice_spin.setRange(-(2**30), 2**30)
-        self.slice_spin.setToolTip("The slice plane's z (PgUp/PgDn in the view)")
-        self.slice_spin.setEnabled(False)
+        self.slice_spin = self._z_spin("sliceSpin", "z = ", "The slice plane's z (PgUp/PgDn in the view)")
         self.slice_spin.valueChanged.connect(self._slice_spun)
         self.paint_button = self._tool_button(
             "paintVoxels", "Paint", "Left drag on the slice plane adds voxels (one undo step per stroke)"
@@ -666,13 +684,6 @@ class DiscreteView3D(View3D):
         self.paint_button.toggled.connect(lambda on: self._brush_toggled("paint", on))
         self.erase_button.toggled.connect(lambda on: self._brush_toggled("erase", on))
         self.add_tool_row(self.slice_button, self.slice_spin, self.paint_button, self.erase_button)
-
-    def _target_voxels(self) -> tuple[DocObject, Any] | None:
-        obj = self.target()
-        if obj is None:
-            return None
-        vs = self.scene.get(obj.id, "discrete")
-        return None if vs is None else (obj, vs)
 
     def set_slice(self, z: int | None) -> None:
         """Show the slice plane at ``z`` (None hides it)."""
@@ -692,9 +703,7 @@ class DiscreteView3D(View3D):
         if not on:
             self.set_slice(None)
             return
-        tv = self._target_voxels()
-        box = tv[1].bbox if tv is not None else None
-        self.set_slice((box[2] + box[5]) // 2 if box is not None else 0)
+        self.set_slice(self.middle_z())
 
     def _slice_spun(self, z: int) -> None:
         if self.slice_z is not None:
@@ -870,12 +879,9 @@ class RegionView3D(View3D):
         self.cut_button = self._tool_button(
             "cutButton", "Cut", "Cut the objects away above z = k to see their cavities (PgUp/PgDn move it)"
         )
-        self.cut_spin = QtWidgets.QSpinBox(self)
-        self.cut_spin.setObjectName("cutSpin")
-        self.cut_spin.setPrefix("z ≤ ")
-        self.cut_spin.setRange(-(2**30), 2**30)
-        self.cut_spin.setToolTip("The highest layer of voxels drawn (PgUp/PgDn in the view)")
-        self.cut_spin.setEnabled(False)
+        self.cut_spin = self._z_spin(
+            "cutSpin", "z ≤ ", "The highest layer of voxels drawn (PgUp/PgDn in the view)"
+        )
         self.cut_button.toggled.connect(self._cut_toggled)
         self.cut_spin.valueChanged.connect(lambda _z: self.mark_dirty(0))
         self.add_tool_row(self.cut_button, self.cut_spin)
@@ -887,11 +893,8 @@ class RegionView3D(View3D):
 
     def _cut_toggled(self, on: bool) -> None:
         if on:
-            obj = self.target()
-            vs = self.scene.get(obj.id, "discrete") if obj is not None else None
-            box = vs.bbox if vs is not None else None
             self.cut_spin.blockSignals(True)
-            self.cut_spin.setValue((box[2] + box[5]) // 2 if box is not None else 0)  # through the middle
+            self.cut_spin.setValue(self.middle_z())  # through the middle
             self.cut_spin.blockSignals(False)
         self.cut_spin.setEnabled(on)
         self.mark_dirty(0)
