@@ -14,17 +14,22 @@ from hypothesis import strategies as st
 import mrm
 from mrm.core.errors import LimitError
 from mrm.core.grids import VoxelSet
+from mrm.geometry.reconstruct import FALLBACKS
 from mrm.reps.region_3d import region_3d_of
 from tests.model.voxel_shapes import ball, hollow, random_mask, solid_torus
 
 MODELS = ("standard", "supercover", "gauss")
 
 
-def assert_reversible(vs: VoxelSet) -> mrm.Polyhedron:
-    poly = mrm.reconstruct(vs)
+def assert_reversible(vs: VoxelSet) -> dict[str, mrm.Polyhedron]:
+    """R(A) in each model gives A back, and is the compact R (its exact checks held; no fall back)."""
+    out = {}
     for model in MODELS:
+        before = FALLBACKS[0]
+        out[model] = poly = mrm.reconstruct(vs, model)
+        assert FALLBACKS[0] == before, f"{model}: R fell back to the safety net"
         assert mrm.voxelize(poly, model) == vs, model
-    return poly
+    return out
 
 
 def adversarial() -> dict[str, np.ndarray]:
@@ -53,13 +58,13 @@ def adversarial() -> dict[str, np.ndarray]:
 def test_adversarial_sets_come_back_in_every_model_with_their_topology(name):
     m = adversarial()[name]
     vs = VoxelSet(m, (7, -3, 2))
-    poly = assert_reversible(vs)
     region = region_3d_of(vs.mask, vs.origin)
-    # one shell per component and one per cavity (docs/design.md §11 item 4)
-    assert poly.n_shells == region.n_components + region.n_cavities
+    for poly in assert_reversible(vs).values():
+        # one shell per component and one per cavity (docs/design.md §11 item 4)
+        assert poly.n_shells == region.n_components + region.n_cavities
 
 
-@settings(max_examples=600, deadline=None)
+@settings(max_examples=2000, deadline=None)  # issue 29: 2,000 seeded examples, each in the three models
 @given(
     st.integers(0, 2**32 - 1),
     st.tuples(st.integers(1, 7), st.integers(1, 7), st.integers(1, 7)),
@@ -87,29 +92,31 @@ def test_there_are_24_rotations_of_the_cube():
     assert len(ROTATIONS) == 24
 
 
+@pytest.mark.parametrize("model", MODELS)
 @pytest.mark.parametrize("perm, signs", ROTATIONS)
-def test_r_commutes_with_the_rotations_of_the_cube(perm, signs):
+def test_r_commutes_with_the_rotations_of_the_cube(perm, signs, model):
     vs = VoxelSet(random_mask(5, (4, 5, 3), 0.55), (2, -1, 3))
     turned = VoxelSet.from_points(_turned(vs.points(), perm, signs))
-    poly = mrm.reconstruct(vs)
+    poly = mrm.reconstruct(vs, model)
     # Quarter turns about a voxel centre map quarter-integer vertices exactly (float64 holds them). The
     # triangulation of a face may differ; the solid may not: both are compared as point sets, sampled at a
     # quarter of a voxel (every vertex is on that grid) with the samples off every face (the ½ shift).
     expected = mrm.Polyhedron(_turned(poly.vertices, perm, signs), poly.triangles)
-    got = mrm.reconstruct(turned)
+    got = mrm.reconstruct(turned, model)
 
     def fine(p: mrm.Polyhedron) -> VoxelSet:
         return mrm.voxelize(mrm.Polyhedron(4 * p.vertices + 0.5, p.triangles), "gauss")
 
     assert fine(got) == fine(expected)
     assert got.n_faces == expected.n_faces  # maximal coplanar sets: no triangulation changes them
-    assert mrm.voxelize(expected, "standard") == turned
+    assert mrm.voxelize(expected, model) == turned
 
 
-def test_r_commutes_with_integer_translations_far_from_the_origin():
+@pytest.mark.parametrize("model", MODELS)
+def test_r_commutes_with_integer_translations_far_from_the_origin(model):
     vs = VoxelSet(random_mask(11, (5, 5, 5), 0.5), (0, 0, 0))
     t = (2**30, -(2**29), 12345)
-    assert mrm.reconstruct(vs.translate(*t)) == mrm.reconstruct(vs).translate(t)
+    assert mrm.reconstruct(vs.translate(*t), model) == mrm.reconstruct(vs, model).translate(t)
 
 
 def test_the_empty_set_gives_the_empty_polyhedron():
@@ -123,3 +130,44 @@ def test_too_many_surfels_are_refused_before_the_work(monkeypatch):
     with pytest.raises(LimitError, match="voxel faces"):
         mrm.reconstruct(VoxelSet(np.indices((4, 4, 4)).sum(axis=0) % 2 == 0))  # 32 lone voxels: 192 faces
     assert mrm.reconstruct(VoxelSet(np.ones((4, 4, 4), bool))).n_faces == 6  # 96 faces pass
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_r_of_a_ball_has_a_fraction_of_the_safety_nets_triangles(model):
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+
+    vs = VoxelSet(ball(8, 19), (0, 0, 0))
+    net = safety_net_3d(vs.mask, vs.origin)
+    poly = assert_reversible(vs)[model]
+    assert poly.n_triangles * 3 < net.triangles.shape[0]
+
+
+def test_gauss_r_stays_within_the_border_voxels_cubes():
+    from mrm.geometry.discretize.voxels import voxelize_triangles
+
+    m = ball(6, 15) | (random_mask(3, (15, 15, 15), 0.08))
+    vs = VoxelSet(m, (0, 0, 0))
+    poly = mrm.reconstruct(vs, "gauss")
+    touched, origin = voxelize_triangles(poly.vertices, poly.triangles, "supercover", limit=None)
+    box = VoxelSet(touched, origin).to_array((-2, -2, -2, 16, 16, 16))  # the voxels the surface meets
+    a = np.pad(m, ((2, 2), (2, 2), (2, 2)))
+    padded = np.pad(a, 1)
+    block = sum(
+        padded[dz : dz + a.shape[0], dy : dy + a.shape[1], dx : dx + a.shape[2]].astype(int)
+        for dz in range(3)
+        for dy in range(3)
+        for dx in range(3)
+    )
+    border = (block > 0) & (block < 27)
+    assert not (box & ~border).any()
+
+
+def test_big_sets_get_the_safety_net(monkeypatch):
+    from mrm.core import limits
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+
+    vs = VoxelSet(ball(4, 11), (0, 0, 0))
+    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
+    poly = mrm.reconstruct(vs, "gauss")
+    assert poly.n_triangles == safety_net_3d(vs.mask, vs.origin).triangles.shape[0]
+    assert mrm.voxelize(poly, "gauss") == vs

@@ -1,0 +1,836 @@
+"""The compact 3D continuation: the safety net, simplified by edge collapses that are each proved exactly.
+
+Reference: docs/design.md §11, "Continuation R in 3D"; the decision is docs/adr/0064.
+
+R(A) starts as the safety net (:mod:`.safety_net_3d`), which meets items 1–5 of the contract in every model,
+and removes vertices by **half-edge collapses** u → v (u goes, its triangles take v instead). A collapse is
+kept only when every one of these holds, each decided exactly in integers:
+
+1. **The surface stays a closed 2-manifold of the same topology**: the link condition (u and v have exactly
+   the two vertices opposite their edge as common neighbours), and no new triangle is flat.
+2. **No centre of Z³ changes side.** The old and the new star of u bound a closed surface; a point's side
+   changes iff its winding number about that surface is not 0, and coned from v it is the signed count of
+   the tetrahedra (v, u, a, b), (u, a, b) in the old star, that hold the point. A centre is taken as c + τ,
+   τ = (ε, ε², ε³) — the ties rule of §2 — so it is never on a face, and each count is exact.
+3. **No new triangle meets a forbidden closed cube**: under the covers, the cube V(q) of every voxel q
+   outside A (so R(A) ⊂ V(A) and misses every V(q), q ∉ A); under ``gauss``, the cube of every voxel
+   whose 3×3×3 block lies on one side of A (so ∂R(A) stays within the cubes of the border voxels on either
+   side). Triangle–box overlap by separating axes, closed on both sides.
+4. **No new triangle meets another triangle** beyond their common vertices and edge (the exact pair test of
+   :mod:`~mrm.geometry.polyhedra.self_intersection`), against every triangle whose box is near.
+
+Together with the safety net's own guarantees they keep D(R(A)) = A in the model (by 2 every centre keeps
+its side; by 3 under the covers every V(q), q ∉ A, stays outside R(A) since it misses the surface and its
+centre is outside), the shells and their genus (1 and 4), and validity. Every vertex stays where the safety
+net put it, in Z + {¼, ¾}; coordinates are held as integers, four times the offset from a corner of the
+box, and every predicate of 2 and 3 is a product of three differences inside one star (refused beyond
+2¹⁶, so below 2⁵³).
+
+The order: vertices in turn, each trying its neighbours farthest first (a long collapse straightens the most
+staircase), passes until one removes nothing. The result is checked again as a whole by the caller.
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import cast
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.geometry._jit import njit
+from mrm.geometry.polyhedra.self_intersection import DISJOINT, triangles_meet_improperly
+
+FloatArray = npt.NDArray[np.float64]
+Int64Array = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+
+#: Voxels of padding around A in the forbidden-cube array (beyond it every cube is forbidden).
+PAD = 3
+#: Grid cell of the triangle buckets, in the integer units (4 per voxel).
+_CELL = 8
+#: Largest extent of a star, in integer units (12 voxels): it bounds the work of one collapse (the centres of
+#: its box) and keeps every product of three differences far inside int64.
+_MAX_EXTENT = 48
+
+
+def forbidden_cubes(mask: BoolArray, gauss: bool) -> BoolArray:
+    """The voxels whose closed cube R(A)'s boundary must not meet, over A's box padded by :data:`PAD`.
+
+    Parameters
+    ----------
+    mask : bool (nz, ny, nx)
+        A.
+    gauss : bool
+        ``gauss``: voxels whose 3×3×3 block is all in A or all outside (∂R(A) stays in the border voxels'
+        cubes); the covers: every voxel outside A.
+    """
+    a = np.pad(mask, PAD)
+    if not gauss:
+        return ~a
+    b = np.pad(a, 1)
+    count = np.zeros(a.shape, np.int8)
+    nz, ny, nx = a.shape
+    for dz in range(3):
+        for dy in range(3):
+            for dx in range(3):
+                count += b[dz : dz + nz, dy : dy + ny, dx : dx + nx]
+    # Beyond the array every voxel is outside: the outer ring's blocks are counted with that outside.
+    out: BoolArray = (count == 0) | (count == 27)
+    return out
+
+
+@njit(cache=True, inline="always")
+def _side(
+    ax: int, ay: int, az: int, bx: int, by: int, bz: int, cx: int, cy: int, cz: int, px: int, py: int, pz: int
+) -> int:  # pragma: no cover - compiled
+    # Sign of det(b − a, c − a, p + τ − a), τ = (ε, ε², ε³): the plain determinant, else the normal's first
+    # non-zero coordinate (the triangle is not flat, so one is).
+    ux, uy, uz = bx - ax, by - ay, bz - az
+    vx, vy, vz = cx - ax, cy - ay, cz - az
+    nx = uy * vz - uz * vy
+    ny = uz * vx - ux * vz
+    nz = ux * vy - uy * vx
+    d = nx * (px - ax) + ny * (py - ay) + nz * (pz - az)
+    if d == 0:
+        d = nx
+        if d == 0:
+            d = ny
+            if d == 0:
+                d = nz
+    return 1 if d > 0 else (-1 if d < 0 else 0)
+
+
+@njit(cache=True, inline="always")
+def _det(
+    ax: int, ay: int, az: int, bx: int, by: int, bz: int, cx: int, cy: int, cz: int, dx: int, dy: int, dz: int
+) -> int:  # pragma: no cover - compiled
+    ux, uy, uz = bx - ax, by - ay, bz - az
+    vx, vy, vz = cx - ax, cy - ay, cz - az
+    wx, wy, wz = dx - ax, dy - ay, dz - az
+    return ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx)
+
+
+@njit(cache=True)
+def _tet_holds(
+    q: Int64Array, t0: int, t1: int, t2: int, t3: int, px: int, py: int, pz: int
+) -> bool:  # pragma: no cover
+    # Whether the non-flat tetrahedron t0 t1 t2 t3 holds p + τ (never on a face).
+    idx = (t0, t1, t2, t3)
+    for f in range(4):
+        a, b, c, d = idx[(f + 1) % 4], idx[(f + 2) % 4], idx[(f + 3) % 4], idx[f]
+        s_d = _det(
+            q[a, 0],
+            q[a, 1],
+            q[a, 2],
+            q[b, 0],
+            q[b, 1],
+            q[b, 2],
+            q[c, 0],
+            q[c, 1],
+            q[c, 2],
+            q[d, 0],
+            q[d, 1],
+            q[d, 2],
+        )
+        s_p = _side(
+            q[a, 0], q[a, 1], q[a, 2], q[b, 0], q[b, 1], q[b, 2], q[c, 0], q[c, 1], q[c, 2], px, py, pz
+        )
+        if (s_d > 0) != (s_p > 0):
+            return False
+    return True
+
+
+@njit(cache=True)
+def _axis_apart(
+    ax: int, ay: int, az: int, p: Int64Array, lo: Int64Array, hi: Int64Array, open_box: bool
+) -> bool:  # pragma: no cover
+    # Whether axis (ax, ay, az) separates the triangle's points p (3 × 3) from the box: the closed box
+    # [lo, hi], or (open_box) its interior, whose projection is the open interval.
+    if ax == 0 and ay == 0 and az == 0:
+        return False
+    t_min = p[0, 0] * ax + p[0, 1] * ay + p[0, 2] * az
+    t_max = t_min
+    for k in range(1, 3):
+        x = p[k, 0] * ax + p[k, 1] * ay + p[k, 2] * az
+        t_min = min(t_min, x)
+        t_max = max(t_max, x)
+    b_min = 0
+    b_max = 0
+    for k, a in enumerate((ax, ay, az)):
+        if a > 0:
+            b_min += lo[k] * a
+            b_max += hi[k] * a
+        else:
+            b_min += hi[k] * a
+            b_max += lo[k] * a
+    if open_box:
+        return bool(t_max <= b_min or b_max <= t_min)
+    return bool(t_max < b_min or b_max < t_min)
+
+
+@njit(cache=True)
+def _triangle_meets_box(
+    p: Int64Array, lo: Int64Array, hi: Int64Array, open_box: bool
+) -> bool:  # pragma: no cover
+    # Separating axes of a closed triangle and a box, closed or (open_box) open: the box's 3 axes, the
+    # normal, the 9 edge crosses (the facet normals of their Minkowski difference).
+    for k in range(3):
+        t_max = max(p[0, k], p[1, k], p[2, k])
+        t_min = min(p[0, k], p[1, k], p[2, k])
+        if t_max < lo[k] or t_min > hi[k] or (open_box and (t_max == lo[k] or t_min == hi[k])):
+            return False
+    e = np.empty((3, 3), np.int64)
+    for i in range(3):
+        for k in range(3):
+            e[i, k] = p[(i + 1) % 3, k] - p[i, k]
+    nx = e[0, 1] * e[1, 2] - e[0, 2] * e[1, 1]
+    ny = e[0, 2] * e[1, 0] - e[0, 0] * e[1, 2]
+    nz = e[0, 0] * e[1, 1] - e[0, 1] * e[1, 0]
+    if _axis_apart(nx, ny, nz, p, lo, hi, open_box):
+        return False
+    for i in range(3):
+        ex, ey, ez = e[i, 0], e[i, 1], e[i, 2]
+        # unit axis × edge
+        if _axis_apart(0, -ez, ey, p, lo, hi, open_box):
+            return False
+        if _axis_apart(ez, 0, -ex, p, lo, hi, open_box):
+            return False
+        if _axis_apart(-ey, ex, 0, p, lo, hi, open_box):
+            return False
+    return True
+
+
+#: The gauss model, and the covers: standard and supercover share one R, whose checks are the stricter
+#: of the two and invariant under the rotations of the cube (closed forbidden cubes, open cubes met).
+GAUSS, COVERS = 0, 1
+
+
+@njit(cache=True, inline="always")
+def _cell_box(q: Int64Array, t: Int64Array, k: int, out: Int64Array) -> None:  # pragma: no cover
+    # The grid cells of triangle k's box: out = (lo x, lo y, lo z, hi x, hi y, hi z).
+    for d in range(3):
+        a, b, c = q[t[k, 0], d], q[t[k, 1], d], q[t[k, 2], d]
+        out[d] = min(a, b, c) // _CELL
+        out[3 + d] = max(a, b, c) // _CELL
+
+
+@njit(cache=True)
+def _bucket(
+    q: Int64Array,
+    t: Int64Array,
+    k: int,
+    ghead: Int64Array,
+    g_next: Int64Array,
+    g_tri: Int64Array,
+    ng: int,
+    gx: int,
+    gy: int,
+    cb: Int64Array,
+) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
+    # Triangle k into the buckets of every cell of its box (the pools double when full).
+    _cell_box(q, t, k, cb)
+    for c2 in range(cb[2], cb[5] + 1):
+        for c1 in range(cb[1], cb[4] + 1):
+            for c0 in range(cb[0], cb[3] + 1):
+                if ng == g_next.shape[0]:
+                    g_next = np.concatenate((g_next, np.empty(ng, np.int64)))
+                    g_tri = np.concatenate((g_tri, np.empty(ng, np.int64)))
+                cell = (c2 * gy + c1) * gx + c0
+                g_next[ng] = ghead[cell]
+                g_tri[ng] = k
+                ghead[cell] = ng
+                ng += 1
+    return g_next, g_tri, ng
+
+
+@njit(cache=True)
+def _new_corners(
+    q: Int64Array, t: Int64Array, k: int, u: int, v: int, pts: Int64Array
+) -> None:  # pragma: no cover
+    # The corners of triangle k once u is v.
+    for c in range(3):
+        w = t[k, c]
+        if w == u:
+            w = v
+        for d in range(3):
+            pts[c, d] = q[w, d]
+
+
+@njit(cache=True)
+def _holds_point(p: Int64Array, x: int, y: int, z: int) -> bool:  # pragma: no cover
+    # Whether the closed, non-flat triangle p (3 × 3) holds the point: in its plane, and on the inner side
+    # of each edge in the projection that drops the normal's largest coordinate.
+    ux, uy, uz = p[1, 0] - p[0, 0], p[1, 1] - p[0, 1], p[1, 2] - p[0, 2]
+    vx, vy, vz = p[2, 0] - p[0, 0], p[2, 1] - p[0, 1], p[2, 2] - p[0, 2]
+    n0, n1, n2 = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    if n0 * (x - p[0, 0]) + n1 * (y - p[0, 1]) + n2 * (z - p[0, 2]) != 0:
+        return False
+    i, j = 1, 2
+    if abs(n1) >= abs(n0) and abs(n1) >= abs(n2):
+        i, j = 2, 0
+    elif abs(n2) >= abs(n0) and abs(n2) >= abs(n1):
+        i, j = 0, 1
+    pt = (x, y, z)
+    pos = 0
+    neg = 0
+    for e in range(3):
+        a, b = e, (e + 1) % 3
+        o = (p[b, i] - p[a, i]) * (pt[j] - p[a, j]) - (p[b, j] - p[a, j]) * (pt[i] - p[a, i])
+        if o > 0:
+            pos += 1
+        elif o < 0:
+            neg += 1
+    return pos == 0 or neg == 0
+
+
+@njit(cache=True)
+def _cube_range(pts: Int64Array, lo_i: Int64Array, hi_i: Int64Array) -> None:  # pragma: no cover
+    # The voxels whose cube [4i − 2, 4i + 2] meets the box of the points.
+    for d in range(3):
+        lo_i[d] = (min(pts[0, d], pts[1, d], pts[2, d]) - 2 + 3) // 4
+        hi_i[d] = (max(pts[0, d], pts[1, d], pts[2, d]) + 2) // 4
+
+
+@njit(cache=True)
+def _cell_is_met(
+    q: Int64Array,
+    t: Int64Array,
+    alive: BoolArray,
+    ix: int,
+    iy: int,
+    iz: int,
+    open_box: bool,
+    ghead: Int64Array,
+    g_next: Int64Array,
+    g_tri: Int64Array,
+    gx: int,
+    gy: int,
+    gz: int,
+    moved: Int64Array,
+    n_moved: int,
+    stamp: Int64Array,
+    epoch: int,
+    pts: Int64Array,
+    clo: Int64Array,
+    chi: Int64Array,
+) -> bool:  # pragma: no cover - compiled
+    # Whether a triangle meets voxel i's cube, closed or (open_box) open: the moved triangles (not yet in
+    # the buckets of their new boxes), then the buckets of the cube's grid cells.
+    clo[0], clo[1], clo[2] = 4 * ix - 2, 4 * iy - 2, 4 * iz - 2
+    chi[0], chi[1], chi[2] = 4 * ix + 2, 4 * iy + 2, 4 * iz + 2
+    for i in range(n_moved):
+        o = moved[i]
+        for c in range(3):
+            for d in range(3):
+                pts[c, d] = q[t[o, c], d]
+        if _triangle_meets_box(pts, clo, chi, open_box):
+            return True
+    for c2 in range(max(0, clo[2] // _CELL), min(gz - 1, chi[2] // _CELL) + 1):
+        for c1 in range(max(0, clo[1] // _CELL), min(gy - 1, chi[1] // _CELL) + 1):
+            for c0 in range(max(0, clo[0] // _CELL), min(gx - 1, chi[0] // _CELL) + 1):
+                e = ghead[(c2 * gy + c1) * gx + c0]
+                while e >= 0:
+                    o = g_tri[e]
+                    e = g_next[e]
+                    if stamp[o] == epoch or not alive[o]:
+                        continue
+                    stamp[o] = epoch
+                    for c in range(3):
+                        for d in range(3):
+                            pts[c, d] = q[t[o, c], d]
+                    if _triangle_meets_box(pts, clo, chi, open_box):
+                        return True
+    return False
+
+
+@njit(cache=True)
+def _decimate(
+    q: Int64Array,
+    tri: Int64Array,
+    in_a: BoolArray,
+    forbidden: BoolArray,
+    model: int,
+    max_passes: int,
+    max_collapses: int,
+) -> tuple[Int64Array, BoolArray, BoolArray, int]:  # pragma: no cover - compiled
+    nv = q.shape[0]
+    nt = tri.shape[0]
+    qf = q.astype(np.float64)  # the exact predicates of the pair test read floats; these are small integers
+    t = tri.copy()
+    alive = np.ones(nt, np.bool_)
+    vdead = np.zeros(nv, np.bool_)
+    fz, fy, fx = forbidden.shape
+    inside = in_a.copy()  # the side of every centre: the safety net holds exactly the centres of A
+    covers = model != GAUSS
+
+    # Vertex stars: linked lists of triangle entries; stale ones (dead, or no longer at the vertex) skipped.
+    vhead = np.full(nv, -1, np.int64)
+    cap = 3 * nt + 16
+    s_next = np.empty(cap, np.int64)
+    s_tri = np.empty(cap, np.int64)
+    ns = 0
+    for k in range(nt):
+        for c in range(3):
+            w = t[k, c]
+            s_next[ns] = vhead[w]
+            s_tri[ns] = k
+            vhead[w] = ns
+            ns += 1
+
+    # Triangle buckets on a uniform grid (cells of _CELL units), also linked lists.
+    gx = q[:, 0].max() // _CELL + 1
+    gy = q[:, 1].max() // _CELL + 1
+    gz = q[:, 2].max() // _CELL + 1
+    ghead = np.full(gx * gy * gz, -1, np.int64)
+    g_next = np.empty(4 * nt + 16, np.int64)
+    g_tri = np.empty(4 * nt + 16, np.int64)
+    ng = 0
+    cb = np.empty(6, np.int64)
+    for k in range(nt):
+        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb)
+
+    stamp = np.zeros(nt, np.int64)
+    epoch = 0
+    star = np.empty(256, np.int64)
+    moved = np.empty(256, np.int64)
+    gone = np.empty(2, np.int64)
+    nbr_u = np.empty(256, np.int64)
+    nbr_v = np.empty(256, np.int64)
+    cand = np.empty(256, np.int64)
+    clen = np.empty(256, np.int64)
+    flips = np.empty((4096, 3), np.int64)
+    pts = np.empty((3, 3), np.int64)
+    blo = np.empty(3, np.int64)
+    bhi = np.empty(3, np.int64)
+    lo_i = np.empty(3, np.int64)
+    hi_i = np.empty(3, np.int64)
+    clo = np.empty(3, np.int64)
+    chi = np.empty(3, np.int64)
+    removed = 0
+    passes = 0
+    changed = True
+    while changed and passes < max_passes:
+        changed = False
+        passes += 1
+        for u in range(nv):
+            if vdead[u] or removed == max_collapses:
+                continue
+            # The star of u and its neighbours.
+            n_star = 0
+            e = vhead[u]
+            while e >= 0 and n_star < 256:
+                k = s_tri[e]
+                if alive[k] and (t[k, 0] == u or t[k, 1] == u or t[k, 2] == u):
+                    star[n_star] = k
+                    n_star += 1
+                e = s_next[e]
+            if n_star >= 256:
+                continue
+            n_nu = 0
+            for i in range(n_star):
+                for c in range(3):
+                    w = t[star[i], c]
+                    if w != u:
+                        seen = False
+                        for j in range(n_nu):
+                            if nbr_u[j] == w:
+                                seen = True
+                                break
+                        if not seen:
+                            nbr_u[n_nu] = w
+                            n_nu += 1
+            # Farthest neighbour first (ties: lowest index).
+            for i in range(n_nu):
+                w = nbr_u[i]
+                dx, dy, dz = q[w, 0] - q[u, 0], q[w, 1] - q[u, 1], q[w, 2] - q[u, 2]
+                cand[i] = w
+                clen[i] = dx * dx + dy * dy + dz * dz
+            for i in range(1, n_nu):
+                j = i
+                while j > 0 and (clen[j - 1] < clen[j] or (clen[j - 1] == clen[j] and cand[j - 1] > cand[j])):
+                    clen[j - 1], clen[j] = clen[j], clen[j - 1]
+                    cand[j - 1], cand[j] = cand[j], cand[j - 1]
+                    j -= 1
+            for ci in range(n_nu):
+                v = cand[ci]
+                # Triangles of the edge (they go) and the others (they move to v).
+                n_gone = 0
+                n_moved = 0
+                ok = True
+                for i in range(n_star):
+                    k = star[i]
+                    if t[k, 0] == v or t[k, 1] == v or t[k, 2] == v:
+                        if n_gone == 2:
+                            ok = False
+                            break
+                        gone[n_gone] = k
+                        n_gone += 1
+                    else:
+                        moved[n_moved] = k
+                        n_moved += 1
+                if not ok or n_gone != 2:
+                    continue
+                # Link condition: the common neighbours of u and v are the two opposite vertices.
+                n_nv = 0
+                e = vhead[v]
+                while e >= 0 and n_nv < 250:
+                    k = s_tri[e]
+                    if alive[k] and (t[k, 0] == v or t[k, 1] == v or t[k, 2] == v):
+                        for c in range(3):
+                            w = t[k, c]
+                            if w != v:
+                                seen = False
+                                for j in range(n_nv):
+                                    if nbr_v[j] == w:
+                                        seen = True
+                                        break
+                                if not seen:
+                                    nbr_v[n_nv] = w
+                                    n_nv += 1
+                    e = s_next[e]
+                if n_nv >= 250:
+                    continue
+                common = 0
+                for i in range(n_nu):
+                    w = nbr_u[i]
+                    if w == v:
+                        continue
+                    for j in range(n_nv):
+                        if nbr_v[j] == w:
+                            common += 1
+                            break
+                if common != 2:
+                    continue
+                # The box of the star (u, v and every vertex of the moved triangles), and its extent.
+                for d in range(3):
+                    blo[d] = min(q[u, d], q[v, d])
+                    bhi[d] = max(q[u, d], q[v, d])
+                for i in range(n_moved):
+                    for c in range(3):
+                        w = t[moved[i], c]
+                        for d in range(3):
+                            blo[d] = min(blo[d], q[w, d])
+                            bhi[d] = max(bhi[d], q[w, d])
+                if max(bhi[0] - blo[0], bhi[1] - blo[1], bhi[2] - blo[2]) > _MAX_EXTENT:
+                    continue
+                # 1. No new triangle is flat.
+                for i in range(n_moved):
+                    _new_corners(q, t, moved[i], u, v, pts)
+                    ux_, uy_, uz_ = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
+                    vx_, vy_, vz_ = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
+                    if (
+                        uy_ * vz_ - uz_ * vy_ == 0
+                        and uz_ * vx_ - ux_ * vz_ == 0
+                        and ux_ * vy_ - uy_ * vx_ == 0
+                    ):
+                        ok = False
+                        break
+                if not ok:
+                    continue
+                # 2. The centres that change side (centres are at 4·i in these units): none under gauss;
+                # under the covers only centres of A may (they leave), recorded to be checked below.
+                n_flips = 0
+                for pz in range((blo[2] + 3) // 4 * 4, bhi[2] + 1, 4):
+                    for py in range((blo[1] + 3) // 4 * 4, bhi[1] + 1, 4):
+                        for px in range((blo[0] + 3) // 4 * 4, bhi[0] + 1, 4):
+                            wind = 0
+                            for i in range(n_moved):
+                                k = moved[i]
+                                c0 = 0  # the old triangle rotated to start at u: (u, a, b)
+                                while t[k, c0] != u:
+                                    c0 += 1
+                                a = t[k, (c0 + 1) % 3]
+                                b = t[k, (c0 + 2) % 3]
+                                vol = _det(
+                                    q[v, 0],
+                                    q[v, 1],
+                                    q[v, 2],
+                                    q[u, 0],
+                                    q[u, 1],
+                                    q[u, 2],
+                                    q[a, 0],
+                                    q[a, 1],
+                                    q[a, 2],
+                                    q[b, 0],
+                                    q[b, 1],
+                                    q[b, 2],
+                                )
+                                if vol != 0 and _tet_holds(q, v, u, a, b, px, py, pz):
+                                    wind += 1 if vol > 0 else -1
+                            if wind == 0 and not covers:
+                                # gauss: the new surface separates the centres strictly (none on it)
+                                for i in range(n_moved):
+                                    _new_corners(q, t, moved[i], u, v, pts)
+                                    if _holds_point(pts, px, py, pz):
+                                        wind = 1
+                                        break
+                            if wind != 0:
+                                ix, iy, iz = px // 4, py // 4, pz // 4
+                                if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
+                                    ok = False
+                                    break
+                                flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
+                                n_flips += 1
+                        if not ok:
+                            break
+                    if not ok:
+                        break
+                if not ok:
+                    continue
+                # 3. No new triangle meets a forbidden cube (voxel i's cube is [4i − 2, 4i + 2]; the standard
+                # model's is its cell, the open cube shifted by τ).
+                for i in range(n_moved):
+                    _new_corners(q, t, moved[i], u, v, pts)
+                    _cube_range(pts, lo_i, hi_i)
+                    if min(lo_i[0], lo_i[1], lo_i[2]) < 0 or hi_i[0] >= fx or hi_i[1] >= fy or hi_i[2] >= fz:
+                        ok = False
+                        break
+                    for iz in range(lo_i[2], hi_i[2] + 1):
+                        for iy in range(lo_i[1], hi_i[1] + 1):
+                            for ix in range(lo_i[0], hi_i[0] + 1):
+                                if not forbidden[iz, iy, ix]:
+                                    continue
+                                clo[0], clo[1], clo[2] = 4 * ix - 2, 4 * iy - 2, 4 * iz - 2
+                                chi[0], chi[1], chi[2] = 4 * ix + 2, 4 * iy + 2, 4 * iz + 2
+                                if _triangle_meets_box(pts, clo, chi, False):
+                                    ok = False
+                                    break
+                            if not ok:
+                                break
+                        if not ok:
+                            break
+                    if not ok:
+                        break
+                if not ok:
+                    continue
+                # 4. Tentatively collapse, then no new triangle meets another improperly.
+                for i in range(n_moved):
+                    k = moved[i]
+                    for c in range(3):
+                        if t[k, c] == u:
+                            t[k, c] = v
+                alive[gone[0]] = False
+                alive[gone[1]] = False
+                for i in range(n_moved):
+                    k = moved[i]
+                    for j in range(i + 1, n_moved):
+                        if triangles_meet_improperly(qf, t, k, moved[j]) != DISJOINT:
+                            ok = False
+                            break
+                    if not ok:
+                        break
+                if ok:
+                    epoch += 1
+                    for j in range(n_moved):
+                        stamp[moved[j]] = epoch
+                    for i in range(n_moved):
+                        k = moved[i]
+                        epoch += 1
+                        for j in range(n_moved):
+                            stamp[moved[j]] = epoch
+                        _cell_box(q, t, k, cb)
+                        for c2 in range(cb[2], cb[5] + 1):
+                            for c1 in range(cb[1], cb[4] + 1):
+                                for c0 in range(cb[0], cb[3] + 1):
+                                    e = ghead[(c2 * gy + c1) * gx + c0]
+                                    while e >= 0:
+                                        o = g_tri[e]
+                                        e = g_next[e]
+                                        if stamp[o] == epoch or not alive[o]:
+                                            continue
+                                        stamp[o] = epoch
+                                        if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
+                                            ok = False
+                                            break
+                                    if not ok:
+                                        break
+                                if not ok:
+                                    break
+                            if not ok:
+                                break
+                        if not ok:
+                            break
+                # 5. Covers: every voxel of A near the star whose centre is outside R(A) now (it left in this
+                # collapse or before) still meets R(A) — its cell (standard) or cube (supercover) — by a
+                # triangle (its cube is not inside R, its centre being outside).
+                if ok and covers:
+                    for f in range(n_flips):
+                        inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+                    for iz in range((blo[2] - 2 + 3) // 4, (bhi[2] + 2) // 4 + 1):
+                        for iy in range((blo[1] - 2 + 3) // 4, (bhi[1] + 2) // 4 + 1):
+                            for ix in range((blo[0] - 2 + 3) // 4, (bhi[0] + 2) // 4 + 1):
+                                if not in_a[iz, iy, ix] or inside[iz, iy, ix]:
+                                    continue
+                                if not _cell_is_met(
+                                    q,
+                                    t,
+                                    alive,
+                                    ix,
+                                    iy,
+                                    iz,
+                                    True,
+                                    ghead,
+                                    g_next,
+                                    g_tri,
+                                    gx,
+                                    gy,
+                                    gz,
+                                    moved,
+                                    n_moved,
+                                    stamp,
+                                    epoch + 1,
+                                    pts,
+                                    clo,
+                                    chi,
+                                ):
+                                    ok = False
+                                    break
+                                epoch += 1
+                            if not ok:
+                                break
+                        if not ok:
+                            break
+                    epoch += 1
+                    if not ok:
+                        for f in range(n_flips):
+                            inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+                if not ok:
+                    for i in range(n_moved):
+                        k = moved[i]
+                        for c in range(3):
+                            if t[k, c] == v:
+                                t[k, c] = u
+                    alive[gone[0]] = True
+                    alive[gone[1]] = True
+                    continue
+                # Kept: v's star and the buckets learn the moved triangles.
+                vdead[u] = True
+                removed += 1
+                changed = True
+                for i in range(n_moved):
+                    k = moved[i]
+                    if ns == s_next.shape[0]:
+                        s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
+                        s_tri = np.concatenate((s_tri, np.empty(ns, np.int64)))
+                    s_next[ns] = vhead[v]
+                    s_tri[ns] = k
+                    vhead[v] = ns
+                    ns += 1
+                    g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb)
+                break  # u is gone
+    return t, alive, vdead, removed
+
+
+#: The 24 rotations of the cube as signed permutations of (x, y, z):
+#: new coordinate k = sign[k] · old[perm[k]].
+ROTATIONS: tuple[tuple[tuple[int, int, int], tuple[int, int, int]], ...] = tuple(
+    (cast(tuple[int, int, int], perm), cast(tuple[int, int, int], signs))
+    for perm in itertools.permutations(range(3))
+    for signs in itertools.product((1, -1), repeat=3)
+    if round(float(np.linalg.det(np.eye(3)[list(perm)] * np.array(signs)))) == 1
+)
+
+
+def _turn(mask: BoolArray, perm: tuple[int, ...], signs: tuple[int, ...]) -> BoolArray:
+    # The mask (z, y, x) of the turned set, placed at the origin of its own box.
+    out = mask.transpose([2 - perm[2], 2 - perm[1], 2 - perm[0]])
+    flips = tuple(2 - k for k in range(3) if signs[k] < 0)
+    return np.flip(out, flips) if flips else out
+
+
+def canonical_pose(mask: BoolArray) -> tuple[tuple[int, int, int], tuple[int, int, int]]:
+    """The rotation of the cube that turns A into its canonical pose: the smallest (shape, bits) of the 24.
+
+    R is computed in that pose and turned back, so that R(g A) = g R(A) for every rotation g of the cube
+    when A has no symmetry of its own (a symmetric A gets one of its poses, the same for all its turns).
+    """
+    best: tuple[tuple[int, ...], bytes] | None = None
+    pose = ROTATIONS[0]
+    for perm, signs in ROTATIONS:
+        turned = _turn(mask, perm, signs)
+        key = (turned.shape, np.packbits(turned).tobytes())
+        if best is None or key < best:
+            best, pose = key, (perm, signs)
+    return pose
+
+
+def decimate(
+    vertices: FloatArray,
+    triangles: Int64Array,
+    mask: BoolArray,
+    origin: tuple[int, int, int],
+    model: str,
+    max_passes: int = 64,
+    max_collapses: int = -1,
+) -> tuple[FloatArray, Int64Array]:
+    """Simplify the safety net of A by exactly checked half-edge collapses (module docstring).
+
+    Parameters
+    ----------
+    vertices, triangles : the safety net of A (:func:`~.safety_net_3d.safety_net_3d`).
+    mask, origin : A.
+    model : {"gauss", "standard", "supercover"}
+    max_passes : int
+        Passes over the vertices at most (each pass stops early when nothing more goes).
+
+    Returns
+    -------
+    vertices : float64 (n, 3), a subset of the safety net's, in their order.
+    triangles : int64 (m, 3), outward.
+    """
+    if triangles.shape[0] == 0:
+        return vertices, triangles
+    corner = np.asarray(origin, np.float64) - PAD
+    scaled = (vertices - corner) * 4.0
+    q = np.rint(scaled).astype(np.int64)
+    if not np.array_equal(q.astype(np.float64), scaled):
+        raise ValueError("the safety net's vertices lie in Z + {1/4, 3/4}")
+    code = GAUSS if model == "gauss" else COVERS
+    in_a = np.pad(mask, PAD)
+    forbidden = forbidden_cubes(mask, code == GAUSS)
+    t, alive, vdead, _removed = _decimate(
+        q, triangles.astype(np.int64), in_a, forbidden, code, max_passes, max_collapses
+    )
+    keep = ~vdead
+    index = np.cumsum(keep) - 1
+    return vertices[keep], index[t[alive]]
+
+
+def compact_r(
+    mask: BoolArray, origin: tuple[int, int, int], model: str, max_triangles: int
+) -> tuple[FloatArray, Int64Array, FloatArray, Int64Array]:
+    """R(A) in the model, computed in A's canonical pose and turned back (:func:`canonical_pose`).
+
+    A safety net of more than ``max_triangles`` triangles is not decimated: the net itself is returned, as
+    both results (the same arrays).
+
+    Returns
+    -------
+    vertices, triangles : the compact R(A).
+    net_vertices, net_triangles : the safety net of A (the fallback).
+    """
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+
+    perm, signs = canonical_pose(mask)
+    turned = np.ascontiguousarray(_turn(mask, perm, signs))
+    net = safety_net_3d(turned, (0, 0, 0))
+    if net.triangles.shape[0] > max_triangles:
+        v, t = net.vertices, net.triangles
+    else:
+        v, t = decimate(net.vertices, net.triangles, turned, (0, 0, 0), model)
+    shape_xyz = mask.shape[::-1]
+
+    def back(w: FloatArray) -> FloatArray:
+        # Turned coordinate k is signs[k] · (x[perm[k]] − o[perm[k]]) + (size − 1 when flipped): undo it.
+        out = np.empty_like(w)
+        for k in range(3):
+            j = perm[k]
+            local = w[:, k] if signs[k] > 0 else (shape_xyz[j] - 1) - w[:, k]
+            out[:, j] = local + origin[j]
+        return out
+
+    if t is net.triangles:
+        w = back(v)
+        return w, t, w, t
+    return back(v), t, back(net.vertices), net.triangles
