@@ -61,6 +61,7 @@ KERNEL_MODULES = (
     "geometry/topology/surfels.py",
     "geometry/topology/cells_3d.py",
     "geometry/reconstruct/safety_net_3d.py",
+    "geometry/reconstruct/decimate_3d.py",
     "geometry/polyhedra/predicates.py",
     "geometry/polyhedra/self_intersection.py",
     "geometry/polyhedra/manifold.py",
@@ -279,6 +280,11 @@ def _step_regions_3d() -> None:
     standard_plane_prefix([(0, 0, 0), (1, 0, 0), (0, 1, 1)])  # the compiled point recognizer
     cells_3d_of(mask.astype(np.int32) + np.eye(3, dtype=np.int32)[None])
     safety_net_3d(mask)
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.reconstruct import reconstruct_voxels
+
+    for model in ("gauss", "standard"):  # the compact R's decimation (one kernel, both model paths)
+        reconstruct_voxels(VoxelSet(mask, (0, 0, 0)), model)
     from mrm.geometry.topology.colouring import greedy_colouring
 
     greedy_colouring(3, [(0, 1), (1, 2)], 2)  # the 3D analytical view's segment colours

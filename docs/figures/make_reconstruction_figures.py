@@ -476,19 +476,10 @@ def figure_3d() -> None:
     ]
     vs = VoxelSet.from_points([*ring, (4, 1, 2)])  # (4, 1, 2) meets (3, 1, 1) along an edge only
     reg = region_3d_of(vs.mask, vs.origin)
-    poly = mrm.reconstruct(vs)
     for model in ("standard", "supercover", "gauss"):
-        assert mrm.voxelize(poly, model) == vs
-    colours = face_colours(poly)
-    pieces, fills = [], []
-    for t, f in zip(poly.triangles.tolist(), poly.face_of_triangle.tolist(), strict=True):
-        tri = poly.vertices[t]
-        n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
-        shade = 0.62 + 0.38 * max(0.0, float(n @ LIGHT / np.linalg.norm(n)))
-        fill = rgb(tuple(round(shade * c) for c in colours[f]))
-        for piece in split_small(tri):
-            pieces.append(piece)
-            fills.append(fill)
+        assert mrm.voxelize(mrm.reconstruct(vs, model), model) == vs
+    poly = safety_net_polyhedron(vs)
+    pieces, fills = shaded_pieces(poly)
     fig = plt.figure(figsize=(8.4, 3.6), dpi=100)
     box = (*vs.bbox[:3], *vs.bbox[3:])
     ax = voxel_axes(fig, (0, 0.0, 0.5, 0.9), box, zoom=1.2)
@@ -509,6 +500,52 @@ def figure_3d() -> None:
         f"{poly.n_faces} faces, {poly.n_shells} shells; D(R(A)) = A in the three models",
     )
     fig.savefig(OUT / "reconstruction-3d.png")
+    plt.close(fig)
+
+
+def safety_net_polyhedron(vs: VoxelSet) -> mrm.Polyhedron:
+    """The safety net of a voxel set: V(A) eroded by ¼, where R starts."""
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+
+    net = safety_net_3d(vs.mask, vs.origin)
+    return mrm.Polyhedron(net.vertices, net.triangles)
+
+
+def shaded_pieces(poly: mrm.Polyhedron) -> tuple[list[np.ndarray], list[str]]:
+    """The triangles of a polyhedron cut small for mplot3d, each shaded by its face's colour."""
+    colours = face_colours(poly)
+    pieces, fills = [], []
+    for t, f in zip(poly.triangles.tolist(), poly.face_of_triangle.tolist(), strict=True):
+        tri = poly.vertices[t]
+        n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
+        shade = 0.62 + 0.38 * max(0.0, float(n @ LIGHT / np.linalg.norm(n)))
+        fill = rgb(tuple(round(shade * c) for c in colours[f]))
+        for piece in split_small(tri):
+            pieces.append(piece)
+            fills.append(fill)
+    return pieces, fills
+
+
+def figure_compact_3d() -> None:
+    """A digital ball: its safety net, then R under gauss and under the covers (compact, reversible)."""
+    r = 7
+    g = np.arange(-r - 1, r + 2)
+    z, y, x = np.meshgrid(g, g, g, indexing="ij")
+    vs = VoxelSet((x - 0.3) ** 2 + (y - 0.1) ** 2 + (z - 0.2) ** 2 <= r * r, (-r - 1,) * 3)
+    shown = [("the safety net (V(A) eroded by ¼)", safety_net_polyhedron(vs))]
+    for model in ("gauss", "standard"):
+        poly = mrm.reconstruct(vs, model)
+        assert mrm.voxelize(poly, model) == vs
+        name = "gauss" if model == "gauss" else "standard and supercover"
+        shown.append((f"R(A) under {name}", poly))
+    fig = plt.figure(figsize=(11.4, 3.9), dpi=100)
+    box = (-r, -r, -r, r, r, r)
+    for col, (title, poly) in enumerate(shown):
+        pieces, fills = shaded_pieces(poly)
+        ax = voxel_axes(fig, (col / 3, 0.0, 1 / 3, 0.88), box, zoom=1.25)
+        ax.add_collection3d(Poly3DCollection(pieces, facecolors=fills, edgecolors=fills, linewidths=0.4))
+        titled(fig, col / 3, title, f"{poly.n_triangles} triangles, {poly.n_vertices} vertices")
+    fig.savefig(OUT / "reconstruction-3d-compact.png")
     plt.close(fig)
 
 
@@ -578,6 +615,7 @@ def main() -> None:
     figure_models()
     figure_gauss_disk()
     figure_3d()
+    figure_compact_3d()
     figure_plane_segments_3d()
 
 

@@ -294,7 +294,8 @@ def test_3d_values_are_refused_by_the_2d_operations_not_read_as_nothing():
     """
     vs = mrm.VoxelSet.box(0, 0, 0, 1, 1, 1)
     assert isinstance(mrm.simplify(vs, 0.5), mrm.Polyhedron) and not mrm.simplify(vs, 0.5).is_empty
-    assert mrm.scale(vs, 2) == mrm.VoxelSet.box(-1, -1, -1, 2, 2, 2)
+    r = mrm.reconstruct(vs, "standard")  # DSS_2(A) = D(Sc_2(R(A))), here through the float mesh
+    assert mrm.scale(vs, 2) == mrm.voxelize(mrm.Polyhedron(2 * r.vertices, r.triangles), "standard")
     assert mrm.rotate([vs], 90, axis=(0, 0, 1))[0] == vs.rotate90(1)
     assert mrm.voxelize(mrm.union(vs, vs), "standard") == vs
     assert mrm.voxelize(mrm.corefine(vs, vs)["a_and_b"], "standard") == vs

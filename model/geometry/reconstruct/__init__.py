@@ -398,7 +398,7 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     (:func:`~mrm.geometry.reconstruct.safety_net_3d.safety_net_3d`), which meets the contract in every model
     (ADR 0044) — and removes vertices by half-edge collapses, each proved exactly to keep the surface a
     valid 2-manifold of the same topology and D(R(A)) = A in the model
-    (:func:`~mrm.geometry.reconstruct.decimate_3d.decimate`, ADR 0064). The result is checked again as a
+    (``mrm.geometry.reconstruct.decimate_3d``, ADR 0064). The result is checked again as a
     whole: validated exactly (:class:`~mrm.geometry.polyhedra.Polyhedron`) and discretized exactly; should
     that ever fail, the safety net is returned and the failure logged.
 

@@ -285,6 +285,97 @@ def _holds_point(p: Int64Array, x: int, y: int, z: int) -> bool:  # pragma: no c
 
 
 @njit(cache=True)
+def _centres_that_change(
+    q: Int64Array,
+    t: Int64Array,
+    moved: Int64Array,
+    n_moved: int,
+    u: int,
+    v: int,
+    blo: Int64Array,
+    acc: Int64Array,
+    covers: bool,
+    in_a: BoolArray,
+    flips: Int64Array,
+    pts: Int64Array,
+) -> int:  # pragma: no cover - compiled
+    # The centres whose side changes when u goes to v, into flips (voxel indices); −1 when one may not:
+    # any under gauss (or one on a new triangle: gauss separates strictly), one outside A under the covers.
+    # Each tet (v, u, a, b) adds its sign to the centres it holds, scanning only its own box; acc is a
+    # scratch array over the star's box (zero on entry and on return).
+    n = acc.shape[0]  # its side: the star's extent in centres, at most
+    c0x, c0y, c0z = (blo[0] + 3) // 4 * 4, (blo[1] + 3) // 4 * 4, (blo[2] + 3) // 4 * 4
+    n_flips = 0
+    touched = 0
+    bad = False
+    for i in range(n_moved):
+        k = moved[i]
+        c = 0  # the old triangle rotated to start at u: (u, a, b)
+        while t[k, c] != u:
+            c += 1
+        a = t[k, (c + 1) % 3]
+        b = t[k, (c + 2) % 3]
+        vol = _det(
+            q[v, 0],
+            q[v, 1],
+            q[v, 2],
+            q[u, 0],
+            q[u, 1],
+            q[u, 2],
+            q[a, 0],
+            q[a, 1],
+            q[a, 2],
+            q[b, 0],
+            q[b, 1],
+            q[b, 2],
+        )
+        if vol == 0:
+            continue
+        sign = 1 if vol > 0 else -1
+        lo0 = (min(q[v, 0], q[u, 0], q[a, 0], q[b, 0]) + 3) // 4 * 4
+        lo1 = (min(q[v, 1], q[u, 1], q[a, 1], q[b, 1]) + 3) // 4 * 4
+        lo2 = (min(q[v, 2], q[u, 2], q[a, 2], q[b, 2]) + 3) // 4 * 4
+        hi0 = max(q[v, 0], q[u, 0], q[a, 0], q[b, 0])
+        hi1 = max(q[v, 1], q[u, 1], q[a, 1], q[b, 1])
+        hi2 = max(q[v, 2], q[u, 2], q[a, 2], q[b, 2])
+        for pz in range(lo2, hi2 + 1, 4):
+            for py in range(lo1, hi1 + 1, 4):
+                for px in range(lo0, hi0 + 1, 4):
+                    if _tet_holds(q, v, u, a, b, px, py, pz):
+                        acc[(pz - c0z) // 4, (py - c0y) // 4, (px - c0x) // 4] += sign
+                        touched += 1
+    if touched:
+        for kz in range(n):
+            for ky in range(n):
+                for kx in range(n):
+                    if acc[kz, ky, kx] == 0:
+                        continue
+                    acc[kz, ky, kx] = 0
+                    if bad:
+                        continue
+                    ix, iy, iz = c0x // 4 + kx, c0y // 4 + ky, c0z // 4 + kz
+                    if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
+                        bad = True
+                        continue
+                    flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
+                    n_flips += 1
+    if bad:
+        return -1
+    if not covers:  # gauss: no centre on a new triangle
+        for i in range(n_moved):
+            _new_corners(q, t, moved[i], u, v, pts)
+            lo0 = (min(pts[0, 0], pts[1, 0], pts[2, 0]) + 3) // 4 * 4
+            lo1 = (min(pts[0, 1], pts[1, 1], pts[2, 1]) + 3) // 4 * 4
+            lo2 = (min(pts[0, 2], pts[1, 2], pts[2, 2]) + 3) // 4 * 4
+            for pz in range(lo2, max(pts[0, 2], pts[1, 2], pts[2, 2]) + 1, 4):
+                for py in range(lo1, max(pts[0, 1], pts[1, 1], pts[2, 1]) + 1, 4):
+                    for px in range(lo0, max(pts[0, 0], pts[1, 0], pts[2, 0]) + 1, 4):
+                        if _holds_point(pts, px, py, pz):
+                            return -1
+    return n_flips
+
+
+@njit(cache=True)
 def _cube_range(pts: Int64Array, lo_i: Int64Array, hi_i: Int64Array) -> None:  # pragma: no cover
     # The voxels whose cube [4i − 2, 4i + 2] meets the box of the points.
     for d in range(3):
@@ -345,6 +436,201 @@ def _cell_is_met(
 
 
 @njit(cache=True)
+def _flatter_across(q: Int64Array, a: int, b: int, c: int, d: int) -> bool:  # pragma: no cover - compiled
+    # Whether triangles (c, a, d), (d, b, c) bend less than (a, b, c), (b, a, d): the cosine between the two
+    # normals grows (a heuristic: which flips to try; each is then proved like a collapse).
+    def normal(i: int, j: int, k: int) -> tuple[float, float, float]:
+        ux, uy, uz = q[j, 0] - q[i, 0], q[j, 1] - q[i, 1], q[j, 2] - q[i, 2]
+        vx, vy, vz = q[k, 0] - q[i, 0], q[k, 1] - q[i, 1], q[k, 2] - q[i, 2]
+        nx, ny, nz = float(uy * vz - uz * vy), float(uz * vx - ux * vz), float(ux * vy - uy * vx)
+        m = (nx * nx + ny * ny + nz * nz) ** 0.5
+        if m == 0.0:
+            return 0.0, 0.0, 0.0
+        return nx / m, ny / m, nz / m
+
+    n1 = normal(a, b, c)
+    n2 = normal(b, a, d)
+    m1 = normal(c, a, d)
+    m2 = normal(d, b, c)
+    if m1 == (0.0, 0.0, 0.0) or m2 == (0.0, 0.0, 0.0):
+        return False
+    before = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]
+    after = m1[0] * m2[0] + m1[1] * m2[1] + m1[2] * m2[2]
+    return after > before + 1e-9
+
+
+@njit(cache=True)
+def _flip_is_right(
+    q: Int64Array,
+    qf: FloatArray,
+    t: Int64Array,
+    alive: BoolArray,
+    k: int,
+    k2: int,
+    a: int,
+    b: int,
+    c: int,
+    d: int,
+    blo: Int64Array,
+    covers: bool,
+    in_a: BoolArray,
+    inside: BoolArray,
+    forbidden: BoolArray,
+    flips: Int64Array,
+    pts: Int64Array,
+    lo_i: Int64Array,
+    hi_i: Int64Array,
+    clo: Int64Array,
+    chi: Int64Array,
+    ghead: Int64Array,
+    g_next: Int64Array,
+    g_tri: Int64Array,
+    gx: int,
+    gy: int,
+    gz: int,
+    moved: Int64Array,
+    stamp: Int64Array,
+    epoch: int,
+) -> bool:  # pragma: no cover - compiled
+    # The checks of a collapse for the flipped pair k = (c, a, d), k2 = (d, b, c) (already in t), the same in
+    # the same order; `inside` is updated when the flip is right.
+    fz, fy, fx = forbidden.shape
+    for kk in (k, k2):
+        for cc in range(3):
+            for dd in range(3):
+                pts[cc, dd] = q[t[kk, cc], dd]
+        ux, uy, uz = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
+        vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
+        if uy * vz - uz * vy == 0 and uz * vx - ux * vz == 0 and ux * vy - uy * vx == 0:
+            return False
+        _cube_range(pts, lo_i, hi_i)
+        if min(lo_i[0], lo_i[1], lo_i[2]) < 0 or hi_i[0] >= fx or hi_i[1] >= fy or hi_i[2] >= fz:
+            return False
+        for iz in range(lo_i[2], hi_i[2] + 1):
+            for iy in range(lo_i[1], hi_i[1] + 1):
+                for ix in range(lo_i[0], hi_i[0] + 1):
+                    if forbidden[iz, iy, ix]:
+                        clo[0], clo[1], clo[2] = 4 * ix - 2, 4 * iy - 2, 4 * iz - 2
+                        chi[0], chi[1], chi[2] = 4 * ix + 2, 4 * iy + 2, 4 * iz + 2
+                        if _triangle_meets_box(pts, clo, chi, False):
+                            return False
+    # Centres in the tetrahedron a b c d change side; under gauss none may, nor lie on a new triangle.
+    n_flips = 0
+    if (
+        _det(
+            q[a, 0],
+            q[a, 1],
+            q[a, 2],
+            q[b, 0],
+            q[b, 1],
+            q[b, 2],
+            q[c, 0],
+            q[c, 1],
+            q[c, 2],
+            q[d, 0],
+            q[d, 1],
+            q[d, 2],
+        )
+        != 0
+    ):
+        for pz in range((blo[2] + 3) // 4 * 4, max(q[a, 2], q[b, 2], q[c, 2], q[d, 2]) + 1, 4):
+            for py in range((blo[1] + 3) // 4 * 4, max(q[a, 1], q[b, 1], q[c, 1], q[d, 1]) + 1, 4):
+                for px in range((blo[0] + 3) // 4 * 4, max(q[a, 0], q[b, 0], q[c, 0], q[d, 0]) + 1, 4):
+                    if _tet_holds(q, a, b, c, d, px, py, pz):
+                        ix, iy, iz = px // 4, py // 4, pz // 4
+                        if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
+                            return False
+                        flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
+                        n_flips += 1
+    if not covers:
+        for kk in (k, k2):
+            for cc in range(3):
+                for dd in range(3):
+                    pts[cc, dd] = q[t[kk, cc], dd]
+            for pz in range(
+                (min(pts[0, 2], pts[1, 2], pts[2, 2]) + 3) // 4 * 4,
+                max(pts[0, 2], pts[1, 2], pts[2, 2]) + 1,
+                4,
+            ):
+                for py in range(
+                    (min(pts[0, 1], pts[1, 1], pts[2, 1]) + 3) // 4 * 4,
+                    max(pts[0, 1], pts[1, 1], pts[2, 1]) + 1,
+                    4,
+                ):
+                    for px in range(
+                        (min(pts[0, 0], pts[1, 0], pts[2, 0]) + 3) // 4 * 4,
+                        max(pts[0, 0], pts[1, 0], pts[2, 0]) + 1,
+                        4,
+                    ):
+                        if _holds_point(pts, px, py, pz):
+                            return False
+    # No new triangle meets another improperly.
+    if triangles_meet_improperly(qf, t, k, k2) != DISJOINT:
+        return False
+    for kk in (k, k2):
+        ep = epoch + 1 + (kk == k2)
+        stamp[k] = ep
+        stamp[k2] = ep
+        for dd in range(3):
+            lo_i[dd] = min(q[t[kk, 0], dd], q[t[kk, 1], dd], q[t[kk, 2], dd]) // _CELL
+            hi_i[dd] = max(q[t[kk, 0], dd], q[t[kk, 1], dd], q[t[kk, 2], dd]) // _CELL
+        for c2 in range(lo_i[2], hi_i[2] + 1):
+            for c1 in range(lo_i[1], hi_i[1] + 1):
+                for c0 in range(lo_i[0], hi_i[0] + 1):
+                    e = ghead[(c2 * gy + c1) * gx + c0]
+                    while e >= 0:
+                        o = g_tri[e]
+                        e = g_next[e]
+                        if stamp[o] == ep or not alive[o]:
+                            continue
+                        stamp[o] = ep
+                        if triangles_meet_improperly(qf, t, kk, o) != DISJOINT:
+                            return False
+    # Covers: every voxel of A near the pair whose centre is outside still meets R in its open cube.
+    if covers:
+        for f in range(n_flips):
+            inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+        ep = epoch + 3
+        good = True
+        for iz in range((blo[2] - 2 + 3) // 4, (max(q[a, 2], q[b, 2], q[c, 2], q[d, 2]) + 2) // 4 + 1):
+            for iy in range((blo[1] - 2 + 3) // 4, (max(q[a, 1], q[b, 1], q[c, 1], q[d, 1]) + 2) // 4 + 1):
+                for ix in range(
+                    (blo[0] - 2 + 3) // 4, (max(q[a, 0], q[b, 0], q[c, 0], q[d, 0]) + 2) // 4 + 1
+                ):
+                    if not good or not in_a[iz, iy, ix] or inside[iz, iy, ix]:
+                        continue
+                    if not _cell_is_met(
+                        q,
+                        t,
+                        alive,
+                        ix,
+                        iy,
+                        iz,
+                        True,
+                        ghead,
+                        g_next,
+                        g_tri,
+                        gx,
+                        gy,
+                        gz,
+                        moved,
+                        2,
+                        stamp,
+                        ep,
+                        pts,
+                        clo,
+                        chi,
+                    ):
+                        good = False
+                    ep += 1
+        if not good:
+            for f in range(n_flips):
+                inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+            return False
+    return True
+
+
+@njit(cache=True)
 def _decimate(
     q: Int64Array,
     tri: Int64Array,
@@ -353,6 +639,7 @@ def _decimate(
     model: int,
     max_passes: int,
     max_collapses: int,
+    max_rounds: int,
 ) -> tuple[Int64Array, BoolArray, BoolArray, int]:  # pragma: no cover - compiled
     nv = q.shape[0]
     nt = tri.shape[0]
@@ -360,6 +647,7 @@ def _decimate(
     t = tri.copy()
     alive = np.ones(nt, np.bool_)
     vdead = np.zeros(nv, np.bool_)
+    dirty = np.ones(nv, np.bool_)  # whose star changed since it last failed to go
     fz, fy, fx = forbidden.shape
     inside = in_a.copy()  # the side of every centre: the safety net holds exactly the centres of A
     covers = model != GAUSS
@@ -400,6 +688,8 @@ def _decimate(
     cand = np.empty(256, np.int64)
     clen = np.empty(256, np.int64)
     flips = np.empty((4096, 3), np.int64)
+    side = _MAX_EXTENT // 4 + 2
+    acc = np.zeros((side, side, side), np.int64)
     pts = np.empty((3, 3), np.int64)
     blo = np.empty(3, np.int64)
     bhi = np.empty(3, np.int64)
@@ -408,242 +698,151 @@ def _decimate(
     clo = np.empty(3, np.int64)
     chi = np.empty(3, np.int64)
     removed = 0
-    passes = 0
-    changed = True
-    while changed and passes < max_passes:
-        changed = False
-        passes += 1
-        for u in range(nv):
-            if vdead[u] or removed == max_collapses:
-                continue
-            # The star of u and its neighbours.
-            n_star = 0
-            e = vhead[u]
-            while e >= 0 and n_star < 256:
-                k = s_tri[e]
-                if alive[k] and (t[k, 0] == u or t[k, 1] == u or t[k, 2] == u):
-                    star[n_star] = k
-                    n_star += 1
-                e = s_next[e]
-            if n_star >= 256:
-                continue
-            n_nu = 0
-            for i in range(n_star):
-                for c in range(3):
-                    w = t[star[i], c]
-                    if w != u:
-                        seen = False
-                        for j in range(n_nu):
-                            if nbr_u[j] == w:
-                                seen = True
-                                break
-                        if not seen:
-                            nbr_u[n_nu] = w
-                            n_nu += 1
-            # Farthest neighbour first (ties: lowest index).
-            for i in range(n_nu):
-                w = nbr_u[i]
-                dx, dy, dz = q[w, 0] - q[u, 0], q[w, 1] - q[u, 1], q[w, 2] - q[u, 2]
-                cand[i] = w
-                clen[i] = dx * dx + dy * dy + dz * dz
-            for i in range(1, n_nu):
-                j = i
-                while j > 0 and (clen[j - 1] < clen[j] or (clen[j - 1] == clen[j] and cand[j - 1] > cand[j])):
-                    clen[j - 1], clen[j] = clen[j], clen[j - 1]
-                    cand[j - 1], cand[j] = cand[j], cand[j - 1]
-                    j -= 1
-            for ci in range(n_nu):
-                v = cand[ci]
-                # Triangles of the edge (they go) and the others (they move to v).
-                n_gone = 0
-                n_moved = 0
-                ok = True
-                for i in range(n_star):
-                    k = star[i]
-                    if t[k, 0] == v or t[k, 1] == v or t[k, 2] == v:
-                        if n_gone == 2:
-                            ok = False
-                            break
-                        gone[n_gone] = k
-                        n_gone += 1
-                    else:
-                        moved[n_moved] = k
-                        n_moved += 1
-                if not ok or n_gone != 2:
+    for round_ in range(max_rounds + 1):
+        changed = True
+        passes = 0
+        while changed and passes < max_passes:
+            changed = False
+            passes += 1
+            for u in range(nv):
+                if vdead[u] or not dirty[u] or removed == max_collapses:
                     continue
-                # Link condition: the common neighbours of u and v are the two opposite vertices.
-                n_nv = 0
-                e = vhead[v]
-                while e >= 0 and n_nv < 250:
+                dirty[u] = False
+                # The star of u and its neighbours.
+                n_star = 0
+                e = vhead[u]
+                while e >= 0 and n_star < 256:
                     k = s_tri[e]
-                    if alive[k] and (t[k, 0] == v or t[k, 1] == v or t[k, 2] == v):
-                        for c in range(3):
-                            w = t[k, c]
-                            if w != v:
-                                seen = False
-                                for j in range(n_nv):
-                                    if nbr_v[j] == w:
-                                        seen = True
-                                        break
-                                if not seen:
-                                    nbr_v[n_nv] = w
-                                    n_nv += 1
+                    if alive[k] and (t[k, 0] == u or t[k, 1] == u or t[k, 2] == u):
+                        star[n_star] = k
+                        n_star += 1
                     e = s_next[e]
-                if n_nv >= 250:
+                if n_star >= 256:
                     continue
-                common = 0
+                n_nu = 0
+                for i in range(n_star):
+                    for c in range(3):
+                        w = t[star[i], c]
+                        if w != u:
+                            seen = False
+                            for j in range(n_nu):
+                                if nbr_u[j] == w:
+                                    seen = True
+                                    break
+                            if not seen:
+                                nbr_u[n_nu] = w
+                                n_nu += 1
+                # Farthest neighbour first (ties: lowest index).
                 for i in range(n_nu):
                     w = nbr_u[i]
-                    if w == v:
-                        continue
-                    for j in range(n_nv):
-                        if nbr_v[j] == w:
-                            common += 1
-                            break
-                if common != 2:
-                    continue
-                # The box of the star (u, v and every vertex of the moved triangles), and its extent.
-                for d in range(3):
-                    blo[d] = min(q[u, d], q[v, d])
-                    bhi[d] = max(q[u, d], q[v, d])
-                for i in range(n_moved):
-                    for c in range(3):
-                        w = t[moved[i], c]
-                        for d in range(3):
-                            blo[d] = min(blo[d], q[w, d])
-                            bhi[d] = max(bhi[d], q[w, d])
-                if max(bhi[0] - blo[0], bhi[1] - blo[1], bhi[2] - blo[2]) > _MAX_EXTENT:
-                    continue
-                # 1. No new triangle is flat.
-                for i in range(n_moved):
-                    _new_corners(q, t, moved[i], u, v, pts)
-                    ux_, uy_, uz_ = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
-                    vx_, vy_, vz_ = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
-                    if (
-                        uy_ * vz_ - uz_ * vy_ == 0
-                        and uz_ * vx_ - ux_ * vz_ == 0
-                        and ux_ * vy_ - uy_ * vx_ == 0
+                    dx, dy, dz = q[w, 0] - q[u, 0], q[w, 1] - q[u, 1], q[w, 2] - q[u, 2]
+                    cand[i] = w
+                    clen[i] = dx * dx + dy * dy + dz * dz
+                for i in range(1, n_nu):
+                    j = i
+                    while j > 0 and (
+                        clen[j - 1] < clen[j] or (clen[j - 1] == clen[j] and cand[j - 1] > cand[j])
                     ):
-                        ok = False
-                        break
-                if not ok:
-                    continue
-                # 2. The centres that change side (centres are at 4·i in these units): none under gauss;
-                # under the covers only centres of A may (they leave), recorded to be checked below.
-                n_flips = 0
-                for pz in range((blo[2] + 3) // 4 * 4, bhi[2] + 1, 4):
-                    for py in range((blo[1] + 3) // 4 * 4, bhi[1] + 1, 4):
-                        for px in range((blo[0] + 3) // 4 * 4, bhi[0] + 1, 4):
-                            wind = 0
-                            for i in range(n_moved):
-                                k = moved[i]
-                                c0 = 0  # the old triangle rotated to start at u: (u, a, b)
-                                while t[k, c0] != u:
-                                    c0 += 1
-                                a = t[k, (c0 + 1) % 3]
-                                b = t[k, (c0 + 2) % 3]
-                                vol = _det(
-                                    q[v, 0],
-                                    q[v, 1],
-                                    q[v, 2],
-                                    q[u, 0],
-                                    q[u, 1],
-                                    q[u, 2],
-                                    q[a, 0],
-                                    q[a, 1],
-                                    q[a, 2],
-                                    q[b, 0],
-                                    q[b, 1],
-                                    q[b, 2],
-                                )
-                                if vol != 0 and _tet_holds(q, v, u, a, b, px, py, pz):
-                                    wind += 1 if vol > 0 else -1
-                            if wind == 0 and not covers:
-                                # gauss: the new surface separates the centres strictly (none on it)
-                                for i in range(n_moved):
-                                    _new_corners(q, t, moved[i], u, v, pts)
-                                    if _holds_point(pts, px, py, pz):
-                                        wind = 1
-                                        break
-                            if wind != 0:
-                                ix, iy, iz = px // 4, py // 4, pz // 4
-                                if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
-                                    ok = False
-                                    break
-                                flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
-                                n_flips += 1
-                        if not ok:
-                            break
-                    if not ok:
-                        break
-                if not ok:
-                    continue
-                # 3. No new triangle meets a forbidden cube (voxel i's cube is [4i − 2, 4i + 2]; the standard
-                # model's is its cell, the open cube shifted by τ).
-                for i in range(n_moved):
-                    _new_corners(q, t, moved[i], u, v, pts)
-                    _cube_range(pts, lo_i, hi_i)
-                    if min(lo_i[0], lo_i[1], lo_i[2]) < 0 or hi_i[0] >= fx or hi_i[1] >= fy or hi_i[2] >= fz:
-                        ok = False
-                        break
-                    for iz in range(lo_i[2], hi_i[2] + 1):
-                        for iy in range(lo_i[1], hi_i[1] + 1):
-                            for ix in range(lo_i[0], hi_i[0] + 1):
-                                if not forbidden[iz, iy, ix]:
-                                    continue
-                                clo[0], clo[1], clo[2] = 4 * ix - 2, 4 * iy - 2, 4 * iz - 2
-                                chi[0], chi[1], chi[2] = 4 * ix + 2, 4 * iy + 2, 4 * iz + 2
-                                if _triangle_meets_box(pts, clo, chi, False):
-                                    ok = False
-                                    break
-                            if not ok:
+                        clen[j - 1], clen[j] = clen[j], clen[j - 1]
+                        cand[j - 1], cand[j] = cand[j], cand[j - 1]
+                        j -= 1
+                for ci in range(n_nu):
+                    v = cand[ci]
+                    # Triangles of the edge (they go) and the others (they move to v).
+                    n_gone = 0
+                    n_moved = 0
+                    ok = True
+                    for i in range(n_star):
+                        k = star[i]
+                        if t[k, 0] == v or t[k, 1] == v or t[k, 2] == v:
+                            if n_gone == 2:
+                                ok = False
                                 break
-                        if not ok:
-                            break
-                    if not ok:
-                        break
-                if not ok:
-                    continue
-                # 4. Tentatively collapse, then no new triangle meets another improperly.
-                for i in range(n_moved):
-                    k = moved[i]
-                    for c in range(3):
-                        if t[k, c] == u:
-                            t[k, c] = v
-                alive[gone[0]] = False
-                alive[gone[1]] = False
-                for i in range(n_moved):
-                    k = moved[i]
-                    for j in range(i + 1, n_moved):
-                        if triangles_meet_improperly(qf, t, k, moved[j]) != DISJOINT:
+                            gone[n_gone] = k
+                            n_gone += 1
+                        else:
+                            moved[n_moved] = k
+                            n_moved += 1
+                    if not ok or n_gone != 2:
+                        continue
+                    # Link condition: the common neighbours of u and v are the two opposite vertices.
+                    n_nv = 0
+                    e = vhead[v]
+                    while e >= 0 and n_nv < 250:
+                        k = s_tri[e]
+                        if alive[k] and (t[k, 0] == v or t[k, 1] == v or t[k, 2] == v):
+                            for c in range(3):
+                                w = t[k, c]
+                                if w != v:
+                                    seen = False
+                                    for j in range(n_nv):
+                                        if nbr_v[j] == w:
+                                            seen = True
+                                            break
+                                    if not seen:
+                                        nbr_v[n_nv] = w
+                                        n_nv += 1
+                        e = s_next[e]
+                    if n_nv >= 250:
+                        continue
+                    common = 0
+                    for i in range(n_nu):
+                        w = nbr_u[i]
+                        if w == v:
+                            continue
+                        for j in range(n_nv):
+                            if nbr_v[j] == w:
+                                common += 1
+                                break
+                    if common != 2:
+                        continue
+                    # The box of the star (u, v and every vertex of the moved triangles), and its extent.
+                    for d in range(3):
+                        blo[d] = min(q[u, d], q[v, d])
+                        bhi[d] = max(q[u, d], q[v, d])
+                    for i in range(n_moved):
+                        for c in range(3):
+                            w = t[moved[i], c]
+                            for d in range(3):
+                                blo[d] = min(blo[d], q[w, d])
+                                bhi[d] = max(bhi[d], q[w, d])
+                    if max(bhi[0] - blo[0], bhi[1] - blo[1], bhi[2] - blo[2]) > _MAX_EXTENT:
+                        continue
+                    # 1. No new triangle is flat.
+                    for i in range(n_moved):
+                        _new_corners(q, t, moved[i], u, v, pts)
+                        ux_, uy_, uz_ = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
+                        vx_, vy_, vz_ = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
+                        if (
+                            uy_ * vz_ - uz_ * vy_ == 0
+                            and uz_ * vx_ - ux_ * vz_ == 0
+                            and ux_ * vy_ - uy_ * vx_ == 0
+                        ):
                             ok = False
                             break
                     if not ok:
-                        break
-                if ok:
-                    epoch += 1
-                    for j in range(n_moved):
-                        stamp[moved[j]] = epoch
+                        continue
+                    # 2. No new triangle meets a forbidden closed cube (voxel i's cube is [4i − 2, 4i + 2]).
                     for i in range(n_moved):
-                        k = moved[i]
-                        epoch += 1
-                        for j in range(n_moved):
-                            stamp[moved[j]] = epoch
-                        _cell_box(q, t, k, cb)
-                        for c2 in range(cb[2], cb[5] + 1):
-                            for c1 in range(cb[1], cb[4] + 1):
-                                for c0 in range(cb[0], cb[3] + 1):
-                                    e = ghead[(c2 * gy + c1) * gx + c0]
-                                    while e >= 0:
-                                        o = g_tri[e]
-                                        e = g_next[e]
-                                        if stamp[o] == epoch or not alive[o]:
-                                            continue
-                                        stamp[o] = epoch
-                                        if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
-                                            ok = False
-                                            break
-                                    if not ok:
+                        _new_corners(q, t, moved[i], u, v, pts)
+                        _cube_range(pts, lo_i, hi_i)
+                        if (
+                            min(lo_i[0], lo_i[1], lo_i[2]) < 0
+                            or hi_i[0] >= fx
+                            or hi_i[1] >= fy
+                            or hi_i[2] >= fz
+                        ):
+                            ok = False
+                            break
+                        for iz in range(lo_i[2], hi_i[2] + 1):
+                            for iy in range(lo_i[1], hi_i[1] + 1):
+                                for ix in range(lo_i[0], hi_i[0] + 1):
+                                    if not forbidden[iz, iy, ix]:
+                                        continue
+                                    clo[0], clo[1], clo[2] = 4 * ix - 2, 4 * iy - 2, 4 * iz - 2
+                                    chi[0], chi[1], chi[2] = 4 * ix + 2, 4 * iy + 2, 4 * iz + 2
+                                    if _triangle_meets_box(pts, clo, chi, False):
+                                        ok = False
                                         break
                                 if not ok:
                                     break
@@ -651,74 +850,236 @@ def _decimate(
                                 break
                         if not ok:
                             break
-                # 5. Covers: every voxel of A near the star whose centre is outside R(A) now (it left in this
-                # collapse or before) still meets R(A) — its cell (standard) or cube (supercover) — by a
-                # triangle (its cube is not inside R, its centre being outside).
-                if ok and covers:
-                    for f in range(n_flips):
-                        inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
-                    for iz in range((blo[2] - 2 + 3) // 4, (bhi[2] + 2) // 4 + 1):
-                        for iy in range((blo[1] - 2 + 3) // 4, (bhi[1] + 2) // 4 + 1):
-                            for ix in range((blo[0] - 2 + 3) // 4, (bhi[0] + 2) // 4 + 1):
-                                if not in_a[iz, iy, ix] or inside[iz, iy, ix]:
-                                    continue
-                                if not _cell_is_met(
-                                    q,
-                                    t,
-                                    alive,
-                                    ix,
-                                    iy,
-                                    iz,
-                                    True,
-                                    ghead,
-                                    g_next,
-                                    g_tri,
-                                    gx,
-                                    gy,
-                                    gz,
-                                    moved,
-                                    n_moved,
-                                    stamp,
-                                    epoch + 1,
-                                    pts,
-                                    clo,
-                                    chi,
-                                ):
-                                    ok = False
-                                    break
-                                epoch += 1
-                            if not ok:
-                                break
-                        if not ok:
-                            break
-                    epoch += 1
                     if not ok:
-                        for f in range(n_flips):
-                            inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
-                if not ok:
+                        continue
+                    # 3. The centres that change side (centres are at 4·i in these units): none under gauss;
+                    # under the covers only centres of A may, recorded to be checked in 5.
+                    n_flips = _centres_that_change(
+                        q, t, moved, n_moved, u, v, blo, acc, covers, in_a, flips, pts
+                    )
+                    if n_flips < 0:
+                        continue
+                    # 4. Tentatively collapse, then no new triangle meets another improperly.
                     for i in range(n_moved):
                         k = moved[i]
                         for c in range(3):
-                            if t[k, c] == v:
-                                t[k, c] = u
-                    alive[gone[0]] = True
-                    alive[gone[1]] = True
+                            if t[k, c] == u:
+                                t[k, c] = v
+                    alive[gone[0]] = False
+                    alive[gone[1]] = False
+                    for i in range(n_moved):
+                        k = moved[i]
+                        for j in range(i + 1, n_moved):
+                            if triangles_meet_improperly(qf, t, k, moved[j]) != DISJOINT:
+                                ok = False
+                                break
+                        if not ok:
+                            break
+                    if ok:
+                        epoch += 1
+                        for j in range(n_moved):
+                            stamp[moved[j]] = epoch
+                        for i in range(n_moved):
+                            k = moved[i]
+                            epoch += 1
+                            for j in range(n_moved):
+                                stamp[moved[j]] = epoch
+                            _cell_box(q, t, k, cb)
+                            for c2 in range(cb[2], cb[5] + 1):
+                                for c1 in range(cb[1], cb[4] + 1):
+                                    for c0 in range(cb[0], cb[3] + 1):
+                                        e = ghead[(c2 * gy + c1) * gx + c0]
+                                        while e >= 0:
+                                            o = g_tri[e]
+                                            e = g_next[e]
+                                            if stamp[o] == epoch or not alive[o]:
+                                                continue
+                                            stamp[o] = epoch
+                                            if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
+                                                ok = False
+                                                break
+                                        if not ok:
+                                            break
+                                    if not ok:
+                                        break
+                                if not ok:
+                                    break
+                            if not ok:
+                                break
+                    # 5. Covers: every voxel of A near the star whose centre is outside R(A) now (it left in
+                    # this collapse or before) still meets R(A) in its open cube, by a triangle (the cube is
+                    # not inside R, its centre being outside).
+                    if ok and covers:
+                        for f in range(n_flips):
+                            inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+                        for iz in range((blo[2] - 2 + 3) // 4, (bhi[2] + 2) // 4 + 1):
+                            for iy in range((blo[1] - 2 + 3) // 4, (bhi[1] + 2) // 4 + 1):
+                                for ix in range((blo[0] - 2 + 3) // 4, (bhi[0] + 2) // 4 + 1):
+                                    if not in_a[iz, iy, ix] or inside[iz, iy, ix]:
+                                        continue
+                                    if not _cell_is_met(
+                                        q,
+                                        t,
+                                        alive,
+                                        ix,
+                                        iy,
+                                        iz,
+                                        True,
+                                        ghead,
+                                        g_next,
+                                        g_tri,
+                                        gx,
+                                        gy,
+                                        gz,
+                                        moved,
+                                        n_moved,
+                                        stamp,
+                                        epoch + 1,
+                                        pts,
+                                        clo,
+                                        chi,
+                                    ):
+                                        ok = False
+                                        break
+                                    epoch += 1
+                                if not ok:
+                                    break
+                            if not ok:
+                                break
+                        epoch += 1
+                        if not ok:
+                            for f in range(n_flips):
+                                inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+                    if not ok:
+                        for i in range(n_moved):
+                            k = moved[i]
+                            for c in range(3):
+                                if t[k, c] == v:
+                                    t[k, c] = u
+                        alive[gone[0]] = True
+                        alive[gone[1]] = True
+                        continue
+                    # Kept: v's star and the buckets learn the moved triangles.
+                    vdead[u] = True
+                    removed += 1
+                    changed = True
+                    for i in range(n_moved):
+                        k = moved[i]
+                        dirty[t[k, 0]] = dirty[t[k, 1]] = dirty[t[k, 2]] = True
+                        if ns == s_next.shape[0]:
+                            s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
+                            s_tri = np.concatenate((s_tri, np.empty(ns, np.int64)))
+                        s_next[ns] = vhead[v]
+                        s_tri[ns] = k
+                        vhead[v] = ns
+                        ns += 1
+                        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb)
+                    break  # u is gone
+
+        # Edge flips: an edge whose two triangles would be flatter across the other diagonal is flipped, under
+        # the same checks as a collapse (the swept volume is the tetrahedron a b c d); new collapses follow.
+        if round_ == max_rounds:
+            break
+        flipped = 0
+        for k in range(nt):
+            if not alive[k]:
+                continue
+            for c_ in range(3):
+                a, b, c = t[k, c_], t[k, (c_ + 1) % 3], t[k, (c_ + 2) % 3]
+                # the triangle across a b: (b, a, d)
+                k2 = -1
+                e = vhead[a]
+                while e >= 0:
+                    o = s_tri[e]
+                    e = s_next[e]
+                    if o != k and alive[o]:
+                        for j in range(3):
+                            if t[o, j] == b and t[o, (j + 1) % 3] == a:
+                                k2 = o
+                                break
+                    if k2 >= 0:
+                        break
+                if k2 < 0 or k2 < k:  # each edge once (from its lower triangle)
                     continue
-                # Kept: v's star and the buckets learn the moved triangles.
-                vdead[u] = True
-                removed += 1
-                changed = True
-                for i in range(n_moved):
-                    k = moved[i]
+                d = t[k2, 0] + t[k2, 1] + t[k2, 2] - a - b
+                if d == c:
+                    continue
+                # c and d must not be neighbours already
+                adjacent = False
+                e = vhead[c]
+                while e >= 0 and not adjacent:
+                    o = s_tri[e]
+                    e = s_next[e]
+                    if alive[o] and (t[o, 0] == c or t[o, 1] == c or t[o, 2] == c):
+                        adjacent = t[o, 0] == d or t[o, 1] == d or t[o, 2] == d
+                if adjacent:
+                    continue
+                if not _flatter_across(q, a, b, c, d):
+                    continue
+                ext = 0
+                for dd in range(3):
+                    lo_ = min(q[a, dd], q[b, dd], q[c, dd], q[d, dd])
+                    hi_ = max(q[a, dd], q[b, dd], q[c, dd], q[d, dd])
+                    blo[dd] = lo_
+                    bhi[dd] = hi_
+                    ext = max(ext, hi_ - lo_)
+                if ext > _MAX_EXTENT:
+                    continue
+                # tentatively: k = (c, a, d), k2 = (d, b, c)
+                t[k, 0], t[k, 1], t[k, 2] = c, a, d
+                t[k2, 0], t[k2, 1], t[k2, 2] = d, b, c
+                moved[0], moved[1] = k, k2
+                ok = _flip_is_right(
+                    q,
+                    qf,
+                    t,
+                    alive,
+                    k,
+                    k2,
+                    a,
+                    b,
+                    c,
+                    d,
+                    blo,
+                    covers,
+                    in_a,
+                    inside,
+                    forbidden,
+                    flips,
+                    pts,
+                    lo_i,
+                    hi_i,
+                    clo,
+                    chi,
+                    ghead,
+                    g_next,
+                    g_tri,
+                    gx,
+                    gy,
+                    gz,
+                    moved,
+                    stamp,
+                    epoch,
+                )
+                epoch += 16 + (_MAX_EXTENT // 4 + 3) ** 3  # past every stamp _flip_is_right used
+                if not ok:
+                    t[k, 0], t[k, 1], t[k, 2] = a, b, c
+                    t[k2, 0], t[k2, 1], t[k2, 2] = b, a, d
+                    continue
+                flipped += 1
+                dirty[a] = dirty[b] = dirty[c] = dirty[d] = True
+                for kk, w in ((k, d), (k2, c)):
                     if ns == s_next.shape[0]:
                         s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
                         s_tri = np.concatenate((s_tri, np.empty(ns, np.int64)))
-                    s_next[ns] = vhead[v]
-                    s_tri[ns] = k
-                    vhead[v] = ns
+                    s_next[ns] = vhead[w]
+                    s_tri[ns] = kk
+                    vhead[w] = ns
                     ns += 1
-                    g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb)
-                break  # u is gone
+                    g_next, g_tri, ng = _bucket(q, t, kk, ghead, g_next, g_tri, ng, gx, gy, cb)
+                break  # k changed: its other edges wait for the next round
+        if flipped == 0:
+            break
     return t, alive, vdead, removed
 
 
@@ -763,6 +1124,7 @@ def decimate(
     model: str,
     max_passes: int = 64,
     max_collapses: int = -1,
+    max_rounds: int = 8,
 ) -> tuple[FloatArray, Int64Array]:
     """Simplify the safety net of A by exactly checked half-edge collapses (module docstring).
 
@@ -790,7 +1152,7 @@ def decimate(
     in_a = np.pad(mask, PAD)
     forbidden = forbidden_cubes(mask, code == GAUSS)
     t, alive, vdead, _removed = _decimate(
-        q, triangles.astype(np.int64), in_a, forbidden, code, max_passes, max_collapses
+        q, triangles.astype(np.int64), in_a, forbidden, code, max_passes, max_collapses, max_rounds
     )
     keep = ~vdead
     index = np.cumsum(keep) - 1
