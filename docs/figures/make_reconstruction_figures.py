@@ -470,7 +470,7 @@ def split_small(tri: np.ndarray, size: float = 0.5) -> list[np.ndarray]:
 
 
 def figure_3d() -> None:
-    """A voxel set with a tunnel and a voxel meeting it along an edge, next to its safety net R(A)."""
+    """A voxel set with a tunnel and a voxel meeting it along an edge, next to its safety net."""
     ring = [
         (x, y, z) for x in range(4) for y in range(4) for z in range(2) if not (1 <= x <= 2 and 1 <= y <= 2)
     ]
@@ -496,8 +496,8 @@ def figure_3d() -> None:
     titled(
         fig,
         0.5,
-        "R(A): V(A) eroded by ¼",
-        f"{poly.n_faces} faces, {poly.n_shells} shells; D(R(A)) = A in the three models",
+        "the safety net: V(A) eroded by ¼",
+        f"{poly.n_faces} faces, {poly.n_shells} shells; D = A in the three models",
     )
     fig.savefig(OUT / "reconstruction-3d.png")
     plt.close(fig)
@@ -536,7 +536,7 @@ def figure_compact_3d() -> None:
     for model in ("gauss", "standard"):
         poly = mrm.reconstruct(vs, model)
         assert mrm.voxelize(poly, model) == vs
-        name = "gauss" if model == "gauss" else "standard and supercover"
+        name = "gauss" if model == "gauss" else "the covers"
         shown.append((f"R(A) under {name}", poly))
     fig = plt.figure(figsize=(11.4, 3.9), dpi=100)
     box = (-r, -r, -r, r, r, r)

@@ -49,9 +49,11 @@ BoolArray = npt.NDArray[np.bool_]
 PAD = 3
 #: Grid cell of the triangle buckets, in the integer units (4 per voxel).
 _CELL = 8
-#: Largest extent of a star, in integer units (12 voxels): it bounds the work of one collapse (the centres of
+#: A collapse may turn a triangle's normal by acos(MIN_COS) at most (no fold-overs: they make spikes).
+MIN_COS = 0.0
+#: Largest extent of a star, in integer units (32 voxels): it bounds the work of one collapse (the centres of
 #: its box) and keeps every product of three differences far inside int64.
-_MAX_EXTENT = 48
+_MAX_EXTENT = 128
 
 
 def forbidden_cubes(mask: BoolArray, gauss: bool) -> BoolArray:
@@ -216,6 +218,52 @@ def _cell_box(q: Int64Array, t: Int64Array, k: int, out: Int64Array) -> None:  #
 
 
 @njit(cache=True)
+def _triangle_cells(
+    q: Int64Array, t: Int64Array, k: int, gx: int, gy: int, cb: Int64Array, cells: Int64Array
+) -> int:  # pragma: no cover - compiled
+    # The grid cells of triangle k's box that its plane's slab crosses (a cell [8c, 8c + 8)³ meets the plane
+    # only if |n · (its centre) − d| ≤ 4 (|nx| + |ny| + |nz|)), into cells; their number (−1: too many).
+    _cell_box(q, t, k, cb)
+    a, b, c = t[k, 0], t[k, 1], t[k, 2]
+    ux, uy, uz = q[b, 0] - q[a, 0], q[b, 1] - q[a, 1], q[b, 2] - q[a, 2]
+    vx, vy, vz = q[c, 0] - q[a, 0], q[c, 1] - q[a, 1], q[c, 2] - q[a, 2]
+    n = (uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx)
+    d0 = n[0] * q[a, 0] + n[1] * q[a, 1] + n[2] * q[a, 2]
+    r = 4 * (abs(n[0]) + abs(n[1]) + abs(n[2]))
+    if abs(n[2]) >= abs(n[0]) and abs(n[2]) >= abs(n[1]):
+        ki, kj, kk = 0, 1, 2
+    elif abs(n[1]) >= abs(n[0]):
+        ki, kj, kk = 2, 0, 1
+    else:
+        ki, kj, kk = 1, 2, 0
+    nk = n[kk]
+    m = 0
+    idx = (0, 0, 0)
+    for ci in range(cb[ki], cb[3 + ki] + 1):
+        for cj in range(cb[kj], cb[3 + kj] + 1):
+            lo, hi = cb[kk], cb[3 + kk]
+            if nk != 0:
+                s_ = n[ki] * (8 * ci + 4) + n[kj] * (8 * cj + 4) + 4 * nk
+                lo_v, hi_v = d0 - r - s_, d0 + r - s_  # 8 · nk · ck within
+                if nk > 0:
+                    lo, hi = max(lo, -((-lo_v) // (8 * nk))), min(hi, hi_v // (8 * nk))
+                else:
+                    lo, hi = max(lo, -((-hi_v) // (-8 * nk))), min(hi, (-lo_v) // (-8 * nk))
+            for ck in range(lo, hi + 1):
+                if m == cells.shape[0]:
+                    return -1
+                if kk == 2:
+                    idx = (ci, cj, ck)
+                elif kk == 1:
+                    idx = (cj, ck, ci)
+                else:
+                    idx = (ck, ci, cj)
+                cells[m] = (idx[2] * gy + idx[1]) * gx + idx[0]
+                m += 1
+    return m
+
+
+@njit(cache=True)
 def _bucket(
     q: Int64Array,
     t: Int64Array,
@@ -227,20 +275,28 @@ def _bucket(
     gx: int,
     gy: int,
     cb: Int64Array,
+    cells: Int64Array,
 ) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
-    # Triangle k into the buckets of every cell of its box (the pools double when full).
-    _cell_box(q, t, k, cb)
-    for c2 in range(cb[2], cb[5] + 1):
-        for c1 in range(cb[1], cb[4] + 1):
-            for c0 in range(cb[0], cb[3] + 1):
-                if ng == g_next.shape[0]:
-                    g_next = np.concatenate((g_next, np.empty(ng, np.int64)))
-                    g_tri = np.concatenate((g_tri, np.empty(ng, np.int64)))
-                cell = (c2 * gy + c1) * gx + c0
-                g_next[ng] = ghead[cell]
-                g_tri[ng] = k
-                ghead[cell] = ng
-                ng += 1
+    # Triangle k into the buckets of the cells its plane crosses in its box (the pools double when full).
+    m = _triangle_cells(q, t, k, gx, gy, cb, cells)
+    if m < 0:  # a triangle too big for the list: every cell of its box
+        m = 0
+        for c2 in range(cb[2], cb[5] + 1):
+            for c1 in range(cb[1], cb[4] + 1):
+                for c0 in range(cb[0], cb[3] + 1):
+                    if m == cells.shape[0]:
+                        cells = np.concatenate((cells, np.empty(m, np.int64)))
+                    cells[m] = (c2 * gy + c1) * gx + c0
+                    m += 1
+    for i in range(m):
+        if ng == g_next.shape[0]:
+            g_next = np.concatenate((g_next, np.empty(ng, np.int64)))
+            g_tri = np.concatenate((g_tri, np.empty(ng, np.int64)))
+        cell = cells[i]
+        g_next[ng] = ghead[cell]
+        g_tri[ng] = k
+        ghead[cell] = ng
+        ng += 1
     return g_next, g_tri, ng
 
 
@@ -301,13 +357,17 @@ def _centres_that_change(
 ) -> int:  # pragma: no cover - compiled
     # The centres whose side changes when u goes to v, into flips (voxel indices); −1 when one may not:
     # any under gauss (or one on a new triangle: gauss separates strictly), one outside A under the covers.
-    # Each tet (v, u, a, b) adds its sign to the centres it holds, scanning only its own box; acc is a
-    # scratch array over the star's box (zero on entry and on return).
-    n = acc.shape[0]  # its side: the star's extent in centres, at most
+    # Each tet (v, u, a, b) adds its sign to the centres it holds, scanning only the slab it lies in; acc
+    # is a scratch array over the star's box (zero on entry and on return).
     c0x, c0y, c0z = (blo[0] + 3) // 4 * 4, (blo[1] + 3) // 4 * 4, (blo[2] + 3) // 4 * 4
     n_flips = 0
     touched = 0
     bad = False
+    found = np.empty((4096, 3), np.int64)
+    seen = np.empty((4096, 3), np.int64)
+    lo_i = np.empty(3, np.int64)
+    hi_i = np.empty(3, np.int64)
+    idx = np.empty(3, np.int64)  # the cells of acc written, to clear them (and only them)
     for i in range(n_moved):
         k = moved[i]
         c = 0  # the old triangle rotated to start at u: (u, a, b)
@@ -332,46 +392,39 @@ def _centres_that_change(
         if vol == 0:
             continue
         sign = 1 if vol > 0 else -1
-        lo0 = (min(q[v, 0], q[u, 0], q[a, 0], q[b, 0]) + 3) // 4 * 4
-        lo1 = (min(q[v, 1], q[u, 1], q[a, 1], q[b, 1]) + 3) // 4 * 4
-        lo2 = (min(q[v, 2], q[u, 2], q[a, 2], q[b, 2]) + 3) // 4 * 4
-        hi0 = max(q[v, 0], q[u, 0], q[a, 0], q[b, 0])
-        hi1 = max(q[v, 1], q[u, 1], q[a, 1], q[b, 1])
-        hi2 = max(q[v, 2], q[u, 2], q[a, 2], q[b, 2])
-        for pz in range(lo2, hi2 + 1, 4):
-            for py in range(lo1, hi1 + 1, 4):
-                for px in range(lo0, hi0 + 1, 4):
-                    if _tet_holds(q, v, u, a, b, px, py, pz):
-                        acc[(pz - c0z) // 4, (py - c0y) // 4, (px - c0x) // 4] += sign
-                        touched += 1
-    if touched:
-        for kz in range(n):
-            for ky in range(n):
-                for kx in range(n):
-                    if acc[kz, ky, kx] == 0:
-                        continue
-                    acc[kz, ky, kx] = 0
-                    if bad:
-                        continue
-                    ix, iy, iz = c0x // 4 + kx, c0y // 4 + ky, c0z // 4 + kz
-                    if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
-                        bad = True
-                        continue
-                    flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
-                    n_flips += 1
+        m = _tet_centres(q, v, u, a, b, found)
+        if m < 0:
+            touched = seen.shape[0] + 1  # too many: refused below
+            break
+        for e in range(m):
+            cz, cy, cx = found[e, 2] - c0z // 4, found[e, 1] - c0y // 4, found[e, 0] - c0x // 4
+            acc[cz, cy, cx] += sign
+            if touched < seen.shape[0]:
+                seen[touched, 0], seen[touched, 1], seen[touched, 2] = cz, cy, cx
+            touched += 1
+    if touched > seen.shape[0]:  # too many to list (never in practice): clear it all, refuse the collapse
+        acc[:, :, :] = 0
+        return -1
+    for e in range(touched):
+        kz, ky, kx = seen[e, 0], seen[e, 1], seen[e, 2]
+        if acc[kz, ky, kx] == 0:
+            continue  # cancelled, or met already
+        acc[kz, ky, kx] = 0
+        if bad:
+            continue
+        ix, iy, iz = c0x // 4 + kx, c0y // 4 + ky, c0z // 4 + kz
+        if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
+            bad = True
+            continue
+        flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
+        n_flips += 1
     if bad:
         return -1
-    if not covers:  # gauss: no centre on a new triangle
+    if not covers:  # gauss: no centre on a new triangle (only those in its plane are candidates)
         for i in range(n_moved):
             _new_corners(q, t, moved[i], u, v, pts)
-            lo0 = (min(pts[0, 0], pts[1, 0], pts[2, 0]) + 3) // 4 * 4
-            lo1 = (min(pts[0, 1], pts[1, 1], pts[2, 1]) + 3) // 4 * 4
-            lo2 = (min(pts[0, 2], pts[1, 2], pts[2, 2]) + 3) // 4 * 4
-            for pz in range(lo2, max(pts[0, 2], pts[1, 2], pts[2, 2]) + 1, 4):
-                for py in range(lo1, max(pts[0, 1], pts[1, 1], pts[2, 1]) + 1, 4):
-                    for px in range(lo0, max(pts[0, 0], pts[1, 0], pts[2, 0]) + 1, 4):
-                        if _holds_point(pts, px, py, pz):
-                            return -1
+            if _centre_on(pts, lo_i, hi_i, idx):
+                return -1
     return n_flips
 
 
@@ -381,6 +434,138 @@ def _cube_range(pts: Int64Array, lo_i: Int64Array, hi_i: Int64Array) -> None:  #
     for d in range(3):
         lo_i[d] = (min(pts[0, d], pts[1, d], pts[2, d]) - 2 + 3) // 4
         hi_i[d] = (max(pts[0, d], pts[1, d], pts[2, d]) + 2) // 4
+
+
+@njit(cache=True)
+def _tet_centres(
+    q: Int64Array, apex: int, p: int, r: int, s: int, out: Int64Array
+) -> int:  # pragma: no cover
+    # The voxels whose centre + τ lies in the non-flat tetrahedron (apex, p, r, s), into out (indices); their
+    # number, or −1 when out is full. Only the slab between the plane of p r s and its parallel through the
+    # apex is scanned.
+    ux, uy, uz = q[r, 0] - q[p, 0], q[r, 1] - q[p, 1], q[r, 2] - q[p, 2]
+    wx, wy, wz = q[s, 0] - q[p, 0], q[s, 1] - q[p, 1], q[s, 2] - q[p, 2]
+    nx, ny, nz = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+    dp = nx * q[p, 0] + ny * q[p, 1] + nz * q[p, 2]
+    da = nx * q[apex, 0] + ny * q[apex, 1] + nz * q[apex, 2]
+    lo = np.empty(3, np.int64)
+    hi = np.empty(3, np.int64)
+    idx = np.empty(3, np.int64)
+    for d in range(3):
+        lo[d] = (min(q[apex, d], q[p, d], q[r, d], q[s, d]) + 3) // 4
+        hi[d] = max(q[apex, d], q[p, d], q[r, d], q[s, d]) // 4
+    if abs(nz) >= abs(nx) and abs(nz) >= abs(ny):
+        ki, kj, kk = 0, 1, 2
+    elif abs(ny) >= abs(nx):
+        ki, kj, kk = 2, 0, 1
+    else:
+        ki, kj, kk = 1, 2, 0
+    m = 0
+    for ii in range(lo[ki], hi[ki] + 1):
+        for jj in range(lo[kj], hi[kj] + 1):
+            k0, k1 = _slab(nx, ny, nz, min(dp, da), max(dp, da), ii, jj, lo[kk], hi[kk])
+            for kx in range(k0, k1 + 1):
+                idx[ki], idx[kj], idx[kk] = ii, jj, kx
+                if _tet_holds(q, apex, p, r, s, 4 * idx[0], 4 * idx[1], 4 * idx[2]):
+                    if m == out.shape[0]:
+                        return -1
+                    out[m, 0], out[m, 1], out[m, 2] = idx[0], idx[1], idx[2]
+                    m += 1
+    return m
+
+
+@njit(cache=True)
+def _centre_on(
+    pts: Int64Array, lo_i: Int64Array, hi_i: Int64Array, idx: Int64Array
+) -> bool:  # pragma: no cover
+    # Whether a voxel centre (4·i in these units) lies on the closed triangle pts: only the centres of its
+    # box in its plane are tried.
+    ux, uy, uz = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
+    vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
+    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    d0 = nx * pts[0, 0] + ny * pts[0, 1] + nz * pts[0, 2]
+    for d in range(3):
+        lo_i[d] = (min(pts[0, d], pts[1, d], pts[2, d]) + 3) // 4
+        hi_i[d] = max(pts[0, d], pts[1, d], pts[2, d]) // 4
+    if abs(nz) >= abs(nx) and abs(nz) >= abs(ny):
+        ki, kj, kk = 0, 1, 2
+    elif abs(ny) >= abs(nx):
+        ki, kj, kk = 2, 0, 1
+    else:
+        ki, kj, kk = 1, 2, 0
+    for ii in range(lo_i[ki], hi_i[ki] + 1):
+        for jj in range(lo_i[kj], hi_i[kj] + 1):
+            k0, k1 = _slab(nx, ny, nz, d0, d0, ii, jj, lo_i[kk], hi_i[kk])
+            for kx in range(k0, k1 + 1):
+                idx[ki], idx[kj], idx[kk] = ii, jj, kx
+                if _holds_point(pts, 4 * idx[0], 4 * idx[1], 4 * idx[2]):
+                    return True
+    return False
+
+
+@njit(cache=True)
+def _slab(
+    nx: int, ny: int, nz: int, lo_val: int, hi_val: int, i: int, j: int, lo_k: int, hi_k: int
+) -> tuple[int, int]:  # pragma: no cover - compiled
+    # The voxel indices i_k along the normal's largest axis k, within [lo_k, hi_k], whose centre 4·i (with the
+    # other two indices i, j, in axis order) has lo_val ≤ n · (4 i) ≤ hi_val: the scans below visit the
+    # slab a triangle or a tetrahedron lies in, not its whole box.
+    ax, ay, az = abs(nx), abs(ny), abs(nz)
+    if az >= ax and az >= ay:
+        s, nk = 4 * (nx * i + ny * j), 4 * nz
+    elif ay >= ax:
+        s, nk = 4 * (nz * i + nx * j), 4 * ny
+    else:
+        s, nk = 4 * (ny * i + nz * j), 4 * nx
+    if nk == 0:
+        return (lo_k, hi_k) if lo_val <= s <= hi_val else (1, 0)
+    a, b = lo_val - s, hi_val - s  # nk · i_k in [a, b]
+    if nk < 0:
+        a, b, nk = -b, -a, -nk
+    return max(lo_k, -((-a) // nk)), min(hi_k, b // nk)
+
+
+@njit(cache=True)
+def _meets_forbidden(
+    pts: Int64Array,
+    forbidden: BoolArray,
+    lo_i: Int64Array,
+    hi_i: Int64Array,
+    clo: Int64Array,
+    chi: Int64Array,
+) -> bool:  # pragma: no cover - compiled
+    # Whether the closed triangle pts meets the closed cube [4i − 2, 4i + 2]³ of a forbidden voxel (or leaves
+    # the array). Only the voxels of its box whose cube meets its plane's slab are tested.
+    fz, fy, fx = forbidden.shape
+    _cube_range(pts, lo_i, hi_i)
+    if min(lo_i[0], lo_i[1], lo_i[2]) < 0 or hi_i[0] >= fx or hi_i[1] >= fy or hi_i[2] >= fz:
+        return True
+    ux, uy, uz = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
+    vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
+    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    d0 = nx * pts[0, 0] + ny * pts[0, 1] + nz * pts[0, 2]
+    r = 2 * (abs(nx) + abs(ny) + abs(nz))  # the cube's reach along n
+    ax, ay, az = abs(nx), abs(ny), abs(nz)
+    # axes (i, j, k): k the normal's largest, i and j the other two in the order _slab takes them
+    if az >= ax and az >= ay:
+        ki, kj, kk = 0, 1, 2
+    elif ay >= ax:
+        ki, kj, kk = 2, 0, 1
+    else:
+        ki, kj, kk = 1, 2, 0
+    idx = np.empty(3, np.int64)
+    for ii in range(lo_i[ki], hi_i[ki] + 1):
+        for jj in range(lo_i[kj], hi_i[kj] + 1):
+            k0, k1 = _slab(nx, ny, nz, d0 - r, d0 + r, ii, jj, lo_i[kk], hi_i[kk])
+            for kx in range(k0, k1 + 1):
+                idx[ki], idx[kj], idx[kk] = ii, jj, kx
+                if forbidden[idx[2], idx[1], idx[0]]:
+                    for d in range(3):
+                        clo[d] = 4 * idx[d] - 2
+                        chi[d] = 4 * idx[d] + 2
+                    if _triangle_meets_box(pts, clo, chi, False):
+                        return True
+    return False
 
 
 @njit(cache=True)
@@ -436,6 +621,32 @@ def _cell_is_met(
 
 
 @njit(cache=True)
+def _turns_too_far(
+    q: Int64Array, t: Int64Array, k: int, u: int, v: int, min_cos: float
+) -> bool:  # pragma: no cover
+    # Whether triangle k's normal turns by more than acos(min_cos) when u becomes v: a heuristic of shape (a
+    # collapse that folds a triangle over makes spikes), not of correctness, so plain floats.
+    a, b, c = t[k, 0], t[k, 1], t[k, 2]
+    n0 = _float_normal(q[a], q[b], q[c])
+    pa, pb, pc = q[v] if a == u else q[a], q[v] if b == u else q[b], q[v] if c == u else q[c]
+    n1 = _float_normal(pa, pb, pc)
+    return n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < min_cos
+
+
+@njit(cache=True)
+def _float_normal(
+    a: Int64Array, b: Int64Array, c: Int64Array
+) -> tuple[float, float, float]:  # pragma: no cover
+    ux, uy, uz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+    vx, vy, vz = c[0] - a[0], c[1] - a[1], c[2] - a[2]
+    nx, ny, nz = float(uy * vz - uz * vy), float(uz * vx - ux * vz), float(ux * vy - uy * vx)
+    m = (nx * nx + ny * ny + nz * nz) ** 0.5
+    if m == 0.0:
+        return 0.0, 0.0, 0.0
+    return nx / m, ny / m, nz / m
+
+
+@njit(cache=True)
 def _flatter_across(q: Int64Array, a: int, b: int, c: int, d: int) -> bool:  # pragma: no cover - compiled
     # Whether triangles (c, a, d), (d, b, c) bend less than (a, b, c), (b, a, d): the cosine between the two
     # normals grows (a heuristic: which flips to try; each is then proved like a collapse).
@@ -488,13 +699,14 @@ def _flip_is_right(
     gx: int,
     gy: int,
     gz: int,
+    cb: Int64Array,
+    cells: Int64Array,
     moved: Int64Array,
     stamp: Int64Array,
     epoch: int,
 ) -> bool:  # pragma: no cover - compiled
     # The checks of a collapse for the flipped pair k = (c, a, d), k2 = (d, b, c) (already in t), the same in
     # the same order; `inside` is updated when the flip is right.
-    fz, fy, fx = forbidden.shape
     for kk in (k, k2):
         for cc in range(3):
             for dd in range(3):
@@ -503,17 +715,8 @@ def _flip_is_right(
         vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
         if uy * vz - uz * vy == 0 and uz * vx - ux * vz == 0 and ux * vy - uy * vx == 0:
             return False
-        _cube_range(pts, lo_i, hi_i)
-        if min(lo_i[0], lo_i[1], lo_i[2]) < 0 or hi_i[0] >= fx or hi_i[1] >= fy or hi_i[2] >= fz:
+        if _meets_forbidden(pts, forbidden, lo_i, hi_i, clo, chi):
             return False
-        for iz in range(lo_i[2], hi_i[2] + 1):
-            for iy in range(lo_i[1], hi_i[1] + 1):
-                for ix in range(lo_i[0], hi_i[0] + 1):
-                    if forbidden[iz, iy, ix]:
-                        clo[0], clo[1], clo[2] = 4 * ix - 2, 4 * iy - 2, 4 * iz - 2
-                        chi[0], chi[1], chi[2] = 4 * ix + 2, 4 * iy + 2, 4 * iz + 2
-                        if _triangle_meets_box(pts, clo, chi, False):
-                            return False
     # Centres in the tetrahedron a b c d change side; under gauss none may, nor lie on a new triangle.
     n_flips = 0
     if (
@@ -533,37 +736,22 @@ def _flip_is_right(
         )
         != 0
     ):
-        for pz in range((blo[2] + 3) // 4 * 4, max(q[a, 2], q[b, 2], q[c, 2], q[d, 2]) + 1, 4):
-            for py in range((blo[1] + 3) // 4 * 4, max(q[a, 1], q[b, 1], q[c, 1], q[d, 1]) + 1, 4):
-                for px in range((blo[0] + 3) // 4 * 4, max(q[a, 0], q[b, 0], q[c, 0], q[d, 0]) + 1, 4):
-                    if _tet_holds(q, a, b, c, d, px, py, pz):
-                        ix, iy, iz = px // 4, py // 4, pz // 4
-                        if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
-                            return False
-                        flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
-                        n_flips += 1
+        n_flips = _tet_centres(q, d, a, b, c, flips)
+        if n_flips < 0:
+            return False
+        if n_flips and not covers:
+            return False
+        for f in range(n_flips):
+            if not in_a[flips[f, 2], flips[f, 1], flips[f, 0]]:
+                return False
     if not covers:
+        idx = np.empty(3, np.int64)
         for kk in (k, k2):
             for cc in range(3):
                 for dd in range(3):
                     pts[cc, dd] = q[t[kk, cc], dd]
-            for pz in range(
-                (min(pts[0, 2], pts[1, 2], pts[2, 2]) + 3) // 4 * 4,
-                max(pts[0, 2], pts[1, 2], pts[2, 2]) + 1,
-                4,
-            ):
-                for py in range(
-                    (min(pts[0, 1], pts[1, 1], pts[2, 1]) + 3) // 4 * 4,
-                    max(pts[0, 1], pts[1, 1], pts[2, 1]) + 1,
-                    4,
-                ):
-                    for px in range(
-                        (min(pts[0, 0], pts[1, 0], pts[2, 0]) + 3) // 4 * 4,
-                        max(pts[0, 0], pts[1, 0], pts[2, 0]) + 1,
-                        4,
-                    ):
-                        if _holds_point(pts, px, py, pz):
-                            return False
+            if _centre_on(pts, lo_i, hi_i, idx):
+                return False
     # No new triangle meets another improperly.
     if triangles_meet_improperly(qf, t, k, k2) != DISJOINT:
         return False
@@ -571,21 +759,19 @@ def _flip_is_right(
         ep = epoch + 1 + (kk == k2)
         stamp[k] = ep
         stamp[k2] = ep
-        for dd in range(3):
-            lo_i[dd] = min(q[t[kk, 0], dd], q[t[kk, 1], dd], q[t[kk, 2], dd]) // _CELL
-            hi_i[dd] = max(q[t[kk, 0], dd], q[t[kk, 1], dd], q[t[kk, 2], dd]) // _CELL
-        for c2 in range(lo_i[2], hi_i[2] + 1):
-            for c1 in range(lo_i[1], hi_i[1] + 1):
-                for c0 in range(lo_i[0], hi_i[0] + 1):
-                    e = ghead[(c2 * gy + c1) * gx + c0]
-                    while e >= 0:
-                        o = g_tri[e]
-                        e = g_next[e]
-                        if stamp[o] == ep or not alive[o]:
-                            continue
-                        stamp[o] = ep
-                        if triangles_meet_improperly(qf, t, kk, o) != DISJOINT:
-                            return False
+        m = _triangle_cells(q, t, kk, gx, gy, cb, cells)
+        if m < 0:
+            return False
+        for ci in range(m):
+            e = ghead[cells[ci]]
+            while e >= 0:
+                o = g_tri[e]
+                e = g_next[e]
+                if stamp[o] == ep or not alive[o]:
+                    continue
+                stamp[o] = ep
+                if triangles_meet_improperly(qf, t, kk, o) != DISJOINT:
+                    return False
     # Covers: every voxel of A near the pair whose centre is outside still meets R in its open cube.
     if covers:
         for f in range(n_flips):
@@ -640,6 +826,7 @@ def _decimate(
     max_passes: int,
     max_collapses: int,
     max_rounds: int,
+    min_cos: float,
 ) -> tuple[Int64Array, BoolArray, BoolArray, int]:  # pragma: no cover - compiled
     nv = q.shape[0]
     nt = tri.shape[0]
@@ -648,7 +835,6 @@ def _decimate(
     alive = np.ones(nt, np.bool_)
     vdead = np.zeros(nv, np.bool_)
     dirty = np.ones(nv, np.bool_)  # whose star changed since it last failed to go
-    fz, fy, fx = forbidden.shape
     inside = in_a.copy()  # the side of every centre: the safety net holds exactly the centres of A
     covers = model != GAUSS
 
@@ -675,8 +861,9 @@ def _decimate(
     g_tri = np.empty(4 * nt + 16, np.int64)
     ng = 0
     cb = np.empty(6, np.int64)
+    cells = np.empty(1 << 14, np.int64)
     for k in range(nt):
-        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb)
+        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb, cells)
 
     stamp = np.zeros(nt, np.int64)
     epoch = 0
@@ -808,8 +995,11 @@ def _decimate(
                                 bhi[d] = max(bhi[d], q[w, d])
                     if max(bhi[0] - blo[0], bhi[1] - blo[1], bhi[2] - blo[2]) > _MAX_EXTENT:
                         continue
-                    # 1. No new triangle is flat.
+                    # 1. No new triangle is flat, nor turned far from the one it replaces.
                     for i in range(n_moved):
+                        if _turns_too_far(q, t, moved[i], u, v, min_cos):
+                            ok = False
+                            break
                         _new_corners(q, t, moved[i], u, v, pts)
                         ux_, uy_, uz_ = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
                         vx_, vy_, vz_ = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
@@ -825,30 +1015,8 @@ def _decimate(
                     # 2. No new triangle meets a forbidden closed cube (voxel i's cube is [4i − 2, 4i + 2]).
                     for i in range(n_moved):
                         _new_corners(q, t, moved[i], u, v, pts)
-                        _cube_range(pts, lo_i, hi_i)
-                        if (
-                            min(lo_i[0], lo_i[1], lo_i[2]) < 0
-                            or hi_i[0] >= fx
-                            or hi_i[1] >= fy
-                            or hi_i[2] >= fz
-                        ):
+                        if _meets_forbidden(pts, forbidden, lo_i, hi_i, clo, chi):
                             ok = False
-                            break
-                        for iz in range(lo_i[2], hi_i[2] + 1):
-                            for iy in range(lo_i[1], hi_i[1] + 1):
-                                for ix in range(lo_i[0], hi_i[0] + 1):
-                                    if not forbidden[iz, iy, ix]:
-                                        continue
-                                    clo[0], clo[1], clo[2] = 4 * ix - 2, 4 * iy - 2, 4 * iz - 2
-                                    chi[0], chi[1], chi[2] = 4 * ix + 2, 4 * iy + 2, 4 * iz + 2
-                                    if _triangle_meets_box(pts, clo, chi, False):
-                                        ok = False
-                                        break
-                                if not ok:
-                                    break
-                            if not ok:
-                                break
-                        if not ok:
                             break
                     if not ok:
                         continue
@@ -884,23 +1052,19 @@ def _decimate(
                             epoch += 1
                             for j in range(n_moved):
                                 stamp[moved[j]] = epoch
-                            _cell_box(q, t, k, cb)
-                            for c2 in range(cb[2], cb[5] + 1):
-                                for c1 in range(cb[1], cb[4] + 1):
-                                    for c0 in range(cb[0], cb[3] + 1):
-                                        e = ghead[(c2 * gy + c1) * gx + c0]
-                                        while e >= 0:
-                                            o = g_tri[e]
-                                            e = g_next[e]
-                                            if stamp[o] == epoch or not alive[o]:
-                                                continue
-                                            stamp[o] = epoch
-                                            if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
-                                                ok = False
-                                                break
-                                        if not ok:
-                                            break
-                                    if not ok:
+                            m = _triangle_cells(q, t, k, gx, gy, cb, cells)
+                            if m < 0:
+                                ok = False
+                            for ci_ in range(max(m, 0)):
+                                e = ghead[cells[ci_]]
+                                while e >= 0:
+                                    o = g_tri[e]
+                                    e = g_next[e]
+                                    if stamp[o] == epoch or not alive[o]:
+                                        continue
+                                    stamp[o] = epoch
+                                    if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
+                                        ok = False
                                         break
                                 if not ok:
                                     break
@@ -973,7 +1137,7 @@ def _decimate(
                         s_tri[ns] = k
                         vhead[v] = ns
                         ns += 1
-                        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb)
+                        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb, cells)
                     break  # u is gone
 
         # Edge flips: an edge whose two triangles would be flatter across the other diagonal is flipped, under
@@ -1057,6 +1221,8 @@ def _decimate(
                     gx,
                     gy,
                     gz,
+                    cb,
+                    cells,
                     moved,
                     stamp,
                     epoch,
@@ -1076,7 +1242,7 @@ def _decimate(
                     s_tri[ns] = kk
                     vhead[w] = ns
                     ns += 1
-                    g_next, g_tri, ng = _bucket(q, t, kk, ghead, g_next, g_tri, ng, gx, gy, cb)
+                    g_next, g_tri, ng = _bucket(q, t, kk, ghead, g_next, g_tri, ng, gx, gy, cb, cells)
                 break  # k changed: its other edges wait for the next round
         if flipped == 0:
             break
@@ -1125,6 +1291,7 @@ def decimate(
     max_passes: int = 64,
     max_collapses: int = -1,
     max_rounds: int = 8,
+    min_cos: float = MIN_COS,
 ) -> tuple[FloatArray, Int64Array]:
     """Simplify the safety net of A by exactly checked half-edge collapses (module docstring).
 
@@ -1152,7 +1319,7 @@ def decimate(
     in_a = np.pad(mask, PAD)
     forbidden = forbidden_cubes(mask, code == GAUSS)
     t, alive, vdead, _removed = _decimate(
-        q, triangles.astype(np.int64), in_a, forbidden, code, max_passes, max_collapses, max_rounds
+        q, triangles.astype(np.int64), in_a, forbidden, code, max_passes, max_collapses, max_rounds, min_cos
     )
     keep = ~vdead
     index = np.cumsum(keep) - 1
