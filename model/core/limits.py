@@ -36,8 +36,8 @@ MAX_OBJECT_TRIANGLES = 20_000_000
 #: reconstructed; the 3D continuation costs tens of bytes per surfel.
 MAX_SURFELS = 50_000_000
 #: Triangles of the safety net up to which the 3D R is the compact one (its decimation, ADR 0064); beyond,
-#: R is the safety net: the decimation takes about 80–170 µs per triangle today (a 20,000-triangle net,
-#: about a ball of radius 20, in 2–3 s), far too slow for the desktop on bigger objects.
+#: R is the safety net: the decimation takes about 55–90 µs per triangle today (a 20,000-triangle net,
+#: about a ball of radius 30, in 1–2 s), far too slow for the desktop on bigger objects.
 MAX_COMPACT_R_TRIANGLES = 20_000
 #: Voxels of a label volume (four bytes each in memory).
 MAX_LABEL_VOXELS = 1 << 28
