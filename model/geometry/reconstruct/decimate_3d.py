@@ -33,7 +33,7 @@ staircase), passes until one removes nothing. The result is checked again as a w
 from __future__ import annotations
 
 import itertools
-from typing import cast
+from typing import NamedTuple, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -203,6 +203,23 @@ def _triangle_meets_box(
     return True
 
 
+class _Scratch(NamedTuple):
+    """The working arrays of the checks, allocated once per run (numba takes a named tuple of arrays)."""
+
+    pts: Int64Array  # (3, 3): a triangle's corners
+    lo_i: Int64Array
+    hi_i: Int64Array
+    idx: Int64Array
+    clo: Int64Array
+    chi: Int64Array
+    cb: Int64Array  # (6,): a box of grid cells
+    cells: Int64Array  # grid cells a triangle's plane crosses
+    acc: Int64Array  # (n, n, n): winding numbers over the box of a change
+    seen: Int64Array  # (4096, 3): the cells of acc written
+    found: Int64Array  # (4096, 3): the centres in one tetrahedron
+    flips: Int64Array  # (4096, 3): the centres that change side
+
+
 #: The gauss model, and the covers: standard and supercover share one R, whose checks are the stricter
 #: of the two and invariant under the rotations of the cube (closed forbidden cubes, open cubes met).
 GAUSS, COVERS = 0, 1
@@ -301,19 +318,6 @@ def _bucket(
 
 
 @njit(cache=True)
-def _new_corners(
-    q: Int64Array, t: Int64Array, k: int, u: int, v: int, pts: Int64Array
-) -> None:  # pragma: no cover
-    # The corners of triangle k once u is v.
-    for c in range(3):
-        w = t[k, c]
-        if w == u:
-            w = v
-        for d in range(3):
-            pts[c, d] = q[w, d]
-
-
-@njit(cache=True)
 def _holds_point(p: Int64Array, x: int, y: int, z: int) -> bool:  # pragma: no cover
     # Whether the closed, non-flat triangle p (3 × 3) holds the point: in its plane, and on the inner side
     # of each edge in the projection that drops the normal's largest coordinate.
@@ -338,94 +342,6 @@ def _holds_point(p: Int64Array, x: int, y: int, z: int) -> bool:  # pragma: no c
         elif o < 0:
             neg += 1
     return pos == 0 or neg == 0
-
-
-@njit(cache=True)
-def _centres_that_change(
-    q: Int64Array,
-    t: Int64Array,
-    moved: Int64Array,
-    n_moved: int,
-    u: int,
-    v: int,
-    blo: Int64Array,
-    acc: Int64Array,
-    covers: bool,
-    in_a: BoolArray,
-    flips: Int64Array,
-    pts: Int64Array,
-) -> int:  # pragma: no cover - compiled
-    # The centres whose side changes when u goes to v, into flips (voxel indices); −1 when one may not:
-    # any under gauss (or one on a new triangle: gauss separates strictly), one outside A under the covers.
-    # Each tet (v, u, a, b) adds its sign to the centres it holds, scanning only the slab it lies in; acc
-    # is a scratch array over the star's box (zero on entry and on return).
-    c0x, c0y, c0z = (blo[0] + 3) // 4 * 4, (blo[1] + 3) // 4 * 4, (blo[2] + 3) // 4 * 4
-    n_flips = 0
-    touched = 0
-    bad = False
-    found = np.empty((4096, 3), np.int64)
-    seen = np.empty((4096, 3), np.int64)
-    lo_i = np.empty(3, np.int64)
-    hi_i = np.empty(3, np.int64)
-    idx = np.empty(3, np.int64)  # the cells of acc written, to clear them (and only them)
-    for i in range(n_moved):
-        k = moved[i]
-        c = 0  # the old triangle rotated to start at u: (u, a, b)
-        while t[k, c] != u:
-            c += 1
-        a = t[k, (c + 1) % 3]
-        b = t[k, (c + 2) % 3]
-        vol = _det(
-            q[v, 0],
-            q[v, 1],
-            q[v, 2],
-            q[u, 0],
-            q[u, 1],
-            q[u, 2],
-            q[a, 0],
-            q[a, 1],
-            q[a, 2],
-            q[b, 0],
-            q[b, 1],
-            q[b, 2],
-        )
-        if vol == 0:
-            continue
-        sign = 1 if vol > 0 else -1
-        m = _tet_centres(q, v, u, a, b, found)
-        if m < 0:
-            touched = seen.shape[0] + 1  # too many: refused below
-            break
-        for e in range(m):
-            cz, cy, cx = found[e, 2] - c0z // 4, found[e, 1] - c0y // 4, found[e, 0] - c0x // 4
-            acc[cz, cy, cx] += sign
-            if touched < seen.shape[0]:
-                seen[touched, 0], seen[touched, 1], seen[touched, 2] = cz, cy, cx
-            touched += 1
-    if touched > seen.shape[0]:  # too many to list (never in practice): clear it all, refuse the collapse
-        acc[:, :, :] = 0
-        return -1
-    for e in range(touched):
-        kz, ky, kx = seen[e, 0], seen[e, 1], seen[e, 2]
-        if acc[kz, ky, kx] == 0:
-            continue  # cancelled, or met already
-        acc[kz, ky, kx] = 0
-        if bad:
-            continue
-        ix, iy, iz = c0x // 4 + kx, c0y // 4 + ky, c0z // 4 + kz
-        if not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
-            bad = True
-            continue
-        flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
-        n_flips += 1
-    if bad:
-        return -1
-    if not covers:  # gauss: no centre on a new triangle (only those in its plane are candidates)
-        for i in range(n_moved):
-            _new_corners(q, t, moved[i], u, v, pts)
-            if _centre_on(pts, lo_i, hi_i, idx):
-                return -1
-    return n_flips
 
 
 @njit(cache=True)
@@ -671,149 +587,174 @@ def _flatter_across(q: Int64Array, a: int, b: int, c: int, d: int) -> bool:  # p
 
 
 @njit(cache=True)
-def _flip_is_right(
+def _change_is_right(
     q: Int64Array,
     qf: FloatArray,
     t: Int64Array,
     alive: BoolArray,
-    k: int,
-    k2: int,
-    a: int,
-    b: int,
-    c: int,
-    d: int,
+    new: Int64Array,
+    n_new: int,
+    tets: Int64Array,
+    n_tets: int,
     blo: Int64Array,
+    bhi: Int64Array,
     covers: bool,
     in_a: BoolArray,
     inside: BoolArray,
     forbidden: BoolArray,
-    flips: Int64Array,
-    pts: Int64Array,
-    lo_i: Int64Array,
-    hi_i: Int64Array,
-    clo: Int64Array,
-    chi: Int64Array,
+    s: _Scratch,
     ghead: Int64Array,
     g_next: Int64Array,
     g_tri: Int64Array,
     gx: int,
     gy: int,
     gz: int,
-    cb: Int64Array,
-    cells: Int64Array,
-    moved: Int64Array,
     stamp: Int64Array,
     epoch: int,
-) -> bool:  # pragma: no cover - compiled
-    # The checks of a collapse for the flipped pair k = (c, a, d), k2 = (d, b, c) (already in t), the same in
-    # the same order; `inside` is updated when the flip is right.
-    for kk in (k, k2):
-        for cc in range(3):
-            for dd in range(3):
-                pts[cc, dd] = q[t[kk, cc], dd]
+) -> tuple[bool, int]:  # pragma: no cover - compiled
+    # Whether a change already made in t (a collapse or a flip) keeps the contract: its new triangles, the
+    # tetrahedra (apex, old triangle) it swept, and the box of everything it touched. `inside` is updated
+    # when it does; the epoch returned is past every stamp used.
+    pts = s.pts
+    # 1. No new triangle is flat or meets a forbidden closed cube.
+    for i in range(n_new):
+        for c in range(3):
+            for d in range(3):
+                pts[c, d] = q[t[new[i], c], d]
         ux, uy, uz = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
         vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
         if uy * vz - uz * vy == 0 and uz * vx - ux * vz == 0 and ux * vy - uy * vx == 0:
-            return False
-        if _meets_forbidden(pts, forbidden, lo_i, hi_i, clo, chi):
-            return False
-    # Centres in the tetrahedron a b c d change side; under gauss none may, nor lie on a new triangle.
-    n_flips = 0
-    if (
-        _det(
-            q[a, 0],
-            q[a, 1],
-            q[a, 2],
-            q[b, 0],
-            q[b, 1],
-            q[b, 2],
-            q[c, 0],
-            q[c, 1],
-            q[c, 2],
-            q[d, 0],
-            q[d, 1],
-            q[d, 2],
-        )
-        != 0
-    ):
-        n_flips = _tet_centres(q, d, a, b, c, flips)
-        if n_flips < 0:
-            return False
-        if n_flips and not covers:
-            return False
-        for f in range(n_flips):
-            if not in_a[flips[f, 2], flips[f, 1], flips[f, 0]]:
-                return False
-    if not covers:
-        idx = np.empty(3, np.int64)
-        for kk in (k, k2):
-            for cc in range(3):
-                for dd in range(3):
-                    pts[cc, dd] = q[t[kk, cc], dd]
-            if _centre_on(pts, lo_i, hi_i, idx):
-                return False
-    # No new triangle meets another improperly.
-    if triangles_meet_improperly(qf, t, k, k2) != DISJOINT:
-        return False
-    for kk in (k, k2):
-        ep = epoch + 1 + (kk == k2)
-        stamp[k] = ep
-        stamp[k2] = ep
-        m = _triangle_cells(q, t, kk, gx, gy, cb, cells)
+            return False, epoch
+        if _meets_forbidden(pts, forbidden, s.lo_i, s.hi_i, s.clo, s.chi):
+            return False, epoch
+    # 2. The centres that change side: each swept tetrahedron adds its sign to the centres it holds (the
+    # winding number of the old star minus the new one, coned from the apex). None may under gauss, nor lie
+    # on a new triangle; under the covers only centres of A may.
+    acc, seen, found, flips = s.acc, s.seen, s.found, s.flips
+    c0x, c0y, c0z = (blo[0] + 3) // 4, (blo[1] + 3) // 4, (blo[2] + 3) // 4
+    touched = 0
+    for j in range(n_tets):
+        apex, p, r, w = tets[j, 0], tets[j, 1], tets[j, 2], tets[j, 3]
+        vol = _det(
+            q[apex, 0], q[apex, 1], q[apex, 2], q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[w, 0],
+            q[w, 1], q[w, 2],
+        )  # fmt: skip
+        if vol == 0:
+            continue
+        m = _tet_centres(q, apex, p, r, w, found)
         if m < 0:
-            return False
+            touched = seen.shape[0] + 1
+            break
+        for e in range(m):
+            cz, cy, cx = found[e, 2] - c0z, found[e, 1] - c0y, found[e, 0] - c0x
+            acc[cz, cy, cx] += 1 if vol > 0 else -1
+            if touched < seen.shape[0]:
+                seen[touched, 0], seen[touched, 1], seen[touched, 2] = cz, cy, cx
+            touched += 1
+    if touched > seen.shape[0]:  # too many to list (never in practice): clear it all, refuse the change
+        acc[:, :, :] = 0
+        return False, epoch
+    n_flips = 0
+    bad = False
+    for e in range(touched):
+        kz, ky, kx = seen[e, 0], seen[e, 1], seen[e, 2]
+        if acc[kz, ky, kx] == 0:
+            continue  # cancelled, or met already
+        acc[kz, ky, kx] = 0
+        ix, iy, iz = c0x + kx, c0y + ky, c0z + kz
+        if bad or not covers or not in_a[iz, iy, ix] or n_flips == flips.shape[0]:
+            bad = True
+            continue
+        flips[n_flips, 0], flips[n_flips, 1], flips[n_flips, 2] = ix, iy, iz
+        n_flips += 1
+    if bad:
+        return False, epoch
+    if not covers:
+        for i in range(n_new):
+            for c in range(3):
+                for d in range(3):
+                    pts[c, d] = q[t[new[i], c], d]
+            if _centre_on(pts, s.lo_i, s.hi_i, s.idx):
+                return False, epoch
+    # 3. No new triangle meets another beyond what they share: each other, then the triangles of the grid
+    # cells their planes cross (the new ones are not yet in the buckets of their new boxes).
+    for i in range(n_new):
+        for j in range(i + 1, n_new):
+            if triangles_meet_improperly(qf, t, new[i], new[j]) != DISJOINT:
+                return False, epoch
+    for i in range(n_new):
+        k = new[i]
+        epoch += 1
+        for j in range(n_new):
+            stamp[new[j]] = epoch
+        m = _triangle_cells(q, t, k, gx, gy, s.cb, s.cells)
+        if m < 0:
+            return False, epoch + 1
         for ci in range(m):
-            e = ghead[cells[ci]]
+            e = ghead[s.cells[ci]]
             while e >= 0:
                 o = g_tri[e]
                 e = g_next[e]
-                if stamp[o] == ep or not alive[o]:
+                if stamp[o] == epoch or not alive[o]:
                     continue
-                stamp[o] = ep
-                if triangles_meet_improperly(qf, t, kk, o) != DISJOINT:
-                    return False
-    # Covers: every voxel of A near the pair whose centre is outside still meets R in its open cube.
+                stamp[o] = epoch
+                if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
+                    return False, epoch + 1
+    # 4. Covers: every voxel of A near the change whose centre is outside R(A) now (it left in this change
+    # or before) still meets R(A) in its open cube, through a triangle (its centre is outside, so the cube is
+    # not inside R).
     if covers:
         for f in range(n_flips):
             inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
-        ep = epoch + 3
-        good = True
-        for iz in range((blo[2] - 2 + 3) // 4, (max(q[a, 2], q[b, 2], q[c, 2], q[d, 2]) + 2) // 4 + 1):
-            for iy in range((blo[1] - 2 + 3) // 4, (max(q[a, 1], q[b, 1], q[c, 1], q[d, 1]) + 2) // 4 + 1):
-                for ix in range(
-                    (blo[0] - 2 + 3) // 4, (max(q[a, 0], q[b, 0], q[c, 0], q[d, 0]) + 2) // 4 + 1
-                ):
-                    if not good or not in_a[iz, iy, ix] or inside[iz, iy, ix]:
+        for iz in range((blo[2] - 2 + 3) // 4, (bhi[2] + 2) // 4 + 1):
+            for iy in range((blo[1] - 2 + 3) // 4, (bhi[1] + 2) // 4 + 1):
+                for ix in range((blo[0] - 2 + 3) // 4, (bhi[0] + 2) // 4 + 1):
+                    if not in_a[iz, iy, ix] or inside[iz, iy, ix]:
                         continue
+                    epoch += 1
                     if not _cell_is_met(
-                        q,
-                        t,
-                        alive,
-                        ix,
-                        iy,
-                        iz,
-                        True,
-                        ghead,
-                        g_next,
-                        g_tri,
-                        gx,
-                        gy,
-                        gz,
-                        moved,
-                        2,
-                        stamp,
-                        ep,
-                        pts,
-                        clo,
-                        chi,
-                    ):
-                        good = False
-                    ep += 1
-        if not good:
-            for f in range(n_flips):
-                inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
-            return False
-    return True
+                        q, t, alive, ix, iy, iz, True, ghead, g_next, g_tri, gx, gy, gz, new, n_new, stamp,
+                        epoch, pts, s.clo, s.chi,
+                    ):  # fmt: skip
+                        for f in range(n_flips):
+                            inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+                        return False, epoch + 1
+    return True, epoch + 1
+
+
+@njit(cache=True)
+def _neighbours(
+    vhead: Int64Array,
+    s_next: Int64Array,
+    s_tri: Int64Array,
+    alive: BoolArray,
+    t: Int64Array,
+    x: int,
+    out: Int64Array,
+) -> int:  # pragma: no cover - compiled
+    # The distinct neighbours of vertex x (from its star's live triangles) into out; −1 beyond its size.
+    n = 0
+    e = vhead[x]
+    while e >= 0:
+        k = s_tri[e]
+        e = s_next[e]
+        if not alive[k] or (t[k, 0] != x and t[k, 1] != x and t[k, 2] != x):
+            continue
+        for c in range(3):
+            w = t[k, c]
+            if w == x:
+                continue
+            known = False
+            for j in range(n):
+                if out[j] == w:
+                    known = True
+                    break
+            if not known:
+                if n == out.shape[0]:
+                    return -1
+                out[n] = w
+                n += 1
+    return n
 
 
 @njit(cache=True)
@@ -874,16 +815,24 @@ def _decimate(
     nbr_v = np.empty(256, np.int64)
     cand = np.empty(256, np.int64)
     clen = np.empty(256, np.int64)
-    flips = np.empty((4096, 3), np.int64)
+    tets = np.empty((256, 4), np.int64)
     side = _MAX_EXTENT // 4 + 2
-    acc = np.zeros((side, side, side), np.int64)
-    pts = np.empty((3, 3), np.int64)
+    sc = _Scratch(
+        np.empty((3, 3), np.int64),
+        np.empty(3, np.int64),
+        np.empty(3, np.int64),
+        np.empty(3, np.int64),
+        np.empty(3, np.int64),
+        np.empty(3, np.int64),
+        cb,
+        cells,
+        np.zeros((side, side, side), np.int64),
+        np.empty((4096, 3), np.int64),
+        np.empty((4096, 3), np.int64),
+        np.empty((4096, 3), np.int64),
+    )
     blo = np.empty(3, np.int64)
     bhi = np.empty(3, np.int64)
-    lo_i = np.empty(3, np.int64)
-    hi_i = np.empty(3, np.int64)
-    clo = np.empty(3, np.int64)
-    chi = np.empty(3, np.int64)
     removed = 0
     for round_ in range(max_rounds + 1):
         changed = True
@@ -906,19 +855,9 @@ def _decimate(
                     e = s_next[e]
                 if n_star >= 256:
                     continue
-                n_nu = 0
-                for i in range(n_star):
-                    for c in range(3):
-                        w = t[star[i], c]
-                        if w != u:
-                            seen = False
-                            for j in range(n_nu):
-                                if nbr_u[j] == w:
-                                    seen = True
-                                    break
-                            if not seen:
-                                nbr_u[n_nu] = w
-                                n_nu += 1
+                n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, nbr_u)
+                if n_nu < 0:
+                    continue
                 # Farthest neighbour first (ties: lowest index).
                 for i in range(n_nu):
                     w = nbr_u[i]
@@ -953,24 +892,8 @@ def _decimate(
                     if not ok or n_gone != 2:
                         continue
                     # Link condition: the common neighbours of u and v are the two opposite vertices.
-                    n_nv = 0
-                    e = vhead[v]
-                    while e >= 0 and n_nv < 250:
-                        k = s_tri[e]
-                        if alive[k] and (t[k, 0] == v or t[k, 1] == v or t[k, 2] == v):
-                            for c in range(3):
-                                w = t[k, c]
-                                if w != v:
-                                    seen = False
-                                    for j in range(n_nv):
-                                        if nbr_v[j] == w:
-                                            seen = True
-                                            break
-                                    if not seen:
-                                        nbr_v[n_nv] = w
-                                        n_nv += 1
-                        e = s_next[e]
-                    if n_nv >= 250:
+                    n_nv = _neighbours(vhead, s_next, s_tri, alive, t, v, nbr_v)
+                    if n_nv < 0:
                         continue
                     common = 0
                     for i in range(n_nu):
@@ -995,39 +918,22 @@ def _decimate(
                                 bhi[d] = max(bhi[d], q[w, d])
                     if max(bhi[0] - blo[0], bhi[1] - blo[1], bhi[2] - blo[2]) > _MAX_EXTENT:
                         continue
-                    # 1. No new triangle is flat, nor turned far from the one it replaces.
+                    # No new triangle turns over (a heuristic of shape: fold-overs make spikes).
                     for i in range(n_moved):
                         if _turns_too_far(q, t, moved[i], u, v, min_cos):
                             ok = False
                             break
-                        _new_corners(q, t, moved[i], u, v, pts)
-                        ux_, uy_, uz_ = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
-                        vx_, vy_, vz_ = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
-                        if (
-                            uy_ * vz_ - uz_ * vy_ == 0
-                            and uz_ * vx_ - ux_ * vz_ == 0
-                            and ux_ * vy_ - uy_ * vx_ == 0
-                        ):
-                            ok = False
-                            break
                     if not ok:
                         continue
-                    # 2. No new triangle meets a forbidden closed cube (voxel i's cube is [4i − 2, 4i + 2]).
+                    # The swept tetrahedra (v, u, a, b), (u, a, b) in the old star; then the collapse, made
+                    # tentatively, is checked.
                     for i in range(n_moved):
-                        _new_corners(q, t, moved[i], u, v, pts)
-                        if _meets_forbidden(pts, forbidden, lo_i, hi_i, clo, chi):
-                            ok = False
-                            break
-                    if not ok:
-                        continue
-                    # 3. The centres that change side (centres are at 4·i in these units): none under gauss;
-                    # under the covers only centres of A may, recorded to be checked in 5.
-                    n_flips = _centres_that_change(
-                        q, t, moved, n_moved, u, v, blo, acc, covers, in_a, flips, pts
-                    )
-                    if n_flips < 0:
-                        continue
-                    # 4. Tentatively collapse, then no new triangle meets another improperly.
+                        k = moved[i]
+                        c0 = 0
+                        while t[k, c0] != u:
+                            c0 += 1
+                        tets[i, 0], tets[i, 1] = v, u
+                        tets[i, 2], tets[i, 3] = t[k, (c0 + 1) % 3], t[k, (c0 + 2) % 3]
                     for i in range(n_moved):
                         k = moved[i]
                         for c in range(3):
@@ -1035,85 +941,10 @@ def _decimate(
                                 t[k, c] = v
                     alive[gone[0]] = False
                     alive[gone[1]] = False
-                    for i in range(n_moved):
-                        k = moved[i]
-                        for j in range(i + 1, n_moved):
-                            if triangles_meet_improperly(qf, t, k, moved[j]) != DISJOINT:
-                                ok = False
-                                break
-                        if not ok:
-                            break
-                    if ok:
-                        epoch += 1
-                        for j in range(n_moved):
-                            stamp[moved[j]] = epoch
-                        for i in range(n_moved):
-                            k = moved[i]
-                            epoch += 1
-                            for j in range(n_moved):
-                                stamp[moved[j]] = epoch
-                            m = _triangle_cells(q, t, k, gx, gy, cb, cells)
-                            if m < 0:
-                                ok = False
-                            for ci_ in range(max(m, 0)):
-                                e = ghead[cells[ci_]]
-                                while e >= 0:
-                                    o = g_tri[e]
-                                    e = g_next[e]
-                                    if stamp[o] == epoch or not alive[o]:
-                                        continue
-                                    stamp[o] = epoch
-                                    if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
-                                        ok = False
-                                        break
-                                if not ok:
-                                    break
-                            if not ok:
-                                break
-                    # 5. Covers: every voxel of A near the star whose centre is outside R(A) now (it left in
-                    # this collapse or before) still meets R(A) in its open cube, by a triangle (the cube is
-                    # not inside R, its centre being outside).
-                    if ok and covers:
-                        for f in range(n_flips):
-                            inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
-                        for iz in range((blo[2] - 2 + 3) // 4, (bhi[2] + 2) // 4 + 1):
-                            for iy in range((blo[1] - 2 + 3) // 4, (bhi[1] + 2) // 4 + 1):
-                                for ix in range((blo[0] - 2 + 3) // 4, (bhi[0] + 2) // 4 + 1):
-                                    if not in_a[iz, iy, ix] or inside[iz, iy, ix]:
-                                        continue
-                                    if not _cell_is_met(
-                                        q,
-                                        t,
-                                        alive,
-                                        ix,
-                                        iy,
-                                        iz,
-                                        True,
-                                        ghead,
-                                        g_next,
-                                        g_tri,
-                                        gx,
-                                        gy,
-                                        gz,
-                                        moved,
-                                        n_moved,
-                                        stamp,
-                                        epoch + 1,
-                                        pts,
-                                        clo,
-                                        chi,
-                                    ):
-                                        ok = False
-                                        break
-                                    epoch += 1
-                                if not ok:
-                                    break
-                            if not ok:
-                                break
-                        epoch += 1
-                        if not ok:
-                            for f in range(n_flips):
-                                inside[flips[f, 2], flips[f, 1], flips[f, 0]] ^= True
+                    ok, epoch = _change_is_right(
+                        q, qf, t, alive, moved, n_moved, tets, n_moved, blo, bhi, covers, in_a, inside,
+                        forbidden, sc, ghead, g_next, g_tri, gx, gy, gz, stamp, epoch,
+                    )  # fmt: skip
                     if not ok:
                         for i in range(n_moved):
                             k = moved[i]
@@ -1189,45 +1020,15 @@ def _decimate(
                     ext = max(ext, hi_ - lo_)
                 if ext > _MAX_EXTENT:
                     continue
-                # tentatively: k = (c, a, d), k2 = (d, b, c)
+                # tentatively: k = (c, a, d), k2 = (d, b, c); the volume swept is the tetrahedron (d, a, b, c)
                 t[k, 0], t[k, 1], t[k, 2] = c, a, d
                 t[k2, 0], t[k2, 1], t[k2, 2] = d, b, c
                 moved[0], moved[1] = k, k2
-                ok = _flip_is_right(
-                    q,
-                    qf,
-                    t,
-                    alive,
-                    k,
-                    k2,
-                    a,
-                    b,
-                    c,
-                    d,
-                    blo,
-                    covers,
-                    in_a,
-                    inside,
-                    forbidden,
-                    flips,
-                    pts,
-                    lo_i,
-                    hi_i,
-                    clo,
-                    chi,
-                    ghead,
-                    g_next,
-                    g_tri,
-                    gx,
-                    gy,
-                    gz,
-                    cb,
-                    cells,
-                    moved,
-                    stamp,
-                    epoch,
-                )
-                epoch += 16 + (_MAX_EXTENT // 4 + 3) ** 3  # past every stamp _flip_is_right used
+                tets[0, 0], tets[0, 1], tets[0, 2], tets[0, 3] = d, a, b, c
+                ok, epoch = _change_is_right(
+                    q, qf, t, alive, moved, 2, tets, 1, blo, bhi, covers, in_a, inside, forbidden, sc, ghead,
+                    g_next, g_tri, gx, gy, gz, stamp, epoch,
+                )  # fmt: skip
                 if not ok:
                     t[k, 0], t[k, 1], t[k, 2] = a, b, c
                     t[k2, 0], t[k2, 1], t[k2, 2] = b, a, d
