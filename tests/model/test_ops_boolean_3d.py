@@ -215,7 +215,9 @@ def test_voxel_balls_whose_difference_pinches_are_measured_within_their_bounds(m
     assert acc.error == "" and acc.reference_exact is False
     for part in acc.parts:
         assert _within(part.measured, part.bound) is True, (part.part, part.measured.intervals)
-    assert acc.measured.intervals["result_within"][1] < 1  # R(A) ∖ R(B) is near, not a stray mesh
+    # R(A ∖ B) is near, not a stray mesh: within a voxel's diagonal of the Euclidean part (the compact R may
+    # lie up to that far from it under the covers; the safety net stayed within ¼ of V(A ∖ B)).
+    assert acc.measured.intervals["result_within"][1] < math.sqrt(3)
 
 
 @pytest.mark.parametrize("alpha", [None, "1/3"])
