@@ -112,7 +112,7 @@ def test_the_slab_scan_lists_every_centre_in_a_tetrahedron(a, b, c, d):
     if orient(*[tuple(Fraction(int(x)) for x in row) for row in q]) == 0:
         return
     out = np.empty((4096, 3), np.int64)
-    m = D._tet_centres(q, 0, 1, 2, 3, out)
+    m = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)))
     lo = (q.min(axis=0) + 3) // 4
     hi = q.max(axis=0) // 4
     brute = {
@@ -164,8 +164,8 @@ def test_the_forbidden_cube_scan_finds_every_forbidden_cube_the_triangle_meets(a
     if not np.cross(tri[1] - tri[0], tri[2] - tri[0]).any():
         return
     forbidden = np.random.default_rng(seed).random((19, 19, 19)) < 0.01  # about half the triangles meet one
-    lo, hi, clo, chi = (np.empty(3, np.int64) for _ in range(4))
-    got = D._meets_forbidden(tri, forbidden, lo, hi, clo, chi)
+    lo, hi, clo, chi, idx = (np.empty(3, np.int64) for _ in range(5))
+    got = D._meets_forbidden(tri, forbidden, lo, hi, clo, chi, idx)
     brute = any(
         reference_meets(tri, 4 * np.array(i) - 2, 4 * np.array(i) + 2, False)
         for i in zip(*np.nonzero(forbidden.transpose(2, 1, 0)), strict=True)

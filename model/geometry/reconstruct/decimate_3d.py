@@ -83,16 +83,39 @@ def forbidden_cubes(mask: BoolArray, gauss: bool) -> BoolArray:
 
 
 @njit(cache=True, inline="always")
+def _normal(
+    ax: int, ay: int, az: int, bx: int, by: int, bz: int, cx: int, cy: int, cz: int
+) -> tuple[int, int, int]:  # pragma: no cover - compiled
+    # (b − a) × (c − a): the normal of triangle a b c, counter-clockwise seen from where it points.
+    ux, uy, uz = bx - ax, by - ay, bz - az
+    vx, vy, vz = cx - ax, cy - ay, cz - az
+    return uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+
+
+@njit(cache=True, inline="always")
+def _normal_of(p: Int64Array) -> tuple[int, int, int]:  # pragma: no cover - compiled
+    # The normal of the triangle whose corners are the rows of p (3 × 3).
+    return _normal(p[0, 0], p[0, 1], p[0, 2], p[1, 0], p[1, 1], p[1, 2], p[2, 0], p[2, 1], p[2, 2])
+
+
+@njit(cache=True, inline="always")
+def _axes(nx: int, ny: int, nz: int) -> tuple[int, int, int]:  # pragma: no cover - compiled
+    # (i, j, k): k the axis of the normal's largest coordinate, i and j the other two in cyclic order — the
+    # order every slab scan takes them in.
+    if abs(nz) >= abs(nx) and abs(nz) >= abs(ny):
+        return 0, 1, 2
+    if abs(ny) >= abs(nx):
+        return 2, 0, 1
+    return 1, 2, 0
+
+
+@njit(cache=True, inline="always")
 def _side(
     ax: int, ay: int, az: int, bx: int, by: int, bz: int, cx: int, cy: int, cz: int, px: int, py: int, pz: int
 ) -> int:  # pragma: no cover - compiled
     # Sign of det(b − a, c − a, p + τ − a), τ = (ε, ε², ε³): the plain determinant, else the normal's first
     # non-zero coordinate (the triangle is not flat, so one is).
-    ux, uy, uz = bx - ax, by - ay, bz - az
-    vx, vy, vz = cx - ax, cy - ay, cz - az
-    nx = uy * vz - uz * vy
-    ny = uz * vx - ux * vz
-    nz = ux * vy - uy * vx
+    nx, ny, nz = _normal(ax, ay, az, bx, by, bz, cx, cy, cz)
     d = nx * (px - ax) + ny * (py - ay) + nz * (pz - az)
     if d == 0:
         d = nx
@@ -107,10 +130,9 @@ def _side(
 def _det(
     ax: int, ay: int, az: int, bx: int, by: int, bz: int, cx: int, cy: int, cz: int, dx: int, dy: int, dz: int
 ) -> int:  # pragma: no cover - compiled
-    ux, uy, uz = bx - ax, by - ay, bz - az
-    vx, vy, vz = cx - ax, cy - ay, cz - az
-    wx, wy, wz = dx - ax, dy - ay, dz - az
-    return ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx)
+    # det(b − a, c − a, d − a) = ((b − a) × (c − a)) · (d − a)
+    nx, ny, nz = _normal(ax, ay, az, bx, by, bz, cx, cy, cz)
+    return nx * (dx - ax) + ny * (dy - ay) + nz * (dz - az)
 
 
 @njit(cache=True)
@@ -186,9 +208,7 @@ def _triangle_meets_box(
     for i in range(3):
         for k in range(3):
             e[i, k] = p[(i + 1) % 3, k] - p[i, k]
-    nx = e[0, 1] * e[1, 2] - e[0, 2] * e[1, 1]
-    ny = e[0, 2] * e[1, 0] - e[0, 0] * e[1, 2]
-    nz = e[0, 0] * e[1, 1] - e[0, 1] * e[1, 0]
+    nx, ny, nz = _normal_of(p)
     if _axis_apart(nx, ny, nz, p, lo, hi, open_box):
         return False
     for i in range(3):
@@ -241,31 +261,19 @@ def _triangle_cells(
     # The grid cells of triangle k's box that its plane's slab crosses (a cell [8c, 8c + 8)³ meets the plane
     # only if |n · (its centre) − d| ≤ 4 (|nx| + |ny| + |nz|)), into cells; their number (−1: too many).
     _cell_box(q, t, k, cb)
-    a, b, c = t[k, 0], t[k, 1], t[k, 2]
-    ux, uy, uz = q[b, 0] - q[a, 0], q[b, 1] - q[a, 1], q[b, 2] - q[a, 2]
-    vx, vy, vz = q[c, 0] - q[a, 0], q[c, 1] - q[a, 1], q[c, 2] - q[a, 2]
-    n = (uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx)
-    d0 = n[0] * q[a, 0] + n[1] * q[a, 1] + n[2] * q[a, 2]
-    r = 4 * (abs(n[0]) + abs(n[1]) + abs(n[2]))
-    if abs(n[2]) >= abs(n[0]) and abs(n[2]) >= abs(n[1]):
-        ki, kj, kk = 0, 1, 2
-    elif abs(n[1]) >= abs(n[0]):
-        ki, kj, kk = 2, 0, 1
-    else:
-        ki, kj, kk = 1, 2, 0
-    nk = n[kk]
+    a = t[k, 0]
+    nx, ny, nz = _normal(
+        q[a, 0], q[a, 1], q[a, 2], q[t[k, 1], 0], q[t[k, 1], 1], q[t[k, 1], 2], q[t[k, 2], 0], q[t[k, 2], 1],
+        q[t[k, 2], 2],
+    )  # fmt: skip
+    d0 = nx * q[a, 0] + ny * q[a, 1] + nz * q[a, 2]
+    r = 4 * (abs(nx) + abs(ny) + abs(nz))
+    ki, kj, kk = _axes(nx, ny, nz)
     m = 0
     idx = (0, 0, 0)
     for ci in range(cb[ki], cb[3 + ki] + 1):
         for cj in range(cb[kj], cb[3 + kj] + 1):
-            lo, hi = cb[kk], cb[3 + kk]
-            if nk != 0:
-                s_ = n[ki] * (8 * ci + 4) + n[kj] * (8 * cj + 4) + 4 * nk
-                lo_v, hi_v = d0 - r - s_, d0 + r - s_  # 8 · nk · ck within
-                if nk > 0:
-                    lo, hi = max(lo, -((-lo_v) // (8 * nk))), min(hi, hi_v // (8 * nk))
-                else:
-                    lo, hi = max(lo, -((-hi_v) // (-8 * nk))), min(hi, (-lo_v) // (-8 * nk))
+            lo, hi = _slab(nx, ny, nz, d0 - r, d0 + r, ci, cj, cb[kk], cb[3 + kk], _CELL, _CELL // 2)
             for ck in range(lo, hi + 1):
                 if m == cells.shape[0]:
                     return -1
@@ -321,16 +329,10 @@ def _bucket(
 def _holds_point(p: Int64Array, x: int, y: int, z: int) -> bool:  # pragma: no cover
     # Whether the closed, non-flat triangle p (3 × 3) holds the point: in its plane, and on the inner side
     # of each edge in the projection that drops the normal's largest coordinate.
-    ux, uy, uz = p[1, 0] - p[0, 0], p[1, 1] - p[0, 1], p[1, 2] - p[0, 2]
-    vx, vy, vz = p[2, 0] - p[0, 0], p[2, 1] - p[0, 1], p[2, 2] - p[0, 2]
-    n0, n1, n2 = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    n0, n1, n2 = _normal_of(p)
     if n0 * (x - p[0, 0]) + n1 * (y - p[0, 1]) + n2 * (z - p[0, 2]) != 0:
         return False
-    i, j = 1, 2
-    if abs(n1) >= abs(n0) and abs(n1) >= abs(n2):
-        i, j = 2, 0
-    elif abs(n2) >= abs(n0) and abs(n2) >= abs(n1):
-        i, j = 0, 1
+    i, j, _k = _axes(n0, n1, n2)
     pt = (x, y, z)
     pos = 0
     neg = 0
@@ -354,32 +356,30 @@ def _cube_range(pts: Int64Array, lo_i: Int64Array, hi_i: Int64Array) -> None:  #
 
 @njit(cache=True)
 def _tet_centres(
-    q: Int64Array, apex: int, p: int, r: int, s: int, out: Int64Array
+    q: Int64Array,
+    apex: int,
+    p: int,
+    r: int,
+    s: int,
+    out: Int64Array,
+    lo: Int64Array,
+    hi: Int64Array,
+    idx: Int64Array,
 ) -> int:  # pragma: no cover
     # The voxels whose centre + τ lies in the non-flat tetrahedron (apex, p, r, s), into out (indices); their
     # number, or −1 when out is full. Only the slab between the plane of p r s and its parallel through the
     # apex is scanned.
-    ux, uy, uz = q[r, 0] - q[p, 0], q[r, 1] - q[p, 1], q[r, 2] - q[p, 2]
-    wx, wy, wz = q[s, 0] - q[p, 0], q[s, 1] - q[p, 1], q[s, 2] - q[p, 2]
-    nx, ny, nz = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+    nx, ny, nz = _normal(q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[s, 0], q[s, 1], q[s, 2])
     dp = nx * q[p, 0] + ny * q[p, 1] + nz * q[p, 2]
     da = nx * q[apex, 0] + ny * q[apex, 1] + nz * q[apex, 2]
-    lo = np.empty(3, np.int64)
-    hi = np.empty(3, np.int64)
-    idx = np.empty(3, np.int64)
     for d in range(3):
         lo[d] = (min(q[apex, d], q[p, d], q[r, d], q[s, d]) + 3) // 4
         hi[d] = max(q[apex, d], q[p, d], q[r, d], q[s, d]) // 4
-    if abs(nz) >= abs(nx) and abs(nz) >= abs(ny):
-        ki, kj, kk = 0, 1, 2
-    elif abs(ny) >= abs(nx):
-        ki, kj, kk = 2, 0, 1
-    else:
-        ki, kj, kk = 1, 2, 0
+    ki, kj, kk = _axes(nx, ny, nz)
     m = 0
     for ii in range(lo[ki], hi[ki] + 1):
         for jj in range(lo[kj], hi[kj] + 1):
-            k0, k1 = _slab(nx, ny, nz, min(dp, da), max(dp, da), ii, jj, lo[kk], hi[kk])
+            k0, k1 = _slab(nx, ny, nz, min(dp, da), max(dp, da), ii, jj, lo[kk], hi[kk], 4, 0)
             for kx in range(k0, k1 + 1):
                 idx[ki], idx[kj], idx[kk] = ii, jj, kx
                 if _tet_holds(q, apex, p, r, s, 4 * idx[0], 4 * idx[1], 4 * idx[2]):
@@ -396,22 +396,15 @@ def _centre_on(
 ) -> bool:  # pragma: no cover
     # Whether a voxel centre (4·i in these units) lies on the closed triangle pts: only the centres of its
     # box in its plane are tried.
-    ux, uy, uz = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
-    vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
-    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    nx, ny, nz = _normal_of(pts)
     d0 = nx * pts[0, 0] + ny * pts[0, 1] + nz * pts[0, 2]
     for d in range(3):
         lo_i[d] = (min(pts[0, d], pts[1, d], pts[2, d]) + 3) // 4
         hi_i[d] = max(pts[0, d], pts[1, d], pts[2, d]) // 4
-    if abs(nz) >= abs(nx) and abs(nz) >= abs(ny):
-        ki, kj, kk = 0, 1, 2
-    elif abs(ny) >= abs(nx):
-        ki, kj, kk = 2, 0, 1
-    else:
-        ki, kj, kk = 1, 2, 0
+    ki, kj, kk = _axes(nx, ny, nz)
     for ii in range(lo_i[ki], hi_i[ki] + 1):
         for jj in range(lo_i[kj], hi_i[kj] + 1):
-            k0, k1 = _slab(nx, ny, nz, d0, d0, ii, jj, lo_i[kk], hi_i[kk])
+            k0, k1 = _slab(nx, ny, nz, d0, d0, ii, jj, lo_i[kk], hi_i[kk], 4, 0)
             for kx in range(k0, k1 + 1):
                 idx[ki], idx[kj], idx[kk] = ii, jj, kx
                 if _holds_point(pts, 4 * idx[0], 4 * idx[1], 4 * idx[2]):
@@ -421,18 +414,25 @@ def _centre_on(
 
 @njit(cache=True)
 def _slab(
-    nx: int, ny: int, nz: int, lo_val: int, hi_val: int, i: int, j: int, lo_k: int, hi_k: int
+    nx: int,
+    ny: int,
+    nz: int,
+    lo_val: int,
+    hi_val: int,
+    i: int,
+    j: int,
+    lo_k: int,
+    hi_k: int,
+    step: int,
+    offset: int,
 ) -> tuple[int, int]:  # pragma: no cover - compiled
-    # The voxel indices i_k along the normal's largest axis k, within [lo_k, hi_k], whose centre 4·i (with the
-    # other two indices i, j, in axis order) has lo_val ≤ n · (4 i) ≤ hi_val: the scans below visit the
-    # slab a triangle or a tetrahedron lies in, not its whole box.
-    ax, ay, az = abs(nx), abs(ny), abs(nz)
-    if az >= ax and az >= ay:
-        s, nk = 4 * (nx * i + ny * j), 4 * nz
-    elif ay >= ax:
-        s, nk = 4 * (nz * i + nx * j), 4 * ny
-    else:
-        s, nk = 4 * (ny * i + nz * j), 4 * nx
+    # The indices i_k along the normal's largest axis k (see _axes), within [lo_k, hi_k], of the points
+    # step · (i, j, i_k) + offset (voxel centres: step 4, offset 0; grid cells' centres: 8, 4) with
+    # lo_val ≤ n · point ≤ hi_val: the scans visit the slab a triangle or a tetrahedron lies in, not its box.
+    n = (nx, ny, nz)
+    ki, kj, kk = _axes(nx, ny, nz)
+    s = n[ki] * (step * i + offset) + n[kj] * (step * j + offset) + n[kk] * offset
+    nk = step * n[kk]
     if nk == 0:
         return (lo_k, hi_k) if lo_val <= s <= hi_val else (1, 0)
     a, b = lo_val - s, hi_val - s  # nk · i_k in [a, b]
@@ -449,6 +449,7 @@ def _meets_forbidden(
     hi_i: Int64Array,
     clo: Int64Array,
     chi: Int64Array,
+    idx: Int64Array,
 ) -> bool:  # pragma: no cover - compiled
     # Whether the closed triangle pts meets the closed cube [4i − 2, 4i + 2]³ of a forbidden voxel (or leaves
     # the array). Only the voxels of its box whose cube meets its plane's slab are tested.
@@ -456,23 +457,13 @@ def _meets_forbidden(
     _cube_range(pts, lo_i, hi_i)
     if min(lo_i[0], lo_i[1], lo_i[2]) < 0 or hi_i[0] >= fx or hi_i[1] >= fy or hi_i[2] >= fz:
         return True
-    ux, uy, uz = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
-    vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
-    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    nx, ny, nz = _normal_of(pts)
     d0 = nx * pts[0, 0] + ny * pts[0, 1] + nz * pts[0, 2]
     r = 2 * (abs(nx) + abs(ny) + abs(nz))  # the cube's reach along n
-    ax, ay, az = abs(nx), abs(ny), abs(nz)
-    # axes (i, j, k): k the normal's largest, i and j the other two in the order _slab takes them
-    if az >= ax and az >= ay:
-        ki, kj, kk = 0, 1, 2
-    elif ay >= ax:
-        ki, kj, kk = 2, 0, 1
-    else:
-        ki, kj, kk = 1, 2, 0
-    idx = np.empty(3, np.int64)
+    ki, kj, kk = _axes(nx, ny, nz)
     for ii in range(lo_i[ki], hi_i[ki] + 1):
         for jj in range(lo_i[kj], hi_i[kj] + 1):
-            k0, k1 = _slab(nx, ny, nz, d0 - r, d0 + r, ii, jj, lo_i[kk], hi_i[kk])
+            k0, k1 = _slab(nx, ny, nz, d0 - r, d0 + r, ii, jj, lo_i[kk], hi_i[kk], 4, 0)
             for kx in range(k0, k1 + 1):
                 idx[ki], idx[kj], idx[kk] = ii, jj, kx
                 if forbidden[idx[2], idx[1], idx[0]]:
@@ -553,9 +544,9 @@ def _turns_too_far(
 def _float_normal(
     a: Int64Array, b: Int64Array, c: Int64Array
 ) -> tuple[float, float, float]:  # pragma: no cover
-    ux, uy, uz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
-    vx, vy, vz = c[0] - a[0], c[1] - a[1], c[2] - a[2]
-    nx, ny, nz = float(uy * vz - uz * vy), float(uz * vx - ux * vz), float(ux * vy - uy * vx)
+    # The unit normal in floats (for the shape heuristics only).
+    ix, iy, iz = _normal(a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2])
+    nx, ny, nz = float(ix), float(iy), float(iz)
     m = (nx * nx + ny * ny + nz * nz) ** 0.5
     if m == 0.0:
         return 0.0, 0.0, 0.0
@@ -566,19 +557,10 @@ def _float_normal(
 def _flatter_across(q: Int64Array, a: int, b: int, c: int, d: int) -> bool:  # pragma: no cover - compiled
     # Whether triangles (c, a, d), (d, b, c) bend less than (a, b, c), (b, a, d): the cosine between the two
     # normals grows (a heuristic: which flips to try; each is then proved like a collapse).
-    def normal(i: int, j: int, k: int) -> tuple[float, float, float]:
-        ux, uy, uz = q[j, 0] - q[i, 0], q[j, 1] - q[i, 1], q[j, 2] - q[i, 2]
-        vx, vy, vz = q[k, 0] - q[i, 0], q[k, 1] - q[i, 1], q[k, 2] - q[i, 2]
-        nx, ny, nz = float(uy * vz - uz * vy), float(uz * vx - ux * vz), float(ux * vy - uy * vx)
-        m = (nx * nx + ny * ny + nz * nz) ** 0.5
-        if m == 0.0:
-            return 0.0, 0.0, 0.0
-        return nx / m, ny / m, nz / m
-
-    n1 = normal(a, b, c)
-    n2 = normal(b, a, d)
-    m1 = normal(c, a, d)
-    m2 = normal(d, b, c)
+    n1 = _float_normal(q[a], q[b], q[c])
+    n2 = _float_normal(q[b], q[a], q[d])
+    m1 = _float_normal(q[c], q[a], q[d])
+    m2 = _float_normal(q[d], q[b], q[c])
     if m1 == (0.0, 0.0, 0.0) or m2 == (0.0, 0.0, 0.0):
         return False
     before = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]
@@ -621,11 +603,9 @@ def _change_is_right(
         for c in range(3):
             for d in range(3):
                 pts[c, d] = q[t[new[i], c], d]
-        ux, uy, uz = pts[1, 0] - pts[0, 0], pts[1, 1] - pts[0, 1], pts[1, 2] - pts[0, 2]
-        vx, vy, vz = pts[2, 0] - pts[0, 0], pts[2, 1] - pts[0, 1], pts[2, 2] - pts[0, 2]
-        if uy * vz - uz * vy == 0 and uz * vx - ux * vz == 0 and ux * vy - uy * vx == 0:
+        if _normal_of(pts) == (0, 0, 0):
             return False, epoch
-        if _meets_forbidden(pts, forbidden, s.lo_i, s.hi_i, s.clo, s.chi):
+        if _meets_forbidden(pts, forbidden, s.lo_i, s.hi_i, s.clo, s.chi, s.idx):
             return False, epoch
     # 2. The centres that change side: each swept tetrahedron adds its sign to the centres it holds (the
     # winding number of the old star minus the new one, coned from the apex). None may under gauss, nor lie
@@ -641,7 +621,7 @@ def _change_is_right(
         )  # fmt: skip
         if vol == 0:
             continue
-        m = _tet_centres(q, apex, p, r, w, found)
+        m = _tet_centres(q, apex, p, r, w, found, s.lo_i, s.hi_i, s.idx)
         if m < 0:
             touched = seen.shape[0] + 1
             break
@@ -1102,7 +1082,13 @@ def decimate(
     mask, origin : A.
     model : {"gauss", "standard", "supercover"}
     max_passes : int
-        Passes over the vertices at most (each pass stops early when nothing more goes).
+        Passes of collapses over the vertices at most, per round (a round stops when a pass removes nothing).
+    max_collapses : int
+        Collapses at most (−1: no limit); to look at R part way, when debugging a check.
+    max_rounds : int
+        Rounds of edge flips at most, each followed by collapses again.
+    min_cos : float
+        A collapse may turn a triangle's normal by acos(min_cos) at most (:data:`MIN_COS`).
 
     Returns
     -------
