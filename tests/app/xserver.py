@@ -51,11 +51,18 @@ def start_xvfb(
 
 
 def stop(proc: subprocess.Popen[bytes]) -> None:
-    """Stop a server started by :func:`start_xvfb`."""
+    """Stop a server started by :func:`start_xvfb`.
+
+    Under the start lock too: a stopping Xvfb removes its display's lock file before it lets go of its
+    sockets, and a server started in between took the same number and found it "already running" (the
+    real-display test, once in CI, while the 3D views' server was stopping on another worker).
+    """
     if proc.poll() is None:
-        proc.send_signal(signal.SIGTERM)
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(10)
+        with open(START_LOCK, "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            proc.send_signal(signal.SIGTERM)
+            try:
+                proc.wait(10)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait(10)
