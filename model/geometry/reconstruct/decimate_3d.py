@@ -737,9 +737,365 @@ def _neighbours(
     return n
 
 
+#: The moves, each with its own flag of the vertices to try again (their star changed since it failed there):
+#: half-edge collapses, collapses onto a point, moves of a vertex.
+_HALF, _POINT, _MOVE = 0, 1, 2
+#: What :func:`_collapse` returns: kept or not, the star pools and their size, the bucket pools and their
+#: size, the epoch.
+_Collapsed = tuple[bool, Int64Array, Int64Array, int, Int64Array, Int64Array, int, int]
+
+
+class _Buffers(NamedTuple):
+    """The working arrays of one collapse, allocated once per run."""
+
+    star_u: Int64Array  # (256,): the live triangles at u
+    star_v: Int64Array  # (256,): the live triangles at v
+    moved: Int64Array  # (512,): the triangles a collapse keeps, with new corners
+    old: Int64Array  # (512, 3): their corners before it (to undo a refused one)
+    gone: Int64Array  # (2,): the two triangles of the edge
+    nbr_u: Int64Array  # (256,)
+    nbr_v: Int64Array  # (256,)
+    tets: Int64Array  # (512, 4): the tetrahedra (apex, old triangle) swept
+    blo: Int64Array  # (3,): the box of everything a change touches
+    bhi: Int64Array  # (3,)
+    shell: Int64Array  # (triangles,): the shell of each triangle (a change keeps every triangle in its shell)
+    volume: Int64Array  # (shells,): six times each shell's signed volume, in the integer units
+
+
+@njit(cache=True)
+def _star(
+    vhead: Int64Array, s_next: Int64Array, s_tri: Int64Array, alive: BoolArray, t: Int64Array, x: int,
+    out: Int64Array,
+) -> int:  # fmt: skip  # pragma: no cover - compiled
+    # The distinct live triangles at vertex x into out (an entry may be stale or repeated: a triangle that
+    # left x and came back has two); −1 beyond out's size.
+    n = 0
+    e = vhead[x]
+    while e >= 0:
+        k = s_tri[e]
+        e = s_next[e]
+        if not alive[k] or (t[k, 0] != x and t[k, 1] != x and t[k, 2] != x):
+            continue
+        known = False
+        for j in range(n):
+            if out[j] == k:
+                known = True
+                break
+        if known:
+            continue
+        if n == out.shape[0]:
+            return -1
+        out[n] = k
+        n += 1
+    return n
+
+
+@njit(cache=True, inline="always")
+def _holds_vertex(t: Int64Array, k: int, x: int) -> bool:  # pragma: no cover - compiled
+    return t[k, 0] == x or t[k, 1] == x or t[k, 2] == x
+
+
+@njit(cache=True)
+def _shells(q: Int64Array, t: Int64Array) -> tuple[Int64Array, Int64Array]:  # pragma: no cover - compiled
+    # The shell of each triangle (the components of the vertex graph: shells share no vertex) and six times
+    # each shell's signed volume (Σ a · (b × c) over its triangles).
+    parent = np.arange(q.shape[0])
+    for k in range(t.shape[0]):
+        for c in range(1, 3):
+            x, y = t[k, 0], t[k, c]
+            while parent[x] != x:
+                parent[x] = parent[parent[x]]
+                x = parent[x]
+            while parent[y] != y:
+                parent[y] = parent[parent[y]]
+                y = parent[y]
+            parent[max(x, y)] = min(x, y)
+    ids = np.full(q.shape[0], -1, np.int64)
+    n = 0
+    shell = np.empty(t.shape[0], np.int64)
+    for k in range(t.shape[0]):
+        x = t[k, 0]
+        while parent[x] != x:
+            x = parent[x]
+        if ids[x] < 0:
+            ids[x] = n
+            n += 1
+        shell[k] = ids[x]
+    volume = np.zeros(n, np.int64)
+    for k in range(t.shape[0]):
+        a, b, c = t[k, 0], t[k, 1], t[k, 2]
+        volume[shell[k]] += _det(
+            0, 0, 0, q[a, 0], q[a, 1], q[a, 2], q[b, 0], q[b, 1], q[b, 2], q[c, 0], q[c, 1], q[c, 2]
+        )
+    return shell, volume
+
+
+@njit(cache=True)
+def _volume_after(q: Int64Array, tets: Int64Array, n_tets: int, before: int) -> int:  # pragma: no cover
+    # Six times the shell's signed volume after a change that swept these tetrahedra (old surface minus new,
+    # coned from the apex), or 0 when its sign changes or it vanishes: the checks of centres, cubes and
+    # intersections do not see a small shell that holds no centre turn inside out (under the covers its
+    # centres may leave), its volume's sign does — an embedded closed surface faces all out or all in.
+    swept = 0
+    for j in range(n_tets):
+        a, p, r, w = tets[j, 0], tets[j, 1], tets[j, 2], tets[j, 3]
+        swept += _det(
+            q[a, 0], q[a, 1], q[a, 2], q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[w, 0], q[w, 1],
+            q[w, 2],
+        )  # fmt: skip
+    after = before - swept
+    return after if (after > 0) == (before > 0) and after != 0 else 0
+
+
+@njit(cache=True)
+def _collapse(
+    u: int, v: int, w: int, q: Int64Array, qf: FloatArray, t: Int64Array, alive: BoolArray,
+    vdead: BoolArray, dirty: BoolArray, vhead: Int64Array, s_next: Int64Array,
+    s_tri: Int64Array, ns: int, ghead: Int64Array, g_next: Int64Array, g_tri: Int64Array, ng: int, gx: int,
+    gy: int, gz: int, stamp: Int64Array, epoch: int, b: _Buffers, covers: bool, in_a: BoolArray,
+    inside: BoolArray, forbidden: BoolArray, sc: _Scratch, min_cos: float,
+) -> _Collapsed:  # fmt: skip  # pragma: no cover
+    # Collapse the edge u v onto w, and keep it only if it is right: w = v (a half-edge collapse: u goes, its
+    # triangles take v) or a new vertex whose q is set (u and v both go). The two triangles of the edge go;
+    # every other triangle at u or v takes w. The volume swept is coned from w over the old triangles. With
+    # v = u, u moves to the new vertex w (no triangle goes).
+    fail = (False, s_next, s_tri, ns, g_next, g_tri, ng, epoch)
+    n_u = _star(vhead, s_next, s_tri, alive, t, u, b.star_u)
+    n_v = _star(vhead, s_next, s_tri, alive, t, v, b.star_v)
+    if n_u < 0 or n_v < 0:
+        return fail
+    moved, gone = b.moved, b.gone
+    n_gone = 0
+    n_moved = 0
+    relocate = v == u
+    for i in range(n_u):
+        k = b.star_u[i]
+        if not relocate and _holds_vertex(t, k, v):
+            if n_gone == 2:
+                return fail
+            gone[n_gone] = k
+            n_gone += 1
+        else:
+            moved[n_moved] = k
+            n_moved += 1
+    if n_gone != (0 if relocate else 2):
+        return fail
+    if w != v and not relocate:
+        for i in range(n_v):
+            k = b.star_v[i]
+            if not _holds_vertex(t, k, u):
+                moved[n_moved] = k
+                n_moved += 1
+    # Link condition: the common neighbours of u and v are the two opposite vertices.
+    n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, b.nbr_u)
+    n_nv = _neighbours(vhead, s_next, s_tri, alive, t, v, b.nbr_v)
+    if n_nu < 0 or n_nv < 0:
+        return fail
+    common = 0 if relocate else 2
+    for i in range(n_nu if not relocate else 0):
+        x = b.nbr_u[i]
+        if x == v:
+            continue
+        for j in range(n_nv):
+            if b.nbr_v[j] == x:
+                common -= 1
+                break
+    if common != 0:
+        return fail
+    # The box of the change (u, v, w and every corner of the moved triangles), and its extent.
+    blo, bhi = b.blo, b.bhi
+    for d in range(3):
+        blo[d] = min(q[u, d], q[v, d], q[w, d])
+        bhi[d] = max(q[u, d], q[v, d], q[w, d])
+    for i in range(n_moved):
+        for c in range(3):
+            x = t[moved[i], c]
+            for d in range(3):
+                blo[d] = min(blo[d], q[x, d])
+                bhi[d] = max(bhi[d], q[x, d])
+    if max(bhi[0] - blo[0], bhi[1] - blo[1], bhi[2] - blo[2]) > _MAX_EXTENT:
+        return fail
+    # No new triangle turns over (a heuristic of shape: fold-overs make spikes).
+    for i in range(n_moved):
+        k = moved[i]
+        if _turns_too_far(q, t, k, u if _holds_vertex(t, k, u) else v, w, min_cos):
+            return fail
+    # The swept tetrahedra (w, old triangle) — those at w are flat and count nothing — then the collapse,
+    # made tentatively, is checked.
+    tets = b.tets
+    n_tets = 0
+    for i in range(n_moved + n_gone * (w != v)):
+        k = moved[i] if i < n_moved else gone[i - n_moved]
+        tets[n_tets, 0] = w
+        tets[n_tets, 1], tets[n_tets, 2], tets[n_tets, 3] = t[k, 0], t[k, 1], t[k, 2]
+        n_tets += 1
+    volume = _volume_after(q, tets, n_tets, b.volume[b.shell[moved[0]]])
+    if volume == 0:
+        return fail
+    for i in range(n_moved):
+        k = moved[i]
+        for c in range(3):
+            b.old[i, c] = t[k, c]
+            if t[k, c] == u or t[k, c] == v:
+                t[k, c] = w
+    for i in range(n_gone):
+        alive[gone[i]] = False
+    ok, epoch = _change_is_right(
+        q, qf, t, alive, moved, n_moved, tets, n_tets, blo, bhi, covers, in_a, inside, forbidden, sc, ghead,
+        g_next, g_tri, gx, gy, gz, stamp, epoch,
+    )  # fmt: skip
+    if not ok:
+        for i in range(n_moved):
+            for c in range(3):
+                t[moved[i], c] = b.old[i, c]
+        for i in range(n_gone):
+            alive[gone[i]] = True
+        return (False, s_next, s_tri, ns, g_next, g_tri, ng, epoch)
+    # Kept: w's star and the buckets learn the moved triangles.
+    b.volume[b.shell[moved[0]]] = volume
+    vdead[u] = True
+    vdead[v] = w != v
+    vdead[w] = False
+    for i in range(n_moved):
+        k = moved[i]
+        for c in range(3):
+            dirty[t[k, c], :] = True
+        if ns == s_next.shape[0]:
+            s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
+            s_tri = np.concatenate((s_tri, np.empty(ns, np.int64)))
+        s_next[ns] = vhead[w]
+        s_tri[ns] = k
+        vhead[w] = ns
+        ns += 1
+        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, sc.cb, sc.cells)
+    return (True, s_next, s_tri, ns, g_next, g_tri, ng, epoch)
+
+
+@njit(cache=True)
+def _point_for(
+    q: Int64Array, t: Int64Array, b: _Buffers, n_u: int, n_v: int, u: int, v: int, lo: Int64Array,
+    hi: Int64Array, out: Int64Array,
+) -> None:  # fmt: skip  # pragma: no cover - compiled
+    # Where the edge u v might collapse to: the point nearest, in squares, to the planes of the triangles at
+    # u and v (their quadric), held near the edge's midpoint where those planes leave it free, rounded to
+    # the integer units and clamped to the box lo..hi of the stars. A heuristic of shape (the collapse is
+    # then proved like any other), so plain floats. Into out.
+    m = np.zeros((3, 3))
+    r = np.zeros(3)
+    for i in range(n_u + n_v):
+        k = b.star_u[i] if i < n_u else b.star_v[i - n_u]
+        if i >= n_u and _holds_vertex(t, k, u):
+            continue  # the edge's two triangles, counted once
+        a = t[k, 0]
+        nx, ny, nz = _float_normal(q[a], q[t[k, 1]], q[t[k, 2]])
+        n = (nx, ny, nz)
+        d = nx * q[a, 0] + ny * q[a, 1] + nz * q[a, 2]
+        for i2 in range(3):
+            r[i2] += n[i2] * d
+            for j2 in range(3):
+                m[i2, j2] += n[i2] * n[j2]
+    lam = 1e-3
+    for i2 in range(3):
+        m[i2, i2] += lam
+        r[i2] += lam * 0.5 * (q[u, i2] + q[v, i2])
+    det = (
+        m[0, 0] * (m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1])
+        - m[0, 1] * (m[1, 0] * m[2, 2] - m[1, 2] * m[2, 0])
+        + m[0, 2] * (m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0])
+    )
+    for i2 in range(3):
+        c = m.copy()
+        for j2 in range(3):
+            c[j2, i2] = r[j2]
+        di = (
+            c[0, 0] * (c[1, 1] * c[2, 2] - c[1, 2] * c[2, 1])
+            - c[0, 1] * (c[1, 0] * c[2, 2] - c[1, 2] * c[2, 0])
+            + c[0, 2] * (c[1, 0] * c[2, 1] - c[1, 1] * c[2, 0])
+        )
+        out[i2] = min(max(int(np.rint(di / det)), lo[i2]), hi[i2])
+
+
+@njit(cache=True)
+def _quadric(
+    q: Int64Array, t: Int64Array, b: _Buffers, n_u: int, n_v: int, u: int, p: Int64Array
+) -> float:  # pragma: no cover - compiled
+    # The sum of the squared distances from p to the planes of the triangles at u and v (floats: an order of
+    # candidates, not a check).
+    cost = 0.0
+    for i in range(n_u + n_v):
+        k = b.star_u[i] if i < n_u else b.star_v[i - n_u]
+        if i >= n_u and _holds_vertex(t, k, u):
+            continue
+        a = t[k, 0]
+        nx, ny, nz = _float_normal(q[a], q[t[k, 1]], q[t[k, 2]])
+        e = nx * (p[0] - q[a, 0]) + ny * (p[1] - q[a, 1]) + nz * (p[2] - q[a, 2])
+        cost += e * e
+    return cost
+
+
+@njit(cache=True)
+def _bend(
+    q: Int64Array, t: Int64Array, alive: BoolArray, vhead: Int64Array, s_next: Int64Array, s_tri: Int64Array,
+    b: _Buffers, n_u: int, u: int, p: Int64Array,
+) -> float:  # fmt: skip  # pragma: no cover - compiled
+    # How much the surface bends at u's star with u at p: the number of the star's triangle edges whose two
+    # triangles are not coplanar (exactly), plus a thousandth of Σ (1 − cos) over them (a heuristic of
+    # shape: a move that makes faces coplanar opens collapses; one that only rounds a corner does not).
+    bent = 0
+    total = 0.0
+    pts = np.empty((3, 3), np.int64)
+    for i in range(n_u):
+        k = b.star_u[i]
+        for c in range(3):
+            for d in range(3):
+                pts[c, d] = p[d] if t[k, c] == u else q[t[k, c], d]
+        m1 = _normal_of(pts)
+        n1 = _float_normal(pts[0], pts[1], pts[2])
+        for c in range(3):
+            x, y = t[k, c], t[k, (c + 1) % 3]
+            e = vhead[x]
+            o = -1
+            while e >= 0 and o < 0:
+                k2 = s_tri[e]
+                e = s_next[e]
+                if k2 != k and alive[k2]:
+                    for j in range(3):
+                        if t[k2, j] == y and t[k2, (j + 1) % 3] == x:
+                            o = k2
+            if o < 0:
+                continue
+            for c2 in range(3):
+                for d in range(3):
+                    pts[c2, d] = p[d] if t[o, c2] == u else q[t[o, c2], d]
+            m2 = _normal_of(pts)
+            n2 = _float_normal(pts[0], pts[1], pts[2])
+            cx = m1[1] * m2[2] - m1[2] * m2[1]
+            cy = m1[2] * m2[0] - m1[0] * m2[2]
+            cz = m1[0] * m2[1] - m1[1] * m2[0]
+            if cx != 0 or cy != 0 or cz != 0 or m1[0] * m2[0] + m1[1] * m2[1] + m1[2] * m2[2] <= 0:
+                bent += 1
+            total += 1.0 - (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2])
+    return bent + 1e-3 * total
+
+
+@njit(cache=True)
+def _sort_candidates(
+    cand: Int64Array, key: FloatArray, pts: Int64Array, n: int
+) -> None:  # pragma: no cover - compiled
+    # The first n candidates by key, then by index (insertion sort: a vertex has a few neighbours).
+    for i in range(1, n):
+        j = i
+        while j > 0 and (key[j - 1] > key[j] or (key[j - 1] == key[j] and cand[j - 1] > cand[j])):
+            key[j - 1], key[j] = key[j], key[j - 1]
+            cand[j - 1], cand[j] = cand[j], cand[j - 1]
+            for d in range(3):
+                pts[j - 1, d], pts[j, d] = pts[j, d], pts[j - 1, d]
+            j -= 1
+
+
 @njit(cache=True)
 def _decimate(
-    q: Int64Array,
+    q0: Int64Array,
     tri: Int64Array,
     in_a: BoolArray,
     forbidden: BoolArray,
@@ -748,22 +1104,29 @@ def _decimate(
     max_collapses: int,
     max_rounds: int,
     min_cos: float,
-) -> tuple[Int64Array, BoolArray, BoolArray, int]:  # pragma: no cover - compiled
-    nv = q.shape[0]
+) -> tuple[Int64Array, Int64Array, BoolArray, BoolArray, int]:  # pragma: no cover - compiled
+    nv = q0.shape[0]
     nt = tri.shape[0]
+    # Room for the new vertices: a collapse onto a point removes two vertices and adds one, a move replaces
+    # one (when the room is used up, neither is tried any more).
+    cap = 4 * nv + 16
+    q = np.zeros((cap, 3), np.int64)
+    q[:nv] = q0
     qf = q.astype(np.float64)  # the exact predicates of the pair test read floats; these are small integers
     t = tri.copy()
     alive = np.ones(nt, np.bool_)
-    vdead = np.zeros(nv, np.bool_)
-    dirty = np.ones(nv, np.bool_)  # whose star changed since it last failed to go
+    vdead = np.ones(cap, np.bool_)
+    vdead[:nv] = False
+    # Whose star changed since a move last failed at it: per move (_HALF, _POINT, _MOVE).
+    dirty = np.ones((cap, 3), np.bool_)
     inside = in_a.copy()  # the side of every centre: the safety net holds exactly the centres of A
     covers = model != GAUSS
 
     # Vertex stars: linked lists of triangle entries; stale ones (dead, or no longer at the vertex) skipped.
-    vhead = np.full(nv, -1, np.int64)
-    cap = 3 * nt + 16
-    s_next = np.empty(cap, np.int64)
-    s_tri = np.empty(cap, np.int64)
+    vhead = np.full(cap, -1, np.int64)
+    s_cap = 3 * nt + 16
+    s_next = np.empty(s_cap, np.int64)
+    s_tri = np.empty(s_cap, np.int64)
     ns = 0
     for k in range(nt):
         for c in range(3):
@@ -773,10 +1136,11 @@ def _decimate(
             vhead[w] = ns
             ns += 1
 
-    # Triangle buckets on a uniform grid (cells of _CELL units), also linked lists.
-    gx = q[:, 0].max() // _CELL + 1
-    gy = q[:, 1].max() // _CELL + 1
-    gz = q[:, 2].max() // _CELL + 1
+    # Triangle buckets on a uniform grid (cells of _CELL units), also linked lists. New vertices stay in the
+    # box of their stars, so inside this grid.
+    gx = q0[:, 0].max() // _CELL + 1
+    gy = q0[:, 1].max() // _CELL + 1
+    gz = q0[:, 2].max() // _CELL + 1
     ghead = np.full(gx * gy * gz, -1, np.int64)
     g_next = np.empty(4 * nt + 16, np.int64)
     g_tri = np.empty(4 * nt + 16, np.int64)
@@ -788,14 +1152,9 @@ def _decimate(
 
     stamp = np.zeros(nt, np.int64)
     epoch = 0
-    star = np.empty(256, np.int64)
-    moved = np.empty(256, np.int64)
-    gone = np.empty(2, np.int64)
-    nbr_u = np.empty(256, np.int64)
-    nbr_v = np.empty(256, np.int64)
-    cand = np.empty(256, np.int64)
-    clen = np.empty(256, np.int64)
-    tets = np.empty((256, 4), np.int64)
+    cand = np.empty(512, np.int64)  # two points per neighbour
+    clen = np.empty(512, np.float64)
+    cpts = np.empty((512, 3), np.int64)
     side = _MAX_EXTENT // 4 + 2
     sc = _Scratch(
         np.empty((3, 3), np.int64),
@@ -811,145 +1170,176 @@ def _decimate(
         np.empty((4096, 3), np.int64),
         np.empty((4096, 3), np.int64),
     )
-    blo = np.empty(3, np.int64)
-    bhi = np.empty(3, np.int64)
+    shell, volume = _shells(q0, t)
+    b = _Buffers(
+        np.empty(256, np.int64),
+        np.empty(256, np.int64),
+        np.empty(512, np.int64),
+        np.empty((512, 3), np.int64),
+        np.empty(2, np.int64),
+        np.empty(256, np.int64),
+        np.empty(256, np.int64),
+        np.empty((512, 4), np.int64),
+        np.empty(3, np.int64),
+        np.empty(3, np.int64),
+        shell,
+        volume,
+    )
+    plo = np.empty(3, np.int64)
+    phi = np.empty(3, np.int64)
+    pt = np.empty(3, np.int64)
     removed = 0
+    n_now = nv  # vertices so far, new ones included
     for round_ in range(max_rounds + 1):
+        # Half-edge collapses: every vertex in turn tries its neighbours, farthest first (a long collapse
+        # straightens the most staircase), passes until one removes nothing.
         changed = True
         passes = 0
         while changed and passes < max_passes:
             changed = False
             passes += 1
-            for u in range(nv):
-                if vdead[u] or not dirty[u] or removed == max_collapses:
+            for u in range(n_now):
+                if vdead[u] or not dirty[u, _HALF] or removed == max_collapses:
                     continue
-                dirty[u] = False
-                # The star of u and its neighbours.
-                n_star = 0
-                e = vhead[u]
-                while e >= 0 and n_star < 256:
-                    k = s_tri[e]
-                    if alive[k] and (t[k, 0] == u or t[k, 1] == u or t[k, 2] == u):
-                        star[n_star] = k
-                        n_star += 1
-                    e = s_next[e]
-                if n_star >= 256:
-                    continue
-                n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, nbr_u)
+                dirty[u, _HALF] = False
+                n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, b.nbr_u)
                 if n_nu < 0:
                     continue
-                # Farthest neighbour first (ties: lowest index).
                 for i in range(n_nu):
-                    w = nbr_u[i]
+                    w = b.nbr_u[i]
                     dx, dy, dz = q[w, 0] - q[u, 0], q[w, 1] - q[u, 1], q[w, 2] - q[u, 2]
                     cand[i] = w
-                    clen[i] = dx * dx + dy * dy + dz * dz
-                for i in range(1, n_nu):
-                    j = i
-                    while j > 0 and (
-                        clen[j - 1] < clen[j] or (clen[j - 1] == clen[j] and cand[j - 1] > cand[j])
-                    ):
-                        clen[j - 1], clen[j] = clen[j], clen[j - 1]
-                        cand[j - 1], cand[j] = cand[j], cand[j - 1]
-                        j -= 1
+                    clen[i] = -float(dx * dx + dy * dy + dz * dz)
+                _sort_candidates(cand, clen, cpts, n_nu)
                 for ci in range(n_nu):
-                    v = cand[ci]
-                    # Triangles of the edge (they go) and the others (they move to v).
-                    n_gone = 0
-                    n_moved = 0
-                    ok = True
-                    for i in range(n_star):
-                        k = star[i]
-                        if t[k, 0] == v or t[k, 1] == v or t[k, 2] == v:
-                            if n_gone == 2:
-                                ok = False
-                                break
-                            gone[n_gone] = k
-                            n_gone += 1
-                        else:
-                            moved[n_moved] = k
-                            n_moved += 1
-                    if not ok or n_gone != 2:
-                        continue
-                    # Link condition: the common neighbours of u and v are the two opposite vertices.
-                    n_nv = _neighbours(vhead, s_next, s_tri, alive, t, v, nbr_v)
-                    if n_nv < 0:
-                        continue
-                    common = 0
-                    for i in range(n_nu):
-                        w = nbr_u[i]
-                        if w == v:
-                            continue
-                        for j in range(n_nv):
-                            if nbr_v[j] == w:
-                                common += 1
-                                break
-                    if common != 2:
-                        continue
-                    # The box of the star (u, v and every vertex of the moved triangles), and its extent.
-                    for d in range(3):
-                        blo[d] = min(q[u, d], q[v, d])
-                        bhi[d] = max(q[u, d], q[v, d])
-                    for i in range(n_moved):
-                        for c in range(3):
-                            w = t[moved[i], c]
-                            for d in range(3):
-                                blo[d] = min(blo[d], q[w, d])
-                                bhi[d] = max(bhi[d], q[w, d])
-                    if max(bhi[0] - blo[0], bhi[1] - blo[1], bhi[2] - blo[2]) > _MAX_EXTENT:
-                        continue
-                    # No new triangle turns over (a heuristic of shape: fold-overs make spikes).
-                    for i in range(n_moved):
-                        if _turns_too_far(q, t, moved[i], u, v, min_cos):
-                            ok = False
-                            break
-                    if not ok:
-                        continue
-                    # The swept tetrahedra (v, u, a, b), (u, a, b) in the old star; then the collapse, made
-                    # tentatively, is checked.
-                    for i in range(n_moved):
-                        k = moved[i]
-                        c0 = 0
-                        while t[k, c0] != u:
-                            c0 += 1
-                        tets[i, 0], tets[i, 1] = v, u
-                        tets[i, 2], tets[i, 3] = t[k, (c0 + 1) % 3], t[k, (c0 + 2) % 3]
-                    for i in range(n_moved):
-                        k = moved[i]
-                        for c in range(3):
-                            if t[k, c] == u:
-                                t[k, c] = v
-                    alive[gone[0]] = False
-                    alive[gone[1]] = False
-                    ok, epoch = _change_is_right(
-                        q, qf, t, alive, moved, n_moved, tets, n_moved, blo, bhi, covers, in_a, inside,
-                        forbidden, sc, ghead, g_next, g_tri, gx, gy, gz, stamp, epoch,
+                    ok, s_next, s_tri, ns, g_next, g_tri, ng, epoch = _collapse(
+                        u, cand[ci], cand[ci], q, qf, t, alive, vdead, dirty, vhead, s_next, s_tri,
+                        ns, ghead, g_next, g_tri, ng, gx, gy, gz, stamp, epoch, b, covers, in_a, inside,
+                        forbidden, sc, min_cos,
                     )  # fmt: skip
-                    if not ok:
-                        for i in range(n_moved):
-                            k = moved[i]
-                            for c in range(3):
-                                if t[k, c] == v:
-                                    t[k, c] = u
-                        alive[gone[0]] = True
-                        alive[gone[1]] = True
+                    if ok:
+                        removed += 1
+                        changed = True
+                        break  # u is gone
+
+        # Collapses onto a point: an edge whose two ends both go, to the point its triangles' planes meet
+        # nearest (rounded to the integer units: a quarter voxel) — off the safety net's lattice, where a
+        # tip or a ridge of the ideal solid lies. Cheapest quadric first; new half-edge collapses follow.
+        pointed = 0
+        changed = True
+        passes = 0
+        while changed and passes < max_passes:
+            changed = False
+            passes += 1
+            for u in range(n_now):
+                if vdead[u] or not dirty[u, _POINT] or removed == max_collapses or n_now == cap:
+                    continue
+                dirty[u, _POINT] = False
+                n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, b.nbr_u)
+                n_su = _star(vhead, s_next, s_tri, alive, t, u, b.star_u)
+                if n_nu < 0 or n_su < 0:
+                    continue
+                n_c = 0
+                for i in range(n_nu):
+                    v = b.nbr_u[i]
+                    n_sv = _star(vhead, s_next, s_tri, alive, t, v, b.star_v)
+                    if n_sv < 0:
                         continue
-                    # Kept: v's star and the buckets learn the moved triangles.
-                    vdead[u] = True
-                    removed += 1
-                    changed = True
-                    for i in range(n_moved):
-                        k = moved[i]
-                        dirty[t[k, 0]] = dirty[t[k, 1]] = dirty[t[k, 2]] = True
-                        if ns == s_next.shape[0]:
-                            s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
-                            s_tri = np.concatenate((s_tri, np.empty(ns, np.int64)))
-                        s_next[ns] = vhead[v]
-                        s_tri[ns] = k
-                        vhead[v] = ns
-                        ns += 1
-                        g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb, cells)
-                    break  # u is gone
+                    for d in range(3):
+                        plo[d] = min(q[u, d], q[v, d])
+                        phi[d] = max(q[u, d], q[v, d])
+                    for j in range(n_su + n_sv):
+                        k = b.star_u[j] if j < n_su else b.star_v[j - n_su]
+                        for c in range(3):
+                            for d in range(3):
+                                plo[d] = min(plo[d], q[t[k, c], d])
+                                phi[d] = max(phi[d], q[t[k, c], d])
+                    # Two points: the quadric's, and the edge's midpoint (where a tip of two vertices
+                    # closes) when it is in the integer units.
+                    _point_for(q, t, b, n_su, n_sv, u, v, plo, phi, pt)
+                    for which in range(2):
+                        if which == 1:
+                            if (q[u, 0] + q[v, 0]) % 2 or (q[u, 1] + q[v, 1]) % 2 or (q[u, 2] + q[v, 2]) % 2:
+                                break
+                            mid = (q[u] + q[v]) // 2
+                            if mid[0] == pt[0] and mid[1] == pt[1] and mid[2] == pt[2]:
+                                break
+                            pt[:] = mid
+                        if (pt[0] == q[u, 0] and pt[1] == q[u, 1] and pt[2] == q[u, 2]) or (
+                            pt[0] == q[v, 0] and pt[1] == q[v, 1] and pt[2] == q[v, 2]
+                        ):
+                            continue  # a half-edge collapse, tried already
+                        cand[n_c] = v
+                        clen[n_c] = _quadric(q, t, b, n_su, n_sv, u, pt)
+                        cpts[n_c, 0], cpts[n_c, 1], cpts[n_c, 2] = pt[0], pt[1], pt[2]
+                        n_c += 1
+                _sort_candidates(cand, clen, cpts, n_c)
+                for ci in range(n_c):
+                    w = n_now
+                    for d in range(3):
+                        q[w, d] = cpts[ci, d]
+                        qf[w, d] = float(cpts[ci, d])
+                    ok, s_next, s_tri, ns, g_next, g_tri, ng, epoch = _collapse(
+                        u, cand[ci], w, q, qf, t, alive, vdead, dirty, vhead, s_next, s_tri, ns,
+                        ghead, g_next, g_tri, ng, gx, gy, gz, stamp, epoch, b, covers, in_a, inside,
+                        forbidden, sc, min_cos,
+                    )  # fmt: skip
+                    if ok:
+                        n_now += 1
+                        removed += 1
+                        pointed += 1
+                        changed = True
+                        break  # u is gone
+        # Moves: a vertex goes to the point nearest, in squares, to its triangles' planes when that is nearer
+        # than where it is (a vertex left off the ridge or the tip of the ideal solid stops the collapses that
+        # would straighten it). One pass per round, each move proved like a collapse.
+        for u in range(n_now):
+            if vdead[u] or not dirty[u, _MOVE] or n_now == cap:
+                continue
+            dirty[u, _MOVE] = False
+            n_su = _star(vhead, s_next, s_tri, alive, t, u, b.star_u)
+            if n_su < 0:
+                continue
+            for d in range(3):
+                plo[d] = q[u, d]
+                phi[d] = q[u, d]
+            for j in range(n_su):
+                for c in range(3):
+                    for d in range(3):
+                        plo[d] = min(plo[d], q[t[b.star_u[j], c], d])
+                        phi[d] = max(phi[d], q[t[b.star_u[j], c], d])
+            here = _bend(q, t, alive, vhead, s_next, s_tri, b, n_su, u, q[u])
+            n_c = 0
+            for dz in range(-1, 2):
+                for dy in range(-1, 2):
+                    for dx in range(-1, 2):
+                        pt[0], pt[1], pt[2] = q[u, 0] + dx, q[u, 1] + dy, q[u, 2] + dz
+                        if (dx == 0 and dy == 0 and dz == 0) or not (
+                            plo[0] <= pt[0] <= phi[0]
+                            and plo[1] <= pt[1] <= phi[1]
+                            and plo[2] <= pt[2] <= phi[2]
+                        ):
+                            continue
+                        there = _bend(q, t, alive, vhead, s_next, s_tri, b, n_su, u, pt)
+                        if there < here - 1e-9:
+                            cand[n_c] = u
+                            clen[n_c] = there
+                            cpts[n_c, 0], cpts[n_c, 1], cpts[n_c, 2] = pt[0], pt[1], pt[2]
+                            n_c += 1
+            _sort_candidates(cand, clen, cpts, n_c)
+            for ci in range(min(n_c, 3)):
+                w = n_now
+                for d in range(3):
+                    q[w, d] = cpts[ci, d]
+                    qf[w, d] = float(cpts[ci, d])
+                ok, s_next, s_tri, ns, g_next, g_tri, ng, epoch = _collapse(
+                    u, u, w, q, qf, t, alive, vdead, dirty, vhead, s_next, s_tri, ns, ghead, g_next, g_tri,
+                    ng, gx, gy, gz, stamp, epoch, b, covers, in_a, inside, forbidden, sc, min_cos,
+                )  # fmt: skip
+                if ok:
+                    n_now += 1
+                    pointed += 1
+                    break
 
         # Edge flips: an edge whose two triangles would be flatter across the other diagonal is flipped, under
         # the same checks as a collapse (the swept volume is the tetrahedron a b c d); new collapses follow.
@@ -960,7 +1350,7 @@ def _decimate(
             if not alive[k]:
                 continue
             for c_ in range(3):
-                a, b, c = t[k, c_], t[k, (c_ + 1) % 3], t[k, (c_ + 2) % 3]
+                a, b_, c = t[k, c_], t[k, (c_ + 1) % 3], t[k, (c_ + 2) % 3]
                 # the triangle across a b: (b, a, d)
                 k2 = -1
                 e = vhead[a]
@@ -969,14 +1359,14 @@ def _decimate(
                     e = s_next[e]
                     if o != k and alive[o]:
                         for j in range(3):
-                            if t[o, j] == b and t[o, (j + 1) % 3] == a:
+                            if t[o, j] == b_ and t[o, (j + 1) % 3] == a:
                                 k2 = o
                                 break
                     if k2 >= 0:
                         break
                 if k2 < 0 or k2 < k:  # each edge once (from its lower triangle)
                     continue
-                d = t[k2, 0] + t[k2, 1] + t[k2, 2] - a - b
+                d = t[k2, 0] + t[k2, 1] + t[k2, 2] - a - b_
                 if d == c:
                     continue
                 # c and d must not be neighbours already
@@ -989,32 +1379,37 @@ def _decimate(
                         adjacent = t[o, 0] == d or t[o, 1] == d or t[o, 2] == d
                 if adjacent:
                     continue
-                if not _flatter_across(q, a, b, c, d):
+                if not _flatter_across(q, a, b_, c, d):
                     continue
                 ext = 0
                 for dd in range(3):
-                    lo_ = min(q[a, dd], q[b, dd], q[c, dd], q[d, dd])
-                    hi_ = max(q[a, dd], q[b, dd], q[c, dd], q[d, dd])
-                    blo[dd] = lo_
-                    bhi[dd] = hi_
+                    lo_ = min(q[a, dd], q[b_, dd], q[c, dd], q[d, dd])
+                    hi_ = max(q[a, dd], q[b_, dd], q[c, dd], q[d, dd])
+                    b.blo[dd] = lo_
+                    b.bhi[dd] = hi_
                     ext = max(ext, hi_ - lo_)
                 if ext > _MAX_EXTENT:
                     continue
                 # tentatively: k = (c, a, d), k2 = (d, b, c); the volume swept is the tetrahedron (d, a, b, c)
                 t[k, 0], t[k, 1], t[k, 2] = c, a, d
-                t[k2, 0], t[k2, 1], t[k2, 2] = d, b, c
-                moved[0], moved[1] = k, k2
-                tets[0, 0], tets[0, 1], tets[0, 2], tets[0, 3] = d, a, b, c
-                ok, epoch = _change_is_right(
-                    q, qf, t, alive, moved, 2, tets, 1, blo, bhi, covers, in_a, inside, forbidden, sc, ghead,
-                    g_next, g_tri, gx, gy, gz, stamp, epoch,
-                )  # fmt: skip
+                t[k2, 0], t[k2, 1], t[k2, 2] = d, b_, c
+                b.moved[0], b.moved[1] = k, k2
+                b.tets[0, 0], b.tets[0, 1], b.tets[0, 2], b.tets[0, 3] = d, a, b_, c
+                volume = _volume_after(q, b.tets, 1, b.volume[b.shell[k]])
+                ok = volume != 0
+                if ok:
+                    ok, epoch = _change_is_right(
+                        q, qf, t, alive, b.moved, 2, b.tets, 1, b.blo, b.bhi, covers, in_a, inside, forbidden,
+                        sc, ghead, g_next, g_tri, gx, gy, gz, stamp, epoch,
+                    )  # fmt: skip
                 if not ok:
-                    t[k, 0], t[k, 1], t[k, 2] = a, b, c
-                    t[k2, 0], t[k2, 1], t[k2, 2] = b, a, d
+                    t[k, 0], t[k, 1], t[k, 2] = a, b_, c
+                    t[k2, 0], t[k2, 1], t[k2, 2] = b_, a, d
                     continue
+                b.volume[b.shell[k]] = volume
                 flipped += 1
-                dirty[a] = dirty[b] = dirty[c] = dirty[d] = True
+                for x in (a, b_, c, d):
+                    dirty[x, :] = True
                 for kk, w in ((k, d), (k2, c)):
                     if ns == s_next.shape[0]:
                         s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
@@ -1025,9 +1420,9 @@ def _decimate(
                     ns += 1
                     g_next, g_tri, ng = _bucket(q, t, kk, ghead, g_next, g_tri, ng, gx, gy, cb, cells)
                 break  # k changed: its other edges wait for the next round
-        if flipped == 0:
+        if flipped == 0 and pointed == 0:
             break
-    return t, alive, vdead, removed
+    return q[:n_now], t, alive, vdead[:n_now], removed
 
 
 #: The 24 rotations of the cube as signed permutations of (x, y, z):
@@ -1105,12 +1500,13 @@ def decimate(
     code = GAUSS if model == "gauss" else COVERS
     in_a = np.pad(mask, PAD)
     forbidden = forbidden_cubes(mask, code == GAUSS)
-    t, alive, vdead, _removed = _decimate(
+    q, t, alive, vdead, _removed = _decimate(
         q, triangles.astype(np.int64), in_a, forbidden, code, max_passes, max_collapses, max_rounds, min_cos
     )
     keep = ~vdead
     index = np.cumsum(keep) - 1
-    return vertices[keep], index[t[alive]]
+    # Four times the offset from the corner, in integers: exact in float64 (quarters of small integers).
+    return q[keep] / 4.0 + corner, index[t[alive]]
 
 
 def compact_r(
