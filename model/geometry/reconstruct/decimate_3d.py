@@ -51,9 +51,10 @@ PAD = 3
 _CELL = 8
 #: A collapse may turn a triangle's normal by acos(MIN_COS) at most (no fold-overs: they make spikes).
 MIN_COS = 0.0
-#: Largest extent of a star, in integer units (32 voxels): it bounds the work of one collapse (the centres of
-#: its box) and keeps every product of three differences far inside int64.
-_MAX_EXTENT = 128
+#: Largest extent of a change's box, in integer units (128 voxels): it bounds the winding numbers' array (the
+#: centres of the box, at most 130³) and keeps every product of three differences far inside 2⁵³ (the pair
+#: test reads floats). A ridge of the ideal solid is one edge only if its box fits.
+_MAX_EXTENT = 512
 
 
 def forbidden_cubes(mask: BoolArray, gauss: bool) -> BoolArray:
@@ -234,7 +235,7 @@ class _Scratch(NamedTuple):
     chi: Int64Array
     cb: Int64Array  # (6,): a box of grid cells
     cells: Int64Array  # grid cells a triangle's plane crosses
-    acc: Int64Array  # (n, n, n): winding numbers over the box of a change
+    acc: Int64Array  # (nz, ny, nx): winding numbers over the box of a change
     seen: Int64Array  # (4096, 3): the cells of acc written
     found: Int64Array  # (4096, 3): the centres in one tetrahedron
     flips: Int64Array  # (4096, 3): the centres that change side
@@ -1152,10 +1153,12 @@ def _decimate(
 
     stamp = np.zeros(nt, np.int64)
     epoch = 0
-    cand = np.empty(512, np.int64)  # two points per neighbour
-    clen = np.empty(512, np.float64)
-    cpts = np.empty((512, 3), np.int64)
+    cand = np.empty(9 * 256, np.int64)  # up to nine points per neighbour
+    clen = np.empty(9 * 256, np.float64)
+    cpts = np.empty((9 * 256, 3), np.int64)
+    # The winding numbers of the centres of a change's box: as big as the largest box, or as A's box.
     side = _MAX_EXTENT // 4 + 2
+    nz, ny, nx = in_a.shape
     sc = _Scratch(
         np.empty((3, 3), np.int64),
         np.empty(3, np.int64),
@@ -1165,7 +1168,7 @@ def _decimate(
         np.empty(3, np.int64),
         cb,
         cells,
-        np.zeros((side, side, side), np.int64),
+        np.zeros((min(side, nz + 2), min(side, ny + 2), min(side, nx + 2)), np.int64),
         np.empty((4096, 3), np.int64),
         np.empty((4096, 3), np.int64),
         np.empty((4096, 3), np.int64),
@@ -1254,21 +1257,31 @@ def _decimate(
                             for d in range(3):
                                 plo[d] = min(plo[d], q[t[k, c], d])
                                 phi[d] = max(phi[d], q[t[k, c], d])
-                    # Two points: the quadric's, and the edge's midpoint (where a tip of two vertices
-                    # closes) when it is in the integer units.
+                    # The points tried: the quadric's, and the edge's midpoint rounded every way to the
+                    # integer units (where a tip or a ridge of two vertices closes).
                     _point_for(q, t, b, n_su, n_sv, u, v, plo, phi, pt)
-                    for which in range(2):
-                        if which == 1:
-                            if (q[u, 0] + q[v, 0]) % 2 or (q[u, 1] + q[v, 1]) % 2 or (q[u, 2] + q[v, 2]) % 2:
-                                break
-                            mid = (q[u] + q[v]) // 2
-                            if mid[0] == pt[0] and mid[1] == pt[1] and mid[2] == pt[2]:
-                                break
-                            pt[:] = mid
+                    first = n_c
+                    for which in range(9):
+                        if which > 0:
+                            twice = False  # an even sum has one rounding: that with up = 0
+                            for d in range(3):
+                                up = (which - 1) >> d & 1
+                                s2 = q[u, d] + q[v, d]
+                                twice = twice or (up == 1 and s2 % 2 == 0)
+                                pt[d] = (s2 + up) // 2
+                            if twice:
+                                continue
                         if (pt[0] == q[u, 0] and pt[1] == q[u, 1] and pt[2] == q[u, 2]) or (
                             pt[0] == q[v, 0] and pt[1] == q[v, 1] and pt[2] == q[v, 2]
                         ):
                             continue  # a half-edge collapse, tried already
+                        known = False
+                        for ci in range(first, n_c):
+                            known = known or (
+                                cpts[ci, 0] == pt[0] and cpts[ci, 1] == pt[1] and cpts[ci, 2] == pt[2]
+                            )
+                        if known:
+                            continue
                         cand[n_c] = v
                         clen[n_c] = _quadric(q, t, b, n_su, n_sv, u, pt)
                         cpts[n_c, 0], cpts[n_c, 1], cpts[n_c, 2] = pt[0], pt[1], pt[2]
