@@ -3,14 +3,17 @@
 Reference: docs/design.md §11, "Continuation R in 3D"; the decision is docs/adr/0064.
 
 R(A) starts as the safety net (:mod:`.safety_net_3d`), which meets items 1–5 of the contract in every model,
-and removes vertices by **half-edge collapses** u → v (u goes, its triangles take v instead). A collapse is
-kept only when every one of these holds, each decided exactly in integers:
+and changes it by three moves (docs/adr/0066): **half-edge collapses** u → v (u goes, its triangles take v
+instead), **collapses onto a point** (u and v both go to a new vertex w) and **moves** of a vertex u to a new
+point w. Every change is the collapse of u v onto w (w = v, w new, or v = u for a move), and the volume it
+sweeps is coned from w over the old triangles. A change is kept only when every one of these holds, each
+decided exactly in integers:
 
 1. **The surface stays a closed 2-manifold of the same topology**: the link condition (u and v have exactly
    the two vertices opposite their edge as common neighbours), and no new triangle is flat.
-2. **No centre of Z³ changes side.** The old and the new star of u bound a closed surface; a point's side
-   changes iff its winding number about that surface is not 0, and coned from v it is the signed count of
-   the tetrahedra (v, u, a, b), (u, a, b) in the old star, that hold the point. A centre is taken as c + τ,
+2. **No centre of Z³ changes side.** The old and the new triangles bound a closed surface; a point's side
+   changes iff its winding number about that surface is not 0, and coned from w it is the signed count of
+   the tetrahedra (w, a, b, c), (a, b, c) an old triangle, that hold the point. A centre is taken as c + τ,
    τ = (ε, ε², ε³) — the ties rule of §2 — so it is never on a face, and each count is exact.
 3. **No new triangle meets a forbidden closed cube**: under the covers, the cube V(q) of every voxel q
    outside A (so R(A) ⊂ V(A) and misses every V(q), q ∉ A); under ``gauss``, the cube of every voxel
@@ -18,16 +21,21 @@ kept only when every one of these holds, each decided exactly in integers:
    side). Triangle–box overlap by separating axes, closed on both sides.
 4. **No new triangle meets another triangle** beyond their common vertices and edge (the exact pair test of
    :mod:`~mrm.geometry.polyhedra.self_intersection`), against every triangle whose box is near.
+5. **Every shell keeps the sign of its volume** (six times it, exactly, updated by the swept tetrahedra): a
+   small shell that holds no centre could otherwise turn inside out under the covers unseen by 2.
 
 Together with the safety net's own guarantees they keep D(R(A)) = A in the model (by 2 every centre keeps
 its side; by 3 under the covers every V(q), q ∉ A, stays outside R(A) since it misses the surface and its
-centre is outside), the shells and their genus (1 and 4), and validity. Every vertex stays where the safety
-net put it, in Z + {¼, ¾}; coordinates are held as integers, four times the offset from a corner of the
-box, and every predicate of 2 and 3 is a product of three differences inside one star (refused beyond
-2¹⁶, so below 2⁵³).
+centre is outside), the shells and their genus (1, 4 and 5), and validity. Vertices lie in (¼Z)³: the safety
+net's in Z + {¼, ¾}, the new ones anywhere a quarter voxel allows. Coordinates are held as integers, four
+times the offset from a corner of the box, and every predicate of 2 and 3 is a product of three differences
+inside one change's box (at most :data:`_MAX_EXTENT`, so far below 2⁵³).
 
-The order: vertices in turn, each trying its neighbours farthest first (a long collapse straightens the most
-staircase), passes until one removes nothing. The result is checked again as a whole by the caller.
+The order, in rounds: half-edge collapses (vertices in turn, each trying its neighbours farthest first: a long
+collapse straightens the most staircase) in passes until one removes nothing; collapses onto a point (the
+quadric's point of the edge's triangles, and the midpoint rounded every way, cheapest quadric first); moves
+that make faces exactly coplanar; edge flips that bend less. The result is checked again as a whole by the
+caller.
 """
 
 from __future__ import annotations
@@ -793,7 +801,8 @@ def _star(
 
 @njit(cache=True, inline="always")
 def _holds_vertex(t: Int64Array, k: int, x: int) -> bool:  # pragma: no cover - compiled
-    return t[k, 0] == x or t[k, 1] == x or t[k, 2] == x
+    # Whether triangle k has the vertex x.
+    return bool(t[k, 0] == x or t[k, 1] == x or t[k, 2] == x)
 
 
 @njit(cache=True)
@@ -1408,8 +1417,8 @@ def _decimate(
                 t[k2, 0], t[k2, 1], t[k2, 2] = d, b_, c
                 b.moved[0], b.moved[1] = k, k2
                 b.tets[0, 0], b.tets[0, 1], b.tets[0, 2], b.tets[0, 3] = d, a, b_, c
-                volume = _volume_after(q, b.tets, 1, b.volume[b.shell[k]])
-                ok = volume != 0
+                after = _volume_after(q, b.tets, 1, b.volume[b.shell[k]])
+                ok = after != 0
                 if ok:
                     ok, epoch = _change_is_right(
                         q, qf, t, alive, b.moved, 2, b.tets, 1, b.blo, b.bhi, covers, in_a, inside, forbidden,
@@ -1419,7 +1428,7 @@ def _decimate(
                     t[k, 0], t[k, 1], t[k, 2] = a, b_, c
                     t[k2, 0], t[k2, 1], t[k2, 2] = b_, a, d
                     continue
-                b.volume[b.shell[k]] = volume
+                b.volume[b.shell[k]] = after
                 flipped += 1
                 for x in (a, b_, c, d):
                     dirty[x, :] = True
@@ -1482,7 +1491,7 @@ def decimate(
     max_rounds: int = 8,
     min_cos: float = MIN_COS,
 ) -> tuple[FloatArray, Int64Array]:
-    """Simplify the safety net of A by exactly checked half-edge collapses (module docstring).
+    """Simplify the safety net of A by exactly checked collapses and moves (module docstring).
 
     Parameters
     ----------
@@ -1494,13 +1503,13 @@ def decimate(
     max_collapses : int
         Collapses at most (−1: no limit); to look at R part way, when debugging a check.
     max_rounds : int
-        Rounds of edge flips at most, each followed by collapses again.
+        Rounds of edge flips at most, each followed by collapses and moves again.
     min_cos : float
         A collapse may turn a triangle's normal by acos(min_cos) at most (:data:`MIN_COS`).
 
     Returns
     -------
-    vertices : float64 (n, 3), a subset of the safety net's, in their order.
+    vertices : float64 (n, 3), in (¼Z)³: those of the safety net that stay, in their order, then the new ones.
     triangles : int64 (m, 3), outward.
     """
     if triangles.shape[0] == 0:
