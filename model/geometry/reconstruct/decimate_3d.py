@@ -59,6 +59,9 @@ PAD = 3
 _CELL = 8
 #: A collapse may turn a triangle's normal by acos(MIN_COS) at most (no fold-overs: they make spikes).
 MIN_COS = 0.0
+#: Collapses onto a point tried at most per vertex and pass, cheapest quadric first (each failed one costs a
+#: full proof, and a long edge's proof scans the area it sweeps).
+_POINT_TRIES = 4
 #: Largest extent of a change's box, in integer units (128 voxels): it bounds the winding numbers' array (the
 #: centres of the box, at most 130³) and keeps every product of three differences far inside 2⁵³ (the pair
 #: test reads floats). A ridge of the ideal solid is one edge only if its box fits.
@@ -1296,7 +1299,7 @@ def _decimate(
                         cpts[n_c, 0], cpts[n_c, 1], cpts[n_c, 2] = pt[0], pt[1], pt[2]
                         n_c += 1
                 _sort_candidates(cand, clen, cpts, n_c)
-                for ci in range(n_c):
+                for ci in range(min(n_c, _POINT_TRIES)):
                     w = n_now
                     for d in range(3):
                         q[w, d] = cpts[ci, d]
