@@ -425,11 +425,43 @@ def write_mesh(poly: Polyhedron, path: PathLike) -> str | None:
     return warning
 
 
+def write_label_meshes(vertices: Floats, objects: list[tuple[str, str, Ints]], path: PathLike) -> None:
+    """Write several meshes on one vertex list to an OBJ file, one object per mesh, exactly and atomically.
+
+    The label-volume polygonization (:mod:`mrm.geometry.reconstruct.polygonize_3d`) writes its regions this
+    way: each region is an ``o`` object (``objects``: its name, its group — the regions of one label share
+    one ``g`` group — and its triangles, indices into ``vertices``), so a face shared by two regions is the
+    same vertex numbers in both, reversed. Coordinates are written with ``repr`` (they read back as the
+    same float64). Each object alone is a closed mesh; the file as a whole is not one solid (shared faces
+    appear twice), so :func:`read_mesh` refuses it: read the objects apart.
+
+    Raises
+    ------
+    FileFormatError
+        For an extension other than ``.obj``.
+    LimitError
+        When the file would exceed :data:`~mrm.core.limits.MAX_OUTPUT_BYTES`.
+    """
+    name = _name(path)
+    if _extension(path) != ".obj":
+        raise FileFormatError(f"{name}: several meshes on one vertex list are written to OBJ (.obj) only")
+    n_tri = sum(int(t.shape[0]) for _, _, t in objects)
+    check_output_bytes(vertices.shape[0] * 75 + n_tri * 30, name)
+    with atomic_open(path, "wb") as fh:
+        fh.write(b"# written by MR Modeler: exact float64 coordinates, one object per region\n")
+        fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist()).encode("ascii"))
+        for obj, group, t in objects:
+            head = f"o {obj}\ng {group}\n"
+            body = "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
+            fh.write((head + body).encode("ascii"))
+
+
 __all__ = [
     "EXACT_MESH_EXTENSIONS",
     "MESH_EXTENSIONS",
     "read_mesh",
     "read_mesh_arrays",
     "stl_rounding_warning",
+    "write_label_meshes",
     "write_mesh",
 ]
