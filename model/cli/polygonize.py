@@ -24,6 +24,19 @@ code, else the WKT; GeoJSON carries only EPSG codes and refuses another CRS: :mo
 ``--json`` prints ``model``, ``labels`` (distinct classes), ``regions``, ``pixels``, ``vertices``,
 ``seconds`` (the time the polygonization took), ``input`` and ``output`` (and ``crs``).
 
+3D: a label volume (an ``.npz`` holding a 3-D ``labels``, a multi-page ``.tif``/``.tiff``, ``.nii``,
+``.nii.gz``: :func:`mrm.io.voxel_files.read_label_volume`, label 0 the background) gives one closed mesh per
+region (a 6-connected component of one label), written to one OBJ file (``-o OUT.obj``): one shared vertex
+list and one ``o label_L_k`` object per region (the k-th region of label L, in raster order of its first
+voxel), grouped by label (``g label_L``). A face between two regions is the same triangles in both objects,
+reversed (watertight, no T-junction); D_gauss of each object is its region's voxels exactly, and every
+coordinate is a multiple of ⅛, written exactly (:mod:`mrm.geometry.reconstruct.polygonize_3d`,
+docs/polygonize-3d.md). Its ``--json`` gives ``model``, ``labels``, ``regions``, ``voxels``, ``surfels``
+(unit squares between different regions, or a region and the background), ``triangles`` (both sides of a
+shared face counted), ``vertices``, ``seconds``, ``input`` and ``output``. The raster options (``--band``,
+``--nodata``, ``--mask``, ``--connectivity 8``) do not apply to volumes; a volume without any label is
+refused.
+
 Several inputs (files, directories, quoted globs, ``-``) work as for ``reconstruct`` (docs/adr/0011): ``-o``
 is a directory or a pattern holding ``{stem}``, ``--jobs N`` spreads them over worker processes, each
 input's line is printed when it is done; ``--json`` then gives ``inputs``, the sums and ``files``.
@@ -47,39 +60,48 @@ from mrm.cli._common import (
     batch_total,
     extension_of,
     inputs_and_outputs,
+    pixel_limit,
     positive_int,
     run_inputs,
 )
 from mrm.core.errors import ParameterError
 from mrm.core.georef import GeoRef
 from mrm.core.grids import LabelMap
+from mrm.core.models import Model
 from mrm.geometry.reconstruct.polygonize import Region, polygonize
+from mrm.geometry.reconstruct.polygonize_3d import polygonize_volume
 from mrm.io.georef import GEOTIFF_EXTENSIONS, WORLD_FILE_EXTENSIONS, read_georef
+from mrm.io.mesh_files import write_label_meshes
 from mrm.io.pixel_files import LABEL_READ_EXTENSIONS, read_label_map
 from mrm.io.vector_layers import LAYER_EXTENSIONS, check_field_names, check_layer_crs, write_layer
+from mrm.io.voxel_files import VOXEL_EXTENSIONS, is_volume_file, read_label_volume
 from mrm.reps.summary import count_vertices
 
 NAME = "polygonize"
 HELP = (
     "label image or classified GeoTIFF (.png .pgm .npz .tif) to one polygon per region, boundaries shared "
-    "exactly (.geojson .gpkg .shp .fgb)"
+    "exactly (.geojson .gpkg .shp .fgb); a label volume (.npz .tif .nii .nii.gz) to one closed mesh per "
+    "region, faces shared exactly (.obj)"
 )
 #: ``--model``'s help: polygonize always uses gauss (the generic help names the project default).
 MODEL_HELP = (
     "only 'gauss', the default and the one model whose polygons share boundaries and burn back exactly"
 )
 
-INPUTS = (*LABEL_READ_EXTENSIONS, *GEOTIFF_EXTENSIONS)
-OUTPUTS = LAYER_EXTENSIONS
-OUTPUT_WHAT = "vector output file (GeoJSON, GeoPackage, Shapefile or FlatGeobuf)"
+INPUTS = tuple(dict.fromkeys((*LABEL_READ_EXTENSIONS, *GEOTIFF_EXTENSIONS, *VOXEL_EXTENSIONS)))
+#: The one mesh format that holds several meshes on one vertex list (label volumes).
+MESH_OUTPUTS = (".obj",)
+OUTPUTS = (*LAYER_EXTENSIONS, *MESH_OUTPUTS)
+OUTPUT_WHAT = "vector output file (GeoJSON, GeoPackage, Shapefile or FlatGeobuf; OBJ for a label volume)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the inputs, ``-o OUT``, ``--jobs``, the raster options, the field names and ``--limit``."""
     add_batch_arguments(
         parser,
-        "label images (.png grey or palette, .pgm, .npz) or classified GeoTIFFs (.tif)",
-        "the vector layer to write (.geojson .gpkg .shp .fgb)",
+        "label images (.png grey or palette, .pgm, .npz) or classified GeoTIFFs (.tif); 3D: label volumes "
+        "(.npz .tif .tiff .nii .nii.gz)",
+        "the vector layer to write (.geojson .gpkg .shp .fgb); for a label volume the meshes (.obj)",
     )
     parser.add_argument(
         "--band", type=positive_int, default=None, metavar="N", help="GeoTIFF band (default 1)"
@@ -111,7 +133,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--pixels-field", default="pixels", metavar="NAME", help="the pixel count's field (default pixels)"
     )
-    add_limit_argument(parser)
+    add_limit_argument(parser, voxels=True)
 
 
 def _number(text: str) -> float:
@@ -218,7 +240,7 @@ def polygonize_file(
     path: str,
     output: str,
     model: str | None,
-    limit: int,
+    limit: int | None,
     band: int | None = None,
     nodata: float | None = None,
     mask: str | None = None,
@@ -226,8 +248,19 @@ def polygonize_file(
     field: str = "label",
     pixels_field: str = "pixels",
 ) -> dict[str, Any]:
-    """Polygonize one label image and write its features; return its summary (batch workers call it)."""
-    extension_of(output, OUTPUTS, OUTPUT_WHAT)
+    """Polygonize one label image (or volume) and write its features (meshes); return its summary.
+
+    Batch workers call it; a label volume goes to :func:`polygonize_volume_file`.
+    """
+    if is_volume_file(path):
+        if band is not None or nodata is not None or mask is not None or connectivity != 4:
+            raise ParameterError(
+                f"{path}: --band, --nodata, --mask and --connectivity apply to 2D label images; the regions "
+                "of a label volume are its 6-connected components"
+            )
+        return polygonize_volume_file(path, output, model, limit)
+    limit = pixel_limit(limit)
+    extension_of(output, LAYER_EXTENSIONS, OUTPUT_WHAT + " for a 2D input")
     check_field_names([field, pixels_field], output)  # before any work
     lm, values, georef = _read_input(path, band, nodata, mask, limit)
     check_layer_crs(output, None if georef is None else georef.crs)
@@ -263,6 +296,42 @@ def polygonize_file(
     return summary
 
 
+def polygonize_volume_file(path: str, output: str, model: str | None, limit: int | None) -> dict[str, Any]:
+    """Polygonize one label volume into one OBJ of one object per region; return its summary."""
+    extension_of(output, MESH_OUTPUTS, "mesh output file for a label volume (one object per region)")
+    chosen = model or "gauss"
+    if Model.parse(chosen).is_cover:  # before reading: the library says why
+        polygonize_volume(np.zeros((1, 1, 1), np.int32), model=chosen)
+    lv = read_label_volume(path, limit=limit)  # None: the label volumes' own limit
+    if lv.is_empty():
+        raise ParameterError(f"{path}: the volume holds no label (every voxel is 0): nothing to polygonize")
+    t0 = time.perf_counter()
+    out = polygonize_volume(lv, model=chosen)
+    seconds = time.perf_counter() - t0
+    count: dict[int, int] = {}
+    objects = []
+    for r in out.regions:
+        count[r.label] = count.get(r.label, 0) + 1
+        objects.append((f"label_{r.label}_{count[r.label]}", f"label_{r.label}", r.triangles))
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    write_label_meshes(out.vertices, objects, output)
+    return {
+        "input": str(path),
+        "output": str(output),
+        "model": chosen,
+        "labels": len(count),
+        "regions": len(out.regions),
+        "voxels": sum(r.voxels for r in out.regions),
+        "surfels": out.surfels,
+        "triangles": out.n_triangles,
+        "vertices": int(out.vertices.shape[0]),
+        "seconds": seconds,
+    }
+
+
+_2D_SUMS = ("regions", "pixels", "vertices", "seconds")
+
+
 def _line(f: dict[str, Any]) -> str:
     return f"{f['input']} -> {f['output']}: {f['regions']} regions, {f['seconds']:.3f} s"
 
@@ -290,6 +359,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
 
     def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
         head = {"model": args.model or "gauss"}
-        return batch_total(args, head, len(jobs), files, errors, ("regions", "pixels", "vertices", "seconds"))
+        keys: tuple[str, ...] = ("regions", "pixels", "voxels", "surfels", "triangles", "vertices", "seconds")
+        # 2D files have pixels, volumes voxels, surfels and triangles: sum what the files report.
+        keys = tuple(k for k in keys if k in _2D_SUMS or any(k in f for f in files))
+        return batch_total(args, head, len(jobs), files, errors, keys)
 
     return run_inputs(args, polygonize_file, jobs, _line, total, first=f"polygonize {Path(pairs[0][0]).name}")
