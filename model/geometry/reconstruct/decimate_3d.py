@@ -338,6 +338,22 @@ def _bucket(
 
 
 @njit(cache=True)
+def _rebucket(
+    q: Int64Array, t: Int64Array, alive: BoolArray, ghead: Int64Array, g_next: Int64Array, g_tri: Int64Array,
+    gx: int, gy: int, cb: Int64Array, cells: Int64Array,
+) -> tuple[Int64Array, Int64Array, int]:  # fmt: skip  # pragma: no cover - compiled
+    # The buckets again, of the live triangles only. A change adds its triangles to the cells of their new
+    # boxes and leaves the old entries (skipped when read); a big triangle that changes often fills many
+    # cells with them, and every later scan of those cells walks them.
+    ghead[:] = -1
+    ng = 0
+    for k in range(t.shape[0]):
+        if alive[k]:
+            g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb, cells)
+    return g_next, g_tri, ng
+
+
+@njit(cache=True)
 def _holds_point(p: Int64Array, x: int, y: int, z: int) -> bool:  # pragma: no cover
     # Whether the closed, non-flat triangle p (3 × 3) holds the point: in its plane, and on the inner side
     # of each edge in the projection that drops the normal's largest coordinate.
@@ -1205,6 +1221,7 @@ def _decimate(
     pt = np.empty(3, np.int64)
     removed = 0
     n_now = nv  # vertices so far, new ones included
+    ng_fresh = ng  # the buckets' entries when last rebuilt
     for round_ in range(max_rounds + 1):
         # Half-edge collapses: every vertex in turn tries its neighbours, farthest first (a long collapse
         # straightens the most staircase), passes until one removes nothing.
@@ -1213,6 +1230,9 @@ def _decimate(
         while changed and passes < max_passes:
             changed = False
             passes += 1
+            if ng > 2 * ng_fresh:
+                g_next, g_tri, ng = _rebucket(q, t, alive, ghead, g_next, g_tri, gx, gy, cb, cells)
+                ng_fresh = ng
             for u in range(n_now):
                 if vdead[u] or not dirty[u, _HALF] or removed == max_collapses:
                     continue
@@ -1246,6 +1266,9 @@ def _decimate(
         while changed and passes < max_passes:
             changed = False
             passes += 1
+            if ng > 2 * ng_fresh:
+                g_next, g_tri, ng = _rebucket(q, t, alive, ghead, g_next, g_tri, gx, gy, cb, cells)
+                ng_fresh = ng
             for u in range(n_now):
                 if vdead[u] or not dirty[u, _POINT] or removed == max_collapses or n_now == cap:
                     continue
