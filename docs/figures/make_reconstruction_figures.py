@@ -527,7 +527,7 @@ def shaded_pieces(poly: mrm.Polyhedron) -> tuple[list[np.ndarray], list[str]]:
 
 
 def figure_compact_3d() -> None:
-    """A digital ball: its safety net, then R under gauss and under the covers (compact, reversible)."""
+    """A digital ball: its safety net, R under gauss and under the covers; then a digital octahedron's R."""
     r = 7
     g = np.arange(-r - 1, r + 2)
     z, y, x = np.meshgrid(g, g, g, indexing="ij")
@@ -538,13 +538,18 @@ def figure_compact_3d() -> None:
         assert mrm.voxelize(poly, model) == vs
         name = "gauss" if model == "gauss" else "the covers"
         shown.append((f"R(A) under {name}", poly))
-    fig = plt.figure(figsize=(11.4, 3.9), dpi=100)
+    octahedron = VoxelSet(abs(x) + abs(y) + abs(z) <= r, (-r - 1,) * 3)
+    poly = mrm.reconstruct(octahedron, "gauss")
+    assert mrm.voxelize(poly, "gauss") == octahedron
+    shown.append(("octahedron r = 7, gauss", poly))
+    fig = plt.figure(figsize=(15.2, 3.9), dpi=100)
     box = (-r, -r, -r, r, r, r)
     for col, (title, poly) in enumerate(shown):
         pieces, fills = shaded_pieces(poly)
-        ax = voxel_axes(fig, (col / 3, 0.0, 1 / 3, 0.88), box, zoom=1.25)
+        ax = voxel_axes(fig, (col / 4, 0.0, 1 / 4, 0.88), box, zoom=1.25)
         ax.add_collection3d(Poly3DCollection(pieces, facecolors=fills, edgecolors=fills, linewidths=0.4))
-        titled(fig, col / 3, title, f"{poly.n_triangles} triangles, {poly.n_vertices} vertices")
+        sizes = f"{poly.n_faces} faces, {poly.n_triangles} triangles, {poly.n_vertices} vertices"
+        titled(fig, col / 4, title, sizes)
     fig.savefig(OUT / "reconstruction-3d-compact.png")
     plt.close(fig)
 
