@@ -62,6 +62,8 @@ KERNEL_MODULES = (
     "geometry/topology/cells_3d.py",
     "geometry/reconstruct/safety_net_3d.py",
     "geometry/reconstruct/decimate_3d.py",
+    "geometry/reconstruct/_label_corners.py",
+    "geometry/reconstruct/polygonize_3d.py",
     "geometry/polyhedra/predicates.py",
     "geometry/polyhedra/self_intersection.py",
     "geometry/polyhedra/manifold.py",
@@ -285,6 +287,10 @@ def _step_regions_3d() -> None:
 
     for model in ("gauss", "standard"):  # the compact R's decimation (one kernel, both model paths)
         reconstruct_voxels(VoxelSet(mask, (0, 0, 0)), model)
+    from mrm.geometry.reconstruct.polygonize_3d import polygonize_volume
+
+    # `mrm polygonize` of a label volume: voxels of one label touching along edges only (pinches)
+    polygonize_volume(np.eye(3, dtype=np.int32)[None].repeat(2, axis=0) * 2 + ~mask[:2] * 1)
     from mrm.geometry.topology.colouring import greedy_colouring
 
     greedy_colouring(3, [(0, 1), (1, 2)], 2)  # the 3D analytical view's segment colours
