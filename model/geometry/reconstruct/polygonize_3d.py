@@ -46,7 +46,7 @@ from mrm.core.models import Model
 from mrm.core.numbers import read_pixel
 from mrm.geometry._jit import njit
 from mrm.geometry.reconstruct._label_corners import linel_source, table
-from mrm.geometry.topology.labeling import _find, _union
+from mrm.geometry.topology.cells_3d import region_map_3d
 
 logger = logging.getLogger(__name__)
 
@@ -117,48 +117,6 @@ class LabelMeshes:
 
 
 # --------------------------------------------------------------------------------------------- kernels
-@njit(cache=True)
-def _region_map(lab: Int32Array) -> tuple[Int32Array, Int64Array, Int64Array]:  # pragma: no cover
-    # Union-find over the voxels, 6-adjacency between equal non-zero labels; the smaller index stays the root
-    # (labeling._union), so regions are numbered 1, 2, … in raster order of their first voxel; 0 = background.
-    nz, ny, nx = lab.shape
-    n = nz * ny * nx
-    flat = lab.reshape(n)
-    parent = np.arange(n, dtype=np.int64)
-    for v in range(n):
-        a = flat[v]
-        if a == 0:
-            continue
-        i = v % nx
-        j = (v // nx) % ny
-        k = v // (nx * ny)
-        if i > 0 and flat[v - 1] == a:
-            _union(parent, v - 1, v)
-        if j > 0 and flat[v - nx] == a:
-            _union(parent, v - nx, v)
-        if k > 0 and flat[v - nx * ny] == a:
-            _union(parent, v - nx * ny, v)
-    reg = np.zeros(n, np.int32)
-    m = 0
-    for v in range(n):
-        if flat[v] == 0:
-            continue
-        r = _find(parent, v)
-        if r == v:
-            m += 1
-            reg[v] = m
-        else:
-            reg[v] = reg[r]
-    label = np.zeros(m + 1, np.int64)
-    voxels = np.zeros(m + 1, np.int64)
-    for v in range(n):
-        r = reg[v]
-        if r:
-            label[r] = flat[v]
-            voxels[r] += 1
-    return reg.reshape(lab.shape), label, voxels
-
-
 @njit(cache=True)
 def _pattern_key(vals: Int64Array, ids: Int64Array) -> tuple[int, int]:  # pragma: no cover
     # _label_corners.pattern_key of the eight regions around a pointel, and how many distinct ones there are.
@@ -798,7 +756,10 @@ def polygonize_volume(
     lab = np.pad(np.ascontiguousarray(lv.labels, dtype=np.int32), 2)
     if 8 * max(lab.shape) + 8 > _MASK:
         raise ParameterError(f"a label volume side may hold at most {(_MASK - 8) // 8 - 2:,} voxels")
-    reg, region_label, region_voxels = _region_map(lab)
+    reg, label, voxels, _first = region_map_3d(lab)
+    # Indexed by region number (0: the background).
+    region_label = np.concatenate((np.zeros(1, np.int64), label))
+    region_voxels = np.concatenate((np.zeros(1, np.int64), voxels))
     keys, entries = table()
     pts, lin = _specials(reg, keys)
     bad = np.zeros(reg.shape, np.uint8)

@@ -163,9 +163,12 @@ def boundary_cells(labels: npt.ArrayLike) -> BoundaryCells:
 
 
 @njit(cache=True)
-def _label_regions_3d(lab: Int32Array) -> tuple[Int64Array, Int64Array, Int64Array]:  # pragma: no cover
+def _label_regions_3d(
+    lab: Int32Array,
+) -> tuple[Int32Array, Int64Array, Int64Array, Int64Array]:  # pragma: no cover - compiled
     # Union-find over the voxels, 6-adjacency between equal non-zero labels; the smaller index stays the root,
-    # so a region's root is its first voxel in raster order.
+    # so a region's root is its first voxel in raster order. Returns every voxel's region (1, 2, …; 0: the
+    # background) and, per region, its label, its number of voxels and its first voxel.
     nz, ny, nx = lab.shape
     n = nz * ny * nx
     flat = lab.reshape(n)
@@ -183,24 +186,25 @@ def _label_regions_3d(lab: Int32Array) -> tuple[Int64Array, Int64Array, Int64Arr
             _union(parent, v - nx, v)
         if k > 0 and flat[v - nx * ny] == a:
             _union(parent, v - nx * ny, v)
-    index = np.full(n, -1, np.int64)
+    region = np.zeros(n, np.int32)
     m = 0
     for v in range(n):
         if flat[v] != 0 and _find(parent, v) == v:
-            index[v] = m
             m += 1
+            region[v] = m
     label = np.empty(m, np.int64)
     voxels = np.zeros(m, np.int64)
     first = np.empty(m, np.int64)
     for v in range(n):
         if flat[v] == 0:
             continue
-        r = index[_find(parent, v)]
+        region[v] = region[_find(parent, v)]  # the root comes first: its number is set
+        r = region[v] - 1
         if voxels[r] == 0:
             label[r] = flat[v]
             first[r] = v
         voxels[r] += 1
-    return label, voxels, first
+    return region.reshape(lab.shape), label, voxels, first
 
 
 def label_regions_3d(labels: npt.ArrayLike) -> tuple[Int64Array, Int64Array, Int64Array]:
@@ -211,6 +215,19 @@ def label_regions_3d(labels: npt.ArrayLike) -> tuple[Int64Array, Int64Array, Int
     label, voxels, first : ndarray of int64
         For each region in raster order (z, y, x) of its first voxel: its label, its number of voxels and the
         flat index of its first voxel in the (nz, ny, nx) array.
+    """
+    return region_map_3d(labels)[1:]
+
+
+def region_map_3d(labels: npt.ArrayLike) -> tuple[Int32Array, Int64Array, Int64Array, Int64Array]:
+    """The regions of a label volume (:func:`label_regions_3d`) and the region of every voxel.
+
+    Returns
+    -------
+    region : ndarray of int32, the volume's shape
+        Every voxel's region, numbered 1, 2, … as :func:`label_regions_3d` lists them; 0 for the background.
+    label, voxels, first : ndarray of int64
+        As :func:`label_regions_3d`.
     """
     lab = np.ascontiguousarray(labels, dtype=np.int32)
     if lab.ndim != 3:
