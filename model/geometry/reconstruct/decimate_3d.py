@@ -47,6 +47,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.geometry._jit import njit
+from mrm.geometry.polyhedra.manifold import components
 from mrm.geometry.polyhedra.self_intersection import DISJOINT, triangles_meet_improperly
 
 FloatArray = npt.NDArray[np.float64]
@@ -828,28 +829,10 @@ def _holds_vertex(t: Int64Array, k: int, x: int) -> bool:  # pragma: no cover - 
 def _shells(q: Int64Array, t: Int64Array) -> tuple[Int64Array, Int64Array]:  # pragma: no cover - compiled
     # The shell of each triangle (the components of the vertex graph: shells share no vertex) and six times
     # each shell's signed volume (Σ a · (b × c) over its triangles).
-    parent = np.arange(q.shape[0])
-    for k in range(t.shape[0]):
-        for c in range(1, 3):
-            x, y = t[k, 0], t[k, c]
-            while parent[x] != x:
-                parent[x] = parent[parent[x]]
-                x = parent[x]
-            while parent[y] != y:
-                parent[y] = parent[parent[y]]
-                y = parent[y]
-            parent[max(x, y)] = min(x, y)
-    ids = np.full(q.shape[0], -1, np.int64)
-    n = 0
+    n, ids = components(q.shape[0], np.concatenate((t[:, 0], t[:, 0])), np.concatenate((t[:, 1], t[:, 2])))
     shell = np.empty(t.shape[0], np.int64)
     for k in range(t.shape[0]):
-        x = t[k, 0]
-        while parent[x] != x:
-            x = parent[x]
-        if ids[x] < 0:
-            ids[x] = n
-            n += 1
-        shell[k] = ids[x]
+        shell[k] = ids[t[k, 0]]
     volume = np.zeros(n, np.int64)
     for k in range(t.shape[0]):
         a, b, c = t[k, 0], t[k, 1], t[k, 2]
