@@ -142,16 +142,10 @@ def _pattern_key(vals: Int64Array, ids: Int64Array) -> tuple[int, int]:  # pragm
 
 @njit(cache=True)
 def _find_key(keys: Int64Array, key: int) -> int:  # pragma: no cover
-    lo = 0
-    hi = keys.size
-    while lo < hi:
-        mid = (lo + hi) >> 1
-        if keys[mid] < key:
-            lo = mid + 1
-        else:
-            hi = mid
+    # The index of key in the sorted keys, or −1.
+    lo = np.searchsorted(keys, key)
     if lo < keys.size and keys[lo] == key:
-        return lo
+        return int(lo)
     return -1
 
 
@@ -573,45 +567,23 @@ def _triangulate(
             ring = np.empty(2 * need, np.int64)
         r = 0
         extra[:] = 0
-        # side 0: (u0, v0) -> (u1, v0); side 1: -> (u1, v1); side 2: -> (u0, v1); side 3: -> (u0, v0)
+        # side 0: (u0, v0) -> (u1, v0); side 1: -> (u1, v1); side 2: -> (u0, v1); side 3: -> (u0, v0). Each
+        # side starts at its corner, then takes every vertex of the complex on it (no T-junction).
         for side in range(4):
             start[side] = r
-            if side == 0:
-                ring[r] = _find_key(points, _point_key(n, w, u0, v0))
-                r += 1
-                for u in range(u0 + 2, u1, 2):
-                    at = _find_key(points, _point_key(n, w, u, v0))
-                    if at >= 0:
-                        ring[r] = at
-                        r += 1
-                        extra[0] += 1
-            elif side == 1:
-                ring[r] = _find_key(points, _point_key(n, w, u1, v0))
-                r += 1
-                for vv in range(v0 + 2, v1, 2):
-                    at = _find_key(points, _point_key(n, w, u1, vv))
-                    if at >= 0:
-                        ring[r] = at
-                        r += 1
-                        extra[1] += 1
-            elif side == 2:
-                ring[r] = _find_key(points, _point_key(n, w, u1, v1))
-                r += 1
-                for u in range(u1 - 2, u0, -2):
-                    at = _find_key(points, _point_key(n, w, u, v1))
-                    if at >= 0:
-                        ring[r] = at
-                        r += 1
-                        extra[2] += 1
-            else:
-                ring[r] = _find_key(points, _point_key(n, w, u0, v1))
-                r += 1
-                for vv in range(v1 - 2, v0, -2):
-                    at = _find_key(points, _point_key(n, w, u0, vv))
-                    if at >= 0:
-                        ring[r] = at
-                        r += 1
-                        extra[3] += 1
+            cu = u1 if side == 1 or side == 2 else u0
+            cv = v1 if side >= 2 else v0
+            du = 2 if side == 0 else (-2 if side == 2 else 0)
+            dv = 2 if side == 1 else (-2 if side == 3 else 0)
+            steps = ((u1 - u0) if du != 0 else (v1 - v0)) // 2
+            ring[r] = _find_key(points, _point_key(n, w, cu, cv))
+            r += 1
+            for step in range(1, steps):
+                at = _find_key(points, _point_key(n, w, cu + step * du, cv + step * dv))
+                if at >= 0:
+                    ring[r] = at
+                    r += 1
+                    extra[side] += 1
         apex = -1
         for corner in range(4):
             if extra[corner] == 0 and extra[(corner + 3) % 4] == 0:
