@@ -787,6 +787,7 @@ class _Buffers(NamedTuple):
     tets: Int64Array  # (512, 4): the tetrahedra (apex, old triangle) swept
     blo: Int64Array  # (3,): the box of everything a change touches
     bhi: Int64Array  # (3,)
+    quad: FloatArray  # (3, 4): the normal equations of a quadric's point
     shell: Int64Array  # (triangles,): the shell of each triangle (a change keeps every triangle in its shell)
     volume: Int64Array  # (shells,): six times each shell's signed volume, in the integer units
 
@@ -992,8 +993,8 @@ def _point_for(
     # u and v (their quadric), held near the edge's midpoint where those planes leave it free, rounded to
     # the integer units and clamped to the box lo..hi of the stars. A heuristic of shape (the collapse is
     # then proved like any other), so plain floats. Into out.
-    m = np.zeros((3, 3))
-    r = np.zeros(3)
+    m = b.quad  # the normal equations [M | r], solved by Cramer's rule
+    m[:, :] = 0.0
     for i in range(n_u + n_v):
         k = b.star_u[i] if i < n_u else b.star_v[i - n_u]
         if i >= n_u and _holds_vertex(t, k, u):
@@ -1003,28 +1004,27 @@ def _point_for(
         n = (nx, ny, nz)
         d = nx * q[a, 0] + ny * q[a, 1] + nz * q[a, 2]
         for i2 in range(3):
-            r[i2] += n[i2] * d
+            m[i2, 3] += n[i2] * d
             for j2 in range(3):
                 m[i2, j2] += n[i2] * n[j2]
     lam = 1e-3
     for i2 in range(3):
         m[i2, i2] += lam
-        r[i2] += lam * 0.5 * (q[u, i2] + q[v, i2])
-    det = (
-        m[0, 0] * (m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1])
-        - m[0, 1] * (m[1, 0] * m[2, 2] - m[1, 2] * m[2, 0])
-        + m[0, 2] * (m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0])
-    )
+        m[i2, 3] += lam * 0.5 * (q[u, i2] + q[v, i2])
+    det = _det_columns(m, 0, 1, 2)
     for i2 in range(3):
-        c = m.copy()
-        for j2 in range(3):
-            c[j2, i2] = r[j2]
-        di = (
-            c[0, 0] * (c[1, 1] * c[2, 2] - c[1, 2] * c[2, 1])
-            - c[0, 1] * (c[1, 0] * c[2, 2] - c[1, 2] * c[2, 0])
-            + c[0, 2] * (c[1, 0] * c[2, 1] - c[1, 1] * c[2, 0])
-        )
+        di = _det_columns(m, 3 if i2 == 0 else 0, 3 if i2 == 1 else 1, 3 if i2 == 2 else 2)
         out[i2] = min(max(int(np.rint(di / det)), lo[i2]), hi[i2])
+
+
+@njit(cache=True, inline="always")
+def _det_columns(m: FloatArray, c0: int, c1: int, c2: int) -> float:  # pragma: no cover - compiled
+    # The determinant of the 3 × 3 matrix of m's columns c0, c1, c2.
+    return float(
+        m[0, c0] * (m[1, c1] * m[2, c2] - m[1, c2] * m[2, c1])
+        - m[0, c1] * (m[1, c0] * m[2, c2] - m[1, c2] * m[2, c0])
+        + m[0, c2] * (m[1, c0] * m[2, c1] - m[1, c1] * m[2, c0])
+    )
 
 
 @njit(cache=True)
@@ -1048,14 +1048,13 @@ def _quadric(
 @njit(cache=True)
 def _bend(
     q: Int64Array, t: Int64Array, alive: BoolArray, vhead: Int64Array, s_next: Int64Array, s_tri: Int64Array,
-    b: _Buffers, n_u: int, u: int, p: Int64Array,
+    b: _Buffers, n_u: int, u: int, p: Int64Array, pts: Int64Array,
 ) -> float:  # fmt: skip  # pragma: no cover - compiled
     # How much the surface bends at u's star with u at p: the number of the star's triangle edges whose two
     # triangles are not coplanar (exactly), plus a thousandth of Σ (1 − cos) over them (a heuristic of
     # shape: a move that makes faces coplanar opens collapses; one that only rounds a corner does not).
     bent = 0
     total = 0.0
-    pts = np.empty((3, 3), np.int64)
     for i in range(n_u):
         k = b.star_u[i]
         for c in range(3):
@@ -1196,6 +1195,7 @@ def _decimate(
         np.empty((512, 4), np.int64),
         np.empty(3, np.int64),
         np.empty(3, np.int64),
+        np.empty((3, 4), np.float64),
         shell,
         volume,
     )
@@ -1321,9 +1321,9 @@ def _decimate(
                         pointed += 1
                         changed = True
                         break  # u is gone
-        # Moves: a vertex goes to the point nearest, in squares, to its triangles' planes when that is nearer
-        # than where it is (a vertex left off the ridge or the tip of the ideal solid stops the collapses that
-        # would straighten it). One pass per round, each move proved like a collapse.
+        # Moves: a vertex goes a quarter voxel when that makes more of its star's neighbouring triangles
+        # exactly coplanar (a vertex left off the ridge or the tip of the ideal solid stops the collapses that
+        # would straighten it). One pass per round, the best three tried, each proved like a collapse.
         for u in range(n_now):
             if vdead[u] or not dirty[u, _MOVE] or n_now == cap:
                 continue
@@ -1339,7 +1339,7 @@ def _decimate(
                     for d in range(3):
                         plo[d] = min(plo[d], q[t[b.star_u[j], c], d])
                         phi[d] = max(phi[d], q[t[b.star_u[j], c], d])
-            here = _bend(q, t, alive, vhead, s_next, s_tri, b, n_su, u, q[u])
+            here = _bend(q, t, alive, vhead, s_next, s_tri, b, n_su, u, q[u], sc.pts)
             n_c = 0
             for dz in range(-1, 2):
                 for dy in range(-1, 2):
@@ -1351,7 +1351,7 @@ def _decimate(
                             and plo[2] <= pt[2] <= phi[2]
                         ):
                             continue
-                        there = _bend(q, t, alive, vhead, s_next, s_tri, b, n_su, u, pt)
+                        there = _bend(q, t, alive, vhead, s_next, s_tri, b, n_su, u, pt, sc.pts)
                         if there < here - 1e-9:
                             cand[n_c] = u
                             clen[n_c] = there
