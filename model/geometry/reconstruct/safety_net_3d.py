@@ -28,11 +28,21 @@ normal; a **face** is a 4-connected set of them (a maximal set of coplanar edge-
 is cut into rectangles: a run of a row of squares, extended over the following rows with the same run while
 no *required* corner lies on its sides. A rectangle is triangulated as a strip between the points of its
 bottom and top sides that are its corners, required corners, or corners of the runs of the row on the other
-side. The required corners start empty and grow to every corner the rectangles use, until a pass adds none
-(a fixed point: the set only grows, within a finite grid). Then a face's outline is split at exactly the
+side. The required corners are the least set holding every corner the rectangles use (a fixed point: grown
+from the empty set, pass after pass, until a pass adds none). Then a face's outline is split at exactly the
 required corners on it, the same for both faces along an edge, and two rectangles of one face meeting along a
 row line share their points there: no T-junction, every edge in exactly two triangles, every vertex in
 Z + {¼, ¾}. A box is 12 triangles; blobs take about one triangle per surfel (marching cubes: two).
+
+**The computation** builds neither the doubled grid (8 times the voxels) nor pass after pass. A seam is in
+R(A) only if its core is, so all the squares of a plane have one sign: those of plane 2p + 1 (2p) are the
+cells of voxel slice p doubled minus those of its intersection with slice p + 1 (p − 1) doubled, found row by
+row from the runs of the mask along the rows. A run of squares repeated over consecutive rows is a *stack*.
+Whatever is required, the rectangles use the corners of each stack's first and last runs and the ends of the
+runs of the rows beyond them; on a row line inside a stack, its two side corners when one of them is
+required; and no other corner. So the required corners are the former and every corner joined to them by
+such pairs (a search over a hash set of corners), and one meshing with them gives the mesh, whose vertices
+they are. The memory is that of the mask's runs and of the surface.
 """
 
 from __future__ import annotations
@@ -48,6 +58,7 @@ from mrm.geometry.topology.labeling import _find, _union
 
 FloatArray = npt.NDArray[np.float64]
 Int64Array = npt.NDArray[np.int64]
+Int32Array = npt.NDArray[np.int32]
 BoolArray = npt.NDArray[np.bool_]
 
 
@@ -69,174 +80,536 @@ class SafetyNet3D(NamedTuple):
     n_faces: int
 
 
-def _doubled(a: BoolArray, axis: int) -> BoolArray:
-    # Cells 2p (core: voxel p) and 2p + 1 (seam: voxels p and p + 1) along one axis.
-    n = a.shape[axis]
-    shape = list(a.shape)
-    shape[axis] = 2 * n - 1
-    out = np.empty(shape, bool)
-    idx: list[slice] = [slice(None)] * a.ndim
-    idx[axis] = slice(0, None, 2)
-    out[tuple(idx)] = a
-    lo: list[slice] = [slice(None)] * a.ndim
-    hi: list[slice] = [slice(None)] * a.ndim
-    lo[axis] = slice(0, n - 1)
-    hi[axis] = slice(1, n)
-    idx[axis] = slice(1, None, 2)
-    out[tuple(idx)] = a[tuple(lo)] & a[tuple(hi)]
-    return out
+#: For each axis a (0 = x, 1 = y, 2 = z) normal to a family of planes: the shifts of a corner's (plane, row,
+#: column) indices in its packed key mz << 42 | my << 21 | mx, the plane's row and column axes (v, u) being
+#: (z, y), (x, z) and (y, x), so that (u, v, a) is right-handed.
+_SHIFTS = np.array([[0, 42, 21], [21, 0, 42], [42, 21, 0]], np.int64)
+
+
+# ------------------------------------------------------------------------------------------- runs of the mask
+@njit(cache=True)
+def _grow(a: Int32Array, n: int) -> Int32Array:  # pragma: no cover
+    b = np.empty(2 * a.size, a.dtype)
+    b[:n] = a[:n]
+    return b
 
 
 @njit(cache=True)
-def _run_end(bd: npt.NDArray[np.int8], p: int, r: int, u: int, sign: int) -> bool:  # pragma: no cover
-    # True when the squares of the given sign in row r (of plane p) start or stop at corner u (beyond: none).
-    R, C = bd.shape[1], bd.shape[2]
-    if r < 0 or r >= R:
-        return False
-    a = u >= 1 and bd[p, r, u - 1] == sign
-    b = u < C and bd[p, r, u] == sign
-    return bool(a != b)
+def _x_runs(
+    m: BoolArray, k0: int, j0: int, i0: int, sz: int, sy: int, sx: int
+) -> tuple[Int64Array, Int32Array, Int32Array]:  # pragma: no cover
+    # The runs along x of the box m[k0 : k0 + sz, j0 : j0 + sy, i0 : i0 + sx] padded by one empty voxel on
+    # each side: line z · (sy + 2) + y holds the runs [s, e) of padded x numbered ptr[line] to ptr[line + 1]
+    # (excluded).
+    ny = sy + 2
+    ptr = np.zeros((sz + 2) * ny + 1, np.int64)
+    s = np.empty(1024, np.int32)
+    e = np.empty(1024, np.int32)
+    n = 0
+    for z in range(sz):
+        for y in range(sy):
+            row = m[k0 + z, j0 + y, i0 : i0 + sx]
+            x = 0
+            while x < sx:
+                if not row[x]:
+                    x += 1
+                    continue
+                x0 = x
+                while x < sx and row[x]:
+                    x += 1
+                if n == s.size:
+                    s = _grow(s, n)
+                    e = _grow(e, n)
+                s[n] = x0 + 1
+                e[n] = x + 1
+                n += 1
+            ptr[(z + 1) * ny + y + 2] = n
+    for k in range(1, ptr.size):  # the empty lines of the padding
+        ptr[k] = max(ptr[k], ptr[k - 1])
+    return ptr, s[:n], e[:n]
+
+
+@njit(cache=True)
+def _emit_diff(
+    s: Int32Array,
+    e: Int32Array,
+    a0: int,
+    a1: int,
+    b0: int,
+    b1: int,
+    t: int,
+    step: int,
+    base: int,
+    start: bool,
+    fill: bool,
+    count: Int64Array,
+    cursor: Int64Array,
+    out_s: Int32Array,
+    out_e: Int32Array,
+) -> None:  # pragma: no cover
+    # Each voxel x of runs a0 .. a1 − 1 minus runs b0 .. b1 − 1 (one row) starts (or ends) at t a run of line
+    # base + x · step: counted, or written.
+    j = b0
+    for i in range(a0, a1):
+        cur = s[i]
+        hi = e[i]
+        while j < b1 and e[j] <= cur:
+            j += 1
+        k = j
+        while cur < hi:
+            nxt = hi
+            if k < b1 and s[k] < hi:
+                nxt = max(cur, s[k])  # the gap before run k of b
+            for x in range(cur, nxt):
+                line = base + x * step
+                if not fill:
+                    if start:
+                        count[line + 1] += 1
+                elif start:
+                    out_s[cursor[line]] = t
+                else:
+                    out_e[cursor[line]] = t
+                    cursor[line] += 1
+            if nxt < hi:
+                cur = e[k]
+                k += 1
+            else:
+                cur = hi
+
+
+@njit(cache=True)
+def _cross_runs(
+    ptr: Int64Array, s: Int32Array, e: Int32Array, nz: int, ny: int, nx: int, along_z: bool
+) -> tuple[Int64Array, Int32Array, Int32Array]:  # pragma: no cover
+    # From the runs along x of lines (z, y) (:func:`_x_runs`, padded sizes nz, ny, nx): the runs along y of
+    # lines x · nz + z, or along z of lines y · nx + x. A run along y starts (ends) at y where voxel (x, y, z)
+    # is in (out) and (x, y − 1, z) out (in): the voxels of one row's runs minus the previous row's.
+    n_lines = ny * nx if along_z else nx * nz
+    out = np.zeros(n_lines + 1, np.int64)
+    cursor = np.empty(0, np.int64)
+    out_s = np.empty(0, np.int32)
+    out_e = np.empty(0, np.int32)
+    for fill in (False, True):
+        if fill:
+            for k in range(n_lines):
+                out[k + 1] += out[k]
+            cursor = out[:-1].copy()
+            out_s = np.empty(out[n_lines], np.int32)
+            out_e = np.empty(out[n_lines], np.int32)
+        n_outer, n_t = (ny, nz) if along_z else (nz, ny)
+        for o in range(n_outer):
+            for t in range(1, n_t):
+                if along_z:
+                    prev = (t - 1) * ny + o
+                    cur = t * ny + o
+                    step, base = 1, o * nx
+                else:
+                    prev = o * ny + t - 1
+                    cur = o * ny + t
+                    step, base = nz, o
+                p0, p1, c0, c1 = ptr[prev], ptr[prev + 1], ptr[cur], ptr[cur + 1]
+                if p0 == p1 and c0 == c1:
+                    continue
+                _emit_diff(s, e, c0, c1, p0, p1, t, step, base, True, fill, out, cursor, out_s, out_e)
+                _emit_diff(s, e, p0, p1, c0, c1, t, step, base, False, fill, out, cursor, out_s, out_e)
+    return out, out_s, out_e
+
+
+# ------------------------------------------------------------------------------------ the boundary squares
+@njit(cache=True)
+def _and(
+    a_s: Int32Array,
+    a_e: Int32Array,
+    a0: int,
+    a1: int,
+    b_s: Int32Array,
+    b_e: Int32Array,
+    b0: int,
+    b1: int,
+    o_s: Int32Array,
+    o_e: Int32Array,
+) -> int:  # pragma: no cover
+    # The runs of (runs a0 .. a1 − 1 of a) ∩ (runs b0 .. b1 − 1 of b), written to o from 0; their number.
+    n = 0
+    i = a0
+    j = b0
+    while i < a1 and j < b1:
+        lo = max(a_s[i], b_s[j])
+        hi = min(a_e[i], b_e[j])
+        if lo < hi:
+            o_s[n] = lo
+            o_e[n] = hi
+            n += 1
+        if a_e[i] < b_e[j]:
+            i += 1
+        else:
+            j += 1
+    return n
+
+
+@njit(cache=True)
+def _axis_squares(
+    lptr: Int64Array,
+    ls: Int32Array,
+    le: Int32Array,
+    na: int,
+    nv: int,
+    nu: int,
+    rptr: Int64Array,
+    row0: int,
+    rc0: Int32Array,
+    rc1: Int32Array,
+    n: int,
+) -> tuple[Int32Array, Int32Array, int]:  # pragma: no cover
+    # The boundary squares of the planes normal to one axis, as runs [rc0, rc1) of cell columns per row
+    # (plane m, cell row r) = row row0 + m · (2 nv − 1) + r, from the runs along u of the voxel lines
+    # p · nv + q (padded sizes na, nv, nu). Plane 2p + 1 separates core p from seam (p, p + 1) and plane 2p
+    # seam (p − 1, p) from core p; a seam is in R(A) only if its core is, so a plane's squares are the cells
+    # of the doubled slice p (cores, sign +1 on odd planes, −1 on even) not in the doubled slice of p and its
+    # neighbour: D(X) \ D(X ∩ Y), D doubling the runs [i0, i1) of voxels to cells [2 i0, 2 i1 − 1).
+    n_rows = 2 * nv - 1
+    w = nu // 2 + 2
+    f_s = np.empty(w, np.int32)
+    f_e = np.empty(w, np.int32)
+    g_s = np.empty(w, np.int32)
+    g_e = np.empty(w, np.int32)
+    h_s = np.empty(w, np.int32)
+    h_e = np.empty(w, np.int32)
+    for m in range(2 * na):
+        p = m // 2
+        p2 = p + 1 if m % 2 == 1 else p - 1
+        for cv in range(n_rows):
+            q = cv // 2
+            la = p * nv + q
+            if lptr[la] < lptr[la + 1] and 0 <= p2 < na:
+                lb = p2 * nv + q
+                if cv % 2 == 0:
+                    nf = _and(ls, le, lptr[la], lptr[la + 1], ls, le, lptr[la], lptr[la + 1], f_s, f_e)
+                    ns = _and(f_s, f_e, 0, nf, ls, le, lptr[lb], lptr[lb + 1], h_s, h_e)
+                else:
+                    nf = _and(ls, le, lptr[la], lptr[la + 1], ls, le, lptr[la + 1], lptr[la + 2], f_s, f_e)
+                    ng = _and(f_s, f_e, 0, nf, ls, le, lptr[lb], lptr[lb + 1], g_s, g_e)
+                    ns = _and(g_s, g_e, 0, ng, ls, le, lptr[lb + 1], lptr[lb + 2], h_s, h_e)
+                j = 0
+                for i in range(nf):
+                    a = f_s[i]
+                    b = f_e[i]
+                    cur = 2 * a
+                    while j < ns and h_s[j] < b:  # the runs of X ∩ Y inside this run of X
+                        if 2 * h_s[j] > cur:
+                            if n + 1 > rc0.size:
+                                rc0 = _grow(rc0, n)
+                                rc1 = _grow(rc1, n)
+                            rc0[n] = cur
+                            rc1[n] = 2 * h_s[j]
+                            n += 1
+                        cur = 2 * h_e[j] - 1
+                        j += 1
+                    if 2 * b - 1 > cur:
+                        if n + 1 > rc0.size:
+                            rc0 = _grow(rc0, n)
+                            rc1 = _grow(rc1, n)
+                        rc0[n] = cur
+                        rc1[n] = 2 * b - 1
+                        n += 1
+            rptr[row0 + m * n_rows + cv + 1] = n
+    return rc0, rc1, n
+
+
+# ----------------------------------------------------------------------------------------------- runs lookup
+@njit(cache=True)
+def _run_at(rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c: int) -> int:  # pragma: no cover
+    # The run of the row with rc0 <= c <= rc1 (corner c on it or at an end), or −1 (runs are a cell apart).
+    lo = int(rptr[row])
+    hi = int(rptr[row + 1])
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if rc0[mid] <= c:
+            lo = mid + 1
+        else:
+            hi = mid
+    k = lo - 1
+    if k >= rptr[row] and c <= rc1[k]:
+        return k
+    return -1
 
 
 @njit(cache=True)
 def _same_run(
-    bd: npt.NDArray[np.int8], p: int, r: int, c0: int, c1: int, sign: int
+    rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c0: int, c1: int
 ) -> bool:  # pragma: no cover
-    # True when row r has a run of the given sign covering exactly the squares c0 .. c1 − 1.
-    C = bd.shape[2]
-    if c0 > 0 and bd[p, r, c0 - 1] == sign:
-        return False
-    if c1 < C and bd[p, r, c1] == sign:
-        return False
-    for c in range(c0, c1):  # noqa: SIM110 (a plain loop: no generator in a numba kernel)
-        if bd[p, r, c] != sign:
-            return False
-    return True
+    # True when the row has the run [c0, c1) exactly.
+    k = _run_at(rptr, rc0, rc1, row, c0)
+    return k >= 0 and rc0[k] == c0 and rc1[k] == c1
+
+
+# -------------------------------------------------------------------------------------- the required corners
+@njit(cache=True)
+def _hash(key: int, mask: int) -> int:  # pragma: no cover
+    # Fibonacci hashing, in uint64 (the product wraps); mask + 1 is the table's size, a power of 2
+    h = (np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(29)
+    return int(np.int64(h & np.uint64(mask)))
 
 
 @njit(cache=True)
-def _plane_mesh(
-    bd: npt.NDArray[np.int8], req: npt.NDArray[np.uint8]
+def _insert(
+    table: Int64Array, items: Int64Array, n: int, key: int
 ) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
-    # bd (P, R, C): +1 / −1 for a boundary square of outward normal +axis / −axis in plane p, row v, column u;
-    # req (P, R + 1, C + 1): the corners that must be vertices. Returns the triangles as corner triples
-    # (plane, v, u) (int64 (m, 3, 3)), their faces, and the number of faces.
-    P, R, C = bd.shape
-    # Faces are 4-connected squares of one sign in one plane, labelled plane by plane (memory for one plane).
-    parent = np.empty(R * C, np.int64)
-    face_of = np.empty(R * C, np.int64)
-    covered = np.zeros(R * C, np.uint8)
-    nf = 0
-    cap = 64
-    tri = np.empty((cap, 3, 3), np.int64)
-    tface = np.empty(cap, np.int64)
+    # Add key to the set (open addressing, −1 empty; items: the keys in insertion order, n of them).
+    mask = table.size - 1
+    h = _hash(key, mask)
+    while table[h] >= 0:
+        if table[h] == key:
+            return table, items, n
+        h = (h + 1) & mask
+    table[h] = key
+    if n == items.size:
+        grown = np.empty(2 * n, np.int64)
+        grown[:n] = items[:n]
+        items = grown
+    items[n] = key
+    n += 1
+    if 2 * n > table.size:
+        table = np.full(2 * table.size, -1, np.int64)
+        mask = table.size - 1
+        for i in range(n):
+            h = _hash(items[i], mask)
+            while table[h] >= 0:
+                h = (h + 1) & mask
+            table[h] = items[i]
+    return table, items, n
+
+
+@njit(cache=True)
+def _required(
+    rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, dims: Int64Array, shifts: Int64Array
+) -> Int64Array:  # pragma: no cover
+    # The required corners (packed keys, unordered). A stack (a run of squares repeated over rows) is cut
+    # into rectangles at the row lines inside it where a required corner lies on its sides. Whatever set S is
+    # required, the rectangles use: the corners of each stack's first and last runs and the ends of the runs
+    # of the rows beyond them (the base, independent of S); on a row line inside a stack, both side corners
+    # if one is in S; and points of S. So the corners used with S are the base, S and the partners of S
+    # across stacks: growing with S, the passes from the empty set reach the least fixed point, which is the
+    # base and every corner joined to it by partners, found here by a search over a hash set.
+    table = np.full(1 << 12, -1, np.int64)
+    items = np.empty(1 << 11, np.int64)
+    n = 0
+    row0 = 0
+    for a in range(3):
+        na, nv = dims[a, 0], dims[a, 1]
+        n_rows = 2 * nv - 1
+        sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
+        for p in range(2 * na):
+            for r in range(n_rows):
+                row = row0 + p * n_rows + r
+                for k in range(rptr[row], rptr[row + 1]):
+                    c0 = int(rc0[k])  # int64: shifted into a key
+                    c1 = int(rc1[k])
+                    for side in range(2):  # 0: bottom (row line r), 1: top (row line r + 1)
+                        other = row - 1 if side == 0 else row + 1
+                        beyond = r - 1 if side == 0 else r + 1
+                        if 0 <= beyond < n_rows and _same_run(rptr, rc0, rc1, other, c0, c1):
+                            continue
+                        line = r + side
+                        table, items, n = _insert(table, items, n, (p << sp) | (line << sr) | (c0 << sc))
+                        table, items, n = _insert(table, items, n, (p << sp) | (line << sr) | (c1 << sc))
+                        if not 0 <= beyond < n_rows:
+                            continue
+                        kk = _run_at(rptr, rc0, rc1, other, c0)
+                        if kk < 0:
+                            kk = rptr[other]
+                            while kk < rptr[other + 1] and rc1[kk] <= c0:
+                                kk += 1
+                        while kk < rptr[other + 1] and rc0[kk] < c1:  # the run ends strictly inside
+                            for u in (int(rc0[kk]), int(rc1[kk])):
+                                if c0 < u < c1:
+                                    key = (p << sp) | (line << sr) | (u << sc)
+                                    table, items, n = _insert(table, items, n, key)
+                            kk += 1
+        row0 += 2 * na * n_rows
+    # the closure: a corner inside a stack's side pulls in the corner across the stack on its row line
+    mask21 = (1 << 21) - 1
+    i = 0
+    while i < n:
+        key = items[i]
+        i += 1
+        row0 = 0
+        for a in range(3):
+            na, nv = dims[a, 0], dims[a, 1]
+            n_rows = 2 * nv - 1
+            sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
+            p = (key >> sp) & mask21
+            r = (key >> sr) & mask21
+            c = (key >> sc) & mask21
+            if 1 <= r < n_rows:
+                row = row0 + p * n_rows + r
+                k = _run_at(rptr, rc0, rc1, row, c)
+                if (
+                    k >= 0
+                    and (c == rc0[k] or c == rc1[k])
+                    and _same_run(rptr, rc0, rc1, row - 1, rc0[k], rc1[k])
+                ):
+                    u = int(rc1[k] if c == rc0[k] else rc0[k])
+                    table, items, n = _insert(table, items, n, (p << sp) | (r << sr) | (u << sc))
+            row0 += 2 * na * n_rows
+    return items[:n]
+
+
+# ------------------------------------------------------------------------------------------------- the mesh
+@njit(cache=True)
+def _lower(lu: Int32Array, lo: int, hi: int, c: int) -> int:  # pragma: no cover
+    # The first index in lo .. hi − 1 with lu >= c (lu sorted), else hi.
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if lu[mid] < c:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
+def _has(lp: Int64Array, lu: Int32Array, line: int, c: int) -> bool:  # pragma: no cover
+    k = _lower(lu, lp[line], lp[line + 1], c)
+    return bool(k < lp[line + 1] and lu[k] == c)
+
+
+@njit(cache=True)
+def _mesh(
+    rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, dims: Int64Array, shifts: Int64Array, keys: Int64Array
+) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
+    # The triangles (vertex numbers: indices in the sorted required corners `keys`), their faces and the
+    # number of faces; one pass counts the triangles, the second writes them.
+    nk = keys.size
+    mask21 = (1 << 21) - 1
+    n_lines = 0
+    widest = 1
+    row0 = 0
+    for a in range(3):
+        na, nv = dims[a, 0], dims[a, 1]
+        n_rows = 2 * nv - 1
+        n_lines = max(n_lines, 2 * na * 2 * nv)
+        for p in range(2 * na):
+            widest = max(widest, rptr[row0 + (p + 1) * n_rows] - rptr[row0 + p * n_rows])
+        row0 += 2 * na * n_rows
+    # the required corners of each row line (plane, row line), by column: lp, lu, and their numbers lid
+    lp = np.empty(n_lines + 1, np.int64)
+    lu = np.empty(nk, np.int32)
+    lid = np.empty(nk, np.int64)
+    parent = np.empty(widest, np.int64)
+    face_of = np.empty(widest, np.int64)
+    tri = np.empty((0, 3), np.int64)
+    face = np.empty(0, np.int64)
     nt = 0
-    bot = np.empty(C + 1, np.int64)
-    top = np.empty(C + 1, np.int64)
-    for p in range(P):
-        plane = bd[p]
-        for k in range(R * C):
-            parent[k] = k
-            covered[k] = 0
-        for r in range(R):
-            for c in range(C):
-                sq = plane[r, c]
-                if sq == 0:
+    nf = 0
+    for write in (False, True):
+        if write:
+            tri = np.empty((nt, 3), np.int64)
+            face = np.empty(nt, np.int64)
+        nt = 0
+        nf = 0
+        row0 = 0
+        for a in range(3):
+            na, nv = dims[a, 0], dims[a, 1]
+            n_rows = 2 * nv - 1
+            sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
+            # keys sorted by (z, y, x) are sorted by column within each row line of any axis
+            lines = 2 * na * 2 * nv
+            lp[: lines + 1] = 0
+            for i in range(nk):
+                line = ((keys[i] >> sp) & mask21) * 2 * nv + ((keys[i] >> sr) & mask21)
+                lp[line + 1] += 1
+            for line in range(lines):
+                lp[line + 1] += lp[line]
+            for i in range(nk):
+                line = ((keys[i] >> sp) & mask21) * 2 * nv + ((keys[i] >> sr) & mask21)
+                lu[lp[line]] = (keys[i] >> sc) & mask21
+                lid[lp[line]] = i
+                lp[line] += 1
+            for line in range(lines, 0, -1):
+                lp[line] = lp[line - 1]
+            lp[0] = 0
+            for p in range(2 * na):
+                first = rptr[row0 + p * n_rows]
+                if first == rptr[row0 + (p + 1) * n_rows]:
                     continue
-                k = r * C + c
-                if c > 0 and plane[r, c - 1] == sq:
-                    _union(parent, k - 1, k)
-                if r > 0 and plane[r - 1, c] == sq:
-                    _union(parent, k - C, k)
-        for k in range(R * C):
-            if plane[k // C, k % C] != 0:
-                root = _find(parent, k)
-                if root == k:
-                    face_of[k] = nf
-                    nf += 1
-                else:
-                    face_of[k] = face_of[root]
-        for sign in (1, -1):
-            for r in range(R):
-                row = plane[r]
-                c = 0
-                while c < C:
-                    if row[c] != sign:
-                        c += 1
-                        continue
-                    c0 = c
-                    while c < C and row[c] == sign:
-                        c += 1
-                    c1 = c  # the run covers columns c0 .. c1 − 1: corners c0 .. c1
-                    if covered[r * C + c0]:
-                        continue  # in a rectangle started below
-                    # the rectangle: the following rows with the same run, no required corner on its sides
-                    r1 = r + 1  # its top row line
-                    while (
-                        r1 < R
-                        and not req[p, r1, c0]
-                        and not req[p, r1, c1]
-                        and _same_run(bd, p, r1, c0, c1, sign)
-                    ):
-                        covered[r1 * C + c0] = 1
-                        r1 += 1
-                    nb = 0
-                    nt_top = 0
-                    for u in range(c0, c1 + 1):
-                        # a corner, a required corner, or a corner of a run of the row on the other side
-                        if u in (c0, c1) or req[p, r, u] or _run_end(bd, p, r - 1, u, sign):
-                            bot[nb] = u
-                            nb += 1
-                        if u in (c0, c1) or req[p, r1, u] or _run_end(bd, p, r1, u, sign):
-                            top[nt_top] = u
-                            nt_top += 1
-                    f = face_of[r * C + c0]
-                    # the strip between the bottom (row line r) and top (row line r1) points
-                    i = 0
-                    j = 0
-                    while i < nb - 1 or j < nt_top - 1:
-                        if nt + 1 > cap:
-                            cap *= 2
-                            t2 = np.empty((cap, 3, 3), np.int64)
-                            t2[:nt] = tri[:nt]
-                            tri = t2
-                            f2 = np.empty(cap, np.int64)
-                            f2[:nt] = tface[:nt]
-                            tface = f2
-                        adv_bottom = j == nt_top - 1 or (i < nb - 1 and bot[i + 1] <= top[j + 1])
-                        # corners as (plane, v, u); counter-clockwise in (u, v) for sign +1
-                        tri[nt, 0, 0] = p
-                        tri[nt, 0, 1] = r
-                        tri[nt, 0, 2] = bot[i]
-                        if adv_bottom:
-                            tri[nt, 1, 0] = p
-                            tri[nt, 1, 1] = r
-                            tri[nt, 1, 2] = bot[i + 1]
-                            tri[nt, 2, 0] = p
-                            tri[nt, 2, 1] = r1
-                            tri[nt, 2, 2] = top[j]
-                            i += 1
+                if write:
+                    # faces: 4-connected squares, runs overlapping on adjacent rows, numbered by first run
+                    for k in range(first, rptr[row0 + (p + 1) * n_rows]):
+                        parent[k - first] = k - first
+                    for r in range(1, n_rows):
+                        row = row0 + p * n_rows + r
+                        i = rptr[row - 1]
+                        j = rptr[row]
+                        while i < rptr[row] and j < rptr[row + 1]:
+                            if rc0[i] < rc1[j] and rc0[j] < rc1[i]:
+                                _union(parent, i - first, j - first)
+                            if rc1[i] < rc1[j]:
+                                i += 1
+                            else:
+                                j += 1
+                    for k in range(first, rptr[row0 + (p + 1) * n_rows]):
+                        root = _find(parent, k - first)
+                        if root == k - first:
+                            face_of[root] = nf
+                            nf += 1
                         else:
-                            tri[nt, 1, 0] = p
-                            tri[nt, 1, 1] = r1
-                            tri[nt, 1, 2] = top[j + 1]
-                            tri[nt, 2, 0] = p
-                            tri[nt, 2, 1] = r1
-                            tri[nt, 2, 2] = top[j]
-                            j += 1
-                        if sign < 0:
-                            for a in range(3):
-                                t = tri[nt, 1, a]
-                                tri[nt, 1, a] = tri[nt, 2, a]
-                                tri[nt, 2, a] = t
-                        tface[nt] = f
-                        nt += 1
-    return tri[:nt], tface[:nt], nf
-
-
-#: For each axis a (0 = x, 1 = y, 2 = z): the transpose of a (z, y, x) array to (a, v, u) with (u, v, a)
-#: right-handed, and for each of (plane, v, u) the index in (x, y, z) it stands for.
-_LAYOUT = (((2, 0, 1), (0, 2, 1)), ((1, 2, 0), (1, 0, 2)), ((0, 1, 2), (2, 1, 0)))
+                            face_of[k - first] = face_of[root]
+                sign = 1 if p % 2 == 1 else -1
+                for r in range(n_rows):
+                    row = row0 + p * n_rows + r
+                    for k in range(rptr[row], rptr[row + 1]):
+                        c0 = rc0[k]
+                        c1 = rc1[k]
+                        bl = p * 2 * nv + r
+                        if (
+                            r > 0
+                            and not _has(lp, lu, bl, c0)
+                            and not _has(lp, lu, bl, c1)
+                            and _same_run(rptr, rc0, rc1, row - 1, c0, c1)
+                        ):
+                            continue  # in a rectangle started below
+                        r1 = r + 1
+                        while (
+                            r1 < n_rows
+                            and not _has(lp, lu, bl + r1 - r, c0)
+                            and not _has(lp, lu, bl + r1 - r, c1)
+                            and _same_run(rptr, rc0, rc1, row + r1 - r, c0, c1)
+                        ):
+                            r1 += 1
+                        tl = bl + r1 - r
+                        b0 = _lower(lu, lp[bl], lp[bl + 1], c0)
+                        b1 = _lower(lu, b0, lp[bl + 1], c1 + 1)
+                        t0 = _lower(lu, lp[tl], lp[tl + 1], c0)
+                        t1 = _lower(lu, t0, lp[tl + 1], c1 + 1)
+                        if not write:
+                            nt += (b1 - b0 - 1) + (t1 - t0 - 1)
+                            continue
+                        f = face_of[k - first]
+                        # the strip between the bottom (row line r) and top (row line r1) points
+                        i = b0
+                        j = t0
+                        while i < b1 - 1 or j < t1 - 1:
+                            v0 = lid[i]
+                            if j == t1 - 1 or (i < b1 - 1 and lu[i + 1] <= lu[j + 1]):
+                                v1 = lid[i + 1]
+                                v2 = lid[j]
+                                i += 1
+                            else:
+                                v1 = lid[j + 1]
+                                v2 = lid[j]
+                                j += 1
+                            tri[nt, 0] = v0
+                            if sign > 0:
+                                tri[nt, 1] = v1
+                                tri[nt, 2] = v2
+                            else:
+                                tri[nt, 1] = v2
+                                tri[nt, 2] = v1
+                            face[nt] = f
+                            nt += 1
+            row0 += 2 * na * n_rows
+    return tri, face, nf
 
 
 def safety_net_3d(
@@ -265,48 +638,36 @@ def safety_net_3d(
     if not m.any():
         return empty
     ks, js, is_ = (np.flatnonzero(m.any(axis=a)) for a in ((1, 2), (0, 2), (0, 1)))
-    m = m[ks[0] : ks[-1] + 1, js[0] : js[-1] + 1, is_[0] : is_[-1] + 1]
-    ox, oy, oz = int(origin[0]) + int(is_[0]), int(origin[1]) + int(js[0]), int(origin[2]) + int(ks[0])
-    nz, ny, nx = (s + 2 for s in m.shape)
+    k0, j0, i0 = int(ks[0]), int(js[0]), int(is_[0])
+    sz, sy, sx = int(ks[-1]) + 1 - k0, int(js[-1]) + 1 - j0, int(is_[-1]) + 1 - i0
+    ox, oy, oz = int(origin[0]) + i0, int(origin[1]) + j0, int(origin[2]) + k0
+    nz, ny, nx = sz + 2, sy + 2, sx + 2  # the box padded by one empty voxel on each side
     check_pixels(8 * nz * ny * nx, limit, "the safety net's doubled grid")
     if 2 * max(nz, ny, nx) >= 1 << 21:
         raise ValueError("the safety net takes at most 2**20 voxels along each axis")
-    a = np.pad(m, 1)
-    s = _doubled(_doubled(_doubled(a, 0), 1), 2)  # cells, (2nz − 1, 2ny − 1, 2nx − 1)
-    # The required corners grow until every corner the rectangles use is required (a fixed point): then a
-    # face's outline is split at exactly the required corners on it, the same for both faces along an edge.
-    req = np.zeros((2 * nz, 2 * ny, 2 * nx), np.uint8)  # corners (mz, my, mx)
-    bds = []
-    for axis in range(3):
-        perm, _ = _LAYOUT[axis]
-        st = np.ascontiguousarray(s.transpose(perm))
-        sa = np.pad(st, ((1, 1), (0, 0), (0, 0)))
-        # plane m lies between cells m − 1 (sa[m]) and m (sa[m + 1])
-        bds.append(np.ascontiguousarray(sa[:-1].astype(np.int8) - sa[1:].astype(np.int8)))
-    while True:
-        tris = []
-        faces = []
-        nf_total = 0
-        for axis in range(3):
-            perm, to_xyz = _LAYOUT[axis]
-            t, f, nf = _plane_mesh(bds[axis], np.ascontiguousarray(req.transpose(perm)))
-            xyz = np.empty_like(t)
-            for k in range(3):
-                xyz[:, :, to_xyz[k]] = t[:, :, k]
-            tris.append(xyz)
-            faces.append(f + nf_total)
-            nf_total += int(nf)
-        used = np.concatenate(tris).reshape(-1, 3)
-        if bool(np.all(req[used[:, 2], used[:, 1], used[:, 0]])):
-            break
-        req[used[:, 2], used[:, 1], used[:, 0]] = 1
-    corners = np.concatenate(tris).reshape(-1, 3)  # (mx, my, mz) corner indices
-    # Sort vertices by (z, y, x): pack the corner indices (each at most 2·(n + 2) < 2**21, checked above).
-    key = (corners[:, 2] << 42) | (corners[:, 1] << 21) | corners[:, 0]
-    uniq, inverse = np.unique(key, return_inverse=True)
-    cm = np.stack([uniq & ((1 << 21) - 1), (uniq >> 21) & ((1 << 21) - 1), uniq >> 42], axis=1)
+    if not m.flags.c_contiguous:
+        m = np.ascontiguousarray(m[k0 : k0 + sz, j0 : j0 + sy, i0 : i0 + sx])
+        k0 = j0 = i0 = 0
+    # The doubled grid is never built: the runs of the mask along each axis give each plane's boundary
+    # squares as runs per row, and the rest works on those runs and on corners, in memory of the surface's
+    # size.
+    xptr, xs, xe = _x_runs(m, k0, j0, i0, sz, sy, sx)
+    yptr, ys, ye = _cross_runs(xptr, xs, xe, nz, ny, nx, False)
+    zptr, zs, ze = _cross_runs(xptr, xs, xe, nz, ny, nx, True)
+    dims = np.array([[nx, nz, ny], [ny, nx, nz], [nz, ny, nx]], np.int64)  # (plane, row, column) voxel axes
+    rptr = np.zeros(sum(2 * int(d[0]) * (2 * int(d[1]) - 1) for d in dims) + 1, np.int64)
+    rc0 = np.empty(1024, np.int32)
+    rc1 = np.empty(1024, np.int32)
+    n = 0
+    row0 = 0
+    for (lptr, ls, le), d in zip(((yptr, ys, ye), (zptr, zs, ze), (xptr, xs, xe)), dims, strict=True):
+        rc0, rc1, n = _axis_squares(lptr, ls, le, int(d[0]), int(d[1]), int(d[2]), rptr, row0, rc0, rc1, n)
+        row0 += 2 * int(d[0]) * (2 * int(d[1]) - 1)
+    del xptr, xs, xe, yptr, ys, ye, zptr, zs, ze
+    keys = np.sort(_required(rptr, rc0, rc1, dims, _SHIFTS))
+    triangles, face, n_faces = _mesh(rptr, rc0, rc1, dims, _SHIFTS, keys)
+    cm = np.stack([keys & ((1 << 21) - 1), (keys >> 21) & ((1 << 21) - 1), keys >> 42], axis=1)
     # corner m is at (origin − 1) + (2m − 1)/4 on its axis
     base = np.array([ox - 1, oy - 1, oz - 1], np.float64)
     vertices = base + (2 * cm - 1).astype(np.float64) / 4.0
-    triangles = inverse.reshape(-1, 3).astype(np.int64)
-    return SafetyNet3D(vertices, triangles, np.concatenate(faces), nf_total)
+    return SafetyNet3D(vertices, triangles, face, int(n_faces))
