@@ -52,6 +52,8 @@ from mrm.geometry.polyhedra.self_intersection import DISJOINT, triangles_meet_im
 
 FloatArray = npt.NDArray[np.float64]
 Int64Array = npt.NDArray[np.int64]
+Int32Array = npt.NDArray[np.int32]
+Int16Array = npt.NDArray[np.int16]
 BoolArray = npt.NDArray[np.bool_]
 
 #: Voxels of padding around A in the forbidden-cube array (beyond it every cube is forbidden).
@@ -83,16 +85,30 @@ def forbidden_cubes(mask: BoolArray, gauss: bool) -> BoolArray:
     a = np.pad(mask, PAD)
     if not gauss:
         return ~a
-    b = np.pad(a, 1)
-    count = np.zeros(a.shape, np.int8)
-    nz, ny, nx = a.shape
-    for dz in range(3):
-        for dy in range(3):
-            for dx in range(3):
-                count += b[dz : dz + nz, dy : dy + ny, dx : dx + nx]
-    # Beyond the array every voxel is outside: the outer ring's blocks are counted with that outside.
-    out: BoolArray = (count == 0) | (count == 27)
+    out = np.empty(a.shape, np.bool_)
+    _uniform_blocks(a, out)
     return out
+
+
+@njit(cache=True)
+def _uniform_blocks(a: BoolArray, out: BoolArray) -> None:  # pragma: no cover - compiled
+    # out[v] = whether the 3×3×3 block of v is all in a or all outside (beyond the array every voxel is
+    # outside). One pass, no count array: at 256³ the counts and their padded copies took 90 MB.
+    nz, ny, nx = a.shape
+    for z in range(nz):
+        for y in range(ny):
+            for x in range(nx):
+                n_in = 0
+                n_all = 27
+                for dz in range(-1, 2):
+                    zz = z + dz
+                    for dy in range(-1, 2):
+                        yy = y + dy
+                        for dx in range(-1, 2):
+                            xx = x + dx
+                            if 0 <= zz < nz and 0 <= yy < ny and 0 <= xx < nx and a[zz, yy, xx]:
+                                n_in += 1
+                out[z, y, x] = n_in == 0 or n_in == n_all
 
 
 @njit(cache=True, inline="always")
@@ -217,15 +233,13 @@ def _triangle_meets_box(
         t_min = min(p[0, k], p[1, k], p[2, k])
         if t_max < lo[k] or t_min > hi[k] or (open_box and (t_max == lo[k] or t_min == hi[k])):
             return False
-    e = np.empty((3, 3), np.int64)
-    for i in range(3):
-        for k in range(3):
-            e[i, k] = p[(i + 1) % 3, k] - p[i, k]
     nx, ny, nz = _normal_of(p)
     if _axis_apart(nx, ny, nz, p, lo, hi, open_box):
         return False
     for i in range(3):
-        ex, ey, ez = e[i, 0], e[i, 1], e[i, 2]
+        # edge i, read off the points (no array per call: this runs for every cube a triangle's plane meets)
+        i1 = (i + 1) % 3
+        ex, ey, ez = p[i1, 0] - p[i, 0], p[i1, 1] - p[i, 1], p[i1, 2] - p[i, 2]
         # unit axis × edge
         if _axis_apart(0, -ez, ey, p, lo, hi, open_box):
             return False
@@ -247,7 +261,7 @@ class _Scratch(NamedTuple):
     chi: Int64Array
     cb: Int64Array  # (6,): a box of grid cells
     cells: Int64Array  # grid cells a triangle's plane crosses
-    acc: Int64Array  # (nz, ny, nx): winding numbers over the box of a change
+    acc: Int16Array  # (nz, ny, nx): winding numbers over the box of a change (|each| ≤ its tetrahedra, ≤ 512)
     seen: Int64Array  # (4096, 3): the cells of acc written
     found: Int64Array  # (4096, 3): the centres in one tetrahedron
     flips: Int64Array  # (4096, 3): the centres that change side
@@ -306,15 +320,15 @@ def _bucket(
     q: Int64Array,
     t: Int64Array,
     k: int,
-    ghead: Int64Array,
-    g_next: Int64Array,
-    g_tri: Int64Array,
+    ghead: Int32Array,
+    g_next: Int32Array,
+    g_tri: Int32Array,
     ng: int,
     gx: int,
     gy: int,
     cb: Int64Array,
     cells: Int64Array,
-) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
+) -> tuple[Int32Array, Int32Array, int]:  # pragma: no cover
     # Triangle k into the buckets of the cells its plane crosses in its box (the pools double when full).
     m = _triangle_cells(q, t, k, gx, gy, cb, cells)
     if m < 0:  # a triangle too big for the list: every cell of its box
@@ -328,8 +342,8 @@ def _bucket(
                     m += 1
     for i in range(m):
         if ng == g_next.shape[0]:
-            g_next = np.concatenate((g_next, np.empty(ng, np.int64)))
-            g_tri = np.concatenate((g_tri, np.empty(ng, np.int64)))
+            g_next = np.concatenate((g_next, np.empty(ng, np.int32)))
+            g_tri = np.concatenate((g_tri, np.empty(ng, np.int32)))
         cell = cells[i]
         g_next[ng] = ghead[cell]
         g_tri[ng] = k
@@ -340,9 +354,9 @@ def _bucket(
 
 @njit(cache=True)
 def _rebucket(
-    q: Int64Array, t: Int64Array, alive: BoolArray, ghead: Int64Array, g_next: Int64Array, g_tri: Int64Array,
+    q: Int64Array, t: Int64Array, alive: BoolArray, ghead: Int32Array, g_next: Int32Array, g_tri: Int32Array,
     gx: int, gy: int, cb: Int64Array, cells: Int64Array,
-) -> tuple[Int64Array, Int64Array, int]:  # fmt: skip  # pragma: no cover - compiled
+) -> tuple[Int32Array, Int32Array, int]:  # fmt: skip  # pragma: no cover - compiled
     # The buckets again, of the live triangles only. A change adds its triangles to the cells of their new
     # boxes and leaves the old entries (skipped when read); a big triangle that changes often fills many
     # cells with them, and every later scan of those cells walks them.
@@ -351,7 +365,70 @@ def _rebucket(
     for k in range(t.shape[0]):
         if alive[k]:
             g_next, g_tri, ng = _bucket(q, t, k, ghead, g_next, g_tri, ng, gx, gy, cb, cells)
+    if ng + 2 * _ROOM > g_next.shape[0]:  # room for the changes to come (the live entries need it)
+        m = ng + ng // 2 + 2 * _ROOM
+        g_next = np.concatenate((g_next[:ng], np.empty(m - ng, np.int32)))
+        g_tri = np.concatenate((g_tri[:ng], np.empty(m - ng, np.int32)))
     return g_next, g_tri, ng
+
+
+#: Free entries kept in the star and bucket pools: below it they are compacted (_tidy) before a vertex's
+#: changes (one change adds at most 512 star entries; a bucket pool still grows should one change need more).
+_ROOM = 4096
+
+
+@njit(cache=True)
+def _restar(
+    vhead: Int64Array, s_next: Int32Array, s_tri: Int32Array, alive: BoolArray, t: Int64Array, n_now: int
+) -> tuple[Int32Array, Int32Array, int]:  # pragma: no cover - compiled
+    # The star lists with their stale entries (dead, or no longer at the vertex) dropped, every list in its
+    # order: what every reader of a list sees stays the same.
+    cap = s_next.shape[0]
+    n = 0
+    for x in range(n_now):
+        e = vhead[x]
+        while e >= 0:
+            k = s_tri[e]
+            e = s_next[e]
+            if alive[k] and (t[k, 0] == x or t[k, 1] == x or t[k, 2] == x):
+                n += 1
+    cap = max(cap, n + n // 2 + 2 * _ROOM)
+    n_next = np.empty(cap, np.int32)
+    n_tri = np.empty(cap, np.int32)
+    n = 0
+    for x in range(n_now):
+        e = vhead[x]
+        vhead[x] = -1
+        last = -1
+        while e >= 0:
+            k = s_tri[e]
+            e = s_next[e]
+            if alive[k] and (t[k, 0] == x or t[k, 1] == x or t[k, 2] == x):
+                n_tri[n] = k
+                n_next[n] = -1
+                if last < 0:
+                    vhead[x] = n
+                else:
+                    n_next[last] = n
+                last = n
+                n += 1
+    return n_next, n_tri, n
+
+
+@njit(cache=True)
+def _tidy(
+    q: Int64Array, t: Int64Array, alive: BoolArray, ghead: Int32Array, g_next: Int32Array, g_tri: Int32Array,
+    ng: int, ng_fresh: int, gx: int, gy: int, cb: Int64Array, cells: Int64Array, vhead: Int64Array,
+    s_next: Int32Array, s_tri: Int32Array, ns: int, n_now: int,
+) -> tuple[Int32Array, Int32Array, int, int, Int32Array, Int32Array, int]:  # fmt: skip  # pragma: no cover
+    # The pools compacted when stale entries have doubled the buckets (every scan walks them) or either pool
+    # is nearly full (instead of doubling it: at 256³ the grown pools were most of the memory).
+    if ng > 2 * ng_fresh or ng > g_next.shape[0] - _ROOM:
+        g_next, g_tri, ng = _rebucket(q, t, alive, ghead, g_next, g_tri, gx, gy, cb, cells)
+        ng_fresh = ng
+    if ns > s_next.shape[0] - _ROOM:
+        s_next, s_tri, ns = _restar(vhead, s_next, s_tri, alive, t, n_now)
+    return g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns
 
 
 @njit(cache=True)
@@ -513,9 +590,9 @@ def _cell_is_met(
     iy: int,
     iz: int,
     open_box: bool,
-    ghead: Int64Array,
-    g_next: Int64Array,
-    g_tri: Int64Array,
+    ghead: Int32Array,
+    g_next: Int32Array,
+    g_tri: Int32Array,
     gx: int,
     gy: int,
     gz: int,
@@ -598,6 +675,21 @@ def _flatter_across(q: Int64Array, a: int, b: int, c: int, d: int) -> bool:  # p
 
 
 @njit(cache=True)
+def _new_meet_forbidden(
+    q: Int64Array, t: Int64Array, new: Int64Array, n_new: int, forbidden: BoolArray, s: _Scratch
+) -> bool:  # pragma: no cover - compiled
+    # Whether a new triangle meets a forbidden closed cube.
+    pts = s.pts
+    for i in range(n_new):
+        for c in range(3):
+            for d in range(3):
+                pts[c, d] = q[t[new[i], c], d]
+        if _meets_forbidden(pts, forbidden, s.lo_i, s.hi_i, s.clo, s.chi, s.idx):
+            return True
+    return False
+
+
+@njit(cache=True)
 def _change_is_right(
     q: Int64Array,
     qf: FloatArray,
@@ -614,9 +706,9 @@ def _change_is_right(
     inside: BoolArray,
     forbidden: BoolArray,
     s: _Scratch,
-    ghead: Int64Array,
-    g_next: Int64Array,
-    g_tri: Int64Array,
+    ghead: Int32Array,
+    g_next: Int32Array,
+    g_tri: Int32Array,
     gx: int,
     gy: int,
     gz: int,
@@ -627,15 +719,17 @@ def _change_is_right(
     # tetrahedra (apex, old triangle) it swept, and the box of everything it touched. `inside` is updated
     # when it does; the epoch returned is past every stamp used.
     pts = s.pts
-    # 1. No new triangle is flat or meets a forbidden closed cube.
+    # 1. No new triangle is flat (cheap; every later check needs planes).
     for i in range(n_new):
         for c in range(3):
             for d in range(3):
                 pts[c, d] = q[t[new[i], c], d]
         if _normal_of(pts) == (0, 0, 0):
             return False, epoch
-        if _meets_forbidden(pts, forbidden, s.lo_i, s.hi_i, s.clo, s.chi, s.idx):
-            return False, epoch
+    # The cheaper refusal first: under gauss most changes refused are refused for a centre (2), under the
+    # covers for a forbidden cube (3). The checks have no effect on a change refused, so the order is free.
+    if covers and _new_meet_forbidden(q, t, new, n_new, forbidden, s):
+        return False, epoch
     # 2. The centres that change side: each swept tetrahedron adds its sign to the centres it holds (the
     # winding number of the old star minus the new one, coned from the apex). None may under gauss, nor lie
     # on a new triangle; under the covers only centres of A may.
@@ -656,7 +750,7 @@ def _change_is_right(
             break
         for e in range(m):
             cz, cy, cx = found[e, 2] - c0z, found[e, 1] - c0y, found[e, 0] - c0x
-            acc[cz, cy, cx] += 1 if vol > 0 else -1
+            acc[cz, cy, cx] += np.int16(1 if vol > 0 else -1)
             if touched < seen.shape[0]:
                 seen[touched, 0], seen[touched, 1], seen[touched, 2] = cz, cy, cx
             touched += 1
@@ -685,7 +779,10 @@ def _change_is_right(
                     pts[c, d] = q[t[new[i], c], d]
             if _centre_on(pts, s.lo_i, s.hi_i, s.idx):
                 return False, epoch
-    # 3. No new triangle meets another beyond what they share: each other, then the triangles of the grid
+    # 3. No new triangle meets a forbidden closed cube (under gauss; under the covers before 2).
+    if not covers and _new_meet_forbidden(q, t, new, n_new, forbidden, s):
+        return False, epoch
+    # 4. No new triangle meets another beyond what they share: each other, then the triangles of the grid
     # cells their planes cross (the new ones are not yet in the buckets of their new boxes).
     for i in range(n_new):
         for j in range(i + 1, n_new):
@@ -699,6 +796,10 @@ def _change_is_right(
         m = _triangle_cells(q, t, k, gx, gy, s.cb, s.cells)
         if m < 0:
             return False, epoch + 1
+        k0, k1, k2 = t[k, 0], t[k, 1], t[k, 2]
+        x0, x1 = min(q[k0, 0], q[k1, 0], q[k2, 0]), max(q[k0, 0], q[k1, 0], q[k2, 0])
+        y0, y1 = min(q[k0, 1], q[k1, 1], q[k2, 1]), max(q[k0, 1], q[k1, 1], q[k2, 1])
+        z0, z1 = min(q[k0, 2], q[k1, 2], q[k2, 2]), max(q[k0, 2], q[k1, 2], q[k2, 2])
         for ci in range(m):
             e = ghead[s.cells[ci]]
             while e >= 0:
@@ -707,9 +808,21 @@ def _change_is_right(
                 if stamp[o] == epoch or not alive[o]:
                     continue
                 stamp[o] = epoch
+                # Closed boxes apart: the triangles are too (most of a cell's triangles; exact, and far
+                # cheaper than the pair test's orientation predicates).
+                o0, o1, o2 = t[o, 0], t[o, 1], t[o, 2]
+                if (
+                    max(q[o0, 0], q[o1, 0], q[o2, 0]) < x0
+                    or min(q[o0, 0], q[o1, 0], q[o2, 0]) > x1
+                    or max(q[o0, 1], q[o1, 1], q[o2, 1]) < y0
+                    or min(q[o0, 1], q[o1, 1], q[o2, 1]) > y1
+                    or max(q[o0, 2], q[o1, 2], q[o2, 2]) < z0
+                    or min(q[o0, 2], q[o1, 2], q[o2, 2]) > z1
+                ):
+                    continue
                 if triangles_meet_improperly(qf, t, k, o) != DISJOINT:
                     return False, epoch + 1
-    # 4. Covers: every voxel of A near the change whose centre is outside R(A) now (it left in this change
+    # 5. Covers: every voxel of A near the change whose centre is outside R(A) now (it left in this change
     # or before) still meets R(A) in its open cube, through a triangle (its centre is outside, so the cube is
     # not inside R).
     if covers:
@@ -734,8 +847,8 @@ def _change_is_right(
 @njit(cache=True)
 def _neighbours(
     vhead: Int64Array,
-    s_next: Int64Array,
-    s_tri: Int64Array,
+    s_next: Int32Array,
+    s_tri: Int32Array,
     alive: BoolArray,
     t: Int64Array,
     x: int,
@@ -771,7 +884,7 @@ def _neighbours(
 _HALF, _POINT, _MOVE = 0, 1, 2
 #: What :func:`_collapse` returns: kept or not, the star pools and their size, the bucket pools and their
 #: size, the epoch.
-_Collapsed = tuple[bool, Int64Array, Int64Array, int, Int64Array, Int64Array, int, int]
+_Collapsed = tuple[bool, Int32Array, Int32Array, int, Int32Array, Int32Array, int, int]
 
 
 class _Buffers(NamedTuple):
@@ -794,7 +907,7 @@ class _Buffers(NamedTuple):
 
 @njit(cache=True)
 def _star(
-    vhead: Int64Array, s_next: Int64Array, s_tri: Int64Array, alive: BoolArray, t: Int64Array, x: int,
+    vhead: Int64Array, s_next: Int32Array, s_tri: Int32Array, alive: BoolArray, t: Int64Array, x: int,
     out: Int64Array,
 ) -> int:  # fmt: skip  # pragma: no cover - compiled
     # The distinct live triangles at vertex x into out (an entry may be stale or repeated: a triangle that
@@ -861,10 +974,49 @@ def _volume_after(q: Int64Array, tets: Int64Array, n_tets: int, before: int) -> 
 
 
 @njit(cache=True)
+def _same_point_set(
+    q: Int64Array,
+    t: Int64Array,
+    tets: Int64Array,
+    n_tets: int,
+    moved: Int64Array,
+    n_moved: int,
+    old: Int64Array,
+) -> bool:  # pragma: no cover - compiled
+    # Whether a collapse, made tentatively, leaves the surface the same set of points: it sweeps no volume
+    # (w lies in the plane of every old triangle, so the star and its new fan lie in the same planes, which
+    # all hold w) and no new triangle turns over in its plane. In each plane the old and the new triangles
+    # then have the same boundary but for segments on the lines where the planes meet, so they cover the
+    # same region once (each covers it as many times as the boundary winds, once: the old star is a disk).
+    # Then every check of _change_is_right holds as it held before: nothing to test. Most collapses of the
+    # safety net's flat staircase are such.
+    for j in range(n_tets):
+        a, p, r, c = tets[j, 0], tets[j, 1], tets[j, 2], tets[j, 3]
+        if _det(
+            q[a, 0], q[a, 1], q[a, 2], q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[c, 0], q[c, 1],
+            q[c, 2],
+        ) != 0:  # fmt: skip
+            return False
+    for i in range(n_moved):
+        k = moved[i]
+        nx, ny, nz = _normal(
+            q[t[k, 0], 0], q[t[k, 0], 1], q[t[k, 0], 2], q[t[k, 1], 0], q[t[k, 1], 1], q[t[k, 1], 2],
+            q[t[k, 2], 0], q[t[k, 2], 1], q[t[k, 2], 2],
+        )  # fmt: skip
+        ox, oy, oz = _normal(
+            q[old[i, 0], 0], q[old[i, 0], 1], q[old[i, 0], 2], q[old[i, 1], 0], q[old[i, 1], 1],
+            q[old[i, 1], 2], q[old[i, 2], 0], q[old[i, 2], 1], q[old[i, 2], 2],
+        )  # fmt: skip
+        if nx * ox + ny * oy + nz * oz <= 0:
+            return False
+    return True
+
+
+@njit(cache=True)
 def _collapse(
     u: int, v: int, w: int, q: Int64Array, qf: FloatArray, t: Int64Array, alive: BoolArray,
-    vdead: BoolArray, dirty: BoolArray, vhead: Int64Array, s_next: Int64Array,
-    s_tri: Int64Array, ns: int, ghead: Int64Array, g_next: Int64Array, g_tri: Int64Array, ng: int, gx: int,
+    vdead: BoolArray, dirty: BoolArray, vhead: Int64Array, s_next: Int32Array,
+    s_tri: Int32Array, ns: int, ghead: Int32Array, g_next: Int32Array, g_tri: Int32Array, ng: int, gx: int,
     gy: int, gz: int, stamp: Int64Array, epoch: int, b: _Buffers, covers: bool, in_a: BoolArray,
     inside: BoolArray, forbidden: BoolArray, sc: _Scratch, min_cos: float,
 ) -> _Collapsed:  # fmt: skip  # pragma: no cover
@@ -953,10 +1105,13 @@ def _collapse(
                 t[k, c] = w
     for i in range(n_gone):
         alive[gone[i]] = False
-    ok, epoch = _change_is_right(
-        q, qf, t, alive, moved, n_moved, tets, n_tets, blo, bhi, covers, in_a, inside, forbidden, sc, ghead,
-        g_next, g_tri, gx, gy, gz, stamp, epoch,
-    )  # fmt: skip
+    if _same_point_set(q, t, tets, n_tets, moved, n_moved, b.old):
+        ok = True
+    else:
+        ok, epoch = _change_is_right(
+            q, qf, t, alive, moved, n_moved, tets, n_tets, blo, bhi, covers, in_a, inside, forbidden, sc,
+            ghead, g_next, g_tri, gx, gy, gz, stamp, epoch,
+        )  # fmt: skip
     if not ok:
         for i in range(n_moved):
             for c in range(3):
@@ -974,8 +1129,8 @@ def _collapse(
         for c in range(3):
             dirty[t[k, c], :] = True
         if ns == s_next.shape[0]:
-            s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
-            s_tri = np.concatenate((s_tri, np.empty(ns, np.int64)))
+            s_next = np.concatenate((s_next, np.empty(ns, np.int32)))
+            s_tri = np.concatenate((s_tri, np.empty(ns, np.int32)))
         s_next[ns] = vhead[w]
         s_tri[ns] = k
         vhead[w] = ns
@@ -1047,7 +1202,7 @@ def _quadric(
 
 @njit(cache=True)
 def _bend(
-    q: Int64Array, t: Int64Array, alive: BoolArray, vhead: Int64Array, s_next: Int64Array, s_tri: Int64Array,
+    q: Int64Array, t: Int64Array, alive: BoolArray, vhead: Int64Array, s_next: Int32Array, s_tri: Int32Array,
     b: _Buffers, n_u: int, u: int, p: Int64Array, pts: Int64Array,
 ) -> float:  # fmt: skip  # pragma: no cover - compiled
     # How much the surface bends at u's star with u at p: the number of the star's triangle edges whose two
@@ -1105,6 +1260,26 @@ def _sort_candidates(
 
 
 @njit(cache=True)
+def _more_vertices(
+    q: Int64Array, qf: FloatArray, vdead: BoolArray, dirty: BoolArray, vhead: Int64Array
+) -> tuple[Int64Array, FloatArray, BoolArray, BoolArray, Int64Array]:  # pragma: no cover - compiled
+    # The vertex arrays grown by half (the new rows: dead, dirty, with no star).
+    n = q.shape[0]
+    m = n // 2 + 16
+    q2 = np.zeros((n + m, 3), np.int64)
+    q2[:n] = q
+    qf2 = np.zeros((n + m, 3), np.float64)
+    qf2[:n] = qf
+    vdead2 = np.ones(n + m, np.bool_)
+    vdead2[:n] = vdead
+    dirty2 = np.ones((n + m, 3), np.bool_)
+    dirty2[:n] = dirty
+    vhead2 = np.full(n + m, -1, np.int64)
+    vhead2[:n] = vhead
+    return q2, qf2, vdead2, dirty2, vhead2
+
+
+@njit(cache=True)
 def _decimate(
     q0: Int64Array,
     tri: Int64Array,
@@ -1118,9 +1293,9 @@ def _decimate(
 ) -> tuple[Int64Array, Int64Array, BoolArray, BoolArray, int]:  # pragma: no cover - compiled
     nv = q0.shape[0]
     nt = tri.shape[0]
-    # Room for the new vertices: a collapse onto a point removes two vertices and adds one, a move replaces
-    # one (when the room is used up, neither is tried any more).
-    cap = 4 * nv + 16
+    # Room for the new vertices (a collapse onto a point removes two vertices and adds one, a move replaces
+    # one): grown by half when used up (_more_vertices).
+    cap = nv + nv // 2 + 16
     q = np.zeros((cap, 3), np.int64)
     q[:nv] = q0
     qf = q.astype(np.float64)  # the exact predicates of the pair test read floats; these are small integers
@@ -1130,14 +1305,16 @@ def _decimate(
     vdead[:nv] = False
     # Whose star changed since a move last failed at it: per move (_HALF, _POINT, _MOVE).
     dirty = np.ones((cap, 3), np.bool_)
-    inside = in_a.copy()  # the side of every centre: the safety net holds exactly the centres of A
     covers = model != GAUSS
+    # The side of every centre: the safety net holds exactly the centres of A. Only the covers let a centre
+    # change side (of A, leaving); under gauss none does, so the array is A's own.
+    inside = in_a.copy() if covers else in_a
 
     # Vertex stars: linked lists of triangle entries; stale ones (dead, or no longer at the vertex) skipped.
     vhead = np.full(cap, -1, np.int64)
-    s_cap = 3 * nt + 16
-    s_next = np.empty(s_cap, np.int64)
-    s_tri = np.empty(s_cap, np.int64)
+    s_cap = 3 * nt + 2 * _ROOM
+    s_next = np.empty(s_cap, np.int32)
+    s_tri = np.empty(s_cap, np.int32)
     ns = 0
     for k in range(nt):
         for c in range(3):
@@ -1152,9 +1329,9 @@ def _decimate(
     gx = q0[:, 0].max() // _CELL + 1
     gy = q0[:, 1].max() // _CELL + 1
     gz = q0[:, 2].max() // _CELL + 1
-    ghead = np.full(gx * gy * gz, -1, np.int64)
-    g_next = np.empty(4 * nt + 16, np.int64)
-    g_tri = np.empty(4 * nt + 16, np.int64)
+    ghead = np.full(gx * gy * gz, -1, np.int32)  # int32: one per cell of the box, 2 voxels wide
+    g_next = np.empty(4 * nt + 2 * _ROOM, np.int32)
+    g_tri = np.empty(4 * nt + 2 * _ROOM, np.int32)
     ng = 0
     cb = np.empty(6, np.int64)
     cells = np.empty(1 << 14, np.int64)
@@ -1178,7 +1355,7 @@ def _decimate(
         np.empty(3, np.int64),
         cb,
         cells,
-        np.zeros((min(side, nz + 2), min(side, ny + 2), min(side, nx + 2)), np.int64),
+        np.zeros((min(side, nz + 2), min(side, ny + 2), min(side, nx + 2)), np.int16),
         np.empty((4096, 3), np.int64),
         np.empty((4096, 3), np.int64),
         np.empty((4096, 3), np.int64),
@@ -1213,12 +1390,28 @@ def _decimate(
         while changed and passes < max_passes:
             changed = False
             passes += 1
-            if ng > 2 * ng_fresh:
-                g_next, g_tri, ng = _rebucket(q, t, alive, ghead, g_next, g_tri, gx, gy, cb, cells)
-                ng_fresh = ng
             for u in range(n_now):
                 if vdead[u] or not dirty[u, _HALF] or removed == max_collapses:
                     continue
+                g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
+                    q,
+                    t,
+                    alive,
+                    ghead,
+                    g_next,
+                    g_tri,
+                    ng,
+                    ng_fresh,
+                    gx,
+                    gy,
+                    cb,
+                    cells,
+                    vhead,
+                    s_next,
+                    s_tri,
+                    ns,
+                    n_now,
+                )
                 dirty[u, _HALF] = False
                 n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, b.nbr_u)
                 if n_nu < 0:
@@ -1249,12 +1442,28 @@ def _decimate(
         while changed and passes < max_passes:
             changed = False
             passes += 1
-            if ng > 2 * ng_fresh:
-                g_next, g_tri, ng = _rebucket(q, t, alive, ghead, g_next, g_tri, gx, gy, cb, cells)
-                ng_fresh = ng
             for u in range(n_now):
-                if vdead[u] or not dirty[u, _POINT] or removed == max_collapses or n_now == cap:
+                if vdead[u] or not dirty[u, _POINT] or removed == max_collapses:
                     continue
+                g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
+                    q,
+                    t,
+                    alive,
+                    ghead,
+                    g_next,
+                    g_tri,
+                    ng,
+                    ng_fresh,
+                    gx,
+                    gy,
+                    cb,
+                    cells,
+                    vhead,
+                    s_next,
+                    s_tri,
+                    ns,
+                    n_now,
+                )
                 dirty[u, _POINT] = False
                 n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, b.nbr_u)
                 n_su = _star(vhead, s_next, s_tri, alive, t, u, b.star_u)
@@ -1306,6 +1515,8 @@ def _decimate(
                         n_c += 1
                 _sort_candidates(cand, clen, cpts, n_c)
                 for ci in range(min(n_c, _POINT_TRIES)):
+                    if n_now == q.shape[0]:
+                        q, qf, vdead, dirty, vhead = _more_vertices(q, qf, vdead, dirty, vhead)
                     w = n_now
                     for d in range(3):
                         q[w, d] = cpts[ci, d]
@@ -1325,8 +1536,27 @@ def _decimate(
         # exactly coplanar (a vertex left off the ridge or the tip of the ideal solid stops the collapses that
         # would straighten it). One pass per round, the best three tried, each proved like a collapse.
         for u in range(n_now):
-            if vdead[u] or not dirty[u, _MOVE] or n_now == cap:
+            if vdead[u] or not dirty[u, _MOVE]:
                 continue
+            g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
+                q,
+                t,
+                alive,
+                ghead,
+                g_next,
+                g_tri,
+                ng,
+                ng_fresh,
+                gx,
+                gy,
+                cb,
+                cells,
+                vhead,
+                s_next,
+                s_tri,
+                ns,
+                n_now,
+            )
             dirty[u, _MOVE] = False
             n_su = _star(vhead, s_next, s_tri, alive, t, u, b.star_u)
             if n_su < 0:
@@ -1359,6 +1589,8 @@ def _decimate(
                             n_c += 1
             _sort_candidates(cand, clen, cpts, n_c)
             for ci in range(min(n_c, 3)):
+                if n_now == q.shape[0]:
+                    q, qf, vdead, dirty, vhead = _more_vertices(q, qf, vdead, dirty, vhead)
                 w = n_now
                 for d in range(3):
                     q[w, d] = cpts[ci, d]
@@ -1380,6 +1612,25 @@ def _decimate(
         for k in range(nt):
             if not alive[k]:
                 continue
+            g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
+                q,
+                t,
+                alive,
+                ghead,
+                g_next,
+                g_tri,
+                ng,
+                ng_fresh,
+                gx,
+                gy,
+                cb,
+                cells,
+                vhead,
+                s_next,
+                s_tri,
+                ns,
+                n_now,
+            )
             for c_ in range(3):
                 a, b_, c = t[k, c_], t[k, (c_ + 1) % 3], t[k, (c_ + 2) % 3]
                 # the triangle across a b: (b, a, d)
@@ -1443,8 +1694,8 @@ def _decimate(
                     dirty[x, :] = True
                 for kk, w in ((k, d), (k2, c)):
                     if ns == s_next.shape[0]:
-                        s_next = np.concatenate((s_next, np.empty(ns, np.int64)))
-                        s_tri = np.concatenate((s_tri, np.empty(ns, np.int64)))
+                        s_next = np.concatenate((s_next, np.empty(ns, np.int32)))
+                        s_tri = np.concatenate((s_tri, np.empty(ns, np.int32)))
                     s_next[ns] = vhead[w]
                     s_tri[ns] = kk
                     vhead[w] = ns
@@ -1474,19 +1725,110 @@ def _turn(mask: BoolArray, perm: tuple[int, ...], signs: tuple[int, ...]) -> Boo
 
 
 def canonical_pose(mask: BoolArray) -> tuple[tuple[int, int, int], tuple[int, int, int]]:
-    """The rotation of the cube that turns A into its canonical pose: the smallest (shape, bits) of the 24.
+    """The rotation of the cube that turns A into its canonical pose: the smallest key of the 24 turns.
 
     R is computed in that pose and turned back, so that R(g A) = g R(A) for every rotation g of the cube
     when A has no symmetry of its own (a symmetric A gets one of its poses, the same for all its turns).
+    The key of a turn is its shape, then its exact moments of order 1 and 2, then a 64-bit hash of its
+    surfels: a function of the turned set, so the same pose up to A's own symmetries for every turn of A.
+    Moments and hash are computed once, in A's frame (the turns' follow by algebra, the hash is a sum over
+    the surfels turned), not on 24 turned copies: those took seven seconds at 256³.
+
+    Only the hash is not exact: two different turns of A with equal shapes and moments (already rare) would
+    share a hash with probability about 2⁻⁶⁴, and then the order of :data:`ROTATIONS` picks. R(A) is the
+    same either way in all that matters (D(R(A)) = A does not depend on the pose); only the covariance
+    would fail for that A.
     """
-    best: tuple[tuple[int, ...], bytes] | None = None
-    pose = ROTATIONS[0]
-    for perm, signs in ROTATIONS:
-        turned = _turn(mask, perm, signs)
-        key = (turned.shape, np.packbits(turned).tobytes())
-        if best is None or key < best:
-            best, pose = key, (perm, signs)
-    return pose
+    nz, ny, nx = mask.shape
+    size = (nx, ny, nz)
+    # Moments of A in its frame, as Python integers: N, S_i = Σ x_i, S_ij = Σ x_i x_j (i, j: x, y, z).
+    p_yx = mask.sum(axis=0, dtype=np.int64)
+    p_zx = mask.sum(axis=1, dtype=np.int64)
+    p_zy = mask.sum(axis=2, dtype=np.int64)
+    xs, ys, zs = (np.arange(n, dtype=np.int64) for n in size)
+    n_a = int(p_yx.sum())
+    s1 = [int(xs @ p_yx.sum(axis=0)), int(ys @ p_yx.sum(axis=1)), int(zs @ p_zy.sum(axis=1))]
+    s2 = [[0] * 3 for _ in range(3)]
+    s2[0][0] = int((xs * xs) @ p_yx.sum(axis=0))
+    s2[1][1] = int((ys * ys) @ p_yx.sum(axis=1))
+    s2[2][2] = int((zs * zs) @ p_zy.sum(axis=1))
+    s2[0][1] = s2[1][0] = int(ys @ p_yx @ xs)
+    s2[0][2] = s2[2][0] = int(zs @ p_zx @ xs)
+    s2[1][2] = s2[2][1] = int(zs @ p_zy @ ys)
+
+    def moments(perm: tuple[int, int, int], signs: tuple[int, int, int]) -> tuple[int, ...]:
+        # Turned coordinate k is a_k + b_k · x[perm[k]] (module docstring of compact_r's back()).
+        a = [0 if signs[k] > 0 else size[perm[k]] - 1 for k in range(3)]
+        b = list(signs)
+        first = [a[k] * n_a + b[k] * s1[perm[k]] for k in range(3)]
+        second = [
+            a[k] * a[m] * n_a
+            + a[k] * b[m] * s1[perm[m]]
+            + a[m] * b[k] * s1[perm[k]]
+            + b[k] * b[m] * s2[perm[k]][perm[m]]
+            for k, m in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
+        ]
+        return (size[perm[2]], size[perm[1]], size[perm[0]], *first, *second)
+
+    keys = [moments(perm, signs) for perm, signs in ROTATIONS]
+    low = min(keys)
+    tied = [i for i, k in enumerate(keys) if k == low]
+    if len(tied) == 1:
+        return ROTATIONS[tied[0]]
+    perms = np.array([ROTATIONS[i][0] for i in tied], np.int64)
+    signs_ = np.array([ROTATIONS[i][1] for i in tied], np.int64)
+    hashes = _surfel_hashes(np.ascontiguousarray(mask), perms, signs_)
+    best = min(range(len(tied)), key=lambda j: (int(hashes[j]), j))
+    return ROTATIONS[tied[best]]
+
+
+@njit(cache=True, inline="always")
+def _mix(x: np.uint64) -> np.uint64:  # pragma: no cover - compiled
+    # splitmix64's finalizer: a bijection of 64-bit words that spreads every input bit over the output.
+    x = (x ^ (x >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+    x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+    return x ^ (x >> np.uint64(31))
+
+
+@njit(cache=True)
+def _surfel_hashes(
+    mask: BoolArray, perms: Int64Array, signs: Int64Array
+) -> npt.NDArray[np.uint64]:  # pragma: no cover
+    # For each turn (perms[i], signs[i]): the sum, modulo 2⁶⁴, of the mixed keys of A's surfels in the turned
+    # frame (a surfel: the centre of a face between a voxel of A and one outside, in doubled coordinates).
+    # The surfels determine A, and a sum does not depend on the order they are met in.
+    nz, ny, nx = mask.shape
+    size = (nx, ny, nz)
+    m = perms.shape[0]
+    out = np.zeros(m, np.uint64)
+    c = np.empty(3, np.int64)
+    for z in range(nz):
+        for y in range(ny):
+            for x in range(nx):
+                if not mask[z, y, x]:
+                    continue
+                for d in range(6):
+                    axis = d >> 1
+                    step = 1 if d & 1 else -1
+                    zz, yy, xx = z, y, x
+                    if axis == 0:
+                        xx += step
+                    elif axis == 1:
+                        yy += step
+                    else:
+                        zz += step
+                    if 0 <= zz < nz and 0 <= yy < ny and 0 <= xx < nx and mask[zz, yy, xx]:
+                        continue
+                    c[0], c[1], c[2] = 2 * x, 2 * y, 2 * z
+                    c[axis] += step
+                    for i in range(m):
+                        key = np.uint64(0)
+                        for k in range(3):
+                            j = perms[i, k]
+                            v = c[j] if signs[i, k] > 0 else 2 * (size[j] - 1) - c[j]
+                            key = key * np.uint64(1 << 21) + np.uint64(v + 1)
+                        out[i] += _mix(key)
+    return out
 
 
 def decimate(
@@ -1532,7 +1874,15 @@ def decimate(
     in_a = np.pad(mask, PAD)
     forbidden = forbidden_cubes(mask, code == GAUSS)
     q, t, alive, vdead, _removed = _decimate(
-        q, triangles.astype(np.int64), in_a, forbidden, code, max_passes, max_collapses, max_rounds, min_cos
+        q,
+        np.ascontiguousarray(triangles, np.int64),
+        in_a,
+        forbidden,
+        code,
+        max_passes,
+        max_collapses,
+        max_rounds,
+        min_cos,
     )
     keep = ~vdead
     index = np.cumsum(keep) - 1
