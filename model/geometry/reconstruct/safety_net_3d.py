@@ -47,19 +47,18 @@ they are. The memory is that of the mask's runs and of the surface.
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
 from mrm.core.limits import check_pixels
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 from mrm.geometry.topology.labeling import _find, _union
 
 FloatArray = npt.NDArray[np.float64]
 Int64Array = npt.NDArray[np.int64]
 Int32Array = npt.NDArray[np.int32]
-BoolArray = npt.NDArray[np.bool_]
 
 
 class SafetyNet3D(NamedTuple):
@@ -88,7 +87,8 @@ _SHIFTS = np.array([[0, 42, 21], [21, 0, 42], [42, 21, 0]], np.int64)
 
 # ------------------------------------------------------------------------------------------- runs of the mask
 @njit(cache=True)
-def _grow(a: Int32Array, n: int) -> Int32Array:  # pragma: no cover
+def _grow(a: npt.NDArray[Any], n: int) -> npt.NDArray[Any]:  # pragma: no cover
+    # a twice as long, its first n items kept
     b = np.empty(2 * a.size, a.dtype)
     b[:n] = a[:n]
     return b
@@ -96,11 +96,16 @@ def _grow(a: Int32Array, n: int) -> Int32Array:  # pragma: no cover
 
 @njit(cache=True)
 def _x_runs(
-    m: BoolArray, k0: int, j0: int, i0: int, sz: int, sy: int, sx: int
+    buf: npt.NDArray[np.uint8], fy: int, fx: int, k0: int, j0: int, i0: int, sz: int, sy: int, sx: int
 ) -> tuple[Int64Array, Int32Array, Int32Array]:  # pragma: no cover
-    # The runs along x of the box m[k0 : k0 + sz, j0 : j0 + sy, i0 : i0 + sx] padded by one empty voxel on
-    # each side: line z · (sy + 2) + y holds the runs [s, e) of padded x numbered ptr[line] to ptr[line + 1]
-    # (excluded).
+    # The runs along x of the box [k0, k0 + sz) × [j0, j0 + sy) × [i0, i0 + sx) of a C-contiguous mask of rows
+    # of fx bytes, fy rows a slice (buf: its bytes), the box padded by one empty voxel on each side: line
+    # z · (sy + 2) + y holds the runs [s, e) of padded x numbered ptr[line] to ptr[line + 1] (excluded). The
+    # bytes are also read as 8-byte words, passing a word of 0s (or of 1s in a run) at once, as in
+    # labeling._find_runs.
+    words = buf[: 8 * (buf.size // 8)].view(np.uint64)
+    zero = np.uint64(0)
+    ones = np.uint64(0x0101010101010101)
     ny = sy + 2
     ptr = np.zeros((sz + 2) * ny + 1, np.int64)
     s = np.empty(1024, np.int32)
@@ -108,20 +113,38 @@ def _x_runs(
     n = 0
     for z in range(sz):
         for y in range(sy):
-            row = m[k0 + z, j0 + y, i0 : i0 + sx]
-            x = 0
-            while x < sx:
-                if not row[x]:
-                    x += 1
+            b0 = ((k0 + z) * fy + j0 + y) * fx + i0  # the row's first byte
+            kend = (b0 + sx) >> 3  # words wholly before the row's end
+            c = 0
+            while c < sx:
+                if ((b0 + c) & 7) == 0:
+                    k = (b0 + c) >> 3
+                    while k + 4 <= kend and (words[k] | words[k + 1] | words[k + 2] | words[k + 3]) == zero:
+                        k += 4
+                    while k < kend and words[k] == zero:
+                        k += 1
+                    c = (k << 3) - b0
+                    if c >= sx:
+                        break
+                if not buf[b0 + c]:
+                    c += 1
                     continue
-                x0 = x
-                while x < sx and row[x]:
-                    x += 1
+                c0 = c
+                c += 1
+                while c < sx and buf[b0 + c]:
+                    if ((b0 + c) & 7) == 0:
+                        k = (b0 + c) >> 3
+                        while k < kend and words[k] == ones:
+                            k += 1
+                        c = (k << 3) - b0
+                        if c >= sx or not buf[b0 + c]:
+                            break
+                    c += 1
                 if n == s.size:
                     s = _grow(s, n)
                     e = _grow(e, n)
-                s[n] = x0 + 1
-                e[n] = x + 1
+                s[n] = c0 + 1
+                e[n] = c + 1
                 n += 1
             ptr[(z + 1) * ny + y + 2] = n
     for k in range(1, ptr.size):  # the empty lines of the padding
@@ -129,7 +152,7 @@ def _x_runs(
     return ptr, s[:n], e[:n]
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _emit_diff(
     s: Int32Array,
     e: Int32Array,
@@ -216,7 +239,12 @@ def _cross_runs(
 
 
 # ------------------------------------------------------------------------------------ the boundary squares
-@njit(cache=True)
+#: Flags of a run of squares: the row below (above) has the same run.
+_BELOW = 1
+_ABOVE = 2
+
+
+@leaf_njit(cache=True)
 def _and(
     a_s: Int32Array,
     a_e: Int32Array,
@@ -259,14 +287,16 @@ def _axis_squares(
     row0: int,
     rc0: Int32Array,
     rc1: Int32Array,
+    fl: npt.NDArray[np.uint8],
     n: int,
-) -> tuple[Int32Array, Int32Array, int]:  # pragma: no cover
+) -> tuple[Int32Array, Int32Array, npt.NDArray[np.uint8], int]:  # pragma: no cover
     # The boundary squares of the planes normal to one axis, as runs [rc0, rc1) of cell columns per row
-    # (plane m, cell row r) = row row0 + m · (2 nv − 1) + r, from the runs along u of the voxel lines
-    # p · nv + q (padded sizes na, nv, nu). Plane 2p + 1 separates core p from seam (p, p + 1) and plane 2p
-    # seam (p − 1, p) from core p; a seam is in R(A) only if its core is, so a plane's squares are the cells
-    # of the doubled slice p (cores, sign +1 on odd planes, −1 on even) not in the doubled slice of p and its
-    # neighbour: D(X) \ D(X ∩ Y), D doubling the runs [i0, i1) of voxels to cells [2 i0, 2 i1 − 1).
+    # (plane m, cell row r) = row row0 + m · (2 nv − 1) + r, with their flags fl (_BELOW, _ABOVE), from the
+    # runs along u of the voxel lines p · nv + q (padded sizes na, nv, nu). Plane 2p + 1 separates core p
+    # from seam (p, p + 1) and plane 2p seam (p − 1, p) from core p; a seam is in R(A) only if its core is,
+    # so a plane's squares are the cells of the doubled slice p (sign +1 on odd planes, −1 on even) not in
+    # the doubled slice of p and its neighbour: D(X) \ D(X ∩ Y), D doubling the runs [i0, i1) of voxels to
+    # cells [2 i0, 2 i1 − 1).
     n_rows = 2 * nv - 1
     w = nu // 2 + 2
     f_s = np.empty(w, np.int32)
@@ -275,12 +305,17 @@ def _axis_squares(
     g_e = np.empty(w, np.int32)
     h_s = np.empty(w, np.int32)
     h_e = np.empty(w, np.int32)
+    d_s = np.empty(nu + 1, np.int32)
+    d_e = np.empty(nu + 1, np.int32)
     for m in range(2 * na):
         p = m // 2
         p2 = p + 1 if m % 2 == 1 else p - 1
+        prev0 = n  # the runs of the previous row
+        prev1 = n
         for cv in range(n_rows):
             q = cv // 2
             la = p * nv + q
+            nd = 0
             if lptr[la] < lptr[la + 1] and 0 <= p2 < na:
                 lb = p2 * nv + q
                 if cv % 2 == 0:
@@ -297,27 +332,39 @@ def _axis_squares(
                     cur = 2 * a
                     while j < ns and h_s[j] < b:  # the runs of X ∩ Y inside this run of X
                         if 2 * h_s[j] > cur:
-                            if n + 1 > rc0.size:
-                                rc0 = _grow(rc0, n)
-                                rc1 = _grow(rc1, n)
-                            rc0[n] = cur
-                            rc1[n] = 2 * h_s[j]
-                            n += 1
+                            d_s[nd] = cur
+                            d_e[nd] = 2 * h_s[j]
+                            nd += 1
                         cur = 2 * h_e[j] - 1
                         j += 1
                     if 2 * b - 1 > cur:
-                        if n + 1 > rc0.size:
-                            rc0 = _grow(rc0, n)
-                            rc1 = _grow(rc1, n)
-                        rc0[n] = cur
-                        rc1[n] = 2 * b - 1
-                        n += 1
+                        d_s[nd] = cur
+                        d_e[nd] = 2 * b - 1
+                        nd += 1
+            if n + nd > rc0.size:
+                while n + nd > rc0.size:
+                    rc0 = _grow(rc0, n)
+                    rc1 = _grow(rc1, n)
+                    fl = _grow(fl, n)
+            k = prev0
+            for i in range(nd):
+                rc0[n] = d_s[i]
+                rc1[n] = d_e[i]
+                fl[n] = 0
+                while k < prev1 and rc0[k] < d_s[i]:
+                    k += 1
+                if k < prev1 and rc0[k] == d_s[i] and rc1[k] == d_e[i]:
+                    fl[k] |= _ABOVE
+                    fl[n] = _BELOW
+                n += 1
+            prev0 = prev1
+            prev1 = n
             rptr[row0 + m * n_rows + cv + 1] = n
-    return rc0, rc1, n
+    return rc0, rc1, fl, n
 
 
 # ----------------------------------------------------------------------------------------------- runs lookup
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _run_at(rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c: int) -> int:  # pragma: no cover
     # The run of the row with rc0 <= c <= rc1 (corner c on it or at an end), or −1 (runs are a cell apart).
     lo = int(rptr[row])
@@ -334,55 +381,46 @@ def _run_at(rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c: int
     return -1
 
 
-@njit(cache=True)
-def _same_run(
-    rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c0: int, c1: int
-) -> bool:  # pragma: no cover
-    # True when the row has the run [c0, c1) exactly.
-    k = _run_at(rptr, rc0, rc1, row, c0)
-    return k >= 0 and rc0[k] == c0 and rc1[k] == c1
-
-
 # -------------------------------------------------------------------------------------- the required corners
-@njit(cache=True)
-def _hash(key: int, mask: int) -> int:  # pragma: no cover
-    # Fibonacci hashing, in uint64 (the product wraps); mask + 1 is the table's size, a power of 2
-    h = (np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(29)
-    return int(np.int64(h & np.uint64(mask)))
-
-
-@njit(cache=True)
-def _insert(
-    table: Int64Array, items: Int64Array, n: int, key: int
-) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
-    # Add key to the set (open addressing, −1 empty; items: the keys in insertion order, n of them).
-    mask = table.size - 1
-    h = _hash(key, mask)
+@leaf_njit(cache=True)
+def _put(table: Int64Array, items: Int64Array, n: int, key: int) -> int:  # pragma: no cover
+    # Add key to the set (open addressing, −1 empty, Fibonacci hashing in wrapping uint64) and, if new, to
+    # items[n]: the new number of items. The caller keeps the table at most half full and items big enough.
+    mask = np.uint64(table.size - 1)
+    h = np.int64(((np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(29)) & mask)
     while table[h] >= 0:
         if table[h] == key:
-            return table, items, n
-        h = (h + 1) & mask
+            return n
+        h = np.int64((np.uint64(h) + np.uint64(1)) & mask)
     table[h] = key
-    if n == items.size:
-        grown = np.empty(2 * n, np.int64)
-        grown[:n] = items[:n]
-        items = grown
     items[n] = key
-    n += 1
-    if 2 * n > table.size:
-        table = np.full(2 * table.size, -1, np.int64)
-        mask = table.size - 1
-        for i in range(n):
-            h = _hash(items[i], mask)
-            while table[h] >= 0:
-                h = (h + 1) & mask
-            table[h] = items[i]
-    return table, items, n
+    return n + 1
+
+
+@njit(cache=True)
+def _rehash(
+    table: Int64Array, items: Int64Array, src: npt.NDArray[np.uint8], n: int
+) -> tuple[Int64Array, Int64Array, npt.NDArray[np.uint8]]:  # pragma: no cover
+    # The set twice as big (items and src hold up to half the table, plus one).
+    table = np.full(2 * table.size, -1, np.int64)
+    grown = np.empty(table.size // 2 + 1, np.int64)
+    grown[:n] = items[:n]
+    grown_src = np.empty(table.size // 2 + 1, np.uint8)
+    grown_src[:n] = src[:n]
+    for i in range(n):
+        _put(table, grown, i, grown[i])
+    return table, grown, grown_src
 
 
 @njit(cache=True)
 def _required(
-    rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, dims: Int64Array, shifts: Int64Array
+    rptr: Int64Array,
+    rc0: Int32Array,
+    rc1: Int32Array,
+    fl: npt.NDArray[np.uint8],
+    dims: Int64Array,
+    shifts: Int64Array,
+    n_runs: int,
 ) -> Int64Array:  # pragma: no cover
     # The required corners (packed keys, unordered). A stack (a run of squares repeated over rows) is cut
     # into rectangles at the row lines inside it where a required corner lies on its sides. Whatever set S is
@@ -390,9 +428,15 @@ def _required(
     # of the rows beyond them (the base, independent of S); on a row line inside a stack, both side corners
     # if one is in S; and points of S. So the corners used with S are the base, S and the partners of S
     # across stacks: growing with S, the passes from the empty set reach the least fixed point, which is the
-    # base and every corner joined to it by partners, found here by a search over a hash set.
-    table = np.full(1 << 12, -1, np.int64)
-    items = np.empty(1 << 11, np.int64)
+    # base and every corner joined to it by partners, found here by a search over a hash set. The ends of a
+    # run of the row beyond a stack's first (last) run, inside it, are corners of that row's last (first) run
+    # (runs of a row are apart): the stacks' corners are the whole base.
+    size = 1 << 12
+    while size < n_runs:  # about the number of corners
+        size *= 2
+    table = np.full(size, -1, np.int64)
+    items = np.empty(size // 2 + 1, np.int64)
+    src = np.empty(size // 2 + 1, np.uint8)  # the axis whose plane gave the corner: it has no partner there
     n = 0
     row0 = 0
     for a in range(3):
@@ -403,60 +447,48 @@ def _required(
             for r in range(n_rows):
                 row = row0 + p * n_rows + r
                 for k in range(rptr[row], rptr[row + 1]):
-                    c0 = int(rc0[k])  # int64: shifted into a key
-                    c1 = int(rc1[k])
-                    for side in range(2):  # 0: bottom (row line r), 1: top (row line r + 1)
-                        other = row - 1 if side == 0 else row + 1
-                        beyond = r - 1 if side == 0 else r + 1
-                        if 0 <= beyond < n_rows and _same_run(rptr, rc0, rc1, other, c0, c1):
+                    for side in range(2):  # 0: the stack's first run (row line r), 1: its last (r + 1)
+                        if fl[k] & (_BELOW if side == 0 else _ABOVE):
                             continue
-                        line = r + side
-                        table, items, n = _insert(table, items, n, (p << sp) | (line << sr) | (c0 << sc))
-                        table, items, n = _insert(table, items, n, (p << sp) | (line << sr) | (c1 << sc))
-                        if not 0 <= beyond < n_rows:
-                            continue
-                        kk = _run_at(rptr, rc0, rc1, other, c0)
-                        if kk < 0:
-                            kk = rptr[other]
-                            while kk < rptr[other + 1] and rc1[kk] <= c0:
-                                kk += 1
-                        while kk < rptr[other + 1] and rc0[kk] < c1:  # the run ends strictly inside
-                            for u in (int(rc0[kk]), int(rc1[kk])):
-                                if c0 < u < c1:
-                                    key = (p << sp) | (line << sr) | (u << sc)
-                                    table, items, n = _insert(table, items, n, key)
-                            kk += 1
+                        for c in (int(rc0[k]), int(rc1[k])):  # int64: shifted into the key
+                            m = _put(table, items, n, (p << sp) | ((r + side) << sr) | (c << sc))
+                            if m > n:
+                                src[n] = a
+                                n = m
+                                if 2 * n > table.size:
+                                    table, items, src = _rehash(table, items, src, n)
         row0 += 2 * na * n_rows
     # the closure: a corner inside a stack's side pulls in the corner across the stack on its row line
     mask21 = (1 << 21) - 1
     i = 0
     while i < n:
         key = items[i]
+        skip = src[i]
         i += 1
         row0 = 0
         for a in range(3):
             na, nv = dims[a, 0], dims[a, 1]
             n_rows = 2 * nv - 1
             sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
-            p = (key >> sp) & mask21
             r = (key >> sr) & mask21
-            c = (key >> sc) & mask21
-            if 1 <= r < n_rows:
-                row = row0 + p * n_rows + r
-                k = _run_at(rptr, rc0, rc1, row, c)
-                if (
-                    k >= 0
-                    and (c == rc0[k] or c == rc1[k])
-                    and _same_run(rptr, rc0, rc1, row - 1, rc0[k], rc1[k])
-                ):
+            if a != skip and 1 <= r < n_rows:
+                p = (key >> sp) & mask21
+                c = (key >> sc) & mask21
+                k = _run_at(rptr, rc0, rc1, row0 + p * n_rows + r, c)
+                if k >= 0 and (c == rc0[k] or c == rc1[k]) and fl[k] & _BELOW:
                     u = int(rc1[k] if c == rc0[k] else rc0[k])
-                    table, items, n = _insert(table, items, n, (p << sp) | (r << sr) | (u << sc))
+                    m = _put(table, items, n, (p << sp) | (r << sr) | (u << sc))
+                    if m > n:
+                        src[n] = a
+                        n = m
+                        if 2 * n > table.size:
+                            table, items, src = _rehash(table, items, src, n)
             row0 += 2 * na * n_rows
     return items[:n]
 
 
 # ------------------------------------------------------------------------------------------------- the mesh
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _lower(lu: Int32Array, lo: int, hi: int, c: int) -> int:  # pragma: no cover
     # The first index in lo .. hi − 1 with lu >= c (lu sorted), else hi.
     while lo < hi:
@@ -468,18 +500,25 @@ def _lower(lu: Int32Array, lo: int, hi: int, c: int) -> int:  # pragma: no cover
     return lo
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _has(lp: Int64Array, lu: Int32Array, line: int, c: int) -> bool:  # pragma: no cover
-    k = _lower(lu, lp[line], lp[line + 1], c)
+    k = _lower(lu, int(lp[line]), int(lp[line + 1]), c)
     return bool(k < lp[line + 1] and lu[k] == c)
 
 
 @njit(cache=True)
 def _mesh(
-    rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, dims: Int64Array, shifts: Int64Array, keys: Int64Array
+    rptr: Int64Array,
+    rc0: Int32Array,
+    rc1: Int32Array,
+    fl: npt.NDArray[np.uint8],
+    dims: Int64Array,
+    shifts: Int64Array,
+    keys: Int64Array,
 ) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
     # The triangles (vertex numbers: indices in the sorted required corners `keys`), their faces and the
-    # number of faces; one pass counts the triangles, the second writes them.
+    # number of faces; one pass counts the triangles, the second writes them. On a row line inside a stack
+    # the required corners come in pairs (both sides or neither): the rectangles test one side.
     nk = keys.size
     mask21 = (1 << 21) - 1
     n_lines = 0
@@ -531,11 +570,12 @@ def _mesh(
             lp[0] = 0
             for p in range(2 * na):
                 first = rptr[row0 + p * n_rows]
-                if first == rptr[row0 + (p + 1) * n_rows]:
+                last = rptr[row0 + (p + 1) * n_rows]
+                if first == last:
                     continue
                 if write:
                     # faces: 4-connected squares, runs overlapping on adjacent rows, numbered by first run
-                    for k in range(first, rptr[row0 + (p + 1) * n_rows]):
+                    for k in range(first, last):
                         parent[k - first] = k - first
                     for r in range(1, n_rows):
                         row = row0 + p * n_rows + r
@@ -548,7 +588,7 @@ def _mesh(
                                 i += 1
                             else:
                                 j += 1
-                    for k in range(first, rptr[row0 + (p + 1) * n_rows]):
+                    for k in range(first, last):
                         root = _find(parent, k - first)
                         if root == k - first:
                             face_of[root] = nf
@@ -558,30 +598,23 @@ def _mesh(
                 sign = 1 if p % 2 == 1 else -1
                 for r in range(n_rows):
                     row = row0 + p * n_rows + r
+                    bl = p * 2 * nv + r
                     for k in range(rptr[row], rptr[row + 1]):
                         c0 = rc0[k]
                         c1 = rc1[k]
-                        bl = p * 2 * nv + r
-                        if (
-                            r > 0
-                            and not _has(lp, lu, bl, c0)
-                            and not _has(lp, lu, bl, c1)
-                            and _same_run(rptr, rc0, rc1, row - 1, c0, c1)
-                        ):
+                        if fl[k] & _BELOW and not _has(lp, lu, bl, c0):
                             continue  # in a rectangle started below
+                        # the rectangle: the following rows with the same run, no required corner on its sides
                         r1 = r + 1
-                        while (
-                            r1 < n_rows
-                            and not _has(lp, lu, bl + r1 - r, c0)
-                            and not _has(lp, lu, bl + r1 - r, c1)
-                            and _same_run(rptr, rc0, rc1, row + r1 - r, c0, c1)
-                        ):
+                        kk = k
+                        while fl[kk] & _ABOVE and not _has(lp, lu, bl + r1 - r, c0):
+                            kk = _run_at(rptr, rc0, rc1, row + r1 - r, c0)
                             r1 += 1
                         tl = bl + r1 - r
-                        b0 = _lower(lu, lp[bl], lp[bl + 1], c0)
-                        b1 = _lower(lu, b0, lp[bl + 1], c1 + 1)
-                        t0 = _lower(lu, lp[tl], lp[tl + 1], c0)
-                        t1 = _lower(lu, t0, lp[tl + 1], c1 + 1)
+                        b0 = _lower(lu, int(lp[bl]), int(lp[bl + 1]), c0)
+                        b1 = _lower(lu, b0, int(lp[bl + 1]), c1 + 1)
+                        t0 = _lower(lu, int(lp[tl]), int(lp[tl + 1]), c0)
+                        t1 = _lower(lu, t0, int(lp[tl + 1]), c1 + 1)
                         if not write:
                             nt += (b1 - b0 - 1) + (t1 - t0 - 1)
                             continue
@@ -610,6 +643,18 @@ def _mesh(
                             nt += 1
             row0 += 2 * na * n_rows
     return tri, face, nf
+
+
+@njit(cache=True)
+def _vertices(keys: Int64Array, ox: int, oy: int, oz: int) -> FloatArray:  # pragma: no cover
+    # Corner m is at (origin − 1) + (2m − 1)/4 on its axis (keys: mz << 42 | my << 21 | mx).
+    v = np.empty((keys.size, 3), np.float64)
+    mask21 = (1 << 21) - 1
+    for i in range(keys.size):
+        v[i, 0] = (2 * (keys[i] & mask21) - 1) / 4.0 + (ox - 1)
+        v[i, 1] = (2 * ((keys[i] >> 21) & mask21) - 1) / 4.0 + (oy - 1)
+        v[i, 2] = (2 * (keys[i] >> 42) - 1) / 4.0 + (oz - 1)
+    return v
 
 
 def safety_net_3d(
@@ -651,23 +696,23 @@ def safety_net_3d(
     # The doubled grid is never built: the runs of the mask along each axis give each plane's boundary
     # squares as runs per row, and the rest works on those runs and on corners, in memory of the surface's
     # size.
-    xptr, xs, xe = _x_runs(m, k0, j0, i0, sz, sy, sx)
+    xptr, xs, xe = _x_runs(m.view(np.uint8).reshape(-1), m.shape[1], m.shape[2], k0, j0, i0, sz, sy, sx)
     yptr, ys, ye = _cross_runs(xptr, xs, xe, nz, ny, nx, False)
     zptr, zs, ze = _cross_runs(xptr, xs, xe, nz, ny, nx, True)
     dims = np.array([[nx, nz, ny], [ny, nx, nz], [nz, ny, nx]], np.int64)  # (plane, row, column) voxel axes
     rptr = np.zeros(sum(2 * int(d[0]) * (2 * int(d[1]) - 1) for d in dims) + 1, np.int64)
     rc0 = np.empty(1024, np.int32)
     rc1 = np.empty(1024, np.int32)
+    fl = np.empty(1024, np.uint8)
     n = 0
     row0 = 0
     for (lptr, ls, le), d in zip(((yptr, ys, ye), (zptr, zs, ze), (xptr, xs, xe)), dims, strict=True):
-        rc0, rc1, n = _axis_squares(lptr, ls, le, int(d[0]), int(d[1]), int(d[2]), rptr, row0, rc0, rc1, n)
+        rc0, rc1, fl, n = _axis_squares(
+            lptr, ls, le, int(d[0]), int(d[1]), int(d[2]), rptr, row0, rc0, rc1, fl, n
+        )
         row0 += 2 * int(d[0]) * (2 * int(d[1]) - 1)
     del xptr, xs, xe, yptr, ys, ye, zptr, zs, ze
-    keys = np.sort(_required(rptr, rc0, rc1, dims, _SHIFTS))
-    triangles, face, n_faces = _mesh(rptr, rc0, rc1, dims, _SHIFTS, keys)
-    cm = np.stack([keys & ((1 << 21) - 1), (keys >> 21) & ((1 << 21) - 1), keys >> 42], axis=1)
-    # corner m is at (origin − 1) + (2m − 1)/4 on its axis
-    base = np.array([ox - 1, oy - 1, oz - 1], np.float64)
-    vertices = base + (2 * cm - 1).astype(np.float64) / 4.0
-    return SafetyNet3D(vertices, triangles, face, int(n_faces))
+    keys = np.sort(_required(rptr, rc0, rc1, fl, dims, _SHIFTS, n))
+    triangles, face, n_faces = _mesh(rptr, rc0, rc1, fl, dims, _SHIFTS, keys)
+    del rptr, rc0, rc1, fl
+    return SafetyNet3D(_vertices(keys, ox, oy, oz), triangles, face, int(n_faces))
