@@ -41,8 +41,11 @@ row from the runs of the mask along the rows. A run of squares repeated over con
 Whatever is required, the rectangles use the corners of each stack's first and last runs and the ends of the
 runs of the rows beyond them; on a row line inside a stack, its two side corners when one of them is
 required; and no other corner. So the required corners are the former and every corner joined to them by
-such pairs (a search over a hash set of corners), and one meshing with them gives the mesh, whose vertices
-they are. The memory is that of the mask's runs and of the surface.
+such pairs: set in a bitmap of the corners (one bit per corner, as many bytes as the mask), the pairs found
+by one sweep per axis over the row lines inside stacks (and a search from each corner added), and read out
+in the vertices' order. One meshing with them gives the mesh; its triangles number 2 (vertices − 2 χ(R(A)))
+(Euler's formula on the closed surface), known beforehand from the runs. The rest of the memory is that of
+the mask's runs and of the surface.
 """
 
 from __future__ import annotations
@@ -289,15 +292,16 @@ def _axis_squares(
     rc1: Int32Array,
     fl: npt.NDArray[np.uint8],
     n: int,
-) -> tuple[Int32Array, Int32Array, npt.NDArray[np.uint8], int]:  # pragma: no cover
+) -> tuple[Int32Array, Int32Array, npt.NDArray[np.uint8], int, int]:  # pragma: no cover
     # The boundary squares of the planes normal to one axis, as runs [rc0, rc1) of cell columns per row
     # (plane m, cell row r) = row row0 + m · (2 nv − 1) + r, with their flags fl (_BELOW, _ABOVE), from the
     # runs along u of the voxel lines p · nv + q (padded sizes na, nv, nu). Plane 2p + 1 separates core p
     # from seam (p, p + 1) and plane 2p seam (p − 1, p) from core p; a seam is in R(A) only if its core is,
     # so a plane's squares are the cells of the doubled slice p (sign +1 on odd planes, −1 on even) not in
     # the doubled slice of p and its neighbour: D(X) \ D(X ∩ Y), D doubling the runs [i0, i1) of voxels to
-    # cells [2 i0, 2 i1 − 1).
+    # cells [2 i0, 2 i1 − 1). Also returns χ(R(A)), from the runs of odd planes (see safety_net_3d).
     n_rows = 2 * nv - 1
+    chi = 0
     w = nu // 2 + 2
     f_s = np.empty(w, np.int32)
     f_e = np.empty(w, np.int32)
@@ -325,6 +329,8 @@ def _axis_squares(
                     nf = _and(ls, le, lptr[la], lptr[la + 1], ls, le, lptr[la + 1], lptr[la + 2], f_s, f_e)
                     ng = _and(f_s, f_e, 0, nf, ls, le, lptr[lb], lptr[lb + 1], g_s, g_e)
                     ns = _and(g_s, g_e, 0, ng, ls, le, lptr[lb + 1], lptr[lb + 2], h_s, h_e)
+                if m % 2 == 1:
+                    chi += nf - ns if cv % 2 == 0 else ns - nf
                 j = 0
                 for i in range(nf):
                     a = f_s[i]
@@ -360,7 +366,7 @@ def _axis_squares(
             prev0 = prev1
             prev1 = n
             rptr[row0 + m * n_rows + cv + 1] = n
-    return rc0, rc1, fl, n
+    return rc0, rc1, fl, n, chi
 
 
 # ----------------------------------------------------------------------------------------------- runs lookup
@@ -383,33 +389,25 @@ def _run_at(rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c: int
 
 # -------------------------------------------------------------------------------------- the required corners
 @leaf_njit(cache=True)
-def _put(table: Int64Array, items: Int64Array, n: int, key: int) -> int:  # pragma: no cover
-    # Add key to the set (open addressing, −1 empty, Fibonacci hashing in wrapping uint64) and, if new, to
-    # items[n]: the new number of items. The caller keeps the table at most half full and items big enough.
-    mask = np.uint64(table.size - 1)
-    h = np.int64(((np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(29)) & mask)
-    while table[h] >= 0:
-        if table[h] == key:
-            return n
-        h = np.int64((np.uint64(h) + np.uint64(1)) & mask)
-    table[h] = key
-    items[n] = key
-    return n + 1
+def _set(words: npt.NDArray[np.uint64], idx: int) -> bool:  # pragma: no cover
+    # Set bit idx; True if it was clear.
+    bit = np.uint64(1) << np.uint64(idx & 63)
+    w = words[idx >> 6]
+    if w & bit:
+        return False
+    words[idx >> 6] = w | bit
+    return True
 
 
-@njit(cache=True)
-def _rehash(
-    table: Int64Array, items: Int64Array, src: npt.NDArray[np.uint8], n: int
-) -> tuple[Int64Array, Int64Array, npt.NDArray[np.uint8]]:  # pragma: no cover
-    # The set twice as big (items and src hold up to half the table, plus one).
-    table = np.full(2 * table.size, -1, np.int64)
-    grown = np.empty(table.size // 2 + 1, np.int64)
-    grown[:n] = items[:n]
-    grown_src = np.empty(table.size // 2 + 1, np.uint8)
-    grown_src[:n] = src[:n]
-    for i in range(n):
-        _put(table, grown, i, grown[i])
-    return table, grown, grown_src
+@leaf_njit(cache=True)
+def _get(words: npt.NDArray[np.uint64], idx: int) -> bool:  # pragma: no cover
+    return bool(words[idx >> 6] & (np.uint64(1) << np.uint64(idx & 63)))
+
+
+#: ctz by de Bruijn multiplication: the index of the lowest set bit b of a word is _DEBRUIJN[(b · K) >> 58].
+_DEBRUIJN_K = 0x022FDD63CC95386D
+_DEBRUIJN = np.zeros(64, np.int64)
+_DEBRUIJN[[((1 << i) * _DEBRUIJN_K % (1 << 64)) >> 58 for i in range(64)]] = np.arange(64)
 
 
 @njit(cache=True)
@@ -419,72 +417,109 @@ def _required(
     rc1: Int32Array,
     fl: npt.NDArray[np.uint8],
     dims: Int64Array,
-    shifts: Int64Array,
-    n_runs: int,
+    debruijn: Int64Array,
 ) -> Int64Array:  # pragma: no cover
-    # The required corners (packed keys, unordered). A stack (a run of squares repeated over rows) is cut
-    # into rectangles at the row lines inside it where a required corner lies on its sides. Whatever set S is
-    # required, the rectangles use: the corners of each stack's first and last runs and the ends of the runs
-    # of the rows beyond them (the base, independent of S); on a row line inside a stack, both side corners
-    # if one is in S; and points of S. So the corners used with S are the base, S and the partners of S
-    # across stacks: growing with S, the passes from the empty set reach the least fixed point, which is the
-    # base and every corner joined to it by partners, found here by a search over a hash set. The ends of a
-    # run of the row beyond a stack's first (last) run, inside it, are corners of that row's last (first) run
-    # (runs of a row are apart): the stacks' corners are the whole base.
-    size = 1 << 12
-    while size < n_runs:  # about the number of corners
-        size *= 2
-    table = np.full(size, -1, np.int64)
-    items = np.empty(size // 2 + 1, np.int64)
-    src = np.empty(size // 2 + 1, np.uint8)  # the axis whose plane gave the corner: it has no partner there
+    # The required corners, as packed keys mz << 42 | my << 21 | mx in increasing order. A stack (a run of
+    # squares repeated over rows) is cut into rectangles at the row lines inside it where a required corner
+    # lies on its sides. Whatever set S is required, the rectangles use: the corners of each stack's first and
+    # last runs and the ends of the runs of the rows beyond them (the base, independent of S); on a row line
+    # inside a stack, both side corners if one is in S; and points of S. So the corners used with S are the
+    # base, S and the partners of S across stacks: growing with S, the passes from the empty set reach the
+    # least fixed point, which is the base and every corner joined to it by partners. The ends of a run of
+    # the row beyond a stack's first (last) run, inside it, are corners of that row's last (first) run (runs
+    # of a row are a cell apart): the stacks' corners are the whole base.
+    # The set is a bitmap of the corners (one bit per corner of the doubled grid: the mask's bytes), bit
+    # (mz · 2 ny + my) · 2 nx + mx, so that it is read out in the vertices' order. The base is set run by
+    # run; one sweep per axis over the row lines inside stacks adds the partners of the corners set before,
+    # and the corners added since are searched one by one.
+    nx, ny, nz = dims[2, 2], dims[2, 1], dims[2, 0]
+    w = 2 * nx
+    wh = 2 * nx * 2 * ny
+    words = np.zeros((wh * 2 * nz + 63) // 64, np.uint64)
+    # for each axis, the strides of (plane, row line, column) in the bitmap
+    strides = np.array([[1, wh, w], [w, 1, wh], [wh, w, 1]], np.int64)
     n = 0
     row0 = 0
     for a in range(3):
         na, nv = dims[a, 0], dims[a, 1]
         n_rows = 2 * nv - 1
-        sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
+        sp, sr, sc = strides[a, 0], strides[a, 1], strides[a, 2]
         for p in range(2 * na):
             for r in range(n_rows):
                 row = row0 + p * n_rows + r
                 for k in range(rptr[row], rptr[row + 1]):
-                    for side in range(2):  # 0: the stack's first run (row line r), 1: its last (r + 1)
-                        if fl[k] & (_BELOW if side == 0 else _ABOVE):
-                            continue
-                        for c in (int(rc0[k]), int(rc1[k])):  # int64: shifted into the key
-                            m = _put(table, items, n, (p << sp) | ((r + side) << sr) | (c << sc))
-                            if m > n:
-                                src[n] = a
-                                n = m
-                                if 2 * n > table.size:
-                                    table, items, src = _rehash(table, items, src, n)
+                    if not fl[k] & _BELOW:  # the stack's first run: row line r
+                        n += _set(words, p * sp + r * sr + rc0[k] * sc)
+                        n += _set(words, p * sp + r * sr + rc1[k] * sc)
+                    if not fl[k] & _ABOVE:  # its last: row line r + 1
+                        n += _set(words, p * sp + (r + 1) * sr + rc0[k] * sc)
+                        n += _set(words, p * sp + (r + 1) * sr + rc1[k] * sc)
         row0 += 2 * na * n_rows
-    # the closure: a corner inside a stack's side pulls in the corner across the stack on its row line
-    mask21 = (1 << 21) - 1
+    # the partners: one sweep per axis, then a search from each corner added (the axis that gave it aside)
+    work = np.empty(1024, np.int64)
+    src = np.empty(1024, np.int64)
+    n_work = 0
+    row0 = 0
+    for a in range(3):
+        na, nv = dims[a, 0], dims[a, 1]
+        n_rows = 2 * nv - 1
+        sp, sr, sc = strides[a, 0], strides[a, 1], strides[a, 2]
+        for p in range(2 * na):
+            for r in range(1, n_rows):
+                row = row0 + p * n_rows + r
+                for k in range(rptr[row], rptr[row + 1]):
+                    if fl[k] & _BELOW:
+                        i0 = p * sp + r * sr + rc0[k] * sc
+                        i1 = p * sp + r * sr + rc1[k] * sc
+                        if _get(words, i0) != _get(words, i1):
+                            new = i1 if _get(words, i0) else i0
+                            _set(words, new)
+                            n += 1
+                            if n_work == work.size:
+                                work = _grow(work, n_work)
+                                src = _grow(src, n_work)
+                            work[n_work] = new
+                            src[n_work] = a
+                            n_work += 1
+        row0 += 2 * na * n_rows
     i = 0
-    while i < n:
-        key = items[i]
+    while i < n_work:
+        idx = work[i]
         skip = src[i]
         i += 1
+        xyz = (idx % w, (idx // w) % (2 * ny), idx // wh)
         row0 = 0
         for a in range(3):
             na, nv = dims[a, 0], dims[a, 1]
             n_rows = 2 * nv - 1
-            sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
-            r = (key >> sr) & mask21
+            p, r, c = xyz[a], xyz[(a + 2) % 3], xyz[(a + 1) % 3]
             if a != skip and 1 <= r < n_rows:
-                p = (key >> sp) & mask21
-                c = (key >> sc) & mask21
                 k = _run_at(rptr, rc0, rc1, row0 + p * n_rows + r, c)
                 if k >= 0 and (c == rc0[k] or c == rc1[k]) and fl[k] & _BELOW:
-                    u = int(rc1[k] if c == rc0[k] else rc0[k])
-                    m = _put(table, items, n, (p << sp) | (r << sr) | (u << sc))
-                    if m > n:
-                        src[n] = a
-                        n = m
-                        if 2 * n > table.size:
-                            table, items, src = _rehash(table, items, src, n)
+                    u = rc1[k] if c == rc0[k] else rc0[k]
+                    new = p * strides[a, 0] + r * strides[a, 1] + u * strides[a, 2]
+                    if _set(words, new):
+                        n += 1
+                        if n_work == work.size:
+                            work = _grow(work, n_work)
+                            src = _grow(src, n_work)
+                        work[n_work] = new
+                        src[n_work] = a
+                        n_work += 1
             row0 += 2 * na * n_rows
-    return items[:n]
+    # read out in order
+    keys = np.empty(n, np.int64)
+    n = 0
+    mult = np.uint64(_DEBRUIJN_K)
+    for wi in range(words.size):
+        bits = words[wi]
+        while bits:
+            low = bits & (~bits + np.uint64(1))
+            idx = wi * 64 + debruijn[np.int64((low * mult) >> np.uint64(58))]
+            keys[n] = ((idx // wh) << 42) | (((idx // w) % (2 * ny)) << 21) | (idx % w)
+            n += 1
+            bits ^= low
+    return keys
 
 
 # ------------------------------------------------------------------------------------------------- the mesh
@@ -515,10 +550,12 @@ def _mesh(
     dims: Int64Array,
     shifts: Int64Array,
     keys: Int64Array,
+    n_tri: int,
 ) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
     # The triangles (vertex numbers: indices in the sorted required corners `keys`), their faces and the
-    # number of faces; one pass counts the triangles, the second writes them. On a row line inside a stack
-    # the required corners come in pairs (both sides or neither): the rectangles test one side.
+    # number of faces; n_tri: the number of triangles expected (the arrays grow if it is short, and are cut
+    # to what was made). On a row line inside a stack the required corners come in pairs (both sides or
+    # neither): the rectangles test one side.
     nk = keys.size
     mask21 = (1 << 21) - 1
     n_lines = 0
@@ -532,116 +569,132 @@ def _mesh(
             widest = max(widest, rptr[row0 + (p + 1) * n_rows] - rptr[row0 + p * n_rows])
         row0 += 2 * na * n_rows
     # the required corners of each row line (plane, row line), by column: lp, lu, and their numbers lid
-    lp = np.empty(n_lines + 1, np.int64)
+    lp = np.empty(n_lines + 2, np.int64)
     lu = np.empty(nk, np.int32)
     lid = np.empty(nk, np.int64)
     parent = np.empty(widest, np.int64)
     face_of = np.empty(widest, np.int64)
-    tri = np.empty((0, 3), np.int64)
-    face = np.empty(0, np.int64)
+    tri = np.empty((max(n_tri, 1), 3), np.int64)
+    face = np.empty(max(n_tri, 1), np.int64)
     nt = 0
     nf = 0
-    for write in (False, True):
-        if write:
-            tri = np.empty((nt, 3), np.int64)
-            face = np.empty(nt, np.int64)
-        nt = 0
-        nf = 0
-        row0 = 0
-        for a in range(3):
-            na, nv = dims[a, 0], dims[a, 1]
-            n_rows = 2 * nv - 1
-            sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
-            # keys sorted by (z, y, x) are sorted by column within each row line of any axis
-            lines = 2 * na * 2 * nv
-            lp[: lines + 1] = 0
-            for i in range(nk):
-                line = ((keys[i] >> sp) & mask21) * 2 * nv + ((keys[i] >> sr) & mask21)
-                lp[line + 1] += 1
-            for line in range(lines):
-                lp[line + 1] += lp[line]
-            for i in range(nk):
-                line = ((keys[i] >> sp) & mask21) * 2 * nv + ((keys[i] >> sr) & mask21)
-                lu[lp[line]] = (keys[i] >> sc) & mask21
-                lid[lp[line]] = i
-                lp[line] += 1
-            for line in range(lines, 0, -1):
-                lp[line] = lp[line - 1]
-            lp[0] = 0
-            for p in range(2 * na):
-                first = rptr[row0 + p * n_rows]
-                last = rptr[row0 + (p + 1) * n_rows]
-                if first == last:
-                    continue
-                if write:
-                    # faces: 4-connected squares, runs overlapping on adjacent rows, numbered by first run
-                    for k in range(first, last):
-                        parent[k - first] = k - first
-                    for r in range(1, n_rows):
-                        row = row0 + p * n_rows + r
-                        i = rptr[row - 1]
-                        j = rptr[row]
-                        while i < rptr[row] and j < rptr[row + 1]:
-                            if rc0[i] < rc1[j] and rc0[j] < rc1[i]:
-                                _union(parent, i - first, j - first)
-                            if rc1[i] < rc1[j]:
-                                i += 1
-                            else:
-                                j += 1
-                    for k in range(first, last):
-                        root = _find(parent, k - first)
-                        if root == k - first:
-                            face_of[root] = nf
-                            nf += 1
-                        else:
-                            face_of[k - first] = face_of[root]
-                sign = 1 if p % 2 == 1 else -1
-                for r in range(n_rows):
-                    row = row0 + p * n_rows + r
-                    bl = p * 2 * nv + r
-                    for k in range(rptr[row], rptr[row + 1]):
-                        c0 = rc0[k]
-                        c1 = rc1[k]
-                        if fl[k] & _BELOW and not _has(lp, lu, bl, c0):
-                            continue  # in a rectangle started below
-                        # the rectangle: the following rows with the same run, no required corner on its sides
-                        r1 = r + 1
-                        kk = k
+    row0 = 0
+    for a in range(3):
+        na, nv = dims[a, 0], dims[a, 1]
+        n_rows = 2 * nv - 1
+        sp, sr, sc = shifts[a, 0], shifts[a, 1], shifts[a, 2]
+        # keys sorted by (z, y, x) are sorted by column within each row line of any axis
+        lines = 2 * na * 2 * nv
+        lp[: lines + 2] = 0
+        for i in range(nk):
+            line = ((keys[i] >> sp) & mask21) * 2 * nv + ((keys[i] >> sr) & mask21)
+            lp[line + 1] += 1
+        for line in range(lines):
+            lp[line + 1] += lp[line]
+        for i in range(nk):
+            line = ((keys[i] >> sp) & mask21) * 2 * nv + ((keys[i] >> sr) & mask21)
+            lu[lp[line]] = (keys[i] >> sc) & mask21
+            lid[lp[line]] = i
+            lp[line] += 1
+        for line in range(lines, 0, -1):
+            lp[line] = lp[line - 1]
+        lp[0] = 0
+        for p in range(2 * na):
+            first = rptr[row0 + p * n_rows]
+            last = rptr[row0 + (p + 1) * n_rows]
+            if first == last:
+                continue
+            # faces: 4-connected squares, runs overlapping on adjacent rows, numbered by first run
+            for k in range(first, last):
+                parent[k - first] = k - first
+            for r in range(1, n_rows):
+                row = row0 + p * n_rows + r
+                i = rptr[row - 1]
+                j = rptr[row]
+                while i < rptr[row] and j < rptr[row + 1]:
+                    if rc0[i] < rc1[j] and rc0[j] < rc1[i]:
+                        _union(parent, i - first, j - first)
+                    if rc1[i] < rc1[j]:
+                        i += 1
+                    else:
+                        j += 1
+            for k in range(first, last):
+                root = _find(parent, k - first)
+                if root == k - first:
+                    face_of[root] = nf
+                    nf += 1
+                else:
+                    face_of[k - first] = face_of[root]
+            sign = 1 if p % 2 == 1 else -1
+            for r in range(n_rows):
+                row = row0 + p * n_rows + r
+                bl = p * 2 * nv + r
+                # the required corners of row lines r and r + 1, walked along with the runs of row r
+                kb = lp[bl]
+                kt = lp[bl + 1]
+                for k in range(rptr[row], rptr[row + 1]):
+                    c0 = rc0[k]
+                    c1 = rc1[k]
+                    while kb < lp[bl + 1] and lu[kb] < c0:
+                        kb += 1
+                    if fl[k] & _BELOW and not (kb < lp[bl + 1] and lu[kb] == c0):
+                        continue  # in a rectangle started below
+                    b0 = kb  # the rectangle's corners are required: c0 .. c1 on both its row lines
+                    while kb < lp[bl + 1] and lu[kb] < c1:
+                        kb += 1
+                    b1 = kb + 1
+                    # the rectangle: the following rows with the same run, no required corner on its sides
+                    while kt < lp[bl + 2] and lu[kt] < c0:
+                        kt += 1
+                    r1 = r + 1
+                    if fl[k] & _ABOVE and not (kt < lp[bl + 2] and lu[kt] == c0):
+                        kk = _run_at(rptr, rc0, rc1, row + 1, c0)
+                        r1 += 1
                         while fl[kk] & _ABOVE and not _has(lp, lu, bl + r1 - r, c0):
                             kk = _run_at(rptr, rc0, rc1, row + r1 - r, c0)
                             r1 += 1
                         tl = bl + r1 - r
-                        b0 = _lower(lu, int(lp[bl]), int(lp[bl + 1]), c0)
-                        b1 = _lower(lu, b0, int(lp[bl + 1]), c1 + 1)
                         t0 = _lower(lu, int(lp[tl]), int(lp[tl + 1]), c0)
                         t1 = _lower(lu, t0, int(lp[tl + 1]), c1 + 1)
-                        if not write:
-                            nt += (b1 - b0 - 1) + (t1 - t0 - 1)
-                            continue
-                        f = face_of[k - first]
-                        # the strip between the bottom (row line r) and top (row line r1) points
-                        i = b0
-                        j = t0
-                        while i < b1 - 1 or j < t1 - 1:
-                            v0 = lid[i]
-                            if j == t1 - 1 or (i < b1 - 1 and lu[i + 1] <= lu[j + 1]):
-                                v1 = lid[i + 1]
-                                v2 = lid[j]
-                                i += 1
-                            else:
-                                v1 = lid[j + 1]
-                                v2 = lid[j]
-                                j += 1
-                            tri[nt, 0] = v0
-                            if sign > 0:
-                                tri[nt, 1] = v1
-                                tri[nt, 2] = v2
-                            else:
-                                tri[nt, 1] = v2
-                                tri[nt, 2] = v1
-                            face[nt] = f
-                            nt += 1
-            row0 += 2 * na * n_rows
+                    else:
+                        t0 = kt
+                        t1 = kt
+                        while t1 < lp[bl + 2] and lu[t1] < c1:
+                            t1 += 1
+                        t1 += 1
+                    if nt + (b1 - b0 - 1) + (t1 - t0 - 1) > tri.shape[0]:  # n_tri short: never seen
+                        grown = np.empty((2 * tri.shape[0] + (b1 - b0) + (t1 - t0), 3), np.int64)
+                        grown[:nt] = tri[:nt]
+                        tri = grown
+                        grown_face = np.empty(tri.shape[0], np.int64)
+                        grown_face[:nt] = face[:nt]
+                        face = grown_face
+                    f = face_of[k - first]
+                    # the strip between the bottom (row line r) and top (row line r1) points
+                    i = b0
+                    j = t0
+                    while i < b1 - 1 or j < t1 - 1:
+                        v0 = lid[i]
+                        if j == t1 - 1 or (i < b1 - 1 and lu[i + 1] <= lu[j + 1]):
+                            v1 = lid[i + 1]
+                            v2 = lid[j]
+                            i += 1
+                        else:
+                            v1 = lid[j + 1]
+                            v2 = lid[j]
+                            j += 1
+                        tri[nt, 0] = v0
+                        if sign > 0:
+                            tri[nt, 1] = v1
+                            tri[nt, 2] = v2
+                        else:
+                            tri[nt, 1] = v2
+                            tri[nt, 2] = v1
+                        face[nt] = f
+                        nt += 1
+        row0 += 2 * na * n_rows
+    if nt < tri.shape[0]:
+        return tri[:nt].copy(), face[:nt].copy(), nf
     return tri, face, nf
 
 
@@ -707,12 +760,16 @@ def safety_net_3d(
     n = 0
     row0 = 0
     for (lptr, ls, le), d in zip(((yptr, ys, ye), (zptr, zs, ze), (xptr, xs, xe)), dims, strict=True):
-        rc0, rc1, fl, n = _axis_squares(
+        rc0, rc1, fl, n, chi = _axis_squares(
             lptr, ls, le, int(d[0]), int(d[1]), int(d[2]), rptr, row0, rc0, rc1, fl, n
         )
         row0 += 2 * int(d[0]) * (2 * int(d[1]) - 1)
     del xptr, xs, xe, yptr, ys, ye, zptr, zs, ze
-    keys = np.sort(_required(rptr, rc0, rc1, fl, dims, _SHIFTS, n))
-    triangles, face, n_faces = _mesh(rptr, rc0, rc1, fl, dims, _SHIFTS, keys)
+    keys = _required(rptr, rc0, rc1, fl, dims, _DEBRUIJN)
+    # The mesh is a closed surface, the boundary of the 3-manifold R(A): its triangles number
+    # 2 (vertices − χ(∂R(A))) with χ(∂R(A)) = 2 χ(R(A)), and R(A) retracts onto A's cubical complex, whose χ
+    # is, line by line of voxels along x, runs(L) − runs(L ∩ L_y+1) − runs(L ∩ L_z+1) + runs of the four.
+    n_tri = 2 * (keys.size - 2 * chi)
+    triangles, face, n_faces = _mesh(rptr, rc0, rc1, fl, dims, _SHIFTS, keys, n_tri)
     del rptr, rc0, rc1, fl
     return SafetyNet3D(_vertices(keys, ox, oy, oz), triangles, face, int(n_faces))
