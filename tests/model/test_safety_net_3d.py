@@ -283,3 +283,167 @@ def test_supercover_discretization_of_the_net_is_a_hence_all_three_models(m: np.
     got = supercover(net.vertices, net.triangles, (x0 - 1, y0 - 1, z0 - 1, x0 + nx, y0 + ny, z0 + nz))
     assert np.array_equal(got, np.pad(m, 1))
     check_gauss(m, origin, net)
+
+
+# ------------------------------------------------------------------------------- the definition, literally
+
+
+def doubled_cells(m: np.ndarray) -> np.ndarray:
+    """The cells of the doubled grid of A padded by one voxel: cell 2p is the core of voxel p, 2p + 1 the
+    seam of voxels p and p + 1 (on each axis); a cell is in R(A) when all its voxels are in A."""
+    cells = np.pad(m.astype(bool), 1)
+    for axis in range(3):
+        n = cells.shape[axis]
+        shape = list(cells.shape)
+        shape[axis] = 2 * n - 1
+        out = np.zeros(shape, bool)
+        idx: list[slice] = [slice(None)] * 3
+        idx[axis] = slice(0, None, 2)
+        out[tuple(idx)] = cells
+        idx[axis] = slice(1, None, 2)
+        out[tuple(idx)] = np.take(cells, range(n - 1), axis) & np.take(cells, range(1, n), axis)
+        cells = out
+    return cells
+
+
+def row_runs(bd: np.ndarray, r: int, sign: int) -> list[tuple[int, int]]:
+    """The runs [c0, c1) of squares of the sign in row r (none outside the plane)."""
+    if not 0 <= r < bd.shape[0]:
+        return []
+    out, c = [], 0
+    while c < bd.shape[1]:
+        if bd[r, c] == sign:
+            c0 = c
+            while c < bd.shape[1] and bd[r, c] == sign:
+                c += 1
+            out.append((c0, c))
+        else:
+            c += 1
+    return out
+
+
+def face_labels(bd: np.ndarray, first: int) -> tuple[np.ndarray, int]:
+    """4-connected squares of one sign, numbered from ``first`` by their first square in raster order."""
+    label = -np.ones(bd.shape, np.int64)
+    n = first
+    for r, c in np.ndindex(*bd.shape):
+        if bd[r, c] and label[r, c] < 0:
+            label[r, c] = n
+            todo = [(r, c)]
+            while todo:
+                i, j = todo.pop()
+                for i2, j2 in ((i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)):
+                    inside = 0 <= i2 < bd.shape[0] and 0 <= j2 < bd.shape[1]
+                    if inside and bd[i2, j2] == bd[r, c] and label[i2, j2] < 0:
+                        label[i2, j2] = n
+                        todo.append((i2, j2))
+            n += 1
+    return label, n
+
+
+#: Planes normal to x, y, z: (normal, row, column) axes as (x, y, z) indices, (column, row, normal)
+#: right-handed.
+LAYOUTS = ((0, 2, 1), (1, 0, 2), (2, 1, 0))
+
+
+def plane_squares(cells: np.ndarray, axes: tuple[int, int, int], p: int) -> np.ndarray:
+    """Plane p normal to axes[0], between cells p − 1 and p: +1 (−1) where the cell below (above) is in
+    R(A) and the other not, by (row, column)."""
+    c = cells.transpose(2, 1, 0).transpose(axes)  # indexed (normal, row, column)
+    below = c[p - 1] if p >= 1 else np.zeros(c.shape[1:], bool)
+    above = c[p] if p < c.shape[0] else np.zeros(c.shape[1:], bool)
+    return below.astype(np.int64) - above.astype(np.int64)
+
+
+def reference_net(m: np.ndarray, origin: tuple[int, int, int]) -> SafetyNet3D:
+    """The safety net straight from the module's definition, slowly: each plane's boundary squares of the
+    doubled grid, its faces, the rectangles and their strips, the required corners grown pass by pass until
+    a pass adds none."""
+    cells = doubled_cells(m)
+    required: set[tuple[int, int, int]] = set()
+    while True:
+        tris: list[tuple[tuple[int, int, int], ...]] = []
+        faces: list[int] = []
+        n_faces = 0
+        for axes in LAYOUTS:
+
+            def corner(p: int, v: int, u: int, axes: tuple[int, int, int] = axes) -> tuple[int, int, int]:
+                xyz = [0, 0, 0]
+                xyz[axes[0]], xyz[axes[1]], xyz[axes[2]] = p, v, u
+                return (xyz[0], xyz[1], xyz[2])
+
+            for p in range(cells.shape[2 - axes[0]] + 1):
+                bd = plane_squares(cells, axes, p)
+                label, n_faces = face_labels(bd, n_faces)
+                for sign in (1, -1):
+                    covered: set[tuple[int, int]] = set()
+                    for r in range(bd.shape[0]):
+                        for c0, c1 in row_runs(bd, r, sign):
+                            if (r, c0) in covered:
+                                continue
+                            r1 = r + 1  # the rectangle's top row line
+                            while (
+                                r1 < bd.shape[0]
+                                and corner(p, r1, c0) not in required
+                                and corner(p, r1, c1) not in required
+                                and (c0, c1) in row_runs(bd, r1, sign)
+                            ):
+                                covered.add((r1, c0))
+                                r1 += 1
+                            # on each side: its corners, required corners, the ends of the row beyond's runs
+                            bot, top = (
+                                [
+                                    u
+                                    for u in range(c0, c1 + 1)
+                                    if u in (c0, c1)
+                                    or corner(p, line, u) in required
+                                    or any(u in run for run in row_runs(bd, beyond, sign))
+                                ]
+                                for line, beyond in ((r, r - 1), (r1, r1))
+                            )
+                            i = j = 0
+                            while i < len(bot) - 1 or j < len(top) - 1:
+                                if j == len(top) - 1 or (i < len(bot) - 1 and bot[i + 1] <= top[j + 1]):
+                                    t = [(r, bot[i]), (r, bot[i + 1]), (r1, top[j])]
+                                    i += 1
+                                else:
+                                    t = [(r, bot[i]), (r1, top[j + 1]), (r1, top[j])]
+                                    j += 1
+                                if sign < 0:
+                                    t[1], t[2] = t[2], t[1]
+                                tris.append(tuple(corner(p, v, u) for v, u in t))
+                                faces.append(int(label[r, c0]))
+        used = {q for t in tris for q in t}
+        if used <= required:
+            break
+        required |= used
+    order = sorted(used, key=lambda q: (q[2], q[1], q[0]))
+    number = {q: i for i, q in enumerate(order)}
+    # corner m of an axis lies at (origin − 1) + (2m − 1)/4
+    base = np.array(origin, np.float64) - 1
+    vertices = base + (2 * np.array(order, np.int64).reshape(-1, 3) - 1).astype(np.float64) / 4.0
+    triangles = np.array([[number[q] for q in t] for t in tris], np.int64).reshape(-1, 3)
+    return SafetyNet3D(vertices, triangles, np.array(faces, np.int64), n_faces)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    st.builds(
+        random_mask,
+        st.integers(0, 2**32 - 1),
+        st.tuples(*[st.integers(1, 5)] * 3),
+        st.sampled_from([0.2, 0.5, 0.8]),
+    ),
+    st.tuples(*[st.integers(-3, 3)] * 3),
+)
+def test_the_net_is_its_definition(m: np.ndarray, origin: tuple[int, int, int]) -> None:
+    # The fast net (runs, stacks, a bitmap of corners) is the literal definition, to the order of vertices,
+    # triangles and faces.
+    net = safety_net_3d(m, origin)
+    ref = reference_net(m, origin)
+    if not m.any():
+        assert len(net.triangles) == 0 and net.n_faces == 0
+        return
+    assert np.array_equal(net.vertices, ref.vertices)
+    assert np.array_equal(net.triangles, ref.triangles)
+    assert np.array_equal(net.face, ref.face) and net.n_faces == ref.n_faces

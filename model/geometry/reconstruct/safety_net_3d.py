@@ -38,14 +38,17 @@ Z + {¼, ¾}. A box is 12 triangles; blobs take about one triangle per surfel (m
 R(A) only if its core is, so all the squares of a plane have one sign: those of plane 2p + 1 (2p) are the
 cells of voxel slice p doubled minus those of its intersection with slice p + 1 (p − 1) doubled, found row by
 row from the runs of the mask along the rows. A run of squares repeated over consecutive rows is a *stack*.
-Whatever is required, the rectangles use the corners of each stack's first and last runs and the ends of the
-runs of the rows beyond them; on a row line inside a stack, its two side corners when one of them is
-required; and no other corner. So the required corners are the former and every corner joined to them by
-such pairs: set in a bitmap of the corners (one bit per corner, as many bytes as the mask), the pairs found
-by one sweep per axis over the row lines inside stacks (and a search from each corner added), and read out
-in the vertices' order. One meshing with them gives the mesh; its triangles number 2 (vertices − 2 χ(R(A)))
-(Euler's formula on the closed surface), known beforehand from the runs. The rest of the memory is that of
-the mask's runs and of the surface.
+Whatever is required, the rectangles use the corners of each stack's first and last runs (the ends of the
+runs of the rows beyond, inside them, are corners of those rows' stacks, the runs of a row being a cell
+apart). A rectangle stops inside a stack only at a required corner on its sides, and none lies there: at
+such a corner the plane has two squares, on one side of a straight side, which leaves one down-set of the
+cells around the corner up to symmetry (two cells in, or six): a straight crease with four squares, the
+corner inside a run of the perpendicular plane along the crease and on no other square. So no rectangle
+stops inside a stack (the passes end at the second), the required corners are the stacks' corners, and one
+meshing gives the mesh. The corners are set in a bitmap (one bit per corner of the doubled grid: as many
+bytes as the mask's box) and read out in the vertices' order; the triangles number 2 (vertices − 2 χ(R(A)))
+by Euler's formula on the closed surface, χ(R(A)) known beforehand from the runs. The rest of the memory is
+that of the mask's runs and of the surface.
 """
 
 from __future__ import annotations
@@ -399,11 +402,6 @@ def _set(words: npt.NDArray[np.uint64], idx: int) -> bool:  # pragma: no cover
     return True
 
 
-@leaf_njit(cache=True)
-def _get(words: npt.NDArray[np.uint64], idx: int) -> bool:  # pragma: no cover
-    return bool(words[idx >> 6] & (np.uint64(1) << np.uint64(idx & 63)))
-
-
 #: ctz by de Bruijn multiplication: the index of the lowest set bit b of a word is _DEBRUIJN[(b · K) >> 58].
 _DEBRUIJN_K = 0x022FDD63CC95386D
 _DEBRUIJN = np.zeros(64, np.int64)
@@ -412,26 +410,11 @@ _DEBRUIJN[[((1 << i) * _DEBRUIJN_K % (1 << 64)) >> 58 for i in range(64)]] = np.
 
 @njit(cache=True)
 def _required(
-    rptr: Int64Array,
-    rc0: Int32Array,
-    rc1: Int32Array,
-    fl: npt.NDArray[np.uint8],
-    dims: Int64Array,
-    debruijn: Int64Array,
+    rptr: Int64Array, fl: npt.NDArray[np.uint8], rc0: Int32Array, rc1: Int32Array, dims: Int64Array
 ) -> Int64Array:  # pragma: no cover
-    # The required corners, as packed keys mz << 42 | my << 21 | mx in increasing order. A stack (a run of
-    # squares repeated over rows) is cut into rectangles at the row lines inside it where a required corner
-    # lies on its sides. Whatever set S is required, the rectangles use: the corners of each stack's first and
-    # last runs and the ends of the runs of the rows beyond them (the base, independent of S); on a row line
-    # inside a stack, both side corners if one is in S; and points of S. So the corners used with S are the
-    # base, S and the partners of S across stacks: growing with S, the passes from the empty set reach the
-    # least fixed point, which is the base and every corner joined to it by partners. The ends of a run of
-    # the row beyond a stack's first (last) run, inside it, are corners of that row's last (first) run (runs
-    # of a row are a cell apart): the stacks' corners are the whole base.
-    # The set is a bitmap of the corners (one bit per corner of the doubled grid: the mask's bytes), bit
-    # (mz · 2 ny + my) · 2 nx + mx, so that it is read out in the vertices' order. The base is set run by
-    # run; one sweep per axis over the row lines inside stacks adds the partners of the corners set before,
-    # and the corners added since are searched one by one.
+    # The required corners, as packed keys mz << 42 | my << 21 | mx in increasing order: the corners of the
+    # stacks' first and last runs (see the module's docstring), set in a bitmap of the corners of the doubled
+    # grid, bit (mz · 2 ny + my) · 2 nx + mx, and read out in order.
     nx, ny, nz = dims[2, 2], dims[2, 1], dims[2, 0]
     w = 2 * nx
     wh = 2 * nx * 2 * ny
@@ -455,59 +438,6 @@ def _required(
                         n += _set(words, p * sp + (r + 1) * sr + rc0[k] * sc)
                         n += _set(words, p * sp + (r + 1) * sr + rc1[k] * sc)
         row0 += 2 * na * n_rows
-    # the partners: one sweep per axis, then a search from each corner added (the axis that gave it aside)
-    work = np.empty(1024, np.int64)
-    src = np.empty(1024, np.int64)
-    n_work = 0
-    row0 = 0
-    for a in range(3):
-        na, nv = dims[a, 0], dims[a, 1]
-        n_rows = 2 * nv - 1
-        sp, sr, sc = strides[a, 0], strides[a, 1], strides[a, 2]
-        for p in range(2 * na):
-            for r in range(1, n_rows):
-                row = row0 + p * n_rows + r
-                for k in range(rptr[row], rptr[row + 1]):
-                    if fl[k] & _BELOW:
-                        i0 = p * sp + r * sr + rc0[k] * sc
-                        i1 = p * sp + r * sr + rc1[k] * sc
-                        if _get(words, i0) != _get(words, i1):
-                            new = i1 if _get(words, i0) else i0
-                            _set(words, new)
-                            n += 1
-                            if n_work == work.size:
-                                work = _grow(work, n_work)
-                                src = _grow(src, n_work)
-                            work[n_work] = new
-                            src[n_work] = a
-                            n_work += 1
-        row0 += 2 * na * n_rows
-    i = 0
-    while i < n_work:
-        idx = work[i]
-        skip = src[i]
-        i += 1
-        xyz = (idx % w, (idx // w) % (2 * ny), idx // wh)
-        row0 = 0
-        for a in range(3):
-            na, nv = dims[a, 0], dims[a, 1]
-            n_rows = 2 * nv - 1
-            p, r, c = xyz[a], xyz[(a + 2) % 3], xyz[(a + 1) % 3]
-            if a != skip and 1 <= r < n_rows:
-                k = _run_at(rptr, rc0, rc1, row0 + p * n_rows + r, c)
-                if k >= 0 and (c == rc0[k] or c == rc1[k]) and fl[k] & _BELOW:
-                    u = rc1[k] if c == rc0[k] else rc0[k]
-                    new = p * strides[a, 0] + r * strides[a, 1] + u * strides[a, 2]
-                    if _set(words, new):
-                        n += 1
-                        if n_work == work.size:
-                            work = _grow(work, n_work)
-                            src = _grow(src, n_work)
-                        work[n_work] = new
-                        src[n_work] = a
-                        n_work += 1
-            row0 += 2 * na * n_rows
-    # read out in order
     keys = np.empty(n, np.int64)
     n = 0
     mult = np.uint64(_DEBRUIJN_K)
@@ -515,7 +445,7 @@ def _required(
         bits = words[wi]
         while bits:
             low = bits & (~bits + np.uint64(1))
-            idx = wi * 64 + debruijn[np.int64((low * mult) >> np.uint64(58))]
+            idx = wi * 64 + _DEBRUIJN[np.int64((low * mult) >> np.uint64(58))]
             keys[n] = ((idx // wh) << 42) | (((idx // w) % (2 * ny)) << 21) | (idx % w)
             n += 1
             bits ^= low
@@ -535,12 +465,6 @@ def _lower(lu: Int32Array, lo: int, hi: int, c: int) -> int:  # pragma: no cover
     return lo
 
 
-@leaf_njit(cache=True)
-def _has(lp: Int64Array, lu: Int32Array, line: int, c: int) -> bool:  # pragma: no cover
-    k = _lower(lu, int(lp[line]), int(lp[line + 1]), c)
-    return bool(k < lp[line + 1] and lu[k] == c)
-
-
 @njit(cache=True)
 def _mesh(
     rptr: Int64Array,
@@ -554,8 +478,7 @@ def _mesh(
 ) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
     # The triangles (vertex numbers: indices in the sorted required corners `keys`), their faces and the
     # number of faces; n_tri: the number of triangles expected (the arrays grow if it is short, and are cut
-    # to what was made). On a row line inside a stack the required corners come in pairs (both sides or
-    # neither): the rectangles test one side.
+    # to what was made). No required corner lies on a stack's side inside it: the rectangles are the stacks.
     nk = keys.size
     mask21 = (1 << 21) - 1
     n_lines = 0
@@ -633,35 +556,35 @@ def _mesh(
                 kb = lp[bl]
                 kt = lp[bl + 1]
                 for k in range(rptr[row], rptr[row + 1]):
+                    if fl[k] & _BELOW:
+                        continue  # in the rectangle of a stack started below
                     c0 = rc0[k]
                     c1 = rc1[k]
+                    # the bottom: the required corners c0 .. c1 of row line r (c0 and c1 among them)
                     while kb < lp[bl + 1] and lu[kb] < c0:
                         kb += 1
-                    if fl[k] & _BELOW and not (kb < lp[bl + 1] and lu[kb] == c0):
-                        continue  # in a rectangle started below
-                    b0 = kb  # the rectangle's corners are required: c0 .. c1 on both its row lines
+                    b0 = kb
                     while kb < lp[bl + 1] and lu[kb] < c1:
                         kb += 1
                     b1 = kb + 1
-                    # the rectangle: the following rows with the same run, no required corner on its sides
-                    while kt < lp[bl + 2] and lu[kt] < c0:
-                        kt += 1
-                    r1 = r + 1
-                    if fl[k] & _ABOVE and not (kt < lp[bl + 2] and lu[kt] == c0):
-                        kk = _run_at(rptr, rc0, rc1, row + 1, c0)
-                        r1 += 1
-                        while fl[kk] & _ABOVE and not _has(lp, lu, bl + r1 - r, c0):
+                    # the top: those of the row line above the stack's last run
+                    if fl[k] & _ABOVE:
+                        r1 = r + 1
+                        kk = k
+                        while fl[kk] & _ABOVE:
                             kk = _run_at(rptr, rc0, rc1, row + r1 - r, c0)
                             r1 += 1
                         tl = bl + r1 - r
                         t0 = _lower(lu, int(lp[tl]), int(lp[tl + 1]), c0)
-                        t1 = _lower(lu, t0, int(lp[tl + 1]), c1 + 1)
                     else:
+                        while kt < lp[bl + 2] and lu[kt] < c0:
+                            kt += 1
+                        tl = bl + 1
                         t0 = kt
-                        t1 = kt
-                        while t1 < lp[bl + 2] and lu[t1] < c1:
-                            t1 += 1
+                    t1 = t0
+                    while t1 < lp[tl + 1] and lu[t1] < c1:
                         t1 += 1
+                    t1 += 1
                     if nt + (b1 - b0 - 1) + (t1 - t0 - 1) > tri.shape[0]:  # n_tri short: never seen
                         grown = np.empty((2 * tri.shape[0] + (b1 - b0) + (t1 - t0), 3), np.int64)
                         grown[:nt] = tri[:nt]
@@ -765,7 +688,7 @@ def safety_net_3d(
         )
         row0 += 2 * int(d[0]) * (2 * int(d[1]) - 1)
     del xptr, xs, xe, yptr, ys, ye, zptr, zs, ze
-    keys = _required(rptr, rc0, rc1, fl, dims, _DEBRUIJN)
+    keys = _required(rptr, fl, rc0, rc1, dims)
     # The mesh is a closed surface, the boundary of the 3-manifold R(A): its triangles number
     # 2 (vertices − χ(∂R(A))) with χ(∂R(A)) = 2 χ(R(A)), and R(A) retracts onto A's cubical complex, whose χ
     # is, line by line of voxels along x, runs(L) − runs(L ∩ L_y+1) − runs(L ∩ L_z+1) + runs of the four.
