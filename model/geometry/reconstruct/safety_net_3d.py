@@ -60,7 +60,6 @@ import numpy.typing as npt
 
 from mrm.core.limits import check_pixels
 from mrm.geometry._jit import leaf_njit, njit
-from mrm.geometry.topology.labeling import _find, _union
 
 FloatArray = npt.NDArray[np.float64]
 Int64Array = npt.NDArray[np.int64]
@@ -465,6 +464,26 @@ def _lower(lu: Int32Array, lo: int, hi: int, c: int) -> int:  # pragma: no cover
     return lo
 
 
+@leaf_njit(cache=True)
+def _root(parent: Int64Array, x: int) -> int:  # pragma: no cover
+    # labeling._find without reference counting (called for every overlap of runs)
+    while parent[x] != x:
+        parent[x] = parent[parent[x]]
+        x = parent[x]
+    return x
+
+
+@leaf_njit(cache=True)
+def _join(parent: Int64Array, a: int, b: int) -> None:  # pragma: no cover
+    # labeling._union without reference counting: the smaller root stays, a face's root is its first run
+    a = _root(parent, a)
+    b = _root(parent, b)
+    if a < b:
+        parent[b] = a
+    elif b < a:
+        parent[a] = b
+
+
 @njit(cache=True)
 def _mesh(
     rptr: Int64Array,
@@ -475,10 +494,12 @@ def _mesh(
     shifts: Int64Array,
     keys: Int64Array,
     n_tri: int,
+    lid: npt.NDArray[Any],
 ) -> tuple[Int64Array, Int64Array, int]:  # pragma: no cover
     # The triangles (vertex numbers: indices in the sorted required corners `keys`), their faces and the
     # number of faces; n_tri: the number of triangles expected (the arrays grow if it is short, and are cut
-    # to what was made). No required corner lies on a stack's side inside it: the rectangles are the stacks.
+    # to what was made); lid: room for the vertex numbers (int32 when they fit). No required corner lies on a
+    # stack's side inside it: the rectangles are the stacks.
     nk = keys.size
     mask21 = (1 << 21) - 1
     n_lines = 0
@@ -494,7 +515,6 @@ def _mesh(
     # the required corners of each row line (plane, row line), by column: lp, lu, and their numbers lid
     lp = np.empty(n_lines + 2, np.int64)
     lu = np.empty(nk, np.int32)
-    lid = np.empty(nk, np.int64)
     parent = np.empty(widest, np.int64)
     face_of = np.empty(widest, np.int64)
     tri = np.empty((max(n_tri, 1), 3), np.int64)
@@ -536,13 +556,13 @@ def _mesh(
                 j = rptr[row]
                 while i < rptr[row] and j < rptr[row + 1]:
                     if rc0[i] < rc1[j] and rc0[j] < rc1[i]:
-                        _union(parent, i - first, j - first)
+                        _join(parent, i - first, j - first)
                     if rc1[i] < rc1[j]:
                         i += 1
                     else:
                         j += 1
             for k in range(first, last):
-                root = _find(parent, k - first)
+                root = _root(parent, k - first)
                 if root == k - first:
                     face_of[root] = nf
                     nf += 1
@@ -688,11 +708,14 @@ def safety_net_3d(
         )
         row0 += 2 * int(d[0]) * (2 * int(d[1]) - 1)
     del xptr, xs, xe, yptr, ys, ye, zptr, zs, ze
+    rc0, rc1, fl = rc0[:n].copy(), rc1[:n].copy(), fl[:n].copy()  # cut to size: kept through the meshing
     keys = _required(rptr, fl, rc0, rc1, dims)
     # The mesh is a closed surface, the boundary of the 3-manifold R(A): its triangles number
     # 2 (vertices − χ(∂R(A))) with χ(∂R(A)) = 2 χ(R(A)), and R(A) retracts onto A's cubical complex, whose χ
     # is, line by line of voxels along x, runs(L) − runs(L ∩ L_y+1) − runs(L ∩ L_z+1) + runs of the four.
     n_tri = 2 * (keys.size - 2 * chi)
-    triangles, face, n_faces = _mesh(rptr, rc0, rc1, fl, dims, _SHIFTS, keys, n_tri)
+    lid = np.empty(keys.size, np.int32 if keys.size < 1 << 31 else np.int64)
+    triangles, face, n_faces = _mesh(rptr, rc0, rc1, fl, dims, _SHIFTS, keys, n_tri, lid)
+    del lid
     del rptr, rc0, rc1, fl
     return SafetyNet3D(_vertices(keys, ox, oy, oz), triangles, face, int(n_faces))
