@@ -261,9 +261,10 @@ def _and(
     b1: int,
     o_s: Int32Array,
     o_e: Int32Array,
+    o0: int,
 ) -> int:  # pragma: no cover
-    # The runs of (runs a0 .. a1 − 1 of a) ∩ (runs b0 .. b1 − 1 of b), written to o from 0; their number.
-    n = 0
+    # The runs of (runs a0 .. a1 − 1 of a) ∩ (runs b0 .. b1 − 1 of b), written to o from o0; their end.
+    n = o0
     i = a0
     j = b0
     while i < a1 and j < b1:
@@ -278,6 +279,127 @@ def _and(
         else:
             j += 1
     return n
+
+
+@leaf_njit(cache=True)
+def _and_rows(
+    a_s: Int32Array,
+    a_e: Int32Array,
+    aptr: Int64Array,
+    a_row0: int,
+    b_s: Int32Array,
+    b_e: Int32Array,
+    bptr: Int64Array,
+    b_row0: int,
+    n_rows: int,
+    o_s: Int32Array,
+    o_e: Int32Array,
+    optr: Int64Array,
+) -> None:  # pragma: no cover
+    # Row q of o: row a_row0 + q of a ∩ row b_row0 + q of b, for q < n_rows (optr[0] = 0).
+    optr[0] = 0
+    for q in range(n_rows):
+        a, b = a_row0 + q, b_row0 + q
+        optr[q + 1] = _and(a_s, a_e, aptr[a], aptr[a + 1], b_s, b_e, bptr[b], bptr[b + 1], o_s, o_e, optr[q])
+
+
+@leaf_njit(cache=True)
+def _row_squares(
+    f_s: Int32Array,
+    f_e: Int32Array,
+    f0: int,
+    f1: int,
+    h_s: Int32Array,
+    h_e: Int32Array,
+    h0: int,
+    h1: int,
+    d_s: Int32Array,
+    d_e: Int32Array,
+) -> int:  # pragma: no cover
+    # The cell runs of D(F) \ D(H) (voxel runs f0 .. f1 − 1 of f and h0 .. h1 − 1 of h, H ⊆ F) into d;
+    # their number.
+    nd = 0
+    j = h0
+    for i in range(f0, f1):
+        a = f_s[i]
+        b = f_e[i]
+        cur = 2 * a
+        while j < h1 and h_s[j] < b:  # the runs of H inside this run of F
+            if 2 * h_s[j] > cur:
+                d_s[nd] = cur
+                d_e[nd] = 2 * h_s[j]
+                nd += 1
+            cur = 2 * h_e[j] - 1
+            j += 1
+        if 2 * b - 1 > cur:
+            d_s[nd] = cur
+            d_e[nd] = 2 * b - 1
+            nd += 1
+    return nd
+
+
+@njit(cache=True)
+def _plane_squares(
+    ls: Int32Array,
+    le: Int32Array,
+    lptr: Int64Array,
+    line0: int,
+    fo_s: Int32Array,
+    fo_e: Int32Array,
+    foptr: Int64Array,
+    s_s: Int32Array,
+    s_e: Int32Array,
+    sptr: Int64Array,
+    so_s: Int32Array,
+    so_e: Int32Array,
+    soptr: Int64Array,
+    nv: int,
+    d_s: Int32Array,
+    d_e: Int32Array,
+    rptr: Int64Array,
+    row0: int,
+    rc0: Int32Array,
+    rc1: Int32Array,
+    fl: npt.NDArray[np.uint8],
+    n: int,
+) -> tuple[Int32Array, Int32Array, npt.NDArray[np.uint8], int, int]:  # pragma: no cover
+    # The squares of one plane, D(X) \ D(X ∩ Y) row by row, appended to the runs (rc0, rc1, fl) with the
+    # rows' ends in rptr from row0: cell row 2q is voxel row q of X (lines line0 + q) minus row q of
+    # S = X ∩ Y, cell row 2q + 1 row q of X's rows q and q + 1 together (fo) minus that of S's (so). Returns
+    # the runs and, for X the lower slice, the plane's share of χ(R(A)): runs of X minus of S, even minus odd
+    # rows.
+    chi = 0
+    prev0 = n  # the runs of the previous row
+    prev1 = n
+    for cv in range(2 * nv - 1):
+        q = cv // 2
+        if cv % 2 == 0:
+            f0, f1, h0, h1 = lptr[line0 + q], lptr[line0 + q + 1], sptr[q], sptr[q + 1]
+            nd = _row_squares(ls, le, f0, f1, s_s, s_e, h0, h1, d_s, d_e)
+            chi += (f1 - f0) - (h1 - h0)
+        else:
+            f0, f1, h0, h1 = foptr[q], foptr[q + 1], soptr[q], soptr[q + 1]
+            nd = _row_squares(fo_s, fo_e, f0, f1, so_s, so_e, h0, h1, d_s, d_e)
+            chi -= (f1 - f0) - (h1 - h0)
+        while n + nd > rc0.size:
+            rc0 = _grow(rc0, n)
+            rc1 = _grow(rc1, n)
+            fl = _grow(fl, n)
+        k = prev0
+        for i in range(nd):
+            rc0[n] = d_s[i]
+            rc1[n] = d_e[i]
+            fl[n] = 0
+            while k < prev1 and rc0[k] < d_s[i]:
+                k += 1
+            if k < prev1 and rc0[k] == d_s[i] and rc1[k] == d_e[i]:
+                fl[k] |= _ABOVE
+                fl[n] = _BELOW
+            n += 1
+        prev0 = prev1
+        prev1 = n
+        rptr[row0 + cv + 1] = n
+    return rc0, rc1, fl, n, chi
 
 
 @njit(cache=True)
@@ -298,76 +420,53 @@ def _axis_squares(
     # The boundary squares of the planes normal to one axis, as runs [rc0, rc1) of cell columns per row
     # (plane m, cell row r) = row row0 + m · (2 nv − 1) + r, with their flags fl (_BELOW, _ABOVE), from the
     # runs along u of the voxel lines p · nv + q (padded sizes na, nv, nu). Plane 2p + 1 separates core p
-    # from seam (p, p + 1) and plane 2p seam (p − 1, p) from core p; a seam is in R(A) only if its core is,
-    # so a plane's squares are the cells of the doubled slice p (sign +1 on odd planes, −1 on even) not in
-    # the doubled slice of p and its neighbour: D(X) \ D(X ∩ Y), D doubling the runs [i0, i1) of voxels to
-    # cells [2 i0, 2 i1 − 1). Also returns χ(R(A)), from the runs of odd planes (see safety_net_3d).
+    # from seam (p, p + 1) and plane 2p + 2 seam (p, p + 1) from core p + 1; a seam is in R(A) only if its
+    # core is, so their squares are the cells of the doubled slice p (p + 1) not in the doubled X_p ∩ X_p+1:
+    # D(X) \ D(X ∩ Y), D doubling the runs [i0, i1) of voxels to cells [2 i0, 2 i1 − 1), with sign +1 (−1).
+    # The rows of X ∩ Y, and those of each slice's and of X ∩ Y's consecutive rows together (the odd cell
+    # rows), are made once for both planes. Also returns χ(R(A)) (see safety_net_3d).
     n_rows = 2 * nv - 1
     chi = 0
-    w = nu // 2 + 2
-    f_s = np.empty(w, np.int32)
-    f_e = np.empty(w, np.int32)
-    g_s = np.empty(w, np.int32)
-    g_e = np.empty(w, np.int32)
-    h_s = np.empty(w, np.int32)
-    h_e = np.empty(w, np.int32)
+    most = 1  # the most runs in a slice
+    for p in range(na):
+        most = max(most, lptr[(p + 1) * nv] - lptr[p * nv])
+    cap = 2 * most + nv
+    fo_s = np.empty(cap, np.int32)  # the odd rows of slice p
+    fo_e = np.empty(cap, np.int32)
+    foptr = np.empty(nv, np.int64)
+    fo2_s = np.empty(cap, np.int32)  # of slice p + 1
+    fo2_e = np.empty(cap, np.int32)
+    fo2ptr = np.empty(nv, np.int64)
+    s_s = np.empty(cap, np.int32)  # the rows of S = X_p ∩ X_p+1
+    s_e = np.empty(cap, np.int32)
+    sptr = np.empty(nv + 1, np.int64)
+    so_s = np.empty(2 * cap, np.int32)  # its odd rows
+    so_e = np.empty(2 * cap, np.int32)
+    soptr = np.empty(nv, np.int64)
     d_s = np.empty(nu + 1, np.int32)
     d_e = np.empty(nu + 1, np.int32)
-    for m in range(2 * na):
-        p = m // 2
-        p2 = p + 1 if m % 2 == 1 else p - 1
-        prev0 = n  # the runs of the previous row
-        prev1 = n
-        for cv in range(n_rows):
-            q = cv // 2
-            la = p * nv + q
-            nd = 0
-            if lptr[la] < lptr[la + 1] and 0 <= p2 < na:
-                lb = p2 * nv + q
-                if cv % 2 == 0:
-                    nf = _and(ls, le, lptr[la], lptr[la + 1], ls, le, lptr[la], lptr[la + 1], f_s, f_e)
-                    ns = _and(f_s, f_e, 0, nf, ls, le, lptr[lb], lptr[lb + 1], h_s, h_e)
-                else:
-                    nf = _and(ls, le, lptr[la], lptr[la + 1], ls, le, lptr[la + 1], lptr[la + 2], f_s, f_e)
-                    ng = _and(f_s, f_e, 0, nf, ls, le, lptr[lb], lptr[lb + 1], g_s, g_e)
-                    ns = _and(g_s, g_e, 0, ng, ls, le, lptr[lb + 1], lptr[lb + 2], h_s, h_e)
-                if m % 2 == 1:
-                    chi += nf - ns if cv % 2 == 0 else ns - nf
-                j = 0
-                for i in range(nf):
-                    a = f_s[i]
-                    b = f_e[i]
-                    cur = 2 * a
-                    while j < ns and h_s[j] < b:  # the runs of X ∩ Y inside this run of X
-                        if 2 * h_s[j] > cur:
-                            d_s[nd] = cur
-                            d_e[nd] = 2 * h_s[j]
-                            nd += 1
-                        cur = 2 * h_e[j] - 1
-                        j += 1
-                    if 2 * b - 1 > cur:
-                        d_s[nd] = cur
-                        d_e[nd] = 2 * b - 1
-                        nd += 1
-            if n + nd > rc0.size:
-                while n + nd > rc0.size:
-                    rc0 = _grow(rc0, n)
-                    rc1 = _grow(rc1, n)
-                    fl = _grow(fl, n)
-            k = prev0
-            for i in range(nd):
-                rc0[n] = d_s[i]
-                rc1[n] = d_e[i]
-                fl[n] = 0
-                while k < prev1 and rc0[k] < d_s[i]:
-                    k += 1
-                if k < prev1 and rc0[k] == d_s[i] and rc1[k] == d_e[i]:
-                    fl[k] |= _ABOVE
-                    fl[n] = _BELOW
-                n += 1
-            prev0 = prev1
-            prev1 = n
-            rptr[row0 + m * n_rows + cv + 1] = n
+    for cv in range(n_rows):  # plane 0: below the padding's first slice, no squares
+        rptr[row0 + cv + 1] = n
+    _and_rows(ls, le, lptr, 0, ls, le, lptr, 1, nv - 1, fo_s, fo_e, foptr)
+    for p in range(na - 1):
+        _and_rows(ls, le, lptr, (p + 1) * nv, ls, le, lptr, (p + 1) * nv + 1, nv - 1, fo2_s, fo2_e, fo2ptr)
+        _and_rows(ls, le, lptr, p * nv, ls, le, lptr, (p + 1) * nv, nv, s_s, s_e, sptr)
+        _and_rows(s_s, s_e, sptr, 0, s_s, s_e, sptr, 1, nv - 1, so_s, so_e, soptr)
+        m = 2 * p + 1
+        rc0, rc1, fl, n, c = _plane_squares(
+            ls, le, lptr, p * nv, fo_s, fo_e, foptr, s_s, s_e, sptr, so_s, so_e, soptr, nv, d_s, d_e,
+            rptr, row0 + m * n_rows, rc0, rc1, fl, n,
+        )  # fmt: skip
+        chi += c
+        rc0, rc1, fl, n, c = _plane_squares(
+            ls, le, lptr, (p + 1) * nv, fo2_s, fo2_e, fo2ptr, s_s, s_e, sptr, so_s, so_e, soptr, nv,
+            d_s, d_e, rptr, row0 + (m + 1) * n_rows, rc0, rc1, fl, n,
+        )  # fmt: skip
+        fo_s, fo2_s = fo2_s, fo_s
+        fo_e, fo2_e = fo2_e, fo_e
+        foptr, fo2ptr = fo2ptr, foptr
+    for cv in range(n_rows):  # the last plane, above the padding's last slice
+        rptr[row0 + (2 * na - 1) * n_rows + cv + 1] = n
     return rc0, rc1, fl, n, chi
 
 
