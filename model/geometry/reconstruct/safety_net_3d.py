@@ -99,6 +99,12 @@ def _grow(a: npt.NDArray[Any], n: int) -> npt.NDArray[Any]:  # pragma: no cover
     return b
 
 
+#: ctz by de Bruijn multiplication: the index of the lowest set bit b of a word is _DEBRUIJN[(b · K) >> 58].
+_DEBRUIJN_K = 0x022FDD63CC95386D
+_DEBRUIJN = np.zeros(64, np.int64)
+_DEBRUIJN[[((1 << i) * _DEBRUIJN_K % (1 << 64)) >> 58 for i in range(64)]] = np.arange(64)
+
+
 @njit(cache=True)
 def _x_runs(
     buf: npt.NDArray[np.uint8], fy: int, fx: int, k0: int, j0: int, i0: int, sz: int, sy: int, sx: int
@@ -106,11 +112,11 @@ def _x_runs(
     # The runs along x of the box [k0, k0 + sz) × [j0, j0 + sy) × [i0, i0 + sx) of a C-contiguous mask of rows
     # of fx bytes, fy rows a slice (buf: its bytes), the box padded by one empty voxel on each side: line
     # z · (sy + 2) + y holds the runs [s, e) of padded x numbered ptr[line] to ptr[line + 1] (excluded). The
-    # bytes are also read as 8-byte words, passing a word of 0s (or of 1s in a run) at once, as in
-    # labeling._find_runs.
+    # bytes are read 8 at a time where aligned: a word equal to the last byte repeated is passed, otherwise
+    # the bytes differing from the one before (the word xor itself shifted by a byte) are the runs' ends.
     words = buf[: 8 * (buf.size // 8)].view(np.uint64)
-    zero = np.uint64(0)
     ones = np.uint64(0x0101010101010101)
+    mult = np.uint64(_DEBRUIJN_K)
     ny = sy + 2
     ptr = np.zeros((sz + 2) * ny + 1, np.int64)
     s = np.empty(1024, np.int32)
@@ -119,37 +125,44 @@ def _x_runs(
     for z in range(sz):
         for y in range(sy):
             b0 = ((k0 + z) * fy + j0 + y) * fx + i0  # the row's first byte
-            kend = (b0 + sx) >> 3  # words wholly before the row's end
+            inside = False
             c = 0
             while c < sx:
-                if ((b0 + c) & 7) == 0:
-                    k = (b0 + c) >> 3
-                    while k + 4 <= kend and (words[k] | words[k + 1] | words[k + 2] | words[k + 3]) == zero:
-                        k += 4
-                    while k < kend and words[k] == zero:
-                        k += 1
-                    c = (k << 3) - b0
-                    if c >= sx:
-                        break
-                if not buf[b0 + c]:
-                    c += 1
+                if ((b0 + c) & 7) == 0 and c + 8 <= sx:
+                    w = words[(b0 + c) >> 3]
+                    w |= w >> np.uint64(4)  # any non-zero byte to 1
+                    w |= w >> np.uint64(2)
+                    w |= w >> np.uint64(1)
+                    w &= ones
+                    t = w ^ ((w << np.uint64(8)) | np.uint64(inside))  # 1 where a byte differs from the last
+                    while t:
+                        low = t & (~t + np.uint64(1))
+                        at = c + (_DEBRUIJN[np.int64((low * mult) >> np.uint64(58))] >> 3)
+                        if not inside:
+                            if n == s.size:
+                                s = _grow(s, n)
+                                e = _grow(e, n)
+                            s[n] = at + 1
+                        else:
+                            e[n] = at + 1
+                            n += 1
+                        inside = not inside
+                        t ^= low
+                    c += 8
                     continue
-                c0 = c
+                if bool(buf[b0 + c]) != inside:
+                    if not inside:
+                        if n == s.size:
+                            s = _grow(s, n)
+                            e = _grow(e, n)
+                        s[n] = c + 1
+                    else:
+                        e[n] = c + 1
+                        n += 1
+                    inside = not inside
                 c += 1
-                while c < sx and buf[b0 + c]:
-                    if ((b0 + c) & 7) == 0:
-                        k = (b0 + c) >> 3
-                        while k < kend and words[k] == ones:
-                            k += 1
-                        c = (k << 3) - b0
-                        if c >= sx or not buf[b0 + c]:
-                            break
-                    c += 1
-                if n == s.size:
-                    s = _grow(s, n)
-                    e = _grow(e, n)
-                s[n] = c0 + 1
-                e[n] = c + 1
+            if inside:
+                e[n] = sx + 1
                 n += 1
             ptr[(z + 1) * ny + y + 2] = n
     for k in range(1, ptr.size):  # the empty lines of the padding
@@ -498,12 +511,6 @@ def _set(words: npt.NDArray[np.uint64], idx: int) -> bool:  # pragma: no cover
         return False
     words[idx >> 6] = w | bit
     return True
-
-
-#: ctz by de Bruijn multiplication: the index of the lowest set bit b of a word is _DEBRUIJN[(b · K) >> 58].
-_DEBRUIJN_K = 0x022FDD63CC95386D
-_DEBRUIJN = np.zeros(64, np.int64)
-_DEBRUIJN[[((1 << i) * _DEBRUIJN_K % (1 << 64)) >> 58 for i in range(64)]] = np.arange(64)
 
 
 @njit(cache=True)
