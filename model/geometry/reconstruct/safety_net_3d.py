@@ -483,24 +483,6 @@ def _axis_squares(
     return rc0, rc1, fl, n, chi
 
 
-# ----------------------------------------------------------------------------------------------- runs lookup
-@leaf_njit(cache=True)
-def _run_at(rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c: int) -> int:  # pragma: no cover
-    # The run of the row with rc0 <= c <= rc1 (corner c on it or at an end), or −1 (runs are a cell apart).
-    lo = int(rptr[row])
-    hi = int(rptr[row + 1])
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if rc0[mid] <= c:
-            lo = mid + 1
-        else:
-            hi = mid
-    k = lo - 1
-    if k >= rptr[row] and c <= rc1[k]:
-        return k
-    return -1
-
-
 # -------------------------------------------------------------------------------------- the required corners
 @leaf_njit(cache=True)
 def _set(words: npt.NDArray[np.uint64], idx: int) -> bool:  # pragma: no cover
@@ -558,6 +540,23 @@ def _required(
 
 
 # ------------------------------------------------------------------------------------------------- the mesh
+@leaf_njit(cache=True)
+def _run_at(rptr: Int64Array, rc0: Int32Array, rc1: Int32Array, row: int, c: int) -> int:  # pragma: no cover
+    # The run of the row with rc0 <= c <= rc1 (corner c on it or at an end), or −1 (runs are a cell apart).
+    lo = int(rptr[row])
+    hi = int(rptr[row + 1])
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if rc0[mid] <= c:
+            lo = mid + 1
+        else:
+            hi = mid
+    k = lo - 1
+    if k >= rptr[row] and c <= rc1[k]:
+        return k
+    return -1
+
+
 @leaf_njit(cache=True)
 def _lower(lu: Int32Array, lo: int, hi: int, c: int) -> int:  # pragma: no cover
     # The first index in lo .. hi − 1 with lu >= c (lu sorted), else hi.
@@ -796,8 +795,7 @@ def safety_net_3d(
         m = np.ascontiguousarray(m[k0 : k0 + sz, j0 : j0 + sy, i0 : i0 + sx])
         k0 = j0 = i0 = 0
     # The doubled grid is never built: the runs of the mask along each axis give each plane's boundary
-    # squares as runs per row, and the rest works on those runs and on corners, in memory of the surface's
-    # size.
+    # squares as runs per row; the rest works on those runs, the stacks' corners and the mesh.
     xptr, xs, xe = _x_runs(m.view(np.uint8).reshape(-1), m.shape[1], m.shape[2], k0, j0, i0, sz, sy, sx)
     yptr, ys, ye = _cross_runs(xptr, xs, xe, nz, ny, nx, False)
     zptr, zs, ze = _cross_runs(xptr, xs, xe, nz, ny, nx, True)
@@ -822,6 +820,5 @@ def safety_net_3d(
     n_tri = 2 * (keys.size - 2 * chi)
     lid = np.empty(keys.size, np.int32 if keys.size < 1 << 31 else np.int64)
     triangles, face, n_faces = _mesh(rptr, rc0, rc1, fl, dims, _SHIFTS, keys, n_tri, lid)
-    del lid
-    del rptr, rc0, rc1, fl
+    del lid, rptr, rc0, rc1, fl
     return SafetyNet3D(_vertices(keys, ox, oy, oz), triangles, face, int(n_faces))
