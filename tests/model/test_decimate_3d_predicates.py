@@ -23,6 +23,7 @@ from mrm.geometry.reconstruct import decimate_3d as D
 coord = st.integers(-12, 12)
 point = st.tuples(coord, coord, coord)
 small = st.tuples(*(st.integers(-5, 5),) * 3)  # where a brute force over the box is the reference
+quarters = st.tuples(*(st.integers(-24, 24),) * 3)  # corners in quarter voxels, anywhere in (¼Z)³
 
 
 def clip(
@@ -112,7 +113,7 @@ def test_the_slab_scan_lists_every_centre_in_a_tetrahedron(a, b, c, d):
     if orient(*[tuple(Fraction(int(x)) for x in row) for row in q]) == 0:
         return
     out = np.empty((4096, 3), np.int64)
-    m = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)))
+    m = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)), False)
     lo = (q.min(axis=0) + 3) // 4
     hi = q.max(axis=0) // 4
     brute = {
@@ -123,6 +124,33 @@ def test_the_slab_scan_lists_every_centre_in_a_tetrahedron(a, b, c, d):
         if reference_holds(q, (4 * x, 4 * y, 4 * z))
     }
     assert m >= 0 and {tuple(int(v) for v in row) for row in out[:m]} == brute
+
+
+@settings(max_examples=300, deadline=None)
+@given(quarters, quarters, quarters, quarters)
+def test_the_shadow_scan_lists_every_centre_in_a_tetrahedron_with_corners_on_any_quarter(a, b, c, d):
+    # New vertices lie anywhere in (¼Z)³, on the centres' own lines too: the scan keeps to the tetrahedron's
+    # shadow, row by row, and must still find every centre the brute force finds in the box; with first_only
+    # it stops at one of them.
+    q = np.array([a, b, c, d], np.int64)
+    if orient(*[tuple(Fraction(int(x)) for x in row) for row in q]) == 0:
+        return
+    out = np.empty((4096, 3), np.int64)
+    m = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)), False)
+    lo = (q.min(axis=0) + 3) // 4
+    hi = q.max(axis=0) // 4
+    brute = {
+        (x, y, z)
+        for x in range(lo[0], hi[0] + 1)
+        for y in range(lo[1], hi[1] + 1)
+        for z in range(lo[2], hi[2] + 1)
+        if reference_holds(q, (4 * x, 4 * y, 4 * z))
+    }
+    assert m >= 0 and {tuple(int(v) for v in row) for row in out[:m]} == brute
+    first = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)), True)
+    assert first == min(1, len(brute))
+    if first:
+        assert tuple(int(v) for v in out[0]) in brute
 
 
 def on_triangle(tri: np.ndarray, p: tuple[int, int, int]) -> bool:

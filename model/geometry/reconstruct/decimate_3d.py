@@ -471,10 +471,11 @@ def _tet_centres(
     lo: Int64Array,
     hi: Int64Array,
     idx: Int64Array,
+    first_only: bool,
 ) -> int:  # pragma: no cover
     # The voxels whose centre + τ lies in the non-flat tetrahedron (apex, p, r, s), into out (indices); their
-    # number, or −1 when out is full. Only the slab between the plane of p r s and its parallel through the
-    # apex is scanned.
+    # number, or −1 when out is full; with first_only, stop at the first. Only the slab between the plane of
+    # p r s and its parallel through the apex is scanned, within the tetrahedron's shadow.
     nx, ny, nz = _normal(q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[s, 0], q[s, 1], q[s, 2])
     dp = nx * q[p, 0] + ny * q[p, 1] + nz * q[p, 2]
     da = nx * q[apex, 0] + ny * q[apex, 1] + nz * q[apex, 2]
@@ -482,9 +483,33 @@ def _tet_centres(
         lo[d] = (min(q[apex, d], q[p, d], q[r, d], q[s, d]) + 3) // 4
         hi[d] = max(q[apex, d], q[p, d], q[r, d], q[s, d]) // 4
     ki, kj, kk = _axes(nx, ny, nz)
+    corners = (apex, p, r, s)
     m = 0
     for ii in range(lo[ki], hi[ki] + 1):
-        for jj in range(lo[kj], hi[kj] + 1):
+        # The columns of row ii within the tetrahedron's shadow on the (ki, kj) plane: at X = 4·ii the shadow
+        # (the hull of the four corners' shadows) spans the least and the greatest of the corners at X and of
+        # the six segments between corners crossing X, exactly (a long sliver's box is mostly empty).
+        x = 4 * ii
+        j_lo = hi[kj] + 1
+        j_hi = lo[kj] - 1
+        for a in range(4):
+            pa = corners[a]
+            ax, ay = q[pa, ki], q[pa, kj]
+            if ax == x:
+                j_lo = min(j_lo, -((-ay) // 4))
+                j_hi = max(j_hi, ay // 4)
+            for b in range(a + 1, 4):
+                pb = corners[b]
+                bx, by = q[pb, ki], q[pb, kj]
+                if min(ax, bx) < x < max(ax, bx):
+                    den = bx - ax
+                    num = ay * den + (by - ay) * (x - ax)
+                    if den < 0:
+                        num, den = -num, -den
+                    # the crossing is at num / den: the centres 4·jj around it
+                    j_lo = min(j_lo, -((-num) // (4 * den)))
+                    j_hi = max(j_hi, num // (4 * den))
+        for jj in range(max(lo[kj], j_lo), min(hi[kj], j_hi) + 1):
             k0, k1 = _slab(nx, ny, nz, min(dp, da), max(dp, da), ii, jj, lo[kk], hi[kk], 4, 0)
             for kx in range(k0, k1 + 1):
                 idx[ki], idx[kj], idx[kk] = ii, jj, kx
@@ -493,6 +518,8 @@ def _tet_centres(
                         return -1
                     out[m, 0], out[m, 1], out[m, 2] = idx[0], idx[1], idx[2]
                     m += 1
+                    if first_only:
+                        return m
     return m
 
 
@@ -736,7 +763,29 @@ def _change_is_right(
     acc, seen, found, flips = s.acc, s.seen, s.found, s.flips
     c0x, c0y, c0z = (blo[0] + 3) // 4, (blo[1] + 3) // 4, (blo[2] + 3) // 4
     touched = 0
-    for j in range(n_tets):
+    # Under gauss, tetrahedra all of one sign cannot cancel: the first centre in any refuses the change, and
+    # none in any means none changes side (no winding numbers to add up).
+    one_sign = not covers
+    sign = 0
+    for j in range(n_tets if one_sign else 0):
+        apex, p, r, w = tets[j, 0], tets[j, 1], tets[j, 2], tets[j, 3]
+        vol = _det(
+            q[apex, 0], q[apex, 1], q[apex, 2], q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[w, 0],
+            q[w, 1], q[w, 2],
+        )  # fmt: skip
+        if vol != 0:
+            if sign != 0 and (vol > 0) != (sign > 0):
+                one_sign = False
+                break
+            sign = 1 if vol > 0 else -1
+    for j in range(n_tets if one_sign else 0):
+        apex, p, r, w = tets[j, 0], tets[j, 1], tets[j, 2], tets[j, 3]
+        if _det(
+            q[apex, 0], q[apex, 1], q[apex, 2], q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[w, 0],
+            q[w, 1], q[w, 2],
+        ) != 0 and _tet_centres(q, apex, p, r, w, found, s.lo_i, s.hi_i, s.idx, True) != 0:  # fmt: skip
+            return False, epoch
+    for j in range(0 if one_sign else n_tets):
         apex, p, r, w = tets[j, 0], tets[j, 1], tets[j, 2], tets[j, 3]
         vol = _det(
             q[apex, 0], q[apex, 1], q[apex, 2], q[p, 0], q[p, 1], q[p, 2], q[r, 0], q[r, 1], q[r, 2], q[w, 0],
@@ -744,7 +793,7 @@ def _change_is_right(
         )  # fmt: skip
         if vol == 0:
             continue
-        m = _tet_centres(q, apex, p, r, w, found, s.lo_i, s.hi_i, s.idx)
+        m = _tet_centres(q, apex, p, r, w, found, s.lo_i, s.hi_i, s.idx, False)
         if m < 0:
             touched = seen.shape[0] + 1
             break
@@ -1871,8 +1920,11 @@ def decimate(
     if not np.array_equal(q.astype(np.float64), scaled):
         raise ValueError("the safety net's vertices lie in Z + {1/4, 3/4}")
     code = GAUSS if model == "gauss" else COVERS
-    in_a = np.pad(mask, PAD)
     forbidden = forbidden_cubes(mask, code == GAUSS)
+    # A's sides are read by the covers' checks only (centres of A that leave, cubes still met): under gauss
+    # the forbidden cubes stand in for them, unread, and A's padded box is not copied (18 MB at 256³).
+    in_a = np.pad(mask, PAD) if code == COVERS else forbidden
+    del scaled
     q, t, alive, vdead, _removed = _decimate(
         q,
         np.ascontiguousarray(triangles, np.int64),
