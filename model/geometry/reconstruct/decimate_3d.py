@@ -36,6 +36,10 @@ collapse straightens the most staircase) in passes until one removes nothing; co
 quadric's point of the edge's triangles, and the midpoint rounded every way, cheapest quadric first); moves
 that make faces exactly coplanar; edge flips that bend less. The result is checked again as a whole by the
 caller.
+
+Most changes tried are refused, so refusals are made cheap (docs/adr/0067): a change that leaves the surface
+the same set of points needs no proof (:func:`_same_point_set`); the check likelier to refuse runs first; a
+tetrahedron's centres are sought within its shadow only; the star and bucket pools are compacted, not grown.
 """
 
 from __future__ import annotations
