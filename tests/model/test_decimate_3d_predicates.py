@@ -105,6 +105,19 @@ def test_a_centre_plus_tau_is_in_a_tetrahedron_exactly_as_the_fraction_reference
     assert D._tet_holds(q, 0, 1, 2, 3, *p) == reference_holds(q, p)
 
 
+def centres_in_box_held(q: np.ndarray) -> set[tuple[int, int, int]]:
+    """The brute force: every centre of the tetrahedron's box that the Fraction reference puts inside."""
+    lo = (q.min(axis=0) + 3) // 4
+    hi = q.max(axis=0) // 4
+    return {
+        (x, y, z)
+        for x in range(lo[0], hi[0] + 1)
+        for y in range(lo[1], hi[1] + 1)
+        for z in range(lo[2], hi[2] + 1)
+        if reference_holds(q, (4 * x, 4 * y, 4 * z))
+    }
+
+
 @settings(max_examples=300, deadline=None)
 @given(small, small, small, small)
 def test_the_slab_scan_lists_every_centre_in_a_tetrahedron(a, b, c, d):
@@ -114,15 +127,7 @@ def test_the_slab_scan_lists_every_centre_in_a_tetrahedron(a, b, c, d):
         return
     out = np.empty((4096, 3), np.int64)
     m = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)), False)
-    lo = (q.min(axis=0) + 3) // 4
-    hi = q.max(axis=0) // 4
-    brute = {
-        (x, y, z)
-        for x in range(lo[0], hi[0] + 1)
-        for y in range(lo[1], hi[1] + 1)
-        for z in range(lo[2], hi[2] + 1)
-        if reference_holds(q, (4 * x, 4 * y, 4 * z))
-    }
+    brute = centres_in_box_held(q)
     assert m >= 0 and {tuple(int(v) for v in row) for row in out[:m]} == brute
 
 
@@ -137,15 +142,7 @@ def test_the_shadow_scan_lists_every_centre_in_a_tetrahedron_with_corners_on_any
         return
     out = np.empty((4096, 3), np.int64)
     m = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)), False)
-    lo = (q.min(axis=0) + 3) // 4
-    hi = q.max(axis=0) // 4
-    brute = {
-        (x, y, z)
-        for x in range(lo[0], hi[0] + 1)
-        for y in range(lo[1], hi[1] + 1)
-        for z in range(lo[2], hi[2] + 1)
-        if reference_holds(q, (4 * x, 4 * y, 4 * z))
-    }
+    brute = centres_in_box_held(q)
     assert m >= 0 and {tuple(int(v) for v in row) for row in out[:m]} == brute
     first = D._tet_centres(q, 0, 1, 2, 3, out, *(np.empty(3, np.int64) for _ in range(3)), True)
     assert first == min(1, len(brute))

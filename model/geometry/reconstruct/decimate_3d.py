@@ -1447,24 +1447,9 @@ def _decimate(
                 if vdead[u] or not dirty[u, _HALF] or removed == max_collapses:
                     continue
                 g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
-                    q,
-                    t,
-                    alive,
-                    ghead,
-                    g_next,
-                    g_tri,
-                    ng,
-                    ng_fresh,
-                    gx,
-                    gy,
-                    cb,
-                    cells,
-                    vhead,
-                    s_next,
-                    s_tri,
-                    ns,
-                    n_now,
-                )
+                    q, t, alive, ghead, g_next, g_tri, ng, ng_fresh, gx, gy, cb, cells, vhead, s_next, s_tri,
+                    ns, n_now,
+                )  # fmt: skip
                 dirty[u, _HALF] = False
                 n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, b.nbr_u)
                 if n_nu < 0:
@@ -1499,24 +1484,9 @@ def _decimate(
                 if vdead[u] or not dirty[u, _POINT] or removed == max_collapses:
                     continue
                 g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
-                    q,
-                    t,
-                    alive,
-                    ghead,
-                    g_next,
-                    g_tri,
-                    ng,
-                    ng_fresh,
-                    gx,
-                    gy,
-                    cb,
-                    cells,
-                    vhead,
-                    s_next,
-                    s_tri,
-                    ns,
-                    n_now,
-                )
+                    q, t, alive, ghead, g_next, g_tri, ng, ng_fresh, gx, gy, cb, cells, vhead, s_next, s_tri,
+                    ns, n_now,
+                )  # fmt: skip
                 dirty[u, _POINT] = False
                 n_nu = _neighbours(vhead, s_next, s_tri, alive, t, u, b.nbr_u)
                 n_su = _star(vhead, s_next, s_tri, alive, t, u, b.star_u)
@@ -1592,24 +1562,9 @@ def _decimate(
             if vdead[u] or not dirty[u, _MOVE]:
                 continue
             g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
-                q,
-                t,
-                alive,
-                ghead,
-                g_next,
-                g_tri,
-                ng,
-                ng_fresh,
-                gx,
-                gy,
-                cb,
-                cells,
-                vhead,
-                s_next,
-                s_tri,
-                ns,
-                n_now,
-            )
+                q, t, alive, ghead, g_next, g_tri, ng, ng_fresh, gx, gy, cb, cells, vhead, s_next, s_tri,
+                ns, n_now,
+            )  # fmt: skip
             dirty[u, _MOVE] = False
             n_su = _star(vhead, s_next, s_tri, alive, t, u, b.star_u)
             if n_su < 0:
@@ -1666,24 +1621,9 @@ def _decimate(
             if not alive[k]:
                 continue
             g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
-                q,
-                t,
-                alive,
-                ghead,
-                g_next,
-                g_tri,
-                ng,
-                ng_fresh,
-                gx,
-                gy,
-                cb,
-                cells,
-                vhead,
-                s_next,
-                s_tri,
-                ns,
-                n_now,
-            )
+                q, t, alive, ghead, g_next, g_tri, ng, ng_fresh, gx, gy, cb, cells, vhead, s_next, s_tri,
+                ns, n_now,
+            )  # fmt: skip
             for c_ in range(3):
                 a, b_, c = t[k, c_], t[k, (c_ + 1) % 3], t[k, (c_ + 2) % 3]
                 # the triangle across a b: (b, a, d)
