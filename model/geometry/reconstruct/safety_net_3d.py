@@ -60,6 +60,7 @@ import numpy.typing as npt
 
 from mrm.core.limits import check_pixels
 from mrm.geometry._jit import leaf_njit, njit
+from mrm.geometry.topology.labeling import _find, _union
 
 FloatArray = npt.NDArray[np.float64]
 Int64Array = npt.NDArray[np.int64]
@@ -569,26 +570,6 @@ def _lower(lu: Int32Array, lo: int, hi: int, c: int) -> int:  # pragma: no cover
     return lo
 
 
-@leaf_njit(cache=True)
-def _root(parent: Int64Array, x: int) -> int:  # pragma: no cover
-    # labeling._find without reference counting (called for every overlap of runs)
-    while parent[x] != x:
-        parent[x] = parent[parent[x]]
-        x = parent[x]
-    return x
-
-
-@leaf_njit(cache=True)
-def _join(parent: Int64Array, a: int, b: int) -> None:  # pragma: no cover
-    # labeling._union without reference counting: the smaller root stays, a face's root is its first run
-    a = _root(parent, a)
-    b = _root(parent, b)
-    if a < b:
-        parent[b] = a
-    elif b < a:
-        parent[a] = b
-
-
 @njit(cache=True)
 def _mesh(
     rptr: Int64Array,
@@ -661,13 +642,13 @@ def _mesh(
                 j = rptr[row]
                 while i < rptr[row] and j < rptr[row + 1]:
                     if rc0[i] < rc1[j] and rc0[j] < rc1[i]:
-                        _join(parent, i - first, j - first)
+                        _union(parent, i - first, j - first)
                     if rc1[i] < rc1[j]:
                         i += 1
                     else:
                         j += 1
             for k in range(first, last):
-                root = _root(parent, k - first)
+                root = _find(parent, k - first)
                 if root == k - first:
                     face_of[root] = nf
                     nf += 1

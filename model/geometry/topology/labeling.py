@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from mrm.geometry._jit import njit
+from mrm.geometry._jit import leaf_njit, njit
 
 Int32Array = npt.NDArray[np.int32]
 Int64Array = npt.NDArray[np.int64]
@@ -134,7 +134,9 @@ def _gap_labels(bparent: Int64Array, n: int) -> tuple[npt.NDArray[np.int32], int
     return bg_label, nbg
 
 
-@njit(cache=True)
+# Leaf kernels (no reference counting): they allocate nothing, and the 3D safety net calls them for every
+# overlap of runs.
+@leaf_njit(cache=True)
 def _find(parent: Int64Array, x: int) -> int:  # pragma: no cover
     while parent[x] != x:
         parent[x] = parent[parent[x]]
@@ -142,7 +144,7 @@ def _find(parent: Int64Array, x: int) -> int:  # pragma: no cover
     return x
 
 
-@njit(cache=True)
+@leaf_njit(cache=True)
 def _union(parent: Int64Array, a: int, b: int) -> None:  # pragma: no cover
     # The smaller index stays the root, so a component's root is its first run in raster order.
     a = _find(parent, a)
