@@ -21,3 +21,28 @@ def hollow(n: int = 9) -> np.ndarray:
 
 def random_mask(seed: int, shape: tuple[int, int, int], density: float) -> np.ndarray:
     return np.random.default_rng(seed).random(shape) < density
+
+
+def assert_within_border_cubes(poly: object, vs: object) -> None:
+    """∂P meets only cubes of border voxels: each voxel its triangles touch (their supercover, exactly) has
+    both a voxel of A and one outside in its 3×3×3 block (docs/design.md §11, item 2 under gauss)."""
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.discretize.voxels import voxelize_triangles
+
+    assert isinstance(vs, VoxelSet)
+    touched, origin = voxelize_triangles(poly.vertices, poly.triangles, "supercover", limit=None)  # type: ignore[attr-defined]
+    x0, y0, z0, x1, y1, z1 = vs.bbox
+    frame = (min(x0, origin[0]) - 2, min(y0, origin[1]) - 2, min(z0, origin[2]) - 2,
+             max(x1, origin[0] + touched.shape[2]) + 2, max(y1, origin[1] + touched.shape[1]) + 2,
+             max(z1, origin[2] + touched.shape[0]) + 2)  # fmt: skip
+    box = VoxelSet(touched, origin).to_array(frame)  # the voxels the surface meets
+    a = vs.to_array(frame)
+    padded = np.pad(a, 1)
+    block = sum(
+        padded[dz : dz + a.shape[0], dy : dy + a.shape[1], dx : dx + a.shape[2]].astype(int)
+        for dz in range(3)
+        for dy in range(3)
+        for dx in range(3)
+    )
+    border = (block > 0) & (block < 27)
+    assert not (box & ~border).any()

@@ -1717,6 +1717,32 @@ def _turn(mask: BoolArray, perm: tuple[int, ...], signs: tuple[int, ...]) -> Boo
     return np.flip(out, flips) if flips else out
 
 
+def turn_points(
+    p: Int64Array, perm: tuple[int, int, int], signs: tuple[int, int, int], size: tuple[int, int, int]
+) -> Int64Array:
+    """Points (x, y, z) of A's box (array indices) in the turned frame of :func:`_turn`.
+
+    Turned coordinate k is ``signs[k] · p[perm[k]]``, plus ``size[perm[k]] − 1`` when flipped: the turned
+    box starts at 0 again. ``size`` is A's box (nx, ny, nz).
+    """
+    out = np.empty_like(p)
+    for k in range(3):
+        j = perm[k]
+        out[:, k] = p[:, j] if signs[k] > 0 else (size[j] - 1) - p[:, j]
+    return out
+
+
+def turn_back_points(
+    w: FloatArray, perm: tuple[int, int, int], signs: tuple[int, int, int], size: tuple[int, int, int]
+) -> FloatArray:
+    """The inverse of :func:`turn_points`: turned points back in A's box (array indices), exactly."""
+    out = np.empty_like(w)
+    for k in range(3):
+        j = perm[k]
+        out[:, j] = w[:, k] if signs[k] > 0 else (size[j] - 1) - w[:, k]
+    return out
+
+
 def canonical_pose(mask: BoolArray) -> tuple[tuple[int, int, int], tuple[int, int, int]]:
     """The rotation of the cube that turns A into its canonical pose: the smallest key of the 24 turns.
 
@@ -1908,16 +1934,11 @@ def compact_r(
         v, t = net.vertices, net.triangles
     else:
         v, t = decimate(net.vertices, net.triangles, turned, (0, 0, 0), model)
-    shape_xyz = mask.shape[::-1]
+    size = cast(tuple[int, int, int], mask.shape[::-1])
+    shift = np.asarray(origin, np.float64)
 
     def back(w: FloatArray) -> FloatArray:
-        # Turned coordinate k is signs[k] · (x[perm[k]] − o[perm[k]]) + (size − 1 when flipped): undo it.
-        out = np.empty_like(w)
-        for k in range(3):
-            j = perm[k]
-            local = w[:, k] if signs[k] > 0 else (shape_xyz[j] - 1) - w[:, k]
-            out[:, j] = local + origin[j]
-        return out
+        return turn_back_points(w, perm, signs, size) + shift
 
     if t is net.triangles:
         w = back(v)

@@ -1,0 +1,631 @@
+"""R of a digitally convex voxel set under ``gauss``: its convex hull, grown by a dyadic homothety.
+
+Reference: docs/design.md §11, "Continuation R in 3D"; the decision is docs/adr/0068.
+
+When A = conv(A) ∩ Z³ (the Gauss digitization of any convex solid is such a set: balls, ellipsoids, the
+octahedron), the convex hull Q = conv(A) holds every centre of A and no other. Its vertices are centres of A,
+on ∂Q, so Q itself does not separate strictly; P = c + (1 + 2⁻ᵏ)(Q − c), for an integer point c inside Q and
+2ᵏ above every face's margin b − a·c, does: each face a·x ≤ b of Q (a primitive, b integer) becomes
+a·x ≤ b + (b − a·c)/2ᵏ, strictly between b and b + 1, so every centre of A is strictly inside, every other
+strictly outside (it has a·p ≥ b + 1 for some face), and P has Q's faces. Its vertices v + (v − c)/2ᵏ are
+dyadic: float64 holds them exactly, and the faces stay exactly planar.
+
+The hull is *proposed* by manifold3d's QuickHull (a float algorithm on integer points, so its facets are
+only a guess) and everything about it is then decided in integers here: the planes of its triangles, grouped
+into faces, each face's corners by an exact convex hull in its plane (points on an edge dropped), every edge
+shared by two faces in opposite directions, every edge strictly convex, Euler's formula. The caller checks
+the result as a whole, like every R (valid polyhedron, D(P) = A exactly, ∂P within the border voxels' cubes,
+topology), and goes the general way (:mod:`.decimate_3d`) when any of this fails.
+
+The faces' triangulation and the centre c are chosen in the canonical pose of Q's corners (of the 24 turns
+of the cube, the one whose sorted corners come first) and turned back, so that R(g A) = g R(A) for the
+rotations g of the cube, as for the general R.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.geometry._jit import njit
+from mrm.geometry.reconstruct.decimate_3d import ROTATIONS, turn_back_points, turn_points
+from mrm.geometry.topology.labeling_3d import Runs3D, euler_per_label, label_runs_3d, surfel_count
+
+if TYPE_CHECKING:
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.polyhedra import Polyhedron
+
+logger = logging.getLogger(__name__)
+
+FloatArray = npt.NDArray[np.float64]
+Int64Array = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+
+#: Largest extent of A's box, in voxels, for which the face planes' integers stay far inside int64: the
+#: normals of triangles with coordinates below 2¹⁶ are below 2³³, their offsets below 2⁵¹.
+MAX_EXTENT = 1 << 16
+
+
+class ConvexR(NamedTuple):
+    """R(A) of a digitally convex A under ``gauss`` (:func:`convex_reconstruction`), and A's surfels."""
+
+    polyhedron: Polyhedron
+    surfels: int
+
+
+def convex_reconstruction(vs: VoxelSet) -> ConvexR | None:
+    """R(A) under ``gauss`` for a digitally convex A: the grown convex hull, checked as a whole; else None.
+
+    Checked like every R (docs/design.md §11, items 1–4): A is one 6-component without cavity or tunnel (a
+    convex solid's topology); P is a valid polyhedron; D(P) = A exactly; and ∂P stays within the cubes of the
+    border voxels — the cubes P meets (its supercover, exactly) all have a voxel of A in their 3×3×3 block
+    (the cubes of A's inner voxels lie inside conv(A), itself inside P's interior). None when A is not
+    digitally convex or any check fails: the caller then takes the general way.
+    """
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.discretize.voxels import voxelize_solid, voxelize_triangles
+    from mrm.geometry.polyhedra import Polyhedron
+
+    runs = label_runs_3d(vs.mask, 6)
+    if runs.n_labels != 1 or runs.n_bg != 1 or int(euler_per_label(runs)[1]) != 1:
+        return None  # not one component without cavity or tunnel, as a convex solid is
+    found = convex_r(runs, vs.origin)
+    if found is None:
+        return None
+    v, t = found
+    try:
+        result = Polyhedron(v, t)
+        if VoxelSet(*voxelize_solid(v, t, "gauss", limit=None)) != vs:
+            logger.debug("the grown hull's discretization is not A: A is not digitally convex")
+            return None
+        # The cubes ∂P meets (the cubes P meets beyond them lie in its interior: their centres are in A).
+        cover, at = voxelize_triangles(v, t, "supercover", limit=None)
+    except ValueError as e:  # InvalidGeometryError: the proposed hull is not a valid polyhedron
+        logger.warning("the grown convex hull is refused (%s): %d voxels", e, vs.count)
+        return None
+    shift = np.asarray(vs.origin, np.int64) - np.asarray(at, np.int64)
+    if not _near_a(cover, vs.mask, shift):
+        logger.debug("the grown hull leaves the border voxels' cubes")
+        return None
+    return ConvexR(result, surfel_count(runs))
+
+
+def convex_r(runs: Runs3D, origin: tuple[int, int, int]) -> tuple[FloatArray, Int64Array] | None:
+    """The grown convex hull P of A when A looks digitally convex, else None (module docstring).
+
+    Parameters
+    ----------
+    runs : A's runs along x (:func:`~mrm.geometry.topology.labeling_3d.label_runs_3d`).
+    origin : the world (x, y, z) of A's voxel at index (0, 0, 0).
+
+    Returns
+    -------
+    vertices : float64 (n, 3), world coordinates, dyadic.
+    triangles : int64 (m, 3), outward.
+        Or None when A has a row of two runs or more, is flat, or the proposed hull is not exactly a convex
+        polyhedron: the caller's checks decide the rest (D(P) = A is what proves A digitally convex).
+    """
+    nz, ny, nx = runs.shape
+    if max(runs.shape) > MAX_EXTENT:
+        return None
+    rs, re, ptr = runs.start, runs.end, runs.ptr
+    per_row = np.diff(ptr)
+    if per_row.size == 0 or per_row.max() > 1:
+        return None  # a row (y, z) meets A in two runs: not digitally convex
+    # conv(A) is the hull of the rows' ends; of those, only the corners of each slice's own hull can be its.
+    ends = _slice_corners(rs, ptr, re, ny, nz)
+    proposed = _propose_hull(ends)
+    if proposed is None:
+        return None
+    faces = _exact_faces(*proposed)
+    if faces is None:
+        return None
+    corners, face_ptr, face_corner, normals, offsets = faces
+    size = (nx, ny, nz)
+    pose = _corner_pose(corners, size)
+    perm, signs = ROTATIONS[pose]
+    turned = turn_points(corners, perm, signs, size)
+    grown = _grow(turned, normals, offsets, perm, signs, size)
+    if grown is None:
+        return None
+    triangles = _fans(turned, face_ptr, face_corner)
+    back = turn_back_points(grown, perm, signs, size)
+    return back + np.asarray(origin, np.float64), triangles
+
+
+@njit(cache=True)
+def _near_a(cover: BoolArray, a: BoolArray, shift: Int64Array) -> bool:  # pragma: no cover - compiled
+    # Whether every voxel of cover has a voxel of a in its 3×3×3 block; cover[k, j, i] is a[k − sz, j − sy,
+    # i − sx] with (sx, sy, sz) = shift. The cover is a surface: its voxels are read from the flat array.
+    _nz, ny, nx = cover.shape
+    az, ay, ax = a.shape
+    flat = cover.ravel()
+    for n in range(flat.shape[0]):
+        if not flat[n]:
+            continue
+        k, rest = divmod(n, ny * nx)
+        j, i = divmod(rest, nx)
+        ka, ja, ia = k - shift[2], j - shift[1], i - shift[0]
+        found = False
+        for dk in range(-1, 2):
+            for dj in range(-1, 2):
+                for di in range(-1, 2):
+                    kk, jj, ii = ka + dk, ja + dj, ia + di
+                    if 0 <= kk < az and 0 <= jj < ay and 0 <= ii < ax and a[kk, jj, ii]:
+                        found = True
+        if not found:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _slice_corners(
+    rs: npt.NDArray[np.int32], ptr: Int64Array, re: npt.NDArray[np.int32], ny: int, nz: int
+) -> Int64Array:  # pragma: no cover - compiled
+    # The corners of each slice z = k's convex hull, among its rows' two ends (x, y, z): the rows' left ends
+    # (x as a function of y) on their lower convex chain and the right ends on their upper one, with exact
+    # turns; an end strictly inside its slice's hull, or on a side, is no corner of conv(A) either.
+    out = np.empty((2 * nz * ny, 3), np.int64)
+    chain = np.empty(ny, np.int64)
+    m = 0
+    for k in range(nz):
+        for side in range(2):
+            h = 0
+            for j in range(ny):
+                r = k * ny + j
+                if ptr[r + 1] == ptr[r]:
+                    continue
+                x = rs[ptr[r]] if side == 0 else re[ptr[r]]
+                while h >= 2:
+                    j0, j1 = chain[h - 2], chain[h - 1]
+                    x0 = rs[ptr[k * ny + j0]] if side == 0 else re[ptr[k * ny + j0]]
+                    x1 = rs[ptr[k * ny + j1]] if side == 0 else re[ptr[k * ny + j1]]
+                    cross = (j1 - j0) * (x - x0) - (x1 - x0) * (j - j0)
+                    if (cross > 0) if side == 0 else (cross < 0):
+                        break
+                    h -= 1
+                chain[h] = j
+                h += 1
+            for s in range(h):
+                j = chain[s]
+                out[m, 0] = rs[ptr[k * ny + j]] if side == 0 else re[ptr[k * ny + j]]
+                out[m, 1] = j
+                out[m, 2] = k
+                m += 1
+    return out[:m].copy()
+
+
+def _propose_hull(points: Int64Array) -> tuple[Int64Array, Int64Array] | None:
+    # The hull's triangles (outward) by quickhull on the points, exactly; None when the points are coplanar.
+    tri, ok = _quickhull(np.ascontiguousarray(points))
+    return (points, tri) if ok else None
+
+
+@njit(cache=True, inline="always")
+def _above(fn: Int64Array, fo: Int64Array, f: int, pts: Int64Array, q: int) -> int:  # pragma: no cover
+    # How far point q lies above face f's plane, in units of its (unnormalized) normal; exact.
+    h: int = fn[f, 0] * pts[q, 0] + fn[f, 1] * pts[q, 1] + fn[f, 2] * pts[q, 2] - fo[f]
+    return h
+
+
+@njit(cache=True)
+def _grown(a: Int64Array, n: int) -> Int64Array:  # pragma: no cover - compiled
+    out = np.empty((n, *a.shape[1:]), a.dtype)
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit(cache=True)
+def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover - compiled
+    # Quickhull (Barber, Dobkin & Huhdanpaa 1996) in integers: a point is outside a face when it lies strictly
+    # above its plane, so coplanar points are never added and adjacent faces may be coplanar (merged later).
+    # Faces are triangles (a, b, c), outward by (b − a) × (c − a); nb[f, e] is the face across edge e, from
+    # corner e to corner e + 1. Every predicate is a product of three coordinates below 2¹⁶: far inside int64.
+    n = pts.shape[0]
+    i0 = 0
+    i1 = 0
+    for i in range(n):
+        if (pts[i, 0], pts[i, 1], pts[i, 2]) < (pts[i0, 0], pts[i0, 1], pts[i0, 2]):
+            i0 = i
+        if (pts[i, 0], pts[i, 1], pts[i, 2]) > (pts[i1, 0], pts[i1, 1], pts[i1, 2]):
+            i1 = i
+    if i0 == i1:
+        return np.empty((0, 3), np.int64), False
+    ux, uy, uz = pts[i1, 0] - pts[i0, 0], pts[i1, 1] - pts[i0, 1], pts[i1, 2] - pts[i0, 2]
+    i2, best = -1, 0
+    for i in range(n):
+        wx, wy, wz = pts[i, 0] - pts[i0, 0], pts[i, 1] - pts[i0, 1], pts[i, 2] - pts[i0, 2]
+        m = abs(uy * wz - uz * wy) + abs(uz * wx - ux * wz) + abs(ux * wy - uy * wx)
+        if m > best:
+            i2, best = i, m
+    if i2 < 0:
+        return np.empty((0, 3), np.int64), False
+    wx, wy, wz = pts[i2, 0] - pts[i0, 0], pts[i2, 1] - pts[i0, 1], pts[i2, 2] - pts[i0, 2]
+    nx, ny, nz = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+    i3, best = -1, 0
+    for i in range(n):
+        d = nx * (pts[i, 0] - pts[i0, 0]) + ny * (pts[i, 1] - pts[i0, 1]) + nz * (pts[i, 2] - pts[i0, 2])
+        if abs(d) > best:
+            i3, best = i, abs(d)
+    if i3 < 0:
+        return np.empty((0, 3), np.int64), False
+    d = nx * (pts[i3, 0] - pts[i0, 0]) + ny * (pts[i3, 1] - pts[i0, 1]) + nz * (pts[i3, 2] - pts[i0, 2])
+    if d > 0:  # p3 above (p0, p1, p2): swap p1 and p2 so that it lies below
+        i1, i2 = i2, i1
+    cap = 1024
+    ft = np.empty((cap, 3), np.int64)
+    nb = np.empty((cap, 3), np.int64)
+    fn = np.empty((cap, 3), np.int64)
+    fo = np.empty(cap, np.int64)
+    alive = np.zeros(cap, np.bool_)
+    head = np.full(cap, -1, np.int64)
+    far = np.full(cap, -1, np.int64)
+    fard = np.zeros(cap, np.int64)
+    nextp = np.full(n, -1, np.int64)
+    # The tetrahedron, outward (p3 lies below (p0, p1, p2) now).
+    ft[0, 0], ft[0, 1], ft[0, 2] = i0, i1, i2
+    ft[1, 0], ft[1, 1], ft[1, 2] = i0, i3, i1
+    ft[2, 0], ft[2, 1], ft[2, 2] = i1, i3, i2
+    ft[3, 0], ft[3, 1], ft[3, 2] = i2, i3, i0
+    nf = 4
+    for f in range(4):
+        _set_plane(pts, ft, fn, fo, f)
+        alive[f] = True
+    for f in range(4):
+        for e in range(3):
+            a, b = ft[f, e], ft[f, (e + 1) % 3]
+            for g in range(4):
+                for e2 in range(3):
+                    if ft[g, e2] == b and ft[g, (e2 + 1) % 3] == a:
+                        nb[f, e] = g
+    for q in range(n):
+        if q in (i0, i1, i2, i3):
+            continue
+        for f in range(4):
+            h = _above(fn, fo, f, pts, q)
+            if h > 0:
+                nextp[q] = head[f]
+                head[f] = q
+                if h > fard[f]:
+                    fard[f], far[f] = h, q
+                break
+    vis = np.full(cap, -1, np.int64)
+    stack = np.empty(cap, np.int64)
+    hz_u = np.empty(cap, np.int64)
+    hz_v = np.empty(cap, np.int64)
+    hz_f = np.empty(cap, np.int64)
+    start = np.full(n, -1, np.int64)
+    stop = np.full(n, -1, np.int64)
+    f = 0
+    it = 0
+    while f < nf:
+        if not alive[f] or head[f] < 0:
+            f += 1
+            continue
+        it += 1
+        p = far[f]
+        # The faces p sees, by a walk from f; the edges from them to the faces it does not see: the horizon.
+        n_vis = 0
+        n_hz = 0
+        stack[0] = f
+        vis[f] = it
+        top = 1
+        seen = np.empty(0, np.int64)
+        while top > 0:
+            top -= 1
+            g = stack[top]
+            if n_vis + nf >= seen.shape[0]:
+                seen = _grown(seen, 2 * (n_vis + nf) + 16)
+            seen[n_vis] = g
+            n_vis += 1
+            for e in range(3):
+                h = nb[g, e]
+                if vis[h] == it:
+                    continue
+                if _above(fn, fo, h, pts, p) > 0:
+                    vis[h] = it
+                    if top >= stack.shape[0]:
+                        stack = _grown(stack, 2 * stack.shape[0])
+                    stack[top] = h
+                    top += 1
+                else:
+                    if n_hz >= hz_u.shape[0]:
+                        hz_u = _grown(hz_u, 2 * hz_u.shape[0])
+                        hz_v = _grown(hz_v, 2 * hz_v.shape[0])
+                        hz_f = _grown(hz_f, 2 * hz_f.shape[0])
+                    hz_u[n_hz], hz_v[n_hz], hz_f[n_hz] = ft[g, e], ft[g, (e + 1) % 3], h
+                    n_hz += 1
+        if nf + n_hz > cap:
+            cap = 2 * (nf + n_hz)
+            ft, nb, fn = _grown(ft, cap), _grown(nb, cap), _grown(fn, cap)
+            fo, far, fard = _grown(fo, cap), _grown(far, cap), _grown(fard, cap)
+            alive2 = np.zeros(cap, np.bool_)
+            alive2[:nf] = alive[:nf]
+            alive = alive2
+            head2 = np.full(cap, -1, np.int64)
+            head2[:nf] = head[:nf]
+            head = head2
+            vis2 = np.full(cap, -1, np.int64)
+            vis2[:nf] = vis[:nf]
+            vis = vis2
+        first_new = nf
+        for s in range(n_hz):
+            u, v, h = hz_u[s], hz_v[s], hz_f[s]
+            k = nf
+            nf += 1
+            ft[k, 0], ft[k, 1], ft[k, 2] = u, v, p
+            _set_plane(pts, ft, fn, fo, k)
+            alive[k] = True
+            head[k] = -1
+            far[k] = -1
+            fard[k] = 0
+            nb[k, 0] = h
+            for e2 in range(3):
+                if ft[h, e2] == v and ft[h, (e2 + 1) % 3] == u:
+                    nb[h, e2] = k
+            start[u] = k
+            stop[v] = k
+        for k in range(first_new, nf):
+            nb[k, 1] = start[ft[k, 1]]  # edge v → p: the new face whose horizon edge starts at v
+            nb[k, 2] = stop[ft[k, 0]]  # edge p → u: the new face whose horizon edge ends at u
+        # The points the visible faces held go to the first new face they lie above, or are inside now.
+        for s in range(n_vis):
+            g = seen[s]
+            alive[g] = False
+            q = head[g]
+            while q >= 0:
+                nq = nextp[q]
+                if q != p:
+                    for k in range(first_new, nf):
+                        h2 = _above(fn, fo, k, pts, q)
+                        if h2 > 0:
+                            nextp[q] = head[k]
+                            head[k] = q
+                            if h2 > fard[k]:
+                                fard[k], far[k] = h2, q
+                            break
+                q = nq
+            head[g] = -1
+        f += 1
+    m = 0
+    for g in range(nf):
+        if alive[g]:
+            m += 1
+    out = np.empty((m, 3), np.int64)
+    m = 0
+    for g in range(nf):
+        if alive[g]:
+            out[m] = ft[g]
+            m += 1
+    return out, True
+
+
+@njit(cache=True, inline="always")
+def _set_plane(
+    pts: Int64Array, ft: Int64Array, fn: Int64Array, fo: Int64Array, f: int
+) -> None:  # pragma: no cover
+    a, b, c = ft[f, 0], ft[f, 1], ft[f, 2]
+    ux, uy, uz = pts[b, 0] - pts[a, 0], pts[b, 1] - pts[a, 1], pts[b, 2] - pts[a, 2]
+    wx, wy, wz = pts[c, 0] - pts[a, 0], pts[c, 1] - pts[a, 1], pts[c, 2] - pts[a, 2]
+    fn[f, 0], fn[f, 1], fn[f, 2] = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+    fo[f] = fn[f, 0] * pts[a, 0] + fn[f, 1] * pts[a, 1] + fn[f, 2] * pts[a, 2]
+
+
+def _exact_faces(
+    v: Int64Array, t: Int64Array
+) -> tuple[Int64Array, Int64Array, Int64Array, Int64Array, Int64Array] | None:
+    # The proposed triangles' planes, grouped into faces, each face's corners in order: decided exactly.
+    planes = _triangle_planes(v, t)
+    real = np.flatnonzero(np.any(planes[:, :3] != 0, axis=1))  # collinear triangles (points on an edge) go
+    pl = planes[real]
+    order = np.lexsort((pl[:, 3], pl[:, 2], pl[:, 1], pl[:, 0]))
+    pl = pl[order]
+    new_face = np.ones(pl.shape[0], bool)
+    new_face[1:] = np.any(pl[1:] != pl[:-1], axis=1)
+    heads = np.flatnonzero(new_face)
+    tri = np.ascontiguousarray(t[real[order]])
+    gptr = np.append(heads, pl.shape[0]).astype(np.int64)
+    normals = np.ascontiguousarray(pl[heads, :3])
+    offsets = np.ascontiguousarray(pl[heads, 3])
+    face_ptr, face_corner, ok = _face_corners(v, tri, gptr.astype(np.int64), normals)
+    if not ok:
+        return None
+    if not _closed_and_convex(v, face_ptr, face_corner, normals, offsets):
+        return None
+    used, local = np.unique(face_corner, return_inverse=True)
+    return v[used], face_ptr, local.astype(np.int64), normals, offsets
+
+
+@njit(cache=True)
+def _gcd(a: int, b: int) -> int:  # pragma: no cover - compiled
+    while b:
+        a, b = b, a % b
+    return a
+
+
+@njit(cache=True)
+def _triangle_planes(v: Int64Array, t: Int64Array) -> Int64Array:  # pragma: no cover - compiled
+    # Row i: the primitive outward normal (a, b, c) of triangle i and its offset a·p; zeros when flat.
+    m = t.shape[0]
+    out = np.zeros((m, 4), np.int64)
+    for i in range(m):
+        p, q, r = t[i, 0], t[i, 1], t[i, 2]
+        ux, uy, uz = v[q, 0] - v[p, 0], v[q, 1] - v[p, 1], v[q, 2] - v[p, 2]
+        wx, wy, wz = v[r, 0] - v[p, 0], v[r, 1] - v[p, 1], v[r, 2] - v[p, 2]
+        nx, ny, nz = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+        g = _gcd(_gcd(abs(nx), abs(ny)), abs(nz))
+        if g == 0:
+            continue
+        nx, ny, nz = nx // g, ny // g, nz // g
+        out[i, 0], out[i, 1], out[i, 2] = nx, ny, nz
+        out[i, 3] = nx * v[p, 0] + ny * v[p, 1] + nz * v[p, 2]
+    return out
+
+
+@njit(cache=True, inline="always")
+def _turn_sign(v: Int64Array, a: int, b: int, p: int, du: int, dw: int) -> int:  # pragma: no cover
+    # The sign of the turn a → b → p in the (u, w) projection, exactly.
+    cross = (v[b, du] - v[a, du]) * (v[p, dw] - v[a, dw]) - (v[b, dw] - v[a, dw]) * (v[p, du] - v[a, du])
+    return 1 if cross > 0 else (-1 if cross < 0 else 0)
+
+
+@njit(cache=True)
+def _face_corners(
+    v: Int64Array, tri: Int64Array, gptr: Int64Array, normals: Int64Array
+) -> tuple[Int64Array, Int64Array, bool]:  # pragma: no cover - compiled
+    # For each face (the triangles gptr[f]..gptr[f+1] of one plane): its corners, counter-clockwise seen from
+    # outside, by Andrew's monotone chain on the plane's projection along its largest normal component, with
+    # exact turns; a point on a side is not a corner. ok is False when a face has fewer than three corners.
+    nf = gptr.shape[0] - 1
+    stamp = np.full(v.shape[0], -1, np.int64)
+    face_ptr = np.zeros(nf + 1, np.int64)
+    out = np.empty(3 * tri.shape[0], np.int64)
+    n_out = 0
+    ids = np.empty(3 * tri.shape[0], np.int64)
+    chain = np.empty(3 * tri.shape[0] + 1, np.int64)
+    for f in range(nf):
+        n = 0
+        for i in range(gptr[f], gptr[f + 1]):
+            for s in range(3):
+                w = tri[i, s]
+                if stamp[w] != f:
+                    stamp[w] = f
+                    ids[n] = w
+                    n += 1
+        d = 0
+        for s in range(1, 3):
+            if abs(normals[f, s]) > abs(normals[f, d]):
+                d = s
+        du, dw = (d + 1) % 3, (d + 2) % 3
+        pts = ids[:n]
+        key = v[pts, du] * (1 << 20) + v[pts, dw]  # coordinates below 2¹⁶: the order of (u, w)
+        pts = pts[np.argsort(key)]
+        h = 0
+        for s in range(n):  # the lower chain
+            p = pts[s]
+            while h >= 2 and _turn_sign(v, chain[h - 2], chain[h - 1], p, du, dw) <= 0:
+                h -= 1
+            chain[h] = p
+            h += 1
+        low = h + 1
+        for s in range(n - 2, -1, -1):  # the upper chain, back to the first point
+            p = pts[s]
+            while h >= low and _turn_sign(v, chain[h - 2], chain[h - 1], p, du, dw) <= 0:
+                h -= 1
+            chain[h] = p
+            h += 1
+        h -= 1  # the first point, met again
+        if h < 3:
+            return face_ptr, out[:0], False
+        # counter-clockwise in (u, w) is counter-clockwise about +e_d: reverse when the normal points to −e_d
+        for s in range(h):
+            out[n_out + s] = chain[s] if normals[f, d] > 0 else chain[h - 1 - s]
+        n_out += h
+        face_ptr[f + 1] = n_out
+    return face_ptr, out[:n_out].copy(), True
+
+
+def _closed_and_convex(
+    v: Int64Array, face_ptr: Int64Array, face_corner: Int64Array, normals: Int64Array, offsets: Int64Array
+) -> bool:
+    # Every side u→v of a face is the side v→u of exactly one other face, the far corner of which lies
+    # strictly below the first face's plane (a strictly convex edge); V − E + F = 2.
+    n_faces = face_ptr.size - 1
+    lens = np.diff(face_ptr)
+    face_of = np.repeat(np.arange(n_faces), lens)
+    nxt = np.arange(face_corner.size) + 1
+    ends = face_ptr[1:] - 1
+    nxt[ends] = face_ptr[:-1]
+    a, b = face_corner, face_corner[nxt]
+    after = face_corner[nxt[nxt]]  # the corner after b in the same face
+    n_v = int(face_corner.max()) + 1
+    fwd = a * n_v + b
+    rev = b * n_v + a
+    order = np.argsort(fwd)
+    if np.any(np.diff(fwd[order]) == 0):
+        return False  # a side used twice in one direction
+    at = np.searchsorted(fwd[order], rev)
+    at[at >= fwd.size] = 0
+    twin = order[at]
+    if not np.array_equal(fwd[twin], rev):
+        return False  # a side without its opposite: not closed
+    # The twin face's corner after u (its side is b→a, so the corner after a there) is below this plane.
+    far = after[twin]
+    f = face_of
+    lhs = np.einsum("ij,ij->i", normals[f], v[far])
+    if np.any(lhs >= offsets[f]):
+        return False
+    used = np.unique(face_corner).size
+    return bool(used - face_corner.size // 2 + n_faces == 2)
+
+
+def _corner_pose(corners: Int64Array, size: tuple[int, int, int]) -> int:
+    # The index in ROTATIONS of the turn whose box shape, then sorted corners, come first (a corner's key
+    # packs its turned x, y, z, each below 2¹⁶ (MAX_EXTENT), into one int64: the same order).
+    best: tuple[tuple[int, int, int], bytes] | None = None
+    pick = 0
+    for i, (perm, signs) in enumerate(ROTATIONS):
+        p = turn_points(corners, perm, signs, size)
+        key = np.sort((p[:, 0] << 32) | (p[:, 1] << 16) | p[:, 2])
+        whole = ((size[perm[2]], size[perm[1]], size[perm[0]]), key.astype(">i8").tobytes())
+        if best is None or whole < best:
+            best, pick = whole, i
+    return pick
+
+
+def _grow(
+    turned: Int64Array,
+    normals: Int64Array,
+    offsets: Int64Array,
+    perm: tuple[int, int, int],
+    signs: tuple[int, int, int],
+    size: tuple[int, int, int],
+) -> FloatArray | None:
+    # v + (v − c)/2ᴷ in the turned frame, with c the corners' mean rounded to the grid 2⁻ᵐ, for the first m
+    # that leaves c strictly inside every face (the mean itself is: Q has volume), and 2ᴷ above every face's
+    # margin b − a·c. The planes are in A's frame: the margins are read there, with c turned back.
+    n = turned.shape[0]
+    total = turned.sum(axis=0)
+    for m in range(24):
+        c_m = np.floor_divide(2 * total * (1 << m) + n, 2 * n)  # 2ᵐ c, the mean rounded
+        here = turn_back_points(c_m[None, :].astype(np.float64) / (1 << m), perm, signs, size)[0]
+        c_here = np.rint(here * (1 << m)).astype(np.int64)  # 2ᵐ c in A's frame, exact
+        margin = offsets * (1 << m) - normals @ c_here  # 2ᵐ (b − a·c)
+        if margin.min() >= 1:
+            break
+    else:
+        return None
+    # 2ᴷ = 2ᵇⁱᵍ / 2ᵐ: each face moves out by 2⁻ᴷ (b − a·c) = margin / 2ᵇⁱᵍ, in (0, 1).
+    big = int(margin.max()).bit_length()
+    scale = float(1 << big)
+    if int(np.abs(turned).max()).bit_length() + big > 52:
+        return None  # the grown corners would not all be float64 numbers
+    grown: FloatArray = turned + (turned * (1 << m) - c_m) / scale
+    return grown
+
+
+@njit(cache=True)
+def _fans(
+    turned: Int64Array, face_ptr: Int64Array, face_corner: Int64Array
+) -> Int64Array:  # pragma: no cover
+    # Each face as a fan from its corner that comes first in the turned frame (x, then y, then z).
+    nf = face_ptr.shape[0] - 1
+    out = np.empty((face_corner.shape[0] - 2 * nf, 3), np.int64)
+    m = 0
+    for f in range(nf):
+        lo, hi = face_ptr[f], face_ptr[f + 1]
+        s = lo
+        for i in range(lo + 1, hi):
+            a, b = face_corner[i], face_corner[s]
+            if (turned[a, 0], turned[a, 1], turned[a, 2]) < (turned[b, 0], turned[b, 1], turned[b, 2]):
+                s = i
+        size = hi - lo
+        for i in range(1, size - 1):
+            out[m, 0] = face_corner[s]
+            out[m, 1] = face_corner[lo + (s - lo + i) % size]
+            out[m, 2] = face_corner[lo + (s - lo + i + 1) % size]
+            m += 1
+    return out
