@@ -539,7 +539,8 @@ def scale(
     >>> # (the τ rule keeps the left and bottom sides, not the right and top ones): an 8×8 block
     >>> mrm.scale(mrm.PixelSet.box(0, 0, 3, 3), 2, model="gauss") == mrm.PixelSet.box(-1, -1, 6, 6)
     True
-    >>> # in 3D R(A) is, for now, the voxels eroded by ¼: [-1/4, 13/4]³, doubled [-1/2, 13/2]³, centres 0 … 6
+    >>> # in 3D R_gauss of the 4×4×4 block is its hull grown about its centre: [-3/8, 27/8]³; doubled,
+    >>> # [-3/4, 27/4]³ holds the centres 0 … 6
     >>> cube = mrm.VoxelSet.box(0, 0, 0, 3, 3, 3)
     >>> mrm.scale(cube, 2, model="gauss") == mrm.VoxelSet.box(0, 0, 0, 6, 6, 6)
     True

@@ -49,6 +49,7 @@ KERNEL_MODULES = (
     "geometry/reconstruct/_minlink.py",
     "geometry/reconstruct/_twins.py",
     "geometry/reconstruct/_dual.py",
+    "geometry/reconstruct/convex_3d.py",
     "geometry/reconstruct/_subdivision_kernels.py",
     "geometry/discretize/rational_kernels.py",
     "io/png_stream.py",

@@ -511,7 +511,7 @@ def safety_net_polyhedron(vs: VoxelSet) -> mrm.Polyhedron:
     return mrm.Polyhedron(net.vertices, net.triangles)
 
 
-def shaded_pieces(poly: mrm.Polyhedron) -> tuple[list[np.ndarray], list[str]]:
+def shaded_pieces(poly: mrm.Polyhedron, size: float = 0.5) -> tuple[list[np.ndarray], list[str]]:
     """The triangles of a polyhedron cut small for mplot3d, each shaded by its face's colour."""
     colours = face_colours(poly)
     pieces, fills = [], []
@@ -520,7 +520,7 @@ def shaded_pieces(poly: mrm.Polyhedron) -> tuple[list[np.ndarray], list[str]]:
         n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
         shade = 0.62 + 0.38 * max(0.0, float(n @ LIGHT / np.linalg.norm(n)))
         fill = rgb(tuple(round(shade * c) for c in colours[f]))
-        for piece in split_small(tri):
+        for piece in split_small(tri, size):
             pieces.append(piece)
             fills.append(fill)
     return pieces, fills
@@ -551,6 +551,45 @@ def figure_compact_3d() -> None:
         sizes = f"{poly.n_faces} faces, {poly.n_triangles} triangles, {poly.n_vertices} vertices"
         titled(fig, col / 4, title, sizes)
     fig.savefig(OUT / "reconstruction-3d-compact.png")
+    plt.close(fig)
+
+
+def figure_convex_3d() -> None:
+    """R under gauss of three digitally convex sets: their convex hulls, grown (ADR 0068)."""
+    from mrm.geometry.reconstruct.convex_3d import convex_reconstruction
+
+    def grid(r: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        g = np.arange(-r - 1, r + 2)
+        z, y, x = np.meshgrid(g, g, g, indexing="ij")
+        return x, y, z
+
+    x, y, z = grid(9)
+    ball = VoxelSet((x - 0.3) ** 2 + (y - 0.1) ** 2 + (z - 0.2) ** 2 <= 81, (-10,) * 3)
+    rot = np.array([[0.8, -0.6, 0.0], [0.36, 0.48, -0.8], [0.48, 0.64, 0.6]])  # a rotation, exact rationals
+    xe, ye, ze = grid(12)
+    d = np.stack([xe, ye, ze], axis=-1) @ rot.T
+    ellipsoid = VoxelSet(
+        (d[..., 0] / 12) ** 2 + (d[..., 1] / 7) ** 2 + (d[..., 2] / 4.5) ** 2 <= 1, (-13,) * 3
+    )
+    xo, yo, zo = grid(60)
+    octahedron = VoxelSet(abs(xo) + abs(yo) + abs(zo) <= 60, (-61,) * 3)
+    shown = [
+        ("ball r = 9", ball, 9),
+        ("a turned ellipsoid", ellipsoid, 9),
+        ("octahedron r = 60", octahedron, 60),
+    ]
+    fig = plt.figure(figsize=(12.0, 4.1), dpi=100)
+    for col, (title, vs, r) in enumerate(shown):
+        found = convex_reconstruction(vs)
+        assert found is not None
+        poly = found.polyhedron
+        assert mrm.voxelize(poly, "gauss") == vs
+        pieces, fills = shaded_pieces(poly, size=0.5 * r / 7)
+        ax = voxel_axes(fig, (col / 3, 0.0, 1 / 3, 0.86), (-r, -r, -r, r, r, r), zoom=1.25)
+        ax.add_collection3d(Poly3DCollection(pieces, facecolors=fills, edgecolors=fills, linewidths=0.4))
+        sizes = f"{len(vs):,} voxels: {poly.n_faces} faces, {poly.n_vertices} vertices"
+        titled(fig, col / 3, f"{title}, its grown hull", sizes)
+    fig.savefig(OUT / "reconstruction-3d-convex.png")
     plt.close(fig)
 
 
@@ -621,6 +660,7 @@ def main() -> None:
     figure_gauss_disk()
     figure_3d()
     figure_compact_3d()
+    figure_convex_3d()
     figure_plane_segments_3d()
 
 

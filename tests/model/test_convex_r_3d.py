@@ -130,6 +130,8 @@ def test_digital_octahedra_up_to_r_200_have_eight_faces_under_gauss(r):
     v = poly.vertices
     assert (np.count_nonzero(v, axis=1) == 1).all() and (r < np.abs(v).max(axis=1)).all()
     assert (np.abs(v).max(axis=1) < r + 1).all()
+    if r & (r - 1) == 0:  # grown about 0 by 1 + 1/(2r): |x| + |y| + |z| <= r + 1/2, §11's answer
+        assert (np.abs(v).max(axis=1) == r + 0.5).all()
     assert mrm.voxelize(poly, "gauss") == vs
 
 
@@ -151,14 +153,14 @@ def test_sets_that_are_not_a_convex_solids_take_the_general_way(name, mask):
 
 def test_a_convex_set_whose_grown_hull_leaves_the_border_cubes_is_refused():
     # The lattice points of a small lattice polyhedron (found by a random search): digitally convex, one
-    # 6-component without tunnel, and the grown hull gives it back under gauss, but its centre is so near a
-    # face that the homothety pushes a corner out of the border voxels' cubes. The hull is refused there
+    # 6-component without tunnel, and the grown hull gives it back under gauss, but it is so thin that the
+    # homothety pushes a corner out of the border voxels' cubes. The hull is refused there
     # (§11 item 2), and R is the general one.
     from mrm.geometry.reconstruct.convex_3d import convex_r
     from mrm.geometry.topology.labeling_3d import label_runs_3d
 
-    points = [(1, 2, 0), (1, 2, 1), (1, 1, 2), (1, 2, 2), (0, 0, 3), (1, 0, 3), (2, 0, 3), (1, 1, 3),
-              (2, 1, 3), (1, 2, 3), (2, 2, 3), (2, 3, 3), (2, 4, 3), (1, 2, 4)]  # fmt: skip
+    points = [(1, 3, 0), (2, 2, 1), (1, 3, 1), (2, 3, 1), (3, 1, 2), (2, 2, 2), (3, 2, 2), (1, 3, 2),
+              (2, 3, 2), (3, 3, 2)]  # fmt: skip
     vs = VoxelSet.from_points(np.array(points))
     grown = convex_r(label_runs_3d(vs.mask, 6), vs.origin)
     assert grown is not None

@@ -404,9 +404,9 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
 
     Under ``gauss`` a digitally convex A (a ball's, an ellipsoid's, the octahedron's voxels) has its convex
     hull, grown by a dyadic homothety, as an exact R found in milliseconds
-    (:mod:`~mrm.geometry.reconstruct.convex_3d`, ADR 0068): the octahedron's 8 faces at any size. Up to
-    :data:`~mrm.core.limits.MAX_RIVAL_SURFELS` surfels the decimation is tried too, and the result with fewer
-    triangles (then faces) is R.
+    (``mrm.geometry.reconstruct.convex_3d``, ADR 0068): the octahedron's 8 faces at any size. Up to
+    ``limits.MAX_RIVAL_SURFELS`` surfels the decimation is tried too, and the result with fewer triangles
+    (then faces) is R.
 
     Raises
     ------

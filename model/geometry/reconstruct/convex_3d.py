@@ -584,13 +584,16 @@ def _grow(
     signs: tuple[int, int, int],
     size: tuple[int, int, int],
 ) -> FloatArray | None:
-    # v + (v − c)/2ᴷ in the turned frame, with c the corners' mean rounded to the grid 2⁻ᵐ, for the first m
-    # that leaves c strictly inside every face (the mean itself is: Q has volume), and 2ᴷ above every face's
-    # margin b − a·c. The planes are in A's frame: the margins are read there, with c turned back.
+    # v + (v − c)/2ᴷ in the turned frame. c is the centre of the corners' box when it lies strictly inside
+    # (a symmetry of A fixes it, so a symmetric A gets a symmetric R: a box grows evenly on all sides), else
+    # their mean rounded to the grid 2⁻ᵐ for the first m that does (the mean itself is inside: Q has
+    # volume). 2ᴷ is the least power of two that moves no face out by more than ½ (the octahedron of radius
+    # 2ⁿ gets |x| + |y| + |z| ≤ r + ½ exactly). The planes are in A's frame: the margins are read there.
     n = turned.shape[0]
+    candidates = [(1, turned.min(axis=0) + turned.max(axis=0))]  # (m, 2ᵐ c)
     total = turned.sum(axis=0)
-    for m in range(24):
-        c_m = np.floor_divide(2 * total * (1 << m) + n, 2 * n)  # 2ᵐ c, the mean rounded
+    candidates += [(m, np.floor_divide(2 * total * (1 << m) + n, 2 * n)) for m in range(24)]
+    for m, c_m in candidates:
         here = turn_back_points(c_m[None, :].astype(np.float64) / (1 << m), perm, signs, size)[0]
         c_here = np.rint(here * (1 << m)).astype(np.int64)  # 2ᵐ c in A's frame, exact
         margin = offsets * (1 << m) - normals @ c_here  # 2ᵐ (b − a·c)
@@ -598,12 +601,11 @@ def _grow(
             break
     else:
         return None
-    # 2ᴷ = 2ᵇⁱᵍ / 2ᵐ: each face moves out by 2⁻ᴷ (b − a·c) = margin / 2ᵇⁱᵍ, in (0, 1).
-    big = int(margin.max()).bit_length()
-    scale = float(1 << big)
-    if int(np.abs(turned).max()).bit_length() + big > 52:
+    # Each face moves out by 2⁻ᴷ (b − a·c) = margin / 2ᵇⁱᵍ (big = m + K), at most ½ and more than 0.
+    big = (int(margin.max()) - 1).bit_length() + 1
+    if int(np.abs(turned).max()).bit_length() + 1 + max(big, 0) > 52:
         return None  # the grown corners would not all be float64 numbers
-    grown: FloatArray = turned + (turned * (1 << m) - c_m) / scale
+    grown: FloatArray = turned + (turned * (1 << m) - c_m) / 2.0**big
     return grown
 
 
