@@ -195,19 +195,30 @@ def _ring_plan(pieces: IntArray) -> list[list[tuple[int, int]]]:
     return [p for p in plan if p]
 
 
+def side_pool() -> ThreadPoolExecutor | None:
+    """R's worker threads, for work beside the calling thread's (the kernels release the GIL).
+
+    None when this process may use one core only (``MRM_THREADS=1``, or one core available).
+    """
+    global _pool
+    if _threads() < 2:
+        return None
+    if _pool is None:
+        _pool = ThreadPoolExecutor(max_workers=MAX_THREADS, thread_name_prefix="mrm-R")
+    return _pool
+
+
 def _in_threads(work: Callable[[int, int], Any], plan: list[list[tuple[int, int]]]) -> list[Any]:
     # Each thread works through its ranges (the kernels release the GIL, mrm.geometry._jit); the results
     # come back in ring order.
-    global _pool
-    if len(plan) == 1:
-        return [work(a, b) for a, b in plan[0]]
-    if _pool is None:
-        _pool = ThreadPoolExecutor(max_workers=MAX_THREADS, thread_name_prefix="mrm-R")
+    pool = side_pool() if len(plan) > 1 else None
+    if pool is None:
+        return [work(a, b) for ranges in plan for a, b in ranges]
 
     def share(ranges: list[tuple[int, int]]) -> list[tuple[int, Any]]:
         return [(a, work(a, b)) for a, b in ranges]
 
-    futures = [_pool.submit(share, ranges) for ranges in plan[1:]]
+    futures = [pool.submit(share, ranges) for ranges in plan[1:]]
     done = share(plan[0])  # this thread takes a share too
     for f in futures:
         done += f.result()

@@ -66,8 +66,9 @@ def convex_reconstruction(vs: VoxelSet) -> ConvexR | None:
     digitally convex or any check fails: the caller then takes the general way.
     """
     from mrm.core.grids import VoxelSet
-    from mrm.geometry.discretize.voxels import voxelize_solid, voxelize_triangles
+    from mrm.geometry.discretize.voxels import voxelize_solid
     from mrm.geometry.polyhedra import Polyhedron
+    from mrm.geometry.reconstruct import side_pool
 
     runs = label_runs_3d(vs.mask, 6)
     if runs.n_labels != 1 or runs.n_bg != 1 or int(euler_per_label(runs)[1]) != 1:
@@ -76,21 +77,36 @@ def convex_reconstruction(vs: VoxelSet) -> ConvexR | None:
     if found is None:
         return None
     v, t = found
+    # The border check (the supercover of the surface, the costliest part) runs on R's worker thread while
+    # this one validates P and discretizes it.
+    pool = side_pool()
+    border = pool.submit(_stays_near_a, v, t, vs) if pool is not None else None
     try:
         result = Polyhedron(v, t)
         if VoxelSet(*voxelize_solid(v, t, "gauss", limit=None)) != vs:
             logger.debug("the grown hull's discretization is not A: A is not digitally convex")
             return None
-        # The cubes ∂P meets (the cubes P meets beyond them lie in its interior: their centres are in A).
-        cover, at = voxelize_triangles(v, t, "supercover", limit=None)
     except ValueError as e:  # InvalidGeometryError: the proposed hull is not a valid polyhedron
         logger.warning("the grown convex hull is refused (%s): %d voxels", e, vs.count)
         return None
-    shift = np.asarray(vs.origin, np.int64) - np.asarray(at, np.int64)
-    if not _near_a(cover, vs.mask, shift):
+    finally:
+        near = border.result() if border is not None else None  # waits on a refusal too: nothing left over
+    if near is None:
+        near = _stays_near_a(v, t, vs)
+    if not near:
         logger.debug("the grown hull leaves the border voxels' cubes")
         return None
     return ConvexR(result, surfel_count(runs))
+
+
+def _stays_near_a(v: FloatArray, t: Int64Array, vs: VoxelSet) -> bool:
+    # Whether every cube the triangles meet (their exact supercover) has a voxel of A in its 3×3×3 block.
+    # The cubes P meets beyond them lie in its interior: their centres are in D(P) = A.
+    from mrm.geometry.discretize.voxels import voxelize_triangles
+
+    cover, at = voxelize_triangles(v, t, "supercover", limit=None)
+    shift = np.asarray(vs.origin, np.int64) - np.asarray(at, np.int64)
+    return bool(_near_a(cover, vs.mask, shift))
 
 
 def convex_r(runs: Runs3D, origin: tuple[int, int, int]) -> tuple[FloatArray, Int64Array] | None:
