@@ -151,17 +151,20 @@ def test_sets_that_are_not_a_convex_solids_take_the_general_way(name, mask):
     assert mrm.voxelize(mrm.reconstruct(vs, "gauss"), "gauss") == vs
 
 
+#: The lattice points of a small lattice polyhedron, found by a random search (see the test below).
+THIN = [(1, 3, 0), (2, 2, 1), (1, 3, 1), (2, 3, 1), (3, 1, 2), (2, 2, 2), (3, 2, 2), (1, 3, 2),
+        (2, 3, 2), (3, 3, 2)]  # fmt: skip
+
+
 def test_a_convex_set_whose_grown_hull_leaves_the_border_cubes_is_refused():
-    # The lattice points of a small lattice polyhedron (found by a random search): digitally convex, one
+    # THIN is digitally convex, one
     # 6-component without tunnel, and the grown hull gives it back under gauss, but it is so thin that the
     # homothety pushes a corner out of the border voxels' cubes. The hull is refused there
     # (§11 item 2), and R is the general one.
     from mrm.geometry.reconstruct.convex_3d import convex_r
     from mrm.geometry.topology.labeling_3d import label_runs_3d
 
-    points = [(1, 3, 0), (2, 2, 1), (1, 3, 1), (2, 3, 1), (3, 1, 2), (2, 2, 2), (3, 2, 2), (1, 3, 2),
-              (2, 3, 2), (3, 3, 2)]  # fmt: skip
-    vs = VoxelSet.from_points(np.array(points))
+    vs = VoxelSet.from_points(np.array(THIN))
     grown = convex_r(label_runs_3d(vs.mask, 6), vs.origin)
     assert grown is not None
     assert mrm.voxelize(mrm.Polyhedron(*grown), "gauss") == vs
@@ -169,3 +172,14 @@ def test_a_convex_set_whose_grown_hull_leaves_the_border_cubes_is_refused():
     poly = mrm.reconstruct(vs, "gauss")
     assert mrm.voxelize(poly, "gauss") == vs
     assert_within_border_cubes(poly, vs)
+
+
+def test_one_thread_gives_the_same_r(monkeypatch):
+    # The border check runs beside the validation on R's worker thread, or after it with MRM_THREADS=1.
+    vs = convex_solid(7, "ellipsoid", 14)
+    threaded = convex_reconstruction(vs)
+    monkeypatch.setenv("MRM_THREADS", "1")
+    alone = convex_reconstruction(vs)
+    assert threaded is not None and alone is not None
+    assert alone.polyhedron == threaded.polyhedron
+    assert convex_reconstruction(VoxelSet.from_points(np.array(THIN))) is None  # refused by the border check
