@@ -227,6 +227,31 @@ def _above(fn: Int64Array, fo: Int64Array, f: int, pts: Int64Array, q: int) -> i
     return h
 
 
+@njit(cache=True, inline="always")
+def _assign(
+    q: int,
+    lo: int,
+    hi: int,
+    pts: Int64Array,
+    fn: Int64Array,
+    fo: Int64Array,
+    nextp: Int64Array,
+    head: Int64Array,
+    far: Int64Array,
+    fard: Int64Array,
+) -> None:  # pragma: no cover - compiled
+    # Point q goes to the outside list of the first face lo..hi−1 it lies strictly above (none: it is inside),
+    # which keeps its farthest point.
+    for f in range(lo, hi):
+        h = _above(fn, fo, f, pts, q)
+        if h > 0:
+            nextp[q] = head[f]
+            head[f] = q
+            if h > fard[f]:
+                fard[f], far[f] = h, q
+            return
+
+
 @njit(cache=True)
 def _grown(a: Int64Array, n: int) -> Int64Array:  # pragma: no cover - compiled
     out = np.empty((n, *a.shape[1:]), a.dtype)
@@ -300,14 +325,7 @@ def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover 
     for q in range(n):
         if q in (i0, i1, i2, i3):
             continue
-        for f in range(4):
-            h = _above(fn, fo, f, pts, q)
-            if h > 0:
-                nextp[q] = head[f]
-                head[f] = q
-                if h > fard[f]:
-                    fard[f], far[f] = h, q
-                break
+        _assign(q, 0, 4, pts, fn, fo, nextp, head, far, fard)
     vis = np.full(cap, -1, np.int64)
     stack = np.empty(cap, np.int64)
     hz_u = np.empty(cap, np.int64)
@@ -395,14 +413,7 @@ def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover 
             while q >= 0:
                 nq = nextp[q]
                 if q != p:
-                    for k in range(first_new, nf):
-                        h2 = _above(fn, fo, k, pts, q)
-                        if h2 > 0:
-                            nextp[q] = head[k]
-                            head[k] = q
-                            if h2 > fard[k]:
-                                fard[k], far[k] = h2, q
-                            break
+                    _assign(q, first_new, nf, pts, fn, fo, nextp, head, far, fard)
                 q = nq
             head[g] = -1
         f += 1
