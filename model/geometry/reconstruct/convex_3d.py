@@ -4,22 +4,23 @@ Reference: docs/design.md §11, "Continuation R in 3D"; the decision is docs/adr
 
 When A = conv(A) ∩ Z³ (the Gauss digitization of any convex solid is such a set: balls, ellipsoids, the
 octahedron), the convex hull Q = conv(A) holds every centre of A and no other. Its vertices are centres of A,
-on ∂Q, so Q itself does not separate strictly; P = c + (1 + 2⁻ᵏ)(Q − c), for an integer point c inside Q and
-2ᵏ above every face's margin b − a·c, does: each face a·x ≤ b of Q (a primitive, b integer) becomes
-a·x ≤ b + (b − a·c)/2ᵏ, strictly between b and b + 1, so every centre of A is strictly inside, every other
-strictly outside (it has a·p ≥ b + 1 for some face), and P has Q's faces. Its vertices v + (v − c)/2ᵏ are
-dyadic: float64 holds them exactly, and the faces stay exactly planar.
+on ∂Q, so Q itself does not separate strictly; P = c + (1 + 2⁻ᴷ)(Q − c), for a dyadic point c strictly inside
+Q, does: each face a·x ≤ b of Q (a primitive, b integer) becomes a·x ≤ b + 2⁻ᴷ(b − a·c), and K is the least
+power making every such growth at most ½, so every centre of A is strictly inside, every other strictly
+outside (it has a·p ≥ b + 1 for some face), and P has Q's faces. Its vertices v + 2⁻ᴷ(v − c) are dyadic:
+float64 holds them exactly, and the faces stay exactly planar.
 
-The hull is *proposed* by manifold3d's QuickHull (a float algorithm on integer points, so its facets are
-only a guess) and everything about it is then decided in integers here: the planes of its triangles, grouped
-into faces, each face's corners by an exact convex hull in its plane (points on an edge dropped), every edge
-shared by two faces in opposite directions, every edge strictly convex, Euler's formula. The caller checks
-the result as a whole, like every R (valid polyhedron, D(P) = A exactly, ∂P within the border voxels' cubes,
-topology), and goes the general way (:mod:`.decimate_3d`) when any of this fails.
+Everything is decided in integers: the hull by a quickhull whose predicates are exact (on the corners of each
+slice's own hull of the rows' ends), its triangles grouped by plane into faces, each face's corners by an
+exact convex hull in its plane (points on a side dropped), every side shared by two faces in opposite
+directions, every edge strictly convex, Euler's formula. :func:`convex_reconstruction` then checks P as a
+whole, like every R (topology, valid polyhedron, D(P) = A exactly, ∂P within the border voxels' cubes); the
+caller goes the general way (:mod:`.decimate_3d`) when any of this fails.
 
-The faces' triangulation and the centre c are chosen in the canonical pose of Q's corners (of the 24 turns
-of the cube, the one whose sorted corners come first) and turned back, so that R(g A) = g R(A) for the
-rotations g of the cube, as for the general R.
+c (the centre of the corners' box when inside, else their mean rounded to a dyadic grid) and the faces'
+triangulation are chosen in the canonical pose of Q's corners (of the 24 turns of the cube, the one whose
+sorted corners come first) and turned back, so that R(g A) = g R(A) for the rotations g of the cube, as for
+the general R.
 """
 
 from __future__ import annotations
