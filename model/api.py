@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from fractions import Fraction
-from typing import Any, Literal, TypeAlias, TypeVar, cast, overload
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, TypeVar, cast, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -34,7 +34,7 @@ from shapely.geometry.base import BaseGeometry
 
 from mrm.core.errors import FileFormatError, MRMError, NotApplicableError, ParameterError
 from mrm.core.georef import GeoRef
-from mrm.core.grids import LabelMap, PixelSet, VoxelSet
+from mrm.core.grids import LabelMap, LabelVolume, PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, PIXEL_COORDINATE_LIMIT
 from mrm.core.models import DEFAULT_MODEL, Model
 from mrm.core.numbers import read_pixel, value_text
@@ -51,6 +51,9 @@ from mrm.io.geo_interface import GeoInterface, GeometryLike, as_geometry, is_geo
 from mrm.ops.boolean import euclidean_discrete_corefinement, euclidean_discrete_union
 from mrm.ops.chain import Link, chain_bound, parse_chain
 from mrm.ops.registry import THREE_D, get_operation
+
+if TYPE_CHECKING:  # the 3D label meshes' module loads the 3D kernels: imported when used
+    from mrm.geometry.reconstruct.polygonize_3d import LabelMeshes
 
 __all__ = [
     "Batch",
@@ -342,6 +345,14 @@ def reconstruct(
 
 @overload
 def polygonize(
+    labels: LabelVolume,
+    model: ModelLike = ...,
+    *,
+    origin: tuple[int, int, int] = ...,
+    transform: None = ...,
+) -> LabelMeshes: ...
+@overload
+def polygonize(
     labels: LabelMap | Image,
     model: ModelLike = ...,
     *,
@@ -357,22 +368,28 @@ def polygonize(
     transform: TransformLike | None = ...,
 ) -> ObjectArray: ...
 def polygonize(
-    labels: LabelMap | Image | Batch,
+    labels: LabelMap | LabelVolume | Image | Batch,
     model: ModelLike = Model.GAUSS,
     *,
-    origin: tuple[int, int] = (0, 0),
+    origin: tuple[int, int] | tuple[int, int, int] = (0, 0),
     transform: TransformLike | None = None,
-) -> dict[int, Polygonal] | ObjectArray:
+) -> dict[int, Polygonal] | LabelMeshes | ObjectArray:
     """Reconstruct every label of a label map as a watertight subdivision: one polygon per label.
+
+    A label volume (3-D) gives one closed mesh per region (6-connected part of one label), on one shared
+    vertex list: neighbouring regions share their common faces exactly, and each burns back to its voxels
+    under ``gauss`` (docs/design.md §11).
 
     Parameters
     ----------
-    labels : LabelMap, array_like of int, or a batch of them
-        A label map, or an integer image (row 0 at the top); label 0 is the background.
+    labels : LabelMap, LabelVolume, array_like of int, or a batch of them
+        A label map, or an integer image (row 0 at the top); or a label volume, or a 3-D integer array
+        ``labels[k, j, i]`` (voxel (x0 + i, y0 + j, z0 + k)). Label 0 is the background.
     model : {"gauss"}
         The discretization every part reconstructs exactly under.
     origin : tuple of int
-        For an image: the pixel of its bottom-left sample.
+        For an image: the pixel of its bottom-left sample; for a 3-D array: the voxel (x0, y0, z0) of
+        ``labels[0, 0, 0]``.
     transform : affine.Affine, tuple of 6 float or GeoRef, optional
         Where the image lies (rasterio's ``transform=``, see :func:`reconstruct`): the polygons are returned
         in world coordinates, each pixel corner exactly where ``rasterio.features.shapes`` puts it. A label
@@ -380,8 +397,11 @@ def polygonize(
 
     Returns
     -------
-    dict of int to shapely.geometry.Polygon or shapely.geometry.MultiPolygon, or numpy.ndarray of such dicts
-        ``{label: polygon}``; neighbouring parts share their edges exactly (no gap, no overlap).
+    dict of int to shapely.geometry.Polygon or shapely.geometry.MultiPolygon, LabelMeshes, or numpy.ndarray
+        ``{label: polygon}``; neighbouring parts share their edges exactly (no gap, no overlap). For a label
+        volume, the meshes (:class:`~mrm.geometry.reconstruct.polygonize_3d.LabelMeshes`: ``regions``, each
+        with its ``label``, ``voxels`` and ``triangles``, and ``polyhedron(i)``). A batch gives an array of
+        them.
 
     Examples
     --------
@@ -393,9 +413,28 @@ def polygonize(
     >>> world = mrm.polygonize(np.array([[1, 1, 2], [1, 2, 2]]), transform=(0.5, 0, 100, 0, -0.5, 200))
     >>> world[2].bounds
     (100.5, 199.0, 101.5, 200.0)
+    >>> # in 3D: two labels side by side, each a closed mesh; the square between them is in both
+    >>> meshes = mrm.polygonize(np.array([[[1, 2]]]))
+    >>> [(r.label, r.voxels, r.triangles.shape[0]) for r in meshes.regions]
+    [(1, 1, 12), (2, 1, 12)]
     """
     if _is_batch(labels):
-        return _map(lambda a: polygonize(a, model, origin=origin, transform=transform), labels)
+        # each item picks its own overload (2-D or 3-D) at run time
+        return _map(
+            lambda a: polygonize(a, model, origin=cast(Any, origin), transform=cast(Any, transform)), labels
+        )
+    if isinstance(labels, LabelVolume) or (
+        not isinstance(labels, LabelMap) and np.ndim(cast(Any, labels)) == 3
+    ):
+        if transform is not None:
+            raise ParameterError("transform= places a 2-D image; a label volume has no raster transform here")
+        from mrm.geometry.reconstruct.polygonize_3d import polygonize_volume
+
+        if len(origin) == 2 and tuple(origin) != (0, 0):
+            raise ParameterError(f"a label volume's origin is a voxel (x0, y0, z0), got {origin!r}")
+        corner = (0, 0, 0) if len(origin) == 2 else origin
+        x0, y0, z0 = (int(c) for c in corner)
+        return polygonize_volume(cast(Any, labels), (x0, y0, z0), model)
     at = read_pixel(origin, "origin", PIXEL_COORDINATE_LIMIT)
     shape = None
     if not isinstance(labels, LabelMap):

@@ -72,7 +72,8 @@ class RegionMesh:
     voxels : int
         Its number of voxels.
     triangles : ndarray of int64, shape (m, 3)
-        Its boundary, indices into :attr:`LabelMeshes.vertices`, counter-clockwise seen from outside.
+        Its boundary, indices into the ``vertices`` of :class:`LabelMeshes`, counter-clockwise seen from
+        outside.
     """
 
     label: int
@@ -82,7 +83,7 @@ class RegionMesh:
 
 @dataclass(frozen=True)
 class LabelMeshes:
-    """The meshes of every region of a label volume, on one shared vertex list (:func:`polygonize_volume`).
+    """The meshes of every region of a label volume, on one shared vertex list (:func:`mrm.polygonize`).
 
     Attributes
     ----------
