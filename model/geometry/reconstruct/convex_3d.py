@@ -32,6 +32,9 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.geometry._jit import njit
+from mrm.geometry.planes._kernels import _set_primitive
+from mrm.geometry.reconstruct._base import _grow1, _grow2
+from mrm.geometry.reconstruct._check import _orient
 from mrm.geometry.reconstruct.decimate_3d import ROTATIONS, turn_back_points, turn_points
 from mrm.geometry.topology.labeling_3d import Runs3D, euler_per_label, label_runs_3d, surfel_count
 
@@ -200,8 +203,8 @@ def _slice_corners(
                     j0, j1 = chain[h - 2], chain[h - 1]
                     x0 = rs[ptr[k * ny + j0]] if side == 0 else re[ptr[k * ny + j0]]
                     x1 = rs[ptr[k * ny + j1]] if side == 0 else re[ptr[k * ny + j1]]
-                    cross = (j1 - j0) * (x - x0) - (x1 - x0) * (j - j0)
-                    if (cross > 0) if side == 0 else (cross < 0):
+                    turn = _orient(j0, x0, j1, x1, j, x)  # in the (y, x) plane
+                    if turn > 0 if side == 0 else turn < 0:
                         break
                     h -= 1
                 chain[h] = j
@@ -251,13 +254,6 @@ def _assign(
             if h > fard[f]:
                 fard[f], far[f] = h, q
             return
-
-
-@njit(cache=True)
-def _grown(a: Int64Array, n: int) -> Int64Array:  # pragma: no cover - compiled
-    out = np.empty((n, *a.shape[1:]), a.dtype)
-    out[: a.shape[0]] = a
-    return out
 
 
 @njit(cache=True)
@@ -353,7 +349,7 @@ def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover 
             top -= 1
             g = stack[top]
             if n_vis + nf >= seen.shape[0]:
-                seen = _grown(seen, 2 * (n_vis + nf) + 16)
+                seen = _grow1(seen, n_vis, 2 * (n_vis + nf) + 16)
             seen[n_vis] = g
             n_vis += 1
             for e in range(3):
@@ -363,20 +359,20 @@ def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover 
                 if _above(fn, fo, h, pts, p) > 0:
                     vis[h] = it
                     if top >= stack.shape[0]:
-                        stack = _grown(stack, 2 * stack.shape[0])
+                        stack = _grow1(stack, top, 2 * stack.shape[0])
                     stack[top] = h
                     top += 1
                 else:
                     if n_hz >= hz_u.shape[0]:
-                        hz_u = _grown(hz_u, 2 * hz_u.shape[0])
-                        hz_v = _grown(hz_v, 2 * hz_v.shape[0])
-                        hz_f = _grown(hz_f, 2 * hz_f.shape[0])
+                        hz_u = _grow1(hz_u, n_hz, 2 * hz_u.shape[0])
+                        hz_v = _grow1(hz_v, n_hz, 2 * hz_v.shape[0])
+                        hz_f = _grow1(hz_f, n_hz, 2 * hz_f.shape[0])
                     hz_u[n_hz], hz_v[n_hz], hz_f[n_hz] = ft[g, e], ft[g, (e + 1) % 3], h
                     n_hz += 1
         if nf + n_hz > cap:
             cap = 2 * (nf + n_hz)
-            ft, nb, fn = _grown(ft, cap), _grown(nb, cap), _grown(fn, cap)
-            fo, far, fard = _grown(fo, cap), _grown(far, cap), _grown(fard, cap)
+            ft, nb, fn = _grow2(ft, nf, cap), _grow2(nb, nf, cap), _grow2(fn, nf, cap)
+            fo, far, fard = _grow1(fo, nf, cap), _grow1(far, nf, cap), _grow1(fard, nf, cap)
             alive2 = np.zeros(cap, np.bool_)
             alive2[:nf] = alive[:nf]
             alive = alive2
@@ -461,43 +457,25 @@ def _exact_faces(
     face_ptr, face_corner, ok = _face_corners(v, tri, gptr.astype(np.int64), normals)
     if not ok:
         return None
-    if not _closed_and_convex(v, face_ptr, face_corner, normals, offsets):
-        return None
     used, local = np.unique(face_corner, return_inverse=True)
+    if not _closed_and_convex(v, face_ptr, face_corner, normals, offsets, used.size):
+        return None
     return v[used], face_ptr, local.astype(np.int64), normals, offsets
-
-
-@njit(cache=True)
-def _gcd(a: int, b: int) -> int:  # pragma: no cover - compiled
-    while b:
-        a, b = b, a % b
-    return a
 
 
 @njit(cache=True)
 def _triangle_planes(v: Int64Array, t: Int64Array) -> Int64Array:  # pragma: no cover - compiled
     # Row i: the primitive outward normal (a, b, c) of triangle i and its offset a·p; zeros when flat.
     m = t.shape[0]
+    fn = np.zeros((m, 3), np.int64)
+    fo = np.zeros(m, np.int64)
     out = np.zeros((m, 4), np.int64)
     for i in range(m):
-        p, q, r = t[i, 0], t[i, 1], t[i, 2]
-        ux, uy, uz = v[q, 0] - v[p, 0], v[q, 1] - v[p, 1], v[q, 2] - v[p, 2]
-        wx, wy, wz = v[r, 0] - v[p, 0], v[r, 1] - v[p, 1], v[r, 2] - v[p, 2]
-        nx, ny, nz = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
-        g = _gcd(_gcd(abs(nx), abs(ny)), abs(nz))
-        if g == 0:
-            continue
-        nx, ny, nz = nx // g, ny // g, nz // g
-        out[i, 0], out[i, 1], out[i, 2] = nx, ny, nz
-        out[i, 3] = nx * v[p, 0] + ny * v[p, 1] + nz * v[p, 2]
+        _set_plane(v, t, fn, fo, i)
+        _set_primitive(out, i, fn[i, 0], fn[i, 1], fn[i, 2])
+        p = t[i, 0]
+        out[i, 3] = out[i, 0] * v[p, 0] + out[i, 1] * v[p, 1] + out[i, 2] * v[p, 2]
     return out
-
-
-@njit(cache=True, inline="always")
-def _turn_sign(v: Int64Array, a: int, b: int, p: int, du: int, dw: int) -> int:  # pragma: no cover
-    # The sign of the turn a → b → p in the (u, w) projection, exactly.
-    cross = (v[b, du] - v[a, du]) * (v[p, dw] - v[a, dw]) - (v[b, dw] - v[a, dw]) * (v[p, du] - v[a, du])
-    return 1 if cross > 0 else (-1 if cross < 0 else 0)
 
 
 @njit(cache=True)
@@ -531,36 +509,40 @@ def _face_corners(
         pts = ids[:n]
         key = v[pts, du] * (1 << 20) + v[pts, dw]  # coordinates below 2¹⁶: the order of (u, w)
         pts = pts[np.argsort(key)]
+        pu, pw = v[pts, du], v[pts, dw]
         h = 0
-        for s in range(n):  # the lower chain
-            p = pts[s]
-            while h >= 2 and _turn_sign(v, chain[h - 2], chain[h - 1], p, du, dw) <= 0:
-                h -= 1
-            chain[h] = p
-            h += 1
-        low = h + 1
-        for s in range(n - 2, -1, -1):  # the upper chain, back to the first point
-            p = pts[s]
-            while h >= low and _turn_sign(v, chain[h - 2], chain[h - 1], p, du, dw) <= 0:
-                h -= 1
-            chain[h] = p
-            h += 1
+        low = 2
+        for first, stop, step in ((0, n, 1), (n - 2, -1, -1)):  # the lower chain, then the upper one back
+            for s in range(first, stop, step):  # chain holds indices into pts
+                while h >= low:
+                    a, b = chain[h - 2], chain[h - 1]
+                    if _orient(pu[a], pw[a], pu[b], pw[b], pu[s], pw[s]) > 0:
+                        break
+                    h -= 1
+                chain[h] = s
+                h += 1
+            low = h + 1  # the upper chain keeps the lower one
         h -= 1  # the first point, met again
         if h < 3:
             return face_ptr, out[:0], False
         # counter-clockwise in (u, w) is counter-clockwise about +e_d: reverse when the normal points to −e_d
         for s in range(h):
-            out[n_out + s] = chain[s] if normals[f, d] > 0 else chain[h - 1 - s]
+            out[n_out + s] = pts[chain[s]] if normals[f, d] > 0 else pts[chain[h - 1 - s]]
         n_out += h
         face_ptr[f + 1] = n_out
     return face_ptr, out[:n_out].copy(), True
 
 
 def _closed_and_convex(
-    v: Int64Array, face_ptr: Int64Array, face_corner: Int64Array, normals: Int64Array, offsets: Int64Array
+    v: Int64Array,
+    face_ptr: Int64Array,
+    face_corner: Int64Array,
+    normals: Int64Array,
+    offsets: Int64Array,
+    n_corners: int,
 ) -> bool:
     # Every side u→v of a face is the side v→u of exactly one other face, the far corner of which lies
-    # strictly below the first face's plane (a strictly convex edge); V − E + F = 2.
+    # strictly below the first face's plane (a strictly convex edge); V − E + F = 2 (V: the n_corners).
     n_faces = face_ptr.size - 1
     lens = np.diff(face_ptr)
     face_of = np.repeat(np.arange(n_faces), lens)
@@ -586,8 +568,7 @@ def _closed_and_convex(
     lhs = np.einsum("ij,ij->i", normals[f], v[far])
     if np.any(lhs >= offsets[f]):
         return False
-    used = np.unique(face_corner).size
-    return bool(used - face_corner.size // 2 + n_faces == 2)
+    return bool(n_corners - face_corner.size // 2 + n_faces == 2)
 
 
 def _corner_pose(corners: Int64Array, size: tuple[int, int, int]) -> int:

@@ -60,6 +60,7 @@ import numpy.typing as npt
 
 from mrm.core.limits import check_pixels
 from mrm.geometry._jit import leaf_njit, njit
+from mrm.geometry.reconstruct._base import _grow1
 from mrm.geometry.topology.labeling import _find, _union
 
 FloatArray = npt.NDArray[np.float64]
@@ -92,14 +93,6 @@ _SHIFTS = np.array([[0, 42, 21], [21, 0, 42], [42, 21, 0]], np.int64)
 
 
 # ------------------------------------------------------------------------------------------- runs of the mask
-@njit(cache=True)
-def _grow(a: npt.NDArray[Any], n: int) -> npt.NDArray[Any]:  # pragma: no cover
-    # a twice as long, its first n items kept
-    b = np.empty(2 * a.size, a.dtype)
-    b[:n] = a[:n]
-    return b
-
-
 #: ctz by de Bruijn multiplication: the index of the lowest set bit b of a word is _DEBRUIJN[(b · K) >> 58].
 _DEBRUIJN_K = 0x022FDD63CC95386D
 _DEBRUIJN = np.zeros(64, np.int64)
@@ -141,8 +134,8 @@ def _x_runs(
                         at = c + (_DEBRUIJN[np.int64((low * mult) >> np.uint64(58))] >> 3)
                         if not inside:
                             if n == s.size:
-                                s = _grow(s, n)
-                                e = _grow(e, n)
+                                s = _grow1(s, n, 2 * s.size)
+                                e = _grow1(e, n, 2 * e.size)
                             s[n] = at + 1
                         else:
                             e[n] = at + 1
@@ -154,8 +147,8 @@ def _x_runs(
                 if bool(buf[b0 + c]) != inside:
                     if not inside:
                         if n == s.size:
-                            s = _grow(s, n)
-                            e = _grow(e, n)
+                            s = _grow1(s, n, 2 * s.size)
+                            e = _grow1(e, n, 2 * e.size)
                         s[n] = c + 1
                     else:
                         e[n] = c + 1
@@ -396,9 +389,9 @@ def _plane_squares(
             nd = _row_squares(fo_s, fo_e, f0, f1, so_s, so_e, h0, h1, d_s, d_e)
             chi -= (f1 - f0) - (h1 - h0)
         while n + nd > rc0.size:
-            rc0 = _grow(rc0, n)
-            rc1 = _grow(rc1, n)
-            fl = _grow(fl, n)
+            rc0 = _grow1(rc0, n, 2 * rc0.size)
+            rc1 = _grow1(rc1, n, 2 * rc1.size)
+            fl = _grow1(fl, n, 2 * fl.size)
         k = prev0
         for i in range(nd):
             rc0[n] = d_s[i]
