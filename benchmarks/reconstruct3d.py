@@ -13,8 +13,7 @@ D(P) = A exactly in the model (docs/design.md §11). Its peers work on the same 
 
 Sections, in one run:
 
-1. octahedra |x|+|y|+|z| <= r (``--octa-radii``), every model, and ``--octa-gauss-radii`` under gauss only
-   (the covers' decimation is far too slow on big octahedra): faces, vertices, triangles, time. Targets:
+1. octahedra |x|+|y|+|z| <= r (``--octa-radii``), every model: faces, vertices, triangles, time. Targets:
    gauss exactly 8 faces, standard and supercover at most 32;
 2. balls of radius r (``--ball-radii``) centred at (0.3, 0.1, 0.2), an ellipsoid (semi-axes 40, 25, 15) and a
    torus (R = 30, r = 10), every model: R's size against MC's (target: R's triangles <= 0.1 x MC's), the
@@ -26,7 +25,7 @@ Sections, in one run:
 Times are medians of ``--repeat`` runs in this process, after one warm call (the first call of each row,
 reported apart; numba's compilation or cache loading is measured once at the start, on a 3³ cube).
 
-Usage: ``.venv/bin/python benchmarks/reconstruct3d.py [--octa-radii 4 8 16 32] [--octa-gauss-radii 64 200]
+Usage: ``.venv/bin/python benchmarks/reconstruct3d.py [--octa-radii 4 8 16 32 64 100 150 200]
 [--ball-radii 8 16 32 64 100] [--repeat 3] [--big 256] [--big-model gauss] [--big-shapes ball blobs]
 [--seed 0]``
 """
@@ -252,17 +251,17 @@ def first_calls() -> None:
     print("first call on a 3³ cube (numba compilation or cache loading, imports): " + ", ".join(parts) + "\n")
 
 
-def octahedra(radii: Sequence[int], gauss_radii: Sequence[int], repeat: int) -> None:
+def octahedra(radii: Sequence[int], repeat: int) -> None:
     from mrm.core.grids import VoxelSet
     from mrm.geometry.reconstruct import reconstruct_voxels
 
     print("## Octahedra |x|+|y|+|z| <= r")
     print("target: gauss exactly 8 faces; standard and supercover at most 32 faces\n")
     rows = []
-    for r in [*radii, *gauss_radii]:
+    for r in radii:
         mask, origin = octahedron(r)
         vs = VoxelSet(mask, origin)
-        for model in MODELS if r in radii else ("gauss",):
+        for model in MODELS:
             t0 = time.perf_counter()
             p = reconstruct_voxels(vs, model)
             first = time.perf_counter() - t0
@@ -382,8 +381,7 @@ Legend:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    ap.add_argument("--octa-radii", type=int, nargs="+", default=[4, 8, 16, 32])
-    ap.add_argument("--octa-gauss-radii", type=int, nargs="*", default=[64, 100, 150, 200])
+    ap.add_argument("--octa-radii", type=int, nargs="*", default=[4, 8, 16, 32, 64, 100, 150, 200])
     ap.add_argument("--ball-radii", type=int, nargs="+", default=[8, 16, 32, 64, 100])
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument(
@@ -413,7 +411,7 @@ def main() -> None:
         )
     print(LEGEND)
     first_calls()
-    octahedra(args.octa_radii, args.octa_gauss_radii, args.repeat)
+    octahedra(args.octa_radii, args.repeat)
     smooth_shapes(args.ball_radii, args.repeat, fs)
     if args.big:
         big(args.big, args.big_model, args.repeat, args.seed, args.big_shapes)

@@ -289,6 +289,9 @@ def _step_regions_3d() -> None:
     for model in ("gauss", "standard"):  # the compact R's decimation (one kernel, both model paths)
         reconstruct_voxels(VoxelSet(mask, (0, 0, 0)), model)
     reconstruct_voxels(VoxelSet(np.ones((3, 3, 3), bool), (0, 0, 0)), "gauss")  # a convex set's grown hull
+    z, y, x = np.ogrid[-2:3, -2:3, -2:3]
+    octahedron = np.ascontiguousarray(np.broadcast_to(abs(x) + abs(y) + abs(z) <= 2, (5, 5, 5)))
+    reconstruct_voxels(VoxelSet(octahedron, (-2, -2, -2)), "supercover")  # a lattice polytope's spiked hull
     from mrm.geometry.reconstruct.polygonize_3d import polygonize_volume
 
     # `mrm polygonize` of a label volume: voxels of one label touching along edges only (pinches)

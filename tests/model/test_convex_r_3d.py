@@ -161,11 +161,13 @@ def test_a_convex_set_whose_grown_hull_leaves_the_border_cubes_is_refused():
     # 6-component without tunnel, and the grown hull gives it back under gauss, but it is so thin that the
     # homothety pushes a corner out of the border voxels' cubes. The hull is refused there
     # (§11 item 2), and R is the general one.
-    from mrm.geometry.reconstruct.convex_3d import convex_r
+    from mrm.geometry.reconstruct.convex_3d import _hull, convex_r
     from mrm.geometry.topology.labeling_3d import label_runs_3d
 
     vs = VoxelSet.from_points(np.array(THIN))
-    grown = convex_r(label_runs_3d(vs.mask, 6), vs.origin)
+    hull = _hull(label_runs_3d(vs.mask, 6))
+    assert hull is not None
+    grown = convex_r(hull, vs.origin)
     assert grown is not None
     assert mrm.voxelize(mrm.Polyhedron(*grown), "gauss") == vs
     assert convex_reconstruction(vs) is None

@@ -418,11 +418,13 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     whole: validated exactly (:class:`~mrm.geometry.polyhedra.Polyhedron`) and discretized exactly; should
     that ever fail, the safety net is returned and the failure logged.
 
-    Under ``gauss`` a digitally convex A (a ball's, an ellipsoid's, the octahedron's voxels) has its convex
-    hull, grown by a dyadic homothety, as an exact R found in milliseconds
-    (``mrm.geometry.reconstruct.convex_3d``, ADR 0068): the octahedron's 8 faces at any size. Up to
-    ``limits.MAX_RIVAL_SURFELS`` surfels the decimation is tried too, unless the hull is already very small
-    (``RIVAL_WORTH``), and the result with fewer triangles (then faces) is R.
+    A digitally convex A (a ball's, an ellipsoid's, the octahedron's voxels) has an exact R from its convex
+    hull, found in milliseconds (``mrm.geometry.reconstruct.convex_3d``): under ``gauss`` the hull grown by
+    a dyadic homothety (ADR 0068), the octahedron's 8 faces at any size; under the covers, for a lattice
+    polytope, the hull's facets moved in with a spike to each voxel they miss (ADR 0069), the octahedron's 8
+    faces and four small ones at each tip. Up to ``limits.MAX_RIVAL_SURFELS`` surfels the decimation is
+    tried too, unless the hull is already very small (``RIVAL_WORTH``), and the smaller is R: by faces, then
+    vertices, for a lattice polytope; by triangles, then faces, for a finer hull.
 
     Raises
     ------
@@ -441,16 +443,24 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     check_reconstruct(vs)
     from mrm.core import limits
 
-    hull = convex_reconstruction(vs) if model == "gauss" else None
+    hull = convex_reconstruction(vs, model)
     if hull is not None:
         small = hull.polyhedron.n_triangles < RIVAL_WORTH * hull.surfels
         if small or hull.surfels > limits.MAX_RIVAL_SURFELS:
             return hull.polyhedron
         rival = _decimated(vs, model)
-        if (hull.polyhedron.n_triangles, hull.polyhedron.n_faces) <= (rival.n_triangles, rival.n_faces):
-            return hull.polyhedron
-        return rival
+        return hull.polyhedron if _size(hull.polyhedron, hull.facets) <= _size(rival, hull.facets) else rival
     return _decimated(vs, model)
+
+
+def _size(p: Polyhedron, facets: int) -> tuple[int, ...]:
+    # How R's two candidates for a digitally convex A compare (convex_3d.FEW_FACETS): a lattice polytope by
+    # faces, then vertices; a finer hull by triangles, then faces.
+    from mrm.geometry.reconstruct.convex_3d import FEW_FACETS
+
+    if facets <= FEW_FACETS:
+        return (p.n_faces, p.n_vertices, p.n_triangles)
+    return (p.n_triangles, p.n_faces)
 
 
 def _decimated(vs: VoxelSet, model: str) -> Polyhedron:

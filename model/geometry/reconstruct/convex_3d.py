@@ -26,6 +26,8 @@ the general R.
 from __future__ import annotations
 
 import logging
+import math
+from fractions import Fraction
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
@@ -35,6 +37,7 @@ from mrm.geometry._jit import njit
 from mrm.geometry.planes._kernels import _set_primitive
 from mrm.geometry.reconstruct._base import _grow1, _grow2
 from mrm.geometry.reconstruct._check import _orient
+from mrm.geometry.reconstruct._halfspaces import ConvexPolytope, Normal, Point, convex_polytope
 from mrm.geometry.reconstruct.decimate_3d import ROTATIONS, turn_back_points, turn_points
 from mrm.geometry.topology.labeling_3d import Runs3D, euler_per_label, label_runs_3d, surfel_count
 
@@ -52,22 +55,36 @@ BoolArray = npt.NDArray[np.bool_]
 #: normals of triangles with coordinates below 2¹⁶ are below 2³³, their offsets below 2⁵¹.
 MAX_EXTENT = 1 << 16
 
+#: Most facets of conv(A) for which A counts as a lattice polytope (the octahedron's 8, a box's 6; a ball of
+#: radius 8 has 140). Under the covers R of such an A is tried from its hull — cut out in Fractions, about
+#: facets² × corners operations — and beside the decimation it is judged by faces, then vertices (§11's
+#: measure: such a shape is made of its faces). A finer hull is judged by triangles: its faces are fans of
+#: many small facets, and its triangles are the mesh the user gets.
+FEW_FACETS = 64
+#: Most voxels of A whose cubes the covers' convex core may miss, each then reached by a spike (the
+#: octahedron's six tips); more means A is not a lattice polytope, and the decimation makes its R.
+MAX_SPIKES = 24
+
 
 class ConvexR(NamedTuple):
-    """R(A) of a digitally convex A under ``gauss`` (:func:`convex_reconstruction`), and A's surfels."""
+    """R(A) of a digitally convex A (:func:`convex_reconstruction`), and A's surfels."""
 
     polyhedron: Polyhedron
     surfels: int
+    facets: int  #: conv(A)'s facets
 
 
-def convex_reconstruction(vs: VoxelSet) -> ConvexR | None:
-    """R(A) under ``gauss`` for a digitally convex A: the grown convex hull, checked as a whole; else None.
+def convex_reconstruction(vs: VoxelSet, model: str = "gauss") -> ConvexR | None:
+    """R(A) for a digitally convex A from its convex hull, checked as a whole; else None.
 
-    Checked like every R (docs/design.md §11, items 1–4): A is one 6-component without cavity or tunnel (a
-    convex solid's topology); P is a valid polyhedron; D(P) = A exactly; and ∂P stays within the cubes of the
-    border voxels — the cubes P meets (its supercover, exactly) all have a voxel of A in their 3×3×3 block
-    (the cubes of A's inner voxels lie inside conv(A), itself inside P's interior). None when A is not
-    digitally convex or any check fails: the caller then takes the general way.
+    Under ``gauss`` P is the hull grown by a dyadic homothety (:func:`convex_r`); under the covers, the
+    hull's facets moved in (:func:`convex_cover_r`). Checked like every R (docs/design.md §11, items 1–4): A
+    is one 6-component without cavity or tunnel (a convex solid's topology); P is a valid polyhedron; D(P) = A
+    exactly. Under ``gauss`` ∂P stays within the cubes of the border voxels — the cubes P meets (its
+    supercover, exactly) all have a voxel of A in their 3×3×3 block (the cubes of A's inner voxels lie inside
+    conv(A), itself inside P's interior). Under the covers P ⊂ V(A): its supercover is A (under
+    ``standard`` this is checked too). None when A is not digitally convex or any check fails: the caller
+    then takes the general way.
     """
     from mrm.core.grids import VoxelSet
     from mrm.geometry.discretize.voxels import voxelize_solid
@@ -77,30 +94,37 @@ def convex_reconstruction(vs: VoxelSet) -> ConvexR | None:
     runs = label_runs_3d(vs.mask, 6)
     if runs.n_labels != 1 or runs.n_bg != 1 or int(euler_per_label(runs)[1]) != 1:
         return None  # not one component without cavity or tunnel, as a convex solid is
-    found = convex_r(runs, vs.origin)
+    gauss = model == "gauss"
+    hull = _hull(runs)
+    if hull is None:
+        return None
+    found = convex_r(hull, vs.origin) if gauss else convex_cover_r(hull, vs.mask, vs.origin, model)
     if found is None:
         return None
     v, t = found
-    # The border check (the supercover of the surface, the costliest part) runs on R's worker thread while
-    # this one validates P and discretizes it.
-    pool = side_pool()
+    # Under gauss the border check (the supercover of the surface, the costliest part) runs on R's worker
+    # thread while this one validates P and discretizes it.
+    pool = side_pool() if gauss else None
     border = pool.submit(_stays_near_a, v, t, vs) if pool is not None else None
     try:
         result = Polyhedron(v, t)
-        if VoxelSet(*voxelize_solid(v, t, "gauss", limit=None)) != vs:
-            logger.debug("the grown hull's discretization is not A: A is not digitally convex")
-            return None
+        models = [model] if model != "standard" else ["standard", "supercover"]
+        for m in models:
+            if VoxelSet(*voxelize_solid(v, t, m, limit=None)) != vs:
+                logger.debug("the convex hull's %s discretization is not A: A is not digitally convex", m)
+                return None
     except ValueError as e:  # InvalidGeometryError: the proposed hull is not a valid polyhedron
-        logger.warning("the grown convex hull is refused (%s): %d voxels", e, vs.count)
+        logger.warning("the convex hull's R is refused (%s): %d voxels, model %s", e, vs.count, model)
         return None
     finally:
         near = border.result() if border is not None else None  # waits on a refusal too: nothing left over
-    if near is None:
-        near = _stays_near_a(v, t, vs)
-    if not near:
-        logger.debug("the grown hull leaves the border voxels' cubes")
-        return None
-    return ConvexR(result, surfel_count(runs))
+    if gauss:
+        if near is None:
+            near = _stays_near_a(v, t, vs)
+        if not near:
+            logger.debug("the grown hull leaves the border voxels' cubes")
+            return None
+    return ConvexR(result, surfel_count(runs), int(hull.normals.shape[0]))
 
 
 def _stays_near_a(v: FloatArray, t: Int64Array, vs: VoxelSet) -> bool:
@@ -113,21 +137,20 @@ def _stays_near_a(v: FloatArray, t: Int64Array, vs: VoxelSet) -> bool:
     return bool(_near_a(cover, vs.mask, shift))
 
 
-def convex_r(runs: Runs3D, origin: tuple[int, int, int]) -> tuple[FloatArray, Int64Array] | None:
-    """The grown convex hull P of A when A looks digitally convex, else None (module docstring).
+class _Hull(NamedTuple):
+    # conv(A) in A's box (array indices): its corners, its faces' corners (counter-clockwise from outside,
+    # face f's from face_ptr[f]), and each face's plane a·x = b (a primitive and outward, b integer).
+    corners: Int64Array
+    face_ptr: Int64Array
+    face_corner: Int64Array
+    normals: Int64Array
+    offsets: Int64Array
+    size: tuple[int, int, int]
 
-    Parameters
-    ----------
-    runs : A's runs along x (:func:`~mrm.geometry.topology.labeling_3d.label_runs_3d`).
-    origin : the world (x, y, z) of A's voxel at index (0, 0, 0).
 
-    Returns
-    -------
-    vertices : float64 (n, 3), world coordinates, dyadic.
-    triangles : int64 (m, 3), outward.
-        Or None when A has a row of two runs or more, is flat, or the proposed hull is not exactly a convex
-        polyhedron: the caller's checks decide the rest (D(P) = A is what proves A digitally convex).
-    """
+def _hull(runs: Runs3D) -> _Hull | None:
+    # conv(A) decided exactly, or None when A has a row of two runs or more, is flat, or the proposed hull is
+    # not exactly a convex polyhedron.
     nz, ny, nx = runs.shape
     if max(runs.shape) > MAX_EXTENT:
         return None
@@ -143,17 +166,164 @@ def convex_r(runs: Runs3D, origin: tuple[int, int, int]) -> tuple[FloatArray, In
     faces = _exact_faces(*proposed)
     if faces is None:
         return None
-    corners, face_ptr, face_corner, normals, offsets = faces
-    size = (nx, ny, nz)
-    pose = _corner_pose(corners, size)
+    return _Hull(*faces, size=(nx, ny, nz))
+
+
+def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int64Array] | None:
+    """The grown convex hull P of A when A looks digitally convex, else None (module docstring).
+
+    Parameters
+    ----------
+    hull : conv(A) (:func:`_hull`).
+    origin : the world (x, y, z) of A's voxel at index (0, 0, 0).
+
+    Returns
+    -------
+    vertices : float64 (n, 3), world coordinates, dyadic.
+    triangles : int64 (m, 3), outward.
+        Or None when no grown corner is a float64 number: the caller's checks decide the rest (D(P) = A is
+        what proves A digitally convex).
+    """
+    size = hull.size
+    pose = _corner_pose(hull.corners, size)
     perm, signs = ROTATIONS[pose]
-    turned = turn_points(corners, perm, signs, size)
-    grown = _grow(turned, normals, offsets, perm, signs, size)
+    turned = turn_points(hull.corners, perm, signs, size)
+    grown = _grow(turned, hull.normals, hull.offsets, perm, signs, size)
     if grown is None:
         return None
-    triangles = _fans(turned, face_ptr, face_corner)
+    triangles = _fans(turned, hull.face_ptr, hull.face_corner)
     back = turn_back_points(grown, perm, signs, size)
     return back + np.asarray(origin, np.float64), triangles
+
+
+def convex_cover_r(
+    hull: _Hull, mask: BoolArray, origin: tuple[int, int, int], model: str
+) -> tuple[FloatArray, Int64Array] | None:
+    """The covers' P of A when A looks digitally convex: conv(A)'s facets moved in, plus spikes; else None.
+
+    The core: each facet a·x ≤ b of conv(A) becomes a·x ≤ b + ¾ − |a|₁/2. A centre q outside a digitally
+    convex A has a·q ≥ b + 1 for some facet, and q's closed cube then has a·x ≥ b + 1 − |a|₁/2: the core
+    meets no cube outside A. It may miss the cubes of a few voxels of A — the octahedron's six tips, which no
+    convex P can reach without touching an outside cube (a tip's cube reaches the octahedron's plane
+    |x| + |y| + |z| = r − ½ at the tip only, and the cube of (r − 1, 1, 1), outside, reaches it too). Each
+    such voxel p gets a spike: the core's corner c nearest to p is cut off by a plane across the line c→p,
+    and a pyramid on the cut stands on it, with its apex at (c + p)/2, inside p's cube. The octahedron comes
+    back with 32 faces: its 8, each a hexagon, and four per tip.
+
+    Parameters
+    ----------
+    hull : conv(A) (:func:`_hull`).
+    mask : A's voxels (z, y, x).
+    origin : the world (x, y, z) of A's voxel at index (0, 0, 0).
+    model : ``"standard"`` or ``"supercover"``.
+
+    Returns
+    -------
+    vertices : float64 (n, 3), world coordinates, dyadic.
+    triangles : int64 (m, 3), outward.
+        Or None when conv(A) has more than ``FEW_FACETS`` facets, when
+        the core has no volume or meets a cube outside A, when it misses more than ``MAX_SPIKES`` cubes of
+        A, or when a corner is not a float64 number (a rational with another denominator than a power of
+        two: rounding it would bend P's faces). The caller's checks decide the rest.
+    """
+    if hull.normals.shape[0] > FEW_FACETS:
+        return None
+    normals = [(int(a), int(b), int(c)) for a, b, c in hull.normals]
+    moved = [
+        Fraction(4 * int(b) + 3 - 2 * sum(map(abs, a)), 4) for a, b in zip(normals, hull.offsets, strict=True)
+    ]
+    lo = (Fraction(-1), Fraction(-1), Fraction(-1))
+    hi = (Fraction(hull.size[0]), Fraction(hull.size[1]), Fraction(hull.size[2]))
+    core = convex_polytope(normals, moved, lo, hi)
+    if core is None:
+        return None
+    missing = _missed_voxels(core, mask, model)
+    if missing is None or len(missing) > MAX_SPIKES:
+        return None
+    spikes = []
+    for p in missing:
+        spike = _spike(core.corners, p)
+        if spike is None:
+            return None
+        spikes.append(spike)
+    cut = convex_polytope(normals + [u for u, _, _ in spikes], moved + [d for _, d, _ in spikes], lo, hi)
+    if cut is None or len(cut.planes) != len(core.planes) + len(spikes):
+        return None  # a cut took a whole face away, or two cuts met: the spikes are not apart
+    v = _float_corners(cut.corners + [apex for _, _, apex in spikes])
+    if v is None:
+        return None
+    flat = [f for plane, f in zip(cut.planes, cut.faces, strict=True) if plane < len(normals)]
+    perm, signs = ROTATIONS[_corner_pose(hull.corners, hull.size)]
+    triangles = [_fans(turn_points(v, perm, signs, hull.size), *_flat(flat))]
+    for plane, f in zip(cut.planes, cut.faces, strict=True):
+        if plane >= len(normals):  # a spike's base: a pyramid on it, each side f[k]→f[k+1] with the apex
+            apex = len(cut.corners) + plane - len(normals)
+            triangles.append(np.array([(f[k], f[(k + 1) % len(f)], apex) for k in range(len(f))], np.int64))
+    return v + np.asarray(origin, np.float64), np.concatenate(triangles)
+
+
+def _missed_voxels(core: ConvexPolytope, mask: BoolArray, model: str) -> list[tuple[int, int, int]] | None:
+    # The voxels (x, y, z) of A whose cubes the core misses in the model, or None when it meets one outside.
+    from mrm.geometry.discretize.voxels import voxelize_solid
+
+    v = _float_corners(core.corners)
+    if v is None:
+        return None
+    face_ptr, face_corner = _flat(core.faces)
+    got, at = voxelize_solid(v, _fans(v, face_ptr, face_corner), model, limit=None)
+    nz, ny, nx = mask.shape
+    ax, ay, az = at
+    if (
+        ax < 0
+        or ay < 0
+        or az < 0
+        or az + got.shape[0] > nz
+        or ay + got.shape[1] > ny
+        or ax + got.shape[2] > nx
+    ):
+        return None
+    inside = np.zeros_like(mask)
+    inside[az : az + got.shape[0], ay : ay + got.shape[1], ax : ax + got.shape[2]] = got
+    if np.any(inside & ~mask):
+        return None
+    k, j, i = np.nonzero(mask & ~inside)
+    return [(int(x), int(y), int(z)) for x, y, z in zip(i, j, k, strict=True)]
+
+
+def _float_corners(corners: list[Point]) -> FloatArray | None:
+    # The corners as float64, or None when one is not a float64 number (rounding it would bend P's faces).
+    if any(Fraction(float(x)) != x for p in corners for x in p):
+        logger.debug("a corner of the covers' hull is not a float64 number: A takes the general way")
+        return None
+    return np.array(corners, np.float64)
+
+
+def _flat(faces: list[list[int]]) -> tuple[Int64Array, Int64Array]:
+    # The faces' corners in one array, face f's from ptr[f] to ptr[f + 1].
+    ptr = np.cumsum([0] + [len(f) for f in faces]).astype(np.int64)
+    return ptr, np.array([c for f in faces for c in f], np.int64)
+
+
+def _spike(corners: list[Point], p: tuple[int, int, int]) -> tuple[Normal, Fraction, Point] | None:
+    # The cut a·x ≤ d under the core's corner c nearest to p (the plane across c→p, a quarter of a·(p − c)
+    # below c) and the apex (c + p)/2 of the pyramid on it; None when two corners are as near (the choice
+    # would not follow the rotations of A) or the apex is not inside p's cube.
+    dist = [sum((x - q) ** 2 for x, q in zip(c, p, strict=True)) for c in corners]
+    best = min(dist)
+    if dist.count(best) > 1:
+        return None
+    c = corners[dist.index(best)]
+    step = [q - x for x, q in zip(c, p, strict=True)]
+    scale = math.lcm(*(x.denominator for x in step))
+    whole = [int(x * scale) for x in step]
+    g = math.gcd(*whole)
+    a = (whole[0] // g, whole[1] // g, whole[2] // g)
+    rise = sum(ai * si for ai, si in zip(a, step, strict=True))  # a·(p − c) > 0
+    d = sum(ai * ci for ai, ci in zip(a, c, strict=True)) - Fraction(rise) / 4
+    apex = ((c[0] + p[0]) / 2, (c[1] + p[1]) / 2, (c[2] + p[2]) / 2)
+    if max(abs(x - q) for x, q in zip(apex, p, strict=True)) >= Fraction(1, 2):
+        return None
+    return a, d, apex
 
 
 @njit(cache=True)
@@ -620,7 +790,7 @@ def _grow(
 
 @njit(cache=True)
 def _fans(
-    turned: Int64Array, face_ptr: Int64Array, face_corner: Int64Array
+    turned: Int64Array | FloatArray, face_ptr: Int64Array, face_corner: Int64Array
 ) -> Int64Array:  # pragma: no cover
     # Each face as a fan from its corner that comes first in the turned frame (x, then y, then z).
     nf = face_ptr.shape[0] - 1

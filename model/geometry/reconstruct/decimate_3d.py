@@ -45,7 +45,7 @@ tetrahedron's centres are sought within its shadow only; the star and bucket poo
 from __future__ import annotations
 
 import itertools
-from typing import NamedTuple, cast
+from typing import NamedTuple, TypeVar, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -56,6 +56,7 @@ from mrm.geometry.polyhedra.self_intersection import DISJOINT, triangles_meet_im
 
 FloatArray = npt.NDArray[np.float64]
 Int64Array = npt.NDArray[np.int64]
+PointsT = TypeVar("PointsT", npt.NDArray[np.int64], npt.NDArray[np.float64])
 Int32Array = npt.NDArray[np.int32]
 Int16Array = npt.NDArray[np.int16]
 BoolArray = npt.NDArray[np.bool_]
@@ -1718,8 +1719,8 @@ def _turn(mask: BoolArray, perm: tuple[int, ...], signs: tuple[int, ...]) -> Boo
 
 
 def turn_points(
-    p: Int64Array, perm: tuple[int, int, int], signs: tuple[int, int, int], size: tuple[int, int, int]
-) -> Int64Array:
+    p: PointsT, perm: tuple[int, int, int], signs: tuple[int, int, int], size: tuple[int, int, int]
+) -> PointsT:
     """Points (x, y, z) of A's box (array indices) in the turned frame of :func:`_turn`.
 
     Turned coordinate k is ``signs[k] · p[perm[k]]``, plus ``size[perm[k]] − 1`` when flipped: the turned
