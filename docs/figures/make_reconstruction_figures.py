@@ -593,6 +593,71 @@ def figure_convex_3d() -> None:
     plt.close(fig)
 
 
+def section(poly: mrm.Polyhedron, z: float) -> list[np.ndarray]:
+    """The segments where the plane at height z cuts the triangles (z off every vertex)."""
+    out = []
+    for t in poly.triangles:
+        p = poly.vertices[t]
+        d = p[:, 2] - z
+        ends = []
+        for i in range(3):
+            a, b = p[i], p[(i + 1) % 3]
+            da, db = d[i], d[(i + 1) % 3]
+            if (da < 0) != (db < 0):
+                ends.append((a + (b - a) * (da / (da - db)))[:2])
+        if len(ends) == 2:
+            out.append(np.array(ends))
+    return out
+
+
+def figure_spiked_3d() -> None:
+    """R under the covers of lattice polytopes: conv(A)'s facets moved in, with spikes (ADR 0069)."""
+    from mrm.geometry.reconstruct.convex_3d import convex_reconstruction
+
+    r = 8
+    g = np.arange(-r, r + 1)
+    z, y, x = np.meshgrid(g, g, g, indexing="ij")
+    octahedron = VoxelSet(abs(x) + abs(y) + abs(z) <= r, (-r,) * 3)
+    pts = octahedron.points()
+    lopsided = VoxelSet.from_points(
+        pts[(pts[:, 0] <= 5) & (pts[:, 1] + pts[:, 2] <= 6) & (abs(pts).sum(1) <= 7)]
+    )
+    fig = plt.figure(figsize=(12.0, 4.1), dpi=100)
+    shown = [
+        ("octahedron r = 8, supercover", octahedron, "supercover", (-r, -r, -r, r, r, r), 1.25),
+        ("its tip, cut at z = 0", octahedron, "supercover", (4, -2, -2, 8, 2, 2), 1.0),
+        ("a lopsided polytope, standard", lopsided, "standard", (-7, -7, -7, 7, 7, 7), 1.25),
+    ]
+    for col, (title, vs, model, box, zoom) in enumerate(shown):
+        found = convex_reconstruction(vs, model)
+        assert found is not None
+        poly = found.polyhedron
+        assert mrm.voxelize(poly, model) == vs and mrm.voxelize(poly, "supercover") == vs
+        sizes = f"{len(vs):,} voxels: {poly.n_faces} faces, {poly.n_vertices} vertices"
+        titled(fig, col / 3, title, sizes)
+        if col == 1:  # the section z = 0.01 near the tip, over the voxels' squares in that layer
+            ax2 = fig.add_axes((col / 3 + 0.03, 0.05, 1 / 3 - 0.06, 0.78))
+            ax2.set_aspect("equal")
+            ax2.set_axis_off()
+            layer = {(int(p[0]), int(p[1])) for p in vs.points() if p[2] == 0}
+            for i in range(box[0], box[3] + 2):
+                for j in range(box[1], box[4] + 1):
+                    fill = "#f3d9a6" if (i, j) in layer else "#ffffff"
+                    ax2.add_patch(
+                        plt.Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=fill, edgecolor="#b8b8b8")
+                    )
+            for seg in section(poly, 0.01):
+                ax2.plot(seg[:, 0], seg[:, 1], color="#1f5fa8", linewidth=2.2)
+            ax2.set_xlim(box[0] - 0.6, box[3] + 1.6)
+            ax2.set_ylim(box[1] - 0.6, box[4] + 0.6)
+            continue
+        pieces, fills = shaded_pieces(poly, size=0.5 * r / 7)
+        ax = voxel_axes(fig, (col / 3, 0.0, 1 / 3, 0.86), box, zoom=zoom)
+        ax.add_collection3d(Poly3DCollection(pieces, facecolors=fills, edgecolors=fills, linewidths=0.4))
+    fig.savefig(OUT / "reconstruction-3d-spiked.png")
+    plt.close(fig)
+
+
 def surfel_square(p: np.ndarray, e: np.ndarray) -> np.ndarray:
     """The unit square between voxel p and its neighbour p + e, as 4 corners."""
     c = p + e / 2
@@ -661,6 +726,7 @@ def main() -> None:
     figure_3d()
     figure_compact_3d()
     figure_convex_3d()
+    figure_spiked_3d()
     figure_plane_segments_3d()
 
 
