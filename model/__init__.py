@@ -46,7 +46,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from mrm.geometry.hausdorff import HausdorffDistance
     from mrm.geometry.hausdorff.bounds import BoundResult
     from mrm.geometry.polyhedra import Polyhedron
-    from mrm.io.mesh_files import read_mesh, write_mesh
+    from mrm.io.mesh_files import read_mesh, read_mesh_objects, write_mesh
     from mrm.io.pixel_files import read_label_map, read_pixels, write_label_map, write_pixels
     from mrm.io.vector_files import read_geometry, write_geojson, write_wkt
     from mrm.io.voxel_files import read_label_volume, read_voxels, write_label_volume, write_voxels
@@ -68,6 +68,7 @@ _LAZY = {
     "voxelize": "mrm.geometry.discretize.voxels",
     "Polyhedron": "mrm.geometry.polyhedra",
     "read_mesh": "mrm.io.mesh_files",
+    "read_mesh_objects": "mrm.io.mesh_files",
     "write_mesh": "mrm.io.mesh_files",
     "write_voxels": "mrm.io.voxel_files",
     "read_label_volume": "mrm.io.voxel_files",
@@ -119,6 +120,7 @@ __all__ = [
     "read_label_map",
     "read_label_volume",
     "read_mesh",
+    "read_mesh_objects",
     "read_pixels",
     "read_voxels",
     "reconstruct",

@@ -150,8 +150,9 @@ def read_one(
     """Read one input of an operation (a pixel file, a vector file or one object of a project)."""
     ext = extension_of(path, INPUTS, "supported input file")
     if ext != ".mrm" and is_3d_input(path):  # a voxel volume or a mesh: a 3D object, no georeference
-        if ext in MESH_EXTENSIONS:
-            return OperationInput(read_mesh(path), model or "standard")
+        if ext in MESH_EXTENSIONS:  # an OBJ file's object by --object (a label volume's region)
+            solid = read_mesh(path, object_name=object_name if ext == ".obj" else None)
+            return OperationInput(solid, model or "standard")
         return OperationInput(read_voxel_input(path, threshold, voxel_limit(None)), model or "standard")
     if ext == ".mrm":
         if invert:

@@ -33,12 +33,13 @@ PROJECT_EXTENSIONS = (".mrm",)
 
 
 def add_object_argument(parser: argparse.ArgumentParser) -> None:
-    """Add ``--object NAME`` (which object of a project input to use)."""
+    """Add ``--object NAME`` (which object of a project input, or of an OBJ mesh, to use)."""
     parser.add_argument(
         "--object",
         metavar="NAME",
         default=None,
-        help="for a project (.mrm) input: the name of the object to use (needed when it holds several)",
+        help="for a project (.mrm) input: the name of the object to use (needed when it holds several); "
+        "for an OBJ mesh: one of its objects ('o NAME', as mrm polygonize writes a label volume's regions)",
     )
 
 

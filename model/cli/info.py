@@ -109,13 +109,14 @@ def info_file(
     """The summary of one input (a module-level function: batch workers call it)."""
     ext = extension_of(path, INPUTS, "supported input file")
     if is_3d_input(path):
-        if object_name is not None:
-            raise ParameterError(f"{path}: --object applies to project (.mrm) files only")
+        if object_name is not None and ext != ".obj":
+            raise ParameterError(f"{path}: --object applies to project (.mrm) and OBJ files only")
         if labels or _holds_labels(path):
             if threshold is not None or invert:
                 raise ParameterError(f"{path}: --threshold and --invert do not apply to label volumes")
             return {"input": str(path), **label_volume_info(path, model or "standard", limit)}
-        return {"input": str(path), **info_3d(path, model or "standard", threshold, invert, limit)}
+        summary = info_3d(path, model or "standard", threshold, invert, limit, object_name)
+        return {"input": str(path), **({"object": object_name} if object_name else {}), **summary}
     if labels:
         raise ParameterError(f"{path}: --labels applies to voxel files (.npz .tif .nii .nii.gz) only")
     limit = pixel_limit(limit)
@@ -135,15 +136,23 @@ def info_file(
 
 
 def info_3d(
-    path: str, model: str, threshold: float | None, invert: bool, limit: int | None
+    path: str,
+    model: str,
+    threshold: float | None,
+    invert: bool,
+    limit: int | None,
+    object_name: str | None = None,
 ) -> dict[str, Any]:
-    """The 3D summary of a voxel file (R(A) gives faces and vertices) or of a mesh (D under ``model``)."""
+    """The 3D summary of a voxel file (R(A) gives faces and vertices) or of a mesh (D under ``model``).
+
+    ``object_name`` picks one object of an OBJ mesh (:func:`mrm.read_mesh`).
+    """
     if invert:
         raise ParameterError(f"{path}: --invert applies to 2D images only")
     if Path(path).suffix.lower() in MESH_EXTENSIONS:
         if threshold is not None:
             raise ParameterError(f"{path}: --threshold applies to images and voxel files only")
-        return summary_3d(read_mesh(path), model, limit, path)
+        return summary_3d(read_mesh(path, object_name=object_name), model, limit, path)
     return summary_3d(read_voxel_input(path, threshold, limit), model, limit, path)
 
 

@@ -30,6 +30,7 @@ from mrm.cli._common import (
     run_inputs,
     voxel_limit,
 )
+from mrm.cli._project_input import add_object_argument
 from mrm.geometry.discretize.voxels import voxelize
 from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh
 from mrm.io.voxel_files import VOXEL_EXTENSIONS, write_voxels
@@ -53,12 +54,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "the voxel file (.npz .tif .tiff .nii .nii.gz)",
     )
     add_limit_argument(parser, voxels=True)
+    add_object_argument(parser)
 
 
-def voxelize_file(path: str, output: str, model: str | None, limit: int | None) -> dict[str, Any]:
-    """Read one mesh, voxelize it, write the voxels; return the summary (batch workers call it)."""
+def voxelize_file(
+    path: str, output: str, model: str | None, limit: int | None, object_name: str | None = None
+) -> dict[str, Any]:
+    """Read one mesh (or one object of an OBJ file), voxelize it, write the voxels; return the summary.
+
+    A module-level function: batch workers call it.
+    """
     chosen = model or "standard"
-    poly = read_mesh(path)  # validated exactly: an invalid mesh stops here, before anything is written
+    # validated exactly: an invalid mesh stops here, before anything is written
+    poly = read_mesh(path, object_name=object_name)
     t0 = time.perf_counter()
     vs = voxelize(poly, chosen, limit=voxel_limit(limit))
     seconds = time.perf_counter() - t0
@@ -77,7 +85,7 @@ def _line(f: dict[str, Any]) -> str:
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Voxelize every input and write it; return the summary (several inputs: ``files`` and totals)."""
     pairs = inputs_and_outputs(args, INPUTS, "mesh file", OUTPUTS, ".npz", "voxel output file")
-    jobs = [(i, o, args.model, args.limit) for i, o in pairs]
+    jobs = [(i, o, args.model, args.limit, args.object) for i, o in pairs]
 
     def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
         head = {"model": args.model or "standard"}

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from shapely.geometry import MultiPolygon, Polygon
 
-from mrm.core.errors import FileFormatError
+from mrm.core.errors import FileFormatError, InvalidGeometryError
 from mrm.core.limits import clean_name
 from mrm.document import DocObject, Document, validate_geometry
 from mrm.document.commands import ApplyResults
@@ -33,19 +33,32 @@ PathLike = str | os.PathLike[str]
 
 
 def solid_sources(path: PathLike) -> list[tuple[str, Source]] | None:
-    """The 3D object a mesh or voxel file holds, named after the file; None for any other file.
+    """The 3D objects a mesh or voxel file holds, named after the file; None for any other file.
 
-    A mesh is checked as a closed, oriented, non-self-intersecting surface (:func:`mrm.read_mesh`); a voxel
+    A mesh is checked as a closed, oriented, non-self-intersecting surface (:func:`mrm.read_mesh`); an OBJ
+    file that is no such surface as a whole but whose objects each are (a label volume's regions, as
+    ``mrm polygonize`` writes them) gives one object per region, named after the file and the region; a voxel
     file is told from a 2D one of the same extension by its headers (:func:`is_volume_file`). Nothing is
     decided from the contents beyond what the readers check.
     """
-    from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh
+    from mrm.io.mesh_files import MESH_EXTENSIONS, read_mesh, read_mesh_objects
     from mrm.io.voxel_files import is_volume_file, read_label_volume, read_voxels
 
     p = Path(path)
     name = clean_name(p.name[: -len(".nii.gz")] if p.name.lower().endswith(".nii.gz") else p.stem or p.name)
     if p.suffix.lower() in MESH_EXTENSIONS:
-        return [(name, read_mesh(p))]
+        try:
+            return [(name, read_mesh(p))]
+        except InvalidGeometryError as whole:
+            # An OBJ file of several solids apart (a label volume's regions, which share their faces):
+            # one object each. Otherwise the file's own error, which says where it is wrong.
+            try:
+                parts = read_mesh_objects(p)
+            except InvalidGeometryError:
+                raise whole from None
+            if len(parts) < 2:
+                raise
+            return [(clean_name(f"{name} {part}"), poly) for part, poly in parts]
     if not is_volume_file(p):
         return None
     if p.suffix.lower() == ".npz" and _holds_labels(p):

@@ -191,23 +191,28 @@ def _read_bytes(path: PathLike, name: str) -> bytes:
     return data
 
 
-def _decode_obj(data: bytes, name: str) -> tuple[Floats, Ints]:
-    """OBJ's ``v`` and ``f`` lines, read here: trimesh splits a vertex per texture coordinate and normal.
+def _decode_obj(data: bytes, name: str) -> tuple[Floats, Ints, list[tuple[str, int]]]:
+    """OBJ's ``v``, ``f`` and ``o`` lines, read here: trimesh splits a vertex per texture coordinate.
 
     Only the position index of ``f a/b/c`` counts; negative indices count back from the last vertex; a
     face of k > 3 vertices becomes the fan of k − 2 triangles from its first vertex (as trimesh and most
-    readers do). Every other line (``vt``, ``vn``, ``o``, ``g``, ``usemtl`` …) is ignored.
+    readers do). An ``o NAME`` line starts an object: its name and its first triangle are listed (the
+    regions of ``mrm polygonize``'s label meshes). Every other line (``vt``, ``vn``, ``g``, ``usemtl`` …) is
+    ignored.
     """
     # Compact buffers (8 bytes a number) and a line iterator: memory stays proportional to the mesh, not
     # to Python objects per token.
     coords = array.array("d")
     faces = array.array("q")
+    objects: list[tuple[str, int]] = []
     n_vertices = 0
     for number, line in enumerate(io.BytesIO(data), 1):
         parts = line.split()
         if not parts:
             continue
-        if parts[0] == b"v":
+        if parts[0] == b"o":
+            objects.append((b" ".join(parts[1:]).decode("utf-8", "replace"), len(faces) // 3))
+        elif parts[0] == b"v":
             if len(parts) < 4:
                 raise FileFormatError(f"{name}: line {number}: a vertex needs three coordinates")
             try:
@@ -230,10 +235,10 @@ def _decode_obj(data: bytes, name: str) -> tuple[Floats, Ints]:
             for k in range(1, len(idx) - 1):
                 faces.extend((idx[0], idx[k], idx[k + 1]))
     v = np.frombuffer(coords, dtype=np.float64).reshape(-1, 3).copy()
-    return v, np.frombuffer(faces, dtype=np.int64).reshape(-1, 3).copy()
+    return v, np.frombuffer(faces, dtype=np.int64).reshape(-1, 3).copy(), objects
 
 
-def _decode(data: bytes, ext: str, name: str) -> tuple[Floats, Ints]:
+def _decode(data: bytes, ext: str, name: str) -> tuple[Floats, Ints, list[tuple[str, int]]]:
     if ext == ".obj":
         return _decode_obj(data, name)
     try:
@@ -254,7 +259,7 @@ def _decode(data: bytes, ext: str, name: str) -> tuple[Floats, Ints]:
             f"{name}: no triangle mesh found in this {kind.upper()} file "
             f"(vertices {vertices.shape}, faces {faces.shape})"
         )
-    return vertices.astype(np.float64), faces.astype(np.int64)
+    return vertices.astype(np.float64), faces.astype(np.int64), []
 
 
 def _join_equal_corners(v: Floats, t: Ints) -> tuple[Floats, Ints]:
@@ -290,6 +295,12 @@ def read_mesh_arrays(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> tu
         Unsupported extension, not a regular file, too large, a declared size beyond the limit or the file,
         corrupt content.
     """
+    v, t, _ = _read(path, limit)
+    return v, t
+
+
+def _read(path: PathLike, limit: int | None) -> tuple[Floats, Ints, list[tuple[str, int]]]:
+    # read_mesh_arrays, and an OBJ file's objects: (name, first triangle) each.
     name = _name(path)
     ext = _extension(path)
     data = _read_bytes(path, name)
@@ -303,7 +314,7 @@ def read_mesh_arrays(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> tu
         _check_off(data, name, limit)
     else:
         _check_obj(data, name, limit)
-    v, t = _decode(data, ext, name)
+    v, t, objects = _decode(data, ext, name)
     del data
     if t.shape[0] == 0:
         raise FileFormatError(f"{name}: the file holds no triangle")
@@ -311,26 +322,97 @@ def read_mesh_arrays(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> tu
         raise FileFormatError(f"{name}: {t.shape[0]:,} triangles, more than the limit of {limit:,}")
     if ext == ".stl":
         v, t = _join_equal_corners(v, t)
-    return v, t
+    return v, t, objects
 
 
-def read_mesh(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> Polyhedron:
+def _object_parts(v: Floats, t: Ints, objects: list[tuple[str, int]]) -> list[tuple[str, Floats, Ints]]:
+    # Each OBJ object's own vertices (those its triangles use, in their order) and triangles. Triangles
+    # before the first object form one named "" (none when there are none).
+    starts = [(name, first) for name, first in objects]
+    if not starts or starts[0][1] > 0:
+        starts.insert(0, ("", 0))
+    out = []
+    for k, (name, first) in enumerate(starts):
+        last = starts[k + 1][1] if k + 1 < len(starts) else t.shape[0]
+        if last <= first:
+            continue  # an object without faces
+        own = t[first:last]
+        used, local = np.unique(own, return_inverse=True)
+        out.append((name, np.ascontiguousarray(v[used]), local.reshape(-1, 3).astype(np.int64)))
+    return out
+
+
+def _solid(v: Floats, t: Ints, limit: int | None, what: str) -> Polyhedron:
+    try:
+        return Polyhedron(v, t, limit=limit)
+    except InvalidGeometryError as e:
+        raise InvalidGeometryError(f"{what}: {e}") from None
+
+
+def read_mesh(
+    path: PathLike, *, limit: int | None = MAX_TRIANGLES, object_name: str | None = None
+) -> Polyhedron:
     """Read a mesh file as a :class:`~mrm.geometry.polyhedra.Polyhedron`, validated exactly.
+
+    Parameters
+    ----------
+    path : str or path-like
+        An ``.obj``, ``.ply``, ``.off`` or ``.stl`` file.
+    limit : int or None
+        Most triangles accepted.
+    object_name : str or None
+        The name of one object (``o NAME``) of an OBJ file to read alone: the regions of a label volume's
+        meshes (``mrm polygonize``) share their common faces, so the file as a whole is no solid.
 
     Raises
     ------
     FileFormatError
-        The file cannot be read (see :func:`read_mesh_arrays`).
+        The file cannot be read (see :func:`read_mesh_arrays`), or holds no object of that name.
     InvalidGeometryError
         The mesh is not the boundary of a solid (open, non-manifold, self-intersecting, inverted, NaN or
         infinite coordinates, zero-area triangles …): the message starts with the file's name and says
-        where. Nothing is repaired: :func:`mrm.geometry.polyhedra.repair` does it on request.
+        where (and, for an OBJ file of several objects, how to read one). Nothing is repaired:
+        :func:`mrm.geometry.polyhedra.repair` does it on request.
     """
-    v, t = read_mesh_arrays(path, limit=limit)
+    name = _name(path)
+    v, t, objects = _read(path, limit)
+    if object_name is not None:
+        parts = {n: (pv, pt) for n, pv, pt in _object_parts(v, t, objects)}
+        if object_name not in parts:
+            held = ", ".join(repr(n) for n in parts if n) or "none"
+            raise FileFormatError(f"{name}: no object named {object_name!r}; the file's objects: {held}")
+        return _solid(*parts[object_name], limit, f"{name}, object {object_name!r}")
     try:
-        return Polyhedron(v, t, limit=limit)
+        return _solid(v, t, limit, name)
     except InvalidGeometryError as e:
-        raise InvalidGeometryError(f"{_name(path)}: {e}") from None
+        if len(objects) < 2:
+            raise
+        names = [n for n, _ in objects]
+        shown = ", ".join(repr(n) for n in names[:4]) + (", …" if len(names) > 4 else "")
+        raise InvalidGeometryError(
+            f"{e} — the file holds {len(names)} objects ({shown}), which may be solids apart (a label "
+            "volume's regions share their faces): read one with object_name=NAME (--object NAME), or all "
+            "with read_mesh_objects"
+        ) from None
+
+
+def read_mesh_objects(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> list[tuple[str, Polyhedron]]:
+    """Every object of a mesh file as its own polyhedron, validated exactly: (name, polyhedron) each.
+
+    An OBJ file's objects (``o NAME`` lines, as ``mrm polygonize`` writes a label volume's regions) in the
+    file's order; any other file, or an OBJ without ``o`` lines, is one object named "".
+
+    Raises
+    ------
+    FileFormatError, InvalidGeometryError
+        As :func:`read_mesh`; the message names the object that is no solid.
+    """
+    name = _name(path)
+    v, t, objects = _read(path, limit)
+    return [
+        (n, _solid(pv, pt, limit, f"{name}, object {n!r}" if n else name))
+        for n, pv, pt in _object_parts(v, t, objects)
+    ]
 
 
 # ---------------------------------------------------------------------------------------------- writing
@@ -433,7 +515,8 @@ def write_label_meshes(vertices: Floats, objects: list[tuple[str, str, Ints]], p
     one ``g`` group — and its triangles, indices into ``vertices``), so a face shared by two regions is the
     same vertex numbers in both, reversed. Coordinates are written with ``repr`` (they read back as the
     same float64). Each object alone is a closed mesh; the file as a whole is not one solid (shared faces
-    appear twice), so :func:`read_mesh` refuses it: read the objects apart.
+    appear twice), so :func:`read_mesh` refuses it whole: read an object with ``object=NAME``, or all of them
+    with :func:`read_mesh_objects`.
 
     Raises
     ------
@@ -461,6 +544,7 @@ __all__ = [
     "MESH_EXTENSIONS",
     "read_mesh",
     "read_mesh_arrays",
+    "read_mesh_objects",
     "stl_rounding_warning",
     "write_label_meshes",
     "write_mesh",

@@ -424,3 +424,26 @@ def test_meshes_and_voxel_volumes_are_imported_and_dropped_as_3d_objects(make_wi
     assert isinstance(dropped["parts"], LabelVolume) and np.array_equal(dropped["parts"].labels, labels)
     win.doc.history.undo()
     assert len(win.doc) == 2
+
+
+def test_a_label_volumes_meshes_are_imported_one_object_per_region(make_window, qtbot, tmp_path):
+    """An OBJ of `mrm polygonize` (regions sharing their faces: no solid as a whole) comes in as one
+    polyhedron object per region, in one undo step; each burns back to its region's voxels under gauss."""
+    import mrm
+    from mrm.cli import run_cli
+
+    labels = np.zeros((3, 4, 5), np.int32)
+    labels[:, :2, :] = 1
+    labels[:, 2:, :3] = 2
+    np.savez(tmp_path / "seg.npz", labels=labels)
+    assert run_cli(["polygonize", str(tmp_path / "seg.npz"), "-o", str(tmp_path / "seg.obj")]) == 0
+    win = make_window()
+    assert win.files.import_files([tmp_path / "seg.obj"])
+    qtbot.waitUntil(lambda: len(win.doc) == 2)
+    assert [o.name for o in win.doc.objects] == ["seg label_1_1", "seg label_2_1"]
+    for o, label in zip(win.doc.objects, (1, 2), strict=True):
+        assert o.dimension == 3
+        z, y, x = np.nonzero(labels == label)
+        assert mrm.voxelize(o.source, "gauss") == mrm.VoxelSet.from_points(np.stack([x, y, z], axis=1))
+    win.doc.history.undo()
+    assert len(win.doc) == 0

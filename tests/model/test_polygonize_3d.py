@@ -453,6 +453,49 @@ def test_cli_polygonize_writes_one_obj_object_per_region_that_burns_back(capsys,
     assert np.array_equal(burnt, lab)
 
 
+def test_label_meshes_read_back_region_by_region(capsys, tmp_path) -> None:
+    # What `mrm polygonize` writes comes back: each region alone (mrm.read_mesh_objects, read_mesh with
+    # object_name, `--object` in the command line, one object each in the desktop), burning back under gauss
+    # to that region's voxels; the file as a whole is no solid, and the refusal says how to read it.
+    import mrm
+    from mrm.document import Document
+    from mrm.io.imports import import_file
+
+    rng = np.random.default_rng(11)
+    lab = rng.integers(0, 4, (4, 5, 6)).astype(np.int32)
+    np.savez(tmp_path / "seg.npz", labels=lab, origin=np.array((5, -2, 0), np.int64))
+    assert run(capsys, "polygonize", tmp_path / "seg.npz", "-o", tmp_path / "seg.obj")[0] == 0
+    vertices, objects = read_objects(tmp_path / "seg.obj")  # the file read here, independently
+    parts = mrm.read_mesh_objects(tmp_path / "seg.obj")
+    assert [name for name, _ in parts] == list(objects)
+    for name, poly in parts:
+        label = int(name.split("_")[1])
+        region = mrm.voxelize(poly, "gauss")
+        assert all(lab[z, y + 2, x - 5] == label for x, y, z in region.points())
+        used = np.unique(objects[name])
+        assert sorted(map(tuple, poly.vertices.tolist())) == sorted(map(tuple, vertices[used].tolist()))
+        assert mrm.read_mesh(tmp_path / "seg.obj", object_name=name) == poly
+    assert sum(len(mrm.voxelize(p, "gauss")) for _, p in parts) == np.count_nonzero(lab)
+    with pytest.raises(mrm.MRMError, match=r"holds \d+ objects .*object_name=NAME \(--object NAME\)"):
+        mrm.read_mesh(tmp_path / "seg.obj")
+    with pytest.raises(mrm.MRMError, match="no object named 'label_9_1'; the file's objects: 'label_"):
+        mrm.read_mesh(tmp_path / "seg.obj", object_name="label_9_1")
+    first = parts[0][0]
+    code, text, err = run(capsys, "info", tmp_path / "seg.obj", "--object", first, "--json")
+    assert code == 0, err
+    summary = json.loads(text)
+    assert summary["object"] == first and summary["voxels"] == len(mrm.voxelize(parts[0][1], "standard"))
+    code, _, err = run(capsys, "voxelize", tmp_path / "seg.obj", "--object", first, "--model", "gauss", "-o",
+                       tmp_path / "one.npz")  # fmt: skip
+    assert code == 0, err
+    assert mrm.read_voxels(tmp_path / "one.npz") == mrm.voxelize(parts[0][1], "gauss")
+    code, _, err = run(capsys, "info", tmp_path / "seg.obj")
+    assert code != 0 and "--object NAME" in err and "Traceback" not in err
+    doc = Document()
+    ids = import_file(doc, tmp_path / "seg.obj")  # File ▸ Import: one polyhedron object per region
+    assert [doc.get(i).name for i in ids] == [f"seg {name}" for name, _ in parts]
+
+
 def test_cli_polygonize_refuses_bad_volumes_with_a_message_and_writes_nothing(capsys, tmp_path) -> None:
     np.savez(tmp_path / "empty.npz", labels=np.zeros((2, 2, 2), np.int32))
     code, _out, err = run(capsys, "polygonize", tmp_path / "empty.npz", "-o", tmp_path / "e.obj")
