@@ -10,8 +10,11 @@ operations per cut, which is why the caller keeps it for hulls of few facets.
 
 from __future__ import annotations
 
+import logging
 from fractions import Fraction
 from typing import NamedTuple
+
+logger = logging.getLogger(__name__)
 
 Point = tuple[Fraction, Fraction, Fraction]
 Normal = tuple[int, int, int]
@@ -125,10 +128,13 @@ def _cut(
     if len(cap_next) >= 3:
         start = min(cap_next)
         cap = [start]
-        while cap_next[cap[-1]] != start:
-            cap.append(cap_next[cap[-1]])
-            if len(cap) > len(cap_next):
-                raise AssertionError("the cut face does not close")  # cannot happen on a convex polytope
+        step = cap_next.get(start)
+        while step != start:
+            if step is None or len(cap) >= len(cap_next):  # cannot happen on a convex polytope: a bug
+                logger.error("the cut face by plane %d does not close: the polytope is refused", plane)
+                return None
+            cap.append(step)
+            step = cap_next.get(step)
         new_planes.append(plane)
         new_faces.append(cap)
     return corners, new_planes, new_faces
