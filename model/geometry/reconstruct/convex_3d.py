@@ -204,10 +204,10 @@ def convex_cover_r(
     The core: each facet a·x ≤ b of conv(A) becomes a·x ≤ b + ¾ − |a|₁/2. A centre q outside a digitally
     convex A has a·q ≥ b + 1 for some facet, and q's closed cube then has a·x ≥ b + 1 − |a|₁/2: the core
     meets no cube outside A. It may miss the cubes of a few voxels of A — the octahedron's six tips, which no
-    convex P can reach without touching an outside cube (a tip's cube reaches the octahedron's plane
-    |x| + |y| + |z| = r − ½ at the tip only, and the cube of (r − 1, 1, 1), outside, reaches it too). Each
-    such voxel p gets a spike: the core's corner c nearest to p is cut off by a plane across the line c→p,
-    and a pyramid on the cut stands on it, with its apex at (c + p)/2, inside p's cube. The octahedron comes
+    convex P with the octahedron's symmetries can reach without touching an outside cube (it would hold the
+    axis points (x, 0, 0), x > r − ½, and the triangle of three of them crosses the cube of (r − 1, 1, 1)).
+    Each such voxel p gets a spike: the core's corner c nearest to p is cut off by a plane across the line
+    c→p, and a pyramid stands on the cut, with its apex at (c + p)/2, inside p's cube. The octahedron comes
     back with 32 faces: its 8, each a hexagon, and four per tip.
 
     Parameters
