@@ -57,22 +57,36 @@ def convex_polytope(
     normals : the half-spaces' integer normals, pairwise not parallel in the same direction.
     offsets : their right-hand sides.
     lo, hi : a box strictly holding the polytope (a box face left at the end means it did not: None).
+
+    Face f lies on the plane of half-space ``planes[f]``.
     """
     corners: list[Point] = [
         (hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2]) for i in range(8)
     ]
     box_normals: list[Normal] = [(-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0), (0, 0, -1), (0, 0, 1)]
     box_faces = [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]]
-    all_normals = list(normals) + box_normals
-    planes = [len(normals) + k for k in range(6)]  # the box's faces come after the half-spaces
-    faces = [_outward(f, corners, all_normals[p]) for f, p in zip(box_faces, planes, strict=True)]
+    planes = [-1 - k for k in range(6)]  # the box's faces: negative, apart from every half-space's index
+    faces = [_outward(f, corners, a) for f, a in zip(box_faces, box_normals, strict=True)]
+    box = ConvexPolytope(corners, planes, faces)
+    cut = cut_polytope(box, normals, offsets, 0)
+    if cut is None or any(p < 0 for p in cut.planes):
+        return None  # no volume left, or the box was not cut away everywhere: it did not hold the polytope
+    return cut
+
+
+def cut_polytope(
+    poly: ConvexPolytope, normals: list[Normal], offsets: list[Fraction], first: int
+) -> ConvexPolytope | None:
+    """``poly`` cut by the half-spaces normals[i] · x ≤ offsets[i] in turn, or None when no volume is left.
+
+    The face a half-space makes gets the plane index ``first + i``.
+    """
+    corners, planes, faces = poly.corners, poly.planes, poly.faces
     for i, (a, beta) in enumerate(zip(normals, offsets, strict=True)):
-        cut = _cut(corners, planes, faces, a, beta, i)
+        cut = _cut(corners, planes, faces, a, beta, first + i)
         if cut is None:
             return None
         corners, planes, faces = cut
-    if any(p >= len(normals) for p in planes):
-        return None  # the box was not cut away everywhere: it did not hold the polytope strictly
     return _tidy(corners, planes, faces)
 
 

@@ -37,7 +37,7 @@ from mrm.geometry._jit import njit
 from mrm.geometry.planes._kernels import _set_primitive
 from mrm.geometry.reconstruct._base import _grow1, _grow2
 from mrm.geometry.reconstruct._check import _orient
-from mrm.geometry.reconstruct._halfspaces import ConvexPolytope, Normal, Point, convex_polytope
+from mrm.geometry.reconstruct._halfspaces import ConvexPolytope, Normal, Point, convex_polytope, cut_polytope
 from mrm.geometry.reconstruct.decimate_3d import ROTATIONS, turn_back_points, turn_points
 from mrm.geometry.topology.labeling_3d import Runs3D, euler_per_label, label_runs_3d, surfel_count
 
@@ -246,7 +246,7 @@ def convex_cover_r(
         if spike is None:
             return None
         spikes.append(spike)
-    cut = convex_polytope(normals + [u for u, _, _ in spikes], moved + [d for _, d, _ in spikes], lo, hi)
+    cut = cut_polytope(core, [u for u, _, _ in spikes], [d for _, d, _ in spikes], len(normals))
     if cut is None or len(cut.planes) != len(core.planes) + len(spikes):
         return None  # a cut took a whole face away, or two cuts met: the spikes are not apart
     v = _float_corners(cut.corners + [apex for _, _, apex in spikes])
