@@ -50,6 +50,7 @@ KERNEL_MODULES = (
     "geometry/reconstruct/_twins.py",
     "geometry/reconstruct/_dual.py",
     "geometry/reconstruct/convex_3d.py",
+    "geometry/reconstruct/snapped_core.py",
     "geometry/reconstruct/_subdivision_kernels.py",
     "geometry/discretize/rational_kernels.py",
     "io/png_stream.py",
@@ -292,6 +293,11 @@ def _step_regions_3d() -> None:
     z, y, x = np.ogrid[-2:3, -2:3, -2:3]
     octahedron = np.ascontiguousarray(np.broadcast_to(abs(x) + abs(y) + abs(z) <= 2, (5, 5, 5)))
     reconstruct_voxels(VoxelSet(octahedron, (-2, -2, -2)), "supercover")  # a lattice polytope's spiked hull
+    from mrm.geometry.reconstruct.convex_3d import convex_reconstruction
+
+    z, y, x = np.ogrid[-9:10, -9:10, -9:10]
+    ball = np.ascontiguousarray(np.broadcast_to(x * x + y * y + z * z <= 64, (19, 19, 19)))
+    convex_reconstruction(VoxelSet(ball, (-9, -9, -9)), "standard")  # a ball's snapped core (188 facets)
     from mrm.geometry.reconstruct.polygonize_3d import polygonize_volume
 
     # `mrm polygonize` of a label volume: voxels of one label touching along edges only (pinches)

@@ -658,6 +658,42 @@ def figure_spiked_3d() -> None:
     plt.close(fig)
 
 
+def figure_snapped_3d() -> None:
+    """R under the covers of a ball: its core, snapped inward, with a spike at each tip (ADR 0070)."""
+    from mrm.geometry.reconstruct.convex_3d import convex_reconstruction
+
+    r = 12
+    g = np.arange(-r - 1, r + 2)
+    z, y, x = np.meshgrid(g, g, g, indexing="ij")
+    ball = VoxelSet(x * x + y * y + z * z <= r * r, (-r - 1,) * 3)
+    found = convex_reconstruction(ball, "supercover")
+    assert found is not None and found.facets > 64
+    poly = found.polyhedron
+    assert mrm.voxelize(poly, "supercover") == ball
+    fig = plt.figure(figsize=(8.4, 4.1), dpi=100)
+    sizes = f"{len(ball):,} voxels: {poly.n_faces} faces, {poly.n_triangles} triangles"
+    titled(fig, 0.0, "ball r = 12, supercover", sizes)
+    pieces, fills = shaded_pieces(poly, size=0.5 * r / 7)
+    ax = voxel_axes(fig, (0.0, 0.0, 0.5, 0.86), (-r, -r, -r, r, r, r), zoom=1.25)
+    ax.add_collection3d(Poly3DCollection(pieces, facecolors=fills, edgecolors=fills, linewidths=0.4))
+    box = (r - 4, -2, 0, r, 2, 0)
+    titled(fig, 0.5, "its tip, cut at z = 0", "filled squares: the voxels of A in that layer")
+    ax2 = fig.add_axes((0.53, 0.05, 0.44, 0.78))
+    ax2.set_aspect("equal")
+    ax2.set_axis_off()
+    layer = {(int(p[0]), int(p[1])) for p in ball.points() if p[2] == 0}
+    for i in range(box[0], box[3] + 2):
+        for j in range(box[1], box[4] + 1):
+            fill = "#f3d9a6" if (i, j) in layer else "#ffffff"
+            ax2.add_patch(plt.Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=fill, edgecolor="#b8b8b8"))
+    for seg in section(poly, 0.01):
+        ax2.plot(seg[:, 0], seg[:, 1], color="#1f5fa8", linewidth=2.2)
+    ax2.set_xlim(box[0] - 0.6, box[3] + 1.6)
+    ax2.set_ylim(box[1] - 0.6, box[4] + 0.6)
+    fig.savefig(OUT / "reconstruction-3d-snapped.png")
+    plt.close(fig)
+
+
 def surfel_square(p: np.ndarray, e: np.ndarray) -> np.ndarray:
     """The unit square between voxel p and its neighbour p + e, as 4 corners."""
     c = p + e / 2
@@ -727,6 +763,7 @@ def main() -> None:
     figure_compact_3d()
     figure_convex_3d()
     figure_spiked_3d()
+    figure_snapped_3d()
     figure_plane_segments_3d()
 
 

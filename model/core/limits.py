@@ -39,10 +39,11 @@ MAX_SURFELS = 50_000_000
 #: R is the safety net: the decimation takes about 55–90 µs per triangle today (a 20,000-triangle net,
 #: about a ball of radius 30, in 1–2 s), far too slow for the desktop on bigger objects.
 MAX_COMPACT_R_TRIANGLES = 20_000
-#: Surfels of a digitally convex voxel set up to which the 3D R under gauss tries the decimation beside its
-#: grown convex hull (ADR 0068) and keeps the one with fewer triangles: the hull is exact and takes
-#: milliseconds, the decimation finds about half the triangles on small balls but costs about a second at
-#: 20,000 surfels (a ball of radius 32), and the hull is the smaller one on big balls anyway.
+#: Surfels of a digitally convex voxel set up to which the 3D R tries the decimation beside its hull path
+#: (under gauss the grown convex hull, ADR 0068; under the covers the spiked hull or the snapped core, ADRs
+#: 0069–0070) and keeps the smaller: the hull paths are exact and take milliseconds, the decimation finds
+#: about half the triangles on small balls but costs about a second at 20,000 surfels (a ball of radius
+#: 32), and the hull is the smaller one on big balls under gauss anyway.
 MAX_RIVAL_SURFELS = 20_000
 #: Voxels of a label volume (four bytes each in memory).
 MAX_LABEL_VOXELS = 1 << 28

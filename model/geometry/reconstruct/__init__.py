@@ -422,7 +422,9 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     hull, found in milliseconds (``mrm.geometry.reconstruct.convex_3d``): under ``gauss`` the hull grown by
     a dyadic homothety (ADR 0068), the octahedron's 8 faces at any size; under the covers, for a lattice
     polytope, the hull's facets moved in with a spike to each voxel they miss (ADR 0069), the octahedron's 8
-    faces and four small ones at each tip. Up to ``limits.MAX_RIVAL_SURFELS`` surfels the decimation is
+    faces and four small ones at each tip; for a finer hull (a ball's), its core snapped inward to a dyadic
+    grid with a spike to each voxel it misses (``mrm.geometry.reconstruct.snapped_core``, ADR 0070). Up to
+    ``limits.MAX_RIVAL_SURFELS`` surfels the decimation is
     tried too, unless the hull is already very small (``RIVAL_WORTH``), and the smaller is R: by faces, then
     vertices, for a lattice polytope; by triangles, then faces, for a finer hull.
 

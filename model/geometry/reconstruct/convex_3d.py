@@ -17,6 +17,10 @@ directions, every edge strictly convex, Euler's formula. :func:`convex_reconstru
 whole, like every R (topology, valid polyhedron, D(P) = A exactly, ∂P within the border voxels' cubes); the
 caller goes the general way (:mod:`.decimate_3d`) when any of this fails.
 
+Under the covers the hull's facets move in instead (:func:`convex_cover_r`, ADR 0069; with many facets,
+:mod:`.snapped_core`, ADR 0070). The quickhull runs on homogeneous integer points (x, y, z, w), so that the
+snapped core can take the hull of its dual points with the same code.
+
 c (the centre of the corners' box when inside, else their mean rounded to a dyadic grid) and the faces'
 triangulation are chosen in the canonical pose of Q's corners (of the 24 turns of the cube, the one whose
 sorted corners come first) and turned back, so that R(g A) = g R(A) for the rotations g of the cube, as for
@@ -101,14 +105,14 @@ def convex_reconstruction(vs: VoxelSet, model: str = "gauss") -> ConvexR | None:
     found = convex_r(hull, vs.origin) if gauss else convex_cover_r(hull, vs.mask, vs.origin, model)
     if found is None:
         return None
-    v, t = found
+    v, t, proven = found
     # Under gauss the border check (the supercover of the surface, the costliest part) runs on R's worker
     # thread while this one validates P and discretizes it.
     pool = side_pool() if gauss else None
     border = pool.submit(_stays_near_a, v, t, vs) if pool is not None else None
     try:
         result = Polyhedron(v, t)
-        models = [model] if model != "standard" else ["standard", "supercover"]
+        models = [] if proven else [model] if model != "standard" else ["standard", "supercover"]
         for m in models:
             if VoxelSet(*voxelize_solid(v, t, m, limit=None)) != vs:
                 logger.debug("the convex hull's %s discretization is not A: A is not digitally convex", m)
@@ -169,7 +173,7 @@ def _hull(runs: Runs3D) -> _Hull | None:
     return _Hull(*faces, size=(nx, ny, nz))
 
 
-def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int64Array] | None:
+def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int64Array, bool] | None:
     """The grown convex hull P of A when A looks digitally convex, else None (module docstring).
 
     Parameters
@@ -181,6 +185,8 @@ def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int
     -------
     vertices : float64 (n, 3), world coordinates, dyadic.
     triangles : int64 (m, 3), outward.
+    proven : bool
+        False: D(P) = A is the caller's to check.
         Or None when no grown corner is a float64 number: the caller's checks decide the rest (D(P) = A is
         what proves A digitally convex).
     """
@@ -193,12 +199,12 @@ def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int
         return None
     triangles = _fans(turned, hull.face_ptr, hull.face_corner)
     back = turn_back_points(grown, perm, signs, size)
-    return back + np.asarray(origin, np.float64), triangles
+    return back + np.asarray(origin, np.float64), triangles, False
 
 
 def convex_cover_r(
     hull: _Hull, mask: BoolArray, origin: tuple[int, int, int], model: str
-) -> tuple[FloatArray, Int64Array] | None:
+) -> tuple[FloatArray, Int64Array, bool] | None:
     """The covers' P of A when A looks digitally convex: conv(A)'s facets moved in, plus spikes; else None.
 
     The core: each facet a·x ≤ b of conv(A) becomes a·x ≤ b + ¾ − |a|₁/2. A centre q outside a digitally
@@ -221,13 +227,18 @@ def convex_cover_r(
     -------
     vertices : float64 (n, 3), world coordinates, dyadic.
     triangles : int64 (m, 3), outward.
+    proven : bool
+        Whether D(P) = A (and P ⊂ V(A)) is proven already (:func:`.snapped_core.snapped_cover_r`), so the
+        caller need not discretize P again.
         Or None when conv(A) has more than ``FEW_FACETS`` facets, when
         the core has no volume or meets a cube outside A, when it misses more than ``MAX_SPIKES`` cubes of
         A, or when a corner is not a float64 number (a rational with another denominator than a power of
         two: rounding it would bend P's faces). The caller's checks decide the rest.
     """
     if hull.normals.shape[0] > FEW_FACETS:
-        return None
+        from mrm.geometry.reconstruct.snapped_core import snapped_cover_r
+
+        return snapped_cover_r(hull, mask, origin, model, MAX_SPIKES)
     normals = [(int(a), int(b), int(c)) for a, b, c in hull.normals]
     moved = [
         Fraction(4 * int(b) + 3 - 2 * sum(map(abs, a)), 4) for a, b in zip(normals, hull.offsets, strict=True)
@@ -259,7 +270,7 @@ def convex_cover_r(
         if plane >= len(normals):  # a spike's base: a pyramid on it, each side f[k]→f[k+1] with the apex
             apex = len(cut.corners) + plane - len(normals)
             triangles.append(np.array([(f[k], f[(k + 1) % len(f)], apex) for k in range(len(f))], np.int64))
-    return v + np.asarray(origin, np.float64), np.concatenate(triangles)
+    return v + np.asarray(origin, np.float64), np.concatenate(triangles), False
 
 
 def _missed_voxels(core: ConvexPolytope, mask: BoolArray, model: str) -> list[tuple[int, int, int]] | None:
@@ -390,15 +401,60 @@ def _slice_corners(
 
 def _propose_hull(points: Int64Array) -> tuple[Int64Array, Int64Array] | None:
     # The hull's triangles (outward) by quickhull on the points, exactly; None when the points are coplanar.
-    tri, ok = _quickhull(np.ascontiguousarray(points))
+    lifted = np.ones((points.shape[0], 4), np.int64)  # homogeneous (x, y, z, 1)
+    lifted[:, :3] = points
+    tri, ok = _quickhull(lifted)
     return (points, tri) if ok else None
 
 
 @njit(cache=True, inline="always")
 def _above(fn: Int64Array, fo: Int64Array, f: int, pts: Int64Array, q: int) -> int:  # pragma: no cover
     # How far point q lies above face f's plane, in units of its (unnormalized) normal; exact.
-    h: int = fn[f, 0] * pts[q, 0] + fn[f, 1] * pts[q, 1] + fn[f, 2] * pts[q, 2] - fo[f]
+    h: int = fn[f, 0] * pts[q, 0] + fn[f, 1] * pts[q, 1] + fn[f, 2] * pts[q, 2] + fo[f] * pts[q, 3]
     return h
+
+
+@njit(cache=True, inline="always")
+def _minors(pts: Int64Array, a: int, b: int, c: int) -> tuple[int, int, int, int]:  # pragma: no cover
+    # L with L·X = −det[Xa; Xb; Xc; X] for every homogeneous X: L_k = (−1)ᵏ times the minor of rows a, b, c
+    # without column k. For points with w = 1, L = (n, −n·a), n = (b − a) × (c − a): X lies above the
+    # triangle a b c (outward by n) iff L·X > 0, and with w > 0 the sign is the same as for X / w.
+    return (
+        _det3(pts, a, b, c, 1, 2, 3),
+        -_det3(pts, a, b, c, 0, 2, 3),
+        _det3(pts, a, b, c, 0, 1, 3),
+        -_det3(pts, a, b, c, 0, 1, 2),
+    )
+
+
+@njit(cache=True, inline="always")
+def _det3(pts: Int64Array, a: int, b: int, c: int, i: int, j: int, k: int) -> int:  # pragma: no cover
+    # The determinant of rows a, b, c of pts restricted to columns i, j, k.
+    d: int = (
+        pts[a, i] * (pts[b, j] * pts[c, k] - pts[b, k] * pts[c, j])
+        - pts[a, j] * (pts[b, i] * pts[c, k] - pts[b, k] * pts[c, i])
+        + pts[a, k] * (pts[b, i] * pts[c, j] - pts[b, j] * pts[c, i])
+    )
+    return d
+
+
+@njit(cache=True, inline="always")
+def _before(pts: Int64Array, i: int, j: int) -> bool:  # pragma: no cover - compiled
+    # Whether point i comes before point j in (x, y, z) / w order, exactly (w > 0).
+    for k in range(3):
+        a = pts[i, k] * pts[j, 3]
+        b = pts[j, k] * pts[i, 3]
+        if a != b:
+            earlier: bool = a < b
+            return earlier
+    return False
+
+
+@njit(cache=True, inline="always")
+def _set_hull_plane(
+    pts: Int64Array, ft: Int64Array, fn: Int64Array, fo: Int64Array, f: int
+) -> None:  # pragma: no cover
+    fn[f, 0], fn[f, 1], fn[f, 2], fo[f] = _minors(pts, ft[f, 0], ft[f, 1], ft[f, 2])
 
 
 @njit(cache=True, inline="always")
@@ -428,39 +484,39 @@ def _assign(
 
 @njit(cache=True)
 def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover - compiled
-    # Quickhull (Barber, Dobkin & Huhdanpaa 1996) in integers: a point is outside a face when it lies strictly
-    # above its plane, so coplanar points are never added and adjacent faces may be coplanar (merged later).
-    # Faces are triangles (a, b, c), outward by (b − a) × (c − a); nb[f, e] is the face across edge e, from
-    # corner e to corner e + 1. Every predicate is a product of three coordinates below 2¹⁶: far inside int64.
+    # Quickhull (Barber, Dobkin & Huhdanpaa 1996) in integers on homogeneous points (x, y, z, w), w > 0 (the
+    # point (x, y, z) / w): a point is outside a face when it lies strictly above its plane, so coplanar
+    # points are never added and adjacent faces may be coplanar (merged later). Faces are triangles (a, b, c),
+    # outward (:func:`_minors`); nb[f, e] is the face across edge e, from corner e to corner e + 1. Every
+    # predicate is a 4 × 4 determinant: the caller keeps its terms inside int64 (coordinates below 2¹⁶ with
+    # w = 1: products far inside; the dual points of :mod:`.snapped_core` are bounded there).
     n = pts.shape[0]
     i0 = 0
     i1 = 0
-    for i in range(n):
-        if (pts[i, 0], pts[i, 1], pts[i, 2]) < (pts[i0, 0], pts[i0, 1], pts[i0, 2]):
+    for i in range(n):  # the first and last points in (x, y, z) / w order: two different points
+        if _before(pts, i, i0):
             i0 = i
-        if (pts[i, 0], pts[i, 1], pts[i, 2]) > (pts[i1, 0], pts[i1, 1], pts[i1, 2]):
+        if _before(pts, i1, i):
             i1 = i
     if i0 == i1:
         return np.empty((0, 3), np.int64), False
-    ux, uy, uz = pts[i1, 0] - pts[i0, 0], pts[i1, 1] - pts[i0, 1], pts[i1, 2] - pts[i0, 2]
     i2, best = -1, 0
     for i in range(n):
-        wx, wy, wz = pts[i, 0] - pts[i0, 0], pts[i, 1] - pts[i0, 1], pts[i, 2] - pts[i0, 2]
-        m = abs(uy * wz - uz * wy) + abs(uz * wx - ux * wz) + abs(ux * wy - uy * wx)
+        l0, l1, l2, l3 = _minors(pts, i0, i1, i)
+        m = abs(l0) + abs(l1) + abs(l2) + abs(l3)  # 0 iff the three points are on one line
         if m > best:
             i2, best = i, m
     if i2 < 0:
         return np.empty((0, 3), np.int64), False
-    wx, wy, wz = pts[i2, 0] - pts[i0, 0], pts[i2, 1] - pts[i0, 1], pts[i2, 2] - pts[i0, 2]
-    nx, ny, nz = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+    nx, ny, nz, no = _minors(pts, i0, i1, i2)
     i3, best = -1, 0
     for i in range(n):
-        d = nx * (pts[i, 0] - pts[i0, 0]) + ny * (pts[i, 1] - pts[i0, 1]) + nz * (pts[i, 2] - pts[i0, 2])
+        d = nx * pts[i, 0] + ny * pts[i, 1] + nz * pts[i, 2] + no * pts[i, 3]
         if abs(d) > best:
             i3, best = i, abs(d)
     if i3 < 0:
         return np.empty((0, 3), np.int64), False
-    d = nx * (pts[i3, 0] - pts[i0, 0]) + ny * (pts[i3, 1] - pts[i0, 1]) + nz * (pts[i3, 2] - pts[i0, 2])
+    d = nx * pts[i3, 0] + ny * pts[i3, 1] + nz * pts[i3, 2] + no * pts[i3, 3]
     if d > 0:  # p3 above (p0, p1, p2): swap p1 and p2 so that it lies below
         i1, i2 = i2, i1
     cap = 1024
@@ -480,7 +536,7 @@ def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover 
     ft[3, 0], ft[3, 1], ft[3, 2] = i2, i3, i0
     nf = 4
     for f in range(4):
-        _set_plane(pts, ft, fn, fo, f)
+        _set_hull_plane(pts, ft, fn, fo, f)
         alive[f] = True
     for f in range(4):
         for e in range(3):
@@ -558,7 +614,7 @@ def _quickhull(pts: Int64Array) -> tuple[Int64Array, bool]:  # pragma: no cover 
             k = nf
             nf += 1
             ft[k, 0], ft[k, 1], ft[k, 2] = u, v, p
-            _set_plane(pts, ft, fn, fo, k)
+            _set_hull_plane(pts, ft, fn, fo, k)
             alive[k] = True
             head[k] = -1
             far[k] = -1

@@ -1,0 +1,383 @@
+"""R of a digitally convex voxel set with many facets under the covers: its core, snapped inward, with spikes.
+
+Reference: docs/design.md §11, "Continuation R in 3D"; the decision is docs/adr/0070.
+
+The covers' R of a lattice polytope (:func:`.convex_3d.convex_cover_r`) cuts the **core** — each facet
+a·x ≤ b of Q = conv(A) moved to a·x ≤ b + ¾ − |a|₁/2, which meets no cube outside A — out of a box in
+Fractions, and its corners must be float64 numbers. A ball's hull has thousands of facets: the Fractions
+would take minutes, and the core's corners are rationals whose denominators are determinants of three
+normals, not powers of two. So for such an A:
+
+1. **The core's corners from its dual.** With c a lattice point strictly inside the core, the core is
+   { x : 4a·(x − c) ≤ w } with w = 4b + 3 − 2|a|₁ − 4a·c > 0, an integer, for every facet. Its corners are
+   the facets of the convex hull of the dual points 4a / w, which the exact quickhull of
+   :mod:`.convex_3d` finds on the homogeneous integers (4a, w): each hull triangle is a corner, the
+   solution of its three planes (Cramer's rule, in integers).
+2. **Snapped inward.** Each corner y is replaced by the point q of the grid 2⁻ᵍ with q − c the truncation
+   of y − c toward zero, checked in integers against every facet and pulled further toward c while
+   outside. P = conv(q's) is then exactly inside the core (an exact hull of integer points, its coplanar
+   triangles merged into faces), and it misses every cube outside A. g is as fine as the hull's integer
+   predicates allow (|2ᵍ (q − c)| < 2¹⁵).
+3. **Spikes.** The core may miss a few cubes of A (a ball's six tips) and P, a hair smaller, a few more.
+   Each such voxel p gets a spike: the corner v of P nearest to p goes to a point of p's cube on the
+   segment v→p (a multiple of 1/64 of the way, a sixteenth inside), and each edge from v is cut at a
+   point an eighth of a voxel or less from v (a power of two of the way), so that the spike's triangles
+   stay near v; the rest of each triangle around v stays in its face.
+
+Nothing here is assumed right: :func:`.convex_3d.convex_reconstruction` checks P as every R is checked
+(valid polyhedron, D(P) = A in the model and P ⊂ V(A)), and the caller goes the general way when it fails.
+Every vertex is dyadic (float64 holds it exactly). Everything is computed in the canonical pose of Q's
+corners and turned back, so R(g A) = g R(A) for the rotations g of the cube (up to A's own symmetries,
+as for the general R), and R(A + t) = R(A) + t.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from mrm.geometry._jit import njit
+
+if TYPE_CHECKING:
+    from mrm.geometry.reconstruct.convex_3d import _Hull
+
+logger = logging.getLogger(__name__)
+
+FloatArray = npt.NDArray[np.float64]
+Int64Array = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+
+#: Bound on the dual hull's predicates: 1536 · (largest |normal coordinate|)³ · (largest w) must stay below
+#: this (a 4 × 4 determinant of the homogeneous dual points (4a, w), expanded by minors, stays inside int64).
+_DUAL_BOUND = 1 << 62
+#: Bits of the snapped corners' offsets from c, scaled by 2ᵍ: the hull of them runs on integers below 2¹⁵.
+_SNAP_BITS = 15
+#: Times a snapped corner outside the core is pulled toward c (by 1/64 of its offset each) before it is
+#: dropped.
+_PULLS = 64
+
+
+def snapped_cover_r(
+    hull: _Hull, mask: BoolArray, origin: tuple[int, int, int], model: str, max_spikes: int
+) -> tuple[FloatArray, Int64Array, bool] | None:
+    """The covers' P of a digitally convex A from its snapped core, with spikes (module docstring).
+
+    Parameters
+    ----------
+    hull : conv(A) (:func:`.convex_3d._hull`), in A's box.
+    mask : A's voxels (z, y, x).
+    origin : the world (x, y, z) of A's voxel at index (0, 0, 0).
+    model : ``"standard"`` or ``"supercover"``.
+    max_spikes : the most voxels of A the snapped core may miss.
+
+    Returns
+    -------
+    vertices : float64 (n, 3), world coordinates, dyadic.
+    triangles : int64 (m, 3), outward.
+    proven : bool
+        Whether D(P) = A in the model (and P ⊂ V(A)) is proven already: P was discretized exactly, and each
+        spike changed D(P) nowhere but at its own voxel (:func:`_spikes`). The caller need not discretize P
+        again; it still validates it.
+        Or None when no lattice point lies strictly inside the core, when the dual's integers would leave
+        int64, when P meets a cube outside A or misses more than ``max_spikes`` cubes of A, or when a
+        spike cannot be placed. The caller checks the rest.
+    """
+    from mrm.geometry.reconstruct.convex_3d import (
+        _corner_pose,
+        _exact_faces,
+        _fans,
+        _propose_hull,
+        _quickhull,
+    )
+    from mrm.geometry.reconstruct.decimate_3d import ROTATIONS, _turn, turn_back_points, turn_points
+
+    size = hull.size
+    perm, signs = ROTATIONS[_corner_pose(hull.corners, size)]
+    corners = turn_points(hull.corners, perm, signs, size)
+    normals, offsets = _turn_planes(hull.normals, hull.offsets, perm, signs, size)
+    quarters = 4 * offsets + 3 - 2 * np.abs(normals).sum(axis=1)  # the core: 4a·x ≤ quarters
+    c = np.rint(corners.mean(axis=0)).astype(np.int64)
+    w = quarters - 4 * (normals @ c)
+    if w.min() <= 0:
+        logger.debug("the core holds no lattice point of conv(A)'s corners' mean: the general way")
+        return None
+    big_a, big_w = int(np.abs(normals).max()), int(w.max())
+    if 1536 * (4 * big_a) ** 3 * big_w >= _DUAL_BOUND:
+        return None
+    dual = np.empty((normals.shape[0], 4), np.int64)
+    dual[:, :3] = 4 * normals
+    dual[:, 3] = w
+    tri, ok = _quickhull(dual)
+    if not ok:
+        return None
+    reach = int(np.abs(corners - c).max()) + 2  # |y − c| for every corner y of the core
+    g = _SNAP_BITS - reach.bit_length()  # 2ᵍ · reach < 2¹⁵
+    if g < 0:
+        return None
+    snapped = np.unique(_snap(dual, tri, g), axis=0)
+    if snapped.shape[0] < 4:
+        return None
+    proposed = _propose_hull(snapped)
+    faces = _exact_faces(*proposed) if proposed is not None else None
+    if faces is None:
+        return None
+    q, face_ptr, face_corner, _, _ = faces
+    triangles = _fans(q, face_ptr, face_corner)
+    v = c + q / float(1 << g)  # dyadic: q below 2¹⁵, c below 2¹⁶
+    here = np.ascontiguousarray(_turn(mask, perm, signs))
+    # Under standard, P ⊂ V(A) is its supercover's being A: both run at once.
+    missed = _missed(
+        v, triangles, here, [model, "supercover"] if model == "standard" else [model], max_spikes
+    )
+    if missed is None:
+        return None
+    proven = True
+    if missed.shape[0]:
+        spiked = _spikes(v, triangles, missed, here, model)
+        if spiked is None:
+            return None
+        v, triangles, proven = spiked
+    back = turn_back_points(v, perm, signs, size)
+    return back + np.asarray(origin, np.float64), triangles, proven
+
+
+_DROPPED = np.iinfo(np.int64).min
+
+
+def _snap(dual: Int64Array, tri: Int64Array, g: int) -> Int64Array:
+    # Row k: 2ᵍ (q − c) for one corner of the core, q its snap (module docstring, step 2), or no row when no
+    # pull brought it inside. A corner is checked against the planes of every dual triangle that snaps to
+    # the same point first: all the core's faces through it (the planes of the dual points inside a dual
+    # face are implied by its corners'); the other planes are far from it, and the whole check of P decides.
+    first = _first_snaps(dual, tri, g)
+    points, group = np.unique(first, axis=0, return_inverse=True)
+    order = np.argsort(group.ravel(), kind="stable")
+    ptr = np.searchsorted(group.ravel()[order], np.arange(points.shape[0] + 1))
+    out = _pull_inside(
+        dual, tri, np.ascontiguousarray(points), order.astype(np.int64), ptr.astype(np.int64), g
+    )
+    kept: Int64Array = out[out[:, 0] != _DROPPED]
+    return kept
+
+
+@njit(cache=True)
+def _first_snaps(dual: Int64Array, tri: Int64Array, g: int) -> Int64Array:  # pragma: no cover - compiled
+    # Row t: 2ᵍ (y − c) truncated toward zero, y the core's corner of dual triangle t. The dual rows are
+    # (4a, w): the core is 4a·(x − c) ≤ w, and y solves the triangle's three planes (Cramer's rule).
+    m = tri.shape[0]
+    out = np.empty((m, 3), np.int64)
+    scale = np.int64(1) << g
+    for t in range(m):
+        i, j, k = tri[t, 0], tri[t, 1], tri[t, 2]
+        a0, a1, a2 = dual[i, 0], dual[i, 1], dual[i, 2]
+        b0, b1, b2 = dual[j, 0], dual[j, 1], dual[j, 2]
+        c0, c1, c2 = dual[k, 0], dual[k, 1], dual[k, 2]
+        wa, wb, wc = dual[i, 3], dual[j, 3], dual[k, 3]
+        det = a0 * (b1 * c2 - b2 * c1) - a1 * (b0 * c2 - b2 * c0) + a2 * (b0 * c1 - b1 * c0)
+        y0 = wa * (b1 * c2 - b2 * c1) - a1 * (wb * c2 - b2 * wc) + a2 * (wb * c1 - b1 * wc)
+        y1 = a0 * (wb * c2 - b2 * wc) - wa * (b0 * c2 - b2 * c0) + a2 * (b0 * wc - wb * c0)
+        y2 = a0 * (b1 * wc - wb * c1) - a1 * (b0 * wc - wb * c0) + wa * (b0 * c1 - b1 * c0)
+        out[t, 0] = _toward_zero(y0 * scale, det)
+        out[t, 1] = _toward_zero(y1 * scale, det)
+        out[t, 2] = _toward_zero(y2 * scale, det)
+    return out
+
+
+@njit(cache=True)
+def _pull_inside(
+    dual: Int64Array, tri: Int64Array, points: Int64Array, order: Int64Array, ptr: Int64Array, g: int
+) -> Int64Array:  # pragma: no cover - compiled
+    # Each point (2ᵍ (q − c)) checked against the planes of its triangles (order[ptr[k]:ptr[k + 1]]) and
+    # pulled toward c by 1/64 while outside one; _DROPPED in column 0 after _PULLS pulls.
+    out = points.copy()
+    scale = np.int64(1) << g
+    for k in range(points.shape[0]):
+        q0, q1, q2 = points[k, 0], points[k, 1], points[k, 2]
+        inside = False
+        for _ in range(_PULLS):
+            inside = True
+            for s in range(ptr[k], ptr[k + 1]):
+                for e in range(3):
+                    f = tri[order[s], e]
+                    if dual[f, 0] * q0 + dual[f, 1] * q1 + dual[f, 2] * q2 > dual[f, 3] * scale:
+                        inside = False
+            if inside:
+                break
+            q0, q1, q2 = _toward_zero(q0 * 63, 64), _toward_zero(q1 * 63, 64), _toward_zero(q2 * 63, 64)
+        out[k, 0] = q0 if inside else _DROPPED
+        out[k, 1], out[k, 2] = q1, q2
+    return out
+
+
+@njit(cache=True, inline="always")
+def _toward_zero(a: int, b: int) -> int:  # pragma: no cover - compiled
+    # a / b truncated toward zero, exactly (b ≠ 0).
+    q: int = abs(a) // abs(b)
+    return q if (a >= 0) == (b > 0) else -q
+
+
+def _missed(v: FloatArray, t: Int64Array, mask: BoolArray, models: list[str], most: int) -> Int64Array | None:
+    # The voxels (x, y, z) of A whose cubes P misses in models[0], or None when there are more than most
+    # or P meets a cube outside A in a model. The kernels release the GIL: a second model runs on R's
+    # worker thread.
+    from mrm.geometry.discretize.voxels import voxelize_solid
+    from mrm.geometry.reconstruct import side_pool
+
+    pool = side_pool() if len(models) > 1 else None
+    later = [pool.submit(voxelize_solid, v, t, m, limit=None) for m in models[1:]] if pool is not None else []
+    found = [voxelize_solid(v, t, models[0], limit=None)]
+    found += (
+        [f.result() for f in later]
+        if pool is not None
+        else [voxelize_solid(v, t, m, limit=None) for m in models[1:]]
+    )
+    nz, ny, nx = mask.shape
+    lost = np.empty((0, 3), np.int64)
+    for n, (got, (ax, ay, az)) in enumerate(found):
+        if min(ax, ay, az) < 0 or az + got.shape[0] > nz or ay + got.shape[1] > ny or ax + got.shape[2] > nx:
+            return None
+        box = (slice(az, az + got.shape[0]), slice(ay, ay + got.shape[1]), slice(ax, ax + got.shape[2]))
+        lost, extra = _compare(mask[box], got, most + 1)
+        if extra:
+            return None  # P meets a cube outside A: A is not digitally convex
+        if n == 0:
+            total, held = int(np.count_nonzero(mask)), int(np.count_nonzero(mask[box]))
+            if lost.shape[0] > most or total - held + lost.shape[0] > most:
+                return None
+            lost = lost + np.array([ax, ay, az], np.int64)
+            if total > held:  # voxels of A beyond D(P)'s box: in the six slabs around it
+                lost = np.concatenate([lost, *_beyond(mask, box)])
+            first = lost
+    return first.astype(np.int64)
+
+
+@njit(cache=True)
+def _compare(a: BoolArray, got: BoolArray, most: int) -> tuple[Int64Array, bool]:  # pragma: no cover
+    # The voxels (x, y, z) of a that got lacks (the first `most`), and whether got holds a voxel a lacks.
+    lost = np.empty((most, 3), np.int64)
+    n = 0
+    nz, ny, nx = a.shape
+    for z in range(nz):
+        for y in range(ny):
+            for x in range(nx):
+                if a[z, y, x] != got[z, y, x]:
+                    if got[z, y, x]:
+                        return lost[:n], True
+                    if n < most:
+                        lost[n, 0], lost[n, 1], lost[n, 2] = x, y, z
+                        n += 1
+    return lost[:n], False
+
+
+def _beyond(mask: BoolArray, box: tuple[slice, slice, slice]) -> list[Int64Array]:
+    # The voxels (x, y, z) of the mask outside the box, slab by slab (below and above it along z, then along
+    # y within its z range, then along x within its z and y ranges): no copy of the whole mask.
+    out = []
+    whole = slice(None)
+    for axis in range(3):
+        for part in (slice(0, box[axis].start), slice(box[axis].stop, mask.shape[axis])):
+            index = tuple(box[k] if k < axis else part if k == axis else whole for k in range(3))
+            k, j, i = np.nonzero(mask[index])
+            lo = [index[d].start or 0 for d in range(3)]
+            out.append(np.stack([i + lo[2], j + lo[1], k + lo[0]], axis=1))
+    return out
+
+
+def _turn_planes(
+    normals: Int64Array,
+    offsets: Int64Array,
+    perm: tuple[int, int, int],
+    signs: tuple[int, int, int],
+    size: tuple[int, int, int],
+) -> tuple[Int64Array, Int64Array]:
+    # The planes a·x ≤ b in the turned frame of decimate_3d.turn_points: there x'ₖ = sₖ x_perm[k] + oₖ,
+    # oₖ = size[perm[k]] − 1 when sₖ < 0 (else 0), so a'ₖ = sₖ a_perm[k] and b' = b + Σ a'ₖ oₖ.
+    turned = np.empty_like(normals)
+    shift = np.zeros(3, np.int64)
+    for k in range(3):
+        turned[:, k] = signs[k] * normals[:, perm[k]]
+        shift[k] = size[perm[k]] - 1 if signs[k] < 0 else 0
+    return turned, offsets + turned @ shift
+
+
+def _spikes(
+    v: FloatArray, t: Int64Array, missed: Int64Array, mask: BoolArray, model: str
+) -> tuple[FloatArray, Int64Array, bool] | None:
+    # A spike to each missed voxel (module docstring, step 3), and whether D(P) = A is proven still; None
+    # when two spikes would meet.
+    #
+    # The spike at p changes P only inside conv(v, apex, ring): the old triangles (v, a, b) lose (v, ra, rb)
+    # and gain (apex, ra, rb), both fans over the same ring. So D(P) changes at most at the voxels whose
+    # closed cubes meet that hull's box. It stays A when all of them are in A (the spike then touches no
+    # cube outside) and each of them but p holds a vertex of the new P in its cube (closed under the
+    # supercover, open under standard): p holds the apex, a sixteenth inside.
+    v = v.copy()
+    n0 = v.shape[0]
+    tris = t.copy()
+    points = [v]
+    extra = []
+    touched = np.zeros(n0, np.bool_)
+    sites = []
+    for p in missed:
+        target = p.astype(np.float64)
+        i = int(np.argmin(((v[:n0] - target) ** 2).sum(axis=1)))  # the first of the nearest (exact: dyadic)
+        rows = np.flatnonzero((tris == i).any(axis=1))
+        if touched[tris[rows]].any():
+            return None  # two spikes meet: they would not stay apart
+        touched[tris[rows]] = True
+        corner = v[i].copy()
+        apex = corner
+        for n in range(1, 65):
+            apex = corner + (n / 64) * (target - corner)
+            if np.abs(apex - target).max() <= 0.5 - 1 / 16:
+                break
+        star = tris[rows]
+        at = np.argmax(star == i, axis=1)
+        k = np.arange(rows.size)
+        a, b = star[k, (at + 1) % 3], star[k, (at + 2) % 3]
+        near = np.unique(np.concatenate([a, b]))
+        step = v[near] - corner
+        e = np.ones(near.size)
+        far = np.abs(step).max(axis=1)
+        while np.any(far * e > 1 / 8):
+            e = np.where(far * e > 1 / 8, e / 2, e)
+        ring = corner + e[:, None] * step
+        first = n0 + sum(x.shape[0] for x in points[1:])
+        points.append(ring)
+        ra = first + np.searchsorted(near, a)
+        rb = first + np.searchsorted(near, b)
+        tris[rows] = np.stack([np.full(rows.size, i), ra, rb], axis=1)
+        extra += [np.stack([ra, a, b], axis=1), np.stack([ra, b, rb], axis=1)]
+        v[i] = apex
+        sites.append((np.vstack([corner, apex, ring]), p))
+    w = np.vstack(points)
+    proven = all(_spike_keeps_d(box, p, w, mask, missed, model) for box, p in sites)
+    return w, np.concatenate([tris, *extra]), proven
+
+
+def _spike_keeps_d(
+    hull: FloatArray, p: Int64Array, w: FloatArray, mask: BoolArray, missed: Int64Array, model: str
+) -> bool:
+    # Whether the spike whose points are hull (its corner, apex and ring) to voxel p leaves D(P) = A
+    # (:func:`_spikes`), decided exactly: the points are dyadic.
+    lo = np.ceil(hull.min(axis=0) - 0.5).astype(np.int64)  # the voxels whose closed cubes meet the box
+    hi = np.floor(hull.max(axis=0) + 0.5).astype(np.int64)
+    nz, ny, nx = mask.shape
+    if np.any(lo < 0) or hi[0] >= nx or hi[1] >= ny or hi[2] >= nz:
+        return False
+    if not mask[lo[2] : hi[2] + 1, lo[1] : hi[1] + 1, lo[0] : hi[0] + 1].all():
+        return False
+    close = w[np.all((w >= lo - 0.5) & (w <= hi + 0.5), axis=1)]
+    spiked = {tuple(int(x) for x in q) for q in missed}
+    for z in range(lo[2], hi[2] + 1):
+        for y in range(lo[1], hi[1] + 1):
+            for x in range(lo[0], hi[0] + 1):
+                if (x, y, z) in spiked:
+                    continue  # its own spike's apex is inside its open cube
+                d = np.abs(close - np.array([x, y, z], np.float64)).max(axis=1)
+                if not np.any(d < 0.5 if model == "standard" else d <= 0.5):
+                    return False
+    return True
