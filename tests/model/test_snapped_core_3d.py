@@ -177,3 +177,30 @@ def test_a_spike_is_proven_only_where_its_box_stays_in_a(model):
     # The new P's vertices are the apex and the ring only (the corner moved): the cube of (1, 3, 2) meets
     # the box but holds none of them, so nothing shows that it still meets P.
     assert not _spike_keeps_d(spike, p, spike[1:], mask, missed, model)
+
+
+def box_mesh(lo, hi) -> tuple[np.ndarray, np.ndarray]:
+    """The box [lo, hi] as 8 vertices and 12 outward triangles."""
+    v = np.array([[hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2]]
+                  for i in range(8)], float)  # fmt: skip
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    t = np.array([tri for a, b, c, d in quads for tri in ((a, b, c), (a, c, d))], np.int64)
+    return v, t
+
+
+def test_a_spike_through_the_solid_is_refused():
+    # A thin box whose corner (1, 1, 1.5) is spiked up toward the voxel (1, 1, 2): a valid polyhedron. The
+    # same spike with its apex moved below the box, at (2, 2, 0), pierces the bottom face: refused.
+    from mrm.geometry.reconstruct.snapped_core import _spikes, _valid
+
+    v, t = box_mesh((1, 1, 1), (5, 5, 1.5))
+    assert mrm.Polyhedron(v, t).n_shells == 1
+    spiked = _spikes(v, t, np.array([[1, 1, 2]], np.int64), np.ones((8, 8, 8), bool), "supercover")
+    assert spiked is not None
+    w, tris, _, cones = spiked
+    apex = int(np.flatnonzero(np.all(v == [1, 1, 1.5], axis=1))[0])
+    assert w[apex, 2] > 1.5 and np.abs(w[apex] - [1, 1, 2]).max() < 0.5
+    assert _valid(w, tris, cones) is not None
+    assert mrm.Polyhedron(w, tris).n_triangles == tris.shape[0]  # the full validation agrees
+    w[apex] = [2, 2, 0]
+    assert _valid(w, tris, cones) is None

@@ -140,7 +140,7 @@ def _check_triangles(v: Floats, t: Ints) -> None:
         )
 
 
-def validate(vertices: Floats, triangles: Ints) -> Topology:
+def validate(vertices: Floats, triangles: Ints, *, pairs: bool = True) -> Topology:
     """Check exactly that the mesh bounds a solid (see the module docstring); return its topology.
 
     Parameters
@@ -148,6 +148,10 @@ def validate(vertices: Floats, triangles: Ints) -> Topology:
     vertices : ndarray, float64, shape (n, 3)
     triangles : ndarray, int64, shape (m, 3)
         Outward oriented (counter-clockwise seen from outside). Both as returned by :func:`as_arrays`.
+    pairs : bool
+        False skips the search for triangles that meet improperly (the costliest check), for a caller that
+        has proven it otherwise: a mesh changed locally from a valid one, the changed triangles tested
+        against their neighbours (``mrm.geometry.reconstruct.snapped_core``).
 
     Raises
     ------
@@ -163,7 +167,7 @@ def validate(vertices: Floats, triangles: Ints) -> Topology:
     _check_triangles(v, t)
     twin = twin_half_edges(v, t)
     check_vertex_fans(v, t, twin)
-    pair = first_intersecting_pair(v, t)
+    pair = first_intersecting_pair(v, t) if pairs else None
     if pair is not None:
         a, b = pair
         raise InvalidGeometryError(

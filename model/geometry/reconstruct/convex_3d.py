@@ -105,13 +105,13 @@ def convex_reconstruction(vs: VoxelSet, model: str = "gauss") -> ConvexR | None:
     found = convex_r(hull, vs.origin) if gauss else convex_cover_r(hull, vs.mask, vs.origin, model)
     if found is None:
         return None
-    v, t, proven = found
+    v, t, proven, valid = found
     # Under gauss the border check (the supercover of the surface, the costliest part) runs on R's worker
     # thread while this one validates P and discretizes it.
     pool = side_pool() if gauss else None
     border = pool.submit(_stays_near_a, v, t, vs) if pool is not None else None
     try:
-        result = Polyhedron(v, t)
+        result = valid if valid is not None else Polyhedron(v, t)
         models = [] if proven else [model] if model != "standard" else ["standard", "supercover"]
         for m in models:
             if VoxelSet(*voxelize_solid(v, t, m, limit=None)) != vs:
@@ -173,7 +173,9 @@ def _hull(runs: Runs3D) -> _Hull | None:
     return _Hull(*faces, size=(nx, ny, nz))
 
 
-def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int64Array, bool] | None:
+def convex_r(
+    hull: _Hull, origin: tuple[int, int, int]
+) -> tuple[FloatArray, Int64Array, bool, Polyhedron | None] | None:
     """The grown convex hull P of A when A looks digitally convex, else None (module docstring).
 
     Parameters
@@ -187,6 +189,8 @@ def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int
     triangles : int64 (m, 3), outward.
     proven : bool
         False: D(P) = A is the caller's to check.
+    polyhedron : None
+        P is the caller's to validate.
         Or None when no grown corner is a float64 number: the caller's checks decide the rest (D(P) = A is
         what proves A digitally convex).
     """
@@ -199,12 +203,12 @@ def convex_r(hull: _Hull, origin: tuple[int, int, int]) -> tuple[FloatArray, Int
         return None
     triangles = _fans(turned, hull.face_ptr, hull.face_corner)
     back = turn_back_points(grown, perm, signs, size)
-    return back + np.asarray(origin, np.float64), triangles, False
+    return back + np.asarray(origin, np.float64), triangles, False, None
 
 
 def convex_cover_r(
     hull: _Hull, mask: BoolArray, origin: tuple[int, int, int], model: str
-) -> tuple[FloatArray, Int64Array, bool] | None:
+) -> tuple[FloatArray, Int64Array, bool, Polyhedron | None] | None:
     """The covers' P of A when A looks digitally convex: conv(A)'s facets moved in, plus spikes; else None.
 
     The core: each facet a·x ≤ b of conv(A) becomes a·x ≤ b + ¾ − |a|₁/2. A centre q outside a digitally
@@ -230,6 +234,8 @@ def convex_cover_r(
     proven : bool
         Whether D(P) = A (and P ⊂ V(A)) is proven already (:func:`.snapped_core.snapped_cover_r`), so the
         caller need not discretize P again.
+    polyhedron : Polyhedron or None
+        P validated already (the snapped core), else None.
         Or None when conv(A) has more than ``FEW_FACETS`` facets, when
         the core has no volume or meets a cube outside A, when it misses more than ``MAX_SPIKES`` cubes of
         A, or when a corner is not a float64 number (a rational with another denominator than a power of
@@ -270,7 +276,7 @@ def convex_cover_r(
         if plane >= len(normals):  # a spike's base: a pyramid on it, each side f[k]→f[k+1] with the apex
             apex = len(cut.corners) + plane - len(normals)
             triangles.append(np.array([(f[k], f[(k + 1) % len(f)], apex) for k in range(len(f))], np.int64))
-    return v + np.asarray(origin, np.float64), np.concatenate(triangles), False
+    return v + np.asarray(origin, np.float64), np.concatenate(triangles), False, None
 
 
 def _missed_voxels(core: ConvexPolytope, mask: BoolArray, model: str) -> list[tuple[int, int, int]] | None:

@@ -39,7 +39,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
+from mrm.core.errors import InvalidGeometryError
 from mrm.geometry._jit import njit
+from mrm.geometry.polyhedra import Polyhedron
+from mrm.geometry.polyhedra.self_intersection import first_intersecting_pair
+from mrm.geometry.polyhedra.validation import Topology, validate
 
 if TYPE_CHECKING:
     from mrm.geometry.reconstruct.convex_3d import _Hull
@@ -62,7 +66,7 @@ _PULLS = 64
 
 def snapped_cover_r(
     hull: _Hull, mask: BoolArray, origin: tuple[int, int, int], model: str, max_spikes: int
-) -> tuple[FloatArray, Int64Array, bool] | None:
+) -> tuple[FloatArray, Int64Array, bool, Polyhedron] | None:
     """The covers' P of a digitally convex A from its snapped core, with spikes (module docstring).
 
     Parameters
@@ -80,11 +84,15 @@ def snapped_cover_r(
     proven : bool
         Whether D(P) = A in the model (and P ⊂ V(A)) is proven already: P was discretized exactly, and each
         spike changed D(P) nowhere but at its own voxel (:func:`_spikes`). The caller need not discretize P
-        again; it still validates it.
+        again.
+    polyhedron : Polyhedron
+        P, validated exactly: P before the spikes as a whole (on R's worker thread, while P is discretized),
+        the spikes' cones against their neighbours (:func:`_valid`).
         Or None when no lattice point lies strictly inside the core, when the dual's integers would leave
         int64, when P meets a cube outside A or misses more than ``max_spikes`` cubes of A, or when a
         spike cannot be placed. The caller checks the rest.
     """
+    from mrm.geometry.reconstruct import side_pool
     from mrm.geometry.reconstruct.convex_3d import (
         _corner_pose,
         _exact_faces,
@@ -128,20 +136,51 @@ def snapped_cover_r(
     triangles = _fans(q, face_ptr, face_corner)
     v = c + q / float(1 << g)  # dyadic: q below 2¹⁵, c below 2¹⁶
     here = np.ascontiguousarray(_turn(mask, perm, signs))
-    # Under standard, P ⊂ V(A) is its supercover's being A: both run at once.
-    missed = _missed(
-        v, triangles, here, [model, "supercover"] if model == "standard" else [model], max_spikes
-    )
-    if missed is None:
+    # P's triangles are searched for improper pairs on R's worker thread while this one discretizes P (under
+    # standard in the supercover too: P ⊂ V(A) is its supercover's being A).
+    pool = side_pool()
+    pairs = pool.submit(first_intersecting_pair, v, triangles) if pool is not None else None
+    try:
+        models = [model, "supercover"] if model == "standard" else [model]
+        missed = _missed(v, triangles, here, models, max_spikes)
+    finally:
+        crossing = pairs.result() if pairs is not None else first_intersecting_pair(v, triangles)
+    if missed is None or crossing is not None:
         return None
     proven = True
+    cones: list[Int64Array] = []
     if missed.shape[0]:
         spiked = _spikes(v, triangles, missed, here, model)
         if spiked is None:
             return None
-        v, triangles, proven = spiked
+        v, triangles, proven, cones = spiked
+    valid = _valid(v, triangles, cones)
+    if valid is None:
+        return None
     back = turn_back_points(v, perm, signs, size)
-    return back + np.asarray(origin, np.float64), triangles, proven
+    out = back + np.asarray(origin, np.float64)
+    return out, triangles, proven, Polyhedron._trusted(out, triangles, valid)
+
+
+def _valid(v: FloatArray, t: Int64Array, cones: list[Int64Array]) -> Topology | None:
+    # The spiked P's topology when it is a valid polyhedron, else None. P before the spikes had no improper
+    # pair of triangles (checked by the caller). A spike splits each triangle (v, a, b) around its corner into
+    # (ra, a, b) and (ra, b, rb), inside the old one and meeting their neighbours' pieces along shared sides,
+    # and the cone (apex, ra, rb): only the cones are new geometry, so only they are tested, against every
+    # triangle whose box meets theirs. Everything else is checked as for any polyhedron.
+    if cones:
+        corners = v[t]
+        lo, hi = corners.min(axis=1), corners.max(axis=1)
+        near = np.zeros(t.shape[0], np.bool_)
+        for rows in cones:  # one spike's cone: the triangles whose boxes meet its box
+            near |= np.all((lo <= hi[rows].max(axis=0)) & (hi >= lo[rows].min(axis=0)), axis=1)
+        if first_intersecting_pair(v, t[np.flatnonzero(near)]) is not None:
+            return None
+    try:
+        return validate(v, t, pairs=False)
+    except InvalidGeometryError as e:
+        logger.debug("the spiked core is not a valid polyhedron (%s): the general way", e)
+        return None
 
 
 _DROPPED = np.iinfo(np.int64).min
@@ -305,9 +344,9 @@ def _turn_planes(
 
 def _spikes(
     v: FloatArray, t: Int64Array, missed: Int64Array, mask: BoolArray, model: str
-) -> tuple[FloatArray, Int64Array, bool] | None:
-    # A spike to each missed voxel (module docstring, step 3), and whether D(P) = A is proven still; None
-    # when two spikes would meet.
+) -> tuple[FloatArray, Int64Array, bool, list[Int64Array]] | None:
+    # A spike to each missed voxel (module docstring, step 3), whether D(P) = A is proven still, and each
+    # cone's triangles (the new geometry); None when two spikes would meet.
     #
     # The spike at p changes P only inside conv(v, apex, ring): the old triangles (v, a, b) lose (v, ra, rb)
     # and gain (apex, ra, rb), both fans over the same ring. So D(P) changes at most at the voxels whose
@@ -321,6 +360,7 @@ def _spikes(
     extra = []
     touched = np.zeros(n0, np.bool_)
     sites = []
+    cones: list[Int64Array] = []
     for p in missed:
         target = p.astype(np.float64)
         i = int(np.argmin(((v[:n0] - target) ** 2).sum(axis=1)))  # the first of the nearest (exact: dyadic)
@@ -350,12 +390,13 @@ def _spikes(
         ra = first + np.searchsorted(near, a)
         rb = first + np.searchsorted(near, b)
         tris[rows] = np.stack([np.full(rows.size, i), ra, rb], axis=1)
+        cones.append(rows)
         extra += [np.stack([ra, a, b], axis=1), np.stack([ra, b, rb], axis=1)]
         v[i] = apex
         sites.append((np.vstack([corner, apex, ring]), p))
     w = np.vstack(points)
     proven = all(_spike_keeps_d(box, p, w, mask, missed, model) for box, p in sites)
-    return w, np.concatenate([tris, *extra]), proven
+    return w, np.concatenate([tris, *extra]), proven, cones
 
 
 def _spike_keeps_d(
