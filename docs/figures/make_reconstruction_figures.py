@@ -610,6 +610,22 @@ def section(poly: mrm.Polyhedron, z: float) -> list[np.ndarray]:
     return out
 
 
+def tip_section(fig: Any, rect: tuple[float, float, float, float], vs: VoxelSet, poly: Any, box: Any) -> None:
+    """R cut by the plane z = 0.01 over the squares of the voxels in the layer z = 0 (filled: in A)."""
+    ax = fig.add_axes(rect)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    layer = {(int(p[0]), int(p[1])) for p in vs.points() if p[2] == 0}
+    for i in range(box[0], box[3] + 2):
+        for j in range(box[1], box[4] + 1):
+            fill = "#f3d9a6" if (i, j) in layer else "#ffffff"
+            ax.add_patch(plt.Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=fill, edgecolor="#b8b8b8"))
+    for seg in section(poly, 0.01):
+        ax.plot(seg[:, 0], seg[:, 1], color="#1f5fa8", linewidth=2.2)
+    ax.set_xlim(box[0] - 0.6, box[3] + 1.6)
+    ax.set_ylim(box[1] - 0.6, box[4] + 0.6)
+
+
 def figure_spiked_3d() -> None:
     """R under the covers of lattice polytopes: conv(A)'s facets moved in, with spikes (ADR 0069)."""
     from mrm.geometry.reconstruct.convex_3d import convex_reconstruction
@@ -636,20 +652,7 @@ def figure_spiked_3d() -> None:
         sizes = f"{len(vs):,} voxels: {poly.n_faces} faces, {poly.n_vertices} vertices"
         titled(fig, col / 3, title, sizes)
         if col == 1:  # the section z = 0.01 near the tip, over the voxels' squares in that layer
-            ax2 = fig.add_axes((col / 3 + 0.03, 0.05, 1 / 3 - 0.06, 0.78))
-            ax2.set_aspect("equal")
-            ax2.set_axis_off()
-            layer = {(int(p[0]), int(p[1])) for p in vs.points() if p[2] == 0}
-            for i in range(box[0], box[3] + 2):
-                for j in range(box[1], box[4] + 1):
-                    fill = "#f3d9a6" if (i, j) in layer else "#ffffff"
-                    ax2.add_patch(
-                        plt.Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=fill, edgecolor="#b8b8b8")
-                    )
-            for seg in section(poly, 0.01):
-                ax2.plot(seg[:, 0], seg[:, 1], color="#1f5fa8", linewidth=2.2)
-            ax2.set_xlim(box[0] - 0.6, box[3] + 1.6)
-            ax2.set_ylim(box[1] - 0.6, box[4] + 0.6)
+            tip_section(fig, (col / 3 + 0.03, 0.05, 1 / 3 - 0.06, 0.78), vs, poly, box)
             continue
         pieces, fills = shaded_pieces(poly, size=0.5 * r / 7)
         ax = voxel_axes(fig, (col / 3, 0.0, 1 / 3, 0.86), box, zoom=zoom)
@@ -678,18 +681,7 @@ def figure_snapped_3d() -> None:
     ax.add_collection3d(Poly3DCollection(pieces, facecolors=fills, edgecolors=fills, linewidths=0.4))
     box = (r - 4, -2, 0, r, 2, 0)
     titled(fig, 0.5, "its tip, cut at z = 0", "filled squares: the voxels of A in that layer")
-    ax2 = fig.add_axes((0.53, 0.05, 0.44, 0.78))
-    ax2.set_aspect("equal")
-    ax2.set_axis_off()
-    layer = {(int(p[0]), int(p[1])) for p in ball.points() if p[2] == 0}
-    for i in range(box[0], box[3] + 2):
-        for j in range(box[1], box[4] + 1):
-            fill = "#f3d9a6" if (i, j) in layer else "#ffffff"
-            ax2.add_patch(plt.Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=fill, edgecolor="#b8b8b8"))
-    for seg in section(poly, 0.01):
-        ax2.plot(seg[:, 0], seg[:, 1], color="#1f5fa8", linewidth=2.2)
-    ax2.set_xlim(box[0] - 0.6, box[3] + 1.6)
-    ax2.set_ylim(box[1] - 0.6, box[4] + 0.6)
+    tip_section(fig, (0.53, 0.05, 0.44, 0.78), ball, poly, box)
     fig.savefig(OUT / "reconstruction-3d-snapped.png")
     plt.close(fig)
 
