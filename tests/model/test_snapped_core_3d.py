@@ -204,3 +204,18 @@ def test_a_spike_through_the_solid_is_refused():
     assert mrm.Polyhedron(w, tris).n_triangles == tris.shape[0]  # the full validation agrees
     w[apex] = [2, 2, 0]
     assert _valid(w, tris, cones) is None
+
+
+def test_spikes_at_two_neighbouring_corners_stay_apart_or_give_way():
+    # Two missed voxels whose nearest corners, (1, 1, 1.5) and (5, 1, 1.5), share an edge: the second corner's
+    # triangles were split by the first spike. Either another corner serves it, or the snapped core gives way
+    # (None); a spiked P must stay a valid polyhedron.
+    from mrm.geometry.reconstruct.snapped_core import _spikes, _valid
+
+    v, t = box_mesh((1, 1, 1), (5, 5, 1.5))
+    missed = np.array([[1, 1, 2], [5, 1, 2]], np.int64)
+    spiked = _spikes(v, t, missed, np.ones((8, 8, 8), bool), "supercover")
+    if spiked is not None:
+        w, tris, _, cones = spiked
+        assert _valid(w, tris, cones) is not None
+        assert mrm.Polyhedron(w, tris).n_shells == 1

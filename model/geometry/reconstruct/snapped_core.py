@@ -62,6 +62,8 @@ _SNAP_BITS = 15
 #: Times a snapped corner outside the core is pulled toward c (by 1/64 of its offset each) before it is
 #: dropped.
 _PULLS = 64
+#: Corners tried for a spike, nearest first, before the snapped core is given up.
+_SPIKE_CHOICES = 4
 
 
 def snapped_cover_r(
@@ -363,11 +365,17 @@ def _spikes(
     cones: list[Int64Array] = []
     for p in missed:
         target = p.astype(np.float64)
-        i = int(np.argmin(((v[:n0] - target) ** 2).sum(axis=1)))  # the first of the nearest (exact: dyadic)
-        rows = np.flatnonzero((tris == i).any(axis=1))
-        if touched[tris[rows]].any():
-            return None  # two spikes meet: they would not stay apart
-        touched[tris[rows]] = True
+        # The nearest corner whose triangles no earlier spike touched (two missed voxels side by side at a
+        # tip would otherwise share one), the first of equals: distances are exact, the points dyadic.
+        order = np.argsort(((v[:n0] - target) ** 2).sum(axis=1), kind="stable")[:_SPIKE_CHOICES]
+        for i in order.tolist():
+            rows = np.flatnonzero((tris == i).any(axis=1))
+            star = tris[rows].ravel()
+            if not (star >= n0).any() and not touched[star].any():  # beyond n0: an earlier spike's ring
+                break
+        else:
+            return None  # every near corner is taken: the spikes would not stay apart
+        touched[star] = True
         corner = v[i].copy()
         apex = corner
         for n in range(1, 65):
