@@ -177,6 +177,7 @@ def _valid(v: FloatArray, t: Int64Array, cones: list[Int64Array]) -> Topology | 
         for rows in cones:  # one spike's cone: the triangles whose boxes meet its box
             near |= np.all((lo <= hi[rows].max(axis=0)) & (hi >= lo[rows].min(axis=0)), axis=1)
         if first_intersecting_pair(v, t[np.flatnonzero(near)]) is not None:
+            logger.debug("a spike's cone meets another triangle: the general way")
             return None
     try:
         return validate(v, t, pairs=False)
@@ -359,23 +360,21 @@ def _spikes(
     n0 = v.shape[0]
     tris = t.copy()
     points = [v]
-    extra = []
-    touched = np.zeros(n0, np.bool_)
+    moved = np.zeros(n0, np.bool_)
     sites = []
     cones: list[Int64Array] = []
     for p in missed:
         target = p.astype(np.float64)
-        # The nearest corner whose triangles no earlier spike touched (two missed voxels side by side at a
-        # tip would otherwise share one), the first of equals: distances are exact, the points dyadic.
+        # The nearest corner no earlier spike moved (two missed voxels side by side at a tip may share one),
+        # the first of equals: distances are exact, the points dyadic. A neighbour of an earlier spike's
+        # corner is fine: its triangles are pieces of the split ones, and its cone is checked like any.
         order = np.argsort(((v[:n0] - target) ** 2).sum(axis=1), kind="stable")[:_SPIKE_CHOICES]
-        for i in order.tolist():
-            rows = np.flatnonzero((tris == i).any(axis=1))
-            star = tris[rows].ravel()
-            if not (star >= n0).any() and not touched[star].any():  # beyond n0: an earlier spike's ring
-                break
-        else:
-            return None  # every near corner is taken: the spikes would not stay apart
-        touched[star] = True
+        free = [k for k in order.tolist() if not moved[k]]
+        if not free:
+            return None
+        i = free[0]
+        moved[i] = True
+        rows = np.flatnonzero((tris == i).any(axis=1))
         corner = v[i].copy()
         apex = corner
         for n in range(1, 65):
@@ -387,7 +386,7 @@ def _spikes(
         k = np.arange(rows.size)
         a, b = star[k, (at + 1) % 3], star[k, (at + 2) % 3]
         near = np.unique(np.concatenate([a, b]))
-        step = v[near] - corner
+        step = np.vstack(points)[near] - corner  # a neighbour may be an earlier spike's ring point
         e = np.ones(near.size)
         far = np.abs(step).max(axis=1)
         while np.any(far * e > 1 / 8):
@@ -399,12 +398,13 @@ def _spikes(
         rb = first + np.searchsorted(near, b)
         tris[rows] = np.stack([np.full(rows.size, i), ra, rb], axis=1)
         cones.append(rows)
-        extra += [np.stack([ra, a, b], axis=1), np.stack([ra, b, rb], axis=1)]
+        # the pieces go at the end at once: a later spike at a neighbour finds them in its star
+        tris = np.concatenate([tris, np.stack([ra, a, b], axis=1), np.stack([ra, b, rb], axis=1)])
         v[i] = apex
         sites.append((np.vstack([corner, apex, ring]), p))
     w = np.vstack(points)
     proven = all(_spike_keeps_d(box, p, w, mask, missed, model) for box, p in sites)
-    return w, np.concatenate([tris, *extra]), proven, cones
+    return w, tris, proven, cones
 
 
 def _spike_keeps_d(
