@@ -46,3 +46,40 @@ def assert_within_border_cubes(poly: object, vs: object) -> None:
     )
     border = (block > 0) & (block < 27)
     assert not (box & ~border).any()
+
+
+def assert_convex_r_commutes_with_the_cube(vs: object, model: str) -> object:
+    """R of a digitally convex A (the hull paths, ``convex_reconstruction``) under the 24 rotations of the
+    cube gives the turned R, triangle for triangle (corners compared exactly), and a far translation gives R
+    translated (``==``). A must have no symmetry of its own. Returns R(A)'s ``ConvexR``."""
+    import mrm
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.reconstruct.convex_3d import convex_reconstruction
+    from mrm.geometry.reconstruct.decimate_3d import ROTATIONS
+
+    assert isinstance(vs, VoxelSet)
+
+    def turned(points: np.ndarray, perm: tuple[int, ...], signs: tuple[int, ...]) -> np.ndarray:
+        return points[:, list(perm)] * np.array(signs)
+
+    def triangles(p: mrm.Polyhedron) -> set[tuple[tuple[float, ...], ...]]:
+        out = set()  # each triangle's corners from its least one, the cyclic order kept
+        for t in p.triangles:
+            corners = [tuple(p.vertices[i]) for i in t]
+            k = corners.index(min(corners))
+            out.add(tuple(corners[k:] + corners[:k]))
+        return out
+
+    found = convex_reconstruction(vs, model)
+    assert found is not None
+    poly = found.polyhedron
+    for perm, signs in ROTATIONS:
+        got = convex_reconstruction(VoxelSet.from_points(turned(vs.points(), perm, signs)), model)
+        assert got is not None
+        expected = mrm.Polyhedron(turned(poly.vertices, perm, signs), poly.triangles)
+        assert triangles(got.polyhedron) == triangles(expected)
+        assert got.polyhedron.n_faces == poly.n_faces
+    t = (2**30, -(2**29), 12345)
+    moved = convex_reconstruction(vs.translate(*t), model)
+    assert moved is not None and moved.polyhedron == poly.translate(t)
+    return found

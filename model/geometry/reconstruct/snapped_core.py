@@ -277,23 +277,23 @@ def _missed(v: FloatArray, t: Int64Array, mask: BoolArray, models: list[str], mo
         else [voxelize_solid(v, t, m, limit=None) for m in models[1:]]
     )
     nz, ny, nx = mask.shape
-    lost = np.empty((0, 3), np.int64)
-    for n, (got, (ax, ay, az)) in enumerate(found):
+    missed: list[Int64Array] = []
+    for got, (ax, ay, az) in found:
         if min(ax, ay, az) < 0 or az + got.shape[0] > nz or ay + got.shape[1] > ny or ax + got.shape[2] > nx:
             return None
         box = (slice(az, az + got.shape[0]), slice(ay, ay + got.shape[1]), slice(ax, ax + got.shape[2]))
         lost, extra = _compare(mask[box], got, most + 1)
         if extra:
             return None  # P meets a cube outside A: A is not digitally convex
-        if n == 0:
+        if not missed:  # the first model's: the voxels to spike
             total, held = int(np.count_nonzero(mask)), int(np.count_nonzero(mask[box]))
-            if lost.shape[0] > most or total - held + lost.shape[0] > most:
+            if total - held + lost.shape[0] > most:
                 return None
-            lost = lost + np.array([ax, ay, az], np.int64)
+            missed = [lost + np.array([ax, ay, az], np.int64)]
             if total > held:  # voxels of A beyond D(P)'s box: in the six slabs around it
-                lost = np.concatenate([lost, *_beyond(mask, box)])
-            first = lost
-    return first.astype(np.int64)
+                missed += _beyond(mask, box)
+    out: Int64Array = np.concatenate(missed).astype(np.int64)
+    return out
 
 
 @njit(cache=True)
@@ -349,7 +349,7 @@ def _spikes(
     v: FloatArray, t: Int64Array, missed: Int64Array, mask: BoolArray, model: str
 ) -> tuple[FloatArray, Int64Array, bool, list[Int64Array]] | None:
     # A spike to each missed voxel (module docstring, step 3), whether D(P) = A is proven still, and each
-    # cone's triangles (the new geometry); None when two spikes would meet.
+    # cone's triangles (the new geometry); None when the nearest corners are all moved already.
     #
     # The spike at p changes P only inside conv(v, apex, ring): the old triangles (v, a, b) lose (v, ra, rb)
     # and gain (apex, ra, rb), both fans over the same ring. So D(P) changes at most at the voxels whose
