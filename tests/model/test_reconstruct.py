@@ -858,7 +858,6 @@ def test_rings_split_between_threads_give_the_single_thread_result(model: str, m
 
     rng = np.random.default_rng(21)
     ps = PixelSet(rng.random((90, 110)) < 0.55)
-    monkeypatch.setattr(rec, "MAX_THREADS", 3)
     monkeypatch.setattr(rec, "_threads", lambda: 3)
     plan = rec._ring_plan(np.diff(rec._k.corridors_all(*_rings_arrays(ps)).poff))
     assert len(plan) == 3

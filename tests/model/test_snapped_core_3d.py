@@ -17,10 +17,17 @@ from hypothesis import strategies as st
 
 import mrm
 from mrm.core.grids import VoxelSet
+from mrm.geometry.discretize.voxels import voxelize_solid, voxelize_triangles
 from mrm.geometry.reconstruct import FALLBACKS
 from mrm.geometry.reconstruct._halfspaces import convex_polytope
-from mrm.geometry.reconstruct.convex_3d import _quickhull, convex_reconstruction
-from mrm.geometry.reconstruct.snapped_core import _spike_keeps_d
+from mrm.geometry.reconstruct.convex_3d import (
+    _exact_faces,
+    _fans,
+    _propose_hull,
+    _quickhull,
+    convex_reconstruction,
+)
+from mrm.geometry.reconstruct.snapped_core import _clear_of_outside_cubes, _compare_rows, _spike_keeps_d
 from tests.model.voxel_shapes import assert_convex_r_commutes_with_the_cube, ball
 
 COVERS = ["standard", "supercover"]
@@ -197,3 +204,105 @@ def test_spikes_at_two_neighbouring_corners():
     assert poly.n_shells == 1
     for p in missed:
         assert np.any(np.abs(poly.vertices - p).max(axis=1) <= 0.5 - 1 / 16)
+
+
+def random_hull(raw) -> tuple[np.ndarray, np.ndarray] | None:
+    """The exact hull of integer points as the snapped core builds P: its points and outward fans."""
+    proposed = _propose_hull(np.unique(np.array(raw, np.int64), axis=0))
+    faces = _exact_faces(*proposed) if proposed is not None else None
+    if faces is None:
+        return None  # coplanar points: no solid
+    q, face_ptr, face_corner, _, _ = faces
+    return q, _fans(q, face_ptr, face_corner)
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    raw=st.lists(st.tuples(*[st.integers(-60, 60)] * 3), min_size=4, max_size=40),
+    planes=st.lists(
+        st.tuples(st.tuples(*[st.integers(-6, 6)] * 3), st.integers(-1, 1)), min_size=1, max_size=12
+    ),
+    c=st.tuples(*[st.integers(-5, 5)] * 3),
+    g=st.integers(0, 5),
+)
+def test_the_climb_decides_whether_p_clears_every_cube_outside_a(raw, planes, c, g):
+    # P (corners c + q / 2ᵍ) clears the facet a·x ≤ b of conv(A) when a·x < b + 1 − |a|₁/2 on all of P:
+    # the climb over P's edges against every corner, in Fractions. Each b sits within a unit of the edge,
+    # so both answers come up.
+    hull = random_hull(raw)
+    if hull is None:
+        return
+    q, tris = hull
+    corners = [tuple(c[k] + Fraction(int(p[k]), 2**g) for k in range(3)) for p in q[np.unique(tris)]]
+    normals, offsets = [], []
+    for a, shift in planes:
+        if not any(a):
+            continue
+        top = max(sum(ak * xk for ak, xk in zip(a, x, strict=True)) for x in corners)
+        normals.append(a)
+        offsets.append(int(np.floor(top - 1 + Fraction(sum(map(abs, a)), 2))) + shift)
+    if not normals:
+        return
+    expected = all(
+        sum(ak * xk for ak, xk in zip(a, x, strict=True)) < b + 1 - Fraction(sum(map(abs, a)), 2)
+        for a, b in zip(normals, offsets, strict=True)
+        for x in corners
+    )
+    got = _clear_of_outside_cubes(
+        np.array(normals, np.int64), np.array(offsets, np.int64), np.array(c, np.int64), q, tris, g
+    )
+    assert got == expected
+
+
+@pytest.mark.parametrize("model", COVERS)
+@settings(max_examples=60, deadline=None)
+@given(raw=st.lists(st.tuples(*[st.integers(-40, 40)] * 3), min_size=4, max_size=30))
+def test_a_convex_solids_d_is_its_triangles_cubes_filled_along_rows(model, raw):
+    # The snapped core discretizes only P's triangles: in a row along x, D(P) of a convex P is the run
+    # between the first and last cube ∂P meets. Held to voxelize_solid on the exact hulls of random points
+    # (eighths of a voxel), with A = D(P) and A one voxel off at a row's end either way.
+    hull = random_hull(raw)
+    if hull is None:
+        return
+    q, tris = hull
+    v = q / 8.0
+    solid, (sx, sy, sz) = voxelize_solid(v, tris, model, limit=None)
+    marks, (mx, my, mz) = voxelize_triangles(v, tris, model, limit=None)
+    pad = 2  # A's box: D(P)'s and a margin, at the origin of A's array
+    a = np.zeros(tuple(n + 2 * pad for n in solid.shape), bool)
+    a[pad:-pad, pad:-pad, pad:-pad] = solid
+    ox, oy, oz = sx - pad, sy - pad, sz - pad
+    args = (mx - ox, my - oy, mz - oz)
+    lost, n, extra = _compare_rows(a, marks, *args, 10)
+    assert (n, extra) == (0, False)
+    k, j, i = np.argwhere(a)[0]  # the first voxel of a row: one more beyond it is lost, one fewer is extra
+    grown = a.copy()
+    grown[k, j, i - 1] = True
+    lost, n, extra = _compare_rows(grown, marks, *args, 10)
+    assert (n, extra) == (1, False) and lost.tolist() == [[i - 1, j, k]]
+    shrunk = a.copy()
+    shrunk[k, j, i] = False
+    assert _compare_rows(shrunk, marks, *args, 10)[2]
+    apart = a.copy()  # a whole row D(P) has none of
+    apart[1, 1, 3:6] = True
+    lost, n, extra = _compare_rows(apart, marks, *args, 2)
+    assert (n, extra, lost.tolist()) == (3, False, [[3, 1, 1], [4, 1, 1]])
+
+
+def test_under_standard_a_balls_core_is_proven_inside_its_cubes_without_the_supercover(monkeypatch):
+    # The snapping's bound (each snapped point within the facets moved out by a quarter, checked by the
+    # climb) proves R ⊂ V(A), so standard discretizes P once; the result is still held to both covers.
+    import mrm.geometry.discretize.voxels as voxels
+
+    seen = []
+    real = voxels.voxelize_triangles
+
+    def spy(v, t, model="standard", **kw):
+        seen.append(model)
+        return real(v, t, model, **kw)
+
+    monkeypatch.setattr(voxels, "voxelize_triangles", spy)
+    vs = VoxelSet(ball(40, 85), (3, -9, 11))
+    found = convex_reconstruction(vs, "standard")
+    assert found is not None and seen == ["standard"]
+    assert_covers_r(found.polyhedron, vs, "standard")

@@ -35,9 +35,7 @@ pipeline runs on it, and consecutive lines meet across pixel sides where the cov
 from __future__ import annotations
 
 import logging
-import os
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
@@ -53,6 +51,8 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import check_reconstruct
 from mrm.core.models import Model
+from mrm.geometry._threads import side_pool
+from mrm.geometry._threads import threads as _threads
 from mrm.geometry.reconstruct import _dual as _dk
 from mrm.geometry.reconstruct import _kernels as _k
 from mrm.geometry.reconstruct import _twins as _tw
@@ -132,26 +132,11 @@ INT32_LINELS = 2**28
 
 #: Pieces (over all rings) from which R splits its rings between threads, and the most threads it uses.
 PARALLEL_PIECES = 4000
-MAX_THREADS = 4
-
-_pool: ThreadPoolExecutor | None = None
 
 #: Under gauss the decimation is tried beside a digitally convex set's grown hull only when the hull has at
 #: least this many triangles per surfel of A: on smooth shapes the decimation keeps 0.08–0.13 per surfel, so
 #: below 0.05 (a lattice polytope's few faces: the octahedron's 8) it cannot win and would cost seconds.
 RIVAL_WORTH = 0.05
-
-
-def _threads() -> int:
-    # The cores this process may use, at most MAX_THREADS; MRM_THREADS=n sets it (1: no threads, e.g. when
-    # many processes run R side by side).
-    wanted = os.environ.get("MRM_THREADS", "")
-    if wanted.isdigit():
-        return max(1, min(MAX_THREADS, int(wanted)))
-    try:
-        return max(1, min(MAX_THREADS, len(os.sched_getaffinity(0))))
-    except AttributeError:  # not on Linux
-        return max(1, min(MAX_THREADS, os.cpu_count() or 1))
 
 
 #: What one ring costs R besides its pieces (its kernels' calls and small arrays), in pieces' worth of work:
@@ -200,19 +185,6 @@ def _ring_plan(pieces: IntArray) -> list[list[tuple[int, int]]]:
     return [p for p in plan if p]
 
 
-def side_pool() -> ThreadPoolExecutor | None:
-    """R's worker threads, for work beside the calling thread's (the kernels release the GIL).
-
-    None when this process may use one core only (``MRM_THREADS=1``, or one core available).
-    """
-    global _pool
-    if _threads() < 2:
-        return None
-    if _pool is None:
-        _pool = ThreadPoolExecutor(max_workers=MAX_THREADS, thread_name_prefix="mrm-R")
-    return _pool
-
-
 def _in_threads(work: Callable[[int, int], Any], plan: list[list[tuple[int, int]]]) -> list[Any]:
     # Each thread works through its ranges (the kernels release the GIL, mrm.geometry._jit); the results
     # come back in ring order.
@@ -228,15 +200,6 @@ def _in_threads(work: Callable[[int, int], Any], plan: list[list[tuple[int, int]
     for f in futures:
         done += f.result()
     return [result for _a, result in sorted(done, key=lambda d: d[0])]
-
-
-def _forget_pool() -> None:
-    # A forked child has none of its parent's threads: it makes its own pool when it needs one.
-    global _pool
-    _pool = None
-
-
-os.register_at_fork(after_in_child=_forget_pool)
 
 
 #: Pieces in one batch of rings: its reach table and lines (40 bytes a piece) are all R keeps of them at

@@ -91,9 +91,9 @@ def convex_reconstruction(vs: VoxelSet, model: str = "gauss") -> ConvexR | None:
     then takes the general way.
     """
     from mrm.core.grids import VoxelSet
+    from mrm.geometry._threads import side_pool
     from mrm.geometry.discretize.voxels import voxelize_solid
     from mrm.geometry.polyhedra import Polyhedron
-    from mrm.geometry.reconstruct import side_pool
 
     runs = label_runs_3d(vs.mask, 6)
     if runs.n_labels != 1 or runs.n_bg != 1 or int(euler_per_label(runs)[1]) != 1:

@@ -14,15 +14,23 @@ normals, not powers of two. So for such an A:
    :mod:`.convex_3d` finds on the homogeneous integers (4a, w): each hull triangle is a corner, the
    solution of its three planes (Cramer's rule, in integers).
 2. **Snapped inward.** Each corner y is replaced by the point q of the grid 2⁻ᵍ with q − c the truncation
-   of y − c toward zero, checked in integers against every facet and pulled further toward c while
-   outside. P = conv(q's) is then exactly inside the core (an exact hull of integer points, its coplanar
-   triangles merged into faces), and it misses every cube outside A. g is as fine as the hull's integer
-   predicates allow (|2ᵍ (q − c)| < 2¹⁵).
+   of y − c toward zero, checked in integers against the core's faces through y and pulled further toward c
+   while outside one. P = conv(q's) (an exact hull of integer points, its coplanar triangles merged into
+   faces). g is as fine as the hull's integer predicates allow (|2ᵍ (q − c)| < 2¹⁵). A snapped point lies
+   within |a|₁ (pulls + 1) 2⁻ᵍ of the core in a's units, and a cube outside A a quarter beyond it, so P
+   usually meets no cube outside A; whether it does is decided exactly by climbing P's edges to its
+   highest corner along each facet's normal (:func:`_clear_of_outside_cubes`).
 3. **Spikes.** The core may miss a few cubes of A (a ball's six tips) and P, a hair smaller, a few more.
    Each such voxel p gets a spike: the corner v of P nearest to p goes to a point of p's cube on the
    segment v→p (a multiple of 1/64 of the way, a sixteenth inside), and each edge from v is cut at a
    point an eighth of a voxel or less from v (a power of two of the way), so that the spike's triangles
    stay near v; the rest of each triangle around v stays in its face.
+
+4. **Discretized once, by rows.** A convex P's cubes in a row along x are a run whose two ends are cubes
+   ∂P meets, so only the triangles are discretized (the threads share them), and each row of A (a run) is
+   compared with the run between its first and last mark: the voxels of A to spike, and any cube outside
+   A that P meets. Under standard the supercover is needed only when the climb of step 2 did not prove
+   P ⊂ V(A).
 
 Nothing here is assumed right: :func:`.convex_3d.convex_reconstruction` checks P as every R is checked
 (valid polyhedron, D(P) = A in the model and P ⊂ V(A)), and the caller goes the general way when it fails.
@@ -94,7 +102,7 @@ def snapped_cover_r(
         int64, when P meets a cube outside A or misses more than ``max_spikes`` cubes of A, or when a
         spike cannot be placed. The caller checks the rest.
     """
-    from mrm.geometry.reconstruct import side_pool
+    from mrm.geometry._threads import side_pool
     from mrm.geometry.reconstruct.convex_3d import (
         _corner_pose,
         _exact_faces,
@@ -136,14 +144,16 @@ def snapped_cover_r(
         return None
     q, face_ptr, face_corner, _, _ = faces
     triangles = _fans(q, face_ptr, face_corner)
+    # Whether P meets no cube outside A, proven; else under standard P's supercover decides it.
+    clear = _clear_of_outside_cubes(normals, offsets, c, q, triangles, g)
     v = c + q / float(1 << g)  # dyadic: q below 2¹⁵, c below 2¹⁶
     here = np.ascontiguousarray(_turn(mask, perm, signs))
     # P's triangles are searched for improper pairs on R's worker thread while this one discretizes P (under
-    # standard in the supercover too: P ⊂ V(A) is its supercover's being A).
+    # standard in the supercover too, unless the snapping proved P ⊂ V(A)).
     pool = side_pool()
     pairs = pool.submit(first_intersecting_pair, v, triangles) if pool is not None else None
     try:
-        models = [model, "supercover"] if model == "standard" else [model]
+        models = [model, "supercover"] if model == "standard" and not clear else [model]
         missed = _missed(v, triangles, here, models, max_spikes)
     finally:
         crossing = pairs.result() if pairs is not None else first_intersecting_pair(v, triangles)
@@ -191,9 +201,10 @@ _DROPPED = np.iinfo(np.int64).min
 
 def _snap(dual: Int64Array, tri: Int64Array, g: int) -> Int64Array:
     # Row k: 2ᵍ (q − c) for one corner of the core, q its snap (module docstring, step 2), or no row when no
-    # pull brought it inside. A corner is checked against the planes of every dual triangle that snaps to
-    # the same point first: all the core's faces through it (the planes of the dual points inside a dual
-    # face are implied by its corners'); the other planes are far from it, and the whole check of P decides.
+    # pull brought it inside. A corner is checked against the planes of every dual
+    # triangle that snaps to the same point first: all the core's faces through it (the planes of the dual
+    # points inside a dual face are implied by its corners'); the others are left to
+    # _clear_of_outside_cubes and the check of P.
     first = _first_snaps(dual, tri, g)
     points, group = np.unique(first, axis=0, return_inverse=True)
     order = np.argsort(group.ravel(), kind="stable")
@@ -254,6 +265,48 @@ def _pull_inside(
     return out
 
 
+@njit(cache=True)
+def _clear_of_outside_cubes(
+    normals: Int64Array, offsets: Int64Array, c: Int64Array, q: Int64Array, tris: Int64Array, g: int
+) -> bool:  # pragma: no cover - compiled
+    # Whether the convex P (corners c + q / 2ᵍ, triangles tris) has a·x < b + 1 − |a|₁/2 for every facet
+    # a·x ≤ b of conv(A): then P meets no cube outside A (a centre outside a digitally convex A has
+    # a·x ≥ b + 1 for a facet, and its cube a·x ≥ b + 1 − |a|₁/2). The largest a·q over P's corners is found
+    # by climbing P's edges while a·q grows, from the last facet's best corner: a corner of a convex
+    # polytope with no edge going up is its highest. Exact, in integers.
+    n = q.shape[0]
+    count = np.zeros(n + 1, np.int64)
+    for t in range(tris.shape[0]):
+        for e in range(3):
+            count[tris[t, e] + 1] += 1
+    ptr = np.cumsum(count)
+    nxt = np.empty(ptr[n], np.int64)
+    fill = ptr[:n].copy()
+    for t in range(tris.shape[0]):
+        for e in range(3):
+            u = tris[t, e]
+            nxt[fill[u]] = tris[t, (e + 1) % 3]  # each edge comes the other way in the other triangle
+            fill[u] += 1
+    scale = np.int64(1) << g
+    at = tris[0, 0]  # a corner of P: a point of q inside P has no edge to climb
+    for f in range(normals.shape[0]):
+        a0, a1, a2 = normals[f, 0], normals[f, 1], normals[f, 2]
+        best = a0 * q[at, 0] + a1 * q[at, 1] + a2 * q[at, 2]
+        up = True
+        while up:
+            up = False
+            for k in range(ptr[at], ptr[at + 1]):
+                u = nxt[k]
+                h = a0 * q[u, 0] + a1 * q[u, 1] + a2 * q[u, 2]
+                if h > best:
+                    best, at, up = h, u, True
+                    break
+        ac = a0 * c[0] + a1 * c[1] + a2 * c[2]
+        if 2 * best + 2 * scale * ac >= scale * (2 * offsets[f] + 2 - abs(a0) - abs(a1) - abs(a2)):
+            return False
+    return True
+
+
 @njit(cache=True, inline="always")
 def _toward_zero(a: int, b: int) -> int:  # pragma: no cover - compiled
     # a / b truncated toward zero, exactly (b ≠ 0).
@@ -262,70 +315,75 @@ def _toward_zero(a: int, b: int) -> int:  # pragma: no cover - compiled
 
 
 def _missed(v: FloatArray, t: Int64Array, mask: BoolArray, models: list[str], most: int) -> Int64Array | None:
-    # The voxels (x, y, z) of A whose cubes P misses in models[0], or None when there are more than most
-    # or P meets a cube outside A in a model. The kernels release the GIL: a second model runs on R's
-    # worker thread.
-    from mrm.geometry.discretize.voxels import voxelize_solid
-    from mrm.geometry.reconstruct import side_pool
+    # The voxels (x, y, z) of A whose cubes the convex P misses in models[0], or None when there are more
+    # than most or P meets a cube outside A in a model. Only P's triangles are discretized: in a row along x
+    # the cubes a convex P meets are a run, whose two ends are cubes ∂P meets (the one beyond an end lies
+    # outside P, and a cube inside P shares a face with each neighbour). A's rows are runs too.
+    from mrm.geometry.discretize.voxels import voxelize_triangles
 
-    pool = side_pool() if len(models) > 1 else None
-    later = [pool.submit(voxelize_solid, v, t, m, limit=None) for m in models[1:]] if pool is not None else []
-    found = [voxelize_solid(v, t, models[0], limit=None)]
-    found += (
-        [f.result() for f in later]
-        if pool is not None
-        else [voxelize_solid(v, t, m, limit=None) for m in models[1:]]
-    )
-    nz, ny, nx = mask.shape
-    missed: list[Int64Array] = []
-    for got, (ax, ay, az) in found:
-        if min(ax, ay, az) < 0 or az + got.shape[0] > nz or ay + got.shape[1] > ny or ax + got.shape[2] > nx:
-            return None
-        box = (slice(az, az + got.shape[0]), slice(ay, ay + got.shape[1]), slice(ax, ax + got.shape[2]))
-        lost, extra = _compare(mask[box], got, most + 1)
+    missed: Int64Array | None = None
+    for model in models:
+        marks, (ax, ay, az) = voxelize_triangles(v, t, model, limit=None)
+        keep = most + 1 if missed is None else 0
+        lost, n, extra = _compare_rows(mask, marks, ax, ay, az, keep)
         if extra:
             return None  # P meets a cube outside A: A is not digitally convex
-        if not missed:  # the first model's: the voxels to spike
-            total, held = int(np.count_nonzero(mask)), int(np.count_nonzero(mask[box]))
-            if total - held + lost.shape[0] > most:
+        if missed is None:
+            if n > most:
                 return None
-            missed = [lost + np.array([ax, ay, az], np.int64)]
-            if total > held:  # voxels of A beyond D(P)'s box: in the six slabs around it
-                missed += _beyond(mask, box)
-    out: Int64Array = np.concatenate(missed).astype(np.int64)
-    return out
+            missed = lost
+    return missed
 
 
 @njit(cache=True)
-def _compare(a: BoolArray, got: BoolArray, most: int) -> tuple[Int64Array, bool]:  # pragma: no cover
-    # The voxels (x, y, z) of a that got lacks (the first `most`), and whether got holds a voxel a lacks.
-    lost = np.empty((most, 3), np.int64)
+def _row_ends(row: BoolArray) -> tuple[int, int]:  # pragma: no cover - compiled
+    # The first and last True of a row, (0, −1) when there is none.
+    n = row.shape[0]
+    s = 0
+    while s < n and not row[s]:
+        s += 1
+    if s == n:
+        return 0, -1
+    e = n - 1
+    while not row[e]:
+        e -= 1
+    return s, e
+
+
+@njit(cache=True)
+def _compare_rows(
+    a: BoolArray, marks: BoolArray, ax: int, ay: int, az: int, most: int
+) -> tuple[Int64Array, int, bool]:  # pragma: no cover - compiled
+    # A (its rows along x single runs) against D(P) of a convex P, given by marks: the cubes ∂P meets, at
+    # (ax, ay, az) in A's box. D(P)'s row is the run between its row's first and last mark. Returns the
+    # voxels (x, y, z) of A that D(P) lacks (the first `most`), how many it lacks, and whether D(P) holds a
+    # voxel outside A (then the rest is not computed).
+    lost = np.empty((max(most, 1), 3), np.int64)
     n = 0
-    nz, ny, nx = a.shape
+    nz, ny, _ = a.shape
+    mz, my, _ = marks.shape
+    for k in range(mz):  # marks in rows outside A's box
+        for j in range(my):
+            if not (0 <= k + az < nz and 0 <= j + ay < ny) and _row_ends(marks[k, j])[1] >= 0:
+                return lost[:0], 0, True
     for z in range(nz):
         for y in range(ny):
-            for x in range(nx):
-                if a[z, y, x] != got[z, y, x]:
-                    if got[z, y, x]:
-                        return lost[:n], True
+            s, e = _row_ends(a[z, y])
+            first, last = 0, -1
+            if 0 <= z - az < mz and 0 <= y - ay < my:
+                first, last = _row_ends(marks[z - az, y - ay])
+                first, last = first + ax, last + ax
+            if last >= first:
+                if e < s or first < s or last > e:
+                    return lost[:0], 0, True
+            else:
+                first, last = e + 1, e  # D(P)'s row is empty: A's whole row is lost
+            for lo, hi in ((s, min(e, first - 1)), (max(s, last + 1), e)):  # A's row beyond D(P)'s
+                for x in range(lo, hi + 1):
                     if n < most:
                         lost[n, 0], lost[n, 1], lost[n, 2] = x, y, z
-                        n += 1
-    return lost[:n], False
-
-
-def _beyond(mask: BoolArray, box: tuple[slice, slice, slice]) -> list[Int64Array]:
-    # The voxels (x, y, z) of the mask outside the box, slab by slab (below and above it along z, then along
-    # y within its z range, then along x within its z and y ranges): no copy of the whole mask.
-    out = []
-    whole = slice(None)
-    for axis in range(3):
-        for part in (slice(0, box[axis].start), slice(box[axis].stop, mask.shape[axis])):
-            index = tuple(box[k] if k < axis else part if k == axis else whole for k in range(3))
-            k, j, i = np.nonzero(mask[index])
-            lo = [index[d].start or 0 for d in range(3)]
-            out.append(np.stack([i + lo[2], j + lo[1], k + lo[0]], axis=1))
-    return out
+                    n += 1
+    return lost[: min(n, most)], n, False
 
 
 def _turn_planes(
