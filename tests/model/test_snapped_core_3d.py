@@ -27,7 +27,12 @@ from mrm.geometry.reconstruct.convex_3d import (
     _quickhull,
     convex_reconstruction,
 )
-from mrm.geometry.reconstruct.snapped_core import _clear_of_outside_cubes, _compare_rows, _spike_keeps_d
+from mrm.geometry.reconstruct.snapped_core import (
+    _clear_of_outside_cubes,
+    _compare_rows,
+    _spike_keeps_d,
+    _unique_rows,
+)
 from tests.model.voxel_shapes import assert_convex_r_commutes_with_the_cube, ball
 
 COVERS = ["standard", "supercover"]
@@ -306,3 +311,17 @@ def test_under_standard_a_balls_core_is_proven_inside_its_cubes_without_the_supe
     found = convex_reconstruction(vs, "standard")
     assert found is not None and seen == ["standard"]
     assert_covers_r(found.polyhedron, vs, "standard")
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    rows=st.lists(st.tuples(*[st.integers(-(2**15) + 1, 2**15 - 1)] * 3), max_size=30),
+    big=st.booleans(),
+)
+def test_the_snaps_rows_are_made_unique_as_numpy_does(rows, big):
+    # One int64 key per row of snapped offsets (|x| < 2¹⁵), else numpy's row sort: the same rows, order
+    # and inverse as np.unique on rows.
+    points = np.array(rows + [(2**40, 0, -3)] * big, np.int64).reshape(-1, 3)
+    got, inverse = _unique_rows(points)
+    expected, exp_inverse = np.unique(points, axis=0, return_inverse=True)
+    assert np.array_equal(got, expected) and np.array_equal(inverse, exp_inverse.ravel())

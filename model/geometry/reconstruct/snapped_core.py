@@ -135,7 +135,7 @@ def snapped_cover_r(
     g = _SNAP_BITS - reach.bit_length()  # 2ᵍ · reach < 2¹⁵
     if g < 0:
         return None
-    snapped = np.unique(_snap(dual, tri, g), axis=0)
+    snapped = _unique_rows(_snap(dual, tri, g))[0]
     if snapped.shape[0] < 4:
         return None
     proposed = _propose_hull(snapped)
@@ -206,7 +206,7 @@ def _snap(dual: Int64Array, tri: Int64Array, g: int) -> Int64Array:
     # points inside a dual face are implied by its corners'); the others are left to
     # _clear_of_outside_cubes and the check of P.
     first = _first_snaps(dual, tri, g)
-    points, group = np.unique(first, axis=0, return_inverse=True)
+    points, group = _unique_rows(first)
     order = np.argsort(group.ravel(), kind="stable")
     ptr = np.searchsorted(group.ravel()[order], np.arange(points.shape[0] + 1))
     out = _pull_inside(
@@ -214,6 +214,19 @@ def _snap(dual: Int64Array, tri: Int64Array, g: int) -> Int64Array:
     )
     kept: Int64Array = out[out[:, 0] != _DROPPED]
     return kept
+
+
+def _unique_rows(points: Int64Array) -> tuple[Int64Array, Int64Array]:
+    # np.unique(points, axis=0, return_inverse=True) for rows of three integers below 2¹⁵ in magnitude
+    # (the snapped offsets), through one int64 key per row: the same rows in the same (lexicographic) order,
+    # several times faster than sorting rows.
+    b = np.int64(1) << 16
+    if points.size and np.abs(points).max() >= b // 2:  # not a snap's offsets: the general way
+        rows, inverse = np.unique(points, axis=0, return_inverse=True)
+        return rows, inverse.ravel().astype(np.int64)
+    key = ((points[:, 0] + b // 2) * b + (points[:, 1] + b // 2)) * b + (points[:, 2] + b // 2)
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    return points[first], inverse.astype(np.int64)
 
 
 @njit(cache=True)
