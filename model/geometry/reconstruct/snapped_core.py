@@ -42,6 +42,7 @@ as for the general R), and R(A + t) = R(A) + t.
 from __future__ import annotations
 
 import logging
+from itertools import combinations
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -49,6 +50,7 @@ import numpy.typing as npt
 
 from mrm.core.errors import InvalidGeometryError
 from mrm.geometry._jit import njit
+from mrm.geometry.discretize.voxels import voxelize_triangles
 from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.polyhedra.self_intersection import first_intersecting_pair
 from mrm.geometry.polyhedra.validation import Topology, validate
@@ -180,20 +182,25 @@ def _valid(v: FloatArray, t: Int64Array, cones: list[Int64Array]) -> Topology | 
     # (ra, a, b) and (ra, b, rb), inside the old one and meeting their neighbours' pieces along shared sides,
     # and the cone (apex, ra, rb): only the cones are new geometry, so only they are tested, against every
     # triangle whose box meets theirs. Everything else is checked as for any polyhedron.
-    if cones:
-        corners = v[t]
-        lo, hi = corners.min(axis=1), corners.max(axis=1)
-        near = np.zeros(t.shape[0], np.bool_)
-        for rows in cones:  # one spike's cone: the triangles whose boxes meet its box
-            near |= np.all((lo <= hi[rows].max(axis=0)) & (hi >= lo[rows].min(axis=0)), axis=1)
-        if first_intersecting_pair(v, t[np.flatnonzero(near)]) is not None:
-            logger.debug("a spike's cone meets another triangle: the general way")
-            return None
+    if cones and not _cones_meet_nothing(v, t, cones):
+        logger.debug("a spike's cone meets another triangle: the general way")
+        return None
     try:
         return validate(v, t, pairs=False)
     except InvalidGeometryError as e:
         logger.debug("the spiked core is not a valid polyhedron (%s): the general way", e)
         return None
+
+
+def _cones_meet_nothing(v: FloatArray, t: Int64Array, cones: list[Int64Array]) -> bool:
+    # Whether no triangle of a cone (rows of t) meets another triangle improperly: each cone is tested with
+    # the triangles whose boxes meet its box.
+    corners = v[t]
+    lo, hi = corners.min(axis=1), corners.max(axis=1)
+    near = np.zeros(t.shape[0], np.bool_)
+    for rows in cones:
+        near |= np.all((lo <= hi[rows].max(axis=0)) & (hi >= lo[rows].min(axis=0)), axis=1)
+    return first_intersecting_pair(v, t[np.flatnonzero(near)]) is None
 
 
 _DROPPED = np.iinfo(np.int64).min
@@ -332,8 +339,6 @@ def _missed(v: FloatArray, t: Int64Array, mask: BoolArray, models: list[str], mo
     # than most or P meets a cube outside A in a model. Only P's triangles are discretized: in a row along x
     # the cubes a convex P meets are a run, whose two ends are cubes ∂P meets (the one beyond an end lies
     # outside P, and a cube inside P shares a face with each neighbour). A's rows are runs too.
-    from mrm.geometry.discretize.voxels import voxelize_triangles
-
     missed: Int64Array | None = None
     for model in models:
         marks, (ax, ay, az) = voxelize_triangles(v, t, model, limit=None)
@@ -420,17 +425,17 @@ def _spikes(
     v: FloatArray, t: Int64Array, missed: Int64Array, mask: BoolArray, model: str
 ) -> tuple[FloatArray, Int64Array, bool, list[Int64Array]] | None:
     # A spike to each missed voxel (module docstring, step 3), whether D(P) = A is proven still, and each
-    # cone's triangles (the new geometry); None when the nearest corners are all moved already.
+    # cone's triangles (the new geometry); None when no spike to a voxel is proven and its nearest corners
+    # are all moved already.
     #
     # The spike at p changes P only inside conv(v, apex, ring): the old triangles (v, a, b) lose (v, ra, rb)
     # and gain (apex, ra, rb), both fans over the same ring. So D(P) changes at most at the voxels whose
     # closed cubes meet that hull's box. It stays A when all of them are in A (the spike then touches no
     # cube outside) and each of them but p holds a vertex of the new P in its cube (closed under the
     # supercover, open under standard): p holds the apex, a sixteenth inside.
-    v = v.copy()
     n0 = v.shape[0]
+    w = v.copy()  # every point so far: P's corners first, then each spike's ring
     tris = t.copy()
-    points = [v]
     moved = np.zeros(n0, np.bool_)
     sites = []
     cones: list[Int64Array] = []
@@ -439,65 +444,194 @@ def _spikes(
         # The nearest corner no earlier spike moved (two missed voxels side by side at a tip may share one),
         # the first of equals: distances are exact, the points dyadic. A neighbour of an earlier spike's
         # corner is fine: its triangles are pieces of the split ones, and its cone is checked like any.
-        order = np.argsort(((v[:n0] - target) ** 2).sum(axis=1), kind="stable")[:_SPIKE_CHOICES]
+        order = np.argsort(((w[:n0] - target) ** 2).sum(axis=1), kind="stable")[:_SPIKE_CHOICES]
         free = [k for k in order.tolist() if not moved[k]]
-        if not free:
-            return None
-        i = free[0]
-        moved[i] = True
-        rows = np.flatnonzero((tris == i).any(axis=1))
-        corner = v[i].copy()
-        apex = corner
-        for n in range(1, 65):
-            apex = corner + (n / 64) * (target - corner)
-            if np.abs(apex - target).max() <= 0.5 - 1 / 16:
-                break
-        star = tris[rows]
-        at = np.argmax(star == i, axis=1)
-        k = np.arange(rows.size)
-        a, b = star[k, (at + 1) % 3], star[k, (at + 2) % 3]
-        near = np.unique(np.concatenate([a, b]))
-        step = np.vstack(points)[near] - corner  # a neighbour may be an earlier spike's ring point
-        e = np.ones(near.size)
-        far = np.abs(step).max(axis=1)
-        while np.any(far * e > 1 / 8):
-            e = np.where(far * e > 1 / 8, e / 2, e)
-        ring = corner + e[:, None] * step
-        first = n0 + sum(x.shape[0] for x in points[1:])
-        points.append(ring)
-        ra = first + np.searchsorted(near, a)
-        rb = first + np.searchsorted(near, b)
-        tris[rows] = np.stack([np.full(rows.size, i), ra, rb], axis=1)
+        # Of those, the first whose spike keeps D(P) = A as far as it can tell; else a new corner on P's
+        # surface next to the voxel (a face far from the tip has its corners two voxels away or more, and a
+        # cone from there crosses cubes outside A); else the nearest corner. All are proven again at the end.
+        options: list[tuple[FloatArray, Int64Array, int]] = [(w, tris, k) for k in free]
+        placed = _first_keeping_d(options, p, mask, missed, model)
+        if placed is None:
+            # The face point nearest the voxel; then, for each neighbour u of p in A, the one nearest to a
+            # point of u's cube a quarter from p's: a cone from u's cube into p's through their common face
+            # stays in the two (a box), where the straight way from a face farther off may cross a cube
+            # outside A.
+            toward = [target] + [
+                target + 0.75 * np.array(d, np.float64)
+                for d in _SIX
+                if _in_mask(mask, p + np.array(d, np.int64))
+            ]
+            splits = [s for s in (_split_nearest_face(w, tris, x) for x in toward) if s is not None]
+            placed = _first_keeping_d(splits, p, mask, missed, model)
+        if placed is None:
+            if not free:
+                return None
+            placed = _place(w, tris, _spike_at(free[0], target, w, tris))
+        w, tris, rows, i, hull = placed
+        if i < n0:
+            moved[i] = True
         cones.append(rows)
-        # the pieces go at the end at once: a later spike at a neighbour finds them in its star
-        tris = np.concatenate([tris, np.stack([ra, a, b], axis=1), np.stack([ra, b, rb], axis=1)])
-        v[i] = apex
-        sites.append((np.vstack([corner, apex, ring]), p))
-    w = np.vstack(points)
-    proven = all(_spike_keeps_d(box, p, w, mask, missed, model) for box, p in sites)
+        sites.append(hull)
+    proven = all(_spike_keeps_d(hull, w, tris, mask, missed, model) for hull in sites)
     return w, tris, proven, cones
 
 
-def _spike_keeps_d(
-    hull: FloatArray, p: Int64Array, w: FloatArray, mask: BoolArray, missed: Int64Array, model: str
-) -> bool:
-    # Whether the spike whose points are hull (its corner, apex and ring) to voxel p leaves D(P) = A
-    # (:func:`_spikes`), decided exactly: the points are dyadic.
-    lo = np.ceil(hull.min(axis=0) - 0.5).astype(np.int64)  # the voxels whose closed cubes meet the box
-    hi = np.floor(hull.max(axis=0) + 0.5).astype(np.int64)
+_Spike = tuple[int, FloatArray, FloatArray, Int64Array, Int64Array, Int64Array]
+
+#: The six face neighbours' offsets (x, y, z).
+_SIX = ((1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1))
+
+
+def _in_mask(mask: BoolArray, q: Int64Array) -> bool:
+    # Whether voxel q (x, y, z) is in the mask (False beyond its box).
     nz, ny, nx = mask.shape
-    if np.any(lo < 0) or hi[0] >= nx or hi[1] >= ny or hi[2] >= nz:
+    return bool(0 <= q[0] < nx and 0 <= q[1] < ny and 0 <= q[2] < nz and mask[q[2], q[1], q[0]])
+
+
+def _first_keeping_d(
+    options: list[tuple[FloatArray, Int64Array, int]],
+    p: Int64Array,
+    mask: BoolArray,
+    missed: Int64Array,
+    model: str,
+) -> tuple[FloatArray, Int64Array, Int64Array, int, FloatArray] | None:
+    # The first of (points, triangles, corner k) whose spike to p keeps D(P) = A locally and whose cone meets
+    # no other triangle, placed (:func:`_place`); None when none does.
+    target = p.astype(np.float64)
+    for w, tris, k in options:
+        placed = _place(w, tris, _spike_at(k, target, w, tris))
+        w2, t2, rows, _, hull = placed
+        if _spike_keeps_d(hull, w2, t2, mask, missed, model) and _cones_meet_nothing(w2, t2, [rows]):
+            return placed
+    return None
+
+
+def _place(
+    w: FloatArray, tris: Int64Array, spike: _Spike
+) -> tuple[FloatArray, Int64Array, Int64Array, int, FloatArray]:
+    # P with the spike: its points and triangles (new arrays), the cone's rows, the moved corner's index and
+    # the spike's points (corner, apex, ring). Each triangle (i, a, b) around the corner becomes the cone's
+    # (i, ra, rb) — i now at the apex — and the pieces (ra, a, b), (ra, b, rb), added at the end at once:
+    # a later spike at a neighbour finds them in its star.
+    i, apex, ring, rows, a, b = spike
+    near = np.unique(np.concatenate([a, b]))
+    first = w.shape[0]
+    out = np.vstack([w, ring])
+    ra = first + np.searchsorted(near, a)
+    rb = first + np.searchsorted(near, b)
+    t = tris.copy()
+    t[rows] = np.stack([np.full(rows.size, i), ra, rb], axis=1)
+    t = np.concatenate([t, np.stack([ra, a, b], axis=1), np.stack([ra, b, rb], axis=1)])
+    hull = np.vstack([w[i], apex, ring])
+    out[i] = apex
+    return out, t, rows, i, hull
+
+
+def _split_nearest_face(
+    w: FloatArray, tris: Int64Array, target: FloatArray
+) -> tuple[FloatArray, Int64Array, int] | None:
+    # P with a new corner x on its triangle nearest to target: x = a + s (b − a) + t (c − a), s and t
+    # multiples of 1/64 inside the triangle, so that x is dyadic and exactly on its plane; the triangle
+    # becomes three around x (the same face). None when no triangle has such a point.
+    corners = w[tris]
+    lo, hi = corners.min(axis=1), corners.max(axis=1)
+    gap = np.maximum(np.maximum(lo - target, target - hi), 0).max(axis=1)
+    best: tuple[float, int, float, float] | None = None
+    for r in np.flatnonzero(gap <= gap.min() + 2.0).tolist():
+        a, b, c = corners[r]
+        e1, e2 = b - a, c - a
+        m = np.array([[e1 @ e1, e1 @ e2], [e1 @ e2, e2 @ e2]])
+        if np.linalg.det(m) <= 0:
+            continue
+        st = np.linalg.solve(m, np.array([e1 @ (target - a), e2 @ (target - a)]))
+        s_, t_ = (np.clip(np.round(st * 64), 1, 62) / 64).tolist()
+        if s_ + t_ > 63 / 64:
+            s_, t_ = s_ * (63 / 64) / (s_ + t_), t_ * (63 / 64) / (s_ + t_)
+            s_, t_ = max(np.floor(s_ * 64), 1) / 64, max(np.floor(t_ * 64), 1) / 64
+        x = a + s_ * e1 + t_ * e2
+        d = float(((x - target) ** 2).sum())
+        if best is None or d < best[0]:
+            best = (d, r, s_, t_)
+    if best is None:
+        return None
+    _, r, s_, t_ = best
+    a, b, c = corners[r]
+    x = a + s_ * (b - a) + t_ * (c - a)
+    i = w.shape[0]
+    ia, ib, ic = tris[r].tolist()
+    out = np.concatenate([tris, np.array([[i, ib, ic], [i, ic, ia]], np.int64)])
+    out[r] = (i, ia, ib)
+    return np.vstack([w, x]), out, i
+
+
+def _spike_at(i: int, target: FloatArray, points: FloatArray, tris: Int64Array) -> _Spike:
+    # The spike from corner i toward the voxel at target: (i, its apex, its ring — one point on each edge
+    # from i, in the order of the neighbours' indices — the rows of its triangles, and each row's other two
+    # corners a, b in order).
+    rows = np.flatnonzero((tris == i).any(axis=1))
+    corner = points[i]
+    apex = corner
+    for n in range(1, 65):
+        apex = corner + (n / 64) * (target - corner)
+        if np.abs(apex - target).max() <= 0.5 - 1 / 16:
+            break
+    star = tris[rows]
+    at = np.argmax(star == i, axis=1)
+    k = np.arange(rows.size)
+    a, b = star[k, (at + 1) % 3], star[k, (at + 2) % 3]
+    near = np.unique(np.concatenate([a, b]))
+    step = points[near] - corner  # a neighbour may be an earlier spike's ring point
+    # At most half the way: a neighbour within an eighth would otherwise be its own ring point, a second
+    # vertex on the same spot.
+    e = np.full(near.size, 0.5)
+    far = np.abs(step).max(axis=1)
+    while np.any(far * e > 1 / 8):
+        e = np.where(far * e > 1 / 8, e / 2, e)
+    return i, apex, corner + e[:, None] * step, rows, a, b
+
+
+def _spike_keeps_d(
+    hull: FloatArray,
+    w: FloatArray,
+    tris: Int64Array,
+    mask: BoolArray,
+    missed: Int64Array,
+    model: str,
+) -> bool:
+    # Whether the spike whose points are hull (its corner, apex and ring) leaves D(P) = A, P being w, tris
+    # with the spike; decided exactly (the points are dyadic).
+    #
+    # The spike changes P only inside conv(hull): D(P) can gain only voxels whose closed cubes meet it, and
+    # lose only those whose closed cubes meet the cap conv(corner, ring) it cuts off. D(P) = A still when the
+    # first are all in A and each of the second but the missed voxels (each reached by its own spike) is in
+    # D of the new P's triangles near it, in the model.
+    met = _cubes_met(hull)
+    nz, ny, nx = mask.shape
+    if np.any(met < 0) or np.any(met >= np.array([nx, ny, nz])):
         return False
-    if not mask[lo[2] : hi[2] + 1, lo[1] : hi[1] + 1, lo[0] : hi[0] + 1].all():
+    if not mask[met[:, 2], met[:, 1], met[:, 0]].all():
         return False
-    close = w[np.all((w >= lo - 0.5) & (w <= hi + 0.5), axis=1)]
+    cut = _cubes_met(np.vstack([hull[:1], hull[2:]]))
     spiked = {tuple(int(x) for x in q) for q in missed}
-    for z in range(lo[2], hi[2] + 1):
-        for y in range(lo[1], hi[1] + 1):
-            for x in range(lo[0], hi[0] + 1):
-                if (x, y, z) in spiked:
-                    continue  # its own spike's apex is inside its open cube
-                d = np.abs(close - np.array([x, y, z], np.float64)).max(axis=1)
-                if not np.any(d < 0.5 if model == "standard" else d <= 0.5):
-                    return False
-    return True
+    need = np.array([q for q in cut.tolist() if tuple(q) not in spiked], np.int64).reshape(-1, 3)
+    if need.shape[0] == 0:
+        return True
+    lo, hi = need.min(axis=0) - 0.5, need.max(axis=0) + 0.5
+    corners = w[tris]
+    close = np.all((corners.max(axis=1) >= lo) & (corners.min(axis=1) <= hi), axis=1)
+    marks, origin = voxelize_triangles(w, tris[close], model, limit=None)
+    at = need - np.array(origin, np.int64)
+    size = np.array([marks.shape[2], marks.shape[1], marks.shape[0]])
+    if np.any(at < 0) or np.any(at >= size):
+        return False
+    return bool(marks[at[:, 2], at[:, 1], at[:, 0]].all())
+
+
+def _cubes_met(points: FloatArray) -> Int64Array:
+    # The voxels (x, y, z) whose closed cubes meet conv(points), exactly, for points within an eighth of a
+    # voxel of a segment (a spike's): the triangles on every three of them lie in the hull and cover its
+    # boundary, and so thin a hull holds no whole cube.
+    tri = np.array(list(combinations(range(points.shape[0]), 3)), np.int64)
+    marks, (ox, oy, oz) = voxelize_triangles(points, tri, "supercover", limit=None)
+    k, j, i = np.nonzero(marks)
+    return np.stack([i + ox, j + oy, k + oz], axis=1).astype(np.int64)
