@@ -21,11 +21,14 @@ normals, not powers of two. So for such an A:
    usually meets no cube outside A; whether it does is decided exactly by climbing P's edges to its
    highest corner along each facet's normal (:func:`_clear_of_outside_cubes`).
 3. **Spikes.** The core may miss a few cubes of A (a ball's six tips) and P, a hair smaller, a few more.
-   Each such voxel p gets a spike: the corner v of P nearest to p goes to a point of p's cube on the
-   segment v→p (a multiple of 1/64 of the way, a sixteenth inside), and each edge from v is cut at a
-   point an eighth of a voxel or less from v (a power of two of the way), so that the spike's triangles
-   stay near v; the rest of each triangle around v stays in its face.
-
+   Each such voxel p gets a spike: a corner v of P goes to a point of p's cube on the segment v→p (a
+   multiple of 1/64 of the way, a sixteenth inside), and each edge from v is cut at a point an eighth of a
+   voxel or less from v, at most half way (a power of two of the way), so that the spike stays near v; the
+   rest of each triangle around v stays in its face. v is the first of the four corners nearest p whose
+   spike is proven (:func:`_spike_keeps_d`) and whose cone meets no other triangle; else a new corner on
+   the face nearest p, or nearest a point of a neighbour of p in A a quarter from p's cube (a cone from
+   there into p's cube crosses their common face only): a + s (b − a) + t (c − a) with s, t multiples of
+   1/64, exactly on the face's plane, the face's triangle split in three around it.
 4. **Discretized once, by rows.** A convex P's cubes in a row along x are a run whose two ends are cubes
    ∂P meets, so only the triangles are discretized (the threads share them), and each row of A (a run) is
    compared with the run between its first and last mark: the voxels of A to spike, and any cube outside
@@ -429,10 +432,9 @@ def _spikes(
     # are all moved already.
     #
     # The spike at p changes P only inside conv(v, apex, ring): the old triangles (v, a, b) lose (v, ra, rb)
-    # and gain (apex, ra, rb), both fans over the same ring. So D(P) changes at most at the voxels whose
-    # closed cubes meet that hull's box. It stays A when all of them are in A (the spike then touches no
-    # cube outside) and each of them but p holds a vertex of the new P in its cube (closed under the
-    # supercover, open under standard): p holds the apex, a sixteenth inside.
+    # and gain (apex, ra, rb), both fans over the same ring; :func:`_spike_keeps_d` decides from that hull
+    # whether D(P) is still A. Each spike is proven when it is placed, and all again at the end: a later
+    # spike may move a corner an earlier proof counted on.
     n0 = v.shape[0]
     w = v.copy()  # every point so far: P's corners first, then each spike's ring
     tris = t.copy()
