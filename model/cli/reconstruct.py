@@ -13,8 +13,10 @@ Inputs are pixel files (.png .pbm .pgm .npz: grey images are cut at Otsu's thres
 objects' pixels under the model).
 3D: a voxel file (.npz holding a 3-D mask, a multi-page .tif/.tiff, .nii, .nii.gz; ``--threshold`` for grey
 volumes) gives R(A), a closed polyhedron with D(R(A)) = A in the chosen model, written as a triangle mesh
-(.obj, .ply, .off exactly; .stl rounds to float32 and warns on stderr). Each face is written as its
-triangles (one polygon per face is not written yet). Its ``--json`` summary holds the 3D keys of
+(.obj, .ply, .off exactly; .stl rounds to float32 and warns on stderr). OBJ and OFF hold one polygon per
+face where a polygon can (its fan of triangles, as readers make of it, covers the face exactly), the face's
+triangles otherwise; PLY and STL hold triangles; ``--triangles`` writes triangles to every format. Its
+``--json`` summary holds the 3D keys of
 ``mrm info`` (``voxels``, ``components``, ``cavities``, ``tunnels``, ``euler``, ``surfels``,
 ``plane_segments``, ``faces``, ``vertices``) plus ``seconds``, ``input`` and ``output``.
 
@@ -94,6 +96,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="GeoJSON: one Feature holding everything (default), or one Feature per 4-connected component "
         "(keeps large results within GDAL's object size limit)",
     )
+    parser.add_argument(
+        "--triangles",
+        action="store_true",
+        help="3D: write the mesh's triangles (default: one polygon per face in OBJ and OFF)",
+    )
     add_limit_argument(parser, voxels=True)
 
 
@@ -145,7 +152,13 @@ def _write(geom: Any, path: str, model: str, source: str, georef: Any = None, fe
 
 
 def reconstruct_volume(
-    path: str, output: str, model: str | None, threshold: float | None, limit: int | None, bar: Any = None
+    path: str,
+    output: str,
+    model: str | None,
+    threshold: float | None,
+    limit: int | None,
+    bar: Any = None,
+    triangles: bool = False,
 ) -> dict[str, Any]:
     """Read one voxel file, reconstruct it (R in 3D), write the mesh; return its summary."""
     chosen = model or "standard"
@@ -158,7 +171,7 @@ def reconstruct_volume(
     poly = reconstruct_voxels(vs, chosen)
     seconds = time.perf_counter() - t0
     Path(output).parent.mkdir(parents=True, exist_ok=True)
-    warning = write_mesh(poly, output)
+    warning = write_mesh(poly, output, triangles=triangles)
     if warning is not None:
         print(f"mrm reconstruct: warning: {warning}", file=sys.stderr, flush=True)
     summary: dict[str, Any] = {"input": str(path), "output": str(output)}
@@ -175,13 +188,14 @@ def reconstruct_file(
     limit: int | None,
     invert: bool = False,
     features: str = "one",
+    triangles: bool = False,
     bar: Any = None,
 ) -> dict[str, Any]:
     """Read one pixel or voxel file, reconstruct it, write the result; return its summary (for the pool)."""
     if is_3d_input(path):
         if invert:
             raise ParameterError(f"{path}: --invert applies to 2D images only")
-        return reconstruct_volume(path, output, model, threshold, limit, bar)
+        return reconstruct_volume(path, output, model, threshold, limit, bar, triangles)
     extension_of(output, (*VECTOR_EXTENSIONS, ".svg"), "vector output file for a 2D input")
     limit = pixel_limit(limit)
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
@@ -218,7 +232,10 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     if len(pairs) > 1 and "{stem}" not in str(args.output):
         # A directory of outputs: a voxel input's default output is a mesh, not a GeoJSON file.
         pairs = [(i, o[: -len(".geojson")] + ".obj" if is_3d_input(i) else o) for i, o in pairs]
-    jobs = [(i, o, args.model, args.threshold, args.limit, args.invert, args.features) for i, o in pairs]
+    jobs = [
+        (i, o, args.model, args.threshold, args.limit, args.invert, args.features, args.triangles)
+        for i, o in pairs
+    ]
 
     def total(files: list[dict[str, Any]], errors: list[str]) -> dict[str, Any]:
         head = {"model": args.model or (files[0]["model"] if files else "standard")}

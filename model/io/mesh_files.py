@@ -238,9 +238,50 @@ def _decode_obj(data: bytes, name: str) -> tuple[Floats, Ints, list[tuple[str, i
     return v, np.frombuffer(faces, dtype=np.int64).reshape(-1, 3).copy(), objects
 
 
+def _decode_off(data: bytes, name: str) -> tuple[Floats, Ints, list[tuple[str, int]]]:
+    """OFF's vertices and faces, read here: trimesh fails on faces of mixed sizes.
+
+    The header (``OFF``, then the vertex, face and edge counts, on its line or the next), the vertices'
+    first three numbers, then each face's count k and k indices (a colour after them is ignored); a face
+    of k > 3 vertices becomes the fan of k − 2 triangles from its first vertex, as in OBJ. ``#`` starts a
+    comment. The counts were checked against the file's size before (:func:`_check_off`).
+    """
+    rows = (ln.split(b"#", 1)[0].split() for ln in io.BytesIO(data))
+    rows = (r for r in rows if r)
+    first = next(rows, [b""])
+    head = first[0]
+    counts = first[1:] if head.endswith(b"OFF") and len(first) > 1 else next(rows, [])
+    try:
+        nv, nf = int(counts[0]), int(counts[1])
+        coords = [[float(x) for x in next(rows)[:3]] for _ in range(nv)]
+        faces: list[int] = []
+        for number in range(nf):
+            row = next(rows)
+            k = int(row[0])
+            idx = [int(x) for x in row[1 : 1 + k]]
+            if k < 3 or len(idx) < k:
+                raise FileFormatError(f"{name}: face {number + 1} has fewer than three vertices")
+            if min(idx) < 0 or max(idx) >= nv:
+                raise FileFormatError(f"{name}: face {number + 1} refers to a vertex that does not exist")
+            for j in range(1, k - 1):
+                faces.extend((idx[0], idx[j], idx[j + 1]))
+    except (StopIteration, IndexError):
+        raise FileFormatError(
+            f"{name}: truncated OFF: fewer vertices or faces than its header declares"
+        ) from None
+    except ValueError:
+        raise FileFormatError(f"{name}: corrupt OFF: a count, coordinate or index is not a number") from None
+    if any(len(c) < 3 for c in coords):
+        raise FileFormatError(f"{name}: corrupt OFF: a vertex needs three coordinates")
+    v = np.array(coords, np.float64).reshape(-1, 3)
+    return v, np.array(faces, np.int64).reshape(-1, 3), []
+
+
 def _decode(data: bytes, ext: str, name: str) -> tuple[Floats, Ints, list[tuple[str, int]]]:
     if ext == ".obj":
         return _decode_obj(data, name)
+    if ext == ".off":
+        return _decode_off(data, name)
     try:
         import trimesh
     except ImportError:  # pragma: no cover - depends on the installation
@@ -416,29 +457,41 @@ def read_mesh_objects(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> l
 
 
 # ---------------------------------------------------------------------------------------------- writing
-def _text_lines(v: Floats, t: Ints, ext: str) -> str:
+def _text_lines(v: Floats, ptr: Ints, idx: Ints, ext: str) -> str:
     # repr() is the shortest string that reads back as the same float64 (the 2-D vector files do the same).
+    # Polygon k is idx[ptr[k]:ptr[k + 1]].
+    rows = np.split(idx, ptr[1:-1]) if idx.size else []
     if ext == ".obj":
         head = "# written by MR Modeler: exact float64 coordinates\n"
         verts = "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
-        tris = "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
+        faces = "".join("f " + " ".join(str(i + 1) for i in row) + "\n" for row in (r.tolist() for r in rows))
     else:
-        head = f"OFF\n{v.shape[0]} {t.shape[0]} 0\n"
+        head = f"OFF\n{v.shape[0]} {ptr.size - 1} 0\n"
         verts = "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
-        tris = "".join(f"3 {a} {b} {c}\n" for a, b, c in t.tolist())
-    return head + verts + tris
+        faces = "".join(f"{len(row)} " + " ".join(map(str, row)) + "\n" for row in (r.tolist() for r in rows))
+    return head + verts + faces
 
 
-def _ply_bytes(v: Floats, t: Ints) -> bytes:
+def _ply_bytes(v: Floats, ptr: Ints, idx: Ints) -> bytes:
+    # Each face: its vertex count (uchar, or uint when a polygon has more than 255) and its indices (int).
+    n_poly = ptr.size - 1
+    sizes = np.diff(ptr)
+    wide = n_poly > 0 and int(sizes.max()) > 255
+    count = "uint" if wide else "uchar"
     head = (
         "ply\nformat binary_little_endian 1.0\ncomment written by MR Modeler: exact float64 coordinates\n"
         f"element vertex {v.shape[0]}\nproperty double x\nproperty double y\nproperty double z\n"
-        f"element face {t.shape[0]}\nproperty list uchar int vertex_indices\nend_header\n"
+        f"element face {n_poly}\nproperty list {count} int vertex_indices\nend_header\n"
     )
-    faces = np.empty(t.shape[0], dtype=[("n", "u1"), ("i", "<i4", (3,))])
-    faces["n"] = 3
-    faces["i"] = t
-    return head.encode("ascii") + v.astype("<f8").tobytes() + faces.tobytes()
+    c = 4 if wide else 1
+    out = np.zeros(c * n_poly + 4 * idx.size, np.uint8)
+    starts = c * np.arange(n_poly) + 4 * ptr[:-1]  # polygon k's count, then its indices
+    counts = sizes.astype("<u4" if wide else "u1").view(np.uint8).reshape(n_poly, c)
+    out[starts[:, None] + np.arange(c)] = counts
+    polygon = np.repeat(np.arange(n_poly), sizes)
+    at = 4 * np.arange(idx.size) + c * (polygon + 1)
+    out[at[:, None] + np.arange(4)] = idx.astype("<i4").view(np.uint8).reshape(-1, 4)
+    return head.encode("ascii") + v.astype("<f8").tobytes() + out.tobytes()
 
 
 def _stl_bytes(v: Floats, t: Ints) -> bytes:
@@ -469,8 +522,14 @@ def stl_rounding_warning(vertices: Floats, name: str) -> str | None:
     )
 
 
-def write_mesh(poly: Polyhedron, path: PathLike) -> str | None:
+def write_mesh(poly: Polyhedron, path: PathLike, *, triangles: bool = False) -> str | None:
     """Write a polyhedron to ``path`` (OBJ, PLY, OFF exactly; STL rounded to float32), atomically.
+
+    OBJ and OFF get one polygon per face where a polygon can hold it
+    (:attr:`~mrm.geometry.polyhedra.Polyhedron.polygons`: read back, its fan of triangles covers the face
+    exactly), the face's triangles otherwise; a vertex inside a face is then left out. ``triangles=True``
+    writes every triangle instead. PLY is written as triangles: trimesh, which reads it here (and in most
+    Python tools), cannot read a binary PLY whose faces have mixed sizes. STL holds triangles only.
 
     Returns
     -------
@@ -491,15 +550,22 @@ def write_mesh(poly: Polyhedron, path: PathLike) -> str | None:
     per_tri = {".obj": 30, ".off": 30, ".ply": 13, ".stl": 50}[ext]
     check_output_bytes(v.shape[0] * 75 + t.shape[0] * per_tri, f"{name}")
     warning = None
+    if triangles or ext in (".stl", ".ply"):
+        ptr, idx = np.arange(0, 3 * t.shape[0] + 1, 3, dtype=np.int64), t.reshape(-1)
+    else:
+        ptr, idx = poly.polygons
+        used = np.unique(idx)
+        if used.size < v.shape[0]:  # a vertex inside a face is in no polygon: not written
+            v, idx = v[used], np.searchsorted(used, idx)
     if ext == ".ply":
-        payload = _ply_bytes(v, t)
+        payload = _ply_bytes(v, ptr, idx)
     elif ext == ".stl":
         if t.shape[0] >= 2**32:
             raise FileFormatError(f"{name}: binary STL holds fewer than 2³² triangles")
         warning = stl_rounding_warning(v, name)
         payload = _stl_bytes(v, t)
     else:
-        payload = _text_lines(v, t, ext).encode("ascii")
+        payload = _text_lines(v, ptr, idx, ext).encode("ascii")
     with atomic_open(path, "wb") as fh:
         fh.write(payload)
     if warning is not None:

@@ -49,10 +49,27 @@ def _off(v: np.ndarray, t: np.ndarray) -> str:
 def test_exact_formats_round_trip(tmp_path: Path, ext: str) -> None:
     p = Polyhedron(*cube_with_cavity()).translate((0.1, -0.3, 1e-7))
     path = tmp_path / f"m{ext}"
-    assert write_mesh(p, path) is None
+    assert write_mesh(p, path, triangles=True) is None
     v, t = read_mesh_arrays(path)
     assert v.tobytes() == p.vertices.tobytes() and np.array_equal(t, p.triangles)
     assert read_mesh(path) == p
+    # By default a face is one polygon (OBJ, OFF): read back as its fan, the same faces on the same vertices.
+    assert write_mesh(p, path) is None
+    back = read_mesh(path)
+    assert back.vertices.tobytes() == p.vertices.tobytes()
+    assert faces_as_sets(back) == faces_as_sets(p) and back.signed_volume == p.signed_volume
+    if ext == ".obj":  # 12 squares, not 24 triangles (PLY keeps triangles)
+        assert sum(ln.startswith("f ") for ln in path.read_text().splitlines()) == 12
+    elif ext == ".off":
+        assert path.read_text().splitlines()[1].split()[1] == "12"
+
+
+def faces_as_sets(p: Polyhedron) -> set[frozenset[int]]:
+    """Each face of p as the set of its triangles' vertices."""
+    out: dict[int, set[int]] = {}
+    for f, tri in zip(p.face_of_triangle.tolist(), p.triangles.tolist(), strict=True):
+        out.setdefault(f, set()).update(tri)
+    return {frozenset(s) for s in out.values()}
 
 
 @st.composite
@@ -291,7 +308,7 @@ def test_a_failed_write_leaves_the_old_file(tmp_path: Path) -> None:
     with pytest.raises(FileFormatError):
         write_mesh(Polyhedron(*cube()), tmp_path / "keep.xyz")
     assert path.read_text() == "old"
-    write_mesh(Polyhedron(*cube()), path)
+    write_mesh(Polyhedron(*cube()), path, triangles=True)
     assert read_mesh(path) == Polyhedron(*cube())
     assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
     assert math.isfinite(read_mesh(path).signed_volume)

@@ -16,7 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.errors import InvalidGeometryError
-from mrm.geometry.polyhedra.faces import face_labels
+from mrm.geometry.polyhedra.faces import face_labels, face_polygons
 from mrm.geometry.polyhedra.validation import MAX_TRIANGLES, Topology, as_arrays, validate
 
 Floats = npt.NDArray[np.float64]
@@ -130,6 +130,20 @@ class Polyhedron:
     def face_of_triangle(self) -> Ints:
         """The face (0 … n_faces − 1, numbered by first triangle) of every triangle, read-only."""
         return self._faces[1]
+
+    @cached_property
+    def polygons(self) -> tuple[Ints, Ints]:
+        """The surface as polygons, one per face where a polygon can hold it, as (ptr, indices).
+
+        Polygon k is ``indices[ptr[k]:ptr[k + 1]]``, counter-clockwise seen from outside, starting at a vertex
+        from which the fan of triangles (how mesh files' polygons are read back) covers the face exactly.
+        A face with a hole, a corner met twice, a right turn, or no vertex between two corners (where the fan
+        starts) is given as its triangles (``mrm.geometry.polyhedra.faces.face_polygons``). A vertex inside a
+        face is in no polygon (a file of these polygons leaves it out). Read-only.
+        """
+        n, labels = self._faces
+        ptr, idx = face_polygons(self._vertices, self._triangles, self._topology.twin, labels, n)
+        return _read_only(ptr), _read_only(idx)
 
     @property
     def bbox(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
