@@ -28,8 +28,10 @@ code, else the WKT; GeoJSON carries only EPSG codes and refuses another CRS: :mo
 ``.nii.gz``: :func:`mrm.io.voxel_files.read_label_volume`, label 0 the background) gives one closed mesh per
 region (a 6-connected component of one label), written to one OBJ file (``-o OUT.obj``): one shared vertex
 list and one ``o label_L_k`` object per region (the k-th region of label L, in raster order of its first
-voxel), grouped by label (``g label_L``). A face between two regions is the same triangles in both objects,
-reversed (watertight, no T-junction); D_gauss of each object is its region's voxels exactly, and every
+voxel), grouped by label (``g label_L``). Each face is one polygon where a polygon can hold it, cut where the
+region on its other side changes (``--triangles`` writes triangles): a face between two regions is the same
+polygon (or triangles) in both objects, reversed (watertight, no T-junction); D_gauss of each object is its
+region's voxels exactly, and every
 coordinate is a multiple of ⅛, written exactly (:mod:`mrm.geometry.reconstruct.polygonize_3d`,
 docs/polygonize-3d.md). Its ``--json`` gives ``model``, ``labels``, ``regions``, ``voxels``, ``surfels``
 (unit squares between different regions, or a region and the background), ``triangles`` (both sides of a
@@ -132,6 +134,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--pixels-field", default="pixels", metavar="NAME", help="the pixel count's field (default pixels)"
+    )
+    parser.add_argument(
+        "--triangles",
+        action="store_true",
+        help="label volumes: write each region's triangles (default: one polygon per face)",
     )
     add_limit_argument(parser, voxels=True)
 
@@ -247,6 +254,7 @@ def polygonize_file(
     connectivity: int = 4,
     field: str = "label",
     pixels_field: str = "pixels",
+    triangles: bool = False,
 ) -> dict[str, Any]:
     """Polygonize one label image (or volume) and write its features (meshes); return its summary.
 
@@ -258,7 +266,7 @@ def polygonize_file(
                 f"{path}: --band, --nodata, --mask and --connectivity apply to 2D label images; the regions "
                 "of a label volume are its 6-connected components"
             )
-        return polygonize_volume_file(path, output, model, limit)
+        return polygonize_volume_file(path, output, model, limit, triangles)
     limit = pixel_limit(limit)
     extension_of(output, LAYER_EXTENSIONS, OUTPUT_WHAT + " for a 2D input")
     check_field_names([field, pixels_field], output)  # before any work
@@ -296,7 +304,9 @@ def polygonize_file(
     return summary
 
 
-def polygonize_volume_file(path: str, output: str, model: str | None, limit: int | None) -> dict[str, Any]:
+def polygonize_volume_file(
+    path: str, output: str, model: str | None, limit: int | None, triangles: bool = False
+) -> dict[str, Any]:
     """Polygonize one label volume into one OBJ of one object per region; return its summary."""
     extension_of(output, MESH_OUTPUTS, "mesh output file for a label volume (one object per region)")
     chosen = model or "gauss"
@@ -314,7 +324,7 @@ def polygonize_volume_file(path: str, output: str, model: str | None, limit: int
         count[r.label] = count.get(r.label, 0) + 1
         objects.append((f"label_{r.label}_{count[r.label]}", f"label_{r.label}", r.triangles))
     Path(output).parent.mkdir(parents=True, exist_ok=True)
-    write_label_meshes(out.vertices, objects, output)
+    write_label_meshes(out.vertices, objects, output, None if triangles else out.polygons())
     return {
         "input": str(path),
         "output": str(output),
@@ -353,6 +363,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             args.connectivity,
             args.field,
             args.pixels_field,
+            args.triangles,
         )
         for i, o in pairs
     ]

@@ -573,16 +573,24 @@ def write_mesh(poly: Polyhedron, path: PathLike, *, triangles: bool = False) -> 
     return warning
 
 
-def write_label_meshes(vertices: Floats, objects: list[tuple[str, str, Ints]], path: PathLike) -> None:
+def write_label_meshes(
+    vertices: Floats,
+    objects: list[tuple[str, str, Ints]],
+    path: PathLike,
+    polygons: list[tuple[Ints, Ints]] | None = None,
+) -> None:
     """Write several meshes on one vertex list to an OBJ file, one object per mesh, exactly and atomically.
 
     The label-volume polygonization (:mod:`mrm.geometry.reconstruct.polygonize_3d`) writes its regions this
     way: each region is an ``o`` object (``objects``: its name, its group — the regions of one label share
     one ``g`` group — and its triangles, indices into ``vertices``), so a face shared by two regions is the
-    same vertex numbers in both, reversed. Coordinates are written with ``repr`` (they read back as the
+    same vertex numbers in both, reversed (as polygons too: ``LabelMeshes.polygons`` cuts a face where the
+    region on its other side changes). Coordinates are written with ``repr`` (they read back as the
     same float64). Each object alone is a closed mesh; the file as a whole is not one solid (shared faces
     appear twice), so :func:`read_mesh` refuses it whole: read an object with ``object=NAME``, or all of them
-    with :func:`read_mesh_objects`.
+    with :func:`read_mesh_objects`. ``polygons`` (one (ptr, indices) per object,
+    ``LabelMeshes.polygons``) writes each object's faces as polygons instead of its triangles; a vertex no
+    polygon uses is left out.
 
     Raises
     ------
@@ -596,13 +604,20 @@ def write_label_meshes(vertices: Floats, objects: list[tuple[str, str, Ints]], p
         raise FileFormatError(f"{name}: several meshes on one vertex list are written to OBJ (.obj) only")
     n_tri = sum(int(t.shape[0]) for _, _, t in objects)
     check_output_bytes(vertices.shape[0] * 75 + n_tri * 30, name)
+    faces = polygons or [(np.arange(0, 3 * t.shape[0] + 1, 3), t.reshape(-1)) for _, _, t in objects]
+    number = np.arange(1, vertices.shape[0] + 1)  # OBJ's vertex numbers
+    if polygons is not None:  # leave out the vertices inside faces
+        used = np.unique(np.concatenate([idx for _, idx in faces]))
+        vertices = vertices[used]
+        number = np.zeros(used[-1] + 1 if used.size else 0, np.int64)
+        number[used] = np.arange(1, used.size + 1)
     with atomic_open(path, "wb") as fh:
         fh.write(b"# written by MR Modeler: exact float64 coordinates, one object per region\n")
         fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist()).encode("ascii"))
-        for obj, group, t in objects:
-            head = f"o {obj}\ng {group}\n"
-            body = "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
-            fh.write((head + body).encode("ascii"))
+        for (obj, group, _), (ptr, idx) in zip(objects, faces, strict=True):
+            rows = np.split(number[idx], ptr[1:-1]) if idx.size else []
+            body = "".join("f " + " ".join(map(str, row.tolist())) + "\n" for row in rows)
+            fh.write((f"o {obj}\ng {group}\n" + body).encode("ascii"))
 
 
 __all__ = [

@@ -402,8 +402,8 @@ def run(capsys: pytest.CaptureFixture[str], *argv: object) -> tuple[int, str, st
     return code, out, err
 
 
-def read_objects(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-    """The vertices and the triangles of each ``o`` object of an OBJ file, read here."""
+def read_polygons(path: Path) -> tuple[np.ndarray, dict[str, list[list[int]]]]:
+    """The vertices and the faces (vertex lists) of each ``o`` object of an OBJ file, read here."""
     vertices: list[list[float]] = []
     objects: dict[str, list[list[int]]] = {}
     current = None
@@ -418,24 +418,57 @@ def read_objects(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
             objects[current] = []
         elif parts[0] == "f":
             assert current is not None
-            objects[current].append([int(x) - 1 for x in parts[1:4]])
-    return np.array(vertices), {k: np.array(v, np.int64) for k, v in objects.items()}
+            objects[current].append([int(x) - 1 for x in parts[1:]])
+    return np.array(vertices), objects
 
 
-def test_cli_polygonize_writes_one_obj_object_per_region_that_burns_back(capsys, tmp_path) -> None:
+def read_objects(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """The vertices and the triangles (a polygon's fan) of each ``o`` object of an OBJ file, read here."""
+    vertices, objects = read_polygons(path)
+    fans = {
+        name: np.array([(f[0], f[j], f[j + 1]) for f in faces for j in range(1, len(f) - 1)], np.int64)
+        for name, faces in objects.items()
+    }
+    return vertices, fans
+
+
+@pytest.mark.parametrize("faces", ["polygons", "triangles"])
+def test_cli_polygonize_writes_one_obj_object_per_region_that_burns_back(capsys, tmp_path, faces) -> None:
     rng = np.random.default_rng(7)
     lab = rng.integers(0, 4, (4, 5, 6)).astype(np.int32)
     origin = (-3, 100, 2**20)
     np.savez(tmp_path / "seg.npz", labels=lab, origin=np.array(origin, np.int64))
-    code, text, err = run(capsys, "polygonize", tmp_path / "seg.npz", "-o", tmp_path / "seg.obj", "--json")
+    extra = ["--triangles"] if faces == "triangles" else []
+    code, text, err = run(
+        capsys, "polygonize", tmp_path / "seg.npz", "-o", tmp_path / "seg.obj", "--json", *extra
+    )
     assert code == 0, err
     summary = json.loads(text)
     ref = reference_regions(lab)
     assert summary["regions"] == len(ref) and summary["labels"] == 3
     assert summary["voxels"] == int(np.count_nonzero(lab)) and summary["model"] == "gauss"
     vertices, objects = read_objects(tmp_path / "seg.obj")
-    assert len(objects) == len(ref) and summary["vertices"] == len(vertices)
-    assert summary["triangles"] == sum(len(t) for t in objects.values())
+    assert len(objects) == len(ref)
+    if faces == "triangles":  # the summary counts the triangles and vertices written
+        assert summary["vertices"] == len(vertices)
+        assert summary["triangles"] == sum(len(t) for t in objects.values())
+    else:  # fewer: a face between two regions is one polygon, the same in both, reversed
+        assert len(vertices) < summary["vertices"]
+        _, polygons = read_polygons(tmp_path / "seg.obj")
+        assert sum(map(len, polygons.values())) < summary["triangles"]
+        seen: dict[frozenset[int], list[int]] = {}
+        shared = 0
+        for faces_of_one in polygons.values():
+            for f in faces_of_one:
+                key = frozenset(f)
+                if key in seen:  # the other side of a face between two regions: the same loop, reversed
+                    other = seen[key][::-1]
+                    k = other.index(f[0])
+                    assert other[k:] + other[:k] == f
+                    shared += 1
+                else:
+                    seen[key] = f
+        assert shared > 0
     burnt = np.zeros_like(lab)
     for name, t in objects.items():
         label = int(name.split("_")[1])
@@ -515,3 +548,31 @@ def test_cli_polygonize_refuses_bad_volumes_with_a_message_and_writes_nothing(ca
     )
     assert code == 2 and "6-connected" in err
     assert not (tmp_path / "s.obj").exists()
+
+
+def test_a_face_is_cut_where_the_region_on_its_other_side_changes(tmp_path) -> None:
+    # A 3×3×1 slab (label 1) with one voxel (label 2) on its top's middle: the slab's top is one plane, but
+    # its middle square is shared with label 2 and the rest faces the background. The shared square is one
+    # polygon in both objects, the same loop reversed; the rest of the slab's top is its own.
+    from mrm.geometry.reconstruct.polygonize_3d import polygonize_volume
+    from mrm.io.mesh_files import write_label_meshes
+
+    lab = np.zeros((2, 3, 3), np.int32)
+    lab[0] = 1
+    lab[1, 1, 1] = 2
+    out = polygonize_volume(lab)
+    objects = [(f"label_{r.label}_1", f"label_{r.label}", r.triangles) for r in out.regions]
+    write_label_meshes(out.vertices, objects, tmp_path / "two.obj", out.polygons())
+    vertices, polygons = read_polygons(tmp_path / "two.obj")
+    slab, cube = polygons["label_1_1"], polygons["label_2_1"]
+    bottom = [f for f in cube if np.all(vertices[f][:, 2] == vertices[f][0, 2]) and vertices[f][0, 2] < 1]
+    assert len(bottom) == 1
+    loop = bottom[0][::-1]
+    matches = [f for f in slab if set(f) == set(loop)]
+    assert len(matches) == 1
+    k = loop.index(matches[0][0])
+    assert loop[k:] + loop[:k] == matches[0]
+    _, fans = read_objects(tmp_path / "two.obj")
+    for t in fans.values():
+        used, inverse = np.unique(t, return_inverse=True)
+        Polyhedron(vertices[used], inverse.reshape(t.shape), limit=None)

@@ -17,6 +17,7 @@ import numpy.typing as npt
 
 from mrm.core.errors import InvalidGeometryError
 from mrm.geometry.polyhedra.faces import face_labels, face_polygons
+from mrm.geometry.polyhedra.manifold import components
 from mrm.geometry.polyhedra.validation import MAX_TRIANGLES, Topology, as_arrays, validate
 
 Floats = npt.NDArray[np.float64]
@@ -141,9 +142,23 @@ class Polyhedron:
         starts) is given as its triangles (``mrm.geometry.polyhedra.faces.face_polygons``). A vertex inside a
         face is in no polygon (a file of these polygons leaves it out). Read-only.
         """
-        n, labels = self._faces
-        ptr, idx = face_polygons(self._vertices, self._triangles, self._topology.twin, labels, n)
+        ptr, idx = self.polygons_within(None)
         return _read_only(ptr), _read_only(idx)
+
+    def polygons_within(self, groups: Ints | None) -> tuple[Ints, Ints]:
+        """:attr:`polygons` with each face also cut where ``groups`` (one value per triangle) changes.
+
+        A label mesh cuts its faces where the region on their other side changes, so that a face between
+        two regions is the same polygon in both (``LabelMeshes.polygons``).
+        """
+        n, labels = self._faces
+        if groups is not None:
+            twin = self._topology.twin
+            tri = np.arange(twin.shape[0]) // 3
+            across = twin // 3
+            same = (labels[tri] == labels[across]) & (groups[tri] == groups[across])
+            n, labels = components(self.n_triangles, tri[same], across[same])
+        return face_polygons(self._vertices, self._triangles, self._topology.twin, labels, int(n))
 
     @property
     def bbox(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:

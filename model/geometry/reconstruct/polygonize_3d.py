@@ -116,6 +116,41 @@ class LabelMeshes:
         v, t = self.mesh(i)
         return Polyhedron(v, t, limit=None)
 
+    def polygons(self) -> list[tuple[Int64Array, Int64Array]]:
+        """Each region's surface as polygons (ptr, indices into ``vertices``), as mesh files hold them.
+
+        As :attr:`~mrm.geometry.polyhedra.Polyhedron.polygons`, with a face cut where the region on its
+        other side changes: a face between two regions is then the same polygon in both, reversed (the
+        same corners, every vertex on its boundary kept), so the files stay watertight without
+        T-junctions. A vertex inside such a face is in no polygon of either.
+        """
+        from mrm.geometry.polyhedra import Polyhedron
+
+        other = _other_sides(self.regions)
+        out = []
+        for i, r in enumerate(self.regions):
+            used, t = _unique(r.triangles)
+            ptr, idx = Polyhedron(self.vertices[used], t, limit=None).polygons_within(other[i])
+            out.append((ptr, used[idx]))
+        return out
+
+
+def _other_sides(regions: list[RegionMesh]) -> list[Int64Array]:
+    # For each region, the region on the other side of each of its triangles (its index in regions), or −1
+    # for the background: a face between two regions is the same triangles in both, reversed.
+    tris = np.concatenate([r.triangles for r in regions]) if regions else np.zeros((0, 3), np.int64)
+    owner = np.repeat(np.arange(len(regions)), [r.triangles.shape[0] for r in regions])
+    key = np.sort(tris, axis=1)
+    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    other = np.full(tris.shape[0], -1, np.int64)
+    shared = np.flatnonzero(counts[inverse] == 2)
+    order = shared[np.argsort(inverse[shared], kind="stable")]  # the two sides of each shared triangle
+    a, b = order[0::2], order[1::2]
+    other[a], other[b] = owner[b], owner[a]
+    bounds = np.cumsum([0] + [r.triangles.shape[0] for r in regions])
+    return [other[bounds[k] : bounds[k + 1]] for k in range(len(regions))]
+
 
 # --------------------------------------------------------------------------------------------- kernels
 @njit(cache=True)
