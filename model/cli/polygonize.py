@@ -35,7 +35,8 @@ region's voxels exactly, and every
 coordinate is a multiple of ⅛, written exactly (:mod:`mrm.geometry.reconstruct.polygonize_3d`,
 docs/polygonize-3d.md). Its ``--json`` gives ``model``, ``labels``, ``regions``, ``voxels``, ``surfels``
 (unit squares between different regions, or a region and the background), ``triangles`` (both sides of a
-shared face counted), ``vertices``, ``seconds``, ``input`` and ``output``. The raster options (``--band``,
+shared face counted), ``faces`` (the polygons written, both sides counted; the triangles with
+``--triangles``), ``vertices``, ``seconds``, ``input`` and ``output``. The raster options (``--band``,
 ``--nodata``, ``--mask``, ``--connectivity 8``) do not apply to volumes; a volume without any label is
 refused.
 
@@ -324,7 +325,9 @@ def polygonize_volume_file(
         count[r.label] = count.get(r.label, 0) + 1
         objects.append((f"label_{r.label}_{count[r.label]}", f"label_{r.label}", r.triangles))
     Path(output).parent.mkdir(parents=True, exist_ok=True)
-    write_label_meshes(out.vertices, objects, output, None if triangles else out.polygons())
+    polygons = None if triangles else out.polygons()
+    write_label_meshes(out.vertices, objects, output, polygons)
+    written = out.n_triangles if polygons is None else sum(int(ptr.size) - 1 for ptr, _ in polygons)
     return {
         "input": str(path),
         "output": str(output),
@@ -334,6 +337,7 @@ def polygonize_volume_file(
         "voxels": sum(r.voxels for r in out.regions),
         "surfels": out.surfels,
         "triangles": out.n_triangles,
+        "faces": written,
         "vertices": int(out.vertices.shape[0]),
         "seconds": seconds,
     }
