@@ -18,7 +18,9 @@ face where a polygon can (its fan of triangles, as readers make of it, covers th
 triangles otherwise; PLY and STL hold triangles; ``--triangles`` writes triangles to every format. Its
 ``--json`` summary holds the 3D keys of
 ``mrm info`` (``voxels``, ``components``, ``cavities``, ``tunnels``, ``euler``, ``surfels``,
-``plane_segments``, ``faces``, ``vertices``) plus ``seconds``, ``input`` and ``output``.
+``plane_segments``, ``faces``, ``vertices``) plus ``r`` (how R was made: ``grown hull``, ``spiked hull``,
+``snapped core``, ``decimation`` or ``safety net``; the last is also noted on stderr, since it is not
+compact), ``seconds``, ``input`` and ``output``.
 
 ``--json`` prints, for one 2D input, the info keys of the result (``model``, ``pixels``, ``components``,
 ``holes``, ``euler``, ``boundary_chains``, ``segments``, ``vertices``) plus ``seconds`` (the time R took),
@@ -49,10 +51,11 @@ from mrm.cli._common import (
     read_voxel_input,
     run_inputs,
 )
+from mrm.core import limits
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
 from mrm.core.limits import check_reconstruct
-from mrm.geometry.reconstruct import reconstruct, reconstruct_voxels
+from mrm.geometry.reconstruct import reconstruct, reconstruct_voxels_detailed
 from mrm.io.georef import geojson_members, georef_summary, read_georef
 from mrm.io.mesh_files import MESH_EXTENSIONS, write_mesh
 from mrm.io.pixel_files import PIXEL_EXTENSIONS
@@ -168,14 +171,23 @@ def reconstruct_volume(
     if bar is not None:
         bar.update(None, f"{len(vs):_} voxels")
     t0 = time.perf_counter()
-    poly = reconstruct_voxels(vs, chosen)
+    poly, way = reconstruct_voxels_detailed(vs, chosen)
     seconds = time.perf_counter() - t0
+    if way == "safety net":  # R met the contract but is not compact: say so
+        print(
+            f"mrm reconstruct: note: {path}: R is the safety net (V(A) eroded by ¼, {poly.n_triangles:,} "
+            f"triangles), not a compact R: the decimation takes sets whose safety net has at most "
+            f"{limits.MAX_COMPACT_R_TRIANGLES:,} triangles",
+            file=sys.stderr,
+            flush=True,
+        )
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     warning = write_mesh(poly, output, triangles=triangles)
     if warning is not None:
         print(f"mrm reconstruct: warning: {warning}", file=sys.stderr, flush=True)
     summary: dict[str, Any] = {"input": str(path), "output": str(output)}
     summary.update(summarize_voxels(vs, chosen, faces=poly.n_faces, vertices=poly.n_vertices))
+    summary["r"] = way
     summary["seconds"] = seconds
     return summary
 

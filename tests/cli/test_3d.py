@@ -386,3 +386,27 @@ def test_reconstruct_a_folder_of_pixels_and_voxels(capsys, tmp_path):
 def test_reconstruct_help_says_3d(capsys):
     text = help_text(capsys, "reconstruct")
     assert "3D" in text and ".nii.gz" in text and ".obj" in text
+
+
+def test_reconstruct_says_how_r_was_made_and_notes_the_safety_net(capsys, tmp_path, monkeypatch):
+    # `r` in --json: the octahedron's hulls; a small non-convex set's decimation; the same set past the
+    # decimation's size limit gets the safety net, which meets the contract but is not compact: noted on
+    # stderr.
+    from mrm.core import limits
+
+    z, y, x = np.mgrid[-7:8, -7:8, -7:8]
+    write_voxels(mrm.VoxelSet(abs(x) + abs(y) + abs(z) <= 6, (-7, -7, -7)), tmp_path / "oct.npz")
+    for model, way in (("gauss", "grown hull"), ("supercover", "spiked hull")):
+        code, stdout, err = run(capsys, "reconstruct", tmp_path / "oct.npz", "-o", tmp_path / "o.obj",
+                                "--model", model, "--json")  # fmt: skip
+        assert code == 0 and json.loads(stdout)["r"] == way and "safety net" not in err
+    a = noise(3) | ring()
+    write_voxels(a, tmp_path / "a.npz")
+    code, stdout, err = run(capsys, "reconstruct", tmp_path / "a.npz", "-o", tmp_path / "a.obj", "--json")
+    assert code == 0 and json.loads(stdout)["r"] == "decimation" and "note" not in err
+    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
+    code, stdout, err = run(capsys, "reconstruct", tmp_path / "a.npz", "-o", tmp_path / "a.obj", "--json")
+    summary = json.loads(stdout)
+    assert code == 0 and summary["r"] == "safety net"
+    assert "R is the safety net" in err and "at most 10 triangles" in err
+    assert mrm.voxelize(mrm.read_mesh(tmp_path / "a.obj"), "standard") == a  # still exact

@@ -40,7 +40,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 from itertools import pairwise
-from typing import TYPE_CHECKING, Any, overload
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -370,6 +370,19 @@ def reconstruct(ps: PixelSet | VoxelSet, model: str = "standard") -> Polygon | M
     return _assemble(run.xy, run.roff, rings.comp, rings.area2 < 0, rings.sx, rings.sy)
 
 
+class VoxelR(NamedTuple):
+    """R(A) of a voxel set and the way it was made (:func:`reconstruct_voxels_detailed`).
+
+    ``way`` is ``"grown hull"`` (gauss, digitally convex A), ``"spiked hull"`` (the covers, a lattice
+    polytope), ``"snapped core"`` (the covers, a finer hull), ``"decimation"`` (the safety net simplified by
+    checked collapses), ``"safety net"`` (V(A) eroded by ¼: A's safety net is beyond
+    ``limits.MAX_COMPACT_R_TRIANGLES``, or the decimation's result failed its final check) or ``"empty"``.
+    """
+
+    polyhedron: Polyhedron
+    way: str
+
+
 def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     """R(A) of a voxel set: a valid polyhedron P with D(P) = A exactly in the model (docs/design.md §11).
 
@@ -398,23 +411,37 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     ParameterError
         For an unknown model.
     """
+    return reconstruct_voxels_detailed(vs, model).polyhedron
+
+
+def reconstruct_voxels_detailed(vs: VoxelSet, model: str = "standard") -> VoxelR:
+    """:func:`reconstruct_voxels`, with the way R was made (:class:`VoxelR`): the command line reports it."""
     # Imported here: 2D work (and the desktop's first paint) never loads the 3D kernels.
     from mrm.geometry.polyhedra import Polyhedron
-    from mrm.geometry.reconstruct.convex_3d import convex_reconstruction
+    from mrm.geometry.reconstruct.convex_3d import FEW_FACETS, convex_reconstruction
 
     model = Model.parse(model)
     if vs.is_empty():
-        return Polyhedron.empty()
+        return VoxelR(Polyhedron.empty(), "empty")
     check_reconstruct(vs)
     from mrm.core import limits
 
     hull = convex_reconstruction(vs, model)
     if hull is not None:
+        way = (
+            "grown hull"
+            if model == "gauss"
+            else "spiked hull"
+            if hull.facets <= FEW_FACETS
+            else "snapped core"
+        )
         small = hull.polyhedron.n_triangles < RIVAL_WORTH * hull.surfels
         if small or hull.surfels > limits.MAX_RIVAL_SURFELS:
-            return hull.polyhedron
+            return VoxelR(hull.polyhedron, way)
         rival = _decimated(vs, model)
-        return hull.polyhedron if _size(hull.polyhedron, hull.facets) <= _size(rival, hull.facets) else rival
+        if _size(hull.polyhedron, hull.facets) <= _size(rival.polyhedron, hull.facets):
+            return VoxelR(hull.polyhedron, way)
+        return rival
     return _decimated(vs, model)
 
 
@@ -428,7 +455,7 @@ def _size(p: Polyhedron, facets: int) -> tuple[int, ...]:
     return (p.n_triangles, p.n_faces)
 
 
-def _decimated(vs: VoxelSet, model: str) -> Polyhedron:
+def _decimated(vs: VoxelSet, model: str) -> VoxelR:
     # R(A) by the safety net's decimation (ADR 0064), checked as a whole; the safety net when too big.
     from mrm.core import limits
     from mrm.geometry.discretize.voxels import voxelize_solid
@@ -439,18 +466,18 @@ def _decimated(vs: VoxelSet, model: str) -> Polyhedron:
         vs.mask, vs.origin, model, limits.MAX_COMPACT_R_TRIANGLES
     )
     if triangles is net_triangles:  # too big for the decimation: the safety net, which meets the contract
-        return Polyhedron(net_vertices, net_triangles)
+        return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net")
     try:
         result = Polyhedron(vertices, triangles)
         mask, origin = voxelize_solid(vertices, triangles, model, limit=None)
         if VoxelSet(mask, origin) == vs:
-            return result
+            return VoxelR(result, "decimation")
         failure = "its discretization differs from A"
     except ValueError as e:  # InvalidGeometryError: a collapse let through that the whole check refuses
         failure = str(e)
     FALLBACKS[0] += 1
     logger.error("3D R fell back to the safety net (%s): %d voxels, model %s", failure, vs.count, model)
-    return Polyhedron(net_vertices, net_triangles)
+    return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net")
 
 
 #: R(A) already known to the caller (:func:`held`): (A, model, R(A)) in the current context.
