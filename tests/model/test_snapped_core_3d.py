@@ -393,3 +393,14 @@ def test_the_snaps_rows_are_made_unique_as_numpy_does(rows, big):
     got, inverse = _unique_rows(points)
     expected, exp_inverse = np.unique(points, axis=0, return_inverse=True)
     assert np.array_equal(got, expected) and np.array_equal(inverse, exp_inverse.ravel())
+
+
+@pytest.mark.parametrize(("seed", "axes"), [(219, (3, 30)), (230, (20, 70)), (240, (20, 70))])
+def test_under_standard_the_core_is_discretized_in_a_s_own_frame(seed, axes):
+    # The standard cell (x − ½, x + ½] is not invariant under the rotations of the cube: P discretized in
+    # the canonical pose once met every cell of A there, and missed one in A's own frame. These ellipsoids
+    # each lost a voxel that way; P is now discretized and spiked in A's frame.
+    vs = ellipsoid(seed, *axes)
+    found = convex_reconstruction(vs, "standard")
+    assert found is not None and found.facets > 64
+    assert_covers_r(found.polyhedron, vs, "standard")

@@ -45,6 +45,7 @@ as for the general R), and R(A + t) = R(A) + t.
 from __future__ import annotations
 
 import logging
+from collections.abc import Sequence
 from itertools import combinations
 from typing import TYPE_CHECKING
 
@@ -115,7 +116,7 @@ def snapped_cover_r(
         _propose_hull,
         _quickhull,
     )
-    from mrm.geometry.reconstruct.decimate_3d import ROTATIONS, _turn, turn_back_points, turn_points
+    from mrm.geometry.reconstruct.decimate_3d import ROTATIONS, turn_back_points, turn_points
 
     size = hull.size
     perm, signs = ROTATIONS[_corner_pose(hull.corners, size)]
@@ -151,15 +152,18 @@ def snapped_cover_r(
     triangles = _fans(q, face_ptr, face_corner)
     # Whether P meets no cube outside A, proven; else under standard P's supercover decides it.
     clear = _clear_of_outside_cubes(normals, offsets, c, q, triangles, g)
-    v = c + q / float(1 << g)  # dyadic: q below 2¹⁵, c below 2¹⁶
-    here = np.ascontiguousarray(_turn(mask, perm, signs))
+    # P is discretized, and spiked, in A's own frame: the standard cell (x − ½, x + ½] is not invariant under
+    # the rotations of the cube, so D(P) = A shown in the turned frame need not hold in A's. The rotations
+    # keep distances, so the spikes' choices are the same; the missed voxels go in the turned frame's order,
+    # and a spike tries the neighbours of its voxel in that frame's order.
+    v = turn_back_points(c + q / float(1 << g), perm, signs, size)  # dyadic: q below 2¹⁵, c below 2¹⁶
     # P's triangles are searched for improper pairs on R's worker thread while this one discretizes P (under
     # standard in the supercover too, unless the snapping proved P ⊂ V(A)).
     pool = side_pool()
     pairs = pool.submit(first_intersecting_pair, v, triangles) if pool is not None else None
     try:
         models = [model, "supercover"] if model == "standard" and not clear else [model]
-        missed = _missed(v, triangles, here, models, max_spikes)
+        missed = _missed(v, triangles, mask, models, max_spikes)
     finally:
         crossing = pairs.result() if pairs is not None else first_intersecting_pair(v, triangles)
     if missed is None or crossing is not None:
@@ -167,15 +171,19 @@ def snapped_cover_r(
     proven = True
     cones: list[Int64Array] = []
     if missed.shape[0]:
-        spiked = _spikes(v, triangles, missed, here, model)
+        turned = turn_points(missed, perm, signs, size)
+        missed = missed[np.lexsort((turned[:, 0], turned[:, 1], turned[:, 2]))]
+        steps = turn_back_points(np.array(_SIX, np.float64), perm, signs, size)
+        steps -= turn_back_points(np.zeros((1, 3)), perm, signs, size)
+        six = [(int(a), int(b), int(d)) for a, b, d in steps.tolist()]
+        spiked = _spikes(v, triangles, missed, mask, model, six)
         if spiked is None:
             return None
         v, triangles, proven, cones = spiked
     valid = _valid(v, triangles, cones)
     if valid is None:
         return None
-    back = turn_back_points(v, perm, signs, size)
-    out = back + np.asarray(origin, np.float64)
+    out = v + np.asarray(origin, np.float64)
     return out, triangles, proven, Polyhedron._trusted(out, triangles, valid)
 
 
@@ -425,7 +433,12 @@ def _turn_planes(
 
 
 def _spikes(
-    v: FloatArray, t: Int64Array, missed: Int64Array, mask: BoolArray, model: str
+    v: FloatArray,
+    t: Int64Array,
+    missed: Int64Array,
+    mask: BoolArray,
+    model: str,
+    six: Sequence[tuple[int, int, int]] | None = None,
 ) -> tuple[FloatArray, Int64Array, bool, list[Int64Array]] | None:
     # A spike to each missed voxel (module docstring, step 3), whether D(P) = A is proven still, and each
     # cone's triangles (the new geometry); None when no spike to a voxel is proven and its nearest corners
@@ -460,7 +473,7 @@ def _spikes(
             # outside A.
             toward = [target] + [
                 target + 0.75 * np.array(d, np.float64)
-                for d in _SIX
+                for d in six or _SIX
                 if _in_mask(mask, p + np.array(d, np.int64))
             ]
             splits = [s for s in (_split_nearest_face(w, tris, x) for x in toward) if s is not None]
