@@ -37,9 +37,10 @@ normals, not powers of two. So for such an A:
 
 Nothing here is assumed right: :func:`.convex_3d.convex_reconstruction` checks P as every R is checked
 (valid polyhedron, D(P) = A in the model and P ⊂ V(A)), and the caller goes the general way when it fails.
-Every vertex is dyadic (float64 holds it exactly). Everything is computed in the canonical pose of Q's
-corners and turned back, so R(g A) = g R(A) for the rotations g of the cube (up to A's own symmetries,
-as for the general R), and R(A + t) = R(A) + t.
+Every vertex is dyadic (float64 holds it exactly). The hull and the snapping are computed in the canonical
+pose of Q's corners; P is turned back before it is discretized and spiked (the standard cell is not
+invariant under the rotations of the cube), the spikes keeping the turned frame's order, so R(g A) = g R(A)
+for the rotations g of the cube (up to A's own symmetries, as for the general R), and R(A + t) = R(A) + t.
 """
 
 from __future__ import annotations
