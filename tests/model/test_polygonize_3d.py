@@ -576,3 +576,27 @@ def test_a_face_is_cut_where_the_region_on_its_other_side_changes(tmp_path) -> N
     for t in fans.values():
         used, inverse = np.unique(t, return_inverse=True)
         Polyhedron(vertices[used], inverse.reshape(t.shape), limit=None)
+
+
+def test_the_other_side_of_each_triangle_is_found_with_or_without_packed_keys(monkeypatch) -> None:
+    # Each region's triangles know the region across them (−1: the background), by one packed key per
+    # triangle below 2²¹ vertices, by a row sort above: the same answer, and each shared triangle's two
+    # sides lie in two regions, the second holding it reversed.
+    import mrm.geometry.reconstruct.polygonize_3d as p3
+
+    lab = np.random.default_rng(3).integers(0, 4, (5, 6, 7)).astype(np.int32)
+    out = p3.polygonize_volume(lab)
+    packed = p3._other_sides(out.regions)
+    monkeypatch.setattr(p3, "_PACK_BITS", 1)
+    rows = p3._other_sides(out.regions)
+    assert all(np.array_equal(a, b) for a, b in zip(packed, rows, strict=True))
+
+    def canonical(tri: list[int]) -> tuple[int, ...]:  # the rotation starting at the smallest index
+        k = tri.index(min(tri))
+        return tuple(tri[k:] + tri[:k])
+
+    owner = {canonical(t): j for j, r in enumerate(out.regions) for t in r.triangles.tolist()}
+    for r, other in zip(out.regions, packed, strict=True):  # each triangle's reverse, looked up directly
+        expected = [owner.get(canonical(t[::-1]), -1) for t in r.triangles.tolist()]
+        assert other.tolist() == expected
+    assert any((o >= 0).any() for o in packed) and any((o < 0).any() for o in packed)

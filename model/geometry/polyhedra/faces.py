@@ -153,6 +153,18 @@ def _face_polygons(
     return ptr[: n_poly + 1].copy(), out[:n_out].copy()
 
 
+def split_faces(labels: Ints, twin: Ints, groups: Ints) -> tuple[int, Ints]:
+    """Faces cut where ``groups`` (one value per triangle) changes: (number of faces, face of each triangle).
+
+    Two triangles across an edge stay in one face when they were (``labels``) and their groups are equal.
+    """
+    tri = np.arange(twin.shape[0]) // 3
+    across = twin // 3
+    same = (labels[tri] == labels[across]) & (groups[tri] == groups[across])
+    n, out = components(labels.shape[0], tri[same], across[same])
+    return int(n), out
+
+
 def face_polygons(
     vertices: Floats, triangles: Ints, twin: Ints, labels: Ints, n_faces: int
 ) -> tuple[Ints, Ints]:
@@ -178,4 +190,4 @@ def face_polygons(
     return _face_polygons(vertices, triangles, twin, labels, n_faces)
 
 
-__all__ = ["face_labels", "face_polygons"]
+__all__ = ["face_labels", "face_polygons", "split_faces"]

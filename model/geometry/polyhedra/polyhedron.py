@@ -16,8 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mrm.core.errors import InvalidGeometryError
-from mrm.geometry.polyhedra.faces import face_labels, face_polygons
-from mrm.geometry.polyhedra.manifold import components
+from mrm.geometry.polyhedra.faces import face_labels, face_polygons, split_faces
 from mrm.geometry.polyhedra.validation import MAX_TRIANGLES, Topology, as_arrays, validate
 
 Floats = npt.NDArray[np.float64]
@@ -153,12 +152,8 @@ class Polyhedron:
         """
         n, labels = self._faces
         if groups is not None:
-            twin = self._topology.twin
-            tri = np.arange(twin.shape[0]) // 3
-            across = twin // 3
-            same = (labels[tri] == labels[across]) & (groups[tri] == groups[across])
-            n, labels = components(self.n_triangles, tri[same], across[same])
-        return face_polygons(self._vertices, self._triangles, self._topology.twin, labels, int(n))
+            n, labels = split_faces(labels, self._topology.twin, groups)
+        return face_polygons(self._vertices, self._triangles, self._topology.twin, labels, n)
 
     @property
     def bbox(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:

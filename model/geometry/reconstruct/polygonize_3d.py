@@ -124,15 +124,26 @@ class LabelMeshes:
         same corners, every vertex on its boundary kept), so the files stay watertight without
         T-junctions. A vertex inside such a face is in no polygon of either.
         """
-        from mrm.geometry.polyhedra import Polyhedron
+        from mrm.geometry.polyhedra.faces import face_labels, face_polygons, split_faces
+        from mrm.geometry.polyhedra.manifold import twin_half_edges
 
+        # Each region's mesh is a valid polyhedron by construction (the tests validate it): only its
+        # half-edges' twins are needed here, not a second validation (whose pair search would cost several
+        # times the polygonization).
         other = _other_sides(self.regions)
         out = []
         for i, r in enumerate(self.regions):
             used, t = _unique(r.triangles)
-            ptr, idx = Polyhedron(self.vertices[used], t, limit=None).polygons_within(other[i])
+            v = self.vertices[used]
+            twin = twin_half_edges(v, t)
+            n, labels = split_faces(face_labels(v, t, twin)[1], twin, other[i])
+            ptr, idx = face_polygons(v, t, twin, labels, n)
             out.append((ptr, used[idx]))
         return out
+
+
+#: Bits per vertex index when a triangle's three are packed into one int64 (below 2²¹ vertices).
+_PACK_BITS = 21
 
 
 def _other_sides(regions: list[RegionMesh]) -> list[Int64Array]:
@@ -141,13 +152,19 @@ def _other_sides(regions: list[RegionMesh]) -> list[Int64Array]:
     tris = np.concatenate([r.triangles for r in regions]) if regions else np.zeros((0, 3), np.int64)
     owner = np.repeat(np.arange(len(regions)), [r.triangles.shape[0] for r in regions])
     key = np.sort(tris, axis=1)
-    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    inverse = inverse.ravel()
+    b = _PACK_BITS
+    if tris.size and int(key.max()) < 1 << b:  # one int64 per triangle: a sort of it is several times faster
+        packed = (key[:, 0] << (2 * b)) | (key[:, 1] << b) | key[:, 2]
+        order = np.argsort(packed, kind="stable")
+        sorted_key = packed[order]
+        pair = np.flatnonzero(sorted_key[1:] == sorted_key[:-1])
+    else:  # a shared triangle's two sides end up adjacent
+        order = np.lexsort((key[:, 2], key[:, 1], key[:, 0]))
+        k = key[order]
+        pair = np.flatnonzero(np.all(k[1:] == k[:-1], axis=1))
+    a, c = order[pair], order[pair + 1]
     other = np.full(tris.shape[0], -1, np.int64)
-    shared = np.flatnonzero(counts[inverse] == 2)
-    order = shared[np.argsort(inverse[shared], kind="stable")]  # the two sides of each shared triangle
-    a, b = order[0::2], order[1::2]
-    other[a], other[b] = owner[b], owner[a]
+    other[a], other[c] = owner[c], owner[a]
     bounds = np.cumsum([0] + [r.triangles.shape[0] for r in regions])
     return [other[bounds[k] : bounds[k + 1]] for k in range(len(regions))]
 
