@@ -23,6 +23,8 @@ import io
 import logging
 import os
 import re
+from collections.abc import Callable
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -457,18 +459,44 @@ def read_mesh_objects(path: PathLike, *, limit: int | None = MAX_TRIANGLES) -> l
 
 
 # ---------------------------------------------------------------------------------------------- writing
+def _as_polygons(t: Ints) -> tuple[Ints, Ints]:
+    # Triangles as the polygon list (ptr, indices) the writers take.
+    return np.arange(0, 3 * t.shape[0] + 1, 3, dtype=np.int64), t.reshape(-1)
+
+
+def _used_only(v: Floats, idx: Ints) -> tuple[Floats, Ints]:
+    # The vertices the indices use, and the indices into them: a vertex inside a face is in no polygon.
+    used = np.unique(idx)
+    if used.size == v.shape[0]:
+        return v, idx
+    return v[used], np.searchsorted(used, idx)
+
+
+def _face_lines(ptr: Ints, idx: Ints, head: Callable[[int], str], first: int) -> str:
+    # One line per polygon idx[ptr[k]:ptr[k + 1]]: head, then its vertex numbers counted from first. Plain
+    # lists, not one array per polygon: a label volume's mesh has millions of them.
+    vals = (idx + first).tolist()
+    return "".join(head(b - a) + " ".join(map(str, vals[a:b])) + "\n" for a, b in pairwise(ptr.tolist()))
+
+
+def _obj_faces(ptr: Ints, idx: Ints) -> str:
+    # OBJ's face lines (vertex numbers from 1); triangles alone by a quicker way (a fifth less time).
+    if idx.size == 3 * (ptr.size - 1):
+        return "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in idx.reshape(-1, 3).tolist())
+    return _face_lines(ptr, idx, lambda _n: "f ", 1)
+
+
 def _text_lines(v: Floats, ptr: Ints, idx: Ints, ext: str) -> str:
     # repr() is the shortest string that reads back as the same float64 (the 2-D vector files do the same).
     # Polygon k is idx[ptr[k]:ptr[k + 1]].
-    rows = np.split(idx, ptr[1:-1]) if idx.size else []
     if ext == ".obj":
         head = "# written by MR Modeler: exact float64 coordinates\n"
         verts = "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
-        faces = "".join("f " + " ".join(str(i + 1) for i in row) + "\n" for row in (r.tolist() for r in rows))
+        faces = _obj_faces(ptr, idx)
     else:
         head = f"OFF\n{v.shape[0]} {ptr.size - 1} 0\n"
         verts = "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
-        faces = "".join(f"{len(row)} " + " ".join(map(str, row)) + "\n" for row in (r.tolist() for r in rows))
+        faces = _face_lines(ptr, idx, lambda n: f"{n} ", 0)  # each face: its vertex count, its indices
     return head + verts + faces
 
 
@@ -551,12 +579,10 @@ def write_mesh(poly: Polyhedron, path: PathLike, *, triangles: bool = False) -> 
     check_output_bytes(v.shape[0] * 75 + t.shape[0] * per_tri, f"{name}")
     warning = None
     if triangles or ext in (".stl", ".ply"):
-        ptr, idx = np.arange(0, 3 * t.shape[0] + 1, 3, dtype=np.int64), t.reshape(-1)
+        ptr, idx = _as_polygons(t)
     else:
         ptr, idx = poly.polygons
-        used = np.unique(idx)
-        if used.size < v.shape[0]:  # a vertex inside a face is in no polygon: not written
-            v, idx = v[used], np.searchsorted(used, idx)
+        v, idx = _used_only(v, idx)
     if ext == ".ply":
         payload = _ply_bytes(v, ptr, idx)
     elif ext == ".stl":
@@ -604,20 +630,16 @@ def write_label_meshes(
         raise FileFormatError(f"{name}: several meshes on one vertex list are written to OBJ (.obj) only")
     n_tri = sum(int(t.shape[0]) for _, _, t in objects)
     check_output_bytes(vertices.shape[0] * 75 + n_tri * 30, name)
-    faces = polygons or [(np.arange(0, 3 * t.shape[0] + 1, 3), t.reshape(-1)) for _, _, t in objects]
-    number = np.arange(1, vertices.shape[0] + 1)  # OBJ's vertex numbers
+    faces = polygons or [_as_polygons(t) for _, _, t in objects]
     if polygons is not None:  # leave out the vertices inside faces
-        used = np.unique(np.concatenate([idx for _, idx in faces]))
-        vertices = vertices[used]
-        number = np.zeros(used[-1] + 1 if used.size else 0, np.int64)
-        number[used] = np.arange(1, used.size + 1)
+        vertices, every = _used_only(vertices, np.concatenate([idx for _, idx in faces]))
+        cuts = np.cumsum([idx.size for _, idx in faces])[:-1]
+        faces = [(ptr, idx) for (ptr, _), idx in zip(faces, np.split(every, cuts), strict=True)]
     with atomic_open(path, "wb") as fh:
         fh.write(b"# written by MR Modeler: exact float64 coordinates, one object per region\n")
         fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist()).encode("ascii"))
         for (obj, group, _), (ptr, idx) in zip(objects, faces, strict=True):
-            rows = np.split(number[idx], ptr[1:-1]) if idx.size else []
-            body = "".join("f " + " ".join(map(str, row.tolist())) + "\n" for row in rows)
-            fh.write((f"o {obj}\ng {group}\n" + body).encode("ascii"))
+            fh.write((f"o {obj}\ng {group}\n" + _obj_faces(ptr, idx)).encode("ascii"))
 
 
 __all__ = [
