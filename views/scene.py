@@ -312,6 +312,10 @@ class Scene(QtCore.QObject):
             return CANCELLED
         return self._errors.get((obj_id, rep))
 
+    def r_note(self, obj_id: int) -> str | None:
+        """What the user is told about the object's R(A) (the safety net: exact, not compact), if anything."""
+        return self.entry(obj_id).r_note if self.has(obj_id) else None
+
     def is_computing(self) -> bool:
         return any(self.runner.is_busy(s) for s in self._wanted)
 

@@ -347,8 +347,19 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
         else:
             factor = self.coarsest_level()
             text, tip = self.level_note(factor) if factor > 1 else ("", "")
+            notes = [f"{o.name}: {n}" for o in shown.values() if (n := self.object_note(o)) is not None]
+            if notes:  # after the level: the level says what is drawn, the note what the object is
+                text = " · ".join(t for t in (text, self.NOTE_TEXT) if t)
+                tip = "\n".join(t for t in (tip, *notes) if t)
             self.header.show_status(text, tip)
         self.refreshed.emit()
+
+    #: The header's text when an object's :meth:`object_note` says something (the notes go in its tool tip).
+    NOTE_TEXT = ""
+
+    def object_note(self, obj: DocObject) -> str | None:
+        """What the header's tool tip says of a drawn object beyond its drawing (None: nothing)."""
+        return None
 
     def level_note(self, factor: int) -> tuple[str, str]:
         """The header's text and tool tip when a coarser level (``factor`` > 1) is drawn."""
@@ -1047,6 +1058,13 @@ class EuclideanView3D(View3D):
 
         what = self.budgeted(obj.id, "polyhedron", budget)
         return self.prepared(obj.id, what, poly, int(poly.n_triangles), compute)
+
+    NOTE_TEXT = "R is the safety net: exact, not compact"
+
+    def object_note(self, obj: DocObject) -> str | None:
+        # R(A) of a voxel object that is the safety net (V(A) eroded by ¼): it meets the contract, but its
+        # faces are the voxels' squares; the user should know why the polyhedron looks like its voxels.
+        return self.scene.r_note(obj.id) if obj.kind == "discrete" else None
 
     def level_note(self, factor: int) -> tuple[str, str]:
         return (

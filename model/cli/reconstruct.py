@@ -51,7 +51,6 @@ from mrm.cli._common import (
     read_voxel_input,
     run_inputs,
 )
-from mrm.core import limits
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
 from mrm.core.limits import check_reconstruct
@@ -171,16 +170,11 @@ def reconstruct_volume(
     if bar is not None:
         bar.update(None, f"{len(vs):_} voxels")
     t0 = time.perf_counter()
-    poly, way = reconstruct_voxels_detailed(vs, chosen)
+    r = reconstruct_voxels_detailed(vs, chosen)
+    poly, way = r.polyhedron, r.way
     seconds = time.perf_counter() - t0
-    if way == "safety net":  # R met the contract but is not compact: say so
-        print(
-            f"mrm reconstruct: note: {path}: R is the safety net (V(A) eroded by ¼, {poly.n_triangles:,} "
-            f"triangles), not a compact R: the decimation takes sets whose safety net has at most "
-            f"{limits.MAX_COMPACT_R_TRIANGLES:,} triangles",
-            file=sys.stderr,
-            flush=True,
-        )
+    if r.note is not None:  # R met the contract but is not compact: say so
+        print(f"mrm reconstruct: note: {path}: {r.note}", file=sys.stderr, flush=True)
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     warning = write_mesh(poly, output, triangles=triangles)
     if warning is not None:

@@ -88,6 +88,9 @@ class Derived:
         self._values: dict[str, Any] = {"discrete" if self.kind == "labels" else self.kind: source}
         self._errors: dict[str, MRMError] = {}
         self._locks = {r: threading.Lock() for r in REPS}
+        #: What a user is told about the R computed here, when R is the safety net (exact, not compact):
+        #: :attr:`mrm.geometry.reconstruct.VoxelR.note`. None otherwise, and until R is computed.
+        self.r_note: str | None = None
 
     def is_ready(self, what: Rep) -> bool:
         """True when ``what`` has been computed (or failed) already."""
@@ -161,7 +164,11 @@ class Derived:
         if what == "discrete":
             return voxelize(self.source, self.model)
         if what == "euclidean":
-            return reconstruct(self.get("discrete"), self.model)
+            from mrm.geometry.reconstruct import reconstruct_voxels_detailed
+
+            r = reconstruct_voxels_detailed(self.get("discrete"), self.model)
+            self.r_note = r.note
+            return r.polyhedron
         vs = self.get("discrete")
         vs.count  # noqa: B018 - counted for its cache, on the worker (as region_from_pixels does)
         return region_3d_of(vs.mask, vs.origin)

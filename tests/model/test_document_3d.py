@@ -107,3 +107,29 @@ def test_plane_work_never_loads_the_3d_kernels():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
+
+
+def test_a_voxel_objects_r_says_when_it_is_the_safety_net(doc, monkeypatch):
+    # The note the desktop shows: None for a compact R; past the decimation's size limit, R is the safety
+    # net, which still gives the voxels back, and the note says so with the limit.
+    from mrm.core import limits
+    from mrm.document.commands import AddObject
+
+    obj = doc.find("octahedron")[0]
+    d = doc.derived(obj.id)
+    d.get("euclidean")
+    assert d.r_note is None
+    mask = np.zeros((3, 4, 4), bool)
+    mask[:, :2, :] = True
+    mask[:, :, :2] = True  # an L-shaped prism: not digitally convex
+    ell = doc.make_object(VoxelSet(mask, (0, 0, 0)), name="ell")
+    doc.push(AddObject(ell))
+    assert doc.derived(ell.id).get("euclidean") is not None and doc.derived(ell.id).r_note is None
+    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
+    doc.push(ChangeSettings.model(doc, "supercover"))  # a new model: R made again, past the limit now
+    d = doc.derived(ell.id)
+    assert d.r_note is None  # nothing said before R is made
+    poly = d.get("euclidean")
+    assert voxelize(poly, "supercover") == ell.source
+    assert d.r_note is not None and "R is the safety net" in d.r_note
+    assert f"{poly.n_triangles:,} triangles" in d.r_note and "at most 10 triangles" in d.r_note

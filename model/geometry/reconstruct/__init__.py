@@ -381,6 +381,22 @@ class VoxelR(NamedTuple):
 
     polyhedron: Polyhedron
     way: str
+    #: Why R is the safety net (empty for the other ways): A's safety net beyond the decimation's limit, or
+    #: the decimation's result refused by its final check.
+    why: str = ""
+
+    @property
+    def note(self) -> str | None:
+        """What a user is told when R is the safety net (exact, but not compact), else None.
+
+        The command line prints it and the desktop's Euclidean 3D view shows it: one sentence, one place.
+        """
+        if self.way != "safety net":
+            return None
+        return (
+            f"R is the safety net (V(A) eroded by ¼, {self.polyhedron.n_triangles:,} triangles), not a "
+            f"compact R: {self.why}"
+        )
 
 
 def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
@@ -466,7 +482,11 @@ def _decimated(vs: VoxelSet, model: str) -> VoxelR:
         vs.mask, vs.origin, model, limits.MAX_COMPACT_R_TRIANGLES
     )
     if triangles is net_triangles:  # too big for the decimation: the safety net, which meets the contract
-        return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net")
+        why = (
+            f"the decimation takes sets whose safety net has at most {limits.MAX_COMPACT_R_TRIANGLES:,} "
+            "triangles"
+        )
+        return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net", why)
     try:
         result = Polyhedron(vertices, triangles)
         mask, origin = voxelize_solid(vertices, triangles, model, limit=None)
@@ -477,7 +497,8 @@ def _decimated(vs: VoxelSet, model: str) -> VoxelR:
         failure = str(e)
     FALLBACKS[0] += 1
     logger.error("3D R fell back to the safety net (%s): %d voxels, model %s", failure, vs.count, model)
-    return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net")
+    why = f"the decimation's result failed its final check ({failure}), a defect that is logged"
+    return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net", why)
 
 
 #: R(A) already known to the caller (:func:`held`): (A, model, R(A)) in the current context.

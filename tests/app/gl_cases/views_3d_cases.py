@@ -240,3 +240,40 @@ def test_the_analytical_view_draws_each_plane_segments_normal(make_window, qtbot
         assert start @ normal > 0 and np.sign(normal).tolist() == np.sign(start).tolist()
     assert len({tuple(np.sign(e - s).astype(int)) for s, e in lines}) == 8
     assert any(type(it).__name__ == "GLLinePlotItem" for it in items)
+
+
+def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, qtbot, monkeypatch):
+    # R(A) of a set past the decimation's size limit is the safety net: exact, but its faces are the voxels'
+    # squares. The Euclidean view's header says so, and its tool tip says of which object and why; a convex
+    # object's R (a hull) adds nothing.
+    from mrm.core import limits
+
+    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
+    win = make_window(threaded=True)
+    octa = _octahedron(win)
+    mask = np.zeros((3, 4, 4), bool)
+    mask[:, :2, :] = True
+    mask[:, :, :2] = True  # an L-shaped prism: not digitally convex, so R is the decimation's
+    ell = win.doc.make_object(VoxelSet(mask, (20, 0, 0)), name="ell")
+    win.doc.push(AddObject(ell))
+    view = _show_3d(qtbot, win).by_name("euclidean3d")
+    qtbot.waitUntil(lambda: "safety net" in view.status_label.text(), timeout=30_000)
+    assert view.status_label.text() == "R is the safety net: exact, not compact"
+    n = win.scene.get(ell.id, "euclidean").n_triangles
+    tip = view.status_label.toolTip()
+    assert tip == (
+        f"ell: R is the safety net (V(A) eroded by ¼, {n:,} triangles), not a compact R: the decimation "
+        "takes sets whose safety net has at most 10 triangles"
+    )
+    assert octa.name not in tip
+    # Ctrl+Z takes the L away: the note goes with it; Ctrl+Shift+Z brings both back.
+    pane = view.pane
+    win.activateWindow()
+    qtbot.waitUntil(lambda: QtWidgets.QApplication.activeWindow() is win, timeout=5000)
+    pane.setFocus()
+    qtbot.keyClick(pane, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    qtbot.waitUntil(lambda: ell.id not in win.doc, timeout=5000)
+    qtbot.waitUntil(lambda: view.status_label.text() == "", timeout=30_000)
+    redo = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
+    qtbot.keyClick(pane, Qt.Key.Key_Z, redo)
+    qtbot.waitUntil(lambda: "safety net" in view.status_label.text(), timeout=30_000)
