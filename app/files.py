@@ -664,12 +664,27 @@ class FileController(QtCore.QObject):
             except MRMError as e:
                 errors.append(str(e))
             else:
+                self._show_dimension_of(objs)
                 QtCore.QTimer.singleShot(0, self.win.fit_all)
             first = Path(next(iter(map(Path, paths))))
             self.prefs.last_directory = str(first.resolve().parent)
         if errors:
             self._error("Cannot import", "\n".join(errors))
         return bool(items) and not errors
+
+    def _show_dimension_of(self, objs: list[Any]) -> None:
+        """Bring the views the imported objects are drawn in (3D views for voxels and meshes) to the front.
+
+        A voxel file imported into the plane views was drawn nowhere: the window showed empty grids. A mix of
+        plane and 3D objects leaves the views as they are.
+        """
+        dims = {o.dimension for o in objs}
+        views = self.win.views
+        if len(dims) != 1 or (dim := dims.pop()) == views.dimension:
+            return
+        views.set_dimension(dim)
+        shown, other = ("3D", "plane") if dim == 3 else ("plane", "3D")
+        self.win.show_message(f"showing the {shown} views (F3 for the {other} views)", 6000)
 
     def export_dialog(self) -> bool:
         obj = self.win.scene.primary()

@@ -348,9 +348,9 @@ class View3D(PreparedDrawing, QtWidgets.QFrame):
             factor = self.coarsest_level()
             text, tip = self.level_note(factor) if factor > 1 else ("", "")
             notes = [f"{o.name}: {n}" for o in shown.values() if (n := self.object_note(o)) is not None]
-            if notes:  # after the level: the level says what is drawn, the note what the object is
-                text = " · ".join(t for t in (text, self.NOTE_TEXT) if t)
-                tip = "\n".join(t for t in (tip, *notes) if t)
+            if notes:  # before the level: the note says what the object is, the level only how it is drawn
+                text = " · ".join(t for t in (self.NOTE_TEXT, text) if t)
+                tip = "\n".join(t for t in (*notes, tip) if t)
             self.header.show_status(text, tip)
         self.refreshed.emit()
 
@@ -1059,7 +1059,7 @@ class EuclideanView3D(View3D):
         what = self.budgeted(obj.id, "polyhedron", budget)
         return self.prepared(obj.id, what, poly, int(poly.n_triangles), compute)
 
-    NOTE_TEXT = "R is the safety net: exact, not compact"
+    NOTE_TEXT = "R is the safety net (not compact)"
 
     def object_note(self, obj: DocObject) -> str | None:
         # R(A) of a voxel object that is the safety net (V(A) eroded by ¼): it meets the contract, but its

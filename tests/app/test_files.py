@@ -447,3 +447,31 @@ def test_a_label_volumes_meshes_are_imported_one_object_per_region(make_window, 
         assert mrm.voxelize(o.source, "gauss") == mrm.VoxelSet.from_points(np.stack([x, y, z], axis=1))
     win.doc.history.undo()
     assert len(win.doc) == 0
+
+
+def test_importing_voxels_into_the_plane_views_brings_the_3d_views_forward_and_back(
+    make_window, qtbot, tmp_path
+):
+    """A voxel file dropped on the plane views was drawn nowhere (empty grids): the 3D views come forward and
+    the status bar says F3 goes back; a polygon file dropped then brings the plane views back; a mix of both
+    leaves the views as they are."""
+    import mrm
+    from mrm.core.grids import VoxelSet
+
+    z, y, x = np.mgrid[-3:4, -3:4, -3:4]
+    mrm.write_voxels(VoxelSet(x**2 + y**2 + z**2 <= 9, (0, 0, 0)), tmp_path / "ball.npz")
+    (tmp_path / "sq.wkt").write_text("POLYGON ((0 0, 4 0, 4 4, 0 4, 0 0))")
+    win = make_window()
+    three_d = win.registry["view.three_d"]
+    assert win.views.dimension == 2
+    assert _drop(win, [tmp_path / "ball.npz"])
+    qtbot.waitUntil(lambda: len(win.doc) == 1)
+    assert win.views.dimension == 3 and three_d.isChecked()
+    assert win.status.currentMessage() == "showing the 3D views (F3 for the plane views)"
+    assert _drop(win, [tmp_path / "sq.wkt"])
+    qtbot.waitUntil(lambda: len(win.doc) == 2)
+    assert win.views.dimension == 2 and not three_d.isChecked() and win.views.discrete.isVisible()
+    assert win.status.currentMessage() == "showing the plane views (F3 for the 3D views)"
+    assert _drop(win, [tmp_path / "sq.wkt", tmp_path / "ball.npz"])
+    qtbot.waitUntil(lambda: len(win.doc) == 4)
+    assert win.views.dimension == 2

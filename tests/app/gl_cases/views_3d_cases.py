@@ -242,6 +242,15 @@ def test_the_analytical_view_draws_each_plane_segments_normal(make_window, qtbot
     assert any(type(it).__name__ == "GLLinePlotItem" for it in items)
 
 
+def _ell(win):  # type: ignore[no-untyped-def]
+    mask = np.zeros((3, 4, 4), bool)
+    mask[:, :2, :] = True
+    mask[:, :, :2] = True  # an L-shaped prism: not digitally convex, so R is the decimation's
+    ell = win.doc.make_object(VoxelSet(mask, (20, 0, 0)), name="ell")
+    win.doc.push(AddObject(ell))
+    return ell
+
+
 def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, qtbot, monkeypatch):
     # R(A) of a set past the decimation's size limit is the safety net: exact, but its faces are the voxels'
     # squares. The Euclidean view's header says so, and its tool tip says of which object and why; a convex
@@ -251,14 +260,10 @@ def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, q
     monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
     win = make_window(threaded=True)
     octa = _octahedron(win)
-    mask = np.zeros((3, 4, 4), bool)
-    mask[:, :2, :] = True
-    mask[:, :, :2] = True  # an L-shaped prism: not digitally convex, so R is the decimation's
-    ell = win.doc.make_object(VoxelSet(mask, (20, 0, 0)), name="ell")
-    win.doc.push(AddObject(ell))
+    ell = _ell(win)
     view = _show_3d(qtbot, win).by_name("euclidean3d")
     qtbot.waitUntil(lambda: "safety net" in view.status_label.text(), timeout=30_000)
-    assert view.status_label.text() == "R is the safety net: exact, not compact"
+    assert view.status_label.text() == "R is the safety net (not compact)"
     n = win.scene.get(ell.id, "euclidean").n_triangles
     tip = view.status_label.toolTip()
     assert tip == (
@@ -277,3 +282,26 @@ def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, q
     redo = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
     qtbot.keyClick(pane, Qt.Key.Key_Z, redo)
     qtbot.waitUntil(lambda: "safety net" in view.status_label.text(), timeout=30_000)
+
+
+def test_the_safety_net_note_comes_before_a_coarser_level_in_the_header(make_window, qtbot, monkeypatch):
+    # Both at once: what the object is (its R) before how it is drawn (a coarser level); the tip has both.
+    from mrm.core import limits
+    from mrm.views.view3d import View3D
+
+    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
+    monkeypatch.setattr(View3D, "SURFEL_BUDGET", 20)
+    win = make_window(threaded=True)
+    z, y, x = np.mgrid[0:10, 0:10, 0:10]
+    # a staircase and a slab: not convex, and a safety net of 486 triangles, drawn in cubes wider than a voxel
+    win.doc.push(
+        AddObject(win.doc.make_object(VoxelSet((x + y + z <= 12) | (x >= 8), (0, 0, 0)), name="stairs"))
+    )
+    view = _show_3d(qtbot, win).by_name("euclidean3d")
+    qtbot.waitUntil(lambda: "safety net" in view.status_label.text(), timeout=30_000)
+    assert view.coarsest_level() > 1
+    assert view.status_label.text().startswith("R is the safety net (not compact) · coarser level: vertices")
+    tip = view.status_label.toolTip().split("\n")
+    assert tip[0].startswith("stairs: R is the safety net") and tip[1].startswith(
+        "A polyhedron has more than"
+    )
