@@ -47,10 +47,12 @@ from mrm.cli._common import (
     inputs_and_outputs,
     is_3d_input,
     pixel_limit,
+    positive_int,
     read_input,
     read_voxel_input,
     run_inputs,
 )
+from mrm.core import limits
 from mrm.core.errors import FileFormatError, ParameterError
 from mrm.core.grids import PixelSet
 from mrm.core.limits import check_reconstruct
@@ -102,6 +104,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--triangles",
         action="store_true",
         help="3D: write the mesh's triangles (default: one polygon per face in OBJ and OFF)",
+    )
+    parser.add_argument(
+        "--compact-limit",
+        type=positive_int,
+        metavar="N",
+        help="3D: the most triangles of a safety net that R simplifies into a compact polyhedron (default "
+        f"{limits.MAX_COMPACT_R_TRIANGLES:_}, about a ball of radius 30; the simplification takes about "
+        "40-150 µs per triangle); beyond, R is the safety net: exact, not compact",
     )
     add_limit_argument(parser, voxels=True)
 
@@ -161,6 +171,7 @@ def reconstruct_volume(
     limit: int | None,
     bar: Any = None,
     triangles: bool = False,
+    compact_limit: int | None = None,
 ) -> dict[str, Any]:
     """Read one voxel file, reconstruct it (R in 3D), write the mesh; return its summary."""
     chosen = model or "standard"
@@ -170,11 +181,12 @@ def reconstruct_volume(
     if bar is not None:
         bar.update(None, f"{len(vs):_} voxels")
     t0 = time.perf_counter()
-    r = reconstruct_voxels_detailed(vs, chosen)
+    r = reconstruct_voxels_detailed(vs, chosen, compact_limit)
     poly, way = r.polyhedron, r.way
     seconds = time.perf_counter() - t0
     if r.note is not None:  # R met the contract but is not compact: say so
-        print(f"mrm reconstruct: note: {path}: {r.note}", file=sys.stderr, flush=True)
+        hint = " (--compact-limit raises it)" if "at most" in r.why else ""
+        print(f"mrm reconstruct: note: {path}: {r.note}{hint}", file=sys.stderr, flush=True)
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     warning = write_mesh(poly, output, triangles=triangles)
     if warning is not None:
@@ -195,13 +207,14 @@ def reconstruct_file(
     invert: bool = False,
     features: str = "one",
     triangles: bool = False,
+    compact_limit: int | None = None,
     bar: Any = None,
 ) -> dict[str, Any]:
     """Read one pixel or voxel file, reconstruct it, write the result; return its summary (for the pool)."""
     if is_3d_input(path):
         if invert:
             raise ParameterError(f"{path}: --invert applies to 2D images only")
-        return reconstruct_volume(path, output, model, threshold, limit, bar, triangles)
+        return reconstruct_volume(path, output, model, threshold, limit, bar, triangles, compact_limit)
     extension_of(output, (*VECTOR_EXTENSIONS, ".svg"), "vector output file for a 2D input")
     limit = pixel_limit(limit)
     ps, chosen = _pixels_of(path, threshold, limit, model, invert)
@@ -239,7 +252,17 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         # A directory of outputs: a voxel input's default output is a mesh, not a GeoJSON file.
         pairs = [(i, o[: -len(".geojson")] + ".obj" if is_3d_input(i) else o) for i, o in pairs]
     jobs = [
-        (i, o, args.model, args.threshold, args.limit, args.invert, args.features, args.triangles)
+        (
+            i,
+            o,
+            args.model,
+            args.threshold,
+            args.limit,
+            args.invert,
+            args.features,
+            args.triangles,
+            args.compact_limit,
+        )
         for i, o in pairs
     ]
 

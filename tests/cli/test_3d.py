@@ -408,5 +408,20 @@ def test_reconstruct_says_how_r_was_made_and_notes_the_safety_net(capsys, tmp_pa
     code, stdout, err = run(capsys, "reconstruct", tmp_path / "a.npz", "-o", tmp_path / "a.obj", "--json")
     summary = json.loads(stdout)
     assert code == 0 and summary["r"] == "safety net"
-    assert "R is the safety net" in err and "at most 10 triangles" in err
+    assert "R is the safety net" in err and "at most 10 triangles (--compact-limit raises it)" in err
     assert mrm.voxelize(mrm.read_mesh(tmp_path / "a.obj"), "standard") == a  # still exact
+    net_faces = summary["faces"]
+    # --compact-limit raises the limit for one run: the compact R again, fewer faces, no note.
+    code, stdout, err = run(capsys, "reconstruct", tmp_path / "a.npz", "-o", tmp_path / "a.obj", "--json",
+                            "--compact-limit", "1_000_000")  # fmt: skip
+    summary = json.loads(stdout)
+    assert code == 0 and summary["r"] == "decimation" and "note" not in err
+    assert summary["faces"] < net_faces
+    assert mrm.voxelize(mrm.read_mesh(tmp_path / "a.obj"), "standard") == a
+    with pytest.raises(SystemExit) as exit_:
+        run_cli(
+            ["reconstruct", str(tmp_path / "a.npz"), "-o", str(tmp_path / "b.obj"), "--compact-limit", "0"]
+        )
+    assert exit_.value.code == 2
+    assert "argument --compact-limit: expected a positive integer, got '0'" in capsys.readouterr().err
+    assert not (tmp_path / "b.obj").exists()

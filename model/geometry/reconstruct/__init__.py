@@ -430,8 +430,15 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
     return reconstruct_voxels_detailed(vs, model).polyhedron
 
 
-def reconstruct_voxels_detailed(vs: VoxelSet, model: str = "standard") -> VoxelR:
-    """:func:`reconstruct_voxels`, with the way R was made (:class:`VoxelR`): the command line reports it."""
+def reconstruct_voxels_detailed(
+    vs: VoxelSet, model: str = "standard", compact_limit: int | None = None
+) -> VoxelR:
+    """:func:`reconstruct_voxels`, with the way R was made (:class:`VoxelR`): the command line reports it.
+
+    ``compact_limit``: the most triangles of a safety net that the decimation takes (default
+    ``limits.MAX_COMPACT_R_TRIANGLES``); beyond, R is the safety net. ``mrm reconstruct --compact-limit``
+    raises it for one run: the decimation takes about 40–150 µs per triangle of the net.
+    """
     # Imported here: 2D work (and the desktop's first paint) never loads the 3D kernels.
     from mrm.geometry.polyhedra import Polyhedron
     from mrm.geometry.reconstruct.convex_3d import FEW_FACETS, convex_reconstruction
@@ -454,11 +461,11 @@ def reconstruct_voxels_detailed(vs: VoxelSet, model: str = "standard") -> VoxelR
         small = hull.polyhedron.n_triangles < RIVAL_WORTH * hull.surfels
         if small or hull.surfels > limits.MAX_RIVAL_SURFELS:
             return VoxelR(hull.polyhedron, way)
-        rival = _decimated(vs, model)
+        rival = _decimated(vs, model, compact_limit)
         if _size(hull.polyhedron, hull.facets) <= _size(rival.polyhedron, hull.facets):
             return VoxelR(hull.polyhedron, way)
         return rival
-    return _decimated(vs, model)
+    return _decimated(vs, model, compact_limit)
 
 
 def _size(p: Polyhedron, facets: int) -> tuple[int, ...]:
@@ -471,21 +478,17 @@ def _size(p: Polyhedron, facets: int) -> tuple[int, ...]:
     return (p.n_triangles, p.n_faces)
 
 
-def _decimated(vs: VoxelSet, model: str) -> VoxelR:
+def _decimated(vs: VoxelSet, model: str, compact_limit: int | None) -> VoxelR:
     # R(A) by the safety net's decimation (ADR 0064), checked as a whole; the safety net when too big.
     from mrm.core import limits
     from mrm.geometry.discretize.voxels import voxelize_solid
     from mrm.geometry.polyhedra import Polyhedron
     from mrm.geometry.reconstruct.decimate_3d import compact_r
 
-    vertices, triangles, net_vertices, net_triangles = compact_r(
-        vs.mask, vs.origin, model, limits.MAX_COMPACT_R_TRIANGLES
-    )
+    most = limits.MAX_COMPACT_R_TRIANGLES if compact_limit is None else compact_limit
+    vertices, triangles, net_vertices, net_triangles = compact_r(vs.mask, vs.origin, model, most)
     if triangles is net_triangles:  # too big for the decimation: the safety net, which meets the contract
-        why = (
-            f"the decimation takes sets whose safety net has at most {limits.MAX_COMPACT_R_TRIANGLES:,} "
-            "triangles"
-        )
+        why = f"the decimation takes sets whose safety net has at most {most:,} triangles"
         return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net", why)
     try:
         result = Polyhedron(vertices, triangles)
