@@ -196,6 +196,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.undo.cleanChanged.connect(lambda _clean: self.update_title())
         for aid, tool in TOOL_ACTIONS.items():
             a[aid].toggled.connect(lambda on, t=tool: on and self.tools.set_tool(t))
+            if tool != "select":  # chosen by the user (a click, its key), not set back by _tool_changed
+                a[aid].triggered.connect(lambda _on=False, aid=aid: self._plane_tool_chosen(aid))
         self.tools.toolChanged.connect(self._tool_changed)
         self.host.message.connect(self.show_message)
         self.host.error.connect(lambda text: self.show_message(text, 5000, error=True))
@@ -366,6 +368,15 @@ class MainWindow(QtWidgets.QMainWindow):
     def _clear_recent(self) -> None:
         self.prefs.clear_recent_files()
         self.update_recent_menu()
+
+    def _plane_tool_chosen(self, aid: str) -> None:
+        # The drawing and editing tools act in the plane views: chosen while the 3D views were shown, the tool
+        # did nothing there that the user could see. Bring the plane views forward and say how to go back.
+        if self.views.dimension != 3:
+            return
+        self.views.set_dimension(2)
+        name = self.registry[aid].text().replace("&", "")
+        self.show_message(f"{name} works in the plane views (F3 for the 3D views)", 6000)
 
     def _tool_changed(self, name: str) -> None:
         for aid, tool in TOOL_ACTIONS.items():

@@ -41,3 +41,26 @@ def test_a_project_with_voxel_objects_opens_draws_its_plane_objects_and_saves_th
     assert isinstance(again.find("labels 3D")[0].source, LabelVolume)
     assert again.find("octahedron")[0].source == win.doc.find("octahedron")[0].source
     assert again.find("solid octahedron")[0].source == win.doc.find("solid octahedron")[0].source
+
+
+def test_choosing_a_plane_tool_in_the_3d_views_brings_the_plane_views_forward(make_window, qtbot):
+    # The drawing tools act in the plane views: P pressed while the 3D views were shown chose Draw Polygon,
+    # which did nothing the user could see. Now the plane views come forward and the status bar says how to
+    # go back; S (select, which the 3D views use too) leaves the 3D views alone.
+    from PySide6 import QtCore
+
+    from tests.app.helpers import press_key
+
+    win = make_window()
+    assert win.files.open(GOLDEN_V5, ask=False)
+    wait_drawn(qtbot, win)
+    press_key(qtbot, win.views.discrete, QtCore.Qt.Key.Key_F3)
+    assert win.views.dimension == 3
+    win.activateWindow()
+    qtbot.keyClick(win.views.area3d, QtCore.Qt.Key.Key_S)
+    assert win.views.dimension == 3 and win.tools.tool.name == "select"
+    qtbot.keyClick(win.views.area3d, QtCore.Qt.Key.Key_P)
+    assert win.views.dimension == 2 and win.views.discrete.isVisible()
+    assert win.tools.tool.name == "polygon" and win.registry["tool.polygon"].isChecked()
+    assert win.status.currentMessage() == "Draw Polygon works in the plane views (F3 for the 3D views)"
+    assert not win.registry["view.three_d"].isChecked()
