@@ -314,7 +314,9 @@ class PropertiesPanel(QtWidgets.QWidget):
             self.refresh()
 
     def refresh(self) -> None:
-        obj = self.scene.primary()
+        obj = (
+            self.scene.selected()
+        )  # either dimension: a 3D object's name, colour and opacity are edited here
         self.obj_id = obj.id if obj is not None else None
         self.form_box.setEnabled(obj is not None)
         self.table.setEnabled(obj is not None)
@@ -349,6 +351,12 @@ class PropertiesPanel(QtWidgets.QWidget):
             self.source_label.setText(
                 f"{src} · {provenance_text(obj.provenance)}" if obj.provenance is not None else src
             )
+            if obj.dimension == 3:  # no vertex table (yet): what it is and what its R is
+                self.vertices.set_geometry(None)
+                self.table.setVisible(False)
+                self.legend.setVisible(False)
+                self.vertex_note.setText(self._solid_note(obj))
+                return
             labels = obj.kind == "labels"
             self.table.setVisible(not labels)
             self.legend.setVisible(labels)
@@ -376,6 +384,21 @@ class PropertiesPanel(QtWidgets.QWidget):
                 )
         finally:
             self._syncing = False
+
+    def _solid_note(self, obj: Any) -> str:
+        """The note on a 3D object: its polyhedron's size (R(A) of voxels, made on a worker) and R's note."""
+        where = "It is drawn in the 3D views (F3)."
+        if obj.kind == "labels":
+            return f"A label volume (3D). {where} `mrm polygonize` gives one closed mesh per region."
+        poly = self.scene.get(obj.id, "euclidean")
+        if poly is None:
+            err = self.scene.error(obj.id, "euclidean")
+            return f"{where} R(A): {err}" if err else f"{where} Computing R(A)…"
+        size = f"{poly.n_triangles:,} triangles, {poly.n_vertices:,} vertices"
+        if obj.kind == "euclidean":
+            return f"A polyhedron of {size}. {where}"
+        note = self.scene.r_note(obj.id)
+        return f"R(A), exact (D(R(A)) = A): {size}. {where}" + (f" {note}." if note else "")
 
     #: Label maps with more pixels than this get their legend counted on a worker; at most this many labels
     #: are listed (the views colour the others alike: the colours cycle).

@@ -206,6 +206,16 @@ class SegmentTable(QtWidgets.QWidget):
 
     def refresh(self) -> None:
         obj = self.scene.primary()
+        solid = self.scene.selected()
+        if obj is None and solid is not None:  # a 3D object: its plane segments are drawn, not listed (yet)
+            self.obj_id = -1
+            self.model.set_analytical(None)
+            self.caption.setText(
+                f"<b>{solid.name}</b> is a 3D object: its digital plane segments are drawn in the analytical "
+                "3D view (F3), each in a colour of its own with its normal."
+            )
+            self._show_preimage(None, -1)
+            return
         if obj is None:
             self.obj_id = -1
             self.model.set_analytical(None)

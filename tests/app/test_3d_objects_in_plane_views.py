@@ -64,3 +64,31 @@ def test_choosing_a_plane_tool_in_the_3d_views_brings_the_plane_views_forward(ma
     assert win.tools.tool.name == "polygon" and win.registry["tool.polygon"].isChecked()
     assert win.status.currentMessage() == "Draw Polygon works in the plane views (F3 for the 3D views)"
     assert not win.registry["view.three_d"].isChecked()
+
+
+def test_a_selected_3d_object_shows_in_the_properties_and_segments_panels(make_window, qtbot):
+    # Both panels said "Select an object…" with a 3D object selected. Now the Properties panel edits its name
+    # (one undo step) and says what its R(A) is; the Segments panel says where its plane segments are.
+    from tests.app.helpers import type_into
+
+    win = make_window(threaded=True)
+    assert win.files.open(GOLDEN_V5, ask=False)
+    wait_drawn(qtbot, win)
+    win.registry["edit.properties"].trigger()
+    click_object(qtbot, win, "octahedron")
+    panel = win.properties
+    obj = win.doc.find("octahedron")[0]
+    assert panel.name_edit.text() == "octahedron" and not panel.table.isVisible()
+    assert panel.source_label.text().startswith("voxels (3D)")
+    qtbot.waitUntil(lambda: "R(A), exact" in panel.vertex_note.text(), timeout=30_000)
+    r = win.scene.get(obj.id, "euclidean")
+    assert f"{r.n_triangles:,} triangles, {r.n_vertices:,} vertices" in panel.vertex_note.text()
+    assert "safety net" not in panel.vertex_note.text()  # a convex set: its hull
+    assert "octahedron</b> is a 3D object" in win.segments.caption.text()
+    type_into(qtbot, panel.name_edit, "diamond")
+    assert win.doc.get(obj.id).name == "diamond"
+    assert win.doc.history.undo_label() == "Rename"
+    click_object(qtbot, win, "solid octahedron")
+    solid = win.doc.find("solid octahedron")[0].source
+    qtbot.waitUntil(lambda: "A polyhedron of" in panel.vertex_note.text(), timeout=5000)
+    assert f"{solid.n_triangles:,} triangles" in panel.vertex_note.text()
