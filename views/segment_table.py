@@ -1,7 +1,8 @@
 """The Segments dock: the (a, b, μ, ω) of the selected object's digital straight segments, and a preimage.
 
 The preimage of the chosen segment is drawn in its line-parameter space (u, w), the chosen (median) line
-marked.
+marked. A 3D object's digital plane segments are listed instead, (a, b, c, μ, ω) and their surfels, without a
+preimage plot.
 
 Rows follow the analytical representation: per component its outer chain, then its holes; within a chain
 the segments in order. Selecting a row selects the segment in the analytical view, and the reverse.
@@ -96,6 +97,59 @@ class SegmentModel(QtCore.QAbstractTableModel):
         return None
 
 
+#: The columns of a 3D object's plane segments.
+PLANE_COLUMNS = ("surface", "#", "a", "b", "c", "μ", "ω", "surfels")
+
+
+class PlaneSegmentModel(QtCore.QAbstractTableModel):
+    """Lazy rows over a 3D analytical representation: a segment's plane is chosen when its row is drawn."""
+
+    def __init__(self, parent: QtCore.QObject | None = None) -> None:
+        super().__init__(parent)
+        self.ana: Any = None
+
+    def set_analytical(self, ana: Any) -> None:
+        if ana is self.ana:
+            return
+        self.beginResetModel()
+        self.ana = ana
+        self.endResetModel()
+
+    def rowCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
+        return 0 if parent.isValid() or self.ana is None else len(self.ana)
+
+    def columnCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
+        return 0 if parent.isValid() else len(PLANE_COLUMNS)
+
+    def headerData(self, section: int, orientation: QtCore.Qt.Orientation, role: int = 0) -> object:
+        if role == QtCore.Qt.ItemDataRole.DisplayRole and orientation == QtCore.Qt.Orientation.Horizontal:
+            return PLANE_COLUMNS[section]
+        return None
+
+    def data(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, role: int = 0) -> object:
+        if role not in _ROLES or not index.isValid() or self.ana is None:
+            return None
+        k, c = index.row(), index.column()
+        if role == QtCore.Qt.ItemDataRole.TextAlignmentRole:
+            return int(QtCore.Qt.AlignmentFlag.AlignRight | QtCore.Qt.AlignmentFlag.AlignVCenter)
+        seg = self.ana.segmentation
+        if c == 0:
+            return int(self.ana.surface_of[k]) if role == QtCore.Qt.ItemDataRole.DisplayRole else None
+        if c == 1:
+            return k if role == QtCore.Qt.ItemDataRole.DisplayRole else None
+        if c == 7:
+            n = int(seg.member_ptr[k + 1] - seg.member_ptr[k])
+            return n if role == QtCore.Qt.ItemDataRole.DisplayRole else None
+        plane = seg.segment(k).plane  # recognized once, then kept by the segmentation
+        if role == QtCore.Qt.ItemDataRole.ToolTipRole:
+            a, b, cc, mu = plane.a, plane.b, plane.c, plane.mu
+            return (
+                f"{_n(mu)} ≤ {_n(a)}·x + {_n(b)}·y + {_n(cc)}·z < {_n(mu + plane.omega)} over the segment's "
+                "voxels; the voxels outside are beyond it"
+            )
+        return (plane.a, plane.b, plane.c, plane.mu, plane.omega)[c - 2]
+
+
 def _n(v: object) -> str:
     return str(v).replace("-", "−")
 
@@ -153,6 +207,21 @@ class SegmentTable(QtWidgets.QWidget):
             hdr.resizeSection(c, fm.horizontalAdvance(sample) + 10)
         self.table.setAlternatingRowColors(True)
         self.table.selectionModel().currentRowChanged.connect(self._row_changed)
+        # A 3D object's plane segments: a table of their own (no preimage plot, no row ↔ view selection yet).
+        self.planes = PlaneSegmentModel(self)
+        self.plane_table = QtWidgets.QTableView(self)
+        self.plane_table.setObjectName("planeSegmentView")
+        self.plane_table.setModel(self.planes)
+        self.plane_table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectionBehavior.SelectRows)
+        self.plane_table.verticalHeader().hide()
+        self.plane_table.verticalHeader().setDefaultSectionSize(self.fontMetrics().height() + 4)
+        self.plane_table.setAlternatingRowColors(True)
+        phdr = self.plane_table.horizontalHeader()
+        phdr.setSectionResizeMode(QtWidgets.QHeaderView.ResizeMode.Interactive)
+        for c, sample in enumerate(("0000", "00000", "−000", "−000", "−000", "−000000", "0000", "000000")):
+            wide = max(fm.horizontalAdvance(sample), fm.horizontalAdvance(PLANE_COLUMNS[c]))
+            phdr.resizeSection(c, wide + 14)
+        self.plane_table.setVisible(False)
         self.plot = pg.PlotWidget(self)
         self.plot.setObjectName("preimagePlot")
         self.plot.setMenuEnabled(False)
@@ -174,6 +243,7 @@ class SegmentTable(QtWidgets.QWidget):
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.caption)
         lay.addWidget(self.table, 3)
+        lay.addWidget(self.plane_table, 3)
         lay.addWidget(self.plot_caption)
         lay.addWidget(self.plot, 2)
         self._syncing = False
@@ -207,15 +277,15 @@ class SegmentTable(QtWidgets.QWidget):
     def refresh(self) -> None:
         obj = self.scene.primary()
         solid = self.scene.selected()
-        if obj is None and solid is not None:  # a 3D object: its plane segments are drawn, not listed (yet)
-            self.obj_id = -1
-            self.model.set_analytical(None)
-            self.caption.setText(
-                f"<b>{solid.name}</b> is a 3D object: its digital plane segments are drawn in the analytical "
-                "3D view (F3), each in a colour of its own with its normal."
-            )
-            self._show_preimage(None, -1)
+        three_d = obj is None and solid is not None
+        for w in (self.table, self.plot, self.plot_caption):
+            w.setVisible(not three_d)
+        self.plane_table.setVisible(three_d)
+        if three_d:
+            assert solid is not None
+            self._show_planes(solid)
             return
+        self.planes.set_analytical(None)
         if obj is None:
             self.obj_id = -1
             self.model.set_analytical(None)
@@ -244,6 +314,24 @@ class SegmentTable(QtWidgets.QWidget):
             "μ ≤ a·i − b·j &lt; μ + ω over the pointels (i, j)."
         )
         self._segment_selected(*self.scene.segment)
+
+    def _show_planes(self, obj: Any) -> None:
+        """List a 3D object's digital plane segments (computed on a worker; listed when ready)."""
+        self.obj_id = -1
+        self.model.set_analytical(None)
+        self._show_preimage(None, -1)
+        ana = self.scene.get(obj.id, "analytical")
+        self.planes.set_analytical(ana)
+        if ana is None:
+            err = self.scene.error(obj.id, "analytical")
+            self.caption.setText(f"<b>{obj.name}</b>: {err}" if err else f"<b>{obj.name}</b>: computing…")
+            return
+        surfaces = len(set(ana.surface_of.tolist())) if len(ana) else 0
+        self.caption.setText(
+            f"<b>{obj.name}</b>: {len(ana):,} digital plane segments on {surfaces:,} "
+            f"surface{'s' if surfaces != 1 else ''}, μ ≤ a·x + b·y + c·z &lt; μ + ω over each segment's "
+            "voxels; drawn in the analytical 3D view (F3)."
+        )
 
     def _row_changed(self, cur: QtCore.QModelIndex, _prev: QtCore.QModelIndex) -> None:
         if self._syncing or not cur.isValid() or self.obj_id < 0:

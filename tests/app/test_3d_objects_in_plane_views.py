@@ -68,7 +68,10 @@ def test_choosing_a_plane_tool_in_the_3d_views_brings_the_plane_views_forward(ma
 
 def test_a_selected_3d_object_shows_in_the_properties_and_segments_panels(make_window, qtbot):
     # Both panels said "Select an object…" with a 3D object selected. Now the Properties panel edits its name
-    # (one undo step) and says what its R(A) is; the Segments panel says where its plane segments are.
+    # (one undo step) and says what its R(A) is; the Segments panel lists its digital plane segments.
+    import numpy as np
+
+    from mrm.document.commands import AddObject
     from tests.app.helpers import type_into
 
     win = make_window(threaded=True)
@@ -84,7 +87,6 @@ def test_a_selected_3d_object_shows_in_the_properties_and_segments_panels(make_w
     r = win.scene.get(obj.id, "euclidean")
     assert f"{r.n_triangles:,} triangles, {r.n_vertices:,} vertices" in panel.vertex_note.text()
     assert "safety net" not in panel.vertex_note.text()  # a convex set: its hull
-    assert "octahedron</b> is a 3D object" in win.segments.caption.text()
     type_into(qtbot, panel.name_edit, "diamond")
     assert win.doc.get(obj.id).name == "diamond"
     assert win.doc.history.undo_label() == "Rename"
@@ -92,3 +94,24 @@ def test_a_selected_3d_object_shows_in_the_properties_and_segments_panels(make_w
     solid = win.doc.find("solid octahedron")[0].source
     qtbot.waitUntil(lambda: "A polyhedron of" in panel.vertex_note.text(), timeout=5000)
     assert f"{solid.n_triangles:,} triangles" in panel.vertex_note.text()
+    # The Segments panel lists the plane segments of a digital octahedron of radius 4: one per face, normals
+    # (±1, ±1, ±1), thickness 3, together all its surfels.
+    z, y, x = np.mgrid[-4:5, -4:5, -4:5]
+    octa = win.doc.make_object(VoxelSet(abs(x) + abs(y) + abs(z) <= 4, (30, -4, -4)), name="octa 4")
+    win.doc.push(AddObject(octa))
+    click_object(qtbot, win, "octa 4")
+    segments = win.segments
+    qtbot.waitUntil(
+        lambda: "8 digital plane segments on 1 surface" in segments.caption.text(), timeout=30_000
+    )
+    assert segments.plane_table.isVisible() and not segments.table.isVisible()
+    planes = segments.plane_table.model()
+    rows = [[planes.index(r, c).data() for c in range(8)] for r in range(planes.rowCount())]
+    assert sorted(tuple(row[2:5]) for row in rows) == sorted(
+        (a, b, c) for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)
+    )
+    n_surfels = win.scene.get(octa.id, "region").n_surfels
+    assert {row[6] for row in rows} == {3} and sum(row[7] for row in rows) == n_surfels
+    # A plane object again: the segments of its boundaries, in the table of digital straight segments.
+    click_object(qtbot, win, "square")
+    qtbot.waitUntil(lambda: segments.table.isVisible() and not segments.plane_table.isVisible(), timeout=5000)
