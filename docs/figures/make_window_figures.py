@@ -254,7 +254,7 @@ def history(app: Any) -> Path:
 
 
 def views_3d(app: Any) -> Path:
-    """The four 3D views: a digital octahedron (8 plane segments) and a digital torus, seen obliquely."""
+    """The four 3D views: a digital octahedron (its 8 plane segments listed) and a torus, obliquely."""
     import numpy as np
 
     from mrm.core.grids import VoxelSet
@@ -267,6 +267,9 @@ def views_3d(app: Any) -> Path:
     win = _window()
     objects = [win.doc.make_object(octahedron, name="octahedron"), win.doc.make_object(torus, name="torus")]
     win.doc.reset(objects)  # as File ▸ Open: a document of 3D objects only opens in the 3D views
+    win.doc.set_selection([objects[0].id])  # the Segments panel lists the octahedron's 8 plane segments
+    win.segments_dock.show()
+    win.segments_dock.raise_()
     _settle(app, win)
     return _save(app, win, "views-3d.png")
 
