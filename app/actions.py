@@ -36,9 +36,17 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec(
         "file.save_as", "Save &As…", Std.SaveAs, "Save the project under a new name", icon="document-save-as"
     ),
-    ActionSpec("file.import", "&Import…", "Ctrl+I", "Import an image, GeoJSON or WKT file as new objects"),
     ActionSpec(
-        "file.export", "&Export Selection…", "Ctrl+E", "Export the selected object (PNG, SVG, GeoJSON, WKT)"
+        "file.import",
+        "&Import…",
+        "Ctrl+I",
+        "Import an image, GeoJSON, WKT, voxel or mesh file as new objects",
+    ),
+    ActionSpec(
+        "file.export",
+        "&Export Selection…",
+        "Ctrl+E",
+        "Export the selected object (PNG, SVG, GeoJSON, WKT; a 3D one as OBJ, PLY, OFF, STL or voxels)",
     ),
     ActionSpec("file.screenshot", "Save Window &Picture…", "Ctrl+Shift+P", "Save a picture of the window"),
     ActionSpec("file.preferences", "Pre&ferences…", Std.Preferences, "Models, colours, brush, shortcuts"),

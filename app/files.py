@@ -36,6 +36,24 @@ EXPORT_FILTERS = {
     ".pbm": "PBM bitmap — pixels (*.pbm)",
     ".tif": "GeoTIFF — pixels, georeferenced (*.tif)",
 }
+#: What a 3D object exports as: its polyhedron (R(A) of voxels, exactly as the Euclidean 3D view shows it) or
+#: its voxels (D(P) of a polyhedron). A label volume exports as its labels only.
+EXPORT_FILTERS_3D = {
+    ".obj": "Wavefront OBJ — polyhedron, one polygon per face (*.obj)",
+    ".off": "OFF — polyhedron, one polygon per face (*.off)",
+    ".ply": "PLY — polyhedron, triangles (*.ply)",
+    ".stl": "STL — polyhedron, rounded to float32 (*.stl)",
+    ".npz": "NumPy volume — voxels (*.npz)",
+    ".tif": "Multi-page TIFF — voxels (*.tif)",
+    ".nii.gz": "NIfTI — voxels (*.nii.gz)",
+}
+_VOLUME_EXTENSIONS = (".npz", ".tif", ".nii.gz")
+
+
+def _extension_3d(p: Path) -> str:
+    """The export extension of ``p`` (``.nii.gz`` is one), lower case."""
+    name = p.name.lower()
+    return ".nii.gz" if name.endswith(".nii.gz") else p.suffix.lower()
 
 
 def describe_error(e: BaseException) -> str:
@@ -687,18 +705,20 @@ class FileController(QtCore.QObject):
         self.win.show_message(f"showing the {shown} views (F3 for the {other} views)", 6000)
 
     def export_dialog(self) -> bool:
-        obj = self.win.scene.primary()
+        obj = self.win.scene.selected()
         if obj is None:
             self._error("Nothing to export", "Select the object to export first.")
             return False
-        filters = ";;".join(EXPORT_FILTERS.values())
-        start = str(Path(self._directory()) / f"{obj.name}.png")
+        table = EXPORT_FILTERS_3D if obj.dimension == 3 else EXPORT_FILTERS
+        first = ".npz" if obj.dimension == 3 and obj.kind == "labels" else next(iter(table))
+        filters = ";;".join(table.values())
+        start = str(Path(self._directory()) / f"{obj.name}{first}")
         files, flt = ask_paths(self.win, "exportDialog", f"Export {obj.name}", start, filters, save=True)
         if not files:
             return False
         p = Path(files[0])
-        if p.suffix.lower() not in EXPORT_FILTERS:
-            ext = next((e for e, f in EXPORT_FILTERS.items() if f == flt), ".png")
+        if _extension_3d(p) not in table:
+            ext = next((e for e, f in table.items() if f == flt), first)
             p = p.with_name(p.name + ext)
         return self.export(obj.id, p)
 
@@ -707,6 +727,8 @@ class FileController(QtCore.QObject):
         p = Path(path)
         ext = p.suffix.lower()
         entry = self.doc.derived(obj_id)
+        if self.doc.get(obj_id).dimension == 3:
+            return self._export_3d(obj_id, p)
         if self.doc.get(obj_id).kind == "labels":
             return self._export_label_map(obj_id, p)
         obj = self.doc.get(obj_id)
@@ -741,6 +763,48 @@ class FileController(QtCore.QObject):
         def written(_r: Any) -> bool:
             self.prefs.last_directory = str(p.resolve().parent)
             self.win.show_message(f"Exported {p.name}", 3000)
+            return True
+
+        return self._in_background(f"export {p}", write, written, "Cannot export", f"Exporting {p.name}")
+
+    def _export_3d(self, obj_id: int, p: Path) -> bool:
+        """Write a 3D object on a worker: its polyhedron as a mesh, or its voxels (a label volume: labels)."""
+        obj = self.doc.get(obj_id)
+        entry = self.doc.derived(obj_id)
+        ext = _extension_3d(p)
+        if ext not in EXPORT_FILTERS_3D or (obj.kind == "labels" and ext not in _VOLUME_EXTENSIONS):
+            kinds = ", ".join(_VOLUME_EXTENSIONS if obj.kind == "labels" else EXPORT_FILTERS_3D)
+            more = " (`mrm polygonize` writes its meshes, one per region)" if obj.kind == "labels" else ""
+            self._error(
+                "Cannot export", f"{obj.name} is a 3D object: it exports as {kinds}{more}, not '{ext}'."
+            )
+            return False
+        warnings: list[str] = []
+
+        def write(progress: Any) -> None:
+            # On a worker: R(A) of a big voxel set, or D(P) of a big polyhedron, takes seconds; both are the
+            # document's own (the object's derived entry), written atomically.
+            if obj.kind == "labels":
+                from mrm.io.voxel_files import write_label_volume
+
+                write_label_volume(obj.source, p)
+            elif ext in _VOLUME_EXTENSIONS:
+                from mrm.io.voxel_files import write_voxels
+
+                progress.update(None, f"{obj.name}: its voxels")
+                write_voxels(entry.get("discrete"), p)
+            else:
+                from mrm.io.mesh_files import write_mesh
+
+                progress.update(None, f"{obj.name}: its polyhedron")
+                warning = write_mesh(entry.get("euclidean"), p)
+                if warning is not None:
+                    warnings.append(warning)
+
+        def written(_r: Any) -> bool:
+            self.prefs.last_directory = str(p.resolve().parent)
+            note = f" — {warnings[0]}" if warnings else ""
+            self.win.show_message(f"Exported {p.name}{note}", 8000 if warnings else 3000)
             return True
 
         return self._in_background(f"export {p}", write, written, "Cannot export", f"Exporting {p.name}")

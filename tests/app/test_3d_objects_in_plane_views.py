@@ -115,3 +115,52 @@ def test_a_selected_3d_object_shows_in_the_properties_and_segments_panels(make_w
     # A plane object again: the segments of its boundaries, in the table of digital straight segments.
     click_object(qtbot, win, "square")
     qtbot.waitUntil(lambda: segments.table.isVisible() and not segments.plane_table.isVisible(), timeout=5000)
+
+
+def test_a_3d_object_exports_its_polyhedron_or_its_voxels(make_window, qtbot, tmp_path):
+    # Ctrl+E with a 3D object selected said "Select the object to export first". Now the voxel octahedron
+    # exports R(A) (reads back as a polyhedron whose voxels are A again) or its voxels, the polyhedron its
+    # mesh, the label volume its labels; a mesh type for a label volume is refused with what it takes.
+    import numpy as np
+    from PySide6 import QtCore, QtWidgets
+
+    import mrm
+    from tests.app.helpers import answer_file_dialog
+
+    win = make_window()
+    assert win.files.open(GOLDEN_V5, ask=False)
+    wait_drawn(qtbot, win)
+    octa = win.doc.find("octahedron")[0]
+    click_object(qtbot, win, "octahedron")
+    seen = answer_file_dialog(qtbot, "exportDialog", tmp_path / "octa.obj")
+    qtbot.keyClick(win.views.discrete, QtCore.Qt.Key.Key_E, QtCore.Qt.KeyboardModifier.ControlModifier)
+    qtbot.waitUntil(lambda: (tmp_path / "octa.obj").exists(), timeout=30_000)
+    assert seen["name"] == "octahedron.obj"
+    model = win.doc.settings.model
+    back = mrm.read_mesh(tmp_path / "octa.obj")
+    assert mrm.voxelize(back, model) == octa.source
+    assert win.files.export(octa.id, tmp_path / "octa.nii.gz")
+    qtbot.waitUntil(lambda: (tmp_path / "octa.nii.gz").exists(), timeout=30_000)
+    assert mrm.read_voxels(tmp_path / "octa.nii.gz") == octa.source
+    solid = win.doc.find("solid octahedron")[0]
+    assert win.files.export(solid.id, tmp_path / "solid.off")
+    qtbot.waitUntil(lambda: (tmp_path / "solid.off").exists(), timeout=30_000)
+    assert mrm.read_mesh(tmp_path / "solid.off") == solid.source
+    labels = win.doc.find("labels 3D")[0]
+    assert win.files.export(labels.id, tmp_path / "labels.npz")
+    qtbot.waitUntil(lambda: (tmp_path / "labels.npz").exists(), timeout=30_000)
+    assert np.array_equal(mrm.read_label_volume(tmp_path / "labels.npz").labels, labels.source.labels)
+    box = {}
+
+    def refused() -> bool:
+        boxes = [w for w in QtWidgets.QApplication.topLevelWidgets() if w.objectName() == "errorDialog"]
+        if boxes and boxes[0].isVisible():
+            box["text"] = f"{boxes[0].text()} {boxes[0].informativeText()}"
+            boxes[0].close()
+            return True
+        return False
+
+    assert not win.files.export(labels.id, tmp_path / "labels.obj")
+    qtbot.waitUntil(refused, timeout=5000)
+    assert "labels 3D is a 3D object: it exports as .npz, .tif, .nii.gz" in box["text"]
+    assert not (tmp_path / "labels.obj").exists()
