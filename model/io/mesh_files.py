@@ -23,7 +23,7 @@ import io
 import logging
 import os
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 from itertools import pairwise
 from pathlib import Path
 from typing import Any
@@ -465,39 +465,65 @@ def _as_polygons(t: Ints) -> tuple[Ints, Ints]:
 
 
 def _used_only(v: Floats, idx: Ints) -> tuple[Floats, Ints]:
-    # The vertices the indices use, and the indices into them: a vertex inside a face is in no polygon.
-    used = np.unique(idx)
-    if used.size == v.shape[0]:
+    # The vertices the indices use, and the indices into them: a vertex inside a face is in no polygon. A
+    # mask, not np.unique: its hash took 2.5 s on 10⁷ indices, holding the GIL (the desktop froze meanwhile).
+    used = np.zeros(v.shape[0], np.bool_)
+    used[idx] = True
+    if used.all():
         return v, idx
-    return v[used], np.searchsorted(used, idx)
+    return v[used], (np.cumsum(used) - 1)[idx]
 
 
-def _face_lines(ptr: Ints, idx: Ints, head: Callable[[int], str], first: int) -> str:
-    # One line per polygon idx[ptr[k]:ptr[k + 1]]: head, then its vertex numbers counted from first. Plain
-    # lists, not one array per polygon: a label volume's mesh has millions of them.
-    vals = (idx + first).tolist()
-    return "".join(head(b - a) + " ".join(map(str, vals[a:b])) + "\n" for a, b in pairwise(ptr.tolist()))
+#: Rows turned into Python lists at a time when a file's text is made: one ``tolist`` of a whole big array
+#: holds the GIL for half a second (the desktop writes files on a worker; its window would freeze).
+_ROWS = 1 << 16
 
 
-def _obj_faces(ptr: Ints, idx: Ints) -> str:
+def _rows(a: npt.NDArray[Any]) -> Iterator[list[Any]]:
+    # The rows of a, as lists, a chunk at a time.
+    for k in range(0, a.shape[0], _ROWS):
+        yield a[k : k + _ROWS].tolist()
+
+
+def _vertex_text(v: Floats, head: str) -> Iterator[str]:
+    # The vertex lines, a chunk at a time. repr() is the shortest string that reads back as the same float64
+    # (the 2-D vector files do the same).
+    for rows in _rows(v):
+        yield "".join(f"{head}{x!r} {y!r} {z!r}\n" for x, y, z in rows)
+
+
+def _face_text(ptr: Ints, idx: Ints, head: Callable[[int], str], first: int) -> Iterator[str]:
+    # One line per polygon idx[ptr[k]:ptr[k + 1]]: head, then its vertex numbers counted from first; a chunk
+    # of polygons at a time. Plain lists, not one array per polygon: a label volume's mesh has millions.
+    for k in range(0, ptr.size - 1, _ROWS):
+        stop = min(k + _ROWS, ptr.size - 1)
+        a0 = int(ptr[k])
+        vals = (idx[a0 : int(ptr[stop])] + first).tolist()
+        bounds = (ptr[k : stop + 1] - a0).tolist()
+        yield "".join(head(b - a) + " ".join(map(str, vals[a:b])) + "\n" for a, b in pairwise(bounds))
+
+
+def _obj_faces(ptr: Ints, idx: Ints) -> Iterator[str]:
     # OBJ's face lines (vertex numbers from 1); triangles alone by a quicker way (a fifth less time).
     if idx.size == 3 * (ptr.size - 1):
-        return "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in idx.reshape(-1, 3).tolist())
-    return _face_lines(ptr, idx, lambda _n: "f ", 1)
+        for rows in _rows(idx.reshape(-1, 3)):
+            yield "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in rows)
+    else:
+        yield from _face_text(ptr, idx, lambda _n: "f ", 1)
 
 
-def _text_lines(v: Floats, ptr: Ints, idx: Ints, ext: str) -> str:
-    # repr() is the shortest string that reads back as the same float64 (the 2-D vector files do the same).
+def _text_parts(v: Floats, ptr: Ints, idx: Ints, ext: str) -> Iterator[str]:
+    # An OBJ or OFF file's text, a chunk at a time: a big mesh's text is hundreds of megabytes, and one join,
+    # concatenation or encoding of it holds the GIL for a second (the desktop writes files on a worker).
     # Polygon k is idx[ptr[k]:ptr[k + 1]].
     if ext == ".obj":
-        head = "# written by MR Modeler: exact float64 coordinates\n"
-        verts = "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
-        faces = _obj_faces(ptr, idx)
+        yield "# written by MR Modeler: exact float64 coordinates\n"
+        yield from _vertex_text(v, "v ")
+        yield from _obj_faces(ptr, idx)
     else:
-        head = f"OFF\n{v.shape[0]} {ptr.size - 1} 0\n"
-        verts = "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
-        faces = _face_lines(ptr, idx, lambda n: f"{n} ", 0)  # each face: its vertex count, its indices
-    return head + verts + faces
+        yield f"OFF\n{v.shape[0]} {ptr.size - 1} 0\n"
+        yield from _vertex_text(v, "")
+        yield from _face_text(ptr, idx, lambda n: f"{n} ", 0)  # each face: its vertex count, its indices
 
 
 def _ply_bytes(v: Floats, ptr: Ints, idx: Ints) -> bytes:
@@ -584,16 +610,17 @@ def write_mesh(poly: Polyhedron, path: PathLike, *, triangles: bool = False) -> 
         ptr, idx = poly.polygons
         v, idx = _used_only(v, idx)
     if ext == ".ply":
-        payload = _ply_bytes(v, ptr, idx)
+        parts: Iterable[bytes] = [_ply_bytes(v, ptr, idx)]
     elif ext == ".stl":
         if t.shape[0] >= 2**32:
             raise FileFormatError(f"{name}: binary STL holds fewer than 2³² triangles")
         warning = stl_rounding_warning(v, name)
-        payload = _stl_bytes(v, t)
+        parts = [_stl_bytes(v, t)]
     else:
-        payload = _text_lines(v, ptr, idx, ext).encode("ascii")
+        parts = (text.encode("ascii") for text in _text_parts(v, ptr, idx, ext))
     with atomic_open(path, "wb") as fh:
-        fh.write(payload)
+        for part in parts:
+            fh.write(part)
     if warning is not None:
         log.warning("%s", warning)
     return warning
@@ -637,9 +664,12 @@ def write_label_meshes(
         faces = [(ptr, idx) for (ptr, _), idx in zip(faces, np.split(every, cuts), strict=True)]
     with atomic_open(path, "wb") as fh:
         fh.write(b"# written by MR Modeler: exact float64 coordinates, one object per region\n")
-        fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist()).encode("ascii"))
+        for text in _vertex_text(vertices, "v "):
+            fh.write(text.encode("ascii"))
         for (obj, group, _), (ptr, idx) in zip(objects, faces, strict=True):
-            fh.write((f"o {obj}\ng {group}\n" + _obj_faces(ptr, idx)).encode("ascii"))
+            fh.write(f"o {obj}\ng {group}\n".encode("ascii"))
+            for text in _obj_faces(ptr, idx):
+                fh.write(text.encode("ascii"))
 
 
 __all__ = [

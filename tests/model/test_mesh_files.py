@@ -13,6 +13,7 @@ import logging
 import math
 import struct
 import tracemalloc
+from itertools import pairwise
 from pathlib import Path
 
 import numpy as np
@@ -312,3 +313,45 @@ def test_a_failed_write_leaves_the_old_file(tmp_path: Path) -> None:
     assert read_mesh(path) == Polyhedron(*cube())
     assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
     assert math.isfinite(read_mesh(path).signed_volume)
+
+
+@pytest.mark.parametrize("shape", ["stairs", "box"])
+@pytest.mark.parametrize("triangles", [False, True])
+@pytest.mark.parametrize("ext", [".obj", ".off"])
+def test_text_written_in_chunks_is_the_whole_text(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, ext: str, triangles: bool, shape: str
+) -> None:
+    # Big meshes are written a chunk of rows at a time (one whole-array tolist or join held the GIL for a
+    # second and froze the desktop). With chunks of 3 rows every boundary is crossed: the file is the one a
+    # plain writer makes, line for line, and reads back as the same solid.
+    import mrm.io.mesh_files as mesh_files
+    from mrm.core.grids import VoxelSet
+    from mrm.geometry.reconstruct import reconstruct_voxels
+    from tests.model.test_face_polygons import box_with_points_on_its_top
+
+    # R of a staircase and a slab: polygons of several sizes; the box: vertices inside a face, in no polygon
+    z, y, x = np.mgrid[0:6, 0:6, 0:6]
+    if shape == "stairs":
+        p = reconstruct_voxels(VoxelSet((x + y + z <= 6) | (x >= 4), (0, 0, 0)), "standard")
+    else:
+        p = box_with_points_on_its_top(3)
+    write_mesh(p, tmp_path / f"whole{ext}", triangles=triangles)
+    monkeypatch.setattr(mesh_files, "_ROWS", 3)
+    write_mesh(p, tmp_path / f"parts{ext}", triangles=triangles)
+    whole = (tmp_path / f"whole{ext}").read_text()
+    assert (tmp_path / f"parts{ext}").read_text() == whole
+    # and the whole text is what a plain writer makes: the vertices by repr, then one line per polygon
+    ptr, idx = (np.arange(0, p.triangles.size + 1, 3), p.triangles.ravel()) if triangles else p.polygons
+    used = np.unique(idx)
+    number = {int(u): k for k, u in enumerate(used)}
+    lines = whole.splitlines()
+    verts = [" ".join(repr(float(c)) for c in p.vertices[u]) for u in used]
+    faces = [[number[int(i)] for i in idx[a:b]] for a, b in pairwise(ptr.tolist())]
+    if ext == ".obj":
+        assert lines[1 : 1 + len(verts)] == [f"v {s}" for s in verts]
+        assert lines[1 + len(verts) :] == ["f " + " ".join(str(i + 1) for i in f) for f in faces]
+    else:
+        assert lines[1] == f"{len(verts)} {len(faces)} 0"
+        assert lines[2 : 2 + len(verts)] == verts
+        assert lines[2 + len(verts) :] == [f"{len(f)} " + " ".join(map(str, f)) for f in faces]
+    assert read_mesh(tmp_path / f"parts{ext}").signed_volume == p.signed_volume
