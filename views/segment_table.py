@@ -34,8 +34,24 @@ _ROLES = frozenset(
 )
 
 
-class SegmentModel(QtCore.QAbstractTableModel):
+class _Columns(QtCore.QAbstractTableModel):
+    """A table model whose columns are the names in :attr:`columns`."""
+
+    columns: tuple[str, ...] = ()
+
+    def columnCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
+        return 0 if parent.isValid() else len(self.columns)
+
+    def headerData(self, section: int, orientation: QtCore.Qt.Orientation, role: int = 0) -> object:
+        if role == QtCore.Qt.ItemDataRole.DisplayRole and orientation == QtCore.Qt.Orientation.Horizontal:
+            return self.columns[section]
+        return None
+
+
+class SegmentModel(_Columns):
     """Lazy rows over an analytical representation (thousands of segments stay cheap)."""
+
+    columns = COLUMNS
 
     def __init__(self, parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
@@ -62,16 +78,6 @@ class SegmentModel(QtCore.QAbstractTableModel):
 
     def rowCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
         return 0 if parent.isValid() else int(self._offsets[-1])
-
-    def columnCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
-        return 0 if parent.isValid() else len(COLUMNS)
-
-    def headerData(self, section: int, orientation: QtCore.Qt.Orientation, role: int = 0) -> object:
-        if role != QtCore.Qt.ItemDataRole.DisplayRole:
-            return None
-        if orientation == QtCore.Qt.Orientation.Horizontal:
-            return COLUMNS[section]
-        return None
 
     def data(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, role: int = 0) -> object:
         # The view asks about ten roles per cell at every paint: the ones never answered cost nothing.
@@ -101,8 +107,10 @@ class SegmentModel(QtCore.QAbstractTableModel):
 PLANE_COLUMNS = ("surface", "#", "a", "b", "c", "μ", "ω", "surfels")
 
 
-class PlaneSegmentModel(QtCore.QAbstractTableModel):
+class PlaneSegmentModel(_Columns):
     """Lazy rows over a 3D analytical representation: a segment's plane is chosen when its row is drawn."""
+
+    columns = PLANE_COLUMNS
 
     def __init__(self, parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
@@ -117,14 +125,6 @@ class PlaneSegmentModel(QtCore.QAbstractTableModel):
 
     def rowCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
         return 0 if parent.isValid() or self.ana is None else len(self.ana)
-
-    def columnCount(self, parent: QtCore.QModelIndex | QtCore.QPersistentModelIndex = _ROOT) -> int:
-        return 0 if parent.isValid() else len(PLANE_COLUMNS)
-
-    def headerData(self, section: int, orientation: QtCore.Qt.Orientation, role: int = 0) -> object:
-        if role == QtCore.Qt.ItemDataRole.DisplayRole and orientation == QtCore.Qt.Orientation.Horizontal:
-            return PLANE_COLUMNS[section]
-        return None
 
     def data(self, index: QtCore.QModelIndex | QtCore.QPersistentModelIndex, role: int = 0) -> object:
         if role not in _ROLES or not index.isValid() or self.ana is None:
