@@ -800,10 +800,15 @@ class FileController(QtCore.QObject):
                 warning = write_mesh(entry.get("euclidean"), p)
                 if warning is not None:
                     warnings.append(warning)
+                if entry.r_note is not None:  # the file holds the safety net: say so, and how to get better
+                    warnings.append(
+                        "the file holds R's safety net, exact but not compact (the command mrm reconstruct "
+                        "--compact-limit N writes a compact mesh of the voxels, more slowly)"
+                    )
 
         def written(_r: Any) -> bool:
             self.prefs.last_directory = str(p.resolve().parent)
-            note = f" — {warnings[0]}" if warnings else ""
+            note = "".join(f" — {w}" for w in warnings)
             self.win.show_message(f"Exported {p.name}{note}", 8000 if warnings else 3000)
             return True
 

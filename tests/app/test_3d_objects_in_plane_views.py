@@ -139,6 +139,7 @@ def test_a_3d_object_exports_its_polyhedron_or_its_voxels(make_window, qtbot, tm
     model = win.doc.settings.model
     back = mrm.read_mesh(tmp_path / "octa.obj")
     assert mrm.voxelize(back, model) == octa.source
+    assert "safety net" not in win.status.currentMessage()
     assert win.files.export(octa.id, tmp_path / "octa.nii.gz")
     qtbot.waitUntil(lambda: (tmp_path / "octa.nii.gz").exists(), timeout=30_000)
     assert mrm.read_voxels(tmp_path / "octa.nii.gz") == octa.source
@@ -164,3 +165,26 @@ def test_a_3d_object_exports_its_polyhedron_or_its_voxels(make_window, qtbot, tm
     qtbot.waitUntil(refused, timeout=5000)
     assert "labels 3D is a 3D object: it exports as .npz, .tif, .nii.gz" in box["text"]
     assert not (tmp_path / "labels.obj").exists()
+
+
+def test_exporting_a_safety_net_says_so_and_how_to_get_a_compact_mesh(
+    make_window, qtbot, tmp_path, monkeypatch
+):
+    # Past the compact limit R(A) is the safety net: the exported mesh is exact but not compact, and the
+    # status bar says so, with the command that writes a compact one.
+    import numpy as np
+
+    import mrm
+    from mrm.core import limits
+    from mrm.document.commands import AddObject
+
+    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
+    win = make_window()
+    z, y, x = np.mgrid[0:10, 0:10, 0:10]
+    stairs = win.doc.make_object(VoxelSet((x + y + z <= 12) | (x >= 8), (0, 0, 0)), name="stairs")
+    win.doc.push(AddObject(stairs))
+    assert win.files.export(stairs.id, tmp_path / "stairs.obj")
+    qtbot.waitUntil(lambda: "Exported stairs.obj" in win.status.currentMessage(), timeout=30_000)
+    assert "holds R's safety net, exact but not compact" in win.status.currentMessage()
+    assert "mrm reconstruct --compact-limit N" in win.status.currentMessage()
+    assert mrm.voxelize(mrm.read_mesh(tmp_path / "stairs.obj"), win.doc.settings.model) == stairs.source
