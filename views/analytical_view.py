@@ -26,6 +26,7 @@ from mrm.views.items import (
     levels_path,
     stroke_levels,
 )
+from mrm.views.palette import CHOSEN_SEGMENT_COLOUR
 
 #: Alternating segment colours (and a third for the odd one out of a closed chain).
 SEGMENT_COLOURS = ("#e15759", "#4e79a7", "#59a14f")
@@ -232,7 +233,7 @@ class AnalyticalView(RepresentationView):
     legend = (
         "<span style='color:#4e79a7'>━</span><span style='color:#e15759'>━</span> consecutive segments "
         "alternate colours · □ segment ends (selected object) · "
-        "<span style='color:#ffb000'>━</span> chosen segment · ━ its line · "
+        f"<span style='color:{CHOSEN_SEGMENT_COLOUR}'>━</span> chosen segment · ━ its line · "
         "<span style='color:#9467bd'>╍</span> preimage bounds"
     )
 
@@ -312,7 +313,7 @@ class AnalyticalView(RepresentationView):
         hl = QtGui.QPainterPath()
         hl.addPolygon(QtGui.QPolygonF([QtCore.QPointF(float(x), float(y)) for x, y in pts]))
         self.highlight.setPath(hl)
-        self.highlight.setPen(cosmetic_pen(QtGui.QColor("#ffb000"), 5.0))
+        self.highlight.setPen(cosmetic_pen(QtGui.QColor(CHOSEN_SEGMENT_COLOUR), 5.0))
         seg = chain.segments[k]
         if seg.a == 0 and seg.b == 0:
             return

@@ -16,3 +16,6 @@ COMPONENT_COLOURS = (
     "#ff9da7",
     "#bab0ac",
 )
+
+#: The chosen digital segment's highlight, in the plane analytical view and the 3D one.
+CHOSEN_SEGMENT_COLOUR = "#ffb000"

@@ -103,6 +103,8 @@ class Scene(QtCore.QObject):
     segmentSelected(int, int, int)
         The analytical segment (object id, chain index, segment index) chosen in the table or a view; -1s
         when none.
+    planeSegmentSelected(int, int)
+        A 3D object's digital plane segment (object id, segment index) chosen in the table; -1s when none.
     """
 
     documentChanged = QtCore.Signal(object)
@@ -110,6 +112,7 @@ class Scene(QtCore.QObject):
     phantomsChanged = QtCore.Signal()
     derivedReady = QtCore.Signal(int)
     segmentSelected = QtCore.Signal(int, int, int)
+    planeSegmentSelected = QtCore.Signal(int, int)
 
     def __init__(self, doc: Document, runner: Any, parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
@@ -119,6 +122,7 @@ class Scene(QtCore.QObject):
         self._errors: dict[tuple[int, str], str] = {}
         self.sync_cost = float(SYNC_COST)
         self.segment: tuple[int, int, int] = (-1, -1, -1)
+        self.plane_segment: tuple[int, int] = (-1, -1)
         self._wanted: dict[str, Derived] = {}  # slot -> the entry being computed there
         self._phantoms: dict[int, tuple[Phantom, Derived]] = {}
         self._cancelled: dict[tuple[int, str], Derived] = {}  # (object, rep) -> the entry cancelled
@@ -140,6 +144,12 @@ class Scene(QtCore.QObject):
             or (changes.selection and self.segment[0] not in self.doc.selection)
         ):
             self.select_segment(-1, -1, -1)  # the chosen segment's line belongs to the selected object
+        if self.plane_segment[0] != -1 and (
+            self.plane_segment[0] not in self.doc
+            or self.plane_segment[0] in changes.changed
+            or (changes.selection and self.plane_segment[0] not in self.doc.selection)
+        ):
+            self.select_plane_segment(-1, -1)
         self.documentChanged.emit(changes)
 
     def objects(self) -> tuple[DocObject | Phantom, ...]:
@@ -325,6 +335,13 @@ class Scene(QtCore.QObject):
         if seg != self.segment:
             self.segment = seg
             self.segmentSelected.emit(*seg)
+
+    def select_plane_segment(self, obj_id: int, index: int) -> None:
+        """Choose digital plane segment ``index`` of the 3D object ``obj_id`` (-1, -1: none)."""
+        seg = (obj_id, index)
+        if seg != self.plane_segment:
+            self.plane_segment = seg
+            self.planeSegmentSelected.emit(*seg)
 
 
 def _message(e: BaseException) -> str:

@@ -222,6 +222,8 @@ class SegmentTable(QtWidgets.QWidget):
             wide = max(fm.horizontalAdvance(sample), fm.horizontalAdvance(PLANE_COLUMNS[c]))
             phdr.resizeSection(c, wide + 14)
         self.plane_table.setVisible(False)
+        self.plane_table.selectionModel().currentRowChanged.connect(self._plane_row_changed)
+        self.solid_id = -1  # the 3D object whose plane segments are listed
         self.plot = pg.PlotWidget(self)
         self.plot.setObjectName("preimagePlot")
         self.plot.setMenuEnabled(False)
@@ -281,6 +283,8 @@ class SegmentTable(QtWidgets.QWidget):
         for w in (self.table, self.plot, self.plot_caption):
             w.setVisible(not three_d)
         self.plane_table.setVisible(three_d)
+        if not three_d:
+            self.solid_id = -1
         if three_d:
             assert solid is not None
             self._show_planes(solid)
@@ -315,8 +319,14 @@ class SegmentTable(QtWidgets.QWidget):
         )
         self._segment_selected(*self.scene.segment)
 
+    def _plane_row_changed(self, cur: QtCore.QModelIndex, _prev: QtCore.QModelIndex) -> None:
+        # A row chosen: the analytical 3D view shows that segment's surfels.
+        if cur.isValid() and self.solid_id >= 0:
+            self.scene.select_plane_segment(self.solid_id, cur.row())
+
     def _show_planes(self, obj: Any) -> None:
         """List a 3D object's digital plane segments (computed on a worker; listed when ready)."""
+        self.solid_id = obj.id
         self.obj_id = -1
         self.model.set_analytical(None)
         self._show_preimage(None, -1)

@@ -27,6 +27,7 @@ from mrm.document import Changes, DocObject
 from mrm.document.derive import Rep
 from mrm.views import gl_mesh
 from mrm.views.base_view import PreparedDrawing
+from mrm.views.palette import CHOSEN_SEGMENT_COLOUR
 from mrm.views.scene import Scene
 from mrm.views.view_header import ViewHeader
 
@@ -984,6 +985,44 @@ class AnalyticalView3D(View3D):
     title = "Analytical"
     subtitle = "digital plane segments and their normals"
     rep: Rep = "analytical"
+    #: The colour of the plane segment chosen in the Segments panel, drawn over the surfaces (as the plane
+    #: analytical view highlights its chosen segment).
+    CHOSEN_COLOUR = CHOSEN_SEGMENT_COLOUR
+
+    def __init__(self, scene: Scene, camera: Camera3D, parent: QtWidgets.QWidget | None = None) -> None:
+        self._chosen_item: Any = None  # the chosen plane segment's surfels (Scene.plane_segment)
+        super().__init__(scene, camera, parent)
+        scene.planeSegmentSelected.connect(self._segment_chosen)
+
+    def _segment_chosen(self, _obj_id: int, _index: int) -> None:
+        self._draw_chosen()
+
+    def refresh(self) -> None:
+        super().refresh()
+        self._draw_chosen()
+
+    def _draw_chosen(self) -> None:
+        """Draw the chosen plane segment's surfels in :attr:`CHOSEN_COLOUR`, over everything (or nothing)."""
+        if self._chosen_item is not None:
+            self.pane.removeItem(self._chosen_item)
+            self._chosen_item = None
+        obj_id, k = self.scene.plane_segment
+        ana = self.scene.get(obj_id, "analytical") if obj_id in self._items else None
+        if ana is None or not 0 <= k < len(ana):
+            return
+        from OpenGL import GL
+
+        seg = ana.segmentation
+        members = seg.members[seg.member_ptr[k] : seg.member_ptr[k + 1]]
+        colours = np.tile(gl_mesh.rgba8(self.CHOSEN_COLOUR), (members.size, 1))
+        item = ready_mesh_item(gl_mesh.surfel_arrays(seg.voxel[members], seg.direction[members], colours))
+        # Its surfels are the segment's own, drawn already: over them without the depth test (no z-fight),
+        # as the differing voxels are in the discrete view; not culled either, so a segment on the far side
+        # shows through the solid: the user sees where the chosen row is, whichever way the camera looks.
+        item.setGLOptions({GL.GL_DEPTH_TEST: False, GL.GL_BLEND: False, GL.GL_CULL_FACE: False})
+        item.setDepthValue(20)
+        self.pane.addItem(item)
+        self._chosen_item = item
 
     def drawing_data(self, obj: DocObject) -> dict[str, Any] | None:
         if obj.kind == "labels":

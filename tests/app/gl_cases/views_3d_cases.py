@@ -305,3 +305,33 @@ def test_the_safety_net_note_comes_before_a_coarser_level_in_the_header(make_win
     assert tip[0].startswith("stairs: R is the safety net") and tip[1].startswith(
         "A polyhedron has more than"
     )
+
+
+def test_a_plane_segment_chosen_in_the_segments_panel_is_drawn_in_the_analytical_view(make_window, qtbot):
+    # A click on a row of the Segments panel's plane segments draws that segment's surfels in yellow over the
+    # analytical view; another object selected takes it away.
+    from tests.app.helpers import click_object
+
+    win = make_window(threaded=True)
+    obj = _octahedron(win)
+    view = _show_3d(qtbot, win).by_name("analytical3d")
+    win.segments_dock.show()
+    win.segments_dock.raise_()
+    click_object(qtbot, win, "octahedron")
+    table = win.segments.plane_table
+    qtbot.waitUntil(lambda: table.model().rowCount() == 8, timeout=30_000)
+    assert _near(_hues(_frame(view)), _hue_of(view.CHOSEN_COLOUR), 6) == 0  # no yellow yet
+    rect = table.visualRect(table.model().index(3, 2))
+    qtbot.mouseClick(
+        table.viewport(), Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, rect.center()
+    )
+    assert win.scene.plane_segment == (obj.id, 3)
+    seg = win.scene.get(obj.id, "analytical").segmentation
+    n = len(seg.surfels_of(3))
+    qtbot.waitUntil(lambda: view._chosen_item is not None, timeout=5000)
+    hues = _hues(_frame(view))  # the first paint uploads the item's arrays
+    assert len(view._chosen_item.faces) == 2 * n  # the segment's surfels, two triangles each
+    assert _near(hues, _hue_of(view.CHOSEN_COLOUR), 6) > 50
+    win.doc.set_selection([])  # nothing selected: nothing chosen
+    qtbot.waitUntil(lambda: view._chosen_item is None, timeout=5000)
+    assert win.scene.plane_segment == (-1, -1)
