@@ -271,7 +271,12 @@ def views_3d(app: Any) -> Path:
     win.segments_dock.show()
     win.segments_dock.raise_()
     _settle(app, win)
-    return _save(app, win, "views-3d.png")
+    win.fit_all()
+    _settle(app, win)
+    ana = win.scene.get(objects[0].id, "analytical")
+    front = next(k for k in range(len(ana)) if ana.segment(k).plane.normal == (-1, -1, 1))
+    win.segments.plane_table.selectRow(front)  # the face towards the camera, drawn in amber
+    return _save(app, win, "views-3d.png", fit=False)
 
 
 def _open_3d_example(app: Any, name: str, select: str) -> Any:
