@@ -314,9 +314,8 @@ class PropertiesPanel(QtWidgets.QWidget):
             self.refresh()
 
     def refresh(self) -> None:
-        obj = (
-            self.scene.selected()
-        )  # either dimension: a 3D object's name, colour and opacity are edited here
+        # Either dimension: a 3D object's name, colour and opacity are edited here too.
+        obj = self.scene.selected()
         self.obj_id = obj.id if obj is not None else None
         self.form_box.setEnabled(obj is not None)
         self.table.setEnabled(obj is not None)

@@ -138,19 +138,19 @@ class Scene(QtCore.QObject):
         for i in changes.removed:
             self._previews.pop(i, None)
         self._errors = {k: v for k, v in self._errors.items() if self.has(k[0])}
-        if self.segment[0] != -1 and (
-            self.segment[0] not in self.doc
-            or self.segment[0] in changes.changed
-            or (changes.selection and self.segment[0] not in self.doc.selection)
-        ):
-            self.select_segment(-1, -1, -1)  # the chosen segment's line belongs to the selected object
-        if self.plane_segment[0] != -1 and (
-            self.plane_segment[0] not in self.doc
-            or self.plane_segment[0] in changes.changed
-            or (changes.selection and self.plane_segment[0] not in self.doc.selection)
-        ):
+        # A chosen segment belongs to the selected object as it is: gone with it, or with a change of it.
+        if self._chosen_is_stale(self.segment[0], changes):
+            self.select_segment(-1, -1, -1)
+        if self._chosen_is_stale(self.plane_segment[0], changes):
             self.select_plane_segment(-1, -1)
         self.documentChanged.emit(changes)
+
+    def _chosen_is_stale(self, obj_id: int, changes: Changes) -> bool:
+        return obj_id != -1 and (
+            obj_id not in self.doc
+            or obj_id in changes.changed
+            or (changes.selection and obj_id not in self.doc.selection)
+        )
 
     def objects(self) -> tuple[DocObject | Phantom, ...]:
         """What the views draw, bottom first: the document's plane objects, then the previewed results."""

@@ -336,7 +336,7 @@ class SegmentTable(QtWidgets.QWidget):
             err = self.scene.error(obj.id, "analytical")
             self.caption.setText(f"<b>{obj.name}</b>: {err}" if err else f"<b>{obj.name}</b>: computing…")
             return
-        surfaces = len(set(ana.surface_of.tolist())) if len(ana) else 0
+        surfaces = int(np.unique(ana.surface_of).size)
         self.caption.setText(
             f"<b>{obj.name}</b>: {len(ana):,} digital plane segments on {surfaces:,} "
             f"surface{'s' if surfaces != 1 else ''}, μ ≤ a·x + b·y + c·z &lt; μ + ω over each segment's "

@@ -991,6 +991,7 @@ class AnalyticalView3D(View3D):
 
     def __init__(self, scene: Scene, camera: Camera3D, parent: QtWidgets.QWidget | None = None) -> None:
         self._chosen_item: Any = None  # the chosen plane segment's surfels (Scene.plane_segment)
+        self._chosen_for: tuple[int, int, Any] = (-1, -1, None)  # what it draws: object, segment, segments
         super().__init__(scene, camera, parent)
         scene.planeSegmentSelected.connect(self._segment_chosen)
 
@@ -1003,12 +1004,18 @@ class AnalyticalView3D(View3D):
 
     def _draw_chosen(self) -> None:
         """Draw the chosen plane segment's surfels in :attr:`CHOSEN_COLOUR`, over everything (or nothing)."""
-        if self._chosen_item is not None:
-            self.pane.removeItem(self._chosen_item)
-            self._chosen_item = None
         obj_id, k = self.scene.plane_segment
         ana = self.scene.get(obj_id, "analytical") if obj_id in self._items else None
         if ana is None or not 0 <= k < len(ana):
+            ana, obj_id, k = None, -1, -1
+        was_obj, was_k, was_ana = self._chosen_for
+        if (obj_id, k) == (was_obj, was_k) and ana is was_ana:
+            return  # drawn already: a refresh (every derivation ready, every edit) does not make it again
+        self._chosen_for = (obj_id, k, ana)
+        if self._chosen_item is not None:
+            self.pane.removeItem(self._chosen_item)
+            self._chosen_item = None
+        if ana is None:
             return
         from OpenGL import GL
 

@@ -185,7 +185,9 @@ def reconstruct_volume(
     poly, way = r.polyhedron, r.way
     seconds = time.perf_counter() - t0
     if r.note is not None:  # R met the contract but is not compact: say so
-        hint = " (--compact-limit raises it)" if "at most" in r.why else ""
+        # The net is kept as it is only when it has more triangles than the limit (else a refused decimation)
+        over = poly.n_triangles > (compact_limit or limits.MAX_COMPACT_R_TRIANGLES)
+        hint = " (--compact-limit raises it)" if over else ""
         print(f"mrm reconstruct: note: {path}: {r.note}{hint}", file=sys.stderr, flush=True)
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     warning = write_mesh(poly, output, triangles=triangles)
