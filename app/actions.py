@@ -89,6 +89,12 @@ SPECS: tuple[ActionSpec, ...] = (
         "Ctrl+T",
         "Move, scale and rotate the selected polyhedron by numbers",
     ),
+    ActionSpec(
+        "edit.compact_limit",
+        "Compact R &Limit…",
+        None,
+        "The most triangles of a voxel object's safety net that its R simplifies into a compact polyhedron",
+    ),
     ActionSpec("edit.colour", "Object Co&lour…", "Ctrl+Shift+L", "Choose the colour of the selected object"),
     ActionSpec(
         "edit.properties",

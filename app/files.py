@@ -802,8 +802,10 @@ class FileController(QtCore.QObject):
                     warnings.append(warning)
                 if entry.r_note is not None:  # the file holds the safety net: say so, and how to get better
                     warnings.append(
-                        "the file holds R's safety net, exact but not compact (the command mrm reconstruct "
-                        "--compact-limit N writes a compact mesh of the voxels, more slowly)"
+                        "the file holds R's safety net, exact but not compact (a higher Compact R Limit, in "
+                        "Edit ▸ Discretization Model, gives a compact R, more slowly)"
+                        if entry.r_over_limit
+                        else "the file holds R's safety net, exact but not compact"
                     )
 
         def written(_r: Any) -> bool:

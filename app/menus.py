@@ -65,6 +65,7 @@ def build_menus(win: MainWindow) -> None:
         act.setObjectName(f"model.{name}")
         win.model_group.addAction(act)
         act.triggered.connect(lambda _c=False, n=name: win.set_model(n))
+    a.menu(win.model_menu, [None, "edit.compact_limit"])
     m = mb.addMenu("&Tools")
     a.menu(m, list(TOOL_ACTIONS))
     a.menu(m, [None, "tool.brush_larger", "tool.brush_smaller", None, "measure.hausdorff"])

@@ -89,6 +89,10 @@ class Phantom:
         return "discrete" if isinstance(self.source, PixelSet) else "euclidean"
 
 
+#: Where the desktop raises the document's compact limit (the menu command of ``mrm.app.main_window``).
+RAISE_COMPACT_LIMIT = "Edit ▸ Discretization Model ▸ Compact R Limit… raises it"
+
+
 class Scene(QtCore.QObject):
     """The views' shared state.
 
@@ -167,7 +171,7 @@ class Scene(QtCore.QObject):
         self._phantoms = {}
         for k, (name, src) in enumerate(items):
             ph = Phantom(-(k + 1), name, src, GHOST_STYLE)
-            self._phantoms[ph.id] = (ph, Derived(src, self.doc.model))
+            self._phantoms[ph.id] = (ph, Derived.under(src, self.doc.settings))
         self.phantomsChanged.emit()
 
     def phantoms(self) -> list[Phantom]:
@@ -194,7 +198,7 @@ class Scene(QtCore.QObject):
             cur = self._previews.get(obj_id)
             if cur is not None and cur.source is source:
                 return
-            self._previews[obj_id] = Derived(source, self.doc.model)
+            self._previews[obj_id] = Derived.under(source, self.doc.settings)
         self.previewChanged.emit(obj_id)
 
     def preview(self, obj_id: int) -> Derived | None:
@@ -323,8 +327,15 @@ class Scene(QtCore.QObject):
         return self._errors.get((obj_id, rep))
 
     def r_note(self, obj_id: int) -> str | None:
-        """What the user is told about the object's R(A) (the safety net: exact, not compact), if anything."""
-        return self.entry(obj_id).r_note if self.has(obj_id) else None
+        """What the user is told about the object's R(A) (the safety net: exact, not compact), if anything.
+
+        When the net is over the document's compact limit, the note ends with where the limit is raised.
+        """
+        if not self.has(obj_id):
+            return None
+        entry = self.entry(obj_id)
+        note = entry.r_note
+        return f"{note} ({RAISE_COMPACT_LIMIT})" if note is not None and entry.r_over_limit else note
 
     def is_computing(self) -> bool:
         return any(self.runner.is_busy(s) for s in self._wanted)

@@ -33,7 +33,7 @@ from mrm.cli import os_error_text
 from mrm.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
 from mrm.core.errors import FileFormatError, MRMError, ParameterError
 from mrm.core.grids import PixelSet, VoxelSet
-from mrm.core.limits import DEFAULT_PIXEL_LIMIT, DEFAULT_VOXEL_LIMIT
+from mrm.core.limits import DEFAULT_PIXEL_LIMIT, DEFAULT_VOXEL_LIMIT, check_compact_limit
 from mrm.geometry.discretize import discretize
 from mrm.io.georef import image_frame as frame_of
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
@@ -76,6 +76,15 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
     return value
+
+
+def compact_limit_int(text: str) -> int:
+    """Argparse type of ``--compact-limit``: :func:`mrm.core.limits.check_compact_limit` of an integer."""
+    try:
+        return check_compact_limit(int(text))
+    except (ValueError, ParameterError) as e:
+        detail = str(e) if isinstance(e, ParameterError) else f"expected a whole number, got {text!r}"
+        raise argparse.ArgumentTypeError(detail) from None
 
 
 def cpu_count() -> int:

@@ -42,12 +42,12 @@ from mrm.cli._common import (
     add_image_arguments,
     add_limit_argument,
     batch_total,
+    compact_limit_int,
     discretize_geometry,
     extension_of,
     inputs_and_outputs,
     is_3d_input,
     pixel_limit,
-    positive_int,
     read_input,
     read_voxel_input,
     run_inputs,
@@ -107,7 +107,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--compact-limit",
-        type=positive_int,
+        type=compact_limit_int,
         metavar="N",
         help="3D: the most triangles of a safety net that R simplifies into a compact polyhedron (default "
         f"{limits.MAX_COMPACT_R_TRIANGLES:_}, about a ball of radius 30; the simplification takes about "
@@ -185,9 +185,7 @@ def reconstruct_volume(
     poly, way = r.polyhedron, r.way
     seconds = time.perf_counter() - t0
     if r.note is not None:  # R met the contract but is not compact: say so
-        # The net is kept as it is only when it has more triangles than the limit (else a refused decimation)
-        over = poly.n_triangles > (compact_limit or limits.MAX_COMPACT_R_TRIANGLES)
-        hint = " (--compact-limit raises it)" if over else ""
+        hint = " (--compact-limit raises it)" if r.over_limit else ""
         print(f"mrm reconstruct: note: {path}: {r.note}{hint}", file=sys.stderr, flush=True)
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     warning = write_mesh(poly, output, triangles=triangles)

@@ -37,7 +37,8 @@ MAX_OBJECT_TRIANGLES = 20_000_000
 MAX_SURFELS = 50_000_000
 #: Triangles of the safety net up to which the 3D R is the compact one (its decimation, ADR 0064); beyond,
 #: R is the safety net: the decimation takes about 55–90 µs per triangle today (a 20,000-triangle net,
-#: about a ball of radius 30, in 1–2 s), far too slow for the desktop on bigger objects.
+#: about a ball of radius 30, in 1–2 s), far too slow for the desktop on bigger objects. The default of the
+#: document's compact limit (``Settings.compact_limit``, ADR 0073) and of ``mrm reconstruct --compact-limit``.
 MAX_COMPACT_R_TRIANGLES = 20_000
 #: Surfels of a digitally convex voxel set up to which the 3D R tries the decimation beside its hull path
 #: (under gauss the grown convex hull, ADR 0068; under the covers the spiked hull or the snapped core, ADRs
@@ -298,6 +299,22 @@ def check_reconstruct(ps: Any, what: str | None = None) -> int:
             "smooth it first, or keep it as pixels"
         )
     return steps
+
+
+def check_compact_limit(n: object) -> int:
+    """A compact limit (``Settings.compact_limit``, ``--compact-limit``) as an int.
+
+    Raises
+    ------
+    ParameterError
+        Unless ``n`` is a whole number of triangles from 1 to :data:`MAX_OBJECT_TRIANGLES` (no polyhedron, so
+        no safety net, has more).
+    """
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= MAX_OBJECT_TRIANGLES:
+        raise ParameterError(
+            f"the compact limit is a whole number of triangles from 1 to {MAX_OBJECT_TRIANGLES:,}, not {n!r}"
+        )
+    return int(n)
 
 
 def label_junctions(labels: npt.NDArray[np.integer[Any]], *, rows_per_strip: int = 1024) -> int:

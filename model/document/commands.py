@@ -97,7 +97,7 @@ def object_pixels(doc: Document, obj: DocObject) -> PixelSet:
     refuse_label_map(obj, "pixel edits, merges and operations")
     if isinstance(obj.source, PixelSet):
         return obj.source
-    ps = doc.cache.entry(obj.source, doc.model).get("discrete")
+    ps = doc.cache.entry_under(obj.source, doc.settings).get("discrete")
     assert isinstance(ps, PixelSet)
     return ps
 
@@ -107,7 +107,7 @@ def object_polygons(doc: Document, obj: DocObject) -> Geometry:
     refuse_label_map(obj, "vertex edits")
     if not isinstance(obj.source, PixelSet):
         return obj.source
-    return validate_geometry(doc.cache.entry(obj.source, doc.model).get("euclidean"))
+    return validate_geometry(doc.cache.entry_under(obj.source, doc.settings).get("euclidean"))
 
 
 # ---------------------------------------------------------------------------------------------- object list
@@ -519,6 +519,13 @@ class ChangeSettings(Command):
         chosen = Model.parse(model)
         cmd = cls(dataclasses.replace(doc.settings, model=chosen))
         cmd.label = f"Use the {chosen} model"
+        return cmd
+
+    @classmethod
+    def compact_limit(cls, doc: Document, triangles: int) -> ChangeSettings:
+        """The command setting the compact limit of the voxel objects' R (:attr:`Settings.compact_limit`)."""
+        cmd = cls(dataclasses.replace(doc.settings, compact_limit=triangles))
+        cmd.label = f"Compact R up to {cmd.settings.compact_limit:,} triangles"
         return cmd
 
     def do(self, doc: Document) -> None:

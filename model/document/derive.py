@@ -16,7 +16,7 @@ from typing import Any, Literal
 from mrm.core.errors import MRMError, NotApplicableError
 from mrm.core.grids import GridSet, LabelGrid, PixelSet
 from mrm.core.models import Model
-from mrm.document.objects import source_dimension, source_kind
+from mrm.document.objects import Settings, source_dimension, source_kind
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
 from mrm.geometry.reconstruct.subdivision import subdivide
@@ -71,6 +71,10 @@ class Derived:
         (:class:`~mrm.core.errors.NotApplicableError`).
     model : str
         The discretization model.
+    compact_limit : int, optional
+        A voxel set's compact limit (:attr:`mrm.document.objects.Settings.compact_limit`): the most
+        triangles of its safety net that R simplifies. None (other sources, or the default) means
+        ``limits.MAX_COMPACT_R_TRIANGLES``. :meth:`under` takes both from a document's settings.
 
     Notes
     -----
@@ -79,18 +83,36 @@ class Derived:
     a result over the pixel limit) is remembered and raised again on every request.
     """
 
-    def __init__(self, source: Any, model: Model | str) -> None:
+    def __init__(self, source: Any, model: Model | str, compact_limit: int | None = None) -> None:
         self.source = source
         self.model = Model.parse(model)
+        self.compact_limit = compact_limit
         self.kind: Literal["discrete", "euclidean", "labels"] = source_kind(source)
         #: 2 for plane objects, 3 for voxel sets and label volumes (docs/design.md §11).
         self.dimension = source_dimension(source)
         self._values: dict[str, Any] = {"discrete" if self.kind == "labels" else self.kind: source}
         self._errors: dict[str, MRMError] = {}
         self._locks = {r: threading.Lock() for r in REPS}
-        #: What a user is told about the R computed here, when R is the safety net (exact, not compact):
-        #: :attr:`mrm.geometry.reconstruct.VoxelR.note`. None otherwise, and until R is computed.
-        self.r_note: str | None = None
+        #: How a voxel set's R was made (:class:`mrm.geometry.reconstruct.VoxelR`), once it is computed.
+        self.voxel_r: Any = None
+
+    @classmethod
+    def under(cls, source: Any, settings: Settings) -> Derived:
+        """A new entry of ``source`` under a document's settings (:meth:`Settings.derivation_key`)."""
+        return cls(source, *settings.derivation_key(source))
+
+    @property
+    def r_note(self) -> str | None:
+        """What a user is told about the R computed here when it is the safety net (exact, not compact).
+
+        :attr:`mrm.geometry.reconstruct.VoxelR.note`; None otherwise, and until R is computed.
+        """
+        return None if self.voxel_r is None else self.voxel_r.note
+
+    @property
+    def r_over_limit(self) -> bool:
+        """True when R is the safety net because the net is over the compact limit (a higher one helps)."""
+        return self.voxel_r is not None and self.voxel_r.over_limit
 
     def is_ready(self, what: Rep) -> bool:
         """True when ``what`` has been computed (or failed) already."""
@@ -166,8 +188,8 @@ class Derived:
         if what == "euclidean":
             from mrm.geometry.reconstruct import reconstruct_voxels_detailed
 
-            r = reconstruct_voxels_detailed(self.get("discrete"), self.model)
-            self.r_note = r.note
+            r = reconstruct_voxels_detailed(self.get("discrete"), self.model, self.compact_limit)
+            self.voxel_r = r
             return r.polyhedron
         vs = self.get("discrete")
         vs.count  # noqa: B018 - counted for its cache, on the worker (as region_from_pixels does)
@@ -231,31 +253,39 @@ class DerivationCache:
     def __init__(self, keep_recent: int = 16, recent_bytes: int = 64 * 2**20) -> None:
         self.keep_recent = int(keep_recent)
         self.recent_bytes = int(recent_bytes)
-        self._live: dict[tuple[int, str], Derived] = {}
-        self._recent: OrderedDict[tuple[int, str], Derived] = OrderedDict()
+        # Keyed by (id of the source, model, compact limit or None): see Settings.derivation_key.
+        self._live: dict[tuple[int, str, int | None], Derived] = {}
+        self._recent: OrderedDict[tuple[int, str, int | None], Derived] = OrderedDict()
         self._lock = threading.Lock()
 
     def __len__(self) -> int:
         return len(self._live) + len(self._recent)
 
-    def entry(self, source: Any, model: str) -> Derived:
-        """Return the entry of ``source`` under ``model``, creating it if needed."""
-        key = (id(source), model)
+    def entry(self, source: Any, model: str, compact_limit: int | None = None) -> Derived:
+        """The entry of ``source`` under ``model`` (and a voxel set's compact limit), made if needed."""
+        key = (id(source), str(model), compact_limit)
         with self._lock:
             e = self._live.get(key)
             if e is None or e.source is not source:
                 e = self._recent.pop(key, None)
                 if e is None or e.source is not source:
-                    e = Derived(source, model)
+                    e = Derived(source, model, compact_limit)
                 self._live[key] = e
             return e
 
-    def retain(self, live: Iterable[tuple[Any, str]]) -> None:
-        """Declare the (source, model) pairs in use; other entries move to the bounded recent list."""
+    def entry_under(self, source: Any, settings: Settings) -> Derived:
+        """The entry of ``source`` under a document's settings (:meth:`Settings.derivation_key`)."""
+        return self.entry(source, *settings.derivation_key(source))
+
+    def retain(self, live: Iterable[tuple[Any, ...]]) -> None:
+        """Declare the entries in use; the others move to the bounded recent list.
+
+        Each is (source, model) or (source, model, compact limit), as :meth:`entry` takes them.
+        """
         with self._lock:
-            keep: dict[tuple[int, str], Derived] = {}
-            for source, model in live:
-                key = (id(source), model)
+            keep: dict[tuple[int, str, int | None], Derived] = {}
+            for source, model, *rest in live:
+                key = (id(source), str(model), rest[0] if rest else None)
                 e = self._live.pop(key, None) or self._recent.pop(key, None)
                 if e is not None and e.source is source:
                     keep[key] = e

@@ -204,7 +204,7 @@ class Document:
         ``doc.derived(i).get('euclidean')`` computes in the calling thread; the GUI computes slow ones on its
         task runner (:mod:`mrm.views.scene`).
         """
-        return self.cache.entry(self.get(obj_id).source, self._settings.model)
+        return self.cache.entry_under(self.get(obj_id).source, self._settings)
 
     # ------------------------------------------------------------------ events
     def subscribe(self, callback: Callable[[Changes], None]) -> Callable[[], None]:
@@ -256,7 +256,7 @@ class Document:
             settings=p.settings != self._settings,
             reset=p.reset,
         )
-        self.cache.retain((o.source, self._settings.model) for o in self._objects)
+        self.cache.retain((o.source, *self._settings.derivation_key(o.source)) for o in self._objects)
         errors: list[BaseException] = []
         for cb in list(self._subscribers):
             try:
@@ -414,11 +414,14 @@ class Document:
             self._objects = [self._by_id[i] for i in ids]
 
     def set_settings(self, settings: Settings) -> None:
-        """Change the settings; a new model re-derives every object. For commands."""
+        """Change the settings, re-deriving the objects whose derivations depend on what changed.
+
+        Every object for a new model, the voxel objects for a new compact limit. For commands.
+        """
         with self.batch():
             p = self._touch()
-            if settings.model != self._settings.model:
-                for o in self._objects:
+            for o in self._objects:
+                if settings.derivation_key(o.source) != self._settings.derivation_key(o.source):
                     p.changed.setdefault(o.id, set()).add("derived")
                     self._obj_rev[o.id] = self._obj_rev.get(o.id, 0) + 1
             self._settings = settings

@@ -282,9 +282,29 @@ class Settings:
     ----------
     model : Model
         The discretization model D (and its associated continuation R); text is read by :meth:`Model.parse`.
+    compact_limit : int
+        The most triangles of a voxel set's safety net that its R simplifies into a compact polyhedron
+        (``compact_limit`` of :func:`~mrm.geometry.reconstruct.reconstruct_voxels_detailed`, ADR 0073);
+        beyond it a non-convex set's R is the safety net. From 1 to ``limits.MAX_OBJECT_TRIANGLES``;
+        default ``limits.MAX_COMPACT_R_TRIANGLES``.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown model or a compact limit that is not a whole number in range.
     """
 
     model: Model = DEFAULT_MODEL
+    compact_limit: int = limits.MAX_COMPACT_R_TRIANGLES
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "model", Model.parse(self.model))
+        object.__setattr__(self, "compact_limit", limits.check_compact_limit(self.compact_limit))
+
+    def derivation_key(self, source: object) -> tuple[Model, int | None]:
+        """What of these settings the derived representations of ``source`` depend on.
+
+        The model for every source; the compact limit too for a voxel set, whose R it decides. Two sources
+        whose keys are equal share their derivations, so a new limit re-derives the voxel objects only.
+        """
+        return self.model, (self.compact_limit if isinstance(source, VoxelSet) else None)

@@ -1,12 +1,12 @@
 """Project files (``*.mrm``): one versioned JSON document, validated on load, written atomically.
 
-Schema version 5::
+Schema version 6::
 
     {
      "format": "mrm-project",
-     "schema_version": 5,
+     "schema_version": 6,
      "generator": "MR Modeler 0.1.0",                      (optional, informative)
-     "settings": {"model": "standard"},
+     "settings": {"model": "standard", "compact_limit": 20000},   (compact_limit optional, schema 6)
      "selection": [2],                                      (optional; ids of selected objects)
      "autosave": {"project": "/path/x.mrm", "saved_at": "2026-..."},   (only in autosave side files)
      "objects": [
@@ -50,6 +50,8 @@ Schema version 5::
   origin coordinates is the dimension. A polyhedron (``kind: "polyhedron"``, schema 5) is its float64
   vertices (``repr``, bit for bit) and its outward triangles as vertex indices; it is validated exactly on
   load (:class:`mrm.geometry.polyhedra.Polyhedron`).
+* ``settings.compact_limit`` (schema 6, ADR 0073): the most triangles of a voxel set's safety net that its R
+  simplifies (:attr:`mrm.document.Settings.compact_limit`); absent in older files, which get the default.
 * A Euclidean source is GeoJSON-like: Polygon or MultiPolygon coordinates, rings closed, float coordinates
   written with ``repr`` so that every float64 comes back bit for bit. Integers (ids, origins, shapes) stay
   integers.
@@ -89,7 +91,7 @@ from mrm.ops.provenance import PROVENANCE_MAX_DEPTH, Provenance, content_digest
 #: The value of the "format" key.
 FORMAT = "mrm-project"
 #: The schema version this code writes (and the newest it reads).
-SCHEMA_VERSION = 5
+SCHEMA_VERSION = 6
 # The other limits are those of the document (mrm.core.limits, ADR 0010), so that the loader accepts every
 # file the saver can write: the document refuses the edit that would exceed them. The loader reads them from
 # mrm.core.limits when it runs.
@@ -142,6 +144,12 @@ MIGRATIONS: tuple[Migration, ...] = (
         "[nz, ny, nx]), and a source may be a polyhedron (kind 'polyhedron'); a version 4 file has none, so "
         "it reads unchanged",
         lambda data: {**data, "schema_version": 5},
+    ),
+    Migration(
+        5,
+        "the settings may hold the compact limit of the voxel objects' R (compact_limit); a version 5 file "
+        "has none, so it reads unchanged with the default limit",
+        lambda data: {**data, "schema_version": 6},
     ),
 )
 
@@ -270,7 +278,7 @@ def dumps(doc: Document, *, autosave: dict[str, Any] | None = None) -> bytes:
         ("format", FORMAT),
         ("schema_version", SCHEMA_VERSION),
         ("generator", _generator()),
-        ("settings", {"model": doc.settings.model}),
+        ("settings", {"model": doc.settings.model, "compact_limit": doc.settings.compact_limit}),
         ("selection", list(doc.selection)),
     ]
     if autosave is not None:
@@ -429,13 +437,18 @@ def parse_project(
     )
     if "generator" in raw:
         c.str_(raw["generator"], "$.generator", 200)
-    st = c.obj(raw["settings"], "$.settings", ("model",))
+    st = c.obj(raw["settings"], "$.settings", ("model",), ("compact_limit",))
     model = c.str_(st["model"], "$.settings.model", 40)
     if model not in Model.names():
         c.fail(
             "$.settings.model", f"unknown model {c.show(model)}; expected one of {', '.join(Model.names())}"
         )
-    settings = Settings(model=Model(model))
+    compact_limit = (
+        c.int_(st["compact_limit"], "$.settings.compact_limit", 1, limits.MAX_OBJECT_TRIANGLES)
+        if "compact_limit" in st
+        else limits.MAX_COMPACT_R_TRIANGLES
+    )
+    settings = Settings(model=Model(model), compact_limit=compact_limit)
     objs_raw = c.list_(raw["objects"], "$.objects")
     table_raw = raw.get("contents")
     check_grid_budget(

@@ -4,6 +4,9 @@ objects and leave the 3D ones out, the object list says what they are, and savin
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
+
+from PySide6 import QtCore, QtWidgets
 
 from mrm.core.grids import LabelVolume, VoxelSet
 from mrm.io.project import load_project
@@ -167,24 +170,54 @@ def test_a_3d_object_exports_its_polyhedron_or_its_voxels(make_window, qtbot, tm
     assert not (tmp_path / "labels.obj").exists()
 
 
-def test_exporting_a_safety_net_says_so_and_how_to_get_a_compact_mesh(
-    make_window, qtbot, tmp_path, monkeypatch
-):
-    # Past the compact limit R(A) is the safety net: the exported mesh is exact but not compact, and the
-    # status bar says so, with the command that writes a compact one.
+def test_the_compact_limit_is_chosen_in_its_dialog_said_on_export_and_undone(make_window, qtbot, tmp_path):
+    # Edit ▸ Discretization Model ▸ Compact R Limit…: past the limit R(A) is the safety net, the exported
+    # mesh is exact but not compact, and the status bar says so and where the limit is raised; Ctrl+Z gives
+    # the compact R back.
     import numpy as np
 
     import mrm
-    from mrm.core import limits
     from mrm.document.commands import AddObject
 
-    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
     win = make_window()
     z, y, x = np.mgrid[0:10, 0:10, 0:10]
     stairs = win.doc.make_object(VoxelSet((x + y + z <= 12) | (x >= 8), (0, 0, 0)), name="stairs")
     win.doc.push(AddObject(stairs))
-    assert win.files.export(stairs.id, tmp_path / "stairs.obj")
-    qtbot.waitUntil(lambda: "Exported stairs.obj" in win.status.currentMessage(), timeout=30_000)
-    assert "holds R's safety net, exact but not compact" in win.status.currentMessage()
-    assert "mrm reconstruct --compact-limit N" in win.status.currentMessage()
-    assert mrm.voxelize(mrm.read_mesh(tmp_path / "stairs.obj"), win.doc.settings.model) == stairs.source
+    action = win.registry["edit.compact_limit"]
+    assert action in win.model_menu.actions()
+    action.trigger()
+    found: list[QtWidgets.QInputDialog] = []
+
+    def shown() -> bool:
+        w = QtWidgets.QApplication.activeModalWidget()
+        if w is not None and w.objectName() == "compactLimitDialog":
+            found.append(w)
+        return bool(found)
+
+    qtbot.waitUntil(shown, timeout=5000)
+    spin = found[0].findChild(QtWidgets.QSpinBox)
+    assert spin.value() == 20_000  # the document's limit, the default
+    spin.lineEdit().selectAll()
+    qtbot.keyClicks(spin.lineEdit(), "10")
+    qtbot.keyClick(spin.lineEdit(), QtCore.Qt.Key.Key_Return)
+    qtbot.waitUntil(lambda: win.doc.settings.compact_limit == 10, timeout=5000)
+    assert win.doc.history.undo_label() == "Compact R up to 10 triangles"
+
+    def export() -> tuple[str, Any]:
+        win.status.show_text("")
+        assert win.files.export(stairs.id, tmp_path / "stairs.obj")
+        qtbot.waitUntil(lambda: "Exported stairs.obj" in win.status.currentMessage(), timeout=30_000)
+        mesh = mrm.read_mesh(tmp_path / "stairs.obj")
+        assert mrm.voxelize(mesh, win.doc.settings.model) == stairs.source  # exact either way
+        return win.status.currentMessage(), mesh
+
+    said, net = export()
+    assert "holds R's safety net, exact but not compact" in said
+    assert "a higher Compact R Limit, in Edit ▸ Discretization Model, gives a compact R" in said
+    assert "safety net" in win.scene.r_note(stairs.id)
+    assert win.scene.r_note(stairs.id).endswith("(Edit ▸ Discretization Model ▸ Compact R Limit… raises it)")
+    qtbot.keyClick(win.views.discrete, QtCore.Qt.Key.Key_Z, QtCore.Qt.KeyboardModifier.ControlModifier)
+    assert win.doc.settings.compact_limit == 20_000
+    said, compact = export()
+    assert "safety net" not in said and win.scene.r_note(stairs.id) is None
+    assert compact.n_faces < net.n_faces

@@ -418,10 +418,24 @@ def test_reconstruct_says_how_r_was_made_and_notes_the_safety_net(capsys, tmp_pa
     assert code == 0 and summary["r"] == "decimation" and "note" not in err
     assert summary["faces"] < net_faces
     assert mrm.voxelize(mrm.read_mesh(tmp_path / "a.obj"), "standard") == a
-    with pytest.raises(SystemExit) as exit_:
-        run_cli(
-            ["reconstruct", str(tmp_path / "a.npz"), "-o", str(tmp_path / "b.obj"), "--compact-limit", "0"]
-        )
-    assert exit_.value.code == 2
-    assert "argument --compact-limit: expected a positive integer, got '0'" in capsys.readouterr().err
-    assert not (tmp_path / "b.obj").exists()
+    # A limit that is no whole number of triangles a polyhedron can have is refused before any work.
+    range_ = "the compact limit is a whole number of triangles from 1 to 20,000,000"
+    for bad, says in (
+        ("0", f"{range_}, not 0"),
+        ("30_000_000", f"{range_}, not 30000000"),
+        ("1e5", "expected a whole number, got '1e5'"),
+    ):
+        with pytest.raises(SystemExit) as exit_:
+            run_cli(
+                [
+                    "reconstruct",
+                    str(tmp_path / "a.npz"),
+                    "-o",
+                    str(tmp_path / "b.obj"),
+                    "--compact-limit",
+                    bad,
+                ]
+            )
+        assert exit_.value.code == 2
+        assert f"argument --compact-limit: {says}" in capsys.readouterr().err
+        assert not (tmp_path / "b.obj").exists()

@@ -109,10 +109,9 @@ def test_plane_work_never_loads_the_3d_kernels():
     assert out.strip() == "[]"
 
 
-def test_a_voxel_objects_r_says_when_it_is_the_safety_net(doc, monkeypatch):
-    # The note the desktop shows: None for a compact R; past the decimation's size limit, R is the safety
+def test_a_voxel_objects_r_says_when_it_is_the_safety_net(doc):
+    # The note the desktop shows: None for a compact R; past the document's compact limit, R is the safety
     # net, which still gives the voxels back, and the note says so with the limit.
-    from mrm.core import limits
     from mrm.document.commands import AddObject
 
     obj = doc.find("octahedron")[0]
@@ -125,11 +124,41 @@ def test_a_voxel_objects_r_says_when_it_is_the_safety_net(doc, monkeypatch):
     ell = doc.make_object(VoxelSet(mask, (0, 0, 0)), name="ell")
     doc.push(AddObject(ell))
     assert doc.derived(ell.id).get("euclidean") is not None and doc.derived(ell.id).r_note is None
-    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
+    doc.push(ChangeSettings.compact_limit(doc, 10))
     doc.push(ChangeSettings.model(doc, "supercover"))  # a new model: R made again, past the limit now
     d = doc.derived(ell.id)
     assert d.r_note is None  # nothing said before R is made
     poly = d.get("euclidean")
     assert voxelize(poly, "supercover") == ell.source
-    assert d.r_note is not None and "R is the safety net" in d.r_note
+    assert d.r_note is not None and "R is the safety net" in d.r_note and d.r_over_limit
     assert f"{poly.n_triangles:,} triangles" in d.r_note and "at most 10 triangles" in d.r_note
+
+
+def test_the_compact_limit_re_derives_the_voxel_objects_only_and_is_undone(doc):
+    # A setting of the document (ADR 0073): a voxel object's R depends on it, nothing else does.
+    from mrm.document.commands import AddObject
+
+    mask = np.zeros((3, 4, 4), bool)
+    mask[:, :2, :] = True
+    mask[:, :, :2] = True  # an L-shaped prism: not digitally convex, so its R is the decimation
+    ell = doc.make_object(VoxelSet(mask, (0, 0, 0)), name="ell")
+    doc.push(AddObject(ell))
+    before = {o.id: doc.derived(o.id) for o in doc}
+    compact = before[ell.id].get("euclidean")
+    seen = []
+    doc.subscribe(seen.append)
+    doc.push(ChangeSettings.compact_limit(doc, 10))
+    assert doc.history.undo_label() == "Compact R up to 10 triangles"
+    (changes,) = seen
+    voxel_sets = {o.id for o in doc if isinstance(o.source, VoxelSet)}
+    assert voxel_sets == {doc.find("octahedron")[0].id, ell.id}
+    assert {i for i, what in changes.changed.items() if "derived" in what} == voxel_sets
+    for o in doc:  # the others keep what was derived for them
+        assert (doc.derived(o.id) is before[o.id]) == (o.id not in voxel_sets)
+    net = doc.derived(ell.id).get("euclidean")
+    assert net.n_triangles > 10 and net.n_triangles > compact.n_triangles
+    assert voxelize(net, "standard") == ell.source  # exact either way
+    doc.undo()
+    assert doc.settings.compact_limit == 20_000 and doc.derived(ell.id) is before[ell.id]
+    doc.redo()
+    assert doc.derived(ell.id).get("euclidean") is net  # the entry kept for a redo

@@ -16,8 +16,9 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from mrm.core.errors import FileFormatError, MRMError
 from mrm.core.grids import LabelVolume, PixelSet, VoxelSet
+from mrm.core.models import Model
 from mrm.document import Document, Settings, Style
-from mrm.document.commands import AddObject, RenameObject
+from mrm.document.commands import AddObject, ChangeSettings, RenameObject
 from mrm.document.edits import PaintPixels
 from mrm.geometry.polyhedra import Polyhedron
 from mrm.io import autosave
@@ -109,6 +110,17 @@ def test_golden_v5_holds_a_voxel_set_and_a_label_volume_as_written_down_here():
         ]
     )
     assert solid.n_faces == 8
+
+
+def test_the_compact_limit_is_kept_in_the_file_and_older_files_get_the_default(tmp_path):
+    # Schema 6 keeps the document's compact limit (the most safety-net triangles R simplifies).
+    doc = read_project(GOLDEN / "v6-compact-limit.mrm").to_document()
+    assert doc.settings == Settings(model=Model.GAUSS, compact_limit=150_000)
+    older = read_project(GOLDEN / "v5-voxels.mrm").to_document()
+    assert older.settings.compact_limit == 20_000  # the default the program used when it wrote it
+    older.push(ChangeSettings.compact_limit(older, 3))
+    save_project(older, tmp_path / "p.mrm")
+    assert read_project(tmp_path / "p.mrm").settings == Settings(model=Model.STANDARD, compact_limit=3)
 
 
 def test_a_polyhedron_that_is_not_a_solid_is_refused_on_load_with_its_path():
@@ -295,6 +307,23 @@ HOSTILE = {
         mutated(_set(["settings", "model"], "bresenham")),
         r"\$\.settings\.model: unknown model",
     ),
+    "compact limit 0": (
+        mutated(_set(["settings", "compact_limit"], 0)),
+        r"\$\.settings\.compact_limit: integer 0 out of range \[1, 20000000\]",
+    ),
+    "compact limit beyond any polyhedron": (
+        mutated(_set(["settings", "compact_limit"], 10**12)),
+        r"\$\.settings\.compact_limit: integer 1000000000000 out of range",
+    ),
+    "compact limit as text": (
+        mutated(_set(["settings", "compact_limit"], "20000")),
+        r"\$\.settings\.compact_limit: expected an integer",
+    ),
+    "compact limit as float": (
+        mutated(_set(["settings", "compact_limit"], 2.5e4)),
+        r"\$\.settings\.compact_limit: expected an integer",
+    ),
+    "unknown setting": (mutated(_set(["settings", "speed"], 1)), r"\$\.settings: unknown key 'speed'"),
     "objects not a list": (mutated(_set(["objects"], {})), r"\$\.objects: expected a list, got an object"),
     "id as float": (mutated(_set(["objects", 0, "id"], 3.0)), r"\$\.objects\[0\]\.id: expected an integer"),
     "id as bool": (

@@ -384,6 +384,9 @@ class VoxelR(NamedTuple):
     #: Why R is the safety net (empty for the other ways): A's safety net beyond the decimation's limit, or
     #: the decimation's result refused by its final check.
     why: str = ""
+    #: True when R is the safety net because the net has more triangles than the compact limit: a higher
+    #: limit (``--compact-limit``, the document's setting) would give the compact R, at a cost.
+    over_limit: bool = False
 
     @property
     def note(self) -> str | None:
@@ -489,7 +492,7 @@ def _decimated(vs: VoxelSet, model: str, compact_limit: int | None) -> VoxelR:
     vertices, triangles, net_vertices, net_triangles = compact_r(vs.mask, vs.origin, model, most)
     if triangles is net_triangles:  # too big for the decimation: the safety net, which meets the contract
         why = f"the decimation takes sets whose safety net has at most {most:,} triangles"
-        return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net", why)
+        return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net", why, over_limit=True)
     try:
         result = Polyhedron(vertices, triangles)
         mask, origin = voxelize_solid(vertices, triangles, model, limit=None)
