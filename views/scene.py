@@ -254,7 +254,7 @@ class Scene(QtCore.QObject):
                 progress.update(
                     k / len(steps), f"{name}: computing the {REP_WORDS[step]} ({k + 1}/{len(steps)})"
                 )
-                e.get(step)
+                e.get(step, progress)
             progress.update(1.0)
             return e.get(rep)
 

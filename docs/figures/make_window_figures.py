@@ -11,8 +11,8 @@ panel, measures through the Measure panel), waits until every view and backgroun
 its picture is drawn over the window's at the place it opened.
 
 Pictures (docs/img): ``analytical-segment.png``, ``inspector.png``, ``dark.png``, ``properties-panel.png``,
-``context-menu.png``, ``measure.png``, ``label-map.png``, ``history.png``, and ``views-3d.png``, which needs a
-display with OpenGL (the 3D views abort offscreen)::
+``context-menu.png``, ``measure.png``, ``label-map.png``, ``history.png``, and ``views-3d.png`` and
+``compact-limit.png``, which need a display with OpenGL (the 3D views abort offscreen)::
 
     xvfb-run -s "-screen 0 1600x1000x24 +extension GLX" env QT_QPA_PLATFORM=xcb \
         .venv/bin/python docs/figures/make_window_figures.py views-3d
@@ -279,6 +279,32 @@ def views_3d(app: Any) -> Path:
     return _save(app, win, "views-3d.png", fit=False)
 
 
+def compact_limit(app: Any) -> Path:
+    """A bumpy volume whose R is the safety net, and Edit ▸ Discretization Model ▸ Compact R Limit… open."""
+    import numpy as np
+    from PySide6 import QtWidgets
+
+    from mrm.core.grids import VoxelSet
+
+    f = np.random.default_rng(3).random((40, 40, 40))
+    for _ in range(4):  # smoothed noise: blobs, not convex, a safety net of 38,736 triangles
+        for axis in range(3):
+            f = (np.roll(f, 1, axis) + f + np.roll(f, -1, axis)) / 3
+    win = _window()
+    blobs = win.doc.make_object(VoxelSet(f > 0.5, (0, 0, 0)), name="blobs")
+    win.doc.reset([blobs])
+    win.doc.set_selection([blobs.id])
+    _settle(app, win)
+    win.fit_all()
+    _settle(app, win)
+    win.registry["edit.compact_limit"].trigger()
+    _settle(app, win)
+    dialog = win.findChild(QtWidgets.QInputDialog, "compactLimitDialog")
+    dialog.move(win.mapToGlobal(win.rect().center()) - dialog.rect().center())
+    _settle(app, win)
+    return _save(app, win, "compact-limit.png", fit=False, menu=dialog)
+
+
 def _open_3d_example(app: Any, name: str, select: str) -> Any:
     """A window on a bundled 3D example with the object ``select`` selected and its account measured."""
     from dataclasses import replace
@@ -329,9 +355,10 @@ FIGURES: dict[str, Callable[[Any], Path]] = {
     "views-3d": views_3d,
     "fig12-3d": fig12_3d,
     "rotation-3d": rotation_3d,
+    "compact-limit": compact_limit,
 }
 #: The pictures that need OpenGL (made under Xvfb, see the module docstring).
-GL_FIGURES = ("views-3d", "fig12-3d", "rotation-3d")
+GL_FIGURES = ("views-3d", "fig12-3d", "rotation-3d", "compact-limit")
 
 
 def main(names: list[str]) -> int:

@@ -12,12 +12,24 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from typing import Protocol, runtime_checkable
+
+import numpy as np
+import numpy.typing as npt
 
 from mrm.core.errors import Cancelled
 
-__all__ = ["NO_PROGRESS", "NullProgress", "Progress", "ProgressLike", "SubProgress", "sub_progress"]
+__all__ = [
+    "NO_PROGRESS",
+    "NullProgress",
+    "Progress",
+    "ProgressLike",
+    "SubProgress",
+    "stop_flag",
+    "sub_progress",
+]
 
 
 @runtime_checkable
@@ -167,3 +179,39 @@ NO_PROGRESS = NullProgress()
 def sub_progress(inner: ProgressLike | None, lo: float, hi: float) -> ProgressLike:
     """A progress for a sub-task that reports into [lo, hi] of ``inner`` (and checks its cancel)."""
     return SubProgress(inner, lo, hi)
+
+
+#: How often (seconds) :func:`stop_flag` looks whether its progress was cancelled.
+STOP_POLL = 0.05
+
+
+@contextmanager
+def stop_flag(progress: ProgressLike | None, poll: float = STOP_POLL) -> Iterator[npt.NDArray[np.uint8]]:
+    """A one-byte array that a compiled kernel reads to stop early: set to 1 once ``progress`` is cancelled.
+
+    A numba kernel cannot report through ``progress`` (it runs without the interpreter), so it reads this
+    flag between its steps and returns early when it is set; the caller then raises
+    :class:`~mrm.core.errors.Cancelled`. While the block runs, a watcher thread looks at
+    ``progress.cancelled`` every ``poll`` seconds (whoever set it: :meth:`Progress.cancel`, or a worker
+    process's signal handler through the shared event). Without a progress that can be cancelled the flag
+    stays 0 and no thread is started.
+    """
+    flag = np.zeros(1, np.uint8)
+    if progress is None or not hasattr(progress, "cancelled"):
+        yield flag
+        return
+    finished = threading.Event()
+
+    def watch() -> None:
+        while not finished.wait(poll):
+            if progress.cancelled:
+                flag[0] = 1
+                return
+
+    watcher = threading.Thread(target=watch, name="mrm-stop-flag", daemon=True)
+    watcher.start()
+    try:
+        yield flag
+    finally:
+        finished.set()
+        watcher.join()

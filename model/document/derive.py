@@ -13,9 +13,10 @@ from collections import OrderedDict
 from collections.abc import Iterable
 from typing import Any, Literal
 
-from mrm.core.errors import MRMError, NotApplicableError
+from mrm.core.errors import Cancelled, MRMError, NotApplicableError
 from mrm.core.grids import GridSet, LabelGrid, PixelSet
 from mrm.core.models import Model
+from mrm.core.progress import ProgressLike
 from mrm.document.objects import Settings, source_dimension, source_kind
 from mrm.geometry.discretize import discretize
 from mrm.geometry.reconstruct import reconstruct
@@ -122,8 +123,12 @@ class Derived:
         """The value of ``what`` if computed, else None (never computes)."""
         return self._values.get(what)
 
-    def get(self, what: Rep) -> Any:
-        """Return ``what``, computing it (and what it depends on) in the calling thread if needed."""
+    def get(self, what: Rep, progress: ProgressLike | None = None) -> Any:
+        """Return ``what``, computing it (and what it depends on) in the calling thread if needed.
+
+        ``progress`` may cancel the slow part of a voxel set's R (its decimation): then
+        :class:`~mrm.core.errors.Cancelled` is raised and nothing is kept, so a later call computes it again.
+        """
         if what in self._values:
             return self._values[what]
         if what not in REPS:
@@ -134,16 +139,17 @@ class Derived:
             if what in self._errors:
                 raise self._errors[what]
             try:
-                value = self._compute(what)
+                value = self._compute(what, progress)
             except MRMError as e:
-                self._errors[what] = e
+                if not isinstance(e, Cancelled):  # a cancel says nothing about the value: not remembered
+                    self._errors[what] = e
                 raise
             self._values[what] = value
             return value
 
-    def _compute(self, what: Rep) -> Any:
+    def _compute(self, what: Rep, progress: ProgressLike | None) -> Any:
         if self.dimension == 3:
-            return self._compute_3d(what)
+            return self._compute_3d(what, progress)
         if self.kind == "labels":
             if what == "region":
                 return cells_of(self.source)
@@ -163,7 +169,7 @@ class Derived:
             return region_from_pixels(self.get("discrete"))
         return analytical_of(self.get("region"))
 
-    def _compute_3d(self, what: Rep) -> Any:
+    def _compute_3d(self, what: Rep, progress: ProgressLike | None) -> Any:
         """The representations of a voxel set, label volume or polyhedron (docs/design.md §11).
 
         D is the exact voxelizer, R the 3D continuation, the region representation the (6, 26) one, the
@@ -188,7 +194,7 @@ class Derived:
         if what == "euclidean":
             from mrm.geometry.reconstruct import reconstruct_voxels_detailed
 
-            r = reconstruct_voxels_detailed(self.get("discrete"), self.model, self.compact_limit)
+            r = reconstruct_voxels_detailed(self.get("discrete"), self.model, self.compact_limit, progress)
             self.voxel_r = r
             return r.polyhedron
         vs = self.get("discrete")

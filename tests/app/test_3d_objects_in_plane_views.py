@@ -221,3 +221,33 @@ def test_the_compact_limit_is_chosen_in_its_dialog_said_on_export_and_undone(mak
     said, compact = export()
     assert "safety net" not in said and win.scene.r_note(stairs.id) is None
     assert compact.n_faces < net.n_faces
+
+
+def test_a_slow_compact_r_shows_its_progress_and_cancel_stops_it(make_window, qtbot):
+    # With a high compact limit R(A) of a bumpy volume takes seconds, on a worker: the status bar says what
+    # it is doing, and its Cancel stops the simplification itself (not only the waiting), so the worker is
+    # free again long before R would have been done. A lower limit then gives the safety net at once.
+    from mrm.document.commands import AddObject, ChangeSettings
+    from mrm.geometry.discretize.voxels import voxelize
+    from mrm.views.scene import CANCELLED
+    from tests.model.voxel_shapes import smoothed_noise
+
+    win = make_window(threaded=True)
+    blobs = win.doc.make_object(VoxelSet(smoothed_noise(64, 3), (0, 0, 0)), name="blobs")
+    win.doc.push(AddObject(blobs))
+    win.doc.push(ChangeSettings.compact_limit(win.doc, 1_000_000))
+    assert win.scene.get(blobs.id, "euclidean") is None  # asked for as a view asks: computed on a worker
+    button = win.status.cancel_button
+    qtbot.waitUntil(
+        lambda: button.isVisible() and "simplifying a safety net of" in win.status.progress_box.toolTip(),
+        timeout=120_000,
+    )
+    assert win.status.progress_box.toolTip().startswith("blobs")
+    qtbot.mouseClick(button, QtCore.Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: not win.runner.is_busy(), timeout=5000)  # R itself would take 15 s or more
+    assert win.scene.error(blobs.id, "euclidean") == CANCELLED
+    qtbot.keyClick(win.views.discrete, QtCore.Qt.Key.Key_Z, QtCore.Qt.KeyboardModifier.ControlModifier)
+    assert win.doc.settings.compact_limit == 20_000 and blobs.id in win.doc
+    qtbot.waitUntil(lambda: win.scene.get(blobs.id, "euclidean") is not None, timeout=60_000)
+    assert "safety net" in win.scene.r_note(blobs.id)
+    assert voxelize(win.scene.get(blobs.id, "euclidean"), "standard") == blobs.source

@@ -16,7 +16,14 @@ from mrm.core.errors import LimitError
 from mrm.core.grids import VoxelSet
 from mrm.geometry.reconstruct import FALLBACKS
 from mrm.reps.region_3d import region_3d_of
-from tests.model.voxel_shapes import assert_within_border_cubes, ball, hollow, random_mask, solid_torus
+from tests.model.voxel_shapes import (
+    assert_within_border_cubes,
+    ball,
+    hollow,
+    random_mask,
+    smoothed_noise,
+    solid_torus,
+)
 
 MODELS = ("standard", "supercover", "gauss")
 
@@ -166,6 +173,43 @@ def test_gauss_r_stays_within_the_border_voxels_cubes():
     m = ball(6, 15) | (random_mask(3, (15, 15, 15), 0.08))
     vs = VoxelSet(m, (0, 0, 0))
     assert_within_border_cubes(mrm.reconstruct(vs, "gauss"), vs)
+
+
+def test_cancelling_r_stops_its_decimation_and_nothing_is_kept():
+    # A user's cancel reaches into the compiled decimation (mrm.core.progress.stop_flag): R is not finished
+    # (it would take seconds more), Cancelled is raised, and a cancelled derivation is computed again later.
+    import threading
+    import time
+
+    from mrm.core.errors import Cancelled
+    from mrm.core.progress import Progress
+    from mrm.document.derive import Derived
+    from mrm.geometry.reconstruct import reconstruct_voxels_detailed
+
+    started = threading.Event()
+    progress = Progress(lambda _f, message: started.set() if message.startswith("simplifying") else None)
+
+    def cancel_once_simplifying() -> None:
+        started.wait(60)
+        time.sleep(0.3)  # into the kernel: a 48³ volume's decimation takes seconds
+        progress.cancel()
+
+    threading.Thread(target=cancel_once_simplifying, daemon=True).start()
+    with pytest.raises(Cancelled):
+        reconstruct_voxels_detailed(VoxelSet(smoothed_noise(48, 3), (0, 0, 0)), "gauss", 10**7, progress)
+    assert started.is_set()
+    # A derivation cancelled (before its decimation starts) is not remembered as failed.
+    ell = np.zeros((3, 4, 4), bool)
+    ell[:, :2, :] = True
+    ell[:, :, :2] = True
+    a = VoxelSet(ell, (0, 0, 0))
+    entry = Derived(a, "standard")
+    cancelled = Progress()
+    cancelled.cancel()
+    with pytest.raises(Cancelled):
+        entry.get("euclidean", cancelled)
+    assert not entry.is_ready("euclidean")
+    assert mrm.voxelize(entry.get("euclidean"), "standard") == a and entry.voxel_r.way == "decimation"
 
 
 @pytest.mark.parametrize("model", MODELS)

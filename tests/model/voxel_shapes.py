@@ -23,6 +23,16 @@ def random_mask(seed: int, shape: tuple[int, int, int], density: float) -> np.nd
     return np.random.default_rng(seed).random(shape) < density
 
 
+def smoothed_noise(n: int, seed: int) -> np.ndarray:
+    """Blobs: uniform noise over an n³ box, averaged over its 3 neighbours along each axis four times,
+    thresholded at ½ (not convex, many small plane segments: a decimation of several seconds at n = 40)."""
+    f = np.random.default_rng(seed).random((n, n, n))
+    for _ in range(4):
+        for axis in range(3):
+            f = (np.roll(f, 1, axis) + f + np.roll(f, -1, axis)) / 3
+    return f > 0.5
+
+
 def assert_within_border_cubes(poly: object, vs: object) -> None:
     """∂P meets only cubes of border voxels: each voxel its triangles touch (their supercover, exactly) has
     both a voxel of A and one outside in its 3×3×3 block (docs/design.md §11, item 2 under gauss)."""

@@ -51,6 +51,7 @@ from mrm.core.errors import ParameterError
 from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import check_reconstruct
 from mrm.core.models import Model
+from mrm.core.progress import ProgressLike
 from mrm.geometry._threads import side_pool
 from mrm.geometry._threads import threads as _threads
 from mrm.geometry.reconstruct import _dual as _dk
@@ -434,13 +435,18 @@ def reconstruct_voxels(vs: VoxelSet, model: str = "standard") -> Polyhedron:
 
 
 def reconstruct_voxels_detailed(
-    vs: VoxelSet, model: str = "standard", compact_limit: int | None = None
+    vs: VoxelSet,
+    model: str = "standard",
+    compact_limit: int | None = None,
+    progress: ProgressLike | None = None,
 ) -> VoxelR:
     """:func:`reconstruct_voxels`, with the way R was made (:class:`VoxelR`): the command line reports it.
 
     ``compact_limit``: the most triangles of a safety net that the decimation takes (default
     ``limits.MAX_COMPACT_R_TRIANGLES``); beyond, R is the safety net. ``mrm reconstruct --compact-limit``
-    raises it for one run: the decimation takes about 40–150 µs per triangle of the net.
+    and the document's setting raise it: the decimation takes about 40–150 µs per triangle of the net.
+    ``progress`` is told when the decimation starts, and cancelling it stops the decimation within about
+    50 ms with :class:`~mrm.core.errors.Cancelled`.
     """
     # Imported here: 2D work (and the desktop's first paint) never loads the 3D kernels.
     from mrm.geometry.polyhedra import Polyhedron
@@ -464,11 +470,11 @@ def reconstruct_voxels_detailed(
         small = hull.polyhedron.n_triangles < RIVAL_WORTH * hull.surfels
         if small or hull.surfels > limits.MAX_RIVAL_SURFELS:
             return VoxelR(hull.polyhedron, way)
-        rival = _decimated(vs, model, compact_limit)
+        rival = _decimated(vs, model, compact_limit, progress)
         if _size(hull.polyhedron, hull.facets) <= _size(rival.polyhedron, hull.facets):
             return VoxelR(hull.polyhedron, way)
         return rival
-    return _decimated(vs, model, compact_limit)
+    return _decimated(vs, model, compact_limit, progress)
 
 
 def _size(p: Polyhedron, facets: int) -> tuple[int, ...]:
@@ -481,7 +487,9 @@ def _size(p: Polyhedron, facets: int) -> tuple[int, ...]:
     return (p.n_triangles, p.n_faces)
 
 
-def _decimated(vs: VoxelSet, model: str, compact_limit: int | None) -> VoxelR:
+def _decimated(
+    vs: VoxelSet, model: str, compact_limit: int | None, progress: ProgressLike | None = None
+) -> VoxelR:
     # R(A) by the safety net's decimation (ADR 0064), checked as a whole; the safety net when too big.
     from mrm.core import limits
     from mrm.geometry.discretize.voxels import voxelize_solid
@@ -489,7 +497,7 @@ def _decimated(vs: VoxelSet, model: str, compact_limit: int | None) -> VoxelR:
     from mrm.geometry.reconstruct.decimate_3d import compact_r
 
     most = limits.MAX_COMPACT_R_TRIANGLES if compact_limit is None else compact_limit
-    vertices, triangles, net_vertices, net_triangles = compact_r(vs.mask, vs.origin, model, most)
+    vertices, triangles, net_vertices, net_triangles = compact_r(vs.mask, vs.origin, model, most, progress)
     if triangles is net_triangles:  # too big for the decimation: the safety net, which meets the contract
         why = f"the decimation takes sets whose safety net has at most {most:,} triangles"
         return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net", why, over_limit=True)

@@ -50,6 +50,8 @@ from typing import NamedTuple, TypeVar, cast
 import numpy as np
 import numpy.typing as npt
 
+from mrm.core.errors import Cancelled
+from mrm.core.progress import ProgressLike, stop_flag
 from mrm.geometry._jit import njit
 from mrm.geometry.polyhedra.manifold import components
 from mrm.geometry.polyhedra.self_intersection import DISJOINT, triangles_meet_improperly
@@ -1344,7 +1346,10 @@ def _decimate(
     max_collapses: int,
     max_rounds: int,
     min_cos: float,
+    stop: npt.NDArray[np.uint8],
 ) -> tuple[Int64Array, Int64Array, BoolArray, BoolArray, int]:  # pragma: no cover - compiled
+    # stop[0] set (by another thread: mrm.core.progress.stop_flag) makes it return at the next vertex or
+    # triangle it looks at, with −1 removed: the caller discards the result.
     nv = q0.shape[0]
     nt = tri.shape[0]
     # Room for the new vertices (a collapse onto a point removes two vertices and adds one, a move replaces
@@ -1445,6 +1450,8 @@ def _decimate(
             changed = False
             passes += 1
             for u in range(n_now):
+                if stop[0] != 0:
+                    return q[:n_now], t, alive, vdead[:n_now], -1
                 if vdead[u] or not dirty[u, _HALF] or removed == max_collapses:
                     continue
                 g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
@@ -1482,6 +1489,8 @@ def _decimate(
             changed = False
             passes += 1
             for u in range(n_now):
+                if stop[0] != 0:
+                    return q[:n_now], t, alive, vdead[:n_now], -1
                 if vdead[u] or not dirty[u, _POINT] or removed == max_collapses:
                     continue
                 g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
@@ -1560,6 +1569,8 @@ def _decimate(
         # exactly coplanar (a vertex left off the ridge or the tip of the ideal solid stops the collapses that
         # would straighten it). One pass per round, the best three tried, each proved like a collapse.
         for u in range(n_now):
+            if stop[0] != 0:
+                return q[:n_now], t, alive, vdead[:n_now], -1
             if vdead[u] or not dirty[u, _MOVE]:
                 continue
             g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
@@ -1619,6 +1630,8 @@ def _decimate(
             break
         flipped = 0
         for k in range(nt):
+            if stop[0] != 0:
+                return q[:n_now], t, alive, vdead[:n_now], -1
             if not alive[k]:
                 continue
             g_next, g_tri, ng, ng_fresh, s_next, s_tri, ns = _tidy(
@@ -1861,6 +1874,7 @@ def decimate(
     max_collapses: int = -1,
     max_rounds: int = 8,
     min_cos: float = MIN_COS,
+    progress: ProgressLike | None = None,
 ) -> tuple[FloatArray, Int64Array]:
     """Simplify the safety net of A by exactly checked collapses and moves (module docstring).
 
@@ -1877,11 +1891,18 @@ def decimate(
         Rounds of edge flips at most, each followed by collapses and moves again.
     min_cos : float
         A collapse may turn a triangle's normal by acos(min_cos) at most (:data:`MIN_COS`).
+    progress : ProgressLike, optional
+        Cancelling it stops the simplification within about 50 ms (:func:`mrm.core.progress.stop_flag`).
 
     Returns
     -------
     vertices : float64 (n, 3), in (¼Z)³: those of the safety net that stay, in their order, then the new ones.
     triangles : int64 (m, 3), outward.
+
+    Raises
+    ------
+    Cancelled
+        When ``progress`` was cancelled (nothing of the simplification is kept).
     """
     if triangles.shape[0] == 0:
         return vertices, triangles
@@ -1896,17 +1917,21 @@ def decimate(
     # the forbidden cubes stand in for them, unread, and A's padded box is not copied (18 MB at 256³).
     in_a = np.pad(mask, PAD) if code == COVERS else forbidden
     del scaled
-    q, t, alive, vdead, _removed = _decimate(
-        q,
-        np.ascontiguousarray(triangles, np.int64),
-        in_a,
-        forbidden,
-        code,
-        max_passes,
-        max_collapses,
-        max_rounds,
-        min_cos,
-    )
+    with stop_flag(progress) as stop:
+        q, t, alive, vdead, removed = _decimate(
+            q,
+            np.ascontiguousarray(triangles, np.int64),
+            in_a,
+            forbidden,
+            code,
+            max_passes,
+            max_collapses,
+            max_rounds,
+            min_cos,
+            stop,
+        )
+    if removed < 0:
+        raise Cancelled("cancelled")
     keep = ~vdead
     index = np.cumsum(keep) - 1
     # Four times the offset from the corner, in integers: exact in float64 (quarters of small integers).
@@ -1914,12 +1939,17 @@ def decimate(
 
 
 def compact_r(
-    mask: BoolArray, origin: tuple[int, int, int], model: str, max_triangles: int
+    mask: BoolArray,
+    origin: tuple[int, int, int],
+    model: str,
+    max_triangles: int,
+    progress: ProgressLike | None = None,
 ) -> tuple[FloatArray, Int64Array, FloatArray, Int64Array]:
     """R(A) in the model, computed in A's canonical pose and turned back (:func:`canonical_pose`).
 
     A safety net of more than ``max_triangles`` triangles is not decimated: the net itself is returned, as
-    both results (the same arrays).
+    both results (the same arrays). ``progress`` is told the net's size and can cancel the decimation
+    (:class:`~mrm.core.errors.Cancelled`).
 
     Returns
     -------
@@ -1934,7 +1964,9 @@ def compact_r(
     if net.triangles.shape[0] > max_triangles:
         v, t = net.vertices, net.triangles
     else:
-        v, t = decimate(net.vertices, net.triangles, turned, (0, 0, 0), model)
+        if progress is not None:
+            progress.update(None, f"simplifying a safety net of {net.triangles.shape[0]:,} triangles")
+        v, t = decimate(net.vertices, net.triangles, turned, (0, 0, 0), model, progress=progress)
     size = cast(tuple[int, int, int], mask.shape[::-1])
     shift = np.asarray(origin, np.float64)
 

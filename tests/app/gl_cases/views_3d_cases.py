@@ -251,14 +251,15 @@ def _ell(win):  # type: ignore[no-untyped-def]
     return ell
 
 
-def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, qtbot, monkeypatch):
+def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, qtbot):
     # R(A) of a set past the decimation's size limit is the safety net: exact, but its faces are the voxels'
     # squares. The Euclidean view's header says so, and its tool tip says of which object and why; a convex
-    # object's R (a hull) adds nothing.
-    from mrm.core import limits
+    # object's R (a hull) adds nothing; the tip ends with where the limit is raised.
+    from mrm.document.commands import ChangeSettings
 
-    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
     win = make_window(threaded=True)
+    # as Edit ▸ Discretization Model ▸ Compact R Limit… does (tests/app/test_3d_objects_in_plane_views.py)
+    win.doc.push(ChangeSettings.compact_limit(win.doc, 10))
     octa = _octahedron(win)
     ell = _ell(win)
     view = _show_3d(qtbot, win).by_name("euclidean3d")
@@ -268,7 +269,8 @@ def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, q
     tip = view.status_label.toolTip()
     assert tip == (
         f"ell: R is the safety net (V(A) eroded by ¼, {n:,} triangles), not a compact R: the decimation "
-        "takes sets whose safety net has at most 10 triangles"
+        "takes sets whose safety net has at most 10 triangles (Edit ▸ Discretization Model ▸ Compact R "
+        "Limit… raises it)"
     )
     assert octa.name not in tip
     # Ctrl+Z takes the L away: the note goes with it; Ctrl+Shift+Z brings both back.
@@ -286,12 +288,12 @@ def test_the_euclidean_view_says_when_r_is_the_safety_net_and_why(make_window, q
 
 def test_the_safety_net_note_comes_before_a_coarser_level_in_the_header(make_window, qtbot, monkeypatch):
     # Both at once: what the object is (its R) before how it is drawn (a coarser level); the tip has both.
-    from mrm.core import limits
+    from mrm.document.commands import ChangeSettings
     from mrm.views.view3d import View3D
 
-    monkeypatch.setattr(limits, "MAX_COMPACT_R_TRIANGLES", 10)
     monkeypatch.setattr(View3D, "SURFEL_BUDGET", 20)
     win = make_window(threaded=True)
+    win.doc.push(ChangeSettings.compact_limit(win.doc, 10))
     z, y, x = np.mgrid[0:10, 0:10, 0:10]
     # a staircase and a slab: not convex, and a safety net of 486 triangles, drawn in cubes wider than a voxel
     win.doc.push(
