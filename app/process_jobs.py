@@ -28,24 +28,34 @@ def warm(progress: Any) -> None:
                 step()
 
 
-def measure(provenance: Any, progress: Any) -> Any:
-    """The inspector's account of a result, measured (:func:`mrm.ops.account.account_of`)."""
+def measure(provenance: Any, compact_limit: int | None, progress: Any) -> Any:
+    """The inspector's account of a result, measured (:func:`mrm.ops.account.account_of`).
+
+    ``compact_limit``: the document's, for the R of voxel sets computed again.
+    """
     from mrm.ops.account import account_of
 
-    return account_of(provenance, measure=True, progress=progress)
+    return account_of(provenance, measure=True, progress=progress, compact_limit=compact_limit)
 
 
 def plan(
-    inputs: list[Any], op_name: str, params: Any, limit: int | None, held: list[Any], progress: Any
+    inputs: list[Any],
+    op_name: str,
+    params: Any,
+    limit: int | None,
+    held: list[Any],
+    compact_limit: int | None,
+    progress: Any,
 ) -> Any:
     """An operation planned on document objects (:func:`mrm.ops.registry.plan_operation`).
 
-    ``held``: (input index, model, R(A)) for inputs whose R(A) the window holds already.
+    ``held``: (input index, model, R(A)) for inputs whose R(A) the window holds already; ``compact_limit``:
+    the document's, for every R of a voxel set the operation computes.
     """
     from mrm.ops.registry import plan_operation
 
     kw = {} if limit is None else {"limit": limit}
-    return plan_operation(inputs, op_name, params, progress, held=held, **kw)
+    return plan_operation(inputs, op_name, params, progress, held=held, compact_limit=compact_limit, **kw)
 
 
 def read_project(path: str, progress: Any) -> Any:

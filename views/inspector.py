@@ -41,10 +41,12 @@ class ErrorInspector(QtWidgets.QWidget):
     ----------
     scene : Scene
     runner : TaskRunner
-        Runs the measurement: ``runner.call(measure_job, (provenance,), progress)`` inside a task.
+        Runs the measurement: ``runner.call(measure_job, (provenance, compact_limit), progress)`` inside a
+        task (``compact_limit``: the document's, for the R of voxel sets computed again).
     measure_job : callable
-        ``measure_job(provenance, progress) -> Account``, a module-level function (the window's runner may
-        send it to a worker process); the window passes it in, so that this view needs nothing of app/.
+        ``measure_job(provenance, compact_limit, progress) -> Account``, a module-level function (the
+        window's runner may send it to a worker process); the window passes it in, so that this view needs
+        nothing of app/.
     """
 
     measured = QtCore.Signal()
@@ -60,7 +62,7 @@ class ErrorInspector(QtWidgets.QWidget):
         runner: Any,
         parent: QtWidgets.QWidget | None = None,
         *,
-        measure_job: Callable[[Any, Any], Account],
+        measure_job: Callable[[Any, Any, Any], Account],
     ) -> None:
         super().__init__(parent)
         self.setObjectName("errorInspector")
@@ -291,9 +293,10 @@ class ErrorInspector(QtWidgets.QWidget):
         # exact measurement is Python-heavy for minutes at 10⁸ pixels: in a worker process, so that the
         # window's painting never waits for the GIL it would hold (ADR 0025).
         job = self.measure_job
+        compact_limit = self.scene.doc.settings.compact_limit  # the R its operations used
         self.runner.submit(
             "inspect",
-            lambda progress: _with_text(self.runner.call(job, (prov,), progress)),
+            lambda progress: _with_text(self.runner.call(job, (prov, compact_limit), progress)),
             on_result=done,
             on_error=failed,
             on_cancel=cancelled,

@@ -49,9 +49,19 @@ class OpInfo:
     help: str
     spec: OperationSpec
 
-    def run(self, inputs: Sequence[Any], params: Any, progress: Any, held: Any = ()) -> list[tuple[str, Any]]:
+    def run(
+        self,
+        inputs: Sequence[Any],
+        params: Any,
+        progress: Any,
+        held: Any = (),
+        compact_limit: int | None = None,
+    ) -> list[tuple[str, Any]]:
         """Run the operation (read, size-checked); its (part name, source) outputs."""
-        return list(run_operation(self.spec, list(inputs), params, progress=progress, held=held).outputs)
+        out = run_operation(
+            self.spec, list(inputs), params, progress=progress, held=held, compact_limit=compact_limit
+        )
+        return list(out.outputs)
 
 
 #: Slider ranges for numbers whose declaration leaves a side open (the field still takes any valid value).

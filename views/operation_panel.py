@@ -370,7 +370,8 @@ class OperationPanel(QtWidgets.QWidget):
     ) -> None:
         """The panel of ``scene``'s document.
 
-        ``plan_job(inputs, op_name, params, limit, held, progress)`` plans an operation: a module-level
+        ``plan_job(inputs, op_name, params, limit, held, compact_limit, progress)`` plans an operation (the
+        document's compact limit for every R of a voxel set): a module-level
         function that ``runner.call`` may send to a worker process. ``pixel_limit_setting`` names where the
         user raises the pixel limit. The window passes both, so that this view needs nothing of app/.
         """
@@ -687,8 +688,10 @@ class OperationPanel(QtWidgets.QWidget):
 
         held = held_euclidean(self.scene.doc, _ids)  # R(A) the views computed: not again
 
+        compact_limit = self.scene.doc.settings.compact_limit
+
         def work(progress: Any) -> list[tuple[str, Any]]:
-            return op.run(sources, params, progress, held)
+            return op.run(sources, params, progress, held, compact_limit)
 
         self.runner.submit(
             "preview",
@@ -796,7 +799,9 @@ class OperationPanel(QtWidgets.QWidget):
             "operation",
             # Operations are Python-heavy (exact rationals): in a worker process, off the GIL (ADR 0025).
             lambda progress: self.runner.call(
-                self.plan_job, (inputs, op.name, params, limit, held), progress
+                self.plan_job,
+                (inputs, op.name, params, limit, held, self.scene.doc.settings.compact_limit),
+                progress,
             ),
             on_result=done,
             on_error=failed,

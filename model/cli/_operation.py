@@ -68,7 +68,7 @@ from mrm.core.grids import LabelMap, PixelSet, VoxelSet
 from mrm.geometry.discretize import discretize
 from mrm.geometry.discretize.voxels import voxelize
 from mrm.geometry.polyhedra import Polyhedron
-from mrm.geometry.reconstruct import reconstruct
+from mrm.geometry.reconstruct import compact_limit_in_force, reconstruct
 from mrm.io.georef import (
     GEOREFERENCED_EXTENSIONS,
     geojson_members,
@@ -128,8 +128,9 @@ class OperationInput:
     """One input of an operation as the command line read it (the file is read once).
 
     ``value`` is the object in its source representation, ``model`` the model in force. A project object
-    also brings its ``id`` and ``provenance`` (so its chain joins the account) and its ``georef``; a pixel
-    file brings its georeference (a GeoTIFF's, a world file's) or None.
+    also brings its ``id`` and ``provenance`` (so its chain joins the account), its ``georef`` and its
+    project's ``compact_limit`` (the R of voxel sets the desktop computes there); a pixel file brings its
+    georeference (a GeoTIFF's, a world file's) or None.
     """
 
     value: Any
@@ -137,6 +138,7 @@ class OperationInput:
     id: int = 0
     provenance: Any = None
     georef: Any = None
+    compact_limit: int | None = None
 
 
 def read_one(
@@ -159,14 +161,14 @@ def read_one(
             raise ParameterError(f"{path}: --invert applies to image inputs only")
         if not Path(path).exists():
             raise FileNotFoundError(2, "No such file", path)
-        obj, chosen = project_object(Path(path), object_name, model)
+        obj, chosen, compact_limit = project_object(Path(path), object_name, model)
         if isinstance(obj.source, LabelMap):
             raise NotApplicableError(
                 f"{Path(path).name}: {obj.name!r} is a label map, no input of the operations; Edit ▸ Split "
                 "into Objects in MR Modeler gives one pixel object per label (mrm polygonize: one polygon "
                 "per region)"
             )
-        return OperationInput(obj.source, chosen, obj.id, obj.provenance, obj.georef)
+        return OperationInput(obj.source, chosen, obj.id, obj.provenance, obj.georef, compact_limit)
     _, value, chosen = load_object(path, object_name, model, threshold=threshold, invert=invert, limit=limit)
     georef = None
     if ext in PIXEL_EXTENSIONS and ext != ".npz":
@@ -323,14 +325,15 @@ def unary_file(
     checked = checked.replace(model=chosen)
     prov = Provenance(spec.name, checked.to_json(), (given.id,), (source,), (given.provenance,))
     t0 = time.perf_counter()
-    if no_measure:
-        result = run_operation(spec, [source], checked, limit=limit).output
-        acc = account_of(prov, measure=False, limit=limit)
-    else:  # the account recomputes the step from its input: the result is made once
-        acc = account_of(prov, measure=True, limit=limit)
-        if acc.error:
-            raise ParameterError(acc.error)
-        result = acc.output
+    with compact_limit_in_force(given.compact_limit):  # a project's R of voxel sets, as in the desktop
+        if no_measure:
+            result = run_operation(spec, [source], checked, limit=limit).output
+            acc = account_of(prov, measure=False, limit=limit)
+        else:  # the account recomputes the step from its input: the result is made once
+            acc = account_of(prov, measure=True, limit=limit)
+            if acc.error:
+                raise ParameterError(acc.error)
+            result = acc.output
     seconds = time.perf_counter() - t0
     out_georef = result_georef(spec.name, checked, [georef])
     Path(output).parent.mkdir(parents=True, exist_ok=True)  # a batch's directory: when the first file is
@@ -516,12 +519,14 @@ def two_input_command(
             check_output(str(args.output), input_dimension([a.value, b.value]))
         params = checked.replace(model=model).to_json()
         t0 = time.perf_counter()
-        acc = account_of(
-            two_input_provenance(spec.name, params, a, b), measure=not args.no_measure, limit=args.limit
-        )
-        if acc.error:
-            raise MRMError(acc.error)
-        computed = None if acc.outcome is not None else direct(a, b, model, params, args.limit)
+        # the first project input's compact limit (ADR 0073): the R of voxel sets computed there
+        with compact_limit_in_force(a.compact_limit or b.compact_limit):
+            acc = account_of(
+                two_input_provenance(spec.name, params, a, b), measure=not args.no_measure, limit=args.limit
+            )
+            if acc.error:
+                raise MRMError(acc.error)
+            computed = None if acc.outcome is not None else direct(a, b, model, params, args.limit)
         seconds = time.perf_counter() - t0
         georef = two_input_georef(spec.name, a, b)
         return finish(args, TwoInputRun(a, b, model, params, acc, computed, seconds, georef))

@@ -64,14 +64,19 @@ def _pick(objects: list[Any], object_name: str | None, name: str) -> Any:
     return found[0]
 
 
-def project_object(path: Path, object_name: str | None, model: str | None) -> tuple[Any, str]:
-    """The object ``object_name`` of a project file (read once) and the model in force.
+def project_object(path: Path, object_name: str | None, model: str | None) -> tuple[Any, str, int]:
+    """The object ``object_name`` of a project file (read once), the model in force and its compact limit.
 
     The object is a :class:`mrm.document.DocObject`, so a caller also gets its id, provenance and
-    georeference; the model is ``model`` if given, else the project's.
+    georeference; the model is ``model`` if given, else the project's; the compact limit is the project's
+    (``Settings.compact_limit``: what its R of voxel sets simplifies, ADR 0073).
     """
     proj = read_project(path)
-    return _pick(proj.objects, object_name, path.name), model or proj.settings.model
+    return (
+        _pick(proj.objects, object_name, path.name),
+        model or proj.settings.model,
+        proj.settings.compact_limit,
+    )
 
 
 def _list(names: list[str], limit: int = 12) -> str:
@@ -124,7 +129,7 @@ def load_input(
     kind: Kind
     value: Any
     if ext in PROJECT_EXTENSIONS:
-        obj, model = project_object(p, object_name, model)
+        obj, model, _ = project_object(p, object_name, model)
         kind, value = obj.kind, obj.source
     else:
         if object_name is not None:

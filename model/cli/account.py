@@ -30,7 +30,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
     """Print the account (or, with --json, return it)."""
-    objs = [o for o in read_project(args.project).objects if o.name == args.object]
+    project = read_project(args.project)
+    objs = [o for o in project.objects if o.name == args.object]
     if not objs:
         raise ParameterError(f"{args.project}: no object named {args.object!r}")
     if len(objs) > 1:
@@ -41,7 +42,10 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     summary = {
         "object": obj.name,
         "id": obj.id,
-        **account_of(obj.provenance, measure=not args.no_measure).summary(),
+        # under the project's compact limit: the R of voxel sets its operations used (ADR 0073)
+        **account_of(
+            obj.provenance, measure=not args.no_measure, compact_limit=project.settings.compact_limit
+        ).summary(),
     }
     if not args.json:
         print_table({k: v for k, v in summary.items() if k not in ("steps", "parts")})

@@ -192,7 +192,7 @@ def stop_flag(progress: ProgressLike | None, poll: float = STOP_POLL) -> Iterato
     A numba kernel cannot report through ``progress`` (it runs without the interpreter), so it reads this
     flag between its steps and returns early when it is set; the caller then raises
     :class:`~mrm.core.errors.Cancelled`. While the block runs, a watcher thread looks at
-    ``progress.cancelled`` every ``poll`` seconds (whoever set it: :meth:`Progress.cancel`, or a worker
+    ``progress.cancelled`` every ``poll`` seconds (whoever set it: ``Progress.cancel()``, or a worker
     process's signal handler through the shared event). Without a progress that can be cancelled the flag
     stays 0 and no thread is started.
     """

@@ -67,12 +67,13 @@ def apply_operation(
         progress,
         limit=limit,
         held=held_euclidean(doc, ids),
+        compact_limit=doc.settings.compact_limit,
     )
     return push_plan(doc, plan)
 
 
 def held_euclidean(doc: Document, input_ids: Sequence[int]) -> list[tuple[int, Model, Any]]:
-    """R(A) that ``doc`` holds already for its pixel objects ``input_ids``: (input index, model, R(A)).
+    """R(A) that ``doc`` holds already for its pixel and voxel objects ``input_ids``: (index, model, R(A)).
 
     For :func:`mrm.ops.registry.run_operation`'s ``held``: every operation reads R(A) of a pixel input (DSS_α
     and dR_θ,C transform it, Sp_α and the boolean operations start from it). Only what the document has

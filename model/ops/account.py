@@ -56,6 +56,7 @@ from mrm.core.numbers import fraction_text
 from mrm.core.progress import ProgressLike, sub_progress
 from mrm.geometry.discretize.exact_solid import identity_map
 from mrm.geometry.hausdorff.bounds import BoundResult
+from mrm.geometry.reconstruct import compact_limit_in_force
 from mrm.ops.boolean import (
     PARTS,
     euclidean_discrete_corefinement,
@@ -347,6 +348,7 @@ def account_of(
     measure: bool = True,
     progress: ProgressLike | None = None,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
+    compact_limit: int | None = None,
 ) -> Account:
     """The account of a result from its pinned provenance (module docstring); never raises on bad records.
 
@@ -360,10 +362,15 @@ def account_of(
         Its ``Cancelled`` propagates (the only exception that does).
     limit : int or None
         Largest pixel set a recomputation may create.
+    compact_limit : int, optional
+        The compact limit of the R of voxel sets the account computes again: the document's
+        (``Settings.compact_limit``), so that it measures the R its operations used. None keeps the one in
+        force.
     """
     op = str(getattr(provenance, "operation", "?"))
     try:
-        return _account(provenance, measure, progress, limit)
+        with compact_limit_in_force(compact_limit):
+            return _account(provenance, measure, progress, limit)
     except MRMError as e:
         if isinstance(e, Cancelled):
             raise
@@ -623,10 +630,13 @@ class RerunRequest:
         The current objects the first re-run step reads.
     steps : list of (operation, params)
         The operations of the chain from that step on, oldest first.
+    compact_limit : int, optional
+        The document's compact limit, which the re-run's R of voxel sets uses.
     """
 
     inputs: list[Any]
     steps: list[tuple[str, Any]]
+    compact_limit: int | None = None
 
     def plan(self, progress: ProgressLike | None = None) -> Any:
         """Run the steps (pure: no document); the plan of the final result, to push as one undo step.
@@ -638,7 +648,11 @@ class RerunRequest:
         plan = None
         for i, (name, params) in enumerate(self.steps):
             plan = plan_operation(
-                inputs, name, params, _sub(progress, i / len(self.steps), (i + 1) / len(self.steps))
+                inputs,
+                name,
+                params,
+                _sub(progress, i / len(self.steps), (i + 1) / len(self.steps)),
+                compact_limit=self.compact_limit,
             )
             r = plan.results[0]
             inputs = [_Intermediate(0, r.source, r.provenance)]
@@ -672,7 +686,7 @@ def rerun_request(doc: Any, obj_id: int) -> RerunRequest:
     for r in records[start:]:
         link = _link_of(r)
         steps.append((link.spec.name, link.params))
-    return RerunRequest([doc.get(i) for i in first.inputs], steps)
+    return RerunRequest([doc.get(i) for i in first.inputs], steps, doc.settings.compact_limit)
 
 
 __all__ = [

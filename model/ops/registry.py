@@ -34,6 +34,7 @@ from mrm.core.numbers import spell, value_text
 from mrm.core.params import Parameters
 from mrm.core.progress import NO_PROGRESS, ProgressLike
 from mrm.geometry.hausdorff.bounds import BoundResult, BoundStep, bound_of_chain
+from mrm.geometry.reconstruct import compact_limit_in_force
 from mrm.geometry.reconstruct import held as held_reconstructions
 from mrm.ops.provenance import Provenance
 
@@ -322,6 +323,7 @@ def run_operation(
     progress: ProgressLike | None = None,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     held: Sequence[tuple[int, str, Any]] = (),
+    compact_limit: int | None = None,
 ) -> OperationResult:
     """Read, guard, run ``spec`` and stamp the result with its provenance and bound: the one place.
 
@@ -338,9 +340,13 @@ def run_operation(
     limit : int or None
         The largest result allowed, in pixels (None: no limit), checked on the estimate before running.
     held : sequence of (int, str, geometry), optional
-        R(A) the caller holds already, as (input index, model, R(A)) for inputs that are pixel sets A (a
-        document keeps each object's Euclidean representation): the operation uses it instead of computing
-        R(A) again (:func:`mrm.geometry.reconstruct.held`). The result is the same either way.
+        R(A) the caller holds already, as (input index, model, R(A)) for inputs that are pixel or voxel sets
+        A (a document keeps each object's Euclidean representation): the operation uses it instead of
+        computing R(A) again (:func:`mrm.geometry.reconstruct.held`). The result is the same either way.
+    compact_limit : int, optional
+        The compact limit of every R of a voxel set the operation computes (a document's
+        ``Settings.compact_limit``; :func:`mrm.geometry.reconstruct.compact_limit_in_force`); None keeps
+        the one in force.
 
     Raises
     ------
@@ -356,8 +362,8 @@ def run_operation(
         check_pixels(spec.estimate(inputs, params), limit, f"{spec.title} result", unit=unit)
     progress = NO_PROGRESS if progress is None else progress
     progress.update(0.0, spec.title)
-    known = [(inputs[i], m, geom) for i, m, geom in held if isinstance(inputs[i], PixelSet)]
-    with held_reconstructions(known):
+    known = [(inputs[i], m, geom) for i, m, geom in held if isinstance(inputs[i], PixelSet | VoxelSet)]
+    with held_reconstructions(known), compact_limit_in_force(compact_limit):
         result = spec.run(inputs, params, progress)
     progress.update(1.0, spec.title)
     provenance = {
@@ -407,6 +413,7 @@ def plan_operation(
     *,
     limit: int | None = DEFAULT_PIXEL_LIMIT,
     held: Sequence[tuple[int, str, Any]] = (),
+    compact_limit: int | None = None,
 ) -> Plan:
     """Run an operation on document objects without touching any document: a pure function.
 
@@ -420,7 +427,9 @@ def plan_operation(
     progress : progress object, optional
     limit : int or None
     held : sequence of (int, str, geometry), optional
-        R(A) the caller holds already for inputs whose source is a pixel set (:func:`run_operation`).
+        R(A) the caller holds already for inputs whose source is a pixel or voxel set (:func:`run_operation`).
+    compact_limit : int, optional
+        The document's compact limit (:func:`run_operation`).
 
     Returns
     -------
@@ -431,7 +440,15 @@ def plan_operation(
     """
     spec = get_operation(name)
     params = spec.read_params(params)
-    out = run_operation(spec, [o.source for o in inputs], params, progress=progress, limit=limit, held=held)
+    out = run_operation(
+        spec,
+        [o.source for o in inputs],
+        params,
+        progress=progress,
+        limit=limit,
+        held=held,
+        compact_limit=compact_limit,
+    )
     base = params.to_json()
     results = []
     for part, source in out.outputs:

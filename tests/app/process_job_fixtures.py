@@ -88,18 +88,18 @@ def unpicklable_result(provenance: Any, progress: Any) -> Any:
     return lambda: provenance
 
 
-def buggy(provenance: Any, progress: Any) -> Any:
+def buggy(provenance: Any, compact_limit: Any, progress: Any) -> Any:
     """A measurement that fails with a bug, not a user error."""
     raise TypeError("unsupported operand type(s) for +: 'int' and 'str'")
 
 
-def dying_measure(provenance: Any, progress: Any) -> None:
+def dying_measure(provenance: Any, compact_limit: Any, progress: Any) -> None:
     """A measurement whose process ends abruptly."""
     os._exit(3)
 
 
 def planning_until_cancelled(
-    inputs: Any, op_name: str, params: Any, limit: Any, held: Any, progress: Any
+    inputs: Any, op_name: str, params: Any, limit: Any, held: Any, compact_limit: Any, progress: Any
 ) -> None:
     """An operation's plan that reports what it does ("continuing R(A)") until it is cancelled."""
     while True:
@@ -114,7 +114,9 @@ def modules_loaded(progress: Any) -> tuple[int, bool, int]:
     return os.getpid(), "mrm.ops.scaling" in sys.modules, os.nice(0)
 
 
-def over_limit_reworded(inputs: Any, op_name: str, params: Any, limit: Any, held: Any, progress: Any) -> None:
+def over_limit_reworded(
+    inputs: Any, op_name: str, params: Any, limit: Any, held: Any, compact_limit: Any, progress: Any
+) -> None:
     """An operation refused for its size whose message the model words otherwise than the window expects."""
     from mrm.core.errors import SizeLimitError
 

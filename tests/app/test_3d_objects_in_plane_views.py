@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from PySide6 import QtCore, QtWidgets
 
 from mrm.core.grids import LabelVolume, VoxelSet
@@ -251,3 +252,32 @@ def test_a_slow_compact_r_shows_its_progress_and_cancel_stops_it(make_window, qt
     qtbot.waitUntil(lambda: win.scene.get(blobs.id, "euclidean") is not None, timeout=60_000)
     assert "safety net" in win.scene.r_note(blobs.id)
     assert voxelize(win.scene.get(blobs.id, "euclidean"), "standard") == blobs.source
+
+
+def test_the_operations_panel_scales_the_r_of_the_documents_compact_limit(make_window, qtbot):
+    # Under a compact limit of 10 a staircase's R is its safety net: DSS 1.5 from the Operations panel scales
+    # that net (what the Euclidean view shows), not the default limit's compact R.
+    from mrm.document.commands import AddObject, ChangeSettings
+    from mrm.geometry.polyhedra import Polyhedron
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+    from mrm.ops.registry import run_operation
+    from tests.app.helpers import type_into
+
+    win = make_window()
+    z, y, x = np.mgrid[0:6, 0:6, 0:6]
+    a = VoxelSet((x + y + z <= 7) | (x >= 4), (0, 0, 0))
+    stairs = win.doc.make_object(a, name="stairs")
+    win.doc.push(AddObject(stairs, select=True))
+    win.doc.push(ChangeSettings.compact_limit(win.doc, 10))
+    net = safety_net_3d(a.mask, a.origin)
+    expected = run_operation(
+        "dss", [a], {"alpha": 1.5}, held=[(0, "standard", Polyhedron(net.vertices, net.triangles))]
+    ).output
+    assert expected != run_operation("dss", [a], {"alpha": 1.5}).output  # the limit matters here
+    panel = win.operations
+    panel.select_operation("dss")
+    type_into(qtbot, panel.control("alpha").field, "1.5")
+    n = len(win.doc)
+    qtbot.mouseClick(panel.apply_button, QtCore.Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: len(win.doc) == n + 1, timeout=30_000)
+    assert win.doc.objects[-1].source == expected

@@ -439,3 +439,30 @@ def test_reconstruct_says_how_r_was_made_and_notes_the_safety_net(capsys, tmp_pa
         assert exit_.value.code == 2
         assert f"argument --compact-limit: {says}" in capsys.readouterr().err
         assert not (tmp_path / "b.obj").exists()
+
+
+def test_operations_on_a_project_read_the_r_of_its_compact_limit(capsys, tmp_path):
+    # A project keeps its compact limit: mrm scale and mrm account on it read the R the desktop shows there
+    # (a staircase's safety net under a limit of 10), not the default limit's compact R.
+    from mrm.document import Document, Settings
+    from mrm.document.commands import AddObject
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+    from mrm.io.project import save_project
+    from mrm.ops.registry import run_operation
+
+    z, y, x = np.mgrid[0:6, 0:6, 0:6]
+    a = mrm.VoxelSet((x + y + z <= 7) | (x >= 4), (0, 0, 0))
+    outs = {}
+    for limit in (10, 20_000):
+        doc = Document(Settings(compact_limit=limit))
+        doc.push(AddObject(doc.make_object(a, name="stairs")))
+        save_project(doc, tmp_path / f"p{limit}.mrm")
+        code, _, err = run(
+            capsys, "scale", tmp_path / f"p{limit}.mrm", "--alpha", "1.5", "-o", tmp_path / f"s{limit}.npz"
+        )
+        assert code == 0, err
+        outs[limit] = mrm.read_voxels(tmp_path / f"s{limit}.npz")
+    net = safety_net_3d(a.mask, a.origin)
+    held = [(0, "standard", mrm.Polyhedron(net.vertices, net.triangles))]
+    assert outs[10] == run_operation("dss", [a], {"alpha": 1.5}, held=held).output
+    assert outs[10] != outs[20_000] == run_operation("dss", [a], {"alpha": 1.5}).output

@@ -162,3 +162,30 @@ def test_the_compact_limit_re_derives_the_voxel_objects_only_and_is_undone(doc):
     assert doc.settings.compact_limit == 20_000 and doc.derived(ell.id) is before[ell.id]
     doc.redo()
     assert doc.derived(ell.id).get("euclidean") is net  # the entry kept for a redo
+
+
+def test_a_documents_operations_and_account_read_the_r_of_its_compact_limit(doc):
+    # DSS_α scales R(A): under a compact limit of 10 a staircase's R is its safety net, so DSS reads the net,
+    # in the document's operations and in its error account, and the result is not the default one's.
+    from mrm.document.apply import apply_operation
+    from mrm.document.commands import AddObject
+    from mrm.geometry.reconstruct.safety_net_3d import safety_net_3d
+    from mrm.ops.account import account_of
+    from mrm.ops.registry import plan_operation, run_operation
+
+    z, y, x = np.mgrid[0:6, 0:6, 0:6]
+    stairs = doc.make_object(VoxelSet((x + y + z <= 7) | (x >= 4), (0, 0, 0)), name="stairs")
+    doc.push(AddObject(stairs))
+    params = {"alpha": 1.5}
+    default = plan_operation([stairs], "dss", params).results[0].source
+    doc.push(ChangeSettings.compact_limit(doc, 10))
+    (made,) = apply_operation(doc, "dss", [stairs.id], params)
+    result = doc.get(made).source
+    net = safety_net_3d(stairs.source.mask, stairs.source.origin)
+    scaled_net = run_operation(
+        "dss", [stairs.source], params, held=[(0, doc.model, Polyhedron(net.vertices, net.triangles))]
+    )
+    assert result == scaled_net.output and result != default
+    acc = account_of(doc.get(made).provenance, compact_limit=doc.settings.compact_limit)
+    assert not acc.error and acc.output == result  # the account measured the R the operation read
+    assert account_of(doc.get(made).provenance).output == default  # elsewhere, the default limit's R

@@ -357,14 +357,14 @@ def reconstruct(ps: PixelSet | VoxelSet, model: str = "standard") -> Polygon | M
         For an unknown model, or pixel coordinates beyond ±2⁴⁰ (where 2⁻¹² of a pixel is no longer
         exact float64 numbers).
     """
-    if isinstance(ps, VoxelSet):
-        return reconstruct_voxels(ps, model)
     model = Model.parse(model)
-    if ps.is_empty():
-        return Polygon()
     for known_ps, known_model, geom in _HELD.get():
         if known_ps is ps and known_model == model:
             return geom
+    if isinstance(ps, VoxelSet):
+        return reconstruct_voxels(ps, model)
+    if ps.is_empty():
+        return Polygon()
     check_reconstruct(ps)  # its cost is bounded up front (issue 11): the one entry point applies the limit
     run = _run(ps, model)
     rings = run.rings
@@ -442,9 +442,10 @@ def reconstruct_voxels_detailed(
 ) -> VoxelR:
     """:func:`reconstruct_voxels`, with the way R was made (:class:`VoxelR`): the command line reports it.
 
-    ``compact_limit``: the most triangles of a safety net that the decimation takes (default
-    ``limits.MAX_COMPACT_R_TRIANGLES``); beyond, R is the safety net. ``mrm reconstruct --compact-limit``
-    and the document's setting raise it: the decimation takes about 40–150 µs per triangle of the net.
+    ``compact_limit``: the most triangles of a safety net that the decimation takes (default: the one in
+    force, :func:`compact_limit_in_force`, else ``limits.MAX_COMPACT_R_TRIANGLES``); beyond, R is the safety
+    net. ``mrm reconstruct --compact-limit`` and the document's setting raise it: the decimation takes about
+    40–150 µs per triangle of the net.
     ``progress`` is told when the decimation starts, and cancelling it stops the decimation within about
     50 ms with :class:`~mrm.core.errors.Cancelled`.
     """
@@ -455,6 +456,8 @@ def reconstruct_voxels_detailed(
     model = Model.parse(model)
     if vs.is_empty():
         return VoxelR(Polyhedron.empty(), "empty")
+    if compact_limit is None:
+        compact_limit = _COMPACT_LIMIT.get()
     check_reconstruct(vs)
     from mrm.core import limits
 
@@ -515,13 +518,35 @@ def _decimated(
     return VoxelR(Polyhedron(net_vertices, net_triangles), "safety net", why)
 
 
-#: R(A) already known to the caller (:func:`held`): (A, model, R(A)) in the current context.
-_HELD: ContextVar[tuple[tuple[PixelSet, str, Any], ...]] = ContextVar("mrm_held_reconstructions", default=())
+#: The compact limit in force (:func:`compact_limit_in_force`): None means ``limits.MAX_COMPACT_R_TRIANGLES``.
+_COMPACT_LIMIT: ContextVar[int | None] = ContextVar("mrm_compact_limit", default=None)
 
 
 @contextmanager
-def held(known: Iterable[tuple[PixelSet, str, Polygon | MultiPolygon]]) -> Iterator[None]:
-    """Within the block, :func:`reconstruct` of one of these very pixel sets returns the geometry given.
+def compact_limit_in_force(limit: int | None) -> Iterator[None]:
+    """Within the block, R of a voxel set simplifies safety nets of at most ``limit`` triangles.
+
+    A document's setting (``Settings.compact_limit``, ADR 0073) reaches every R its operations and its error
+    account compute this way — R of an input, and of an intermediate set (Sp_α's) — without each of them
+    taking it as a parameter. None keeps the limit in force. The current thread and context only: a worker
+    sets it again (:func:`mrm.ops.registry.run_operation` takes it).
+    """
+    token = _COMPACT_LIMIT.set(limit if limit is not None else _COMPACT_LIMIT.get())
+    try:
+        yield
+    finally:
+        _COMPACT_LIMIT.reset(token)
+
+
+#: R(A) already known to the caller (:func:`held`): (A, model, R(A)) in the current context.
+_HELD: ContextVar[tuple[tuple[PixelSet | VoxelSet, str, Any], ...]] = ContextVar(
+    "mrm_held_reconstructions", default=()
+)
+
+
+@contextmanager
+def held(known: Iterable[tuple[PixelSet | VoxelSet, str, Any]]) -> Iterator[None]:
+    """Within the block, :func:`reconstruct` of one of these very pixel or voxel sets returns the R given.
 
     For callers that hold R(A) already — a document keeps each object's Euclidean representation — so that
     an operation on the object does not compute it again (R is deterministic: the held geometry is the one
@@ -529,8 +554,9 @@ def held(known: Iterable[tuple[PixelSet, str, Polygon | MultiPolygon]]) -> Itera
 
     Parameters
     ----------
-    known : iterable of (PixelSet, str, Polygon or MultiPolygon)
-        Pixel sets A, the model, and R(A) under that model as :func:`reconstruct` returned it.
+    known : iterable of (PixelSet or VoxelSet, str, Polygon, MultiPolygon or Polyhedron)
+        Pixel or voxel sets A, the model, and R(A) under that model as :func:`reconstruct` returned it (for a
+        voxel set, under the compact limit in force).
     """
     token = _HELD.set(_HELD.get() + tuple(known))
     try:
