@@ -27,7 +27,7 @@ from typing import Any
 from PySide6 import QtCore, QtGui
 
 from mrm.core.errors import MRMError
-from mrm.document import DocObject, Document, Settings
+from mrm.document import DocObject, Document
 from mrm.document.commands import ApplyResults, RemoveObjects
 
 log = logging.getLogger(__name__)
@@ -45,7 +45,7 @@ def selection_part(doc: Document, ids: Sequence[int]) -> Document:
 
     Cheap (the objects are immutable values, shared): the GUI thread makes it, a worker encodes it.
     """
-    part = Document(Settings(model=doc.model))
+    part = Document(doc.settings)
     for o in doc.objects:
         if o.id in ids:
             part.insert_object(o, None)

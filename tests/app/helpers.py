@@ -119,6 +119,20 @@ def zoom_to(win: MainWindow, xmin: float, ymin: float, xmax: float, ymax: float)
     QtWidgets.QApplication.processEvents()
 
 
+def shown_dialog(qtbot, object_name: str) -> QtWidgets.QDialog:  # type: ignore[no-untyped-def]
+    """The modal dialog named ``object_name`` once it is the active modal widget (waits up to 5 s)."""
+    found: list[QtWidgets.QDialog] = []
+
+    def shown() -> bool:
+        w = QtWidgets.QApplication.activeModalWidget()
+        if w is not None and w.objectName() == object_name:
+            found.append(w)
+        return bool(found)
+
+    qtbot.waitUntil(shown, timeout=5000)
+    return found[0]
+
+
 def _when_modal(kind: type, object_name: str, act) -> None:  # type: ignore[no-untyped-def]
     """Call ``act(widget)`` once the active modal widget is a ``kind`` named ``object_name``."""
     tries = [0]

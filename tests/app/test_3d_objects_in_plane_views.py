@@ -12,7 +12,15 @@ from PySide6 import QtCore, QtWidgets
 from mrm.core.grids import LabelVolume, VoxelSet
 from mrm.io.project import load_project
 from mrm.views.object_list import COL_SOURCE
-from tests.app.helpers import click_object, colour_at, grab, is_background, wait_drawn, zoom_to
+from tests.app.helpers import (
+    click_object,
+    colour_at,
+    grab,
+    is_background,
+    shown_dialog,
+    wait_drawn,
+    zoom_to,
+)
 
 GOLDEN_V5 = Path(__file__).parents[1] / "model" / "golden" / "v5-voxels.mrm"
 
@@ -187,16 +195,7 @@ def test_the_compact_limit_is_chosen_in_its_dialog_said_on_export_and_undone(mak
     action = win.registry["edit.compact_limit"]
     assert action in win.model_menu.actions()
     action.trigger()
-    found: list[QtWidgets.QInputDialog] = []
-
-    def shown() -> bool:
-        w = QtWidgets.QApplication.activeModalWidget()
-        if w is not None and w.objectName() == "compactLimitDialog":
-            found.append(w)
-        return bool(found)
-
-    qtbot.waitUntil(shown, timeout=5000)
-    spin = found[0].findChild(QtWidgets.QSpinBox)
+    spin = shown_dialog(qtbot, "compactLimitDialog").findChild(QtWidgets.QSpinBox)
     assert spin.value() == 20_000  # the document's limit, the default
     spin.lineEdit().selectAll()
     qtbot.keyClicks(spin.lineEdit(), "10")

@@ -7,24 +7,11 @@ from PySide6 import QtCore, QtWidgets
 
 from mrm.document.commands import AddObject
 from mrm.geometry.polyhedra import Polyhedron
-from tests.app.helpers import press_key
+from tests.app.helpers import press_key, shown_dialog
 
 Qt = QtCore.Qt
 VERTICES = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4]], float)
 TRIANGLES = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
-
-
-def _dialog(qtbot) -> QtWidgets.QDialog:  # type: ignore[no-untyped-def]
-    found: list[QtWidgets.QDialog] = []
-
-    def shown() -> bool:
-        w = QtWidgets.QApplication.activeModalWidget()
-        if w is not None and w.objectName() == "transform3dDialog":
-            found.append(w)
-        return bool(found)
-
-    qtbot.waitUntil(shown, timeout=5000)
-    return found[0]
 
 
 def _type(qtbot, dlg, name: str, text: str) -> None:  # type: ignore[no-untyped-def]
@@ -42,7 +29,7 @@ def test_ctrl_t_moves_scales_and_rotates_a_polyhedron_in_one_undo_step(make_wind
     win.doc.set_selection([obj.id])
     assert win.registry["edit.transform_3d"].isEnabled()
     press_key(qtbot, win.views.discrete, Qt.Key.Key_T, Qt.KeyboardModifier.ControlModifier)
-    dlg = _dialog(qtbot)
+    dlg = shown_dialog(qtbot, "transform3dDialog")
     _type(qtbot, dlg, "move_x", "10")
     _type(qtbot, dlg, "move_z", "-1.5")
     _type(qtbot, dlg, "scale", "2")
