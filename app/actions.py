@@ -92,7 +92,7 @@ SPECS: tuple[ActionSpec, ...] = (
     ActionSpec(
         "edit.compact_limit",
         "Compact R &Limit…",
-        None,
+        "Ctrl+Alt+L",
         "The most triangles of a voxel object's safety net that its R simplifies into a compact polyhedron",
     ),
     ActionSpec("edit.colour", "Object Co&lour…", "Ctrl+Shift+L", "Choose the colour of the selected object"),

@@ -17,6 +17,7 @@ from tests.app.helpers import (
     colour_at,
     grab,
     is_background,
+    press_key,
     shown_dialog,
     wait_drawn,
     zoom_to,
@@ -192,9 +193,9 @@ def test_the_compact_limit_is_chosen_in_its_dialog_said_on_export_and_undone(mak
     z, y, x = np.mgrid[0:10, 0:10, 0:10]
     stairs = win.doc.make_object(VoxelSet((x + y + z <= 12) | (x >= 8), (0, 0, 0)), name="stairs")
     win.doc.push(AddObject(stairs))
-    action = win.registry["edit.compact_limit"]
-    assert action in win.model_menu.actions()
-    action.trigger()
+    assert win.registry["edit.compact_limit"] in win.model_menu.actions()
+    ctrl_alt = QtCore.Qt.KeyboardModifier.ControlModifier | QtCore.Qt.KeyboardModifier.AltModifier
+    press_key(qtbot, win.views.discrete, QtCore.Qt.Key.Key_L, ctrl_alt)  # Ctrl+Alt+L, as the menu says
     spin = shown_dialog(qtbot, "compactLimitDialog").findChild(QtWidgets.QSpinBox)
     assert spin.value() == 20_000  # the document's limit, the default
     spin.lineEdit().selectAll()
