@@ -195,6 +195,11 @@ def stop_flag(progress: ProgressLike | None, poll: float = STOP_POLL) -> Iterato
     ``progress.cancelled`` every ``poll`` seconds (whoever set it: ``Progress.cancel()``, or a worker
     process's signal handler through the shared event). Without a progress that can be cancelled the flag
     stays 0 and no thread is started.
+
+    At its first look the watcher also reports again what the progress last said (``update(None)``): a
+    throttled progress (a window's, :class:`Progress` with ``min_interval``) drops a report made just after
+    another, and the kernel, which reports nothing, would leave that last message unsaid until it ends. The
+    working thread reports nothing meanwhile (it is in the kernel, and joins the watcher before going on).
     """
     flag = np.zeros(1, np.uint8)
     if progress is None or not hasattr(progress, "cancelled"):
@@ -203,10 +208,18 @@ def stop_flag(progress: ProgressLike | None, poll: float = STOP_POLL) -> Iterato
     finished = threading.Event()
 
     def watch() -> None:
+        said = False
         while not finished.wait(poll):
             if progress.cancelled:
                 flag[0] = 1
                 return
+            if not said:
+                said = True
+                try:
+                    progress.update(None)
+                except Cancelled:
+                    flag[0] = 1
+                    return
 
     watcher = threading.Thread(target=watch, name="mrm-stop-flag", daemon=True)
     watcher.start()

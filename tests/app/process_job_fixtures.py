@@ -83,7 +83,7 @@ def unpicklable_error(progress: Any) -> None:
     raise _Stubborn(1, 2)
 
 
-def unpicklable_result(provenance: Any, progress: Any) -> Any:
+def unpicklable_result(provenance: Any, compact_limit: Any, progress: Any) -> Any:
     """A measurement whose result cannot be pickled back (as an account holding a closure once was)."""
     return lambda: provenance
 

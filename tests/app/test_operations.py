@@ -160,7 +160,8 @@ def test_apply_hands_the_worker_the_r_the_euclidean_view_computed(make_window, q
 
     runner.call = spy
     result = _apply_dss_from_panel(win, qtbot, "5")
-    (held,) = [args[-1] for name, args in calls if name == "plan"]
+    # plan(inputs, operation, params, limit, held, compact_limit): held is R(A) the document holds
+    (held,) = [args[4] for name, args in calls if name == "plan"]
     assert [(k, model) for k, model, _g in held] == [(0, doc.model)]
     assert held[0][2].equals_exact(shown, 0.0)
     assert doc.get(result).source == _dss(a.source, 5.0)

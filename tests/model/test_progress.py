@@ -85,3 +85,28 @@ def test_the_null_progress_never_cancels() -> None:
         NO_PROGRESS.update(i / 2, "x")
     assert not NO_PROGRESS.cancelled and NO_PROGRESS.sub(0, 1) is NO_PROGRESS
     assert isinstance(Progress(), ProgressLike) and isinstance(NO_PROGRESS, ProgressLike)
+
+
+def test_a_stop_flag_is_set_by_a_cancel_and_says_the_last_dropped_report():
+    # What a compiled kernel reads to stop (mrm.core.progress.stop_flag): 0 until the progress is cancelled,
+    # 1 soon after; and the report a throttled progress dropped just before the kernel reaches the window.
+    import time
+
+    from mrm.core.progress import stop_flag
+
+    seen: list[str] = []
+    progress = Progress(lambda _f, m: seen.append(m), min_interval=0.05)
+    progress.update(0.5, "computing the Euclidean representation")
+    progress.update(None, "simplifying a safety net")  # dropped: 50 ms have not passed
+    assert seen == ["computing the Euclidean representation"]
+    with stop_flag(progress) as flag:
+        deadline = time.monotonic() + 10
+        while seen[-1] != "simplifying a safety net" and time.monotonic() < deadline:
+            time.sleep(0.01)  # the kernel, reporting nothing
+        assert seen[-1] == "simplifying a safety net" and flag[0] == 0
+        progress.cancel()
+        while flag[0] == 0 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert flag[0] == 1
+    with stop_flag(None) as flag:  # nothing to cancel: 0, and no thread
+        assert flag[0] == 0
