@@ -197,7 +197,7 @@ def stop_flag(progress: ProgressLike | None, poll: float = STOP_POLL) -> Iterato
     stays 0 and no thread is started.
 
     At its first look the watcher also reports again what the progress last said (``update(None)``): a
-    throttled progress (a window's, :class:`Progress` with ``min_interval``) drops a report made just after
+    throttled progress (a window's, a ``Progress`` with ``min_interval``) drops a report made just after
     another, and the kernel, which reports nothing, would leave that last message unsaid until it ends. The
     working thread reports nothing meanwhile (it is in the kernel, and joins the watcher before going on).
     """
