@@ -127,6 +127,13 @@ def _pixels_of(
     if threshold is not None or invert:
         raise ParameterError("--threshold and --invert apply to image inputs only")
 
+    three_d = [obj.name for obj in src.objects if obj.dimension == 3]
+    if three_d:  # a project's 3D objects: not yet an input here (their R is in the desktop and in .npz files)
+        raise ParameterError(
+            f"{Path(path).name}: {three_d[0]!r} is a 3D object; mrm reconstruct takes a project's pixel and "
+            "polygon objects, and 3D objects as voxel files (.npz, .tif, .nii.gz): export its voxels from "
+            "MR Modeler (File ▸ Export) and reconstruct that file"
+        )
     union = PixelSet.empty()
     for obj in src.objects:
         union = union | (

@@ -466,3 +466,18 @@ def test_operations_on_a_project_read_the_r_of_its_compact_limit(capsys, tmp_pat
     held = [(0, "standard", mrm.Polyhedron(net.vertices, net.triangles))]
     assert outs[10] == run_operation("dss", [a], {"alpha": 1.5}, held=held).output
     assert outs[10] != outs[20_000] == run_operation("dss", [a], {"alpha": 1.5}).output
+
+
+def test_reconstruct_says_how_to_take_a_projects_3d_object(capsys, tmp_path):
+    # A project's voxel object is not an input of mrm reconstruct yet: the error says what is, not that a
+    # VoxelSet is no shapely geometry.
+    from mrm.document import Document
+    from mrm.document.commands import AddObject
+    from mrm.io.project import save_project
+
+    doc = Document()
+    doc.push(AddObject(doc.make_object(mrm.VoxelSet(np.ones((2, 2, 2), bool), (0, 0, 0)), name="cube")))
+    save_project(doc, tmp_path / "p.mrm")
+    said = fails(capsys, "reconstruct", tmp_path / "p.mrm", "-o", tmp_path / "p.geojson")
+    assert "'cube' is a 3D object" in said and "voxel files (.npz, .tif, .nii.gz)" in said
+    assert not (tmp_path / "p.geojson").exists()
