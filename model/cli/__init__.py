@@ -47,6 +47,8 @@ from mrm.warmup import watch_compiles
 
 #: Exit status after a closed standard output.
 EXIT_BROKEN_PIPE = 141
+#: The exit status after Ctrl+C (128 + SIGINT), as shells report it.
+EXIT_INTERRUPTED = 130
 
 
 #: Largest standard input read for ``-`` (the same order as the largest input files the readers take).
@@ -337,6 +339,9 @@ def _run_cli(argv: list[str]) -> int:
         return _fail(args.command, f"a number is out of range (a coordinate or parameter too large): {e}")
     except MemoryError:
         return _fail(args.command, "not enough memory for this input (try a smaller --limit)")
+    except KeyboardInterrupt:  # Ctrl+C: what was being written is not kept (atomic writes), no traceback
+        print(f"mrm {args.command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     else:
         status = 0
     finally:

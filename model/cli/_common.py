@@ -34,6 +34,7 @@ from mrm.cli._project_input import PROJECT_EXTENSIONS, Kind, load_input
 from mrm.core.errors import FileFormatError, MRMError, ParameterError
 from mrm.core.grids import PixelSet, VoxelSet
 from mrm.core.limits import DEFAULT_PIXEL_LIMIT, DEFAULT_VOXEL_LIMIT, check_compact_limit
+from mrm.core.progress import Progress
 from mrm.geometry.discretize import discretize
 from mrm.io.georef import image_frame as frame_of
 from mrm.io.pixel_files import PIXEL_EXTENSIONS, read_pixels
@@ -335,6 +336,39 @@ def progress(args: argparse.Namespace, total: int | None = None, desc: str = "")
         yield bar
     finally:
         bar.close()
+
+
+def interruptible(work: Callable[[Progress], Any], bar: Any = None) -> Any:
+    """``work(progress)`` in a thread of its own, so that Ctrl+C stops it at once.
+
+    Python runs a signal's handler in the main thread between two bytecodes: while a compiled kernel runs
+    there (the 3D decimation: minutes with a high ``--compact-limit``), Ctrl+C waits for its end and then
+    surfaces as a ``SystemError``. Here the main thread only waits; on Ctrl+C it cancels ``progress`` (the
+    kernel reads its stop flag, :func:`mrm.core.progress.stop_flag`), waits for the thread to stop and
+    raises ``KeyboardInterrupt`` (``mrm`` says "interrupted", exit status 130). ``bar`` gets the reports.
+    """
+    progress = Progress(None if bar is None else bar.update)
+    outcome: list[Any] = []
+
+    def run() -> None:
+        try:
+            outcome.append((True, work(progress)))
+        except BaseException as e:
+            outcome.append((False, e))
+
+    thread = threading.Thread(target=run, name="mrm-work", daemon=True)
+    thread.start()
+    try:
+        while thread.is_alive():
+            thread.join(0.1)
+    except KeyboardInterrupt:
+        progress.cancel()
+        thread.join()
+        raise
+    ok, value = outcome[0]
+    if not ok:
+        raise value
+    return value
 
 
 def _call(

@@ -46,6 +46,7 @@ from mrm.cli._common import (
     discretize_geometry,
     extension_of,
     inputs_and_outputs,
+    interruptible,
     is_3d_input,
     pixel_limit,
     read_input,
@@ -188,7 +189,8 @@ def reconstruct_volume(
     if bar is not None:
         bar.update(None, f"{len(vs):_} voxels")
     t0 = time.perf_counter()
-    r = reconstruct_voxels_detailed(vs, chosen, compact_limit)
+    # in a thread of its own: Ctrl+C stops a long decimation at once (a high --compact-limit takes minutes)
+    r = interruptible(lambda p: reconstruct_voxels_detailed(vs, chosen, compact_limit, p), bar)
     poly, way = r.polyhedron, r.way
     seconds = time.perf_counter() - t0
     if r.note is not None:  # R met the contract but is not compact: say so

@@ -481,3 +481,33 @@ def test_reconstruct_says_how_to_take_a_projects_3d_object(capsys, tmp_path):
     said = fails(capsys, "reconstruct", tmp_path / "p.mrm", "-o", tmp_path / "p.geojson")
     assert "'cube' is a 3D object" in said and "voxel files (.npz, .tif, .nii.gz)" in said
     assert not (tmp_path / "p.geojson").exists()
+
+
+def test_ctrl_c_stops_a_long_reconstruction_at_once_and_writes_nothing(tmp_path):
+    # A high --compact-limit makes R of a bumpy 64³ volume a decimation of tens of seconds. Ctrl+C stops it
+    # (the kernel reads its stop flag): "interrupted", exit status 130, no file, no traceback. Before, the
+    # signal waited for the kernel's end and surfaced as a SystemError.
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from tests.model.voxel_shapes import smoothed_noise
+
+    np.savez(tmp_path / "b.npz", mask=smoothed_noise(64, 3), origin=np.zeros(3, int))
+    files = [str(tmp_path / "b.npz"), "-o", str(tmp_path / "b.obj")]
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "mrm", "reconstruct", *files, "--compact-limit", "10000000"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # as a terminal's Ctrl+C reaches it
+    )
+    try:
+        time.sleep(4)  # into the decimation (the net takes well under a second on a warm cache)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=10)  # the whole decimation would take tens of seconds more
+    finally:
+        proc.kill()
+    assert proc.returncode == 130 and err.strip().endswith("mrm reconstruct: interrupted")
+    assert "Traceback" not in err and not (tmp_path / "b.obj").exists()
