@@ -235,18 +235,24 @@ class StatusBar(QtWidgets.QStatusBar):
     def paintEvent(self, ev: QtGui.QPaintEvent) -> None:
         # QStatusBar's own paint draws the message over the area left of the first permanent widget; here
         # the hint widget draws it, elided. The panel and the widgets' frames as Qt draws them.
+        # The painter is ended explicitly (see ElidedLabel.paintEvent: a kept frame crashed the next paint).
         p = QtGui.QPainter(self)
-        opt = QtWidgets.QStyleOption()
-        opt.initFrom(self)
-        style = self.style()
-        style.drawPrimitive(QtWidgets.QStyle.PrimitiveElement.PE_PanelStatusBar, opt, p, self)
-        for w in (self.hint, self.progress_box, self.figures, self.cursor_label, self.model_label):
-            if w.isVisible():
-                item = QtWidgets.QStyleOption()
-                item.rect = w.geometry().adjusted(-2, -1, 2, 1)
-                item.palette = self.palette()
-                if ev.rect().intersects(item.rect):
-                    style.drawPrimitive(QtWidgets.QStyle.PrimitiveElement.PE_FrameStatusBarItem, item, p, w)
+        try:
+            opt = QtWidgets.QStyleOption()
+            opt.initFrom(self)
+            style = self.style()
+            style.drawPrimitive(QtWidgets.QStyle.PrimitiveElement.PE_PanelStatusBar, opt, p, self)
+            for w in (self.hint, self.progress_box, self.figures, self.cursor_label, self.model_label):
+                if w.isVisible():
+                    item = QtWidgets.QStyleOption()
+                    item.rect = w.geometry().adjusted(-2, -1, 2, 1)
+                    item.palette = self.palette()
+                    if ev.rect().intersects(item.rect):
+                        style.drawPrimitive(
+                            QtWidgets.QStyle.PrimitiveElement.PE_FrameStatusBarItem, item, p, w
+                        )
+        finally:
+            p.end()
 
 
 def segment_count(ana: Any) -> int:

@@ -26,8 +26,8 @@ Times are medians of ``--repeat`` runs in this process, after one warm call (the
 reported apart; numba's compilation or cache loading is measured once at the start, on a 3³ cube).
 
 Usage: ``.venv/bin/python benchmarks/reconstruct3d.py [--octa-radii 4 8 16 32 64 100 150 200]
-[--ball-radii 8 16 32 64 100] [--repeat 3] [--big 256] [--big-model gauss] [--big-shapes ball blobs]
-[--seed 0]``
+[--ball-radii 8 16 32 64 100] [--repeat 3] [--big 256] [--big-repeat 1] [--big-model gauss]
+[--big-shapes ball blobs] [--seed 0]``
 """
 
 from __future__ import annotations
@@ -387,6 +387,13 @@ def main() -> None:
     ap.add_argument(
         "--big", type=int, default=0, metavar="N", help="also time R and MC on N³ volumes (0: off)"
     )
+    ap.add_argument(
+        "--big-repeat",
+        type=int,
+        default=None,
+        metavar="K",
+        help="runs of each --big row's timing (default: --repeat); one R of 256³ blobs takes minutes",
+    )
     ap.add_argument("--big-model", default="gauss", choices=MODELS)
     ap.add_argument("--seed", type=int, default=0, help="seed of the --big random blobs")
     ap.add_argument("--big-shapes", nargs="+", default=["ball", "blobs"], choices=["ball", "blobs"])
@@ -414,7 +421,8 @@ def main() -> None:
     octahedra(args.octa_radii, args.repeat)
     smooth_shapes(args.ball_radii, args.repeat, fs)
     if args.big:
-        big(args.big, args.big_model, args.repeat, args.seed, args.big_shapes)
+        big_repeat = args.repeat if args.big_repeat is None else args.big_repeat
+        big(args.big, args.big_model, big_repeat, args.seed, args.big_shapes)
 
 
 if __name__ == "__main__":

@@ -90,19 +90,24 @@ class ElidedLabel(QtWidgets.QLabel):
         self._update_tip()
 
     def paintEvent(self, _ev: QtGui.QPaintEvent) -> None:
+        # Ended explicitly, not left to the garbage collector: anything holding this frame (a sampling
+        # profiler, a traceback) would keep the painter active into the next paint, which then crashed.
         p = QtGui.QPainter(self)
-        p.setPen(self._colour or self.palette().color(self.foregroundRole()))
-        rect = QtCore.QRectF(self.contentsRect())
-        lead, rest = self._pieces()
-        if self._align == QtCore.Qt.AlignmentFlag.AlignRight:  # the drawn text ends at the right side
-            width = self._bold().horizontalAdvance(lead) + self.fontMetrics().horizontalAdvance(rest)
-            rect.setLeft(max(rect.left(), rect.right() - width - 1))
-        flags = int(QtCore.Qt.AlignmentFlag.AlignLeft | QtCore.Qt.AlignmentFlag.AlignVCenter)
-        if lead:
-            font = QtGui.QFont(self.font())
-            font.setBold(True)
-            p.setFont(font)
-            p.drawText(rect, flags, lead)
-            rect.setLeft(rect.left() + self._bold().horizontalAdvance(lead))
-            p.setFont(self.font())
-        p.drawText(rect, flags, rest)
+        try:
+            p.setPen(self._colour or self.palette().color(self.foregroundRole()))
+            rect = QtCore.QRectF(self.contentsRect())
+            lead, rest = self._pieces()
+            if self._align == QtCore.Qt.AlignmentFlag.AlignRight:  # the drawn text ends at the right side
+                width = self._bold().horizontalAdvance(lead) + self.fontMetrics().horizontalAdvance(rest)
+                rect.setLeft(max(rect.left(), rect.right() - width - 1))
+            flags = int(QtCore.Qt.AlignmentFlag.AlignLeft | QtCore.Qt.AlignmentFlag.AlignVCenter)
+            if lead:
+                font = QtGui.QFont(self.font())
+                font.setBold(True)
+                p.setFont(font)
+                p.drawText(rect, flags, lead)
+                rect.setLeft(rect.left() + self._bold().horizontalAdvance(lead))
+                p.setFont(self.font())
+            p.drawText(rect, flags, rest)
+        finally:
+            p.end()

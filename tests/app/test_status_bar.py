@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
-from PySide6 import QtCore, QtGui
+import sys
+import types
+
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from mrm.document.commands import AddObject
 from tests.app import process_job_fixtures as jobs
@@ -66,3 +69,40 @@ def test_a_long_hint_is_elided_before_the_figures_never_drawn_into_them(make_win
     assert status.hint.text() == hint and status.hint.geometry().right() < fig.left()
     shown = status.hint.displayed_text()
     assert shown != hint and shown.endswith("…") and status.hint.toolTip() == hint
+
+
+def _painters_left_active(widget: QtWidgets.QWidget) -> list[str]:
+    """Repaint ``widget`` while keeping every paintEvent's frame alive past its return, as a sampling profiler
+    does (``sys._current_frames``); return the classes whose painter was still active afterwards."""
+    kept: list[types.FrameType] = []
+
+    def profile(frame: types.FrameType, event: str, _arg: object) -> None:
+        if event == "return" and frame.f_code.co_name == "paintEvent":
+            kept.append(frame)
+
+    sys.setprofile(profile)
+    try:
+        widget.repaint()
+    finally:
+        sys.setprofile(None)
+    left = []
+    for frame in kept:
+        for value in frame.f_locals.values():
+            if isinstance(value, QtGui.QPainter) and value.isActive():
+                left.append(type(frame.f_locals["self"]).__name__)
+    assert kept, "no paintEvent of ours ran"
+    return left
+
+
+def test_a_paint_ends_its_painter_even_when_its_frame_is_kept(make_window, qtbot):
+    """A painter left to the garbage collector stays active while anything holds its frame: under a sampling
+    profiler the status bar's next paint found it active, Qt warned "endPaint() called with active painter",
+    and the window crashed (a segmentation fault) while a task reported its progress."""
+    win = make_window(size=(1000, 700))
+    status = win.status
+    status.set_busy(True)
+    status._show_progress(True)
+    status.set_progress("DSS", 0.5, "continuing R(A)")
+    qtbot.waitUntil(lambda: status.progress_label.isVisible(), timeout=HANG_MS)
+    assert _painters_left_active(status) == []
+    assert _painters_left_active(status.progress_label) == []
