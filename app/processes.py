@@ -218,7 +218,10 @@ def remove_stale_spills() -> int:
 def _recv_parts(conn: Any) -> tuple[bytes, list[Any]]:
     files = pickle.loads(conn.recv_bytes())
     head = conn.recv_bytes()
-    return head, [conn.recv_bytes() if f is None else _unspill(f) for f in files]
+    # A small array's bytes are copied into a bytearray (at most SPILL_BYTES): unpickled from bytes it would
+    # be read-only, unlike the sender's and a spilled one's, and numba compiles a kernel once more for each
+    # read-only argument: the desktop's first 3D operation recompiled the voxelization kernels (ADR 0025).
+    return head, [bytearray(conn.recv_bytes()) if f is None else _unspill(f) for f in files]
 
 
 def recv_obj(conn: Any) -> Any:

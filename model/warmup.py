@@ -301,7 +301,7 @@ def _step_regions_3d() -> None:
     from mrm.geometry.reconstruct.polygonize_3d import polygonize_volume
 
     # `mrm polygonize` of a label volume: voxels of one label touching along edges only (pinches)
-    polygonize_volume(np.eye(3, dtype=np.int32)[None].repeat(2, axis=0) * 2 + ~mask[:2] * 1)
+    polygonize_volume(np.eye(3, dtype=np.int32)[None].repeat(2, axis=0) * 2 + ~mask[:2] * 1).polygons()
     from mrm.geometry.topology.colouring import greedy_colouring
 
     greedy_colouring(3, [(0, 1), (1, 2)], 2)  # the 3D analytical view's segment colours
@@ -374,6 +374,7 @@ def _step_polyhedra() -> None:
     )  # fmt: skip
     cavity = Polyhedron(np.vstack([corners * 3.0, corners + 1.0]), np.vstack([tris, tris[:, ::-1] + 8]))
     _ = cavity.n_faces
+    _ = cavity.polygons  # mesh files' one polygon per face (`mrm reconstruct`, the desktop's export)
     from mrm.geometry.hausdorff.solids import solid_hausdorff
 
     solid_hausdorff(cavity.vertices, cavity.triangles, corners * 3.0, tris)  # the measured error in 3D

@@ -239,3 +239,17 @@ def test_a_warmed_child_takes_the_first_job_with_the_operations_loaded(pool):  #
         assert not loaded2
     finally:
         pool2.close()
+
+
+def test_arrays_come_back_writable_as_they_were_sent_small_or_big(pool):  # type: ignore[no-untyped-def]
+    """A small array came back read-only (unpickled from bytes) and a big one writable (spilled): numba
+    compiles a kernel again for each read-only argument, so the desktop's first 3D operation after the
+    warm-up recompiled the voxelization kernels for the triangles it received."""
+    triangles = np.arange(30, dtype=np.int64).reshape(10, 3)
+    big = np.ones(2 * processes.SPILL_BYTES, np.uint8)
+    small_back, big_back = pool.run(jobs.echo, ((triangles, big),), TaskProgress())
+    assert np.array_equal(small_back, triangles) and small_back.dtype == np.int64
+    assert small_back.flags.writeable and small_back.flags.c_contiguous
+    assert big_back.flags.writeable and big_back.sum() == big.sum()
+    frozen = PixelSet(np.ones((3, 4), bool), (0, 0))
+    assert not pool.run(jobs.echo, (frozen,), TaskProgress()).mask.flags.writeable  # a frozen value stays so
