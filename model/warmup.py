@@ -399,6 +399,15 @@ def _step_voxelize() -> None:
             voxelize_solid(v, tris, model)
             voxelize_triangles(v, tris, model)
     integer_vertices(v)  # the exact images' reading of the vertices (voxelize_image)
+    from mrm.geometry.discretize.voxels import voxelize
+    from mrm.geometry.polyhedra import Polyhedron
+
+    # A polyhedron's arrays are read-only, and numba compiles a kernel once more for a read-only argument:
+    # D of a polyhedron (the operations, the desktop) takes these signatures.
+    solid = Polyhedron(v, tris)
+    for model in ("standard", "supercover", "gauss"):
+        voxelize(solid, model)
+    integer_vertices(solid.vertices)
 
 
 def _step_examples() -> None:
