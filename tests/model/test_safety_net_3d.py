@@ -16,9 +16,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mrm.core.errors import SizeLimitError
+from mrm.geometry.polyhedra import Polyhedron
 from mrm.geometry.reconstruct.safety_net_3d import SafetyNet3D, safety_net_3d
 from mrm.reps.region_3d import region_3d_of
-from tests.model.voxel_shapes import ball, hollow, random_mask, solid_torus
+from tests.model.voxel_shapes import ball, hollow, random_mask, smoothed_noise, solid_torus
 from tests.oracles.polyhedron_reference import gauss, supercover
 
 masks = st.builds(
@@ -248,6 +249,24 @@ def test_random_masks_give_valid_meshes_with_the_topology_of_a(m: np.ndarray) ->
     net = safety_net_3d(m, (2, -1, 0))
     check_mesh(net)
     check_topology(m, net, (2, -1, 0))
+    # R takes the net without the search for triangles meeting improperly (its construction proves there are
+    # none): the whole exact validation, that search included, accepts it
+    Polyhedron(net.vertices, net.triangles)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.integers(0, 2**32 - 1),
+    st.integers(8, 28),
+    st.sampled_from(["noise 0.3", "noise 0.5", "noise 0.7", "blobs"]),
+)
+def test_bigger_random_nets_pass_the_whole_validation(seed: int, n: int, kind: str) -> None:
+    """R keeps the net above the compact limit without searching it for triangles that meet improperly
+    (reconstruct._net_polyhedron): on sets of hundreds to thousands of surfels, with thin parts, cavities
+    and edge contacts, that search finds none."""
+    m = smoothed_noise(n, seed % 1000) if kind == "blobs" else random_mask(seed, (n, n, n), float(kind[6:]))
+    net = safety_net_3d(m, (-3, 5, 1))
+    Polyhedron(net.vertices, net.triangles)
 
 
 @settings(max_examples=25)
