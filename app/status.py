@@ -235,9 +235,8 @@ class StatusBar(QtWidgets.QStatusBar):
     def paintEvent(self, ev: QtGui.QPaintEvent) -> None:
         # QStatusBar's own paint draws the message over the area left of the first permanent widget; here
         # the hint widget draws it, elided. The panel and the widgets' frames as Qt draws them.
-        # The painter is ended explicitly (see ElidedLabel.paintEvent: a kept frame crashed the next paint).
-        p = QtGui.QPainter(self)
-        try:
+        # The painter ends with the block (see ElidedLabel.paintEvent: a kept frame crashed the next paint).
+        with QtGui.QPainter(self) as p:
             opt = QtWidgets.QStyleOption()
             opt.initFrom(self)
             style = self.style()
@@ -251,8 +250,6 @@ class StatusBar(QtWidgets.QStatusBar):
                         style.drawPrimitive(
                             QtWidgets.QStyle.PrimitiveElement.PE_FrameStatusBarItem, item, p, w
                         )
-        finally:
-            p.end()
 
 
 def segment_count(ana: Any) -> int:

@@ -90,10 +90,9 @@ class ElidedLabel(QtWidgets.QLabel):
         self._update_tip()
 
     def paintEvent(self, _ev: QtGui.QPaintEvent) -> None:
-        # Ended explicitly, not left to the garbage collector: anything holding this frame (a sampling
-        # profiler, a traceback) would keep the painter active into the next paint, which then crashed.
-        p = QtGui.QPainter(self)
-        try:
+        # Ended on leaving the block, not left to the garbage collector: anything holding this frame (a
+        # sampling profiler, a traceback) would keep the painter active into the next paint, which crashed.
+        with QtGui.QPainter(self) as p:
             p.setPen(self._colour or self.palette().color(self.foregroundRole()))
             rect = QtCore.QRectF(self.contentsRect())
             lead, rest = self._pieces()
@@ -109,5 +108,3 @@ class ElidedLabel(QtWidgets.QLabel):
                 rect.setLeft(rect.left() + self._bold().horizontalAdvance(lead))
                 p.setFont(self.font())
             p.drawText(rect, flags, rest)
-        finally:
-            p.end()

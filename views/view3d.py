@@ -245,11 +245,8 @@ def make_pane(camera: Camera3D, parent: QtWidgets.QWidget) -> Any:
             # An item's GL options stay set after it (the differences are drawn with face culling on):
             # QPainter strokes lines as triangles, which culling drops. Its engine resets the rest.
             GL.glDisable(GL.GL_CULL_FACE)
-            painter = QtGui.QPainter(self)
-            try:
+            with QtGui.QPainter(self) as painter:
                 draw_axis_gizmo(painter, self.viewMatrix(), self.height())
-            finally:
-                painter.end()
 
     pane = GLPane(parent)
     pane.setObjectName("glPane")
